@@ -1,0 +1,270 @@
+"""The validated drive model: frozen dataclasses in SI units.
+
+A :class:`Drive` is what every analysis reads. It is built from a design file by
+:mod:`chaindrive.io.design`, or in code::
+
+    from chaindrive import Drive, Sprocket, Chain
+    drive = Drive(
+        name="two sprockets",
+        chain=Chain.from_catalog("ISO 606 08B-1"),
+        sprockets=(
+            Sprocket("S1", teeth=17, x=0.0, y=0.0, role="driver", speed=2 * pi * 1000 / 60),
+            Sprocket("S2", teeth=34, x=0.5, y=0.0, role="driven"),
+        ),
+        power=2_000.0,
+    )
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+from chaindrive.errors import DesignError
+
+Role = Literal["driver", "driven", "idler"]
+Side = Literal["outside", "inside"]
+ToothForm = Literal["ISO 606", "GOST 591"]
+
+ROLES: tuple[str, ...] = ("driver", "driven", "idler")
+SIDES: tuple[str, ...] = ("outside", "inside")
+TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
+MIN_TEETH, MAX_TEETH = 6, 150
+MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
+
+
+@dataclass(frozen=True, slots=True)
+class ChainSpec:
+    """One catalogue chain (all strands together), SI units.
+
+    Attributes
+    ----------
+    designation : str — canonical name, e.g. ``"ISO 606 16B-1"``, ``"GOST 13568 ПР-25,4-60"``
+    standard : str — ``"ISO 606"``, ``"ANSI"`` or ``"GOST 13568"``
+    series : str — ``"A"``, ``"B"`` (ISO 606) or ``"ПР"`` (GOST)
+    pitch : float — chain pitch p [m]
+    strands : int — number of strands (rows) 1…
+    roller_diameter : float — d1 max [m]
+    pin_diameter : float — d2 max [m]
+    inner_width : float — b1 min, width between inner plates [m]
+    plate_depth : float — inner plate depth h2 max [m]
+    transverse_pitch : float — pt [m] (0 for a simplex chain when not given)
+    breaking_load : float — minimum tensile strength Q of the whole chain [N]
+    mass_per_length : float — q [kg/m] of the whole chain
+    bearing_area : float | None — projected hinge bearing area A = d2·B of the whole chain [m²]
+    ansi : str | None — ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``)
+    material : str — chain material name (``"steel"`` for catalogue chains)
+    source : str — where the row comes from
+    """
+
+    designation: str
+    standard: str
+    series: str
+    pitch: float
+    strands: int
+    roller_diameter: float
+    pin_diameter: float
+    inner_width: float
+    plate_depth: float
+    transverse_pitch: float
+    breaking_load: float
+    mass_per_length: float
+    bearing_area: float | None = None
+    ansi: str | None = None
+    material: str = "steel"
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        for name in ("pitch", "roller_diameter", "pin_diameter", "breaking_load",
+                     "mass_per_length"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+                raise DesignError(f"chain.{name}", f"must be a positive number, got {value!r}")
+        if not 1 <= self.strands <= 8:
+            raise DesignError("chain.strands", f"must be 1 to 8, got {self.strands!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class Material:
+    """A sprocket or chain material, SI units (density [kg/m³], E [Pa], strength [Pa])."""
+
+    name: str
+    family: str
+    density: float
+    youngs_modulus: float
+    tensile_strength: float | None = None
+    friction_vs_steel: float | None = None
+    source: str = ""
+
+    @property
+    def is_polymer(self) -> bool:
+        """True for polyamides, acetals and other plastics."""
+        return self.family not in {"carbon steel", "alloy steel", "cast steel",
+                                   "case-hardening steel", "grey cast iron", "steel",
+                                   "cast iron"}
+
+
+@dataclass(frozen=True, slots=True)
+class Chain:
+    """The chain of a drive: a catalogue entry plus what the design fixes.
+
+    ``links`` imposes the number of links (the take-up then finds the position that fits
+    it); ``allow_odd`` permits an odd count (which needs an offset link).
+    """
+
+    spec: ChainSpec
+    links: int | None = None
+    allow_odd: bool = False
+
+    def __post_init__(self) -> None:
+        if self.links is not None:
+            if not isinstance(self.links, int) or isinstance(self.links, bool) or self.links < 4:
+                raise DesignError("chain.links", f"must be a whole number ≥ 4, got {self.links!r}")
+            if self.links % 2 and not self.allow_odd:
+                raise DesignError(
+                    "chain.links",
+                    f"must be even (an odd count needs an offset link: set allow_odd = true), "
+                    f"got {self.links}",
+                )
+
+    @classmethod
+    def from_catalog(cls, designation: str, *, links: int | None = None,
+                     allow_odd: bool = False) -> Chain:
+        """Chain from a designation in the packaged catalogue (see :mod:`chaindrive.catalog`)."""
+        from chaindrive.catalog import find_chain
+
+        return cls(find_chain(designation), links=links, allow_odd=allow_odd)
+
+    @property
+    def pitch(self) -> float:
+        """Chain pitch p [m]."""
+        return self.spec.pitch
+
+
+@dataclass(frozen=True, slots=True)
+class Sprocket:
+    """A sprocket of the contour, listed in the order the chain runs round it.
+
+    x, y [m] centre; speed [rad/s] (driver only); inertia [kg·m²] of everything rotating
+    with it (None: computed later from geometry); ``side`` is ``"inside"`` when the chain
+    wraps it from the inside of the contour (it then turns the other way);
+    ``adjust_angle`` [rad] the direction of its line of adjustment (None: the default,
+    see :func:`chaindrive.geometry.contour.adjustment_direction`).
+    """
+
+    name: str
+    teeth: int
+    x: float
+    y: float
+    role: Role = "driven"
+    speed: float | None = None
+    side: Side = "outside"
+    adjustable: bool = False
+    adjust_angle: float | None = None
+    inertia: float | None = None
+    material: str = "steel"
+    power_share: float | None = None
+
+    def __post_init__(self) -> None:
+        where = f"sprockets[{self.name}]"
+        if (not isinstance(self.teeth, int) or isinstance(self.teeth, bool)
+                or not MIN_TEETH <= self.teeth <= MAX_TEETH):
+            raise DesignError(
+                f"{where}.teeth",
+                f"must be a whole number from {MIN_TEETH} to {MAX_TEETH}, got {self.teeth!r}",
+            )
+        if self.role not in ROLES:
+            raise DesignError(f"{where}.role", f"must be one of {', '.join(ROLES)}, got {self.role!r}")
+        if self.side not in SIDES:
+            raise DesignError(f"{where}.side", f"must be one of {', '.join(SIDES)}, got {self.side!r}")
+        for name in ("x", "y"):
+            if not math.isfinite(getattr(self, name)):
+                raise DesignError(f"{where}.{name}", f"must be finite, got {getattr(self, name)!r}")
+        if self.speed is not None and not (math.isfinite(self.speed) and self.speed > 0):
+            raise DesignError(f"{where}.speed", f"must be positive, got {self.speed!r} rad/s")
+        if self.inertia is not None and not (math.isfinite(self.inertia) and self.inertia > 0):
+            raise DesignError(f"{where}.inertia", f"must be positive, got {self.inertia!r} kg·m²")
+        if self.power_share is not None and not 0 <= self.power_share <= 1:
+            raise DesignError(f"{where}.power_share", f"must be from 0 to 1, got {self.power_share!r}")
+
+    def moved_to(self, x: float, y: float) -> Sprocket:
+        """A copy of this sprocket at a new centre (used by the take-up)."""
+        return replace(self, x=x, y=y)
+
+
+@dataclass(frozen=True, slots=True)
+class Drive:
+    """A chain drive: one closed chain contour round 2 to 24 sprockets.
+
+    power [W] transmitted from the driver (None when only geometry is wanted);
+    tooth_form: sprocket tooth form used for tip/root diameters.
+    """
+
+    name: str
+    chain: Chain
+    sprockets: tuple[Sprocket, ...]
+    power: float | None = None
+    tooth_form: ToothForm = "ISO 606"
+    service_factor: float | None = None
+    notes: dict[str, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        n = len(self.sprockets)
+        if not MIN_SPROCKETS <= n <= MAX_SPROCKETS:
+            raise DesignError(
+                "sprockets", f"a contour needs {MIN_SPROCKETS} to {MAX_SPROCKETS} sprockets, got {n}"
+            )
+        names = [s.name for s in self.sprockets]
+        for i, name in enumerate(names):
+            if name in names[:i]:
+                raise DesignError(f"sprockets[{i}].name", f"duplicate name {name!r}; names must be unique")
+        drivers = [s.name for s in self.sprockets if s.role == "driver"]
+        if len(drivers) != 1:
+            raise DesignError(
+                "sprockets.role",
+                f"exactly one sprocket must be the driver, got {len(drivers)}"
+                + (f" ({', '.join(drivers)})" if drivers else ""),
+            )
+        driver = self.sprockets[self.driver_index]
+        for s in self.sprockets:
+            if s.speed is not None and s.role != "driver":
+                raise DesignError(f"sprockets[{s.name}].speed",
+                                  "give the speed on the driver only (the others follow from it)")
+        if driver.speed is None and self.power is not None:
+            raise DesignError(f"sprockets[{driver.name}].speed",
+                              "the driver needs a speed when power is given")
+        if self.power is not None and not (math.isfinite(self.power) and self.power > 0):
+            raise DesignError("drive.power", f"must be positive, got {self.power!r} W")
+        if self.tooth_form not in TOOTH_FORMS:
+            raise DesignError("drive.tooth_form",
+                              f"must be one of {', '.join(TOOTH_FORMS)}, got {self.tooth_form!r}")
+        adjustable = [s.name for s in self.sprockets if s.adjustable]
+        if len(adjustable) > 1:
+            raise DesignError("sprockets.adjustable",
+                              f"at most one sprocket may be adjustable, got {', '.join(adjustable)}")
+
+    @property
+    def driver_index(self) -> int:
+        """Index of the driving sprocket."""
+        return next(i for i, s in enumerate(self.sprockets) if s.role == "driver")
+
+    @property
+    def driver(self) -> Sprocket:
+        """The driving sprocket."""
+        return self.sprockets[self.driver_index]
+
+    @property
+    def adjustable_index(self) -> int | None:
+        """Index of the sprocket that takes up the chain: the one marked adjustable; in a
+        two-sprocket drive with none marked, the driven one; otherwise None."""
+        for i, s in enumerate(self.sprockets):
+            if s.adjustable:
+                return i
+        if len(self.sprockets) == 2:
+            return 1 - self.driver_index
+        return None
+
+    def with_sprockets(self, sprockets: tuple[Sprocket, ...]) -> Drive:
+        """A copy with other sprockets (e.g. after the take-up)."""
+        return replace(self, sprockets=sprockets)
