@@ -25,7 +25,7 @@ from chaindrive.errors import DesignError
 
 Role = Literal["driver", "driven", "idler"]
 Side = Literal["outside", "inside"]
-ToothForm = Literal["ISO 606", "GOST 591"]
+ToothFormName = Literal["ISO 606", "GOST 591"]
 
 ROLES: tuple[str, ...] = ("driver", "driven", "idler")
 SIDES: tuple[str, ...] = ("outside", "inside")
@@ -52,7 +52,8 @@ class ChainSpec:
     transverse_pitch : float — pt [m] (0 for a simplex chain when not given)
     breaking_load : float — minimum tensile strength Q of the whole chain [N]
     mass_per_length : float — q [kg/m] of the whole chain
-    bearing_area : float | None — projected hinge bearing area A = d2·B of the whole chain [m²]
+    bearing_area : float | None — projected bearing area of the whole chain A = m_r·d2·B
+        (m_r = 1, 1.7, 2.5, 3.0 for 1–4 rows, GOST table 5.12; see :mod:`chaindrive.catalog`) [m²]
     ansi : str | None — ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``)
     material : str — chain material name (``"steel"`` for catalogue chains)
     source : str — where the row comes from
@@ -205,7 +206,7 @@ class Drive:
     chain: Chain
     sprockets: tuple[Sprocket, ...]
     power: float | None = None
-    tooth_form: ToothForm = "ISO 606"
+    tooth_form: ToothFormName = "ISO 606"
     service_factor: float | None = None
     notes: dict[str, str] = field(default_factory=dict)
 

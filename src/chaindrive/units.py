@@ -58,13 +58,13 @@ def parse_quantity(text: object, dimension: str, field: str) -> float:
     ureg = registry()
     try:
         q = ureg.Quantity(text.strip())
-    except (pint.errors.UndefinedUnitError,) as exc:
+    except pint.errors.UndefinedUnitError as exc:
         raise DesignError(field, f"unknown unit in {text!r} ({exc.unit_names!s})") from None
     except Exception:
         raise DesignError(
             field, f"cannot read {text!r} as a quantity; write it like \"{example}\""
         ) from None
-    if not isinstance(q, ureg.Quantity) or q.dimensionless and dimension != "angle":
+    if not isinstance(q, ureg.Quantity) or (q.dimensionless and dimension != "angle"):
         raise DesignError(field, f"missing unit in {text!r}; write it like \"{example}\"")
     if dimension == "speed":
         unit_text = str(q.units)

@@ -1,0 +1,5 @@
+"""``python -m chaindrive`` runs the command line."""
+
+from chaindrive.cli import main
+
+main()

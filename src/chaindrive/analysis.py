@@ -1,0 +1,106 @@
+"""``analyze(drive)``: every analysis of a drive in order, into one immutable result.
+
+geometry → kinematics → (loads/strength) → (dynamics). ``Analysis.to_dict()`` is the one
+place the JSON document is produced, so the command line, the report and the web page show
+the same numbers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.results import GeometryResult
+from chaindrive.kinematics import KinematicsResult, drive_kinematics
+from chaindrive.model import Drive
+
+
+@dataclass(frozen=True, slots=True)
+class Analysis:
+    """The results of :func:`analyze`: one part per subject, plus the drive they belong to."""
+
+    drive: Drive
+    geometry: GeometryResult
+    kinematics: KinematicsResult
+    warnings: tuple[str, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON document (keys snake_case, units in the names)."""
+        return {
+            "drive": drive_summary(self.drive),
+            "geometry": geometry_dict(self.geometry),
+            "kinematics": self.kinematics.to_dict(),
+            "warnings": list(self.warnings),
+        }
+
+
+def drive_summary(drive: Drive) -> dict[str, Any]:
+    """What was analysed: name, chain, power, speed of the driver."""
+    spec = drive.chain.spec
+    return {
+        "name": drive.name,
+        "chain": spec.designation,
+        "pitch_mm": spec.pitch * 1e3,
+        "strands": spec.strands,
+        "breaking_load_n": spec.breaking_load,
+        "mass_per_length_kg_m": spec.mass_per_length,
+        "tooth_form": drive.tooth_form,
+        "power_w": drive.power,
+        "driver": drive.driver.name,
+        "driver_speed_rpm": None if drive.driver.speed is None
+        else drive.driver.speed * 30 / math.pi,
+    }
+
+
+def geometry_dict(g: GeometryResult) -> dict[str, Any]:
+    """JSON part of the contour geometry (mm, degrees)."""
+    return {
+        "links": g.links,
+        "chain_length_mm": g.chain_length * 1e3,
+        "tight_length_mm": g.tight_length * 1e3,
+        "tight_length_pitches": g.tight_pitches,
+        "slack_mm": g.slack * 1e3,
+        "center_distance_mm": None if g.center_distance is None else g.center_distance * 1e3,
+        "adjusted_sprocket": None if g.adjusted is None else g.sprockets[g.adjusted].name,
+        "adjustment_mm": g.adjustment * 1e3,
+        "direction_of_travel": "ccw" if g.orientation > 0 else "cw",
+        "sprockets": [
+            {
+                "name": s.name,
+                "teeth": s.teeth,
+                "side": s.side,
+                "x_mm": s.x * 1e3,
+                "y_mm": s.y * 1e3,
+                "pitch_diameter_mm": s.pitch_diameter * 1e3,
+                "tip_diameter_mm": s.tip_diameter * 1e3,
+                "root_diameter_mm": s.root_diameter * 1e3,
+                "wrap_angle_deg": math.degrees(s.wrap_angle),
+                "teeth_in_mesh": s.teeth_in_mesh,
+            }
+            for s in g.sprockets
+        ],
+        "spans": [
+            {
+                "from": s.start_name,
+                "to": s.end_name,
+                "length_mm": s.length * 1e3,
+                "length_pitches": s.pitches,
+                "inclination_deg": math.degrees(s.inclination),
+                "tight": s.tight,
+            }
+            for s in g.spans
+        ],
+    }
+
+
+def analyze(drive: Drive) -> Analysis:
+    """Run the analyses of a drive: contour geometry (with take-up) and kinematics."""
+    geometry = contour_geometry(drive)
+    placed = drive.with_sprockets(tuple(
+        s.moved_to(g.x, g.y) for s, g in zip(drive.sprockets, geometry.sprockets, strict=True)
+    ))
+    kinematics = drive_kinematics(placed, geometry)
+    return Analysis(drive=placed, geometry=geometry, kinematics=kinematics,
+                    warnings=geometry.warnings)

@@ -1,0 +1,210 @@
+"""The ``chaindrive`` command line (typer + rich): a presenter, it computes nothing itself.
+
+A user's mistake prints one line ``error: <field>: <what is wrong>`` on stderr and exits
+with status 2; nothing is written half-way.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from chaindrive.errors import ChainDriveError
+
+app = typer.Typer(
+    name="chaindrive",
+    help="Design and dynamic analysis of roller-chain drives.",
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+)
+EXIT_USER_ERROR = 2
+
+
+@contextmanager
+def user_errors() -> Iterator[None]:
+    """Turn a ChainDriveError into one line on stderr and exit status 2."""
+    try:
+        yield
+    except ChainDriveError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        raise typer.Exit(EXIT_USER_ERROR) from None
+
+
+def _console() -> Console:
+    return Console(highlight=False, soft_wrap=False, width=120)
+
+
+def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
+    table = Table(title=title, title_justify="left", header_style="bold")
+    for c in columns:
+        table.add_column(c, justify="left" if c in {"name", "from", "to", "chain", "field",
+                                                    "direction", "side", "source",
+                                                    "allowed", "description"} else "right")
+    for row in rows:
+        table.add_row(*[_fmt(v) for v in row])
+    return table
+
+
+def _fmt(value: Any) -> str:
+    if value is None:
+        return "—"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "—"
+        return f"{value:.4g}" if abs(value) < 1e4 else f"{value:.0f}"
+    return str(value)
+
+
+def _write_json(document: dict[str, Any]) -> None:
+    sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+
+
+@app.command()
+def analyze(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Analyse a drive: contour geometry, chain length, speeds, non-uniformity."""
+    import chaindrive
+
+    with user_errors():
+        result = chaindrive.analyze(chaindrive.load(file))
+        document = result.to_dict()
+    if as_json:
+        _write_json(document)
+        return
+    _print_analysis(document)
+
+
+def _print_analysis(doc: dict[str, Any]) -> None:
+    """Readable tables of an analysis document."""
+    con = _console()
+    d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
+    con.print(f"[bold]{d['name']}[/bold] — chain {d['chain']} (pitch {d['pitch_mm']:g} mm), "
+              f"tooth form {d['tooth_form']}")
+    summary = (f"links {g['links']}, chain length {g['chain_length_mm']:.1f} mm, tight length "
+               f"{g['tight_length_mm']:.1f} mm ({g['tight_length_pitches']:.3f} pitches)")
+    if g["center_distance_mm"] is not None:
+        summary += f", centre distance {g['center_distance_mm']:.2f} mm"
+    con.print(summary)
+    if g["adjusted_sprocket"] is not None:
+        con.print(f"take-up: {g['adjusted_sprocket']} moved {g['adjustment_mm']:.2f} mm")
+    con.print(_table("Sprockets", ["name", "teeth", "side", "x mm", "y mm", "pitch Ø mm",
+                                   "tip Ø mm", "wrap °", "teeth in mesh"],
+                     [[s["name"], s["teeth"], s["side"], s["x_mm"], s["y_mm"],
+                       s["pitch_diameter_mm"], s["tip_diameter_mm"], s["wrap_angle_deg"],
+                       s["teeth_in_mesh"]] for s in g["sprockets"]]))
+    con.print(_table("Spans", ["from", "to", "length mm", "pitches", "incl. °", "tight"],
+                     [[s["from"], s["to"], s["length_mm"], s["length_pitches"],
+                       s["inclination_deg"], s["tight"]] for s in g["spans"]]))
+    con.print(f"chain speed {k['chain_speed_m_s']:.3f} m/s "
+              f"({k['chain_speed_min_m_s']:.3f}…{k['chain_speed_max_m_s']:.3f}), "
+              f"tooth frequency {k['tooth_frequency_hz']:.2f} Hz")
+    con.print(_table("Kinematics", ["name", "speed rpm", "direction", "speed variation %"],
+                     [[s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"]]
+                      for s in k["sprockets"]]))
+    for w in doc["warnings"]:
+        con.print(f"[yellow]warning:[/yellow] {w}")
+
+
+@app.command()
+def schema(
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Print every field of a design file with its unit, default and allowed values."""
+    from chaindrive.io.design import schema as design_schema
+
+    doc = design_schema()
+    if as_json:
+        _write_json(doc)
+        return
+    con = _console()
+    for section, fields in doc.items():
+        header = f"[[{section}]]" if section == "sprockets" else f"[{section}]"
+        con.print(_table(header, ["field", "unit", "default", "required", "allowed",
+                                  "description"],
+                         [[f["field"], f["si_unit"] or "—", f["default"], f["required"],
+                           f["allowed"], f["description"]] for f in fields]))
+
+
+@app.command()
+def catalog(
+    name: Annotated[str | None, typer.Argument(help="show one chain or material")] = None,
+    materials: Annotated[bool, typer.Option("--materials", help="list materials")] = False,
+    standard: Annotated[str | None, typer.Option(help='only this standard, e.g. "ISO 606"')]
+    = None,
+    file: Annotated[list[Path] | None, typer.Option("--file", help="a catalogue of your own")]
+    = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """List the chain and material catalogue, or show one entry."""
+    from chaindrive import catalog as cat
+
+    extra = tuple(file or ())
+    with user_errors():
+        if materials:
+            rows: list[Any] = [cat.find_material(name, extra)] if name else list(
+                cat.materials(extra))
+            doc = [_material_dict(m) for m in rows]
+        else:
+            if name:
+                rows = [cat.find_chain(name, extra)]
+            else:
+                rows = [c for c in cat.chains(extra)
+                        if standard is None or c.standard.lower() == standard.lower()]
+            doc = [_chain_dict(c) for c in rows]
+    if as_json:
+        _write_json({"materials" if materials else "chains": doc})
+        return
+    _print_records(doc, "Materials" if materials else "Chains")
+
+
+def _chain_dict(c: Any) -> dict[str, Any]:
+    return {
+        "designation": c.designation, "standard": c.standard, "ansi": c.ansi,
+        "pitch_mm": c.pitch * 1e3, "strands": c.strands,
+        "roller_diameter_mm": c.roller_diameter * 1e3, "pin_diameter_mm": c.pin_diameter * 1e3,
+        "inner_width_mm": c.inner_width * 1e3, "plate_depth_mm": c.plate_depth * 1e3,
+        "transverse_pitch_mm": c.transverse_pitch * 1e3,
+        "breaking_load_kn": c.breaking_load / 1e3, "mass_kg_m": c.mass_per_length,
+        "bearing_area_mm2": None if c.bearing_area is None else c.bearing_area * 1e6,
+        "source": c.source,
+    }
+
+
+def _material_dict(m: Any) -> dict[str, Any]:
+    return {
+        "name": m.name, "family": m.family, "density_kg_m3": m.density,
+        "youngs_modulus_gpa": m.youngs_modulus / 1e9,
+        "tensile_strength_mpa": None if m.tensile_strength is None else m.tensile_strength / 1e6,
+        "friction_vs_steel": m.friction_vs_steel, "source": m.source,
+    }
+
+
+def _print_records(doc: list[dict[str, Any]], title: str) -> None:
+    con = _console()
+    if len(doc) == 1:
+        for key, value in doc[0].items():
+            con.print(f"{key:>22}: {_fmt(value)}")
+        return
+    keys = [k for k in doc[0] if k not in {"source", "standard", "plate_depth_mm",
+                                           "transverse_pitch_mm", "family"}] if doc else []
+    con.print(_table(title, keys, [[r[k] for k in keys] for r in doc]))
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``chaindrive`` script."""
+    run: Callable[..., Any] = app
+    run(args=argv, prog_name="chaindrive")

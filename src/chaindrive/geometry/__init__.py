@@ -1,0 +1,1 @@
+"""Geometry of sprockets (tooth forms) and of the chain contour."""

@@ -1,0 +1,426 @@
+"""Contour geometry of a closed chain round 2 to 24 sprockets anywhere in a plane.
+
+The chain is modelled on the pitch circles (radius R = p / (2 sin(π/z)), ISO 606 /
+GOST 591 pitch diameter) joined by straight tangent spans, in the order in which the
+sprockets are listed (the order the chain runs round the contour, seed 000 §3.6).
+
+Signed radii
+------------
+Let the chain run counter-clockwise round the contour (a clockwise listing is handled by
+mirroring the layout, y → −y, solving, and mirroring back). A sprocket on the *outside*
+of the contour (the chain wraps round it, the usual case) has signed radius r = +R; one
+on the *inside* (an idler pressing on the chain from outside the loop: the chain wraps it
+with its other face and it turns the other way) has r = −R. With n the unit normal of a
+span pointing to the right of the direction of travel, the span leaves circle i at
+c_i + r_i·n and arrives on circle j at c_j + r_j·n, so that
+
+    (c_j − c_i) · n = r_i − r_j                                            (1)
+
+which, with D = c_j − c_i, L = |D|, u = D/L and u⊥ = u rotated +90°, gives
+
+    n = a·u − √(1 − a²)·u⊥,   a = (r_i − r_j) / L                          (2)
+
+(the outer common tangent for equal signs of r, the crossed tangent when the side changes;
+this is the standard belt-drive construction, e.g. Shigley's belt length and any
+computational-geometry text on circle tangents). Span length ℓ = √(L² − (r_i − r_j)²).
+
+Wrap angle on sprocket i: θ_i = (sgn r_i · (φ_out − φ_in)) mod 2π, φ the polar angles of
+the normals of the arriving and leaving spans. A contour that closes once has
+Σ sgn(r_i)·θ_i = 2π (the tangent turns once round the loop); anything else (a figure of
+eight, an outside sprocket in a concave corner) is refused as a contour that cannot close.
+
+Chain length
+------------
+On a sprocket the chain lies on the pitch polygon, θ·z/(2π) pitches for a wrap θ; in the
+spans it is straight. The tight chain length in pitches is therefore
+
+    L_p = Σ ℓ_k / p + Σ z_i θ_i / (2π)                                    (3)
+
+For two sprockets on the outside this is exactly (sin γ = (R₂ − R₁)/a)
+
+    L_p = 2a·cos γ / p + (z₁ + z₂)/2 + (z₂ − z₁)·γ/π                       (4)
+
+and ISO 10823:2004 §… (and every textbook: Shigley eq. 17-37, Bhandari eq. 14.7) uses its
+small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
+The number of links is L_p rounded up to an even number (odd only when allowed: it needs
+an offset link). The *take-up* moves the adjustable sprocket along its line of adjustment
+until L_p equals the number of links exactly (scipy.optimize.brentq).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from chaindrive.errors import DesignError, GeometryError
+from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
+from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
+from chaindrive.model import Drive
+
+TWO_PI = 2.0 * math.pi
+_CLOSE_TOL = 1e-6
+
+
+@dataclass(frozen=True, slots=True)
+class _Layout:
+    """Internal: the contour solved in the counter-clockwise frame."""
+
+    normals: NDArray[np.float64]  # (n, 2) span normals, span k from k to k+1
+    span_lengths: NDArray[np.float64]  # (n,)
+    wraps: NDArray[np.float64]  # (n,) wrap angle per sprocket [rad]
+    tight_pitches: float
+
+
+def pitch_radii(pitch: float, teeth: NDArray[np.int_] | list[int]) -> NDArray[np.float64]:
+    """Pitch-circle radii R = p / (2 sin(π/z)) [m] (ISO 606, GOST 591)."""
+    return 0.5 * np.asarray(pitch_diameter(pitch, np.asarray(teeth)), dtype=float)
+
+
+def span_normals(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Unit normals of the tangent spans k → k+1 (eq. 2 of the module docstring).
+
+    centres (n, 2) [m]; radii (n,) signed radii [m]. Raises GeometryError when two
+    consecutive circles admit no such tangent (one inside the other).
+    """
+    d = np.roll(centres, -1, axis=0) - centres
+    length = np.hypot(d[:, 0], d[:, 1])
+    if np.any(length == 0.0):
+        k = int(np.argmin(length))
+        raise GeometryError("sprockets", f"sprockets {k} and {(k + 1) % len(radii)} have the same centre")
+    u = d / length[:, None]
+    u_perp = np.column_stack((-u[:, 1], u[:, 0]))
+    a = (radii - np.roll(radii, -1)) / length
+    if np.any(np.abs(a) >= 1.0):
+        k = int(np.argmax(np.abs(a)))
+        raise GeometryError(
+            "sprockets", f"no chain span can join sprocket {k} to sprocket {(k + 1) % len(radii)}: "
+            "one lies inside the other"
+        )
+    return a[:, None] * u - np.sqrt(1.0 - a * a)[:, None] * u_perp
+
+
+def span_lengths(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Tangent span lengths ℓ = √(L² − (r_i − r_j)²) [m] for spans k → k+1."""
+    d = np.roll(centres, -1, axis=0) - centres
+    dist2 = np.einsum("ij,ij->i", d, d)
+    return np.sqrt(dist2 - (radii - np.roll(radii, -1)) ** 2)
+
+
+def wrap_angles(normals: NDArray[np.float64], signs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Wrap angles θ_i = (sgn_i·(φ_out − φ_in)) mod 2π [rad] (module docstring)."""
+    phi = np.arctan2(normals[:, 1], normals[:, 0])
+    phi_in = np.roll(phi, 1)  # span i-1 → i arrives on sprocket i
+    return np.mod(signs * (phi - phi_in), TWO_PI)
+
+
+def _solve_ccw(centres: NDArray[np.float64], radii: NDArray[np.float64], teeth: NDArray[np.int_],
+               pitch: float) -> _Layout | None:
+    """Solve the contour assuming counter-clockwise travel; None if it does not close."""
+    normals = span_normals(centres, radii)
+    signs = np.sign(radii)
+    wraps = wrap_angles(normals, signs)
+    if len(radii) == 2 and np.all(signs > 0):
+        pass  # always closes
+    turning = float(np.sum(signs * wraps))
+    if abs(turning - TWO_PI) > _CLOSE_TOL:
+        return None
+    lengths = span_lengths(centres, radii)
+    tight = float(np.sum(lengths) / pitch + np.sum(teeth * wraps) / TWO_PI)
+    return _Layout(normals, lengths, wraps, tight)
+
+
+def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
+                 inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float,
+                 ) -> tuple[_Layout, int]:
+    """Solve the contour in whichever travel direction closes it.
+
+    Returns the layout (in the frame where travel is counter-clockwise) and the
+    orientation: +1 if the listing runs counter-clockwise in the user's frame, −1 if it
+    runs clockwise (then the layout is in the mirrored frame y → −y).
+    """
+    radii = np.where(inside, -radii_abs, radii_abs)
+    layout = _solve_ccw(centres, radii, teeth, pitch)
+    if layout is not None:
+        return layout, 1
+    mirrored = centres * np.array([1.0, -1.0])
+    layout = _solve_ccw(mirrored, radii, teeth, pitch)
+    if layout is not None:
+        return layout, -1
+    raise GeometryError(
+        "sprockets",
+        "the contour cannot close: list the sprockets in the order the chain runs round them, "
+        "and mark with side = \"inside\" every sprocket that the chain wraps from outside the loop",
+    )
+
+
+def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
+                     inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float) -> float:
+    """Tight chain length in pitches, eq. (3), for a layout (raises if it cannot close)."""
+    return solve_layout(centres, radii_abs, inside, teeth, pitch)[0].tight_pitches
+
+
+# --- two-sprocket closed forms -------------------------------------------------------------
+
+
+def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: int) -> float:
+    """Tight length in pitches of a two-sprocket drive, exact on the pitch polygons, eq. (4).
+
+    L_p = 2a·cos γ/p + (z₁+z₂)/2 + (z₂−z₁)·γ/π, sin γ = (R₂ − R₁)/a, R = p/(2 sin(π/z)).
+    """
+    r1, r2 = pitch_radii(pitch, [z1, z2])
+    gamma = math.asin((r2 - r1) / center_distance)
+    return 2.0 * center_distance * math.cos(gamma) / pitch + (z1 + z2) / 2 + (z2 - z1) * gamma / math.pi
+
+
+def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z2: int) -> float:
+    """Chain length in pitches by the ISO 10823 / textbook approximation.
+
+    L_p = 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/(2π))²·p/a  (ISO 10823:2004 eq. for L_p;
+    Shigley 9th ed. eq. 17-37; Bhandari DME eq. 14.7).
+    """
+    return (2.0 * center_distance / pitch + (z1 + z2) / 2
+            + ((z2 - z1) / TWO_PI) ** 2 * pitch / center_distance)
+
+
+def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z2: int) -> float:
+    """Centre distance [m] for a number of links, ISO 10823 inverse of the approximation.
+
+    a = p/4·[ (L_p − (z₁+z₂)/2) + √((L_p − (z₁+z₂)/2)² − 8((z₂−z₁)/(2π))²) ]
+    (ISO 10823:2004; Shigley eq. 17-38 in the form C = p/4·(−A + √(A² − 8((N₂−N₁)/2π)²))).
+    """
+    b = links - (z1 + z2) / 2
+    disc = b * b - 8.0 * ((z2 - z1) / TWO_PI) ** 2
+    if disc < 0:
+        raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
+    return pitch / 4.0 * (b + math.sqrt(disc))
+
+
+def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: int) -> float:
+    """Centre distance [m] at which ``links`` fit exactly, eq. (4) solved by brentq."""
+    r1, r2 = pitch_radii(pitch, [z1, z2])
+    a_min = abs(r2 - r1) * (1 + 1e-12) + 1e-12
+    a_max = links * pitch
+    f_min = two_sprocket_links_exact(a_min, pitch, z1, z2) - links
+    if f_min > 0:
+        raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
+    return float(brentq(lambda a: two_sprocket_links_exact(a, pitch, z1, z2) - links,
+                        a_min, a_max, xtol=1e-13, rtol=1e-14))
+
+
+# --- the drive -----------------------------------------------------------------------------
+
+
+def round_links(tight_pitches: float, allow_odd: bool = False) -> int:
+    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length."""
+    links = math.ceil(tight_pitches - 1e-9)
+    if links % 2 and not allow_odd:
+        links += 1
+    return links
+
+
+def adjustment_direction(centres: NDArray[np.float64], index: int, inside: bool,
+                         angle: float | None) -> NDArray[np.float64]:
+    """Unit vector of the line of adjustment of sprocket ``index``.
+
+    Given ``angle`` [rad]: (cos, sin). Default: in a two-sprocket drive along the line of
+    centres away from the other sprocket; otherwise away from the midpoint of its two
+    neighbours (towards it for an inside sprocket), so that a positive move lengthens the
+    contour.
+    """
+    if angle is not None:
+        return np.array([math.cos(angle), math.sin(angle)])
+    n = len(centres)
+    if n == 2:
+        d = centres[index] - centres[1 - index]
+    else:
+        mid = 0.5 * (centres[index - 1] + centres[(index + 1) % n])
+        d = (centres[index] - mid) * (-1.0 if inside else 1.0)
+    norm = float(np.hypot(*d))
+    if norm == 0.0:
+        raise GeometryError(f"sprockets[{index}].adjust_angle",
+                            "the default line of adjustment is undefined here; give adjust_angle")
+    return d / norm
+
+
+def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: NDArray[np.bool_],
+             teeth: NDArray[np.int_], pitch: float, index: int, direction: NDArray[np.float64],
+             links: int, name: str) -> float:
+    """Displacement s [m] along ``direction`` at which the tight length equals ``links``."""
+
+    def excess(s: float) -> float:
+        moved = centres.copy()
+        moved[index] = centres[index] + s * direction
+        return tight_pitches_of(moved, radii, inside, teeth, pitch) - links
+
+    f0 = excess(0.0)
+    if f0 == 0.0:
+        return 0.0
+    step = pitch * max(1.0, abs(f0) / 2.0) * (1.0 if f0 < 0 else -1.0)
+    lo, f_lo = 0.0, f0
+    for _ in range(200):
+        hi = lo + step
+        try:
+            f_hi = excess(hi)
+        except GeometryError:
+            break
+        if f_hi == 0.0 or (f_hi > 0) != (f_lo > 0):
+            return float(brentq(excess, lo, hi, xtol=1e-12, rtol=1e-14))
+        lo, f_lo = hi, f_hi
+        step *= 1.5
+    raise GeometryError(
+        "chain.links",
+        f"{links} links cannot be fitted by moving {name} along its line of adjustment "
+        f"(the tight contour needs {f0 + links:.2f} pitches there)",
+    )
+
+
+def _check_clearances(centres: NDArray[np.float64], tips: NDArray[np.float64], names: list[str],
+                      starts: NDArray[np.float64], ends: NDArray[np.float64]) -> None:
+    """Refuse overlapping sprockets and spans that cut through a third sprocket."""
+    n = len(centres)
+    for i in range(n):
+        for j in range(i + 1, n):
+            dist = float(np.hypot(*(centres[j] - centres[i])))
+            need = 0.5 * (tips[i] + tips[j])
+            if dist < need:
+                raise GeometryError(
+                    f"sprockets[{j}]",
+                    f"{names[i]} and {names[j]} overlap: centres {dist * 1e3:.1f} mm apart, "
+                    f"their tip circles need at least {need * 1e3:.1f} mm",
+                )
+    for k in range(n):
+        a, b = starts[k], ends[k]
+        ab = b - a
+        seg2 = float(ab @ ab)
+        for m in range(n):
+            if m in (k, (k + 1) % n) or seg2 == 0.0:
+                continue
+            t = float(np.clip((centres[m] - a) @ ab / seg2, 0.0, 1.0))
+            dist = float(np.hypot(*(a + t * ab - centres[m])))
+            if dist < 0.5 * tips[m] - 1e-9:
+                raise GeometryError(
+                    "sprockets",
+                    f"the span {names[k]} → {names[(k + 1) % n]} cuts through sprocket {names[m]} "
+                    f"({dist * 1e3:.1f} mm from its centre, tip radius {tips[m] * 500:.1f} mm)",
+                )
+
+
+def contour_geometry(drive: Drive) -> GeometryResult:
+    """Build the contour of a drive: spans, wraps, length, links and take-up.
+
+    Steps: pitch radii → solve the layout in the direction that closes (module docstring
+    eqs. 1–3) → links (imposed, or L_p rounded up to even) → take-up of the adjustable
+    sprocket until L_p equals the links exactly → checks (overlap, spans through
+    sprockets, driver wrap ≥ 120°, ≥ 3 teeth in mesh on loaded sprockets).
+    """
+    spec = drive.chain.spec
+    p = spec.pitch
+    sps = drive.sprockets
+    names = [s.name for s in sps]
+    teeth = np.array([s.teeth for s in sps])
+    inside = np.array([s.side == "inside" for s in sps])
+    centres = np.array([[s.x, s.y] for s in sps], dtype=float)
+    radii = pitch_radii(p, teeth)
+    tips = np.asarray(tip_diameter(p, teeth, spec.roller_diameter, form=drive.tooth_form), float)
+    _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
+
+    layout, _ = solve_layout(centres, radii, inside, teeth, p)
+    links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd)
+    adjusted = drive.adjustable_index
+    adjustment = 0.0
+    if adjusted is not None:
+        s = sps[adjusted]
+        direction = adjustment_direction(centres, adjusted, s.side == "inside", s.adjust_angle)
+        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links, s.name)
+        centres[adjusted] = centres[adjusted] + adjustment * direction
+    elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:
+        raise DesignError(
+            "chain.links",
+            f"{links} links are shorter than the tight contour ({layout.tight_pitches:.2f} pitches) "
+            "and no sprocket is adjustable",
+        )
+    layout, orientation = solve_layout(centres, radii, inside, teeth, p)
+    return _assemble(drive, centres, radii, tips, inside, layout, orientation, links, adjusted,
+                     adjustment)
+
+
+def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.float64],
+              tips: NDArray[np.float64], inside: NDArray[np.bool_], layout: _Layout,
+              orientation: int, links: int, adjusted: int | None,
+              adjustment: float) -> GeometryResult:
+    """Turn a solved layout into the user-frame GeometryResult, with its checks."""
+    spec = drive.chain.spec
+    p = spec.pitch
+    sps = drive.sprockets
+    n = len(sps)
+    mirror = np.array([1.0, float(orientation)])
+    signed = np.where(inside, -radii, radii)
+    frame = centres * mirror  # the counter-clockwise frame
+    starts = (frame + signed[:, None] * layout.normals) * mirror
+    ends = (np.roll(frame, -1, axis=0) + np.roll(signed, -1)[:, None] * layout.normals) * mirror
+    _check_clearances(centres, tips, [s.name for s in sps], starts, ends)
+
+    driver = drive.driver_index
+    roots = np.asarray(root_diameter(p, np.array([s.teeth for s in sps]), spec.roller_diameter,
+                                     form=drive.tooth_form), float)
+    spans = []
+    for k in range(n):
+        d = ends[k] - starts[k]
+        length = float(layout.span_lengths[k])
+        direction = d / length if length > 0 else np.zeros(2)
+        incl = math.atan2(direction[1], direction[0])
+        if incl > math.pi / 2:
+            incl -= math.pi
+        elif incl < -math.pi / 2:
+            incl += math.pi
+        spans.append(SpanGeometry(
+            index=k, start=k, end=(k + 1) % n, start_name=sps[k].name,
+            end_name=sps[(k + 1) % n].name, length=length, pitches=length / p,
+            direction=(float(direction[0]), float(direction[1])),
+            start_point=(float(starts[k][0]), float(starts[k][1])),
+            end_point=(float(ends[k][0]), float(ends[k][1])),
+            inclination=incl, tight=(k + 1) % n == driver,
+        ))
+    sprockets = []
+    for i, s in enumerate(sps):
+        turn = orientation * (-1 if inside[i] else 1)
+        sprockets.append(SprocketGeometry(
+            name=s.name, teeth=s.teeth, side=s.side, x=float(centres[i][0]), y=float(centres[i][1]),
+            pitch_radius=float(radii[i]), pitch_diameter=float(2 * radii[i]),
+            tip_diameter=float(tips[i]), root_diameter=float(roots[i]),
+            wrap_angle=float(layout.wraps[i]),
+            teeth_in_mesh=float(s.teeth * layout.wraps[i] / TWO_PI), turn=turn,
+            arrive=spans[i - 1].end_point, leave=spans[i].start_point,
+        ))
+    chain_length = links * p
+    tight_length = layout.tight_pitches * p
+    return GeometryResult(
+        pitch=p, sprockets=tuple(sprockets), spans=tuple(spans),
+        tight_pitches=layout.tight_pitches, links=links, chain_length=chain_length,
+        tight_length=tight_length, slack=max(0.0, chain_length - tight_length),
+        center_distance=float(np.hypot(*(centres[1] - centres[0]))) if n == 2 else None,
+        adjusted=adjusted, adjustment=adjustment, orientation=orientation,
+        warnings=tuple(_geometry_warnings(drive, sprockets, chain_length - tight_length, adjusted)),
+    )
+
+
+def _geometry_warnings(drive: Drive, sprockets: list[SprocketGeometry], slack: float,
+                       adjusted: int | None) -> list[str]:
+    """Engineering warnings: small driver wrap, few teeth in mesh, untaken slack."""
+    out = []
+    driver = sprockets[drive.driver_index]
+    if math.degrees(driver.wrap_angle) < 120.0:
+        out.append(f"driver {driver.name}: wrap angle {math.degrees(driver.wrap_angle):.1f}° is "
+                   "under 120° (chain may jump teeth; add an idler or increase the wrap)")
+    for s, g in zip(drive.sprockets, sprockets, strict=True):
+        if s.role != "idler" and g.teeth_in_mesh < 3.0:
+            out.append(f"{s.name}: only {g.teeth_in_mesh:.2f} teeth in mesh on a loaded sprocket "
+                       "(at least 3 are needed)")
+    if adjusted is None and slack > 1e-6:
+        out.append(f"chain slack {slack * 1e3:.1f} mm ({slack / drive.chain.pitch:.2f} pitches) is "
+                   "not taken up: mark a sprocket adjustable or add a tensioner")
+    return out

@@ -1,0 +1,354 @@
+"""Design files: TOML ↔ :class:`~chaindrive.model.Drive`, and the schema of every field.
+
+Every dimensional value in a design file is a string with a unit (``"25.4 mm"``,
+``"300 rpm"``), parsed with pint here and nowhere else; inside the package everything is SI.
+A mistake gives one :class:`~chaindrive.errors.DesignError` line that names the field,
+the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from chaindrive.errors import DesignError, did_you_mean
+from chaindrive.model import (
+    MAX_SPROCKETS,
+    MAX_TEETH,
+    MIN_SPROCKETS,
+    MIN_TEETH,
+    ROLES,
+    SIDES,
+    TOOTH_FORMS,
+    Chain,
+    ChainSpec,
+    Drive,
+    Sprocket,
+)
+from chaindrive.units import DIMENSIONS, parse_quantity
+
+
+@dataclass(frozen=True, slots=True)
+class Field:
+    """One field of a design file: its kind, unit, default, allowed range and meaning.
+
+    kind: a dimension of :data:`chaindrive.units.DIMENSIONS` (value is a string with a
+    unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``.
+    """
+
+    name: str
+    kind: str
+    description: str
+    required: bool = False
+    default: Any = None
+    minimum: float | None = None
+    maximum: float | None = None
+    choices: tuple[str, ...] = ()
+    exclusive_minimum: bool = False
+
+    def allowed(self) -> str:
+        """Human description of the allowed values."""
+        if self.kind == "choice":
+            return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+        if self.kind == "bool":
+            return "true or false"
+        if self.kind == "str":
+            return "text"
+        lo = "" if self.minimum is None else (f"> {self.minimum:g}" if self.exclusive_minimum
+                                               else f"≥ {self.minimum:g}")
+        hi = "" if self.maximum is None else f"≤ {self.maximum:g}"
+        span = " and ".join(x for x in (lo, hi) if x)
+        if self.kind == "int":
+            if self.minimum is not None and self.maximum is not None:
+                return f"a whole number from {self.minimum:g} to {self.maximum:g}"
+            return "a whole number" + (f" {span}" if span else "")
+        if self.kind == "float":
+            return "a number" + (f" {span}" if span else "")
+        unit = DIMENSIONS[self.kind][2]
+        return f'a {self.kind.replace("_", " ")} with a unit such as "{unit}"' + (
+            f", {span} (SI)" if span else "")
+
+
+DRIVE_FIELDS: tuple[Field, ...] = (
+    Field("name", "str", "name of the drive", required=True),
+    Field("power", "power", "power transmitted from the driver", minimum=0,
+          exclusive_minimum=True),
+    Field("tooth_form", "choice", "sprocket tooth form (default: GOST 591 for GOST chains, "
+          "ISO 606 otherwise)", choices=TOOTH_FORMS),
+    Field("service_factor", "float", "service (application) factor of the drive", minimum=1.0,
+          maximum=5.0),
+)
+CHAIN_FIELDS: tuple[Field, ...] = (
+    Field("designation", "str", 'catalogue designation, e.g. "ISO 606 16B-1", "ANSI 80", '
+          '"GOST 13568 ПР-25,4-60"'),
+    Field("standard", "choice", "chain standard, used with pitch when no designation is given",
+          choices=("ISO 606", "ANSI", "GOST 13568")),
+    Field("series", "choice", "ISO 606 series", choices=("A", "B")),
+    Field("pitch", "length", "chain pitch, used with standard when no designation is given",
+          minimum=0, exclusive_minimum=True),
+    Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8),
+    Field("links", "int", "impose the number of links (the take-up fits it)", minimum=4,
+          maximum=10000),
+    Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
+          default=False),
+    Field("catalog", "str", "a catalogue file of your own (CSV or TOML), relative to the design"),
+)
+SPROCKET_FIELDS: tuple[Field, ...] = (
+    Field("name", "str", "unique name of the sprocket", required=True),
+    Field("teeth", "int", "number of teeth", required=True, minimum=MIN_TEETH, maximum=MAX_TEETH),
+    Field("x", "length", "x of the centre", required=True),
+    Field("y", "length", "y of the centre", required=True),
+    Field("role", "choice", "driver, driven or idler", default="driven", choices=ROLES),
+    Field("speed", "speed", "rotational speed (driver only)", minimum=0, exclusive_minimum=True),
+    Field("side", "choice", "outside: the chain wraps round it; inside: the chain wraps it from "
+          "outside the loop (it turns the other way)", default="outside", choices=SIDES),
+    Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
+    Field("adjust_angle", "angle", "direction of the line of adjustment (default: away from "
+          "the contour)"),
+    Field("inertia", "inertia", "moment of inertia of everything turning with it", minimum=0,
+          exclusive_minimum=True),
+    Field("material", "str", "sprocket material (catalogue name)", default="steel"),
+    Field("power_share", "float", "share of the power taken off here (driven sprockets)",
+          minimum=0.0, maximum=1.0),
+)
+SECTIONS: dict[str, tuple[Field, ...]] = {
+    "drive": DRIVE_FIELDS,
+    "chain": CHAIN_FIELDS,
+    "sprockets": SPROCKET_FIELDS,
+}
+
+
+def schema() -> dict[str, list[dict[str, Any]]]:
+    """Every field of a design file with its kind, unit, default and allowed values."""
+    out: dict[str, list[dict[str, Any]]] = {}
+    for section, fields in SECTIONS.items():
+        out[section] = [
+            {
+                "field": f.name,
+                "kind": f.kind,
+                "si_unit": DIMENSIONS[f.kind][1] if f.kind in DIMENSIONS else "",
+                "example": DIMENSIONS[f.kind][2] if f.kind in DIMENSIONS else "",
+                "required": f.required,
+                "default": f.default,
+                "allowed": f.allowed(),
+                "description": f.description,
+            }
+            for f in fields
+        ]
+    return out
+
+
+def _number_text(value: Any) -> str:
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def _check_range(f: Field, path: str, value: float, shown: Any) -> None:
+    low_bad = f.minimum is not None and (value <= f.minimum if f.exclusive_minimum
+                                         else value < f.minimum)
+    high_bad = f.maximum is not None and value > f.maximum
+    if low_bad or high_bad or not math.isfinite(value):
+        raise DesignError(path, f"must be {f.allowed()}, got {_number_text(shown)}")
+
+
+def parse_field(f: Field, value: Any, path: str) -> Any:
+    """Check and convert one value of a design file (SI for quantities)."""
+    if f.kind == "str":
+        if not isinstance(value, str) or not value.strip():
+            raise DesignError(path, f"must be non-empty text, got {value!r}")
+        return value.strip()
+    if f.kind == "bool":
+        if not isinstance(value, bool):
+            raise DesignError(path, f"must be true or false, got {value!r}")
+        return value
+    if f.kind == "choice":
+        if value not in f.choices:
+            raise DesignError(path, f"must be {f.allowed()}, got {value!r}"
+                              + did_you_mean(str(value), f.choices))
+        return value
+    if f.kind == "int":
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
+        _check_range(f, path, value, value)
+        return value
+    if f.kind == "float":
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
+        _check_range(f, path, float(value), value)
+        return float(value)
+    si = parse_quantity(value, f.kind, path)
+    _check_range(f, path, si, value)
+    return si
+
+
+def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, Any]:
+    """Check a TOML table against its fields: unknown names, required ones, values."""
+    if not isinstance(data, Mapping):
+        raise DesignError(path, f"must be a table, got {type(data).__name__}")
+    known = {f.name: f for f in fields}
+    for key in data:
+        if key not in known:
+            raise DesignError(f"{path}.{key}", "unknown field" + did_you_mean(key, known)
+                              + f" (known: {', '.join(known)})")
+    out: dict[str, Any] = {}
+    for f in fields:
+        if f.name in data:
+            out[f.name] = parse_field(f, data[f.name], f"{path}.{f.name}")
+        elif f.required:
+            raise DesignError(f"{path}.{f.name}", f"is required ({f.allowed()})")
+        else:
+            out[f.name] = f.default
+    return out
+
+
+_STRANDS_SUFFIX = re.compile(r"-(\d)$")
+
+
+def resolve_chain(values: dict[str, Any], base_dir: Path | None) -> ChainSpec:
+    """The catalogue chain named by the [chain] table (designation, or standard + pitch)."""
+    from chaindrive import catalog
+
+    extra: tuple[Path, ...] = ()
+    if values["catalog"]:
+        path = Path(values["catalog"])
+        if base_dir is not None and not path.is_absolute():
+            path = base_dir / path
+        if not path.is_file():
+            raise DesignError("chain.catalog", f"no such file: {str(path)!r}")
+        extra = (path,)
+    strands = values["strands"]
+    designation = values["designation"]
+    if designation:
+        spec = catalog.find_chain(designation, extra_files=extra)
+        if spec.strands != strands:
+            explicit = _STRANDS_SUFFIX.search(designation.strip()) or designation.strip()[0] in "234"
+            if explicit and strands != 1:
+                raise DesignError("chain.strands", f"{strands} contradicts the designation "
+                                  f"{designation!r} ({spec.strands} strands)")
+            if strands != 1:
+                spec = _with_strands(spec, strands, extra)
+        return spec
+    if values["pitch"] is None or values["standard"] is None:
+        raise DesignError("chain.designation", "give a designation, or a standard and a pitch")
+    found = [c for c in catalog.chains_by_pitch(values["pitch"], values["standard"])
+             if c.strands == strands and (values["series"] is None
+                                          or c.series == values["series"])]
+    if not found:
+        raise DesignError("chain.pitch", f"no {values['standard']} chain of pitch "
+                          f"{values['pitch'] * 1e3:g} mm with {strands} strand(s) in the catalogue")
+    return min(found, key=lambda c: c.breaking_load)
+
+
+def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> ChainSpec:
+    """The same chain with another number of strands, from the catalogue."""
+    from chaindrive import catalog
+
+    same = [c for c in catalog.chains(extra) if c.pitch == spec.pitch and c.series == spec.series
+            and c.standard == spec.standard and c.strands == strands
+            and abs(c.roller_diameter - spec.roller_diameter) < 1e-9]
+    if not same:
+        raise DesignError("chain.strands", f"no {strands}-strand version of {spec.designation} "
+                          "in the catalogue")
+    return same[0]
+
+
+def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) -> Drive:
+    """Build a validated :class:`Drive` from the parsed TOML of a design file."""
+    for key in data:
+        if key not in SECTIONS:
+            raise DesignError(key, "unknown section" + did_you_mean(key, SECTIONS)
+                              + f" (known: {', '.join(SECTIONS)})")
+    drive_values = parse_section(data.get("drive", {}), DRIVE_FIELDS, "drive")
+    chain_values = parse_section(data.get("chain", {}), CHAIN_FIELDS, "chain")
+    raw_sprockets = data.get("sprockets")
+    if raw_sprockets is None:
+        raise DesignError("sprockets", "is required: list the sprockets as [[sprockets]] tables")
+    if not isinstance(raw_sprockets, list):
+        raise DesignError("sprockets", "must be a list of [[sprockets]] tables")
+    n = len(raw_sprockets)
+    if not MIN_SPROCKETS <= n <= MAX_SPROCKETS:
+        raise DesignError("sprockets", f"a contour needs {MIN_SPROCKETS} to {MAX_SPROCKETS} "
+                          f"sprockets, got {n}")
+    sprockets = []
+    seen: dict[str, int] = {}
+    for i, raw in enumerate(raw_sprockets):
+        v = parse_section(raw, SPROCKET_FIELDS, f"sprockets[{i}]")
+        if v["name"] in seen:
+            raise DesignError(f"sprockets[{i}].name", f"duplicate name {v['name']!r} (also "
+                              f"sprockets[{seen[v['name']]}]); names must be unique")
+        seen[v["name"]] = i
+        if v["speed"] is not None and v["role"] != "driver":
+            raise DesignError(f"sprockets[{i}].speed", "give the speed on the driver only "
+                              f"(this one is {v['role']})")
+        sprockets.append(Sprocket(**v))
+    drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
+    if len(drivers) != 1:
+        shown = ", ".join(f"sprockets[{i}]" for i in drivers) or "none"
+        raise DesignError("sprockets.role", f"exactly one sprocket must be the driver, got "
+                          f"{len(drivers)} ({shown})")
+    if sprockets[drivers[0]].speed is None:
+        raise DesignError(f"sprockets[{drivers[0]}].speed", 'the driver needs a speed such as '
+                          '"300 rpm"')
+    spec = resolve_chain(chain_values, base_dir)
+    tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
+                                                else "ISO 606")
+    chain = Chain(spec, links=chain_values["links"], allow_odd=chain_values["allow_odd"])
+    return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
+                 power=drive_values["power"], tooth_form=tooth_form,
+                 service_factor=drive_values["service_factor"])
+
+
+def load_drive(path: str | Path) -> Drive:
+    """Read and validate a TOML design file."""
+    p = Path(path)
+    if not p.is_file():
+        raise DesignError(str(path), "no such design file")
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DesignError(str(path), f"cannot read the file ({exc.__class__.__name__})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(str(path), f"TOML syntax error: {exc}") from None
+    return drive_from_mapping(data, base_dir=p.parent)
+
+
+def drive_to_toml(drive: Drive) -> str:
+    """Write a drive as a design file (lengths in mm, speed in rpm): inverse of load."""
+    lines = ["[drive]", f'name = "{drive.name}"']
+    if drive.power is not None:
+        lines.append(f'power = "{drive.power / 1e3:g} kW"')
+    lines.append(f'tooth_form = "{drive.tooth_form}"')
+    if drive.service_factor is not None:
+        lines.append(f"service_factor = {drive.service_factor:g}")
+    lines += ["", "[chain]", f'designation = "{drive.chain.spec.designation}"']
+    if drive.chain.links is not None:
+        lines.append(f"links = {drive.chain.links}")
+    if drive.chain.allow_odd:
+        lines.append("allow_odd = true")
+    for s in drive.sprockets:
+        lines += ["", "[[sprockets]]", f'name = "{s.name}"', f"teeth = {s.teeth}",
+                  f'x = "{s.x * 1e3:.6g} mm"', f'y = "{s.y * 1e3:.6g} mm"', f'role = "{s.role}"']
+        if s.speed is not None:
+            lines.append(f'speed = "{s.speed * 30 / math.pi:.8g} rpm"')
+        if s.side != "outside":
+            lines.append(f'side = "{s.side}"')
+        if s.adjustable:
+            lines.append("adjustable = true")
+        if s.inertia is not None:
+            lines.append(f'inertia = "{s.inertia:g} kg*m^2"')
+        if s.material != "steel":
+            lines.append(f'material = "{s.material}"')
+        if s.power_share is not None:
+            lines.append(f"power_share = {s.power_share:g}")
+    return "\n".join(lines) + "\n"
+
+
+def with_chain(drive: Drive, spec: ChainSpec) -> Drive:
+    """A copy of the drive with another chain (keeps links/allow_odd)."""
+    return replace(drive, chain=replace(drive.chain, spec=spec))

@@ -1,0 +1,343 @@
+r"""Polygonal (chordal) kinematics of a roller chain on a sprocket (SI units).
+
+Pure, vectorised laws of seed 003 and ``shared/spec/seed-notes.md`` §1 and §5; the
+drive-level kinematics (speeds of every sprocket of a contour) is built on them at the end
+(:func:`drive_kinematics`).
+The formulas and the derivation of the Fourier series are in ``docs/kinematics.md``.
+
+Conventions
+-----------
+* ``speed`` ω is the sprocket's angular speed [rad/s] (rpm·π/30), ``pitch`` p = t [m].
+* The **tooth phase** ψ [rad] counts sprocket rotation in units of the angular pitch:
+  ψ = z·ω·τ + ψ0 advances by 2π per tooth (per period of the tooth frequency). The
+  articulation angle of the hinge that drives the span is β = wrap(ψ)/z ∈ [−π/z, π/z)
+  (seed 003: β from −φ1/2 to φ1/2, φ1 = 2π/z). ψ = 0 (β = 0) is the instant when the
+  radius to that hinge is perpendicular to the span: the chain speed is then largest.
+* The hinge position along the span is R·sin β with R = p/(2 sin(π/z)); over one tooth
+  it advances 2R sin(π/z) = p, the same as uniform motion at the mean speed
+  v̄ = z p ω/(2π), whose position is (p/2π)·ψ.
+
+Deviation of the terminal hinge from uniform motion (derived in docs/kinematics.md)::
+
+    δ(ψ) = R sin(ψ/z) − p ψ/(2π),          ψ ∈ [−π, π), periodic in 2π
+         = (p/π) Σ_{k≥1} (−1)^{k+1} sin(kψ) / (k (k² z² − 1))
+
+δ is odd, zero at ψ = 0 and ψ = ±π and zero-mean; dδ/dτ = v(τ) − v̄.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive
+
+FloatOrArray = float | NDArray[np.float64]
+
+
+def _out(value: ArrayLike) -> FloatOrArray:
+    arr = np.asarray(value, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr
+
+
+def _teeth(teeth: ArrayLike) -> NDArray[np.float64]:
+    z = np.asarray(teeth, dtype=float)
+    if np.any(~np.isfinite(z)) or np.any(z < 3):
+        raise DesignError("teeth", f"must be a whole number of at least 3, got {teeth!r}")
+    return z
+
+
+def _pitch_radius(pitch: ArrayLike, z: NDArray[np.float64]) -> NDArray[np.float64]:
+    """R = p / (2 sin(π/z)) [m] (seed 003)."""
+    return np.asarray(pitch, dtype=float) / (2.0 * np.sin(np.pi / z))
+
+
+# ---------------------------------------------------------------------------------------
+# Mean motion
+# ---------------------------------------------------------------------------------------
+
+def mean_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
+    """Mean chain speed v̄ = z·p·ω/(2π) [m/s] (seed 003 eq. 4: v = z1 p n1 / 60000).
+
+    pitch : float — p [m]; teeth : int — z; speed : float — ω [rad/s].
+    """
+    return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / (2 * np.pi))
+
+
+def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
+    """Tooth (mesh) frequency f_z = z·ω/(2π) [Hz]; the same for every sprocket of one
+    contour (seed 000: ω_z = z1 ω1 = z2 ω2 = …)."""
+    return _out(_teeth(teeth) * np.asarray(speed, float) / (2 * np.pi))
+
+
+def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
+                      teeth_driven: ArrayLike) -> FloatOrArray:
+    """Mean speed of a sprocket driven by the same chain ω2 = z1·ω1/z2 [rad/s]
+    (seed 003 eq. 4: z1 n1 = z2 n2)."""
+    return _out(_teeth(teeth_driver) * np.asarray(speed_driver, float) / _teeth(teeth_driven))
+
+
+# ---------------------------------------------------------------------------------------
+# Polygonal speed variation
+# ---------------------------------------------------------------------------------------
+
+def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
+    """v_max = R·ω [m/s] at β = 0 (seed 003)."""
+    z = _teeth(teeth)
+    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float))
+
+
+def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
+    """v_min = R·ω·cos(π/z) [m/s] at β = ±π/z (seed 003)."""
+    z = _teeth(teeth)
+    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.cos(np.pi / z))
+
+
+def speed_variation_percent(teeth: ArrayLike) -> FloatOrArray:
+    """Polygonal speed variation 100·(v_max − v_min)/v_max = 100·(1 − cos(π/z)) [%].
+
+    This is the definition chaindrive reports (issue 2; seed 003 v_max = Rω,
+    v_min = Rω cos(π/z); DIN/Roloff-Matek "Ungleichförmigkeit", case POLYGON-BSWIKI-Z16:
+    z = 16 → 1.92 %). See :func:`speed_variation_about_mean_percent` for Shigley's.
+    """
+    return _out(100.0 * (1.0 - np.cos(np.pi / _teeth(teeth))))
+
+
+def speed_variation_about_mean_percent(teeth: ArrayLike) -> FloatOrArray:
+    """Shigley's ΔV/V = (v_max − v_min)/v̄ = (π/z)·(1/sin(π/z) − 1/tan(π/z))·100 [%]
+    (Shigley's Mechanical Engineering Design, ch. 17, chordal speed variation)."""
+    a = np.pi / _teeth(teeth)
+    return _out(100.0 * a * (1.0 / np.sin(a) - 1.0 / np.tan(a)))
+
+
+# ---------------------------------------------------------------------------------------
+# Instantaneous motion over a tooth period
+# ---------------------------------------------------------------------------------------
+
+def tooth_phase(teeth: ArrayLike, speed: ArrayLike, time: ArrayLike,
+                phase: ArrayLike = 0.0) -> FloatOrArray:
+    """Tooth phase ψ = z·ω·τ + ψ0 [rad] (2π per tooth). time τ [s]; phase ψ0 [rad]."""
+    return _out(_teeth(teeth) * np.asarray(speed, float) * np.asarray(time, float)
+                + np.asarray(phase, float))
+
+
+def wrap_phase(phase: ArrayLike) -> FloatOrArray:
+    """ψ wrapped into [−π, π) [rad]."""
+    return _out(np.mod(np.asarray(phase, float) + np.pi, 2 * np.pi) - np.pi)
+
+
+def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
+    """Angle β = wrap(ψ)/z ∈ [−π/z, π/z) [rad] of the hinge that drives the span (seed 003)."""
+    return _out(np.asarray(wrap_phase(phase)) / _teeth(teeth))
+
+
+def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
+                              phase: ArrayLike) -> FloatOrArray:
+    """Chain speed along the span v = R·ω·cos β [m/s] (seed 003 eq. 6), β = wrap(ψ)/z.
+
+    phase : tooth phase ψ [rad] (see the module docstring; use :func:`tooth_phase` for time).
+    """
+    z = _teeth(teeth)
+    beta = np.asarray(articulation_angle(z, phase))
+    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.cos(beta))
+
+
+def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
+                           phase: ArrayLike) -> FloatOrArray:
+    """Speed of the span end across the span v' = R·ω·sin β [m/s] (seed 003)."""
+    z = _teeth(teeth)
+    beta = np.asarray(articulation_angle(z, phase))
+    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.sin(beta))
+
+
+def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
+                               teeth_driven: ArrayLike, speed_driver: ArrayLike,
+                               phase: ArrayLike, phase_offset: ArrayLike = 0.0) -> FloatOrArray:
+    """Angular speed of the driven sprocket ω2 = v / (R2·cos γ) [rad/s] (seed 003).
+
+    v = R1 ω1 cos β is the chain speed set by the driver (β = wrap(ψ)/z1). Model of γ
+    (first order, stated): the driven sprocket turns uniformly at its mean speed
+    z1 ω1/z2, so its tooth phase advances at the same rate z1 ω1 as the driver's and
+    γ = wrap(ψ + phase_offset)/z2. phase_offset [rad] is the tooth-phase difference of the
+    two ends of the tight span (2π × the fractional part of the span length in pitches,
+    with the sign of the contour's convention). The exact coupled motion differs from this
+    at second order in π/z.
+    """
+    z1, z2 = _teeth(teeth_driver), _teeth(teeth_driven)
+    v = np.asarray(instantaneous_chain_speed(pitch, z1, speed_driver, phase))
+    gamma = np.asarray(wrap_phase(np.asarray(phase, float) + np.asarray(phase_offset, float)))
+    return _out(v / (_pitch_radius(pitch, z2) * np.cos(gamma / z2)))
+
+
+def instantaneous_ratio(teeth_driver: ArrayLike, teeth_driven: ArrayLike, phase: ArrayLike,
+                        phase_offset: ArrayLike = 0.0) -> FloatOrArray:
+    """Instantaneous transmission ratio i = ω1/ω2 = R2 cos γ / (R1 cos β) (seed 003).
+
+    β = wrap(ψ)/z1, γ = wrap(ψ + phase_offset)/z2 as in :func:`instantaneous_driven_speed`;
+    independent of the pitch. Its mean over a tooth period is close to (not exactly) z2/z1.
+    """
+    z1, z2 = _teeth(teeth_driver), _teeth(teeth_driven)
+    beta = np.asarray(wrap_phase(phase)) / z1
+    gamma = np.asarray(wrap_phase(np.asarray(phase, float) + np.asarray(phase_offset, float)))
+    r_ratio = np.sin(np.pi / z1) / np.sin(np.pi / z2)  # R2/R1
+    return _out(r_ratio * np.cos(gamma / z2) / np.cos(beta))
+
+
+# ---------------------------------------------------------------------------------------
+# Deviation of a terminal hinge from uniform motion: exact law and Fourier series
+# ---------------------------------------------------------------------------------------
+
+def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
+                             phase: ArrayLike) -> FloatOrArray:
+    """Deviation δ [m] of the terminal hinge from uniform motion at the mean chain speed.
+
+    δ(ψ) = R·sin(ψ_w/z) − p·ψ_w/(2π), ψ_w = wrap(ψ) ∈ [−π, π) — the position R sin β
+    (seed 003) minus the uniform position. Odd in ψ, hence zero-mean; continuous and
+    periodic at the tooth period (it vanishes at ψ = ±π because 2R sin(π/z) = p);
+    positive (chain ahead) for ψ in (0, π). phase : tooth phase ψ [rad].
+    """
+    z = _teeth(teeth)
+    psi = np.asarray(wrap_phase(phase))
+    p = np.asarray(pitch, float)
+    return _out(_pitch_radius(p, z) * np.sin(psi / z) - p * psi / (2 * np.pi))
+
+
+def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
+    """Largest deviation max δ [m], at cos β* = z sin(π/z)/π (where dδ/dψ = 0, i.e. where the
+    instantaneous chain speed equals the mean speed)."""
+    z = _teeth(teeth)
+    beta = np.arccos(z * np.sin(np.pi / z) / np.pi)
+    p = np.asarray(pitch, float)
+    return _out(_pitch_radius(p, z) * np.sin(beta) - p * z * beta / (2 * np.pi))
+
+
+def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonics: int,
+                                    phase: ArrayLike = 0.0
+                                    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Fourier coefficients (A_k, B_k), k = 1…N, of δ at the harmonics of the tooth frequency.
+
+    δ(ψ + ψ0) = Σ_k A_k sin(kψ) + B_k cos(kψ), with the exact coefficients
+    b_k = (p/π)·(−1)^{k+1} / (k (k² z² − 1)) [m] (docs/kinematics.md),
+    A_k = b_k cos(kψ0), B_k = b_k sin(kψ0). A shift ψ0 of the tooth phase shifts harmonic k by
+    k·ψ0. The last axis of each array is k; leading axes broadcast over pitch, teeth, phase.
+    """
+    if int(harmonics) < 1:
+        raise DesignError("harmonics", f"must be a whole number ≥ 1, got {harmonics!r}")
+    z = _teeth(teeth)[..., None]
+    k = np.arange(1, int(harmonics) + 1, dtype=float)
+    p = np.asarray(pitch, float)[..., None]
+    b = (p / np.pi) * np.where(k % 2 == 1, 1.0, -1.0) / (k * (k**2 * z**2 - 1.0))
+    shift = k * np.asarray(phase, float)[..., None]
+    return b * np.cos(shift), b * np.sin(shift)
+
+
+def hinge_displacement_fourier(pitch: ArrayLike, teeth: ArrayLike, phase: ArrayLike,
+                               harmonics: int = 10) -> FloatOrArray:
+    """δ(ψ) [m] summed over the first N harmonics (seed-notes §1; seed 000 uses N = 10):
+    δ_N(ψ) = (p/π) Σ_{k=1..N} (−1)^{k+1} sin(kψ)/(k(k²z² − 1)). Converges to
+    :func:`hinge_displacement_exact` like N⁻³. pitch and teeth broadcast with phase."""
+    A, _ = hinge_displacement_coefficients(pitch, teeth, harmonics)
+    psi = np.asarray(phase, float)[..., None]
+    k = np.arange(1, int(harmonics) + 1, dtype=float)
+    return _out(np.sum(A * np.sin(k * psi), axis=-1))
+
+
+def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
+                             phase: ArrayLike) -> FloatOrArray:
+    """dδ/dτ = v(τ) − v̄ = R ω cos β − z p ω/(2π) [m/s]: the speed deviation of the hinge."""
+    z = _teeth(teeth)
+    v = np.asarray(instantaneous_chain_speed(pitch, z, speed, phase))
+    return _out(v - np.asarray(mean_chain_speed(pitch, z, speed)))
+
+
+# --- the drive ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class SprocketMotion:
+    """Motion of one sprocket: speed [rad/s], direction, polygonal speed variation [%]."""
+
+    name: str
+    speed: float
+    direction: str
+    speed_variation_percent: float
+    hinge_deviation_peak: float
+
+    @property
+    def speed_rpm(self) -> float:
+        """Speed in revolutions per minute."""
+        return self.speed * 30.0 / math.pi
+
+
+@dataclass(frozen=True, slots=True)
+class KinematicsResult:
+    """Speeds of a contour: chain speed [m/s], tooth frequency [Hz], per-sprocket motion,
+    and the instantaneous chain speed over one tooth period of the driver
+    (``phase`` [rad] of the driver within ±π/z, ``chain_speed_trace`` [m/s])."""
+
+    chain_speed: float
+    tooth_frequency: float
+    sprockets: tuple[SprocketMotion, ...]
+    phase: NDArray[np.float64]
+    chain_speed_trace: NDArray[np.float64]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready document (units in the key names)."""
+        return {
+            "chain_speed_m_s": self.chain_speed,
+            "chain_speed_min_m_s": float(np.min(self.chain_speed_trace)),
+            "chain_speed_max_m_s": float(np.max(self.chain_speed_trace)),
+            "tooth_frequency_hz": self.tooth_frequency,
+            "sprockets": [
+                {
+                    "name": s.name,
+                    "speed_rpm": s.speed_rpm,
+                    "speed_rad_s": s.speed,
+                    "direction": s.direction,
+                    "speed_variation_percent": s.speed_variation_percent,
+                    "hinge_deviation_peak_mm": s.hinge_deviation_peak * 1e3,
+                }
+                for s in self.sprockets
+            ],
+        }
+
+
+def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 65) -> KinematicsResult:
+    """Kinematics of a contour: every sprocket's speed and direction, chain speed, tooth
+    frequency and polygonal non-uniformity (seed 003; seed 000 §3.1).
+
+    The tooth (mesh) frequency f_z = z_i·n_i is the same for every sprocket of one
+    contour, so ω_i = ω_driver·z_driver/z_i; a sprocket on the inside of the contour
+    turns the other way (its ``turn`` in the geometry).
+    """
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    p = geometry.pitch
+    omega_d = driver.speed
+    z_d = driver.teeth
+    motions = []
+    for s, g in zip(drive.sprockets, geometry.sprockets, strict=True):
+        omega = omega_d * z_d / s.teeth
+        motions.append(SprocketMotion(
+            name=s.name, speed=omega, direction="ccw" if g.turn > 0 else "cw",
+            speed_variation_percent=float(speed_variation_percent(s.teeth)),
+            hinge_deviation_peak=float(hinge_displacement_peak(p, s.teeth)),
+        ))
+    phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
+    r_d = geometry.sprockets[drive.driver_index].pitch_radius
+    trace = r_d * omega_d * np.cos(phase)  # seed 003 eq. (6): v = R₁ω₁ cos β
+    return KinematicsResult(
+        chain_speed=float(mean_chain_speed(p, z_d, omega_d)),
+        tooth_frequency=float(tooth_frequency(z_d, omega_d)),
+        sprockets=tuple(motions), phase=phase, chain_speed_trace=trace,
+    )
+

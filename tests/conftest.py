@@ -1,0 +1,56 @@
+"""Shared fixtures: chains built directly (no catalogue), drives, example paths."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+from hypothesis import settings
+
+from chaindrive.model import Chain, ChainSpec, Drive, Sprocket
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+SHARED = ROOT.parent / "shared"
+
+# Property tests run the same examples on every machine (reproducible CI).
+settings.register_profile("chaindrive", derandomize=True, deadline=None)
+settings.load_profile("chaindrive")
+
+
+def rpm(n: float) -> float:
+    """rev/min → rad/s."""
+    return n * math.pi / 30.0
+
+
+def make_spec(pitch: float = 0.0254, roller: float | None = None) -> ChainSpec:
+    """A steel chain of the given pitch with ISO-like proportions (for geometry tests)."""
+    return ChainSpec(
+        designation=f"test {pitch * 1e3:g}", standard="ISO 606", series="B", pitch=pitch,
+        strands=1, roller_diameter=roller or 0.625 * pitch, pin_diameter=0.31 * pitch,
+        inner_width=0.6 * pitch, plate_depth=0.83 * pitch, transverse_pitch=0.0,
+        breaking_load=60_000.0 * (pitch / 0.0254) ** 2, mass_per_length=2.6 * (pitch / 0.0254) ** 2,
+    )
+
+
+def two_sprocket(z1: int, z2: int, a: float, pitch: float = 0.0254, links: int | None = None,
+                 adjustable: bool = True) -> Drive:
+    """A two-sprocket drive with the driver at the origin and the driven on +x."""
+    return Drive(
+        name="two", chain=Chain(make_spec(pitch), links=links),
+        sprockets=(Sprocket("A", z1, 0.0, 0.0, "driver", speed=rpm(100)),
+                   Sprocket("B", z2, a, 0.0, "driven", adjustable=adjustable)),
+    )
+
+
+@pytest.fixture
+def seed_drive() -> Drive:
+    """Seed 000's three-sprocket contour (seed-notes §3), chain pitch 25.4 mm."""
+    return Drive(
+        name="seed", chain=Chain(make_spec(0.0254, roller=0.01588)),
+        sprockets=(Sprocket("S1", 15, 1.364, 0.0, "driver", speed=rpm(300)),
+                   Sprocket("S2", 25, 0.0, 0.0, "driven"),
+                   Sprocket("S3", 14, 0.682, 0.06067, "idler")),
+        power=500.0, tooth_form="GOST 591",
+    )
