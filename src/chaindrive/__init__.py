@@ -10,14 +10,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.errors import ChainDriveError, DesignError
-from chaindrive.model import Chain, ChainSpec, Drive, Material, Sprocket
+from chaindrive.model import Chain, ChainRequest, ChainSpec, Drive, Material, Sprocket
 
 if TYPE_CHECKING:
     from pathlib import Path
 
     from chaindrive.analysis import Analysis
 
-__all__ = ["Chain", "ChainDriveError", "ChainSpec", "DesignError", "Drive", "Material",
+__all__ = ["Chain", "ChainDriveError", "ChainRequest", "ChainSpec", "DesignError", "Drive", "Material",
            "Sprocket", "analyze", "load"]
 __version__ = "0.1.0"
 

@@ -11,28 +11,44 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.model import Drive
+from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
 
 
 @dataclass(frozen=True, slots=True)
 class Analysis:
-    """The results of :func:`analyze`: one part per subject, plus the drive they belong to."""
+    """The results of :func:`analyze`: one part per subject, plus the drive they belong to
+    (with the selected chain and the sprockets where the take-up put them).
+
+    selection and strength are None when the design gives no power.
+    """
 
     drive: Drive
     geometry: GeometryResult
     kinematics: KinematicsResult
+    selection: SelectionResult | None
+    strength: StrengthResult | None
     warnings: tuple[str, ...]
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON document (keys snake_case, units in the names)."""
+        strength = None if self.strength is None else self.strength.to_dict()
+        selection = None if self.selection is None else self.selection.to_dict()
+        warnings = list(self.warnings)
+        for part in (strength, selection):
+            if part is not None:
+                warnings += part.pop("warnings", [])
         return {
             "drive": drive_summary(self.drive),
             "geometry": geometry_dict(self.geometry),
             "kinematics": self.kinematics.to_dict(),
-            "warnings": list(self.warnings),
+            "selection": selection,
+            "strength": strength,
+            "warnings": warnings,
         }
 
 
@@ -95,12 +111,46 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
     }
 
 
+def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
+    """Say when the chain a design names fails the selection method of its family."""
+    own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation
+           and c.method == selection.method]
+    return [f"{c.designation} does not carry the load by {c.method}: {c.governing} short by "
+            f"{-c.margin:.1%} (the method selects {selection.chain.designation})"
+            for c in own if not c.feasible]
+
+
 def analyze(drive: Drive) -> Analysis:
-    """Run the analyses of a drive: contour geometry (with take-up) and kinematics."""
+    """Run the analyses of a drive in order.
+
+    1. selection (when the power is given): the chain a method of its family would choose —
+       ISO 10823 for ISO 606/ANSI, the Kэ method for GOST 13568; a design that names no
+       chain gets that chain, one that names its chain keeps it and the selection is shown
+       beside it;
+    2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength.
+    """
+    warnings: list[str] = []
+    selection = None
+    request = drive.chain.request
+    if drive.power is not None:
+        try:
+            selection = select_chain(
+                drive, standard=request.standard if request else None,
+                series=request.series if request else None,
+                strands=request.strands if request else None)
+        except DesignError as exc:
+            if request is not None:
+                raise
+            warnings.append(f"selection: {exc}")
+        if request is not None and selection is not None:
+            drive = drive.with_chain(selection.chain)
+        elif selection is not None:
+            warnings += named_chain_warnings(drive, selection)
     geometry = contour_geometry(drive)
     placed = drive.with_sprockets(tuple(
         s.moved_to(g.x, g.y) for s, g in zip(drive.sprockets, geometry.sprockets, strict=True)
     ))
     kinematics = drive_kinematics(placed, geometry)
-    return Analysis(drive=placed, geometry=geometry, kinematics=kinematics,
-                    warnings=geometry.warnings)
+    strength = strength_of(placed, geometry) if placed.power is not None else None
+    return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
+                    strength=strength, warnings=tuple(warnings) + geometry.warnings)

@@ -28,6 +28,8 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 EXIT_USER_ERROR = 2
+TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing",
+                          "direction", "side", "source", "allowed", "description"})
 
 
 @contextmanager
@@ -47,9 +49,7 @@ def _console() -> Console:
 def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
     table = Table(title=title, title_justify="left", header_style="bold")
     for c in columns:
-        table.add_column(c, justify="left" if c in {"name", "from", "to", "chain", "field",
-                                                    "direction", "side", "source",
-                                                    "allowed", "description"} else "right")
+        table.add_column(c, justify="left" if c in TEXT_COLUMNS else "right")
     for row in rows:
         table.add_row(*[_fmt(v) for v in row])
     return table
@@ -115,6 +115,56 @@ def _print_analysis(doc: dict[str, Any]) -> None:
     con.print(_table("Kinematics", ["name", "speed rpm", "direction", "speed variation %"],
                      [[s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"]]
                       for s in k["sprockets"]]))
+    if doc["strength"] is not None:
+        _print_strength(con, doc["strength"], [s["name"] for s in g["sprockets"]],
+                        [f"{s['from']}→{s['to']}" for s in g["spans"]])
+    if doc["selection"] is not None:
+        sel = doc["selection"]
+        con.print(f"selection ({sel['method']}): {sel['chain']}")
+    for w in doc["warnings"]:
+        con.print(f"[yellow]warning:[/yellow] {w}")
+
+
+def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str]) -> None:
+    """Loads and safety of an analysis document."""
+    con.print(_table("Span tensions", ["from", "tension N"],
+                     [[sp, t] for sp, t in zip(spans, st["span_tensions_n"], strict=True)]))
+    con.print(_table("Shaft loads", ["name", "shaft load N"],
+                     [[n, f] for n, f in zip(names, st["shaft_loads_n"], strict=True)]))
+    con.print(f"hinge pressure {_fmt(st['hinge_pressure_mpa'])} MPa (allowable "
+              f"{_fmt(st['allowable_pressure_mpa'])}), static safety factor "
+              f"{_fmt(st['safety_factor_static'])} (allowable {_fmt(st['allowable_safety_factor'])}),"
+              f" wear life {_fmt(st['wear_life_h'])} h")
+
+
+@app.command()
+def select(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    method: Annotated[str | None, typer.Option(help='"ISO 10823" or "Kэ" (default: by family)')]
+    = None,
+    strands: Annotated[int | None, typer.Option(help="fix the number of strands")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Rank the feasible chains for a drive by both methods and say which limit governs."""
+    import chaindrive
+    from chaindrive.strength import select_chain
+
+    with user_errors():
+        drive = chaindrive.load(file)
+        request = drive.chain.request
+        result = select_chain(drive, method=method, strands=strands or (request and request.strands),
+                              standard=request.standard if request else None,
+                              series=request.series if request else None)
+        doc = result.to_dict()
+    if as_json:
+        _write_json(doc)
+        return
+    con = _console()
+    con.print(f"selected: [bold]{doc['chain']}[/bold] by {doc['method']}")
+    con.print(_table("Candidates (ranked)", ["chain", "method", "strands", "mass kg/m", "feasible",
+                                             "margin %", "governing"],
+                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
+                       100 * c["margin"], c["governing"]] for c in doc["candidates"]]))
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {w}")
 

@@ -107,16 +107,32 @@ class Material:
 
 
 @dataclass(frozen=True, slots=True)
+class ChainRequest:
+    """A design that names no chain: the family to select from (issue 3).
+
+    standard: "ISO 606", "ANSI" or "GOST 13568"; series: "A"/"B" or None; strands: fixed
+    number of strands or None (simplex is chosen then).
+    """
+
+    standard: str
+    series: str | None = None
+    strands: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class Chain:
     """The chain of a drive: a catalogue entry plus what the design fixes.
 
     ``links`` imposes the number of links (the take-up then finds the position that fits
-    it); ``allow_odd`` permits an odd count (which needs an offset link).
+    it); ``allow_odd`` permits an odd count (which needs an offset link). ``request`` is set
+    when the design named no chain: ``spec`` is then provisional and
+    :func:`chaindrive.analyze` replaces it with the lightest feasible chain of the family.
     """
 
     spec: ChainSpec
     links: int | None = None
     allow_odd: bool = False
+    request: ChainRequest | None = None
 
     def __post_init__(self) -> None:
         if self.links is not None:
@@ -265,6 +281,11 @@ class Drive:
         if len(self.sprockets) == 2:
             return 1 - self.driver_index
         return None
+
+    def with_chain(self, spec: ChainSpec) -> Drive:
+        """A copy with another catalogue chain (links and allow_odd kept; the request is
+        answered, so it is cleared)."""
+        return replace(self, chain=replace(self.chain, spec=spec, request=None))
 
     def with_sprockets(self, sprockets: tuple[Sprocket, ...]) -> Drive:
         """A copy with other sprockets (e.g. after the take-up)."""

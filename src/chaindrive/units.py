@@ -37,8 +37,10 @@ def registry() -> Any:
     """The shared pint UnitRegistry (built lazily: importing chaindrive stays cheap)."""
     import pint
 
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
-    return ureg
+    try:  # pint's own cache of the parsed definitions halves the start-up time
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+    except OSError:  # no writable cache folder: build it from the definitions each time
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
 def parse_quantity(text: object, dimension: str, field: str) -> float:

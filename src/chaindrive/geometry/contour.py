@@ -50,13 +50,13 @@ until L_p equals the number of links exactly (scipy.optimize.brentq).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
-from chaindrive.errors import DesignError, GeometryError
+from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
 from chaindrive.model import Drive
@@ -204,6 +204,8 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
     r1, r2 = pitch_radii(pitch, [z1, z2])
     a_min = abs(r2 - r1) * (1 + 1e-12) + 1e-12
     a_max = links * pitch
+    from scipy.optimize import brentq  # lazy: scipy.optimize costs ~0.5 s to import
+
     f_min = two_sprocket_links_exact(a_min, pitch, z1, z2) - links
     if f_min > 0:
         raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
@@ -222,28 +224,56 @@ def round_links(tight_pitches: float, allow_odd: bool = False) -> int:
     return links
 
 
-def adjustment_direction(centres: NDArray[np.float64], index: int, inside: bool,
+def adjustment_direction(layout: _Layout, orientation: int, index: int, inside: bool,
                          angle: float | None) -> NDArray[np.float64]:
     """Unit vector of the line of adjustment of sprocket ``index``.
 
-    Given ``angle`` [rad]: (cos, sin). Default: in a two-sprocket drive along the line of
-    centres away from the other sprocket; otherwise away from the midpoint of its two
-    neighbours (towards it for an inside sprocket), so that a positive move lengthens the
-    contour.
+    Given ``angle`` [rad]: (cos, sin). Default: from the centre towards the middle of the
+    arc the chain wraps, i.e. into the chain. Moving a sprocket that way lengthens the
+    contour at the rate 2·sin(θ/2) per unit of travel (the two spans' directions), for an
+    outside and an inside sprocket alike; in a two-sprocket drive it is the line of
+    centres, away from the other sprocket.
     """
     if angle is not None:
         return np.array([math.cos(angle), math.sin(angle)])
-    n = len(centres)
-    if n == 2:
-        d = centres[index] - centres[1 - index]
-    else:
-        mid = 0.5 * (centres[index - 1] + centres[(index + 1) % n])
-        d = (centres[index] - mid) * (-1.0 if inside else 1.0)
-    norm = float(np.hypot(*d))
-    if norm == 0.0:
-        raise GeometryError(f"sprockets[{index}].adjust_angle",
-                            "the default line of adjustment is undefined here; give adjust_angle")
-    return d / norm
+    sgn = -1.0 if inside else 1.0
+    n_in = layout.normals[index - 1]
+    radial_in = sgn * n_in  # centre → arrival point, in the counter-clockwise frame
+    half = sgn * 0.5 * float(layout.wraps[index])
+    c, s = math.cos(half), math.sin(half)
+    mid = np.array([c * radial_in[0] - s * radial_in[1], s * radial_in[0] + c * radial_in[1]])
+    return mid * np.array([1.0, float(orientation)])
+
+
+def bracketed_root(f: Callable[[float], float], lo: float, hi: float, f_lo: float, f_hi: float,
+                   xtol: float = 1e-12, maxiter: int = 100) -> float:
+    """Root of ``f`` in [lo, hi] (f_lo, f_hi of opposite signs): the Illinois variant of
+    regula falsi (Dowell & Jarratt, BIT 11 (1971) 168–174), superlinear and never leaving
+    the bracket.
+
+    Written here rather than calling scipy.optimize.brentq because importing
+    scipy.optimize takes 0.5–0.7 s on the project machine, more than half of the 1 s that
+    ``chaindrive analyze`` of a 24-sprocket contour may take (benchmarks/bench_analyze.py).
+    """
+    side = 0
+    for _ in range(maxiter):
+        x = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+        fx = f(x)
+        if fx == 0.0 or abs(hi - lo) < xtol:
+            return x
+        if (fx > 0) == (f_hi > 0):
+            hi, f_hi = x, fx
+            if side == -1:
+                f_lo *= 0.5
+            side = -1
+        else:
+            lo, f_lo = x, fx
+            if side == 1:
+                f_hi *= 0.5
+            side = 1
+        if abs(hi - lo) < xtol:
+            return x
+    raise ConvergenceError(f"take-up did not converge in {maxiter} steps")
 
 
 def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: NDArray[np.bool_],
@@ -268,7 +298,7 @@ def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: N
         except GeometryError:
             break
         if f_hi == 0.0 or (f_hi > 0) != (f_lo > 0):
-            return float(brentq(excess, lo, hi, xtol=1e-12, rtol=1e-14))
+            return bracketed_root(excess, lo, hi, f_lo, f_hi)
         lo, f_lo = hi, f_hi
         step *= 1.5
     raise GeometryError(
@@ -328,13 +358,14 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     tips = np.asarray(tip_diameter(p, teeth, spec.roller_diameter, form=drive.tooth_form), float)
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
-    layout, _ = solve_layout(centres, radii, inside, teeth, p)
+    layout, orientation = solve_layout(centres, radii, inside, teeth, p)
     links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd)
     adjusted = drive.adjustable_index
     adjustment = 0.0
     if adjusted is not None:
         s = sps[adjusted]
-        direction = adjustment_direction(centres, adjusted, s.side == "inside", s.adjust_angle)
+        direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
+                                         s.adjust_angle)
         adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links, s.name)
         centres[adjusted] = centres[adjusted] + adjustment * direction
     elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:

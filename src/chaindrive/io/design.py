@@ -12,7 +12,7 @@ import math
 import re
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +26,7 @@ from chaindrive.model import (
     SIDES,
     TOOTH_FORMS,
     Chain,
+    ChainRequest,
     ChainSpec,
     Drive,
     Sprocket,
@@ -208,8 +209,11 @@ def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, 
 _STRANDS_SUFFIX = re.compile(r"-(\d)$")
 
 
-def resolve_chain(values: dict[str, Any], base_dir: Path | None) -> ChainSpec:
-    """The catalogue chain named by the [chain] table (designation, or standard + pitch)."""
+def resolve_chain(values: dict[str, Any], base_dir: Path | None
+                  ) -> tuple[ChainSpec, ChainRequest | None]:
+    """The catalogue chain named by the [chain] table (designation, or standard + pitch), or
+    — when only a standard is given — a provisional chain of that family and the request
+    that :func:`chaindrive.analyze` selects from."""
     from chaindrive import catalog
 
     extra: tuple[Path, ...] = ()
@@ -231,16 +235,24 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None) -> ChainSpec:
                                   f"{designation!r} ({spec.strands} strands)")
             if strands != 1:
                 spec = _with_strands(spec, strands, extra)
-        return spec
-    if values["pitch"] is None or values["standard"] is None:
-        raise DesignError("chain.designation", "give a designation, or a standard and a pitch")
+        return spec, None
+    if values["standard"] is None:
+        raise DesignError("chain.designation", "give a designation, or a standard (and a pitch)")
+    if values["pitch"] is None:
+        family = [c for c in catalog.chains(extra) if c.standard == values["standard"]
+                  and (values["series"] is None or c.series == values["series"])]
+        if not family:
+            raise DesignError("chain.series", f"no {values['standard']} chains of series "
+                              f"{values['series']!r} in the catalogue")
+        request = ChainRequest(values["standard"], values["series"], values["strands_given"])
+        return min(family, key=lambda c: c.breaking_load), request
     found = [c for c in catalog.chains_by_pitch(values["pitch"], values["standard"])
              if c.strands == strands and (values["series"] is None
                                           or c.series == values["series"])]
     if not found:
         raise DesignError("chain.pitch", f"no {values['standard']} chain of pitch "
                           f"{values['pitch'] * 1e3:g} mm with {strands} strand(s) in the catalogue")
-    return min(found, key=lambda c: c.breaking_load)
+    return min(found, key=lambda c: c.breaking_load), None
 
 
 def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> ChainSpec:
@@ -293,10 +305,15 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
     if sprockets[drivers[0]].speed is None:
         raise DesignError(f"sprockets[{drivers[0]}].speed", 'the driver needs a speed such as '
                           '"300 rpm"')
-    spec = resolve_chain(chain_values, base_dir)
+    chain_values["strands_given"] = (data.get("chain") or {}).get("strands")
+    spec, request = resolve_chain(chain_values, base_dir)
+    if request is not None and drive_values["power"] is None:
+        raise DesignError("drive.power", "is required when the design names no chain "
+                          "(the chain is selected for the power)")
     tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
                                                 else "ISO 606")
-    chain = Chain(spec, links=chain_values["links"], allow_odd=chain_values["allow_odd"])
+    chain = Chain(spec, links=chain_values["links"], allow_odd=chain_values["allow_odd"],
+                  request=request)
     return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                  power=drive_values["power"], tooth_form=tooth_form,
                  service_factor=drive_values["service_factor"])
@@ -348,7 +365,3 @@ def drive_to_toml(drive: Drive) -> str:
             lines.append(f"power_share = {s.power_share:g}")
     return "\n".join(lines) + "\n"
 
-
-def with_chain(drive: Drive, spec: ChainSpec) -> Drive:
-    """A copy of the drive with another chain (keeps links/allow_odd)."""
-    return replace(drive, chain=replace(drive.chain, spec=spec))

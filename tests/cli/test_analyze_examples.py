@@ -1,0 +1,83 @@
+"""Every bundled example is analysed; the JSON document has the keys issues 2 and 3 name;
+the static tensions of the 8-sprocket example balance at every sprocket."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+from numpy.testing import assert_allclose
+
+import chaindrive
+from tests.conftest import EXAMPLES
+
+EXAMPLE_FILES = sorted(EXAMPLES.glob("*.toml"))
+
+
+def test_examples_are_the_four_the_issue_asks_for() -> None:
+    sizes = sorted(len(chaindrive.load(f).sprockets) for f in EXAMPLE_FILES)
+    assert sizes == [2, 3, 8, 24]
+
+
+@pytest.mark.parametrize("path", EXAMPLE_FILES, ids=lambda p: p.stem)
+def test_json_document_has_the_required_keys(path) -> None:  # type: ignore[no-untyped-def]
+    proc = subprocess.run([sys.executable, "-m", "chaindrive", "analyze", str(path), "--json"],
+                          capture_output=True, text=True, check=True)
+    doc = json.loads(proc.stdout)
+    g, k = doc["geometry"], doc["kinematics"]
+    for key in ("links", "chain_length_mm", "tight_length_mm", "center_distance_mm",
+                "sprockets", "spans"):
+        assert key in g
+    for s in g["sprockets"]:
+        assert {"name", "pitch_diameter_mm", "wrap_angle_deg", "teeth_in_mesh", "x_mm",
+                "y_mm"} <= set(s)
+    for s in g["spans"]:
+        assert {"from", "to", "length_mm"} <= set(s)
+    assert {"chain_speed_m_s", "tooth_frequency_hz", "sprockets"} <= set(k)
+    for s in k["sprockets"]:
+        assert {"name", "speed_rpm", "direction", "speed_variation_percent"} <= set(s)
+        assert s["direction"] in {"cw", "ccw"}
+    assert isinstance(doc["warnings"], list)
+    assert {"chain", "method", "candidates"} <= set(doc["selection"])
+    for key in ("span_tensions_n", "shaft_loads_n", "hinge_pressure_mpa",
+                "allowable_pressure_mpa", "safety_factor_static", "allowable_safety_factor",
+                "wear_life_h"):
+        assert key in doc["strength"]
+    # links × pitch = chain length, and the tight length never exceeds it
+    assert_allclose(g["chain_length_mm"], g["links"] * doc["drive"]["pitch_mm"], rtol=1e-12)
+    assert g["tight_length_mm"] <= g["chain_length_mm"] + 1e-6
+    # the tooth frequency z·n is the same on every sprocket (seed 000 §3.2)
+    teeth = {s["name"]: s["teeth"] for s in g["sprockets"]}
+    for s in k["sprockets"]:
+        assert_allclose(teeth[s["name"]] * s["speed_rpm"] / 60, k["tooth_frequency_hz"],
+                        rtol=1e-12)
+
+
+def test_eight_sprocket_tensions_balance_at_every_sprocket() -> None:
+    """Issue 3: at every sprocket the tension difference equals its peripheral force
+    (F_t,i = P_i / v, power split equally over the driven sprockets; idlers take none)."""
+    result = chaindrive.analyze(chaindrive.load(EXAMPLES / "eight_sprocket.toml"))
+    drive, tensions = result.drive, result.strength.loads.span_tensions  # type: ignore[union-attr]
+    v = result.kinematics.chain_speed
+    driven = [s for s in drive.sprockets if s.role == "driven"]
+    assert drive.power is not None
+    for i, s in enumerate(drive.sprockets):
+        leaving, arriving = tensions[i], tensions[i - 1]
+        if s.role == "driven":
+            expected = drive.power / len(driven) / v
+        elif s.role == "driver":
+            expected = -drive.power / v
+        else:
+            expected = 0.0
+        assert_allclose(leaving - arriving, expected, atol=1e-9 * drive.power)
+    # The driver's torque (F_tight − F_slack)·R times ω is the power, with the mean chain
+    # speed v = z·p·ω/2π (seed 003 eq. 4) against R = p/(2 sin(π/z)): F·R·ω = P·π/(z sin(π/z)).
+    z = drive.driver.teeth
+    r = result.geometry.sprockets[drive.driver_index].pitch_radius
+    omega = drive.driver.speed
+    assert omega is not None
+    torque = (tensions[drive.driver_index - 1] - tensions[drive.driver_index]) * r
+    assert_allclose(torque * omega, drive.power * math.pi / (z * math.sin(math.pi / z)), rtol=1e-9)
