@@ -1,0 +1,121 @@
+"""Strength of a chain drive: loads round the contour, safety factors, wear life, selection.
+
+Entry points: :func:`strength_of` (loads + joint pressure + static safety + wear life of the
+drive's chain) and :func:`select_chain` (which catalogue chain, by ISO 10823 or the Kэ method).
+Modules: :mod:`.loads`, :mod:`.iso10823`, :mod:`.ke_method`, :mod:`.safety`, :mod:`.wear`,
+:mod:`.selection`; tables in ``strength/data`` with their sources in the file headers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from chaindrive.errors import DesignError
+from chaindrive.geometry.results import GeometryResult
+from chaindrive.model import Drive
+from chaindrive.strength import iso10823, ke_method
+from chaindrive.strength.loads import DEFAULT_SAG_RATIO, LoadsResult, loads_of, small_sprocket
+from chaindrive.strength.safety import static_safety_factor
+from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
+from chaindrive.strength.wear import BASIS_ELONGATION, wear_life_hours
+
+__all__ = ["Candidate", "LoadsResult", "SelectionResult", "StrengthResult", "loads_of",
+           "select_chain", "strength_of"]
+
+
+@dataclass(frozen=True, slots=True)
+class StrengthResult:
+    """Static strength of a drive (SI units).
+
+    loads: the contour loads; operating_factor Kэ and dynamic_factor kд used;
+    hinge_pressure p = F_t·Kэ/A [Pa]; allowable_pressure [p] [Pa] (None outside the table or
+    for non-steel chains); safety_factor_static s; allowable_safety_factor [s] (None when not
+    tabulated); rated_power [W] of the chain (ACA, None when not applicable); wear_life_h
+    hours to the permitted elongation (None when not applicable); warnings.
+    """
+
+    loads: LoadsResult
+    operating_factor: float
+    dynamic_factor: float
+    hinge_pressure: float
+    allowable_pressure: float | None
+    safety_factor_static: float
+    allowable_safety_factor: float | None
+    rated_power: float | None
+    wear_life_h: float | None
+    elongation: float
+    warnings: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (the ``strength`` block of ``analyze --json``)."""
+        loads = self.loads.to_dict()
+        warnings = loads.pop("warnings") + list(self.warnings)
+        return {
+            **loads,
+            "operating_factor_ke": self.operating_factor,
+            "dynamic_factor_kd": self.dynamic_factor,
+            "hinge_pressure_mpa": self.hinge_pressure / 1e6,
+            "allowable_pressure_mpa": (None if self.allowable_pressure is None
+                                       else self.allowable_pressure / 1e6),
+            "safety_factor_static": self.safety_factor_static,
+            "allowable_safety_factor": self.allowable_safety_factor,
+            "rated_power_w": self.rated_power,
+            "wear_life_h": self.wear_life_h,
+            "permitted_elongation": self.elongation,
+            "warnings": warnings,
+        }
+
+
+def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: float | None = None,
+                dynamic_factor: float = 1.0, service_factor: float | None = None,
+                elongation: float = BASIS_ELONGATION, sag_ratio: float = DEFAULT_SAG_RATIO,
+                shaft_load_factor: float = 1.0) -> StrengthResult:
+    """Loads, joint pressure, static safety and wear life of ``drive`` laid out as ``geometry``.
+
+    operating_factor Kэ (default ``drive.service_factor`` or 1) for p = F_t·Kэ/A;
+    dynamic_factor kд for s = Q/(kд·F_t + F_0 + F_v); service_factor K_s for the wear life
+    (default ``drive.service_factor`` or 1); elongation: permitted elongation for the wear
+    life (default 3 %). [p] and [s] are the Russian tables for steel roller chains (by pitch
+    and the small-sprocket speed); the wear life is the ACA load–life model
+    (:mod:`chaindrive.strength.wear`). Non-steel (polymer) chains: [p], [s] and the wear
+    life are not given (the steel tables do not apply) and a warning says so; s uses the
+    chain's own breaking load Q (from its material strength).
+    """
+    if not 0 < elongation <= 0.1:
+        raise DesignError("elongation", f"must be a fraction in (0, 0.1], got {elongation!r}")
+    loads = loads_of(drive, geometry, sag_ratio=sag_ratio, shaft_load_factor=shaft_load_factor)
+    spec = drive.chain.spec
+    ke = operating_factor if operating_factor is not None else (drive.service_factor or 1.0)
+    ks = service_factor if service_factor is not None else (drive.service_factor or 1.0)
+    teeth, speed = small_sprocket(drive)
+    area, estimated = ke_method.bearing_area(spec)
+    warnings: list[str] = []
+    if estimated:
+        warnings.append(f"{spec.designation}: no bearing area in the catalogue; "
+                        f"estimated A = {area * 1e6:.1f} mm² (1.42·d2·b1·mр)")
+    pressure = loads.peripheral_force * ke / area
+    s = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
+                             loads.centrifugal_tension, dynamic_factor)
+    steel = spec.material == "steel"
+    allowed_p = ke_method.allowable_pressure(spec.pitch, speed) if steel else None
+    allowed_s = ke_method.allowable_safety_factor(spec.pitch, speed) if steel else None
+    rated = life = None
+    if steel and spec.strands in (1, 2, 3, 4, 5, 6, 8):
+        single, _ = iso10823.aca_rating(spec, teeth, speed)
+        rated = single * iso10823.strand_factor(spec.strands)
+        assert drive.power is not None
+        life = float(wear_life_hours(rated, drive.power * ks, geometry.links, elongation))
+    if not steel:
+        warnings.append(f"chain material {spec.material!r}: the steel tables [p], [s] and the "
+                        "wear-life model do not apply; check the material's limits")
+    elif allowed_p is None or allowed_s is None:
+        warnings.append(f"pitch {spec.pitch * 1e3:.3f} mm at {speed / ke_method.RPM:.0f} rpm is "
+                        "outside the [p] / [s] tables")
+    if allowed_p is not None and pressure > allowed_p:
+        warnings.append(f"hinge pressure {pressure / 1e6:.1f} MPa exceeds the allowable "
+                        f"{allowed_p / 1e6:.1f} MPa")
+    if allowed_s is not None and s < allowed_s:
+        warnings.append(f"static safety factor {s:.2f} is below the allowable {allowed_s:.2f}")
+    return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,
+                          life, elongation, tuple(warnings))

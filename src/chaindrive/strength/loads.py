@@ -1,0 +1,272 @@
+"""Static loads round a chain contour: speed, peripheral forces, span tensions, shaft loads.
+
+Sign conventions (see :mod:`chaindrive.geometry.results`): span ``i`` runs from sprocket
+``start`` to sprocket ``end`` in the direction of chain travel; the span that runs *into*
+the driver is the tight one. On a sprocket the arriving span pulls back along
+``−direction_in`` and the leaving span pulls forward along ``+direction_out``, so the torque
+the chain puts on sprocket k is (T_out − T_in)·R_k. The driver therefore takes
+T_tight − T_slack = F_t from the motor, and every driven sprocket k gives T_out − T_in = F_t,k
+to its load: going *against* the chain travel from the tight span, each driven sprocket lowers
+the tension by its peripheral force (idlers leave it unchanged), down to the slack span leaving
+the driver, which carries F_0 + F_v (Russian practice, e.g. Решетов/Иванов as reproduced in
+``shared/data/chain_design_method_ru.md`` §8; Shigley §17-5 for F = P/v).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from chaindrive.errors import DesignError
+from chaindrive.geometry.results import GeometryResult, SpanGeometry
+from chaindrive.model import Drive
+
+G = 9.80665  # standard gravity [m/s²]
+DEFAULT_SAG_RATIO = 0.02  # f/a, sag of the slack span as a fraction of its length
+SHARE_TOLERANCE = 1e-6
+
+
+def chain_speed(teeth: int | float, pitch: float, omega: float) -> float:
+    """Mean chain speed v = z·p·ω/(2π) [m/s].
+
+    teeth : z of the sprocket; pitch : p [m]; omega : its angular speed ω [rad/s].
+    Source: Shigley Eq. 17-30 (V = N·p·n/12) in SI; Russian v = z1·t·n1/60000.
+    """
+    return teeth * pitch * omega / (2.0 * math.pi)
+
+
+def power_shares(drive: Drive) -> np.ndarray:
+    """Fraction of the drive power taken off at each sprocket (0 for the driver and idlers).
+
+    Driven sprockets without ``power_share`` split what the others leave equally; the shares
+    must add up to 1 (DesignError naming ``sprockets[...].power_share`` otherwise).
+    """
+    shares = np.zeros(len(drive.sprockets))
+    driven = [i for i, s in enumerate(drive.sprockets) if s.role == "driven"]
+    if not driven:
+        raise DesignError("sprockets.role", "at least one sprocket must be driven to take the power")
+    for s in drive.sprockets:
+        if s.role != "driven" and s.power_share not in (None, 0.0):
+            raise DesignError(f"sprockets[{s.name}].power_share",
+                              f"only driven sprockets take power; a {s.role} takes none, "
+                              f"got {s.power_share!r}")
+    given = {i: drive.sprockets[i].power_share for i in driven
+             if drive.sprockets[i].power_share is not None}
+    free = [i for i in driven if i not in given]
+    rest = 1.0 - sum(given.values())
+    names = ", ".join(drive.sprockets[i].name for i in given) or "none"
+    where = f"sprockets[{drive.sprockets[next(iter(given), driven[0])].name}].power_share"
+    if free and rest < -SHARE_TOLERANCE:
+        raise DesignError(where,
+                          f"the given shares ({names}) add up to {1 - rest:.4g} > 1")
+    if not free and abs(rest) > SHARE_TOLERANCE:
+        raise DesignError(where,
+                          f"the shares of the driven sprockets ({names}) add up to "
+                          f"{1 - rest:.4g}; they must add up to 1")
+    for i, value in given.items():
+        shares[i] = value
+    for i in free:
+        shares[i] = max(rest, 0.0) / len(free)
+    return shares
+
+
+def peripheral_force(power: float, speed: float) -> float:
+    """Peripheral (useful) force F_t = P/v [N]; power [W], speed v [m/s] (Shigley §17-5)."""
+    return power / speed
+
+
+def centrifugal_tension(mass_per_length: float, speed: float) -> float:
+    """Centrifugal tension F_v = q·v² [N]; q [kg/m], v [m/s] (Russian practice, [CPP], [PY])."""
+    return mass_per_length * speed**2
+
+
+def sag_factor(inclination: float | np.ndarray, sag_ratio: float = DEFAULT_SAG_RATIO
+               ) -> float | np.ndarray:
+    """Sag coefficient k_f of F_0 = k_f·q·g·a for a span inclined by ψ [rad] to the horizontal.
+
+    Parabolic approximation of the catenary: a slack span of length a sagging by f = s·a
+    (s = sag_ratio, 0.02 by default) carries the horizontal pull H = q·g·a²·cos ψ/(8 f), and
+    at its upper end the weight of the hanging chain adds about q·g·a·|sin ψ|, so
+    k_f = cos ψ/(8 s) + |sin ψ|. For s = 0.02: 6.25 horizontal, 1 vertical — the textbook
+    range "k_f = 6 for a horizontal drive … 1 for a vertical one" (Russian practice, e.g.
+    [VN-CODE] F0 = 9.81·kf·q·a with kf = 6; the intermediate textbook values 1.5 at ~45° are
+    not confirmed, see docs/strength.md).
+    """
+    psi = np.abs(inclination)
+    return np.cos(psi) / (8.0 * sag_ratio) + np.sin(psi)
+
+
+def sag_tension(mass_per_length: float, length: float, inclination: float,
+                sag_ratio: float = DEFAULT_SAG_RATIO, gravity: float = G) -> float:
+    """Sag (gravity) tension F_0 = k_f·q·g·a [N] of a span of length a [m], q [kg/m].
+
+    k_f from :func:`sag_factor`. Source: Russian practice F0 = 9.81·kf·q·a ([VN-CODE], [CPP]).
+    """
+    return float(sag_factor(inclination, sag_ratio)) * mass_per_length * gravity * length
+
+
+def span_tensions(slack_index: int, sprocket_forces: np.ndarray, spans: tuple[SpanGeometry, ...],
+                  base_tension: float) -> np.ndarray:
+    """Static tension in every span [N].
+
+    slack_index : index of the span leaving the driver (tension = base_tension = F_0 + F_v);
+    sprocket_forces : F_t,k [N] given off at each sprocket k (0 for idlers and the driver).
+    Going with the chain from the slack span, sprocket ``end`` of each span adds its force to
+    the tension of the next span (torque balance (T_out − T_in)·R = F_t,k·R, see module doc).
+    """
+    n = len(spans)
+    by_start = {span.start: span.index for span in spans}
+    tensions = np.empty(n)
+    tensions[slack_index] = base_tension
+    current = spans[slack_index]
+    for _ in range(n - 1):
+        k = current.end
+        nxt = spans[by_start[k]]
+        tensions[nxt.index] = tensions[current.index] + sprocket_forces[k]
+        current = nxt
+    return tensions
+
+
+def shaft_load_vectors(geometry: GeometryResult, tensions: np.ndarray,
+                       centrifugal: float = 0.0, load_factor: float = 1.0) -> np.ndarray:
+    """Shaft load vector on each sprocket [N], shape (n, 2).
+
+    F_k = kв·[(T_out − F_v)·d_out − (T_in − F_v)·d_in]: the pull of the leaving span along its
+    direction of travel plus the pull of the arriving span back along its own. The centrifugal
+    tension F_v is balanced by the chain over the wrap and does not reach the shaft (Russian
+    practice: Fв = kв·Ft + 2F0, [CPP], [VN-CODE]; pass centrifugal=0 to keep it).
+    load_factor : kв (1.15 horizontal, 1.05 vertical in [VN-CODE]/[JAVA]; default 1).
+    """
+    n = len(geometry.sprockets)
+    loads = np.zeros((n, 2))
+    for span in geometry.spans:
+        t = tensions[span.index] - centrifugal
+        d = np.asarray(span.direction, dtype=float)
+        loads[span.start] += t * d   # leaving span pulls forward
+        loads[span.end] -= t * d     # arriving span pulls back
+    return load_factor * loads
+
+
+def hinge_pressure(force: float, operating_factor: float, bearing_area: float) -> float:
+    """Mean bearing pressure in the chain joints p = F·Kэ/A [Pa].
+
+    force : F [N] (peripheral force of the tight span); operating_factor : Kэ;
+    bearing_area : projected area A = d·B of the whole chain [m²] (all rows).
+    Source: Russian method, p = Kэ·Ft/(A·mр) ≤ [p] ([JAVA], [CS]); A of a multi-row chain
+    already includes mр in the GOST tables.
+    """
+    return force * operating_factor / bearing_area
+
+
+@dataclass(frozen=True, slots=True)
+class LoadsResult:
+    """Static loads of one contour (SI units).
+
+    speed v [m/s]; peripheral_force F_t [N] of the driver; sprocket_forces [N] per sprocket
+    (power given off, 0 for the driver and idlers); power_shares per sprocket;
+    centrifugal_tension F_v [N]; sag_tension F_0 [N] (from the slack span); sag_factor k_f;
+    span_tensions [N] per span; slack_span / tight_span indices; shaft_loads (n, 2) [N].
+    """
+
+    speed: float
+    peripheral_force: float
+    sprocket_forces: tuple[float, ...]
+    power_shares: tuple[float, ...]
+    centrifugal_tension: float
+    sag_tension: float
+    sag_factor: float
+    span_tensions: tuple[float, ...]
+    slack_span: int
+    tight_span: int
+    shaft_loads: tuple[tuple[float, float], ...]
+    warnings: tuple[str, ...] = field(default=())
+
+    @property
+    def shaft_load_magnitudes(self) -> tuple[float, ...]:
+        """|F_k| per sprocket [N]."""
+        return tuple(math.hypot(x, y) for x, y in self.shaft_loads)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (forces in N, speed in m/s)."""
+        return {
+            "chain_speed_m_s": self.speed,
+            "peripheral_force_n": self.peripheral_force,
+            "sprocket_forces_n": list(self.sprocket_forces),
+            "power_shares": list(self.power_shares),
+            "centrifugal_tension_n": self.centrifugal_tension,
+            "sag_tension_n": self.sag_tension,
+            "sag_factor": self.sag_factor,
+            "span_tensions_n": list(self.span_tensions),
+            "slack_span": self.slack_span,
+            "tight_span": self.tight_span,
+            "shaft_loads_n": list(self.shaft_load_magnitudes),
+            "shaft_load_vectors_n": [list(v) for v in self.shaft_loads],
+            "warnings": list(self.warnings),
+        }
+
+
+def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
+    d = drive.driver_index
+    tight = next((s.index for s in geometry.spans if s.end == d), None)
+    slack = next((s.index for s in geometry.spans if s.start == d), None)
+    if tight is None or slack is None:
+        raise DesignError("geometry.spans", "no span arrives at / leaves the driver")
+    return tight, slack
+
+
+def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAULT_SAG_RATIO,
+             shaft_load_factor: float = 1.0) -> LoadsResult:
+    """Static loads round the contour of ``drive`` laid out as ``geometry``.
+
+    Needs ``drive.power`` [W] and the driver's speed [rad/s]. F_0 is the sag tension of the
+    slack span (the one leaving the driver), F_v = q·v²; tight span F_t + F_0 + F_v, slack
+    span F_0 + F_v; see the module docstring for the balance at each sprocket.
+    """
+    if drive.power is None:
+        raise DesignError("drive.power", "power is needed to compute the loads")
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    if len(geometry.spans) != len(drive.sprockets):
+        raise DesignError("geometry.spans",
+                          f"expected {len(drive.sprockets)} spans, got {len(geometry.spans)}")
+    spec = drive.chain.spec
+    v = chain_speed(driver.teeth, spec.pitch, driver.speed)
+    shares = power_shares(drive)
+    ft = peripheral_force(drive.power, v)
+    forces = shares * ft
+    tight, slack = _tight_and_slack(drive, geometry)
+    slack_span = geometry.spans[slack]
+    fv = centrifugal_tension(spec.mass_per_length, v)
+    kf = float(sag_factor(slack_span.inclination, sag_ratio))
+    f0 = sag_tension(spec.mass_per_length, slack_span.length, slack_span.inclination, sag_ratio)
+    tensions = span_tensions(slack, forces, geometry.spans, f0 + fv)
+    shafts = shaft_load_vectors(geometry, tensions, fv, shaft_load_factor)
+    warnings: list[str] = []
+    if not math.isclose(tensions[tight], ft + f0 + fv, rel_tol=1e-9):
+        warnings.append("tension round the contour does not close on the tight span")
+    return LoadsResult(
+        speed=v, peripheral_force=ft, sprocket_forces=tuple(float(f) for f in forces),
+        power_shares=tuple(float(s) for s in shares), centrifugal_tension=fv, sag_tension=f0,
+        sag_factor=kf, span_tensions=tuple(float(t) for t in tensions), slack_span=slack,
+        tight_span=tight, shaft_loads=tuple((float(x), float(y)) for x, y in shafts),
+        warnings=tuple(warnings),
+    )
+
+
+def small_sprocket(drive: Drive) -> tuple[int, float]:
+    """Teeth and angular speed [rad/s] of the smallest loaded sprocket (driver or driven).
+
+    Ratings and the [p] / [s] tables refer to the small sprocket of the drive (Shigley §17-5;
+    Russian n1); its speed follows from the driver's, ω_k = ω_d·z_d/z_k (one chain speed).
+    Idlers transmit no torque and are left out.
+    """
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    loaded = [s for s in drive.sprockets if s.role in ("driver", "driven")]
+    small = min(loaded, key=lambda s: s.teeth)
+    return small.teeth, driver.speed * driver.teeth / small.teeth

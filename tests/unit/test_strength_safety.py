@@ -1,0 +1,80 @@
+"""Unit tests of chaindrive.strength.safety, .wear and the strength_of entry point."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from numpy.testing import assert_allclose
+
+from chaindrive.errors import DesignError
+from chaindrive.model import Chain, Drive, Sprocket
+from chaindrive.strength import strength_of
+from chaindrive.strength.safety import (
+    ALLOWABLE_DYNAMIC_SAFETY,
+    startup_safety_factor,
+    static_safety_factor,
+    steady_safety_factor,
+    two_stage_check,
+)
+from chaindrive.strength.wear import wear_life_hours
+from tests.conftest import make_spec, rpm
+from tests.unit.test_strength_loads import hand_geometry
+
+
+def test_static_safety_factor_formula():
+    # s = Q/(kд·Ft + F0 + Fv)
+    assert static_safety_factor(60_000, 1000, 50, 30, 1.2) == pytest.approx(60_000 / 1280)
+
+
+def test_two_stage_check():
+    assert ALLOWABLE_DYNAMIC_SAFETY == 2.5
+    assert startup_safety_factor(10_000, 2_000) == 5.0
+    assert steady_safety_factor(10_000, 1_500, 500) == 5.0
+    ok = two_stage_check(10_000, 2_000, 1_500, 500, resonance_force=2_000)
+    assert ok.passed and ok.k2_min == pytest.approx(10_000 / 3_500)
+    bad = two_stage_check(10_000, 2_000, 1_500, 500, resonance_force=3_000)
+    assert not bad.passed and bad.to_dict()["k2_min_resonance"] == pytest.approx(2.2222, 1e-4)
+
+
+def test_wear_life_scaling():
+    assert wear_life_hours(1000.0, 1000.0) == pytest.approx(15000.0)
+    # H^2.5·h/Lp = const; elongation scales linearly
+    assert_allclose(wear_life_hours(2000.0, 1000.0, links=120, elongation=0.02),
+                    15000 * 2**2.5 * 1.2 * 2 / 3, rtol=1e-12)
+
+
+def drive_two(material: str = "steel") -> Drive:
+    spec = dataclasses.replace(make_spec(0.0254), material=material, bearing_area=180e-6)
+    return Drive("two", Chain(spec), (Sprocket("A", 19, 0.0, 0.0, "driver", speed=rpm(400)),
+                                      Sprocket("B", 38, 1.0, 0.0, "driven")),
+                 power=5000.0, service_factor=1.3)
+
+
+def test_strength_of_keys_and_values():
+    drive = drive_two()
+    res = strength_of(drive, hand_geometry(drive), dynamic_factor=1.2)
+    d = res.to_dict()
+    for key in ("span_tensions_n", "shaft_loads_n", "hinge_pressure_mpa", "allowable_pressure_mpa",
+                "safety_factor_static", "allowable_safety_factor", "wear_life_h"):
+        assert key in d
+    ft = res.loads.peripheral_force
+    assert_allclose(d["hinge_pressure_mpa"], ft * 1.3 / 180e-6 / 1e6, rtol=1e-12)
+    assert_allclose(d["safety_factor_static"], 60_000 / (1.2 * ft + res.loads.sag_tension
+                                                         + res.loads.centrifugal_tension))
+    assert d["allowable_pressure_mpa"] == pytest.approx(26.0)   # Table 2A: 25.4 mm, 400 rpm
+    assert d["allowable_safety_factor"] == pytest.approx(9.3)
+    assert d["wear_life_h"] > 0
+
+
+def test_strength_of_polymer_chain_drops_steel_limits():
+    drive = drive_two("PA6")
+    d = strength_of(drive, hand_geometry(drive)).to_dict()
+    assert d["allowable_pressure_mpa"] is None and d["wear_life_h"] is None
+    assert any("do not apply" in w for w in d["warnings"])
+
+
+def test_strength_of_bad_elongation():
+    drive = drive_two()
+    with pytest.raises(DesignError, match="elongation"):
+        strength_of(drive, hand_geometry(drive), elongation=0.5)
