@@ -11,12 +11,18 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from chaindrive.damping import DEFAULT_DAMPING_RATIO
+from chaindrive.dynamics.resonance import DynamicsResult, analyze_dynamics, resonance_warnings
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.model import Drive
 from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
+
+#: Speed range of the Campbell data and of the amplitude–frequency sweep, as fractions of
+#: the nominal driver speed (issue 5: 10 %–150 %).
+SPEED_RANGE = (0.1, 1.5)
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,6 +38,7 @@ class Analysis:
     kinematics: KinematicsResult
     selection: SelectionResult | None
     strength: StrengthResult | None
+    dynamics: DynamicsResult
     warnings: tuple[str, ...]
 
     def to_dict(self) -> dict[str, Any]:
@@ -48,6 +55,7 @@ class Analysis:
             "kinematics": self.kinematics.to_dict(),
             "selection": selection,
             "strength": strength,
+            "dynamics": self.dynamics.to_dict(),
             "warnings": warnings,
         }
 
@@ -120,14 +128,17 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
             for c in own if not c.feasible]
 
 
-def analyze(drive: Drive) -> Analysis:
+def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis:
     """Run the analyses of a drive in order.
 
     1. selection (when the power is given): the chain a method of its family would choose —
        ISO 10823 for ISO 606/ANSI, the Kэ method for GOST 13568; a design that names no
        chain gets that chain, one that names its chain keeps it and the selection is shown
        beside it;
-    2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength.
+    2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength;
+    5. dynamics: the ring model with the static span tensions (sag), natural frequencies and
+       forms, span transverse frequencies, resonance table and Campbell data from 10 % to
+       150 % of the driver speed (issue 4), damping ratio ``damping`` (seed 000: D = 0.06).
     """
     warnings: list[str] = []
     selection = None
@@ -152,5 +163,12 @@ def analyze(drive: Drive) -> Analysis:
     ))
     kinematics = drive_kinematics(placed, geometry)
     strength = strength_of(placed, geometry) if placed.power is not None else None
+    omega = placed.driver.speed
+    dynamics = analyze_dynamics(
+        placed, geometry, damping=damping,
+        span_tensions=None if strength is None else strength.loads.span_tensions,
+        speed_range=None if omega is None else (SPEED_RANGE[0] * omega, SPEED_RANGE[1] * omega))
     return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
-                    strength=strength, warnings=tuple(warnings) + geometry.warnings)
+                    strength=strength, dynamics=dynamics,
+                    warnings=(*warnings, *geometry.warnings,
+                              *resonance_warnings(dynamics.resonances)))

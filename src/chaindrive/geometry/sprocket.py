@@ -515,7 +515,8 @@ def annulus_mass_and_inertia(outer_diameter: ArrayLike, inner_diameter: ArrayLik
 
 def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, density: float,
                               polymeric: bool, hole_count: int = 6,
-                              hole_diameter_ratio: float = 0.5) -> SprocketMassProperties:
+                              hole_diameter_ratio: float = 0.5, strands: int = 1,
+                              transverse_pitch: float = 0.0) -> SprocketMassProperties:
     """Mass and moment of inertia of a sprocket body from its proportions.
 
     The toothed ring is replaced by a full ring out to the true pitch diameter d = p/sin(π/z)
@@ -529,7 +530,8 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     * steel (plate sprocket, ISO 606 "type A" without hub): a disc of diameter d and
       thickness bf1 (ISO 606 simplex tooth width, :func:`iso606_tooth_width`) minus a bore of
       0.19·tz/π (the seed's bore proportion, so both models share the bore). A hub, if any,
-      should be added by the user as an extra inertia.
+      should be added by the user as an extra inertia. A multi-strand steel sprocket is
+      :func:`multi_strand_width` thick (strands, transverse_pitch [m]).
 
     pitch [m]; teeth z; inner_width B_in [m]; density ρ [kg/m³].
     """
@@ -537,7 +539,8 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     d = float(pitch_diameter(pitch, teeth))
     prop = polymeric_sprocket_proportions(pitch, teeth, inner_width)
     if not polymeric:
-        width = float(iso606_tooth_width(pitch, inner_width, 1))
+        width = float(multi_strand_width(iso606_tooth_width(pitch, inner_width, strands),
+                                         transverse_pitch, strands))
         m, inertia = annulus_mass_and_inertia(d, prop.bore_diameter, width, rho)
         return SprocketMassProperties(float(m), float(inertia), "steel plate disc (d, bf1)")
     parts = [annulus_mass_and_inertia(d, prop.rim_inner_diameter, prop.rim_width, rho),

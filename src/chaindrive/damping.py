@@ -1,0 +1,247 @@
+"""Damping of a chain drive: hinge friction in a transversely vibrating span (seed 001).
+
+The tight span of length a (z hinges, pitch t, a = t (z − 1)) vibrates as a string with
+fixed ends in its first mode, y = y_0 sin(πx/a) cos(ωτ), relative amplitude ȳ_0 = y_0/a
+(≤ 0.03). Friction in the hinges (pin diameter d_2, friction coefficient f) under the
+initial tension F_0 dissipates W per cycle; E is the largest potential energy of the
+cycle; the absorption coefficient (relative dissipation) is ψ = W/E. Equation numbers are
+seed 001's, restated in seed-notes §4::
+
+    Σφ = 4π ȳ_0                                         (6)
+    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 ȳ_0             (7, 8)
+    Δl_max = 8 y_0² / (3a) = (8/3) a ȳ_0²                 (10)
+    F_max = k1 + k2 ȳ_0 + k3 F_0 + k4 ȳ_0² + k5 ȳ_0 F_0 + k6 F_0²   (11, empirical)
+    K_aF = (F_max − F_0) / F_0                           (13)
+    E = 0.5 F_a Δl_max = (4/3) a ȳ_0² F_0 K_aF             (9, 12)
+    ψ = 6π f d_2 / (ȳ_0 a K_aF) ≈ 18.9 f d_2 / (ȳ_0 t (z − 1) K_aF)   (14)
+
+Equivalent viscous damping ratio ζ = ψ / (4π) (ψ = 2δ, δ = 2πζ the logarithmic decrement
+for light damping). Alternative: the plain ratio D = 0.06 measured in seed 000 §3.2
+(Table 1: damped and undamped frequencies then differ by 0.18 %, √(1 − 0.06²) = 0.9982).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from chaindrive.errors import DesignError
+
+__all__ = [
+    "DEFAULT_DAMPING_RATIO",
+    "PR_12_7_1820_1",
+    "HingeFrictionCoefficients",
+    "HingeFrictionResult",
+    "absorption_coefficient",
+    "damped_frequencies",
+    "dissipated_energy_per_cycle",
+    "dynamic_load_factor",
+    "equivalent_damping_ratio",
+    "hinge_friction_damping",
+    "hinge_rotation_sum",
+    "max_dynamic_force",
+    "max_potential_energy",
+    "span_elongation_max",
+]
+
+#: Dimensionless damping coefficient D = ζ measured for chain drives (seed 000 §3.2).
+DEFAULT_DAMPING_RATIO = 0.06
+
+
+@dataclass(frozen=True, slots=True)
+class HingeFrictionCoefficients:
+    """Empirical fit F_max = k1 + k2 ȳ_0 + k3 F_0 + k4 ȳ_0² + k5 ȳ_0 F_0 + k6 F_0² of one
+    chain (seed 001 eq. 11) with the chain's hinge data.
+
+    k1 [N], k2 [N], k3 [–], k4 [N], k5 [–], k6 [1/N]; pin_diameter d_2 [m]; pitch t [m];
+    friction f in the hinges [–]. Replace with the coefficients of your chain.
+    """
+
+    chain: str
+    k1: float
+    k2: float
+    k3: float
+    k4: float
+    k5: float
+    k6: float
+    pin_diameter: float
+    pitch: float
+    friction: float = 0.1
+    source: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (SI units)."""
+        return asdict(self)
+
+
+#: Seed 001's set for chain ПР-12,7-1820-1 (GOST 13568-97): d_2 = 4.45 mm, t = 12.7 mm,
+#: f = 0.1; the signs of the k's are unreadable in the source, all taken positive
+#: (seed-notes §4: then F_max at ȳ_0 → 0 stays within 10 % of F_0).
+PR_12_7_1820_1 = HingeFrictionCoefficients(
+    chain="GOST 13568 ПР-12,7-1820-1", k1=32.55, k2=8276.0, k3=0.904, k4=1.374e6, k5=10.2,
+    k6=15.7e-5, pin_diameter=4.45e-3, pitch=12.7e-3, friction=0.1,
+    source="seed 001 (coefficients of its ref. [16]); seed-notes §4",
+)
+
+
+def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
+    a = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(a)) or np.any(a <= 0):
+        raise DesignError(name, f"must be positive, got {value!r}")
+    return a
+
+
+def hinge_rotation_sum(relative_amplitude: ArrayLike) -> NDArray[np.float64]:
+    """Total rotation of the pins in their bushes per quarter period, Σφ = 4π ȳ_0 [rad].
+
+    relative_amplitude ȳ_0 = y_0 / a [–]. Seed 001 eq. (6).
+    """
+    return 4.0 * math.pi * _positive("relative_amplitude", relative_amplitude)
+
+
+def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_diameter: ArrayLike,
+                                amplitude: ArrayLike, span_length: ArrayLike) -> NDArray[np.float64]:
+    """Energy W [J] dissipated by hinge friction per cycle of transverse vibration.
+
+    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 y_0 / a (seed 001 eqs. 7–8 with ȳ_0 = y_0/a).
+    friction f [–]; tension F_0 [N]; pin_diameter d_2 [m]; amplitude y_0 at mid-span [m];
+    span_length a [m].
+    """
+    f = _positive("friction", friction)
+    y_rel = _positive("amplitude", amplitude) / _positive("span_length", span_length)
+    return 8.0 * math.pi * f * _positive("tension", tension) * _positive(
+        "pin_diameter", pin_diameter) * y_rel
+
+
+def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -> NDArray[np.float64]:
+    """Elongation Δl_max = (8/3) a ȳ_0² [m] of a span at its largest deflection.
+
+    span_length a [m]; relative_amplitude ȳ_0 [–]. Seed 001 eq. (10) (sin-shaped span).
+    """
+    y = _positive("relative_amplitude", relative_amplitude)
+    return 8.0 / 3.0 * _positive("span_length", span_length) * y * y
+
+
+def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
+                      coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
+                      ) -> NDArray[np.float64]:
+    """Largest span force F_max [N] during the vibration, seed 001 eq. (11) (empirical).
+
+    tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
+    """
+    F0 = _positive("tension", tension)
+    y = _positive("relative_amplitude", relative_amplitude)
+    k = coefficients
+    return k.k1 + k.k2 * y + k.k3 * F0 + k.k4 * y * y + k.k5 * y * F0 + k.k6 * F0 * F0
+
+
+def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
+                        coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
+                        ) -> NDArray[np.float64]:
+    """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [–], seed 001 eq. (13).
+
+    tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
+    """
+    F0 = _positive("tension", tension)
+    return (max_dynamic_force(F0, relative_amplitude, coefficients) - F0) / F0
+
+
+def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
+                         tension: ArrayLike,
+                         coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
+                         ) -> NDArray[np.float64]:
+    """Largest potential energy of the cycle E = 0.5 F_a Δl_max = (4/3) a ȳ_0² F_0 K_aF [J].
+
+    Seed 001 eqs. (9), (12). span_length a [m]; relative_amplitude ȳ_0; tension F_0 [N].
+    """
+    F0 = _positive("tension", tension)
+    k_af = dynamic_load_factor(F0, relative_amplitude, coefficients)
+    return 0.5 * k_af * F0 * span_elongation_max(span_length, relative_amplitude)
+
+
+def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_length: ArrayLike,
+                           relative_amplitude: ArrayLike, tension: ArrayLike,
+                           coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
+                           ) -> NDArray[np.float64]:
+    """Absorption coefficient ψ = W / E = 6π f d_2 / (ȳ_0 a K_aF) [–], seed 001 eq. (14).
+
+    friction f; pin_diameter d_2 [m]; span_length a = t (z − 1) [m]; relative_amplitude
+    ȳ_0; tension F_0 [N]; coefficients of the chain's F_max fit.
+    """
+    y = _positive("relative_amplitude", relative_amplitude)
+    k_af = dynamic_load_factor(tension, y, coefficients)
+    if np.any(k_af <= 0):
+        raise DesignError("coefficients", "the F_max fit gives F_max ≤ F_0 (K_aF ≤ 0) here")
+    return (6.0 * math.pi * _positive("friction", friction) * _positive("pin_diameter", pin_diameter)
+            / (y * _positive("span_length", span_length) * k_af))
+
+
+def equivalent_damping_ratio(absorption: ArrayLike) -> NDArray[np.float64]:
+    """Viscous damping ratio ζ = ψ / (4π) [–] equivalent to an absorption coefficient ψ.
+
+    ψ = ΔW/W = 2δ for light damping and δ = 2πζ (logarithmic decrement) — Panovko,
+    Internal friction in vibrations of elastic systems; seed-notes §4.
+    """
+    return np.asarray(absorption, dtype=float) / (4.0 * math.pi)
+
+
+def damped_frequencies(frequencies: ArrayLike, damping_ratio: ArrayLike) -> NDArray[np.float64]:
+    """Damped natural frequencies ω_d = ω sqrt(1 − ζ²) (any frequency unit).
+
+    Source: single-degree-of-freedom viscous damping, applied mode by mode (modal damping);
+    seed 000 Table 1 compares undamped and damped frequencies this way.
+    """
+    z = np.asarray(damping_ratio, dtype=float)
+    if np.any((z < 0) | (z >= 1)):
+        raise DesignError("damping_ratio", f"must be from 0 to below 1, got {damping_ratio!r}")
+    return np.asarray(frequencies, dtype=float) * np.sqrt(1.0 - z * z)
+
+
+@dataclass(frozen=True, slots=True)
+class HingeFrictionResult:
+    """Hinge-friction damping of a span: W [J], E [J], K_aF, ψ, ζ at (F_0, ȳ_0, a)."""
+
+    tension: float
+    relative_amplitude: float
+    span_length: float
+    dissipated_energy: float
+    potential_energy: float
+    dynamic_load_factor: float
+    absorption_coefficient: float
+    damping_ratio: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"tension_n": self.tension, "relative_amplitude": self.relative_amplitude,
+                "span_length_m": self.span_length,
+                "dissipated_energy_j": self.dissipated_energy,
+                "potential_energy_j": self.potential_energy,
+                "dynamic_load_factor": self.dynamic_load_factor,
+                "absorption_coefficient": self.absorption_coefficient,
+                "damping_ratio": self.damping_ratio}
+
+
+def hinge_friction_damping(tension: float, relative_amplitude: float, span_length: float,
+                           coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
+                           ) -> HingeFrictionResult:
+    """Seed 001's model for one span: W, E, K_aF, ψ and ζ = ψ/4π.
+
+    tension F_0 [N]; relative_amplitude ȳ_0 [–] (seed: 0.015…0.03); span_length a [m];
+    coefficients: the chain's fit and hinge data (friction, pin diameter).
+    """
+    c = coefficients
+    y0 = relative_amplitude * span_length
+    W = float(dissipated_energy_per_cycle(c.friction, tension, c.pin_diameter, y0, span_length))
+    E = float(max_potential_energy(span_length, relative_amplitude, tension, c))
+    psi = float(absorption_coefficient(c.friction, c.pin_diameter, span_length,
+                                       relative_amplitude, tension, c))
+    return HingeFrictionResult(
+        tension=float(tension), relative_amplitude=float(relative_amplitude),
+        span_length=float(span_length), dissipated_energy=W, potential_energy=E,
+        dynamic_load_factor=float(dynamic_load_factor(tension, relative_amplitude, c)),
+        absorption_coefficient=psi, damping_ratio=psi / (4.0 * math.pi),
+    )

@@ -1,0 +1,338 @@
+"""Working frequencies, the resonance table and Campbell-diagram data.
+
+Seed 000 §3.2–3.3 (seed-notes §1): the disturbing frequencies of a contour are the shaft
+rotation frequencies ω_i and the tooth (mesh) frequency ω_z = z_1 ω_1 = … = z_n ω_n with
+its harmonics k ω_z; the natural frequencies must be kept away from them. The parametric
+resonance of a span (tension pulsating at the tooth frequency, principal zone
+f_z ≈ 2 f_transverse, :mod:`chaindrive.dynamics.transverse`) is checked too.
+
+margin_percent = (f_working − f_natural) / f_natural · 100 (signed: negative when the
+working frequency lies below the natural one); its absolute value is the detuning.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.dynamics.ring import ModalResult
+
+__all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
+           "resonance_table", "shaft_frequencies", "tooth_frequency", "working_frequencies"]
+
+TWO_PI = 2.0 * math.pi
+
+
+def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
+                      teeth: Sequence[int]) -> NDArray[np.float64]:
+    """Rotation frequencies f_i = ω_1 z_1 / (2π z_i) [Hz] of every shaft.
+
+    driver_speed ω_1 [rad/s] (scalar or array of S speeds); driver_teeth z_1; teeth z_i.
+    Returns shape (..., n). Source: ω_i = z_1 ω_1 / z_i (same chain speed on every
+    sprocket, seed-notes §1 and §5).
+    """
+    w = np.asarray(driver_speed, dtype=float)
+    z = np.asarray(teeth, dtype=float)
+    return (w[..., None] * driver_teeth / z) / TWO_PI
+
+
+def tooth_frequency(driver_speed: ArrayLike, driver_teeth: int) -> NDArray[np.float64]:
+    """Tooth (mesh) frequency f_z = z_1 ω_1 / 2π [Hz], common to the whole contour.
+
+    driver_speed ω_1 [rad/s]; driver_teeth z_1. Source: seed 000 §3.3, ω_z = z_i ω_i.
+    """
+    return np.asarray(driver_speed, dtype=float) * driver_teeth / TWO_PI
+
+
+@dataclass(frozen=True, slots=True)
+class WorkingFrequency:
+    """One disturbing frequency: ``kind`` is ``"shaft"``, ``"tooth"`` or ``"parametric"``;
+    ``label`` names it (sprocket, harmonic, span); frequency [Hz]; harmonic k (1 for
+    shafts)."""
+
+    kind: str
+    label: str
+    frequency: float
+    harmonic: int = 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"kind": self.kind, "label": self.label, "frequency_hz": self.frequency,
+                "harmonic": self.harmonic}
+
+
+def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[int],
+                        names: Sequence[str] | None = None,
+                        harmonics: int = 3) -> tuple[WorkingFrequency, ...]:
+    """The shaft frequencies and the tooth frequency with harmonics k = 1…``harmonics``.
+
+    driver_speed ω_1 [rad/s]; driver_teeth z_1; teeth z_i of all sprockets; names of the
+    sprockets (default S1, S2, …). Source: seed 000 §3.3, seed-notes §1.
+    """
+    if harmonics < 1:
+        raise DesignError("harmonics", f"must be at least 1, got {harmonics!r}")
+    names = list(names) if names is not None else [f"S{i + 1}" for i in range(len(teeth))]
+    shafts = shaft_frequencies(driver_speed, driver_teeth, teeth)
+    out = [WorkingFrequency("shaft", f"shaft {name}", float(f))
+           for name, f in zip(names, shafts, strict=True)]
+    fz = float(tooth_frequency(driver_speed, driver_teeth))
+    out += [WorkingFrequency("tooth", f"tooth x{k}", k * fz, k) for k in range(1, harmonics + 1)]
+    return tuple(out)
+
+
+@dataclass(frozen=True, slots=True)
+class Resonance:
+    """A row of the resonance table: a working frequency, the nearest natural frequency
+    [Hz] (``mode`` its index in the modal result, or the span index for ``parametric``)
+    and margin_percent = (f_working − f_natural)/f_natural·100."""
+
+    working: WorkingFrequency
+    natural_frequency: float
+    mode: int
+    margin_percent: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {**self.working.to_dict(), "natural_frequency_hz": self.natural_frequency,
+                "mode": self.mode, "margin_percent": self.margin_percent}
+
+
+def _nearest(f: float, natural: NDArray[np.float64]) -> tuple[int, float, float]:
+    k = int(np.argmin(np.abs(natural - f)))
+    fn = float(natural[k])
+    return k, fn, (f - fn) / fn * 100.0
+
+
+def resonance_table(modal: ModalResult, working: Sequence[WorkingFrequency],
+                    span_transverse_hz: ArrayLike | None = None,
+                    tooth_hz: float | None = None,
+                    span_names: Sequence[str] = ()) -> tuple[Resonance, ...]:
+    """Nearest elastic natural frequency and the margin for each working frequency.
+
+    modal : the ring's modes (rigid-body modes are skipped); working : the disturbing
+    frequencies; span_transverse_hz : (spans,) first transverse frequency of every span
+    [Hz] and tooth_hz the tooth frequency [Hz] — for each span with f_1 > 0 one
+    ``parametric`` row compares the tooth frequency with the principal parametric
+    resonance 2 f_1 (Bolotin 1964), labelled with ``span_names`` when given. Sorted by
+    |margin| (most critical first).
+    """
+    elastic_idx = np.flatnonzero(~modal.rigid_body)
+    natural = modal.frequencies_hz[elastic_idx]
+    rows: list[Resonance] = []
+    if natural.size:
+        for w in working:
+            k, fn, margin = _nearest(w.frequency, natural)
+            rows.append(Resonance(w, fn, int(elastic_idx[k]), margin))
+    if span_transverse_hz is not None and tooth_hz is not None:
+        for i, f1 in enumerate(np.asarray(span_transverse_hz, dtype=float).ravel()):
+            if f1 > 0:
+                span = span_names[i] if i < len(span_names) else str(i)
+                w = WorkingFrequency("parametric", f"tooth vs 2·f1 of span {span}",
+                                     float(tooth_hz))
+                rows.append(Resonance(w, 2.0 * f1, i, (tooth_hz - 2.0 * f1) / (2.0 * f1) * 100))
+    return tuple(sorted(rows, key=lambda r: abs(r.margin_percent)))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class CampbellData:
+    """Data of a Campbell diagram over the driver speed.
+
+    speeds_rpm (S,) driver speeds; natural_frequencies_hz (S, modes) elastic ring
+    frequencies (independent of speed in the linear model); span_transverse_hz
+    (S, spans) first transverse frequency of every span (depends on the chain speed);
+    excitation_hz: name → (S,) excitation lines (shafts, tooth harmonics, and
+    "2·f1 span i" for the parametric zones are in span_transverse_hz·2);
+    crossings: (excitation, natural mode index, speed_rpm) where a line crosses a
+    natural frequency (linear interpolation between grid speeds).
+    """
+
+    speeds_rpm: NDArray[np.float64]
+    natural_frequencies_hz: NDArray[np.float64]
+    span_transverse_hz: NDArray[np.float64]
+    excitation_hz: dict[str, NDArray[np.float64]]
+    crossings: tuple[tuple[str, int, float], ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {
+            "speeds_rpm": self.speeds_rpm.tolist(),
+            "natural_frequencies_hz": self.natural_frequencies_hz.tolist(),
+            "span_transverse_frequencies_hz": self.span_transverse_hz.tolist(),
+            "excitation_hz": {k: v.tolist() for k, v in self.excitation_hz.items()},
+            "crossings": [{"excitation": e, "mode": m, "speed_rpm": s}
+                          for e, m, s in self.crossings],
+        }
+
+
+def _crossings(speeds: NDArray[np.float64], line: NDArray[np.float64],
+               natural: NDArray[np.float64]) -> list[tuple[int, float]]:
+    out = []
+    for j in range(natural.shape[1]):
+        g = line - natural[:, j]
+        idx = np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) <= 0)
+        for i in idx:
+            if g[i] == g[i + 1]:
+                continue
+            s = speeds[i] - g[i] * (speeds[i + 1] - speeds[i]) / (g[i + 1] - g[i])
+            out.append((j, float(s)))
+    return out
+
+
+def campbell_data(modal: ModalResult, driver_speeds: ArrayLike, driver_teeth: int,
+                  teeth: Sequence[int], names: Sequence[str] | None = None, harmonics: int = 3,
+                  span_lengths: ArrayLike | None = None, span_tensions: ArrayLike | None = None,
+                  mass_per_length: float | None = None, pitch: float | None = None,
+                  ) -> CampbellData:
+    """Natural frequencies and excitation lines over a range of driver speeds.
+
+    driver_speeds ω_1 [rad/s] (S,); driver_teeth z_1; teeth z_i; names of sprockets;
+    harmonics of the tooth frequency. With span_lengths [m], span_tensions [N],
+    mass_per_length q [kg/m] and pitch p [m] the spans' first transverse frequencies at
+    the chain speed v = z_1 p ω_1 / 2π are added (Mote 1965), compared with the tooth
+    frequency for parametric crossings (f_z = 2 f_1).
+    """
+    from chaindrive.dynamics.transverse import span_transverse_frequencies
+
+    w = np.atleast_1d(np.asarray(driver_speeds, dtype=float))
+    names = list(names) if names is not None else [f"S{i + 1}" for i in range(len(teeth))]
+    natural = np.broadcast_to(modal.elastic_frequencies_hz, (w.size, modal.elastic_frequencies_hz.size))
+    lines = {f"shaft {n}": col for n, col in zip(names, shaft_frequencies(w, driver_teeth, teeth).T,
+                                                 strict=True)}
+    fz = tooth_frequency(w, driver_teeth)
+    lines.update({f"tooth x{k}": k * fz for k in range(1, harmonics + 1)})
+    crossings = [(name, j, s) for name, line in lines.items()
+                 for j, s in _crossings(w, line, natural)]
+    transverse = np.zeros((w.size, 0))
+    if span_lengths is not None and span_tensions is not None and mass_per_length and pitch:
+        v = driver_teeth * pitch * w / TWO_PI
+        transverse = span_transverse_frequencies(np.asarray(span_lengths)[None, :],
+                                                 np.asarray(span_tensions)[None, :],
+                                                 mass_per_length, v[:, None], modes=1)[..., 0]
+        crossings += [(f"parametric span {i}", -1, s)
+                      for i in range(transverse.shape[1])
+                      for _, s in _crossings(w, fz, 2.0 * transverse[:, i:i + 1])]
+    rpm = w * 60.0 / TWO_PI
+    crossings = [(e, m, float(s * 60.0 / TWO_PI)) for e, m, s in crossings]
+    return CampbellData(rpm, np.array(natural), transverse, lines, tuple(crossings))
+
+
+#: Half-width of the band round a natural frequency that a working frequency should stay
+#: out of (seed 000 §3.2 "detune the spectrum from the working frequencies"; the ±10 %
+#: band is the usual rotordynamics separation margin, e.g. API 684 §2.8 asks 10–26 %).
+RESONANCE_BAND_PERCENT = 10.0
+
+
+def resonance_warnings(rows: Sequence[Resonance],
+                       band_percent: float = RESONANCE_BAND_PERCENT) -> list[str]:
+    """One message per working frequency within ±band of its nearest natural frequency."""
+    out = []
+    for r in rows:
+        if abs(r.margin_percent) < band_percent:
+            kind = ("parametric resonance" if r.working.kind == "parametric"
+                    else "resonance")
+            out.append(f"{kind}: {r.working.label} at {r.working.frequency:.1f} Hz is "
+                       f"{r.margin_percent:+.1f} % from {r.natural_frequency:.1f} Hz "
+                       f"(keep at least ±{band_percent:g} %)")
+    return out
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class DynamicsResult:
+    """Everything a designer reads about a drive's vibration (issue 4, JSON ``dynamics``).
+
+    parameters : masses and stiffnesses with their parts
+    (:class:`~chaindrive.dynamics.stiffness.RingParameters`); modal : the ring's modes;
+    span_transverse_hz : (spans, modes) transverse frequencies [Hz] (empty when the span
+    tensions are unknown); resonances : the resonance table; campbell : Campbell data
+    over the speed range (or None); damping_ratio ζ.
+    """
+
+    parameters: Any
+    modal: ModalResult
+    span_transverse_hz: NDArray[np.float64]
+    working: tuple[WorkingFrequency, ...]
+    resonances: tuple[Resonance, ...]
+    campbell: CampbellData | None
+    damping_ratio: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict with the keys of issue 4 §6."""
+        m = self.modal.to_dict()
+        st = self.span_transverse_hz
+        return {
+            "model": self.parameters.to_dict(),
+            "natural_frequencies_hz": m["natural_frequencies_hz"],
+            "natural_frequencies_rad_s": m["natural_frequencies_rad_s"],
+            "damped_frequencies_hz": m["damped_frequencies_hz"],
+            "rigid_body_modes": m["rigid_body_modes"],
+            "mode_shapes": m["mode_shapes"],
+            "normalized_amplitudes": m["normalized_amplitudes"],
+            "partial_frequencies_hz": m["partial_frequencies_hz"],
+            "span_transverse_frequencies_hz": st[:, 0].tolist() if st.size else [],
+            "span_transverse_modes_hz": st.tolist(),
+            "working_frequencies": [w.to_dict() for w in self.working],
+            "resonances": [r.to_dict() for r in self.resonances],
+            "campbell": None if self.campbell is None else self.campbell.to_dict(),
+            "damping_ratio": self.damping_ratio,
+        }
+
+
+def analyze_dynamics(drive: Any, geometry: Any, *, damping: float = 0.06,
+                     span_tensions: Sequence[float] | None = None,
+                     link_stiffness: float | None = None, material_lookup: Any = None,
+                     harmonics: int = 3, transverse_modes: int = 3,
+                     speed_range: tuple[float, float] | None = None,
+                     speed_points: int = 61) -> DynamicsResult:
+    """Modal analysis, span transverse frequencies, resonance table and Campbell data.
+
+    drive : :class:`chaindrive.model.Drive`; geometry : its ``GeometryResult``; damping ζ;
+    span_tensions [N], link_stiffness [N/m], material_lookup: see
+    :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`; harmonics of the tooth
+    frequency; transverse_modes per span; speed_range (ω_min, ω_max) of the driver
+    [rad/s] for the Campbell data (None: none).
+    """
+    from chaindrive.dynamics.ring import RingModel
+    from chaindrive.dynamics.stiffness import drive_ring_parameters
+    from chaindrive.dynamics.transverse import span_transverse_frequencies
+
+    params = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                                   link_stiffness=link_stiffness,
+                                   material_lookup=material_lookup)
+    model = RingModel(params.masses_kg, params.stiffness_n_per_m, closed=True,
+                      damping_ratio=damping, names=tuple(s.name for s in drive.sprockets))
+    modal = model.modal()
+    spec = drive.chain.spec
+    driver = drive.driver
+    teeth = [s.teeth for s in drive.sprockets]
+    names = [s.name for s in drive.sprockets]
+    lengths = np.array([sp.length for sp in geometry.spans])
+    tensions = params.span_tensions_n
+    transverse = np.zeros((0, transverse_modes))
+    working: tuple[WorkingFrequency, ...] = ()
+    rows: tuple[Resonance, ...] = ()
+    fz = None
+    if driver.speed is not None:
+        v = driver.teeth * spec.pitch * driver.speed / TWO_PI
+        if tensions is not None:
+            transverse = span_transverse_frequencies(lengths, tensions, spec.mass_per_length, v,
+                                                     modes=transverse_modes)
+        working = working_frequencies(driver.speed, driver.teeth, teeth, names, harmonics)
+        fz = float(tooth_frequency(driver.speed, driver.teeth))
+    if working:
+        rows = resonance_table(modal, working, transverse[:, 0] if transverse.size else None, fz,
+                               [f"{sp.start_name}→{sp.end_name}" for sp in geometry.spans])
+    campbell = None
+    if speed_range is not None:
+        speeds = np.linspace(speed_range[0], speed_range[1], speed_points)
+        campbell = campbell_data(modal, speeds, driver.teeth, teeth, names, harmonics,
+                                 lengths if tensions is not None else None, tensions,
+                                 spec.mass_per_length, spec.pitch)
+    return DynamicsResult(params, modal, transverse, working, rows, campbell, damping)

@@ -1,0 +1,393 @@
+"""The n-mass ring model of a chain contour and its modal analysis.
+
+Seed 000 (§3.1–3.2, seed-notes §1): the rotating masses of sprocket i are reduced to the
+radius of the hinge centres, m_i = I_i / R_i², the displacement is x_i = R_i φ_i, and branch
+(span) i joins mass i to mass i+1 (the last joins mass n to mass 1 and closes the ring)::
+
+    M ẍ + K x = f(t),     K = Σ_i c_i (e_i − e_{i+1})(e_i − e_{i+1})ᵀ
+
+— K is the weighted Laplacian of the ring graph. Sign convention: the elongation of branch
+i is e_i = x_{i+1} − x_i, a branch in tension has e > 0 and pulls mass i forward.
+The natural frequencies are the roots of det(K − ω² M) = 0 (seed 000 eq. 2), solved here as
+the symmetric eigenproblem of M^{-1/2} K M^{-1/2} (M is diagonal) with LAPACK ``syevd``.
+A branch of stiffness 0 (a slack span) drops out: the ring becomes an open chain. Each
+connected group of masses has one rigid-body mode; its frequency is set to exactly 0 and its
+shape to the uniform vector of the group (not the seed's 0.08 Hz of Table 2).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.linalg.lapack import dstevd as _dstevd
+from scipy.linalg.lapack import dsyevd as _dsyevd
+
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, Material
+
+__all__ = ["ModalResult", "RingModel", "modal_analysis", "ring_frequencies_batch",
+           "ring_stiffness_matrix"]
+
+TWO_PI = 2.0 * math.pi
+#: Relative size (to the largest eigenvalue) below which an eigenvalue is round-off.
+_ROUNDOFF = 1e-10
+_ALL = np.arange(64)
+_ALL.flags.writeable = False
+
+
+def ring_stiffness_matrix(stiffness: ArrayLike, closed: bool = True) -> NDArray[np.float64]:
+    """Stiffness matrix K [N/m] of masses on a ring joined by branches ``stiffness`` [N/m].
+
+    Branch i joins mass i and i+1; with ``closed`` the last branch joins mass n and 1,
+    otherwise the last entry is ignored (open chain of n masses and n−1 branches).
+    K is the weighted graph Laplacian (seed-notes §1): symmetric, positive semi-definite,
+    rows summing to 0.
+    """
+    c = np.asarray(stiffness, dtype=float).copy()
+    n = c.size
+    if not closed:
+        c[-1] = 0.0
+    i = np.arange(n)
+    j = (i + 1) % n
+    K = np.zeros((n, n))
+    if n == 2:  # both branches join the same two masses: they act in parallel
+        s = c.sum()
+        K[:] = [[s, -s], [-s, s]]
+        return K
+    K[i, i] = c + np.roll(c, 1)
+    K[i, j] = -c
+    K[j, i] = -c
+    return K
+
+
+def _components(cuts: list[int], n: int) -> list[NDArray[np.intp]] | list[slice]:
+    """Groups of masses joined by branches of non-zero stiffness (ring order kept);
+    ``cuts``: sorted indices of the slack branches (cut k separates mass k and k+1)."""
+    if not cuts:
+        return [slice(None)]
+    groups = []
+    for a, b in zip(cuts, cuts[1:] + cuts[:1], strict=True):
+        stop = b + 1 if b > a else b + 1 + n  # b == a: a single cut, one open chain
+        groups.append(np.arange(a + 1, stop) % n)
+    return groups
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ModalResult:
+    """Natural frequencies and mode shapes of a :class:`RingModel`.
+
+    Attributes
+    ----------
+    frequencies_hz : (n,) natural frequencies f_j [Hz], ascending; rigid-body modes are
+        exactly 0 and come first
+    angular_frequencies_rad_s : (n,) ω_j = 2π f_j [rad/s]
+    shapes : (n, n) mode shapes X^(j) as columns, mass-normalised (Xᵀ M X = I) [kg^-1/2]
+    normalized_amplitudes : (n, n) seed 000's μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns
+        per mode (each column sums to 1)
+    partial_frequencies_hz : (n,) partial frequency of each mass with its neighbours held,
+        sqrt(K_kk / m_k) / 2π [Hz] (the diagonal terms of seed 000 eq. 2)
+    rigid_body : (n,) True for rigid-body modes
+    damping_ratio : ζ used for the damped frequencies (seed 000: D = 0.06)
+    damped_frequencies_hz : (n,) f_d = f·sqrt(1 − ζ²) [Hz]
+    masses_kg, stiffness_n_per_m : the model's reduced masses and branch stiffnesses
+    """
+
+    frequencies_hz: NDArray[np.float64]
+    angular_frequencies_rad_s: NDArray[np.float64]
+    shapes: NDArray[np.float64]
+    normalized_amplitudes: NDArray[np.float64]
+    partial_frequencies_hz: NDArray[np.float64]
+    rigid_body: NDArray[np.bool_]
+    damping_ratio: float
+    damped_frequencies_hz: NDArray[np.float64]
+    masses_kg: NDArray[np.float64]
+    stiffness_n_per_m: NDArray[np.float64]
+
+    @property
+    def elastic_frequencies_hz(self) -> NDArray[np.float64]:
+        """The non-zero (elastic) natural frequencies [Hz], ascending."""
+        return self.frequencies_hz[~self.rigid_body]
+
+    @property
+    def first_elastic_frequency_hz(self) -> float:
+        """The lowest non-zero natural frequency [Hz] (nan if the model has none)."""
+        f = self.elastic_frequencies_hz
+        return float(f[0]) if f.size else math.nan
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict; ``mode_shapes[j]`` and ``normalized_amplitudes[j]`` list the
+        amplitudes of every mass in mode j."""
+        return {
+            "reduced_masses_kg": self.masses_kg.tolist(),
+            "branch_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
+            "natural_frequencies_hz": self.frequencies_hz.tolist(),
+            "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
+            "damped_frequencies_hz": self.damped_frequencies_hz.tolist(),
+            "rigid_body_modes": self.rigid_body.tolist(),
+            "mode_shapes": self.shapes.T.tolist(),
+            "normalized_amplitudes": self.normalized_amplitudes.T.tolist(),
+            "partial_frequencies_hz": self.partial_frequencies_hz.tolist(),
+            "damping_ratio": self.damping_ratio,
+        }
+
+
+def _check_damping(damping_ratio: float) -> float:
+    if not (math.isfinite(damping_ratio) and 0.0 <= damping_ratio < 1.0):
+        raise DesignError("damping_ratio", f"must be from 0 to below 1, got {damping_ratio!r}")
+    return float(damping_ratio)
+
+
+def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
+                   damping_ratio: float = 0.0) -> ModalResult:
+    """Undamped modal analysis of masses on a ring (seed 000 eq. 2).
+
+    Parameters
+    ----------
+    masses : (n,) reduced masses m_i [kg], all > 0
+    stiffness : (n,) branch stiffnesses c_i [N/m] ≥ 0; branch i joins mass i and i+1
+    closed : False for an open chain (the last branch is ignored)
+    damping_ratio : ζ for the damped frequencies f·sqrt(1 − ζ²) (modal, light damping)
+
+    Solves K X = ω² M X through the symmetric standard form A = M^{-1/2} K M^{-1/2}
+    (one LAPACK call: ``dsyevd``, or ``dstevd`` for a ring opened by a slack branch, which
+    is tridiagonal when numbered from the cut; measured faster than the generalised
+    ``scipy.linalg.eigh``, see ``benchmarks/bench_modal.py``). Rigid-body eigenvalues
+    (one per connected group of masses) are set to exactly 0 with uniform shapes over
+    their group; the remaining eigenvalues below round-off are clamped to 0.
+    """
+    m = np.array(masses, dtype=float)
+    c = np.array(stiffness, dtype=float)
+    _validate(m, c)
+    if not closed:
+        c[-1] = 0.0
+    return _modal(m, c, _check_damping(damping_ratio))
+
+
+def _scaled_stiffness(m: NDArray[np.float64], c: NDArray[np.float64],
+                      d: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A = M^{-1/2} K M^{-1/2} of a ring (branch i joins mass i and i+1), built directly."""
+    n = m.size
+    A = np.zeros((n, n))
+    if n == 2:
+        s = c[0] + c[1]
+        A[0, 0], A[1, 1] = s / m[0], s / m[1]
+        A[0, 1] = A[1, 0] = -s * d[0] * d[1]
+        return A
+    c_prev = np.empty(n)
+    c_prev[0] = c[-1]
+    c_prev[1:] = c[:-1]
+    off = -c * d * np.append(d[1:], d[0])
+    flat = A.reshape(-1)
+    flat[:: n + 1] = (c + c_prev) / m
+    flat[1:: n + 1] = off[:-1]
+    flat[n:: n + 1] = off[:-1]
+    A[0, n - 1] = A[n - 1, 0] = off[-1]
+    return A
+
+
+def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64],
+           cut: int | None) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                     NDArray[np.float64]]:
+    """Eigenvalues, eigenvectors of A = M^{-1/2} K M^{-1/2} and its diagonal.
+
+    A ring cut at branch ``cut`` (slack) is, numbered from mass cut+1, a tridiagonal
+    matrix: solved with LAPACK ``dstevd``; a closed ring with the dense ``dsyevd``.
+    """
+    n = m.size
+    if cut is not None and n > 2:
+        last = cut == n - 1
+        order = None if last else np.roll(_ALL[:n] if n <= _ALL.size else np.arange(n),
+                                           -(cut + 1))
+        mr, cr, dr = (m, c, d) if last else (m[order], c[order], d[order])
+        diag = np.empty(n)
+        diag[0] = cr[0] / mr[0]
+        diag[1:] = (cr[1:] + cr[:-1]) / mr[1:]
+        lam, V, info = _dstevd(diag, -cr[:-1] * dr[:-1] * dr[1:], compute_v=1)
+        if info == 0:
+            if last:
+                return lam, V, diag
+            Vf = np.empty_like(V)
+            Vf[order] = V
+            full = np.empty(n)
+            full[order] = diag
+            return lam, Vf, full
+    A = _scaled_stiffness(m, c, d)
+    lam, V, info = _dsyevd(A.T, compute_v=1, lower=1)  # A.T: Fortran order, no copy
+    if info != 0:
+        lam, V = np.linalg.eigh(A)
+    return lam, V, A.diagonal().copy()
+
+
+def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> ModalResult:
+    """Core of :func:`modal_analysis` on validated arrays (c with slack branches at 0)."""
+    n = m.size
+    cuts = np.flatnonzero(c <= 0.0).tolist()
+    d = 1.0 / np.sqrt(m)
+    lam, V, diag = _eigen(m, c, d, cuts[0] if cuts else None)
+    shapes = d[:, None] * V
+    groups = _components(cuts, n)
+    n_rigid = len(groups)
+    lam[:n_rigid] = 0.0
+    lam[lam <= _ROUNDOFF * abs(lam[-1])] = 0.0  # round-off (and negative) → 0
+    for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
+        shapes[:, k] = 0.0
+        shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
+    omega = np.sqrt(lam)
+    rigid = np.zeros(n, dtype=bool)
+    rigid[:n_rigid] = True
+    absx = np.abs(shapes)
+    f = omega / TWO_PI
+    return ModalResult(
+        frequencies_hz=f, angular_frequencies_rad_s=omega, shapes=shapes,
+        normalized_amplitudes=absx / absx.sum(axis=0),
+        partial_frequencies_hz=np.sqrt(diag) / TWO_PI, rigid_body=rigid,
+        damping_ratio=zeta, damped_frequencies_hz=f * math.sqrt(1.0 - zeta * zeta),
+        masses_kg=m, stiffness_n_per_m=c,
+    )
+
+
+def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
+    if m.ndim != 1 or m.size < 2:
+        raise DesignError("masses_kg", f"need a list of at least 2 masses, got shape {m.shape}")
+    if c.shape != m.shape:
+        raise DesignError("stiffness_n_per_m",
+                          f"need one stiffness per mass ({m.size}), got shape {c.shape}")
+    if not (m.min() > 0 and math.isfinite(m.sum())):
+        raise DesignError("masses_kg", f"must all be positive and finite, got {m.tolist()}")
+    if not (c.min() >= 0 and math.isfinite(c.sum())):
+        raise DesignError("stiffness_n_per_m",
+                          f"must all be finite and ≥ 0, got {c.tolist()}")
+
+
+def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
+                           closed: bool = True) -> NDArray[np.float64]:
+    """Natural frequencies [Hz] of many ring models at once (frequencies only).
+
+    Parameters
+    ----------
+    masses : (B, n) reduced masses [kg] of B designs
+    stiffness : (B, n) branch stiffnesses [N/m]; branch i joins mass i and i+1
+    closed : False for open chains (the last branch of every design is ignored)
+
+    Returns (B, n) ascending frequencies [Hz]; eigenvalues below round-off are clamped to 0
+    (so rigid-body modes come out as exactly 0). Builds the stacked symmetric matrices
+    M^{-1/2} K M^{-1/2} with vectorised indexing and calls :func:`numpy.linalg.eigvalsh`
+    once (same eigenproblem as :func:`modal_analysis`, seed 000 eq. 2).
+    """
+    m = np.atleast_2d(np.asarray(masses, dtype=float))
+    c = np.array(np.atleast_2d(np.asarray(stiffness, dtype=float)))
+    if m.shape != c.shape or m.shape[1] < 2:
+        raise DesignError("stiffness_n_per_m",
+                          f"masses and stiffness must both be (B, n ≥ 2), got {m.shape}, {c.shape}")
+    if not (np.all(m > 0) and np.all(c >= 0)):
+        raise DesignError("masses_kg", "masses must be > 0 and stiffnesses ≥ 0")
+    if not closed:
+        c[:, -1] = 0.0
+    B, n = m.shape
+    inv_m = 1.0 / m
+    d = np.sqrt(inv_m)
+    A = np.zeros((B, n, n))
+    i = np.arange(n)
+    j = (i + 1) % n
+    if n == 2:
+        s = c.sum(axis=1)
+        A[:, 0, 0] = s * inv_m[:, 0]
+        A[:, 1, 1] = s * inv_m[:, 1]
+        A[:, 0, 1] = A[:, 1, 0] = -s * d[:, 0] * d[:, 1]
+    else:
+        A[:, i, i] = (c + np.roll(c, 1, axis=1)) * inv_m
+        off = -c * d * d[:, j]
+        A[:, i, j] = off
+        A[:, j, i] = off
+    lam = np.linalg.eigvalsh(A)
+    tol = _ROUNDOFF * np.abs(lam[:, -1:])
+    lam = np.where(np.abs(lam) <= tol, 0.0, lam)
+    return np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class RingModel:
+    """Reduced masses on a closed chain contour (seed 000, seed-notes §1).
+
+    ``RingModel(masses_kg=[...], stiffness_n_per_m=[...], closed=True)``: branch i joins
+    mass i and i+1 and, when ``closed``, the last joins mass n and mass 1. ``closed=False``
+    or a stiffness of 0 (a slack span) gives an open chain. ``damping_ratio`` ζ is used for
+    the damped frequencies (seed 000: D = 0.06); ``names`` label the masses.
+    """
+
+    masses_kg: NDArray[np.float64]
+    stiffness_n_per_m: NDArray[np.float64]
+    closed: bool = True
+    damping_ratio: float = 0.0
+    names: tuple[str, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        m = np.array(self.masses_kg, dtype=float)
+        c = np.array(self.stiffness_n_per_m, dtype=float)
+        _validate(m, c)
+        _check_damping(self.damping_ratio)
+        m.flags.writeable = False
+        c.flags.writeable = False
+        object.__setattr__(self, "masses_kg", m)
+        object.__setattr__(self, "stiffness_n_per_m", c)
+        if self.names and len(self.names) != m.size:
+            raise DesignError("names", f"need {m.size} names, got {len(self.names)}")
+
+    @property
+    def size(self) -> int:
+        """Number of masses n."""
+        return int(self.masses_kg.size)
+
+    def stiffness_matrix(self) -> NDArray[np.float64]:
+        """K [N/m], the ring Laplacian (see :func:`ring_stiffness_matrix`)."""
+        return ring_stiffness_matrix(self.stiffness_n_per_m, self.closed)
+
+    def mass_matrix(self) -> NDArray[np.float64]:
+        """M [kg], diagonal."""
+        return np.diag(self.masses_kg)
+
+    def modal(self) -> ModalResult:
+        """Natural frequencies and forms; see :func:`modal_analysis`."""
+        c = self.stiffness_n_per_m.copy()
+        if not self.closed:
+            c[-1] = 0.0
+        return _modal(self.masses_kg.copy(), c, self.damping_ratio)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict of the model."""
+        return {"names": list(self.names),
+                "reduced_masses_kg": self.masses_kg.tolist(),
+                "branch_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
+                "closed": self.closed, "damping_ratio": self.damping_ratio}
+
+    @classmethod
+    def from_drive(cls, drive: Drive, geometry: GeometryResult, *,
+                   damping: float = 0.06,
+                   span_tensions: Sequence[float] | None = None,
+                   link_stiffness: float | None = None,
+                   material_lookup: Callable[[str], Material] | None = None) -> RingModel:
+        """The ring model of a drive; see :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`.
+
+        damping : damping ratio ζ (seed 000: D = 0.06; or ζ = ψ/4π from
+            :mod:`chaindrive.damping`); span_tensions [N] per span (None: estimated from
+            the power, see :func:`~chaindrive.dynamics.stiffness.estimate_span_tensions`);
+            link_stiffness [N/m] per link from catalogue data (None: from the plates and pin);
+            material_lookup : name → Material (default :func:`chaindrive.catalog.find_material`).
+        """
+        from chaindrive.dynamics.stiffness import drive_ring_parameters
+
+        p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                                  link_stiffness=link_stiffness,
+                                  material_lookup=material_lookup)
+        return cls(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
+                   damping_ratio=damping, names=tuple(s.name for s in drive.sprockets))
