@@ -8,7 +8,7 @@ the same numbers.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from chaindrive.damping import DEFAULT_DAMPING_RATIO
@@ -18,6 +18,7 @@ from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.model import Drive
+from chaindrive.multicontour.drive import ContourCheck, contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
 
 #: Speed range of the Campbell data and of the amplitude–frequency sweep, as fractions of
@@ -30,7 +31,8 @@ class Analysis:
     """The results of :func:`analyze`: one part per subject, plus the drive they belong to
     (with the selected chain and the sprockets where the take-up put them).
 
-    selection and strength are None when the design gives no power.
+    selection and strength are None when the design gives no power; contours (the
+    multi-contour check of seed 004) is None for a single contour.
     """
 
     drive: Drive
@@ -39,11 +41,15 @@ class Analysis:
     selection: SelectionResult | None
     strength: StrengthResult | None
     dynamics: DynamicsResult
+    contours: ContourCheck | None
     warnings: tuple[str, ...]
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON document (keys snake_case, units in the names)."""
         strength = None if self.strength is None else self.strength.to_dict()
+        if strength is not None and self.contours is not None:
+            strength["multicontour"] = self.contours.to_dict()
+            strength["contour_factor_km"] = self.contours.km
         selection = None if self.selection is None else self.selection.to_dict()
         warnings = list(self.warnings)
         for part in (strength, selection):
@@ -143,10 +149,12 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
     warnings: list[str] = []
     selection = None
     request = drive.chain.request
+    m = drive.chain.contours
     if drive.power is not None:
-        try:
+        try:  # each of m contours carries its nominal share P/m
             selection = select_chain(
-                drive, standard=request.standard if request else None,
+                replace(drive, power=drive.power / m),
+                standard=request.standard if request else None,
                 series=request.series if request else None,
                 strands=request.strands if request else None)
         except DesignError as exc:
@@ -162,13 +170,23 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
         s.moved_to(g.x, g.y) for s, g in zip(drive.sprockets, geometry.sprockets, strict=True)
     ))
     kinematics = drive_kinematics(placed, geometry)
-    strength = strength_of(placed, geometry) if placed.power is not None else None
+    one = placed if m == 1 or placed.power is None else replace(placed, power=placed.power / m)
+    strength = strength_of(one, geometry) if one.power is not None else None
     omega = placed.driver.speed
     dynamics = analyze_dynamics(
-        placed, geometry, damping=damping,
+        one, geometry, damping=damping,
         span_tensions=None if strength is None else strength.loads.span_tensions,
         speed_range=None if omega is None else (SPEED_RANGE[0] * omega, SPEED_RANGE[1] * omega))
+    contours = None
+    if m > 1 and strength is not None and placed.power is not None and omega is not None:
+        loads = strength.loads
+        contours = contour_check(
+            m, placed.power / omega, geometry.sprockets[placed.driver_index].pitch_radius,
+            loads.peripheral_force * m,
+            float(dynamics.parameters.chain_stiffness_n_per_m[loads.tight_span]))
+        # the most loaded contour carries P/K_m (seed 004 eq. 15: [p]_m = [p]·K_m)
+        strength = strength_of(replace(placed, power=placed.power / contours.km), geometry)
     return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
-                    strength=strength, dynamics=dynamics,
+                    strength=strength, dynamics=dynamics, contours=contours,
                     warnings=(*warnings, *geometry.warnings,
                               *resonance_warnings(dynamics.resonances)))

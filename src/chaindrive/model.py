@@ -32,6 +32,7 @@ SIDES: tuple[str, ...] = ("outside", "inside")
 TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
 MIN_TEETH, MAX_TEETH = 6, 150
 MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
+MAX_CONTOURS = 8
 
 
 @dataclass(frozen=True, slots=True)
@@ -124,7 +125,9 @@ class Chain:
     """The chain of a drive: a catalogue entry plus what the design fixes.
 
     ``links`` imposes the number of links (the take-up then finds the position that fits
-    it); ``allow_odd`` permits an odd count (which needs an offset link). ``request`` is set
+    it); ``allow_odd`` permits an odd count (which needs an offset link); ``contours``: the
+    number of identical chain contours side by side on sprockets keyed to common shafts
+    (seed 004; 1 for an ordinary drive). ``request`` is set
     when the design named no chain: ``spec`` is then provisional and
     :func:`chaindrive.analyze` replaces it with the lightest feasible chain of the family.
     """
@@ -133,8 +136,13 @@ class Chain:
     links: int | None = None
     allow_odd: bool = False
     request: ChainRequest | None = None
+    contours: int = 1
 
     def __post_init__(self) -> None:
+        if (not isinstance(self.contours, int) or isinstance(self.contours, bool)
+                or not 1 <= self.contours <= MAX_CONTOURS):
+            raise DesignError("chain.contours", f"must be a whole number from 1 to {MAX_CONTOURS}, "
+                              f"got {self.contours!r}")
         if self.links is not None:
             if not isinstance(self.links, int) or isinstance(self.links, bool) or self.links < 4:
                 raise DesignError("chain.links", f"must be a whole number ≥ 4, got {self.links!r}")

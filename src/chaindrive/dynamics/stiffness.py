@@ -239,6 +239,9 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     ``chaindrive.catalog.find_material``). Sprocket masses: ``Sprocket.inertia`` when
     given, else :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate
     disc, or the polymeric rim–web–hub proportions of seed 000 §3.4 for a polymer sprocket).
+    With ``drive.chain.contours`` = m identical contours the branch stiffness is m times that
+    of one contour (span tensions are then those of one contour); chain_stiffness and
+    wrap_stiffness stay per contour.
     """
     lookup = material_lookup or _default_lookup()
     spec = drive.chain.spec
@@ -276,7 +279,8 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
         incl = np.array([sp.inclination for sp in geometry.spans])
         sag = sag_stiffness_factor(k_link * spec.pitch, spec.mass_per_length * GRAVITY,
                                    lengths * np.cos(incl), tensions)
-    stiffness = series_stiffness(chain_c, wrap[starts], wrap[ends]) * sag
+    # m identical contours side by side (seed 004) act in parallel on the common shafts
+    stiffness = series_stiffness(chain_c, wrap[starts], wrap[ends]) * sag * drive.chain.contours
     return RingParameters(
         masses_kg=reduced_mass(inertia, radius), inertias_kg_m2=inertia,
         pitch_radii_m=radius, stiffness_n_per_m=stiffness, chain_stiffness_n_per_m=chain_c,

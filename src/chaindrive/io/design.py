@@ -18,6 +18,7 @@ from typing import Any
 
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import (
+    MAX_CONTOURS,
     MAX_SPROCKETS,
     MAX_TEETH,
     MIN_SPROCKETS,
@@ -97,6 +98,8 @@ CHAIN_FIELDS: tuple[Field, ...] = (
           maximum=10000),
     Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
           default=False),
+    Field("contours", "int", "identical chain contours side by side on common shafts (seed 004)",
+          default=1, minimum=1, maximum=MAX_CONTOURS),
     Field("catalog", "str", "a catalogue file of your own (CSV or TOML), relative to the design"),
 )
 SPROCKET_FIELDS: tuple[Field, ...] = (
@@ -313,7 +316,7 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
     tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
                                                 else "ISO 606")
     chain = Chain(spec, links=chain_values["links"], allow_odd=chain_values["allow_odd"],
-                  request=request)
+                  request=request, contours=chain_values["contours"])
     return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                  power=drive_values["power"], tooth_form=tooth_form,
                  service_factor=drive_values["service_factor"])
