@@ -243,15 +243,27 @@ def _material_dict(m: Any) -> dict[str, Any]:
     }
 
 
+#: Short column headers of the catalogue listing (key in the JSON → header).
+LIST_HEADERS = {
+    "designation": "designation", "ansi": "ANSI", "pitch_mm": "p mm", "strands": "rows",
+    "roller_diameter_mm": "d1 mm", "pin_diameter_mm": "d2 mm", "inner_width_mm": "b1 mm",
+    "breaking_load_kn": "Q kN", "mass_kg_m": "q kg/m", "bearing_area_mm2": "A mm²",
+    "name": "name", "density_kg_m3": "ρ kg/m³", "youngs_modulus_gpa": "E GPa",
+    "tensile_strength_mpa": "Rm MPa", "friction_vs_steel": "μ vs steel",
+}
+
+
 def _print_records(doc: list[dict[str, Any]], title: str) -> None:
     con = _console()
     if len(doc) == 1:
         for key, value in doc[0].items():
             con.print(f"{key:>22}: {_fmt(value)}")
         return
-    keys = [k for k in doc[0] if k not in {"source", "standard", "plate_depth_mm",
-                                           "transverse_pitch_mm", "family"}] if doc else []
-    con.print(_table(title, keys, [[r[k] for k in keys] for r in doc]))
+    keys = [k for k in (doc[0] if doc else {}) if k in LIST_HEADERS]
+    table = _table(title, [LIST_HEADERS[k] for k in keys], [[r[k] for k in keys] for r in doc])
+    table.columns[0].no_wrap = True
+    table.columns[0].justify = "left"
+    con.print(table)
 
 
 def main(argv: list[str] | None = None) -> None:

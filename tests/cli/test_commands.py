@@ -1,0 +1,68 @@
+"""schema, catalog and select commands: they run, their JSON is complete, mistakes exit 2."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from chaindrive.io.design import SECTIONS
+from tests.conftest import EXAMPLES
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
+                          text=True, check=False)
+
+
+def test_schema_lists_every_field_with_unit_default_and_range() -> None:
+    proc = run_cli("schema", "--json")
+    assert proc.returncode == 0
+    doc = json.loads(proc.stdout)
+    assert set(doc) == set(SECTIONS)
+    teeth = next(f for f in doc["sprockets"] if f["field"] == "teeth")
+    assert teeth["allowed"] == "a whole number from 6 to 150"
+    speed = next(f for f in doc["sprockets"] if f["field"] == "speed")
+    assert speed["si_unit"] == "rad/s" and speed["example"] == "300 rpm"
+    assert run_cli("schema").returncode == 0
+
+
+def test_catalog_lists_shows_and_refuses() -> None:
+    doc = json.loads(run_cli("catalog", "--json").stdout)
+    standards = {c["designation"].split(" ")[0] for c in doc["chains"]}
+    assert {"ISO", "GOST"} <= standards
+    one = json.loads(run_cli("catalog", "ANSI 80", "--json").stdout)["chains"]
+    assert one[0]["pitch_mm"] == 25.4
+    assert one[0]["ansi"] == "80"
+    mats = json.loads(run_cli("catalog", "--materials", "--json").stdout)["materials"]
+    assert any(m["name"] == "PA6" for m in mats)
+    bad = run_cli("catalog", "ANSI 8O")
+    assert bad.returncode == 2
+    assert bad.stderr.startswith("error: chain.designation:")
+
+
+def test_select_ranks_both_methods() -> None:
+    proc = run_cli("select", str(EXAMPLES / "eight_sprocket.toml"), "--json")
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["method"] == "ISO 10823"
+    assert {c["method"] for c in doc["candidates"]} == {"ISO 10823", "Kэ"}
+    chosen = [c for c in doc["candidates"] if c["chain"] == doc["chain"]
+              and c["method"] == doc["method"]]
+    assert chosen and chosen[0]["feasible"]
+    assert all(c["governing"] for c in doc["candidates"])
+
+
+def test_design_without_a_chain_gets_the_selected_one(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    text = (EXAMPLES / "eight_sprocket.toml").read_text(encoding="utf-8")
+    text = text.replace('designation = "ISO 606 12B-1"', 'standard = "ISO 606"\nseries = "B"')
+    design = tmp_path / "auto.toml"
+    design.write_text(text, encoding="utf-8")
+    doc = json.loads(run_cli("analyze", str(design), "--json").stdout)
+    assert doc["drive"]["chain"] == doc["selection"]["chain"]
+    assert doc["drive"]["chain"].startswith("ISO 606") and "B-1" in doc["drive"]["chain"]
+    missing_power = tmp_path / "nopower.toml"
+    missing_power.write_text(text.replace('power = "4 kW"\n', ""), encoding="utf-8")
+    proc = run_cli("analyze", str(missing_power))
+    assert proc.returncode == 2
+    assert "drive.power" in proc.stderr
