@@ -73,7 +73,7 @@ def ring_stiffness_matrix(stiffness: ArrayLike, closed: bool = True) -> NDArray[
 def _components(cuts: list[int], n: int) -> list[NDArray[np.intp]] | list[slice]:
     """Groups of masses joined by branches of non-zero stiffness (ring order kept);
     ``cuts``: sorted indices of the slack branches (cut k separates mass k and k+1)."""
-    if not cuts:
+    if len(cuts) <= 1:  # a closed ring, or one opened by a single slack branch
         return [slice(None)]
     groups = []
     for a, b in zip(cuts, cuts[1:] + cuts[:1], strict=True):
@@ -103,15 +103,34 @@ class ModalResult:
     """
 
     frequencies_hz: NDArray[np.float64]
-    angular_frequencies_rad_s: NDArray[np.float64]
     shapes: NDArray[np.float64]
-    normalized_amplitudes: NDArray[np.float64]
-    partial_frequencies_hz: NDArray[np.float64]
     rigid_body: NDArray[np.bool_]
     damping_ratio: float
-    damped_frequencies_hz: NDArray[np.float64]
     masses_kg: NDArray[np.float64]
     stiffness_n_per_m: NDArray[np.float64]
+    scaled_diagonal: NDArray[np.float64]
+
+    # Derived on access (cheap), so that a modal analysis costs little more than LAPACK.
+    @property
+    def angular_frequencies_rad_s(self) -> NDArray[np.float64]:
+        """ω_j = 2π f_j [rad/s]."""
+        return self.frequencies_hz * TWO_PI
+
+    @property
+    def normalized_amplitudes(self) -> NDArray[np.float64]:
+        """Seed 000's μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
+        absx = np.abs(self.shapes)
+        return absx / absx.sum(axis=0)
+
+    @property
+    def partial_frequencies_hz(self) -> NDArray[np.float64]:
+        """sqrt(K_kk / m_k) / 2π [Hz] (the diagonal of M^{-1/2} K M^{-1/2})."""
+        return np.sqrt(self.scaled_diagonal) / TWO_PI
+
+    @property
+    def damped_frequencies_hz(self) -> NDArray[np.float64]:
+        """f_d = f·sqrt(1 − ζ²) [Hz]."""
+        return self.frequencies_hz * math.sqrt(1.0 - self.damping_ratio**2)
 
     @property
     def elastic_frequencies_hz(self) -> NDArray[np.float64]:
@@ -242,18 +261,9 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
         shapes[:, k] = 0.0
         shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
-    omega = np.sqrt(lam)
     rigid = np.zeros(n, dtype=bool)
     rigid[:n_rigid] = True
-    absx = np.abs(shapes)
-    f = omega / TWO_PI
-    return ModalResult(
-        frequencies_hz=f, angular_frequencies_rad_s=omega, shapes=shapes,
-        normalized_amplitudes=absx / absx.sum(axis=0),
-        partial_frequencies_hz=np.sqrt(diag) / TWO_PI, rigid_body=rigid,
-        damping_ratio=zeta, damped_frequencies_hz=f * math.sqrt(1.0 - zeta * zeta),
-        masses_kg=m, stiffness_n_per_m=c,
-    )
+    return ModalResult(np.sqrt(lam) / TWO_PI, shapes, rigid, zeta, m, c, diag)
 
 
 def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
