@@ -263,13 +263,17 @@ def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLik
 
 @dataclass(frozen=True, slots=True)
 class SprocketMotion:
-    """Motion of one sprocket: speed [rad/s], direction, polygonal speed variation [%]."""
+    """Motion of one sprocket: mean speed [rad/s], direction, polygonal speed variation [%],
+    peak deviation of its terminal hinge from uniform motion [m], and the range of the
+    instantaneous ratio ω_driver/ω over one tooth period (seed 003; 1 for the driver)."""
 
     name: str
     speed: float
     direction: str
     speed_variation_percent: float
     hinge_deviation_peak: float
+    ratio_min: float
+    ratio_max: float
 
     @property
     def speed_rpm(self) -> float:
@@ -304,10 +308,34 @@ class KinematicsResult:
                     "direction": s.direction,
                     "speed_variation_percent": s.speed_variation_percent,
                     "hinge_deviation_peak_mm": s.hinge_deviation_peak * 1e3,
+                    "ratio_min": s.ratio_min,
+                    "ratio_max": s.ratio_max,
                 }
                 for s in self.sprockets
             ],
         }
+
+
+def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64]:
+    """Tooth-phase offset [rad] of every sprocket against the driver: 2π × the fractional
+    part of the chain path, in pitches, from the point where the chain leaves sprocket i to
+    the point where it arrives on the driver (spans ℓ/p plus wraps z·θ/2π in between), the
+    phase_offset of :func:`instantaneous_ratio`. 0 for the driver."""
+    n = len(geometry.sprockets)
+    d = drive.driver_index
+    out = np.zeros(n)
+    for i in range(n):
+        if i == d:
+            continue
+        path, k = 0.0, i
+        while k != d:
+            path += geometry.spans[k].pitches
+            k = (k + 1) % n
+            if k != d:
+                g = geometry.sprockets[k]
+                path += g.teeth * g.wrap_angle / (2 * math.pi)
+        out[i] = 2 * math.pi * (path % 1.0)
+    return out
 
 
 def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 65) -> KinematicsResult:
@@ -324,13 +352,18 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 65) 
     p = geometry.pitch
     omega_d = driver.speed
     z_d = driver.teeth
+    psi = np.linspace(-math.pi, math.pi, 4 * samples)  # tooth phase over one period
+    offsets = tooth_phase_offsets(drive, geometry)
     motions = []
-    for s, g in zip(drive.sprockets, geometry.sprockets, strict=True):
+    for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
         omega = omega_d * z_d / s.teeth
+        ratio = (np.ones(1) if i == drive.driver_index
+                 else np.asarray(instantaneous_ratio(z_d, s.teeth, psi, offsets[i])))
         motions.append(SprocketMotion(
             name=s.name, speed=omega, direction="ccw" if g.turn > 0 else "cw",
             speed_variation_percent=float(speed_variation_percent(s.teeth)),
             hinge_deviation_peak=float(hinge_displacement_peak(p, s.teeth)),
+            ratio_min=float(ratio.min()), ratio_max=float(ratio.max()),
         ))
     phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
     r_d = geometry.sprockets[drive.driver_index].pitch_radius

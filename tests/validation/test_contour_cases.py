@@ -109,3 +109,23 @@ def test_general_solver_agrees_with_iso10823_within_half_a_millimetre(
     g = contour_geometry(two_sprocket(z1, z2, a_pitches * p, pitch=p))
     iso = two_sprocket_center_distance_iso10823(g.links, p, z1, z2)
     assert abs(g.center_distance - iso) < 0.5e-3
+
+
+def test_equal_sprockets_at_whole_pitches_transmit_uniformly() -> None:
+    """Seed 003 (and every textbook on the chordal effect): with z1 = z2 and a centre
+    distance of a whole number of pitches both sprockets are in the same phase, γ = β, so
+    the instantaneous ratio ω1/ω2 = R2 cos γ / (R1 cos β) is exactly 1 throughout."""
+    result = chaindrive.analyze(two_sprocket(20, 20, 20 * 0.0254))
+    driven = result.kinematics.sprockets[1]
+    assert_allclose([driven.ratio_min, driven.ratio_max], [1.0, 1.0], atol=1e-9)
+
+
+def test_ratio_stays_within_the_polygon_bounds() -> None:
+    """ω1/ω2 = (R2/R1)·cos γ/cos β with |β| ≤ π/z1, |γ| ≤ π/z2 (seed 003)."""
+    z1, z2 = 17, 34
+    result = chaindrive.analyze(two_sprocket(z1, z2, 0.5))
+    driven = result.kinematics.sprockets[1]
+    r_ratio = math.sin(math.pi / z1) / math.sin(math.pi / z2)
+    assert r_ratio * math.cos(math.pi / z2) - 1e-12 <= driven.ratio_min
+    assert driven.ratio_max <= r_ratio / math.cos(math.pi / z1) + 1e-12
+    assert driven.ratio_min < z2 / z1 < driven.ratio_max
