@@ -34,30 +34,19 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import FloatOrArray
+from chaindrive._numeric import float_or_array as _out
+from chaindrive._numeric import teeth_array as _teeth
 from chaindrive.errors import DesignError
+from chaindrive.geometry.sprocket import pitch_radius as _radius
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-FloatOrArray = float | NDArray[np.float64]
 
 
-def _out(value: ArrayLike) -> FloatOrArray:
-    arr = np.asarray(value, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr
 
-
-def _teeth(teeth: ArrayLike) -> NDArray[np.float64]:
-    z = np.asarray(teeth, dtype=float)
-    if np.any(~np.isfinite(z)) or np.any(z < 3):
-        raise DesignError("teeth", f"must be a whole number of at least 3, got {teeth!r}")
-    return z
-
-
-def _pitch_radius(pitch: ArrayLike, z: NDArray[np.float64]) -> NDArray[np.float64]:
-    """R = p / (2 sin(π/z)) [m] (seed 003)."""
-    return np.asarray(pitch, dtype=float) / (2.0 * np.sin(np.pi / z))
 
 
 # ---------------------------------------------------------------------------------------
@@ -92,13 +81,13 @@ def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
 def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """v_max = R·ω [m/s] at β = 0 (seed 003)."""
     z = _teeth(teeth)
-    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float))
+    return _out(_radius(pitch, z) * np.asarray(speed, float))
 
 
 def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """v_min = R·ω·cos(π/z) [m/s] at β = ±π/z (seed 003)."""
     z = _teeth(teeth)
-    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.cos(np.pi / z))
+    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(np.pi / z))
 
 
 def speed_variation_percent(teeth: ArrayLike) -> FloatOrArray:
@@ -147,7 +136,7 @@ def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLi
     """
     z = _teeth(teeth)
     beta = np.asarray(articulation_angle(z, phase))
-    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.cos(beta))
+    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(beta))
 
 
 def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
@@ -155,7 +144,7 @@ def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
     """Speed of the span end across the span v' = R·ω·sin β [m/s] (seed 003)."""
     z = _teeth(teeth)
     beta = np.asarray(articulation_angle(z, phase))
-    return _out(_pitch_radius(pitch, z) * np.asarray(speed, float) * np.sin(beta))
+    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.sin(beta))
 
 
 def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
@@ -174,7 +163,7 @@ def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
     z1, z2 = _teeth(teeth_driver), _teeth(teeth_driven)
     v = np.asarray(instantaneous_chain_speed(pitch, z1, speed_driver, phase))
     gamma = np.asarray(wrap_phase(np.asarray(phase, float) + np.asarray(phase_offset, float)))
-    return _out(v / (_pitch_radius(pitch, z2) * np.cos(gamma / z2)))
+    return _out(v / (_radius(pitch, z2) * np.cos(gamma / z2)))
 
 
 def instantaneous_ratio(teeth_driver: ArrayLike, teeth_driven: ArrayLike, phase: ArrayLike,
@@ -207,7 +196,7 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
     z = _teeth(teeth)
     psi = np.asarray(wrap_phase(phase))
     p = np.asarray(pitch, float)
-    return _out(_pitch_radius(p, z) * np.sin(psi / z) - p * psi / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(psi / z) - p * psi / (2 * np.pi))
 
 
 def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
@@ -216,7 +205,7 @@ def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     z = _teeth(teeth)
     beta = np.arccos(z * np.sin(np.pi / z) / np.pi)
     p = np.asarray(pitch, float)
-    return _out(_pitch_radius(p, z) * np.sin(beta) - p * z * beta / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(beta) - p * z * beta / (2 * np.pi))
 
 
 def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonics: int,

@@ -24,24 +24,15 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import FloatOrArray
+from chaindrive._numeric import float_or_array as _out
+from chaindrive._numeric import teeth_array as _teeth
 from chaindrive.errors import DesignError
 
-FloatOrArray = float | NDArray[np.float64]
 TOOTH_FORM_NAMES: tuple[str, ...] = ("ISO 606", "GOST 591")
 _MM = 1e-3  # one millimetre [m]
 
 
-def _out(value: ArrayLike) -> FloatOrArray:
-    """A Python float for a 0-d result, else a float64 array."""
-    arr = np.asarray(value, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr
-
-
-def _teeth(teeth: ArrayLike) -> NDArray[np.float64]:
-    z = np.asarray(teeth, dtype=float)
-    if np.any(~np.isfinite(z)) or np.any(z < 3):
-        raise DesignError("teeth", f"must be a whole number of at least 3, got {teeth!r}")
-    return z
 
 
 def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
