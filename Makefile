@@ -23,6 +23,8 @@ demo: $(VENV)/.installed
 	$(BIN)/chaindrive analyze examples/seed_three_sprocket.toml
 	@$(BIN)/chaindrive analyze examples/seed_three_sprocket.toml --json > $(OUT)/seed_three_sprocket.json
 	@echo "JSON written to $(OUT)/seed_three_sprocket.json"
+	@$(BIN)/chaindrive report examples/seed_three_sprocket.toml -o $(OUT)/seed_three_sprocket.html > /dev/null
+	@echo "report written to $(abspath $(OUT))/seed_three_sprocket.html"
 
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check src tests benchmarks

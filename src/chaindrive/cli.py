@@ -190,6 +190,48 @@ def schema(
 
 
 @app.command()
+def report(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="report.html or report.pdf")]
+    = Path("report.html"),
+    dpi: Annotated[int, typer.Option(help="resolution of the figures")] = 110,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Write the design report: inputs, every result table and figure, warnings first."""
+    import chaindrive
+    from chaindrive.progress import progress_bar
+    from chaindrive.report import SECTIONS, write_report
+
+    with user_errors():
+        result = chaindrive.analyze(chaindrive.load(file))
+        with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
+            path = write_report(result, output, source=file, dpi=dpi, progress=advance)
+    if as_json:
+        _write_json({"report": str(path.resolve())})
+        return
+    print(f"report written to {path}")
+
+
+@app.command()
+def draw(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf or layout.svg")]
+    = Path("layout.dxf"),
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Write the drawing: contour layout and each sprocket's tooth profile (DXF or SVG, mm)."""
+    import chaindrive
+    from chaindrive.drawing import write_drawing
+
+    with user_errors():
+        path = write_drawing(chaindrive.analyze(chaindrive.load(file)), output)
+    if as_json:
+        _write_json({"drawing": str(path.resolve())})
+        return
+    print(f"drawing written to {path}")
+
+
+@app.command()
 def catalog(
     name: Annotated[str | None, typer.Argument(help="show one chain or material")] = None,
     materials: Annotated[bool, typer.Option("--materials", help="list materials")] = False,

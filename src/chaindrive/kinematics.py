@@ -273,14 +273,16 @@ class SprocketMotion:
 @dataclass(frozen=True, slots=True)
 class KinematicsResult:
     """Speeds of a contour: chain speed [m/s], tooth frequency [Hz], per-sprocket motion,
-    and the instantaneous chain speed over one tooth period of the driver
-    (``phase`` [rad] of the driver within ±π/z, ``chain_speed_trace`` [m/s])."""
+    and over one tooth period of the driver (``phase`` [rad] of the driver within ±π/z):
+    the instantaneous chain speed ``chain_speed_trace`` [m/s] and the instantaneous ratio
+    ω_driver/ω_i of every sprocket ``ratio_traces`` (n, samples) (1 for the driver)."""
 
     chain_speed: float
     tooth_frequency: float
     sprockets: tuple[SprocketMotion, ...]
     phase: NDArray[np.float64]
     chain_speed_trace: NDArray[np.float64]
+    ratio_traces: NDArray[np.float64]
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready document (units in the key names)."""
@@ -327,7 +329,7 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
     return out
 
 
-def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 65) -> KinematicsResult:
+def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257) -> KinematicsResult:
     """Kinematics of a contour: every sprocket's speed and direction, chain speed, tooth
     frequency and polygonal non-uniformity (seed 003; seed 000 §3.1).
 
@@ -341,25 +343,27 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 65) 
     p = geometry.pitch
     omega_d = driver.speed
     z_d = driver.teeth
-    psi = np.linspace(-math.pi, math.pi, 4 * samples)  # tooth phase over one period
+    phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
+    psi = phase * z_d  # tooth phase over one period
     offsets = tooth_phase_offsets(drive, geometry)
+    teeth = np.array([s.teeth for s in drive.sprockets])[:, None]
+    ratios = np.asarray(instantaneous_ratio(z_d, teeth, psi[None, :], offsets[:, None]))
+    ratios[drive.driver_index] = 1.0
     motions = []
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
         omega = omega_d * z_d / s.teeth
-        ratio = (np.ones(1) if i == drive.driver_index
-                 else np.asarray(instantaneous_ratio(z_d, s.teeth, psi, offsets[i])))
+        ratio = ratios[i]
         motions.append(SprocketMotion(
             name=s.name, speed=omega, direction="ccw" if g.turn > 0 else "cw",
             speed_variation_percent=float(speed_variation_percent(s.teeth)),
             hinge_deviation_peak=float(hinge_displacement_peak(p, s.teeth)),
             ratio_min=float(ratio.min()), ratio_max=float(ratio.max()),
         ))
-    phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
     r_d = geometry.sprockets[drive.driver_index].pitch_radius
     trace = r_d * omega_d * np.cos(phase)  # seed 003 eq. (6): v = R₁ω₁ cos β
     return KinematicsResult(
         chain_speed=float(mean_chain_speed(p, z_d, omega_d)),
         tooth_frequency=float(tooth_frequency(z_d, omega_d)),
-        sprockets=tuple(motions), phase=phase, chain_speed_trace=trace,
+        sprockets=tuple(motions), phase=phase, chain_speed_trace=trace, ratio_traces=ratios,
     )
 

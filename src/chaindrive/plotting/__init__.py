@@ -1,0 +1,27 @@
+"""Figures of chaindrive results (matplotlib), kept apart from the compute modules.
+
+Every function takes a result object and returns a :class:`matplotlib.figure.Figure`; pass
+``ax=`` to draw into an axes of your own figure instead. matplotlib is imported only when a
+figure is made, through :class:`matplotlib.figure.Figure` (not ``pyplot``): importing this
+package changes no global state, selects no backend and never opens a window. Save with
+``fig.savefig("name.png")`` (rendered by Agg) or ``.svg`` / ``.pdf``.
+
+Families (one module each): :mod:`.layout` (contour to scale), :mod:`.kinematics` (speed
+and ratio over a tooth period, seed 003), :mod:`.strength` (static loads per span and per
+shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Campbell
+diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
+:mod:`.multicontour` (K_m distribution, seed 004).
+"""
+
+from __future__ import annotations
+
+from chaindrive.plotting.damping import absorption_vs_amplitude
+from chaindrive.plotting.dynamics import campbell_diagram, mode_shapes
+from chaindrive.plotting.kinematics import chain_speed, transmission_ratio
+from chaindrive.plotting.layout import contour_layout
+from chaindrive.plotting.multicontour import km_distribution
+from chaindrive.plotting.strength import shaft_loads, span_tensions
+
+__all__ = ["absorption_vs_amplitude", "campbell_diagram", "chain_speed", "contour_layout",
+           "km_distribution", "mode_shapes", "shaft_loads", "span_tensions",
+           "transmission_ratio"]

@@ -1,0 +1,41 @@
+"""Shared helpers of the plotting modules (matplotlib imported lazily)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+#: Colours used across the figures (colour-blind safe, Okabe–Ito).
+TIGHT = "#D55E00"
+CHAIN = "#0072B2"
+PITCH = "#009E73"
+GREY = "#7f7f7f"
+CYCLE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
+
+
+def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
+                ) -> tuple[Figure, Axes]:
+    """The figure and axes to draw into: ``ax`` and its figure, or a new Figure (no pyplot,
+    so nothing global changes) with one axes. figsize [in]."""
+    if ax is not None:
+        return ax.figure, ax  # type: ignore[return-value]
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=figsize, layout="constrained")
+    return fig, fig.add_subplot()
+
+
+def finish(ax: Axes, title: str | None = None, *, grid: bool = True) -> None:
+    """Common finishing: title, light grid."""
+    if title:
+        ax.set_title(title, fontsize="medium")
+    if grid:
+        ax.grid(True, alpha=0.3, linewidth=0.6)
+
+
+def labels_of(items: Any) -> list[str]:
+    """Names of result items (objects with a ``name``)."""
+    return [str(getattr(i, "name", i)) for i in items]

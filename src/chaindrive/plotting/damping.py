@@ -1,0 +1,41 @@
+"""Hinge-friction damping: absorption coefficient ψ against the relative amplitude ȳ₀ for
+several initial tensions F₀ (seed 001, its Fig. 2)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chaindrive.plotting._base import CYCLE, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.damping import HingeFrictionResult
+
+
+def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
+                            ax: Axes | None = None) -> Figure:
+    """ψ = 6πfd₂/(ȳ₀aK_aF) (seed 001 eq. 14) against ȳ₀, one curve per tension F₀ [N].
+
+    results : :class:`chaindrive.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
+    e.g. from :func:`chaindrive.damping.hinge_friction_damping`; grouped by tension.
+    The right axis reads the equivalent viscous ratio ζ = ψ/4π."""
+    fig, ax = figure_axes(ax, (6.0, 3.8))
+    tensions = sorted({r.tension for r in results})
+    for k, f0 in enumerate(tensions):
+        rows = sorted((r for r in results if r.tension == f0), key=lambda r: r.relative_amplitude)
+        y = np.array([r.relative_amplitude for r in rows])
+        psi = np.array([r.absorption_coefficient for r in rows])
+        ax.plot(y, psi, "o-", ms=3, color=CYCLE[k % len(CYCLE)], label=f"F₀ = {f0:g} N")
+    ax.set_xlabel("relative amplitude ȳ₀ = y₀/a")
+    ax.set_ylabel("absorption coefficient ψ")
+    right = ax.secondary_yaxis("right", functions=(lambda p: p / (4 * np.pi),
+                                                   lambda z: z * 4 * np.pi))
+    right.set_ylabel("ζ = ψ/4π")
+    ax.legend(fontsize="x-small")
+    finish(ax, "Hinge-friction damping (seed 001)")
+    return fig

@@ -1,0 +1,52 @@
+"""Chain speed and transmission ratio over one tooth period (seed 003)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.analysis import Analysis
+    from chaindrive.kinematics import KinematicsResult
+
+
+def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figure:
+    """Instantaneous chain speed v = R₁ω₁cos β [m/s] over one tooth period of the driver
+    (seed 003 eq. 6), with the mean speed v̄ = z₁pω₁/2π dashed. x: driver rotation β [°]."""
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    beta = np.degrees(kinematics.phase)
+    ax.plot(beta, kinematics.chain_speed_trace, color=CHAIN, lw=1.6, label="v(β)")
+    ax.axhline(kinematics.chain_speed, color=GREY, ls="--", lw=1.0,
+               label=f"mean {kinematics.chain_speed:.3f} m/s")
+    ax.set_xlabel("driver rotation within one tooth β, °")
+    ax.set_ylabel("chain speed, m/s")
+    ax.legend(fontsize="x-small")
+    finish(ax, "Chain speed over a tooth period")
+    return fig
+
+
+def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
+    """Instantaneous ratio i = ω₁/ω₂ over one tooth period for the sprocket at the far end
+    of the tight span (seed 003: i = R₂cos γ / (R₁cos β)), as computed by
+    :func:`chaindrive.kinematics.drive_kinematics` (``ratio_traces``)."""
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    drive, geometry = analysis.drive, analysis.geometry
+    z1 = drive.driver.teeth
+    tight = next((s for s in geometry.spans if s.tight), geometry.spans[0])
+    other = drive.sprockets[tight.start]
+    ratio = analysis.kinematics.ratio_traces[tight.start]
+    beta = np.degrees(analysis.kinematics.phase)
+    ax.plot(beta, ratio, color=CYCLE[1], lw=1.6, label=f"{drive.driver.name} → {other.name}")
+    ax.axhline(other.teeth / z1, color=GREY, ls="--", lw=1.0,
+               label=f"z₂/z₁ = {other.teeth / z1:.4g}")
+    ax.set_xlabel("driver rotation within one tooth β, °")
+    ax.set_ylabel("ratio ω₁/ω₂")
+    ax.legend(fontsize="x-small")
+    finish(ax, "Instantaneous transmission ratio")
+    return fig

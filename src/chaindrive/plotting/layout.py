@@ -1,0 +1,85 @@
+"""The contour to scale: sprockets (pitch and tip circles, centre marks), spans, wrap arcs,
+direction of travel and labels (millimetres)."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chaindrive.plotting._base import CHAIN, GREY, PITCH, TIGHT, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.geometry.results import GeometryResult, SprocketGeometry
+
+MM = 1e3  # metres → millimetres
+
+
+def wrap_arc_points(s: SprocketGeometry, samples: int = 60) -> np.ndarray:
+    """Points [m] of the chain's wrap on the pitch circle, from the arrive point to the leave
+    point in the sprocket's direction of turning (``turn``), shape (samples, 2)."""
+    a0 = math.atan2(s.arrive[1] - s.y, s.arrive[0] - s.x)
+    angles = a0 + s.turn * np.linspace(0.0, s.wrap_angle, samples)
+    return np.column_stack([s.x + s.pitch_radius * np.cos(angles),
+                            s.y + s.pitch_radius * np.sin(angles)])
+
+
+def _sprocket(ax: Axes, s: SprocketGeometry, label: bool) -> None:
+    from matplotlib.patches import Circle
+
+    c = (s.x * MM, s.y * MM)
+    ax.add_patch(Circle(c, s.pitch_radius * MM, fill=False, color=PITCH, lw=0.8, ls="-."))
+    ax.add_patch(Circle(c, s.tip_diameter / 2 * MM, fill=True, fc="#f2f2f2", ec=GREY, lw=0.6))
+    mark = 0.15 * s.pitch_radius * MM
+    ax.plot([c[0] - mark, c[0] + mark], [c[1], c[1]], color=GREY, lw=0.6)
+    ax.plot([c[0], c[0]], [c[1] - mark, c[1] + mark], color=GREY, lw=0.6)
+    arc = wrap_arc_points(s) * MM
+    ax.plot(arc[:, 0], arc[:, 1], color=CHAIN, lw=1.6)
+    if label:
+        ax.annotate(f"{s.name} (z = {s.teeth})", (c[0], c[1] + s.tip_diameter / 2 * MM),
+                    xytext=(0, 3), textcoords="offset points", fontsize="small",
+                    ha="center", va="bottom")
+
+
+def _figsize(geometry: GeometryResult) -> tuple[float, float]:
+    """Figure size [in] following the aspect of the contour (7 in wide, 2.8…7 in high)."""
+    r = np.array([s.tip_diameter / 2 for s in geometry.sprockets])
+    x = np.array([s.x for s in geometry.sprockets])
+    y = np.array([s.y for s in geometry.sprockets])
+    width = np.ptp(np.r_[x - r, x + r])
+    height = np.ptp(np.r_[y - r, y + r])
+    return 7.0, float(np.clip(7.0 * height / max(width, 1e-9) + 1.3, 2.8, 7.0))
+
+
+def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
+                   labels: bool = True) -> Figure:
+    """The contour of a drive to scale [mm]: tip circles (grey discs), pitch circles
+    (dash-dot), centre marks, the chain (blue, the tight span red) with an arrow per span in
+    the direction of travel, and sprocket names with tooth counts."""
+    fig, ax = figure_axes(ax, _figsize(geometry))
+    for s in geometry.sprockets:
+        _sprocket(ax, s, labels)
+    for span in geometry.spans:
+        (x0, y0), (x1, y1) = span.start_point, span.end_point
+        colour = TIGHT if span.tight else CHAIN
+        ax.plot([x0 * MM, x1 * MM], [y0 * MM, y1 * MM], color=colour, lw=1.6)
+        xm, ym = 0.5 * (x0 + x1) * MM, 0.5 * (y0 + y1) * MM
+        dx, dy = span.direction
+        ax.annotate("", xy=(xm + dx, ym + dy), xytext=(xm - dx, ym - dy),
+                    arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.2,
+                                "mutation_scale": 14})
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.autoscale_view()
+    ax.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
+    ax.plot([], [], color=TIGHT, lw=1.6, label="tight span")
+    ax.plot([], [], color=CHAIN, lw=1.6, label="chain (wrap arcs, spans)")
+    ax.plot([], [], color=PITCH, lw=0.8, ls="-.", label="pitch circles")
+    ax.legend(loc="best", fontsize="x-small", framealpha=0.8)
+    finish(ax, f"Contour layout ({geometry.links} links, "
+           f"{geometry.chain_length * MM:.1f} mm of chain)")
+    return fig

@@ -1,0 +1,51 @@
+"""Static loads: tension per span and load per shaft (bar charts)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from chaindrive.errors import DesignError
+from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.analysis import Analysis
+    from chaindrive.strength import StrengthResult
+
+
+def _strength(analysis: Analysis) -> StrengthResult:
+    if analysis.strength is None:
+        raise DesignError("drive.power", "no loads: the design gives no power")
+    return analysis.strength
+
+
+def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
+    """Static tension of each span [N] (tight span red): F_t + F_0 + F_v on the tight span,
+    F_0 + F_v on the slack one, stepping at each driven sprocket
+    (:mod:`chaindrive.strength.loads`)."""
+    loads = _strength(analysis).loads
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
+    colours = [TIGHT if s.tight else CHAIN for s in analysis.geometry.spans]
+    ax.bar(range(len(names)), loads.span_tensions, color=colours)
+    ax.set_xticks(range(len(names)), names, rotation=90 if len(names) > 8 else 0,
+                  fontsize="small")
+    ax.set_ylabel("tension, N")
+    finish(ax, "Static tension per span")
+    return fig
+
+
+def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
+    """Magnitude of the load on each shaft [N] (vector sum of the two span tensions
+    meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`)."""
+    loads = _strength(analysis).loads
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    names = [s.name for s in analysis.drive.sprockets]
+    ax.bar(range(len(names)), loads.shaft_load_magnitudes, color=CHAIN)
+    ax.set_xticks(range(len(names)), names, rotation=90 if len(names) > 8 else 0,
+                  fontsize="small")
+    ax.set_ylabel("shaft load, N")
+    finish(ax, "Load per shaft")
+    return fig

@@ -1,0 +1,180 @@
+"""The content model of a report: blocks (text, tables, figures) grouped in sections, and
+the registry of section builders.
+
+A section builder is a function ``(ReportInput) -> list[Block] | None``: it reads the parts
+of the :class:`~chaindrive.analysis.Analysis` it needs and returns None when they are absent,
+so parts added to the analysis later (start-up, AFC, …) slot in with one
+:func:`register_section` call. The same blocks are rendered to HTML (:mod:`.html`) and to
+PDF (:mod:`.pdf`), which is why builders return blocks rather than HTML fragments.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import io
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Literal
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from chaindrive.analysis import Analysis
+
+TextKind = Literal["text", "warning", "fail", "ok", "code", "note"]
+
+
+@dataclass(frozen=True, slots=True)
+class Text:
+    """A paragraph; kind "warning"/"fail" is highlighted, "code" is monospaced."""
+
+    text: str
+    kind: TextKind = "text"
+
+
+@dataclass(frozen=True, slots=True)
+class Table:
+    """A table: column headers (units in the header), rows of plain values; rows listed in
+    ``highlight`` are marked as failed checks."""
+
+    caption: str
+    columns: tuple[str, ...]
+    rows: tuple[tuple[Any, ...], ...]
+    highlight: tuple[int, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Plot:
+    """A figure rendered to PNG bytes (width/height in pixels) with its caption."""
+
+    caption: str
+    png: bytes
+    width: int
+    height: int
+    key: str = ""
+
+
+Block = Text | Table | Plot
+
+
+@dataclass(frozen=True, slots=True)
+class Section:
+    """A titled part of the report."""
+
+    key: str
+    title: str
+    blocks: tuple[Block, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class SectionSpec:
+    """A registered section: key, title and builder."""
+
+    key: str
+    title: str
+    build: Callable[[ReportInput], Sequence[Block] | None]
+
+
+SECTIONS: list[SectionSpec] = []
+
+
+def register_section(key: str, title: str,
+                     build: Callable[[ReportInput], Sequence[Block] | None], *,
+                     before: str | None = None) -> None:
+    """Add (or replace) a section builder; ``before`` names the section it goes in front of
+    (default: at the end)."""
+    spec = SectionSpec(key, title, build)
+    for i, old in enumerate(SECTIONS):
+        if old.key == key:
+            SECTIONS[i] = spec
+            return
+    keys = [s.key for s in SECTIONS]
+    SECTIONS.insert(keys.index(before) if before in keys else len(SECTIONS), spec)
+
+
+class ReportInput:
+    """What the section builders read: the analysis, the design file it came from, the
+    figure resolution, and derived parts computed once (the dynamics when the analysis does
+    not carry it)."""
+
+    def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
+                 with_dynamics: bool = True) -> None:
+        self.analysis = analysis
+        self.source = source
+        self.dpi = dpi
+        self.with_dynamics = with_dynamics
+        self.notes: list[str] = []
+
+    @cached_property
+    def source_bytes(self) -> bytes | None:
+        """The design file's bytes (None when the report is built from an object)."""
+        return None if self.source is None else Path(self.source).read_bytes()
+
+    @cached_property
+    def source_hash(self) -> str | None:
+        """SHA-256 of the design file [hex]."""
+        data = self.source_bytes
+        return None if data is None else hashlib.sha256(data).hexdigest()
+
+    @cached_property
+    def document(self) -> dict[str, Any]:
+        """The JSON document of the analysis (the same numbers as ``analyze --json``)."""
+        return self.analysis.to_dict()
+
+    @cached_property
+    def dynamics(self) -> Any:
+        """The analysis's dynamics part; when it has none (yet), computed here with
+        :func:`chaindrive.dynamics.analyze_dynamics` (ζ = 0.06, Campbell over 0.2…2 × the
+        driver speed); None when it cannot be computed (the reason goes to ``notes``)."""
+        own = getattr(self.analysis, "dynamics", None)
+        if own is not None or not self.with_dynamics:
+            return own
+        from chaindrive.dynamics import analyze_dynamics
+        from chaindrive.errors import ChainDriveError
+
+        drive = self.analysis.drive
+        w = drive.driver.speed
+        try:
+            return analyze_dynamics(drive, self.analysis.geometry,
+                                    speed_range=None if w is None else (0.2 * w, 2.0 * w))
+        except ChainDriveError as exc:
+            self.notes.append(f"dynamics not computed: {exc}")
+            return None
+
+
+def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
+    """Render a figure to PNG at ``dpi`` into a :class:`Plot` block."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    w, h = fig.get_size_inches()
+    return Plot(caption, buf.getvalue(), round(w * dpi), round(h * dpi), key)
+
+
+@dataclass(frozen=True, slots=True)
+class Report:
+    """A built report: title, metadata lines (label, value) and sections."""
+
+    title: str
+    meta: tuple[tuple[str, str], ...]
+    sections: tuple[Section, ...]
+    plots: tuple[str, ...] = field(default=())
+
+
+def fmt(value: Any, digits: int = 4) -> str:
+    """A table cell as text: None → "—", floats with ``digits`` significant digits (large
+    values without exponent), bools yes/no."""
+    import math
+
+    if value is None:
+        return "—"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "—"
+        if value != 0 and (abs(value) >= 10**digits or abs(value) < 1e-3):
+            return f"{value:.{digits}g}" if abs(value) < 1e-3 else f"{value:,.0f}"
+        return f"{value:.{digits}g}"
+    return str(value)

@@ -1,0 +1,278 @@
+"""The standard sections of the design report, in order (see :mod:`.content` for the
+registry). Each builder returns None when its part of the analysis is absent."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from chaindrive.dynamics.resonance import RESONANCE_BAND_PERCENT
+from chaindrive.report.content import (
+    Block,
+    ReportInput,
+    Table,
+    Text,
+    plot_block,
+    register_section,
+)
+
+RPM = 30.0 / math.pi  # rad/s → rpm
+
+
+def _rows(rows: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
+    return tuple(tuple(r) for r in rows)
+
+
+# --- checks and warnings -----------------------------------------------------------------
+
+def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, bool]]:
+    """Every pass/fail check of the design: (check, value, limit, passed)."""
+    out: list[tuple[str, Any, str, bool]] = []
+    st = inp.analysis.strength
+    if st is not None:
+        if st.allowable_pressure is not None:
+            out.append(("hinge pressure p, MPa", st.hinge_pressure / 1e6,
+                        f"≤ {st.allowable_pressure / 1e6:.4g}",
+                        st.hinge_pressure <= st.allowable_pressure))
+        if st.allowable_safety_factor is not None:
+            out.append(("static safety factor s", st.safety_factor_static,
+                        f"≥ {st.allowable_safety_factor:.4g}",
+                        st.safety_factor_static >= st.allowable_safety_factor))
+    dyn = inp.dynamics
+    for r in getattr(dyn, "resonances", ()) or ():
+        out.append((f"detuning of {r.working.label} from {r.natural_frequency:.1f} Hz, %",
+                    abs(r.margin_percent), f"≥ {RESONANCE_BAND_PERCENT:g}",
+                    abs(r.margin_percent) >= RESONANCE_BAND_PERCENT))
+    return out
+
+
+def checks_section(inp: ReportInput) -> list[Block]:
+    """Warnings of every part and the failed checks, first thing in the report."""
+    blocks: list[Block] = []
+    warnings = list(inp.document.get("warnings", [])) + inp.notes
+    checks = check_rows(inp)
+    failed = [c for c in checks if not c[3]]
+    if not warnings and not failed:
+        blocks.append(Text("No warnings; every check passed.", "ok"))
+    for c in failed:
+        blocks.append(Text(f"FAILED: {c[0]} = {c[1]:.4g} (required {c[2]})", "fail"))
+    blocks += [Text(w, "warning") for w in warnings]
+    if checks:
+        blocks.append(Table("Checks", ("check", "value", "required", "result"),
+                            _rows([(n, v, lim, "pass" if ok else "FAIL")
+                                   for n, v, lim, ok in checks]),
+                            tuple(i for i, c in enumerate(checks) if not c[3])))
+    return blocks
+
+
+# --- inputs ----------------------------------------------------------------------------------
+
+def inputs_section(inp: ReportInput) -> list[Block]:
+    """The design as read (SI converted to engineering units), and the file itself."""
+    d = inp.analysis.drive
+    spec = d.chain.spec
+    rows = [("chain", spec.designation, ""), ("pitch p", spec.pitch * 1e3, "mm"),
+            ("strands", spec.strands, ""), ("roller diameter d1", spec.roller_diameter * 1e3, "mm"),
+            ("inner width b1", spec.inner_width * 1e3, "mm"),
+            ("breaking load Q", spec.breaking_load / 1e3, "kN"),
+            ("mass per length q", spec.mass_per_length, "kg/m"),
+            ("power P", None if d.power is None else d.power / 1e3, "kW"),
+            ("service factor", d.service_factor, ""), ("tooth form", d.tooth_form, "")]
+    if d.chain.links is not None:
+        rows.append(("links (imposed)", d.chain.links, ""))
+    blocks: list[Block] = [Table("Drive and chain", ("quantity", "value", "unit"), _rows(rows))]
+    blocks.append(Table(
+        "Sprockets as given (positions after the take-up)",
+        ("name", "role", "teeth", "x, mm", "y, mm", "side", "speed, rpm", "adjustable",
+         "material", "inertia, kg·m²"),
+        _rows([(s.name, s.role, s.teeth, s.x * 1e3, s.y * 1e3, s.side,
+                None if s.speed is None else s.speed * RPM, s.adjustable, s.material, s.inertia)
+               for s in d.sprockets])))
+    if inp.source_bytes is not None:
+        blocks.append(Text(inp.source_bytes.decode("utf-8", errors="replace"), "code"))
+    return blocks
+
+
+# --- geometry and kinematics -----------------------------------------------------------------
+
+def geometry_section(inp: ReportInput) -> list[Block]:
+    """Contour summary, sprockets, spans and the layout to scale."""
+    from chaindrive.plotting import contour_layout
+
+    g = inp.document["geometry"]
+    summary = [("links", g["links"], ""), ("chain length", g["chain_length_mm"], "mm"),
+               ("tight length", g["tight_length_mm"], "mm"),
+               ("tight length", g["tight_length_pitches"], "pitches"),
+               ("slack", g["slack_mm"], "mm"),
+               ("centre distance", g["center_distance_mm"], "mm"),
+               ("adjusted sprocket", g["adjusted_sprocket"], ""),
+               ("adjustment", g["adjustment_mm"], "mm"),
+               ("direction of travel", g["direction_of_travel"], "")]
+    return [
+        Table("Contour", ("quantity", "value", "unit"), _rows(summary)),
+        Table("Sprockets", ("name", "teeth", "side", "x, mm", "y, mm", "pitch Ø, mm",
+                            "tip Ø, mm", "root Ø, mm", "wrap, °", "teeth in mesh"),
+              _rows([(s["name"], s["teeth"], s["side"], s["x_mm"], s["y_mm"],
+                      s["pitch_diameter_mm"], s["tip_diameter_mm"], s["root_diameter_mm"],
+                      s["wrap_angle_deg"], s["teeth_in_mesh"]) for s in g["sprockets"]])),
+        Table("Spans", ("from", "to", "length, mm", "pitches", "inclination, °", "tight"),
+              _rows([(s["from"], s["to"], s["length_mm"], s["length_pitches"],
+                      s["inclination_deg"], s["tight"]) for s in g["spans"]])),
+        plot_block(contour_layout(inp.analysis.geometry), "Contour layout to scale",
+                   inp.dpi, "layout"),
+    ]
+
+
+def kinematics_section(inp: ReportInput) -> list[Block]:
+    """Speeds and the polygonal non-uniformity (seed 003)."""
+    from chaindrive.plotting import chain_speed, transmission_ratio
+
+    k = inp.document["kinematics"]
+    return [
+        Table("Chain", ("quantity", "value", "unit"), _rows([
+            ("mean chain speed", k["chain_speed_m_s"], "m/s"),
+            ("minimum / maximum", f"{k['chain_speed_min_m_s']:.4g} / "
+                                  f"{k['chain_speed_max_m_s']:.4g}", "m/s"),
+            ("tooth frequency", k["tooth_frequency_hz"], "Hz")])),
+        Table("Sprocket speeds", ("name", "speed, rpm", "direction", "speed variation, %",
+                                  "hinge deviation peak, mm"),
+              _rows([(s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"],
+                      s["hinge_deviation_peak_mm"]) for s in k["sprockets"]])),
+        plot_block(chain_speed(inp.analysis.kinematics), "Chain speed over one tooth period",
+                   inp.dpi, "chain_speed"),
+        plot_block(transmission_ratio(inp.analysis), "Instantaneous transmission ratio",
+                   inp.dpi, "ratio"),
+    ]
+
+
+# --- selection and strength -------------------------------------------------------------------
+
+def selection_section(inp: ReportInput) -> list[Block] | None:
+    """The chain a method of the family selects, with the ranked candidates."""
+    sel = inp.document.get("selection")
+    if sel is None:
+        return None
+    cands = sel["candidates"][:10]
+    return [Text(f"Selected by {sel['method']}: {sel['chain']}. The analysis uses the design chain "
+                 f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain keeps it)."),
+            Table("Candidates (best 10, ranked)", ("chain", "method", "strands", "mass, kg/m",
+                                                   "feasible", "margin, %", "governing"),
+                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
+                          100 * c["margin"], c["governing"]) for c in cands]))]
+
+
+def strength_section(inp: ReportInput) -> list[Block] | None:
+    """Loads round the contour and static strength."""
+    from chaindrive.plotting import shaft_loads, span_tensions
+
+    st = inp.document.get("strength")
+    if st is None:
+        return None
+    rows = [("chain speed v", st["chain_speed_m_s"], "m/s"),
+            ("peripheral force F_t", st["peripheral_force_n"], "N"),
+            ("sag tension F_0", st["sag_tension_n"], "N"),
+            ("centrifugal tension F_v", st["centrifugal_tension_n"], "N"),
+            ("operating factor Kэ", st["operating_factor_ke"], ""),
+            ("hinge pressure p", st["hinge_pressure_mpa"], "MPa"),
+            ("allowable pressure [p]", st["allowable_pressure_mpa"], "MPa"),
+            ("static safety factor s", st["safety_factor_static"], ""),
+            ("allowable safety factor [s]", st["allowable_safety_factor"], ""),
+            ("rated power (ACA)", None if st["rated_power_w"] is None
+             else st["rated_power_w"] / 1e3, "kW"),
+            ("wear life to {:.0%} elongation".format(st["permitted_elongation"]),
+             st["wear_life_h"], "h")]
+    names = [s.name for s in inp.analysis.drive.sprockets]
+    spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
+    return [
+        Table("Loads and strength", ("quantity", "value", "unit"), _rows(rows)),
+        Table("Span tensions and shaft loads", ("span", "tension, N", "sprocket",
+                                                "shaft load, N"),
+              _rows([(sp, t, n, f) for sp, t, n, f in zip(
+                  spans, st["span_tensions_n"], names, st["shaft_loads_n"], strict=True)])),
+        plot_block(span_tensions(inp.analysis), "Static tension per span", inp.dpi, "tensions"),
+        plot_block(shaft_loads(inp.analysis), "Load per shaft", inp.dpi, "shaft_loads"),
+    ]
+
+
+# --- dynamics --------------------------------------------------------------------------------
+
+def dynamics_section(inp: ReportInput) -> list[Block] | None:
+    """Natural frequencies, mode shapes, resonance table and Campbell diagram (seed 000)."""
+    from chaindrive.plotting import campbell_diagram, mode_shapes
+
+    dyn = inp.dynamics
+    if dyn is None:
+        return None
+    modal = dyn.modal
+    names = [s.name for s in inp.analysis.drive.sprockets]
+    blocks: list[Block] = [
+        Text(f"Ring model of {len(names)} reduced masses (seed 000), damping ratio "
+             f"ζ = {dyn.damping_ratio:g}. Mode 0 is the rigid-body rotation of the contour."),
+        Table("Masses and branches", ("sprocket", "reduced mass, kg",
+                                      "branch stiffness to next, N/m"),
+              _rows(zip(names, modal.masses_kg.tolist(), modal.stiffness_n_per_m.tolist(),
+                        strict=True))),
+        Table("Natural frequencies", ("mode", "f, Hz", "damped f, Hz", "rigid body"),
+              _rows([(j, f, fd, bool(rb)) for j, (f, fd, rb) in enumerate(zip(
+                  modal.frequencies_hz, modal.damped_frequencies_hz, modal.rigid_body,
+                  strict=True))])),
+        plot_block(mode_shapes(modal, names=names), "Mode shapes (relative amplitudes)",
+                   inp.dpi, "mode_shapes"),
+    ]
+    if dyn.resonances:
+        rows = [(r.working.label, r.working.frequency, r.natural_frequency, r.mode,
+                 r.margin_percent) for r in dyn.resonances]
+        blocks.append(Table("Resonance table (closest first)",
+                            ("working frequency", "f, Hz", "natural f, Hz", "mode", "margin, %"),
+                            _rows(rows), tuple(i for i, r in enumerate(dyn.resonances)
+                                               if abs(r.margin_percent) < RESONANCE_BAND_PERCENT)))
+    if dyn.campbell is not None:
+        w = inp.analysis.drive.driver.speed
+        blocks.append(plot_block(campbell_diagram(dyn.campbell,
+                                                  operating_rpm=None if w is None else w * RPM),
+                                 "Campbell diagram", inp.dpi, "campbell"))
+    return blocks
+
+
+def damping_section(inp: ReportInput) -> list[Block]:
+    """Hinge-friction damping (seed 001) for its reference chain."""
+    from chaindrive.damping import PR_12_7_1820_1, hinge_friction_damping
+    from chaindrive.plotting import absorption_vs_amplitude
+
+    c = PR_12_7_1820_1
+    a = c.pitch * 48  # the seed's span: z = 49 hinges, a = t(z − 1)
+    results = [hinge_friction_damping(f0, y, a, c) for f0 in (250.0, 500.0, 750.0, 1000.0)
+               for y in np.linspace(0.015, 0.03, 7)]
+    return [Text(f"The dynamics uses a damping ratio; seed 001's hinge-friction model gives ψ "
+                 f"(ζ = ψ/4π) from a chain's empirical coefficients, known only for "
+                 f"{c.chain}. The curves are for that chain at the seed's conditions "
+                 f"(span of 49 hinges, a = {a * 1e3:.0f} mm), as a reference.", "note"),
+            plot_block(absorption_vs_amplitude(results),
+                       f"Absorption coefficient ψ against ȳ₀ ({c.chain})", inp.dpi, "damping")]
+
+
+def contours_section(inp: ReportInput) -> list[Block] | None:
+    """Multi-contour drives: the contour check of seed 004 (K_m), as a table of its values."""
+    part = getattr(inp.analysis, "contours", None)
+    if part is None:
+        return None
+    flat = [(k, v) for k, v in part.to_dict().items() if not isinstance(v, dict | list)]
+    return [Table("Parallel contours (seed 004)", ("quantity", "value"), _rows(flat))]
+
+
+def register_standard_sections() -> None:
+    """Register the standard sections in report order (idempotent)."""
+    for key, title, build in (
+            ("checks", "Warnings and checks", checks_section),
+            ("inputs", "Inputs", inputs_section),
+            ("geometry", "Contour geometry", geometry_section),
+            ("kinematics", "Kinematics", kinematics_section),
+            ("selection", "Chain selection", selection_section),
+            ("strength", "Loads and strength", strength_section),
+            ("contours", "Parallel contours", contours_section),
+            ("dynamics", "Dynamics", dynamics_section),
+            ("damping", "Damping", damping_section)):
+        register_section(key, title, build)

@@ -1,0 +1,93 @@
+"""The report contains each section and figure, in HTML and PDF (issue 6)."""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import re
+from pathlib import Path
+
+import pytest
+
+import chaindrive
+from chaindrive.errors import DesignError
+from chaindrive.report import (
+    SECTIONS,
+    Text,
+    build_report,
+    register_section,
+    render_html,
+    write_report,
+)
+
+ROOT = Path(__file__).parents[2]
+SEED = ROOT / "examples" / "seed_three_sprocket.toml"
+EXPECTED_SECTIONS = ["checks", "inputs", "geometry", "kinematics", "selection", "strength",
+                     "dynamics", "damping"]  # "contours" only for multi-contour drives
+EXPECTED_PLOTS = {"layout", "chain_speed", "ratio", "tensions", "shaft_loads", "mode_shapes",
+                  "campbell", "damping"}
+
+
+@pytest.fixture(scope="module")
+def seed_analysis() -> chaindrive.analysis.Analysis:
+    return chaindrive.analyze(chaindrive.load(SEED))
+
+
+@pytest.fixture(scope="module")
+def seed_html(seed_analysis) -> str:
+    return render_html(build_report(seed_analysis, source=SEED, dpi=30))
+
+
+def test_every_section_and_figure(seed_html: str) -> None:
+    ids = re.findall(r'<section id="([a-z_]+)">', seed_html)
+    assert ids == EXPECTED_SECTIONS
+    plots = set(re.findall(r'<figure data-plot="([a-z_]+)">', seed_html))
+    assert plots == EXPECTED_PLOTS
+    for data in re.findall(r'src="data:image/png;base64,([^"]+)"', seed_html):
+        assert base64.b64decode(data)[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_self_contained_with_version_hash_and_inputs(seed_html: str) -> None:
+    assert not re.search(r'(src|href)="(http|file|/)', seed_html)  # nothing external
+    assert chaindrive.__version__ in seed_html
+    assert hashlib.sha256(SEED.read_bytes()).hexdigest() in seed_html
+    assert "GOST 13568 ПР-25,4-60" in seed_html and "300" in seed_html
+
+
+def test_warnings_come_first(seed_analysis, seed_html: str) -> None:
+    warnings = seed_analysis.to_dict()["warnings"]
+    assert warnings  # the seed example's slack is not taken up
+    first = seed_html.index('<section id="inputs">')
+    for w in warnings:
+        assert 0 <= seed_html.find('class="warning"') < first
+        assert w.split(":")[0] in seed_html[:first]
+
+
+def test_failed_check_is_highlighted(seed_analysis) -> None:
+    import dataclasses
+
+    weak = dataclasses.replace(seed_analysis, strength=dataclasses.replace(
+        seed_analysis.strength, allowable_safety_factor=1e6))
+    html = render_html(build_report(weak, dpi=30, with_dynamics=False))
+    head = html[:html.index('<section id="inputs">')]
+    assert 'class="fail"' in head and "static safety factor" in head
+    assert "<tr class=fail>" in head
+
+
+def test_sections_slot_in(seed_analysis) -> None:
+    register_section("extra", "Extra part", lambda inp: [Text("extra text")], before="damping")
+    register_section("absent", "Absent part", lambda inp: None)
+    try:
+        html = render_html(build_report(seed_analysis, dpi=30, with_dynamics=False))
+    finally:
+        SECTIONS[:] = [s for s in SECTIONS if s.key not in ("extra", "absent")]
+    assert html.index('id="extra"') < html.index('id="damping"')
+    assert 'id="absent"' not in html
+
+
+def test_pdf_and_bad_suffix(seed_analysis, tmp_path: Path) -> None:
+    pdf = write_report(seed_analysis, tmp_path / "r.pdf", source=SEED, dpi=30)
+    data = pdf.read_bytes()
+    assert data.startswith(b"%PDF") and data.count(b"/Type /Page") >= 4
+    with pytest.raises(DesignError):
+        write_report(seed_analysis, tmp_path / "r.docx")
