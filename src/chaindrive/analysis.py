@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from chaindrive.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.resonance import DynamicsResult, analyze_dynamics, resonance_warnings
@@ -18,7 +18,9 @@ from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.model import Drive
-from chaindrive.multicontour.drive import ContourCheck, contour_check
+
+if TYPE_CHECKING:
+    from chaindrive.multicontour.drive import ContourCheck
 from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
 
 #: Speed range of the Campbell data and of the amplitude–frequency sweep, as fractions of
@@ -179,6 +181,8 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
         speed_range=None if omega is None else (SPEED_RANGE[0] * omega, SPEED_RANGE[1] * omega))
     contours = None
     if m > 1 and strength is not None and placed.power is not None and omega is not None:
+        from chaindrive.multicontour.drive import contour_check  # scipy.special: only here
+
         loads = strength.loads
         contours = contour_check(
             m, placed.power / omega, geometry.sprockets[placed.driver_index].pitch_radius,
