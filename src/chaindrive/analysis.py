@@ -11,8 +11,9 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
-from chaindrive.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.resonance import DynamicsResult, analyze_dynamics, resonance_warnings
+from chaindrive.dynamics.response import DynamicResponse, dynamics_response, motor_of
+from chaindrive.dynamics.ring import RingModel
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
@@ -43,6 +44,7 @@ class Analysis:
     selection: SelectionResult | None
     strength: StrengthResult | None
     dynamics: DynamicsResult
+    response: DynamicResponse | None
     contours: ContourCheck | None
     warnings: tuple[str, ...]
 
@@ -52,6 +54,12 @@ class Analysis:
         if strength is not None and self.contours is not None:
             strength["multicontour"] = self.contours.to_dict()
             strength["contour_factor_km"] = self.contours.km
+        dynamics = self.dynamics.to_dict()
+        if self.response is not None:
+            fragment = self.response.to_dict()
+            dynamics.update(fragment["dynamics"])
+            if strength is not None:
+                strength.update(fragment["strength"])
         selection = None if self.selection is None else self.selection.to_dict()
         warnings = list(self.warnings)
         for part in (strength, selection):
@@ -63,7 +71,7 @@ class Analysis:
             "kinematics": self.kinematics.to_dict(),
             "selection": selection,
             "strength": strength,
-            "dynamics": self.dynamics.to_dict(),
+            "dynamics": dynamics,
             "warnings": warnings,
         }
 
@@ -136,7 +144,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
             for c in own if not c.feasible]
 
 
-def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis:
+def analyze(drive: Drive) -> Analysis:
     """Run the analyses of a drive in order.
 
     1. selection (when the power is given): the chain a method of its family would choose —
@@ -146,8 +154,12 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
     2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength;
     5. dynamics: the ring model with the static span tensions (sag), natural frequencies and
        forms, span transverse frequencies, resonance table and Campbell data from 10 % to
-       150 % of the driver speed (issue 4), damping ratio ``damping`` (seed 000: D = 0.06).
+       150 % of the driver speed (issue 4), with the damping of ``drive.dynamics``;
+    6. dynamic response (when the power is given): start-up transient, steady state under
+       the polygonal effect (and the optional disturbances), amplitude–frequency sweep,
+       coefficient of dynamics and the two-stage check k1, k2, k2min (issue 5).
     """
+    settings = drive.dynamics
     warnings: list[str] = []
     selection = None
     request = drive.chain.request
@@ -176,7 +188,7 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
     strength = strength_of(one, geometry) if one.power is not None else None
     omega = placed.driver.speed
     dynamics = analyze_dynamics(
-        one, geometry, damping=damping,
+        one, geometry, damping=settings.damping_ratio,
         span_tensions=None if strength is None else strength.loads.span_tensions,
         speed_range=None if omega is None else (SPEED_RANGE[0] * omega, SPEED_RANGE[1] * omega))
     contours = None
@@ -190,7 +202,22 @@ def analyze(drive: Drive, *, damping: float = DEFAULT_DAMPING_RATIO) -> Analysis
             float(dynamics.parameters.chain_stiffness_n_per_m[loads.tight_span]))
         # the most loaded contour carries P/K_m (seed 004 eq. 15: [p]_m = [p]·K_m)
         strength = strength_of(replace(placed, power=placed.power / contours.km), geometry)
+    response = None
+    if one.power is not None and omega is not None and strength is not None:
+        params = dynamics.parameters
+        model = RingModel(params.masses_kg, params.stiffness_n_per_m,
+                          damping_ratio=dynamics.damping_ratio,
+                          names=tuple(s.name for s in placed.sprockets))
+        n = len(placed.sprockets)
+        response = dynamics_response(
+            one, geometry, model, span_tensions=strength.loads.span_tensions,
+            harmonics=settings.harmonics, startup=settings.transient,
+            startup_duration=settings.startup_duration,
+            motor=motor_of(settings, one.power, omega), resistance=settings.resistance,
+            speed_range=SPEED_RANGE,
+            eccentricity=[settings.eccentricity] * n if settings.eccentricity > 0 else None,
+            pitch_scatter=settings.pitch_scatter, accumulated_error=settings.accumulated_error)
     return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
-                    strength=strength, dynamics=dynamics, contours=contours,
+                    strength=strength, dynamics=dynamics, response=response, contours=contours,
                     warnings=(*warnings, *geometry.warnings,
                               *resonance_warnings(dynamics.resonances)))

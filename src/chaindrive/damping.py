@@ -245,3 +245,49 @@ def hinge_friction_damping(tension: float, relative_amplitude: float, span_lengt
         dynamic_load_factor=float(dynamic_load_factor(tension, relative_amplitude, c)),
         absorption_coefficient=psi, damping_ratio=psi / (4.0 * math.pi),
     )
+
+
+# ---------------------------------------------------------------------------------------
+# Material (hysteretic) damping of the ring, added to the hinge-friction damping
+# ---------------------------------------------------------------------------------------
+
+#: Typical loss factors η (= 2ζ at resonance) by material family, room temperature, low
+#: frequency. Steels: 10⁻⁴…10⁻³ (Cremer & Heckl, Structure-borne sound, table via
+#: T. Irvine, "Damping properties of materials", 2004; NPTEL 112104040 table 9.1 gives the
+#: order 10⁻³); grey cast iron: order 10⁻² (same NPTEL table); polyamides: tan δ ≈ 0.02…0.04
+#: dry at 23 °C, glass-filled lower, acetal ≈ 0.01…0.02 (M.P. Sepe, Dynamic Mechanical
+#: Analysis for Plastics Engineering, 1998 — typical DMA curves; values are typical, not
+#: guaranteed: replace them with measured ones for a real design).
+LOSS_FACTORS: dict[str, float] = {
+    "steel": 5e-4, "carbon steel": 5e-4, "alloy steel": 5e-4, "case-hardening steel": 5e-4,
+    "cast steel": 5e-4, "grey cast iron": 1e-2, "cast iron": 1e-2,
+    "polyamide": 0.03, "glass-filled polyamide": 0.02, "acetal": 0.015,
+    "polyethylene": 0.05, "laminate": 0.03,
+}
+POLYMER_LOSS_FACTOR = 0.03
+
+
+def loss_factor(family: str, polymer: bool = False) -> float:
+    """Loss factor η [–] of a material family (:data:`LOSS_FACTORS`); unknown families take
+    the steel value, or :data:`POLYMER_LOSS_FACTOR` for a polymer."""
+    return LOSS_FACTORS.get(family, POLYMER_LOSS_FACTOR if polymer else LOSS_FACTORS["steel"])
+
+
+def series_loss_factor(loss_factors: ArrayLike, compliances: ArrayLike) -> NDArray[np.float64]:
+    """Loss factor of springs in series [–]: η = Σ η_k/c_k / Σ 1/c_k, the strain-energy
+    weighted mean (at one force the energy of spring k is F²/(2c_k)); ``compliances`` 1/c_k
+    stacked on the first axis, like ``loss_factors``."""
+    eta = np.asarray(loss_factors, dtype=float)
+    comp = np.asarray(compliances, dtype=float)
+    return np.sum(eta * comp, axis=0) / np.sum(comp, axis=0)
+
+
+def modal_loss_factor(loss_factors: ArrayLike, stiffness: ArrayLike, shape: ArrayLike) -> float:
+    """Loss factor of one mode by the modal strain energy method (Johnson & Kienholz, AIAA J.
+    20 (1982) 1284): η_j = Σ_b η_b U_b / Σ_b U_b, U_b = c_b (x_{b+1} − x_b)² / 2 the strain
+    energy of branch b in the mode (ring: branch b joins mass b and b+1)."""
+    x = np.asarray(shape, dtype=float)
+    c = np.asarray(stiffness, dtype=float)
+    energy = c * (np.roll(x, -1) - x) ** 2
+    total = float(energy.sum())
+    return float(np.dot(np.asarray(loss_factors, dtype=float), energy) / total) if total else 0.0

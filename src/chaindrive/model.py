@@ -218,6 +218,49 @@ class Sprocket:
         return replace(self, x=x, y=y)
 
 
+MOTORS: tuple[str, ...] = ("kloss", "constant", "ramp")
+RESISTANCES: tuple[str, ...] = ("constant", "linear", "quadratic")
+
+
+@dataclass(frozen=True, slots=True)
+class DynamicsSettings:
+    """What the dynamic analyses of a drive use (the ``[dynamics]`` table of a design file).
+
+    damping_ratio ζ (seed 000: D = 0.06); harmonics of the tooth frequency in the polygonal
+    excitation (seed 000: 10 are practically exact); transient: run the start-up;
+    startup_duration [s]; motor: "kloss" (induction motor with the drive's power and the
+    driver speed as rated values, breakdown_ratio λ = M_k/M_r and critical_slip s_k),
+    "constant" (rated torque from t = 0) or "ramp" (soft start over ramp_time [s]);
+    resistance on the driven sprockets: "constant", "linear" or "quadratic" in speed;
+    eccentricity [m] of every sprocket, pitch_scatter σ [m] of the link pitches and
+    accumulated_error [m] of the chain length: optional internal disturbances (seed 000 §2).
+    """
+
+    damping_ratio: float = 0.06
+    harmonics: int = 10
+    transient: bool = True
+    startup_duration: float = 1.0
+    motor: str = "kloss"
+    breakdown_ratio: float = 2.5
+    critical_slip: float = 0.25
+    ramp_time: float = 0.5
+    resistance: str = "linear"
+    eccentricity: float = 0.0
+    pitch_scatter: float = 0.0
+    accumulated_error: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.damping_ratio < 1.0:
+            raise DesignError("dynamics.damping_ratio",
+                              f"must be from 0 to below 1, got {self.damping_ratio!r}")
+        if self.motor not in MOTORS:
+            raise DesignError("dynamics.motor", f"must be one of {', '.join(MOTORS)}, "
+                              f"got {self.motor!r}")
+        if self.resistance not in RESISTANCES:
+            raise DesignError("dynamics.resistance", f"must be one of {', '.join(RESISTANCES)}, "
+                              f"got {self.resistance!r}")
+
+
 @dataclass(frozen=True, slots=True)
 class Drive:
     """A chain drive: one closed chain contour round 2 to 24 sprockets.
@@ -232,6 +275,7 @@ class Drive:
     power: float | None = None
     tooth_form: ToothFormName = "ISO 606"
     service_factor: float | None = None
+    dynamics: DynamicsSettings = field(default_factory=DynamicsSettings)
     notes: dict[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:

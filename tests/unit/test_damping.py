@@ -103,3 +103,17 @@ def test_plain_damping_ratio_seed_000_table1() -> None:
 def test_invalid_inputs(bad: float) -> None:
     with pytest.raises(DesignError):
         absorption_coefficient(0.1, 4.45e-3, A, bad, 500.0)
+
+
+def test_material_loss_factors_combine_by_strain_energy() -> None:
+    """Springs in series share one force, so their energies are ∝ compliance
+    (η = Σ η_k/c_k / Σ 1/c_k); a mode whose branches all have η has η (modal strain
+    energy method, Johnson & Kienholz 1982)."""
+    from chaindrive.damping import modal_loss_factor, series_loss_factor
+
+    assert series_loss_factor([[0.01], [0.03]], [[1.0], [1.0]])[0] == pytest.approx(0.02)
+    assert series_loss_factor([[0.01], [0.03]], [[3.0], [1.0]])[0] == pytest.approx(0.015)
+    shape = np.array([1.0, -0.5, 0.2, -0.7])
+    assert modal_loss_factor([0.02] * 4, [1e6, 2e6, 3e6, 4e6], shape) == pytest.approx(0.02)
+    # a branch that is not strained in the mode adds nothing
+    assert modal_loss_factor([0.02, 0.5], [1e6, 1e6], [1.0, 1.0]) == 0.0

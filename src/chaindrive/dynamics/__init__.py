@@ -10,6 +10,13 @@ Low-level API::
 
 from __future__ import annotations
 
+from chaindrive.dynamics.afc import AfcResult, afc_sweep
+from chaindrive.dynamics.excitation import (
+    SpanExcitation,
+    chain_error_excitation,
+    eccentricity_excitation,
+    polygonal_excitation,
+)
 from chaindrive.dynamics.quality import coefficient_of_dynamics, nominal_peripheral_force
 from chaindrive.dynamics.resonance import (
     CampbellData,
@@ -30,6 +37,16 @@ from chaindrive.dynamics.ring import (
     ring_frequencies_batch,
     ring_stiffness_matrix,
 )
+from chaindrive.dynamics.startup import (
+    ConstantTorque,
+    KlossMotor,
+    RampTorque,
+    ResistanceLaw,
+    StartupResult,
+    linear_transient,
+    simulate_startup,
+)
+from chaindrive.dynamics.steady import SteadyStateResult, harmonic_response, steady_state
 from chaindrive.dynamics.transverse import (
     parametric_resonance_frequency,
     parametric_zone,
@@ -37,24 +54,40 @@ from chaindrive.dynamics.transverse import (
 )
 
 __all__ = [
+    "AfcResult",
     "CampbellData",
+    "ConstantTorque",
     "DynamicsResult",
+    "KlossMotor",
     "ModalResult",
+    "RampTorque",
+    "ResistanceLaw",
     "Resonance",
     "RingModel",
+    "SpanExcitation",
+    "StartupResult",
+    "SteadyStateResult",
     "WorkingFrequency",
+    "afc_sweep",
     "analyze_dynamics",
     "campbell_data",
+    "chain_error_excitation",
     "coefficient_of_dynamics",
+    "eccentricity_excitation",
+    "harmonic_response",
+    "linear_transient",
     "modal_analysis",
     "nominal_peripheral_force",
     "parametric_resonance_frequency",
     "parametric_zone",
+    "polygonal_excitation",
     "resonance_table",
     "ring_frequencies_batch",
     "ring_stiffness_matrix",
     "shaft_frequencies",
+    "simulate_startup",
     "span_transverse_frequencies",
+    "steady_state",
     "tooth_frequency",
     "working_frequencies",
 ]

@@ -293,19 +293,21 @@ def analyze_dynamics(drive: Any, geometry: Any, *, damping: float = 0.06,
                      speed_points: int = 61) -> DynamicsResult:
     """Modal analysis, span transverse frequencies, resonance table and Campbell data.
 
-    drive : :class:`chaindrive.model.Drive`; geometry : its ``GeometryResult``; damping ζ;
+    drive : :class:`chaindrive.model.Drive`; geometry : its ``GeometryResult``; damping ζ of
+    the hinges, to which the material damping of the first mode is added;
     span_tensions [N], link_stiffness [N/m], material_lookup: see
     :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`; harmonics of the tooth
     frequency; transverse_modes per span; speed_range (ω_min, ω_max) of the driver
     [rad/s] for the Campbell data (None: none).
     """
     from chaindrive.dynamics.ring import RingModel
-    from chaindrive.dynamics.stiffness import drive_ring_parameters
+    from chaindrive.dynamics.stiffness import drive_ring_parameters, ring_damping_ratio
     from chaindrive.dynamics.transverse import span_transverse_frequencies
 
     params = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
                                    link_stiffness=link_stiffness,
                                    material_lookup=material_lookup)
+    damping = ring_damping_ratio(params, damping)
     model = RingModel(params.masses_kg, params.stiffness_n_per_m, closed=True,
                       damping_ratio=damping, names=tuple(s.name for s in drive.sprockets))
     modal = model.modal()

@@ -388,16 +388,19 @@ class RingModel:
                    material_lookup: Callable[[str], Material] | None = None) -> RingModel:
         """The ring model of a drive; see :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`.
 
-        damping : damping ratio ζ (seed 000: D = 0.06; or ζ = ψ/4π from
-            :mod:`chaindrive.damping`); span_tensions [N] per span (None: estimated from
-            the power, see :func:`~chaindrive.dynamics.stiffness.estimate_span_tensions`);
+        damping : hinge-friction damping ratio (seed 000: D = 0.06; or ζ = ψ/4π from
+            :mod:`chaindrive.damping`), to which the material damping of the first mode is
+            added (:func:`~chaindrive.dynamics.stiffness.ring_damping_ratio`);
+            span_tensions [N] per span (None: the static tensions when the drive has a power,
+            see :func:`~chaindrive.dynamics.stiffness.static_span_tensions`);
             link_stiffness [N/m] per link from catalogue data (None: from the plates and pin);
             material_lookup : name → Material (default :func:`chaindrive.catalog.find_material`).
         """
-        from chaindrive.dynamics.stiffness import drive_ring_parameters
+        from chaindrive.dynamics.stiffness import drive_ring_parameters, ring_damping_ratio
 
         p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
                                   link_stiffness=link_stiffness,
                                   material_lookup=material_lookup)
         return cls(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
-                   damping_ratio=damping, names=tuple(s.name for s in drive.sprockets))
+                   damping_ratio=ring_damping_ratio(p, damping),
+                   names=tuple(s.name for s in drive.sprockets))

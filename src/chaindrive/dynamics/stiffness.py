@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.damping import loss_factor, series_loss_factor
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
 
@@ -36,6 +37,7 @@ __all__ = [
     "link_stiffness",
     "plate_thickness",
     "reduced_mass",
+    "ring_damping_ratio",
     "sag_stiffness_factor",
     "series_stiffness",
     "static_span_tensions",
@@ -178,7 +180,9 @@ class RingParameters:
     stiffness_n_per_m (n,) branch stiffness (branch i joins sprocket i and i+1);
     chain_stiffness_n_per_m (n,) chain alone; wrap_stiffness_n_per_m (n,) each sprocket's
     wrap (tooth) stiffness; sag_factors (n,) Dischinger–Ernst factors (1: taut);
-    span_tensions_n (n,) or None; link_stiffness_n_per_m per link.
+    span_tensions_n (n,) or None; link_stiffness_n_per_m per link; loss_factors (n,) material
+    loss factor of every branch (chain and the two wraps in series,
+    :func:`chaindrive.damping.series_loss_factor`).
     """
 
     masses_kg: NDArray[np.float64]
@@ -190,6 +194,7 @@ class RingParameters:
     sag_factors: NDArray[np.float64]
     span_tensions_n: NDArray[np.float64] | None
     link_stiffness_n_per_m: float
+    loss_factors: NDArray[np.float64]
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -204,6 +209,7 @@ class RingParameters:
             "span_tensions_n": (None if self.span_tensions_n is None
                                 else self.span_tensions_n.tolist()),
             "link_stiffness_n_per_m": self.link_stiffness_n_per_m,
+            "loss_factors": self.loss_factors.tolist(),
         }
 
 
@@ -258,8 +264,10 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     inertia = np.empty(n)
     radius = np.array([g.pitch_radius for g in geometry.sprockets])
     wrap = np.empty(n)
+    eta_wrap = np.empty(n)
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
         mat = lookup(s.material)
+        eta_wrap[i] = loss_factor(mat.family, mat.is_polymer)
         inertia[i] = (s.inertia if s.inertia is not None else sprocket_mass_and_inertia(
             spec.pitch, s.teeth, spec.inner_width, mat.density, mat.is_polymer,
             strands=spec.strands, transverse_pitch=spec.transverse_pitch).moment_of_inertia)
@@ -286,4 +294,25 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
         pitch_radii_m=radius, stiffness_n_per_m=stiffness, chain_stiffness_n_per_m=chain_c,
         wrap_stiffness_n_per_m=wrap, sag_factors=sag, span_tensions_n=tensions,
         link_stiffness_n_per_m=float(k_link),
+        loss_factors=series_loss_factor(
+            [np.full(n, loss_factor(chain_mat.family, chain_mat.is_polymer)), eta_wrap[starts],
+             eta_wrap[ends]], [1.0 / chain_c, 1.0 / wrap[starts], 1.0 / wrap[ends]]),
     )
+
+
+def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
+    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given
+    (seed 000: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
+    strain energy method (:func:`chaindrive.damping.modal_loss_factor`). A steel drive gets
+    about +0.0003; a polyamide chain about +0.015 (seed 000 Fig. 2: polymer chains damp more).
+    """
+    from chaindrive.damping import modal_loss_factor
+    from chaindrive.dynamics.ring import modal_analysis
+
+    modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
+    elastic = np.flatnonzero(~modal.rigid_body)
+    if elastic.size == 0:
+        return hinge_damping
+    eta = modal_loss_factor(params.loss_factors, params.stiffness_n_per_m,
+                            modal.shapes[:, elastic[0]])
+    return min(0.99, hinge_damping + eta / 2.0)

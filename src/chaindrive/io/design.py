@@ -23,6 +23,8 @@ from chaindrive.model import (
     MAX_TEETH,
     MIN_SPROCKETS,
     MIN_TEETH,
+    MOTORS,
+    RESISTANCES,
     ROLES,
     SIDES,
     TOOTH_FORMS,
@@ -30,6 +32,7 @@ from chaindrive.model import (
     ChainRequest,
     ChainSpec,
     Drive,
+    DynamicsSettings,
     Sprocket,
 )
 from chaindrive.units import DIMENSIONS, parse_quantity
@@ -120,11 +123,42 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
           minimum=0.0, maximum=1.0),
 )
+DYNAMICS_FIELDS: tuple[Field, ...] = (
+    Field("damping_ratio", "float", "damping ratio ζ of the ring (seed 000: D = 0.06)",
+          default=0.06, minimum=0.0, maximum=0.9),
+    Field("harmonics", "int", "harmonics of the tooth frequency in the polygonal excitation",
+          default=10, minimum=1, maximum=50),
+    Field("transient", "bool", "run the start-up transient", default=True),
+    Field("startup_duration", "time", "simulated time of the start-up", default=1.0,
+          minimum=0.0, maximum=60.0, exclusive_minimum=True),
+    Field("motor", "choice", "motor law on the driver: induction motor (Kloss), constant "
+          "torque or soft-start ramp", default="kloss", choices=MOTORS),
+    Field("breakdown_ratio", "float", "Kloss motor: breakdown torque / rated torque",
+          default=2.5, minimum=1.0, maximum=5.0, exclusive_minimum=True),
+    Field("critical_slip", "float", "Kloss motor: critical slip", default=0.25, minimum=0.0,
+          maximum=1.0, exclusive_minimum=True),
+    Field("ramp_time", "time", "ramp motor: time to full torque", default=0.5, minimum=0.0,
+          exclusive_minimum=True),
+    Field("resistance", "choice", "resistance law on the driven sprockets", default="linear",
+          choices=RESISTANCES),
+    Field("eccentricity", "length", "eccentricity of every sprocket (disturbance once per "
+          "revolution)", default=0.0, minimum=0.0),
+    Field("pitch_scatter", "length", "scatter (standard deviation) of the link pitches",
+          default=0.0, minimum=0.0),
+    Field("accumulated_error", "length", "accumulated error of the chain length", default=0.0,
+          minimum=0.0),
+)
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
     "chain": CHAIN_FIELDS,
     "sprockets": SPROCKET_FIELDS,
+    "dynamics": DYNAMICS_FIELDS,
 }
+
+
+#: Sections read by other parts of chaindrive, not by the drive loader: ``[optimize]``
+#: (the synthesis problem, :mod:`chaindrive.synthesis`).
+OTHER_SECTIONS: tuple[str, ...] = ("optimize",)
 
 
 def schema() -> dict[str, list[dict[str, Any]]]:
@@ -273,11 +307,14 @@ def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> Cha
 
 def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) -> Drive:
     """Build a validated :class:`Drive` from the parsed TOML of a design file."""
+    known = (*SECTIONS, *OTHER_SECTIONS)
     for key in data:
-        if key not in SECTIONS:
-            raise DesignError(key, "unknown section" + did_you_mean(key, SECTIONS)
-                              + f" (known: {', '.join(SECTIONS)})")
+        if key not in known:
+            raise DesignError(key, "unknown section" + did_you_mean(key, known)
+                              + f" (known: {', '.join(known)})")
     drive_values = parse_section(data.get("drive", {}), DRIVE_FIELDS, "drive")
+    dynamics = DynamicsSettings(**parse_section(data.get("dynamics", {}), DYNAMICS_FIELDS,
+                                                "dynamics"))
     chain_values = parse_section(data.get("chain", {}), CHAIN_FIELDS, "chain")
     raw_sprockets = data.get("sprockets")
     if raw_sprockets is None:
@@ -319,7 +356,7 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
                   request=request, contours=chain_values["contours"])
     return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                  power=drive_values["power"], tooth_form=tooth_form,
-                 service_factor=drive_values["service_factor"])
+                 service_factor=drive_values["service_factor"], dynamics=dynamics)
 
 
 def load_drive(path: str | Path) -> Drive:

@@ -1,0 +1,217 @@
+"""Dynamic response of a drive: start-up, steady state, AFC and the two-stage check.
+
+Entry point for :mod:`chaindrive.analysis` (issue 5 §5): :func:`dynamics_response` returns a
+:class:`DynamicResponse` whose ``to_dict()`` holds the fragments ``dynamics.startup``,
+``dynamics.steady``, ``dynamics.afc``, ``dynamics.coefficient_of_dynamics`` and
+``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6, seed-notes §2).
+
+Defaults (docs/dynamics2.md §5): induction motor by Kloss with the drive's power and the
+driver's speed as rated values, λ = 2.5, s_k = 0.25; resistance ∝ speed on the driven
+sprockets with their power shares at the nominal speed; pre-tension T_0 the sag tension of
+the span leaving the driver; polygonal excitation with 10 harmonics; damping ζ of the model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.dynamics.afc import AfcResult, afc_sweep
+from chaindrive.dynamics.excitation import (
+    SpanExcitation,
+    chain_error_excitation,
+    eccentricity_excitation,
+    path_positions,
+    polygonal_excitation,
+)
+from chaindrive.dynamics.startup import (
+    STEPS_PER_PERIOD,
+    ConstantTorque,
+    KlossMotor,
+    PolygonalLaw,
+    RampTorque,
+    ResistanceKind,
+    ResistanceLaw,
+    StartupResult,
+    simulate_startup,
+)
+from chaindrive.dynamics.steady import SteadyStateResult, damping_beta, steady_state
+from chaindrive.errors import DesignError
+from chaindrive.strength.safety import ALLOWABLE_DYNAMIC_SAFETY
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from chaindrive.dynamics.ring import RingModel
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, DynamicsSettings
+
+__all__ = ["DynamicResponse", "drive_startup", "dynamics_response", "mean_radii", "motor_of"]
+
+TWO_PI = 2.0 * math.pi
+
+
+def mean_radii(drive: Drive) -> NDArray[np.float64]:
+    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i (seed-notes §5)."""
+    return np.array([s.teeth for s in drive.sprockets], float) * drive.chain.pitch / TWO_PI
+
+
+def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    z = np.array([s.teeth for s in drive.sprockets], float)
+    return driver.speed, driver.speed * driver.teeth / z
+
+
+def _pretension(drive: Drive, geometry: GeometryResult) -> float:
+    from chaindrive.strength.loads import sag_tension
+
+    slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
+    return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination))
+
+
+def _shares(drive: Drive) -> NDArray[np.float64]:
+    from chaindrive.strength.loads import power_shares
+
+    return np.asarray(power_shares(drive), dtype=float)
+
+
+def polygonal_law(geometry: GeometryResult) -> PolygonalLaw:
+    """Exact polygonal hinge law of every span of a contour (for the start-up)."""
+    s0, s1 = path_positions(geometry)
+    z = np.array([g.teeth for g in geometry.sprockets], float)
+    starts = np.array([sp.start for sp in geometry.spans])
+    ends = np.array([sp.end for sp in geometry.spans])
+    return PolygonalLaw(geometry.pitch, z[starts], z[ends], s0, s1)
+
+
+def drive_startup(drive: Drive, geometry: GeometryResult, model: RingModel, *,
+                  motor: Callable[[float, float], float] | None = None,
+                  resistance: ResistanceKind = "linear", duration: float = 1.0,
+                  dt: float | None = None, pretension: float | None = None,
+                  polygonal: bool = True) -> StartupResult:
+    """Start-up transient of ``drive`` (module defaults; see
+    :func:`chaindrive.dynamics.startup.simulate_startup`). motor(t, ω) [N·m] (None: Kloss
+    from drive.power and the driver speed); resistance law kind; duration, dt [s];
+    pretension T_0 [N] (None: sag tension); polygonal excitation on/off."""
+    w_d, w = _speeds(drive)
+    if drive.power is None and motor is None:
+        raise DesignError("drive.power", "a start-up needs the power (or an explicit motor)")
+    P = drive.power or 0.0
+    if motor is None:
+        motor = KlossMotor(P, w_d)
+    law = ResistanceLaw(resistance, _shares(drive) * P / w, w) if P > 0 else None
+    T0 = _pretension(drive, geometry) if pretension is None else pretension
+    if dt is None:
+        f1 = model.modal().first_elastic_frequency_hz
+        fz = drive.driver.teeth * w_d / TWO_PI
+        dt = 1.0 / (STEPS_PER_PERIOD * max(f1 if f1 > 0 else 0.0, fz))
+    return simulate_startup(
+        model.masses_kg, model.stiffness_n_per_m, mean_radii(drive), damping_beta(model),
+        motor, drive.driver_index, law, duration=duration, dt=dt, pretension=T0,
+        polygonal=polygonal_law(geometry) if polygonal else None,
+        breaking_load=drive.chain.spec.breaking_load)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class DynamicResponse:
+    """Start-up, steady state (polygonal), AFC, disturbance loads and the two-stage check."""
+
+    startup: StartupResult | None
+    steady: SteadyStateResult
+    afc: AfcResult
+    disturbances: dict[str, SteadyStateResult]
+    span_tensions: NDArray[np.float64]
+    breaking_load: float
+    allowable_k: float
+
+    def strength_dict(self) -> dict[str, Any]:
+        """``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6)."""
+        k1 = self.startup.k1 if self.startup is not None else None
+        factors = [k for k in (k1, self.steady.k2, self.steady.k2_min) if k is not None]
+        return {"k1": k1, "k2": self.steady.k2, "k2min": self.steady.k2_min,
+                "allowable_k": self.allowable_k,
+                "dynamic_check_passed": bool(factors) and min(factors) >= self.allowable_k}
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON fragment: {"dynamics": {...}, "strength": {...}}."""
+        steady = self.steady.to_dict()
+        steady.pop("time_s")
+        steady.pop("span_load_trace_n")
+        dyn: dict[str, Any] = {
+            "startup": None if self.startup is None else self.startup.to_dict(),
+            "steady": steady,
+            "coefficient_of_dynamics": self.steady.coefficient_of_dynamics,
+            "afc": {"max_span_dynamic_load_n": self.afc.max_span_load.tolist(),
+                    "peak_tooth_frequencies_hz": self.afc.peak_tooth_frequencies_hz.tolist()},
+            "disturbances": {k: {"span_dynamic_load_n": v.span_dynamic_load.tolist()}
+                             for k, v in self.disturbances.items()},
+        }
+        return {"dynamics": dyn, "strength": self.strength_dict()}
+
+
+def motor_of(settings: DynamicsSettings, power: float, speed: float
+             ) -> Callable[[float, float], float]:
+    """The motor law a design's ``[dynamics]`` table names: Kloss induction motor rated at the
+    drive's power P [W] and driver speed ω [rad/s], constant rated torque P/ω, or a
+    soft-start ramp to it."""
+    if settings.motor == "kloss":
+        return KlossMotor(power, speed, settings.breakdown_ratio, settings.critical_slip)
+    if settings.motor == "ramp":
+        return RampTorque(power / speed, settings.ramp_time)
+    return ConstantTorque(power / speed)
+
+
+def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, *,
+                      span_tensions: Sequence[float] | None = None, harmonics: int = 10,
+                      startup: bool = True, startup_duration: float = 1.0,
+                      motor: Callable[[float, float], float] | None = None,
+                      resistance: ResistanceKind = "linear",
+                      speed_range: tuple[float, float] = (0.1, 1.5), afc_points: int = 2000,
+                      eccentricity: Sequence[float] | None = None,
+                      pitch_scatter: float = 0.0, accumulated_error: float = 0.0,
+                      allowable: float = ALLOWABLE_DYNAMIC_SAFETY) -> DynamicResponse:
+    """Everything issue 5 §5 asks of the dynamic response of ``drive``.
+
+    model : its ring model (``RingModel.from_drive``); span_tensions F_R [N] (None:
+    :func:`chaindrive.strength.loads.loads_of`); harmonics of the tooth
+    frequency; startup on/off, its duration [s], motor and resistance law; speed_range as
+    fractions of the nominal driver speed and afc_points for the AFC (F_2max → k2min);
+    eccentricity (n,) [m], pitch_scatter σ [m], accumulated_error Δ [m]: optional internal
+    disturbances (their loads are reported separately); allowable [k] = 2.5.
+    """
+    from chaindrive.dynamics.quality import nominal_peripheral_force
+    from chaindrive.strength.loads import loads_of
+
+    w_d, _ = _speeds(drive)
+    wz = drive.driver.teeth * w_d
+    ex = polygonal_excitation(geometry, wz, harmonics)
+    if span_tensions is not None:
+        T = np.asarray(span_tensions, float)
+    elif drive.power is not None:
+        T = np.asarray(loads_of(drive, geometry).span_tensions, float)
+    else:
+        T = np.zeros(len(drive.sprockets))
+    Q = drive.chain.spec.breaking_load
+    afc = afc_sweep(model, ex, np.linspace(*speed_range, afc_points) * w_d, drive.driver.teeth)
+    Ft = (nominal_peripheral_force(drive.power, geometry.sprockets[drive.driver_index]
+                                   .pitch_diameter, w_d) if drive.power else None)
+    radii = np.array([g.pitch_radius for g in geometry.sprockets])
+    steady = steady_state(model, ex, radii=radii, nominal_force=Ft, breaking_load=Q,
+                          operating_forces=T, resonance_loads=afc.max_span_load)
+    extra: dict[str, SpanExcitation] = {}
+    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
+        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
+    if pitch_scatter > 0 or accumulated_error != 0:
+        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
+                                                      accumulated_error=accumulated_error)
+    dist = {k: steady_state(model, v, radii=radii) for k, v in extra.items()}
+    st = (drive_startup(drive, geometry, model, motor=motor, resistance=resistance,
+                        duration=startup_duration)
+          if startup and (drive.power or motor is not None) else None)
+    return DynamicResponse(st, steady, afc, dist, T, Q, allowable)

@@ -1,0 +1,228 @@
+r"""Steady periodic response of the ring model to kinematic span excitation (frequency domain).
+
+Seed 000 §3.2–3.3, seed-notes §1: the equations of motion with the disturbance functions
+(prescribed span elongations d, :mod:`chaindrive.dynamics.excitation`)::
+
+    M ẍ + β K ẋ + K x = −Bᵀ C_s (d + β ḋ),      F = C_s (B x + d) + β C_s (B ẋ + ḋ)
+
+B (n×n) is the span incidence (e = B x, B[i, i] = −1, B[i, i+1] = +1), C_s = diag(c_i),
+K = Bᵀ C_s B the ring Laplacian of :mod:`chaindrive.dynamics.ring`.
+
+**Damping matrix.** Stiffness-proportional (Rayleigh β-) damping C = β K with
+β = 2ζ/ω_ref, ω_ref the first elastic natural frequency, so that mode has exactly the ratio
+ζ (seed 000: D = 0.06; or ζ = ψ/4π from seed 001) and mode j has ζ_j = ζ ω_j/ω_ref
+(Rao, Mechanical Vibrations, 6th ed., §6.13 "proportional damping"). Chosen because the
+damping of a chain is in the chain (hinge friction, seed 001): β K is a dashpot β c_i in
+parallel with every span, so the span force, the slack-span rule of the start-up and the
+energy balance stay local to the spans, and the same model serves the frequency domain,
+the modal sweep (β K is classical: the undamped modes decouple it) and the time domain.
+Its cost: higher modes are more damped than the first.
+
+For one angular frequency ω and complex amplitudes D (x = Re X e^{iωt}) the response is one
+complex linear solve (Rao §6.15, harmonic response of a damped multi-DOF system)::
+
+    [(1 + iωβ) K − ω² M] X = −(1 + iωβ) Bᵀ C_s D,     F = (1 + iωβ) C_s (B X + D)
+
+All harmonics are solved at once by :func:`numpy.linalg.solve` on the stacked systems.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from chaindrive.dynamics.quality import coefficient_of_dynamics
+from chaindrive.errors import DesignError
+from chaindrive.strength.safety import steady_safety_factor
+
+if TYPE_CHECKING:
+    from chaindrive.dynamics.excitation import SpanExcitation
+    from chaindrive.dynamics.ring import RingModel
+
+__all__ = [
+    "SteadyStateResult",
+    "damping_beta",
+    "harmonic_response",
+    "span_incidence",
+    "steady_state",
+]
+
+TWO_PI = 2.0 * math.pi
+
+
+def span_incidence(n: int, closed: bool = True) -> NDArray[np.float64]:
+    """B (n×n): e = B x, e_i = x_{i+1} − x_i (last row 0 for an open chain)."""
+    B = np.zeros((n, n))
+    i = np.arange(n)
+    B[i, i] -= 1.0
+    B[i, (i + 1) % n] += 1.0
+    if not closed:
+        B[-1] = 0.0
+    return B
+
+
+def damping_beta(model: RingModel, reference_angular_frequency: float | None = None) -> float:
+    """β = 2ζ/ω_ref [s] of the stiffness-proportional damping C = βK (module docstring).
+
+    ω_ref [rad/s]: default the first elastic natural frequency of ``model``; 0 when the
+    model has no elastic mode or ζ = 0.
+    """
+    w = reference_angular_frequency
+    if w is None:
+        modal = model.modal()
+        el = modal.angular_frequencies_rad_s[~modal.rigid_body]
+        w = float(el[0]) if el.size else 0.0
+    return 2.0 * model.damping_ratio / w if w > 0 else 0.0
+
+
+def _stiffness(model: RingModel) -> NDArray[np.float64]:
+    c = model.stiffness_n_per_m.copy()
+    if not model.closed:
+        c[-1] = 0.0
+    return c
+
+
+def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
+                      angular_frequencies: ArrayLike, elongation: ArrayLike
+                      ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Complex amplitudes of the displacements X (F, n) [m] and span forces (F, n) [N].
+
+    masses (n,) [kg]; stiffness (n,) span stiffness c_i [N/m] (0: slack or open); beta [s];
+    angular_frequencies (F,) ω > 0 [rad/s]; elongation (F, n) prescribed span elongation
+    amplitudes D [m]. One stacked :func:`numpy.linalg.solve` (module docstring).
+    """
+    m = np.asarray(masses, dtype=float)
+    c = np.asarray(stiffness, dtype=float)
+    w = np.atleast_1d(np.asarray(angular_frequencies, dtype=float))
+    D = np.atleast_2d(np.asarray(elongation, dtype=complex))
+    n = m.size
+    if D.shape != (w.size, n):
+        raise DesignError("elongation", f"need shape ({w.size}, {n}), got {D.shape}")
+    if np.any(w <= 0):
+        raise DesignError("angular_frequencies", "must be > 0 (the static part is not solved)")
+    B = span_incidence(n)
+    K = B.T @ (c[:, None] * B)
+    g = 1.0 + 1j * w * beta                                          # (F,)
+    A = g[:, None, None] * K[None] - (w**2)[:, None, None] * np.diag(m)[None]
+    rhs = -(g[:, None] * (D * c[None, :])) @ B                       # −g Bᵀ C_s D, row form
+    X = np.linalg.solve(A, rhs[..., None])[..., 0]
+    F = g[:, None] * c[None, :] * (X @ B.T + D)
+    return X, F
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class SteadyStateResult:
+    """Steady response of the ring to a kinematic excitation (seed 000 §3.3).
+
+    tooth_angular_frequency ω_z [rad/s]; angular_frequencies (F,) of the harmonics [rad/s];
+    displacement, span_force (F, n) complex amplitudes [m], [N]; times (T,) one period [s];
+    span_force_trace (T, n) [N] and displacement_trace (T, n) [m] over it;
+    span_dynamic_load (n,) max |F_i(t)| [N]; span_load_amplitude (n,) (max − min)/2 [N];
+    inertia_load (n,) max |m_i ẍ_i| [N]; displacement_amplitude (n,) x_A [m];
+    irregularity_percent (n,) Δ = 2 x_A/R·100 (seed 000); dynamic_load_rms F_D [N] (RMS of
+    span_dynamic_load); coefficient_of_dynamics K_D (None without F_t); k2, k2_min (None
+    without Q and F_R); periodic : False when the frequencies are not all harmonics of ω_z
+    (then the peaks are the sums of harmonic amplitudes: exact for incommensurate
+    frequencies, an upper bound otherwise).
+    """
+
+    tooth_angular_frequency: float
+    angular_frequencies: NDArray[np.float64]
+    displacement: NDArray[np.complex128]
+    span_force: NDArray[np.complex128]
+    times: NDArray[np.float64]
+    span_force_trace: NDArray[np.float64]
+    displacement_trace: NDArray[np.float64]
+    span_dynamic_load: NDArray[np.float64]
+    span_load_amplitude: NDArray[np.float64]
+    inertia_load: NDArray[np.float64]
+    displacement_amplitude: NDArray[np.float64]
+    irregularity_percent: NDArray[np.float64]
+    dynamic_load_rms: float
+    coefficient_of_dynamics: float | None
+    k2: float | None
+    k2_min: float | None
+    periodic: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (forces N, displacements mm)."""
+        return {
+            "tooth_frequency_hz": self.tooth_angular_frequency / TWO_PI,
+            "harmonic_frequencies_hz": (self.angular_frequencies / TWO_PI).tolist(),
+            "span_dynamic_load_n": self.span_dynamic_load.tolist(),
+            "span_load_amplitude_n": self.span_load_amplitude.tolist(),
+            "span_load_harmonics_n": np.abs(self.span_force).T.tolist(),
+            "inertia_load_n": self.inertia_load.tolist(),
+            "displacement_amplitude_mm": (self.displacement_amplitude * 1e3).tolist(),
+            "irregularity_percent": self.irregularity_percent.tolist(),
+            "dynamic_load_rms_n": self.dynamic_load_rms,
+            "coefficient_of_dynamics": self.coefficient_of_dynamics,
+            "k2": self.k2,
+            "k2min": self.k2_min,
+            "periodic": self.periodic,
+            "time_s": self.times.tolist(),
+            "span_load_trace_n": self.span_force_trace.T.tolist(),
+        }
+
+
+def _peaks(amplitudes: NDArray[np.complex128], trace: NDArray[np.float64] | None
+           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(max |y(t)|, (max − min)/2) per column, from the trace or from Σ|Y_f|."""
+    if trace is not None:
+        return np.abs(trace).max(axis=0), 0.5 * (trace.max(axis=0) - trace.min(axis=0))
+    s = np.abs(amplitudes).sum(axis=0)
+    return s, s
+
+
+def steady_state(model: RingModel, excitation: SpanExcitation, *,
+                 radii: ArrayLike | None = None, beta: float | None = None,
+                 samples: int = 128, nominal_force: float | None = None,
+                 breaking_load: float | None = None,
+                 operating_forces: ArrayLike | None = None,
+                 resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
+    """Steady response of ``model`` to ``excitation`` in the frequency domain.
+
+    radii (n,) pitch radii R_i [m] for the irregularity Δ = 2x_A/R·100 (seed 000; None: Δ
+    is nan); beta [s] (None: :func:`damping_beta`); samples per tooth period of the traces;
+    nominal_force F_t [N] → K_D = 1 + F_D/F_t (seed-notes §1); breaking_load Q [N] with
+    operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
+    and, with resonance_loads F_2max (n,) [N], k2_min (seed 000 §3.6, seed-notes §2).
+    """
+    m = model.masses_kg
+    c = _stiffness(model)
+    b = damping_beta(model) if beta is None else float(beta)
+    w = excitation.angular_frequencies
+    X, F = harmonic_response(m, c, b, w, excitation.elongation)
+    orders = excitation.orders
+    wz = float(w[0] / orders[0]) if w.size else 0.0
+    periodic = bool(np.allclose(orders, np.round(orders)) and np.all(orders >= 1))
+    times = np.linspace(0.0, TWO_PI / wz, int(samples), endpoint=False)
+    E = np.exp(1j * np.outer(times, w))                              # (T, F)
+    f_tr = (E @ F).real
+    x_tr = (E @ X).real
+    a_tr = (E @ (-(w**2)[:, None] * X)).real
+    f_max, f_amp = _peaks(F, f_tr if periodic else None)
+    _, x_amp = _peaks(X, x_tr if periodic else None)
+    acc, _ = _peaks(-(w**2)[:, None] * X, a_tr if periodic else None)
+    R = np.full(m.size, np.nan) if radii is None else np.asarray(radii, dtype=float)
+    rms = float(np.sqrt(np.mean(f_max**2)))
+    kd = (coefficient_of_dynamics(f_max, nominal_force)
+          if nominal_force is not None and np.any(f_max > 0) else None)
+    k2 = k2min = None
+    if breaking_load is not None and operating_forces is not None:
+        fr = np.asarray(operating_forces, dtype=float)
+        k2 = float(np.min(steady_safety_factor(breaking_load, fr, f_max)))
+        if resonance_loads is not None:
+            k2min = float(np.min(steady_safety_factor(breaking_load, fr,
+                                                      np.asarray(resonance_loads, float))))
+    return SteadyStateResult(
+        tooth_angular_frequency=wz, angular_frequencies=w, displacement=X, span_force=F,
+        times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,
+        span_load_amplitude=f_amp, inertia_load=m * acc, displacement_amplitude=x_amp,
+        irregularity_percent=200.0 * x_amp / R, dynamic_load_rms=rms,
+        coefficient_of_dynamics=kd, k2=k2, k2_min=k2min, periodic=periodic,
+    )

@@ -1,0 +1,193 @@
+"""Start-up transient (chaindrive.dynamics.startup)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+
+from chaindrive.dynamics.startup import (
+    ConstantTorque,
+    KlossMotor,
+    PolygonalLaw,
+    RampTorque,
+    ResistanceLaw,
+    _discretise,
+    _discretise_expm,
+    _exponentials,
+    linear_transient,
+    simulate_startup,
+)
+from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
+from chaindrive.errors import DesignError
+
+GROUND = 1e9
+
+
+def test_modal_discretisation_equals_block_exponential() -> None:
+    # Van Loan (1978) block exponential vs the modal closed form, with slack spans
+    rng = np.random.default_rng(1)
+    m = rng.uniform(0.3, 2.0, 12)
+    c = rng.uniform(1e5, 1e7, 12)
+    c[[3, 7]] = 0.0
+    P1, G1 = _discretise(m, c, 2 * 0.06 / 700, 2e-4)
+    P2, G2 = _discretise_expm(m, c, 2 * 0.06 / 700, 2e-4)
+    assert_allclose(P1, P2, atol=1e-9 * np.abs(P2).max())
+    assert_allclose(G1, G2, atol=1e-9 * np.abs(G2).max())
+
+
+def _step(zeta: float) -> tuple[np.ndarray, np.ndarray, float, float]:
+    m, c, F = 1.5, 6e5, 300.0
+    wn = math.sqrt(c / m)
+    t = np.linspace(0, 40 * 2 * math.pi / wn, 8001)
+    r = linear_transient([m, GROUND], [0.0, c], 2 * zeta / wn, t, np.array([F, 0.0]))
+    rel = r.displacements[:, 0] - r.displacements[:, 1]
+    return t, rel * c / F, wn, F  # normalised elongation of span 1 (static = 1)
+
+
+def test_step_response_overshoot_and_period() -> None:
+    # Rao §4.5 / Thomson: overshoot exp(−ζπ/√(1−ζ²)), damped period 2π/(ω_n√(1−ζ²))
+    zeta = 0.06
+    t, y, wn, _ = _step(zeta)
+    assert_allclose(y.max() - 1, math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2)), rtol=2e-3)
+    peaks = np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:])) + 1
+    period = np.diff(t[peaks]).mean()
+    assert_allclose(period, 2 * math.pi / (wn * math.sqrt(1 - zeta**2)), rtol=2e-3)
+
+
+def test_logarithmic_decrement() -> None:
+    # δ = ln(x_k/x_{k+1}) = 2πζ/√(1−ζ²) (Rao §2.6.3)
+    zeta = 0.03
+    _, y, _, _ = _step(zeta)
+    peaks = np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:])) + 1
+    a = y[peaks[:6]] - 1
+    delta = np.log(a[:-1] / a[1:]).mean()
+    assert_allclose(delta, 2 * math.pi * zeta / math.sqrt(1 - zeta**2), rtol=5e-3)
+
+
+RING3 = (np.array([0.7, 1.9, 0.6]), np.array([8e4, 4.4e6, 4.4e6]))
+
+
+@pytest.mark.parametrize("beta", [1e-5, 2e-3])  # 2e-3: the two stiff modes overdamped (ζ > 1)
+def test_closed_form_equals_discrete_propagation(beta: float) -> None:
+    # step closed form (modal step responses on the whole grid) vs the exact zero-order-hold
+    # modal recursion of the same constant forces sampled: equal to 1e-9 relative
+    m, c = RING3
+    t = np.linspace(0, 0.05, 2001)
+    f = np.array([100.0, -60.0, -40.0])
+    a = linear_transient(m, c, beta, t, f)
+    b = linear_transient(m, c, beta, t, np.tile(f, (t.size, 1)))
+    for x, y in ((b.span_forces, a.span_forces), (b.displacements, a.displacements),
+                 (b.velocities, a.velocities)):
+        assert_allclose(x, y, rtol=0, atol=1e-9 * np.abs(y).max())
+
+
+def test_ramp_closed_form_matches_dop853() -> None:
+    # soft start f·min(t/t_r, 1): closed-form modal ramp response vs a tight DOP853 solution
+    m, c = RING3
+    beta, tr = 2e-5, 0.013
+    t = np.linspace(0, 0.05, 1001)
+    f = np.array([100.0, -60.0, -40.0])
+    r = linear_transient(m, c, beta, t, f, ramp_time=tr)
+    B = np.array([[-1, 1, 0], [0, -1, 1], [1, 0, -1]], float)
+    K = B.T @ (c[:, None] * B)
+
+    def rhs(tt: float, y: np.ndarray) -> np.ndarray:
+        x, v = y[:3], y[3:]
+        return np.concatenate([v, (f * min(tt / tr, 1.0) - K @ x - beta * K @ v) / m])
+
+    sol = solve_ivp(rhs, (0, t[-1]), np.zeros(6), method="DOP853", t_eval=t, rtol=1e-11,
+                    atol=1e-14)
+    assert_allclose(r.displacements, sol.y[:3].T, atol=1e-7 * np.abs(sol.y[:3]).max())
+    assert_allclose(r.velocities, sol.y[3:].T, atol=1e-7 * np.abs(sol.y[3:]).max())
+
+
+def test_block_exponentials_equal_direct() -> None:
+    s = np.array([-3.0 + 2000j, -0.5 + 60j, -40.0 + 0j])
+    t = 0.25 + 1e-4 * np.arange(3001)
+    re, im = _exponentials(s, t)
+    e = np.exp(s[:, None] * t)
+    assert_allclose(re + 1j * im, e, rtol=0, atol=1e-12)
+
+
+def test_nonlinear_startup_matches_tight_reference() -> None:
+    # slack spans + Kloss motor + linear resistance against LSODA (rtol 1e-8)
+    m, c, R = np.array([0.5, 0.6, 0.4]), np.array([1e6, 2e6, 1.5e6]), np.array([.05, .08, .06])
+    beta, T0 = 2 * 0.05 / 2000, 50.0
+    mot = KlossMotor(3000.0, 26.0)
+    res = ResistanceLaw("linear", np.array([0.0, 60.0, 0.0]), np.array([26.0, 16.25, 21.7]))
+    r = simulate_startup(m, c, R, beta, mot, 0, res, duration=0.1, dt=2e-5, pretension=T0)
+    nxt, prv = np.array([1, 2, 0]), np.array([2, 0, 1])
+
+    def rhs(t: float, y: np.ndarray) -> np.ndarray:
+        x, v = y[:3], y[3:]
+        F = np.maximum(T0 + c * (x[nxt] - x) + beta * c * (v[nxt] - v), 0)
+        f = F - F[prv] - np.array([0, 1, 1]) * res(v / R) / R
+        f[0] += mot(t, v[0] / R[0]) / R[0]
+        return np.concatenate([v, f / m])
+
+    sol = solve_ivp(rhs, (0, 0.1), np.zeros(6), method="LSODA", t_eval=r.times,
+                    rtol=1e-8, atol=1e-11)
+    x, v = sol.y[:3].T, sol.y[3:].T
+    F = np.maximum(T0 + c * (x[:, nxt] - x) + beta * c * (v[:, nxt] - v), 0)
+    assert_allclose(r.max_span_force, F.max(axis=0), rtol=0.02)
+    assert_allclose(r.speeds[-1], v[-1] / R, rtol=0.01)
+    assert r.span_forces.min() >= 0.0  # tension only
+    assert r.slack_steps > 0  # span 0 does go slack in this case
+
+
+def test_kloss_motor_rated_and_breakdown_points() -> None:
+    mot = KlossMotor(3000.0, 150.0, breakdown_ratio=2.5, critical_slip=0.2)
+    assert_allclose(mot(0.0, 150.0), mot.rated_torque, rtol=1e-12)
+    w_k = mot.synchronous_speed * (1 - 0.2)
+    assert_allclose(mot(0.0, w_k), 2.5 * mot.rated_torque, rtol=1e-12)
+    assert abs(mot(0.0, mot.synchronous_speed)) < 1e-9
+
+
+def test_constant_torque_rigid_acceleration() -> None:
+    # no resistance: the free ring accelerates as one body, a = F/Σm
+    m, c, R = np.array([1.0, 2.0, 1.0]), np.array([1e6, 1e6, 1e6]), np.full(3, 0.1)
+    r = simulate_startup(m, c, R, 1e-5, ConstantTorque(4.0), 0, None, duration=0.2,
+                         dt=1e-4, pretension=1e4)
+    assert_allclose(r.speeds[-1].mean() * 0.1, 40.0 / 4.0 * 0.2, rtol=1e-3)
+
+
+def _small_ring(polygonal: bool) -> dict:
+    m, c, R = np.array([0.5, 0.6, 0.4, 0.7]), np.array([1e6, 2e6, 1.5e6, 1.2e6]), \
+        np.array([.05, .08, .06, .07])
+    law = PolygonalLaw(0.0127, np.array([25.0, 40, 30, 35]), np.array([40.0, 30, 35, 25]),
+                       np.array([0.0, 21.3, 40.9, 66.2]), np.array([9.6, 33.1, 55.4, 74.8]))
+    return {"masses": m, "stiffness": c, "radii": R, "beta": 2 * 0.05 / 2000,
+            "driver_index": 0, "duration": 0.05, "dt": 2e-5, "pretension": 50.0,
+            "polygonal": law if polygonal else None}
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize(("motor", "kind", "polygonal"), [
+    (KlossMotor(3000.0, 26.0), "linear", True),
+    (ConstantTorque(40.0), "constant", False),
+    (RampTorque(120.0, 0.02), "quadratic", True),
+])
+def test_numba_kernel_equals_numpy_loop(motor, kind: str, polygonal: bool) -> None:
+    # the compiled kernel and the NumPy loop take the same steps: equal to round-off
+    res = ResistanceLaw(kind, np.array([0.0, 60.0, 10.0, 5.0]), np.array([26.0, 16., 21., 19.]))
+    args = _small_ring(polygonal)
+    a = simulate_startup(motor=motor, resistance=res, backend="numba", **args)
+    b = simulate_startup(motor=motor, resistance=res, backend="numpy", **args)
+    assert b.slack_steps > 0  # the slack rule is exercised
+    assert_allclose(a.span_forces, b.span_forces, rtol=0, atol=1e-9 * b.span_forces.max())
+    assert_allclose(a.speeds, b.speeds, rtol=0, atol=1e-9 * np.abs(b.speeds).max())
+
+
+def test_unknown_motor_falls_back_to_numpy_loop() -> None:
+    args = _small_ring(False) | {"duration": 0.005}
+    a = simulate_startup(motor=lambda t, w: 40.0, resistance=None, **args)
+    b = simulate_startup(motor=ConstantTorque(40.0), resistance=None, backend="numpy", **args)
+    assert_allclose(a.speeds, b.speeds, rtol=1e-12, atol=1e-12)
+    with pytest.raises(DesignError):
+        simulate_startup(motor=lambda t, w: 40.0, resistance=None, backend="numba", **args)
+    with pytest.raises(DesignError):
+        simulate_startup(motor=ConstantTorque(1.0), resistance=None, backend="fortran", **args)
