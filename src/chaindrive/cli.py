@@ -14,11 +14,12 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated, Any
 
+import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
 
-from chaindrive.errors import ChainDriveError
+from chaindrive.errors import ChainDriveError, DesignError
 
 app = typer.Typer(
     name="chaindrive",
@@ -170,6 +171,90 @@ def select(
 
 
 @app.command()
+def simulate(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="history.csv")]
+    = Path("history.csv"),
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Start-up transient: write the time histories of every span force and sprocket speed."""
+    import chaindrive
+
+    with user_errors():
+        _csv_suffix(output)
+        result = chaindrive.analyze(chaindrive.load(file))
+        startup = None if result.response is None else result.response.startup
+        if startup is None:
+            raise DesignError("drive.power", "the start-up needs the power, the driver speed "
+                              "and [dynamics] transient = true")
+        names = _span_names(result)
+        header = (["time_s", *(f"span_{n}_n" for n in names),
+                   *(f"speed_{s.name}_rpm" for s in result.drive.sprockets)])
+        rows = np.column_stack((startup.times, startup.span_forces, startup.speeds * RPM))
+        _write_csv(output, header, rows)
+    if as_json:
+        _write_json({"history": str(output.resolve()), **startup.to_dict()})
+        return
+    print(f"max span force {startup.max_span_force.max():.1f} N, settling time "
+          f"{startup.settling_time:.3f} s, k1 = {startup.k1:.2f}; histories written to {output}")
+
+
+@app.command()
+def afc(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    output: Annotated[Path, typer.Option("-o", "--output", help="afc.csv")] = Path("afc.csv"),
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Amplitude–frequency characteristic: dynamic load of every span against the speed."""
+    import chaindrive
+
+    with user_errors():
+        _csv_suffix(output)
+        result = chaindrive.analyze(chaindrive.load(file))
+        if result.response is None:
+            raise DesignError("drive.power", "the sweep needs the power and the driver speed")
+        sweep = result.response.afc
+        header = ["driver_speed_rpm", "tooth_frequency_hz",
+                  *(f"span_{n}_n" for n in _span_names(result))]
+        rows = np.column_stack((sweep.driver_speeds * RPM, sweep.tooth_frequencies_hz,
+                                sweep.span_load))
+        _write_csv(output, header, rows)
+    if as_json:
+        doc = sweep.to_dict()
+        _write_json({"afc": str(output.resolve()), "resonances": doc["resonances"],
+                     "max_span_dynamic_load_n": doc["max_span_dynamic_load_n"]})
+        return
+    for j, k, f, fz in sweep.markers:
+        print(f"resonance: mode {j} ({f:.1f} Hz) × harmonic {k} at tooth frequency {fz:.1f} Hz")
+    print(f"sweep written to {output}")
+
+
+RPM = 30.0 / math.pi
+
+
+def _span_names(result: Any) -> list[str]:
+    return [f"{s.start_name}-{s.end_name}" for s in result.geometry.spans]
+
+
+def _csv_suffix(path: Path) -> None:
+    if path.suffix.lower() != ".csv":
+        raise DesignError("output", f"must end in .csv, got {str(path)!r}")
+
+
+def _write_csv(path: Path, header: list[str], rows: Any) -> None:
+    """Write a table at once (nothing half-way: the text is built before the file opens)."""
+    import io
+
+    buffer = io.StringIO()
+    buffer.write(",".join(header) + "\n")
+    np.savetxt(buffer, rows, delimiter=",", fmt="%.9g")
+    try:
+        path.write_text(buffer.getvalue(), encoding="utf-8")
+    except OSError as exc:
+        raise DesignError("output", f"cannot write {str(path)!r} ({exc.strerror})") from None
+
+
+@app.command()
 def schema(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
@@ -229,6 +314,78 @@ def draw(
         _write_json({"drawing": str(path.resolve())})
         return
     print(f"drawing written to {path}")
+
+
+@app.command()
+def optimize(
+    file: Annotated[Path, typer.Argument(help="design file (TOML) with an [optimize] table")],
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    out: Annotated[Path | None, typer.Option("--out", help="directory for the Pareto designs "
+                                             "(one TOML each) and the plot of the front")] = None,
+    scheduler: Annotated[str | None, typer.Option(
+        "--scheduler", help="address of a Dask scheduler (tcp://host:8786); default: this "
+        "process (or a local cluster when --db is given)")] = None,
+    db: Annotated[str | None, typer.Option(
+        "--db", help="study database URL (sqlite:///study.db or postgresql+psycopg://…); "
+        "a rerun with the same seed resumes from it")] = None,
+    seed: Annotated[int | None, typer.Option("--seed", help="random seed (default: the "
+                                             "file's [optimize.solver] seed)")] = None,
+) -> None:
+    """Search the Pareto set of a design (seed 000 optimal synthesis; docs/synthesis.md)."""
+    from chaindrive.io.design import drive_from_mapping, drive_to_toml
+    from chaindrive.synthesis import load_problem
+    from chaindrive.synthesis.solve import solve
+
+    with user_errors():
+        problem = load_problem(file)
+        evaluator = None
+        if scheduler is not None or db is not None:
+            from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
+
+            evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+        result = solve(problem, seed=seed, evaluator=evaluator)
+        written: list[str] = []
+        plot = None
+        if out is not None:
+            try:
+                out.mkdir(parents=True, exist_ok=True)
+                for k, p in enumerate(result.pareto, start=1):
+                    path = out / f"{file.stem}_pareto_{k:02d}.toml"
+                    path.write_text(drive_to_toml(drive_from_mapping(p.design, file.parent)),
+                                    encoding="utf-8")
+                    written.append(str(path))
+                if result.pareto:
+                    from chaindrive.plotting import pareto_front
+
+                    plot = out / f"{file.stem}_pareto_front.png"
+                    pareto_front(result).savefig(plot, dpi=120)
+            except OSError as exc:
+                raise DesignError("--out", f"cannot write to {str(out)!r} ({exc.strerror})") from None
+    doc = result.to_dict()
+    if as_json:
+        _write_json({**doc, "files": written, "plot": None if plot is None else str(plot)})
+        return
+    names = list(result.objectives)
+    con = _console()
+    con.print(f"[bold]{problem.base.name}[/bold] — {result.evaluations} designs evaluated by "
+              f"{result.method} (seed {result.seed}) in {result.seconds:.1f} s")
+    con.print(_table("Start design", ["design", *names, "constraints ok"],
+                     [["start", *[result.start.objectives[n] for n in names],
+                       result.start.feasible]]))
+    rows = []
+    for k, p in enumerate(result.pareto, start=1):
+        d = p.design
+        rows.append([str(k), d["chain"]["designation"],
+                     " ".join(str(s["teeth"]) for s in d["sprockets"]),
+                     *[p.objectives[n] for n in names], p.constraints_ok])
+    con.print(_table(f"Pareto set ({len(rows)} designs)",
+                     ["name", "chain", "teeth", *names, "constraints ok"], rows))
+    if not rows:
+        con.print("no design met every constraint: widen the bounds or the budget")
+    for path in written:
+        con.print(f"wrote {path}")
+    if plot is not None:
+        con.print(f"wrote {plot}")
 
 
 @app.command()

@@ -14,7 +14,9 @@ from numpy.testing import assert_allclose
 import chaindrive
 from tests.conftest import EXAMPLES
 
-EXAMPLE_FILES = sorted(EXAMPLES.glob("*.toml"))
+# the drives the issue asks for (eight_sprocket_optimize.toml is the 8-sprocket drive with an
+# [optimize] table, tested with the synthesis)
+EXAMPLE_FILES = sorted(p for p in EXAMPLES.glob("*.toml") if not p.stem.endswith("_optimize"))
 
 
 def test_examples_are_the_four_the_issue_asks_for() -> None:

@@ -14,7 +14,8 @@ from chaindrive.damping import hinge_friction_damping
 from chaindrive.dynamics import analyze_dynamics
 from chaindrive.multicontour import contour_factor_km, simulate_length_difference
 
-EXAMPLES = sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
+EXAMPLES = sorted(p for p in (Path(__file__).parents[2] / "examples").glob("*.toml")
+                  if not p.stem.endswith("_optimize"))
 
 
 @pytest.fixture(scope="module", params=EXAMPLES, ids=[p.stem for p in EXAMPLES])

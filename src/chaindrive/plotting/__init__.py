@@ -10,7 +10,7 @@ Families (one module each): :mod:`.layout` (contour to scale), :mod:`.kinematics
 and ratio over a tooth period, seed 003), :mod:`.strength` (static loads per span and per
 shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Campbell
 diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
-:mod:`.multicontour` (K_m distribution, seed 004).
+:mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front).
 """
 
 from __future__ import annotations
@@ -21,7 +21,8 @@ from chaindrive.plotting.kinematics import chain_speed, transmission_ratio
 from chaindrive.plotting.layout import contour_layout
 from chaindrive.plotting.multicontour import km_distribution
 from chaindrive.plotting.strength import shaft_loads, span_tensions
+from chaindrive.plotting.synthesis import pareto_front
 
 __all__ = ["absorption_vs_amplitude", "campbell_diagram", "chain_speed", "contour_layout",
-           "km_distribution", "mode_shapes", "shaft_loads", "span_tensions",
+           "km_distribution", "mode_shapes", "pareto_front", "shaft_loads", "span_tensions",
            "transmission_ratio"]

@@ -1,0 +1,216 @@
+"""The seed's detuning task: move the natural frequencies out of bands round the working
+frequencies and minimise the normalised amplitudes, by varying masses and/or stiffnesses
+within bounds.
+
+Seed 000 §3.2 (seed-notes §1): "varying masses and stiffnesses within bounds
+(M_k* ≤ M_k ≤ M_k**, C_l* ≤ C_l ≤ C_l**) detunes the spectrum from working frequencies";
+"minimising [the normalised amplitude] for the masses near a working frequency reduces
+vibroactivity". The objective (minimised)::
+
+    J = W · Σ_{j,w} max(0, b − |f_j − f_w|/f_w)²  +  A,
+
+b the band (default 10 % plus a 1 % safety), f_j the elastic natural frequencies, f_w the
+working frequencies, A the largest normalised amplitude at the working frequencies
+(:func:`chaindrive.synthesis.objectives.normalised_amplitude_at`) and W = 10⁴ so that
+clearing the bands comes first. Solved by differential evolution (Storn & Price 1997,
+:func:`scipy.optimize.differential_evolution`) in log m, log c over the whole population
+at once (stacked eigenproblems), reproducible with a seed.
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import differential_evolution
+
+from chaindrive.errors import DesignError
+from chaindrive.model import Drive
+
+__all__ = ["DetuningResult", "band_shortfall", "detune", "detune_drive", "detuning_objective",
+           "ring_modes_batch"]
+
+TWO_PI = 2.0 * np.pi
+BAND = 0.10
+PENALTY = 1e4
+
+
+def ring_modes_batch(masses: NDArray[np.float64], stiffness: NDArray[np.float64]
+                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Elastic frequencies (B, n−1) [Hz] and largest normalised amplitude per mode (B, n−1)
+    of B closed rings (seed 000 eq. 2; μ_k^(j) = |X_k|/Σ|X_i|)."""
+    B, n = masses.shape
+    d = 1.0 / np.sqrt(masses)
+    i = np.arange(n)
+    j = (i + 1) % n
+    A = np.zeros((B, n, n))
+    A[:, i, i] = (stiffness + np.roll(stiffness, 1, axis=1)) / masses
+    off = -stiffness * d * d[:, j]
+    A[:, i, j] += off
+    A[:, j, i] += off
+    lam, v = np.linalg.eigh(A)
+    X = np.abs(v * d[:, :, None])                                  # M^-1/2 v, columns = modes
+    mu = (X / X.sum(axis=1, keepdims=True)).max(axis=1)
+    f = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
+    return f[:, 1:], mu[:, 1:]
+
+
+def band_shortfall(frequencies_hz: NDArray[np.float64], working_hz: ArrayLike,
+                   band: float) -> NDArray[np.float64]:
+    """Σ max(0, band − |f_j − f_w|/f_w)² over modes and working frequencies, per design (B,)."""
+    w = np.asarray(working_hz, dtype=float)
+    rel = np.abs(frequencies_hz[:, :, None] - w[None, None, :]) / w[None, None, :]
+    return (np.maximum(0.0, band - rel) ** 2).sum(axis=(1, 2))
+
+
+def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float64],
+                       working_hz: ArrayLike, band: float = BAND + 0.01,
+                       damping: float = 0.06) -> NDArray[np.float64]:
+    """J of the module docstring for B designs (masses, stiffness (B, n)) → (B,)."""
+    f, mu = ring_modes_batch(masses, stiffness)
+    w = np.asarray(working_hz, dtype=float)
+    r = w[None, :, None] / f[:, None, :]
+    h = 1.0 / np.sqrt((1 - r**2) ** 2 + (2 * damping * r) ** 2)
+    amp = (mu[:, None, :] * h).max(axis=(1, 2))
+    return PENALTY * band_shortfall(f, w, band) + amp
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class DetuningResult:
+    """masses_kg, stiffness_n_per_m (n,) found; frequencies_hz (n−1,) elastic; working_hz;
+    min_distance: smallest |f_j − f_w|/f_w; cleared: min_distance ≥ band; objective J."""
+
+    masses_kg: NDArray[np.float64]
+    stiffness_n_per_m: NDArray[np.float64]
+    frequencies_hz: NDArray[np.float64]
+    working_hz: NDArray[np.float64]
+    min_distance: float
+    band: float
+    objective: float
+
+    @property
+    def cleared(self) -> bool:
+        """Every natural frequency at least ``band`` from every working frequency."""
+        return self.min_distance >= self.band
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"masses_kg": self.masses_kg.tolist(),
+                "stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
+                "natural_frequencies_hz": self.frequencies_hz.tolist(),
+                "working_frequencies_hz": self.working_hz.tolist(),
+                "min_distance_percent": 100 * self.min_distance, "band_percent": 100 * self.band,
+                "cleared": self.cleared, "objective": self.objective}
+
+
+def _bounds(values: NDArray, bounds: ArrayLike | None, path: str) -> NDArray:
+    if bounds is None:
+        return np.column_stack([values, values])
+    b = np.asarray(bounds, dtype=float)
+    if b.shape != (values.size, 2) or np.any(b[:, 0] <= 0) or np.any(b[:, 0] > b[:, 1]):
+        raise DesignError(path, f"need ({values.size}, 2) positive [low, high] pairs")
+    return b
+
+
+def _de_kwargs(seed: int) -> dict[str, Any]:
+    name = "rng" if "rng" in inspect.signature(differential_evolution).parameters else "seed"
+    return {name: seed}
+
+
+def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
+           band: float = BAND, mass_bounds: ArrayLike | None = None,
+           stiffness_bounds: ArrayLike | None = None, damping: float = 0.06,
+           seed: int = 0, maxiter: int = 200, popsize: int = 20) -> DetuningResult:
+    """Masses [kg] and/or stiffnesses [N/m] within bounds that clear ±band round every
+    working frequency [Hz] and minimise the normalised amplitude (module docstring).
+
+    mass_bounds, stiffness_bounds : (n, 2) [low, high] per mass / branch (None: fixed; a
+    pair with low = high fixes one value). Starts from (and keeps, if no better is found)
+    the given values when they lie inside the bounds.
+    """
+    m0 = np.asarray(masses, dtype=float)
+    c0 = np.asarray(stiffness, dtype=float)
+    if m0.ndim != 1 or m0.shape != c0.shape or m0.size < 2:
+        raise DesignError("masses", "need masses and stiffnesses of equal length ≥ 2")
+    w = np.asarray(working_hz, dtype=float)
+    if w.size == 0 or np.any(w <= 0):
+        raise DesignError("working_hz", "need at least one positive working frequency")
+    if not 0 < band < 1:
+        raise DesignError("band", f"must be a fraction in (0, 1), got {band!r}")
+    b = np.log(np.vstack([_bounds(m0, mass_bounds, "mass_bounds"),
+                          _bounds(c0, stiffness_bounds, "stiffness_bounds")]))
+    free = np.flatnonzero(b[:, 1] > b[:, 0])
+    if free.size == 0:
+        raise DesignError("detune", "no mass or stiffness may vary: give bounds")
+    n = m0.size
+    base = np.exp(b[:, 0])
+    fixed = b[:, 1] == b[:, 0]
+    base[:n][fixed[:n] & (mass_bounds is None)] = m0[fixed[:n] & (mass_bounds is None)]
+    base[n:][fixed[n:] & (stiffness_bounds is None)] = c0[fixed[n:] & (stiffness_bounds is None)]
+
+    def unpack(z: NDArray) -> tuple[NDArray, NDArray]:
+        p = np.repeat(base[None, :], z.shape[1], axis=0)  # fixed values exactly as given
+        p[:, free] = np.exp(z.T)
+        return p[:, :n], p[:, n:]
+
+    def func(z: NDArray) -> NDArray:
+        return detuning_objective(*unpack(z), w, band + 0.01, damping)
+
+    x0 = np.log(np.concatenate([m0, c0]))[free]
+    inside = bool(np.all(x0 >= b[free, 0]) and np.all(x0 <= b[free, 1]))
+    res = differential_evolution(func, b[free], maxiter=maxiter, popsize=popsize, tol=1e-8,
+                                 polish=False, vectorized=True, updating="deferred",
+                                 x0=x0 if inside else None, **_de_kwargs(seed))
+    m, c = unpack(res.x[:, None])
+    f, _ = ring_modes_batch(m, c)
+    dist = float(np.min(np.abs(f[0][:, None] - w[None, :]) / w[None, :]))
+    return DetuningResult(m[0], c[0], f[0], w, dist, band, float(func(res.x[:, None])[0]))
+
+
+def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]], *,
+                 band: float = BAND, seed: int = 0, harmonics: int = 3,
+                 maxiter: int = 200) -> tuple[Drive, DetuningResult]:
+    """Detune a drive by added inertia (flywheels) on the named shafts.
+
+    added_inertia : sprocket name → (ΔI_min, ΔI_max) [kg·m²]; the masses m_k = (I_k + ΔI_k)/R_k²
+    (seed 000 §3.1) vary, the stiffnesses stay those of the drive (static span tensions);
+    working frequencies: shafts and the tooth frequency with ``harmonics`` harmonics
+    (:func:`chaindrive.dynamics.resonance.working_frequencies`). Returns the drive with the
+    new inertias (``Sprocket.inertia`` = I_k + ΔI_k) and the result.
+    """
+    from chaindrive.dynamics.resonance import working_frequencies
+    from chaindrive.synthesis.objectives import DesignState
+
+    state = DesignState(drive)
+    p = state.parameters
+    names = [s.name for s in drive.sprockets]
+    bounds = np.column_stack([p.masses_kg, p.masses_kg])
+    for name, (lo, hi) in added_inertia.items():
+        if name not in names:
+            raise DesignError(f"added_inertia.{name}", f"no sprocket named {name!r}")
+        if not 0 <= lo <= hi:
+            raise DesignError(f"added_inertia.{name}", f"need 0 ≤ low ≤ high, got {(lo, hi)!r}")
+        k = names.index(name)
+        bounds[k] = (p.inertias_kg_m2[k] + np.array([lo, hi])) / p.pitch_radii_m[k] ** 2
+    d = state.placed
+    assert d.driver.speed is not None
+    w = [x.frequency for x in working_frequencies(d.driver.speed, d.driver.teeth,
+                                                  [s.teeth for s in d.sprockets],
+                                                  harmonics=harmonics)]
+    res = detune(p.masses_kg, p.stiffness_n_per_m, w, band=band, mass_bounds=bounds,
+                 seed=seed, maxiter=maxiter)
+    inertia = res.masses_kg * p.pitch_radii_m**2
+    sprockets = tuple(replace(s, inertia=float(inertia[k])) if s.name in added_inertia else s
+                      for k, s in enumerate(drive.sprockets))
+    return drive.with_sprockets(sprockets), res
+
+
+def detuning_metric_value(frequencies_hz: Sequence[float], working_hz: Sequence[float],
+                          band: float = BAND) -> float:
+    """Band shortfall of one design (0 when every mode is clear), for the objective registry."""
+    return float(band_shortfall(np.asarray(frequencies_hz, dtype=float)[None, :], working_hz,
+                                band)[0])

@@ -1,0 +1,225 @@
+"""Multi-objective search of a synthesis problem: Optuna's NSGA-II sampler (default) or pymoo
+NSGA-II.
+
+Both search the same vector (:class:`chaindrive.synthesis.problem.Gene`): integers and
+categories are rounded in :func:`chaindrive.synthesis.objectives.decode_vector`, so one
+decoding serves both libraries. The start design is in the first generation. The Pareto set
+is taken from every design evaluated (an archive), keeping the feasible non-dominated ones
+(Deb et al., NSGA-II, IEEE TEC 6(2) 2002, constrained domination); each comes back as the
+dictionary a TOML design file loads to, so it can be re-analysed or written out. Same seed,
+same result (serial or through a Dask evaluator, which keeps the order of a batch).
+Why Optuna by default: docs/synthesis.md (benchmark on the 8-sprocket example,
+benchmarks/bench_synthesis.py).
+"""
+
+from __future__ import annotations
+
+import time
+import tomllib
+import warnings
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.errors import DesignError
+from chaindrive.io.design import drive_to_toml
+from chaindrive.model import Drive
+from chaindrive.synthesis.objectives import Evaluation, evaluate_vector
+from chaindrive.synthesis.problem import Problem
+
+__all__ = ["BatchEvaluator", "ParetoDesign", "SynthesisResult", "design_mapping", "dominates",
+           "pareto_indices", "serial_evaluator", "solve"]
+
+#: evaluates a batch of search vectors, in order
+BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
+                          list[tuple[Evaluation, dict[str, Any] | None]]]
+
+
+def design_mapping(drive: Drive) -> dict[str, Any]:
+    """The dictionary a TOML design file of ``drive`` loads to (via ``drive_to_toml``)."""
+    return tomllib.loads(drive_to_toml(drive))
+
+
+def serial_evaluator(problem: Problem, xs: Sequence[Sequence[float]]
+                     ) -> list[tuple[Evaluation, dict[str, Any] | None]]:
+    """Evaluate a batch in this process."""
+    out = []
+    for x in xs:
+        ev, drive = evaluate_vector(problem, x)
+        out.append((ev, None if drive is None else design_mapping(drive)))
+    return out
+
+
+@dataclass(frozen=True, slots=True)
+class ParetoDesign:
+    """One design of the Pareto set: objectives (natural sign), constraint values g,
+    constraints_ok, design (the TOML mapping) and its search vector."""
+
+    objectives: dict[str, float]
+    constraints: dict[str, float]
+    constraints_ok: bool
+    design: dict[str, Any]
+    vector: tuple[float, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (the ``pareto[]`` items of ``chaindrive optimize --json``)."""
+        return {"objectives": dict(self.objectives), "constraints_ok": self.constraints_ok,
+                "constraints": dict(self.constraints), "design": self.design}
+
+
+@dataclass(frozen=True, slots=True)
+class SynthesisResult:
+    """Pareto set (sorted by the first objective), the start design's evaluation, the
+    number of designs evaluated, method, seed and wall time [s]."""
+
+    objectives: tuple[str, ...]
+    start: Evaluation
+    pareto: tuple[ParetoDesign, ...]
+    evaluations: int
+    method: str
+    seed: int
+    seconds: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"objectives": list(self.objectives), "method": self.method, "seed": self.seed,
+                "evaluations": self.evaluations, "seconds": self.seconds,
+                "start": self.start.to_dict(), "pareto": [p.to_dict() for p in self.pareto]}
+
+
+def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
+    """a Pareto-dominates b (all minimised): no worse in every objective, better in one."""
+    a_, b_ = np.asarray(a), np.asarray(b)
+    return bool(np.all(a_ <= b_) and np.any(a_ < b_))
+
+
+def pareto_indices(F: NDArray[np.float64]) -> list[int]:
+    """Indices of the non-dominated rows of F (minimised), duplicates kept once."""
+    keep: list[int] = []
+    for i in range(F.shape[0]):
+        dominated = np.any(np.all(F[i] >= F, axis=1) & np.any(F[i] > F, axis=1))
+        if not dominated and not any(np.array_equal(F[i], F[j]) for j in keep):
+            keep.append(i)
+    return keep
+
+
+class _Archive:
+    """Every evaluation of a run, for the Pareto set."""
+
+    def __init__(self, problem: Problem, evaluator: BatchEvaluator) -> None:
+        self.problem = problem
+        self.evaluator = evaluator
+        self.rows: list[tuple[tuple[float, ...], Evaluation, dict[str, Any] | None]] = []
+
+    def evaluate(self, X: Sequence[Sequence[float]]) -> list[Evaluation]:
+        results = self.evaluator(self.problem, X)
+        for x, (ev, design) in zip(X, results, strict=True):
+            self.rows.append((tuple(float(v) for v in x), ev, design))
+        return [ev for ev, _ in results]
+
+    def pareto(self) -> tuple[ParetoDesign, ...]:
+        names = self.problem.objectives
+        ok = [r for r in self.rows if r[1].feasible and r[2] is not None]
+        if not ok:
+            return ()
+        F = np.array([r[1].minimised(names) for r in ok])
+        idx = sorted(pareto_indices(F), key=lambda i: tuple(F[i]))
+        return tuple(ParetoDesign(ok[i][1].objectives, ok[i][1].constraints, True,
+                                  ok[i][2] or {}, ok[i][0]) for i in idx)
+
+
+def _arrays(problem: Problem, evs: Sequence[Evaluation]) -> tuple[NDArray, NDArray]:
+    F = np.array([e.minimised(problem.objectives) for e in evs])
+    G = np.array([[e.violation()] for e in evs])
+    return F, G
+
+
+def _solve_pymoo(problem: Problem, archive: _Archive, pop: int, gens: int, seed: int) -> None:
+    from pymoo.algorithms.moo.nsga2 import NSGA2
+    from pymoo.core.problem import Problem as PymooProblem
+    from pymoo.optimize import minimize
+
+    lo, hi = (np.array(b, dtype=float) for b in problem.bounds)
+
+    class _P(PymooProblem):
+        def __init__(self) -> None:
+            super().__init__(n_var=lo.size, n_obj=len(problem.objectives), n_ieq_constr=1,
+                             xl=lo, xu=hi)
+
+        def _evaluate(self, X: NDArray, out: dict[str, Any], *args: Any, **kwargs: Any) -> None:
+            out["F"], out["G"] = _arrays(problem, archive.evaluate(X.tolist()))
+
+    rng = np.random.default_rng(seed)
+    X0 = lo + rng.random((pop, lo.size)) * (hi - lo)
+    X0[0] = problem.start_vector()
+    minimize(_P(), NSGA2(pop_size=pop, sampling=X0, eliminate_duplicates=True),
+             ("n_gen", gens), seed=seed, verbose=False)
+
+
+def _suggest(trial: Any, problem: Problem) -> list[float]:
+    x = []
+    for g in problem.genes:
+        if g.kind == "int":
+            x.append(float(trial.suggest_int(g.name, int(g.low), int(g.high))))
+        elif g.kind == "choice":
+            x.append(trial.suggest_categorical(g.name, list(range(len(g.choices)))) + 0.5)
+        else:
+            x.append(trial.suggest_float(g.name, g.low, g.high))
+    return x
+
+
+def _start_params(problem: Problem) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for g, v in zip(problem.genes, problem.start_vector(), strict=True):
+        out[g.name] = round(v) if g.kind == "int" else (
+            int(v) if g.kind == "choice" else float(v))
+    return out
+
+
+def _solve_optuna(problem: Problem, archive: _Archive, pop: int, gens: int, seed: int) -> None:
+    import optuna
+
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", optuna.exceptions.ExperimentalWarning)
+        sampler = optuna.samplers.NSGAIISampler(population_size=pop, seed=seed)
+        study = optuna.create_study(directions=["minimize"] * len(problem.objectives),
+                                    sampler=sampler)
+        study.enqueue_trial(_start_params(problem))
+        for _ in range(gens):
+            trials = [study.ask() for _ in range(pop)]
+            xs = [_suggest(t, problem) for t in trials]
+            for t, ev in zip(trials, archive.evaluate(xs), strict=True):
+                t.set_constraint("violation", ev.violation())
+                study.tell(t, ev.minimised(problem.objectives))
+
+
+def solve(problem: Problem, *, method: str | None = None, population: int | None = None,
+          generations: int | None = None, seed: int | None = None,
+          evaluator: BatchEvaluator | None = None) -> SynthesisResult:
+    """Search the Pareto set of ``problem``.
+
+    method ``"optuna"`` (Optuna NSGAIISampler) or ``"nsga2"`` (pymoo); population,
+    generations, seed: default the problem's ``[optimize.solver]``; evaluator: evaluates a
+    batch of vectors in order
+    (default :func:`serial_evaluator`; :func:`chaindrive.synthesis.studies.dask_evaluator`
+    spreads a population over a Dask cluster and stores it in a study database).
+    """
+    s = problem.solver
+    method = method or s.method
+    pop, gens = population or s.population, generations or s.generations
+    seed = s.seed if seed is None else seed
+    archive = _Archive(problem, evaluator or serial_evaluator)
+    t0 = time.perf_counter()
+    start = archive.evaluate([problem.start_vector()])[0]
+    if method == "nsga2":
+        _solve_pymoo(problem, archive, pop, gens, seed)
+    elif method == "optuna":
+        _solve_optuna(problem, archive, pop, gens, seed)
+    else:
+        raise DesignError("optimize.solver.method", f'must be "nsga2" or "optuna", got {method!r}')
+    return SynthesisResult(problem.objectives, start, archive.pareto(), len(archive.rows),
+                           method, seed, time.perf_counter() - t0)

@@ -1,0 +1,158 @@
+"""Studies on Dask with the study database (issue 8): a lost worker loses no finished
+evaluation and every result is stored once; an interrupted study resumes from its SQLite file
+without repeating finished work."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+import tomllib
+
+import pytest
+from sqlalchemy import func, select
+
+from chaindrive.synthesis.studies import (
+    EVALUATIONS,
+    StudyStore,
+    evaluate_design,
+    monte_carlo_inputs,
+    run_study,
+    sweep_inputs,
+)
+from tests.conftest import EXAMPLES
+
+distributed = pytest.importorskip("distributed")
+
+
+def _base() -> dict:
+    return tomllib.loads((EXAMPLES / "eight_sprocket.toml").read_text(encoding="utf-8"))
+
+
+def _rows(url: str, study: str) -> tuple[int, int]:
+    store = StudyStore(url)
+    with store.engine.connect() as con:
+        total = con.execute(select(func.count()).select_from(EVALUATIONS)
+                            .where(EVALUATIONS.c.study == study)).scalar_one()
+        distinct = con.execute(select(func.count(func.distinct(EVALUATIONS.c.key)))
+                               .where(EVALUATIONS.c.study == study)).scalar_one()
+    store.close()
+    return total, distinct
+
+
+def test_sweep_inputs_cartesian_and_paths() -> None:
+    inputs = sweep_inputs(_base(), {"sprockets[1].x": ["790 mm", "810 mm"],
+                                    "drive.power": ["3 kW", "4 kW", "5 kW"]})
+    assert len(inputs) == 6
+    assert {(i["design"]["sprockets"][1]["x"], i["design"]["drive"]["power"])
+            for i in inputs} == {(x, p) for x in ("790 mm", "810 mm")
+                                 for p in ("3 kW", "4 kW", "5 kW")}
+    assert _base()["sprockets"][1]["x"] == "800 mm"  # the base is not modified
+
+
+def test_monte_carlo_reproducible_and_spread() -> None:
+    a = monte_carlo_inputs(_base(), {"sprockets[1].x": "0.5 mm"}, 200, seed=4)
+    b = monte_carlo_inputs(_base(), {"sprockets[1].x": "0.0005 m"}, 200, seed=4)
+    xa = [float(i["design"]["sprockets"][1]["x"].split()[0]) for i in a]
+    xb = [float(i["design"]["sprockets"][1]["x"].split()[0]) for i in b]
+    assert xa == pytest.approx(xb)  # the tolerance is converted to the value's unit
+    mean = sum(xa) / len(xa)
+    sd = (sum((x - mean) ** 2 for x in xa) / (len(xa) - 1)) ** 0.5
+    assert abs(mean - 800) < 0.15 and 0.4 < sd < 0.6
+
+
+def test_sweep_survives_a_killed_worker(tmp_path) -> None:
+    url = f"sqlite:///{tmp_path / 'study.db'}"
+    inputs = sweep_inputs(_base(), {"sprockets[1].x": [f"{790 + 0.5 * k:g} mm"
+                                                        for k in range(40)],
+                                    "drive.power": ["3 kW", "4 kW", "5 kW"]})
+    killed: dict[str, int] = {}
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        pids = client.run(os.getpid)
+
+        def kill_when_started() -> None:
+            watcher = StudyStore(url)
+            deadline = time.monotonic() + 60
+            while time.monotonic() < deadline:
+                n = watcher.count("sweep")
+                if n >= 5:
+                    killed["at"] = n
+                    os.kill(next(iter(pids.values())), signal.SIGKILL)
+                    break
+                time.sleep(0.005)
+            watcher.close()
+
+        StudyStore(url).close()  # create the table before the watcher polls it
+        thread = threading.Thread(target=kill_when_started)
+        thread.start()
+        result = run_study(evaluate_design, inputs, study="sweep", db=url, client=client,
+                           progress=False)
+        thread.join()
+    assert "at" in killed and killed["at"] < len(inputs)  # killed part-way
+    assert result.computed == len(inputs) and result.reused == 0
+    assert all(r is not None and "objectives" in r for r in result.results)
+    assert _rows(url, "sweep") == (len(inputs), len(inputs))  # every result stored once
+
+
+_CALLS: dict = {"n": 0, "fail_after": None, "seen": []}
+
+
+def _counting(inputs: dict) -> dict:
+    """Counts its calls; raises (an interruption) after ``fail_after`` calls."""
+    _CALLS["n"] += 1
+    _CALLS["seen"].append(inputs["x"])
+    if _CALLS["fail_after"] is not None and _CALLS["n"] > _CALLS["fail_after"]:
+        raise RuntimeError("interrupted")
+    return {"square": inputs["x"] ** 2}
+
+
+def test_interrupted_study_resumes_from_sqlite(tmp_path) -> None:
+    url = f"sqlite:///{tmp_path / 'resume.db'}"
+    inputs = [{"x": k} for k in range(30)]
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        _CALLS.update(n=0, fail_after=12)
+        with pytest.raises(RuntimeError, match="interrupted"):
+            run_study(_counting, inputs, study="resume", db=url, client=client, progress=False)
+        deadline = time.monotonic() + 10
+        while any(client.processing().values()) and time.monotonic() < deadline:
+            time.sleep(0.01)  # let the cancelled stragglers of the interrupted run finish
+        store = StudyStore(url)
+        stored = store.count("resume")
+        done = {round(r["square"] ** 0.5) for r in store.get("resume",
+                                                               store.keys("resume")).values()}
+        assert 0 < stored < len(inputs)
+        _CALLS.update(n=0, fail_after=None, seen=[])
+        result = run_study(_counting, inputs, study="resume", db=url, client=client,
+                           progress=False)
+    assert _CALLS["n"] == len(inputs) - stored  # finished work is not repeated
+    assert not set(_CALLS["seen"]) & done
+    assert result.reused == stored and result.computed == len(inputs) - stored
+    assert [r["square"] for r in result.results] == [k * k for k in range(30)]
+    assert _rows(url, "resume") == (30, 30)
+
+
+def test_optimiser_population_on_dask_matches_serial_and_resumes(tmp_path) -> None:
+    from chaindrive.synthesis.problem import load_problem
+    from chaindrive.synthesis.solve import solve
+    from chaindrive.synthesis.studies import dask_evaluator
+
+    pytest.importorskip("optuna")
+    problem = load_problem(EXAMPLES / "eight_sprocket_optimize.toml")
+    serial = solve(problem, population=8, generations=2, seed=5)
+    url = f"sqlite:///{tmp_path / 'opt.db'}"
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        first = solve(problem, population=8, generations=2, seed=5,
+                      evaluator=dask_evaluator(db=url, study="opt", client=client))
+        stored = StudyStore(url).count("opt")
+        again = solve(problem, population=8, generations=2, seed=5,
+                      evaluator=dask_evaluator(db=url, study="opt", client=client))
+    assert [p.objectives for p in first.pareto] == [p.objectives for p in serial.pareto]
+    assert [p.objectives for p in again.pareto] == [p.objectives for p in serial.pareto]
+    assert StudyStore(url).count("opt") == stored  # the rerun computed nothing new
