@@ -30,7 +30,8 @@ def load(path: str | Path) -> Drive:
 
 
 def analyze(drive: Drive, **options: Any) -> Analysis:
-    """Run every analysis of the drive; see :func:`chaindrive.analysis.analyze`."""
+    """Run every analysis of the drive (``response=False``: stop after the modal analysis);
+    see :func:`chaindrive.analysis.analyze`."""
     from chaindrive.analysis import analyze as _analyze
 
     return _analyze(drive, **options)

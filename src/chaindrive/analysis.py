@@ -12,7 +12,6 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.dynamics.resonance import DynamicsResult, analyze_dynamics, resonance_warnings
-from chaindrive.dynamics.response import DynamicResponse, dynamics_response, motor_of
 from chaindrive.dynamics.ring import RingModel
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
@@ -21,6 +20,7 @@ from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.model import Drive
 
 if TYPE_CHECKING:
+    from chaindrive.dynamics.response import DynamicResponse
     from chaindrive.multicontour.drive import ContourCheck
 from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
 
@@ -144,7 +144,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
             for c in own if not c.feasible]
 
 
-def analyze(drive: Drive) -> Analysis:
+def analyze(drive: Drive, *, response: bool = True) -> Analysis:
     """Run the analyses of a drive in order.
 
     1. selection (when the power is given): the chain a method of its family would choose —
@@ -155,9 +155,11 @@ def analyze(drive: Drive) -> Analysis:
     5. dynamics: the ring model with the static span tensions (sag), natural frequencies and
        forms, span transverse frequencies, resonance table and Campbell data from 10 % to
        150 % of the driver speed (issue 4), with the damping of ``drive.dynamics``;
-    6. dynamic response (when the power is given): start-up transient, steady state under
-       the polygonal effect (and the optional disturbances), amplitude–frequency sweep,
-       coefficient of dynamics and the two-stage check k1, k2, k2min (issue 5).
+    6. dynamic response (when the power is given and ``response``): start-up transient
+       (when ``drive.dynamics.transient``), steady state under the polygonal effect (and the
+       optional disturbances), amplitude–frequency sweep, coefficient of dynamics and the
+       two-stage check k1, k2, k2min (issue 5). ``response=False`` stops after the modal
+       analysis: what an interactive page or an optimiser recomputes after every change.
     """
     settings = drive.dynamics
     warnings: list[str] = []
@@ -202,14 +204,17 @@ def analyze(drive: Drive) -> Analysis:
             float(dynamics.parameters.chain_stiffness_n_per_m[loads.tight_span]))
         # the most loaded contour carries P/K_m (seed 004 eq. 15: [p]_m = [p]·K_m)
         strength = strength_of(replace(placed, power=placed.power / contours.km), geometry)
-    response = None
-    if one.power is not None and omega is not None and strength is not None:
+    dynamic_response = None
+    if response and one.power is not None and omega is not None and strength is not None:
+        # the time-domain solvers (scipy.linalg, numba) are imported only when needed
+        from chaindrive.dynamics.response import dynamics_response, motor_of
+
         params = dynamics.parameters
         model = RingModel(params.masses_kg, params.stiffness_n_per_m,
                           damping_ratio=dynamics.damping_ratio,
                           names=tuple(s.name for s in placed.sprockets))
         n = len(placed.sprockets)
-        response = dynamics_response(
+        dynamic_response = dynamics_response(
             one, geometry, model, span_tensions=strength.loads.span_tensions,
             harmonics=settings.harmonics, startup=settings.transient,
             startup_duration=settings.startup_duration,
@@ -218,6 +223,7 @@ def analyze(drive: Drive) -> Analysis:
             eccentricity=[settings.eccentricity] * n if settings.eccentricity > 0 else None,
             pitch_scatter=settings.pitch_scatter, accumulated_error=settings.accumulated_error)
     return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
-                    strength=strength, dynamics=dynamics, response=response, contours=contours,
+                    strength=strength, dynamics=dynamics, response=dynamic_response,
+                    contours=contours,
                     warnings=(*warnings, *geometry.warnings,
                               *resonance_warnings(dynamics.resonances)))

@@ -76,12 +76,16 @@ def _write_json(document: dict[str, Any]) -> None:
 def analyze(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    quick: Annotated[bool, typer.Option(
+        "--quick", help="stop after the modal analysis (no start-up, steady state or sweep)")]
+    = False,
 ) -> None:
-    """Analyse a drive: contour geometry, chain length, speeds, non-uniformity."""
+    """Analyse a drive: geometry, speeds, selection and strength, natural frequencies, and the
+    dynamic response (start-up, steady state, amplitude–frequency sweep)."""
     import chaindrive
 
     with user_errors():
-        result = chaindrive.analyze(chaindrive.load(file))
+        result = chaindrive.analyze(chaindrive.load(file), response=not quick)
         document = result.to_dict()
     if as_json:
         _write_json(document)

@@ -10,48 +10,65 @@ Low-level API::
 
 from __future__ import annotations
 
-from chaindrive.dynamics.afc import AfcResult, afc_sweep
-from chaindrive.dynamics.excitation import (
-    SpanExcitation,
-    chain_error_excitation,
-    eccentricity_excitation,
-    polygonal_excitation,
-)
-from chaindrive.dynamics.quality import coefficient_of_dynamics, nominal_peripheral_force
-from chaindrive.dynamics.resonance import (
-    CampbellData,
-    DynamicsResult,
-    Resonance,
-    WorkingFrequency,
-    analyze_dynamics,
-    campbell_data,
-    resonance_table,
-    shaft_frequencies,
-    tooth_frequency,
-    working_frequencies,
-)
-from chaindrive.dynamics.ring import (
-    ModalResult,
-    RingModel,
-    modal_analysis,
-    ring_frequencies_batch,
-    ring_stiffness_matrix,
-)
-from chaindrive.dynamics.startup import (
-    ConstantTorque,
-    KlossMotor,
-    RampTorque,
-    ResistanceLaw,
-    StartupResult,
-    linear_transient,
-    simulate_startup,
-)
-from chaindrive.dynamics.steady import SteadyStateResult, harmonic_response, steady_state
-from chaindrive.dynamics.transverse import (
-    parametric_resonance_frequency,
-    parametric_zone,
-    span_transverse_frequencies,
-)
+import importlib
+from typing import Any
+
+#: Public name → the submodule that defines it. The submodules are imported on first use
+#: (PEP 562), so that ``import chaindrive.dynamics`` does not pull in the time-domain solvers
+#: (scipy.linalg, numba) when only the modal analysis is wanted.
+_WHERE: dict[str, str] = {
+    "AfcResult": "afc",
+    "CampbellData": "resonance",
+    "ConstantTorque": "startup",
+    "DynamicsResult": "resonance",
+    "KlossMotor": "startup",
+    "ModalResult": "ring",
+    "RampTorque": "startup",
+    "ResistanceLaw": "startup",
+    "Resonance": "resonance",
+    "RingModel": "ring",
+    "SpanExcitation": "excitation",
+    "StartupResult": "startup",
+    "SteadyStateResult": "steady",
+    "WorkingFrequency": "resonance",
+    "afc_sweep": "afc",
+    "analyze_dynamics": "resonance",
+    "campbell_data": "resonance",
+    "chain_error_excitation": "excitation",
+    "coefficient_of_dynamics": "quality",
+    "eccentricity_excitation": "excitation",
+    "harmonic_response": "steady",
+    "linear_transient": "startup",
+    "modal_analysis": "ring",
+    "nominal_peripheral_force": "quality",
+    "parametric_resonance_frequency": "transverse",
+    "parametric_zone": "transverse",
+    "polygonal_excitation": "excitation",
+    "resonance_table": "resonance",
+    "ring_frequencies_batch": "ring",
+    "ring_stiffness_matrix": "ring",
+    "shaft_frequencies": "resonance",
+    "simulate_startup": "startup",
+    "span_transverse_frequencies": "transverse",
+    "steady_state": "steady",
+    "tooth_frequency": "resonance",
+    "working_frequencies": "resonance",
+}
+
+
+def __getattr__(name: str) -> Any:
+    """Import the submodule that defines ``name`` on first use (PEP 562)."""
+    module = _WHERE.get(name)
+    if module is None:
+        raise AttributeError(f"module 'chaindrive.dynamics' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"chaindrive.dynamics.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
 
 __all__ = [
     "AfcResult",
