@@ -1,0 +1,89 @@
+"""The commands that write files: report, draw, simulate, afc and optimize. Each writes what
+it says, and a bad output name is one line with exit status 2 and nothing written."""
+
+from __future__ import annotations
+
+import csv
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import EXAMPLES
+
+SEED = EXAMPLES / "seed_three_sprocket.toml"
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
+                          text=True, check=False)
+
+
+@pytest.fixture(scope="module")
+def short_seed(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The seed example with a 0.1 s start-up (keeps the test fast)."""
+    path = tmp_path_factory.mktemp("d") / "seed.toml"
+    path.write_text(SEED.read_text(encoding="utf-8")
+                    + '\n[dynamics]\nstartup_duration = "0.1 s"\n', encoding="utf-8")
+    return path
+
+
+def test_simulate_writes_the_histories(short_seed: Path, tmp_path: Path) -> None:
+    out = tmp_path / "history.csv"
+    proc = run_cli("simulate", str(short_seed), "-o", str(out), "--json")
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    rows = list(csv.reader(out.read_text(encoding="utf-8").splitlines()))
+    assert rows[0][0] == "time_s"
+    assert len(rows[0]) == 1 + 3 + 3  # time, three span forces, three speeds
+    last_time = float(rows[-1][0])
+    assert abs(last_time - 0.1) < 1e-3
+    peaks = [max(float(r[1 + i]) for r in rows[1:]) for i in range(3)]
+    assert max(peaks) == pytest.approx(doc["max_force_n"], rel=1e-6)
+
+
+def test_afc_writes_the_sweep(short_seed: Path, tmp_path: Path) -> None:
+    out = tmp_path / "afc.csv"
+    proc = run_cli("afc", str(short_seed), "-o", str(out), "--json")
+    assert proc.returncode == 0, proc.stderr
+    rows = list(csv.reader(out.read_text(encoding="utf-8").splitlines()))
+    assert rows[0][:2] == ["driver_speed_rpm", "tooth_frequency_hz"]
+    assert len(rows) == 1 + 2000  # issue 5: 2000 points from 10 % to 150 % of the speed
+    assert float(rows[1][0]) == pytest.approx(30.0, rel=1e-6)
+    assert float(rows[-1][0]) == pytest.approx(450.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("command", ["simulate", "afc"])
+def test_wrong_suffix_writes_nothing(short_seed: Path, tmp_path: Path, command: str) -> None:
+    out = tmp_path / "out.txt"
+    proc = run_cli(command, str(short_seed), "-o", str(out))
+    assert proc.returncode == 2
+    assert proc.stderr.strip() == f"error: output: must end in .csv, got {str(out)!r}"
+    assert not out.exists()
+
+
+def test_report_and_drawing(short_seed: Path, tmp_path: Path) -> None:
+    html = tmp_path / "report.html"
+    assert run_cli("report", str(short_seed), "-o", str(html)).returncode == 0
+    text = html.read_text(encoding="utf-8")
+    assert "<html" in text and "Contour geometry" in text
+    dxf = tmp_path / "layout.dxf"
+    assert run_cli("draw", str(short_seed), "-o", str(dxf)).returncode == 0
+    assert dxf.read_text(encoding="utf-8", errors="replace").startswith("  0\nSECTION")
+
+
+def test_optimize_json(tmp_path: Path) -> None:
+    proc = run_cli("optimize", str(EXAMPLES / "eight_sprocket_optimize.toml"), "--json",
+                   "--out", str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["pareto"]
+    for p in doc["pareto"]:
+        assert {"objectives", "constraints_ok", "design"} <= set(p)
+    assert len(doc["files"]) == len(doc["pareto"])
+    assert all(Path(f).exists() for f in doc["files"])
+    no_problem = run_cli("optimize", str(SEED))
+    assert no_problem.returncode == 2
+    assert no_problem.stderr.startswith("error: ")
