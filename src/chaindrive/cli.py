@@ -392,6 +392,19 @@ def optimize(
         con.print(f"wrote {plot}")
 
 
+@app.command(name="app")
+def app_command(
+    host: Annotated[str, typer.Option(help="address to serve on")] = "127.0.0.1",
+    port: Annotated[int, typer.Option(help="port to serve on")] = 8501,
+) -> None:
+    """Start the interactive web page (Streamlit) and print its address."""
+    from chaindrive.app import run_app
+
+    status = run_app(host=host, port=port)
+    if status:
+        raise typer.Exit(status)
+
+
 @app.command()
 def catalog(
     name: Annotated[str | None, typer.Argument(help="show one chain or material")] = None,

@@ -1,0 +1,382 @@
+"""The pure layer of the web page: the edited form ↔ the design mapping ↔ the analysis.
+
+Nothing here imports Streamlit, so every step the page takes is testable on its own:
+
+* :func:`form_from_design` turns the mapping a TOML design file loads to into the form the
+  page edits (drive and chain fields, one row per sprocket with numbers in mm, rpm, kg·m², °);
+* :func:`design_from_form` turns the edited form back into that mapping (numbers become
+  strings with their unit, empty cells are left out so the defaults of
+  :mod:`chaindrive.io.design` apply);
+* :func:`evaluate` validates the mapping with :func:`chaindrive.io.design.drive_from_mapping`
+  and runs :func:`chaindrive.analyze`; a user's mistake comes back as the
+  :class:`~chaindrive.errors.ChainDriveError` line the command line prints, with
+  :func:`locate` telling the page which field (section, row, column) to show it next to.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from chaindrive.errors import ChainDriveError, DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.analysis import Analysis
+    from chaindrive.model import Drive
+
+RPM_PER_RAD_S = 30.0 / math.pi
+
+
+@dataclass(frozen=True, slots=True)
+class Column:
+    """One column of the sprocket table: its key in a row, the design-file field it
+    writes, the unit its numbers are in (``""`` for plain values), and the factor that turns
+    the SI value of the field into the column's number."""
+
+    key: str
+    field: str
+    label: str
+    unit: str = ""
+    dimension: str = ""
+    from_si: float = 1.0
+
+
+#: The sprocket table, in the order the page shows it.
+SPROCKET_COLUMNS: tuple[Column, ...] = (
+    Column("name", "name", "name"),
+    Column("teeth", "teeth", "teeth"),
+    Column("x_mm", "x", "x [mm]", "mm", "length", 1e3),
+    Column("y_mm", "y", "y [mm]", "mm", "length", 1e3),
+    Column("role", "role", "role"),
+    Column("side", "side", "side"),
+    Column("adjustable", "adjustable", "adjustable"),
+    Column("adjust_angle_deg", "adjust_angle", "adjust angle [°]", "deg", "angle",
+           180.0 / math.pi),
+    Column("speed_rpm", "speed", "speed [rpm]", "rpm", "speed", RPM_PER_RAD_S),
+    Column("power_share", "power_share", "power share"),
+    Column("inertia_kg_m2", "inertia", "inertia [kg·m²]", "kg*m^2", "inertia", 1.0),
+    Column("material", "material", "material"),
+)
+COLUMN_OF_FIELD: dict[str, Column] = {c.field: c for c in SPROCKET_COLUMNS}
+
+#: Drive fields the page edits as numbers: form key → (field, unit, SI → number factor).
+DRIVE_NUMBERS: dict[str, tuple[str, str, float]] = {"power_kw": ("power", "kW", 1e-3)}
+#: Form key of each design-file field that the form shows under another name.
+FORM_KEY_OF_FIELD: dict[str, str] = {"power": "power_kw"}
+
+
+@dataclass(slots=True)
+class DesignForm:
+    """What the page edits: the [drive] and [chain] values and the sprocket rows.
+
+    drive : name, power_kw, service_factor, tooth_form (None: default);
+    chain : designation, standard, series, strands, links, allow_odd, contours, catalog;
+    sprockets : one dict per row with the keys of :data:`SPROCKET_COLUMNS`;
+    other : every other table of the design file (``[dynamics]``, …), kept as it was read.
+    """
+
+    drive: dict[str, Any] = field(default_factory=dict)
+    chain: dict[str, Any] = field(default_factory=dict)
+    sprockets: list[dict[str, Any]] = field(default_factory=list)
+    other: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True)
+class Location:
+    """Where a field path such as ``sprockets[2].teeth`` lives in the form: section
+    (``drive``, ``chain``, ``sprockets`` or ``design``), row (sprockets only, None for the
+    table as a whole) and key (form key of the field, None for the whole section/row)."""
+
+    section: str
+    row: int | None = None
+    key: str | None = None
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Outcome:
+    """The result of :func:`evaluate`: the analysis, or the message of what is wrong.
+
+    message : the one line the command line prints after ``error:`` (None when fine);
+    location : where the page shows it; unexpected : True when the failure is not a
+    user's mistake (the page then shows a short note, never a traceback).
+    """
+
+    analysis: Analysis | None = None
+    drive: Drive | None = None  # as designed (before the take-up moved a sprocket)
+    message: str | None = None
+    location: Location | None = None
+    unexpected: bool = False
+
+    @property
+    def ok(self) -> bool:
+        """True when the design was analysed."""
+        return self.analysis is not None
+
+
+# --- examples and files ---------------------------------------------------------------------
+
+def examples_dir() -> Path:
+    """The ``examples/`` folder of the source tree (bundled design files)."""
+    return Path(__file__).resolve().parents[3] / "examples"
+
+
+def list_examples(folder: Path | None = None) -> dict[str, Path]:
+    """Bundled examples: file stem → path, sorted by name (empty when none are present)."""
+    root = examples_dir() if folder is None else folder
+    return {p.stem: p for p in sorted(root.glob("*.toml"))} if root.is_dir() else {}
+
+
+def read_design_text(text: str, name: str = "design") -> dict[str, Any]:
+    """Parse the text of a TOML design file (errors as :func:`chaindrive.load` gives them)."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(name, f"TOML syntax error: {exc}") from None
+
+
+# --- design mapping → form ------------------------------------------------------------------
+
+def _si(value: Any, dimension: str, path: str) -> float:
+    from chaindrive.units import parse_quantity
+
+    return parse_quantity(value, dimension, path)
+
+
+def _cell_from_design(col: Column, value: Any, path: str) -> Any:
+    """The table cell of one design-file value (quantities converted to the column unit)."""
+    if value is None or not col.dimension:
+        return value
+    return _si(value, col.dimension, path) * col.from_si
+
+
+def form_from_design(data: Mapping[str, Any]) -> DesignForm:
+    """The editable form of a design mapping (as loaded from TOML).
+
+    Quantities are converted to the units of the form (mm, rpm, kW, kg·m², °); a value that
+    cannot be read raises the :class:`DesignError` the command line would print. Unknown
+    fields are not dropped silently: they are kept so that :func:`evaluate` names them.
+    """
+    drive_in = dict(data.get("drive") or {})
+    power = drive_in.pop("power", None)
+    drive = {"name": drive_in.pop("name", None),
+             "power_kw": None if power is None else _si(power, "power", "drive.power") * 1e-3,
+             "service_factor": drive_in.pop("service_factor", None),
+             "tooth_form": drive_in.pop("tooth_form", None), **drive_in}
+    chain_in = dict(data.get("chain") or {})
+    chain = {k: chain_in.pop(k, None) for k in ("designation", "standard", "series", "strands",
+                                                "links", "contours", "catalog")}
+    chain["allow_odd"] = chain_in.pop("allow_odd", False)
+    pitch = chain_in.pop("pitch", None)
+    chain["pitch_mm"] = None if pitch is None else _si(pitch, "length", "chain.pitch") * 1e3
+    chain.update(chain_in)
+    rows = []
+    for i, raw in enumerate(data.get("sprockets") or []):
+        if not isinstance(raw, Mapping):
+            raise DesignError(f"sprockets[{i}]", f"must be a table, got {type(raw).__name__}")
+        row: dict[str, Any] = {c.key: None for c in SPROCKET_COLUMNS}
+        for key, value in raw.items():
+            col = COLUMN_OF_FIELD.get(key)
+            if col is None:
+                row[key] = value
+            else:
+                row[col.key] = _cell_from_design(col, value, f"sprockets[{i}].{key}")
+        rows.append(row)
+    other = {k: v for k, v in data.items() if k not in ("drive", "chain", "sprockets")}
+    return DesignForm(drive, chain, rows, other)
+
+
+# --- form → design mapping ------------------------------------------------------------------
+
+def is_empty(value: Any) -> bool:
+    """True for an empty cell: None, NaN (pandas' missing value) or blank text."""
+    if value is None:
+        return True
+    if isinstance(value, float) and math.isnan(value):
+        return True
+    if isinstance(value, str) and not value.strip():
+        return True
+    if type(value).__name__ in ("NAType", "NaTType"):  # pandas' missing values
+        return True
+    try:  # numpy NaN scalars
+        return bool(value != value)
+    except (TypeError, ValueError):
+        return False
+
+
+def plain(value: Any) -> Any:
+    """A cell as plain Python: numpy/pandas scalars unwrapped, whole floats of int columns
+    left as floats (the caller decides)."""
+    item = getattr(value, "item", None)
+    return item() if callable(item) and not isinstance(value, str | bytes) else value
+
+
+def _number_text(value: Any, unit: str) -> Any:
+    """``value`` with its unit as the design file writes it (``1364.0 mm``); a non-number is
+    passed through unchanged so that the parser names it."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return value
+    return f"{value!r} {unit}"
+
+
+def _whole(value: Any) -> Any:
+    """A whole float (``15.0`` from a numeric editor column) as an int; anything else as is."""
+    if isinstance(value, float) and math.isfinite(value) and value.is_integer():
+        return int(value)
+    return value
+
+
+def _row_to_design(row: Mapping[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, raw in row.items():
+        value = plain(raw)
+        if is_empty(value):
+            continue
+        col = next((c for c in SPROCKET_COLUMNS if c.key == key), None)
+        if col is None:
+            out[key] = value
+        elif col.dimension:
+            out[col.field] = _number_text(value, col.unit)
+        elif col.field == "teeth":
+            out[col.field] = _whole(value)
+        elif col.field == "adjustable":
+            if value:  # False is the default: leave it out
+                out[col.field] = bool(value)
+        else:
+            out[col.field] = value
+    return out
+
+
+def _section_to_design(values: Mapping[str, Any], numbers: Mapping[str, tuple[str, str, float]],
+                       whole: Iterable[str] = ()) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, raw in values.items():
+        value = plain(raw)
+        if is_empty(value):
+            continue
+        if key in numbers:
+            name, unit, _ = numbers[key]
+            out[name] = _number_text(value, unit)
+        elif key in whole:
+            out[key] = _whole(value)
+        else:
+            out[key] = value
+    return out
+
+
+CHAIN_NUMBERS: dict[str, tuple[str, str, float]] = {"pitch_mm": ("pitch", "mm", 1e3)}
+
+
+def design_from_form(form: DesignForm) -> dict[str, Any]:
+    """The design mapping (what a TOML design file loads to) of the edited form."""
+    chain = _section_to_design(form.chain, CHAIN_NUMBERS, ("strands", "links", "contours"))
+    if chain.get("allow_odd") is False:
+        del chain["allow_odd"]
+    return {
+        "drive": _section_to_design(form.drive, DRIVE_NUMBERS),
+        "chain": chain,
+        "sprockets": [_row_to_design(r) for r in form.sprockets],
+        **form.other,
+    }
+
+
+# --- the design mapping as a TOML file ------------------------------------------------------
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int | float):
+        return repr(value)
+    text = str(value).replace("\\", "\\\\").replace('"', '\\"')
+    return f'"{text}"'
+
+
+def design_to_toml(design: Mapping[str, Any], comment: str | None = None) -> str:
+    """The design mapping as a TOML design file, written as entered (it need not be valid:
+    a half-finished design can be saved and loaded again)."""
+    lines = [f"# {line}" for line in (comment or "").splitlines()]
+    tables = [k for k, v in design.items() if k != "sprockets" and isinstance(v, Mapping)]
+    for section in tables:
+        values = design.get(section) or {}
+        if values:
+            lines += ([""] if lines else []) + [f"[{section}]"]
+            lines += [f"{k} = {_toml_value(v)}" for k, v in values.items()]
+    for row in design.get("sprockets") or []:
+        lines += ["", "[[sprockets]]"] + [f"{k} = {_toml_value(v)}" for k, v in row.items()]
+    return "\n".join(lines) + "\n"
+
+
+# --- evaluation -----------------------------------------------------------------------------
+
+def _index_of(token: str, names: Sequence[str]) -> int | None:
+    if token.isdigit():
+        return int(token)
+    return names.index(token) if token in names else None
+
+
+def locate(path: str, names: Sequence[str] = ()) -> Location:
+    """Where the field ``path`` of an error lives in the form.
+
+    ``sprockets[2].teeth`` → (sprockets, 2, "teeth"); ``sprockets[S3].speed`` (a name in the
+    brackets, as the model writes it) → its row; ``sprockets.role`` → (sprockets, None,
+    "role"); ``drive.power`` → (drive, None, "power_kw"); anything else → ("design").
+    """
+    head, _, rest = path.partition(".")
+    section, _, bracket = head.partition("[")
+    if section not in ("drive", "chain", "sprockets"):
+        return Location("design")
+    row = _index_of(bracket.rstrip("]"), names) if bracket else None
+    key = rest.split(".")[0] or None
+    if section == "sprockets" and key is not None:
+        col = COLUMN_OF_FIELD.get(key)
+        key = col.key if col is not None else key
+    elif key is not None:
+        key = FORM_KEY_OF_FIELD.get(key, "pitch_mm" if key == "pitch" else key)
+    return Location(section, row, key)
+
+
+def interactive_analysis(drive: Drive) -> Analysis:
+    """The analysis the page redraws after every edit: everything :func:`chaindrive.analyze`
+    computes except the time-consuming dynamic response (start-up transient and AFC sweep,
+    which the page runs on demand). Uses ``analyze(drive, response=False)`` when the
+    analysis offers it, else the design's own settings with the start-up switched off."""
+    import inspect
+
+    from chaindrive.analysis import analyze
+
+    if "response" in inspect.signature(analyze).parameters:
+        return analyze(drive, response=False)  # type: ignore[call-arg]
+    settings = getattr(drive, "dynamics", None)
+    if settings is not None and getattr(settings, "transient", False):
+        drive = replace(drive, dynamics=replace(settings, transient=False))
+    return analyze(drive)
+
+
+def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
+             full: bool = False) -> Outcome:
+    """Validate the design mapping and analyse it (:func:`interactive_analysis`, or the whole
+    :func:`chaindrive.analyze` with ``full``); never raises for a bad design.
+
+    A :class:`~chaindrive.errors.ChainDriveError` gives ``message`` = ``str(error)`` (the
+    line the command line prints) and ``location`` from its ``field``; any other exception
+    gives a short note with its class name and ``unexpected=True``.
+    """
+    import chaindrive
+    from chaindrive.io.design import drive_from_mapping
+
+    names = [str(r.get("name")) for r in design.get("sprockets") or [] if isinstance(r, Mapping)]
+    drive = None
+    try:
+        drive = drive_from_mapping(design, base_dir)
+        analysis = chaindrive.analyze(drive) if full else interactive_analysis(drive)
+    except ChainDriveError as exc:
+        where = getattr(exc, "field", "")
+        return Outcome(drive=drive, message=str(exc), location=locate(where, names))
+    except Exception as exc:  # the page must never show a traceback
+        return Outcome(drive=drive, unexpected=True, location=Location("design"),
+                       message=f"the analysis failed unexpectedly ({type(exc).__name__}); "
+                               "please report it with the design file")
+    return Outcome(analysis=analysis, drive=drive)

@@ -1,0 +1,308 @@
+"""The pure layer of the web page (issue 7): form ↔ design mapping ↔ analysis, without a
+browser. The page's numbers are checked against the library reading the same design from a
+TOML file, and its messages against what ``chaindrive analyze`` prints."""
+
+from __future__ import annotations
+
+import math
+import tomllib
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Any
+
+import pytest
+from typer.testing import CliRunner
+
+import chaindrive
+from chaindrive import app as app_pkg
+from chaindrive.app import runs
+from chaindrive.app.state import (
+    SPROCKET_COLUMNS,
+    DesignForm,
+    Location,
+    design_from_form,
+    design_to_toml,
+    evaluate,
+    form_from_design,
+    is_empty,
+    list_examples,
+    locate,
+    read_design_text,
+)
+from chaindrive.app.views import check_records, headline, layout_svg, modal_records, recompute
+from chaindrive.cli import app as cli_app
+from chaindrive.errors import DesignError
+from tests.conftest import EXAMPLES
+
+SEED = EXAMPLES / "seed_three_sprocket.toml"
+
+
+def seed_form() -> DesignForm:
+    return form_from_design(tomllib.loads(SEED.read_text(encoding="utf-8")))
+
+
+def cli_error(design: dict[str, Any], tmp_path: Path) -> str:
+    """The line ``chaindrive analyze`` prints for the design written as a TOML file."""
+    path = tmp_path / "design.toml"
+    path.write_text(design_to_toml(design), encoding="utf-8")
+    result = CliRunner().invoke(cli_app, ["analyze", str(path)])
+    assert result.exit_code == 2, result.output
+    return result.stderr.strip()
+
+
+# --- form ↔ design ------------------------------------------------------------------------------
+
+def test_seed_form_gives_the_drive_the_file_gives() -> None:
+    from chaindrive.io.design import drive_from_mapping
+
+    from_form = drive_from_mapping(design_from_form(seed_form()))
+    from_file = chaindrive.load(SEED)
+    assert from_form.chain.spec == from_file.chain.spec
+    assert from_form.power == pytest.approx(from_file.power)
+    for a, b in zip(from_form.sprockets, from_file.sprockets, strict=True):
+        assert (a.name, a.teeth, a.role, a.side) == (b.name, b.teeth, b.role, b.side)
+        assert (a.x, a.y) == pytest.approx((b.x, b.y), abs=1e-12)
+        assert (a.speed is None) == (b.speed is None)
+        if a.speed is not None:
+            assert a.speed == pytest.approx(b.speed, rel=1e-12)
+
+
+def test_form_uses_the_table_units() -> None:
+    form = seed_form()
+    s1 = form.sprockets[0]
+    assert set(s1) == {c.key for c in SPROCKET_COLUMNS}
+    # seed file: x = "1364 mm", speed = "300 rpm", power = "0.5 kW"
+    assert s1["x_mm"] == pytest.approx(1364.0)
+    assert s1["speed_rpm"] == pytest.approx(300.0)
+    assert form.drive["power_kw"] == pytest.approx(0.5)
+
+
+def test_other_units_are_converted_on_load() -> None:
+    data = tomllib.loads(SEED.read_text(encoding="utf-8"))
+    data["sprockets"][0]["x"] = "1.364 m"
+    data["sprockets"][0]["speed"] = "31.41592653589793 rad/s"
+    data["drive"]["power"] = "500 W"
+    form = form_from_design(data)
+    assert form.sprockets[0]["x_mm"] == pytest.approx(1364.0)
+    assert form.sprockets[0]["speed_rpm"] == pytest.approx(300.0)
+    assert form.drive["power_kw"] == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.stem)
+def test_every_example_analyses_as_the_file_does(path: Path) -> None:
+    outcome = evaluate(design_from_form(form_from_design(tomllib.loads(path.read_text("utf-8")))))
+    assert outcome.ok, outcome.message
+    direct = chaindrive.analyze(chaindrive.load(path))
+    assert outcome.analysis is not None
+    assert outcome.analysis.geometry.links == direct.geometry.links
+    assert outcome.analysis.geometry.chain_length == pytest.approx(direct.geometry.chain_length)
+    assert outcome.analysis.to_dict()["warnings"] == direct.to_dict()["warnings"]
+
+
+def test_editing_a_tooth_count_matches_the_edited_file(tmp_path: Path) -> None:
+    form = seed_form()
+    form.sprockets[2]["teeth"] = 30.0          # what a numeric editor column returns
+    outcome = evaluate(design_from_form(form))
+    edited = tmp_path / "edited.toml"
+    edited.write_text(SEED.read_text("utf-8").replace("teeth = 14", "teeth = 30"), "utf-8")
+    direct = chaindrive.analyze(chaindrive.load(edited))
+    assert outcome.analysis is not None
+    assert outcome.analysis.geometry.links == direct.geometry.links
+    before = chaindrive.analyze(chaindrive.load(SEED))
+    assert direct.geometry.links != before.geometry.links  # the edit is one that matters
+
+
+def test_empty_cells_take_the_defaults() -> None:
+    form = seed_form()
+    form.sprockets[1].update(side=float("nan"), material="", inertia_kg_m2=None)
+    design = design_from_form(form)
+    assert not {"side", "material", "inertia"} & set(design["sprockets"][1])
+    assert evaluate(design).ok
+
+
+def test_is_empty_knows_the_missing_values() -> None:
+    pd = pytest.importorskip("pandas")
+    for value in (None, math.nan, "  ", pd.NA, pd.NaT):
+        assert is_empty(value)
+    for value in (0, 0.0, False, "S1"):
+        assert not is_empty(value)
+
+
+def test_toml_round_trip_keeps_the_design() -> None:
+    design = design_from_form(seed_form())
+    assert read_design_text(design_to_toml(design, comment="saved")) == design
+
+
+def test_a_half_finished_design_can_be_saved() -> None:
+    form = seed_form()
+    form.sprockets[0]["teeth"] = 2
+    form.sprockets[1]["x_mm"] = "abc"
+    text = design_to_toml(design_from_form(form))
+    again = read_design_text(text)
+    assert again["sprockets"][0]["teeth"] == 2 and again["sprockets"][1]["x"] == "abc"
+
+
+def test_bad_toml_gives_the_loader_message() -> None:
+    with pytest.raises(DesignError, match=r"^upload\.toml: TOML syntax error"):
+        read_design_text("[drive\nname = 1", "upload.toml")
+
+
+def test_examples_are_listed() -> None:
+    names = list_examples()
+    assert "seed_three_sprocket" in names and names["seed_three_sprocket"] == SEED.resolve()
+
+
+# --- bad input: the command line's message, at the right field ----------------------------------
+
+def _edit_row(i: int, **cells: Any) -> DesignForm:
+    form = seed_form()
+    form.sprockets[i].update(cells)
+    return form
+
+
+BAD: dict[str, tuple[Any, Location]] = {
+    "teeth too few": (lambda: _edit_row(2, teeth=3.0), Location("sprockets", 2, "teeth")),
+    "teeth not whole": (lambda: _edit_row(2, teeth=15.5), Location("sprockets", 2, "teeth")),
+    "role misspelt": (lambda: _edit_row(1, role="drivn"), Location("sprockets", 1, "role")),
+    "text in x": (lambda: _edit_row(1, x_mm="abc"), Location("sprockets", 1, "x_mm")),
+    "speed on driven": (lambda: _edit_row(1, speed_rpm=100.0),
+                        Location("sprockets", 1, "speed_rpm")),
+    "two drivers": (lambda: _edit_row(1, role="driver"), Location("sprockets", None, "role")),
+    "duplicate name": (lambda: _edit_row(2, name="S1"), Location("sprockets", 2, "name")),
+}
+
+
+def _form_with(section: str, **values: Any) -> DesignForm:
+    form = seed_form()
+    getattr(form, section).update(values)
+    return form
+
+
+BAD |= {
+    "negative power": (lambda: _form_with("drive", power_kw=-1.0),
+                       Location("drive", None, "power_kw")),
+    "unknown chain": (lambda: _form_with("chain", designation="GOST 13568 ПР-25,4-6O"),
+                      Location("chain", None, "designation")),
+    "too many strands": (lambda: _form_with("chain", strands=9.0),
+                         Location("chain", None, "strands")),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD), ids=list(BAD))
+def test_bad_input_shows_the_command_line_message(case: str, tmp_path: Path) -> None:
+    make, where = BAD[case]
+    design = design_from_form(make())
+    outcome = evaluate(design)
+    assert not outcome.ok and not outcome.unexpected
+    assert f"error: {outcome.message}" == cli_error(design, tmp_path)
+    assert outcome.location == where
+
+
+def test_overlapping_sprockets_point_at_the_row(tmp_path: Path) -> None:
+    design = design_from_form(_edit_row(2, x_mm=20.0, y_mm=0.0))
+    outcome = evaluate(design)
+    assert outcome.message is not None and "overlap" in outcome.message
+    assert f"error: {outcome.message}" == cli_error(design, tmp_path)
+    assert outcome.location is not None and outcome.location.section == "sprockets"
+
+
+def test_locate_field_paths() -> None:
+    names = ["S1", "S2", "S3"]
+    assert locate("sprockets[2].teeth", names) == Location("sprockets", 2, "teeth")
+    assert locate("sprockets[S2].speed", names) == Location("sprockets", 1, "speed_rpm")
+    assert locate("sprockets[0].adjust_angle", names) == Location("sprockets", 0,
+                                                                  "adjust_angle_deg")
+    assert locate("sprockets", names) == Location("sprockets")
+    assert locate("drive.power", names) == Location("drive", None, "power_kw")
+    assert locate("chain.pitch", names) == Location("chain", None, "pitch_mm")
+    assert locate("chian", names) == Location("design")
+    assert locate("", names) == Location("design")
+
+
+def test_an_unexpected_failure_is_a_short_message(monkeypatch: pytest.MonkeyPatch) -> None:
+    def broken(*_: Any, **__: Any) -> None:
+        raise ZeroDivisionError("deep inside")
+
+    monkeypatch.setattr("chaindrive.analysis.analyze", broken)
+    outcome = evaluate(design_from_form(seed_form()))
+    assert outcome.unexpected and not outcome.ok
+    assert outcome.message is not None
+    assert "ZeroDivisionError" in outcome.message and "Traceback" not in outcome.message
+    assert "\n" not in outcome.message
+
+
+# --- what the page shows ---------------------------------------------------------------------
+
+def test_recompute_gives_the_screen_of_the_analysis() -> None:
+    screen = recompute(design_from_form(seed_form()))
+    direct = chaindrive.analyze(chaindrive.load(SEED)).to_dict()
+    assert screen.numbers == headline(direct)
+    assert screen.numbers is not None and screen.numbers["links"] == direct["geometry"]["links"]
+    assert screen.document is not None and screen.document["warnings"] == direct["warnings"]
+    assert screen.checks and all(isinstance(c.passed, bool) for c in screen.checks)
+    assert screen.svg is not None
+
+
+def test_recompute_of_a_bad_design_has_no_results() -> None:
+    screen = recompute(design_from_form(_edit_row(0, teeth=200)))
+    assert screen.svg is None and screen.document is None
+    assert screen.outcome.message.startswith("sprockets[0].teeth: ")
+
+
+def test_layout_svg_draws_every_sprocket_and_span() -> None:
+    analysis = chaindrive.analyze(chaindrive.load(EXAMPLES / "twenty_four_sprocket.toml"))
+    svg = layout_svg(analysis.geometry, highlight="S3")
+    root = ET.fromstring(svg)
+    ns = "{http://www.w3.org/2000/svg}"
+    n = len(analysis.geometry.sprockets)
+    assert len(root.findall(f"{ns}circle")) == 2 * n          # tip and pitch circle each
+    assert len(root.findall(f"{ns}line")) == len(analysis.geometry.spans)
+    assert len(root.findall(f"{ns}polygon")) == len(analysis.geometry.spans)  # arrows
+    texts = [t.text or "" for t in root.findall(f"{ns}text")]
+    assert f"{analysis.geometry.links} links" in texts[-1]
+    # to scale: the pitch circle of S1 has the pitch radius in mm
+    s1 = analysis.geometry.sprockets[0]
+    radii = [float(c.get("r", "0")) for c in root.findall(f"{ns}circle")]
+    assert radii[1] == pytest.approx(s1.pitch_radius * 1e3, abs=0.01)
+
+
+def test_failed_checks_come_first() -> None:
+    from chaindrive.app.views import Check
+
+    rows = check_records([Check("a", 1.0, "≥ 2", False), Check("b", 3.0, "≥ 2", True),
+                          Check("c", 0.5, "≥ 2", False)][::-1])
+    assert [r["result"] for r in rows] == ["FAIL", "FAIL", "pass"]
+
+
+def test_modal_table_leaves_out_rigid_body_modes() -> None:
+    doc = chaindrive.analyze(chaindrive.load(SEED)).to_dict()
+    rows = modal_records(doc)
+    rigid = doc["dynamics"]["rigid_body_modes"]
+    assert len(rows) == len(rigid) - sum(rigid)
+    assert all(r["natural Hz"] > 0 for r in rows)
+
+
+# --- launcher and on-demand parts -------------------------------------------------------------
+
+def test_streamlit_command_serves_the_page_quietly() -> None:
+    cmd = app_pkg.streamlit_command("127.0.0.1", 8599)
+    assert cmd[1:4] == ["-m", "streamlit", "run"] and Path(cmd[4]) == app_pkg.PAGE
+    options = dict(zip(cmd[5::2], cmd[6::2], strict=True))
+    assert options["--server.address"] == "127.0.0.1" and options["--server.port"] == "8599"
+    assert options["--client.showErrorDetails"] == "none"
+    assert app_pkg.PAGE.is_file()
+
+
+def test_run_app_without_streamlit_says_so(monkeypatch: pytest.MonkeyPatch,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.setattr(app_pkg.importlib.util, "find_spec", lambda name: None)
+    assert app_pkg.run_app(port=8599) == 2
+    assert "Streamlit" in capsys.readouterr().err
+
+
+def test_missing_feature_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(runs.NEEDS, "startup", ("chaindrive.dynamics.no_such_module",))
+    reason = runs.missing("startup")
+    assert reason is not None and "not available yet" in reason
+    monkeypatch.setitem(runs.NEEDS, "afc", ("chaindrive.analysis",))
+    assert runs.missing("afc") is None
