@@ -126,8 +126,29 @@ def _print_analysis(doc: dict[str, Any]) -> None:
     if doc["selection"] is not None:
         sel = doc["selection"]
         con.print(f"selection ({sel['method']}): {sel['chain']}")
+    _print_dynamics(con, doc["dynamics"], doc["strength"])
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {w}")
+
+
+def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
+    """Natural frequencies, the closest resonances and the dynamic response."""
+    freqs = ", ".join(f"{f:.1f}" for f in dyn["natural_frequencies_hz"][:8])
+    con.print(f"natural frequencies, Hz: {freqs}{' …' if len(dyn['natural_frequencies_hz']) > 8 else ''}"
+              f" (damping ratio {dyn['damping_ratio']:.3f})")
+    rows = [[r["label"], r["frequency_hz"], r["natural_frequency_hz"], r["margin_percent"]]
+            for r in dyn["resonances"][:5]]
+    con.print(_table("Closest resonances", ["name", "working Hz", "natural Hz", "margin %"], rows))
+    startup, steady = dyn.get("startup"), dyn.get("steady")
+    if steady is not None:
+        con.print(f"steady state: largest dynamic span load {max(steady['span_dynamic_load_n']):.1f} N,"
+                  f" coefficient of dynamics {dyn['coefficient_of_dynamics']:.3f}")
+    if startup is not None:
+        con.print(f"start-up: largest span force {startup['max_force_n']:.1f} N, settling time "
+                  f"{startup['settling_time_s']:.3f} s")
+    if st is not None and "k1" in st:
+        con.print(f"safety: k1 {_fmt(st['k1'])}, k2 {_fmt(st['k2'])}, k2min {_fmt(st['k2min'])} "
+                  f"(allowable {_fmt(st['allowable_k'])})")
 
 
 def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str]) -> None:
