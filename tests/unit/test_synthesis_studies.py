@@ -109,6 +109,11 @@ def _counting(inputs: dict) -> dict:
     return {"square": inputs["x"] ** 2}
 
 
+def _executing(dask_worker) -> int:  # type: ignore[no-untyped-def]
+    """Tasks a worker is still running (client.run passes the worker in)."""
+    return len(dask_worker.state.executing)
+
+
 def test_interrupted_study_resumes_from_sqlite(tmp_path) -> None:
     url = f"sqlite:///{tmp_path / 'resume.db'}"
     inputs = [{"x": k} for k in range(30)]
@@ -118,9 +123,13 @@ def test_interrupted_study_resumes_from_sqlite(tmp_path) -> None:
         _CALLS.update(n=0, fail_after=12)
         with pytest.raises(RuntimeError, match="interrupted"):
             run_study(_counting, inputs, study="resume", db=url, client=client, progress=False)
-        deadline = time.monotonic() + 10
-        while any(client.processing().values()) and time.monotonic() < deadline:
-            time.sleep(0.01)  # let the cancelled stragglers of the interrupted run finish
+        # let the stragglers of the interrupted run finish: the scheduler forgets cancelled
+        # tasks before the worker's threads have run them out, so ask the worker itself
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and (
+                any(client.processing().values())
+                or any(client.run(_executing).values())):
+            time.sleep(0.02)
         store = StudyStore(url)
         stored = store.count("resume")
         done = {round(r["square"] ** 0.5) for r in store.get("resume",

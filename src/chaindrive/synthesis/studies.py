@@ -246,8 +246,10 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
                 # results are stored as they arrive, in the batches Dask hands over
-                for batch in as_completed(futures, with_results=True).batches():
-                    rows = [(k, todo[k], r) for _, done in batch for k, r in done]
+                for batch in as_completed(futures).batches():
+                    # .result() re-raises an evaluation's own exception (an interrupted study);
+                    # with_results=True can hand over an exception type instead under races
+                    rows = [(k, todo[k], r) for fut in batch for k, r in fut.result()]
                     computed += store.put_many(study, rows)
                     bar.advance(task, len(rows))
         finally:
