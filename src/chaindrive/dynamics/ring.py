@@ -250,7 +250,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
 def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> ModalResult:
     """Core of :func:`modal_analysis` on validated arrays (c with slack branches at 0)."""
     n = m.size
-    cuts = np.flatnonzero(c <= 0.0).tolist()
+    cuts = np.flatnonzero(c <= 0.0).tolist() if c.min() <= 0.0 else []
     d = 1.0 / np.sqrt(m)
     lam, V, diag = _eigen(m, c, d, cuts[0] if cuts else None)
     shapes = d[:, None] * V
@@ -272,9 +272,9 @@ def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
     if c.shape != m.shape:
         raise DesignError("stiffness_n_per_m",
                           f"need one stiffness per mass ({m.size}), got shape {c.shape}")
-    if not (m.min() > 0 and math.isfinite(m.sum())):
-        raise DesignError("masses_kg", f"must all be positive and finite, got {m.tolist()}")
-    if not (c.min() >= 0 and math.isfinite(c.sum())):
+    if not (m.min() > 0 and c.min() >= 0 and math.isfinite(m.sum() + c.sum())):
+        if not (m.min() > 0 and math.isfinite(m.sum())):
+            raise DesignError("masses_kg", f"must all be positive and finite, got {m.tolist()}")
         raise DesignError("stiffness_n_per_m",
                           f"must all be finite and ≥ 0, got {c.tolist()}")
 
@@ -368,10 +368,11 @@ class RingModel:
 
     def modal(self) -> ModalResult:
         """Natural frequencies and forms; see :func:`modal_analysis`."""
-        c = self.stiffness_n_per_m.copy()
+        c = self.stiffness_n_per_m
         if not self.closed:
+            c = c.copy()
             c[-1] = 0.0
-        return _modal(self.masses_kg.copy(), c, self.damping_ratio)
+        return _modal(self.masses_kg, c, self.damping_ratio)  # read-only arrays: shared
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict of the model."""
