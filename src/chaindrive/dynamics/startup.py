@@ -749,26 +749,26 @@ def linear_transient(masses: ArrayLike, stiffness: ArrayLike, beta: float, times
     else:
         S, V = _zoh_modal((f @ X).T, w, zeta, t[1] - t[0])
         Xp = X
-    BX = span_incidence(m.size) @ Xp * c[:, None]
-    x, v, F = _physical(Xp, BX, beta, S, V)
+    x, v, F = _physical(Xp, c, beta, S, V)
     return LinearTransient(t, x, v, F)
 
 
-def _physical(Xp: NDArray[np.float64], BX: NDArray[np.float64], beta: float,
+def _physical(Xp: NDArray[np.float64], c: NDArray[np.float64], beta: float,
               S: NDArray[np.float64], V: NDArray[np.float64], block: int = 512
               ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """x = Xp S, v = Xp V, F = BX (S + βV), returned (T, n). The products are taken in
-    blocks of ``block`` times: OpenBLAS runs a 24×24×10⁴ product multi-threaded, which
-    was measured 30× slower on a loaded 2-core machine; blocks stay single-threaded and in
-    cache."""
+    """x = Xp S, v = Xp V and the span forces F_i = c_i (e_i + β ė_i), e_i = x_{i+1} − x_i
+    (a slack branch has c_i = 0), returned (T, n). The products are taken in blocks of
+    ``block`` times: OpenBLAS runs a 24×24×10⁴ product multi-threaded, which was measured
+    30× slower on a loaded 2-core machine; blocks stay single-threaded and in cache. The
+    forces come from x and v by differences (O(nT)), not by a third product (O(n²T))."""
     n, T = Xp.shape[0], S.shape[1]
-    top, bot = np.vstack([Xp, BX]), np.vstack([Xp, beta * BX])
-    xs, vs = np.empty((2 * n, T)), np.empty((2 * n, T))
+    xs, vs = np.empty((n, T)), np.empty((n, T))
     for k in range(0, T, block):
-        np.matmul(top, S[:, k:k + block], out=xs[:, k:k + block])
-        np.matmul(bot, V[:, k:k + block], out=vs[:, k:k + block])
-    xs[n:] += vs[n:]
-    return xs[:n].T, vs[:n].T, xs[n:].T
+        np.matmul(Xp, S[:, k:k + block], out=xs[:, k:k + block])
+        np.matmul(Xp, V[:, k:k + block], out=vs[:, k:k + block])
+    y = xs + beta * vs
+    F = c[:, None] * (np.roll(y, -1, axis=0) - y)
+    return xs.T, vs.T, F.T
 
 
 def _lfilter(b: list[float], a: list[float], x: NDArray[np.complex128]) -> NDArray[np.complex128]:
