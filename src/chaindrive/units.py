@@ -73,7 +73,7 @@ def parse_quantity(text: object, dimension: str, field: str) -> float:
         if "hertz" in unit_text or unit_text in {"1 / second", "1 / minute"}:
             raise DesignError(
                 field,
-                f"ambiguous speed unit in {text!r}; use rpm, rev/s or rad/s (e.g. \"{example}\")",
+                f"ambiguous speed unit in {text!r}; use rpm, revolution/s or rad/s (e.g. \"{example}\")",
             )
     if dim and not q.check(dim):
         raise DesignError(
