@@ -92,3 +92,33 @@ def test_draws_into_given_axes() -> None:
     ax1, ax2 = fig.subplots(1, 2)
     assert plotting.chain_speed(a.kinematics, ax=ax2) is fig
     assert ax2.has_data() and not ax1.has_data()
+
+
+def test_response_figures_build() -> None:
+    """Start-up oscillogram and speeds, AFC, steady loads, inertia and irregularity
+    (issue 6; seed 000 Fig. 2–3) for a drive with a short start-up."""
+    from dataclasses import replace
+
+    import chaindrive
+    from chaindrive.plotting import (
+        afc_curves,
+        inertia_and_irregularity,
+        startup_oscillogram,
+        startup_speeds,
+        steady_loads,
+    )
+
+    drive = chaindrive.load(EXAMPLES[0])
+    drive = replace(drive, dynamics=replace(drive.dynamics, startup_duration=0.05))
+    result = chaindrive.analyze(drive)
+    response = result.response
+    assert response is not None and response.startup is not None
+    spans = [f"{s.start_name}→{s.end_name}" for s in result.geometry.spans]
+    fig = startup_oscillogram(response.startup, names=spans)
+    assert len(fig.axes[0].lines) == min(6, len(spans)) + 2  # spans, F1max mark, settling
+    assert startup_speeds(response.startup).axes
+    fig = afc_curves(response.afc, names=spans)
+    assert fig.axes[0].get_yscale() == "log"
+    assert len(steady_loads(response.steady, names=spans).axes[0].patches) == len(spans)
+    fig = inertia_and_irregularity(response.steady)
+    assert [len(ax.patches) for ax in fig.axes] == [len(drive.sprockets)] * 2

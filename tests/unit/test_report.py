@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import hashlib
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -23,14 +24,17 @@ from chaindrive.report import (
 ROOT = Path(__file__).parents[2]
 SEED = ROOT / "examples" / "seed_three_sprocket.toml"
 EXPECTED_SECTIONS = ["checks", "inputs", "geometry", "kinematics", "selection", "strength",
-                     "dynamics", "damping"]  # "contours" only for multi-contour drives
+                     "dynamics", "response", "damping"]  # "contours": multi-contour drives only
 EXPECTED_PLOTS = {"layout", "chain_speed", "ratio", "tensions", "shaft_loads", "mode_shapes",
-                  "campbell", "damping"}
+                  "campbell", "steady_loads", "inertia", "startup", "startup_speeds", "afc",
+                  "damping"}
 
 
 @pytest.fixture(scope="module")
 def seed_analysis() -> chaindrive.analysis.Analysis:
-    return chaindrive.analyze(chaindrive.load(SEED))
+    drive = chaindrive.load(SEED)
+    short = replace(drive.dynamics, startup_duration=0.05)  # a short start-up keeps it fast
+    return chaindrive.analyze(replace(drive, dynamics=short))
 
 
 @pytest.fixture(scope="module")
@@ -91,3 +95,12 @@ def test_pdf_and_bad_suffix(seed_analysis, tmp_path: Path) -> None:
     assert data.startswith(b"%PDF") and data.count(b"/Type /Page") >= 4
     with pytest.raises(DesignError):
         write_report(seed_analysis, tmp_path / "r.docx")
+
+
+def test_dynamic_safety_factor_below_allowable_fails_red(seed_analysis) -> None:
+    """k1 = Q/F1max below [k] = 2.5 (seed 000 §3.6) is a failed check at the top."""
+    response = replace(seed_analysis.response, allowable_k=1e6)
+    html = render_html(build_report(replace(seed_analysis, response=response), dpi=30))
+    top = html[:html.index('<section id="inputs">')]
+    assert "FAILED: start-up safety factor k1" in top
+    assert "FAILED: steady safety factor k2" in top

@@ -10,7 +10,8 @@ Families (one module each): :mod:`.layout` (contour to scale), :mod:`.kinematics
 and ratio over a tooth period, seed 003), :mod:`.strength` (static loads per span and per
 shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Campbell
 diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
-:mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front).
+:mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front),
+:mod:`.response` (start-up oscillograms, AFC, steady dynamic loads — seed 000 Fig. 2–3).
 """
 
 from __future__ import annotations
@@ -20,9 +21,30 @@ from chaindrive.plotting.dynamics import campbell_diagram, mode_shapes
 from chaindrive.plotting.kinematics import chain_speed, transmission_ratio
 from chaindrive.plotting.layout import contour_layout
 from chaindrive.plotting.multicontour import km_distribution
+from chaindrive.plotting.response import (
+    afc_curves,
+    inertia_and_irregularity,
+    startup_oscillogram,
+    startup_speeds,
+    steady_loads,
+)
 from chaindrive.plotting.strength import shaft_loads, span_tensions
 from chaindrive.plotting.synthesis import pareto_front
 
-__all__ = ["absorption_vs_amplitude", "campbell_diagram", "chain_speed", "contour_layout",
-           "km_distribution", "mode_shapes", "pareto_front", "shaft_loads", "span_tensions",
-           "transmission_ratio"]
+__all__ = [
+    "absorption_vs_amplitude",
+    "afc_curves",
+    "campbell_diagram",
+    "chain_speed",
+    "contour_layout",
+    "inertia_and_irregularity",
+    "km_distribution",
+    "mode_shapes",
+    "pareto_front",
+    "shaft_loads",
+    "span_tensions",
+    "startup_oscillogram",
+    "startup_speeds",
+    "steady_loads",
+    "transmission_ratio",
+]

@@ -41,6 +41,14 @@ def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, bool]]:
             out.append(("static safety factor s", st.safety_factor_static,
                         f"≥ {st.allowable_safety_factor:.4g}",
                         st.safety_factor_static >= st.allowable_safety_factor))
+    response = getattr(inp.analysis, "response", None)
+    if response is not None:
+        k = response.strength_dict()
+        for name, key in (("start-up safety factor k1", "k1"), ("steady safety factor k2", "k2"),
+                          ("safety factor at resonance k2min", "k2min")):
+            if k[key] is not None:
+                out.append((name, k[key], f"≥ {response.allowable_k:g}",
+                            k[key] >= response.allowable_k))
     dyn = inp.dynamics
     for r in getattr(dyn, "resonances", ()) or ():
         out.append((f"detuning of {r.working.label} from {r.natural_frequency:.1f} Hz, %",
@@ -237,6 +245,62 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     return blocks
 
 
+def response_section(inp: ReportInput) -> list[Block] | None:
+    """The dynamic response (Dynamics II, seed 000 §3.1–3.3, §3.6): the two-stage check,
+    K_D, the steady loads per span and mass, the start-up oscillogram and the AFC."""
+    from chaindrive.plotting import (
+        afc_curves,
+        inertia_and_irregularity,
+        startup_oscillogram,
+        startup_speeds,
+        steady_loads,
+    )
+
+    response = getattr(inp.analysis, "response", None)
+    if response is None:
+        return None
+    sprockets = [s.name for s in inp.analysis.drive.sprockets]
+    spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
+    steady, startup = response.steady, response.startup
+    checks = response.strength_dict()
+    rows = [(name, checks[key], f"≥ {response.allowable_k:g}",
+             "pass" if checks[key] is None or checks[key] >= response.allowable_k else "FAIL")
+            for name, key in (("start-up k1 = Q/F1max", "k1"), ("steady k2 = Q/(F_R + F2)", "k2"),
+                              ("at resonance k2min = Q/(F_R + F2max)", "k2min"))]
+    blocks: list[Block] = [
+        Text("Kinematic excitation by the polygonal effect at the tooth frequency and its "
+             "harmonics, solved in the frequency domain; start-up from rest with the motor law "
+             "of the design ([dynamics]); spans carry tension only (seed 000, docs/dynamics2.md)."),
+        Table("Two-stage safety check (seed 000 §3.6)", ("check", "value", "required", "result"),
+              _rows(rows), tuple(i for i, r in enumerate(rows) if r[3] == "FAIL")),
+        Table("Steady motion per span", ("span", "dynamic load, N", "load amplitude, N"),
+              _rows(zip(spans, steady.span_dynamic_load.tolist(),
+                        steady.span_load_amplitude.tolist(), strict=True))),
+        Table("Steady motion per mass", ("sprocket", "inertia load, N", "irregularity, %"),
+              _rows(zip(sprockets, steady.inertia_load.tolist(),
+                        steady.irregularity_percent.tolist(), strict=True))),
+        Text(f"Coefficient of dynamics K_D = 1 + F_D/F_t = "
+             f"{steady.coefficient_of_dynamics if steady.coefficient_of_dynamics else float('nan'):.4g}"
+             f" (F_D = {steady.dynamic_load_rms:.4g} N, RMS of the span loads)."),
+        plot_block(steady_loads(steady, names=spans), "Dynamic load per span", inp.dpi,
+                   "steady_loads"),
+        plot_block(inertia_and_irregularity(steady, names=sprockets),
+                   "Inertia load and irregularity per mass", inp.dpi, "inertia"),
+    ]
+    if startup is not None:
+        blocks += [
+            Table("Start-up", ("span", "F1max, N"),
+                  _rows(zip(spans, startup.max_span_force.tolist(), strict=True))),
+            plot_block(startup_oscillogram(startup, names=spans), "Start-up oscillogram",
+                       inp.dpi, "startup"),
+            plot_block(startup_speeds(startup, names=sprockets), "Start-up speeds", inp.dpi,
+                       "startup_speeds"),
+        ]
+    blocks.append(plot_block(afc_curves(response.afc, names=spans),
+                             "Amplitude–frequency characteristic", inp.dpi, "afc"))
+    return blocks
+
+
 def damping_section(inp: ReportInput) -> list[Block]:
     """Hinge-friction damping (seed 001) for its reference chain."""
     from chaindrive.damping import PR_12_7_1820_1, hinge_friction_damping
@@ -274,5 +338,6 @@ def register_standard_sections() -> None:
             ("strength", "Loads and strength", strength_section),
             ("contours", "Parallel contours", contours_section),
             ("dynamics", "Dynamics", dynamics_section),
+            ("response", "Dynamic response", response_section),
             ("damping", "Damping", damping_section)):
         register_section(key, title, build)
