@@ -83,8 +83,9 @@ def analyze(
     """Analyse a drive: geometry, speeds, selection and strength, natural frequencies, and the
     dynamic response (start-up, steady state, amplitude–frequency sweep)."""
     import chaindrive
+    from chaindrive.progress import spinner
 
-    with user_errors():
+    with user_errors(), spinner("analysing …", quiet=as_json):
         result = chaindrive.analyze(chaindrive.load(file), response=not quick)
         document = result.to_dict()
     if as_json:
@@ -204,8 +205,9 @@ def simulate(
 ) -> None:
     """Start-up transient: write the time histories of every span force and sprocket speed."""
     import chaindrive
+    from chaindrive.progress import spinner
 
-    with user_errors():
+    with user_errors(), spinner("simulating the start-up …", quiet=as_json):
         _csv_suffix(output)
         result = chaindrive.analyze(chaindrive.load(file))
         startup = None if result.response is None else result.response.startup
@@ -232,8 +234,9 @@ def afc(
 ) -> None:
     """Amplitude–frequency characteristic: dynamic load of every span against the speed."""
     import chaindrive
+    from chaindrive.progress import spinner
 
-    with user_errors():
+    with user_errors(), spinner("sweeping the speed …", quiet=as_json):
         _csv_suffix(output)
         result = chaindrive.analyze(chaindrive.load(file))
         if result.response is None:

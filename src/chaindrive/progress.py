@@ -55,3 +55,16 @@ def track(items: Iterable[T], description: str, total: int | None = None, *,
         for item in items:
             yield item
             advance(None)
+
+
+@contextmanager
+def spinner(description: str, *, quiet: bool = False) -> Iterator[None]:
+    """An indeterminate indicator (a spinner with the elapsed time) for one long call, such
+    as an analysis with the start-up transient; same rules as :func:`progress_bar`."""
+    if not progress_enabled(quiet):
+        yield
+        return
+    from rich.console import Console
+
+    with Console(stderr=True).status(description):
+        yield
