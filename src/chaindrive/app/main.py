@@ -269,6 +269,28 @@ def _sprocket_table(base: DesignForm) -> list[dict[str, Any]]:
     return [{k: plain(v) for k, v in row.items()} for row in edited.to_dict("records")]
 
 
+def _one_sprocket_form(base: DesignForm, drive: dict[str, Any], chain: dict[str, Any],
+                      rows: list[dict[str, Any]]) -> None:
+    """A small form to change one sprocket's tooth count from the keyboard (the table is
+    drawn on a canvas: this is the way in for keyboard users and for browser tests)."""
+    names = [str(r.get("name") or f"row {i + 1}") for i, r in enumerate(rows)]
+    if not names:
+        return
+    with st.form(key=_key("one_sprocket"), border=True):
+        left, middle, right = st.columns([2, 2, 1], vertical_alignment="bottom")
+        index = left.selectbox("Sprocket to edit", range(len(names)),
+                               format_func=lambda i: names[i], key=_key("one.sprocket"))
+        teeth = middle.number_input("New tooth count", min_value=1, max_value=1000, step=1,
+                                    value=None, placeholder="teeth", key=_key("one.teeth"))
+        applied = right.form_submit_button("Apply", width="stretch")
+    if applied and teeth is not None:
+        changed = [dict(r) for r in rows]
+        changed[index]["teeth"] = int(teeth)
+        st.session_state["form"] = DesignForm(drive, chain, changed, base.other)
+        st.session_state["version"] += 1
+        st.rerun()
+
+
 # --- results -------------------------------------------------------------------------------------
 
 @st.cache_resource(max_entries=32, show_spinner=False)
@@ -599,7 +621,8 @@ def page() -> None:
     st.subheader("Sprockets, in order round the contour")
     rows = _sprocket_table(base)
     table_slot = st.empty()
-    form = DesignForm(drive, chain, rows)
+    _one_sprocket_form(base, drive, chain, rows)
+    form = DesignForm(drive, chain, rows, base.other)
     design = design_from_form(form)
     _sidebar(design)
     screen = _screen(json.dumps(design, sort_keys=True, default=str))
