@@ -57,15 +57,10 @@ def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
 
 
 def _fmt(value: Any) -> str:
-    if value is None:
-        return "—"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "—"
-        return f"{value:.4g}" if abs(value) < 1e4 else f"{value:.0f}"
-    return str(value)
+    """A table cell, formatted as in the report (one rule for both presenters)."""
+    from chaindrive.report.content import fmt
+
+    return fmt(value)
 
 
 def _write_json(document: dict[str, Any]) -> None:
