@@ -257,10 +257,13 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     groups = _components(cuts, n)
     n_rigid = len(groups)
     lam[:n_rigid] = 0.0
-    lam[lam <= _ROUNDOFF * abs(lam[-1])] = 0.0  # round-off (and negative) → 0
-    for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
-        shapes[:, k] = 0.0
-        shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
+    lam[:int(np.searchsorted(lam, _ROUNDOFF * abs(lam[-1]), "right"))] = 0.0  # round-off → 0
+    if n_rigid == 1 and isinstance(groups[0], slice):  # one connected ring: uniform shape
+        shapes[:, 0] = 1.0 / math.sqrt(m.sum())
+    else:
+        for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
+            shapes[:, k] = 0.0
+            shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
     rigid = np.zeros(n, dtype=bool)
     rigid[:n_rigid] = True
     return ModalResult(np.sqrt(lam) / TWO_PI, shapes, rigid, zeta, m, c, diag)
