@@ -378,10 +378,18 @@ def optimize(
                                     encoding="utf-8")
                     written.append(str(path))
                 if result.pareto:
+                    from chaindrive import analyze
                     from chaindrive.plotting import pareto_front
+                    from chaindrive.report import write_report
 
                     plot = out / f"{file.stem}_pareto_front.png"
                     pareto_front(result).savefig(plot, dpi=120)
+                    chosen = Path(written[0])
+                    report = write_report(analyze(drive_from_mapping(result.pareto[0].design,
+                                                                     file.parent)),
+                                          out / f"{file.stem}_pareto_01.html", source=chosen,
+                                          synthesis=result)
+                    written.append(str(report))
             except OSError as exc:
                 raise DesignError("--out", f"cannot write to {str(out)!r} ({exc.strerror})") from None
     doc = result.to_dict()

@@ -82,8 +82,12 @@ def test_optimize_json(tmp_path: Path) -> None:
     assert doc["pareto"]
     for p in doc["pareto"]:
         assert {"objectives", "constraints_ok", "design"} <= set(p)
-    assert len(doc["files"]) == len(doc["pareto"])
+    # one TOML per Pareto design, and the report of the first with the Pareto set and front
+    assert len(doc["files"]) == len(doc["pareto"]) + 1
     assert all(Path(f).exists() for f in doc["files"])
+    report = Path(doc["files"][-1]).read_text(encoding="utf-8")
+    assert '<section id="synthesis">' in report
+    assert 'data-plot="pareto_front"' in report
     no_problem = run_cli("optimize", str(SEED))
     assert no_problem.returncode == 2
     assert no_problem.stderr.startswith("error: ")

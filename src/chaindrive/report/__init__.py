@@ -45,18 +45,20 @@ FORMATS = (".html", ".htm", ".pdf")
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  with_dynamics: bool = True,
-                 progress: Callable[[str], None] | None = None) -> Report:
+                 progress: Callable[[str], None] | None = None,
+                 synthesis: object = None) -> Report:
     """Build every registered section of the report of ``analysis``.
 
     source : the design file (echoed, and its SHA-256 printed); dpi of the figures;
     with_dynamics : compute the dynamics when the analysis has none; progress : called
-    with each section's title before it is built (e.g. to advance a progress bar).
+    with each section's title before it is built (e.g. to advance a progress bar);
+    synthesis : the optimisation that chose this design (its Pareto set and front).
     """
     import chaindrive
 
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      with_dynamics=with_dynamics)
+                      with_dynamics=with_dynamics, synthesis=synthesis)
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:
@@ -80,13 +82,15 @@ def render_html(report: Report) -> str:
 
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
-                 dpi: int = 110, progress: Callable[[str], None] | None = None) -> Path:
+                 dpi: int = 110, progress: Callable[[str], None] | None = None,
+                 synthesis: object = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``)."""
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
-    report = build_report(analysis, source=source, dpi=dpi, progress=progress)
+    report = build_report(analysis, source=source, dpi=dpi, progress=progress,
+                          synthesis=synthesis)
     out.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".pdf":
         from chaindrive.report.pdf import write_pdf

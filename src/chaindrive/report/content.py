@@ -100,11 +100,12 @@ class ReportInput:
     not carry it)."""
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 with_dynamics: bool = True) -> None:
+                 with_dynamics: bool = True, synthesis: Any = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
         self.with_dynamics = with_dynamics
+        self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
         self.notes: list[str] = []
 
     @cached_property

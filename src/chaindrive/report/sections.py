@@ -327,6 +327,25 @@ def contours_section(inp: ReportInput) -> list[Block] | None:
     return [Table("Parallel contours (seed 004)", ("quantity", "value"), _rows(flat))]
 
 
+def synthesis_section(inp: ReportInput) -> list[Block] | None:
+    """The optimisation that chose this design (issue 8): the Pareto set and its front."""
+    from chaindrive.plotting import pareto_front
+
+    result = inp.synthesis
+    if result is None:
+        return None
+    names = list(result.objectives)
+    rows = [("start", *[result.start.objectives.get(n) for n in names], result.start.feasible)]
+    rows += [(str(k), *[p.objectives[n] for n in names], p.constraints_ok)
+             for k, p in enumerate(result.pareto, start=1)]
+    return [
+        Text(f"{result.evaluations} designs evaluated by {result.method} (seed {result.seed}); "
+             f"this report is of Pareto design 1."),
+        Table("Pareto set", ("design", *names, "constraints ok"), _rows(rows)),
+        plot_block(pareto_front(result), "Pareto front", inp.dpi, "pareto_front"),
+    ]
+
+
 def register_standard_sections() -> None:
     """Register the standard sections in report order (idempotent)."""
     for key, title, build in (
@@ -339,5 +358,6 @@ def register_standard_sections() -> None:
             ("contours", "Parallel contours", contours_section),
             ("dynamics", "Dynamics", dynamics_section),
             ("response", "Dynamic response", response_section),
-            ("damping", "Damping", damping_section)):
+            ("damping", "Damping", damping_section),
+            ("synthesis", "Optimal synthesis", synthesis_section)):
         register_section(key, title, build)
