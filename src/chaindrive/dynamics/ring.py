@@ -253,11 +253,14 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     cuts = np.flatnonzero(c <= 0.0).tolist() if c.min() <= 0.0 else []
     d = 1.0 / np.sqrt(m)
     lam, V, diag = _eigen(m, c, d, cuts[0] if cuts else None)
-    shapes = d[:, None] * V
+    V *= d[:, None]  # mass-normalised shapes (V is LAPACK's fresh array: scaled in place)
+    shapes = V
     groups = _components(cuts, n)
     n_rigid = len(groups)
     lam[:n_rigid] = 0.0
-    lam[:int(np.searchsorted(lam, _ROUNDOFF * abs(lam[-1]), "right"))] = 0.0  # round-off → 0
+    tol = _ROUNDOFF * abs(lam[-1])
+    if n_rigid < n and lam[n_rigid] <= tol:  # further eigenvalues at round-off level → 0
+        lam[:int(np.searchsorted(lam, tol, "right"))] = 0.0
     if n_rigid == 1 and isinstance(groups[0], slice):  # one connected ring: uniform shape
         shapes[:, 0] = 1.0 / math.sqrt(m.sum())
     else:
