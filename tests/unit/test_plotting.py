@@ -115,10 +115,107 @@ def test_response_figures_build() -> None:
     assert response is not None and response.startup is not None
     spans = [f"{s.start_name}→{s.end_name}" for s in result.geometry.spans]
     fig = startup_oscillogram(response.startup, names=spans)
-    assert len(fig.axes[0].lines) == min(6, len(spans)) + 2  # spans, F1max mark, settling
+    assert len(fig.axes[0].lines) == len(spans) + 2  # spans, F1max mark, settling
     assert startup_speeds(response.startup).axes
     fig = afc_curves(response.afc, names=spans)
     assert fig.axes[0].get_yscale() == "log"
-    assert len(steady_loads(response.steady, names=spans).axes[0].patches) == len(spans)
+    # peak and amplitude bar per span
+    assert len(steady_loads(response.steady, names=spans).axes[0].patches) == 2 * len(spans)
     fig = inertia_and_irregularity(response.steady)
     assert [len(ax.patches) for ax in fig.axes] == [len(drive.sprockets)] * 2
+
+
+# --- dynamic response, every example drive (issue 6; seed 000 Fig. 2–3, Table 1) -------------
+
+@pytest.fixture(scope="module", params=EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def short_response(request: pytest.FixtureRequest):
+    """(analysis, span names, sprocket names) with a 0.05 s start-up (fast)."""
+    from dataclasses import replace
+
+    drive = chaindrive.load(request.param)
+    drive = replace(drive, dynamics=replace(drive.dynamics, startup_duration=0.05))
+    a = chaindrive.analyze(drive)
+    assert a.response is not None and a.response.startup is not None
+    return (a, [f"{s.start_name}→{s.end_name}" for s in a.geometry.spans],
+            [s.name for s in a.drive.sprockets])
+
+
+def test_startup_figures_mark_peak_and_settling(short_response) -> None:
+    a, spans, names = short_response
+    st = a.response.startup
+    fig = plotting.startup_oscillogram(st, names=spans)
+    assert _rendered(fig)
+    ax = fig.axes[0]
+    peak = [ln for ln in ax.get_lines() if ln.get_marker() == "v"]
+    assert len(peak) == 1
+    np.testing.assert_allclose(peak[0].get_ydata(), [st.max_span_force.max()])
+    vlines = [ln for ln in ax.get_lines() if str(ln.get_label()).startswith("settled")]
+    if 0 < st.settling_time <= st.times[-1]:
+        np.testing.assert_allclose(vlines[0].get_xdata(), [st.settling_time * 1e3] * 2)
+    # every span is drawn (most loaded in colour, the rest grey), forces as computed
+    curves = [ln for ln in ax.get_lines() if len(ln.get_ydata()) == st.times.size]
+    assert len(curves) == len(spans)
+    assert max(float(np.max(c.get_ydata())) for c in curves) == pytest.approx(
+        st.max_span_force.max())
+    assert any(f"F₁max = {st.max_span_force.max():.0f} N" in t.get_text() for t in ax.texts)
+    fig = plotting.startup_speeds(st, names=names)
+    assert _rendered(fig)
+    top = max(float(np.max(ln.get_ydata())) for ln in fig.axes[0].get_lines())
+    assert top == pytest.approx(st.speeds.max() * 30 / np.pi)
+
+
+def test_afc_curves_label_resonances(short_response) -> None:
+    a, spans, _ = short_response
+    afc = a.response.afc
+    fz = a.drive.driver.teeth * a.drive.driver.speed / (2 * np.pi)
+    fig = plotting.afc_curves(afc, names=spans, operating_hz=fz, max_markers=5)
+    assert _rendered(fig)
+    ax = fig.axes[0]
+    assert ax.get_yscale() == "log"
+    labels = [t.get_text().strip() for t in ax.texts]
+    inside = {(j, k): f for j, k, _, f in afc.markers
+              if afc.tooth_frequencies_hz.min() <= f <= afc.tooth_frequencies_hz.max()}
+    assert 0 < len(labels) <= 5 if inside else labels == []
+    for t in ax.texts:  # each label names a resonance and sits on its tooth frequency
+        j, k = (int(v) for v in t.get_text().split("mode")[1].split("×"))
+        assert t.get_position()[0] == pytest.approx(inside[(j, k)])
+    xs = [float(ln.get_xdata()[0]) for ln in ax.get_lines()
+          if str(ln.get_label()).startswith("operating")]
+    assert xs == [pytest.approx(fz)]
+    curves = [ln for ln in ax.get_lines() if len(ln.get_xdata()) == afc.tooth_frequencies_hz.size]
+    assert len(curves) == len(spans)
+
+
+def test_steady_bars_are_the_computed_loads(short_response) -> None:
+    a, spans, names = short_response
+    steady = a.response.steady
+    fig = plotting.steady_loads(steady, names=spans)
+    assert _rendered(fig)
+    heights = [p.get_height() for p in fig.axes[0].patches]
+    np.testing.assert_allclose(heights, np.r_[steady.span_dynamic_load,
+                                              steady.span_load_amplitude])
+    fig = plotting.inertia_and_irregularity(steady, names=names)
+    assert _rendered(fig)
+    inertia, irregular = ([p.get_height() for p in ax.patches] for ax in fig.axes)
+    np.testing.assert_allclose(inertia, steady.inertia_load)
+    np.testing.assert_allclose(irregular, steady.irregularity_percent)
+    assert [t.get_text() for t in fig.axes[1].get_xticklabels()] == names
+
+
+def test_names_must_match_the_spans(short_response) -> None:
+    a, spans, _ = short_response
+    with pytest.raises(ValueError, match="names"):
+        plotting.steady_loads(a.response.steady, names=spans[:-1])
+
+
+def test_material_comparison_chart_one_bar_per_pair() -> None:
+    from chaindrive.dynamics.materials import MaterialCase
+
+    cases = [MaterialCase("steel", "steel", 542.0, 300.0, 301.0, 900.0),
+             MaterialCase("PA6", "steel", 470.0, 150.0, 151.0, 300.0),
+             MaterialCase("steel", "PA6", 500.0, 600.0, 601.0, 400.0)]
+    fig = plotting.material_comparison_chart(cases)
+    assert _rendered(fig)
+    peak, resonance = ([p.get_height() for p in ax.patches] for ax in fig.axes)
+    assert peak == [542.0, 470.0, 500.0] and resonance == [900.0, 300.0, 400.0]
+    assert "PA6\non steel" in [t.get_text() for t in fig.axes[0].get_xticklabels()]

@@ -27,7 +27,7 @@ EXPECTED_SECTIONS = ["checks", "inputs", "geometry", "kinematics", "selection", 
                      "dynamics", "response", "damping"]  # "contours": multi-contour drives only
 EXPECTED_PLOTS = {"layout", "chain_speed", "ratio", "tensions", "shaft_loads", "mode_shapes",
                   "campbell", "steady_loads", "inertia", "startup", "startup_speeds", "afc",
-                  "damping"}
+                  "materials", "damping"}
 
 
 @pytest.fixture(scope="module")
@@ -104,3 +104,34 @@ def test_dynamic_safety_factor_below_allowable_fails_red(seed_analysis) -> None:
     top = html[:html.index('<section id="inputs">')]
     assert "FAILED: start-up safety factor k1" in top
     assert "FAILED: steady safety factor k2" in top
+    # and the row of k1 in the section's own table is red
+    section = html[html.index('<section id="response">'):html.index('<section id="damping">')]
+    assert re.search(r"<tr class=fail><td>start-up k1 = Q/F1max</td>", section)
+
+
+def test_dynamic_response_section_tables(seed_analysis, seed_html: str) -> None:
+    """K_D, per-span loads (static, steady, start-up, AFC) and per-mass inertia load and
+    irregularity, with the values of the analysis (seed 000 §3.3, §3.6)."""
+    from chaindrive.report.content import fmt
+
+    response = seed_analysis.response
+    section = seed_html[seed_html.index('<section id="response">'):
+                        seed_html.index('<section id="damping">')]
+    assert "<tr class=fail>" not in section  # the seed passes k1, k2, k2min (≥ 2.5)
+    assert f"<td class=\"num\">{fmt(response.steady.coefficient_of_dynamics)}</td>" in section
+    for caption in ("Two-stage safety check", "Dynamic loads per span", "Steady motion per mass",
+                    "Material pairs"):
+        assert caption in section
+    for span, f1 in zip(seed_analysis.geometry.spans, response.startup.max_span_force,
+                        strict=True):
+        assert f"<td>{span.start_name}→{span.end_name}</td>" in section
+        assert f">{fmt(float(f1))}<" in section
+    for s, inertia in zip(seed_analysis.drive.sprockets, response.steady.inertia_load,
+                          strict=True):
+        assert f"<td>{s.name}</td><td class=\"num\">{fmt(float(inertia))}</td>" in section
+
+
+def test_no_response_no_section(seed_analysis) -> None:
+    html = render_html(build_report(replace(seed_analysis, response=None), dpi=30,
+                                    with_dynamics=False))
+    assert 'id="response"' not in html and "safety factor k1" not in html

@@ -11,7 +11,8 @@ and ratio over a tooth period, seed 003), :mod:`.strength` (static loads per spa
 shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Campbell
 diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
 :mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front),
-:mod:`.response` (start-up oscillograms, AFC, steady dynamic loads — seed 000 Fig. 2–3).
+:mod:`.response` (start-up oscillograms, AFC, steady dynamic loads, inertia loads and
+irregularity, material pairs — seed 000 Fig. 2–3, Table 1).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from chaindrive.plotting.multicontour import km_distribution
 from chaindrive.plotting.response import (
     afc_curves,
     inertia_and_irregularity,
+    material_comparison_chart,
     startup_oscillogram,
     startup_speeds,
     steady_loads,
@@ -39,6 +41,7 @@ __all__ = [
     "contour_layout",
     "inertia_and_irregularity",
     "km_distribution",
+    "material_comparison_chart",
     "mode_shapes",
     "pareto_front",
     "shaft_loads",

@@ -13,6 +13,7 @@ from chaindrive.plotting._base import CHAIN, GREY, PITCH, TIGHT, figure_axes, fi
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.transforms import Transform
 
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
 
@@ -55,6 +56,14 @@ def _figsize(geometry: GeometryResult) -> tuple[float, float]:
     return 7.0, float(np.clip(7.0 * height / max(width, 1e-9) + 1.3, 2.8, 7.0))
 
 
+def _below_xlabel(ax: Axes) -> Transform:
+    """Axes coordinates shifted 0.5 in down: the top of a legend anchored there clears the
+    tick labels and the x label whatever the height of the axes."""
+    from matplotlib.transforms import ScaledTranslation
+
+    return ax.transAxes + ScaledTranslation(0.0, -0.5, ax.figure.dpi_scale_trans)
+
+
 def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
                    labels: bool = True) -> Figure:
     """The contour of a drive to scale [mm]: tip circles (grey discs), pitch circles
@@ -82,8 +91,8 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
     ax.plot([], [], color=PITCH, lw=0.8, ls="-.", label="pitch circles")
     # a fixed place below the axes: loc="best" costs ~40 % of the figure's time (it tries
     # every position against every line) and may still cover a sprocket
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3, fontsize="x-small",
-              frameon=False)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3, fontsize="x-small",
+              frameon=False, bbox_transform=_below_xlabel(ax))
     finish(ax, f"Contour layout ({geometry.links} links, "
            f"{geometry.chain_length * MM:.1f} mm of chain)")
     return fig

@@ -1,126 +1,264 @@
-"""The dynamic response (Dynamics II): start-up oscillograms (seed 000 Fig. 2), the
-amplitude–frequency characteristic (seed 000 Fig. 3), and the steady dynamic loads, inertia
-loads and irregularity of rotation per span and per mass (seed 000 §3.3)."""
+"""Dynamic response of a drive (seed 000 §3.2–3.6): start-up oscillograms of the span forces
+and of the sprocket speeds (its Fig. 2), amplitude–frequency curves per span with the
+resonance marks (its Fig. 3), steady dynamic loads per span, inertia loads and irregularity
+per mass, and the four material pairs side by side (its Fig. 2–3 and Table 1).
+
+Spans are labelled ``span 1`` … and masses ``M1`` … unless ``names`` are given (the report
+passes "S1→S2" and the sprocket names). With more than ``max_lines`` curves the most loaded
+ones are drawn in colour with a legend and the others thin and grey, so a 24-sprocket drive
+stays readable.
+"""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
-from chaindrive.plotting._base import CYCLE, GREY, TIGHT, figure_axes, finish
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
     from chaindrive.dynamics.afc import AfcResult
+    from chaindrive.dynamics.materials import MaterialCase
     from chaindrive.dynamics.startup import StartupResult
     from chaindrive.dynamics.steady import SteadyStateResult
 
-RPM = 30.0 / np.pi
+__all__ = ["afc_curves", "inertia_and_irregularity", "material_comparison_chart",
+           "startup_oscillogram", "startup_speeds", "steady_loads"]
+
+RPM = 30.0 / math.pi  # rad/s → rpm
 
 
-def _names(count: int, names: Sequence[str] | None, prefix: str) -> list[str]:
-    return list(names) if names is not None else [f"{prefix}{i + 1}" for i in range(count)]
+def _labels(n: int, names: Sequence[str] | None, prefix: str) -> list[str]:
+    """``names`` (checked against n) or prefix + 1…n."""
+    if names is None:
+        return [f"{prefix}{i + 1}" for i in range(n)]
+    if len(names) != n:
+        raise ValueError(f"need {n} names, got {len(names)}")
+    return [str(s) for s in names]
+
+
+def _curves(ax: Axes, x: NDArray[np.float64], y: NDArray[np.float64], labels: list[str],
+            max_lines: int) -> None:
+    """One line per column of y (T, n); beyond max_lines only the columns of largest peak
+    in colour, the rest thin grey under one legend entry."""
+    n = y.shape[1]
+    order = np.argsort(-np.abs(y).max(axis=0)) if n else np.zeros(0, int)
+    shown = set(order[:max_lines].tolist())
+    grey = False
+    for i in range(n):
+        if i in shown:
+            continue
+        ax.plot(x, y[:, i], color=GREY, lw=0.5, alpha=0.6,
+                label=None if grey else f"other {n - len(shown)}")
+        grey = True
+    for k, i in enumerate(sorted(shown)):
+        ax.plot(x, y[:, i], color=CYCLE[k % len(CYCLE)], lw=1.1, label=labels[i])
+
+
+def _bar_ticks(ax: Axes, labels: list[str]) -> None:
+    ax.set_xticks(range(len(labels)), labels, rotation=90 if len(labels) > 8 else 0,
+                  fontsize="small")
+
+
+def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
+    """End of the time axis [ms]: the whole record, or 4× the transient when it takes less
+    than a fifth of the record (so the start-up itself is readable)."""
+    if math.isfinite(transient) and transient > 0 and 4 * transient < t[-1]:
+        return float(4 * transient)
+    return float(t[-1])
 
 
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
-                        names: Sequence[str] | None = None) -> Figure:
-    """Span forces against time during the start-up (seed 000 Fig. 2), the largest force
-    F₁max marked and the settling time as a vertical line. names label the spans."""
+                        names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
+    """Span forces F_i(t) [N] during the start-up against time [ms] (seed 000 Fig. 2), the
+    largest one F₁max marked and labelled, the settling time as a dashed vertical line
+    (:func:`chaindrive.dynamics.startup.settling_time`). names label the spans. When the
+    start-up settles within a fifth of the record the time axis ends at 4× the settling
+    time (the title says so)."""
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
-    forces = np.asarray(startup.span_forces)
-    labels = _names(forces.shape[1], names, "span ")
-    shown = np.argsort(startup.max_span_force)[::-1][:6]  # the six most loaded spans
-    for k, i in enumerate(shown):
-        ax.plot(t, forces[:, i], lw=0.9, color=CYCLE[k % len(CYCLE)], label=labels[i])
-    i_max = int(np.argmax(startup.max_span_force))
-    k_max = int(np.argmax(forces[:, i_max]))
-    ax.plot([t[k_max]], [forces[k_max, i_max]], "o", color=TIGHT, ms=5,
-            label=f"F₁max = {forces[k_max, i_max]:.0f} N")
-    ax.axvline(startup.settling_time * 1e3, color=GREY, ls="--", lw=0.9,
-               label=f"settled at {startup.settling_time * 1e3:.0f} ms")
+    F = np.asarray(startup.span_forces)
+    labels = _labels(F.shape[1], names, "span ")
+    _curves(ax, t, F, labels, max_lines)
+    i, k = np.unravel_index(int(np.argmax(F)), F.shape)
+    ax.plot(t[i], F[i, k], "v", color="k", ms=7, zorder=5)
+    ax.annotate(f"F₁max = {F[i, k]:.0f} N ({labels[k]})", (t[i], F[i, k]), xytext=(6, 2),
+                textcoords="offset points", fontsize="small", va="bottom")
+    ts = startup.settling_time * 1e3
+    if math.isfinite(ts) and t[0] < ts <= t[-1]:
+        ax.axvline(ts, color=GREY, ls="--", lw=1.0, label=f"settled at {ts:.0f} ms")
+    ax.set_ylim(top=float(F.max()) * 1.15 if F.max() > 0 else None)
+    end = _zoom_end(t, max(ts, t[i]))
+    ax.set_xlim(t[0], end)
     ax.set_xlabel("time, ms")
     ax.set_ylabel("span force, N")
-    ax.legend(fontsize="x-small", loc="upper right")
-    finish(ax, "Start-up: span forces")
+    _legend(ax, F.shape[1])
+    title = "Start-up: span forces"
+    if end < t[-1]:
+        title += f" (first {end:.0f} of {t[-1]:.0f} ms)"
+    finish(ax, title)
     return fig
 
 
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
-                   names: Sequence[str] | None = None) -> Figure:
-    """Sprocket speeds [rpm] against time during the start-up."""
-    fig, ax = figure_axes(ax, (6.4, 3.2))
+                   names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
+    """Sprocket speeds [rpm] during the start-up against time [ms] (seed 000 Fig. 2), over
+    the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses)."""
+    fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
-    speeds = np.asarray(startup.speeds) * RPM
-    labels = _names(speeds.shape[1], names, "S")
-    for i in range(min(speeds.shape[1], 8)):
-        ax.plot(t, speeds[:, i], lw=0.9, color=CYCLE[i % len(CYCLE)], label=labels[i])
+    w = np.asarray(startup.speeds) * RPM
+    _curves(ax, t, w, _labels(w.shape[1], names, "M"), max_lines)
+    end = _zoom_end(t, startup.settling_time * 1e3)
+    ax.set_xlim(t[0], end)
     ax.set_xlabel("time, ms")
     ax.set_ylabel("speed, rpm")
-    ax.legend(fontsize="x-small", loc="lower right")
-    finish(ax, "Start-up: sprocket speeds")
+    if w.shape[1] > 4:
+        _legend(ax, w.shape[1])
+    else:
+        ax.legend(fontsize="x-small", loc="lower right")
+    title = "Start-up: sprocket speeds"
+    finish(ax, title if end >= t[-1] else f"{title} (first {end:.0f} of {t[-1]:.0f} ms)")
     return fig
 
 
-def afc_curves(afc: AfcResult, *, ax: Axes | None = None,
-               names: Sequence[str] | None = None, max_markers: int = 6) -> Figure:
-    """Dynamic load amplitude of every span against the tooth frequency (seed 000 Fig. 3),
-    with the resonances inside the sweep (natural frequency j over harmonic k) as dotted
-    lines."""
+def _chosen_markers(afc: AfcResult, max_markers: int) -> list[tuple[int, int, float, float]]:
+    """The resonance markers inside the sweep to draw, at most max_markers: highest span
+    load first, skipping any closer than 3 % of the sweep to one already chosen (their
+    labels would print over each other)."""
+    fz = np.asarray(afc.tooth_frequencies_hz)
+    top = np.asarray(afc.span_load).max(axis=1)
+    inside = [m for m in afc.markers if fz.min() <= m[3] <= fz.max()]
+    inside.sort(key=lambda m: -float(np.interp(m[3], fz, top)))
+    gap = 0.03 * float(np.ptp(fz)) if fz.size else 0.0
+    chosen: list[tuple[int, int, float, float]] = []
+    for m in inside:
+        if len(chosen) < max_markers and all(abs(m[3] - c[3]) >= gap for c in chosen):
+            chosen.append(m)
+    return sorted(chosen, key=lambda m: m[3])
+
+
+def _legend(ax: Axes, curves: int) -> None:
+    """Legend inside (upper right) for a few curves, outside on the right for many."""
+    if curves > 4:
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  frameon=False)
+    else:
+        ax.legend(fontsize="x-small", loc="upper right")
+
+
+def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
+               max_lines: int = 6, max_markers: int = 8,
+               operating_hz: float | None = None) -> Figure:
+    """Amplitude–frequency characteristics: peak dynamic load of each span [N] against the
+    tooth frequency [Hz] (seed 000 Fig. 3), every resonance (harmonic k of the tooth
+    frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
+    "mode j × k" (the ``max_markers`` with the highest load), and the operating tooth
+    frequency ``operating_hz`` as a solid line. Logarithmic load axis: the resonance peaks
+    stand orders of magnitude above the rest of the curves."""
     fig, ax = figure_axes(ax, (6.4, 3.8))
     fz = np.asarray(afc.tooth_frequencies_hz)
-    load = np.asarray(afc.span_load)
-    labels = _names(load.shape[1], names, "span ")
-    shown = np.argsort(load.max(axis=0))[::-1][:6]
-    for k, i in enumerate(shown):
-        ax.plot(fz, load[:, i], lw=1.0, color=CYCLE[k % len(CYCLE)], label=labels[i])
-    for j, k, _f, f_line in list(afc.markers)[:max_markers]:
-        ax.axvline(f_line, color=GREY, ls=":", lw=0.8)
-        ax.annotate(f"mode {j} × {k}", (f_line, 0.97), xycoords=("data", "axes fraction"),
-                    rotation=90, fontsize="xx-small", va="top", ha="right", color=GREY)
-    ax.set_yscale("log")
-    ax.set_xlabel("tooth frequency, Hz")
-    ax.set_ylabel("dynamic load amplitude, N")
-    ax.legend(fontsize="x-small", loc="lower right")
-    finish(ax, "Amplitude–frequency characteristic")
+    F = np.asarray(afc.span_load)
+    _curves(ax, fz, F, _labels(F.shape[1], names, "span "), max_lines)
+    trans = ax.get_xaxis_transform()
+    for j, k, _, f in _chosen_markers(afc, max_markers):
+        ax.axvline(f, color=GREY, ls=":", lw=0.9)
+        ax.text(f, 0.98, f" mode {j} × {k}", transform=trans, rotation=90, va="top",
+                ha="right", fontsize="xx-small", color="#444444")
+    if operating_hz is not None:
+        ax.axvline(operating_hz, color="k", lw=1.0,
+                   label=f"operating {operating_hz:.1f} Hz")
+    ax.set_xlim(fz[0], fz[-1])
+    ax.set_yscale("log")  # the resonance peaks are orders of magnitude above the rest
+    positive = F[F > 0]
+    if positive.size:
+        ax.set_ylim(max(float(positive.min()), float(positive.max()) * 1e-4) * 0.8,
+                    float(positive.max()) * 3.0)
+    ax.set_xlabel("tooth frequency f_z, Hz")
+    ax.set_ylabel("dynamic load, N")
+    if F.shape[1] > 4:
+        _legend(ax, F.shape[1])
+    else:
+        ax.legend(fontsize="x-small", loc="upper left")
+    finish(ax, "Amplitude–frequency characteristics per span")
     return fig
 
 
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None) -> Figure:
-    """Largest steady dynamic load of every span under the polygonal excitation (bars)."""
-    fig, ax = figure_axes(ax, (6.4, 3.2))
-    load = np.asarray(steady.span_dynamic_load)
-    labels = _names(load.size, names, "span ")
-    x = np.arange(load.size)
-    ax.bar(x, load, color=TIGHT, width=0.7)
-    ax.set_xticks(x, labels, rotation=90 if load.size > 8 else 0, fontsize="small")
+    """Steady dynamic load of each span under the polygonal effect (seed 000 §3.3): peak
+    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars."""
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    peak = np.asarray(steady.span_dynamic_load)
+    amp = np.asarray(steady.span_load_amplitude)
+    labels = _labels(peak.size, names, "span ")
+    x = np.arange(peak.size)
+    ax.bar(x - 0.2, peak, 0.4, color=TIGHT, label="peak |F(t)|")
+    ax.bar(x + 0.2, amp, 0.4, color=CHAIN, label="amplitude (max − min)/2")
+    _bar_ticks(ax, labels)
     ax.set_ylabel("dynamic load, N")
-    finish(ax, "Steady motion: dynamic load per span")
+    ax.legend(fontsize="x-small")
+    finish(ax, "Steady dynamic load per span (polygonal effect)")
     return fig
 
 
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None) -> Figure:
-    """Two bar charts per mass: the inertia load m·ẍ [N] and the irregularity of rotation
-    Δ = 2x/R·100 [%] in steady motion (seed 000 §3.3)."""
+    """Two bar charts per mass (seed 000 §3.3): the inertia load max |m_i ẍ_i| [N] and the
+    irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars when the radii were not
+    given to the steady state)."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(6.4, 4.6), layout="constrained")
-    top, bottom = fig.subplots(2, 1, sharex=True)
     inertia = np.asarray(steady.inertia_load)
-    irregular = np.asarray(steady.irregularity_percent)
-    labels = _names(inertia.size, names, "S")
-    x = np.arange(inertia.size)
-    top.bar(x, inertia, color=CYCLE[0], width=0.7)
-    top.set_ylabel("inertia load, N")
-    finish(top, "Steady motion: inertia load and irregularity per mass")
-    bottom.bar(x, irregular, color=CYCLE[2], width=0.7)
-    bottom.set_ylabel("irregularity Δ, %")
-    bottom.set_xticks(x, labels, rotation=90 if inertia.size > 8 else 0, fontsize="small")
-    finish(bottom)
+    irr = np.asarray(steady.irregularity_percent)
+    labels = _labels(inertia.size, names, "M")
+    wide = inertia.size > 8
+    fig = Figure(figsize=(6.4, 5.6) if wide else (7.6, 3.2), layout="constrained")
+    ax1, ax2 = fig.subplots(2 if wide else 1, 1 if wide else 2)
+    ax1.bar(range(inertia.size), inertia, color=CHAIN)
+    ax1.set_ylabel("inertia load m·ẍ, N")
+    _bar_ticks(ax1, labels)
+    finish(ax1, "Inertia load per mass")
+    ax2.bar(range(irr.size), np.nan_to_num(irr), color=TIGHT)
+    ax2.set_ylabel("irregularity Δ, %")
+    _bar_ticks(ax2, labels)
+    finish(ax2, "Irregularity of rotation per mass")
+    return fig
+
+
+def _pair_label(case: MaterialCase) -> str:
+    return f"{case.chain_material}\non {case.sprocket_material}"
+
+
+def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
+    """The material pairs side by side (seed 000 Fig. 2–3, Table 1): start-up peak span force
+    [N] and the amplitude of the first resonance [N] (its tooth frequency [Hz] printed on the
+    bar) per pair of chain and sprocket materials
+    (:func:`chaindrive.dynamics.materials.material_comparison`)."""
+    from matplotlib.figure import Figure
+
+    labels = [_pair_label(c) for c in cases]
+    colours = [CYCLE[i % len(CYCLE)] for i in range(len(cases))]
+    fig = Figure(figsize=(7.6, 3.4), layout="constrained")
+    ax1, ax2 = fig.subplots(1, 2)
+    x = np.arange(len(cases))
+    bars = ax1.bar(x, [c.startup_peak_n for c in cases], color=colours)
+    ax1.bar_label(bars, fmt="%.0f", fontsize="x-small")
+    ax1.set_ylabel("start-up peak F₁max, N")
+    finish(ax1, "Start-up peak")
+    bars = ax2.bar(x, [c.resonance_amplitude_n for c in cases], color=colours)
+    ax2.bar_label(bars, [f"{c.resonance_amplitude_n:.0f} N\n@ {c.resonance_tooth_frequency_hz:.0f} Hz"
+                         for c in cases], fontsize="x-small")
+    ax2.set_ylabel("first resonance amplitude, N")
+    finish(ax2, "First resonance (AFC)")
+    for ax in (ax1, ax2):
+        ax.set_xticks(x, labels, fontsize="x-small")
+        ax.set_xlabel("chain material on sprocket material", fontsize="small")
+        ax.margins(y=0.22)
     return fig

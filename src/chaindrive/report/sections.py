@@ -245,9 +245,78 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     return blocks
 
 
+def _k_rows(response: Any) -> list[tuple[str, Any, str, str]]:
+    """The two-stage check k1, k2, k2min against [k] (seed 000 §3.6)."""
+    k = response.strength_dict()
+    return [(name, k[key], f"≥ {response.allowable_k:g}",
+             "—" if k[key] is None else "pass" if k[key] >= response.allowable_k else "FAIL")
+            for name, key in (("start-up k1 = Q/F1max", "k1"), ("steady k2 = Q/(F_R + F2)", "k2"),
+                              ("at resonance k2min = Q/(F_R + F2max)", "k2min"))]
+
+
+def _dynamic_load_rows(inp: ReportInput, response: Any) -> list[tuple[str, Any, str]]:
+    """K_D, F_D, F_t and the start-up summary."""
+    steady, startup = response.steady, response.startup
+    st = inp.document.get("strength") or {}
+    rows: list[tuple[str, Any, str]] = [
+        ("coefficient of dynamics K_D = 1 + F_D/F_t", steady.coefficient_of_dynamics, ""),
+        ("dynamic load F_D (RMS of the span peaks)", steady.dynamic_load_rms, "N"),
+        ("peripheral force F_t", st.get("peripheral_force_n"), "N"),
+        ("tooth frequency", steady.tooth_angular_frequency / (2 * math.pi), "Hz")]
+    if startup is not None:
+        rows += [("start-up peak F1max", float(startup.max_span_force.max()), "N"),
+                 ("settling time", startup.settling_time * 1e3, "ms"),
+                 ("start-up record", float(startup.times[-1]) * 1e3, "ms")]
+    return rows
+
+
+def _span_table(spans: list[str], response: Any) -> Table:
+    """Per span: static tension, steady dynamic load, start-up and resonance peaks, and the
+    loads of the optional disturbances."""
+    n = len(spans)
+    startup = response.startup
+    cols: list[tuple[str, Sequence[Any]]] = [
+        ("static F_R, N", response.span_tensions.tolist()),
+        ("steady peak F2, N", response.steady.span_dynamic_load.tolist()),
+        ("steady amplitude, N", response.steady.span_load_amplitude.tolist()),
+        ("start-up F1max, N", [None] * n if startup is None else startup.max_span_force.tolist()),
+        ("F2max over the AFC sweep, N", response.afc.max_span_load.tolist())]
+    cols += [(f"{name.replace('_', ' ')}, N", r.span_dynamic_load.tolist())
+             for name, r in response.disturbances.items()]
+    return Table("Dynamic loads per span", ("span", *(c for c, _ in cols)),
+                 _rows(zip(spans, *(v for _, v in cols), strict=True)))
+
+
+def _material_blocks(inp: ReportInput) -> list[Block]:
+    """Seed 000's four material pairs on this layout (Fig. 2–3, Table 1)."""
+    from chaindrive.dynamics.materials import material_comparison
+    from chaindrive.errors import ChainDriveError
+    from chaindrive.plotting import material_comparison_chart
+
+    a = inp.analysis
+    try:
+        cases = material_comparison(a.drive, a.geometry)
+    except ChainDriveError as exc:
+        inp.notes.append(f"material pairs not compared: {exc}")
+        return []
+    return [
+        Text("The same layout with metal or polymer chain on metal or polymer sprockets "
+             "(seed 000 Fig. 2–3, Table 1): ring model rebuilt per pair, start-up over 0.3 s, "
+             "first resonance from an AFC sweep through the first natural frequency.", "note"),
+        Table("Material pairs", ("chain", "sprockets", "start-up peak, N", "first f, Hz",
+                                 "resonance f_z, Hz", "resonance amplitude, N"),
+              _rows([(c.chain_material, c.sprocket_material, c.startup_peak_n,
+                      c.first_natural_frequency_hz, c.resonance_tooth_frequency_hz,
+                      c.resonance_amplitude_n) for c in cases])),
+        plot_block(material_comparison_chart(cases), "Material pairs: start-up peak and first "
+                   "resonance", inp.dpi, "materials"),
+    ]
+
+
 def response_section(inp: ReportInput) -> list[Block] | None:
     """The dynamic response (Dynamics II, seed 000 §3.1–3.3, §3.6): the two-stage check,
-    K_D, the steady loads per span and mass, the start-up oscillogram and the AFC."""
+    K_D, the loads per span and per mass, the start-up oscillograms, the AFC and the
+    material pairs."""
     from chaindrive.plotting import (
         afc_curves,
         inertia_and_irregularity,
@@ -262,43 +331,37 @@ def response_section(inp: ReportInput) -> list[Block] | None:
     sprockets = [s.name for s in inp.analysis.drive.sprockets]
     spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
     steady, startup = response.steady, response.startup
-    checks = response.strength_dict()
-    rows = [(name, checks[key], f"≥ {response.allowable_k:g}",
-             "pass" if checks[key] is None or checks[key] >= response.allowable_k else "FAIL")
-            for name, key in (("start-up k1 = Q/F1max", "k1"), ("steady k2 = Q/(F_R + F2)", "k2"),
-                              ("at resonance k2min = Q/(F_R + F2max)", "k2min"))]
+    k_rows = _k_rows(response)
     blocks: list[Block] = [
         Text("Kinematic excitation by the polygonal effect at the tooth frequency and its "
              "harmonics, solved in the frequency domain; start-up from rest with the motor law "
              "of the design ([dynamics]); spans carry tension only (seed 000, docs/dynamics2.md)."),
         Table("Two-stage safety check (seed 000 §3.6)", ("check", "value", "required", "result"),
-              _rows(rows), tuple(i for i, r in enumerate(rows) if r[3] == "FAIL")),
-        Table("Steady motion per span", ("span", "dynamic load, N", "load amplitude, N"),
-              _rows(zip(spans, steady.span_dynamic_load.tolist(),
-                        steady.span_load_amplitude.tolist(), strict=True))),
-        Table("Steady motion per mass", ("sprocket", "inertia load, N", "irregularity, %"),
-              _rows(zip(sprockets, steady.inertia_load.tolist(),
-                        steady.irregularity_percent.tolist(), strict=True))),
-        Text(f"Coefficient of dynamics K_D = 1 + F_D/F_t = "
-             f"{steady.coefficient_of_dynamics if steady.coefficient_of_dynamics else float('nan'):.4g}"
-             f" (F_D = {steady.dynamic_load_rms:.4g} N, RMS of the span loads)."),
-        plot_block(steady_loads(steady, names=spans), "Dynamic load per span", inp.dpi,
+              _rows(k_rows), tuple(i for i, r in enumerate(k_rows) if r[3] == "FAIL")),
+        Table("Dynamic loads", ("quantity", "value", "unit"),
+              _rows(_dynamic_load_rows(inp, response))),
+        _span_table(spans, response),
+    ]
+    if startup is not None:
+        blocks += [plot_block(startup_oscillogram(startup, names=spans),
+                              "Start-up oscillogram: span forces", inp.dpi, "startup"),
+                   plot_block(startup_speeds(startup, names=sprockets),
+                              "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
+    blocks += [
+        plot_block(afc_curves(response.afc, names=spans, operating_hz=steady
+                              .tooth_angular_frequency / (2 * math.pi)),
+                   "Amplitude–frequency characteristic per span", inp.dpi, "afc"),
+        plot_block(steady_loads(steady, names=spans), "Steady dynamic load per span", inp.dpi,
                    "steady_loads"),
+        Table("Steady motion per mass", ("sprocket", "inertia load m·ẍ, N",
+                                         "displacement amplitude, mm", "irregularity Δ, %"),
+              _rows(zip(sprockets, steady.inertia_load.tolist(),
+                        (steady.displacement_amplitude * 1e3).tolist(),
+                        steady.irregularity_percent.tolist(), strict=True))),
         plot_block(inertia_and_irregularity(steady, names=sprockets),
                    "Inertia load and irregularity per mass", inp.dpi, "inertia"),
     ]
-    if startup is not None:
-        blocks += [
-            Table("Start-up", ("span", "F1max, N"),
-                  _rows(zip(spans, startup.max_span_force.tolist(), strict=True))),
-            plot_block(startup_oscillogram(startup, names=spans), "Start-up oscillogram",
-                       inp.dpi, "startup"),
-            plot_block(startup_speeds(startup, names=sprockets), "Start-up speeds", inp.dpi,
-                       "startup_speeds"),
-        ]
-    blocks.append(plot_block(afc_curves(response.afc, names=spans),
-                             "Amplitude–frequency characteristic", inp.dpi, "afc"))
-    return blocks
+    return blocks + _material_blocks(inp)
 
 
 def damping_section(inp: ReportInput) -> list[Block]:
