@@ -612,9 +612,15 @@ def _exponentials(s: NDArray[np.complex128], t: NDArray[np.float64]
     fine = np.exp(s[:, None] * (dt * np.arange(B)))[:, None, :]
     coarse = np.exp(s[:, None] * (t[0] + dt * B * np.arange(A)))[:, :, None]
     cr, ci, fr, fi = coarse.real, coarse.imag, fine.real, fine.imag
-    re = (cr * fr - ci * fi).reshape(s.size, A * B)[:, :T]
-    im = (cr * fi + ci * fr).reshape(s.size, A * B)[:, :T]
-    return re, im
+    shape = (s.size, A, B)
+    re, im, tmp = np.empty(shape), np.empty(shape), np.empty(shape)
+    np.multiply(cr, fr, out=re)
+    np.multiply(ci, fi, out=tmp)
+    re -= tmp
+    np.multiply(cr, fi, out=im)
+    np.multiply(ci, fr, out=tmp)
+    im += tmp
+    return re.reshape(s.size, A * B)[:, :T], im.reshape(s.size, A * B)[:, :T]
 
 
 def _underdamped(t: NDArray[np.float64], w: NDArray[np.float64], zeta: NDArray[np.float64],
@@ -766,8 +772,12 @@ def _physical(Xp: NDArray[np.float64], c: NDArray[np.float64], beta: float,
     for k in range(0, T, block):
         np.matmul(Xp, S[:, k:k + block], out=xs[:, k:k + block])
         np.matmul(Xp, V[:, k:k + block], out=vs[:, k:k + block])
-    y = xs + beta * vs
-    F = c[:, None] * (np.roll(y, -1, axis=0) - y)
+    y = np.multiply(vs, beta)
+    y += xs
+    F = np.empty_like(y)  # F_i = c_i (y_{i+1} − y_i), the last joins mass n−1 to mass 0
+    np.subtract(y[1:], y[:-1], out=F[:-1])
+    np.subtract(y[:1], y[-1:], out=F[-1:])
+    F *= c[:, None]
     return xs.T, vs.T, F.T
 
 
