@@ -17,17 +17,21 @@ import chaindrive
 from chaindrive import app as app_pkg
 from chaindrive.app import runs
 from chaindrive.app.state import (
+    EDIT_FIELDS,
     SPROCKET_COLUMNS,
     DesignForm,
     Location,
+    apply_sprocket_edit,
     design_from_form,
     design_to_toml,
+    edit_values,
     evaluate,
     form_from_design,
     is_empty,
     list_examples,
     locate,
     read_design_text,
+    sprocket_label,
 )
 from chaindrive.app.views import check_records, headline, layout_svg, modal_records, recompute
 from chaindrive.cli import app as cli_app
@@ -111,6 +115,48 @@ def test_editing_a_tooth_count_matches_the_edited_file(tmp_path: Path) -> None:
     before = chaindrive.analyze(chaindrive.load(SEED))
     assert direct.geometry.links != before.geometry.links  # the edit is one that matters
 
+
+
+# --- the "edit one sprocket" form ---------------------------------------------------------------
+
+def test_edit_form_shows_the_row_as_the_form_needs_it() -> None:
+    row = seed_form().sprockets[0]
+    row["teeth"] = 15.0                        # what a numeric editor column returns
+    values = edit_values(row)
+    assert set(values) == set(EDIT_FIELDS)
+    assert values["teeth"] == 15 and isinstance(values["teeth"], int)
+    assert values["x_mm"] == pytest.approx(1364.0) and values["speed_rpm"] == pytest.approx(300)
+    assert values["name"] == "S1" and values["role"] == "driver"
+    assert values["side"] is None and values["power_share"] is None  # empty: the default
+    assert edit_values({"teeth": 14.5, "x_mm": math.nan})["teeth"] is None  # not invented
+    assert edit_values({"teeth": 14.5, "x_mm": math.nan})["x_mm"] is None
+
+
+def test_edit_form_names_rows_by_number_and_name() -> None:
+    assert sprocket_label(2, {"name": "S3"}) == "row 3: S3"
+    assert sprocket_label(0, {"name": None}) == "row 1: unnamed"
+
+
+def test_applying_the_edit_form_matches_the_edited_file(tmp_path: Path) -> None:
+    form = seed_form()
+    values = edit_values(form.sprockets[2]) | {"teeth": 30}
+    rows = apply_sprocket_edit(form.sprockets, 2, values)
+    assert rows[2]["teeth"] == 30 and form.sprockets[2]["teeth"] == 14  # a new list
+    assert rows[:2] == form.sprockets[:2]
+    edited = tmp_path / "edited.toml"
+    edited.write_text(SEED.read_text("utf-8").replace("teeth = 14", "teeth = 30"), "utf-8")
+    outcome = evaluate(design_from_form(DesignForm(form.drive, form.chain, rows, form.other)))
+    assert outcome.analysis is not None
+    assert outcome.analysis.geometry.links == chaindrive.analyze(
+        chaindrive.load(edited)).geometry.links
+
+
+def test_edit_form_clears_a_field_and_ignores_a_bad_row() -> None:
+    rows = seed_form().sprockets
+    cleared = apply_sprocket_edit(rows, 0, {"speed_rpm": None, "material": "brass"})
+    assert "speed" not in design_from_form(DesignForm({}, {}, cleared))["sprockets"][0]
+    assert cleared[0]["material"] == rows[0]["material"]  # not a field of the form
+    assert apply_sprocket_edit(rows, 7, {"teeth": 9}) == rows
 
 def test_empty_cells_take_the_defaults() -> None:
     form = seed_form()
@@ -306,3 +352,36 @@ def test_missing_feature_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
     assert reason is not None and "not available yet" in reason
     monkeypatch.setitem(runs.NEEDS, "afc", ("chaindrive.analysis",))
     assert runs.missing("afc") is None
+
+
+# --- the page itself, run headless by Streamlit's AppTest (no browser) --------------------------
+
+def page_test() -> Any:
+    testing = pytest.importorskip("streamlit.testing.v1")
+    return testing.AppTest.from_file(str(app_pkg.PAGE), default_timeout=60)
+
+
+def test_page_edit_form_changes_the_tooth_count(tmp_path: Path) -> None:
+    at = page_test().run()
+    at.selectbox(key="edit_row").select(2).run()
+    teeth = [n for n in at.number_input if n.label == "Teeth"]
+    assert len(teeth) == 1 and teeth[0].value == 14     # the form shows the chosen row
+    teeth[0].set_value(30)
+    next(b for b in at.button if b.label == "Apply").click().run()
+    edited = tmp_path / "edited.toml"
+    edited.write_text(SEED.read_text("utf-8").replace("teeth = 14", "teeth = 30"), "utf-8")
+    links = chaindrive.analyze(chaindrive.load(edited), response=False).geometry.links
+    assert at.metric[0].label == "Links" and at.metric[0].value == str(links)
+    assert not at.exception and not at.error
+    assert at.session_state["form"].sprockets[2]["teeth"] == 30
+
+
+def test_page_keeps_the_other_tables_of_the_design() -> None:
+    at = page_test().run()
+    form = at.session_state["form"]
+    form.other = {"dynamics": {"transient": False}}
+    at.session_state["version"] += 1
+    at.run()
+    assert at.session_state["last_good"][1]["dynamics"] == {"transient": False}
+    next(b for b in at.button if b.label == "Apply").click().run()  # and through the form
+    assert at.session_state["form"].other == {"dynamics": {"transient": False}}

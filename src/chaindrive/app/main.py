@@ -8,8 +8,10 @@ report and drawing run on demand (:mod:`chaindrive.app.runs`).
 
 from __future__ import annotations
 
+import html
 import json
 import math
+import zlib
 from pathlib import Path
 from typing import Any
 
@@ -19,13 +21,16 @@ from chaindrive.app import runs
 from chaindrive.app.state import (
     SPROCKET_COLUMNS,
     DesignForm,
+    apply_sprocket_edit,
     design_from_form,
     design_to_toml,
+    edit_values,
     form_from_design,
     is_empty,
     list_examples,
     plain,
     read_design_text,
+    sprocket_label,
 )
 from chaindrive.app.views import (
     Screen,
@@ -116,8 +121,9 @@ def _sidebar(design: dict[str, Any] | None) -> None:
         sb.download_button("Save design (TOML)", design_to_toml(design),
                            file_name=_file_name(".toml"), mime="application/toml",
                            key="save_toml", width="stretch")
-    sb.caption(f"Loaded: {st.session_state.get('source', '—')}. Edits apply at once; "
-               "a field with a bad value shows the same message as `chaindrive analyze`.")
+    sb.caption(f"Loaded: {st.session_state.get('source', '—')}. Edits apply at once (the "
+               "“edit one sprocket” form on Apply); a field with a bad value shows the same "
+               "message as `chaindrive analyze`.")
 
 
 def _file_name(suffix: str) -> str:
@@ -289,6 +295,60 @@ def _one_sprocket_form(base: DesignForm, drive: dict[str, Any], chain: dict[str,
         st.session_state["form"] = DesignForm(drive, chain, changed, base.other)
         st.session_state["version"] += 1
         st.rerun()
+
+
+def _sprocket_editor(rows: list[dict[str, Any]]) -> tuple[int, dict[str, Any]] | None:
+    """The keyboard-friendly form that edits one sprocket (the table is drawn on a canvas,
+    hard to reach with the keyboard or a screen reader). Returns (row, values) when the
+    user pressed Apply (or Enter in a field), else None."""
+    from chaindrive.model import ROLES, SIDES
+
+    if not rows:
+        return None
+    if st.session_state.get("edit_row") not in range(len(rows)):
+        st.session_state.pop("edit_row", None)
+    with st.container(key="sprocket_editor", border=True):
+        pick, note = st.columns([1, 3], vertical_alignment="bottom")
+        with pick:
+            index = st.selectbox("Sprocket to edit", range(len(rows)), key="edit_row",
+                                 format_func=lambda i: sprocket_label(i, rows[i]))
+        note.caption("Edit one sprocket from the keyboard: choose it, change the fields (Tab "
+                     "moves on), press Apply or Enter. An empty field takes the default.")
+        v = edit_values(rows[index])
+        # keyed by the row's values too, so that an edit in the table shows up here
+        tag = f"{index}.{zlib.crc32(repr(sorted(v.items())).encode()):08x}"
+        with st.form(_key(f"edit_form.{tag}"), border=False, enter_to_submit=True):
+            c = st.columns([1.3, 0.9, 1.1, 1.1, 1.0, 1.15, 1.1, 1.1, 0.9],
+                           vertical_alignment="bottom")
+            out = {"name": c[0].text_input("Name", value=v["name"] or "",
+                                           key=_key(f"edit.name.{tag}")),
+                   "teeth": c[1].number_input("Teeth", value=v["teeth"], step=1,
+                                              key=_key(f"edit.teeth.{tag}")),
+                   "x_mm": c[2].number_input("x [mm]", value=v["x_mm"], step=1.0,
+                                             format="%.2f", key=_key(f"edit.x.{tag}")),
+                   "y_mm": c[3].number_input("y [mm]", value=v["y_mm"], step=1.0,
+                                             format="%.2f", key=_key(f"edit.y.{tag}"))}
+            for col, field, options, empty in ((c[4], "role", ROLES, "driven"),
+                                               (c[5], "side", SIDES, "outside")):
+                opts = list(options)
+                out[field] = col.selectbox(field.capitalize(), opts,
+                                           index=opts.index(v[field]) if v[field] in opts
+                                           else None, placeholder=empty,
+                                           key=_key(f"edit.{field}.{tag}"))
+            out["speed_rpm"] = c[6].number_input("Speed [rpm]", value=v["speed_rpm"],
+                                                 step=10.0, format="%g", placeholder="—",
+                                                 key=_key(f"edit.speed.{tag}"),
+                                                 help="the driver only")
+            out["power_share"] = c[7].number_input("Power share", value=v["power_share"],
+                                                   step=0.05, format="%g", placeholder="—",
+                                                   key=_key(f"edit.share.{tag}"),
+                                                   help="share of the power taken off "
+                                                        "(driven)")
+            submitted = c[8].form_submit_button("Apply", type="primary", width="stretch")
+    if not submitted:
+        return None
+    out["name"] = out["name"].strip() or None
+    return index, out
 
 
 # --- results -------------------------------------------------------------------------------------
@@ -607,6 +667,27 @@ def _results(screen: Screen, design: dict[str, Any]) -> None:
 
 # --- page ----------------------------------------------------------------------------------------
 
+def _ready(state: str, screen: Screen | None = None) -> None:
+    """The page's own ready marker, written last in every completed run: a status line for
+    screen readers (a polite live region, invisible on screen) that says whether the results
+    are up to date, with the design version, its file and the row of the "edit one sprocket"
+    form in data attributes (the browser test waits for it)."""
+    n = (screen.numbers or {}) if screen is not None else {}
+    doc = (screen.document or {}) if screen is not None else {}
+    text = {"ok": "Results up to date", "error": "Correct the field marked ⚠️",
+            "unexpected": "Something went wrong"}.get(state, state)
+    if n:
+        text += f": {n['links']} links, {len(doc.get('warnings', []))} warning(s)"
+    attrs = {"id": "chaindrive-ready", "role": "status", "aria-live": "polite",
+             "data-state": state, "data-version": str(st.session_state.get("version", 0)),
+             "data-source": str(st.session_state.get("source", "")),
+             "data-editing": str(st.session_state.get("edit_row", ""))}
+    hidden = ("position:absolute;width:1px;height:1px;margin:-1px;overflow:hidden;"
+              "clip:rect(0 0 0 0);white-space:nowrap")
+    body = " ".join(f'{k}="{html.escape(v)}"' for k, v in attrs.items())
+    st.html(f'<div {body} style="{hidden}">{html.escape(text)}.</div>')
+
+
 def page() -> None:
     """The whole page, top to bottom (Streamlit reruns it on every edit)."""
     st.set_page_config(page_title="chaindrive — chain drive design", layout="wide",
@@ -621,7 +702,12 @@ def page() -> None:
     st.subheader("Sprockets, in order round the contour")
     rows = _sprocket_table(base)
     table_slot = st.empty()
-    _one_sprocket_form(base, drive, chain, rows)
+    edit = _sprocket_editor(rows)
+    if edit is not None:  # the form's values become the base of the form, read afresh
+        st.session_state["form"] = DesignForm(drive, chain, apply_sprocket_edit(rows, *edit),
+                                              base.other)
+        st.session_state["version"] += 1
+        st.rerun()
     form = DesignForm(drive, chain, rows, base.other)
     design = design_from_form(form)
     _sidebar(design)
@@ -630,14 +716,17 @@ def page() -> None:
     if screen.outcome.ok:
         st.session_state["last_good"] = (screen, design)
         _results(screen, design)
+        _ready("ok", screen)
         return
     last = st.session_state.get("last_good")
     if last is None:
         st.info("Correct the field marked ⚠️ and the results appear.")
+        _ready("error")
         return
     st.info("Correct the field marked ⚠️. Until then the results below are those of the last "
             "design that could be analysed.")
     _results(*last)
+    _ready("error", last[0])
 
 
 def _safe_page() -> None:
@@ -647,6 +736,7 @@ def _safe_page() -> None:
         if type(exc).__module__.startswith("streamlit"):
             raise  # st.rerun / st.stop use exceptions
         st.error(UNEXPECTED.format(type(exc).__name__))
+        _ready("unexpected")
 
 
 _safe_page()

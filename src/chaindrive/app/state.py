@@ -380,3 +380,48 @@ def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
                        message=f"the analysis failed unexpectedly ({type(exc).__name__}); "
                                "please report it with the design file")
     return Outcome(analysis=analysis, drive=drive)
+
+
+# --- the "edit one sprocket" form -----------------------------------------------------------
+
+#: The fields of the keyboard-friendly "edit one sprocket" form, in its order (row keys of
+#: :data:`SPROCKET_COLUMNS`; the table edits every column, the form the everyday ones).
+EDIT_FIELDS: tuple[str, ...] = ("name", "teeth", "x_mm", "y_mm", "role", "side", "speed_rpm",
+                                "power_share")
+
+
+def sprocket_label(index: int, row: Mapping[str, Any]) -> str:
+    """How the form's sprocket chooser names row ``index`` (0-based): ``row 3: S3``."""
+    name = row.get("name")
+    return f"row {index + 1}: {'unnamed' if is_empty(name) else name}"
+
+
+def edit_values(row: Mapping[str, Any]) -> dict[str, Any]:
+    """The values the form shows for a sprocket row: empty cells as None, a whole tooth count
+    as an int (a fractional one as None, so the form does not invent a count), numbers as
+    float [mm, rpm, –], text as str."""
+    out: dict[str, Any] = {}
+    for key in EDIT_FIELDS:
+        value = plain(row.get(key))
+        if is_empty(value):
+            out[key] = None
+        elif key == "teeth":
+            whole = _whole(float(value)) if isinstance(value, int | float) else None
+            out[key] = whole if isinstance(whole, int) else None
+        elif key in ("name", "role", "side"):
+            out[key] = str(value)
+        else:
+            out[key] = float(value) if isinstance(value, int | float) else None
+    return out
+
+
+def apply_sprocket_edit(rows: Sequence[Mapping[str, Any]], index: int,
+                        values: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """The sprocket rows with row ``index`` (0-based) given ``values`` (keys of
+    :data:`EDIT_FIELDS`; None empties the cell so the default applies). The other rows and
+    the row's other columns are copied unchanged; an index outside the table changes nothing.
+    """
+    out = [dict(r) for r in rows]
+    if 0 <= index < len(out):
+        out[index].update({k: v for k, v in values.items() if k in EDIT_FIELDS})
+    return out
