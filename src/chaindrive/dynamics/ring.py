@@ -228,10 +228,15 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
         order = None if last else np.roll(_ALL[:n] if n <= _ALL.size else np.arange(n),
                                            -(cut + 1))
         mr, cr, dr = (m, c, d) if last else (m[order], c[order], d[order])
+        # numbered from the cut, branch n-1 is the slack one (cr[-1] == 0)
         diag = np.empty(n)
-        diag[0] = cr[0] / mr[0]
-        diag[1:] = (cr[1:] + cr[:-1]) / mr[1:]
-        lam, V, info = _dstevd(diag, -cr[:-1] * dr[:-1] * dr[1:], compute_v=1)
+        diag[0] = cr[0]
+        np.add(cr[1:], cr[:-1], out=diag[1:])
+        diag /= mr
+        off = cr[:-1] * dr[:-1]
+        off *= dr[1:]
+        np.negative(off, out=off)
+        lam, V, info = _dstevd(diag, off, compute_v=1)
         if info == 0:
             if last:
                 return lam, V, diag
@@ -250,7 +255,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
 def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> ModalResult:
     """Core of :func:`modal_analysis` on validated arrays (c with slack branches at 0)."""
     n = m.size
-    cuts = np.flatnonzero(c <= 0.0).tolist() if c.min() <= 0.0 else []
+    cuts = [i for i, ci in enumerate(c.tolist()) if ci <= 0.0]
     d = 1.0 / np.sqrt(m)
     lam, V, diag = _eigen(m, c, d, cuts[0] if cuts else None)
     V *= d[:, None]  # mass-normalised shapes (V is LAPACK's fresh array: scaled in place)
@@ -258,18 +263,20 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     groups = _components(cuts, n)
     n_rigid = len(groups)
     lam[:n_rigid] = 0.0
-    tol = _ROUNDOFF * abs(lam[-1])
+    tol = _ROUNDOFF * abs(float(lam[-1]))
     if n_rigid < n and lam[n_rigid] <= tol:  # further eigenvalues at round-off level → 0
         lam[:int(np.searchsorted(lam, tol, "right"))] = 0.0
     if n_rigid == 1 and isinstance(groups[0], slice):  # one connected ring: uniform shape
-        shapes[:, 0] = 1.0 / math.sqrt(m.sum())
+        shapes[:, 0] = 1.0 / math.sqrt(math.fsum(m.tolist()))
     else:
         for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
             shapes[:, k] = 0.0
             shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
     rigid = np.zeros(n, dtype=bool)
     rigid[:n_rigid] = True
-    return ModalResult(np.sqrt(lam) / TWO_PI, shapes, rigid, zeta, m, c, diag)
+    np.sqrt(lam, out=lam)
+    lam *= 1.0 / TWO_PI
+    return ModalResult(lam, shapes, rigid, zeta, m, c, diag)
 
 
 def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
@@ -278,11 +285,12 @@ def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
     if c.shape != m.shape:
         raise DesignError("stiffness_n_per_m",
                           f"need one stiffness per mass ({m.size}), got shape {c.shape}")
-    if not (m.min() > 0 and c.min() >= 0 and math.isfinite(m.sum() + c.sum())):
-        if not (m.min() > 0 and math.isfinite(m.sum())):
-            raise DesignError("masses_kg", f"must all be positive and finite, got {m.tolist()}")
-        raise DesignError("stiffness_n_per_m",
-                          f"must all be finite and ≥ 0, got {c.tolist()}")
+    # on Python lists: a NumPy reduction costs more than the whole check for n ≤ 24
+    ml, cl = m.tolist(), c.tolist()
+    if not (min(ml) > 0 and min(cl) >= 0 and math.isfinite(sum(ml) + sum(cl))):
+        if not (min(ml) > 0 and math.isfinite(sum(ml))):
+            raise DesignError("masses_kg", f"must all be positive and finite, got {ml}")
+        raise DesignError("stiffness_n_per_m", f"must all be finite and ≥ 0, got {cl}")
 
 
 def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
