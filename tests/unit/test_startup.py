@@ -9,6 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
+from chaindrive._numeric import exp_poly_on_grid
 from chaindrive.dynamics.startup import (
     ConstantTorque,
     KlossMotor,
@@ -17,7 +18,6 @@ from chaindrive.dynamics.startup import (
     ResistanceLaw,
     _discretise,
     _discretise_expm,
-    _exponentials,
     linear_transient,
     simulate_startup,
 )
@@ -105,12 +105,18 @@ def test_ramp_closed_form_matches_dop853() -> None:
     assert_allclose(r.velocities, sol.y[3:].T, atol=1e-7 * np.abs(sol.y[3:]).max())
 
 
-def test_block_exponentials_equal_direct() -> None:
-    s = np.array([-3.0 + 2000j, -0.5 + 60j, -40.0 + 0j])
+def test_block_exp_poly_equals_direct_sum() -> None:
+    # the blocked evaluation (e^{s(t_a + τ)} = e^{s t_a}e^{sτ}, binomial shift of t^p) against
+    # the direct sum Re Σ κ e^{st} + Σ c_p t^p, including a grid not starting at 0
+    rng = np.random.default_rng(1)
+    s = np.array([-3.0 + 2000j, -0.5 + 60j, -40.0 + 0j, -1e4 + 0j])
+    coef = rng.normal(size=(5, 4)) + 1j * rng.normal(size=(5, 4))
+    poly = rng.normal(size=(5, 4))
     t = 0.25 + 1e-4 * np.arange(3001)
-    re, im = _exponentials(s, t)
-    e = np.exp(s[:, None] * t)
-    assert_allclose(re + 1j * im, e, rtol=0, atol=1e-12)
+    ref = (np.exp(np.outer(t, s)) @ coef.T).real + (t[:, None] ** np.arange(4)) @ poly.T
+    for block in (7, 100, 512, 5000):
+        y = exp_poly_on_grid(float(t[0]), 1e-4, t.size, s, coef, poly, block=block)
+        assert_allclose(y, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
 def test_nonlinear_startup_matches_tight_reference() -> None:

@@ -46,13 +46,15 @@ peak forces agree to 1e-14), so equivalence is tested on small cases.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import exp_poly_at
 from chaindrive.dynamics.steady import span_incidence
 from chaindrive.errors import DesignError
 
@@ -577,15 +579,21 @@ def _default_step(m: NDArray[np.float64], c: NDArray[np.float64]) -> float:
 
 # --- linear closed form -------------------------------------------------------------------
 
-@dataclass(frozen=True, slots=True, eq=False)
+@dataclass(frozen=True, eq=False)
 class LinearTransient:
-    """Response of a linear ring: times (N,) [s], displacements, velocities (N, n) [m, m/s],
-    span_forces (N, n) [N] (elastic + damping, no slack rule)."""
+    """Response of a linear ring: times (N,) [s], velocities (N, n) [m/s], span_forces
+    (N, n) [N] (elastic + damping, no slack rule) — what a start-up check reads, computed
+    at once — and displacements (N, n) [m], evaluated on first access."""
 
     times: NDArray[np.float64]
-    displacements: NDArray[np.float64]
     velocities: NDArray[np.float64]
     span_forces: NDArray[np.float64]
+    displacements_source: Callable[[], NDArray[np.float64]] = field(repr=False)
+
+    @cached_property
+    def displacements(self) -> NDArray[np.float64]:
+        """x (N, n) [m]."""
+        return self.displacements_source()
 
 
 def _mode_roots(omega: NDArray[np.float64], zeta: NDArray[np.float64]
@@ -596,95 +604,73 @@ def _mode_roots(omega: NDArray[np.float64], zeta: NDArray[np.float64]
     return omega * (-z + r), omega * (-z - r)
 
 
-def _exponentials(s: NDArray[np.complex128], t: NDArray[np.float64]
-                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Re and Im of e^{s_j t_k} (modes, T). On an equally spaced grid t_k = t₀ + kΔt
-    (k = aB + b, B ≈ √T) as e^{s(t₀ + aBΔt)}·e^{s bΔt}: 2√T exponentials per mode and one
-    complex product in real arithmetic instead of T exponentials (each factor exact to
-    round-off)."""
-    T = t.size
-    dt = (t[-1] - t[0]) / max(T - 1, 1)
-    if T < 16 or not np.allclose(np.diff(t), dt, rtol=1e-9, atol=0.0):
-        e = np.exp(s[:, None] * t)
-        return e.real.copy(), e.imag.copy()
-    B = math.isqrt(T - 1) + 1
-    A = -(-T // B)
-    fine = np.exp(s[:, None] * (dt * np.arange(B)))[:, None, :]
-    coarse = np.exp(s[:, None] * (t[0] + dt * B * np.arange(A)))[:, :, None]
-    cr, ci, fr, fi = coarse.real, coarse.imag, fine.real, fine.imag
-    shape = (s.size, A, B)
-    re, im, tmp = np.empty(shape), np.empty(shape), np.empty(shape)
-    np.multiply(cr, fr, out=re)
-    np.multiply(ci, fi, out=tmp)
-    re -= tmp
-    np.multiply(cr, fi, out=im)
-    np.multiply(ci, fr, out=tmp)
-    im += tmp
-    return re.reshape(s.size, A * B)[:, :T], im.reshape(s.size, A * B)[:, :T]
+@dataclass(frozen=True, slots=True)
+class _ModalSeries:
+    """Modal responses S_j(t), V_j(t) written as exponential-polynomial sums:
+
+        S_j(t) = Re Σ_k [mode_k = j]·κS_k e^{s_k t} + Σ_p PS[j, p] t^p   (V likewise),
+
+    the form :func:`chaindrive._numeric.exp_poly_on_grid` evaluates."""
+
+    exponents: NDArray[np.complex128]  # s_k (K,)
+    mode: NDArray[np.intp]  # mode index j of term k (K,)
+    kS: NDArray[np.complex128]  # (K,)
+    kV: NDArray[np.complex128]  # (K,)
+    pS: NDArray[np.float64]  # (modes, P)
+    pV: NDArray[np.float64]  # (modes, P)
 
 
-def _underdamped(t: NDArray[np.float64], w: NDArray[np.float64], zeta: NDArray[np.float64],
-                 s1: NDArray[np.complex128], s2: NDArray[np.complex128], ramp: bool
-                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """S, Ṡ (or ∫S, S with ``ramp``) of modes with ζ < 1 (formulas in :func:`_step_response`),
-    computed in place on the two real arrays Re, Im e^{s₁t} (no further temporaries)."""
-    w2 = w[:, None] ** 2
-    wd = s1.imag[:, None]
-    er, ei = _exponentials(s1, t)
-    if ramp:
-        rho = (s2 / s1)[:, None]
-        S = ei * (rho.real / (wd * w2))
-        S += (er - 1.0) * (rho.imag / (wd * w2))
-        S += t / w2
-        er *= -1.0 / w2
-        ei *= -(zeta * w)[:, None] / (wd * w2)
-        ei += er
-        ei += 1.0 / w2
-        return S, ei
-    V = ei / wd
-    er *= -1.0 / w2
-    ei *= -(zeta * w)[:, None] / (wd * w2)
-    ei += er
-    ei += 1.0 / w2
-    return ei, V
+def _step_series(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModalSeries:
+    """Unit-step response S(t) of q̈ + 2ζωq̇ + ω²q = 1 and Ṡ, from rest (Rao §4.5).
 
-
-def _step_response(t: NDArray[np.float64], omega: NDArray[np.float64],
-                   zeta: NDArray[np.float64], ramp: bool = False
-                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Unit-step response S(t) and its derivative of q̈ + 2ζωq̇ + ω²q = 1 (Rao §4.5);
-    with ``ramp`` the unit-ramp response ∫₀ᵗS and S (input u = t). Shapes (modes, T).
-
-    S = (1 − (s₂e^{s₁t} − s₁e^{s₂t})/(s₂ − s₁))/ω², Ṡ = (e^{s₁t} − e^{s₂t})/(s₁ − s₂); for
-    ζ < 1 (s₂ = s̄₁, s₁ = −ζω + iω_d) S = (1 − Re e^{s₁t} − (ζω/ω_d) Im e^{s₁t})/ω²,
-    Ṡ = Im e^{s₁t}/ω_d (one complex exponential). Ramp: ∫₀ᵗ e^{sτ}dτ = (e^{st} − 1)/s, so
-    ∫₀ᵗS = (t − Im(ρ(e^{s₁t} − 1))/Im s₂)/ω², ρ = s₂/s₁. Rigid modes (ω = 0): t²/2, t
-    (ramp: t³/6, t²/2). t ≥ 0 assumed.
+    S = (1 − (s₂e^{s₁t} − s₁e^{s₂t})/(s₂ − s₁))/ω², Ṡ = (e^{s₁t} − e^{s₂t})/(s₁ − s₂),
+    s₁,₂ = ω(−ζ ± sqrt(ζ² − 1)). For ζ < 1 (s₂ = s̄₁ = −ζω − iω_d) one complex term:
+    S = 1/ω² + Re(e^{s₁t}(−1 + iζω/ω_d))/ω², Ṡ = Re(e^{s₁t}(−i/ω_d)); for ζ ≥ 1 two real
+    ones; a rigid mode (ω = 0): S = t²/2, Ṡ = t.
     """
+    m = omega.size
     rigid = omega <= 0
     w = np.where(rigid, 1.0, omega)
     s1, s2 = _mode_roots(w, zeta)
     under = (zeta < 1.0) & ~rigid
-    S = np.empty((w.size, t.size))
-    V = np.empty_like(S)
-    if under.all():
-        S, V = _underdamped(t, w, zeta, s1, s2, ramp)
-    elif under.any():
-        S[under], V[under] = _underdamped(t, w[under], zeta[under], s1[under], s2[under], ramp)
     over = ~under & ~rigid
-    if over.any():
-        a, b = s1[over].real[:, None], s2[over].real[:, None]
-        e1, e2 = np.exp(a * t), np.exp(b * t)
-        step = (1.0 - (b * e1 - a * e2) / (b - a)) / w[over][:, None] ** 2
-        if ramp:
-            i1, i2 = (e1 - 1.0) / a, (e2 - 1.0) / b
-            S[over] = (t - (b * i1 - a * i2) / (b - a)) / w[over][:, None] ** 2
-            V[over] = step
-        else:
-            S[over], V[over] = step, (e1 - e2) / (a - b)
-    S[rigid] = t**3 / 6.0 if ramp else 0.5 * t**2
-    V[rigid] = 0.5 * t**2 if ramp else t
-    return S, V
+    ju, jo = np.flatnonzero(under), np.flatnonzero(over)
+    wu, wo = w[ju], w[jo]
+    wd = s1[ju].imag
+    a, b = s1[jo].real, s2[jo].real
+    exps = np.concatenate([s1[ju], a, b]).astype(complex)
+    mode = np.concatenate([ju, jo, jo])
+    kS = np.concatenate([(-1.0 + 1j * zeta[ju] * wu / wd) / wu**2,
+                         -b / ((b - a) * wo**2), a / ((b - a) * wo**2)]).astype(complex)
+    kV = np.concatenate([-1j / wd, 1.0 / (a - b), -1.0 / (a - b)]).astype(complex)
+    pS, pV = np.zeros((m, 4)), np.zeros((m, 4))
+    pS[~rigid, 0] = 1.0 / w[~rigid] ** 2
+    pS[rigid, 2] = 0.5
+    pV[rigid, 1] = 1.0
+    return _ModalSeries(exps, mode, kS, kV, pS, pV)
+
+
+def _ramp_series(step: _ModalSeries) -> _ModalSeries:
+    """Unit-ramp response (input u = t): ∫₀ᵗS and S. Term by term, ∫₀ᵗ Re(κe^{sτ})dτ =
+    Re((κ/s)e^{st}) − Re(κ/s) and ∫₀ᵗ τ^p dτ = t^{p+1}/(p + 1)."""
+    k = step.kS / step.exponents
+    pS = np.zeros_like(step.pS)
+    pS[:, 1:] = step.pS[:, :-1] / np.arange(1, step.pS.shape[1])
+    np.subtract.at(pS[:, 0], step.mode, k.real)
+    return _ModalSeries(step.exponents, step.mode, k, step.kS, pS, step.pS)
+
+
+def _physical_series(series: _ModalSeries, Xp: NDArray[np.float64], c: NDArray[np.float64],
+                     beta: float) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """Coefficients (3n, K) and polynomial (3n, P) of v = Xp·V, the span forces
+    F_i = c_i (y_{i+1} − y_i), y = x + βv (branch i joins mass i and i+1, the last mass n−1
+    and mass 0; a slack branch has c_i = 0) and x = Xp·S, in this order of rows."""
+    G = c[:, None] * (np.roll(Xp, -1, axis=0) - Xp)
+    cols = series.mode
+    coef = np.concatenate([Xp[:, cols] * series.kV, G[:, cols] * (series.kS + beta * series.kV),
+                           Xp[:, cols] * series.kS])
+    poly = np.concatenate([Xp @ series.pV, G @ (series.pS + beta * series.pV), Xp @ series.pS])
+    return coef, poly
 
 
 def _zoh_modal(P: NDArray[np.float64], omega: NDArray[np.float64], zeta: NDArray[np.float64],
@@ -739,24 +725,28 @@ def linear_transient(masses: ArrayLike, stiffness: ArrayLike, beta: float, times
     modal = modal_analysis(m, c)
     X, w = modal.shapes, modal.angular_frequencies_rad_s
     zeta = 0.5 * beta * w
+    n = m.size
     if f.ndim == 1:
-        p = X.T @ f
+        Xp = X * (X.T @ f)
+        series = _step_series(w, zeta)
         if ramp_time > 0:
-            S, V = _step_response(t, w, zeta, ramp=True)
-            late = t > ramp_time
-            S2, V2 = _step_response(t[late] - ramp_time, w, zeta, ramp=True)
-            S[:, late] -= S2
-            V[:, late] -= V2
-            S /= ramp_time
-            V /= ramp_time
-        else:
-            S, V = _step_response(t, w, zeta)
-        Xp = X * p
-    else:
-        S, V = _zoh_modal((f @ X).T, w, zeta, t[1] - t[0])
-        Xp = X
-    x, v, F = _physical(Xp, c, beta, S, V)
-    return LinearTransient(t, x, v, F)
+            series = _ramp_series(series)
+        coef, poly = _physical_series(series, Xp, c, beta)  # rows: v, F, x
+
+        def response(rows: slice) -> NDArray[np.float64]:
+            out = exp_poly_at(t, series.exponents, coef[rows], poly[rows])
+            if ramp_time > 0:  # f·min(t/t_r, 1) = f(R(t) − R(t − t_r)·H(t − t_r))/t_r
+                late = t > ramp_time
+                out[late] -= exp_poly_at(t[late] - ramp_time, series.exponents, coef[rows],
+                                         poly[rows])
+                out /= ramp_time
+            return out
+
+        vF = response(slice(0, 2 * n))
+        return LinearTransient(t, vF[:, :n], vF[:, n:], lambda: response(slice(2 * n, 3 * n)))
+    S, V = _zoh_modal((f @ X).T, w, zeta, t[1] - t[0])
+    x, v, F = _physical(X, c, beta, S, V)
+    return LinearTransient(t, v, F, lambda: x)
 
 
 def _physical(Xp: NDArray[np.float64], c: NDArray[np.float64], beta: float,
