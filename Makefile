@@ -10,12 +10,18 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(BIN)/python
+# The start-up kernel compiled ahead of time (numba.pycc, needs a C compiler; without one
+# the build says why and numba compiles the kernel on first use instead).
+KERNEL := src/chaindrive/dynamics/startup_kernel.py src/chaindrive/dynamics/kernel_codes.py
+
+$(VENV)/.installed: pyproject.toml $(KERNEL) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e .
+	$(BIN)/python -m chaindrive.dynamics.kernel_build
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+$(VENV)/.installed-test: pyproject.toml $(KERNEL) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e '.[test]'
+	$(BIN)/python -m chaindrive.dynamics.kernel_build
 	touch $@
 
 demo: $(VENV)/.installed

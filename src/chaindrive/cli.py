@@ -12,14 +12,16 @@ import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
-from rich.console import Console
-from rich.table import Table
 
 from chaindrive.errors import ChainDriveError, DesignError
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
 
 app = typer.Typer(
     name="chaindrive",
@@ -44,10 +46,14 @@ def user_errors() -> Iterator[None]:
 
 
 def _console() -> Console:
+    from rich.console import Console  # only the table output needs rich (not --json)
+
     return Console(highlight=False, soft_wrap=False, width=120)
 
 
 def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
+    from rich.table import Table
+
     table = Table(title=title, title_justify="left", header_style="bold")
     for c in columns:
         table.add_column(c, justify="left" if c in TEXT_COLUMNS else "right")

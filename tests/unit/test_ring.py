@@ -298,3 +298,30 @@ def test_coefficient_of_dynamics_seed_example() -> None:
     assert coefficient_of_dynamics([3.0, -4.0], 10.0) == pytest.approx(1 + math.sqrt(12.5) / 10)
     with pytest.raises(DesignError):
         coefficient_of_dynamics([], 1.0)
+
+
+@pytest.mark.parametrize("cut", [None, 23, 5])
+def test_tridiagonal_and_dense_solvers_agree(cut: int | None,
+                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    # the two LAPACK paths of modal_analysis (dstevd on the tridiagonal form of an opened
+    # ring when SciPy is loaded, NumPy's dense eigh otherwise) give the same frequencies and
+    # M-orthonormal shapes, and both satisfy K X = M X Ω² (seed 000 eq. 2) to round-off
+    import scipy.linalg  # noqa: F401 - loads the dstevd path
+
+    import chaindrive.dynamics.ring as ring
+
+    rng = np.random.default_rng(7)
+    m = rng.uniform(0.5, 20.0, 24)
+    c = rng.uniform(1e5, 1e8, 24)
+    if cut is not None:
+        c[cut] = 0.0
+    fast = modal_analysis(m, c)
+    monkeypatch.setattr(ring, "_scipy_lapack", lambda: None)
+    dense = modal_analysis(m, c)
+    assert_allclose(fast.frequencies_hz, dense.frequencies_hz, rtol=1e-10,
+                    atol=1e-10 * dense.frequencies_hz.max())
+    K = ring_stiffness_matrix(c)
+    for r in (fast, dense):
+        X, w2 = r.shapes, r.angular_frequencies_rad_s**2
+        assert_allclose(X.T @ (m[:, None] * X), np.eye(24), atol=1e-10)
+        assert_allclose(K @ X, m[:, None] * X * w2, atol=1e-8 * np.abs(K).max() * np.abs(X).max())

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import shutil
 
 import numpy as np
 import pytest
@@ -172,16 +173,18 @@ def _small_ring(polygonal: bool) -> dict:
 
 
 @pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize("backend", ["numba", "jit"])  # numba: the ahead-of-time build
 @pytest.mark.parametrize(("motor", "kind", "polygonal"), [
     (KlossMotor(3000.0, 26.0), "linear", True),
     (ConstantTorque(40.0), "constant", False),
     (RampTorque(120.0, 0.02), "quadratic", True),
 ])
-def test_numba_kernel_equals_numpy_loop(motor, kind: str, polygonal: bool) -> None:
-    # the compiled kernel and the NumPy loop take the same steps: equal to round-off
+def test_numba_kernel_equals_numpy_loop(motor, kind: str, polygonal: bool, backend: str) -> None:
+    # the compiled kernel (ahead of time and just in time) and the NumPy loop take the same
+    # steps: equal to round-off
     res = ResistanceLaw(kind, np.array([0.0, 60.0, 10.0, 5.0]), np.array([26.0, 16., 21., 19.]))
     args = _small_ring(polygonal)
-    a = simulate_startup(motor=motor, resistance=res, backend="numba", **args)
+    a = simulate_startup(motor=motor, resistance=res, backend=backend, **args)
     b = simulate_startup(motor=motor, resistance=res, backend="numpy", **args)
     assert b.slack_steps > 0  # the slack rule is exercised
     assert_allclose(a.span_forces, b.span_forces, rtol=0, atol=1e-9 * b.span_forces.max())
@@ -197,3 +200,15 @@ def test_unknown_motor_falls_back_to_numpy_loop() -> None:
         simulate_startup(motor=lambda t, w: 40.0, resistance=None, backend="numba", **args)
     with pytest.raises(DesignError):
         simulate_startup(motor=ConstantTorque(1.0), resistance=None, backend="fortran", **args)
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler: no ahead-of-time build")
+def test_ahead_of_time_kernel_is_built_and_current(monkeypatch: pytest.MonkeyPatch) -> None:
+    # make builds chaindrive.dynamics._startup_aot from the current kernel source; a module
+    # whose source digest differs (a stale build) is not used
+    from chaindrive.dynamics import _startup_aot, kernel_build  # type: ignore[attr-defined]
+
+    assert _startup_aot.source_digest() == kernel_build.source_digest()
+    assert kernel_build.compiled_kernel() is _startup_aot.run_kernel_flat
+    monkeypatch.setattr(kernel_build, "source_digest", lambda: -1)
+    assert kernel_build.compiled_kernel() is None

@@ -18,14 +18,13 @@ shape to the uniform vector of the group (not the seed's 0.08 Hz of Table 2).
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.linalg.lapack import dstevd as _dstevd
-from scipy.linalg.lapack import dsyevd as _dsyevd
 
 from chaindrive.errors import DesignError
 
@@ -179,7 +178,7 @@ def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
 
     Solves K X = ω² M X through the symmetric standard form A = M^{-1/2} K M^{-1/2}
     (one LAPACK call: ``dsyevd``, or ``dstevd`` for a ring opened by a slack branch, which
-    is tridiagonal when numbered from the cut; measured faster than the generalised
+    is tridiagonal when numbered from the cut, when SciPy is loaded; measured faster than the generalised
     ``scipy.linalg.eigh``, see ``benchmarks/bench_modal.py``). Rigid-body eigenvalues
     (one per connected group of masses) are set to exactly 0 with uniform shapes over
     their group; the remaining eigenvalues below round-off are clamped to 0.
@@ -214,16 +213,35 @@ def _scaled_stiffness(m: NDArray[np.float64], c: NDArray[np.float64],
     return A
 
 
+def _scipy_lapack() -> Any:
+    """SciPy's LAPACK wrappers when ``scipy.linalg`` is already imported in this process,
+    else None.
+
+    Importing ``scipy.linalg`` costs about 0.3 s (SciPy 1.17 on the project machine,
+    ``python -X importtime``), more than one command-line analysis spends in all its modal
+    analyses together (about a dozen, 60 µs each). A process that has it anyway — the
+    optimiser, the web page, a notebook, the benchmarks — gets the tridiagonal solver
+    ``dstevd`` (10–25 % faster than NumPy's dense ``eigh`` at n = 24, measured in
+    ``benchmarks/bench_modal.py``); the command line gets NumPy's ``eigh``. Both are LAPACK
+    and agree to round-off.
+    """
+    linalg = sys.modules.get("scipy.linalg")
+    return getattr(linalg, "lapack", None)
+
+
 def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64],
            cut: int | None) -> tuple[NDArray[np.float64], NDArray[np.float64],
                                      NDArray[np.float64]]:
     """Eigenvalues, eigenvectors of A = M^{-1/2} K M^{-1/2} and its diagonal.
 
     A ring cut at branch ``cut`` (slack) is, numbered from mass cut+1, a tridiagonal
-    matrix: solved with LAPACK ``dstevd``; a closed ring with the dense ``dsyevd``.
+    matrix: solved with LAPACK ``dstevd`` when SciPy's linalg is loaded
+    (:func:`_scipy_lapack`), else as a dense symmetric matrix; a closed ring with the dense
+    ``dsyevd`` (through :func:`numpy.linalg.eigh`).
     """
     n = m.size
-    if cut is not None and n > 2:
+    lapack = _scipy_lapack() if cut is not None and n > 2 else None
+    if lapack is not None:
         last = cut == n - 1
         order = None if last else np.roll(_ALL[:n] if n <= _ALL.size else np.arange(n),
                                            -(cut + 1))
@@ -236,7 +254,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
         off = cr[:-1] * dr[:-1]
         off *= dr[1:]
         np.negative(off, out=off)
-        lam, V, info = _dstevd(diag, off, compute_v=1)
+        lam, V, info = lapack.dstevd(diag, off, compute_v=1)
         if info == 0:
             if last:
                 return lam, V, diag
@@ -246,9 +264,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
             full[order] = diag
             return lam, Vf, full
     A = _scaled_stiffness(m, c, d)
-    lam, V, info = _dsyevd(A.T, compute_v=1, lower=1)  # A.T: Fortran order, no copy
-    if info != 0:
-        lam, V = np.linalg.eigh(A)
+    lam, V = np.linalg.eigh(A)
     return lam, V, A.diagonal().copy()
 
 

@@ -35,8 +35,10 @@ each step are propagated by the exact zero-order-hold recursion of each mode in 
 eigen-coordinates (a first-order complex scan per mode).
 
 **Compiled kernel.** The step loop of :func:`simulate_startup` runs in numba
-(:mod:`chaindrive.dynamics.startup_kernel`) when numba is importable and the motor is a
-ConstantTorque, RampTorque or KlossMotor; otherwise in NumPy. Both take the same steps and
+(:mod:`chaindrive.dynamics.startup_kernel`) when the motor is a ConstantTorque, RampTorque
+or KlossMotor — compiled ahead of time when that build is present and current
+(:mod:`chaindrive.dynamics.kernel_build`), else just in time when numba is importable;
+otherwise in NumPy. Both take the same steps and
 agree to round-off (tests); note that with slack spans and polygonal excitation the
 trajectory itself amplifies round-off (a 1e-13 change of T_0 moves the 24-sprocket speed
 history by ~3 % pointwise; the two backends there differ as much pointwise, while their
@@ -51,7 +53,6 @@ from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
-import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import exp_poly_at
@@ -281,6 +282,8 @@ def _discretise_expm(m: NDArray[np.float64], c_eff: NDArray[np.float64], beta: f
     S[n:2 * n, :n] = -Minv[:, None] * K
     S[n:2 * n, n:2 * n] = -beta * Minv[:, None] * K
     S[n:2 * n, 2 * n:] = np.diag(Minv)
+    import scipy.linalg  # the reference form only (tests): not on the command line's path
+
     E = scipy.linalg.expm(S * dt)
     return E[:2 * n, :2 * n], E[:2 * n, 2 * n:]
 
@@ -457,7 +460,7 @@ def _run_numpy(p: _Problem) -> tuple[NDArray[np.float64], NDArray[np.float64], i
 
 def _kernel_laws(p: _Problem) -> tuple[Any, ...] | None:
     """Motor and resistance laws as the kernel's codes and arrays (None: not supported)."""
-    from chaindrive.dynamics.startup_kernel import motor_code, resistance_code
+    from chaindrive.dynamics.kernel_codes import motor_code, resistance_code
 
     n = p.m.size
     mot, res = motor_code(p.motor), resistance_code(p.resistance, n)
@@ -467,13 +470,26 @@ def _kernel_laws(p: _Problem) -> tuple[Any, ...] | None:
     return (p.R, driven, p.driver, mot[0], mot[1], res[0], res[1], res[2], res[3])
 
 
-def _run_numba(p: _Problem, lw: tuple[Any, ...]
-               ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+def _compiled_runner(backend: Backend) -> Any:
+    """The compiled step loop: the ahead-of-time module when built from the current source
+    (:mod:`chaindrive.dynamics.kernel_build`; loads without numba), else numba's
+    just-in-time ``run_kernel_flat`` (backend "jit" forces it), else None."""
+    if backend != "jit":
+        from chaindrive.dynamics.kernel_build import compiled_kernel
+
+        runner = compiled_kernel()
+        if runner is not None:
+            return runner
+    from chaindrive.dynamics.startup_kernel import HAVE_NUMBA, run_kernel_flat
+
+    return run_kernel_flat if HAVE_NUMBA else None
+
+
+def _run_compiled(p: _Problem, lw: tuple[Any, ...], runner: Any
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The step loop compiled (:mod:`chaindrive.dynamics.startup_kernel`); same output as
     :func:`_run_numpy`. Slack patterns new to the kernel are discretised here, then the
     kernel resumes from the step that met them."""
-    from chaindrive.dynamics.startup_kernel import run_kernel
-
     c, n = p.c, p.m.size
     mats = _Patterns(p)
     masks = np.zeros((4, n), dtype=np.bool_)
@@ -490,20 +506,27 @@ def _run_numba(p: _Problem, lw: tuple[Any, ...]
         npat += 1
 
     add(c > 0)
+    f8 = np.ascontiguousarray
     if p.polygonal is not None:
         data = _polygonal_data(p.polygonal)
-        pg = (*data[:5], float(data[5]), float(data[6]), _polygonal_offset(data))
+        pg = (*(f8(a, dtype=float) for a in data[:4]), f8(data[4], dtype=np.int64),
+              float(data[5]), float(data[6]), f8(_polygonal_offset(data), dtype=float))
     else:
         e = np.zeros(2 * n)
-        pg = (e, e, e, e, np.zeros(2 * n, dtype=np.intp), 0.0, 0.0, np.zeros(n))
+        pg = (e, e, e, e, np.zeros(2 * n, dtype=np.int64), 0.0, 0.0, np.zeros(n))
+    R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk = lw
+    laws = (f8(R, dtype=float), f8(driven, dtype=float), int(driver), int(mkind),
+            f8(mp, dtype=float), int(rkind), f8(rM, dtype=float), f8(rwn, dtype=float),
+            float(rbrk))
     forces, speeds = np.empty((p.steps + 1, n)), np.empty((p.steps + 1, n))
     forces[0], speeds[0] = np.where(c > 0, p.pretension, 0.0), 0.0
     y, need = np.zeros(2 * n), np.zeros(n, dtype=np.bool_)
     fr_prev = _kernel_span_part(p, masks[0])
     state = np.zeros(3, dtype=np.int64)
-    while run_kernel(y, fr_prev, state, p.steps, p.dt, masks, Phis, Gams, gvvs, npat, c,
-                     p.beta * c, float(p.pretension), lw, p.polygonal is not None, pg,
-                     forces, speeds, need) < p.steps:
+    cc, bc = f8(c, dtype=float), f8(p.beta * c, dtype=float)
+    while runner(y, fr_prev, state, p.steps, p.dt, masks, Phis, Gams, gvvs, npat, cc, bc,
+                 float(p.pretension), *laws, p.polygonal is not None, *pg, forces, speeds,
+                 need) < p.steps:
         add(need.copy())
     return forces, speeds, int(state[1])
 
@@ -514,7 +537,7 @@ def _kernel_span_part(p: _Problem, mask: NDArray[np.bool_]) -> NDArray[np.float6
     return span - np.roll(span, 1)
 
 
-Backend = Literal["auto", "numba", "numpy"]
+Backend = Literal["auto", "numba", "jit", "numpy"]
 
 
 def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, beta: float,
@@ -531,9 +554,11 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
     beta [s]; motor(t, ω) → torque [N·m] on mass ``driver_index``; resistance laws (None:
     none); duration [s]; dt [s] (None: 1/(160 f_1)); pretension T_0 [N]; polygonal hinge
     law (None: no polygonal excitation); breaking_load Q [N] → k1. backend: "numba" the
-    compiled kernel (:mod:`chaindrive.dynamics.startup_kernel`; needs numba and a
-    ConstantTorque/RampTorque/KlossMotor motor), "numpy" the NumPy loop, "auto" numba when
-    it can, else NumPy. Both give the same result to round-off.
+    compiled kernel (:mod:`chaindrive.dynamics.startup_kernel`: its ahead-of-time build
+    when current, else numba's just-in-time compilation; needs a
+    ConstantTorque/RampTorque/KlossMotor motor), "jit" the just-in-time one only, "numpy"
+    the NumPy loop, "auto" the compiled kernel when it can, else NumPy. All give the same
+    result to round-off.
     """
     m = np.asarray(masses, dtype=float)
     c = np.asarray(stiffness, dtype=float)
@@ -555,14 +580,13 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
 
 def _run(p: _Problem, backend: Backend) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """Dispatch to the compiled kernel or the NumPy loop (see ``simulate_startup``)."""
-    from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
-
-    if backend not in ("auto", "numba", "numpy"):
+    if backend not in ("auto", "numba", "jit", "numpy"):
         raise DesignError("backend", f"unknown start-up backend {backend!r}")
-    lw = _kernel_laws(p) if backend != "numpy" and HAVE_NUMBA else None
-    if lw is not None:
-        return _run_numba(p, lw)
-    if backend == "numba":
+    lw = _kernel_laws(p) if backend != "numpy" else None
+    runner = _compiled_runner(backend) if lw is not None else None
+    if runner is not None:
+        return _run_compiled(p, lw, runner)
+    if backend in ("numba", "jit"):
         raise DesignError("backend", "numba is not installed or the motor/resistance law is "
                           "not one the compiled kernel knows (use backend='numpy')")
     return _run_numpy(p)

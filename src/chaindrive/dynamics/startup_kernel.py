@@ -8,24 +8,31 @@ once with the new pattern), written on plain arrays so that numba compiles it
 (``@njit(cache=True)``: the machine code is cached on disk, later runs skip compilation).
 
 The motor and resistance laws are passed as codes and parameter arrays
-(:func:`motor_code`, :func:`resistance_code`); the Φ_s, Γ_s of the slack patterns met so far
+(:mod:`chaindrive.dynamics.kernel_codes`); the Φ_s, Γ_s of the slack patterns met so far
 are stacked in arrays. When a step meets a pattern not yet in the stack the kernel returns
 the step index and the pattern; the caller adds Φ_s, Γ_s and calls the kernel again from
 that step (the state is left untouched, so the result does not depend on the interruption).
 
 numba is optional: :data:`HAVE_NUMBA` is False when it is not importable and the caller
-falls back to the NumPy loop.
+falls back to the NumPy loop. :func:`run_kernel_flat` is the entry point with plain arguments
+(arrays, numbers), the one :mod:`chaindrive.dynamics.kernel_build` compiles ahead of time into
+an extension module that loads without numba.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from numpy.typing import NDArray
+from chaindrive.dynamics.kernel_codes import (  # the kernel's integer codes
+    MOTOR_CONSTANT,
+    MOTOR_RAMP,
+    RESISTANCE_CONSTANT,
+    RESISTANCE_LINEAR,
+    RESISTANCE_QUADRATIC,
+)
 
 try:  # numba is optional (project rule: compiled hot loop with a NumPy fallback)
     import numba
@@ -35,47 +42,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
     numba = None
     HAVE_NUMBA = False
 
-__all__ = ["HAVE_NUMBA", "motor_code", "resistance_code", "run_kernel"]
-
-MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
-RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
-_RESISTANCE_KINDS = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
-                     "quadratic": RESISTANCE_QUADRATIC}
-
-
-def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
-    """(kind, parameters) of a motor law the kernel knows, None for any other callable.
-
-    ConstantTorque → (0, [M]); RampTorque → (1, [M, t_ramp]); KlossMotor →
-    (2, [2λM_r, s_k, ω_s]) (the Kloss formula 2λM_r·s·s_k/(s² + s_k²), s = 1 − ω/ω_s,
-    evaluated in the same order as ``KlossMotor.__call__``).
-    """
-    from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque
-
-    if type(motor) is ConstantTorque:
-        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
-    if type(motor) is RampTorque:
-        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
-    if type(motor) is KlossMotor:
-        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
-                                      motor.critical_slip, motor.synchronous_speed])
-    return None
-
-
-def resistance_code(law: Any, n: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64],
-                                                 float] | None:
-    """(kind, torques M_i [N·m], nominal speeds ω_n,i [rad/s], breakaway) of a
-    :class:`~chaindrive.dynamics.startup.ResistanceLaw` (None law: kind 0); None if the kind
-    is unknown."""
-    if law is None:
-        return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
-    kind = _RESISTANCE_KINDS.get(law.kind)
-    if kind is None:
-        return None
-    return (kind, np.broadcast_to(np.asarray(law.torques, float), (n,)).copy(),
-            np.broadcast_to(np.asarray(law.nominal_speeds, float), (n,)).copy(),
-            float(law.breakaway))
-
+__all__ = ["FLAT_SIGNATURE", "HAVE_NUMBA", "run_kernel", "run_kernel_flat"]
 
 def _njit(fn: Any) -> Any:
     return numba.njit(cache=True, fastmath=False)(fn) if HAVE_NUMBA else fn
@@ -127,9 +94,10 @@ def _polygonal(x: Any, v: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign
         d[i] -= pd0[i]
 
 
-@_njit
+@(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
 def _matvec_add(A: Any, y: Any, out: Any) -> None:
-    """out += A @ y."""
+    """out += A @ y (the dot products reassociated so that they run in SIMD lanes: round-off
+    order as in a BLAS matrix-vector product, not left to right)."""
     for i in range(A.shape[0]):
         acc = 0.0
         for j in range(A.shape[1]):
@@ -152,14 +120,11 @@ def _find(masks: Any, npat: int, mask: Any) -> int:
 
 
 @_njit
-def _span_part(x: Any, v: Any, mask: Any, fr: Any, c: Any, bc: Any, T0: float, poly: bool,
-               d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any, pk: float,
-               plin: float, pd0: Any) -> None:
-    """−Bᵀ of the pre-tension and polygonal span forces [N] (explicit part)."""
-    n = x.size
-    span = np.empty(n)
-    if poly:
-        _polygonal(x, v, d, dd, pz, pR, ps, psign, pidx, pk, plin, pd0)
+def _span_part(mask: Any, fr: Any, c: Any, bc: Any, T0: float, poly: bool, d: Any, dd: Any,
+               span: Any) -> None:
+    """−Bᵀ of the pre-tension and polygonal span forces [N] (explicit part), from the
+    polygonal elongations d, ḋ at the current state (``span``: work array)."""
+    n = fr.size
     for i in range(n):
         s = T0 if mask[i] else 0.0
         if poly:
@@ -171,28 +136,24 @@ def _span_part(x: Any, v: Any, mask: Any, fr: Any, c: Any, bc: Any, T0: float, p
 
 @_njit
 def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any, y_new: Any,
-             lw: tuple) -> None:
-    """One step; the speed laws linearly implicit on each mass's own speed."""
+             lw: tuple, work: Any) -> None:
+    """One step; the speed laws linearly implicit on each mass's own speed (``work``:
+    (6, n) work array)."""
     R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk = lw
     n = fr.size
     v = y[n:]
-    fl = np.empty(n)
-    f2 = np.empty(n)
-    hv = np.empty(n)
+    fl, f2, hv, vh, f, df = work[0], work[1], work[2], work[3], work[4], work[5]
     th = t + 0.5 * dt
     _laws(th, v, fl, R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk)
-    vh = np.empty(n)
     for i in range(n):
         hv[i] = 1e-6 * (1.0 + abs(v[i]))
         vh[i] = v[i] + hv[i]
     _laws(th, vh, f2, R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk)
-    f = np.empty(n)
     for i in range(n):
         f[i] = fr[i] + fl[i]
     y_new[:] = 0.0
     _matvec_add(Phi, y, y_new)
     _matvec_add(Gam, f, y_new)
-    df = np.empty(n)
     for i in range(n):
         J = (f2[i] - fl[i]) / hv[i]
         df[i] = J * (y_new[n + i] - v[i]) / max(1.0 - gvv[i] * J, 0.1)
@@ -203,7 +164,9 @@ def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any,
 def _span_force(y: Any, F: Any, c: Any, bc: Any, T0: float, poly: bool, d: Any, dd: Any,
                 pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any, pk: float, plin: float,
                 pd0: Any) -> None:
-    """Span forces [N] before the slack rule at the state y = (x, ẋ)."""
+    """Span forces [N] before the slack rule at the state y = (x, ẋ); the polygonal
+    elongations d, ḋ at y are left in ``d``, ``dd`` (the next step's explicit part uses
+    them: the same state, not evaluated twice)."""
     n = F.size
     x = y[:n]
     v = y[n:]
@@ -232,22 +195,26 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: A
     pz, pR, ps, psign, pidx, pk, plin, pd0 = pg
     R = lw[0]
     n = c.size
-    d = np.zeros(n)
-    dd = np.zeros(n)
+    d, dd = np.zeros(n), np.zeros(n)  # polygonal elongation and rate at the state y
+    d_new, dd_new = np.zeros(n), np.zeros(n)  # … at the candidate state y_new
+    if poly:
+        _polygonal(y[:n], y[n:], d, dd, pz, pR, ps, psign, pidx, pk, plin, pd0)
     fr = np.empty(n)
     fe = np.empty(n)
+    span = np.empty(n)
+    work = np.empty((6, n))
     y_new = np.empty(2 * n)
     F = np.empty(n)
     p = state[2]
     for k in range(state[0], steps):
         t = k * dt
         mask = masks[p]
-        _span_part(y[:n], y[n:], mask, fr, c, bc, T0, poly, d, dd, pz, pR, ps, psign, pidx,
-                   pk, plin, pd0)
+        _span_part(mask, fr, c, bc, T0, poly, d, dd, span)
         for i in range(n):
             fe[i] = 1.5 * fr[i] - 0.5 * fr_prev[i]
-        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw)
-        _span_force(y_new, F, c, bc, T0, poly, d, dd, pz, pR, ps, psign, pidx, pk, plin, pd0)
+        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
+        _span_force(y_new, F, c, bc, T0, poly, d_new, dd_new, pz, pR, ps, psign, pidx, pk,
+                    plin, pd0)
         changed = False
         for i in range(n):
             need[i] = F[i] > 0 and c[i] > 0
@@ -258,17 +225,41 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: A
                 state[0], state[2] = k, p
                 return k
             p = q
-            _span_part(y[:n], y[n:], masks[p], fr, c, bc, T0, poly, d, dd, pz, pR, ps, psign,
-                       pidx, pk, plin, pd0)
-            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw)
-            _span_force(y_new, F, c, bc, T0, poly, d, dd, pz, pR, ps, psign, pidx, pk, plin,
-                        pd0)
+            _span_part(masks[p], fr, c, bc, T0, poly, d, dd, span)
+            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
+            _span_force(y_new, F, c, bc, T0, poly, d_new, dd_new, pz, pR, ps, psign, pidx,
+                        pk, plin, pd0)
             state[1] += 1
         mask = masks[p]
         fr_prev[:] = fr
         y[:] = y_new
+        d, d_new = d_new, d
+        dd, dd_new = dd_new, dd
         for i in range(n):
             forces[k + 1, i] = max(F[i], 0.0) * (1.0 if mask[i] else 0.0)
             speeds[k + 1, i] = y[n + i] / R[i]
     state[0], state[2] = steps, p
     return steps
+
+
+@_njit
+def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: Any,
+                    Phis: Any, Gams: Any, gvvs: Any, npat: int, c: Any, bc: Any, T0: float,
+                    R: Any, driven: Any, driver: int, mkind: int, mp: Any, rkind: int, rM: Any,
+                    rwn: Any, rbrk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
+                    pidx: Any, pk: float, plin: float, pd0: Any, forces: Any, speeds: Any,
+                    need: Any) -> int:
+    """:func:`run_kernel` with the law and polygonal tuples spread out (lw = R … rbrk,
+    pg = pz … pd0): one fixed signature (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
+    return run_kernel(y, fr_prev, state, steps, dt, masks, Phis, Gams, gvvs, npat, c, bc, T0,
+                      (R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk), poly,
+                      (pz, pR, ps, psign, pidx, pk, plin, pd0), forces, speeds, need)
+
+
+#: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
+FLAT_SIGNATURE = (
+    "i8(f8[::1], f8[::1], i8[::1], i8, f8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1], f8[:, ::1],"
+    " i8, f8[::1], f8[::1], f8, f8[::1], f8[::1], i8, i8, f8[::1], i8, f8[::1], f8[::1], f8,"
+    " b1, f8[::1], f8[::1], f8[::1], f8[::1], i8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1],"
+    " b1[::1])"
+)

@@ -1,0 +1,96 @@
+"""Ahead-of-time build of the start-up kernel: ``python -m chaindrive.dynamics.kernel_build``.
+
+The nonlinear start-up (:mod:`chaindrive.dynamics.startup`) steps in the numba kernel
+:func:`chaindrive.dynamics.startup_kernel.run_kernel_flat`. Compiled just in time, it costs
+every new process about 0.7 s before the first step (importing numba 0.25 s, its typing and
+lowering registries, loading the cached machine code; measured with ``python -X importtime``
+and cProfile) — most of a command-line ``analyze``. This module compiles the same Python
+source once, ahead of time, with numba's ``numba.pycc`` into the extension module
+``chaindrive.dynamics._startup_aot``, which imports in milliseconds and without numba (numba
+documents that such modules do not need numba at run time).
+
+The module also exports ``source_digest()``: a digest of ``startup_kernel.py`` and
+``kernel_codes.py`` as they were at the build. :func:`compiled_kernel` uses the module only
+while the digest still matches the sources, so an edited kernel is never run from a stale
+build (it falls back to numba's just-in-time compilation until rebuilt).
+
+``make`` runs the build after installing; it needs a C compiler (numba.pycc links with the
+platform compiler). Without one the build reports why and the package works as before.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import sys
+import warnings
+from pathlib import Path
+from typing import Any
+
+__all__ = ["MODULE", "build", "compiled_kernel", "source_digest"]
+
+MODULE = "_startup_aot"
+_HERE = Path(__file__).resolve().parent
+_SOURCES = ("startup_kernel.py", "kernel_codes.py")
+
+
+def source_digest() -> int:
+    """First 7 bytes of the SHA-256 of the kernel's source files, as a non-negative int64."""
+    h = hashlib.sha256()
+    for name in _SOURCES:
+        h.update((_HERE / name).read_bytes())
+    return int.from_bytes(h.digest()[:7], "big")
+
+
+def compiled_kernel() -> Any:
+    """``run_kernel_flat`` of the ahead-of-time module, or None when it is not built or was
+    built from other sources."""
+    try:
+        from chaindrive.dynamics import _startup_aot  # type: ignore[attr-defined]
+    except ImportError:
+        return None
+    if _startup_aot.source_digest() != source_digest():
+        return None
+    return _startup_aot.run_kernel_flat
+
+
+def build(output_dir: Path | None = None) -> Path:
+    """Compile the kernel into ``output_dir`` (default: this package's folder); returns the
+    path of the extension module."""
+    from numba.core.errors import NumbaPendingDeprecationWarning
+
+    with warnings.catch_warnings():  # numba.pycc is "pending deprecation" since numba 0.57
+        warnings.simplefilter("ignore", NumbaPendingDeprecationWarning)
+        from numba.pycc import CC
+
+    from chaindrive.dynamics.startup_kernel import FLAT_SIGNATURE, run_kernel_flat
+
+    digest = source_digest()
+    cc = CC(MODULE)
+    cc.output_dir = str(output_dir or _HERE)
+    cc.verbose = False
+
+    @cc.export("source_digest", "i8()")
+    def _digest() -> int:
+        return digest
+
+    cc.export("run_kernel_flat", FLAT_SIGNATURE)(run_kernel_flat.py_func)
+    cc.compile()
+    built = sorted(Path(cc.output_dir).glob(MODULE + ".*"), key=lambda p: p.stat().st_mtime)
+    return built[-1]
+
+
+def main() -> int:
+    """Command-line entry: build, or explain in one line why not (exit 0 either way: the
+    ahead-of-time module is an optimisation, the package works without it)."""
+    try:
+        path = build()
+    except Exception as exc:  # no compiler, no numba, …: the just-in-time path remains
+        print(f"start-up kernel not compiled ahead of time ({type(exc).__name__}: {exc}); "
+              "numba will compile it on first use", file=sys.stderr)
+        return 0
+    print(f"start-up kernel compiled ahead of time: {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,55 @@
+"""Integer codes and parameter arrays of the motor and resistance laws, as the compiled
+start-up kernel takes them (:mod:`chaindrive.dynamics.startup_kernel`, its ahead-of-time
+build, and the caller in :mod:`chaindrive.dynamics.startup`). Plain Python: importing it
+does not import numba.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+__all__ = ["motor_code", "resistance_code"]
+
+MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
+RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
+_RESISTANCE_KINDS = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
+                     "quadratic": RESISTANCE_QUADRATIC}
+
+
+def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
+    """(kind, parameters) of a motor law the kernel knows, None for any other callable.
+
+    ConstantTorque → (0, [M]); RampTorque → (1, [M, t_ramp]); KlossMotor →
+    (2, [2λM_r, s_k, ω_s]) (the Kloss formula 2λM_r·s·s_k/(s² + s_k²), s = 1 − ω/ω_s,
+    evaluated in the same order as ``KlossMotor.__call__``).
+    """
+    from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque
+
+    if type(motor) is ConstantTorque:
+        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
+    if type(motor) is RampTorque:
+        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
+    if type(motor) is KlossMotor:
+        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
+                                      motor.critical_slip, motor.synchronous_speed])
+    return None
+
+
+def resistance_code(law: Any, n: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64],
+                                                 float] | None:
+    """(kind, torques M_i [N·m], nominal speeds ω_n,i [rad/s], breakaway) of a
+    :class:`~chaindrive.dynamics.startup.ResistanceLaw` (None law: kind 0); None if the kind
+    is unknown."""
+    if law is None:
+        return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
+    kind = _RESISTANCE_KINDS.get(law.kind)
+    if kind is None:
+        return None
+    return (kind, np.broadcast_to(np.asarray(law.torques, float), (n,)).copy(),
+            np.broadcast_to(np.asarray(law.nominal_speeds, float), (n,)).copy(),
+            float(law.breakaway))
