@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DESIGN = ROOT / "examples" / "twenty_four_sprocket.toml"
 
 
-def time_command(repeats: int = 5) -> list[float]:
+def time_command(repeats: int = 10) -> list[float]:
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter()

@@ -10,8 +10,9 @@
 2. Nonlinear start-up of examples/twenty_four_sprocket.toml (slack spans, Kloss motor,
    linear resistance, with and without polygonal excitation), 1 s: the numba kernel (its
    ahead-of-time build when present, else just in time; the first call reported separately;
-   steady time after warm-up) and the NumPy fallback. Target: < 0.3 s. Then the step study: peak force and final speeds
-   at 80/160/320 steps per period against 640 (the default is 160).
+   steady time after warm-up) and the NumPy fallback. Target: < 0.3 s. Then the step
+   study: peak force and final speeds at 80/160/320 steps per period against 640 (the
+   default is 160).
 
 Times are the best of several repeats (the machine is shared and noisy); the linear case
 runs the contenders in alternation (``_timing.interleaved``).
