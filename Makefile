@@ -14,14 +14,19 @@ $(BIN)/python:
 # the build says why and numba compiles the kernel on first use instead).
 KERNEL := src/chaindrive/dynamics/startup_kernel.py src/chaindrive/dynamics/kernel_codes.py
 
+# An editable install leaves the package's own byte code to the first run, which cannot keep
+# it where PYTHONDONTWRITEBYTECODE is set (as on the project machines): compile it once here
+# (Python reads a current .pyc whatever that variable says; a stale one is ignored).
 $(VENV)/.installed: pyproject.toml $(KERNEL) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e .
 	$(BIN)/python -m chaindrive.dynamics.kernel_build
+	$(BIN)/python -m compileall -q src
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml $(KERNEL) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	$(BIN)/python -m chaindrive.dynamics.kernel_build
+	$(BIN)/python -m compileall -q src
 	touch $@
 
 demo: $(VENV)/.installed
