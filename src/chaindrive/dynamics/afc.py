@@ -151,8 +151,9 @@ def afc_sweep(model: RingModel, excitation: SpanExcitation, driver_speeds: Array
     nat = modal.frequencies_hz[~modal.rigid_body]
     lo, hi = fz_hz.min(), fz_hz.max()
     markers = []
+    whole = sorted({round(k) for k in orders.tolist() if k >= 1})  # (np.unique imports numpy.ma)
     for j, f in enumerate(nat):
-        for k in np.unique(np.round(orders[orders >= 1]).astype(int)):
+        for k in whole:
             if lo <= f / k <= hi:
                 markers.append((j + 1, int(k), float(f), float(f / k)))
     peaks = _local_maxima(load.max(axis=1))
