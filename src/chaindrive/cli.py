@@ -162,7 +162,8 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
     con.print(f"hinge pressure {_fmt(st['hinge_pressure_mpa'])} MPa (allowable "
               f"{_fmt(st['allowable_pressure_mpa'])}), static safety factor "
               f"{_fmt(st['safety_factor_static'])} (allowable {_fmt(st['allowable_safety_factor'])}),"
-              f" wear life {_fmt(st['wear_life_h'])} h")
+              f" wear life {_fmt(st['wear_life_h'])} h"
+              f"{' (extrapolated: wear does not limit)' if st['wear_life_extrapolated'] else ''}")
 
 
 @app.command()

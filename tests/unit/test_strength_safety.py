@@ -78,3 +78,18 @@ def test_strength_of_bad_elongation():
     drive = drive_two()
     with pytest.raises(DesignError, match="elongation"):
         strength_of(drive, hand_geometry(drive), elongation=0.5)
+
+
+def test_wear_life_beyond_ten_times_the_basis_is_flagged():
+    # h = 15 000·(H_r/H_d)^2.5 (Shigley Eq. 17-40): at H_d = 40 % of the rating h = 148 ≈
+    # 10× the basis; below that the relation is extrapolated and the result says so
+    from chaindrive.strength.wear import EXTRAPOLATION_LIMIT_H, is_extrapolated
+
+    assert not is_extrapolated(float(wear_life_hours(1000.0, 410.0)))
+    assert is_extrapolated(float(wear_life_hours(1000.0, 390.0)))
+    drive = dataclasses.replace(drive_two(), power=50.0)  # far below the rating
+    d = strength_of(drive, hand_geometry(drive)).to_dict()
+    assert d["wear_life_h"] > EXTRAPOLATION_LIMIT_H and d["wear_life_extrapolated"] is True
+    assert any("extrapolation" in w for w in d["warnings"])
+    d = strength_of(drive_two(), hand_geometry(drive_two())).to_dict()
+    assert d["wear_life_extrapolated"] is (d["wear_life_h"] > EXTRAPOLATION_LIMIT_H)

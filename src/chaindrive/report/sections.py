@@ -190,7 +190,9 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
             ("allowable safety factor [s]", st["allowable_safety_factor"], ""),
             ("rated power (ACA)", None if st["rated_power_w"] is None
              else st["rated_power_w"] / 1e3, "kW"),
-            ("wear life to {:.0%} elongation".format(st["permitted_elongation"]),
+            ("wear life to {:.0%} elongation{}".format(
+                st["permitted_elongation"],
+                " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""),
              st["wear_life_h"], "h")]
     names = [s.name for s in inp.analysis.drive.sprockets]
     spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]

@@ -18,7 +18,12 @@ from chaindrive.strength import iso10823, ke_method
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO, LoadsResult, loads_of, small_sprocket
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
-from chaindrive.strength.wear import BASIS_ELONGATION, wear_life_hours
+from chaindrive.strength.wear import (
+    BASIS_ELONGATION,
+    EXTRAPOLATION_LIMIT_H,
+    is_extrapolated,
+    wear_life_hours,
+)
 
 __all__ = ["Candidate", "LoadsResult", "SelectionResult", "StrengthResult", "loads_of",
            "select_chain", "strength_of"]
@@ -62,6 +67,8 @@ class StrengthResult:
             "allowable_safety_factor": self.allowable_safety_factor,
             "rated_power_w": self.rated_power,
             "wear_life_h": self.wear_life_h,
+            "wear_life_extrapolated": (None if self.wear_life_h is None
+                                       else is_extrapolated(self.wear_life_h)),
             "permitted_elongation": self.elongation,
             "warnings": warnings,
         }
@@ -106,6 +113,11 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
         rated = single * iso10823.strand_factor(spec.strands)
         assert drive.power is not None
         life = float(wear_life_hours(rated, drive.power * ks, geometry.links, elongation))
+        if is_extrapolated(life):
+            warnings.append(f"wear life {life:,.0f} h is an extrapolation of the ACA load–life "
+                            f"relation (beyond {EXTRAPOLATION_LIMIT_H:,.0f} h, the design "
+                            f"power is {drive.power * ks / rated:.0%} of the rating): wear "
+                            "does not limit this drive")
     if not steel:
         warnings.append(f"chain material {spec.material!r}: the steel tables [p], [s] and the "
                         "wear-life model do not apply; check the material's limits")
