@@ -23,6 +23,7 @@ from __future__ import annotations
 import hashlib
 import sys
 import warnings
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -41,9 +42,10 @@ def source_digest() -> int:
     return int.from_bytes(h.digest()[:7], "big")
 
 
+@cache
 def compiled_kernel() -> Any:
     """``run_kernel_flat`` of the ahead-of-time module, or None when it is not built or was
-    built from other sources."""
+    built from other sources (decided once per process)."""
     try:
         from chaindrive.dynamics import _startup_aot  # type: ignore[attr-defined]
     except ImportError:
