@@ -4,32 +4,36 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT := out
 
-.PHONY: demo test lint bench app clean
+.PHONY: demo test lint bench app clean bytecode
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
+$(VENV)/.installed: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e .
+	touch $@
+
+$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $@
+
 # The start-up kernel compiled ahead of time (numba.pycc, needs a C compiler; without one
-# the build says why and numba compiles the kernel on first use instead).
+# the build says why and numba compiles the kernel on first use instead). After an install.
 KERNEL := src/chaindrive/dynamics/startup_kernel.py src/chaindrive/dynamics/kernel_codes.py
 
+$(VENV)/.kernel: $(KERNEL) | $(BIN)/python
+	$(BIN)/python -m chaindrive.dynamics.kernel_build
+	touch $@
+
 # An editable install leaves the package's own byte code to the first run, which cannot keep
-# it where PYTHONDONTWRITEBYTECODE is set (as on the project machines): compile it once here
-# (Python reads a current .pyc whatever that variable says; a stale one is ignored).
-$(VENV)/.installed: pyproject.toml $(KERNEL) | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e .
-	$(BIN)/python -m chaindrive.dynamics.kernel_build
-	$(BIN)/python -m compileall -q src
-	touch $@
+# it where PYTHONDONTWRITEBYTECODE is set (as on the project machines): compile it here
+# (only what changed; Python reads a current .pyc whatever that variable says and ignores a
+# stale one).
+bytecode:
+	@$(BIN)/python -m compileall -q src
 
-$(VENV)/.installed-test: pyproject.toml $(KERNEL) | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e '.[test]'
-	$(BIN)/python -m chaindrive.dynamics.kernel_build
-	$(BIN)/python -m compileall -q src
-	touch $@
-
-demo: $(VENV)/.installed
+demo: $(VENV)/.installed $(VENV)/.kernel bytecode
 	@mkdir -p $(OUT)
 	$(BIN)/chaindrive analyze examples/seed_three_sprocket.toml
 	@$(BIN)/chaindrive analyze examples/seed_three_sprocket.toml --json > $(OUT)/seed_three_sprocket.json
@@ -37,17 +41,18 @@ demo: $(VENV)/.installed
 	@$(BIN)/chaindrive report examples/seed_three_sprocket.toml -o $(OUT)/seed_three_sprocket.html > /dev/null
 	@echo "report written to $(abspath $(OUT))/seed_three_sprocket.html"
 
-lint: $(VENV)/.installed-test
+lint: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	$(BIN)/ruff check src tests benchmarks
 
 test: lint
 	$(BIN)/python -m pytest -q
 
-bench: $(VENV)/.installed-test
+bench: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
 
-app: $(VENV)/.installed
+app: $(VENV)/.installed $(VENV)/.kernel bytecode
 	$(BIN)/chaindrive app
 
 clean:
-	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache
+	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache src/chaindrive/dynamics/_startup_aot.*
+	find src tests benchmarks -name __pycache__ -type d -prune -exec rm -rf {} +
