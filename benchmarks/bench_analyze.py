@@ -50,6 +50,10 @@ def main() -> None:
           f"{max(cmd):>10.3f}")
     print(f"{'analyze(drive).to_dict() in process':<48}{statistics.median(run):>10.4f}"
           f"{max(run):>10.4f}")
+    from chaindrive.dynamics.kernel_build import compiled_kernel
+
+    print("start-up kernel:", "compiled ahead of time" if compiled_kernel() is not None
+          else "numba just in time (run make to build it ahead of time)")
     print("target: the whole command under 1 s:",
           "MET" if max(cmd) < 1.0 else "NOT MET")
 
