@@ -81,8 +81,10 @@ def analyze(
         "--quick", help="stop after the modal analysis (no start-up, steady state or sweep)")]
     = False,
 ) -> None:
-    """Analyse a drive: geometry, speeds, selection and strength, natural frequencies, and the
-    dynamic response (start-up, steady state, amplitude–frequency sweep)."""
+    """Analyse a drive: geometry, speeds, chain, strength, modes and dynamic response.
+
+    The dynamic response is the start-up, the steady state and the amplitude–frequency sweep.
+    """
     import chaindrive
     from chaindrive.progress import spinner
 
