@@ -16,7 +16,6 @@ Nothing here imports Streamlit, so every step the page takes is testable on its 
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -132,10 +131,9 @@ def list_examples(folder: Path | None = None) -> dict[str, Path]:
 
 def read_design_text(text: str, name: str = "design") -> dict[str, Any]:
     """Parse the text of a TOML design file (errors as :func:`chaindrive.load` gives them)."""
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(name, f"TOML syntax error: {exc}") from None
+    from chaindrive.io.design import parse_toml
+
+    return parse_toml(text, name)
 
 
 # --- design mapping → form ------------------------------------------------------------------

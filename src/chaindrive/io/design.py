@@ -359,20 +359,30 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
                  service_factor=drive_values["service_factor"], dynamics=dynamics)
 
 
-def load_drive(path: str | Path) -> Drive:
-    """Read and validate a TOML design file."""
+def parse_toml(text: str, name: str) -> dict[str, Any]:
+    """The mapping of a TOML text; a syntax error is one :class:`DesignError` naming ``name``."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(name, f"TOML syntax error: {exc}") from None
+
+
+def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
+    """The mapping of a TOML file; a missing, unreadable or malformed file is one
+    :class:`DesignError` naming it (``what`` says what kind of file was expected)."""
     p = Path(path)
     if not p.is_file():
-        raise DesignError(str(path), "no such design file")
+        raise DesignError(str(path), f"no such {what}")
     try:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise DesignError(str(path), f"cannot read the file ({exc.__class__.__name__})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(str(path), f"TOML syntax error: {exc}") from None
-    return drive_from_mapping(data, base_dir=p.parent)
+    return parse_toml(text, str(path))
+
+
+def load_drive(path: str | Path) -> Drive:
+    """Read and validate a TOML design file."""
+    return drive_from_mapping(read_toml(path), base_dir=Path(path).parent)
 
 
 def drive_to_toml(drive: Drive) -> str:

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from chaindrive.errors import DesignError
+from chaindrive.io.design import read_toml
 
 __all__ = ["CostModel", "default_cost_model", "load_cost_model"]
 
@@ -88,14 +89,7 @@ def cost_model_from_mapping(data: dict[str, Any], source: str) -> CostModel:
 
 def load_cost_model(path: str | Path) -> CostModel:
     """A cost model from a TOML file of the packaged form."""
-    p = Path(path)
-    if not p.is_file():
-        raise DesignError(str(path), "no such cost file")
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(str(path), f"TOML syntax error: {exc}") from None
-    return cost_model_from_mapping(data, str(p))
+    return cost_model_from_mapping(read_toml(path, "cost file"), str(Path(path)))
 
 
 @lru_cache(maxsize=1)

@@ -31,14 +31,19 @@ value and what is allowed (the style of :mod:`chaindrive.io.design`).
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from chaindrive.errors import DesignError, did_you_mean
-from chaindrive.io.design import Field, drive_from_mapping, parse_field, parse_section
+from chaindrive.io.design import (
+    Field,
+    drive_from_mapping,
+    parse_field,
+    parse_section,
+    read_toml,
+)
 from chaindrive.model import MAX_TEETH, MIN_TEETH, Drive
 
 __all__ = [
@@ -377,13 +382,4 @@ def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) 
 
 def load_problem(path: str | Path) -> Problem:
     """Read a design file and its ``[optimize]`` table."""
-    p = Path(path)
-    if not p.is_file():
-        raise DesignError(str(path), "no such design file")
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(str(path), f"TOML syntax error: {exc}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DesignError(str(path), f"cannot read the file ({exc.__class__.__name__})") from None
-    return problem_from_mapping(data, base_dir=p.parent)
+    return problem_from_mapping(read_toml(path), base_dir=Path(path).parent)
