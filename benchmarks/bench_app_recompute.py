@@ -58,14 +58,6 @@ def time_campbell(repeats: int = 5) -> list[float]:
 
 
 def main() -> None:
-    import inspect
-
-    from chaindrive.analysis import analyze
-
-    fast = "response" in inspect.signature(analyze).parameters
-    print("interactive analysis:", "analyze(drive, response=False)" if fast else
-          "fallback — analyze() without the start-up but with the AFC sweep (add the "
-          "`response` keyword to chaindrive.analysis.analyze to leave it to its tab)")
     edits = time_edits()
     campbell = time_campbell()
     print(f"{'what (24-sprocket contour)':<58}{'median s':>10}{'max s':>10}")

@@ -119,10 +119,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     ax.set_xlim(t[0], end)
     ax.set_xlabel("time, ms")
     ax.set_ylabel("speed, rpm")
-    if w.shape[1] > 4:
-        _legend(ax, w.shape[1])
-    else:
-        ax.legend(fontsize="x-small", loc="lower right")
+    _legend(ax, w.shape[1], inside="lower right")
     title = "Start-up: sprocket speeds"
     finish(ax, title if end >= t[-1] else f"{title} (first {end:.0f} of {t[-1]:.0f} ms)")
     return fig
@@ -144,13 +141,13 @@ def _chosen_markers(afc: AfcResult, max_markers: int) -> list[tuple[int, int, fl
     return sorted(chosen, key=lambda m: m[3])
 
 
-def _legend(ax: Axes, curves: int) -> None:
-    """Legend inside (upper right) for a few curves, outside on the right for many."""
+def _legend(ax: Axes, curves: int, inside: str = "upper right") -> None:
+    """Legend inside (at ``inside``) for a few curves, outside on the right for many."""
     if curves > 4:
         ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   frameon=False)
     else:
-        ax.legend(fontsize="x-small", loc="upper right")
+        ax.legend(fontsize="x-small", loc=inside)
 
 
 def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
@@ -182,10 +179,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
                     float(positive.max()) * 3.0)
     ax.set_xlabel("tooth frequency f_z, Hz")
     ax.set_ylabel("dynamic load, N")
-    if F.shape[1] > 4:
-        _legend(ax, F.shape[1])
-    else:
-        ax.legend(fontsize="x-small", loc="upper left")
+    _legend(ax, F.shape[1], inside="upper left")
     finish(ax, "Amplitude–frequency characteristics per span")
     return fig
 

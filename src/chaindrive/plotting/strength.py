@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from chaindrive.errors import DesignError
 from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish
@@ -26,14 +26,20 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     F_0 + F_v on the slack one, stepping at each driven sprocket
     (:mod:`chaindrive.strength.loads`)."""
     loads = _strength(analysis).loads
-    fig, ax = figure_axes(ax, (6.0, 3.4))
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
     colours = [TIGHT if s.tight else CHAIN for s in analysis.geometry.spans]
-    ax.bar(range(len(names)), loads.span_tensions, color=colours)
+    return _bars(ax, names, loads.span_tensions, colours, "tension, N", "Static tension per span")
+
+
+def _bars(ax: Axes | None, names: list[str], values: Any, colours: Any, ylabel: str,
+          title: str) -> Figure:
+    """One bar per named item (labels turned upright past 8 bars)."""
+    fig, ax = figure_axes(ax, (6.0, 3.4))
+    ax.bar(range(len(names)), values, color=colours)
     ax.set_xticks(range(len(names)), names, rotation=90 if len(names) > 8 else 0,
                   fontsize="small")
-    ax.set_ylabel("tension, N")
-    finish(ax, "Static tension per span")
+    ax.set_ylabel(ylabel)
+    finish(ax, title)
     return fig
 
 
@@ -41,11 +47,5 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Magnitude of the load on each shaft [N] (vector sum of the two span tensions
     meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`)."""
     loads = _strength(analysis).loads
-    fig, ax = figure_axes(ax, (6.0, 3.4))
     names = [s.name for s in analysis.drive.sprockets]
-    ax.bar(range(len(names)), loads.shaft_load_magnitudes, color=CHAIN)
-    ax.set_xticks(range(len(names)), names, rotation=90 if len(names) > 8 else 0,
-                  fontsize="small")
-    ax.set_ylabel("shaft load, N")
-    finish(ax, "Load per shaft")
-    return fig
+    return _bars(ax, names, loads.shaft_load_magnitudes, CHAIN, "shaft load, N", "Load per shaft")
