@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -339,18 +339,10 @@ def locate(path: str, names: Sequence[str] = ()) -> Location:
 def interactive_analysis(drive: Drive) -> Analysis:
     """The analysis the page redraws after every edit: everything :func:`chaindrive.analyze`
     computes except the time-consuming dynamic response (start-up transient and AFC sweep,
-    which the page runs on demand). Uses ``analyze(drive, response=False)`` when the
-    analysis offers it, else the design's own settings with the start-up switched off."""
-    import inspect
-
+    which the page runs on demand): ``analyze(drive, response=False)``."""
     from chaindrive.analysis import analyze
 
-    if "response" in inspect.signature(analyze).parameters:
-        return analyze(drive, response=False)  # type: ignore[call-arg]
-    settings = getattr(drive, "dynamics", None)
-    if settings is not None and getattr(settings, "transient", False):
-        drive = replace(drive, dynamics=replace(settings, transient=False))
-    return analyze(drive)
+    return analyze(drive, response=False)
 
 
 def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
