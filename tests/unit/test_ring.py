@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+from chaindrive.catalog import find_material
 from chaindrive.dynamics import (
     RingModel,
     analyze_dynamics,
@@ -30,19 +31,7 @@ from chaindrive.dynamics.stiffness import (
 from chaindrive.errors import DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sprocket import iso606_tooth_width
-from chaindrive.model import Chain, ChainSpec, Drive, Material, Sprocket
-
-try:
-    from chaindrive.catalog import find_material
-except ImportError:  # the catalogue helper may not be merged yet
-    _LOCAL = {
-        "steel": Material("steel", "steel", 7850.0, 210e9),
-        "PA6-GF30": Material("PA6-GF30", "glass-filled polyamide", 1390.0, 9.31e9),
-        "PA6": Material("PA6", "polyamide", 1140.0, 2.76e9),
-    }
-
-    def find_material(name: str) -> Material:
-        return _LOCAL[name]
+from chaindrive.model import Chain, ChainSpec, Drive, Sprocket
 
 
 def _ring_modes(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:

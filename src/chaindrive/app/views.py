@@ -138,32 +138,11 @@ def headline(document: dict[str, Any]) -> dict[str, Any]:
 
 def checks(analysis: Analysis) -> list[Check]:
     """The pass/fail checks of the design: those of the report
-    (:func:`chaindrive.report.sections.check_rows`) when the report builder is present, else
-    hinge pressure, static safety factor and resonance detuning computed the same way."""
-    try:
-        from chaindrive.report.content import ReportInput
-        from chaindrive.report.sections import check_rows
-    except ImportError:
-        return _own_checks(analysis)
+    (:func:`chaindrive.report.sections.check_rows`)."""
+    from chaindrive.report.content import ReportInput
+    from chaindrive.report.sections import check_rows
+
     return [Check(n, float(v), r, bool(ok)) for n, v, r, ok in check_rows(ReportInput(analysis))]
-
-
-def _own_checks(analysis: Analysis) -> list[Check]:
-    out: list[Check] = []
-    st = analysis.strength
-    if st is not None and st.allowable_pressure is not None:
-        out.append(Check("hinge pressure p, MPa", st.hinge_pressure / 1e6,
-                         f"≤ {st.allowable_pressure / 1e6:.4g}",
-                         st.hinge_pressure <= st.allowable_pressure))
-    if st is not None and st.allowable_safety_factor is not None:
-        out.append(Check("static safety factor s", st.safety_factor_static,
-                         f"≥ {st.allowable_safety_factor:.4g}",
-                         st.safety_factor_static >= st.allowable_safety_factor))
-    for r in analysis.dynamics.resonances:
-        out.append(Check(f"detuning of {r.working.label} from {r.natural_frequency:.1f} Hz, %",
-                         abs(r.margin_percent), f"≥ {RESONANCE_MARGIN_PERCENT:g}",
-                         abs(r.margin_percent) >= RESONANCE_MARGIN_PERCENT))
-    return out
 
 
 def _r(value: Any, digits: int = 2) -> Any:
