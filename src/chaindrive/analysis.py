@@ -206,7 +206,7 @@ def analyze(drive: Drive, *, response: bool = True) -> Analysis:
         strength = strength_of(replace(placed, power=placed.power / contours.km), geometry)
     dynamic_response = None
     if response and one.power is not None and omega is not None and strength is not None:
-        # the time-domain solvers (scipy.linalg, numba) are imported only when needed
+        # the time-domain solvers are imported only when needed
         from chaindrive.dynamics.response import dynamics_response, motor_of
 
         params = dynamics.parameters

@@ -72,7 +72,7 @@ def test_failed_check_is_highlighted(seed_analysis) -> None:
 
     weak = dataclasses.replace(seed_analysis, strength=dataclasses.replace(
         seed_analysis.strength, allowable_safety_factor=1e6))
-    html = render_html(build_report(weak, dpi=30, with_dynamics=False))
+    html = render_html(build_report(weak, dpi=30))
     head = html[:html.index('<section id="inputs">')]
     assert 'class="fail"' in head and "static safety factor" in head
     assert "<tr class=fail>" in head
@@ -82,7 +82,7 @@ def test_sections_slot_in(seed_analysis) -> None:
     register_section("extra", "Extra part", lambda inp: [Text("extra text")], before="damping")
     register_section("absent", "Absent part", lambda inp: None)
     try:
-        html = render_html(build_report(seed_analysis, dpi=30, with_dynamics=False))
+        html = render_html(build_report(seed_analysis, dpi=30))
     finally:
         SECTIONS[:] = [s for s in SECTIONS if s.key not in ("extra", "absent")]
     assert html.index('id="extra"') < html.index('id="damping"')
@@ -132,6 +132,5 @@ def test_dynamic_response_section_tables(seed_analysis, seed_html: str) -> None:
 
 
 def test_no_response_no_section(seed_analysis) -> None:
-    html = render_html(build_report(replace(seed_analysis, response=None), dpi=30,
-                                    with_dynamics=False))
+    html = render_html(build_report(replace(seed_analysis, response=None), dpi=30))
     assert 'id="response"' not in html and "safety factor k1" not in html

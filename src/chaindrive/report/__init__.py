@@ -44,13 +44,12 @@ FORMATS = (".html", ".htm", ".pdf")
 
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
-                 with_dynamics: bool = True,
                  progress: Callable[[str], None] | None = None,
                  synthesis: object = None) -> Report:
     """Build every registered section of the report of ``analysis``.
 
     source : the design file (echoed, and its SHA-256 printed); dpi of the figures;
-    with_dynamics : compute the dynamics when the analysis has none; progress : called
+    progress : called
     with each section's title before it is built (e.g. to advance a progress bar);
     synthesis : the optimisation that chose this design (its Pareto set and front).
     """
@@ -58,7 +57,7 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
 
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      with_dynamics=with_dynamics, synthesis=synthesis)
+                      synthesis=synthesis)
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:

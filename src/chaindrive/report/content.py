@@ -96,15 +96,13 @@ def register_section(key: str, title: str,
 
 class ReportInput:
     """What the section builders read: the analysis, the design file it came from, the
-    figure resolution, and derived parts computed once (the dynamics when the analysis does
-    not carry it)."""
+    figure resolution, and derived parts computed once."""
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 with_dynamics: bool = True, synthesis: Any = None) -> None:
+                 synthesis: Any = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
-        self.with_dynamics = with_dynamics
         self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
         self.notes: list[str] = []
 
@@ -124,25 +122,10 @@ class ReportInput:
         """The JSON document of the analysis (the same numbers as ``analyze --json``)."""
         return self.analysis.to_dict()
 
-    @cached_property
+    @property
     def dynamics(self) -> Any:
-        """The analysis's dynamics part; when it has none (yet), computed here with
-        :func:`chaindrive.dynamics.analyze_dynamics` (ζ = 0.06, Campbell over 0.2…2 × the
-        driver speed); None when it cannot be computed (the reason goes to ``notes``)."""
-        own = getattr(self.analysis, "dynamics", None)
-        if own is not None or not self.with_dynamics:
-            return own
-        from chaindrive.dynamics import analyze_dynamics
-        from chaindrive.errors import ChainDriveError
-
-        drive = self.analysis.drive
-        w = drive.driver.speed
-        try:
-            return analyze_dynamics(drive, self.analysis.geometry,
-                                    speed_range=None if w is None else (0.2 * w, 2.0 * w))
-        except ChainDriveError as exc:
-            self.notes.append(f"dynamics not computed: {exc}")
-            return None
+        """The analysis's dynamics part (:class:`~chaindrive.dynamics.DynamicsResult`)."""
+        return self.analysis.dynamics
 
 
 def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:

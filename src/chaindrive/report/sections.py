@@ -41,7 +41,7 @@ def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, bool]]:
             out.append(("static safety factor s", st.safety_factor_static,
                         f"≥ {st.allowable_safety_factor:.4g}",
                         st.safety_factor_static >= st.allowable_safety_factor))
-    response = getattr(inp.analysis, "response", None)
+    response = inp.analysis.response
     if response is not None:
         k = response.strength_dict()
         for name, key in (("start-up safety factor k1", "k1"), ("steady safety factor k2", "k2"),
@@ -49,8 +49,7 @@ def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, bool]]:
             if k[key] is not None:
                 out.append((name, k[key], f"≥ {response.allowable_k:g}",
                             k[key] >= response.allowable_k))
-    dyn = inp.dynamics
-    for r in getattr(dyn, "resonances", ()) or ():
+    for r in inp.dynamics.resonances:
         out.append((f"detuning of {r.working.label} from {r.natural_frequency:.1f} Hz, %",
                     abs(r.margin_percent), f"≥ {RESONANCE_BAND_PERCENT:g}",
                     abs(r.margin_percent) >= RESONANCE_BAND_PERCENT))
@@ -214,8 +213,6 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     from chaindrive.plotting import campbell_diagram, mode_shapes
 
     dyn = inp.dynamics
-    if dyn is None:
-        return None
     modal = dyn.modal
     names = [s.name for s in inp.analysis.drive.sprockets]
     blocks: list[Block] = [
@@ -327,7 +324,7 @@ def response_section(inp: ReportInput) -> list[Block] | None:
         steady_loads,
     )
 
-    response = getattr(inp.analysis, "response", None)
+    response = inp.analysis.response
     if response is None:
         return None
     sprockets = [s.name for s in inp.analysis.drive.sprockets]
@@ -385,7 +382,7 @@ def damping_section(inp: ReportInput) -> list[Block]:
 
 def contours_section(inp: ReportInput) -> list[Block] | None:
     """Multi-contour drives: the contour check of seed 004 (K_m), as a table of its values."""
-    part = getattr(inp.analysis, "contours", None)
+    part = inp.analysis.contours
     if part is None:
         return None
     flat = [(k, v) for k, v in part.to_dict().items() if not isinstance(v, dict | list)]
