@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT := out
 
-.PHONY: demo test lint bench app clean bytecode
+.PHONY: demo test lint bench app clean bytecode flaky
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -46,6 +46,14 @@ lint: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 
 test: lint
 	$(BIN)/python -m pytest -q
+
+# The tests of time, threads, processes, Dask, the web server and the browser (marker
+# `concurrency`), each repeated N times in a row, with LOAD busy processes meanwhile
+# (LOAD=2 keeps both cores busy); prints each test's failure count.
+N ?= 30
+LOAD ?= 0
+flaky: $(VENV)/.installed-test $(VENV)/.kernel bytecode
+	$(BIN)/python -m tests.flaky --count $(N) --load $(LOAD)
 
 bench: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

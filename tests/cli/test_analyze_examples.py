@@ -14,6 +14,8 @@ from numpy.testing import assert_allclose
 import chaindrive
 from tests.conftest import EXAMPLES
 
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+
 # the drives the issue asks for (eight_sprocket_optimize.toml is the 8-sprocket drive with an
 # [optimize] table, tested with the synthesis)
 EXAMPLE_FILES = sorted(p for p in EXAMPLES.glob("*.toml") if not p.stem.endswith("_optimize"))

@@ -11,6 +11,8 @@ import pytest
 
 from tests.conftest import EXAMPLES
 
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+
 GOOD = (EXAMPLES / "seed_three_sprocket.toml").read_text(encoding="utf-8")
 
 

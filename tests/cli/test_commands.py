@@ -6,8 +6,12 @@ import json
 import subprocess
 import sys
 
+import pytest
+
 from chaindrive.io.design import SECTIONS
 from tests.conftest import EXAMPLES
+
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess[str]:

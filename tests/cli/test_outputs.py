@@ -13,6 +13,8 @@ import pytest
 
 from tests.conftest import EXAMPLES
 
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+
 SEED = EXAMPLES / "seed_three_sprocket.toml"
 
 

@@ -38,6 +38,8 @@ from chaindrive.cli import app as cli_app
 from chaindrive.errors import DesignError
 from tests.conftest import EXAMPLES
 
+pytestmark = pytest.mark.concurrency  # the page runs in Streamlit's script thread
+
 SEED = EXAMPLES / "seed_three_sprocket.toml"
 
 

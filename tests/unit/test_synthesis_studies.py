@@ -9,6 +9,7 @@ import signal
 import threading
 import time
 import tomllib
+from pathlib import Path
 
 import pytest
 from sqlalchemy import func, select
@@ -22,6 +23,8 @@ from chaindrive.synthesis.studies import (
     sweep_inputs,
 )
 from tests.conftest import EXAMPLES
+
+pytestmark = pytest.mark.concurrency  # Dask clusters, threads and signals
 
 distributed = pytest.importorskip("distributed")
 
@@ -97,49 +100,64 @@ def test_sweep_survives_a_killed_worker(tmp_path) -> None:
     assert _rows(url, "sweep") == (len(inputs), len(inputs))  # every result stored once
 
 
-_CALLS: dict = {"n": 0, "fail_after": None, "seen": []}
+#: Environment of the counting function's worker processes: where each call is logged, and
+#: after how many calls it raises (an interruption).
+_LOG, _FAIL_AFTER = "CHAINDRIVE_TEST_CALL_LOG", "CHAINDRIVE_TEST_FAIL_AFTER"
+_CALLS = {"n": 0}  # calls made in this (worker) process
 
 
 def _counting(inputs: dict) -> dict:
-    """Counts its calls; raises (an interruption) after ``fail_after`` calls."""
+    """Squares ``x``, logging each call to a file named by the worker's process in the
+    directory ``$CHAINDRIVE_TEST_CALL_LOG``; raises after ``$CHAINDRIVE_TEST_FAIL_AFTER`` calls
+    of its process."""
+    with (Path(os.environ[_LOG]) / f"{os.getpid()}.log").open("a", encoding="utf-8") as log:
+        log.write(f"{inputs['x']}\n")
     _CALLS["n"] += 1
-    _CALLS["seen"].append(inputs["x"])
-    if _CALLS["fail_after"] is not None and _CALLS["n"] > _CALLS["fail_after"]:
+    fail_after = os.environ.get(_FAIL_AFTER)
+    if fail_after is not None and _CALLS["n"] > int(fail_after):
         raise RuntimeError("interrupted")
     return {"square": inputs["x"] ** 2}
 
 
-def _executing(dask_worker) -> int:  # type: ignore[no-untyped-def]
-    """Tasks a worker is still running (client.run passes the worker in)."""
-    return len(dask_worker.state.executing)
+def _logged(directory: Path) -> list[int]:
+    """The inputs every call logged in ``directory`` received."""
+    return [int(line) for f in sorted(directory.glob("*.log"))
+            for line in f.read_text(encoding="utf-8").split()]
+
+
+def _cluster(log: Path, **env: str) -> distributed.LocalCluster:
+    """One worker process with one thread, its calls logged to ``log``."""
+    log.mkdir()
+    return distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                    dashboard_address=":0", env={_LOG: str(log), **env})
 
 
 def test_interrupted_study_resumes_from_sqlite(tmp_path) -> None:
+    """A study interrupted by an exception keeps every evaluation finished before it; run
+    again (a new process, as after a crash), it computes exactly the rest.
+
+    Each run has its own cluster, closed before the next starts, so the calls the second
+    run makes are the lines its worker logged: stragglers of the interrupted run (tasks
+    cancelled but already started) cannot be counted in, whatever the timing."""
     url = f"sqlite:///{tmp_path / 'resume.db'}"
     inputs = [{"x": k} for k in range(30)]
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                  dashboard_address=":0") as cluster, \
-            distributed.Client(cluster) as client:
-        _CALLS.update(n=0, fail_after=12)
-        with pytest.raises(RuntimeError, match="interrupted"):
-            run_study(_counting, inputs, study="resume", db=url, client=client, progress=False)
-        # let the stragglers of the interrupted run finish: the scheduler forgets cancelled
-        # tasks before the worker's threads have run them out, so ask the worker itself
-        deadline = time.monotonic() + 20
-        while time.monotonic() < deadline and (
-                any(client.processing().values())
-                or any(client.run(_executing).values())):
-            time.sleep(0.02)
-        store = StudyStore(url)
-        stored = store.count("resume")
-        done = {round(r["square"] ** 0.5) for r in store.get("resume",
-                                                               store.keys("resume")).values()}
-        assert 0 < stored < len(inputs)
-        _CALLS.update(n=0, fail_after=None, seen=[])
+    fail_after = 12
+    with _cluster(tmp_path / "first", **{_FAIL_AFTER: str(fail_after)}) as cluster, \
+            distributed.Client(cluster) as client, \
+            pytest.raises(RuntimeError, match="interrupted"):
+        run_study(_counting, inputs, study="resume", db=url, client=client, progress=False)
+    store = StudyStore(url)
+    stored = store.count("resume")
+    done = {round(r["square"] ** 0.5) for r in store.get("resume", store.keys("resume")).values()}
+    store.close()
+    finished = _logged(tmp_path / "first")[:fail_after]  # the calls that returned
+    assert stored == len(finished) == fail_after  # every finished evaluation was stored
+    assert done == set(finished)
+    with _cluster(tmp_path / "second") as cluster, distributed.Client(cluster) as client:
         result = run_study(_counting, inputs, study="resume", db=url, client=client,
                            progress=False)
-    assert _CALLS["n"] == len(inputs) - stored  # finished work is not repeated
-    assert not set(_CALLS["seen"]) & done
+    calls = _logged(tmp_path / "second")
+    assert sorted(calls) == sorted(set(range(30)) - done)  # finished work is not repeated
     assert result.reused == stored and result.computed == len(inputs) - stored
     assert [r["square"] for r in result.results] == [k * k for k in range(30)]
     assert _rows(url, "resume") == (30, 30)

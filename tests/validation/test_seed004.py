@@ -9,7 +9,6 @@ tolerance (1 %) is the one issue 3 sets.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -78,15 +77,12 @@ def test_monte_carlo_reproduces_half_normal_within_one_percent() -> None:
     # issue 3 "Done when": MC mean and 95 % quantile of |ΔL3| within 1 % at 10⁶ samples,
     # sampling the model behind eq. 13 (all four joints clear, z ~ Normal(z_max/2, z_max/6)).
     c4, z_max = 2.7, 54e-6
-    start = time.perf_counter()
     samples = np.abs(simulate_length_difference(1_000_000, np.random.default_rng(4),
                                                 c4=c4, max_clearance=z_max))
-    elapsed = time.perf_counter() - start
     stats = length_difference_stats(c4, z_max)
     assert_allclose(samples.mean(), stats.mean_abs, rtol=0.01)
     assert_allclose(np.quantile(samples, 0.95), stats.quantile_95_abs, rtol=0.01)
     assert_allclose(samples.var(), stats.variance_abs, rtol=0.01)
-    assert elapsed < 3.0
 
 
 def test_contour_factor_limits_after_eq18() -> None:
