@@ -26,9 +26,9 @@ from pathlib import Path
 import numpy as np
 
 from _timing import interleaved
-from chaindrive.dynamics import RingModel
+from chaindrive.dynamics.drive import ring_model
+from chaindrive.dynamics.linear import linear_transient
 from chaindrive.dynamics.response import drive_startup
-from chaindrive.dynamics.startup import linear_transient
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 
@@ -99,7 +99,7 @@ def nonlinear_case() -> None:
     root = Path(__file__).resolve().parents[1]
     d = load_drive(root / "examples" / "twenty_four_sprocket.toml")
     g = contour_geometry(d)
-    model = RingModel.from_drive(d, g, damping=0.06)
+    model = ring_model(d, g, damping=0.06)
     t_first, _ = best(lambda: drive_startup(d, g, model, duration=0.001), 1)
     how = ("ahead-of-time module, numba not imported" if compiled_kernel() is not None
            else "numba just in time: compiled or loaded from its on-disk cache")

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from chaindrive.io.design import load_drive
-from chaindrive.synthesis.objectives import evaluate_drive
+from chaindrive.synthesis.evaluation import evaluate_drive
 from chaindrive.synthesis.problem import Constraints, load_problem
 from chaindrive.synthesis.solve import solve
 from chaindrive.synthesis.studies import evaluate_design, run_study, sweep_inputs

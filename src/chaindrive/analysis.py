@@ -1,52 +1,374 @@
-"""``analyze(drive)``: every analysis of a drive in order, into one immutable result.
+"""``analyze(drive)``: the one place a design is computed.
 
-geometry → kinematics → (loads/strength) → (dynamics). ``Analysis.to_dict()`` is the one
-place the JSON document is produced, so the command line, the report and the web page show
-the same numbers.
+The stages — selection → geometry → kinematics → strength → dynamics (modes, steady state,
+speed sweep, start-up) → checks — are evaluated lazily and each at most once, on one
+:class:`Analysis`. The command line, the report, the web page and the optimiser all read the
+same object; the optimiser asks only for the stages its objectives and constraints need.
+``Analysis.to_dict()`` is the one place the JSON document is produced and
+:meth:`Analysis.checks` the one list of pass/fail rules.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from dataclasses import replace
+from functools import cached_property
+from typing import Any
 
-from chaindrive.dynamics.resonance import DynamicsResult, analyze_dynamics, resonance_warnings
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.checks import (
+    Check,
+    CheckLimits,
+    driver_wrap_check,
+    dynamic_safety_check,
+    hinge_pressure_check,
+    resonance_check,
+    speed_limit_check,
+    static_safety_check,
+    teeth_in_mesh_check,
+)
+from chaindrive.cost import CostModel, default_cost_model
+from chaindrive.dynamics.afc import AfcResult
+from chaindrive.dynamics.damping import (
+    PR_12_7_1820_1,
+    HingeFrictionResult,
+    hinge_friction_grid,
+)
+from chaindrive.dynamics.drive import (
+    DynamicsResult,
+    RingParameters,
+    drive_dynamics,
+    drive_ring_parameters,
+    ring_damping_ratio,
+)
+from chaindrive.dynamics.materials import MaterialCase, material_comparison
+from chaindrive.dynamics.resonance import resonance_warnings
+from chaindrive.dynamics.response import (
+    DynamicResponse,
+    disturbance_responses,
+    drive_startup,
+    motor_of,
+    polygonal_steady,
+    speed_sweep,
+)
 from chaindrive.dynamics.ring import RingModel
-from chaindrive.errors import DesignError
+from chaindrive.dynamics.startup import StartupResult
+from chaindrive.dynamics.steady import SteadyStateResult
+from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
+from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
+from chaindrive.multicontour.drive import ContourCheck, contour_check
+from chaindrive.strength import SelectionResult, StrengthResult, ke_method, select_chain, strength_of
+from chaindrive.strength.loads import small_sprocket
+from chaindrive.units import RAD_S_TO_RPM
 
-if TYPE_CHECKING:
-    from chaindrive.dynamics.response import DynamicResponse
-    from chaindrive.multicontour.drive import ContourCheck
-from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
+__all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
 
-#: Speed range of the Campbell data and of the amplitude–frequency sweep, as fractions of
-#: the nominal driver speed (issue 5: 10 %–150 %).
+#: Speed range of the Campbell data and of the speed sweep (run-up), as fractions of the
+#: nominal driver speed.
 SPEED_RANGE = (0.1, 1.5)
+#: Comparative studies an analysis runs when asked (``studies=``): the four chain/sprocket
+#: material pairs on this layout, and the hinge-friction damping model over its range.
+STUDIES = ("material_pairs", "hinge_friction")
 
 
-@dataclass(frozen=True, slots=True)
 class Analysis:
-    """The results of :func:`analyze`: one part per subject, plus the drive they belong to
-    (with the selected chain and the sprockets where the take-up put them).
+    """Every result of one design, computed on first access and kept.
 
-    selection and strength are None when the design gives no power; contours (the
-    multi-contour check of seed 004) is None for a single contour.
+    Parameters
+    ----------
+    design : Drive
+        The drive as given (its chain may be a request to select one).
+    response : bool
+        Compute the dynamic response (steady state, speed sweep, start-up) for the JSON
+        document and the checks; False stops after the modal analysis.
+    limits : CheckLimits
+        The required values of the checks (defaults with their sources).
+    cost_model : CostModel | None
+        Prices for the cost (None: the packaged ones).
+
+    Attributes are the stages: ``selection``, ``drive`` (with the selected chain, the
+    sprockets where the take-up put them), ``geometry``, ``kinematics``, ``strength``,
+    ``contours``, ``ring``, ``dynamics``, ``steady``, ``afc``, ``startup``,
+    ``disturbances``, ``response``, ``metrics``, ``warnings``.
     """
 
-    drive: Drive
-    geometry: GeometryResult
-    kinematics: KinematicsResult
-    selection: SelectionResult | None
-    strength: StrengthResult | None
-    dynamics: DynamicsResult
-    response: DynamicResponse | None
-    contours: ContourCheck | None
-    warnings: tuple[str, ...]
+    def __init__(self, design: Drive, *, response: bool = True,
+                 limits: CheckLimits | None = None,
+                 cost_model: CostModel | None = None, studies: tuple[str, ...] = ()) -> None:
+        unknown = sorted(set(studies) - set(STUDIES))
+        if unknown:
+            raise DesignError("studies", f"unknown {', '.join(unknown)} (known: "
+                              f"{', '.join(STUDIES)})")
+        self.design = design
+        self.with_response = response
+        self.studies = tuple(studies)
+        self.limits = limits or CheckLimits()
+        self._cost_model = cost_model
+        self._selection_warnings: list[ChainDriveWarning] = []
+
+    # ------------------------------------------------------------------ selection, geometry
+    @cached_property
+    def selection(self) -> SelectionResult | None:
+        """The chain a method of the family selects (None without a power)."""
+        d = self.design
+        if d.power is None:
+            return None
+        request = d.chain.request
+        try:  # each of m contours carries its nominal share P/m
+            return select_chain(replace(d, power=d.power / d.chain.contours),
+                                standard=request.standard if request else None,
+                                series=request.series if request else None,
+                                strands=request.strands if request else None)
+        except DesignError as exc:
+            if request is not None:
+                raise
+            self._selection_warnings.append(ChainDriveWarning("selection.none", "chain",
+                                                              f"selection: {exc}"))
+            return None
+
+    @cached_property
+    def _designed(self) -> Drive:
+        """The design with the selected chain when it asked for one."""
+        d = self.design
+        if d.chain.request is not None and self.selection is not None:
+            return d.with_chain(self.selection.chain)
+        return d
+
+    @cached_property
+    def geometry(self) -> GeometryResult:
+        """Contour geometry with the take-up."""
+        return contour_geometry(self._designed)
+
+    @cached_property
+    def drive(self) -> Drive:
+        """The analysed drive: selected chain, sprockets where the take-up put them."""
+        d = self._designed
+        return d.with_sprockets(tuple(
+            s.moved_to(g.x, g.y) for s, g in zip(d.sprockets, self.geometry.sprockets,
+                                                 strict=True)))
+
+    @cached_property
+    def kinematics(self) -> KinematicsResult:
+        """Speeds, chain speed and the polygonal non-uniformity."""
+        return drive_kinematics(self.drive, self.geometry)
+
+    # ------------------------------------------------------------------ strength
+    @cached_property
+    def _contour_drive(self) -> Drive:
+        """One contour of the drive, carrying its nominal share P/m of the power."""
+        d, m = self.drive, self.drive.chain.contours
+        return d if m == 1 or d.power is None else replace(d, power=d.power / m)
+
+    @cached_property
+    def _static(self) -> StrengthResult | None:
+        """Strength of one contour at its nominal share."""
+        one = self._contour_drive
+        return strength_of(one, self.geometry) if one.power is not None else None
+
+    @cached_property
+    def contours(self) -> ContourCheck | None:
+        """The multi-contour check (K_m at the given risk), None for a single contour."""
+        d, st = self.drive, self._static
+        m = d.chain.contours
+        if m == 1 or st is None or d.power is None or d.driver.speed is None:
+            return None
+        return contour_check(m, d.power / d.driver.speed,
+                             self.geometry.sprockets[d.driver_index].pitch_radius,
+                             st.loads.peripheral_force * m,
+                             float(self.ring_parameters.chain_stiffness_n_per_m[
+                                 st.loads.tight_span]))
+
+    @cached_property
+    def strength(self) -> StrengthResult | None:
+        """Loads and static strength; with m contours, of the most loaded one (P/K_m,
+        [Lyashuk, eq. 15])."""
+        if self.contours is not None and self.drive.power is not None:
+            return strength_of(replace(self.drive, power=self.drive.power / self.contours.km),
+                               self.geometry)
+        return self._static
+
+    # ------------------------------------------------------------------ dynamics
+    @cached_property
+    def ring_parameters(self) -> RingParameters:
+        """Reduced masses and branch stiffnesses of the ring (static span tensions of one
+        contour for the sag)."""
+        st = self._static
+        return drive_ring_parameters(self._contour_drive, self.geometry,
+                                     span_tensions=None if st is None
+                                     else st.loads.span_tensions)
+
+    @cached_property
+    def ring(self) -> RingModel:
+        """The ring model with the damping of ``[dynamics]`` plus the material damping."""
+        p = self.ring_parameters
+        return RingModel(p.masses_kg, p.stiffness_n_per_m, closed=True,
+                         damping_ratio=ring_damping_ratio(p, self.drive.dynamics.damping_ratio),
+                         names=tuple(s.name for s in self.drive.sprockets))
+
+    @cached_property
+    def dynamics(self) -> DynamicsResult:
+        """Modes, span transverse frequencies, resonance table and Campbell data."""
+        w = self.drive.driver.speed
+        return drive_dynamics(self._contour_drive, self.geometry, self.ring,
+                              self.ring_parameters,
+                              speed_range=None if w is None
+                              else (SPEED_RANGE[0] * w, SPEED_RANGE[1] * w))
+
+    @property
+    def _responds(self) -> bool:
+        d = self._contour_drive
+        return d.power is not None and d.driver.speed is not None and self._static is not None
+
+    @cached_property
+    def afc(self) -> AfcResult | None:
+        """The speed sweep over :data:`SPEED_RANGE` (its maxima are F₂max)."""
+        if not self._responds:
+            return None
+        return speed_sweep(self._contour_drive, self.geometry, self.ring,
+                           harmonics=self.drive.dynamics.harmonics, speed_range=SPEED_RANGE)
+
+    @cached_property
+    def steady(self) -> SteadyStateResult | None:
+        """Steady polygonal response at the nominal speed, K_D, k₂ and k₂min."""
+        if not self._responds or self.afc is None or self._static is None:
+            return None
+        return polygonal_steady(self._contour_drive, self.geometry, self.ring,
+                                span_tensions=self._static.loads.span_tensions,
+                                harmonics=self.drive.dynamics.harmonics,
+                                resonance_loads=self.afc.max_span_load)
+
+    @cached_property
+    def startup(self) -> StartupResult | None:
+        """The start-up from rest with the motor law of ``[dynamics]`` (None when the
+        design asks for none)."""
+        d, s = self._contour_drive, self.drive.dynamics
+        if not self._responds or not s.transient or d.power is None or d.driver.speed is None:
+            return None
+        return drive_startup(d, self.geometry, self.ring,
+                             motor=motor_of(s, d.power, d.driver.speed),
+                             resistance=s.resistance, duration=s.startup_duration)  # type: ignore[arg-type]
+
+    @cached_property
+    def disturbances(self) -> dict[str, SteadyStateResult]:
+        """Steady loads of the optional eccentricity and chain errors of ``[dynamics]``."""
+        s = self.drive.dynamics
+        if not self._responds:
+            return {}
+        n = len(self.drive.sprockets)
+        return disturbance_responses(
+            self._contour_drive, self.geometry, self.ring,
+            eccentricity=[s.eccentricity] * n if s.eccentricity > 0 else None,
+            pitch_scatter=s.pitch_scatter, accumulated_error=s.accumulated_error)
+
+    @cached_property
+    def response(self) -> DynamicResponse | None:
+        """The response stages together (None with ``response=False`` or without a power)."""
+        if not self.with_response or self.steady is None or self.afc is None:
+            return None
+        st = self._static
+        assert st is not None
+        return DynamicResponse(self.startup, self.steady, self.afc, self.disturbances,
+                               np.asarray(st.loads.span_tensions, float),
+                               self.drive.chain.spec.breaking_load,
+                               self.limits.allowable_dynamic_safety)
+
+    # ------------------------------------------------------------------ studies (on request)
+    @cached_property
+    def material_pairs(self) -> tuple[MaterialCase, ...] | None:
+        """The same layout with metal or polymer chain on metal or polymer sprockets
+        ([MultimassChainDrives], Fig. 2–3, Table 1); None unless asked for in ``studies``."""
+        if "material_pairs" not in self.studies or not self._responds:
+            return None
+        return material_comparison(self._contour_drive, self.geometry,
+                                   damping=self.drive.dynamics.damping_ratio)
+
+    @cached_property
+    def hinge_friction(self) -> tuple[HingeFrictionResult, ...] | None:
+        """The hinge-friction damping model [ChainHingeDissipation] for its reference chain
+        over its published range of tensions and amplitudes; None unless asked for."""
+        if "hinge_friction" not in self.studies:
+            return None
+        c = PR_12_7_1820_1
+        return hinge_friction_grid(c, (250.0, 500.0, 750.0, 1000.0),
+                                   tuple(np.linspace(0.015, 0.03, 7).tolist()),
+                                   c.pitch * 48)  # the paper's span: 49 hinges, a = t(z − 1)
+
+    # ------------------------------------------------------------------ manufacture
+    @cached_property
+    def profiles(self) -> tuple[SprocketProfile, ...]:
+        """Tooth form, closed outline and body of every sprocket."""
+        return sprocket_profiles(self.drive)
+
+    def selection_by(self, *, method: str | None = None,
+                     strands: int | None = None) -> SelectionResult:
+        """The selection with another method or number of strands than the design asks
+        (what ``chaindrive select`` offers); raises when no chain carries the load."""
+        d = self.design
+        request = d.chain.request
+        return select_chain(replace(d, power=(d.power or 0.0) / d.chain.contours),
+                            method=method,
+                            strands=strands or (request.strands if request else None),
+                            standard=request.standard if request else None,
+                            series=request.series if request else None)
+
+    # ------------------------------------------------------------------ metrics
+    @cached_property
+    def metrics(self) -> DesignMetrics:
+        """Mass, cost and volume."""
+        return design_metrics(self.drive, self.geometry,
+                              self._cost_model or default_cost_model())
+
+    @cached_property
+    def working_frequencies_hz(self) -> NDArray[np.float64]:
+        """The working (disturbing) frequencies of the resonance table [Hz]."""
+        return np.array([w.frequency for w in self.dynamics.working])
+
+    # ------------------------------------------------------------------ checks
+    def check(self, name: str) -> Check | None:
+        """The check called ``name`` (None when it does not apply to this design); see
+        :meth:`checks`."""
+        if name not in _CHECKS:
+            raise DesignError("check", f"unknown check {name!r} (known: {', '.join(_CHECKS)})")
+        return _CHECKS[name](self)
+
+    def checks(self) -> tuple[Check, ...]:
+        """Every check that applies, in order: geometry, kinematics, strength, dynamics;
+        the response checks k₁, k₂, k₂min only with ``response=True``."""
+        names = [n for n in _CHECKS if self.with_response or n not in _RESPONSE_CHECKS]
+        return tuple(c for c in (self.check(n) for n in names) if c is not None)
+
+    @cached_property
+    def warnings(self) -> tuple[ChainDriveWarning, ...]:
+        """Every warning of the analysed stages."""
+        out: list[ChainDriveWarning] = []
+        _ = self.selection
+        out += self._selection_warnings
+        if self.selection is not None and self.design.chain.request is None:
+            out += named_chain_warnings(self.design, self.selection)
+        out += self.geometry.warnings
+        if self._static is not None:
+            out += self._static.loads.warnings
+            out += self._static.warnings
+        out += resonance_warnings(self.dynamics.resonances)
+        return tuple(dict.fromkeys(out))
+
+    # ------------------------------------------------------------------ the document
+    def evaluate(self) -> Analysis:
+        """Compute every stage this analysis reports now (errors are raised here); returns
+        itself."""
+        _ = self.warnings, self.kinematics, self.strength, self.contours, self.metrics
+        if self.with_response:
+            _ = self.response
+        _ = self.material_pairs, self.hinge_friction
+        return self
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON document (keys snake_case, units in the names)."""
@@ -60,20 +382,56 @@ class Analysis:
             dynamics.update(fragment["dynamics"])
             if strength is not None:
                 strength.update(fragment["strength"])
-        selection = None if self.selection is None else self.selection.to_dict()
-        warnings = list(self.warnings)
-        for part in (strength, selection):
-            if part is not None:
-                warnings += part.pop("warnings", [])
         return {
             "drive": drive_summary(self.drive),
             "geometry": geometry_dict(self.geometry),
             "kinematics": self.kinematics.to_dict(),
-            "selection": selection,
+            "selection": None if self.selection is None else self.selection.to_dict(),
             "strength": strength,
             "dynamics": dynamics,
-            "warnings": warnings,
+            "metrics": self.metrics.to_dict(),
+            "checks": [c.to_dict() for c in self.checks()],
+            "warnings": [w.to_dict() for w in self.warnings],
         }
+
+
+def _speed_limit(a: Analysis) -> Check | None:
+    d = a.drive
+    if d.driver.speed is None:
+        return None
+    _, speed = small_sprocket(d)
+    return speed_limit_check(speed, ke_method.max_speed(d.chain.spec.pitch), d.chain.spec.pitch)
+
+
+def _dynamic(name: str, label: str, value: Callable[[Analysis], float | None]
+             ) -> Callable[[Analysis], Check | None]:
+    def build(a: Analysis) -> Check | None:
+        if not a._responds:
+            return None
+        return dynamic_safety_check(name, label, value(a), a.limits)
+    return build
+
+
+def _k1(a: Analysis) -> float | None:
+    return None if a.startup is None else a.startup.k1
+
+
+_CHECKS: dict[str, Callable[[Analysis], Check | None]] = {
+    "driver_wrap": lambda a: driver_wrap_check(a.drive, a.geometry, a.limits),
+    "teeth_in_mesh": lambda a: teeth_in_mesh_check(a.drive, a.geometry, a.limits),
+    "speed_limit": _speed_limit,
+    "hinge_pressure": lambda a: None if a.strength is None else hinge_pressure_check(a.strength),
+    "static_safety": lambda a: (None if a.strength is None
+                                else static_safety_check(a.strength, a.limits)),
+    "resonance_margin": lambda a: resonance_check(a.dynamics.resonances, a.limits),
+    "k1": lambda a: (_dynamic("k1", "start-up safety factor k₁ = Q/F₁max", _k1)(a)
+                     if a.drive.dynamics.transient else None),
+    "k2": _dynamic("k2", "steady safety factor k₂ = Q/(F_R + F₂)",
+                   lambda a: None if a.steady is None else a.steady.k2),
+    "k2_min": _dynamic("k2_min", "safety factor at resonance k₂min = Q/(F_R + F₂max)",
+                       lambda a: None if a.steady is None else a.steady.k2_min),
+}
+_RESPONSE_CHECKS = frozenset({"k1", "k2", "k2_min"})
 
 
 def drive_summary(drive: Drive) -> dict[str, Any]:
@@ -90,7 +448,7 @@ def drive_summary(drive: Drive) -> dict[str, Any]:
         "power_w": drive.power,
         "driver": drive.driver.name,
         "driver_speed_rpm": None if drive.driver.speed is None
-        else drive.driver.speed * 30 / math.pi,
+        else drive.driver.speed * RAD_S_TO_RPM,
     }
 
 
@@ -135,95 +493,45 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
     }
 
 
-def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
+def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[ChainDriveWarning]:
     """Say when the chain a design names fails the selection method of its family."""
     own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation
            and c.method == selection.method]
-    return [f"{c.designation} does not carry the load by {c.method}: {c.governing} short by "
-            f"{-c.margin:.1%} (the method selects {selection.chain.designation})"
-            for c in own if not c.feasible]
+    return [ChainDriveWarning(
+        "selection.named-chain-short", "chain.designation",
+        f"{c.designation} does not carry the load by {c.method}: {c.governing} short by "
+        f"{-c.margin:.1%} (the method selects {selection.chain.designation})")
+        for c in own if not c.feasible]
 
 
-def analyze(drive: Drive, *, response: bool = True) -> Analysis:
-    """Run the analyses of a drive in order.
+def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
+            cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
+            lazy: bool = False) -> Analysis:
+    """Analyse a drive: selection, contour geometry with the take-up, kinematics, loads and
+    strength, the dynamic model and its modes, and (``response``) the steady state, the speed
+    sweep and the start-up, the metrics and the checks.
 
-    1. selection (when the power is given): the chain a method of its family would choose —
-       ISO 10823 for ISO 606/ANSI, the Kэ method for GOST 13568; a design that names no
-       chain gets that chain, one that names its chain keeps it and the selection is shown
-       beside it;
-    2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength;
-    5. dynamics: the ring model with the static span tensions (sag), natural frequencies and
-       forms, span transverse frequencies, resonance table and Campbell data from 10 % to
-       150 % of the driver speed (issue 4), with the damping of ``drive.dynamics``;
-    6. dynamic response (when the power is given and ``response``): start-up transient
-       (when ``drive.dynamics.transient``), steady state under the polygonal effect (and the
-       optional disturbances), amplitude–frequency sweep, coefficient of dynamics and the
-       two-stage check k1, k2, k2min (issue 5). ``response=False`` stops after the modal
-       analysis: what an interactive page or an optimiser recomputes after every change.
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    response : bool
+        False stops after the modal analysis (what an interactive page recomputes after
+        every change).
+    limits : CheckLimits | None
+        Required values of the checks (None: the defaults with their sources).
+    cost_model : CostModel | None
+        Prices (None: the packaged ones).
+    studies : tuple of str
+        Comparative studies to run too (:data:`STUDIES`).
+    lazy : bool
+        Return at once and compute each stage on first access (what the optimiser does);
+        False computes everything the document reports now, so that errors are raised here.
+
+    Returns
+    -------
+    Analysis
     """
-    settings = drive.dynamics
-    warnings: list[str] = []
-    selection = None
-    request = drive.chain.request
-    m = drive.chain.contours
-    if drive.power is not None:
-        try:  # each of m contours carries its nominal share P/m
-            selection = select_chain(
-                replace(drive, power=drive.power / m),
-                standard=request.standard if request else None,
-                series=request.series if request else None,
-                strands=request.strands if request else None)
-        except DesignError as exc:
-            if request is not None:
-                raise
-            warnings.append(f"selection: {exc}")
-        if request is not None and selection is not None:
-            drive = drive.with_chain(selection.chain)
-        elif selection is not None:
-            warnings += named_chain_warnings(drive, selection)
-    geometry = contour_geometry(drive)
-    placed = drive.with_sprockets(tuple(
-        s.moved_to(g.x, g.y) for s, g in zip(drive.sprockets, geometry.sprockets, strict=True)
-    ))
-    kinematics = drive_kinematics(placed, geometry)
-    one = placed if m == 1 or placed.power is None else replace(placed, power=placed.power / m)
-    strength = strength_of(one, geometry) if one.power is not None else None
-    omega = placed.driver.speed
-    dynamics = analyze_dynamics(
-        one, geometry, damping=settings.damping_ratio,
-        span_tensions=None if strength is None else strength.loads.span_tensions,
-        speed_range=None if omega is None else (SPEED_RANGE[0] * omega, SPEED_RANGE[1] * omega))
-    contours = None
-    if m > 1 and strength is not None and placed.power is not None and omega is not None:
-        from chaindrive.multicontour.drive import contour_check  # scipy.special: only here
-
-        loads = strength.loads
-        contours = contour_check(
-            m, placed.power / omega, geometry.sprockets[placed.driver_index].pitch_radius,
-            loads.peripheral_force * m,
-            float(dynamics.parameters.chain_stiffness_n_per_m[loads.tight_span]))
-        # the most loaded contour carries P/K_m (seed 004 eq. 15: [p]_m = [p]·K_m)
-        strength = strength_of(replace(placed, power=placed.power / contours.km), geometry)
-    dynamic_response = None
-    if response and one.power is not None and omega is not None and strength is not None:
-        # the time-domain solvers are imported only when needed
-        from chaindrive.dynamics.response import dynamics_response, motor_of
-
-        params = dynamics.parameters
-        model = RingModel(params.masses_kg, params.stiffness_n_per_m,
-                          damping_ratio=dynamics.damping_ratio,
-                          names=tuple(s.name for s in placed.sprockets))
-        n = len(placed.sprockets)
-        dynamic_response = dynamics_response(
-            one, geometry, model, span_tensions=strength.loads.span_tensions,
-            harmonics=settings.harmonics, startup=settings.transient,
-            startup_duration=settings.startup_duration,
-            motor=motor_of(settings, one.power, omega), resistance=settings.resistance,
-            speed_range=SPEED_RANGE,
-            eccentricity=[settings.eccentricity] * n if settings.eccentricity > 0 else None,
-            pitch_scatter=settings.pitch_scatter, accumulated_error=settings.accumulated_error)
-    return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
-                    strength=strength, dynamics=dynamics, response=dynamic_response,
-                    contours=contours,
-                    warnings=(*warnings, *geometry.warnings,
-                              *resonance_warnings(dynamics.resonances)))
+    a = Analysis(drive, response=response, limits=limits, cost_model=cost_model,
+                 studies=studies)
+    return a if lazy else a.evaluate()

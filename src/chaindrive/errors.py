@@ -35,7 +35,45 @@ class ConvergenceError(ChainDriveError, RuntimeError):
 
 
 class ChainDriveWarning(UserWarning):
-    """Base class of the engineering warnings chaindrive reports (also listed in results)."""
+    """An engineering warning carried on a result: what it is about and what to do.
+
+    Parameters
+    ----------
+    code : str
+        Stable identifier of the kind of warning, ``<part>.<what>``, e.g.
+        ``"geometry.driver-wrap"``; tools and tests match on it, never on the wording.
+    part : str
+        The field or part of the design it concerns, e.g. ``"sprockets[S1]"`` or
+        ``"strength"``.
+    message : str
+        One line for the designer, with the figures.
+
+    The results keep them in ``warnings`` tuples; ``to_dict()`` writes them with their code,
+    and ``warnings.warn(w)`` works too (it is a :class:`UserWarning`).
+    """
+
+    def __init__(self, code: str, part: str, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.part = part
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.code!r}, {self.part!r}, {self.message!r})"
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, ChainDriveWarning)
+                and (self.code, self.part, self.message) == (other.code, other.part, other.message))
+
+    def __hash__(self) -> int:
+        return hash((self.code, self.part, self.message))
+
+    def to_dict(self) -> dict[str, str]:
+        """JSON-ready dict: code, part, message."""
+        return {"code": self.code, "part": self.part, "message": self.message}
 
 
 def closest(name: str, choices: Iterable[str]) -> str | None:

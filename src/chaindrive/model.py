@@ -4,9 +4,10 @@ A :class:`Drive` is what every analysis reads. It is built from a design file by
 :mod:`chaindrive.io.design`, or in code::
 
     from chaindrive import Drive, Sprocket, Chain
+    from chaindrive.catalog import find_chain
     drive = Drive(
         name="two sprockets",
-        chain=Chain.from_catalog("ISO 606 08B-1"),
+        chain=Chain(find_chain("ISO 606 08B-1")),
         sprockets=(
             Sprocket("S1", teeth=17, x=0.0, y=0.0, role="driver", speed=2 * pi * 1000 / 60),
             Sprocket("S2", teeth=34, x=0.5, y=0.0, role="driven"),
@@ -153,14 +154,6 @@ class Chain:
                     f"got {self.links}",
                 )
 
-    @classmethod
-    def from_catalog(cls, designation: str, *, links: int | None = None,
-                     allow_odd: bool = False) -> Chain:
-        """Chain from a designation in the packaged catalogue (see :mod:`chaindrive.catalog`)."""
-        from chaindrive.catalog import find_chain
-
-        return cls(find_chain(designation), links=links, allow_odd=allow_odd)
-
     @property
     def pitch(self) -> float:
         """Chain pitch p [m]."""
@@ -172,8 +165,9 @@ class Sprocket:
     """A sprocket of the contour, listed in the order the chain runs round it.
 
     x, y [m] centre; speed [rad/s] (driver only); inertia [kg·m²] of everything rotating
-    with it (None: computed later from geometry); ``side`` is ``"inside"`` when the chain
-    wraps it from the inside of the contour (it then turns the other way);
+    with it (None: computed later from geometry); ``flywheel`` [kg·m²] an inertia added as a
+    steel flywheel on its shaft (counted in the dynamics, the mass and the cost); ``side``
+    is ``"inside"`` when the chain wraps it from the inside of the contour (it then turns the other way);
     ``adjust_angle`` [rad] the direction of its line of adjustment (None: the default,
     see :func:`chaindrive.geometry.contour.adjustment_direction`).
     """
@@ -190,6 +184,7 @@ class Sprocket:
     inertia: float | None = None
     material: str = "steel"
     power_share: float | None = None
+    flywheel: float = 0.0
 
     def __post_init__(self) -> None:
         where = f"sprockets[{self.name}]"
@@ -210,6 +205,8 @@ class Sprocket:
             raise DesignError(f"{where}.speed", f"must be positive, got {self.speed!r} rad/s")
         if self.inertia is not None and not (math.isfinite(self.inertia) and self.inertia > 0):
             raise DesignError(f"{where}.inertia", f"must be positive, got {self.inertia!r} kg·m²")
+        if not (math.isfinite(self.flywheel) and self.flywheel >= 0):
+            raise DesignError(f"{where}.flywheel", f"must be ≥ 0, got {self.flywheel!r} kg·m²")
         if self.power_share is not None and not 0 <= self.power_share <= 1:
             raise DesignError(f"{where}.power_share", f"must be from 0 to 1, got {self.power_share!r}")
 

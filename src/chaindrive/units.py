@@ -7,11 +7,15 @@ one-line :class:`~chaindrive.errors.DesignError` naming the field.
 
 from __future__ import annotations
 
+import math
 import sys
 from functools import lru_cache
 from typing import Any
 
 from chaindrive.errors import DesignError
+
+#: rad/s → rpm (revolutions per minute): ω·60/(2π); divide by it for rpm → rad/s.
+RAD_S_TO_RPM = 30.0 / math.pi
 
 #: Dimension name → (pint dimensionality string, SI unit it is converted to, example).
 DIMENSIONS: dict[str, tuple[str, str, str]] = {

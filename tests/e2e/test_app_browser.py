@@ -209,7 +209,8 @@ def test_seed_edit_report_and_screenshot(page: Page, tmp_path: Path) -> None:
     pg = page
     original = tomllib.loads(SEED.read_text(encoding="utf-8"))["sprockets"][ROW]["teeth"]
     before, after = _analysis(original), _analysis(NEW_TEETH)
-    warn_before, warn_after = before.to_dict()["warnings"], after.to_dict()["warnings"]
+    warn_before = [w["message"] for w in before.to_dict()["warnings"]]
+    warn_after = [w["message"] for w in after.to_dict()["warnings"]]
     assert before.geometry.links != after.geometry.links  # the edit must show
     assert warn_before and warn_after and warn_before[0] not in warn_after
 

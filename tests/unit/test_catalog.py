@@ -208,9 +208,9 @@ def test_chains_by_pitch_and_standard():
         chains_by_pitch(0.0254, "ISO 6060")
 
 
-def test_loading_is_cached_and_chain_from_catalog_works():
+def test_loading_is_cached_and_short_names_resolve():
     assert chains() is chains()
-    assert Chain.from_catalog("16B", links=100).spec is find_chain("ISO 606 16B-1")
+    assert Chain(find_chain("16B"), links=100).spec is find_chain("ISO 606 16B-1")
 
 
 # --------------------------------------------------------------------------- bearing area

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from chaindrive.damping import (
+from chaindrive.dynamics.damping import (
     DEFAULT_DAMPING_RATIO,
     PR_12_7_1820_1,
     absorption_coefficient,
@@ -109,7 +109,7 @@ def test_material_loss_factors_combine_by_strain_energy() -> None:
     """Springs in series share one force, so their energies are ∝ compliance
     (η = Σ η_k/c_k / Σ 1/c_k); a mode whose branches all have η has η (modal strain
     energy method, Johnson & Kienholz 1982)."""
-    from chaindrive.damping import modal_loss_factor, series_loss_factor
+    from chaindrive.dynamics.damping import modal_loss_factor, series_loss_factor
 
     assert series_loss_factor([[0.01], [0.03]], [[1.0], [1.0]])[0] == pytest.approx(0.02)
     assert series_loss_factor([[0.01], [0.03]], [[3.0], [1.0]])[0] == pytest.approx(0.015)

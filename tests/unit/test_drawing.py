@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 import chaindrive
-from chaindrive.drawing import outline_of, tooth_form_of, write_drawing
+from chaindrive.drawing import write_drawing
 from chaindrive.errors import DesignError
+from chaindrive.geometry.profile import outline_of, tooth_form_of
 
 ROOT = Path(__file__).parents[2]
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.toml") if not p.stem.endswith("_optimize"))

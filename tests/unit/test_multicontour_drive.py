@@ -10,6 +10,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import chaindrive
+from chaindrive.catalog import find_chain
 from chaindrive.errors import DesignError
 from chaindrive.model import Chain
 from chaindrive.multicontour import contour_check, contour_factor_at_risk
@@ -64,7 +65,7 @@ def test_a_stiffer_span_loses_more_capacity() -> None:
 
 
 def test_contours_out_of_range() -> None:
-    spec = chaindrive.Chain.from_catalog("ISO 606 08B-1").spec
+    spec = find_chain("ISO 606 08B-1")
     with pytest.raises(DesignError, match="chain.contours"):
         Chain(spec, contours=9)
     with pytest.raises(DesignError, match="chain.contours"):

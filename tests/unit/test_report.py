@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 import chaindrive
+from chaindrive.checks import CheckLimits
 from chaindrive.errors import DesignError
 from chaindrive.report import (
     SECTIONS,
@@ -34,7 +35,8 @@ EXPECTED_PLOTS = {"layout", "chain_speed", "ratio", "tensions", "shaft_loads", "
 def seed_analysis() -> chaindrive.analysis.Analysis:
     drive = chaindrive.load(SEED)
     short = replace(drive.dynamics, startup_duration=0.05)  # a short start-up keeps it fast
-    return chaindrive.analyze(replace(drive, dynamics=short))
+    return chaindrive.analyze(replace(drive, dynamics=short),
+                              studies=("material_pairs", "hinge_friction"))
 
 
 @pytest.fixture(scope="module")
@@ -64,17 +66,16 @@ def test_warnings_come_first(seed_analysis, seed_html: str) -> None:
     first = seed_html.index('<section id="inputs">')
     for w in warnings:
         assert 0 <= seed_html.find('class="warning"') < first
-        assert w.split(":")[0] in seed_html[:first]
+        assert w["message"].split(":")[0] in seed_html[:first]
 
 
-def test_failed_check_is_highlighted(seed_analysis) -> None:
-    import dataclasses
-
-    weak = dataclasses.replace(seed_analysis, strength=dataclasses.replace(
-        seed_analysis.strength, allowable_safety_factor=1e6))
+def test_failed_check_is_highlighted() -> None:
+    drive = chaindrive.load(SEED)
+    weak = chaindrive.analyze(replace(drive, power=40e3), response=False)  # 80× the power
+    assert not weak.check("hinge_pressure").passed
     html = render_html(build_report(weak, dpi=30))
     head = html[:html.index('<section id="inputs">')]
-    assert 'class="fail"' in head and "static safety factor" in head
+    assert 'class="fail"' in head and "hinge pressure" in head
     assert "<tr class=fail>" in head
 
 
@@ -82,7 +83,7 @@ def test_sections_slot_in(seed_analysis) -> None:
     register_section("extra", "Extra part", lambda inp: [Text("extra text")], before="damping")
     register_section("absent", "Absent part", lambda inp: None)
     try:
-        html = render_html(build_report(seed_analysis, dpi=30))
+            html = render_html(build_report(seed_analysis, dpi=30))
     finally:
         SECTIONS[:] = [s for s in SECTIONS if s.key not in ("extra", "absent")]
     assert html.index('id="extra"') < html.index('id="damping"')
@@ -98,21 +99,22 @@ def test_pdf_and_bad_suffix(seed_analysis, tmp_path: Path) -> None:
 
 
 def test_dynamic_safety_factor_below_allowable_fails_red(seed_analysis) -> None:
-    """k1 = Q/F1max below [k] = 2.5 (seed 000 §3.6) is a failed check at the top."""
-    response = replace(seed_analysis.response, allowable_k=1e6)
-    html = render_html(build_report(replace(seed_analysis, response=response), dpi=30))
+    """k1 = Q/F1max below [k] ([MultimassChainDrives] §3.6) is a failed check at the top."""
+    drive = seed_analysis.design
+    strict = chaindrive.analyze(drive, limits=CheckLimits(allowable_dynamic_safety=1e6))
+    html = render_html(build_report(strict, dpi=30))
     top = html[:html.index('<section id="inputs">')]
-    assert "FAILED: start-up safety factor k1" in top
-    assert "FAILED: steady safety factor k2" in top
+    assert "FAIL: start-up safety factor k₁" in top
+    assert "FAIL: steady safety factor k₂" in top
     # and the row of k1 in the section's own table is red
-    section = html[html.index('<section id="response">'):html.index('<section id="damping">')]
+    section = html[html.index('<section id="response">'):]
     assert re.search(r"<tr class=fail><td>start-up k1 = Q/F1max</td>", section)
 
 
 def test_dynamic_response_section_tables(seed_analysis, seed_html: str) -> None:
     """K_D, per-span loads (static, steady, start-up, AFC) and per-mass inertia load and
     irregularity, with the values of the analysis (seed 000 §3.3, §3.6)."""
-    from chaindrive.report.content import fmt
+    from chaindrive.display import fmt
 
     response = seed_analysis.response
     section = seed_html[seed_html.index('<section id="response">'):
@@ -132,5 +134,12 @@ def test_dynamic_response_section_tables(seed_analysis, seed_html: str) -> None:
 
 
 def test_no_response_no_section(seed_analysis) -> None:
-    html = render_html(build_report(replace(seed_analysis, response=None), dpi=30))
-    assert 'id="response"' not in html and "safety factor k1" not in html
+    html = render_html(build_report(chaindrive.analyze(seed_analysis.design, response=False),
+                                    dpi=30))
+    assert 'id="response"' not in html and "safety factor k₁" not in html
+
+
+def test_studies_only_when_asked(seed_analysis) -> None:
+    html = render_html(build_report(chaindrive.analyze(seed_analysis.design, response=False),
+                                    dpi=30))
+    assert 'id="damping"' not in html and "Material pairs" not in html

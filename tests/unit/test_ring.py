@@ -13,16 +13,16 @@ from numpy.testing import assert_allclose
 from chaindrive.catalog import find_material
 from chaindrive.dynamics import (
     RingModel,
-    analyze_dynamics,
     campbell_data,
     coefficient_of_dynamics,
+    drive_dynamics,
     modal_analysis,
     ring_frequencies_batch,
     ring_stiffness_matrix,
     span_transverse_frequencies,
 )
+from chaindrive.dynamics.drive import drive_ring_parameters, ring_model
 from chaindrive.dynamics.stiffness import (
-    drive_ring_parameters,
     link_stiffness,
     sag_stiffness_factor,
     series_stiffness,
@@ -189,7 +189,7 @@ def seed_drive(chain_material: str = "steel", sprocket_material: str = "steel",
 
 def _first(chain: str, sprocket: str, power: float | None = None) -> float:
     drive = seed_drive(chain, sprocket, power, seed_masses=True)
-    model = RingModel.from_drive(drive, fake_geometry(drive), material_lookup=find_material)
+    model = ring_model(drive, fake_geometry(drive), material_lookup=find_material)
     return model.modal().first_elastic_frequency_hz
 
 
@@ -220,7 +220,7 @@ def test_table1_trend_loaded_open_chain() -> None:
 def test_from_drive_masses_and_slack_span() -> None:
     drive = seed_drive(power=8000.0)
     geom = fake_geometry(drive)
-    model = RingModel.from_drive(drive, geom, material_lookup=find_material)
+    model = ring_model(drive, geom, material_lookup=find_material)
     # steel plate disc of the pitch diameter minus the bore, thickness bf1 (ISO 606), its
     # inertia I = m (D² + d0²)/8 reduced to the pitch radius: m_red = I / R²
     spec = drive.chain.spec
@@ -243,7 +243,7 @@ def test_from_drive_masses_and_slack_span() -> None:
     # a given inertia overrides the disc
     s0 = replace(drive.sprockets[0], inertia=0.5)
     d2 = drive.with_sprockets((s0, *drive.sprockets[1:]))
-    m2 = RingModel.from_drive(d2, geom, material_lookup=find_material)
+    m2 = ring_model(d2, geom, material_lookup=find_material)
     assert_allclose(m2.masses_kg[0], 0.5 / geom.sprockets[0].pitch_radius ** 2)
 
 
@@ -251,8 +251,9 @@ def test_analyze_dynamics_outputs() -> None:
     drive = seed_drive(power=500.0)
     geom = fake_geometry(drive)
     w = drive.driver.speed
-    res = analyze_dynamics(drive, geom, material_lookup=find_material,
-                           speed_range=(0.5 * w, 2 * w), speed_points=21)
+    params = drive_ring_parameters(drive, geom, material_lookup=find_material)
+    res = drive_dynamics(drive, geom, RingModel(params.masses_kg, params.stiffness_n_per_m),
+                         params, speed_range=(0.5 * w, 2 * w), speed_points=21)
     d = res.to_dict()
     json.dumps(d)
     for key in ("natural_frequencies_hz", "mode_shapes", "normalized_amplitudes",

@@ -10,16 +10,12 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
-from chaindrive._numeric import exp_poly_on_grid
+from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
+from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 from chaindrive.dynamics.startup import (
-    ConstantTorque,
-    KlossMotor,
     PolygonalLaw,
-    RampTorque,
-    ResistanceLaw,
     _discretise,
     _discretise_expm,
-    linear_transient,
     simulate_startup,
 )
 from chaindrive.dynamics.startup_kernel import HAVE_NUMBA

@@ -10,17 +10,17 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from chaindrive.analysis import Analysis
 from chaindrive.dynamics.ring import ring_frequencies_batch
 from chaindrive.errors import DesignError
 from chaindrive.io.design import load_drive
 from chaindrive.synthesis.detuning import band_shortfall, detune, detune_drive
-from chaindrive.synthesis.objectives import DesignState
 from tests.conftest import EXAMPLES
 
 
-def _relative_distance(state: DesignState) -> float:
-    f = state.modal.elastic_frequencies_hz
-    w = state.working_hz
+def _relative_distance(a: Analysis) -> float:
+    f = a.dynamics.modal.elastic_frequencies_hz
+    w = a.working_frequencies_hz
     return float(np.min(np.abs(f[:, None] - w[None, :]) / w[None, :]))
 
 
@@ -29,7 +29,7 @@ def resonant_drive():
     """The 8-sprocket example with the driver speed set so that the 2nd tooth harmonic falls
     exactly on the first elastic natural frequency."""
     drive = load_drive(EXAMPLES / "eight_sprocket.toml")
-    f1 = DesignState(drive).modal.elastic_frequencies_hz[0]
+    f1 = Analysis(drive).dynamics.modal.elastic_frequencies_hz[0]
     omega = TWO_PI * f1 / 2 / drive.driver.teeth
     return drive.with_sprockets(tuple(replace(s, speed=omega) if s.role == "driver" else s
                                       for s in drive.sprockets))
@@ -39,14 +39,14 @@ TWO_PI = 2 * math.pi
 
 
 def test_example_starts_inside_the_band(resonant_drive) -> None:
-    assert _relative_distance(DesignState(resonant_drive)) < 0.01
+    assert _relative_distance(Analysis(resonant_drive)) < 0.01
 
 
 def test_detuning_by_added_inertia_clears_every_band(resonant_drive) -> None:
     shafts = {s.name: (0.0, 0.2) for s in resonant_drive.sprockets if s.role != "idler"}
     detuned, result = detune_drive(resonant_drive, shafts, seed=1)
     assert result.cleared
-    state = DesignState(detuned)  # re-analysed from the drive, not from the optimiser
+    state = Analysis(detuned)  # re-analysed from the drive, not from the optimiser
     assert _relative_distance(state) >= 0.10
     assert detuned.driver.speed == resonant_drive.driver.speed
     for old, new in zip(resonant_drive.sprockets, detuned.sprockets, strict=True):

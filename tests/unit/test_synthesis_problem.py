@@ -9,15 +9,12 @@ import tomllib
 
 import pytest
 
+from chaindrive.analysis import Analysis
+from chaindrive.cost import cost_model_from_mapping, default_cost_model
 from chaindrive.errors import DesignError
-from chaindrive.synthesis.cost import cost_model_from_mapping, default_cost_model
-from chaindrive.synthesis.objectives import (
-    CONSTRAINTS,
-    OBJECTIVES,
-    DesignState,
-    evaluate_drive,
-    evaluate_vector,
-)
+from chaindrive.metrics import sprocket_body_masses
+from chaindrive.synthesis.evaluation import constraint_names, evaluate_drive, evaluate_vector
+from chaindrive.synthesis.objectives import OBJECTIVES
 from chaindrive.synthesis.problem import load_problem, problem_from_mapping
 from tests.conftest import EXAMPLES
 
@@ -85,23 +82,30 @@ def test_constraints_parse_units(data) -> None:
     assert p.constraints.max_chain_speed == pytest.approx(15.0)
 
 
-def test_registry_has_the_issue_objectives_and_constraints() -> None:
+def test_registry_has_the_objectives_and_the_constraints_are_analysis_checks(data) -> None:
     assert {"cost", "mass", "volume", "chain_length", "coefficient_of_dynamics",
             "resonance_margin", "normalised_amplitude", "detuning"} <= set(OBJECTIVES)
-    assert {"static_safety", "driver_wrap", "teeth_in_mesh", "chain_speed", "speed_limit",
-            "k2", "k2_min"} <= set(CONSTRAINTS)
+    p = problem_from_mapping(data)
+    names = constraint_names(p.constraints)
+    assert {"static_safety", "driver_wrap", "teeth_in_mesh", "speed_limit", "k2",
+            "k2_min"} <= set(names)
+    checks = {c.name for c in Analysis(p.base).checks()}
+    assert set(names) <= checks  # every constraint is a check of the analysis
+    ev = evaluate_drive(p.base, p.objectives, p.constraints)
+    assert set(ev.constraints) == {"buildable", "chain_speed", "ratio"} - {"ratio"} | set(names)
 
 
 def test_objective_values_follow_their_definitions(data) -> None:
     p = problem_from_mapping(data)
     ev, drive = evaluate_vector(p, p.start_vector())
-    s = DesignState(drive)
+    s = Analysis(drive)
     spec = drive.chain.spec
+    bodies = sprocket_body_masses(drive)
     assert ev.objectives["chain_length"] == pytest.approx(s.geometry.chain_length)
     chain_mass = spec.mass_per_length * s.geometry.chain_length
-    assert ev.objectives["mass"] == pytest.approx(s.bodies.sum() + chain_mass)
+    assert ev.objectives["mass"] == pytest.approx(bodies.sum() + chain_mass)
     cm = default_cost_model()
-    expected = (s.bodies.sum() * cm.part_price_per_kg("steel")
+    expected = (bodies.sum() * cm.part_price_per_kg("steel")
                 + s.geometry.chain_length * cm.chain_per_kg * spec.mass_per_length)
     assert ev.objectives["cost"] == pytest.approx(expected)
     xs = [g.x for g in s.geometry.sprockets]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from chaindrive.dynamics import RingModel
+from chaindrive.dynamics.drive import ring_model
 from chaindrive.dynamics.materials import _case
 from chaindrive.dynamics.response import dynamics_response
 from chaindrive.geometry.contour import contour_geometry
@@ -35,7 +35,7 @@ def test_polymer_chain_resonance_lower_and_smaller(metal_polymer) -> None:
 def test_polymer_chain_lowers_startup_peak(seed_drive, metal_polymer) -> None:
     """Seed 000 Fig. 2: polymeric parts lower the start-up peak (542 N → 470 N, −13 %), most
     with a polymer chain on polymer sprockets. In our model the reduction comes from the
-    polymer's material damping (chaindrive.damping.LOSS_FACTORS, modal strain energy):
+    polymer's material damping (chaindrive.dynamics.damping.LOSS_FACTORS, modal strain energy):
     −1.5 % for the chain alone, about −10 % for chain and sprockets (lighter sprockets too)."""
     metal, polymer = metal_polymer
     assert polymer.startup_peak_n < metal.startup_peak_n
@@ -47,7 +47,7 @@ def test_polymer_chain_lowers_startup_peak(seed_drive, metal_polymer) -> None:
 def test_dynamics_response_fragment(seed_drive) -> None:
     # issue 5 §5 keys; k1 = Q/F1max, k2 ≥ k2min (resonance load ≥ working load)
     d, g = seed_drive
-    model = RingModel.from_drive(d, g, damping=0.06)
+    model = ring_model(d, g, damping=0.06)
     out = dynamics_response(d, g, model, startup_duration=0.05, afc_points=400,
                             eccentricity=[1e-4, 0, 0], accumulated_error=2e-4).to_dict()
     st = out["dynamics"]["startup"]

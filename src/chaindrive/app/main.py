@@ -25,6 +25,7 @@ from chaindrive.app.state import (
     design_from_form,
     design_to_toml,
     edit_values,
+    example_text,
     form_from_design,
     is_empty,
     list_examples,
@@ -41,6 +42,7 @@ from chaindrive.app.views import (
     span_records,
     sprocket_records,
 )
+from chaindrive.display import fmt
 from chaindrive.errors import ChainDriveError
 
 DEFAULT_EXAMPLE = "seed_three_sprocket"
@@ -66,9 +68,8 @@ def _load(data: dict[str, Any], source: str) -> None:
 
 
 def _load_example(name: str) -> None:
-    path = list_examples()[name]
     try:
-        _load(read_design_text(path.read_text(encoding="utf-8"), path.name), path.name)
+        _load(read_design_text(example_text(name), f"{name}.toml"), f"{name}.toml")
     except ChainDriveError as exc:
         st.session_state["load_error"] = str(exc)
 
@@ -80,7 +81,7 @@ def _init() -> None:
     if DEFAULT_EXAMPLE in examples:
         _load_example(DEFAULT_EXAMPLE)
     elif examples:
-        _load_example(next(iter(examples)))
+        _load_example(examples[0])
     else:
         st.session_state["form"] = DesignForm({"name": "new drive"}, {}, [])
         st.session_state["source"] = "design.toml"
@@ -413,10 +414,10 @@ def _checks_and_warnings(screen: Screen) -> None:
         elif not failed:
             st.info(f"All {len(screen.checks)} checks pass; {len(warnings)} warning(s).")
         for c in failed:
-            st.error(f"FAILED: {c.name} = {c.value:.4g} (required {c.required})")
+            st.error(f"{c.result}: {c.name} = {fmt(c.value)} (required {c.required})")
     with st.container(key="warnings"):
         for w in warnings:
-            st.warning(w, icon="⚠️")
+            st.warning(w["message"], icon="⚠️")
 
 
 def _check_table(screen: Screen) -> None:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from chaindrive import examples
 from chaindrive.errors import ChainDriveError, DesignError
 
 if TYPE_CHECKING:
@@ -118,15 +119,14 @@ class Outcome:
 
 # --- examples and files ---------------------------------------------------------------------
 
-def examples_dir() -> Path:
-    """The ``examples/`` folder of the source tree (bundled design files)."""
-    return Path(__file__).resolve().parents[3] / "examples"
+def list_examples() -> tuple[str, ...]:
+    """The bundled examples (package data, :mod:`chaindrive.examples`), sorted by name."""
+    return examples.names()
 
 
-def list_examples(folder: Path | None = None) -> dict[str, Path]:
-    """Bundled examples: file stem → path, sorted by name (empty when none are present)."""
-    root = examples_dir() if folder is None else folder
-    return {p.stem: p for p in sorted(root.glob("*.toml"))} if root.is_dir() else {}
+def example_text(name: str) -> str:
+    """The TOML text of a bundled example."""
+    return examples.text(name)
 
 
 def read_design_text(text: str, name: str = "design") -> dict[str, Any]:

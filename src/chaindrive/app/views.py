@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive.display import check_row
+
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
@@ -23,19 +25,21 @@ MM = 1e3
 #: Colours of the figures of :mod:`chaindrive.plotting` (Okabe–Ito), reused for the SVG.
 TIGHT, CHAIN, PITCH, GREY = "#D55E00", "#0072B2", "#009E73", "#7f7f7f"
 
-#: Detuning below which a working frequency counts as a failed check [%] (same as the
-#: report, :data:`chaindrive.report.sections.RESONANCE_MARGIN_PERCENT`).
-RESONANCE_MARGIN_PERCENT = 10.0
-
-
 @dataclass(frozen=True, slots=True)
 class Check:
-    """One pass/fail check: what, its value, the requirement, and whether it passes."""
+    """One check as the page shows it: what, its value (in the unit it is read in), the
+    requirement, the result (``pass``, ``FAIL``, ``CANNOT BE VERIFIED``) and its source."""
 
     name: str
-    value: float
+    value: float | None
     required: str
-    passed: bool
+    result: str
+    source: str
+
+    @property
+    def passed(self) -> bool:
+        """True when the check passes."""
+        return self.result == "pass"
 
 
 # --- layout -----------------------------------------------------------------------------------
@@ -137,12 +141,8 @@ def headline(document: dict[str, Any]) -> dict[str, Any]:
 
 
 def checks(analysis: Analysis) -> list[Check]:
-    """The pass/fail checks of the design: those of the report
-    (:func:`chaindrive.report.sections.check_rows`)."""
-    from chaindrive.report.content import ReportInput
-    from chaindrive.report.sections import check_rows
-
-    return [Check(n, float(v), r, bool(ok)) for n, v, r, ok in check_rows(ReportInput(analysis))]
+    """The checks of the analysis (:meth:`chaindrive.analysis.Analysis.checks`), as shown."""
+    return [Check(*check_row(c)) for c in analysis.checks()]
 
 
 def _r(value: Any, digits: int = 2) -> Any:
@@ -153,8 +153,8 @@ def _r(value: Any, digits: int = 2) -> Any:
 def check_records(items: list[Check]) -> list[dict[str, Any]]:
     """Rows of the checks table (failed first)."""
     ordered = sorted(items, key=lambda c: c.passed)
-    return [{"check": c.name, "value": float(f"{c.value:.4g}"), "required": c.required,
-             "result": "pass" if c.passed else "FAIL"} for c in ordered]
+    return [{"check": c.name, "value": None if c.value is None else float(f"{c.value:.4g}"),
+             "required": c.required, "result": c.result, "source": c.source} for c in ordered]
 
 
 def sprocket_records(document: dict[str, Any]) -> list[dict[str, Any]]:

@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
@@ -28,8 +30,6 @@ def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
     (2, [2λM_r, s_k, ω_s]) (the Kloss formula 2λM_r·s·s_k/(s² + s_k²), s = 1 − ω/ω_s,
     evaluated in the same order as ``KlossMotor.__call__``).
     """
-    from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque
-
     if type(motor) is ConstantTorque:
         return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
     if type(motor) is RampTorque:

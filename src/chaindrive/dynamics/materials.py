@@ -1,7 +1,7 @@
 """The four material pairs of seed 000 (Fig. 2–3, Table 1) on one layout.
 
 Metal or polymer chain on metal or polymer sprockets: for each pair the ring model is rebuilt
-(:meth:`chaindrive.dynamics.RingModel.from_drive`: chain E, sprocket E and density from
+(:func:`chaindrive.dynamics.drive.ring_model`: chain E, sprocket E and density from
 ``chaindrive.catalog.find_material``), then the start-up peak span force
 (:func:`chaindrive.dynamics.response.drive_startup`), the first elastic natural frequency and
 the first resonance of the AFC (tooth frequency of the largest peak near it and its
@@ -17,9 +17,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from chaindrive.dynamics.afc import afc_sweep
+from chaindrive.dynamics.drive import ring_model
 from chaindrive.dynamics.excitation import polygonal_excitation
 from chaindrive.dynamics.response import drive_startup
-from chaindrive.dynamics.ring import RingModel
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -56,7 +56,7 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
     spec = replace(drive.chain.spec, material=chain_mat)
     d = replace(drive, chain=replace(drive.chain, spec=spec),
                 sprockets=tuple(replace(s, material=sprocket_mat) for s in drive.sprockets))
-    model = RingModel.from_drive(d, geometry, damping=damping)
+    model = ring_model(d, geometry, damping=damping)
     f1 = model.modal().first_elastic_frequency_hz
     st = drive_startup(d, geometry, model, duration=duration)
     wz = d.driver.teeth * d.driver.speed

@@ -20,13 +20,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.errors import DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.kinematics import tooth_frequency
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.ring import ModalResult
 
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
-           "resonance_table", "shaft_frequencies", "tooth_frequency", "working_frequencies"]
+           "resonance_table", "shaft_frequencies", "working_frequencies"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -42,14 +43,6 @@ def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
     w = np.asarray(driver_speed, dtype=float)
     z = np.asarray(teeth, dtype=float)
     return (w[..., None] * driver_teeth / z) / TWO_PI
-
-
-def tooth_frequency(driver_speed: ArrayLike, driver_teeth: int) -> NDArray[np.float64]:
-    """Tooth (mesh) frequency f_z = z_1 ω_1 / 2π [Hz], common to the whole contour.
-
-    driver_speed ω_1 [rad/s]; driver_teeth z_1. Source: seed 000 §3.3, ω_z = z_i ω_i.
-    """
-    return np.asarray(driver_speed, dtype=float) * driver_teeth / TWO_PI
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,7 +76,7 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
     shafts = shaft_frequencies(driver_speed, driver_teeth, teeth)
     out = [WorkingFrequency("shaft", f"shaft {name}", float(f))
            for name, f in zip(names, shafts, strict=True)]
-    fz = float(tooth_frequency(driver_speed, driver_teeth))
+    fz = float(tooth_frequency(driver_teeth, driver_speed))
     out += [WorkingFrequency("tooth", f"tooth x{k}", k * fz, k) for k in range(1, harmonics + 1)]
     return tuple(out)
 
@@ -206,7 +199,7 @@ def campbell_data(modal: ModalResult, driver_speeds: ArrayLike, driver_teeth: in
     natural = np.broadcast_to(modal.elastic_frequencies_hz, (w.size, modal.elastic_frequencies_hz.size))
     lines = {f"shaft {n}": col for n, col in zip(names, shaft_frequencies(w, driver_teeth, teeth).T,
                                                  strict=True)}
-    fz = tooth_frequency(w, driver_teeth)
+    fz = np.asarray(tooth_frequency(driver_teeth, w))
     lines.update({f"tooth x{k}": k * fz for k in range(1, harmonics + 1)})
     crossings = [(name, j, s) for name, line in lines.items()
                  for j, s in _crossings(w, line, natural)]
@@ -231,110 +224,16 @@ RESONANCE_BAND_PERCENT = 10.0
 
 
 def resonance_warnings(rows: Sequence[Resonance],
-                       band_percent: float = RESONANCE_BAND_PERCENT) -> list[str]:
-    """One message per working frequency within ±band of its nearest natural frequency."""
+                       band_percent: float = RESONANCE_BAND_PERCENT) -> list[ChainDriveWarning]:
+    """One warning per working frequency within ±band of its nearest natural frequency."""
     out = []
     for r in rows:
+        parametric = r.working.kind == "parametric"
         if abs(r.margin_percent) < band_percent:
-            kind = ("parametric resonance" if r.working.kind == "parametric"
-                    else "resonance")
-            out.append(f"{kind}: {r.working.label} at {r.working.frequency:.1f} Hz is "
-                       f"{r.margin_percent:+.1f} % from {r.natural_frequency:.1f} Hz "
-                       f"(keep at least ±{band_percent:g} %)")
+            out.append(ChainDriveWarning(
+                "dynamics.parametric-resonance" if parametric else "dynamics.resonance",
+                "dynamics",
+                f"{'parametric resonance' if parametric else 'resonance'}: {r.working.label} at "
+                f"{r.working.frequency:.1f} Hz is {r.margin_percent:+.1f} % from "
+                f"{r.natural_frequency:.1f} Hz (keep at least ±{band_percent:g} %)"))
     return out
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class DynamicsResult:
-    """Everything a designer reads about a drive's vibration (issue 4, JSON ``dynamics``).
-
-    parameters : masses and stiffnesses with their parts
-    (:class:`~chaindrive.dynamics.stiffness.RingParameters`); modal : the ring's modes;
-    span_transverse_hz : (spans, modes) transverse frequencies [Hz] (empty when the span
-    tensions are unknown); resonances : the resonance table; campbell : Campbell data
-    over the speed range (or None); damping_ratio ζ.
-    """
-
-    parameters: Any
-    modal: ModalResult
-    span_transverse_hz: NDArray[np.float64]
-    working: tuple[WorkingFrequency, ...]
-    resonances: tuple[Resonance, ...]
-    campbell: CampbellData | None
-    damping_ratio: float
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict with the keys of issue 4 §6."""
-        m = self.modal.to_dict()
-        st = self.span_transverse_hz
-        return {
-            "model": self.parameters.to_dict(),
-            "natural_frequencies_hz": m["natural_frequencies_hz"],
-            "natural_frequencies_rad_s": m["natural_frequencies_rad_s"],
-            "damped_frequencies_hz": m["damped_frequencies_hz"],
-            "rigid_body_modes": m["rigid_body_modes"],
-            "mode_shapes": m["mode_shapes"],
-            "normalized_amplitudes": m["normalized_amplitudes"],
-            "partial_frequencies_hz": m["partial_frequencies_hz"],
-            "span_transverse_frequencies_hz": st[:, 0].tolist() if st.size else [],
-            "span_transverse_modes_hz": st.tolist(),
-            "working_frequencies": [w.to_dict() for w in self.working],
-            "resonances": [r.to_dict() for r in self.resonances],
-            "campbell": None if self.campbell is None else self.campbell.to_dict(),
-            "damping_ratio": self.damping_ratio,
-        }
-
-
-def analyze_dynamics(drive: Any, geometry: Any, *, damping: float = 0.06,
-                     span_tensions: Sequence[float] | None = None,
-                     link_stiffness: float | None = None, material_lookup: Any = None,
-                     harmonics: int = 3, transverse_modes: int = 3,
-                     speed_range: tuple[float, float] | None = None,
-                     speed_points: int = 61) -> DynamicsResult:
-    """Modal analysis, span transverse frequencies, resonance table and Campbell data.
-
-    drive : :class:`chaindrive.model.Drive`; geometry : its ``GeometryResult``; damping ζ of
-    the hinges, to which the material damping of the first mode is added;
-    span_tensions [N], link_stiffness [N/m], material_lookup: see
-    :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`; harmonics of the tooth
-    frequency; transverse_modes per span; speed_range (ω_min, ω_max) of the driver
-    [rad/s] for the Campbell data (None: none).
-    """
-    from chaindrive.dynamics.ring import RingModel
-    from chaindrive.dynamics.stiffness import drive_ring_parameters, ring_damping_ratio
-    from chaindrive.dynamics.transverse import span_transverse_frequencies
-
-    params = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
-                                   link_stiffness=link_stiffness,
-                                   material_lookup=material_lookup)
-    damping = ring_damping_ratio(params, damping)
-    model = RingModel(params.masses_kg, params.stiffness_n_per_m, closed=True,
-                      damping_ratio=damping, names=tuple(s.name for s in drive.sprockets))
-    modal = model.modal()
-    spec = drive.chain.spec
-    driver = drive.driver
-    teeth = [s.teeth for s in drive.sprockets]
-    names = [s.name for s in drive.sprockets]
-    lengths = np.array([sp.length for sp in geometry.spans])
-    tensions = params.span_tensions_n
-    transverse = np.zeros((0, transverse_modes))
-    working: tuple[WorkingFrequency, ...] = ()
-    rows: tuple[Resonance, ...] = ()
-    fz = None
-    if driver.speed is not None:
-        v = driver.teeth * spec.pitch * driver.speed / TWO_PI
-        if tensions is not None:
-            transverse = span_transverse_frequencies(lengths, tensions, spec.mass_per_length, v,
-                                                     modes=transverse_modes)
-        working = working_frequencies(driver.speed, driver.teeth, teeth, names, harmonics)
-        fz = float(tooth_frequency(driver.speed, driver.teeth))
-    if working:
-        rows = resonance_table(modal, working, transverse[:, 0] if transverse.size else None, fz,
-                               [f"{sp.start_name}→{sp.end_name}" for sp in geometry.spans])
-    campbell = None
-    if speed_range is not None:
-        speeds = np.linspace(speed_range[0], speed_range[1], speed_points)
-        campbell = campbell_data(modal, speeds, driver.teeth, teeth, names, harmonics,
-                                 lengths if tensions is not None else None, tensions,
-                                 spec.mass_per_length, spec.pitch)
-    return DynamicsResult(params, modal, transverse, working, rows, campbell, damping)

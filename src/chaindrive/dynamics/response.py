@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.dynamics.afc import AfcResult, afc_sweep
 from chaindrive.dynamics.excitation import (
@@ -28,19 +28,23 @@ from chaindrive.dynamics.excitation import (
     path_positions,
     polygonal_excitation,
 )
-from chaindrive.dynamics.startup import (
-    STEPS_PER_PERIOD,
+from chaindrive.dynamics.motors import (
     ConstantTorque,
     KlossMotor,
-    PolygonalLaw,
     RampTorque,
     ResistanceKind,
     ResistanceLaw,
+)
+from chaindrive.dynamics.quality import nominal_peripheral_force
+from chaindrive.dynamics.startup import (
+    STEPS_PER_PERIOD,
+    PolygonalLaw,
     StartupResult,
     simulate_startup,
 )
 from chaindrive.dynamics.steady import SteadyStateResult, damping_beta, steady_state
 from chaindrive.errors import DesignError
+from chaindrive.strength.loads import loads_of, power_shares, sag_tension
 from chaindrive.strength.safety import ALLOWABLE_DYNAMIC_SAFETY
 
 if TYPE_CHECKING:
@@ -50,7 +54,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, DynamicsSettings
 
-__all__ = ["DynamicResponse", "drive_startup", "dynamics_response", "mean_radii", "motor_of"]
+__all__ = ["DynamicResponse", "disturbance_responses", "drive_startup", "dynamics_response",
+           "mean_radii", "motor_of", "polygonal_steady", "speed_sweep"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -69,15 +74,11 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
 
 
 def _pretension(drive: Drive, geometry: GeometryResult) -> float:
-    from chaindrive.strength.loads import sag_tension
-
     slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
     return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination))
 
 
 def _shares(drive: Drive) -> NDArray[np.float64]:
-    from chaindrive.strength.loads import power_shares
-
     return np.asarray(power_shares(drive), dtype=float)
 
 
@@ -167,6 +168,57 @@ def motor_of(settings: DynamicsSettings, power: float, speed: float
     return ConstantTorque(power / speed)
 
 
+def polygonal_steady(drive: Drive, geometry: GeometryResult, model: RingModel, *,
+                     span_tensions: ArrayLike, harmonics: int = 10,
+                     resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
+    """Steady response to the polygonal excitation at the nominal speed, with K_D and the
+    dynamic safety factors k₂ and (given the resonance loads F₂max of the run-up) k₂min.
+
+    span_tensions F_R [N] (the operating loads); harmonics of the tooth frequency;
+    resonance_loads F₂max (n,) [N] per span (None: no k₂min). K_D = 1 + F_D/F_t with F_t the
+    nominal peripheral force P/v [MultimassChainDrives, §3.6].
+    """
+    w_d, _ = _speeds(drive)
+    ex = polygonal_excitation(geometry, drive.driver.teeth * w_d, harmonics)
+    Ft = (nominal_peripheral_force(drive.power, geometry.sprockets[drive.driver_index]
+                                   .pitch_diameter, w_d) if drive.power else None)
+    radii = np.array([g.pitch_radius for g in geometry.sprockets])
+    return steady_state(model, ex, radii=radii, nominal_force=Ft,
+                        breaking_load=drive.chain.spec.breaking_load,
+                        operating_forces=np.asarray(span_tensions, float),
+                        resonance_loads=resonance_loads)
+
+
+def speed_sweep(drive: Drive, geometry: GeometryResult, model: RingModel, *,
+                harmonics: int = 10, speed_range: tuple[float, float] = (0.1, 1.5),
+                points: int = 2000) -> AfcResult:
+    """Amplitude–frequency characteristic: the steady polygonal response over driver speeds
+    from speed_range[0] to speed_range[1] times the nominal one (``points`` speeds); its
+    per-span maxima are the resonance loads F₂max of a run-up through that range."""
+    w_d, _ = _speeds(drive)
+    ex = polygonal_excitation(geometry, drive.driver.teeth * w_d, harmonics)
+    return afc_sweep(model, ex, np.linspace(*speed_range, points) * w_d, drive.driver.teeth)
+
+
+def disturbance_responses(drive: Drive, geometry: GeometryResult, model: RingModel, *,
+                          eccentricity: Sequence[float] | None = None,
+                          pitch_scatter: float = 0.0, accumulated_error: float = 0.0
+                          ) -> dict[str, SteadyStateResult]:
+    """Steady loads of the optional internal disturbances, each on its own: sprocket
+    eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
+    chain error Δ [m] (see :mod:`chaindrive.dynamics.excitation`)."""
+    w_d, _ = _speeds(drive)
+    wz = drive.driver.teeth * w_d
+    extra: dict[str, SpanExcitation] = {}
+    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
+        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
+    if pitch_scatter > 0 or accumulated_error != 0:
+        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
+                                                      accumulated_error=accumulated_error)
+    radii = np.array([g.pitch_radius for g in geometry.sprockets])
+    return {k: steady_state(model, v, radii=radii) for k, v in extra.items()}
+
+
 def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, *,
                       span_tensions: Sequence[float] | None = None, harmonics: int = 10,
                       startup: bool = True, startup_duration: float = 1.0,
@@ -176,42 +228,26 @@ def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, 
                       eccentricity: Sequence[float] | None = None,
                       pitch_scatter: float = 0.0, accumulated_error: float = 0.0,
                       allowable: float = ALLOWABLE_DYNAMIC_SAFETY) -> DynamicResponse:
-    """Everything issue 5 §5 asks of the dynamic response of ``drive``.
+    """Every response stage of ``drive`` at once (what :class:`chaindrive.analysis.Analysis`
+    computes stage by stage): the speed sweep (F₂max), the polygonal steady state with K_D,
+    k₂, k₂min, the disturbances and the start-up.
 
-    model : its ring model (``RingModel.from_drive``); span_tensions F_R [N] (None:
-    :func:`chaindrive.strength.loads.loads_of`); harmonics of the tooth
-    frequency; startup on/off, its duration [s], motor and resistance law; speed_range as
-    fractions of the nominal driver speed and afc_points for the AFC (F_2max → k2min);
-    eccentricity (n,) [m], pitch_scatter σ [m], accumulated_error Δ [m]: optional internal
-    disturbances (their loads are reported separately); allowable [k] = 2.5.
+    model : its ring model (:func:`chaindrive.dynamics.drive.ring_model`); span_tensions F_R
+    [N] (None: :func:`chaindrive.strength.loads.loads_of`); allowable [k] = 2.5.
     """
-    from chaindrive.dynamics.quality import nominal_peripheral_force
-    from chaindrive.strength.loads import loads_of
-
-    w_d, _ = _speeds(drive)
-    wz = drive.driver.teeth * w_d
-    ex = polygonal_excitation(geometry, wz, harmonics)
     if span_tensions is not None:
         T = np.asarray(span_tensions, float)
     elif drive.power is not None:
         T = np.asarray(loads_of(drive, geometry).span_tensions, float)
     else:
         T = np.zeros(len(drive.sprockets))
-    Q = drive.chain.spec.breaking_load
-    afc = afc_sweep(model, ex, np.linspace(*speed_range, afc_points) * w_d, drive.driver.teeth)
-    Ft = (nominal_peripheral_force(drive.power, geometry.sprockets[drive.driver_index]
-                                   .pitch_diameter, w_d) if drive.power else None)
-    radii = np.array([g.pitch_radius for g in geometry.sprockets])
-    steady = steady_state(model, ex, radii=radii, nominal_force=Ft, breaking_load=Q,
-                          operating_forces=T, resonance_loads=afc.max_span_load)
-    extra: dict[str, SpanExcitation] = {}
-    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
-        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
-    if pitch_scatter > 0 or accumulated_error != 0:
-        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
-                                                      accumulated_error=accumulated_error)
-    dist = {k: steady_state(model, v, radii=radii) for k, v in extra.items()}
+    afc = speed_sweep(drive, geometry, model, harmonics=harmonics, speed_range=speed_range,
+                      points=afc_points)
+    steady = polygonal_steady(drive, geometry, model, span_tensions=T, harmonics=harmonics,
+                              resonance_loads=afc.max_span_load)
+    dist = disturbance_responses(drive, geometry, model, eccentricity=eccentricity,
+                                 pitch_scatter=pitch_scatter, accumulated_error=accumulated_error)
     st = (drive_startup(drive, geometry, model, motor=motor, resistance=resistance,
                         duration=startup_duration)
           if startup and (drive.power or motor is not None) else None)
-    return DynamicResponse(st, steady, afc, dist, T, Q, allowable)
+    return DynamicResponse(st, steady, afc, dist, T, drive.chain.spec.breaking_load, allowable)

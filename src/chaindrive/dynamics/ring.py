@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 import sys
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -29,10 +28,8 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
 
-    from chaindrive.geometry.results import GeometryResult
-    from chaindrive.model import Drive, Material
+    pass
 
 __all__ = ["ModalResult", "RingModel", "modal_analysis", "ring_frequencies_batch",
            "ring_stiffness_matrix"]
@@ -410,28 +407,3 @@ class RingModel:
                 "reduced_masses_kg": self.masses_kg.tolist(),
                 "branch_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
                 "closed": self.closed, "damping_ratio": self.damping_ratio}
-
-    @classmethod
-    def from_drive(cls, drive: Drive, geometry: GeometryResult, *,
-                   damping: float = 0.06,
-                   span_tensions: Sequence[float] | None = None,
-                   link_stiffness: float | None = None,
-                   material_lookup: Callable[[str], Material] | None = None) -> RingModel:
-        """The ring model of a drive; see :func:`chaindrive.dynamics.stiffness.drive_ring_parameters`.
-
-        damping : hinge-friction damping ratio (seed 000: D = 0.06; or ζ = ψ/4π from
-            :mod:`chaindrive.damping`), to which the material damping of the first mode is
-            added (:func:`~chaindrive.dynamics.stiffness.ring_damping_ratio`);
-            span_tensions [N] per span (None: the static tensions when the drive has a power,
-            see :func:`~chaindrive.dynamics.stiffness.static_span_tensions`);
-            link_stiffness [N/m] per link from catalogue data (None: from the plates and pin);
-            material_lookup : name → Material (default :func:`chaindrive.catalog.find_material`).
-        """
-        from chaindrive.dynamics.stiffness import drive_ring_parameters, ring_damping_ratio
-
-        p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
-                                  link_stiffness=link_stiffness,
-                                  material_lookup=material_lookup)
-        return cls(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
-                   damping_ratio=ring_damping_ratio(p, damping),
-                   names=tuple(s.name for s in drive.sprockets))

@@ -26,14 +26,6 @@ stiff part is exact at any step (no stability limit from the kHz modes); a step 
 state changes the slack pattern is redone once with the new pattern. Δt defaults to
 1/(160 f_1) and 1/(160 f_z) at most (f_1 first elastic frequency, f_z tooth frequency).
 
-:func:`linear_transient` is the closed-form modal solution for a linear ring under forces
-known in advance (no slack, no speed-dependent law): mode j is a damped oscillator with
-ζ_j = βω_j/2 (classical damping, Rao §6.13); a constant force (step) or a soft-start ramp
-gives closed-form modal step / ramp responses (Rao §4.5) evaluated on the whole time grid at
-once (modes × times, "don't integrate what has a closed form"); sampled forces held over
-each step are propagated by the exact zero-order-hold recursion of each mode in its
-eigen-coordinates (a first-order complex scan per mode).
-
 **Compiled kernel.** The step loop of :func:`simulate_startup` runs in numba
 (:mod:`chaindrive.dynamics.startup_kernel`) when the motor is a ConstantTorque, RampTorque
 or KlossMotor — compiled ahead of time when that build is present and current
@@ -48,133 +40,27 @@ peak forces agree to 1e-14), so equivalence is tested on small cases.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from functools import cached_property
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive._numeric import exp_poly_at
+from chaindrive.dynamics.linear import mode_roots
+from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.steady import span_incidence
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-__all__ = [
-    "ConstantTorque",
-    "KlossMotor",
-    "LinearTransient",
-    "RampTorque",
-    "ResistanceLaw",
-    "StartupResult",
-    "linear_transient",
-    "settling_time",
-    "simulate_startup",
-]
+__all__ = ["PolygonalLaw", "StartupResult", "settling_time", "simulate_startup"]
 
 TWO_PI = 2.0 * math.pi
-ResistanceKind = Literal["constant", "linear", "quadratic"]
 #: Default steps per period of the first elastic mode (or tooth period): slack events and the
 #: explicit forces need it (measured: 40 is unstable on the 24-sprocket example, 160 agrees
 #: with a tight LSODA solution to 0.3 % in the peak force).
 STEPS_PER_PERIOD = 160
-
-
-# --- motor and resistance laws ------------------------------------------------------------
-
-@dataclass(frozen=True, slots=True)
-class ConstantTorque:
-    """Motor torque M_D = const [N·m] from t = 0 (step)."""
-
-    torque: float
-
-    def __call__(self, t: float, omega: float) -> float:
-        """Torque [N·m] at time t [s] and speed ω [rad/s]."""
-        return self.torque
-
-
-@dataclass(frozen=True, slots=True)
-class RampTorque:
-    """Soft start: M_D = M·min(1, t/t_ramp) [N·m]; ramp_time t_ramp [s]."""
-
-    torque: float
-    ramp_time: float
-
-    def __call__(self, t: float, omega: float) -> float:
-        """Torque [N·m] at time t [s] and speed ω [rad/s]."""
-        return self.torque * min(1.0, t / self.ramp_time) if self.ramp_time > 0 else self.torque
-
-
-@dataclass(frozen=True, slots=True)
-class KlossMotor:
-    """Induction motor by the Kloss formula M = 2 M_k / (s/s_k + s_k/s) (e.g. Fischer,
-    Elektrische Maschinen; Чиликин, Общий курс электропривода).
-
-    rated_power P_r [W]; rated_speed ω_r [rad/s] (of the driver shaft); breakdown_ratio
-    λ = M_k/M_r; critical_slip s_k. The rated slip follows from M(s_r) = M_r:
-    s_r = s_k (λ − sqrt(λ² − 1)); synchronous speed ω_s = ω_r/(1 − s_r).
-    """
-
-    rated_power: float
-    rated_speed: float
-    breakdown_ratio: float = 2.5
-    critical_slip: float = 0.25
-
-    def __post_init__(self) -> None:
-        if not (self.rated_power > 0 and self.rated_speed > 0):
-            raise DesignError("motor", "rated power and speed must be positive")
-        if not (self.breakdown_ratio > 1 and 0 < self.critical_slip < 1):
-            raise DesignError("motor", "need breakdown_ratio > 1 and 0 < critical_slip < 1")
-
-    @property
-    def rated_torque(self) -> float:
-        """M_r = P_r/ω_r [N·m]."""
-        return self.rated_power / self.rated_speed
-
-    @property
-    def rated_slip(self) -> float:
-        """s_r [–]."""
-        lam = self.breakdown_ratio
-        return self.critical_slip * (lam - math.sqrt(lam * lam - 1.0))
-
-    @property
-    def synchronous_speed(self) -> float:
-        """ω_s [rad/s]."""
-        return self.rated_speed / (1.0 - self.rated_slip)
-
-    def __call__(self, t: float, omega: float) -> float:
-        """Torque [N·m] at speed ω [rad/s]: 2 M_k s s_k / (s² + s_k²), s = 1 − ω/ω_s."""
-        s = 1.0 - omega / self.synchronous_speed
-        sk = self.critical_slip
-        return 2.0 * self.breakdown_ratio * self.rated_torque * s * sk / (s * s + sk * sk)
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class ResistanceLaw:
-    """Moments of resistance of the sprockets: M_R,i = M_i · φ(ω_i/ω_n,i) [N·m].
-
-    kind : "constant" (φ = 1 once moving; below ``breakaway``·ω_n the torque rises
-    linearly from 0, a regularised dry friction), "linear" (φ = ω/ω_n) or "quadratic"
-    (φ = (ω/ω_n)|ω/ω_n|); torques (n,) M_i [N·m] at the nominal speeds (n,) ω_n,i [rad/s].
-    """
-
-    kind: ResistanceKind
-    torques: NDArray[np.float64]
-    nominal_speeds: NDArray[np.float64]
-    breakaway: float = 0.01
-
-    def __call__(self, omega: NDArray[np.float64]) -> NDArray[np.float64]:
-        """M_R [N·m] at the speeds ω (n,) [rad/s]."""
-        r = omega / self.nominal_speeds
-        if self.kind == "linear":
-            return self.torques * r
-        if self.kind == "quadratic":
-            return self.torques * r * np.abs(r)
-        if self.kind == "constant":
-            return self.torques * np.clip(r / self.breakaway, -1.0, 1.0)
-        raise DesignError("resistance", f"unknown law {self.kind!r}")
 
 
 # --- results -------------------------------------------------------------------------------
@@ -251,7 +137,7 @@ def _discretise(m: NDArray[np.float64], c_eff: NDArray[np.float64], beta: float,
     X, w = modal.shapes, modal.angular_frequencies_rad_s
     rigid = w <= 0
     ww = np.where(rigid, 1.0, w)
-    s1, s2 = _mode_roots(ww, 0.5 * beta * ww)
+    s1, s2 = mode_roots(ww, 0.5 * beta * ww)
     e1, e2 = np.exp(s1 * dt), np.exp(s2 * dt)
     S = ((1.0 - (s2 * e1 - s1 * e2) / (s2 - s1)) / ww**2).real
     h = ((e1 - e2) / (s1 - s2)).real
@@ -602,202 +488,3 @@ def _default_step(m: NDArray[np.float64], c: NDArray[np.float64]) -> float:
 
 
 # --- linear closed form -------------------------------------------------------------------
-
-@dataclass(frozen=True, eq=False)
-class LinearTransient:
-    """Response of a linear ring: times (N,) [s], velocities (N, n) [m/s], span_forces
-    (N, n) [N] (elastic + damping, no slack rule) — what a start-up check reads, computed
-    at once — and displacements (N, n) [m], evaluated on first access."""
-
-    times: NDArray[np.float64]
-    velocities: NDArray[np.float64]
-    span_forces: NDArray[np.float64]
-    displacements_source: Callable[[], NDArray[np.float64]] = field(repr=False)
-
-    @cached_property
-    def displacements(self) -> NDArray[np.float64]:
-        """x (N, n) [m]."""
-        return self.displacements_source()
-
-
-def _mode_roots(omega: NDArray[np.float64], zeta: NDArray[np.float64]
-                ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Roots s₁,₂ = ω(−ζ ± sqrt(ζ² − 1)) of s² + 2ζωs + ω² (ζ = 1 nudged)."""
-    z = np.where(np.abs(zeta - 1.0) < 1e-6, 1.0 + 1e-6, zeta)
-    r = np.sqrt((z * z - 1.0).astype(complex))
-    return omega * (-z + r), omega * (-z - r)
-
-
-@dataclass(frozen=True, slots=True)
-class _ModalSeries:
-    """Modal responses S_j(t), V_j(t) written as exponential-polynomial sums:
-
-        S_j(t) = Re Σ_k [mode_k = j]·κS_k e^{s_k t} + Σ_p PS[j, p] t^p   (V likewise),
-
-    the form :func:`chaindrive._numeric.exp_poly_on_grid` evaluates."""
-
-    exponents: NDArray[np.complex128]  # s_k (K,)
-    mode: NDArray[np.intp]  # mode index j of term k (K,)
-    kS: NDArray[np.complex128]  # (K,)
-    kV: NDArray[np.complex128]  # (K,)
-    pS: NDArray[np.float64]  # (modes, P)
-    pV: NDArray[np.float64]  # (modes, P)
-
-
-def _step_series(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModalSeries:
-    """Unit-step response S(t) of q̈ + 2ζωq̇ + ω²q = 1 and Ṡ, from rest (Rao §4.5).
-
-    S = (1 − (s₂e^{s₁t} − s₁e^{s₂t})/(s₂ − s₁))/ω², Ṡ = (e^{s₁t} − e^{s₂t})/(s₁ − s₂),
-    s₁,₂ = ω(−ζ ± sqrt(ζ² − 1)). For ζ < 1 (s₂ = s̄₁ = −ζω − iω_d) one complex term:
-    S = 1/ω² + Re(e^{s₁t}(−1 + iζω/ω_d))/ω², Ṡ = Re(e^{s₁t}(−i/ω_d)); for ζ ≥ 1 two real
-    ones; a rigid mode (ω = 0): S = t²/2, Ṡ = t.
-    """
-    m = omega.size
-    rigid = omega <= 0
-    w = np.where(rigid, 1.0, omega)
-    s1, s2 = _mode_roots(w, zeta)
-    under = (zeta < 1.0) & ~rigid
-    over = ~under & ~rigid
-    ju, jo = np.flatnonzero(under), np.flatnonzero(over)
-    wu, wo = w[ju], w[jo]
-    wd = s1[ju].imag
-    a, b = s1[jo].real, s2[jo].real
-    exps = np.concatenate([s1[ju], a, b]).astype(complex)
-    mode = np.concatenate([ju, jo, jo])
-    kS = np.concatenate([(-1.0 + 1j * zeta[ju] * wu / wd) / wu**2,
-                         -b / ((b - a) * wo**2), a / ((b - a) * wo**2)]).astype(complex)
-    kV = np.concatenate([-1j / wd, 1.0 / (a - b), -1.0 / (a - b)]).astype(complex)
-    pS, pV = np.zeros((m, 4)), np.zeros((m, 4))
-    pS[~rigid, 0] = 1.0 / w[~rigid] ** 2
-    pS[rigid, 2] = 0.5
-    pV[rigid, 1] = 1.0
-    return _ModalSeries(exps, mode, kS, kV, pS, pV)
-
-
-def _ramp_series(step: _ModalSeries) -> _ModalSeries:
-    """Unit-ramp response (input u = t): ∫₀ᵗS and S. Term by term, ∫₀ᵗ Re(κe^{sτ})dτ =
-    Re((κ/s)e^{st}) − Re(κ/s) and ∫₀ᵗ τ^p dτ = t^{p+1}/(p + 1)."""
-    k = step.kS / step.exponents
-    pS = np.zeros_like(step.pS)
-    pS[:, 1:] = step.pS[:, :-1] / np.arange(1, step.pS.shape[1])
-    np.subtract.at(pS[:, 0], step.mode, k.real)
-    return _ModalSeries(step.exponents, step.mode, k, step.kS, pS, step.pS)
-
-
-def _physical_series(series: _ModalSeries, Xp: NDArray[np.float64], c: NDArray[np.float64],
-                     beta: float) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
-    """Coefficients (3n, K) and polynomial (3n, P) of v = Xp·V, the span forces
-    F_i = c_i (y_{i+1} − y_i), y = x + βv (branch i joins mass i and i+1, the last mass n−1
-    and mass 0; a slack branch has c_i = 0) and x = Xp·S, in this order of rows."""
-    G = c[:, None] * (np.roll(Xp, -1, axis=0) - Xp)
-    cols = series.mode
-    coef = np.concatenate([Xp[:, cols] * series.kV, G[:, cols] * (series.kS + beta * series.kV),
-                           Xp[:, cols] * series.kS])
-    poly = np.concatenate([Xp @ series.pV, G @ (series.pS + beta * series.pV), Xp @ series.pS])
-    return coef, poly
-
-
-def _zoh_modal(P: NDArray[np.float64], omega: NDArray[np.float64], zeta: NDArray[np.float64],
-               dt: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Exact zero-order-hold response from rest of the modal oscillators to the sampled
-    modal forces P (modes, N) held over each step: q, q̇ (modes, N) at the samples.
-
-    With the eigenvalues s₁,₂ of mode j the state is (q, q̇) = w₁(1, s₁) + w₂(1, s₂),
-    ẇ₁ = s₁w₁ + u/(s₁ − s₂), ẇ₂ = s₂w₂ − u/(s₁ − s₂), so each w is a scalar first-order
-    recursion w_{k+1} = e^{sΔt}w_k + (e^{sΔt} − 1)/s·(±u_k/(s₁ − s₂)) — exact for a held
-    force (Van Loan 1978), run by ``scipy.signal.lfilter`` (a C scan, O(N) per mode); for
-    ζ < 1, w₂ = w̄₁. Rigid modes: q̇_k = Δt Σ_{j<k} u_j, q_{k+1} = q_k + Δt q̇_k + Δt²u_k/2.
-    """
-    q = np.zeros_like(P)
-    qd = np.zeros_like(P)
-    rigid = omega <= 0
-    s1, s2 = _mode_roots(np.where(rigid, 1.0, omega), zeta)
-    for j in np.flatnonzero(~rigid):
-        roots = (s1[j],) if zeta[j] < 1.0 else (s1[j], s2[j])
-        for s, sign in zip(roots, (1.0, -1.0), strict=False):
-            lam = np.exp(s * dt)
-            g = (lam - 1.0) / s * sign / (s1[j] - s2[j])
-            wj = _lfilter([0.0, g], [1.0, -lam], P[j].astype(complex))
-            k = 2.0 if zeta[j] < 1.0 else 1.0
-            q[j] += k * wj.real
-            qd[j] += k * (s * wj).real
-    for j in np.flatnonzero(rigid):
-        qd[j, 1:] = dt * np.cumsum(P[j, :-1])
-        q[j, 1:] = np.cumsum(dt * qd[j, :-1] + 0.5 * dt * dt * P[j, :-1])
-    return q, qd
-
-
-def linear_transient(masses: ArrayLike, stiffness: ArrayLike, beta: float, times: ArrayLike,
-                     forces: ArrayLike, closed: bool = True,
-                     ramp_time: float = 0.0) -> LinearTransient:
-    """Response from rest of the linear ring to nodal forces (module docstring).
-
-    masses (n,) [kg]; stiffness (n,) [N/m]; beta [s]; times (N,) equally spaced from 0 [s];
-    forces : (n,) constant — a step at t = 0 (or, with ``ramp_time`` t_r > 0 [s], a ramp
-    f·min(t/t_r, 1), the soft start) in closed form: modal step/ramp responses on the whole
-    grid at once — or (N, n) sampled, held constant over each step (exact zero-order-hold
-    modal recursion, :func:`_zoh_modal`) [N].
-    """
-    from chaindrive.dynamics.ring import modal_analysis
-
-    m = np.asarray(masses, dtype=float)
-    c = np.array(stiffness, dtype=float)
-    if not closed:
-        c[-1] = 0.0
-    t = np.asarray(times, dtype=float)
-    f = np.asarray(forces, dtype=float)
-    modal = modal_analysis(m, c)
-    X, w = modal.shapes, modal.angular_frequencies_rad_s
-    zeta = 0.5 * beta * w
-    n = m.size
-    if f.ndim == 1:
-        Xp = X * (X.T @ f)
-        series = _step_series(w, zeta)
-        if ramp_time > 0:
-            series = _ramp_series(series)
-        coef, poly = _physical_series(series, Xp, c, beta)  # rows: v, F, x
-
-        def response(rows: slice) -> NDArray[np.float64]:
-            out = exp_poly_at(t, series.exponents, coef[rows], poly[rows])
-            if ramp_time > 0:  # f·min(t/t_r, 1) = f(R(t) − R(t − t_r)·H(t − t_r))/t_r
-                late = t > ramp_time
-                out[late] -= exp_poly_at(t[late] - ramp_time, series.exponents, coef[rows],
-                                         poly[rows])
-                out /= ramp_time
-            return out
-
-        vF = response(slice(0, 2 * n))
-        return LinearTransient(t, vF[:, :n], vF[:, n:], lambda: response(slice(2 * n, 3 * n)))
-    S, V = _zoh_modal((f @ X).T, w, zeta, t[1] - t[0])
-    x, v, F = _physical(X, c, beta, S, V)
-    return LinearTransient(t, v, F, lambda: x)
-
-
-def _physical(Xp: NDArray[np.float64], c: NDArray[np.float64], beta: float,
-              S: NDArray[np.float64], V: NDArray[np.float64], block: int = 512
-              ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """x = Xp S, v = Xp V and the span forces F_i = c_i (e_i + β ė_i), e_i = x_{i+1} − x_i
-    (a slack branch has c_i = 0), returned (T, n). The products are taken in blocks of
-    ``block`` times: OpenBLAS runs a 24×24×10⁴ product multi-threaded, which was measured
-    30× slower on a loaded 2-core machine; blocks stay single-threaded and in cache. The
-    forces come from x and v by differences (O(nT)), not by a third product (O(n²T))."""
-    n, T = Xp.shape[0], S.shape[1]
-    xs, vs = np.empty((n, T)), np.empty((n, T))
-    for k in range(0, T, block):
-        np.matmul(Xp, S[:, k:k + block], out=xs[:, k:k + block])
-        np.matmul(Xp, V[:, k:k + block], out=vs[:, k:k + block])
-    y = np.multiply(vs, beta)
-    y += xs
-    F = np.empty_like(y)  # F_i = c_i (y_{i+1} − y_i), the last joins mass n−1 to mass 0
-    np.subtract(y[1:], y[:-1], out=F[:-1])
-    np.subtract(y[:1], y[-1:], out=F[-1:])
-    F *= c[:, None]
-    return xs.T, vs.T, F.T
-
-
-def _lfilter(b: list[float], a: list[float], x: NDArray[np.complex128]) -> NDArray[np.complex128]:
-    """scipy.signal.lfilter, imported on first use (scipy.signal takes about 1 s to import,
-    which the command line should not pay when it does not need it)."""
-    from scipy.signal import lfilter
-
-    return lfilter(b, a, x)

@@ -56,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.errors import ConvergenceError, DesignError, GeometryError
+from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
 from chaindrive.model import Drive
@@ -440,18 +440,24 @@ def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.floa
 
 
 def _geometry_warnings(drive: Drive, sprockets: list[SprocketGeometry], slack: float,
-                       adjusted: int | None) -> list[str]:
+                       adjusted: int | None) -> list[ChainDriveWarning]:
     """Engineering warnings: small driver wrap, few teeth in mesh, untaken slack."""
     out = []
     driver = sprockets[drive.driver_index]
     if math.degrees(driver.wrap_angle) < 120.0:
-        out.append(f"driver {driver.name}: wrap angle {math.degrees(driver.wrap_angle):.1f}° is "
-                   "under 120° (chain may jump teeth; add an idler or increase the wrap)")
+        out.append(ChainDriveWarning(
+            "geometry.driver-wrap", f"sprockets[{driver.name}]",
+            f"driver {driver.name}: wrap angle {math.degrees(driver.wrap_angle):.1f}° is "
+            "under 120° (chain may jump teeth; add an idler or increase the wrap)"))
     for s, g in zip(drive.sprockets, sprockets, strict=True):
         if s.role != "idler" and g.teeth_in_mesh < 3.0:
-            out.append(f"{s.name}: only {g.teeth_in_mesh:.2f} teeth in mesh on a loaded sprocket "
-                       "(at least 3 are needed)")
+            out.append(ChainDriveWarning(
+                "geometry.teeth-in-mesh", f"sprockets[{s.name}]",
+                f"{s.name}: only {g.teeth_in_mesh:.2f} teeth in mesh on a loaded sprocket "
+                "(at least 3 are needed)"))
     if adjusted is None and slack > 1e-6:
-        out.append(f"chain slack {slack * 1e3:.1f} mm ({slack / drive.chain.pitch:.2f} pitches) is "
-                   "not taken up: mark a sprocket adjustable or add a tensioner")
+        out.append(ChainDriveWarning(
+            "geometry.slack", "chain",
+            f"chain slack {slack * 1e3:.1f} mm ({slack / drive.chain.pitch:.2f} pitches) is "
+            "not taken up: mark a sprocket adjustable or add a tensioner"))
     return out

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from chaindrive.errors import ChainDriveWarning
+
 
 @dataclass(frozen=True, slots=True)
 class SprocketGeometry:
@@ -79,4 +81,4 @@ class GeometryResult:
     adjusted: int | None
     adjustment: float
     orientation: int
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[ChainDriveWarning, ...] = ()

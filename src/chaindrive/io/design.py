@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import tomli_w
+
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import (
     MAX_CONTOURS,
@@ -119,6 +121,8 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "the contour)"),
     Field("inertia", "inertia", "moment of inertia of everything turning with it", minimum=0,
           exclusive_minimum=True),
+    Field("flywheel", "inertia", "inertia added as a steel flywheel on the shaft (in the "
+          "dynamics, the mass and the cost)", default=0.0, minimum=0.0),
     Field("material", "str", "sprocket material (catalogue name)", default="steel"),
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
           minimum=0.0, maximum=1.0),
@@ -385,33 +389,67 @@ def load_drive(path: str | Path) -> Drive:
     return drive_from_mapping(read_toml(path), base_dir=Path(path).parent)
 
 
-def drive_to_toml(drive: Drive) -> str:
-    """Write a drive as a design file (lengths in mm, speed in rpm): inverse of load."""
-    lines = ["[drive]", f'name = "{drive.name}"']
-    if drive.power is not None:
-        lines.append(f'power = "{drive.power / 1e3:g} kW"')
-    lines.append(f'tooth_form = "{drive.tooth_form}"')
-    if drive.service_factor is not None:
-        lines.append(f"service_factor = {drive.service_factor:g}")
-    lines += ["", "[chain]", f'designation = "{drive.chain.spec.designation}"']
-    if drive.chain.links is not None:
-        lines.append(f"links = {drive.chain.links}")
-    if drive.chain.allow_odd:
-        lines.append("allow_odd = true")
-    for s in drive.sprockets:
-        lines += ["", "[[sprockets]]", f'name = "{s.name}"', f"teeth = {s.teeth}",
-                  f'x = "{s.x * 1e3:.6g} mm"', f'y = "{s.y * 1e3:.6g} mm"', f'role = "{s.role}"']
-        if s.speed is not None:
-            lines.append(f'speed = "{s.speed * 30 / math.pi:.8g} rpm"')
-        if s.side != "outside":
-            lines.append(f'side = "{s.side}"')
-        if s.adjustable:
-            lines.append("adjustable = true")
-        if s.inertia is not None:
-            lines.append(f'inertia = "{s.inertia:g} kg*m^2"')
-        if s.material != "steel":
-            lines.append(f'material = "{s.material}"')
-        if s.power_share is not None:
-            lines.append(f"power_share = {s.power_share:g}")
-    return "\n".join(lines) + "\n"
+def _q(value: float, factor: float, unit: str) -> str:
+    """A quantity as the design file writes it: SI value × factor in ``unit``, 12 significant
+    digits (re-read to 1e-12 relative)."""
+    return f"{value * factor:.12g} {unit}"
 
+
+def drive_to_mapping(drive: Drive) -> dict[str, Any]:
+    """The tables of a design file of ``drive`` (lengths in mm, speeds in rpm): what
+    :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
+    written by its designation."""
+    chain: dict[str, Any] = {"designation": drive.chain.spec.designation}
+    if drive.chain.links is not None:
+        chain["links"] = drive.chain.links
+    if drive.chain.allow_odd:
+        chain["allow_odd"] = True
+    if drive.chain.contours != 1:
+        chain["contours"] = drive.chain.contours
+    head: dict[str, Any] = {"name": drive.name}
+    if drive.power is not None:
+        head["power"] = _q(drive.power, 1e-3, "kW")
+    head["tooth_form"] = drive.tooth_form
+    if drive.service_factor is not None:
+        head["service_factor"] = drive.service_factor
+    return {"drive": head, "chain": chain,
+            "sprockets": [_sprocket_table(s) for s in drive.sprockets],
+            "dynamics": _dynamics_table(drive.dynamics)}
+
+
+def _sprocket_table(s: Sprocket) -> dict[str, Any]:
+    t: dict[str, Any] = {"name": s.name, "teeth": s.teeth, "x": _q(s.x, 1e3, "mm"),
+                         "y": _q(s.y, 1e3, "mm"), "role": s.role}
+    if s.speed is not None:
+        t["speed"] = _q(s.speed, 30.0 / math.pi, "rpm")
+    if s.side != "outside":
+        t["side"] = s.side
+    if s.adjustable:
+        t["adjustable"] = True
+    if s.adjust_angle is not None:
+        t["adjust_angle"] = _q(s.adjust_angle, 180.0 / math.pi, "deg")
+    if s.inertia is not None:
+        t["inertia"] = _q(s.inertia, 1.0, "kg*m^2")
+    if s.flywheel:
+        t["flywheel"] = _q(s.flywheel, 1.0, "kg*m^2")
+    if s.material != "steel":
+        t["material"] = s.material
+    if s.power_share is not None:
+        t["power_share"] = s.power_share
+    return t
+
+
+def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
+    units = {"startup_duration": (1.0, "s"), "ramp_time": (1.0, "s"),
+             "eccentricity": (1e3, "mm"), "pitch_scatter": (1e3, "mm"),
+             "accumulated_error": (1e3, "mm")}
+    out: dict[str, Any] = {}
+    for f in DYNAMICS_FIELDS:
+        value = getattr(d, f.name)
+        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+    return out
+
+
+def drive_to_toml(drive: Drive) -> str:
+    """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`)."""
+    return tomli_w.dumps(drive_to_mapping(drive))

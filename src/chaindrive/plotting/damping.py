@@ -14,15 +14,15 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from chaindrive.damping import HingeFrictionResult
+    from chaindrive.dynamics.damping import HingeFrictionResult
 
 
 def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                             ax: Axes | None = None) -> Figure:
     """ψ = 6πfd₂/(ȳ₀aK_aF) (seed 001 eq. 14) against ȳ₀, one curve per tension F₀ [N].
 
-    results : :class:`chaindrive.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
-    e.g. from :func:`chaindrive.damping.hinge_friction_damping`; grouped by tension.
+    results : :class:`chaindrive.dynamics.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
+    e.g. from :func:`chaindrive.dynamics.damping.hinge_friction_damping`; grouped by tension.
     The right axis reads the equivalent viscous ratio ζ = ψ/4π."""
     fig, ax = figure_axes(ax, (6.0, 3.8))
     tensions = sorted({r.tension for r in results})

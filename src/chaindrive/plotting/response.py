@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.display import RAD_S_TO_RPM
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -32,7 +33,6 @@ if TYPE_CHECKING:
 __all__ = ["afc_curves", "inertia_and_irregularity", "material_comparison_chart",
            "startup_oscillogram", "startup_speeds", "steady_loads"]
 
-RPM = 30.0 / math.pi  # rad/s → rpm
 
 
 def _labels(n: int, names: Sequence[str] | None, prefix: str) -> list[str]:
@@ -113,7 +113,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses)."""
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
-    w = np.asarray(startup.speeds) * RPM
+    w = np.asarray(startup.speeds) * RAD_S_TO_RPM
     _curves(ax, t, w, _labels(w.shape[1], names, "M"), max_lines)
     end = _zoom_end(t, startup.settling_time * 1e3)
     ax.set_xlim(t[0], end)

@@ -144,21 +144,3 @@ class Report:
     meta: tuple[tuple[str, str], ...]
     sections: tuple[Section, ...]
     plots: tuple[str, ...] = field(default=())
-
-
-def fmt(value: Any, digits: int = 4) -> str:
-    """A table cell as text: None → "—", floats with ``digits`` significant digits (large
-    values without exponent), bools yes/no."""
-    import math
-
-    if value is None:
-        return "—"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "—"
-        if value != 0 and (abs(value) >= 10**digits or abs(value) < 1e-3):
-            return f"{value:.{digits}g}" if abs(value) < 1e-3 else f"{value:,.0f}"
-        return f"{value:.{digits}g}"
-    return str(value)

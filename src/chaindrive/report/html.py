@@ -6,7 +6,8 @@ from __future__ import annotations
 import base64
 from html import escape
 
-from chaindrive.report.content import Block, Plot, Report, Table, fmt
+from chaindrive.display import fmt
+from chaindrive.report.content import Block, Plot, Report, Table
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif;

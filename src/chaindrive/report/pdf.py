@@ -10,7 +10,8 @@ import textwrap
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from chaindrive.report.content import Block, Plot, Report, Table, Text, fmt
+from chaindrive.display import fmt
+from chaindrive.report.content import Block, Plot, Report, Table, Text
 
 if TYPE_CHECKING:
     from matplotlib.backends.backend_pdf import PdfPages

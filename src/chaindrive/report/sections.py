@@ -7,9 +7,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-import numpy as np
-
-from chaindrive.dynamics.resonance import RESONANCE_BAND_PERCENT
+from chaindrive.display import RAD_S_TO_RPM, check_row, fmt
 from chaindrive.report.content import (
     Block,
     ReportInput,
@@ -19,8 +17,6 @@ from chaindrive.report.content import (
     register_section,
 )
 
-RPM = 30.0 / math.pi  # rad/s → rpm
-
 
 def _rows(rows: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
     return tuple(tuple(r) for r in rows)
@@ -28,50 +24,26 @@ def _rows(rows: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
 
 # --- checks and warnings -----------------------------------------------------------------
 
-def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, bool]]:
-    """Every pass/fail check of the design: (check, value, limit, passed)."""
-    out: list[tuple[str, Any, str, bool]] = []
-    st = inp.analysis.strength
-    if st is not None:
-        if st.allowable_pressure is not None:
-            out.append(("hinge pressure p, MPa", st.hinge_pressure / 1e6,
-                        f"≤ {st.allowable_pressure / 1e6:.4g}",
-                        st.hinge_pressure <= st.allowable_pressure))
-        if st.allowable_safety_factor is not None:
-            out.append(("static safety factor s", st.safety_factor_static,
-                        f"≥ {st.allowable_safety_factor:.4g}",
-                        st.safety_factor_static >= st.allowable_safety_factor))
-    response = inp.analysis.response
-    if response is not None:
-        k = response.strength_dict()
-        for name, key in (("start-up safety factor k1", "k1"), ("steady safety factor k2", "k2"),
-                          ("safety factor at resonance k2min", "k2min")):
-            if k[key] is not None:
-                out.append((name, k[key], f"≥ {response.allowable_k:g}",
-                            k[key] >= response.allowable_k))
-    for r in inp.dynamics.resonances:
-        out.append((f"detuning of {r.working.label} from {r.natural_frequency:.1f} Hz, %",
-                    abs(r.margin_percent), f"≥ {RESONANCE_BAND_PERCENT:g}",
-                    abs(r.margin_percent) >= RESONANCE_BAND_PERCENT))
-    return out
+def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, str, str]]:
+    """Every check of the analysis as shown: (check, value, required, result, source)."""
+    return [check_row(c) for c in inp.analysis.checks()]
 
 
 def checks_section(inp: ReportInput) -> list[Block]:
     """Warnings of every part and the failed checks, first thing in the report."""
     blocks: list[Block] = []
-    warnings = list(inp.document.get("warnings", [])) + inp.notes
+    warnings = [w["message"] for w in inp.document.get("warnings", [])] + inp.notes
     checks = check_rows(inp)
-    failed = [c for c in checks if not c[3]]
+    failed = [c for c in checks if c[3] != "pass"]
     if not warnings and not failed:
         blocks.append(Text("No warnings; every check passed.", "ok"))
     for c in failed:
-        blocks.append(Text(f"FAILED: {c[0]} = {c[1]:.4g} (required {c[2]})", "fail"))
+        blocks.append(Text(f"{c[3]}: {c[0]} = {fmt(c[1])} (required {c[2]})", "fail"))
     blocks += [Text(w, "warning") for w in warnings]
     if checks:
-        blocks.append(Table("Checks", ("check", "value", "required", "result"),
-                            _rows([(n, v, lim, "pass" if ok else "FAIL")
-                                   for n, v, lim, ok in checks]),
-                            tuple(i for i, c in enumerate(checks) if not c[3])))
+        blocks.append(Table("Checks", ("check", "value", "required", "result", "source"),
+                            _rows(checks),
+                            tuple(i for i, c in enumerate(checks) if c[3] != "pass")))
     return blocks
 
 
@@ -96,7 +68,7 @@ def inputs_section(inp: ReportInput) -> list[Block]:
         ("name", "role", "teeth", "x, mm", "y, mm", "side", "speed, rpm", "adjustable",
          "material", "inertia, kg·m²"),
         _rows([(s.name, s.role, s.teeth, s.x * 1e3, s.y * 1e3, s.side,
-                None if s.speed is None else s.speed * RPM, s.adjustable, s.material, s.inertia)
+                None if s.speed is None else s.speed * RAD_S_TO_RPM, s.adjustable, s.material, s.inertia)
                for s in d.sprockets])))
     if inp.source_bytes is not None:
         blocks.append(Text(inp.source_bytes.decode("utf-8", errors="replace"), "code"))
@@ -230,16 +202,17 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
                    inp.dpi, "mode_shapes"),
     ]
     if dyn.resonances:
+        band = inp.analysis.limits.resonance_band_percent
         rows = [(r.working.label, r.working.frequency, r.natural_frequency, r.mode,
                  r.margin_percent) for r in dyn.resonances]
         blocks.append(Table("Resonance table (closest first)",
                             ("working frequency", "f, Hz", "natural f, Hz", "mode", "margin, %"),
                             _rows(rows), tuple(i for i, r in enumerate(dyn.resonances)
-                                               if abs(r.margin_percent) < RESONANCE_BAND_PERCENT)))
+                                               if abs(r.margin_percent) < band)))
     if dyn.campbell is not None:
         w = inp.analysis.drive.driver.speed
         blocks.append(plot_block(campbell_diagram(dyn.campbell,
-                                                  operating_rpm=None if w is None else w * RPM),
+                                                  operating_rpm=None if w is None else w * RAD_S_TO_RPM),
                                  "Campbell diagram", inp.dpi, "campbell"))
     return blocks
 
@@ -287,21 +260,18 @@ def _span_table(spans: list[str], response: Any) -> Table:
 
 
 def _material_blocks(inp: ReportInput) -> list[Block]:
-    """Seed 000's four material pairs on this layout (Fig. 2–3, Table 1)."""
-    from chaindrive.dynamics.materials import material_comparison
-    from chaindrive.errors import ChainDriveError
+    """The four material pairs ([MultimassChainDrives], Fig. 2–3, Table 1), when the analysis
+    ran that study."""
     from chaindrive.plotting import material_comparison_chart
 
-    a = inp.analysis
-    try:
-        cases = material_comparison(a.drive, a.geometry)
-    except ChainDriveError as exc:
-        inp.notes.append(f"material pairs not compared: {exc}")
+    cases = inp.analysis.material_pairs
+    if not cases:
         return []
     return [
         Text("The same layout with metal or polymer chain on metal or polymer sprockets "
-             "(seed 000 Fig. 2–3, Table 1): ring model rebuilt per pair, start-up over 0.3 s, "
-             "first resonance from an AFC sweep through the first natural frequency.", "note"),
+             "([MultimassChainDrives], Fig. 2–3, Table 1): ring model rebuilt per pair, "
+             "start-up over 0.3 s, first resonance from a sweep through the first natural "
+             "frequency.", "note"),
         Table("Material pairs", ("chain", "sprockets", "start-up peak, N", "first f, Hz",
                                  "resonance f_z, Hz", "resonance amplitude, N"),
               _rows([(c.chain_material, c.sprocket_material, c.startup_peak_n,
@@ -363,21 +333,21 @@ def response_section(inp: ReportInput) -> list[Block] | None:
     return blocks + _material_blocks(inp)
 
 
-def damping_section(inp: ReportInput) -> list[Block]:
-    """Hinge-friction damping (seed 001) for its reference chain."""
-    from chaindrive.damping import PR_12_7_1820_1, hinge_friction_damping
+def damping_section(inp: ReportInput) -> list[Block] | None:
+    """The hinge-friction damping model [ChainHingeDissipation] for its reference chain, when
+    the analysis ran that study."""
     from chaindrive.plotting import absorption_vs_amplitude
 
-    c = PR_12_7_1820_1
-    a = c.pitch * 48  # the seed's span: z = 49 hinges, a = t(z − 1)
-    results = [hinge_friction_damping(f0, y, a, c) for f0 in (250.0, 500.0, 750.0, 1000.0)
-               for y in np.linspace(0.015, 0.03, 7)]
-    return [Text(f"The dynamics uses a damping ratio; seed 001's hinge-friction model gives ψ "
-                 f"(ζ = ψ/4π) from a chain's empirical coefficients, known only for "
-                 f"{c.chain}. The curves are for that chain at the seed's conditions "
-                 f"(span of 49 hinges, a = {a * 1e3:.0f} mm), as a reference.", "note"),
-            plot_block(absorption_vs_amplitude(results),
-                       f"Absorption coefficient ψ against ȳ₀ ({c.chain})", inp.dpi, "damping")]
+    results = inp.analysis.hinge_friction
+    if not results:
+        return None
+    a = results[0].span_length
+    return [Text(f"The dynamics uses a damping ratio; the hinge-friction model gives ψ "
+                 f"(ζ = ψ/4π) from a chain's empirical coefficients, known only for the "
+                 f"reference chain of [ChainHingeDissipation]. The curves are for that chain "
+                 f"at the paper's conditions (span of 49 hinges, a = {a * 1e3:.0f} mm).", "note"),
+            plot_block(absorption_vs_amplitude(list(results)),
+                       "Absorption coefficient ψ against ȳ₀", inp.dpi, "damping")]
 
 
 def contours_section(inp: ReportInput) -> list[Block] | None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from chaindrive.errors import DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import iso10823, ke_method
@@ -50,12 +50,11 @@ class StrengthResult:
     rated_power: float | None
     wear_life_h: float | None
     elongation: float
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[ChainDriveWarning, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (the ``strength`` block of ``analyze --json``)."""
         loads = self.loads.to_dict()
-        warnings = loads.pop("warnings") + list(self.warnings)
         return {
             **loads,
             "operating_factor_ke": self.operating_factor,
@@ -70,7 +69,6 @@ class StrengthResult:
             "wear_life_extrapolated": (None if self.wear_life_h is None
                                        else is_extrapolated(self.wear_life_h)),
             "permitted_elongation": self.elongation,
-            "warnings": warnings,
         }
 
 
@@ -97,10 +95,12 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     ks = service_factor if service_factor is not None else (drive.service_factor or 1.0)
     teeth, speed = small_sprocket(drive)
     area, estimated = ke_method.bearing_area(spec)
-    warnings: list[str] = []
+    warnings: list[ChainDriveWarning] = []
     if estimated:
-        warnings.append(f"{spec.designation}: no bearing area in the catalogue; "
-                        f"estimated A = {area * 1e6:.1f} mm² (1.42·d2·b1·mр)")
+        warnings.append(ChainDriveWarning(
+            "strength.bearing-area-estimated", "chain",
+            f"{spec.designation}: no bearing area in the catalogue; estimated "
+            f"A = {area * 1e6:.1f} mm² (1.42·d2·b1·mр)"))
     pressure = loads.peripheral_force * ke / area
     s = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                              loads.centrifugal_tension, dynamic_factor)
@@ -114,20 +114,17 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
         assert drive.power is not None
         life = float(wear_life_hours(rated, drive.power * ks, geometry.links, elongation))
         if is_extrapolated(life):
-            warnings.append(f"wear life {life:,.0f} h is an extrapolation of the ACA load–life "
-                            f"relation (beyond {EXTRAPOLATION_LIMIT_H:,.0f} h, the design "
-                            f"power is {drive.power * ks / rated:.0%} of the rating): wear "
-                            "does not limit this drive")
+            warnings.append(ChainDriveWarning(
+                "strength.wear-life-extrapolated", "strength",
+                f"wear life {life:,.0f} h is an extrapolation of the ACA load–life relation "
+                f"(beyond {EXTRAPOLATION_LIMIT_H:,.0f} h, the design power is "
+                f"{drive.power * ks / rated:.0%} of the rating): wear does not limit this drive"))
     if not steel:
-        warnings.append(f"chain material {spec.material!r}: the steel tables [p], [s] and the "
-                        "wear-life model do not apply; check the material's limits")
-    elif allowed_p is None or allowed_s is None:
-        warnings.append(f"pitch {spec.pitch * 1e3:.3f} mm at {speed / ke_method.RPM:.0f} rpm is "
-                        "outside the [p] / [s] tables")
-    if allowed_p is not None and pressure > allowed_p:
-        warnings.append(f"hinge pressure {pressure / 1e6:.1f} MPa exceeds the allowable "
-                        f"{allowed_p / 1e6:.1f} MPa")
-    if allowed_s is not None and s < allowed_s:
-        warnings.append(f"static safety factor {s:.2f} is below the allowable {allowed_s:.2f}")
+        warnings.append(ChainDriveWarning(
+            "strength.non-steel-chain", "chain",
+            f"chain material {spec.material!r}: the steel tables [p], [s] and the wear-life "
+            "model do not apply; check the material's limits"))
+    # a pressure or safety beyond its limit, or outside the tables, is a failed check of
+    # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,
                           life, elongation, tuple(warnings))

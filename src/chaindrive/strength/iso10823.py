@@ -27,11 +27,11 @@ import numpy as np
 
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
+from chaindrive.units import RAD_S_TO_RPM
 
 HP = 745.699872  # 1 hp [W]
 INCH = 0.0254  # [m]
 LBF = 4.4482216152605  # [N]
-RPM = 2.0 * math.pi / 60.0  # 1 rev/min in rad/s
 FPM = 0.00508  # 1 ft/min in m/s
 
 Lubrication = Literal["A", "B", "C", "C'"]
@@ -163,7 +163,7 @@ def aca_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 100
     tooth correction is needed); returns (rating, "link-plate fatigue" | "roller-bush impact").
     """
     p_in = chain.pitch / INCH
-    n1 = speed / RPM
+    n1 = speed * RAD_S_TO_RPM
     light = (chain.ansi or "").split("-")[0] == "41"
     h1 = float(link_plate_rating_hp(teeth, n1, p_in, light))
     h2 = float(roller_bush_rating_hp(teeth, n1, p_in, roller_constant(chain), links, life_h))
@@ -181,7 +181,7 @@ def galling_speed_limit(pitch: float, teeth: int, tension: float) -> float:
     p = pitch / INCH
     f = tension / LBF
     ratio = 82.5 / (7.95**p * 1.0278**teeth * 1.323 ** (f / 1000.0))
-    return 1000.0 * ratio ** (1.0 / (1.59 * math.log10(p) + 1.873)) * RPM
+    return 1000.0 * ratio ** (1.0 / (1.59 * math.log10(p) + 1.873)) / RAD_S_TO_RPM
 
 
 def lubrication_type(chain: ChainSpec, speed: float) -> Lubrication | None:

@@ -23,9 +23,9 @@ import numpy as np
 
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
+from chaindrive.units import RAD_S_TO_RPM
 
 MPA = 1e6
-RPM = 2.0 * math.pi / 60.0
 PITCH_TOL = 1e-6  # [m] when matching a pitch to a table group
 
 
@@ -95,7 +95,7 @@ def row_factor(rows: int) -> float:
 def _grid_value(section: str, pitch: float, speed: float) -> float | None:
     """Linear interpolation in n1 on the table ``section`` for the pitch group of ``pitch``."""
     table = data()[section]
-    n1 = speed / RPM
+    n1 = speed * RAD_S_TO_RPM
     for group in table["groups"]:
         lo, hi = group["pitch_min_mm"] * 1e-3, group["pitch_max_mm"] * 1e-3
         if lo - PITCH_TOL <= pitch <= hi + PITCH_TOL:
@@ -141,13 +141,13 @@ def max_speed(pitch: float) -> float | None:
     """Highest small-sprocket speed [rad/s] for the pitch [m] ([VN-SQL] table 5.8, column
     n1_z1_15, equal to [JAVA] n1p); None for pitches not in the table."""
     value = _by_pitch("speed_limit", "max_rpm", pitch)
-    return None if value is None else value * RPM
+    return None if value is None else value / RAD_S_TO_RPM
 
 
 def impacts_per_second(teeth: int, speed: float, links: int | float) -> float:
     """Chain impacts (hits) per second i = z1·n1/(15·Lt) [1/s], n1 in rpm; speed [rad/s]
     ([VN-CODE]; the Russian form ν = 4·z1·n1/(60·Lt) is the same)."""
-    return teeth * (speed / RPM) / (15.0 * links)
+    return teeth * (speed * RAD_S_TO_RPM) / (15.0 * links)
 
 
 def allowable_impacts(pitch: float) -> float | None:

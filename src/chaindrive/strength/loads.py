@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from chaindrive.errors import DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry
 from chaindrive.model import Drive
 
@@ -182,7 +182,7 @@ class LoadsResult:
     slack_span: int
     tight_span: int
     shaft_loads: tuple[tuple[float, float], ...]
-    warnings: tuple[str, ...] = field(default=())
+    warnings: tuple[ChainDriveWarning, ...] = field(default=())
 
     @property
     def shaft_load_magnitudes(self) -> tuple[float, ...]:
@@ -204,7 +204,6 @@ class LoadsResult:
             "tight_span": self.tight_span,
             "shaft_loads_n": list(self.shaft_load_magnitudes),
             "shaft_load_vectors_n": [list(v) for v in self.shaft_loads],
-            "warnings": list(self.warnings),
         }
 
 
@@ -245,9 +244,11 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAU
     f0 = sag_tension(spec.mass_per_length, slack_span.length, slack_span.inclination, sag_ratio)
     tensions = span_tensions(slack, forces, geometry.spans, f0 + fv)
     shafts = shaft_load_vectors(geometry, tensions, fv, shaft_load_factor)
-    warnings: list[str] = []
+    warnings: list[ChainDriveWarning] = []
     if not math.isclose(tensions[tight], ft + f0 + fv, rel_tol=1e-9):
-        warnings.append("tension round the contour does not close on the tight span")
+        warnings.append(ChainDriveWarning("strength.tension-balance", "strength",
+                                          "tension round the contour does not close on the "
+                                          "tight span"))
     return LoadsResult(
         speed=v, peripheral_force=ft, sprocket_forces=tuple(float(f) for f in forces),
         power_shares=tuple(float(s) for s in shares), centrifugal_tension=fv, sag_tension=f0,

@@ -15,10 +15,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from chaindrive.errors import DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength import iso10823, ke_method
 from chaindrive.strength.loads import chain_speed, small_sprocket
+from chaindrive.units import RAD_S_TO_RPM
 
 ISO = "ISO 10823"
 KE = "Kэ"
@@ -63,13 +64,12 @@ class SelectionResult:
     chain: ChainSpec
     method: str
     candidates: tuple[Candidate, ...]
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[ChainDriveWarning, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: ``chain`` (designation), ``method``, ``candidates[]``."""
         return {"chain": self.chain.designation, "method": self.method,
-                "candidates": [c.to_dict() for c in self.candidates],
-                "warnings": list(self.warnings)}
+                "candidates": [c.to_dict() for c in self.candidates]}
 
 
 def estimated_links(drive: Drive, pitch: float) -> float:
@@ -89,7 +89,7 @@ def _iso_candidate(chain: ChainSpec, drive: Drive, service_factor: float,
                                   service_factor=service_factor, design_factor=design_factor)
     details = {"rated_power_w": check.rated_power, "required_power_w": check.required_power,
                "lubrication": check.lubrication,
-               "galling_limit_rpm": check.galling_limit / iso10823.RPM}
+               "galling_limit_rpm": check.galling_limit * RAD_S_TO_RPM}
     return Candidate(chain.designation, ISO, chain.pitch, chain.strands, chain.mass_per_length,
                      check.feasible, check.margin, check.governing, details)
 
@@ -104,7 +104,7 @@ def _ke_candidate(chain: ChainSpec, drive: Drive, operating: float,
     details = {"pressure_mpa": check.pressure / 1e6,
                "allowable_pressure_mpa": (None if check.allowable_pressure is None
                                           else check.allowable_pressure / 1e6),
-               "max_speed_rpm": None if check.max_speed is None else check.max_speed / ke_method.RPM,
+               "max_speed_rpm": None if check.max_speed is None else check.max_speed * RAD_S_TO_RPM,
                "impacts_per_s": check.impacts, "allowable_impacts_per_s": check.allowable_impacts,
                "bearing_area_estimated": check.area_estimated}
     return Candidate(chain.designation, KE, chain.pitch, chain.strands, chain.mass_per_length,

@@ -11,7 +11,7 @@ vibroactivity". The objective (minimised)::
 
 b the band (default 10 % plus a 1 % safety), f_j the elastic natural frequencies, f_w the
 working frequencies, A the largest normalised amplitude at the working frequencies
-(:func:`chaindrive.synthesis.objectives.normalised_amplitude_at`) and W = 10⁴ so that
+(:func:`normalised_amplitude_at`) and W = 10⁴ so that
 clearing the bands comes first. Solved by differential evolution (Storn & Price 1997,
 :func:`scipy.optimize.differential_evolution`) in log m, log c over the whole population
 at once (stacked eigenproblems), reproducible with a seed.
@@ -28,11 +28,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import differential_evolution
 
+from chaindrive.analysis import Analysis
+from chaindrive.dynamics.resonance import working_frequencies
+from chaindrive.dynamics.ring import ModalResult
 from chaindrive.errors import DesignError
 from chaindrive.model import Drive
 
 __all__ = ["DetuningResult", "band_shortfall", "detune", "detune_drive", "detuning_objective",
-           "ring_modes_batch"]
+           "normalised_amplitude_at", "ring_modes_batch"]
 
 TWO_PI = 2.0 * np.pi
 BAND = 0.10
@@ -182,11 +185,8 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     (:func:`chaindrive.dynamics.resonance.working_frequencies`). Returns the drive with the
     new inertias (``Sprocket.inertia`` = I_k + ΔI_k) and the result.
     """
-    from chaindrive.dynamics.resonance import working_frequencies
-    from chaindrive.synthesis.objectives import DesignState
-
-    state = DesignState(drive)
-    p = state.parameters
+    a = Analysis(drive, response=False)
+    p = a.ring_parameters
     names = [s.name for s in drive.sprockets]
     bounds = np.column_stack([p.masses_kg, p.masses_kg])
     for name, (lo, hi) in added_inertia.items():
@@ -196,7 +196,7 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
             raise DesignError(f"added_inertia.{name}", f"need 0 ≤ low ≤ high, got {(lo, hi)!r}")
         k = names.index(name)
         bounds[k] = (p.inertias_kg_m2[k] + np.array([lo, hi])) / p.pitch_radii_m[k] ** 2
-    d = state.placed
+    d = a.drive
     assert d.driver.speed is not None
     w = [x.frequency for x in working_frequencies(d.driver.speed, d.driver.teeth,
                                                   [s.teeth for s in d.sprockets],
@@ -207,6 +207,37 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     sprockets = tuple(replace(s, inertia=float(inertia[k])) if s.name in added_inertia else s
                       for k, s in enumerate(drive.sprockets))
     return drive.with_sprockets(sprockets), res
+
+
+def normalised_amplitude_at(modal: ModalResult, working_hz: Sequence[float],
+                            damping: float) -> float:
+    """Largest normalised amplitude at the working frequencies.
+
+    max over modes j, masses k and working f_w of μ_k^(j)·H(f_w/f_j), with μ the normalised
+    amplitude of [MultimassChainDrives], eq. 2, and H(r) = 1/√((1−r²)² + (2ζr)²) the
+    single-mode magnification [Rao2011, §3.4] — large when a mode with a large normalised
+    amplitude lies near a working frequency.
+
+    Parameters
+    ----------
+    modal : ModalResult
+        The modes.
+    working_hz : sequence of float
+        Working frequencies [Hz].
+    damping : float
+        Damping ratio ζ [-].
+
+    Returns
+    -------
+    float
+        The largest μ·H [-].
+    """
+    el = ~modal.rigid_body
+    fn = modal.frequencies_hz[el]
+    mu = modal.normalized_amplitudes[:, el].max(axis=0)
+    r = np.asarray(working_hz, dtype=float)[:, None] / fn[None, :]
+    h = 1.0 / np.sqrt((1 - r**2) ** 2 + (2 * damping * r) ** 2)
+    return float((mu[None, :] * h).max())
 
 
 def detuning_metric_value(frequencies_hz: Sequence[float], working_hz: Sequence[float],

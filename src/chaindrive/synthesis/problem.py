@@ -31,11 +31,12 @@ value and what is allowed (the style of :mod:`chaindrive.io.design`).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from chaindrive.catalog import chains, find_chain, find_material
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.design import (
     Field,
@@ -44,7 +45,8 @@ from chaindrive.io.design import (
     parse_section,
     read_toml,
 )
-from chaindrive.model import MAX_TEETH, MIN_TEETH, Drive
+from chaindrive.model import MAX_TEETH, MIN_TEETH, ChainSpec, Drive
+from chaindrive.synthesis.objectives import available_objectives
 
 __all__ = [
     "CONSTRAINT_FIELDS",
@@ -67,8 +69,9 @@ CONSTRAINT_FIELDS: tuple[Field, ...] = (
     Field("min_teeth_in_mesh", "float", "smallest number of teeth in mesh on loaded sprockets",
           default=3.0, minimum=0.0, maximum=50.0),
     Field("static_safety", "bool", "static safety factor s ≥ [s] (Table 9A)", default=True),
-    Field("min_static_safety", "float", "allowable [s] when the table gives none", default=7.0,
-          minimum=1.0, maximum=50.0),
+    Field("min_static_safety", "float", "your own [s] where the table gives none (without "
+          "it such a design cannot be verified and counts as failing)", minimum=1.0,
+          maximum=50.0),
     Field("allowable_dynamic_safety", "float", "[k] for k2 and k2min (seed 000 §3.6)",
           default=2.5, minimum=1.0, maximum=20.0),
     Field("startup_safety", "bool", "k1 = Q/F1max ≥ [k] from the start-up transient (costly: "
@@ -118,7 +121,7 @@ class Constraints:
     min_driver_wrap: float = math.radians(120)
     min_teeth_in_mesh: float = 3.0
     static_safety: bool = True
-    min_static_safety: float = 7.0
+    min_static_safety: float | None = None
     allowable_dynamic_safety: float = 2.5
     startup_safety: bool = False
     max_chain_speed: float = 15.0
@@ -163,10 +166,9 @@ class Problem:
         """The search vector of the start design (each gene at the start's value)."""
         return [_start_value(self, g) for g in self.genes]
 
-    def decode(self, x: Any) -> Drive:
-        """The drive of a search vector; raises DesignError when no tooth count keeps a ratio."""
-        from chaindrive.synthesis.objectives import decode_vector
-
+    def decode(self, x: Sequence[float]) -> Drive:
+        """The drive of a search vector; raises DesignError when no tooth count keeps a ratio
+        (:func:`decode_vector`)."""
         return decode_vector(self, x)
 
 
@@ -274,8 +276,6 @@ def _choice_gene(name: str, values: Any, path: str, target: str, check: Any) -> 
 
 
 def _check_chain(value: Any, path: str) -> None:
-    from chaindrive.catalog import find_chain
-
     if not isinstance(value, str):
         raise DesignError(path, f"must be a catalogue designation, got {value!r}")
     try:
@@ -290,8 +290,6 @@ def _check_strands(value: Any, path: str) -> None:
 
 
 def _check_material(value: Any, path: str) -> None:
-    from chaindrive.catalog import find_material
-
     if not isinstance(value, str):
         raise DesignError(path, f"must be a material name, got {value!r}")
     try:
@@ -335,8 +333,6 @@ def _inertia_genes(drive: Drive, table: Mapping[str, Any]) -> list[Gene]:
 
 
 def _objectives(data: Mapping[str, Any]) -> tuple[str, ...]:
-    from chaindrive.synthesis.objectives import available_objectives
-
     names = data.get("objectives", ["cost", "mass", "volume"])
     known = available_objectives()
     if not isinstance(names, list) or not names:
@@ -383,3 +379,74 @@ def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) 
 def load_problem(path: str | Path) -> Problem:
     """Read a design file and its ``[optimize]`` table."""
     return problem_from_mapping(read_toml(path), base_dir=Path(path).parent)
+
+
+# ---------------------------------------------------------------------------- decoding
+def _chain_spec(designation: str, strands: int | None) -> ChainSpec:
+    spec = find_chain(designation)
+    if strands is None or strands == spec.strands:
+        return spec
+    same = [c for c in chains() if c.pitch == spec.pitch and c.series == spec.series
+            and c.standard == spec.standard and c.strands == strands
+            and abs(c.roller_diameter - spec.roller_diameter) < 1e-9]
+    if not same:
+        raise DesignError("optimize.chain.strands",
+                          f"no {strands}-strand version of {spec.designation} in the catalogue")
+    return same[0]
+
+
+def _pick(g: Gene, v: float) -> Any:
+    k = math.floor(v)
+    return g.choices[min(max(k, 0), len(g.choices) - 1)]
+
+
+def _ratio_teeth(problem: Problem, g: Gene, u: float, z_driver: int) -> int:
+    """The tooth count that u ∈ [0, 1) picks among those in [low, high] keeping the ratio."""
+    base = problem.base
+    i0 = base.sprockets[g.index].teeth / base.driver.teeth
+    lo, hi = g.choices
+    tol = problem.ratio_tolerance
+    allowed = [z for z in range(lo, hi + 1) if abs(z / z_driver - i0) <= tol * i0 + 1e-12]
+    if not allowed:
+        raise DesignError(f"optimize.teeth.{base.sprockets[g.index].name}",
+                          f"no tooth count from {lo} to {hi} keeps the ratio {i0:.4g} within "
+                          f"±{tol:.1%} for {z_driver} driver teeth")
+    return allowed[min(int(u * len(allowed)), len(allowed) - 1)]
+
+
+def decode_vector(problem: Problem, x: Sequence[float]) -> Drive:
+    """The drive of a search vector (see :class:`Gene`).
+
+    Integers are rounded and clipped, categories picked by the integer part, ratio genes pick
+    among the tooth counts that keep the ratio; an added inertia becomes the sprocket's
+    ``flywheel`` (so the drive, and its design file, analyse to the same masses and count the
+    flywheel's mass and cost).
+    """
+    base = problem.base
+    vals = dict(zip((g.name for g in problem.genes), (float(v) for v in x), strict=True))
+    sp: list[dict[str, Any]] = [dict(teeth=s.teeth, x=s.x, y=s.y, material=s.material,
+                                     flywheel=s.flywheel) for s in base.sprockets]
+    designation, strands = base.chain.spec.designation, None
+    for g in problem.genes:
+        v = vals[g.name]
+        if g.kind == "int":
+            sp[g.index]["teeth"] = round(min(max(v, g.low), g.high))
+        elif g.target in ("x", "y"):
+            # 0.01 mm: what the design file keeps, so the file re-analyses the same
+            sp[g.index][g.target] = round(min(max(v, g.low), g.high), 5)
+        elif g.target == "inertia":
+            sp[g.index]["flywheel"] = min(max(v, g.low), g.high)
+        elif g.target == "chain":
+            designation = _pick(g, v)
+        elif g.target == "strands":
+            strands = int(_pick(g, v))
+        elif g.target == "material":
+            for s in sp:
+                s["material"] = _pick(g, v)
+    z1 = sp[base.driver_index]["teeth"]
+    for g in problem.genes:
+        if g.kind == "ratio":
+            sp[g.index]["teeth"] = _ratio_teeth(problem, g, min(max(vals[g.name], 0.0), 1.0), z1)
+    spec = _chain_spec(designation, strands)
+    sprockets = tuple(replace(s, **new) for s, new in zip(base.sprockets, sp, strict=True))
+    return replace(base.with_chain(spec), sprockets=sprockets)

@@ -2,20 +2,19 @@
 NSGA-II.
 
 Both search the same vector (:class:`chaindrive.synthesis.problem.Gene`): integers and
-categories are rounded in :func:`chaindrive.synthesis.objectives.decode_vector`, so one
-decoding serves both libraries. The start design is in the first generation. The Pareto set
-is taken from every design evaluated (an archive), keeping the feasible non-dominated ones
-(Deb et al., NSGA-II, IEEE TEC 6(2) 2002, constrained domination); each comes back as the
-dictionary a TOML design file loads to, so it can be re-analysed or written out. Same seed,
-same result (serial or through a Dask evaluator, which keeps the order of a batch).
-Why Optuna by default: docs/synthesis.md (benchmark on the 8-sprocket example,
-benchmarks/bench_synthesis.py).
+categories are rounded in :func:`chaindrive.synthesis.problem.decode_vector`, so one
+decoding serves both libraries. The start design (as the file gives it) is evaluated on its
+own and its nearest search vector seeds the first generation. The Pareto set is taken from
+every design evaluated (an archive), keeping the feasible non-dominated ones [Deb2002]
+(constrained domination); each comes back as the dictionary a TOML design file loads to, so
+it can be re-analysed or written out. Same seed, same result (serial or through a Dask
+evaluator, which keeps the order of a batch). Why Optuna by default: docs/synthesis.md
+(benchmark on the 8-sprocket example, benchmarks/bench_synthesis.py).
 """
 
 from __future__ import annotations
 
 import time
-import tomllib
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -25,9 +24,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.errors import DesignError
-from chaindrive.io.design import drive_to_toml
+from chaindrive.io.design import drive_to_mapping
 from chaindrive.model import Drive
-from chaindrive.synthesis.objectives import Evaluation, evaluate_vector
+from chaindrive.synthesis.evaluation import (
+    Evaluation,
+    base_ratios,
+    evaluate_drive,
+    evaluate_vector,
+)
 from chaindrive.synthesis.problem import Problem
 
 __all__ = ["BatchEvaluator", "ParetoDesign", "SynthesisResult", "design_mapping", "dominates",
@@ -39,8 +43,9 @@ BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
 
 
 def design_mapping(drive: Drive) -> dict[str, Any]:
-    """The dictionary a TOML design file of ``drive`` loads to (via ``drive_to_toml``)."""
-    return tomllib.loads(drive_to_toml(drive))
+    """The dictionary a design file of ``drive`` loads to
+    (:func:`chaindrive.io.design.drive_to_mapping`)."""
+    return drive_to_mapping(drive)
 
 
 def serial_evaluator(problem: Problem, xs: Sequence[Sequence[float]]
@@ -214,7 +219,11 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
     seed = s.seed if seed is None else seed
     archive = _Archive(problem, evaluator or serial_evaluator)
     t0 = time.perf_counter()
-    start = archive.evaluate([problem.start_vector()])[0]
+    # the start is the design as the file gives it (analysed as ``chaindrive analyze`` does),
+    # whatever the search space; its nearest search vector seeds the first generation
+    start = evaluate_drive(problem.base, problem.objectives, problem.constraints,
+                           base_ratios=base_ratios(problem.base),
+                           ratio_tolerance=problem.ratio_tolerance)
     if method == "nsga2":
         _solve_pymoo(problem, archive, pop, gens, seed)
     elif method == "optuna":

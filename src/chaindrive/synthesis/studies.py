@@ -402,7 +402,7 @@ def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
     """Worker function of sweeps and Monte-Carlo studies: ``{"design": mapping, "objectives":
     [...]}`` → the evaluation (objectives, constraints, constraints_ok) of that design."""
     from chaindrive.io.design import drive_from_mapping
-    from chaindrive.synthesis.objectives import evaluate_drive
+    from chaindrive.synthesis.evaluation import evaluate_drive
     from chaindrive.synthesis.problem import Constraints
 
     drive = drive_from_mapping(inputs["design"])
@@ -411,7 +411,7 @@ def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def _evaluate_vector(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    from chaindrive.synthesis.objectives import evaluate_vector
+    from chaindrive.synthesis.evaluation import evaluate_vector
     from chaindrive.synthesis.solve import design_mapping
 
     ev, drive = evaluate_vector(inputs["problem"], inputs["vector"])
@@ -431,7 +431,7 @@ def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = Non
     """A batch evaluator for :func:`chaindrive.synthesis.solve.solve` that runs each population
     on Dask and stores it (study default: ``optimize-<problem hash>``), so a rerun with the same
     seed resumes from the database."""
-    from chaindrive.synthesis.objectives import Evaluation
+    from chaindrive.synthesis.evaluation import Evaluation
 
     store = db if isinstance(db, StudyStore) else StudyStore(db)
 

@@ -7,7 +7,6 @@ with status 2; nothing is written half-way.
 from __future__ import annotations
 
 import json
-import math
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -17,6 +16,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
+from chaindrive.display import RAD_S_TO_RPM, fmt, shown_value
 from chaindrive.errors import ChainDriveError, DesignError
 
 if TYPE_CHECKING:
@@ -31,7 +31,8 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 EXIT_USER_ERROR = 2
-TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing",
+TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
+                          "required", "result", "unit",
                           "direction", "side", "source", "allowed", "description"})
 
 
@@ -45,6 +46,13 @@ def user_errors() -> Iterator[None]:
         raise typer.Exit(EXIT_USER_ERROR) from None
 
 
+def escape(text: str) -> str:
+    """``text`` with rich markup escaped (a name like ``[chain]`` prints as written)."""
+    from rich.markup import escape as rich_escape
+
+    return rich_escape(text)
+
+
 def _console() -> Console:
     from rich.console import Console  # only the table output needs rich (not --json)
 
@@ -54,18 +62,16 @@ def _console() -> Console:
 def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
     from rich.table import Table
 
-    table = Table(title=title, title_justify="left", header_style="bold")
+    table = Table(title=escape(title), title_justify="left", header_style="bold")
     for c in columns:
-        table.add_column(c, justify="left" if c in TEXT_COLUMNS else "right")
+        table.add_column(escape(c), justify="left" if c in TEXT_COLUMNS else "right")
     for row in rows:
-        table.add_row(*[_fmt(v) for v in row])
+        table.add_row(*[escape(_fmt(v)) for v in row])
     return table
 
 
 def _fmt(value: Any) -> str:
-    """A table cell, formatted as in the report (one rule for both presenters)."""
-    from chaindrive.report.content import fmt
-
+    """A table cell, formatted by the presenters' one rule (:func:`chaindrive.display.fmt`)."""
     return fmt(value)
 
 
@@ -86,7 +92,7 @@ def analyze(
     The dynamic response is the start-up, the steady state and the amplitude–frequency sweep.
     """
     import chaindrive
-    from chaindrive.progress import spinner
+    from chaindrive.cli.progress import spinner
 
     with user_errors(), spinner("analysing …", quiet=as_json):
         result = chaindrive.analyze(chaindrive.load(file), response=not quick)
@@ -101,7 +107,7 @@ def _print_analysis(doc: dict[str, Any]) -> None:
     """Readable tables of an analysis document."""
     con = _console()
     d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
-    con.print(f"[bold]{d['name']}[/bold] — chain {d['chain']} (pitch {d['pitch_mm']:g} mm), "
+    con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])} (pitch {d['pitch_mm']:g} mm), "
               f"tooth form {d['tooth_form']}")
     summary = (f"links {g['links']}, chain length {g['chain_length_mm']:.1f} mm, tight length "
                f"{g['tight_length_mm']:.1f} mm ({g['tight_length_pitches']:.3f} pitches)")
@@ -131,8 +137,26 @@ def _print_analysis(doc: dict[str, Any]) -> None:
         sel = doc["selection"]
         con.print(f"selection ({sel['method']}): {sel['chain']}")
     _print_dynamics(con, doc["dynamics"], doc["strength"])
+    _print_checks(con, doc["checks"])
     for w in doc["warnings"]:
-        con.print(f"[yellow]warning:[/yellow] {w}")
+        con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
+
+
+def _print_checks(con: Console, checks: list[dict[str, Any]]) -> None:
+    """The verdict and the table of checks (failed and unverifiable ones first)."""
+    failed = [c for c in checks if c["status"] != "pass"]
+    if failed:
+        con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]")
+    else:
+        con.print(f"[bold green]all {len(checks)} checks pass[/bold green]")
+    rows = []
+    for c in sorted(checks, key=lambda c: c["status"] == "pass"):
+        value, unit = shown_value(c["value"], c["unit"])
+        limit, _ = shown_value(c["limit"], c["unit"])
+        sym = "≥" if c["relation"] == ">=" else "≤"
+        rows.append([c["label"], value, "—" if limit is None else f"{sym} {fmt(limit)}",
+                     "" if unit == "-" else unit, c["status"], c["source"]])
+    con.print(_table("Checks", ["check", "value", "required", "unit", "result", "source"], rows))
 
 
 def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
@@ -178,15 +202,10 @@ def select(
 ) -> None:
     """Rank the feasible chains for a drive by both methods and say which limit governs."""
     import chaindrive
-    from chaindrive.strength import select_chain
 
     with user_errors():
-        drive = chaindrive.load(file)
-        request = drive.chain.request
-        result = select_chain(drive, method=method, strands=strands or (request and request.strands),
-                              standard=request.standard if request else None,
-                              series=request.series if request else None)
-        doc = result.to_dict()
+        analysis = chaindrive.analyze(chaindrive.load(file), lazy=True)
+        doc = analysis.selection_by(method=method, strands=strands).to_dict()
     if as_json:
         _write_json(doc)
         return
@@ -196,8 +215,6 @@ def select(
                                              "margin %", "governing"],
                      [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
                        100 * c["margin"], c["governing"]] for c in doc["candidates"]]))
-    for w in doc["warnings"]:
-        con.print(f"[yellow]warning:[/yellow] {w}")
 
 
 @app.command()
@@ -209,19 +226,19 @@ def simulate(
 ) -> None:
     """Start-up transient: write the time histories of every span force and sprocket speed."""
     import chaindrive
-    from chaindrive.progress import spinner
+    from chaindrive.cli.progress import spinner
 
     with user_errors(), spinner("simulating the start-up …", quiet=as_json):
         _csv_suffix(output)
-        result = chaindrive.analyze(chaindrive.load(file))
-        startup = None if result.response is None else result.response.startup
+        result = chaindrive.analyze(chaindrive.load(file), lazy=True)
+        startup = result.startup
         if startup is None:
             raise DesignError("drive.power", "the start-up needs the power, the driver speed "
                               "and [dynamics] transient = true")
         names = _span_names(result)
         header = (["time_s", *(f"span_{n}_n" for n in names),
                    *(f"speed_{s.name}_rpm" for s in result.drive.sprockets)])
-        rows = np.column_stack((startup.times, startup.span_forces, startup.speeds * RPM))
+        rows = np.column_stack((startup.times, startup.span_forces, startup.speeds * RAD_S_TO_RPM))
         _write_csv(output, header, rows)
     if as_json:
         _write_json({"history": str(output.resolve()), **startup.to_dict()})
@@ -238,17 +255,17 @@ def afc(
 ) -> None:
     """Amplitude–frequency characteristic: dynamic load of every span against the speed."""
     import chaindrive
-    from chaindrive.progress import spinner
+    from chaindrive.cli.progress import spinner
 
     with user_errors(), spinner("sweeping the speed …", quiet=as_json):
         _csv_suffix(output)
-        result = chaindrive.analyze(chaindrive.load(file))
-        if result.response is None:
+        result = chaindrive.analyze(chaindrive.load(file), lazy=True)
+        sweep = result.afc
+        if sweep is None:
             raise DesignError("drive.power", "the sweep needs the power and the driver speed")
-        sweep = result.response.afc
         header = ["driver_speed_rpm", "tooth_frequency_hz",
                   *(f"span_{n}_n" for n in _span_names(result))]
-        rows = np.column_stack((sweep.driver_speeds * RPM, sweep.tooth_frequencies_hz,
+        rows = np.column_stack((sweep.driver_speeds * RAD_S_TO_RPM, sweep.tooth_frequencies_hz,
                                 sweep.span_load))
         _write_csv(output, header, rows)
     if as_json:
@@ -261,7 +278,6 @@ def afc(
     print(f"sweep written to {output}")
 
 
-RPM = 30.0 / math.pi
 
 
 def _span_names(result: Any) -> list[str]:
@@ -312,15 +328,18 @@ def report(
     output: Annotated[Path, typer.Option("-o", "--output", help="report.html or report.pdf")]
     = Path("report.html"),
     dpi: Annotated[int, typer.Option(help="resolution of the figures")] = 110,
+    study: Annotated[list[str] | None, typer.Option(
+        "--study", help="add a comparative study: material-pairs, hinge-friction")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Write the design report: inputs, every result table and figure, warnings first."""
     import chaindrive
-    from chaindrive.progress import progress_bar
+    from chaindrive.cli.progress import progress_bar
     from chaindrive.report import SECTIONS, write_report
 
     with user_errors():
-        result = chaindrive.analyze(chaindrive.load(file))
+        studies = tuple(s.replace("-", "_") for s in study or ())
+        result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance)
     if as_json:
@@ -363,10 +382,11 @@ def optimize(
     seed: Annotated[int | None, typer.Option("--seed", help="random seed (default: the "
                                              "file's [optimize.solver] seed)")] = None,
 ) -> None:
-    """Search the Pareto set of a design (seed 000 optimal synthesis; docs/synthesis.md)."""
-    from chaindrive.io.design import drive_from_mapping, drive_to_toml
+    """Search the Pareto set of a design ([MultimassChainDrives] optimal synthesis;
+    docs/synthesis.md)."""
     from chaindrive.synthesis import load_problem
     from chaindrive.synthesis.solve import solve
+    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
 
     with user_errors():
         problem = load_problem(file)
@@ -379,25 +399,21 @@ def optimize(
         written: list[str] = []
         plot = None
         if out is not None:
+            files = pareto_design_files(result, file.stem, file.parent)
+            chosen = chosen_analysis(result, file.parent)
             try:
                 out.mkdir(parents=True, exist_ok=True)
-                for k, p in enumerate(result.pareto, start=1):
-                    path = out / f"{file.stem}_pareto_{k:02d}.toml"
-                    path.write_text(drive_to_toml(drive_from_mapping(p.design, file.parent)),
-                                    encoding="utf-8")
-                    written.append(str(path))
-                if result.pareto:
-                    from chaindrive import analyze
+                for f in files:
+                    (out / f.name).write_text(f.text, encoding="utf-8")
+                    written.append(str(out / f.name))
+                if chosen is not None:
                     from chaindrive.plotting import pareto_front
                     from chaindrive.report import write_report
 
                     plot = out / f"{file.stem}_pareto_front.png"
                     pareto_front(result).savefig(plot, dpi=120)
-                    chosen = Path(written[0])
-                    report = write_report(analyze(drive_from_mapping(result.pareto[0].design,
-                                                                     file.parent)),
-                                          out / f"{file.stem}_pareto_01.html", source=chosen,
-                                          synthesis=result)
+                    report = write_report(chosen, out / f"{file.stem}_pareto_01.html",
+                                          source=out / files[0].name, synthesis=result)
                     written.append(str(report))
             except OSError as exc:
                 raise DesignError("--out", f"cannot write to {str(out)!r} ({exc.strerror})") from None
@@ -407,7 +423,7 @@ def optimize(
         return
     names = list(result.objectives)
     con = _console()
-    con.print(f"[bold]{problem.base.name}[/bold] — {result.evaluations} designs evaluated by "
+    con.print(f"[bold]{escape(problem.base.name)}[/bold] — {result.evaluations} designs evaluated by "
               f"{result.method} (seed {result.seed}) in {result.seconds:.1f} s")
     con.print(_table("Start design", ["design", *names, "constraints ok"],
                      [["start", *[result.start.objectives[n] for n in names],

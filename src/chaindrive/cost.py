@@ -1,6 +1,6 @@
 """Cost model of a drive: material and manufacturing per kg, chain per metre.
 
-The packaged numbers (``synthesis/data/cost.toml``) are **placeholders** chosen for chaindrive,
+The packaged numbers (``data/cost.toml``) are **placeholders** chosen for chaindrive,
 not prices from a source: they only weigh material, manufacturing and chain against each
 other. Users set their own prices with a file of the same form
 (:func:`load_cost_model`)::
@@ -94,6 +94,6 @@ def load_cost_model(path: str | Path) -> CostModel:
 
 @lru_cache(maxsize=1)
 def default_cost_model() -> CostModel:
-    """The packaged placeholder prices (``chaindrive/synthesis/data/cost.toml``)."""
-    text = resources.files("chaindrive.synthesis").joinpath("data/cost.toml").read_text("utf-8")
+    """The packaged placeholder prices (``chaindrive/data/cost.toml``)."""
+    text = resources.files("chaindrive").joinpath("data/cost.toml").read_text("utf-8")
     return cost_model_from_mapping(tomllib.loads(text), "packaged placeholders (cost.toml)")

@@ -23,6 +23,7 @@ for light damping). Alternative: the plain ratio D = 0.06 measured in seed 000 �
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -245,6 +246,32 @@ def hinge_friction_damping(tension: float, relative_amplitude: float, span_lengt
         dynamic_load_factor=float(dynamic_load_factor(tension, relative_amplitude, c)),
         absorption_coefficient=psi, damping_ratio=psi / (4.0 * math.pi),
     )
+
+
+def hinge_friction_grid(coefficients: HingeFrictionCoefficients, tensions: Sequence[float],
+                        relative_amplitudes: Sequence[float], span_length: float
+                        ) -> tuple[HingeFrictionResult, ...]:
+    """The hinge-friction model over a grid of tensions and relative amplitudes (a study of
+    how ψ moves with the operating point [ChainHingeDissipation]).
+
+    Parameters
+    ----------
+    coefficients : HingeFrictionCoefficients
+        The chain's fit and hinge data.
+    tensions : sequence of float
+        Static tensions F₀ [N].
+    relative_amplitudes : sequence of float
+        Relative amplitudes ȳ₀ [-].
+    span_length : float
+        Span length a [m].
+
+    Returns
+    -------
+    tuple of HingeFrictionResult
+        One per (F₀, ȳ₀), tensions varying slowest.
+    """
+    return tuple(hinge_friction_damping(f0, y, span_length, coefficients)
+                 for f0 in tensions for y in relative_amplitudes)
 
 
 # ---------------------------------------------------------------------------------------

@@ -1,0 +1,322 @@
+"""The dynamic model of a drive, built from a :class:`~chaindrive.model.Drive` and its
+contour geometry, and its modal stage.
+
+* :func:`drive_ring_parameters` — reduced masses m_i = I_i/R_i² and branch stiffnesses of the
+  ring (chain, sprocket wrap and sag compliance in series; :mod:`.stiffness` has the
+  formulas), with their parts;
+* :func:`ring_damping_ratio` — the ring's damping ratio: hinge friction plus material damping;
+* :func:`ring_model` — the :class:`~chaindrive.dynamics.ring.RingModel` of a drive;
+* :func:`drive_dynamics` — modes, span transverse frequencies, the resonance table and the
+  Campbell data: :class:`DynamicsResult`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.catalog import find_material
+from chaindrive.dynamics.damping import loss_factor, modal_loss_factor, series_loss_factor
+from chaindrive.dynamics.resonance import (
+    TWO_PI,
+    CampbellData,
+    Resonance,
+    WorkingFrequency,
+    campbell_data,
+    resonance_table,
+    working_frequencies,
+)
+from chaindrive.dynamics.ring import ModalResult, RingModel, modal_analysis
+from chaindrive.dynamics.stiffness import (
+    GRAVITY,
+    TOOTH_WIDTH_FACTOR,
+    chain_span_stiffness,
+    reduced_mass,
+    sag_stiffness_factor,
+    series_stiffness,
+    tooth_stiffness,
+    wrap_stiffness,
+)
+from chaindrive.dynamics.stiffness import (
+    link_stiffness as link_stiffness_from_plates,
+)
+from chaindrive.dynamics.transverse import span_transverse_frequencies
+from chaindrive.errors import DesignError
+from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
+from chaindrive.kinematics import tooth_frequency
+from chaindrive.strength.loads import loads_of
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, Material
+
+__all__ = ["DynamicsResult", "RingParameters", "drive_dynamics", "drive_ring_parameters",
+           "ring_damping_ratio", "ring_model", "static_span_tensions"]
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class RingParameters:
+    """Masses and branch stiffnesses of a drive's ring model with their parts.
+
+    masses_kg (n,) reduced masses; inertias_kg_m2 (n,) I used; pitch_radii_m (n,);
+    stiffness_n_per_m (n,) branch stiffness (branch i joins sprocket i and i+1);
+    chain_stiffness_n_per_m (n,) chain alone; wrap_stiffness_n_per_m (n,) each sprocket's
+    wrap (tooth) stiffness; sag_factors (n,) Dischinger–Ernst factors (1: taut);
+    span_tensions_n (n,) or None; link_stiffness_n_per_m per link; loss_factors (n,) material
+    loss factor of every branch (chain and the two wraps in series,
+    :func:`chaindrive.dynamics.damping.series_loss_factor`).
+    """
+
+    masses_kg: NDArray[np.float64]
+    inertias_kg_m2: NDArray[np.float64]
+    pitch_radii_m: NDArray[np.float64]
+    stiffness_n_per_m: NDArray[np.float64]
+    chain_stiffness_n_per_m: NDArray[np.float64]
+    wrap_stiffness_n_per_m: NDArray[np.float64]
+    sag_factors: NDArray[np.float64]
+    span_tensions_n: NDArray[np.float64] | None
+    link_stiffness_n_per_m: float
+    loss_factors: NDArray[np.float64]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {
+            "reduced_masses_kg": self.masses_kg.tolist(),
+            "inertias_kg_m2": self.inertias_kg_m2.tolist(),
+            "pitch_radii_m": self.pitch_radii_m.tolist(),
+            "branch_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
+            "chain_stiffness_n_per_m": self.chain_stiffness_n_per_m.tolist(),
+            "wrap_stiffness_n_per_m": self.wrap_stiffness_n_per_m.tolist(),
+            "sag_factors": self.sag_factors.tolist(),
+            "span_tensions_n": (None if self.span_tensions_n is None
+                                else self.span_tensions_n.tolist()),
+            "link_stiffness_n_per_m": self.link_stiffness_n_per_m,
+            "loss_factors": self.loss_factors.tolist(),
+        }
+
+
+def static_span_tensions(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64] | None:
+    """Static span tensions [N] from :func:`chaindrive.strength.loads.loads_of`, or None when
+    the drive gives no power."""
+    if drive.power is None or drive.driver.speed is None:
+        return None
+    return np.asarray(loads_of(drive, geometry).span_tensions, dtype=float)
+
+
+def _default_lookup() -> Callable[[str], Material]:
+    return find_material
+
+
+def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
+                          span_tensions: Sequence[float] | None = None,
+                          link_stiffness: float | None = None,
+                          material_lookup: Callable[[str], Material] | None = None,
+                          ) -> RingParameters:
+    """Reduced masses and branch stiffnesses of a drive (the module docstring's model).
+
+    drive, geometry : the drive and its built contour (same sprocket order);
+    span_tensions [N] : per span (None: the static tensions of
+    :func:`chaindrive.strength.loads.loads_of` when the drive has a power, else the spans
+    are taken as taut, no sag); link_stiffness [N/m] : per link, e.g. from
+    catalogue data (None: :func:`link_stiffness` from plates and pin with the chain
+    material's E); material_lookup : name → Material (default
+    ``chaindrive.catalog.find_material``). Sprocket masses: ``Sprocket.inertia`` when
+    given, else :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate
+    disc, or the polymeric rim–web–hub proportions of seed 000 §3.4 for a polymer sprocket).
+    With ``drive.chain.contours`` = m identical contours the branch stiffness is m times that
+    of one contour (span tensions are then those of one contour); chain_stiffness and
+    wrap_stiffness stay per contour.
+    """
+    lookup = material_lookup or _default_lookup()
+    spec = drive.chain.spec
+    chain_mat = lookup(spec.material)
+    k_link = (link_stiffness if link_stiffness is not None
+              else link_stiffness_from_plates(spec, chain_mat.youngs_modulus))
+    n = len(drive.sprockets)
+    if len(geometry.sprockets) != n or len(geometry.spans) != n:
+        raise DesignError("geometry", f"need {n} sprockets and spans, got "
+                          f"{len(geometry.sprockets)} and {len(geometry.spans)}")
+    if any(sp.start != i or sp.end != (i + 1) % n for i, sp in enumerate(geometry.spans)):
+        raise DesignError("geometry.spans", "span i must join sprocket i and i+1 (ring order)")
+    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    inertia = np.empty(n)
+    radius = np.array([g.pitch_radius for g in geometry.sprockets])
+    wrap = np.empty(n)
+    eta_wrap = np.empty(n)
+    for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
+        mat = lookup(s.material)
+        eta_wrap[i] = loss_factor(mat.family, mat.is_polymer)
+        inertia[i] = s.flywheel + (s.inertia if s.inertia is not None else
+                                   sprocket_mass_and_inertia(
+                                       spec.pitch, s.teeth, spec.inner_width, mat.density,
+                                       mat.is_polymer, strands=spec.strands,
+                                       transverse_pitch=spec.transverse_pitch).moment_of_inertia)
+        k_t = tooth_stiffness(width, mat.youngs_modulus, chain_mat.youngs_modulus)
+        wrap[i] = wrap_stiffness(k_t, k_link, g.teeth_in_mesh)
+    lengths = np.array([sp.length for sp in geometry.spans])
+    starts = np.arange(n)
+    ends = (starts + 1) % n
+    chain_c = chain_span_stiffness(k_link, lengths, spec.pitch)
+    tensions = (np.asarray(span_tensions, dtype=float) if span_tensions is not None
+                else static_span_tensions(drive, geometry))
+    if tensions is None:
+        sag = np.ones(n)
+    else:
+        if tensions.shape != (n,):
+            raise DesignError("span_tensions", f"need {n} tensions, got {tensions.shape}")
+        incl = np.array([sp.inclination for sp in geometry.spans])
+        sag = sag_stiffness_factor(k_link * spec.pitch, spec.mass_per_length * GRAVITY,
+                                   lengths * np.cos(incl), tensions)
+    # m identical contours side by side (seed 004) act in parallel on the common shafts
+    stiffness = series_stiffness(chain_c, wrap[starts], wrap[ends]) * sag * drive.chain.contours
+    return RingParameters(
+        masses_kg=reduced_mass(inertia, radius), inertias_kg_m2=inertia,
+        pitch_radii_m=radius, stiffness_n_per_m=stiffness, chain_stiffness_n_per_m=chain_c,
+        wrap_stiffness_n_per_m=wrap, sag_factors=sag, span_tensions_n=tensions,
+        link_stiffness_n_per_m=float(k_link),
+        loss_factors=series_loss_factor(
+            [np.full(n, loss_factor(chain_mat.family, chain_mat.is_polymer)), eta_wrap[starts],
+             eta_wrap[ends]], [1.0 / chain_c, 1.0 / wrap[starts], 1.0 / wrap[ends]]),
+    )
+
+
+def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
+    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given
+    (seed 000: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
+    strain energy method (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets
+    about +0.0003; a polyamide chain about +0.015 (seed 000 Fig. 2: polymer chains damp more).
+    """
+
+    modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
+    elastic = np.flatnonzero(~modal.rigid_body)
+    if elastic.size == 0:
+        return hinge_damping
+    eta = modal_loss_factor(params.loss_factors, params.stiffness_n_per_m,
+                            modal.shapes[:, elastic[0]])
+    return min(0.99, hinge_damping + eta / 2.0)
+
+
+def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
+               span_tensions: Sequence[float] | None = None,
+               link_stiffness: float | None = None,
+               material_lookup: Callable[[str], Material] | None = None) -> RingModel:
+    """The ring model of a drive; see :func:`drive_ring_parameters`.
+
+    damping : hinge-friction damping ratio (D = 0.06 [MultimassChainDrives]; or ζ = ψ/4π from
+        :mod:`chaindrive.dynamics.damping`), to which the material damping of the first mode
+        is added (:func:`ring_damping_ratio`);
+    span_tensions [N] per span (None: the static tensions when the drive has a power, see
+        :func:`static_span_tensions`);
+    link_stiffness [N/m] per link from catalogue data (None: from the plates and pin);
+    material_lookup : name → Material (default :func:`chaindrive.catalog.find_material`).
+    """
+    p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                              link_stiffness=link_stiffness, material_lookup=material_lookup)
+    return RingModel(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
+                     damping_ratio=ring_damping_ratio(p, damping),
+                     names=tuple(s.name for s in drive.sprockets))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class DynamicsResult:
+    """Everything a designer reads about a drive's vibration (issue 4, JSON ``dynamics``).
+
+    parameters : masses and stiffnesses with their parts
+    (:class:`~chaindrive.dynamics.drive.RingParameters`); modal : the ring's modes;
+    span_transverse_hz : (spans, modes) transverse frequencies [Hz] (empty when the span
+    tensions are unknown); resonances : the resonance table; campbell : Campbell data
+    over the speed range (or None); damping_ratio ζ.
+    """
+
+    parameters: RingParameters
+    modal: ModalResult
+    span_transverse_hz: NDArray[np.float64]
+    working: tuple[WorkingFrequency, ...]
+    resonances: tuple[Resonance, ...]
+    campbell: CampbellData | None
+    damping_ratio: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict with the keys of issue 4 §6."""
+        m = self.modal.to_dict()
+        st = self.span_transverse_hz
+        return {
+            "model": self.parameters.to_dict(),
+            "natural_frequencies_hz": m["natural_frequencies_hz"],
+            "natural_frequencies_rad_s": m["natural_frequencies_rad_s"],
+            "damped_frequencies_hz": m["damped_frequencies_hz"],
+            "rigid_body_modes": m["rigid_body_modes"],
+            "mode_shapes": m["mode_shapes"],
+            "normalized_amplitudes": m["normalized_amplitudes"],
+            "partial_frequencies_hz": m["partial_frequencies_hz"],
+            "span_transverse_frequencies_hz": st[:, 0].tolist() if st.size else [],
+            "span_transverse_modes_hz": st.tolist(),
+            "working_frequencies": [w.to_dict() for w in self.working],
+            "resonances": [r.to_dict() for r in self.resonances],
+            "campbell": None if self.campbell is None else self.campbell.to_dict(),
+            "damping_ratio": self.damping_ratio,
+        }
+
+
+def drive_dynamics(drive: Drive, geometry: GeometryResult, model: RingModel,
+                   parameters: RingParameters, *, harmonics: int = 3,
+                   transverse_modes: int = 3, speed_range: tuple[float, float] | None = None,
+                   speed_points: int = 61) -> DynamicsResult:
+    """Modal analysis, span transverse frequencies, resonance table and Campbell data.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`ring_model`, or built from ``parameters``).
+    parameters : RingParameters
+        The masses and stiffnesses the model was built from, with the span tensions.
+    harmonics : int
+        Harmonics of the tooth frequency among the working frequencies.
+    transverse_modes : int
+        Transverse modes per span.
+    speed_range : tuple of float | None
+        (ω_min, ω_max) of the driver [rad/s] for the Campbell data (None: none).
+    speed_points : int
+        Speeds of the Campbell data.
+
+    Returns
+    -------
+    DynamicsResult
+    """
+    modal = model.modal()
+    spec = drive.chain.spec
+    driver = drive.driver
+    teeth = [s.teeth for s in drive.sprockets]
+    names = [s.name for s in drive.sprockets]
+    lengths = np.array([sp.length for sp in geometry.spans])
+    tensions = parameters.span_tensions_n
+    transverse = np.zeros((0, transverse_modes))
+    working: tuple[WorkingFrequency, ...] = ()
+    rows: tuple[Resonance, ...] = ()
+    fz = None
+    if driver.speed is not None:
+        v = driver.teeth * spec.pitch * driver.speed / TWO_PI
+        if tensions is not None:
+            transverse = span_transverse_frequencies(lengths, tensions, spec.mass_per_length, v,
+                                                     modes=transverse_modes)
+        working = working_frequencies(driver.speed, driver.teeth, teeth, names, harmonics)
+        fz = float(tooth_frequency(driver.teeth, driver.speed))
+    if working:
+        rows = resonance_table(modal, working, transverse[:, 0] if transverse.size else None, fz,
+                               [f"{sp.start_name}→{sp.end_name}" for sp in geometry.spans])
+    campbell = None
+    if speed_range is not None:
+        speeds = np.linspace(speed_range[0], speed_range[1], speed_points)
+        campbell = campbell_data(modal, speeds, driver.teeth, teeth, names, harmonics,
+                                 lengths if tensions is not None else None, tensions,
+                                 spec.mass_per_length, spec.pitch)
+    return DynamicsResult(parameters, modal, transverse, working, rows, campbell,
+                          model.damping_ratio)

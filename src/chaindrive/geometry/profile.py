@@ -1,0 +1,197 @@
+"""Sprocket profiles for manufacture: the tooth form of each sprocket by its standard, the
+closed toothed outline, and the body of a polymeric sprocket.
+
+Tooth profiles (from the dimensions of :mod:`chaindrive.geometry.sprocket`):
+
+* GOST 591-69 (Anuriev т. 2 гл. 5; shared/data/gost591_sprocket_profile.md §1.3): seating
+  arc r over the half space angle α, joining arc r1 centred at O1 = 0.8·d1·(sin α, cos α)
+  over β, the straight part FC, and the head arc r2 centred at
+  O2 = 1.24·d1·(cos 180°/z, sin 180°/z) up to the tip circle De (drawn without the offset
+  e of the root-arc centres, which GOST 591 permits);
+* ISO 606 (mean of the minimum and maximum tooth-gap forms): seating arc ri over the seating
+  angle α, then the convex flank arc re tangent to it, up to the tip circle da (mean).
+
+The profile of a tooth gap is drawn in a frame at the seat centre (x along the tangent, y
+radial outward); teeth end on the tip circle or where the flanks of neighbouring gaps meet.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.catalog import find_material
+from chaindrive.geometry.sprocket import (
+    Gost591ToothForm,
+    PolymericProportions,
+    SprocketMassProperties,
+    ToothForm,
+    gost591_tooth_form,
+    iso606_tooth_form,
+    polymeric_sprocket_proportions,
+    sprocket_mass_and_inertia,
+)
+from chaindrive.model import Drive
+
+__all__ = ["SprocketProfile", "gost591_gap_wall", "iso606_gap_wall", "outline_of",
+           "sprocket_outline", "sprocket_profiles", "tooth_form_of"]
+
+
+def _arc(centre: NDArray[np.float64], radius: float, a0: float, a1: float,
+         samples: int) -> NDArray[np.float64]:
+    t = np.linspace(a0, a1, samples)
+    return centre + radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.float64]:
+    """The left wall (x < 0) of a GOST 591-69 tooth gap in the seat frame [m], from the
+    bottom of the seat up along the head arc (longer than needed; clipped later)."""
+    d1, a, b = form.roller_diameter, form.half_space_angle, form.joining_angle
+    r, r1, r2, fc = form.seating_radius, form.joining_radius, form.head_radius, form.straight_part
+    t = np.linspace(0.0, a, samples)
+    seat = r * np.column_stack([-np.sin(t), -np.cos(t)])
+    o1 = 0.8 * d1 * np.array([math.sin(a), math.cos(a)])
+    t = np.linspace(a, a + b, samples)
+    joint = o1 + r1 * np.column_stack([-np.sin(t), -np.cos(t)])
+    p3 = joint[-1] + fc * np.array([-math.cos(a + b), math.sin(a + b)])
+    o2 = 1.24 * d1 * np.array([-math.cos(math.pi / form.teeth), -math.sin(math.pi / form.teeth)])
+    a0 = math.atan2(p3[1] - o2[1], p3[0] - o2[0])
+    head = _arc(o2, r2, a0, a0 + math.radians(150), 3 * samples)
+    return np.vstack([seat, joint, head])
+
+
+def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
+    """The left wall of an ISO 606 tooth gap (mean form) in the seat frame [m]: seating arc
+    ri over half the seating angle, then the convex flank re tangent to it."""
+    ri, re = form.seating_radius_mean, form.flank_radius_mean
+    half = 0.25 * (form.seating_angle_min + form.seating_angle_max)
+    t = np.linspace(0.0, half, samples)
+    seat = ri * np.column_stack([-np.sin(t), -np.cos(t)])
+    d = np.array([-math.sin(half), -math.cos(half)])
+    centre = (ri + re) * d
+    a0 = math.atan2(-d[1], -d[0])
+    sweep = math.radians(60)
+    # the flank turns towards the tooth (away from the gap): pick the sense that rises
+    sense = 1.0 if _arc(centre, re, a0, a0 + 1e-3, 2)[1, 1] > seat[-1, 1] else -1.0
+    flank = _arc(centre, re, a0, a0 + sense * sweep, 4 * samples)
+    return np.vstack([seat, flank])
+
+
+def _clip_wall(wall: NDArray[np.float64], seat: NDArray[np.float64], u_r: NDArray[np.float64],
+               tip_radius: float, half_pitch_angle: float) -> NDArray[np.float64]:
+    """Wall points (global, centred on the sprocket) up to the tip circle or the tooth's
+    bisector, with the crossing point interpolated."""
+    u_t = np.array([-u_r[1], u_r[0]])
+    pts = seat + wall[:, :1] * u_t + wall[:, 1:] * u_r
+    rel = np.arctan2(pts @ u_t, pts @ u_r)
+    f = np.maximum(np.hypot(pts[:, 0], pts[:, 1]) / tip_radius - 1.0,
+                   (np.abs(rel) - half_pitch_angle) / half_pitch_angle)
+    out = np.flatnonzero(f >= 0)
+    if out.size == 0:
+        return pts
+    k = int(out[0])
+    if k == 0:
+        return pts[:1]
+    s = f[k - 1] / (f[k - 1] - f[k])
+    return np.vstack([pts[:k], pts[k - 1] + s * (pts[k] - pts[k - 1])])
+
+
+def sprocket_outline(wall: NDArray[np.float64], teeth: int, pitch_radius: float,
+                     tip_radius: float) -> NDArray[np.float64]:
+    """Closed outline [m] of a toothed sprocket centred at the origin from the left wall of
+    one tooth gap (seat frame); gap k is centred at the angle 2πk/z."""
+    half = math.pi / teeth
+    parts = []
+    for k in range(teeth):
+        th = 2 * math.pi * k / teeth
+        u_r = np.array([math.cos(th), math.sin(th)])
+        seat = pitch_radius * u_r
+        left = _clip_wall(wall, seat, u_r, tip_radius, half)
+        right = _clip_wall(wall * np.array([-1.0, 1.0]), seat, u_r, tip_radius, half)
+        parts.append(np.vstack([left[::-1], right[1:]]))
+        rel = math.remainder(math.atan2(right[-1, 1], right[-1, 0]) - th, 2 * math.pi)
+        if np.hypot(*right[-1]) > 0.999 * tip_radius:
+            # from this gap's right end to the next gap's left end (by symmetry)
+            t = np.linspace(th + rel, th + 2 * half - rel, 5)[1:-1]
+            parts.append(tip_radius * np.column_stack([np.cos(t), np.sin(t)]))
+    return np.vstack(parts)
+
+
+def tooth_form_of(drive: Drive, teeth: int) -> Gost591ToothForm | ToothForm:
+    """The tooth form of a sprocket of ``drive`` by the drive's standard."""
+    spec = drive.chain.spec
+    if drive.tooth_form == "GOST 591":
+        return gost591_tooth_form(spec.pitch, teeth, spec.roller_diameter, spec.inner_width)
+    return iso606_tooth_form(spec.pitch, teeth, spec.roller_diameter, spec.inner_width,
+                             spec.strands)
+
+
+def outline_of(form: Gost591ToothForm | ToothForm) -> NDArray[np.float64]:
+    """Closed toothed outline [m] of a sprocket with this tooth form (centred at 0)."""
+    if isinstance(form, Gost591ToothForm):
+        return sprocket_outline(gost591_gap_wall(form), form.teeth, form.pitch_diameter / 2,
+                                form.tip_diameter / 2)
+    return sprocket_outline(iso606_gap_wall(form), form.teeth, form.pitch_diameter / 2,
+                            form.tip_diameter_mean / 2)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class SprocketProfile:
+    """What a workshop needs of one sprocket.
+
+    Parameters
+    ----------
+    name : str
+        The sprocket.
+    form : ToothForm | Gost591ToothForm
+        Its tooth form by the drive's standard (dimensions [m]).
+    outline : numpy.ndarray
+        (k, 2) closed toothed outline centred at the origin [m].
+    material : str
+        Material name.
+    polymeric : bool
+        True for a polymer sprocket (its body has the rim–web–hub proportions).
+    body : PolymericProportions | None
+        The polymeric body's proportions [m] (None for a metal plate sprocket).
+    mass : SprocketMassProperties
+        Mass [kg] and moment of inertia [kg·m²] of the body.
+    density : float
+        Density of the material [kg/m³].
+    """
+
+    name: str
+    form: ToothForm | Gost591ToothForm
+    outline: NDArray[np.float64]
+    material: str
+    polymeric: bool
+    body: PolymericProportions | None
+    mass: SprocketMassProperties
+    density: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (the tooth form in mm and degrees)."""
+        return {"name": self.name, "tooth_form": self.form.to_dict(),
+                "material": self.material, "polymeric": self.polymeric,
+                "body": None if self.body is None else self.body.to_dict(),
+                "mass": self.mass.to_dict()}
+
+
+def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
+    """The profile of every sprocket of ``drive``, in contour order."""
+    spec = drive.chain.spec
+    out = []
+    for s in drive.sprockets:
+        form = tooth_form_of(drive, s.teeth)
+        mat = find_material(s.material)
+        body = (polymeric_sprocket_proportions(spec.pitch, s.teeth, spec.inner_width)
+                if mat.is_polymer else None)
+        mass = sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
+                                         mat.is_polymer, strands=spec.strands,
+                                         transverse_pitch=spec.transverse_pitch)
+        out.append(SprocketProfile(s.name, form, outline_of(form), mat.name, mat.is_polymer,
+                                   body, mass, mat.density))
+    return tuple(out)

@@ -1,0 +1,150 @@
+"""The evaluation of a design by the synthesis: its objectives (:mod:`.objectives`) and
+constraints, from its lazy :class:`~chaindrive.analysis.Analysis` — the same stages and
+checks as every other command.
+
+The constraints are the analysis's own checks (:meth:`~chaindrive.analysis.Analysis.checks`,
+their ``violation`` ≤ 0 when satisfied) that the problem's ``[optimize.constraints]`` selects
+and sets the limits of, plus two wishes of the designer that are not engineering rules: the
+driven speeds' ratio tolerance and a highest mean chain speed. A design costs only the
+stages its objectives and constraints read.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from chaindrive.analysis import Analysis
+from chaindrive.checks import CheckLimits
+from chaindrive.cost import CostModel
+from chaindrive.errors import ChainDriveError
+from chaindrive.model import Drive
+from chaindrive.synthesis.objectives import OBJECTIVES
+from chaindrive.synthesis.problem import Constraints, Problem
+
+__all__ = ["FAILED", "Evaluation", "analysis_of", "base_ratios", "check_limits",
+           "constraint_names", "evaluate_drive", "evaluate_vector"]
+
+TWO_PI = 2.0 * math.pi
+#: objective value given to a design that cannot be built (a finite stand-in for ∞)
+FAILED = 1e12
+
+
+def check_limits(settings: Constraints) -> CheckLimits:
+    """The limits of the analysis's checks that ``[optimize.constraints]`` sets."""
+    return CheckLimits(min_driver_wrap=settings.min_driver_wrap,
+                       min_teeth_in_mesh=settings.min_teeth_in_mesh,
+                       allowable_dynamic_safety=settings.allowable_dynamic_safety,
+                       resonance_band_percent=(settings.resonance_band
+                                               if settings.resonance_band else 10.0),
+                       static_safety=settings.min_static_safety)
+
+
+def constraint_names(settings: Constraints) -> tuple[str, ...]:
+    """The analysis checks that ``[optimize.constraints]`` makes constraints."""
+    names = ["driver_wrap"]
+    if settings.min_teeth_in_mesh > 0:
+        names.append("teeth_in_mesh")
+    if settings.speed_limit:
+        names.append("speed_limit")
+    if settings.static_safety:
+        names += ["hinge_pressure", "static_safety"]
+    if settings.resonance_band:
+        names.append("resonance_margin")
+    names += ["k2", "k2_min"]
+    if settings.startup_safety:
+        names.append("k1")
+    return tuple(names)
+
+
+def analysis_of(drive: Drive, settings: Constraints,
+                cost_model: CostModel | None = None) -> Analysis:
+    """The lazy analysis of ``drive`` with the limits the problem sets."""
+    return Analysis(drive, limits=check_limits(settings), cost_model=cost_model)
+
+
+@dataclass(frozen=True, slots=True)
+class Evaluation:
+    """Objectives (natural sign and unit), constraint values g (≤ 0 satisfied), feasible,
+    error (why the design could not be built, or None)."""
+
+    objectives: dict[str, float]
+    constraints: dict[str, float]
+    feasible: bool
+    error: str | None = None
+
+    def minimised(self, names: Sequence[str]) -> list[float]:
+        """Objective values with the sense applied (every one minimised)."""
+        return [OBJECTIVES[n].sense * self.objectives[n] for n in names]
+
+    def violation(self) -> float:
+        """Sum of the positive constraint values."""
+        return float(sum(max(v, 0.0) for v in self.constraints.values()))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"objectives": dict(self.objectives), "constraints": dict(self.constraints),
+                "constraints_ok": self.feasible, "error": self.error}
+
+
+def _failed(objectives: Sequence[str], error: str) -> Evaluation:
+    return Evaluation({n: OBJECTIVES[n].sense * FAILED for n in objectives}, {"buildable": 1.0},
+                      False, error)
+
+
+def _wishes(a: Analysis, settings: Constraints, ratios: Sequence[float] | None,
+            tolerance: float) -> dict[str, float]:
+    """The designer's wishes that are not engineering rules: mean chain speed ≤ the maximum,
+    driven ratios within the tolerance of the start design."""
+    d = a.drive
+    assert d.driver.speed is not None
+    v = d.driver.teeth * d.chain.spec.pitch * d.driver.speed / TWO_PI
+    out = {"chain_speed": (v - settings.max_chain_speed) / settings.max_chain_speed}
+    if ratios is not None:
+        z1 = d.driver.teeth
+        dev = max((abs(sp.teeth / z1 - i0) / i0 for sp, i0 in zip(d.sprockets, ratios,
+                                                                   strict=True)
+                   if sp.role == "driven"), default=0.0)
+        out["ratio"] = (dev - tolerance) / max(tolerance, 1e-3)
+    return out
+
+
+def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraints, *,
+                   base_ratios: Sequence[float] | None = None, ratio_tolerance: float = 0.03,
+                   cost_model: CostModel | None = None) -> Evaluation:
+    """Objectives and constraints of one design, from its lazy :class:`Analysis`; a design
+    that cannot be built (the geometry or strength raises: span interference, impossible
+    take-up …) gets objectives :data:`FAILED` and the constraint ``buildable`` = 1."""
+    a = analysis_of(drive, settings, cost_model)
+    try:
+        obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}
+        cons: dict[str, float] = {"buildable": 0.0}
+        for name in constraint_names(settings):
+            check = a.check(name)
+            if check is not None:
+                cons[name] = check.violation
+        cons.update(_wishes(a, settings, base_ratios, ratio_tolerance))
+    except ChainDriveError as exc:
+        return _failed(objectives, str(exc))
+    if not all(math.isfinite(v) for v in [*obj.values(), *cons.values()]):
+        return _failed(objectives, "non-finite result")
+    return Evaluation(obj, cons, all(v <= 0 for v in cons.values()))
+
+
+def base_ratios(drive: Drive) -> list[float]:
+    """z_i/z_driver of every sprocket."""
+    return [s.teeth / drive.driver.teeth for s in drive.sprockets]
+
+
+def evaluate_vector(problem: Problem, x: Sequence[float],
+                    cost_model: CostModel | None = None) -> tuple[Evaluation, Drive | None]:
+    """Decode and evaluate one search vector; the drive is None when it cannot be decoded."""
+    try:
+        drive = problem.decode(x)
+    except ChainDriveError as exc:
+        return _failed(problem.objectives, str(exc)), None
+    return evaluate_drive(drive, problem.objectives, problem.constraints,
+                          base_ratios=base_ratios(problem.base),
+                          ratio_tolerance=problem.ratio_tolerance, cost_model=cost_model), drive

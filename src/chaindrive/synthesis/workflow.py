@@ -1,0 +1,45 @@
+"""What follows a search: the Pareto designs as design files and their analyses.
+
+The command line writes these (``optimize --out``) and the report presents the chosen one;
+both go through :func:`chaindrive.analyze`, so a Pareto design file re-analyses to the
+figures the optimiser saw.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from chaindrive.analysis import Analysis, analyze
+from chaindrive.io.design import drive_from_mapping, drive_to_toml
+from chaindrive.model import Drive
+from chaindrive.synthesis.solve import SynthesisResult
+
+__all__ = ["ParetoDesignFile", "chosen_analysis", "pareto_design_files", "pareto_drives"]
+
+
+@dataclass(frozen=True, slots=True)
+class ParetoDesignFile:
+    """One Pareto design as a design file: its file name and TOML text."""
+
+    name: str
+    text: str
+
+
+def pareto_drives(result: SynthesisResult, base_dir: Path | None = None) -> tuple[Drive, ...]:
+    """The validated drives of the Pareto set, in its order."""
+    return tuple(drive_from_mapping(p.design, base_dir) for p in result.pareto)
+
+
+def pareto_design_files(result: SynthesisResult, stem: str,
+                        base_dir: Path | None = None) -> tuple[ParetoDesignFile, ...]:
+    """The Pareto designs as design files ``<stem>_pareto_<k>.toml``."""
+    return tuple(ParetoDesignFile(f"{stem}_pareto_{k:02d}.toml", drive_to_toml(d))
+                 for k, d in enumerate(pareto_drives(result, base_dir), start=1))
+
+
+def chosen_analysis(result: SynthesisResult, base_dir: Path | None = None) -> Analysis | None:
+    """The analysis of the first Pareto design (the one the report presents), or None when
+    the set is empty."""
+    drives = pareto_drives(result, base_dir)
+    return analyze(drives[0]) if drives else None
