@@ -49,9 +49,8 @@ __all__ = ["TorsionalModel", "TorsionalModes", "TorsionalSystem", "reducer_input
 TWO_PI = 2.0 * math.pi
 #: Relative tolerance of kinematic ratios (gear loops, strain-free rigid motions).
 RATIO_RTOL = 1e-9
-_TRAIN_KEYS = frozenset({"name", "inertia", "stiffness", "damping", "ratio", "efficiency",
-                         "same_sense", "ground_stiffness", "ground_damping"})
 FloatArray = NDArray[np.float64]
+#: One element of a train in :meth:`TorsionalModel.from_contour` (plain data).
 TrainElement = Mapping[str, "float | str | bool"]
 
 
@@ -92,7 +91,7 @@ def _check_efficiency(field: str, efficiency: float) -> None:
 
 def _nonneg(field: str, value: float, what: str) -> float:
     value = float(value)
-    if not (math.isfinite(value) and value >= 0.0):
+    if not 0.0 <= value < math.inf:  # also False for nan
         raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
     return value
 
@@ -105,11 +104,6 @@ class _WeightedUnion:
     def __init__(self) -> None:
         self.parent: list[int] = []
         self.weight: list[float] = []
-
-    def add(self) -> int:
-        self.parent.append(len(self.parent))
-        self.weight.append(1.0)
-        return len(self.parent) - 1
 
     def find(self, i: int) -> tuple[int, float]:
         """(root, w) with x_i = w·x_root (path halving)."""
@@ -143,7 +137,8 @@ class TorsionalSystem:
     motion M q̈ + C q̇ + K q = Σ_n factor_n·T_n (:meth:`generalized_force`) with
     K = stiffness_linear + Bᵀ diag(c_span·active) B and C likewise, span elongations e = B q
     (``span_incidence``) [m]. ``mass`` [kg·m²] is the diagonal of M; a 0 marks a massless
-    coordinate (see :meth:`condensed`).
+    coordinate (see :meth:`condensed`). ``rigid_motions`` (size, r): one exact strain-free
+    motion per free group (no ground spring, no loop of mismatched ratios), from the graph.
     """
 
     node_names: tuple[str, ...]
@@ -163,6 +158,7 @@ class TorsionalSystem:
     element_incidence: FloatArray
     element_stiffness: FloatArray
     element_damping: FloatArray
+    rigid_motions: FloatArray
 
     @property
     def size(self) -> int:
@@ -254,22 +250,47 @@ class TorsionalModes:
     frequencies_hz : (n,) natural frequencies f_j [Hz], ascending; rigid-body modes exactly 0,
         first
     rigid_body : (n,) True for rigid-body modes
-    node_names : node names, rows of ``shape_matrix``
-    shape_matrix : (nodes, n) angles φ of every node in each mode [rad], mass-normalised
-        (Σ J φ² = 1 over the reduced coordinates, so [kg^-1/2·m^-1])
-    element_names, element_kinds : elements ("shaft", "ground", "span"), rows of
-        ``strain_energy_shares``
-    strain_energy_shares : (elements, n) share of each element in the strain energy of each
-        mode (columns sum to 1; 0 for a rigid-body mode)
+    system : the assembled :class:`TorsionalSystem`
+    modal_coordinates : (size, n) reduced coordinates q of each mode, mass-normalised
+        (qᵀ M q = 1; massless coordinates recovered statically)
+
+    Derived on access (so that a modal analysis costs little more than LAPACK):
+    ``shape_matrix`` (nodes, n) angles φ [rad] of every node, ``shapes`` by node name,
+    ``strain_energy_shares`` (elements, n) share of each element in the strain energy of each
+    mode (columns sum to 1; 0 for rigid-body modes), ``participation`` by element name.
     """
 
     frequencies_hz: FloatArray
     rigid_body: NDArray[np.bool_]
-    node_names: tuple[str, ...]
-    shape_matrix: FloatArray
-    element_names: tuple[str, ...]
-    element_kinds: tuple[str, ...]
-    strain_energy_shares: FloatArray
+    system: TorsionalSystem
+    modal_coordinates: FloatArray
+
+    @property
+    def node_names(self) -> tuple[str, ...]:
+        """Node names, rows of ``shape_matrix``."""
+        return self.system.node_names
+
+    @property
+    def element_names(self) -> tuple[str, ...]:
+        """Element names, rows of ``strain_energy_shares``."""
+        return self.system.element_names
+
+    @property
+    def shape_matrix(self) -> FloatArray:
+        """(nodes, n) angle of every node in each mode [rad] (mass-normalised)."""
+        s = self.system
+        return s.node_factor[:, None] * self.modal_coordinates[s.node_dof]
+
+    @property
+    def strain_energy_shares(self) -> FloatArray:
+        """(elements, n) share of each element in the strain energy ½ k e² of each mode."""
+        s = self.system
+        strain = s.element_incidence @ self.modal_coordinates
+        energy = s.element_stiffness[:, None] * strain * strain
+        total = energy.sum(axis=0)
+        shares = np.divide(energy, total, out=np.zeros_like(energy), where=total > 0.0)
+        shares[:, self.rigid_body] = 0.0
+        return shares
 
     @property
     def angular_frequencies_rad_s(self) -> FloatArray:
@@ -279,12 +300,13 @@ class TorsionalModes:
     @property
     def shapes(self) -> Mapping[str, FloatArray]:
         """Node name → its angle in every mode [rad] (a row of ``shape_matrix``)."""
-        return MappingProxyType(dict(zip(self.node_names, self.shape_matrix, strict=True)))
+        return MappingProxyType(dict(zip(self.system.node_names, self.shape_matrix,
+                                         strict=True)))
 
     @property
     def participation(self) -> Mapping[str, FloatArray]:
         """Element name → its strain-energy share in every mode (which element governs)."""
-        return MappingProxyType(dict(zip(self.element_names, self.strain_energy_shares,
+        return MappingProxyType(dict(zip(self.system.element_names, self.strain_energy_shares,
                                          strict=True)))
 
     @property
@@ -300,20 +322,24 @@ class TorsionalModes:
 
     def governing_element(self, mode: int) -> str:
         """Name of the element with the largest strain-energy share in ``mode``."""
-        if self.rigid_body[mode] or not self.element_names:
+        if self.rigid_body[mode] or not self.system.element_names:
             return ""
-        return self.element_names[int(np.argmax(self.strain_energy_shares[:, mode]))]
+        return self.system.element_names[int(np.argmax(self.strain_energy_shares[:, mode]))]
 
     def to_dict(self) -> dict[str, object]:
         """JSON-ready dict; ``mode_shapes[node][j]`` is the node's angle in mode j."""
+        shares = self.strain_energy_shares
+        governing = ["" if r or not self.system.element_names else
+                     self.system.element_names[int(np.argmax(shares[:, j]))]
+                     for j, r in enumerate(self.rigid_body.tolist())]
         return {
             "natural_frequencies_hz": self.frequencies_hz.tolist(),
             "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
             "rigid_body_modes": self.rigid_body.tolist(),
             "mode_shapes": {n: row.tolist() for n, row in self.shapes.items()},
-            "strain_energy_shares": {n: row.tolist() for n, row in self.participation.items()},
-            "governing_elements": [self.governing_element(j)
-                                   for j in range(self.frequencies_hz.size)],
+            "strain_energy_shares": dict(zip(self.system.element_names, shares.tolist(),
+                                             strict=True)),
+            "governing_elements": governing,
         }
 
 
@@ -332,6 +358,9 @@ class TorsionalModel:
         self._given: list[bool] = []
         self._chain: list[float] = []
         self._gears = _WeightedUnion()
+        # strain-free kinematics of all elements of stiffness > 0 and meshes: rigid-body modes
+        self._kin = _WeightedUnion()
+        self._held: list[bool] = []
         self._meshes: list[tuple[str, int, int, float, float, float]] = []
         # elements: name, kind, a, b (-1: ground), coef_a, coef_b, k, c, tension_only
         self._elements: list[tuple[str, str, int, int, float, float, float, float, bool]] = []
@@ -351,7 +380,10 @@ class TorsionalModel:
         self._inertia.append(0.0)
         self._given.append(False)
         self._chain.append(0.0)
-        self._gears.add()
+        for tree in (self._gears, self._kin):  # a new root of its own
+            tree.parent.append(i)
+            tree.weight.append(1.0)
+        self._held.append(False)
         return i
 
     def _element_name(self, name: str | None, default: str) -> str:
@@ -378,9 +410,10 @@ class TorsionalModel:
         between nodes a and b (twist φ_b − φ_a)."""
         name = self._element_name(name, f"shaft:{a}-{b}")
         ia, ib = self._pair(a, b, name)
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0,
-                               _nonneg(name, stiffness, "stiffness [N·m/rad]"),
+        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
+        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k,
                                _nonneg(name, damping, "damping [N·m·s/rad]"), False))
+        self._kinematics(ia, ib, 1.0, k)
         return self
 
     def add_ground_spring(self, node: str, stiffness: float, damping: float = 0.0,
@@ -388,9 +421,10 @@ class TorsionalModel:
         """Spring k [N·m/rad] (and damper c [N·m·s/rad]) from an existing node to the frame."""
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
-        self._elements.append((name, "ground", i, -1, 1.0, 0.0,
-                               _nonneg(name, stiffness, "stiffness [N·m/rad]"),
+        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
+        self._elements.append((name, "ground", i, -1, 1.0, 0.0, k,
                                _nonneg(name, damping, "damping [N·m·s/rad]"), False))
+        self._held[i] = self._held[i] or k > 0.0
         return self
 
     def add_gear_mesh(self, driver: str, driven: str, ratio: float, efficiency: float = 1.0,
@@ -408,6 +442,7 @@ class TorsionalModel:
                               f"{driver!r} and {driven!r} contradicts the meshes already "
                               "joining them")
         self._meshes.append((name, ia, ib, float(ratio), float(efficiency), w))
+        self._kinematics(ia, ib, w, 1.0)
         return self
 
     def add_span(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
@@ -422,9 +457,10 @@ class TorsionalModel:
             raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         m = _nonneg(name, mass, "span mass [kg]")
         ia, ib = self._pair(a, b, name)
-        self._elements.append((name, "span", ia, ib, -ra, rb,
-                               _nonneg(name, stiffness, "stiffness [N/m]"),
+        k = _nonneg(name, stiffness, "stiffness [N/m]")
+        self._elements.append((name, "span", ia, ib, -ra, rb, k,
                                _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
+        self._kinematics(ia, ib, ra / rb, k)
         self._chain[ia] += 0.5 * m * ra * ra
         self._chain[ib] += 0.5 * m * rb * rb
         return self
@@ -437,10 +473,21 @@ class TorsionalModel:
         self._system = None
         return self
 
+    def _kinematics(self, a: int, b: int, w: float, stiffness: float) -> None:
+        """Strain-free relation φ_b = w·φ_a of an element (ignored at stiffness 0); one that
+        contradicts the others holds its group (no rigid-body motion)."""
+        if stiffness > 0.0 and not self._kin.relate(a, b, w):
+            self._held[a] = True
+
     def _pair(self, a: str, b: str, name: str) -> tuple[int, int]:
         if a == b:
             raise DesignError(name, f"an element must join two different nodes, got {a!r} twice")
         return self._node(a, True, name), self._node(b, True, name)
+
+    @property
+    def node_names(self) -> tuple[str, ...]:
+        """Names of the nodes, in the order they were created."""
+        return tuple(self._index)
 
     # -- results ------------------------------------------------------------------------
     def system(self) -> TorsionalSystem:
@@ -452,6 +499,11 @@ class TorsionalModel:
     def modal(self) -> TorsionalModes:
         """Undamped natural frequencies, shapes and strain-energy shares."""
         return _modal(self.system())
+
+    def frequencies_hz(self) -> FloatArray:
+        """The natural frequencies of :meth:`modal` [Hz] without the shapes (LAPACK computes
+        no eigenvectors: 2–3× faster, see benchmarks/bench_torsional.py)."""
+        return _frequencies(self.system())
 
     def referred_torque(self, torque: float, at: str, to: str, driving: bool = True) -> float:
         """Torque T_at [N·m] acting at node ``at`` referred to node ``to`` through the gear
@@ -538,7 +590,9 @@ class TorsionalModel:
             wrapped on each sprocket turn with it (docs/torsional.md)
         closed : False for an open contour (the last span is left out)
         """
-        return _build_contour(cls(), sprockets, inertias_kg_m2, pitch_radii_m,
+        from chaindrive.dynamics.torsional_build import build_contour
+
+        return build_contour(cls(), sprockets, inertias_kg_m2, pitch_radii_m,
                              span_stiffness_n_per_m, senses=senses,
                              span_damping_n_s_per_m=span_damping_n_s_per_m, trains=trains,
                              chain_mass_per_length_kg_per_m=chain_mass_per_length_kg_per_m,
@@ -547,208 +601,145 @@ class TorsionalModel:
 
 
 def _assemble(model: TorsionalModel) -> TorsionalSystem:
-    """Reduced coordinates (one per gear tree) and the element incidence matrix."""
+    """Reduced coordinates (one per gear tree), element incidence, rigid-body motions."""
     n_nodes = len(model._inertia)
     if n_nodes == 0:
         raise DesignError("nodes", "the model has no node")
-    roots = np.empty(n_nodes, dtype=np.intp)
+    gears, kin = model._gears, model._kin
+    dof_of_root: dict[int, int] = {}
+    node_dof = np.empty(n_nodes, dtype=np.intp)
     factor = np.empty(n_nodes)
+    kin_root = np.empty(n_nodes, dtype=np.intp)
+    kin_w = np.empty(n_nodes)
     for i in range(n_nodes):
-        roots[i], factor[i] = model._gears.find(i)
-    _, first, node_dof = np.unique(roots, return_index=True, return_inverse=True)
-    # number the reduced coordinates in the order their trees first appear
-    order = np.argsort(np.argsort(first))
-    node_dof = order[node_dof.ravel()].astype(np.intp)
-    n = int(first.size)
+        root, factor[i] = gears.find(i)
+        node_dof[i] = dof_of_root.setdefault(root, len(dof_of_root))
+        kin_root[i], kin_w[i] = kin.find(i)
+    n = len(dof_of_root)
     inertia = np.asarray(model._inertia) + np.asarray(model._chain)
     mass = np.bincount(node_dof, weights=inertia * factor * factor, minlength=n)
+    held = set(kin_root[np.asarray(model._held, dtype=bool)].tolist())
+    free = [r for r in dict.fromkeys(kin_root.tolist()) if r not in held]
+    rigid = np.zeros((n, len(free)))
+    for j, r in enumerate(free):  # q_k = φ_n / factor_n of any node n of coordinate k
+        nodes = kin_root == r
+        rigid[node_dof[nodes], j] = kin_w[nodes] / factor[nodes]
     el = model._elements
     ne = len(el)
+    names, kinds, a, b, ca, cb, k, c, tension = (list(col) for col in zip(*el, strict=True)) \
+        if ne else ([], [], [], [], [], [], [], [], [])
     B = np.zeros((ne, n))
-    if ne:
-        a = np.array([e[2] for e in el], dtype=np.intp)
-        b = np.array([e[3] for e in el], dtype=np.intp)
-        ca = np.array([e[4] for e in el])
-        cb = np.array([e[5] for e in el])
-        rows = np.arange(ne)
-        np.add.at(B, (rows, node_dof[a]), ca * factor[a])
-        two = b >= 0
-        np.add.at(B, (rows[two], node_dof[b[two]]), cb[two] * factor[b[two]])
-    k = np.array([e[6] for e in el], dtype=float)
-    c = np.array([e[7] for e in el], dtype=float)
-    kinds = tuple(e[1] for e in el)
+    ia, ib = np.array(a, dtype=np.intp), np.array(b, dtype=np.intp)
+    rows = np.arange(ne)
+    B[rows, node_dof[ia]] = np.array(ca) * factor[ia]
+    two = ib >= 0
+    np.add.at(B, (rows[two], node_dof[ib[two]]), np.array(cb)[two] * factor[ib[two]])
+    k_all, c_all = np.array(k, dtype=float), np.array(c, dtype=float)
     span = np.array([kd == "span" for kd in kinds], dtype=bool)
     lin = ~span
     Bl = B[lin]
     return TorsionalSystem(
         node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
         node_inertia_kg_m2=inertia, mass=mass,
-        stiffness_linear=(Bl.T * k[lin]) @ Bl, damping_linear=(Bl.T * c[lin]) @ Bl,
-        span_names=tuple(e[0] for e, s in zip(el, span, strict=True) if s),
-        span_incidence=B[span], span_stiffness_n_per_m=k[span], span_damping_n_s_per_m=c[span],
-        span_tension_only=np.array([e[8] for e in el], dtype=bool)[span],
-        element_names=tuple(e[0] for e in el), element_kinds=kinds, element_incidence=B,
-        element_stiffness=k, element_damping=c)
+        stiffness_linear=(Bl.T * k_all[lin]) @ Bl, damping_linear=(Bl.T * c_all[lin]) @ Bl,
+        span_names=tuple(x for x, sp in zip(names, span, strict=True) if sp),
+        span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
+        span_damping_n_s_per_m=c_all[span],
+        span_tension_only=np.array(tension, dtype=bool)[span],
+        element_names=tuple(names), element_kinds=tuple(kinds), element_incidence=B,
+        element_stiffness=k_all, element_damping=c_all, rigid_motions=rigid)
 
 
-def _rigid_motions(B: FloatArray, k: FloatArray, n: int) -> list[FloatArray]:
-    """Exact strain-free motions u (one per free connected group of coordinates).
+def _deflated_eigh(A: FloatArray, W: FloatArray,
+                   vectors: bool = True) -> tuple[FloatArray, FloatArray]:
+    """Eigenpairs of the symmetric A on the orthogonal complement of the orthonormal columns
+    W (exact null vectors of A): (λ, V) with V orthonormal and Wᵀ V = 0.
 
-    Each element of stiffness > 0 with incidence row (α at p, β at q) asks α u_p + β u_q = 0;
-    one entry only (a ground spring, or a shaft closing a gear loop with a ratio ≠ 1) holds
-    its group. A group is free when all its relations agree (:data:`RATIO_RTOL`).
+    One null vector: a Householder reflector H (H w = −e₁) makes H A H block-diagonal, O(n²);
+    more: a complete QR basis of the complement.
     """
-    tree = _WeightedUnion()
-    for _ in range(n):
-        tree.add()
-    held = np.zeros(n, dtype=bool)
-    for row in B[k > 0.0]:
-        scale = float(np.abs(row).max())
-        idx = np.flatnonzero(np.abs(row) > RATIO_RTOL * scale) if scale > 0.0 else []
-        if len(idx) == 1:
-            held[idx[0]] = True
-        elif len(idx) == 2:
-            p, q = int(idx[0]), int(idx[1])
-            if not tree.relate(p, q, -row[p] / row[q]):
-                held[p] = True
-    roots = np.empty(n, dtype=np.intp)
-    weight = np.empty(n)
-    for i in range(n):
-        roots[i], weight[i] = tree.find(i)
-    held_roots = set(roots[held].tolist())
-    motions = []
-    for r in dict.fromkeys(roots.tolist()):
-        if r not in held_roots:
-            u = np.where(roots == r, weight, 0.0)
-            motions.append(u)
-    return motions
+    n, r = W.shape
+    if r == 1:
+        w = W[:, 0]
+        v = w.copy()
+        v[0] += math.copysign(1.0, w[0])  # H = I − 2 v vᵀ / vᵀv maps w to ∓e₁
+        v /= np.linalg.norm(v)
+        Av = A @ v
+        HAH = A - 2.0 * np.outer(v, Av) - 2.0 * np.outer(Av, v) + 4.0 * (v @ Av) * np.outer(v, v)
+        if not vectors:
+            return np.linalg.eigvalsh(HAH[1:, 1:]), np.empty((n, 0))
+        lam, Ve = np.linalg.eigh(HAH[1:, 1:])
+        V = np.zeros((n, n - 1))
+        V[1:] = Ve
+        V -= 2.0 * np.outer(v, v @ V)
+        return lam, V
+    basis = np.linalg.qr(W, mode="complete")[0][:, r:]
+    if not vectors:
+        return np.linalg.eigvalsh(basis.T @ A @ basis), np.empty((n, 0))
+    lam, Ve = np.linalg.eigh(basis.T @ A @ basis)
+    return lam, basis @ Ve
 
 
-def _modal(system: TorsionalSystem) -> TorsionalModes:
-    """Modes of the assembled system (module docstring: condensation, rigid-body modes)."""
+def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, FloatArray, FloatArray,
+                                                      FloatArray | None, NDArray[np.bool_]]:
+    """(A = M^{-1/2} K_c M^{-1/2}, m, U, X, massed): the condensed, mass-scaled stiffness, the
+    masses and rigid-body motions of the massed coordinates, the condensation X."""
     mass = system.mass
     massed = mass > 0.0
     if not massed.any():
         raise DesignError("inertia", "every node is massless: no mode to compute")
     K = system.stiffness_matrix()
     massless = ~massed
-    X = _condensation(K, massless, system.node_names, system.node_dof) if massless.any() \
-        else None
-    Km = K[np.ix_(massed, massed)]
-    if X is not None:
-        Km = Km - K[np.ix_(massed, massless)] @ X
+    X = None
+    if massless.any():
+        X = _condensation(K, massless, system.node_names, system.node_dof)
+        K = K[np.ix_(massed, massed)] - K[np.ix_(massed, massless)] @ X
+        U = system.rigid_motions[massed]
+    else:
+        U = system.rigid_motions
     m = mass[massed]
     d = 1.0 / np.sqrt(m)
-    A = Km * d[:, None] * d[None, :]
-    motions = _rigid_motions(system.element_incidence, system.element_stiffness, system.size)
-    nm, nr = int(m.size), len(motions)
-    Q = np.empty((system.size, nm))
+    return K * d[:, None] * d[None, :], m, U, X, massed
+
+
+def _frequencies(system: TorsionalSystem) -> FloatArray:
+    """Natural frequencies only [Hz] (rigid-body zeros first), no eigenvectors."""
+    A, m, U, _, _ = _scaled_problem(system)
+    nr = int(U.shape[1])
+    f = np.zeros(m.size)
+    if nr == 0:
+        lam = np.linalg.eigvalsh(A)
+    elif nr < m.size:
+        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
+        lam = _deflated_eigh(A, U * np.sqrt(m)[:, None], vectors=False)[0]
+    else:
+        return f
+    f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
+    return f
+
+
+def _modal(system: TorsionalSystem) -> TorsionalModes:
+    """Modes of the assembled system (module docstring: condensation, rigid-body modes)."""
+    A, m, U, X, massed = _scaled_problem(system)
+    sqrt_m = np.sqrt(m)
+    d = 1.0 / sqrt_m
+    nm, nr = int(m.size), int(U.shape[1])
     if nr:
-        U = np.column_stack([u[massed] for u in motions])
-        U /= np.sqrt((m[:, None] * U * U).sum(axis=0))
-        if nr < nm:
-            basis = np.linalg.qr(U * np.sqrt(m)[:, None], mode="complete")[0][:, nr:]
-            lam, Ve = np.linalg.eigh(basis.T @ A @ basis)
-            V = basis @ Ve
-        else:
-            lam, V = np.empty(0), np.empty((nm, 0))
-        Qm = np.column_stack([U, V * d[:, None]])
+        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))  # M-orthonormal (disjoint groups)
+        lam, V = _deflated_eigh(A, U * sqrt_m[:, None]) if nr < nm else \
+            (np.empty(0), np.empty((nm, 0)))
+        Qm = np.concatenate([U, V * d[:, None]], axis=1)
     else:
         lam, V = np.linalg.eigh(A)
         Qm = V * d[:, None]
-    Q[massed] = Qm
-    if X is not None:
-        Q[massless] = -X @ Qm
+    if X is None:
+        Q = Qm
+    else:
+        Q = np.empty((system.size, nm))
+        Q[massed] = Qm
+        Q[~massed] = -X @ Qm
     f = np.zeros(nm)
     f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
     rigid = np.zeros(nm, dtype=bool)
     rigid[:nr] = True
-    strain = system.element_incidence @ Q
-    energy = system.element_stiffness[:, None] * strain * strain
-    total = energy.sum(axis=0)
-    shares = np.divide(energy, total, out=np.zeros_like(energy), where=total > 0.0)
-    shares[:, rigid] = 0.0
-    return TorsionalModes(
-        frequencies_hz=f, rigid_body=rigid, node_names=system.node_names,
-        shape_matrix=system.node_factor[:, None] * Q[system.node_dof],
-        element_names=system.element_names, element_kinds=system.element_kinds,
-        strain_energy_shares=shares)
-
-
-def _per_sprocket(field: str, values: ArrayLike | None, n: int, default: float) -> FloatArray:
-    if values is None:
-        return np.full(n, default)
-    a = np.asarray(values, dtype=float)
-    if a.shape != (n,):
-        raise DesignError(field, f"need one value per sprocket ({n}), got shape {a.shape}")
-    return a
-
-
-def _build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,
-                   pitch_radii_m: ArrayLike, span_stiffness_n_per_m: ArrayLike, *,
-                   senses: Sequence[int] | None,
-                   span_damping_n_s_per_m: ArrayLike | None,
-                   trains: Mapping[str, Sequence[TrainElement]] | None,
-                   chain_mass_per_length_kg_per_m: float,
-                   span_lengths_m: ArrayLike | None, wrap_lengths_m: ArrayLike | None,
-                   closed: bool) -> TorsionalModel:
-    """Body of :meth:`TorsionalModel.from_contour`."""
-    names = [str(s) for s in sprockets]
-    n = len(names)
-    if n < 2 or len(set(names)) != n:
-        raise DesignError("sprockets", f"need at least 2 distinct sprocket names, got {names}")
-    J = _per_sprocket("inertias_kg_m2", inertias_kg_m2, n, 0.0)
-    R = _per_sprocket("pitch_radii_m", pitch_radii_m, n, 0.0)
-    c = _per_sprocket("span_stiffness_n_per_m", span_stiffness_n_per_m, n, 0.0)
-    d = _per_sprocket("span_damping_n_s_per_m", span_damping_n_s_per_m, n, 0.0)
-    s = _per_sprocket("senses", senses, n, 1.0)
-    if not (np.all(R > 0) and np.all(np.isfinite(R))):
-        raise DesignError("pitch_radii_m", f"must all be finite and > 0, got {R.tolist()}")
-    if not np.all(np.abs(s) == 1.0):
-        raise DesignError("senses", f"must each be +1 or -1, got {s.tolist()}")
-    q = _nonneg("chain_mass_per_length_kg_per_m", chain_mass_per_length_kg_per_m, "q [kg/m]")
-    span_mass = q * _per_sprocket("span_lengths_m", span_lengths_m, n, 0.0)
-    wrap_mass = q * _per_sprocket("wrap_lengths_m", wrap_lengths_m, n, 0.0)
-    if q > 0.0 and span_lengths_m is None:
-        raise DesignError("span_lengths_m", "a chain mass per length needs the span lengths")
-    r = s * R
-    for name, j in zip(names, J.tolist(), strict=True):
-        model.add_inertia(name, j)
-    for i in range(n if closed else n - 1):
-        b = (i + 1) % n
-        model.add_span(names[i], names[b], c[i], r[i], r[b], damping=d[i], mass=span_mass[i],
-                       name=f"span:{names[i]}-{names[b]}")
-    for name, m, radius in zip(names, wrap_mass.tolist(), R.tolist(), strict=True):
-        if m > 0.0:
-            model.add_chain_wrap(name, m, radius)
-    for sprocket, train in (trains or {}).items():
-        if sprocket not in model._index:
-            raise DesignError(f"trains.{sprocket}", f"unknown sprocket; sprockets: {names}")
-        _add_train(model, sprocket, train)
-    return model
-
-
-def _add_train(model: TorsionalModel, sprocket: str, train: Sequence[TrainElement]) -> None:
-    """Adds an open train outward from ``sprocket`` (see :meth:`TorsionalModel.from_contour`)."""
-    previous = sprocket
-    for k, element in enumerate(train):
-        field = f"trains.{sprocket}[{k}]"
-        unknown = set(element) - _TRAIN_KEYS
-        if unknown or "name" not in element:
-            raise DesignError(field, f"keys must be among {sorted(_TRAIN_KEYS)} with a 'name', "
-                              f"got {sorted(element)}")
-        node = str(element["name"])
-        if ("stiffness" in element) == ("ratio" in element):
-            raise DesignError(field, "give either 'stiffness' (shaft) or 'ratio' (gear mesh)")
-        model.add_inertia(node, float(element.get("inertia", 0.0)))
-        if "stiffness" in element:
-            model.add_shaft(previous, node, float(element["stiffness"]),
-                            float(element.get("damping", 0.0)))
-        else:
-            model.add_gear_mesh(previous, node, float(element["ratio"]),
-                                float(element.get("efficiency", 1.0)),
-                                bool(element.get("same_sense", False)))
-        if "ground_stiffness" in element or "ground_damping" in element:
-            model.add_ground_spring(node, float(element.get("ground_stiffness", 0.0)),
-                                    float(element.get("ground_damping", 0.0)))
-        previous = node
+    return TorsionalModes(frequencies_hz=f, rigid_body=rigid, system=system, modal_coordinates=Q)
