@@ -151,3 +151,21 @@ def test_from_contour_validates_its_data() -> None:
     with pytest.raises(DesignError) as err:
         TorsionalModel.from_contour(["a", "b"], [1, 1, 1], [0.1, 0.1], [1e6, 1e6])
     assert err.value.field == "inertias_kg_m2"
+
+
+def test_frequencies_without_shapes_and_an_inside_sprocket() -> None:
+    # frequencies_hz() (no eigenvectors) = modal(); an idler wrapped from the inside turns the
+    # other way (sense −1): the frequencies are those of the ring model all the same
+    from chaindrive.dynamics import RingModel
+
+    J, R, c = [0.4, 0.02, 1.5, 0.3], [0.08, 0.05, 0.15, 0.1], [3e6, 2e6, 2.5e6, 4e6]
+    t = TorsionalModel.from_contour(["a", "b", "c", "d"], J, R, c, senses=[1, -1, 1, 1],
+                                    trains={"c": [{"name": "motor", "inertia": 0.5,
+                                                   "stiffness": 4e4, "damping": 1.0}]})
+    assert_allclose(t.frequencies_hz(), t.modal().frequencies_hz, rtol=1e-12)
+    modes = t.modal()
+    assert modes.rigid_body[0] and modes.shapes["b"][0] * modes.shapes["a"][0] < 0  # turns back
+    rigid = (TorsionalModel.from_contour(["a", "b", "c", "d"], J, R, c, senses=[1, -1, 1, 1])
+             .frequencies_hz())
+    ring = RingModel(np.array(J) / np.array(R) ** 2, c).modal().frequencies_hz
+    assert_allclose(rigid, ring, rtol=1e-10, atol=1e-9)

@@ -29,7 +29,7 @@ def polar(d: float) -> float:
 
 
 def test_bevan_ex9_three_rotors_on_one_shaft() -> None:
-    # T. Bevan, The Theory of Machines, 3rd ed., ch. 15, Example 9, p. 572: rotors A, B, C of
+    # [Bevan2005] T. Bevan, The Theory of Machines, 3rd ed., ch. 15, Example 9, p. 572: rotors A, B, C of
     # 2.5, 7.5, 3 ton·ft² on an 8.5 in shaft, AB 9.5 ft, BC 25 ft, C = 11.8e6 lb/in²;
     # printed 961 (one node) and 1784 (two nodes) vibrations per minute.
     k = 11.8e6 * PSI * polar(8.5 * IN)
@@ -42,7 +42,7 @@ def test_bevan_ex9_three_rotors_on_one_shaft() -> None:
 
 
 def _bevan_ex11(gear_inertia: bool) -> TorsionalModel:
-    # T. Bevan, The Theory of Machines, 3rd ed., ch. 15, Example 11, p. 587: rotor A
+    # [Bevan2005] T. Bevan, The Theory of Machines, 3rd ed., ch. 15, Example 11, p. 587: rotor A
     # (1500 lb·in²) on a 2.75 in shaft to pinion B (54 lb·in²) meshing with wheel C
     # (850 lb·in²), speed ratio 0.6; C on a 3.5 in shaft of 25.5 in to rotor D
     # (50 000 lb·in²); C = 12e6 lb/in². The book reduces the system to a 2.75 in shaft of
@@ -75,7 +75,7 @@ def test_bevan_ex11b_geared_rotors_with_gear_inertias() -> None:
 
 
 def test_sarkar_ex12_geared_motor_pump() -> None:
-    # B. K. Sarkar, Theory of Machines, Tata McGraw-Hill 2002, ch. 11, Illustration 12,
+    # [Sarkar2002] B. K. Sarkar, Theory of Machines, Tata McGraw-Hill 2002, ch. 11, Illustration 12,
     # p. 298: motor 400 kg·m² at 1500 rpm on a 45 mm × 0.18 m shaft, pump 1400 kg·m² at
     # 500 rpm on a 90 mm × 0.45 m shaft, C = 84 GPa, gear inertias neglected: printed 4.20 Hz.
     G = 84e9
@@ -87,7 +87,7 @@ def test_sarkar_ex12_geared_motor_pump() -> None:
 
 
 def test_sarkar_ex3_rotor_between_two_fixed_ends() -> None:
-    # B. K. Sarkar, Theory of Machines, ch. 11, Illustration 3, p. 291: flywheel 450 kg,
+    # [Sarkar2002] B. K. Sarkar, Theory of Machines, ch. 11, Illustration 3, p. 291: flywheel 450 kg,
     # radius of gyration 0.5 m, on a 50 mm shaft fixed at both ends, 0.9 m and 0.6 m from
     # it, C = 84 GPa: printed 5.673 Hz (the companion's π = 3.147; 5.678 Hz with π).
     G, J = 84e9, polar(0.05)
