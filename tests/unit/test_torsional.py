@@ -169,3 +169,21 @@ def test_frequencies_without_shapes_and_an_inside_sprocket() -> None:
              .frequencies_hz())
     ring = RingModel(np.array(J) / np.array(R) ** 2, c).modal().frequencies_hz
     assert_allclose(rigid, ring, rtol=1e-10, atol=1e-9)
+
+
+def test_several_rigid_groups_against_the_generalised_eigenproblem() -> None:
+    # a grounded rotor and two free pairs: two rigid-body modes (exact zeros), the elastic
+    # frequencies those of scipy.linalg.eigh(K, M), the shapes M-orthonormal
+    import scipy.linalg
+
+    t = (TorsionalModel().add_inertia("g", 2.0).add_ground_spring("g", 1e4)
+         .add_inertia("a", 1.0).add_inertia("b", 3.0).add_shaft("a", "b", 5e3)
+         .add_inertia("c", 1.5).add_inertia("d", 0.5).add_shaft("c", "d", 2e3))
+    modes, s = t.modal(), t.system()
+    assert modes.rigid_body.tolist() == [True, True, False, False, False]
+    assert (modes.frequencies_hz[:2] == 0.0).all()
+    lam = scipy.linalg.eigh(s.stiffness_matrix(), s.mass_matrix(), eigvals_only=True)
+    assert_allclose(modes.frequencies_hz[2:], np.sqrt(np.sort(lam)[2:]) / (2 * math.pi),
+                    rtol=1e-10)
+    Q = modes.modal_coordinates
+    assert_allclose(Q.T @ s.mass_matrix() @ Q, np.eye(5), atol=1e-12)
