@@ -6,6 +6,9 @@ Low-level API::
     from chaindrive.dynamics import RingModel
     model = RingModel(masses_kg=[...], stiffness_n_per_m=[...], closed=True)
     modes = model.modal()
+
+    from chaindrive.dynamics import TorsionalModel   # ring + trains (docs/torsional.md)
+    t = TorsionalModel().add_inertia("motor", 400.0).add_shaft("motor", "pinion", 1.88e5)
 """
 
 from __future__ import annotations
@@ -27,9 +30,13 @@ _WHERE: dict[str, str] = {
     "ResistanceLaw": "motors",
     "Resonance": "resonance",
     "RingModel": "ring",
+    "RotorInertiaEstimate": "motor_inertia",
     "SpanExcitation": "excitation",
     "StartupResult": "startup",
     "SteadyStateResult": "steady",
+    "TorsionalModel": "torsional",
+    "TorsionalModes": "torsional",
+    "TorsionalSystem": "torsional",
     "WorkingFrequency": "resonance",
     "afc_sweep": "afc",
     "drive_dynamics": "drive",
@@ -37,6 +44,7 @@ _WHERE: dict[str, str] = {
     "chain_error_excitation": "excitation",
     "coefficient_of_dynamics": "quality",
     "eccentricity_excitation": "excitation",
+    "estimated_rotor_inertia": "motor_inertia",
     "harmonic_response": "steady",
     "linear_transient": "linear",
     "modal_analysis": "ring",
@@ -44,6 +52,7 @@ _WHERE: dict[str, str] = {
     "parametric_resonance_frequency": "transverse",
     "parametric_zone": "transverse",
     "polygonal_excitation": "excitation",
+    "reducer_input_torque": "torsional",
     "resonance_table": "resonance",
     "ring_frequencies_batch": "ring",
     "ring_stiffness_matrix": "ring",
@@ -80,9 +89,13 @@ __all__ = [
     "ResistanceLaw",
     "Resonance",
     "RingModel",
+    "RotorInertiaEstimate",
     "SpanExcitation",
     "StartupResult",
     "SteadyStateResult",
+    "TorsionalModel",
+    "TorsionalModes",
+    "TorsionalSystem",
     "WorkingFrequency",
     "afc_sweep",
     "campbell_data",
@@ -90,6 +103,7 @@ __all__ = [
     "coefficient_of_dynamics",
     "drive_dynamics",
     "eccentricity_excitation",
+    "estimated_rotor_inertia",
     "harmonic_response",
     "linear_transient",
     "modal_analysis",
@@ -97,6 +111,7 @@ __all__ = [
     "parametric_resonance_frequency",
     "parametric_zone",
     "polygonal_excitation",
+    "reducer_input_torque",
     "resonance_table",
     "ring_frequencies_batch",
     "ring_stiffness_matrix",

@@ -35,8 +35,6 @@ __all__ = ["ModalResult", "RingModel", "modal_analysis", "ring_frequencies_batch
            "ring_stiffness_matrix"]
 
 TWO_PI = 2.0 * math.pi
-#: Relative size (to the largest eigenvalue) below which an eigenvalue is round-off.
-_ROUNDOFF = 1e-10
 _ALL = np.arange(64)
 _ALL.flags.writeable = False
 
@@ -178,7 +176,8 @@ def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
     is tridiagonal when numbered from the cut, when SciPy is loaded; measured faster than the generalised
     ``scipy.linalg.eigh``, see ``benchmarks/bench_modal.py``). Rigid-body eigenvalues
     (one per connected group of masses) are set to exactly 0 with uniform shapes over
-    their group; the remaining eigenvalues below round-off are clamped to 0.
+    their group; every other eigenvalue is a genuine mode, however small (only a negative
+    round-off value is clamped to 0).
     """
     m = np.array(masses, dtype=float)
     c = np.array(stiffness, dtype=float)
@@ -275,10 +274,10 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     shapes = V
     groups = _components(cuts, n)
     n_rigid = len(groups)
+    # exactly one rigid-body mode per group; a small elastic eigenvalue is a genuine mode
+    # (e.g. masses [1, 1e-11, 1]: 0.159 Hz), never zeroed by a relative round-off threshold
     lam[:n_rigid] = 0.0
-    tol = _ROUNDOFF * abs(float(lam[-1]))
-    if n_rigid < n and lam[n_rigid] <= tol:  # further eigenvalues at round-off level → 0
-        lam[:int(np.searchsorted(lam, tol, "right"))] = 0.0
+    np.maximum(lam, 0.0, out=lam)
     if n_rigid == 1 and isinstance(groups[0], slice):  # one connected ring: uniform shape
         shapes[:, 0] = 1.0 / math.sqrt(math.fsum(m.tolist()))
     else:
@@ -316,8 +315,8 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
     stiffness : (B, n) branch stiffnesses [N/m]; branch i joins mass i and i+1
     closed : False for open chains (the last branch of every design is ignored)
 
-    Returns (B, n) ascending frequencies [Hz]; eigenvalues below round-off are clamped to 0
-    (so rigid-body modes come out as exactly 0). Builds the stacked symmetric matrices
+    Returns (B, n) ascending frequencies [Hz]; the rigid-body modes (one per connected group
+    of masses) come out as exactly 0. Builds the stacked symmetric matrices
     M^{-1/2} K M^{-1/2} with vectorised indexing and calls :func:`numpy.linalg.eigvalsh`
     once (same eigenproblem as :func:`modal_analysis`, seed 000 eq. 2).
     """
@@ -347,8 +346,10 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
         A[:, i, j] = off
         A[:, j, i] = off
     lam = np.linalg.eigvalsh(A)
-    tol = _ROUNDOFF * np.abs(lam[:, -1:])
-    lam = np.where(np.abs(lam) <= tol, 0.0, lam)
+    # one rigid-body mode per connected group of masses (max(1, slack branches)); only
+    # those are set to 0, a small genuine eigenvalue is kept
+    n_rigid = np.maximum((c <= 0.0).sum(axis=1), 1)
+    lam[np.arange(n)[None, :] < n_rigid[:, None]] = 0.0
     return np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
 
 

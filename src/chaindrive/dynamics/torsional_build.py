@@ -1,0 +1,102 @@
+"""Plain-data builder of the torsional model of a chain contour with a train on any
+sprocket: the body of :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`
+(docs/torsional.md)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from chaindrive.dynamics.torsional import FloatArray, TrainElement, _nonneg
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.dynamics.torsional import TorsionalModel
+
+__all__ = ["build_contour"]
+
+_TRAIN_KEYS = frozenset({"name", "inertia", "stiffness", "damping", "ratio", "efficiency",
+                         "same_sense", "ground_stiffness", "ground_damping"})
+
+
+def _per_sprocket(field: str, values: ArrayLike | None, n: int, default: float) -> FloatArray:
+    if values is None:
+        return np.full(n, default)
+    a = np.asarray(values, dtype=float)
+    if a.shape != (n,):
+        raise DesignError(field, f"need one value per sprocket ({n}), got shape {a.shape}")
+    return a
+
+
+def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,
+                   pitch_radii_m: ArrayLike, span_stiffness_n_per_m: ArrayLike, *,
+                   senses: Sequence[int] | None,
+                   span_damping_n_s_per_m: ArrayLike | None,
+                   trains: Mapping[str, Sequence[TrainElement]] | None,
+                   chain_mass_per_length_kg_per_m: float,
+                   span_lengths_m: ArrayLike | None, wrap_lengths_m: ArrayLike | None,
+                   closed: bool) -> TorsionalModel:
+    """Adds a chain contour with trains to ``model``: see :meth:`TorsionalModel.from_contour`
+    (its docstring lists the parameters and their units)."""
+    names = [str(s) for s in sprockets]
+    n = len(names)
+    if n < 2 or len(set(names)) != n:
+        raise DesignError("sprockets", f"need at least 2 distinct sprocket names, got {names}")
+    J = _per_sprocket("inertias_kg_m2", inertias_kg_m2, n, 0.0)
+    R = _per_sprocket("pitch_radii_m", pitch_radii_m, n, 0.0)
+    c = _per_sprocket("span_stiffness_n_per_m", span_stiffness_n_per_m, n, 0.0)
+    d = _per_sprocket("span_damping_n_s_per_m", span_damping_n_s_per_m, n, 0.0)
+    s = _per_sprocket("senses", senses, n, 1.0)
+    if not (np.all(R > 0) and np.all(np.isfinite(R))):
+        raise DesignError("pitch_radii_m", f"must all be finite and > 0, got {R.tolist()}")
+    if not np.all(np.abs(s) == 1.0):
+        raise DesignError("senses", f"must each be +1 or -1, got {s.tolist()}")
+    q = _nonneg("chain_mass_per_length_kg_per_m", chain_mass_per_length_kg_per_m, "q [kg/m]")
+    span_mass = q * _per_sprocket("span_lengths_m", span_lengths_m, n, 0.0)
+    wrap_mass = q * _per_sprocket("wrap_lengths_m", wrap_lengths_m, n, 0.0)
+    if q > 0.0 and span_lengths_m is None:
+        raise DesignError("span_lengths_m", "a chain mass per length needs the span lengths")
+    r = s * R
+    for name, j in zip(names, J.tolist(), strict=True):
+        model.add_inertia(name, j)
+    for i in range(n if closed else n - 1):
+        b = (i + 1) % n
+        model.add_span(names[i], names[b], c[i], r[i], r[b], damping=d[i], mass=span_mass[i],
+                       name=f"span:{names[i]}-{names[b]}")
+    for name, m, radius in zip(names, wrap_mass.tolist(), R.tolist(), strict=True):
+        if m > 0.0:
+            model.add_chain_wrap(name, m, radius)
+    for sprocket, train in (trains or {}).items():
+        if sprocket not in model.node_names:
+            raise DesignError(f"trains.{sprocket}", f"unknown sprocket; sprockets: {names}")
+        _add_train(model, sprocket, train)
+    return model
+
+
+def _add_train(model: TorsionalModel, sprocket: str, train: Sequence[TrainElement]) -> None:
+    """Adds an open train outward from ``sprocket`` (see :meth:`TorsionalModel.from_contour`)."""
+    previous = sprocket
+    for k, element in enumerate(train):
+        field = f"trains.{sprocket}[{k}]"
+        unknown = set(element) - _TRAIN_KEYS
+        if unknown or "name" not in element:
+            raise DesignError(field, f"keys must be among {sorted(_TRAIN_KEYS)} with a 'name', "
+                              f"got {sorted(element)}")
+        node = str(element["name"])
+        if ("stiffness" in element) == ("ratio" in element):
+            raise DesignError(field, "give either 'stiffness' (shaft) or 'ratio' (gear mesh)")
+        model.add_inertia(node, float(element.get("inertia", 0.0)))
+        if "stiffness" in element:
+            model.add_shaft(previous, node, float(element["stiffness"]),
+                            float(element.get("damping", 0.0)))
+        else:
+            model.add_gear_mesh(previous, node, float(element["ratio"]),
+                                float(element.get("efficiency", 1.0)),
+                                bool(element.get("same_sense", False)))
+        if "ground_stiffness" in element or "ground_damping" in element:
+            model.add_ground_spring(node, float(element.get("ground_stiffness", 0.0)),
+                                    float(element.get("ground_damping", 0.0)))
+        previous = node
