@@ -58,6 +58,9 @@ class ChainSpec:
     ansi : str | None — ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``)
     material : str — chain material name (``"steel"`` for catalogue chains)
     source : str — where the row comes from
+    allowable_load : float | None — the maker's allowable working pull of the whole chain [N]
+        (polymer chains; None when the catalogue gives none)
+    max_speed : float | None — the maker's highest chain speed [m/s] (None: not given)
     """
 
     designation: str
@@ -76,6 +79,8 @@ class ChainSpec:
     ansi: str | None = None
     material: str = "steel"
     source: str = ""
+    allowable_load: float | None = None
+    max_speed: float | None = None
 
     def __post_init__(self) -> None:
         for name in ("pitch", "roller_diameter", "pin_diameter", "breaking_load",

@@ -1,0 +1,218 @@
+"""The checks a chain selection makes, one pure function each.
+
+Every function takes numbers (SI) and returns a :class:`Check`: the value, the limit it is
+held to, the verdict — ``"pass"``, ``"fail"`` or ``"cannot be verified"`` (the rule has no
+limit for this chain or operating point; a selection treats it as a failure and says so) —
+and the source of the rule as a key of ``docs/references.md``. The functions know nothing
+about catalogues or drives, so the analysis can list the same checks for the chain it
+analyses (``Analysis.checks()``) as the selection made for every candidate.
+
+Rules and their sources
+-----------------------
+* hinge pressure p = Kэ·F_t/A ≤ [p] (Russian method, GOST chains) [ChainDesignRU, Table 2A];
+* static safety s = Q/(kд·F_t + F_0 + F_v) ≥ [s]: [s] by pitch and speed for GOST chains
+  [TrinhChat2006, Table 5.10]; for rating-method (ISO/ANSI) chains the working load at most
+  1/6 of the breaking load, s ≥ 6 [DiamondChain, §working load];
+* speed limit: small-sprocket speed ≤ n1 max by pitch [TrinhChat2006, Table 5.8] (GOST), the
+  pin–bush galling limit [Shigley2015, §17-5] (ACA), the manufacturer's chain speed limit
+  (polymer chains);
+* power rating: rated power ≥ design power (ACA, European table, see
+  :mod:`chaindrive.strength.ratings`);
+* wear life ≥ the rating basis, 15 000 h to 3 % elongation [Shigley2015, Eq. 17-40];
+* teeth in mesh ≥ 3 on every sprocket, idlers included [Renold-DG, idler sprockets];
+  wrap ≥ 120° on every loaded sprocket [Mott2014, §7-5];
+* longest free span ≤ 80 pitches (centre distance a ≤ 80 t) [ChainDesignRU, §5];
+* polymer chains: chain pull ≤ the maintenance-free allowable load of the chain
+  (catalogue ``allowable_load``).
+
+References
+----------
+See ``docs/references.md`` and ``docs/selection.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Literal
+
+Status = Literal["pass", "fail", "cannot be verified"]
+Kind = Literal["max", "min"]
+PASS: Status = "pass"
+FAIL: Status = "fail"
+UNVERIFIED: Status = "cannot be verified"
+
+MPA = 1e6
+RPM = 2.0 * math.pi / 60.0
+
+#: Least teeth in mesh on any sprocket, idlers included [Renold-DG].
+MIN_TEETH_IN_MESH = 3.0
+#: Least wrap angle on a loaded sprocket [rad] (120°) [Mott2014].
+MIN_WRAP = math.radians(120.0)
+#: Least static safety factor of a chain checked by its power rating (working load ≤ 1/6 of
+#: the minimum ultimate tensile strength) [DiamondChain].
+MIN_SAFETY_RATED = 6.0
+#: Longest span between two sprockets, in pitches (a ≤ 80 t) [ChainDesignRU].
+MAX_SPAN_PITCHES = 80.0
+#: Wear-life basis of the ratings [h] [Shigley2015, §17-5].
+BASIS_LIFE_H = 15000.0
+
+
+@dataclass(frozen=True, slots=True)
+class Check:
+    """One check: ``value`` against ``limit`` (both SI), its verdict and the rule's source.
+
+    name: what is checked ("hinge pressure", "teeth in mesh" …); subject: the chain or the
+    sprocket it is about; kind: "max" (value ≤ limit) or "min" (value ≥ limit); unit and
+    scale: the display unit and the factor from SI to it (e.g. "MPa", 1e-6); status: "pass",
+    "fail" or "cannot be verified"; source: the rule's key in ``docs/references.md``;
+    note: what the verdict rests on (an estimate, a table edge …).
+    """
+
+    name: str
+    subject: str
+    value: float | None
+    limit: float | None
+    kind: Kind
+    status: Status
+    source: str
+    unit: str = ""
+    scale: float = 1.0
+    note: str = ""
+
+    @property
+    def passed(self) -> bool:
+        """True only for "pass" ("cannot be verified" is not a pass)."""
+        return self.status == PASS
+
+    @property
+    def margin_fraction(self) -> float | None:
+        """limit/value − 1 for a "max" check, value/limit − 1 for a "min" check (≥ 0 when it
+        passes); None when it cannot be verified."""
+        if self.value is None or self.limit is None:
+            return None
+        if self.kind == "max":
+            return math.inf if self.value <= 0 else self.limit / self.value - 1.0
+        return math.inf if self.limit <= 0 else self.value / self.limit - 1.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (value and limit in ``unit``; margin as a fraction)."""
+        def shown(x: float | None) -> float | None:
+            return None if x is None else x * self.scale
+
+        margin = self.margin_fraction
+        return {"check": self.name, "subject": self.subject, "value": shown(self.value),
+                "limit": shown(self.limit), "unit": self.unit, "kind": self.kind,
+                "status": self.status,
+                "margin_fraction": None if margin is None or math.isinf(margin) else margin,
+                "source": self.source, "note": self.note}
+
+
+def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
+    """"pass"/"fail" of value against limit (``kind`` "max": ≤, "min": ≥), "cannot be
+    verified" when either is missing or not finite."""
+    if value is None or limit is None or not (math.isfinite(value) and math.isfinite(limit)):
+        return UNVERIFIED
+    ok = value <= limit * (1 + 1e-12) if kind == "max" else value >= limit * (1 - 1e-12)
+    return PASS if ok else FAIL
+
+
+def _check(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
+           source: str, unit: str = "", scale: float = 1.0, note: str = "") -> Check:
+    return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
+                 unit, scale, note)
+
+
+def hinge_pressure_check(subject: str, pressure: float, allowable: float | None,
+                         source: str = "[ChainDesignRU, Table 2A]", note: str = "") -> Check:
+    """p ≤ [p]: pressure and allowable [Pa]; ``allowable`` None (outside the table) →
+    "cannot be verified"."""
+    if allowable is None:
+        note = note or "no [p] in the table for this pitch and speed"
+    return _check("hinge pressure", subject, pressure, allowable, "max", source, "MPa",
+                  1 / MPA, note)
+
+
+def static_safety_check(subject: str, safety: float, allowable: float | None,
+                        source: str, note: str = "") -> Check:
+    """s ≥ [s] (both dimensionless); ``allowable`` None → "cannot be verified"."""
+    if allowable is None:
+        note = note or "no [s] in the table for this pitch and speed"
+    return _check("static safety", subject, safety, allowable, "min", source, note=note)
+
+
+def speed_limit_check(subject: str, speed: float, max_speed: float | None, source: str,
+                      note: str = "", *, linear: bool = False) -> Check:
+    """Speed ≤ its limit: small-sprocket speed [rad/s] (shown in rpm) or, with ``linear``,
+    chain speed [m/s]; ``max_speed`` None → "cannot be verified"."""
+    if max_speed is None:
+        note = note or "no speed limit known for this pitch"
+    unit, scale = ("m/s", 1.0) if linear else ("rpm", 1 / RPM)
+    return _check("speed limit", subject, speed, max_speed, "max", source, unit, scale, note)
+
+
+def power_rating_check(subject: str, rated: float | None, design: float, source: str,
+                       note: str = "") -> Check:
+    """Rated power of the chain ≥ design power (P·K_s·n_d) [W]; ``rated`` None → "cannot be
+    verified"."""
+    if rated is None:
+        note = note or "no rating for this chain at this speed"
+    return _check("power rating", subject, rated, design, "min", source, "kW", 1e-3, note)
+
+
+def wear_life_check(subject: str, life_h: float | None, required_h: float = BASIS_LIFE_H,
+                    source: str = "[Shigley2015, Eq. 17-40]", note: str = "") -> Check:
+    """Wear life [h] to the permitted elongation ≥ the required life (default the 15 000 h
+    rating basis); ``life_h`` None → "cannot be verified"."""
+    if life_h is None:
+        note = note or "no wear-life model for this chain"
+    return _check("wear life", subject, life_h, required_h, "min", source, "h", note=note)
+
+
+def teeth_in_mesh_check(sprocket: str, teeth_in_mesh: float, role: str) -> Check:
+    """At least 3 teeth in mesh on every sprocket — driver, driven and idler alike
+    [Renold-DG]: fewer lets the chain jump or climb the teeth under load."""
+    return _check("teeth in mesh", sprocket, teeth_in_mesh, MIN_TEETH_IN_MESH, "min",
+                  "[Renold-DG, idler sprockets]", "teeth", note=role)
+
+
+def wrap_check(sprocket: str, wrap: float, role: str) -> Check:
+    """Wrap angle [rad] ≥ 120° on a loaded (driver or driven) sprocket [Mott2014]; an idler
+    carries no torque and is held to the teeth-in-mesh rule only (the result then passes
+    with no limit)."""
+    limit = MIN_WRAP if role in ("driver", "driven") else 0.0
+    note = role if limit else "idler: held to the teeth-in-mesh rule only"
+    return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, §7-5]", "deg",
+                  180.0 / math.pi, note)
+
+
+def span_length_check(subject: str, span_pitches: float,
+                      limit: float = MAX_SPAN_PITCHES) -> Check:
+    """Longest free span ≤ 80 pitches (a ≤ 80 t) [ChainDesignRU, §5]: a longer span needs
+    guides or intermediate sprockets (whip, sag)."""
+    return _check("span length", subject, span_pitches, limit, "max",
+                  "[ChainDesignRU, §5]", "pitches")
+
+
+def allowable_load_check(subject: str, tension: float, allowable: float | None,
+                         source: str, note: str = "") -> Check:
+    """Chain pull [N] ≤ the manufacturer's allowable (working) load [N]; None → "cannot be
+    verified"."""
+    if allowable is None:
+        note = note or "the catalogue gives no allowable load for this chain"
+    return _check("allowable load", subject, tension, allowable, "max", source, "kN", 1e-3,
+                  note)
+
+
+def worst(checks: list[Check] | tuple[Check, ...]) -> Check | None:
+    """The check furthest from passing: a failure with the smallest margin first, then a
+    "cannot be verified", then the passing check with the smallest margin."""
+    if not checks:
+        return None
+
+    def key(c: Check) -> tuple[int, float]:
+        m = c.margin_fraction
+        order = {FAIL: 0, UNVERIFIED: 1, PASS: 2}[c.status]
+        return order, (m if m is not None else -math.inf)
+
+    return min(checks, key=key)
