@@ -136,12 +136,12 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
 
 
 def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
-    """Say when the chain a design names fails the selection method of its family."""
-    own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation
-           and c.method == selection.method]
-    return [f"{c.designation} does not carry the load by {c.method}: {c.governing} short by "
-            f"{-c.margin:.1%} (the method selects {selection.chain.designation})"
-            for c in own if not c.feasible]
+    """Say when the chain a design names fails a check of the selection."""
+    own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation]
+    chosen = selection.chosen
+    pick = "no chain passes" if chosen is None else f"the selection picks {chosen.designation}"
+    return [f"{c.designation} fails the selection's checks ({', '.join(m.name for m in c.missed)})"
+            f"; {pick}" for c in own if not c.passed]
 
 
 def analyze(drive: Drive, *, response: bool = True) -> Analysis:

@@ -171,31 +171,37 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
 @app.command()
 def select(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
-    method: Annotated[str | None, typer.Option(help='"ISO 10823" or "Kэ" (default: by family)')]
-    = None,
+    method: Annotated[str | None, typer.Option(
+        help='"Kэ" or "rating" for every chain (default: each chain by its own method)')] = None,
     strands: Annotated[int | None, typer.Option(help="fix the number of strands")] = None,
+    top: Annotated[int, typer.Option(help="show the first N ranked candidates")] = 10,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
-    """Rank the feasible chains for a drive by both methods and say which limit governs."""
+    """Rank the family's chains by every check; the first is the one selected."""
     import chaindrive
-    from chaindrive.strength import select_chain
+    from chaindrive.strength.selection import rank_chains
 
     with user_errors():
         drive = chaindrive.load(file)
         request = drive.chain.request
-        result = select_chain(drive, method=method, strands=strands or (request and request.strands),
-                              standard=request.standard if request else None,
-                              series=request.series if request else None)
-        doc = result.to_dict()
+        result = rank_chains(drive, method=method, strands=strands or (request and request.strands),
+                             standard=request.standard if request else None,
+                             series=request.series if request else None)
+        doc = result.to_dict(top=top)
     if as_json:
         _write_json(doc)
         return
     con = _console()
-    con.print(f"selected: [bold]{doc['chain']}[/bold] by {doc['method']}")
-    con.print(_table("Candidates (ranked)", ["chain", "method", "strands", "mass kg/m", "feasible",
-                                             "margin %", "governing"],
-                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
-                       100 * c["margin"], c["governing"]] for c in doc["candidates"]]))
+    if doc["chain"] is not None:
+        con.print(f"selected: [bold]{doc['chain']}[/bold] ({doc['method']})")
+    else:
+        con.print(f"[red]{doc['shortfall']}[/red]")
+    con.print(_table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
+                     "ranked)", ["chain", "method", "strands", "mass kg/m", "passed",
+                                 "margin %", "governing"],
+                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
+                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                       c["governing"]] for c in doc["candidates"]]))
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {w}")
 

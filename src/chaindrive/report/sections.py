@@ -163,12 +163,15 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
     if sel is None:
         return None
     cands = sel["candidates"][:10]
-    return [Text(f"Selected by {sel['method']}: {sel['chain']}. The analysis uses the design chain "
+    head = (f"Selected ({sel['method']}): {sel['chain']}." if sel["chain"] is not None
+            else f"{sel['shortfall']}.")
+    return [Text(f"{head} The analysis uses the design chain "
                  f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain keeps it)."),
             Table("Candidates (best 10, ranked)", ("chain", "method", "strands", "mass, kg/m",
-                                                   "feasible", "margin, %", "governing"),
-                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
-                          100 * c["margin"], c["governing"]) for c in cands]))]
+                                                   "passed", "margin, %", "governing"),
+                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
+                          None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                          c["governing"]) for c in cands]))]
 
 
 def strength_section(inp: ReportInput) -> list[Block] | None:

@@ -1,7 +1,8 @@
 """Strength of a chain drive: loads round the contour, safety factors, wear life, selection.
 
 Entry points: :func:`strength_of` (loads + joint pressure + static safety + wear life of the
-drive's chain) and :func:`select_chain` (which catalogue chain, by ISO 10823 or the Kэ method).
+drive's chain) and :func:`select_chain` (which catalogue chain passes every check, each chain
+rated by the method that fits it: ACA, the ISO 606 B table, the Kэ method, allowable load).
 Modules: :mod:`.loads`, :mod:`.iso10823`, :mod:`.ke_method`, :mod:`.safety`, :mod:`.wear`,
 :mod:`.selection`; tables in ``strength/data`` with their sources in the file headers.
 """
