@@ -22,7 +22,8 @@ from chaindrive.model import Drive
 if TYPE_CHECKING:
     from chaindrive.dynamics.response import DynamicResponse
     from chaindrive.multicontour.drive import ContourCheck
-from chaindrive.strength import SelectionResult, StrengthResult, select_chain, strength_of
+from chaindrive.strength import SelectionResult, StrengthResult, strength_of
+from chaindrive.strength.selection import rank_chains
 
 #: Speed range of the Campbell data and of the amplitude–frequency sweep, as fractions of
 #: the nominal driver speed (issue 5: 10 %–150 %).
@@ -140,7 +141,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[str]:
     own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation]
     chosen = selection.chosen
     pick = "no chain passes" if chosen is None else f"the selection picks {chosen.designation}"
-    return [f"{c.designation} fails the selection's checks ({', '.join(m.name for m in c.missed)})"
+    return [f"{c.designation} fails checks of the selection ({', '.join(m.name for m in c.missed)})"
             f"; {pick}" for c in own if not c.passed]
 
 
@@ -168,7 +169,7 @@ def analyze(drive: Drive, *, response: bool = True) -> Analysis:
     m = drive.chain.contours
     if drive.power is not None:
         try:  # each of m contours carries its nominal share P/m
-            selection = select_chain(
+            selection = rank_chains(
                 replace(drive, power=drive.power / m),
                 standard=request.standard if request else None,
                 series=request.series if request else None,
@@ -178,7 +179,7 @@ def analyze(drive: Drive, *, response: bool = True) -> Analysis:
                 raise
             warnings.append(f"selection: {exc}")
         if request is not None and selection is not None:
-            drive = drive.with_chain(selection.chain)
+            drive = drive.with_chain(selection.chain)  # DesignError when nothing passes
         elif selection is not None:
             warnings += named_chain_warnings(drive, selection)
     geometry = contour_geometry(drive)

@@ -42,8 +42,8 @@ For two sprockets on the outside this is exactly (sin γ = (R₂ − R₁)/a)
 
 and ISO 10823:2004 §… (and every textbook: Shigley eq. 17-37, Bhandari eq. 14.7) uses its
 small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
-The number of links is L_p rounded up to an even number (odd only when allowed: it needs
-an offset link). The *take-up* moves the adjustable sprocket along its line of adjustment
+The number of links is L_p rounded up (or, when the design asks, down) to an even number
+(odd only when allowed: it needs an offset link). The *take-up* moves the adjustable sprocket along its line of adjustment
 until L_p equals the number of links exactly (scipy.optimize.brentq).
 """
 
@@ -58,6 +58,7 @@ from numpy.typing import NDArray
 
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
+from chaindrive.geometry.sag import slack_for_sag
 from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
 from chaindrive.model import Drive
 
@@ -216,8 +217,12 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
 # --- the drive -----------------------------------------------------------------------------
 
 
-def round_links(tight_pitches: float, allow_odd: bool = False) -> int:
-    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length."""
+def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = False) -> int:
+    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length, or
+    with ``down`` the largest one ≤ it (the take-up then shortens the layout)."""
+    if down:
+        links = math.floor(tight_pitches + 1e-9)
+        return links if allow_odd or links % 2 == 0 else links - 1
     links = math.ceil(tight_pitches - 1e-9)
     if links % 2 and not allow_odd:
         links += 1
@@ -278,7 +283,7 @@ def bracketed_root(f: Callable[[float], float], lo: float, hi: float, f_lo: floa
 
 def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: NDArray[np.bool_],
              teeth: NDArray[np.int_], pitch: float, index: int, direction: NDArray[np.float64],
-             links: int, name: str) -> float:
+             links: float, name: str) -> float:
     """Displacement s [m] along ``direction`` at which the tight length equals ``links``."""
 
     def excess(s: float) -> float:
@@ -303,7 +308,7 @@ def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: N
         step *= 1.5
     raise GeometryError(
         "chain.links",
-        f"{links} links cannot be fitted by moving {name} along its line of adjustment "
+        f"{links:g} links cannot be fitted by moving {name} along its line of adjustment "
         f"(the tight contour needs {f0 + links:.2f} pitches there)",
     )
 
@@ -359,14 +364,20 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
     layout, orientation = solve_layout(centres, radii, inside, teeth, p)
-    links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd)
+    links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd,
+                                             down=drive.chain.rounding == "round down")
     adjusted = drive.adjustable_index
     adjustment = 0.0
     if adjusted is not None:
         s = sps[adjusted]
         direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
                                          s.adjust_angle)
-        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links, s.name)
+        target = float(links)
+        if drive.chain.sag is not None:  # installed with sag: the slack span keeps ΔL
+            slack_span = float(layout.span_lengths[drive.driver_index])
+            target -= slack_for_sag(slack_span, drive.chain.sag) / p
+        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
+                              s.name)
         centres[adjusted] = centres[adjusted] + adjustment * direction
     elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:
         raise DesignError(
