@@ -102,6 +102,7 @@ def test_objective_values_follow_their_definitions(data) -> None:
     assert ev.objectives["mass"] == pytest.approx(s.bodies.sum() + chain_mass)
     cm = default_cost_model()
     expected = (s.bodies.sum() * cm.part_price_per_kg("steel")
+                + sum(sp.teeth for sp in drive.sprockets) * cm.per_tooth["steel"]
                 + s.geometry.chain_length * cm.chain_per_kg * spec.mass_per_length)
     assert ev.objectives["cost"] == pytest.approx(expected)
     xs = [g.x for g in s.geometry.sprockets]

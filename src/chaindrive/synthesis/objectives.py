@@ -326,7 +326,7 @@ def _cost(s: DesignState) -> float:
     from chaindrive.catalog import find_material
 
     cm, spec, m = s.cost_model, s.drive.chain.spec, s.drive.chain.contours
-    parts = sum(b * cm.part_price_per_kg(find_material(sp.material).family)
+    parts = sum(cm.sprocket_price(find_material(sp.material).family, b, sp.teeth)
                 for b, sp in zip(s.bodies, s.drive.sprockets, strict=True))
     chain = s.geometry.chain_length * cm.chain_price_per_metre(spec.designation,
                                                                spec.mass_per_length)
