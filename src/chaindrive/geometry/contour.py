@@ -43,8 +43,9 @@ For two sprockets on the outside this is exactly (sin γ = (R₂ − R₁)/a)
 and ISO 10823:2004 §… (and every textbook: Shigley eq. 17-37, Bhandari eq. 14.7) uses its
 small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
 The number of links is L_p rounded up (or, when the design asks, down) to an even number
-(odd only when allowed: it needs an offset link). The *take-up* moves the adjustable sprocket along its line of adjustment
-until L_p equals the number of links exactly (scipy.optimize.brentq).
+(odd only when allowed: it needs an offset link). The *take-up* moves the adjustable
+sprocket along its line of adjustment until L_p equals the number of links exactly (less
+the slack of a sag allowance, :mod:`chaindrive.geometry.sag`).
 """
 
 from __future__ import annotations

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import csv
 import io
+import itertools
 import math
 from dataclasses import dataclass
 from functools import cache
@@ -116,7 +117,7 @@ def table_rating(chain: ChainSpec, teeth: int, speed: float) -> tuple[float, str
     for p in points:
         if abs(p.speed_rpm - n1) <= SPEED_TOL * max(1.0, n1):
             return p.rating * tooth_correction(teeth, p.reference_teeth), p.source
-    for lo, hi in zip(points, points[1:], strict=False):
+    for lo, hi in itertools.pairwise(points):
         if lo.speed_rpm < n1 < hi.speed_rpm:
             t = math.log(n1 / lo.speed_rpm) / math.log(hi.speed_rpm / lo.speed_rpm)
             value = math.exp((1 - t) * math.log(lo.rating) + t * math.log(hi.rating))
