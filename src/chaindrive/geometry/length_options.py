@@ -41,7 +41,8 @@ class LengthOption:
     rounding: "round down" or "round up"; links; centre_distance [m] (two sprockets, else
     None); take_up [m]: how far the adjustable sprocket moved from the designed position
     (positive: out; None without an adjustable sprocket); slack_sag [m]: sag of the slack
-    span from the slack the chain keeps (0 when laid out tight); error: why this count cannot be laid out (None when it can).
+    span from the slack the chain keeps (0 when laid out tight); error: why this count
+    cannot be laid out (None when it can).
     """
 
     rounding: str
