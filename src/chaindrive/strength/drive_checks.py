@@ -7,7 +7,8 @@ the selection made for every candidate, so a chosen chain cannot fail the analys
 Which checks, by the chain's method (:func:`chaindrive.strength.ratings.method_for`):
 
 * rating methods (ACA for ISO 606 A / ANSI, the B-series table for ISO 606 B): power
-  rating ≥ P·K_s·n_d; wear life ≥ 15 000 h; small-sprocket speed ≤ the pin–bush galling
+  rating ≥ P·K_s·n_d; wear life [Shigley2015, Eq. 17-40] ≥ the required life (default the
+  rating's own basis, 15 000 h·L_p/100); small-sprocket speed ≤ the pin–bush galling
   limit [Shigley2015, §17-5]; static safety ≥ 6 [DiamondChain]. The joint pressure [p] of
   the Russian method is not applied: the rating is the wear and fatigue limit of these
   chains (it is listed by :mod:`.ke_method` for GOST chains);
@@ -44,7 +45,9 @@ class CheckSettings:
 
     service_factor K_s and design_factor n_d of the design power P·K_s·n_d (rating methods
     and the polymer allowable load); operating_factor Kэ (Kэ method); dynamic_factor kд of
-    the static safety s = Q/(kд·F_t + F_0 + F_v); required_life_h of the wear-life check;
+    the static safety s = Q/(kд·F_t + F_0 + F_v); required_life_h of the wear-life check
+    [h] (None: the life the rating promises for the chain's length, 15 000 h·L_p/100 —
+    then the check agrees with the rating check; give a service life to require more);
     method: force "Kэ" (or a rating method) instead of the chain's own (None).
     """
 
@@ -52,7 +55,7 @@ class CheckSettings:
     design_factor: float = 1.0
     operating_factor: float = 1.0
     dynamic_factor: float = 1.0
-    required_life_h: float = ck.BASIS_LIFE_H
+    required_life_h: float | None = None
     method: str | None = None
 
 
@@ -76,8 +79,13 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
                                  f"{rating.method}: {rating.note}")]
     life = (None if rating.rated_power is None else
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
-    out.append(ck.wear_life_check(name, life, s.required_life_h,
-                                  note=f"from the {rating.method} rating, {geometry.links} links"))
+    if s.required_life_h is None:  # the life the rating promises for this chain length
+        required = ck.BASIS_LIFE_H * geometry.links / 100.0
+        note = (f"{geometry.links} links: the rating basis 15 000 h × L_p/100 (set a "
+                "required life for a service-life requirement)")
+    else:
+        required, note = s.required_life_h, f"{geometry.links} links, required life"
+    out.append(ck.wear_life_check(name, life, required, note=f"{rating.method}; {note}"))
     galling = iso10823.galling_speed_limit(spec.pitch, teeth, design / loads.speed / spec.strands)
     out.append(ck.speed_limit_check(name, speed, galling, "[Shigley2015, §17-5]",
                                     "pin–bush galling limit"))
