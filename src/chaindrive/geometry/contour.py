@@ -373,12 +373,16 @@ def contour_geometry(drive: Drive) -> GeometryResult:
         s = sps[adjusted]
         direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
                                          s.adjust_angle)
-        target = float(links)
-        if drive.chain.sag is not None:  # installed with sag: the slack span keeps ΔL
-            slack_span = float(layout.span_lengths[drive.driver_index])
-            target -= slack_for_sag(slack_span, drive.chain.sag) / p
-        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
+        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links,
                               s.name)
+        if drive.chain.sag is not None:  # installed with sag: the slack span keeps ΔL
+            moved = centres.copy()
+            moved[adjusted] = centres[adjusted] + adjustment * direction
+            tight_layout, _ = solve_layout(moved, radii, inside, teeth, p)
+            slack_span = float(tight_layout.span_lengths[drive.driver_index])
+            target = links - slack_for_sag(slack_span, drive.chain.sag) / p
+            adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
+                                  s.name)
         centres[adjusted] = centres[adjusted] + adjustment * direction
     elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:
         raise DesignError(
