@@ -149,7 +149,8 @@ def analyze(drive: Drive, *, response: bool = True) -> Analysis:
     """Run the analyses of a drive in order.
 
     1. selection (when the power is given): the chain a method of its family would choose —
-       ISO 10823 for ISO 606/ANSI, the Kэ method for GOST 13568; a design that names no
+       every check of :mod:`chaindrive.strength.drive_checks`, each chain rated by the method
+       that fits it (ACA, the ISO 606 B table, Kэ, allowable load); a design that names no
        chain gets that chain, one that names its chain keeps it and the selection is shown
        beside it;
     2. contour geometry with the take-up; 3. kinematics; 4. loads and static strength;

@@ -190,7 +190,7 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
             ("allowable pressure [p]", st["allowable_pressure_mpa"], "MPa"),
             ("static safety factor s", st["safety_factor_static"], ""),
             ("allowable safety factor [s]", st["allowable_safety_factor"], ""),
-            ("rated power (ACA)", None if st["rated_power_w"] is None
+            (f"rated power ({st.get('rating_method') or 'ACA'})", None if st["rated_power_w"] is None
              else st["rated_power_w"] / 1e3, "kW"),
             ("wear life to {:.0%} elongation{}".format(
                 st["permitted_elongation"],
