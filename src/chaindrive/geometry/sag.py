@@ -2,7 +2,7 @@
 extra length makes (shallow parabola).
 
 A span of chord ℓ hanging with mid-span sag f is, for f ≪ ℓ, a parabola of arc length
-ℓ + 8f²/(3ℓ) [Irvine1981, §1.3]; so a sag f = s·ℓ takes the extra length
+ℓ + 8f²/(3ℓ) [Irvine1981, ch. 1]; so a sag f = s·ℓ takes the extra length
 ΔL = (8/3)·s²·ℓ, and an extra length ΔL makes f = √(3ℓ·ΔL/8).
 
 The installed sag is a design choice: s = 0.02 is the sag the static model of

@@ -20,8 +20,9 @@ Rules and their sources
   :mod:`chaindrive.strength.ratings`);
 * wear life ≥ the rating basis, 15 000 h to 3 % elongation [Shigley2015, Eq. 17-40];
 * teeth in mesh ≥ 3 on every sprocket, idlers included [Renold-DG, idler sprockets];
-  wrap ≥ 120° on every loaded sprocket [Mott2014, §7-5];
-* longest free span ≤ 80 pitches (centre distance a ≤ 80 t) [ChainDesignRU, §5];
+  wrap ≥ 120° on every loaded sprocket [Mott2014, ch. 7];
+* longest free span ≤ 80 pitches: the centre-distance factor kа of the Kэ method is given
+  up to a = 80 t [TrinhChat2006, Table 5.2] — longer spans are outside every rule found;
 * polymer chains: chain pull ≤ the maintenance-free allowable load of the chain
   (catalogue ``allowable_load``).
 
@@ -52,7 +53,7 @@ MIN_WRAP = math.radians(120.0)
 #: Least static safety factor of a chain checked by its power rating (working load ≤ 1/6 of
 #: the minimum ultimate tensile strength) [DiamondChain].
 MIN_SAFETY_RATED = 6.0
-#: Longest span between two sprockets, in pitches (a ≤ 80 t) [ChainDesignRU].
+#: Longest span between two sprockets, in pitches (kа given up to a = 80 t) [TrinhChat2006].
 MAX_SPAN_PITCHES = 80.0
 #: Wear-life basis of the ratings [h] [Shigley2015, §17-5].
 BASIS_LIFE_H = 15000.0
@@ -182,16 +183,16 @@ def wrap_check(sprocket: str, wrap: float, role: str) -> Check:
     with no limit)."""
     limit = MIN_WRAP if role in ("driver", "driven") else 0.0
     note = role if limit else "idler: held to the teeth-in-mesh rule only"
-    return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, §7-5]", "deg",
+    return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, ch. 7]", "deg",
                   180.0 / math.pi, note)
 
 
 def span_length_check(subject: str, span_pitches: float,
                       limit: float = MAX_SPAN_PITCHES) -> Check:
-    """Longest free span ≤ 80 pitches (a ≤ 80 t) [ChainDesignRU, §5]: a longer span needs
-    guides or intermediate sprockets (whip, sag)."""
+    """Longest free span ≤ 80 pitches [TrinhChat2006, Table 5.2] (the kа factor covers
+    a ≤ 80 t): a longer span needs guides or intermediate sprockets (whip, sag)."""
     return _check("span length", subject, span_pitches, limit, "max",
-                  "[ChainDesignRU, §5]", "pitches")
+                  "[TrinhChat2006, Table 5.2]", "pitches")
 
 
 def allowable_load_check(subject: str, tension: float, allowable: float | None,
