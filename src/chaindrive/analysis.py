@@ -227,5 +227,5 @@ def analyze(drive: Drive, *, response: bool = True) -> Analysis:
     return Analysis(drive=placed, geometry=geometry, kinematics=kinematics, selection=selection,
                     strength=strength, dynamics=dynamics, response=dynamic_response,
                     contours=contours,
-                    warnings=(*warnings, *geometry.warnings,
+                    warnings=(*geometry.warnings, *warnings,
                               *resonance_warnings(dynamics.resonances)))

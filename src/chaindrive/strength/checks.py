@@ -20,7 +20,7 @@ Rules and their sources
   :mod:`chaindrive.strength.ratings`);
 * wear life ≥ the rating basis, 15 000 h to 3 % elongation [Shigley2015, Eq. 17-40];
 * teeth in mesh ≥ 3 on every sprocket, idlers included [Renold-DG, idler sprockets];
-  wrap ≥ 120° on every loaded sprocket [Mott2014, ch. 7];
+  wrap ≥ 120° on the driver and the small loaded sprocket [Mott2014, ch. 7];
 * longest free span ≤ 80 pitches: the centre-distance factor kа of the Kэ method is given
   up to a = 80 t [TrinhChat2006, Table 5.2] — longer spans are outside every rule found;
 * polymer chains: chain pull ≤ the maintenance-free allowable load of the chain
@@ -48,7 +48,7 @@ RPM = 2.0 * math.pi / 60.0
 
 #: Least teeth in mesh on any sprocket, idlers included [Renold-DG].
 MIN_TEETH_IN_MESH = 3.0
-#: Least wrap angle on a loaded sprocket [rad] (120°) [Mott2014].
+#: Least wrap angle on the driver and the small loaded sprocket [rad] (120°) [Mott2014].
 MIN_WRAP = math.radians(120.0)
 #: Least static safety factor of a chain checked by its power rating (working load ≤ 1/6 of
 #: the minimum ultimate tensile strength) [DiamondChain].
@@ -177,12 +177,14 @@ def teeth_in_mesh_check(sprocket: str, teeth_in_mesh: float, role: str) -> Check
                   "[Renold-DG, idler sprockets]", "teeth", note=role)
 
 
-def wrap_check(sprocket: str, wrap: float, role: str) -> Check:
-    """Wrap angle [rad] ≥ 120° on a loaded (driver or driven) sprocket [Mott2014]; an idler
-    carries no torque and is held to the teeth-in-mesh rule only (the result then passes
-    with no limit)."""
-    limit = MIN_WRAP if role in ("driver", "driven") else 0.0
-    note = role if limit else "idler: held to the teeth-in-mesh rule only"
+def wrap_check(sprocket: str, wrap: float, role: str, small: bool = False) -> Check:
+    """Wrap angle [rad] ≥ 120° on the driver and on the small loaded sprocket (the one the
+    rating refers to) [Mott2014, ch. 7]; other sprockets — the driven sprockets of a
+    serpentine contour, idlers — are held to the teeth-in-mesh rule only (the result then
+    passes with no limit)."""
+    limit = MIN_WRAP if role == "driver" or small else 0.0
+    note = ("driver" if role == "driver" else "small loaded sprocket") if limit else (
+        f"{role}: held to the teeth-in-mesh rule only")
     return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, ch. 7]", "deg",
                   180.0 / math.pi, note)
 

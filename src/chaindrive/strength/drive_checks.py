@@ -16,7 +16,7 @@ Which checks, by the chain's method (:func:`chaindrive.strength.ratings.method_f
   impacts per second ≤ [i]; static safety ≥ [s] (tables by pitch and speed);
 * polymer: chain pull ≤ the allowable load; chain speed ≤ the maker's limit;
 * every chain: teeth in mesh ≥ 3 on every sprocket (idlers included), wrap ≥ 120° on the
-  loaded sprockets, longest span ≤ 80 pitches.
+  driver and the small loaded sprocket, longest span ≤ 80 pitches.
 
 A table without a value for the pitch or speed gives "cannot be verified" — a failure, said
 as such — never a silent pass.
@@ -136,9 +136,11 @@ def _polymer_checks(drive: Drive, loads: LoadsResult, s: CheckSettings) -> list[
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     """Teeth in mesh and wrap of every sprocket, and the longest span (module docstring)."""
     out: list[ck.Check] = []
+    loaded = [s for s in drive.sprockets if s.role in ("driver", "driven")]
+    small = min(loaded, key=lambda s: s.teeth).name
     for s, g in zip(drive.sprockets, geometry.sprockets, strict=True):
         out.append(ck.teeth_in_mesh_check(s.name, g.teeth_in_mesh, s.role))
-        out.append(ck.wrap_check(s.name, g.wrap_angle, s.role))
+        out.append(ck.wrap_check(s.name, g.wrap_angle, s.role, small=s.name == small))
     longest = max(geometry.spans, key=lambda sp: sp.pitches)
     out.append(ck.span_length_check(f"span {longest.start_name} → {longest.end_name}",
                                     longest.pitches))

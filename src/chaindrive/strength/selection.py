@@ -162,7 +162,7 @@ class SelectionResult:
 
 
 def _missed_text(c: ck.Check) -> str:
-    if c.status == ck.UNVERIFIED:
+    if c.status == ck.UNVERIFIED or c.value is None or c.limit is None:
         return f"{c.name} ({c.status}: {c.note})"
     value = "?" if c.value is None else f"{c.value * c.scale:.4g}"
     limit = "?" if c.limit is None else f"{c.limit * c.scale:.4g}"
@@ -170,10 +170,12 @@ def _missed_text(c: ck.Check) -> str:
     return f"{c.name} {value} {c.unit} (required {rel} {limit} {c.unit})".replace("  ", " ")
 
 
-def _closeness(c: Candidate) -> tuple[int, float]:
-    """Fewer missed checks first, then the largest (least negative) worst margin."""
+def _closeness(c: Candidate) -> tuple[bool, int, float]:
+    """A chain that can be laid out first, then fewer missed checks, then the largest
+    (least negative) worst margin."""
     worst = c.margin_fraction if c.margin_fraction is not None else -math.inf
-    return -len(c.missed), worst
+    laid_out = c.governing != "geometry"
+    return laid_out, -len(c.missed), worst
 
 
 def rank_key(c: Candidate) -> tuple[bool, float, float, int, float]:
