@@ -316,33 +316,40 @@ def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: N
 
 def _check_clearances(centres: NDArray[np.float64], tips: NDArray[np.float64], names: list[str],
                       starts: NDArray[np.float64], ends: NDArray[np.float64]) -> None:
-    """Refuse overlapping sprockets and spans that cut through a third sprocket."""
+    """Refuse overlapping sprockets and spans that cut through a third sprocket.
+
+    Vectorised over all pairs (sprocket–sprocket) and all span–sprocket pairs; the first
+    offender in the order of the former double loops is reported.
+    """
     n = len(centres)
-    for i in range(n):
-        for j in range(i + 1, n):
-            dist = float(np.hypot(*(centres[j] - centres[i])))
-            need = 0.5 * (tips[i] + tips[j])
-            if dist < need:
-                raise GeometryError(
-                    f"sprockets[{j}]",
-                    f"{names[i]} and {names[j]} overlap: centres {dist * 1e3:.1f} mm apart, "
-                    f"their tip circles need at least {need * 1e3:.1f} mm",
-                )
-    for k in range(n):
-        a, b = starts[k], ends[k]
-        ab = b - a
-        seg2 = float(ab @ ab)
-        for m in range(n):
-            if m in (k, (k + 1) % n) or seg2 == 0.0:
-                continue
-            t = float(np.clip((centres[m] - a) @ ab / seg2, 0.0, 1.0))
-            dist = float(np.hypot(*(a + t * ab - centres[m])))
-            if dist < 0.5 * tips[m] - 1e-9:
-                raise GeometryError(
-                    "sprockets",
-                    f"the span {names[k]} → {names[(k + 1) % n]} cuts through sprocket {names[m]} "
-                    f"({dist * 1e3:.1f} mm from its centre, tip radius {tips[m] * 500:.1f} mm)",
-                )
+    diff = centres[None, :, :] - centres[:, None, :]
+    dist = np.hypot(diff[..., 0], diff[..., 1])
+    need = 0.5 * (tips[:, None] + tips[None, :])
+    bad = np.triu(dist < need, k=1)
+    if bad.any():
+        i, j = (int(x) for x in np.argwhere(bad)[0])
+        raise GeometryError(
+            f"sprockets[{j}]",
+            f"{names[i]} and {names[j]} overlap: centres {dist[i, j] * 1e3:.1f} mm apart, "
+            f"their tip circles need at least {need[i, j] * 1e3:.1f} mm",
+        )
+    ab = ends - starts                                        # (n, 2) spans k
+    seg2 = np.einsum("ij,ij->i", ab, ab)                      # (n,)
+    rel = centres[None, :, :] - starts[:, None, :]            # (k, m, 2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.clip(np.einsum("kmj,kj->km", rel, ab) / seg2[:, None], 0.0, 1.0)
+    closest = starts[:, None, :] + t[..., None] * ab[:, None, :] - centres[None, :, :]
+    span_dist = np.hypot(closest[..., 0], closest[..., 1])
+    k_idx = np.arange(n)
+    own = (k_idx[None, :] == k_idx[:, None]) | (k_idx[None, :] == ((k_idx + 1) % n)[:, None])
+    cuts = (span_dist < 0.5 * tips[None, :] - 1e-9) & ~own & (seg2[:, None] != 0.0)
+    if cuts.any():
+        k, m = (int(x) for x in np.argwhere(cuts)[0])
+        raise GeometryError(
+            "sprockets",
+            f"the span {names[k]} → {names[(k + 1) % n]} cuts through sprocket {names[m]} "
+            f"({span_dist[k, m] * 1e3:.1f} mm from its centre, tip radius {tips[m] * 500:.1f} mm)",
+        )
 
 
 def contour_geometry(drive: Drive) -> GeometryResult:

@@ -34,7 +34,13 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import iso10823, ke_method, ratings
-from chaindrive.strength.loads import LoadsResult, loads_of, small_sprocket
+from chaindrive.strength.loads import (
+    centrifugal_tension,
+    chain_speed,
+    peripheral_force,
+    sag_tension,
+    small_sprocket,
+)
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.wear import wear_life_hours
 
@@ -67,7 +73,29 @@ def settings_for(drive: Drive, **overrides: float | str | None) -> CheckSettings
     return CheckSettings(**values)  # type: ignore[arg-type]
 
 
-def _rating_checks(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
+@dataclass(frozen=True, slots=True)
+class _Forces:
+    """The chain forces the checks need: speed v [m/s], F_t, F_0, F_v [N]."""
+
+    speed: float
+    peripheral_force: float
+    sag_tension: float
+    centrifugal_tension: float
+
+
+def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
+    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver — the same
+    formulas as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
+    spec, driver = drive.chain.spec, drive.driver
+    assert drive.power is not None and driver.speed is not None
+    v = chain_speed(driver.teeth, spec.pitch, driver.speed)
+    slack = next(sp for sp in geometry.spans if sp.start == drive.driver_index)
+    return _Forces(v, peripheral_force(drive.power, v),
+                   sag_tension(spec.mass_per_length, slack.length, slack.inclination),
+                   centrifugal_tension(spec.mass_per_length, v))
+
+
+def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                    s: CheckSettings) -> list[ck.Check]:
     spec = drive.chain.spec
     name = spec.designation
@@ -96,7 +124,7 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
     return out
 
 
-def _ke_checks(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
+def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                s: CheckSettings) -> list[ck.Check]:
     spec = drive.chain.spec
     name = spec.designation
@@ -121,7 +149,7 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
     return out
 
 
-def _polymer_checks(drive: Drive, loads: LoadsResult, s: CheckSettings) -> list[ck.Check]:
+def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.Check]:
     spec = drive.chain.spec
     pull = (loads.peripheral_force * s.service_factor * s.design_factor + loads.sag_tension
             + loads.centrifugal_tension)
@@ -151,7 +179,7 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
                  settings: CheckSettings | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method."""
     s = settings or settings_for(drive)
-    loads = loads_of(drive, geometry)
+    loads = _forces(drive, geometry)
     method = s.method or ratings.method_for(drive.chain.spec)
     if method == ratings.POLYMER:
         return _polymer_checks(drive, loads, s)

@@ -27,7 +27,13 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import ratings
-from chaindrive.strength.drive_checks import CheckSettings, checks_for, settings_for
+from chaindrive.strength.drive_checks import (
+    CheckSettings,
+    chain_checks,
+    checks_for,
+    geometry_checks,
+    settings_for,
+)
 from chaindrive.strength.loads import chain_speed, small_sprocket
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 
@@ -221,9 +227,12 @@ def _family(catalog: Sequence[ChainSpec], standard: str, series: str | None,
 
 
 def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
-              settings: CheckSettings) -> Candidate:
+              settings: CheckSettings,
+              layout_checks: tuple[ck.Check, ...] | None = None) -> Candidate:
     """``spec`` checked on ``drive`` laid out as ``geometry`` (a string: why it could not be
-    laid out — the candidate then fails a "geometry" check)."""
+    laid out — the candidate then fails a "geometry" check). ``layout_checks``: the
+    geometry checks of that layout when already made (they do not depend on the chain
+    beyond its pitch and roller)."""
     on = drive.with_chain(spec)
     teeth, speed = small_sprocket(on)
     rating = ratings.chain_rating(spec, teeth, speed)
@@ -234,7 +243,10 @@ def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
                         "contour solver", note=geometry)
         return Candidate(spec.designation, method, spec.pitch, spec.strands,
                          spec.mass_per_length, False, None, "geometry", (fail,), rating, lube)
-    checks = checks_for(on, geometry, settings)
+    if layout_checks is None:
+        checks = checks_for(on, geometry, settings)
+    else:
+        checks = (*chain_checks(on, geometry, settings), *layout_checks)
     worst = ck.worst(list(checks))
     return Candidate(spec.designation, method, spec.pitch, spec.strands, spec.mass_per_length,
                      all(c.passed for c in checks),
@@ -290,7 +302,10 @@ def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None
                             method=KE if forced == KE else None)
     family = _family(_catalog(catalog, extra_files), standard, series, strands)
     layouts = _layouts(drive, family)
-    found = [candidate(drive, spec, layouts[(spec.pitch, spec.roller_diameter)], settings)
+    layout_checks = {key: tuple(geometry_checks(drive, g)) for key, g in layouts.items()
+                     if not isinstance(g, str)}
+    found = [candidate(drive, spec, layouts[(spec.pitch, spec.roller_diameter)], settings,
+                       layout_checks.get((spec.pitch, spec.roller_diameter)))
              for spec in family]
     found.sort(key=rank_key)
     return SelectionResult(tuple(found), {s.designation: s for s in family})
