@@ -129,7 +129,7 @@ def _print_analysis(doc: dict[str, Any]) -> None:
                         [f"{s['from']}→{s['to']}" for s in g["spans"]])
     if doc["selection"] is not None:
         sel = doc["selection"]
-        con.print(f"selection ({sel['method']}): {sel['chain']}")
+        con.print(f"selection ({sel['method']}): {sel['chain'] or sel['shortfall']}")
     _print_dynamics(con, doc["dynamics"], doc["strength"])
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {w}")
