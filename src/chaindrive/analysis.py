@@ -11,7 +11,6 @@ same object; the optimiser asks only for the stages its objectives and constrain
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import replace
 from functools import cached_property
 from typing import Any
@@ -19,19 +18,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.checks import (
-    Check,
-    CheckLimits,
-    driver_wrap_check,
-    dynamic_safety_check,
-    hinge_pressure_check,
-    resonance_check,
-    speed_limit_check,
-    static_safety_check,
-    teeth_in_mesh_check,
-)
+from chaindrive.checks import Check, CheckLimits
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.afc import AfcResult
+from chaindrive.dynamics.checks import dynamic_safety_check, resonance_check
 from chaindrive.dynamics.damping import (
     PR_12_7_1820_1,
     HingeFrictionResult,
@@ -65,8 +55,9 @@ from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
 from chaindrive.multicontour.drive import ContourCheck, contour_check
-from chaindrive.strength import SelectionResult, StrengthResult, ke_method, select_chain, strength_of
-from chaindrive.strength.loads import small_sprocket
+from chaindrive.strength import SelectionResult, StrengthResult, strength_of
+from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.selection import rank_chains
 from chaindrive.units import RAD_S_TO_RPM
 
 __all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
@@ -93,6 +84,11 @@ class Analysis:
         The required values of the checks (defaults with their sources).
     cost_model : CostModel | None
         Prices for the cost (None: the packaged ones).
+    studies : tuple of str
+        Comparative studies to run too (:data:`STUDIES`).
+    startup : bool
+        Run the start-up (when ``[dynamics]`` asks for one); False leaves it and its check
+        k₁ out (the optimiser does, unless its problem constrains k₁).
 
     Attributes are the stages: ``selection``, ``drive`` (with the selected chain, the
     sprockets where the take-up put them), ``geometry``, ``kinematics``, ``strength``,
@@ -102,13 +98,15 @@ class Analysis:
 
     def __init__(self, design: Drive, *, response: bool = True,
                  limits: CheckLimits | None = None,
-                 cost_model: CostModel | None = None, studies: tuple[str, ...] = ()) -> None:
+                 cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
+                 startup: bool = True) -> None:
         unknown = sorted(set(studies) - set(STUDIES))
         if unknown:
             raise DesignError("studies", f"unknown {', '.join(unknown)} (known: "
                               f"{', '.join(STUDIES)})")
         self.design = design
         self.with_response = response
+        self.with_startup = startup
         self.studies = tuple(studies)
         self.limits = limits or CheckLimits()
         self._cost_model = cost_model
@@ -117,16 +115,17 @@ class Analysis:
     # ------------------------------------------------------------------ selection, geometry
     @cached_property
     def selection(self) -> SelectionResult | None:
-        """The chain a method of the family selects (None without a power)."""
+        """Every chain of the family checked on this drive and ranked by the checks
+        (:func:`chaindrive.strength.selection.rank_chains`); None without a power."""
         d = self.design
         if d.power is None:
             return None
         request = d.chain.request
         try:  # each of m contours carries its nominal share P/m
-            return select_chain(replace(d, power=d.power / d.chain.contours),
-                                standard=request.standard if request else None,
-                                series=request.series if request else None,
-                                strands=request.strands if request else None)
+            return rank_chains(replace(d, power=d.power / d.chain.contours),
+                               standard=request.standard if request else None,
+                               series=request.series if request else None,
+                               strands=request.strands if request else None)
         except DesignError as exc:
             if request is not None:
                 raise
@@ -136,7 +135,8 @@ class Analysis:
 
     @cached_property
     def _designed(self) -> Drive:
-        """The design with the selected chain when it asked for one."""
+        """The design with the selected chain when it asked for one (a DesignError naming
+        the closest chain and what it misses when no chain passes)."""
         d = self.design
         if d.chain.request is not None and self.selection is not None:
             return d.with_chain(self.selection.chain)
@@ -250,7 +250,8 @@ class Analysis:
         """The start-up from rest with the motor law of ``[dynamics]`` (None when the
         design asks for none)."""
         d, s = self._contour_drive, self.drive.dynamics
-        if not self._responds or not s.transient or d.power is None or d.driver.speed is None:
+        if (not self._responds or not s.transient or not self.with_startup or d.power is None
+                or d.driver.speed is None):
             return None
         return drive_startup(d, self.geometry, self.ring,
                              motor=motor_of(s, d.power, d.driver.speed),
@@ -309,15 +310,15 @@ class Analysis:
 
     def selection_by(self, *, method: str | None = None,
                      strands: int | None = None) -> SelectionResult:
-        """The selection with another method or number of strands than the design asks
-        (what ``chaindrive select`` offers); raises when no chain carries the load."""
+        """The ranking with another method or number of strands than the design asks (what
+        ``chaindrive select`` offers)."""
         d = self.design
         request = d.chain.request
-        return select_chain(replace(d, power=(d.power or 0.0) / d.chain.contours),
-                            method=method,
-                            strands=strands or (request.strands if request else None),
-                            standard=request.standard if request else None,
-                            series=request.series if request else None)
+        return rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
+                           method=method,
+                           strands=strands or (request.strands if request else None),
+                           standard=request.standard if request else None,
+                           series=request.series if request else None)
 
     # ------------------------------------------------------------------ metrics
     @cached_property
@@ -332,28 +333,56 @@ class Analysis:
         return np.array([w.frequency for w in self.dynamics.working])
 
     # ------------------------------------------------------------------ checks
-    def check(self, name: str) -> Check | None:
-        """The check called ``name`` (None when it does not apply to this design); see
-        :meth:`checks`."""
-        if name not in _CHECKS:
-            raise DesignError("check", f"unknown check {name!r} (known: {', '.join(_CHECKS)})")
-        return _CHECKS[name](self)
+    @cached_property
+    def _static_checks(self) -> tuple[Check, ...]:
+        """The chain and layout checks (:func:`chaindrive.strength.drive_checks.checks_for`),
+        of the most loaded contour; the layout checks alone without a power."""
+        d = self.drive
+        if d.power is None or d.driver.speed is None:
+            return tuple(geometry_checks(d, self.geometry))
+        share = self.contours.km if self.contours is not None else d.chain.contours
+        loaded = replace(d, power=d.power / share)
+        settings = settings_for(loaded)
+        if self.limits.required_life_h is not None:
+            settings = replace(settings, required_life_h=self.limits.required_life_h)
+        return checks_for(loaded, self.geometry, settings)
+
+    @cached_property
+    def _dynamic_checks(self) -> tuple[Check, ...]:
+        out: list[Check] = []
+        resonance = resonance_check(self.dynamics.resonances, self.limits.resonance_band_percent)
+        if resonance is not None:
+            out.append(resonance)
+        if self.with_response and self._responds:
+            k = self.limits.allowable_dynamic_safety
+            if self.drive.dynamics.transient and self.with_startup:
+                out.append(dynamic_safety_check("k1", None if self.startup is None
+                                                else self.startup.k1, k))
+            steady = self.steady
+            out.append(dynamic_safety_check("k2", None if steady is None else steady.k2, k))
+            out.append(dynamic_safety_check("k2min", None if steady is None else steady.k2_min,
+                                            k))
+        return tuple(out)
 
     def checks(self) -> tuple[Check, ...]:
-        """Every check that applies, in order: geometry, kinematics, strength, dynamics;
-        the response checks k₁, k₂, k₂min only with ``response=True``."""
-        names = [n for n in _CHECKS if self.with_response or n not in _RESPONSE_CHECKS]
-        return tuple(c for c in (self.check(n) for n in names) if c is not None)
+        """Every check of the design: the chain's by its method, the layout's (teeth in mesh,
+        wrap, span length), resonance, and with the response the dynamic safety factors
+        k₁, k₂, k₂min."""
+        return (*self._static_checks, *self._dynamic_checks)
+
+    def check(self, key: str) -> Check | None:
+        """The check with this :attr:`~chaindrive.checks.Check.key` (None when the design
+        has none)."""
+        return next((c for c in self.checks() if c.key == key), None)
 
     @cached_property
     def warnings(self) -> tuple[ChainDriveWarning, ...]:
         """Every warning of the analysed stages."""
-        out: list[ChainDriveWarning] = []
+        out: list[ChainDriveWarning] = list(self.geometry.warnings)
         _ = self.selection
         out += self._selection_warnings
         if self.selection is not None and self.design.chain.request is None:
             out += named_chain_warnings(self.design, self.selection)
-        out += self.geometry.warnings
         if self._static is not None:
             out += self._static.loads.warnings
             out += self._static.warnings
@@ -393,45 +422,6 @@ class Analysis:
             "checks": [c.to_dict() for c in self.checks()],
             "warnings": [w.to_dict() for w in self.warnings],
         }
-
-
-def _speed_limit(a: Analysis) -> Check | None:
-    d = a.drive
-    if d.driver.speed is None:
-        return None
-    _, speed = small_sprocket(d)
-    return speed_limit_check(speed, ke_method.max_speed(d.chain.spec.pitch), d.chain.spec.pitch)
-
-
-def _dynamic(name: str, label: str, value: Callable[[Analysis], float | None]
-             ) -> Callable[[Analysis], Check | None]:
-    def build(a: Analysis) -> Check | None:
-        if not a._responds:
-            return None
-        return dynamic_safety_check(name, label, value(a), a.limits)
-    return build
-
-
-def _k1(a: Analysis) -> float | None:
-    return None if a.startup is None else a.startup.k1
-
-
-_CHECKS: dict[str, Callable[[Analysis], Check | None]] = {
-    "driver_wrap": lambda a: driver_wrap_check(a.drive, a.geometry, a.limits),
-    "teeth_in_mesh": lambda a: teeth_in_mesh_check(a.drive, a.geometry, a.limits),
-    "speed_limit": _speed_limit,
-    "hinge_pressure": lambda a: None if a.strength is None else hinge_pressure_check(a.strength),
-    "static_safety": lambda a: (None if a.strength is None
-                                else static_safety_check(a.strength, a.limits)),
-    "resonance_margin": lambda a: resonance_check(a.dynamics.resonances, a.limits),
-    "k1": lambda a: (_dynamic("k1", "start-up safety factor k₁ = Q/F₁max", _k1)(a)
-                     if a.drive.dynamics.transient else None),
-    "k2": _dynamic("k2", "steady safety factor k₂ = Q/(F_R + F₂)",
-                   lambda a: None if a.steady is None else a.steady.k2),
-    "k2_min": _dynamic("k2_min", "safety factor at resonance k₂min = Q/(F_R + F₂max)",
-                       lambda a: None if a.steady is None else a.steady.k2_min),
-}
-_RESPONSE_CHECKS = frozenset({"k1", "k2", "k2_min"})
 
 
 def drive_summary(drive: Drive) -> dict[str, Any]:
@@ -494,14 +484,14 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
 
 
 def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[ChainDriveWarning]:
-    """Say when the chain a design names fails the selection method of its family."""
-    own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation
-           and c.method == selection.method]
+    """Say when the chain a design names fails a check of the selection."""
+    own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation]
+    chosen = selection.chosen
+    pick = "no chain passes" if chosen is None else f"the selection picks {chosen.designation}"
     return [ChainDriveWarning(
-        "selection.named-chain-short", "chain.designation",
-        f"{c.designation} does not carry the load by {c.method}: {c.governing} short by "
-        f"{-c.margin:.1%} (the method selects {selection.chain.designation})")
-        for c in own if not c.feasible]
+        "selection.named-chain-fails", "chain.designation",
+        f"{c.designation} fails checks of the selection "
+        f"({', '.join(m.name for m in c.missed)}); {pick}") for c in own if not c.passed]
 
 
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,

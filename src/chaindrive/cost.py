@@ -1,27 +1,34 @@
-"""Cost model of a drive: material and manufacturing per kg, chain per metre.
+"""Cost model of a drive: sprocket price from material, mass and machining; chain per metre.
 
-The packaged numbers (``data/cost.toml``) are **placeholders** chosen for chaindrive,
-not prices from a source: they only weigh material, manufacturing and chain against each
-other. Users set their own prices with a file of the same form
-(:func:`load_cost_model`)::
+    sprocket price = m · (material[family] + manufacturing[family]) + z · per_tooth[family]
+    chain price    = L_chain · price_per_metre (listed, else chain_per_kg · q)
+    cost           = Σ sprockets + chain (+ flywheels at the "flywheel" family)
 
-    cost = Σ_parts m_part · (material[family] + manufacturing[family]) + L_chain · price_per_metre
+The packaged numbers (``data/cost.toml``) are ESTIMATES: no distributor's price
+list could be read while they were compiled; each value's basis and date are in the file's
+``[sources]`` table and travel with the model (:attr:`CostModel.sources`), so a report says
+what rests on an estimate. Users set their own prices with a file of the same form
+(:func:`load_cost_model`); :func:`cost_breakdown` gives the parts of the cost of one drive.
 """
 
 from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from chaindrive.catalog import find_material
 from chaindrive.errors import DesignError
 from chaindrive.io.design import read_toml
+from chaindrive.model import Drive
 
-__all__ = ["CostModel", "default_cost_model", "load_cost_model"]
+__all__ = ["CostBreakdown", "CostItem", "CostModel", "cost_breakdown", "default_cost_model",
+           "load_cost_model"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -38,7 +45,9 @@ class CostModel:
     chain_per_kg: float
     chain_per_metre: dict[str, float]
     currency: str = "EUR"
-    source: str = "packaged placeholders"
+    source: str = "packaged estimates"
+    per_tooth: dict[str, float] = field(default_factory=dict)
+    sources: dict[str, str] = field(default_factory=dict)
 
     def part_price_per_kg(self, family: str) -> float:
         """Material + manufacturing price of one kg of a part of ``family`` [currency/kg]."""
@@ -46,6 +55,12 @@ class CostModel:
             return table.get(family, table.get("default", 0.0))
 
         return get(self.material_per_kg) + get(self.manufacturing_per_kg)
+
+    def sprocket_price(self, family: str, mass: float, teeth: int) -> float:
+        """Price of one sprocket [currency]: mass [kg] × (material + manufacturing per kg)
+        plus ``teeth`` × the tooth-cutting price of its family."""
+        cut = self.per_tooth.get(family, self.per_tooth.get("default", 0.0))
+        return mass * self.part_price_per_kg(family) + teeth * cut
 
     def chain_price_per_metre(self, designation: str, mass_per_length: float) -> float:
         """Price of one metre of chain [currency/m]: listed, else chain_per_kg · q."""
@@ -56,7 +71,9 @@ class CostModel:
         return {"currency": self.currency, "chain_per_kg": self.chain_per_kg,
                 "material_per_kg": dict(self.material_per_kg),
                 "manufacturing_per_kg": dict(self.manufacturing_per_kg),
-                "chain_per_metre": dict(self.chain_per_metre), "source": self.source}
+                "chain_per_metre": dict(self.chain_per_metre),
+                "per_tooth": dict(self.per_tooth), "source": self.source,
+                "sources": dict(self.sources)}
 
 
 def _prices(data: Any, path: str) -> dict[str, float]:
@@ -70,10 +87,16 @@ def _prices(data: Any, path: str) -> dict[str, float]:
     return out
 
 
+def _table(data: Any, path: str) -> dict[str, Any]:
+    if not isinstance(data, dict):
+        raise DesignError(path, f"must be a table, got {data!r}")
+    return data
+
+
 def cost_model_from_mapping(data: dict[str, Any], source: str) -> CostModel:
     """Validate the tables of a cost file (see the packaged ``cost.toml``)."""
     known = {"currency", "chain_per_kg", "material_per_kg", "manufacturing_per_kg",
-             "chain_per_metre"}
+             "chain_per_metre", "per_tooth", "sources"}
     for key in data:
         if key not in known:
             raise DesignError(f"cost.{key}", f"unknown field (known: {', '.join(sorted(known))})")
@@ -84,7 +107,10 @@ def cost_model_from_mapping(data: dict[str, Any], source: str) -> CostModel:
                      _prices(data.get("manufacturing_per_kg", {}), "cost.manufacturing_per_kg"),
                      float(per_kg), _prices(data.get("chain_per_metre", {}),
                                             "cost.chain_per_metre"),
-                     str(data.get("currency", "EUR")), source)
+                     str(data.get("currency", "EUR")), source,
+                     _prices(data.get("per_tooth", {}), "cost.per_tooth"),
+                     {str(k): str(v) for k, v in _table(data.get("sources", {}),
+                                                         "cost.sources").items()})
 
 
 def load_cost_model(path: str | Path) -> CostModel:
@@ -94,6 +120,83 @@ def load_cost_model(path: str | Path) -> CostModel:
 
 @lru_cache(maxsize=1)
 def default_cost_model() -> CostModel:
-    """The packaged placeholder prices (``chaindrive/data/cost.toml``)."""
+    """The packaged estimated prices (``chaindrive/data/cost.toml``)."""
     text = resources.files("chaindrive").joinpath("data/cost.toml").read_text("utf-8")
-    return cost_model_from_mapping(tomllib.loads(text), "packaged placeholders (cost.toml)")
+    return cost_model_from_mapping(tomllib.loads(text), "packaged estimates (cost.toml)")
+
+
+@dataclass(frozen=True, slots=True)
+class CostItem:
+    """One priced part: name, kind ("sprocket", "chain", "flywheel"), family or designation,
+    quantity (mass [kg] of a sprocket, length [m] of chain), price [currency], the basis of
+    the price (which table entries) and whether it rests on an estimate."""
+
+    name: str
+    kind: str
+    what: str
+    quantity: float
+    unit: str
+    price: float
+    basis: str
+    estimate: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {"name": self.name, "kind": self.kind, "what": self.what,
+                "quantity": self.quantity, "unit": self.unit, "price": self.price,
+                "basis": self.basis, "estimate": self.estimate}
+
+
+@dataclass(frozen=True, slots=True)
+class CostBreakdown:
+    """The cost of a drive part by part, in ``currency``; total; the model's source."""
+
+    items: tuple[CostItem, ...]
+    currency: str
+    source: str
+
+    @property
+    def total(self) -> float:
+        """Sum of the items [currency]."""
+        return sum(i.price for i in self.items)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (the report's cost table)."""
+        return {"currency": self.currency, "total": self.total, "source": self.source,
+                "items": [i.to_dict() for i in self.items]}
+
+
+def _estimated(model: CostModel, *keys: str) -> tuple[str, bool]:
+    notes = [model.sources[k] for k in keys if k in model.sources]
+    return "; ".join(notes) or model.source, any("estimate" in n.lower() for n in notes)
+
+
+def cost_breakdown(drive: Drive, chain_length: float, sprocket_masses: Sequence[float],
+                   model: CostModel | None = None,
+                   flywheel_masses: Sequence[float] | None = None) -> CostBreakdown:
+    """Cost of ``drive``: each sprocket (mass [kg] from ``sprocket_masses``, its material's
+    family, its teeth; one per contour on its shaft), the chain (``chain_length`` [m] ×
+    contours) and the flywheels (``flywheel_masses`` [kg], at the ``flywheel`` family)."""
+    cm = model or default_cost_model()
+    m = drive.chain.contours
+    items = []
+    for s, mass in zip(drive.sprockets, sprocket_masses, strict=True):
+        family = find_material(s.material).family
+        basis, est = _estimated(cm, "material_per_kg", "manufacturing_per_kg", "per_tooth")
+        items.append(CostItem(s.name, "sprocket", family, float(mass) * m, "kg",
+                              m * cm.sprocket_price(family, float(mass), s.teeth), basis, est))
+    for s, mass in zip(drive.sprockets, () if flywheel_masses is None else flywheel_masses,
+                       strict=False):
+        if mass > 0:
+            basis, est = _estimated(cm, "material_per_kg", "manufacturing_per_kg")
+            items.append(CostItem(f"{s.name} flywheel", "flywheel", "flywheel", float(mass),
+                                  "kg", float(mass) * cm.part_price_per_kg("flywheel"), basis,
+                                  est))
+    spec = drive.chain.spec
+    length = chain_length * drive.chain.contours
+    listed = spec.designation in cm.chain_per_metre
+    basis, est = _estimated(cm, "chain_per_metre" if listed else "chain_per_kg")
+    items.append(CostItem(spec.designation, "chain", spec.designation, length, "m",
+                          length * cm.chain_price_per_metre(spec.designation,
+                                                            spec.mass_per_length), basis, est))
+    return CostBreakdown(tuple(items), cm.currency, cm.source)

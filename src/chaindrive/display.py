@@ -45,13 +45,12 @@ def shown_value(value: float | None, unit: str) -> tuple[float | None, str]:
 
 
 def check_row(check: Check) -> tuple[str, float | None, str, str, str]:
-    """A check as shown: (what, value, required, result, source), the value in the unit it
-    is read in and the result ``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``."""
-    value, unit = shown_value(check.value, check.unit)
-    limit, _ = shown_value(check.limit, check.unit)
-    sym = "≥" if check.relation == ">=" else "≤"
-    unit_text = "" if unit == "-" else f" {unit}"
-    required = "—" if limit is None else f"{sym} {fmt(limit)}{unit_text}"
-    label = check.label + (f" ({check.note})" if check.note else "")
+    """A check as shown: (what, value, required, result, source), value and limit in the
+    unit the check is read in, and the result ``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``."""
+    sym = "≤" if check.kind == "max" else "≥"
+    unit = f" {check.unit}" if check.unit else ""
+    limit = check.shown(check.limit)
+    required = "—" if limit is None else f"{sym} {fmt(limit)}{unit}"
+    label = f"{check.name}: {check.subject}" + (f" ({check.note})" if check.note else "")
     result = "pass" if check.passed else "FAIL" if check.status == "fail" else "CANNOT BE VERIFIED"
-    return label, value, required, result, check.source
+    return label, check.shown(check.value), required, result, check.source

@@ -10,7 +10,6 @@ report shows.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
-from chaindrive.cost import CostModel
+from chaindrive.cost import CostBreakdown, CostModel, cost_breakdown
 from chaindrive.dynamics.stiffness import plate_thickness
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
@@ -58,14 +57,8 @@ class DesignMetrics:
         (n,) mass of the flywheels [kg] (steel discs of the pitch radius).
     contours : int
         Identical contours side by side.
-    cost : float
-        Parts + chain [currency].
-    cost_breakdown : dict
-        ``sprockets``, ``chain``, ``flywheels`` [currency].
-    currency : str
-        Currency of the cost.
-    cost_source : str
-        Where the prices come from.
+    cost_breakdown : CostBreakdown
+        The price of every part, with its basis and whether it rests on an estimate.
     volume_m3 : float
         Bounding box of the tip circles × chain width × contours [m³].
     chain_length_m : float
@@ -76,12 +69,14 @@ class DesignMetrics:
     chain_mass_kg: float
     flywheel_masses_kg: NDArray[np.float64]
     contours: int
-    cost: float
-    cost_breakdown: dict[str, float]
-    currency: str
-    cost_source: str
+    cost_breakdown: CostBreakdown
     volume_m3: float
     chain_length_m: float
+
+    @property
+    def cost(self) -> float:
+        """Sprockets, chain and flywheels [currency]."""
+        return self.cost_breakdown.total
 
     @property
     def mass_kg(self) -> float:
@@ -96,8 +91,8 @@ class DesignMetrics:
                 "chain_mass_kg": self.chain_mass_kg,
                 "flywheel_masses_kg": self.flywheel_masses_kg.tolist(),
                 "contours": self.contours, "cost": self.cost,
-                "cost_breakdown": dict(self.cost_breakdown), "currency": self.currency,
-                "cost_source": self.cost_source, "volume_m3": self.volume_m3,
+                "cost_breakdown": self.cost_breakdown.to_dict(),
+                "volume_m3": self.volume_m3,
                 "chain_length_m": self.chain_length_m}
 
 
@@ -146,13 +141,6 @@ def design_metrics(drive: Drive, geometry: GeometryResult, cost_model: CostModel
     radii = np.array([g.pitch_radius for g in geometry.sprockets])
     flywheels = 2.0 * np.array([s.flywheel for s in drive.sprockets]) / radii**2
     chain_mass = spec.mass_per_length * geometry.chain_length
-    parts = sum(b * cost_model.part_price_per_kg(find_material(s.material).family)
-                for b, s in zip(bodies, drive.sprockets, strict=True))
-    chain = geometry.chain_length * cost_model.chain_price_per_metre(spec.designation,
-                                                                     spec.mass_per_length)
-    fly = float(flywheels.sum() * cost_model.part_price_per_kg("flywheel"))
-    breakdown = {"sprockets": float(m * parts), "chain": float(m * chain), "flywheels": fly}
-    total = math.fsum(breakdown.values())
-    return DesignMetrics(bodies, float(chain_mass), flywheels, m, total, breakdown,
-                         cost_model.currency, cost_model.source,
+    cost = cost_breakdown(drive, geometry.chain_length, bodies, cost_model, flywheels)
+    return DesignMetrics(bodies, float(chain_mass), flywheels, m, cost,
                          _volume(geometry, chain_width(spec), m), float(geometry.chain_length))

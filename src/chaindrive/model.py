@@ -34,6 +34,7 @@ TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
 MIN_TEETH, MAX_TEETH = 6, 150
 MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
 MAX_CONTOURS = 8
+ROUNDINGS: tuple[str, ...] = ("round up", "round down")
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,6 +60,9 @@ class ChainSpec:
     ansi : str | None — ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``)
     material : str — chain material name (``"steel"`` for catalogue chains)
     source : str — where the row comes from
+    allowable_load : float | None — the maker's allowable working pull of the whole chain [N]
+        (polymer chains; None when the catalogue gives none)
+    max_speed : float | None — the maker's highest chain speed [m/s] (None: not given)
     """
 
     designation: str
@@ -77,6 +81,8 @@ class ChainSpec:
     ansi: str | None = None
     material: str = "steel"
     source: str = ""
+    allowable_load: float | None = None
+    max_speed: float | None = None
 
     def __post_init__(self) -> None:
         for name in ("pitch", "roller_diameter", "pin_diameter", "breaking_load",
@@ -126,7 +132,12 @@ class Chain:
     """The chain of a drive: a catalogue entry plus what the design fixes.
 
     ``links`` imposes the number of links (the take-up then finds the position that fits
-    it); ``allow_odd`` permits an odd count (which needs an offset link); ``contours``: the
+    it); otherwise ``rounding`` says how the tight length is rounded to a whole (even)
+    number of links: "round up" (the default, the chain is lengthened) or "round down"
+    (the take-up shortens the layout); ``sag``: the installed sag of the slack span as a
+    fraction of its length (None: laid out tight; see
+    :mod:`chaindrive.geometry.length_options`); ``allow_odd`` permits an odd count (which
+    needs an offset link); ``contours``: the
     number of identical chain contours side by side on sprockets keyed to common shafts
     (seed 004; 1 for an ordinary drive). ``request`` is set
     when the design named no chain: ``spec`` is then provisional and
@@ -138,8 +149,16 @@ class Chain:
     allow_odd: bool = False
     request: ChainRequest | None = None
     contours: int = 1
+    rounding: str = "round up"
+    sag: float | None = None
 
     def __post_init__(self) -> None:
+        if self.rounding not in ROUNDINGS:
+            raise DesignError("chain.links", f"must be a whole number or one of "
+                              f"{', '.join(repr(r) for r in ROUNDINGS)}, got {self.rounding!r}")
+        if self.sag is not None and not 0.0 < self.sag <= 0.1:
+            raise DesignError("chain.sag", f"must be a fraction of the slack span in (0, 0.1], "
+                              f"got {self.sag!r}")
         if (not isinstance(self.contours, int) or isinstance(self.contours, bool)
                 or not 1 <= self.contours <= MAX_CONTOURS):
             raise DesignError("chain.contours", f"must be a whole number from 1 to {MAX_CONTOURS}, "

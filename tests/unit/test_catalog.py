@@ -57,10 +57,16 @@ def test_packaged_catalogue_has_both_standards_and_all_strand_counts():
     specs = chains()
     iso = [s for s in specs if s.standard == "ISO 606"]
     gost = [s for s in specs if s.standard == "GOST 13568"]
+    heavy = [s for s in specs if s.standard == "ANSI"]
+    polymer = [s for s in specs if s.standard == "polymer"]
     assert {s.series for s in iso} == {"A", "B"}
-    assert {s.strands for s in iso} == {1, 2, 3}
+    assert {s.strands for s in iso} == {1, 2, 3, 4}
     assert {s.strands for s in gost} == {1, 2, 3, 4}
-    assert len(iso) + len(gost) == len(specs)
+    assert {s.series for s in heavy} == {"H"} and {s.strands for s in heavy} == {1, 2, 3, 4}
+    assert {s.material for s in polymer} == {"POM", "PA66"}
+    assert all(s.allowable_load is not None and s.allowable_load < s.breaking_load
+               for s in polymer)
+    assert len(iso) + len(gost) + len(heavy) + len(polymer) == len(specs)
 
 
 @pytest.mark.parametrize("spec", chains(), ids=lambda s: s.designation)
@@ -94,10 +100,11 @@ def test_ansi_number_matches_pitch_and_strands():
     assert {s.ansi for s in with_ansi} >= {"40", "50", "60", "80", "80-2", "100", "120", "160"}
     for spec in with_ansi:
         number, _, rows = spec.ansi.partition("-")
-        # ANSI/ASME B29.1: all digits but the last = pitch in eighths of an inch
-        assert_allclose(spec.pitch, int(number[:-1]) * INCH / 8, rtol=1e-9)
+        # ANSI/ASME B29.1: all digits but the last = pitch in eighths of an inch; a
+        # trailing H marks the heavy series
+        assert_allclose(spec.pitch, int(number.rstrip("H")[:-1]) * INCH / 8, rtol=1e-9)
         assert spec.strands == int(rows or 1)
-        assert spec.series == "A"
+        assert spec.series == ("H" if number.endswith("H") else "A")
 
 
 def test_gost_designation_gives_pitch_and_breaking_load():
@@ -174,7 +181,7 @@ def test_every_name_resolves_to_its_own_entry():
 
 @pytest.mark.parametrize(("text", "suggestion"), [
     ("ПР-25,4-61", "GOST 13568 ПР-25,4-60"),
-    ("ANSI 80-5", "ANSI 80-3"),
+    ("ANSI 80-5", "ANSI 80-4"),
     ("ISO 606 16X-1", None),
 ])
 def test_misspelt_designation_suggests_the_nearest(text: str, suggestion: str | None):
@@ -199,9 +206,10 @@ def test_nonsense_designation_gives_a_hint_instead():
 
 def test_chains_by_pitch_and_standard():
     at_25 = chains_by_pitch(0.0254)
-    assert {s.standard for s in at_25} == {"ISO 606", "GOST 13568"}
+    assert {s.standard for s in at_25} == {"ISO 606", "GOST 13568", "ANSI"}
     assert all(abs(s.pitch - 0.0254) < 1e-9 for s in at_25)
-    assert [s.ansi for s in chains_by_pitch(0.0254, "ANSI")] == ["80", "80-2", "80-3"]
+    assert [s.ansi for s in chains_by_pitch(0.0254, "ANSI")] == [
+        "80H", "80H-2", "80H-3", "80H-4", "80", "80-2", "80-3", "80-4"]
     assert {s.strands for s in chains_by_pitch(0.0254, "gost")} == {1, 2, 3, 4}
     assert chains_by_pitch(0.0255) == ()
     with pytest.raises(CatalogError, match="did you mean 'ISO 606'"):

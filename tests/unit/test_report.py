@@ -104,8 +104,8 @@ def test_dynamic_safety_factor_below_allowable_fails_red(seed_analysis) -> None:
     strict = chaindrive.analyze(drive, limits=CheckLimits(allowable_dynamic_safety=1e6))
     html = render_html(build_report(strict, dpi=30))
     top = html[:html.index('<section id="inputs">')]
-    assert "FAIL: start-up safety factor k₁" in top
-    assert "FAIL: steady safety factor k₂" in top
+    assert "FAIL: k1: start-up" in top
+    assert "FAIL: k2: steady motion" in top
     # and the row of k1 in the section's own table is red
     section = html[html.index('<section id="response">'):]
     assert re.search(r"<tr class=fail><td>start-up k1 = Q/F1max</td>", section)

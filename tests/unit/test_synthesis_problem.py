@@ -86,13 +86,16 @@ def test_registry_has_the_objectives_and_the_constraints_are_analysis_checks(dat
     assert {"cost", "mass", "volume", "chain_length", "coefficient_of_dynamics",
             "resonance_margin", "normalised_amplitude", "detuning"} <= set(OBJECTIVES)
     p = problem_from_mapping(data)
-    names = constraint_names(p.constraints)
-    assert {"static_safety", "driver_wrap", "teeth_in_mesh", "speed_limit", "k2",
-            "k2_min"} <= set(names)
-    checks = {c.name for c in Analysis(p.base).checks()}
-    assert set(names) <= checks  # every constraint is a check of the analysis
+    analysis = Analysis(p.base, startup=False)
+    names = constraint_names(analysis, p.constraints)
+    assert {"static_safety", "speed_limit", "power_rating", "resonance_margin", "k2",
+            "k2min"} <= set(names)
+    assert {f"teeth_in_mesh[{s.name}]" for s in p.base.sprockets} <= set(names)
+    # every constraint but the designer's wishes is a check of the analysis
+    assert set(names) == {c.key for c in Analysis(p.base).checks()} - {"k1"}
     ev = evaluate_drive(p.base, p.objectives, p.constraints)
-    assert set(ev.constraints) == {"buildable", "chain_speed", "ratio"} - {"ratio"} | set(names)
+    wishes = {"buildable", "chain_speed", "min_driver_wrap", "min_teeth_in_mesh"}
+    assert set(ev.constraints) == wishes | set(names)
 
 
 def test_objective_values_follow_their_definitions(data) -> None:
@@ -106,6 +109,7 @@ def test_objective_values_follow_their_definitions(data) -> None:
     assert ev.objectives["mass"] == pytest.approx(bodies.sum() + chain_mass)
     cm = default_cost_model()
     expected = (bodies.sum() * cm.part_price_per_kg("steel")
+                + sum(sp.teeth for sp in drive.sprockets) * cm.per_tooth["steel"]
                 + s.geometry.chain_length * cm.chain_per_kg * spec.mass_per_length)
     assert ev.objectives["cost"] == pytest.approx(expected)
     xs = [g.x for g in s.geometry.sprockets]

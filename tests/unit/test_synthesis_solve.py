@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import pytest
 
+import chaindrive
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import drive_from_mapping
 from chaindrive.synthesis.evaluation import evaluate_drive
 from chaindrive.synthesis.problem import load_problem
-from chaindrive.synthesis.solve import dominates, pareto_indices, solve
+from chaindrive.synthesis.solve import pareto_indices, solve
 from tests.conftest import EXAMPLES
 
 pytest.importorskip("pymoo")
@@ -28,22 +29,24 @@ def result(problem):
     return solve(problem, population=16, generations=10, seed=3)
 
 
-def test_start_design_is_feasible_and_first(problem, result) -> None:
+def test_start_is_the_design_of_the_file_as_analyze_judges_it(problem, result) -> None:
     assert problem.solver.method == "optuna"  # the example uses the default
-    assert result.start.feasible, result.start.constraints
+    # the example's start lies 5 % from the parametric resonance of a span: analyze fails it,
+    # and so does the optimiser (one pipeline); every other check passes
+    failed = {c.key for c in chaindrive.analyze(problem.base).checks() if not c.passed}
+    assert failed == {"resonance_margin"}
+    assert not result.start.feasible
+    assert {k for k, v in result.start.constraints.items() if v > 0} == failed
     assert result.evaluations == 16 * 10  # the start, as the file gives it, is evaluated apart
 
 
-def test_pareto_designs_dominate_the_start_in_two_objectives(problem, result) -> None:
+def test_pareto_designs_are_feasible_and_better_in_two_objectives(problem, result) -> None:
     start = result.start.minimised(problem.objectives)
-    winners = []
+    assert result.pareto
     for p in result.pareto:
         assert p.constraints_ok and all(v <= 0 for v in p.constraints.values())
         mine = [p.objectives[n] for n in problem.objectives]  # all four are minimised
-        better = sum(a < b for a, b in zip(mine, start, strict=True))
-        if dominates(mine, start) and better >= 2:
-            winners.append(p)
-    assert winners, [p.objectives for p in result.pareto]
+        assert sum(a < b for a, b in zip(mine, start, strict=True)) >= 2, (mine, start)
 
 
 def test_pareto_designs_re_analyse_from_their_mapping(problem, result) -> None:

@@ -458,8 +458,10 @@ def _tab_strength(screen: Screen) -> None:
     sel = doc.get("selection")
     if sel is not None:
         st.write(f"Selection by **{sel['method']}**: {sel['chain']}")
-        st.dataframe([{k: c.get(k) for k in ("chain", "method", "strands", "mass_kg_m",
-                                               "feasible", "margin", "governing")}
+        st.dataframe([{**{k: c.get(k) for k in ("chain", "method", "strands", "mass_kg_m",
+                                                 "passed", "governing")},
+                       "margin %": None if c.get("margin_fraction") is None
+                       else 100 * c["margin_fraction"]}
                       for c in sel.get("candidates", [])[:12]], hide_index=True,
                      width="stretch")
     st_doc = doc.get("strength")

@@ -59,7 +59,8 @@ __all__ = [
     "strand_factor",
 ]
 
-PACKAGED_CHAIN_FILES: tuple[str, ...] = ("chains_iso606.csv", "chains_gost13568.csv")
+PACKAGED_CHAIN_FILES: tuple[str, ...] = ("chains_iso606.csv", "chains_ansi_b29.csv",
+                                         "chains_gost13568.csv", "chains_polymer.csv")
 PACKAGED_MATERIAL_FILES: tuple[str, ...] = ("materials.csv",)
 
 #: Row factor m_r of multi-row chains (effective bearing area / single-row area), 1–4 rows.
@@ -170,6 +171,8 @@ _CHAIN_NUMBERS: dict[str, tuple[str, float, str]] = {
     "breaking_load_kN": ("breaking_load", 1e3, "pos"),
     "mass_kg_m": ("mass_per_length", 1.0, "pos"),
     "bearing_area_mm2": ("bearing_area", 1e-6, "opt"),
+    "allowable_load_kN": ("allowable_load", 1e3, "opt"),
+    "max_speed_m_s": ("max_speed", 1.0, "opt"),
 }
 _CHAIN_TEXT = ("designation", "standard", "series", "strands", "ansi", "aliases", "material",
                "source")
@@ -191,6 +194,7 @@ _CHAIN_TOML: dict[str, tuple[str, str]] = {
     "plate_depth": ("length", "pos"), "transverse_pitch": ("length", "nonneg"),
     "breaking_load": ("force", "pos"), "mass_per_length": ("linear_density", "pos"),
     "bearing_area": ("area", "opt"),
+    "allowable_load": ("force", "opt"), "max_speed": ("velocity", "opt"),
 }
 _MATERIAL_TOML: dict[str, tuple[str, str]] = {
     "density": ("density", "pos"), "youngs_modulus": ("pressure", "pos"),

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
-from chaindrive.display import RAD_S_TO_RPM, fmt, shown_value
+from chaindrive.display import RAD_S_TO_RPM, fmt
 from chaindrive.errors import ChainDriveError, DesignError
 
 if TYPE_CHECKING:
@@ -32,6 +32,7 @@ app = typer.Typer(
 )
 EXIT_USER_ERROR = 2
 TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
+                          "subject",
                           "required", "result", "unit",
                           "direction", "side", "source", "allowed", "description"})
 
@@ -135,7 +136,7 @@ def _print_analysis(doc: dict[str, Any]) -> None:
                         [f"{s['from']}→{s['to']}" for s in g["spans"]])
     if doc["selection"] is not None:
         sel = doc["selection"]
-        con.print(f"selection ({sel['method']}): {sel['chain']}")
+        con.print(f"selection ({sel['method']}): {sel['chain'] or sel['shortfall']}")
     _print_dynamics(con, doc["dynamics"], doc["strength"])
     _print_checks(con, doc["checks"])
     for w in doc["warnings"]:
@@ -151,12 +152,12 @@ def _print_checks(con: Console, checks: list[dict[str, Any]]) -> None:
         con.print(f"[bold green]all {len(checks)} checks pass[/bold green]")
     rows = []
     for c in sorted(checks, key=lambda c: c["status"] == "pass"):
-        value, unit = shown_value(c["value"], c["unit"])
-        limit, _ = shown_value(c["limit"], c["unit"])
-        sym = "≥" if c["relation"] == ">=" else "≤"
-        rows.append([c["label"], value, "—" if limit is None else f"{sym} {fmt(limit)}",
-                     "" if unit == "-" else unit, c["status"], c["source"]])
-    con.print(_table("Checks", ["check", "value", "required", "unit", "result", "source"], rows))
+        sym = "≤" if c["kind"] == "max" else "≥"
+        rows.append([c["check"], c["subject"], c["value"],
+                     "—" if c["limit"] is None else f"{sym} {fmt(c['limit'])}", c["unit"],
+                     c["status"], c["source"]])
+    con.print(_table("Checks", ["check", "subject", "value", "required", "unit", "result",
+                                "source"], rows))
 
 
 def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
@@ -195,26 +196,32 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
 @app.command()
 def select(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
-    method: Annotated[str | None, typer.Option(help='"ISO 10823" or "Kэ" (default: by family)')]
-    = None,
+    method: Annotated[str | None, typer.Option(
+        help='"Kэ" or "rating" for every chain (default: each chain by its own method)')] = None,
     strands: Annotated[int | None, typer.Option(help="fix the number of strands")] = None,
+    top: Annotated[int, typer.Option(help="show the first N ranked candidates")] = 10,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
-    """Rank the feasible chains for a drive by both methods and say which limit governs."""
+    """Rank the family's chains by every check; the first is the one selected."""
     import chaindrive
 
     with user_errors():
         analysis = chaindrive.analyze(chaindrive.load(file), lazy=True)
-        doc = analysis.selection_by(method=method, strands=strands).to_dict()
+        doc = analysis.selection_by(method=method, strands=strands).to_dict(top=top)
     if as_json:
         _write_json(doc)
         return
     con = _console()
-    con.print(f"selected: [bold]{doc['chain']}[/bold] by {doc['method']}")
-    con.print(_table("Candidates (ranked)", ["chain", "method", "strands", "mass kg/m", "feasible",
-                                             "margin %", "governing"],
-                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
-                       100 * c["margin"], c["governing"]] for c in doc["candidates"]]))
+    if doc["chain"] is not None:
+        con.print(f"selected: [bold]{escape(doc['chain'])}[/bold] ({doc['method']})")
+    else:
+        con.print(f"[red]{escape(doc['shortfall'])}[/red]")
+    con.print(_table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
+                     "ranked)", ["chain", "method", "strands", "mass kg/m", "passed",
+                                 "margin %", "governing"],
+                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
+                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                       c["governing"]] for c in doc["candidates"]]))
 
 
 @app.command()

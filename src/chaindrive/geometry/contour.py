@@ -42,9 +42,10 @@ For two sprockets on the outside this is exactly (sin γ = (R₂ − R₁)/a)
 
 and ISO 10823:2004 §… (and every textbook: Shigley eq. 17-37, Bhandari eq. 14.7) uses its
 small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
-The number of links is L_p rounded up to an even number (odd only when allowed: it needs
-an offset link). The *take-up* moves the adjustable sprocket along its line of adjustment
-until L_p equals the number of links exactly (scipy.optimize.brentq).
+The number of links is L_p rounded up (or, when the design asks, down) to an even number
+(odd only when allowed: it needs an offset link). The *take-up* moves the adjustable
+sprocket along its line of adjustment until L_p equals the number of links exactly (less
+the slack of a sag allowance, :mod:`chaindrive.geometry.sag`).
 """
 
 from __future__ import annotations
@@ -58,6 +59,7 @@ from numpy.typing import NDArray
 
 from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
+from chaindrive.geometry.sag import slack_for_sag
 from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
 from chaindrive.model import Drive
 
@@ -216,8 +218,12 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
 # --- the drive -----------------------------------------------------------------------------
 
 
-def round_links(tight_pitches: float, allow_odd: bool = False) -> int:
-    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length."""
+def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = False) -> int:
+    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length, or
+    with ``down`` the largest one ≤ it (the take-up then shortens the layout)."""
+    if down:
+        links = math.floor(tight_pitches + 1e-9)
+        return links if allow_odd or links % 2 == 0 else links - 1
     links = math.ceil(tight_pitches - 1e-9)
     if links % 2 and not allow_odd:
         links += 1
@@ -278,7 +284,7 @@ def bracketed_root(f: Callable[[float], float], lo: float, hi: float, f_lo: floa
 
 def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: NDArray[np.bool_],
              teeth: NDArray[np.int_], pitch: float, index: int, direction: NDArray[np.float64],
-             links: int, name: str) -> float:
+             links: float, name: str) -> float:
     """Displacement s [m] along ``direction`` at which the tight length equals ``links``."""
 
     def excess(s: float) -> float:
@@ -303,40 +309,47 @@ def _take_up(centres: NDArray[np.float64], radii: NDArray[np.float64], inside: N
         step *= 1.5
     raise GeometryError(
         "chain.links",
-        f"{links} links cannot be fitted by moving {name} along its line of adjustment "
+        f"{links:g} links cannot be fitted by moving {name} along its line of adjustment "
         f"(the tight contour needs {f0 + links:.2f} pitches there)",
     )
 
 
 def _check_clearances(centres: NDArray[np.float64], tips: NDArray[np.float64], names: list[str],
                       starts: NDArray[np.float64], ends: NDArray[np.float64]) -> None:
-    """Refuse overlapping sprockets and spans that cut through a third sprocket."""
+    """Refuse overlapping sprockets and spans that cut through a third sprocket.
+
+    Vectorised over all pairs (sprocket–sprocket) and all span–sprocket pairs; the first
+    offender in the order of the former double loops is reported.
+    """
     n = len(centres)
-    for i in range(n):
-        for j in range(i + 1, n):
-            dist = float(np.hypot(*(centres[j] - centres[i])))
-            need = 0.5 * (tips[i] + tips[j])
-            if dist < need:
-                raise GeometryError(
-                    f"sprockets[{j}]",
-                    f"{names[i]} and {names[j]} overlap: centres {dist * 1e3:.1f} mm apart, "
-                    f"their tip circles need at least {need * 1e3:.1f} mm",
-                )
-    for k in range(n):
-        a, b = starts[k], ends[k]
-        ab = b - a
-        seg2 = float(ab @ ab)
-        for m in range(n):
-            if m in (k, (k + 1) % n) or seg2 == 0.0:
-                continue
-            t = float(np.clip((centres[m] - a) @ ab / seg2, 0.0, 1.0))
-            dist = float(np.hypot(*(a + t * ab - centres[m])))
-            if dist < 0.5 * tips[m] - 1e-9:
-                raise GeometryError(
-                    "sprockets",
-                    f"the span {names[k]} → {names[(k + 1) % n]} cuts through sprocket {names[m]} "
-                    f"({dist * 1e3:.1f} mm from its centre, tip radius {tips[m] * 500:.1f} mm)",
-                )
+    diff = centres[None, :, :] - centres[:, None, :]
+    dist = np.hypot(diff[..., 0], diff[..., 1])
+    need = 0.5 * (tips[:, None] + tips[None, :])
+    bad = np.triu(dist < need, k=1)
+    if bad.any():
+        i, j = (int(x) for x in np.argwhere(bad)[0])
+        raise GeometryError(
+            f"sprockets[{j}]",
+            f"{names[i]} and {names[j]} overlap: centres {dist[i, j] * 1e3:.1f} mm apart, "
+            f"their tip circles need at least {need[i, j] * 1e3:.1f} mm",
+        )
+    ab = ends - starts                                        # (n, 2) spans k
+    seg2 = np.einsum("ij,ij->i", ab, ab)                      # (n,)
+    rel = centres[None, :, :] - starts[:, None, :]            # (k, m, 2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.clip(np.einsum("kmj,kj->km", rel, ab) / seg2[:, None], 0.0, 1.0)
+    closest = starts[:, None, :] + t[..., None] * ab[:, None, :] - centres[None, :, :]
+    span_dist = np.hypot(closest[..., 0], closest[..., 1])
+    k_idx = np.arange(n)
+    own = (k_idx[None, :] == k_idx[:, None]) | (k_idx[None, :] == ((k_idx + 1) % n)[:, None])
+    cuts = (span_dist < 0.5 * tips[None, :] - 1e-9) & ~own & (seg2[:, None] != 0.0)
+    if cuts.any():
+        k, m = (int(x) for x in np.argwhere(cuts)[0])
+        raise GeometryError(
+            "sprockets",
+            f"the span {names[k]} → {names[(k + 1) % n]} cuts through sprocket {names[m]} "
+            f"({span_dist[k, m] * 1e3:.1f} mm from its centre, tip radius {tips[m] * 500:.1f} mm)",
+        )
 
 
 def contour_geometry(drive: Drive) -> GeometryResult:
@@ -359,14 +372,24 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
     layout, orientation = solve_layout(centres, radii, inside, teeth, p)
-    links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd)
+    links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd,
+                                             down=drive.chain.rounding == "round down")
     adjusted = drive.adjustable_index
     adjustment = 0.0
     if adjusted is not None:
         s = sps[adjusted]
         direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
                                          s.adjust_angle)
-        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links, s.name)
+        adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links,
+                              s.name)
+        if drive.chain.sag is not None:  # installed with sag: the slack span keeps ΔL
+            moved = centres.copy()
+            moved[adjusted] = centres[adjusted] + adjustment * direction
+            tight_layout, _ = solve_layout(moved, radii, inside, teeth, p)
+            slack_span = float(tight_layout.span_lengths[drive.driver_index])
+            target = links - slack_for_sag(slack_span, drive.chain.sag) / p
+            adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
+                                  s.name)
         centres[adjusted] = centres[adjusted] + adjustment * direction
     elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:
         raise DesignError(

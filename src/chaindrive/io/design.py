@@ -28,6 +28,7 @@ from chaindrive.model import (
     MOTORS,
     RESISTANCES,
     ROLES,
+    ROUNDINGS,
     SIDES,
     TOOTH_FORMS,
     Chain,
@@ -45,7 +46,8 @@ class Field:
     """One field of a design file: its kind, unit, default, allowed range and meaning.
 
     kind: a dimension of :data:`chaindrive.units.DIMENSIONS` (value is a string with a
-    unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``.
+    unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``, ``"links"`` (a
+    whole number or a rounding rule of :data:`chaindrive.model.ROUNDINGS`).
     """
 
     name: str
@@ -70,6 +72,9 @@ class Field:
                                                else f"≥ {self.minimum:g}")
         hi = "" if self.maximum is None else f"≤ {self.maximum:g}"
         span = " and ".join(x for x in (lo, hi) if x)
+        if self.kind == "links":
+            return (f'a whole number from {self.minimum:g} to {self.maximum:g}, '
+                    '"round up" or "round down"')
         if self.kind == "int":
             if self.minimum is not None and self.maximum is not None:
                 return f"a whole number from {self.minimum:g} to {self.maximum:g}"
@@ -94,13 +99,16 @@ CHAIN_FIELDS: tuple[Field, ...] = (
     Field("designation", "str", 'catalogue designation, e.g. "ISO 606 16B-1", "ANSI 80", '
           '"GOST 13568 ПР-25,4-60"'),
     Field("standard", "choice", "chain standard, used with pitch when no designation is given",
-          choices=("ISO 606", "ANSI", "GOST 13568")),
-    Field("series", "choice", "ISO 606 series", choices=("A", "B")),
+          choices=("ISO 606", "ANSI", "GOST 13568", "polymer")),
+    Field("series", "choice", "series: ISO 606 A or B, ANSI heavy H", choices=("A", "B", "H")),
     Field("pitch", "length", "chain pitch, used with standard when no designation is given",
           minimum=0, exclusive_minimum=True),
     Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8),
-    Field("links", "int", "impose the number of links (the take-up fits it)", minimum=4,
-          maximum=10000),
+    Field("links", "links", 'impose the number of links (the take-up fits it), or how the '
+          'tight length is rounded to an even count: "round up" (default) or "round down"',
+          minimum=4, maximum=10000),
+    Field("sag", "float", "installed sag of the slack span as a fraction of its length "
+          "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True),
     Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
           default=False),
     Field("contours", "int", "identical chain contours side by side on common shafts (seed 004)",
@@ -212,7 +220,12 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
             raise DesignError(path, f"must be {f.allowed()}, got {value!r}"
                               + did_you_mean(str(value), f.choices))
         return value
-    if f.kind == "int":
+    if f.kind == "links" and isinstance(value, str):
+        if value not in ROUNDINGS:
+            raise DesignError(path, f'must be a whole number, "round up" or "round down", '
+                              f"got {value!r}" + did_you_mean(value, ROUNDINGS))
+        return value
+    if f.kind in ("int", "links"):
         if isinstance(value, bool) or not isinstance(value, int):
             raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
         _check_range(f, path, value, value)
@@ -356,8 +369,12 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
                           "(the chain is selected for the power)")
     tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
                                                 else "ISO 606")
-    chain = Chain(spec, links=chain_values["links"], allow_odd=chain_values["allow_odd"],
-                  request=request, contours=chain_values["contours"])
+    links = chain_values["links"]
+    chain = Chain(spec, links=links if not isinstance(links, str) else None,
+                  allow_odd=chain_values["allow_odd"], request=request,
+                  contours=chain_values["contours"],
+                  rounding=links if isinstance(links, str) else "round up",
+                  sag=chain_values["sag"])
     return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                  power=drive_values["power"], tooth_form=tooth_form,
                  service_factor=drive_values["service_factor"], dynamics=dynamics)
@@ -402,6 +419,10 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     chain: dict[str, Any] = {"designation": drive.chain.spec.designation}
     if drive.chain.links is not None:
         chain["links"] = drive.chain.links
+    elif drive.chain.rounding != "round up":
+        chain["links"] = drive.chain.rounding
+    if drive.chain.sag is not None:
+        chain["sag"] = drive.chain.sag
     if drive.chain.allow_odd:
         chain["allow_odd"] = True
     if drive.chain.contours != 1:

@@ -135,12 +135,15 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
     if sel is None:
         return None
     cands = sel["candidates"][:10]
-    return [Text(f"Selected by {sel['method']}: {sel['chain']}. The analysis uses the design chain "
+    head = (f"Selected ({sel['method']}): {sel['chain']}." if sel["chain"] is not None
+            else f"{sel['shortfall']}.")
+    return [Text(f"{head} The analysis uses the design chain "
                  f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain keeps it)."),
             Table("Candidates (best 10, ranked)", ("chain", "method", "strands", "mass, kg/m",
-                                                   "feasible", "margin, %", "governing"),
-                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["feasible"],
-                          100 * c["margin"], c["governing"]) for c in cands]))]
+                                                   "passed", "margin, %", "governing"),
+                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
+                          None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                          c["governing"]) for c in cands]))]
 
 
 def strength_section(inp: ReportInput) -> list[Block] | None:
@@ -159,7 +162,7 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
             ("allowable pressure [p]", st["allowable_pressure_mpa"], "MPa"),
             ("static safety factor s", st["safety_factor_static"], ""),
             ("allowable safety factor [s]", st["allowable_safety_factor"], ""),
-            ("rated power (ACA)", None if st["rated_power_w"] is None
+            (f"rated power ({st.get('rating_method') or 'ACA'})", None if st["rated_power_w"] is None
              else st["rated_power_w"] / 1e3, "kW"),
             ("wear life to {:.0%} elongation{}".format(
                 st["permitted_elongation"],

@@ -1,7 +1,8 @@
 """Strength of a chain drive: loads round the contour, safety factors, wear life, selection.
 
 Entry points: :func:`strength_of` (loads + joint pressure + static safety + wear life of the
-drive's chain) and :func:`select_chain` (which catalogue chain, by ISO 10823 or the Kэ method).
+drive's chain) and :func:`select_chain` (which catalogue chain passes every check, each chain
+rated by the method that fits it: ACA, the ISO 606 B table, the Kэ method, allowable load).
 Modules: :mod:`.loads`, :mod:`.iso10823`, :mod:`.ke_method`, :mod:`.safety`, :mod:`.wear`,
 :mod:`.selection`; tables in ``strength/data`` with their sources in the file headers.
 """
@@ -14,7 +15,7 @@ from typing import Any
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
-from chaindrive.strength import iso10823, ke_method
+from chaindrive.strength import ke_method, ratings
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO, LoadsResult, loads_of, small_sprocket
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
@@ -36,7 +37,8 @@ class StrengthResult:
     loads: the contour loads; operating_factor Kэ and dynamic_factor kд used;
     hinge_pressure p = F_t·Kэ/A [Pa]; allowable_pressure [p] [Pa] (None outside the table or
     for non-steel chains); safety_factor_static s; allowable_safety_factor [s] (None when not
-    tabulated); rated_power [W] of the chain (ACA, None when not applicable); wear_life_h
+    tabulated); rated_power [W] of the chain by ``rating_method`` (ACA, the ISO 606 B table;
+    None for Kэ and polymer chains, :mod:`chaindrive.strength.ratings`); wear_life_h
     hours to the permitted elongation (None when not applicable); warnings.
     """
 
@@ -51,6 +53,7 @@ class StrengthResult:
     wear_life_h: float | None
     elongation: float
     warnings: tuple[ChainDriveWarning, ...] = ()
+    rating_method: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (the ``strength`` block of ``analyze --json``)."""
@@ -65,6 +68,7 @@ class StrengthResult:
             "safety_factor_static": self.safety_factor_static,
             "allowable_safety_factor": self.allowable_safety_factor,
             "rated_power_w": self.rated_power,
+            "rating_method": self.rating_method,
             "wear_life_h": self.wear_life_h,
             "wear_life_extrapolated": (None if self.wear_life_h is None
                                        else is_extrapolated(self.wear_life_h)),
@@ -108,9 +112,9 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     allowed_p = ke_method.allowable_pressure(spec.pitch, speed) if steel else None
     allowed_s = ke_method.allowable_safety_factor(spec.pitch, speed) if steel else None
     rated = life = None
-    if steel and spec.strands in (1, 2, 3, 4, 5, 6, 8):
-        single, _ = iso10823.aca_rating(spec, teeth, speed)
-        rated = single * iso10823.strand_factor(spec.strands)
+    rating = ratings.chain_rating(spec, teeth, speed)
+    if steel and rating.rated_power is not None:
+        rated = rating.rated_power
         assert drive.power is not None
         life = float(wear_life_hours(rated, drive.power * ks, geometry.links, elongation))
         if is_extrapolated(life):
@@ -127,4 +131,4 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     # a pressure or safety beyond its limit, or outside the tables, is a failed check of
     # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,
-                          life, elongation, tuple(warnings))
+                          life, elongation, tuple(warnings), rating.method)

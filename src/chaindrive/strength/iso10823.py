@@ -1,4 +1,9 @@
-"""Chain selection by power rating: ISO 10823 style and the ANSI/ACA formulas (Shigley §17-5).
+"""Power rating by the ACA formulas (ANSI B29.1 rating basis, Shigley §17-5), and the
+ISO 10823-style correction of the power to select with.
+
+Despite the module's name no ISO 10823 rating chart is implemented here: the ratings are the
+ACA envelopes, made for ANSI proportions; :mod:`chaindrive.strength.ratings` chooses the
+method that fits each chain (ACA for ISO 606 A / ANSI, the B-series table for B chains).
 
 Procedure (``shared/data/iso10823_method.md`` §1): correct the transmitted power to the
 rating basis, P_sel = P·K_s·n_d / (K_tooth·K_strand), and choose the smallest pitch whose
@@ -145,7 +150,7 @@ def roller_constant(chain: ChainSpec) -> float:
     Chains without an ANSI number: 29 below 1/2 in pitch, 17 from 1/2 in (by pitch class).
     """
     aca = data()["aca"]
-    number = (chain.ansi or "").split("-")[0]
+    number = (chain.ansi or "").split("-")[0].rstrip("H")  # heavy series: same constants
     if number in {"25", "35"}:
         return float(aca["kr_small"])
     if number == "41":
@@ -190,7 +195,7 @@ def lubrication_type(chain: ChainSpec, speed: float) -> Lubrication | None:
     Limits per ANSI chain number from McGuire Bearing's table ([MG]); None when the chain has
     no tabulated ANSI number (40…160). The ISO 10823 lubrication chart was not available.
     """
-    number = (chain.ansi or "").split("-")[0]
+    number = (chain.ansi or "").split("-")[0].rstrip("H")
     table = data()["lubrication"]
     if number not in table:
         return None

@@ -1,42 +1,63 @@
-"""Chain selection: every catalogue chain checked by both methods, ranked, the lightest chosen.
+"""Chain selection: every catalogue chain of the family checked, ranked, the first chosen.
 
-Methods: "ISO 10823" (ACA rating envelopes, :mod:`chaindrive.strength.iso10823`) for ISO 606
-and ANSI chains, "Kэ" (joint pressure, speed and impact limits,
-:mod:`chaindrive.strength.ke_method`) for GOST 13568 chains. Candidates are listed for both
-methods and ranked feasible first, then by pitch, strands and decreasing margin; the chosen
-chain is the lightest (mass per length) feasible chain of the requested number of strands
-(simplex by default) checked by the method of its family.
+One rule ranks and chooses: a candidate passes when every check of
+:func:`chaindrive.strength.drive_checks.checks_for` passes (a "cannot be verified" is not a
+pass); candidates are ranked passing first, then by mass per metre (the lightest chain that
+does the job), pitch, strands and the smallest margin (largest first); the chosen chain is the
+first of that ranking. When nothing passes, the selection names the closest candidate —
+the one whose worst check is least short — and what it misses.
+
+Each candidate is checked by its own method (:func:`chaindrive.strength.ratings.method_for`):
+ACA ratings for ISO 606 A / ANSI, the B-series table for ISO 606 B, the Kэ method for GOST
+13568, the allowable load for polymer chains. The geometry of every distinct pitch and roller
+is built with the contour solver (take-up and link rounding of the design), so teeth in mesh,
+wrap and span length are checked for the candidate as it would be laid out.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
-from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.errors import DesignError
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import ChainSpec, Drive
-from chaindrive.strength import iso10823, ke_method
+from chaindrive.strength import checks as ck
+from chaindrive.strength import ratings
+from chaindrive.strength.drive_checks import (
+    CheckSettings,
+    chain_checks,
+    checks_for,
+    geometry_checks,
+    settings_for,
+)
 from chaindrive.strength.loads import chain_speed, small_sprocket
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 
-ISO = "ISO 10823"
-KE = "Kэ"
-METHODS = (ISO, KE)
+RATING = "rating"
+KE = ratings.KE
+METHODS = (RATING, KE)
+_LEGACY = {"ISO 10823": RATING, "ACA": RATING}
 
 
 def method_for(standard: str) -> str:
-    """The selection method of a chain family: ISO 10823 for ISO 606 and ANSI, Kэ for GOST."""
-    return KE if standard.upper().startswith("GOST") else ISO
+    """The selection method of a chain family: Kэ for GOST 13568, rating otherwise (the
+    rating method of each chain is :func:`chaindrive.strength.ratings.method_for`)."""
+    return KE if standard.upper().startswith("GOST") else RATING
 
 
 @dataclass(frozen=True, slots=True)
 class Candidate:
-    """One chain checked by one method.
+    """One chain checked on the drive.
 
-    margin: capacity/demand − 1 of the governing limit (≥ 0 when feasible); governing: the
-    limit that decides; details: the method's numbers (SI units, names with units).
+    method: the chain's method ("ACA", "ISO 606 B table", "Kэ", "allowable load");
+    passed: every check passed; margin_fraction: the margin of the worst check (None when
+    it cannot be verified); governing: the name of that check; checks: every check;
+    rating / lubrication: the rating result and the lubrication advice (None when the
+    chain could not be laid out).
     """
 
     designation: str
@@ -44,32 +65,129 @@ class Candidate:
     pitch: float
     strands: int
     mass_per_length: float
-    feasible: bool
-    margin: float
+    passed: bool
+    margin_fraction: float | None
     governing: str
-    details: dict[str, Any] = field(default_factory=dict)
+    checks: tuple[ck.Check, ...] = ()
+    rating: ratings.RatingResult | None = None
+    lubrication: LubricationAdvice | None = None
+    notes: tuple[str, ...] = field(default=())
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {"chain": self.designation, "method": self.method, "pitch_mm": self.pitch * 1e3,
-                "strands": self.strands, "mass_kg_m": self.mass_per_length,
-                "feasible": self.feasible, "margin": self.margin, "governing": self.governing,
-                **self.details}
+    @property
+    def feasible(self) -> bool:
+        """Alias of ``passed``."""
+        return self.passed
+
+    @property
+    def missed(self) -> tuple[ck.Check, ...]:
+        """The checks that did not pass."""
+        return tuple(c for c in self.checks if not c.passed)
+
+    def to_dict(self, *, with_checks: bool = True) -> dict[str, Any]:
+        """JSON-ready dictionary (margin as a fraction; every check when ``with_checks``)."""
+        d: dict[str, Any] = {
+            "chain": self.designation, "method": self.method, "pitch_mm": self.pitch * 1e3,
+            "strands": self.strands, "mass_kg_m": self.mass_per_length, "passed": self.passed,
+            "margin_fraction": self.margin_fraction, "governing": self.governing,
+            "missed": [c.name for c in self.missed],
+            "rated_power_w": None if self.rating is None else self.rating.rated_power,
+            "lubrication": None if self.lubrication is None else self.lubrication.regime,
+            "notes": list(self.notes)}
+        if with_checks:
+            d["checks"] = [c.to_dict() for c in self.checks]
+            d["rating"] = None if self.rating is None else self.rating.to_dict()
+        return d
 
 
 @dataclass(frozen=True, slots=True)
 class SelectionResult:
-    """The chosen chain, the method that chose it and every candidate checked (ranked)."""
+    """Every candidate, ranked by the one rule; the chosen chain first.
 
-    chain: ChainSpec
-    method: str
+    chosen: the first candidate when it passes (None when nothing passes); closest: the
+    candidate least short of passing (the chosen one when something passes).
+    """
+
     candidates: tuple[Candidate, ...]
-    warnings: tuple[ChainDriveWarning, ...] = ()
+    specs: dict[str, ChainSpec]
+    warnings: tuple[str, ...] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary: ``chain`` (designation), ``method``, ``candidates[]``."""
-        return {"chain": self.chain.designation, "method": self.method,
-                "candidates": [c.to_dict() for c in self.candidates]}
+    @property
+    def chosen(self) -> Candidate | None:
+        """The selected candidate, or None when no chain passes every check."""
+        first = self.candidates[0] if self.candidates else None
+        return first if first is not None and first.passed else None
+
+    @property
+    def closest(self) -> Candidate | None:
+        """The chosen candidate, or the one whose worst check is least short."""
+        if self.chosen is not None or not self.candidates:
+            return self.chosen
+        return max(self.candidates, key=_closeness)
+
+    @property
+    def chain(self) -> ChainSpec:
+        """The chosen chain (DesignError naming the closest candidate when none passes)."""
+        if self.chosen is None:
+            raise DesignError("chain", self.shortfall())
+        return self.specs[self.chosen.designation]
+
+    @property
+    def method(self) -> str:
+        """The method of the chosen (or closest) candidate."""
+        best = self.closest
+        return "" if best is None else best.method
+
+    def shortfall(self) -> str:
+        """One sentence: no chain passes; the closest and the checks it misses."""
+        best = self.closest
+        if best is None:
+            return "no candidate chain"
+        missed = "; ".join(_missed_text(c) for c in best.missed)
+        return (f"no chain passes every check: the closest is {best.designation} "
+                f"({best.method}), which misses {missed}; try more strands, a larger pitch, "
+                "another series or a change to the layout")
+
+    def top(self, n: int) -> tuple[Candidate, ...]:
+        """The first ``n`` candidates of the ranking (the chosen chain is the first)."""
+        if n < 1:
+            raise DesignError("top", f"must be a whole number ≥ 1, got {n!r}")
+        return self.candidates[:n]
+
+    def to_dict(self, top: int | None = None) -> dict[str, Any]:
+        """JSON-ready dictionary: chosen chain (None when nothing passes), closest candidate
+        and what it misses, the (first ``top``) ranked candidates."""
+        chosen, closest = self.chosen, self.closest
+        shown = self.candidates if top is None else self.top(top)
+        return {"chain": None if chosen is None else chosen.designation,
+                "method": self.method,
+                "closest": None if closest is None else closest.to_dict(),
+                "shortfall": None if chosen is not None else self.shortfall(),
+                "candidate_count": len(self.candidates),
+                "candidates": [c.to_dict(with_checks=False) for c in shown],
+                "warnings": list(self.warnings)}
+
+
+def _missed_text(c: ck.Check) -> str:
+    if c.status == ck.UNVERIFIED or c.value is None or c.limit is None:
+        return f"{c.name} ({c.status}: {c.note})"
+    value = "?" if c.value is None else f"{c.value * c.scale:.4g}"
+    limit = "?" if c.limit is None else f"{c.limit * c.scale:.4g}"
+    rel = "≤" if c.kind == "max" else "≥"
+    return f"{c.name} {value} {c.unit} (required {rel} {limit} {c.unit})".replace("  ", " ")
+
+
+def _closeness(c: Candidate) -> tuple[bool, int, float]:
+    """A chain that can be laid out first, then fewer missed checks, then the largest
+    (least negative) worst margin."""
+    worst = c.margin_fraction if c.margin_fraction is not None else -math.inf
+    laid_out = c.governing != "geometry"
+    return laid_out, -len(c.missed), worst
+
+
+def rank_key(c: Candidate) -> tuple[bool, float, float, int, float]:
+    """The one rule: passing first, then mass per metre, pitch, strands, larger margin."""
+    margin = c.margin_fraction if c.margin_fraction is not None else -math.inf
+    return (not c.passed, c.mass_per_length, c.pitch, c.strands, -margin)
 
 
 def estimated_links(drive: Drive, pitch: float) -> float:
@@ -81,47 +199,24 @@ def estimated_links(drive: Drive, pitch: float) -> float:
     return perimeter / pitch + sum(s.teeth for s in drive.sprockets) / len(pts)
 
 
-def _iso_candidate(chain: ChainSpec, drive: Drive, service_factor: float,
-                   design_factor: float) -> Candidate:
-    assert drive.power is not None
-    teeth, speed = small_sprocket(drive)
-    check = iso10823.check_rating(chain, drive.power, teeth, speed,
-                                  service_factor=service_factor, design_factor=design_factor)
-    details = {"rated_power_w": check.rated_power, "required_power_w": check.required_power,
-               "lubrication": check.lubrication,
-               "galling_limit_rpm": check.galling_limit * RAD_S_TO_RPM}
-    return Candidate(chain.designation, ISO, chain.pitch, chain.strands, chain.mass_per_length,
-                     check.feasible, check.margin, check.governing, details)
-
-
-def _ke_candidate(chain: ChainSpec, drive: Drive, operating: float,
-                  links: float | None) -> Candidate:
-    assert drive.power is not None
-    teeth, speed = small_sprocket(drive)
-    force = drive.power / chain_speed(teeth, chain.pitch, speed)
-    lt = links if links is not None else estimated_links(drive, chain.pitch)
-    check = ke_method.check_pressure(chain, force, operating, teeth, speed, lt)
-    details = {"pressure_mpa": check.pressure / 1e6,
-               "allowable_pressure_mpa": (None if check.allowable_pressure is None
-                                          else check.allowable_pressure / 1e6),
-               "max_speed_rpm": None if check.max_speed is None else check.max_speed * RAD_S_TO_RPM,
-               "impacts_per_s": check.impacts, "allowable_impacts_per_s": check.allowable_impacts,
-               "bearing_area_estimated": check.area_estimated}
-    return Candidate(chain.designation, KE, chain.pitch, chain.strands, chain.mass_per_length,
-                     check.feasible, check.margin, check.governing, details)
-
-
-def _catalog(catalog: Sequence[ChainSpec] | None) -> Sequence[ChainSpec]:
+def _catalog(catalog: Sequence[ChainSpec] | None,
+             extra_files: Sequence[str]) -> Sequence[ChainSpec]:
     if catalog is not None:
         return catalog
     from chaindrive.catalog import chains
 
-    return chains()
+    return chains(extra_files)
+
+
+def _in_family(c: ChainSpec, standard: str) -> bool:
+    if standard.upper() == "ANSI":
+        return c.ansi is not None
+    return c.standard == standard
 
 
 def _family(catalog: Sequence[ChainSpec], standard: str, series: str | None,
             strands: int | None) -> list[ChainSpec]:
-    family = [c for c in catalog if c.standard == standard and c.material == "steel"
+    family = [c for c in catalog if _in_family(c, standard)
               and (series is None or c.series == series)
               and (strands is None or c.strands == strands)]
     if not family:
@@ -131,25 +226,64 @@ def _family(catalog: Sequence[ChainSpec], standard: str, series: str | None,
     return family
 
 
-def _rank_key(c: Candidate) -> tuple[bool, float, int, float]:
-    return (not c.feasible, c.pitch, c.strands, -c.margin)
+def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
+              settings: CheckSettings,
+              layout_checks: tuple[ck.Check, ...] | None = None) -> Candidate:
+    """``spec`` checked on ``drive`` laid out as ``geometry`` (a string: why it could not be
+    laid out — the candidate then fails a "geometry" check). ``layout_checks``: the
+    geometry checks of that layout when already made (they do not depend on the chain
+    beyond its pitch and roller)."""
+    on = drive.with_chain(spec)
+    teeth, speed = small_sprocket(on)
+    rating = ratings.chain_rating(spec, teeth, speed)
+    lube = lubrication_advice(spec, chain_speed(teeth, spec.pitch, speed))
+    method = settings.method or rating.method
+    if isinstance(geometry, str):
+        fail = ck.Check("geometry", spec.designation, None, None, "min", ck.FAIL,
+                        "contour solver", note=geometry)
+        return Candidate(spec.designation, method, spec.pitch, spec.strands,
+                         spec.mass_per_length, False, None, "geometry", (fail,), rating, lube)
+    if layout_checks is None:
+        checks = checks_for(on, geometry, settings)
+    else:
+        checks = (*chain_checks(on, geometry, settings), *layout_checks)
+    worst = ck.worst(list(checks))
+    return Candidate(spec.designation, method, spec.pitch, spec.strands, spec.mass_per_length,
+                     all(c.passed for c in checks),
+                     None if worst is None else worst.margin_fraction,
+                     "" if worst is None else worst.name, checks, rating, lube)
 
 
-def select_chain(drive: Drive, *, standard: str | None = None, series: str | None = None,
-                 strands: int | None = None, method: str | None = None,
-                 service_factor: float | None = None, design_factor: float = 1.0,
-                 operating_factor: float | None = None, links: float | None = None,
-                 catalog: Sequence[ChainSpec] | None = None) -> SelectionResult:
-    """Choose a chain for ``drive`` (power [W] and driver speed needed).
+def _layouts(drive: Drive, family: Sequence[ChainSpec]) -> dict[tuple[float, float],
+                                                                 GeometryResult | str]:
+    """The contour of ``drive`` for each distinct (pitch, roller diameter) of ``family``
+    (links by the design's rounding; an imposed count is dropped: it fits one pitch only)."""
+    out: dict[tuple[float, float], GeometryResult | str] = {}
+    base = replace(drive, chain=replace(drive.chain, links=None, request=None))
+    for spec in family:
+        key = (spec.pitch, spec.roller_diameter)
+        if key not in out:
+            try:
+                out[key] = contour_geometry(base.with_chain(spec))
+            except DesignError as exc:
+                out[key] = str(exc)
+    return out
 
-    standard/series: the family (default: that of ``drive.chain``); strands: fix the number
-    of strands (default: candidates of every strand count, chosen simplex); method: "ISO 10823"
-    or "Kэ" (default by family, :func:`method_for`); service_factor K_s and design_factor n_d
-    for ISO 10823 (default ``drive.service_factor`` or 1); operating_factor Kэ for the Kэ
-    method (default ``drive.service_factor`` or 1); links: chain length in pitches for the
-    impacts check (default :func:`estimated_links`); catalog: chains to choose from (default
-    :func:`chaindrive.catalog.chains`). Raises DesignError when no chain can carry the load,
-    naming the best candidate and its shortfall.
+
+def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None = None,
+                strands: int | None = None, method: str | None = None,
+                service_factor: float | None = None, design_factor: float = 1.0,
+                operating_factor: float | None = None,
+                catalog: Sequence[ChainSpec] | None = None,
+                extra_files: Sequence[str] = ()) -> SelectionResult:
+    """Every chain of the family checked on ``drive`` and ranked (module docstring).
+
+    standard/series: the family (default: that of ``drive.chain``; "ANSI" = every chain with
+    an ANSI number); strands: only that number of strands (default: every count); method:
+    "Kэ" or "rating" to force one on every chain (default: each chain's own; the legacy name
+    "ISO 10823" means "rating"); service_factor K_s, design_factor n_d, operating_factor Kэ
+    (defaults ``drive.service_factor`` or 1); catalog: the chains to choose from (default:
+    the packaged catalogue and ``extra_files``, the user's catalogue files).
     """
     if drive.power is None:
         raise DesignError("drive.power", "selection needs the transmitted power")
@@ -157,37 +291,30 @@ def select_chain(drive: Drive, *, standard: str | None = None, series: str | Non
         raise DesignError(f"sprockets[{drive.driver.name}].speed", "selection needs the speed")
     if strands is not None and not 1 <= strands <= 8:
         raise DesignError("chain.strands", f"must be 1 to 8, got {strands!r}")
+    forced = None
+    if method is not None:
+        forced = _LEGACY.get(method, method)
+        if forced not in METHODS:
+            raise DesignError("method", f"must be one of {', '.join(METHODS)}, got {method!r}")
     standard = standard or drive.chain.spec.standard
-    method = method or method_for(standard)
-    if method not in METHODS:
-        raise DesignError("method", f"must be one of {', '.join(METHODS)}, got {method!r}")
-    ks = service_factor if service_factor is not None else (drive.service_factor or 1.0)
-    ke = operating_factor if operating_factor is not None else (drive.service_factor or 1.0)
-    family = _family(_catalog(catalog), standard, series, strands)
-    candidates: list[Candidate] = []
-    for chain in family:
-        if chain.strands in (1, 2, 3, 4, 5, 6, 8):
-            candidates.append(_iso_candidate(chain, drive, ks, design_factor))
-        if chain.strands <= 4:
-            candidates.append(_ke_candidate(chain, drive, ke, links))
-    candidates.sort(key=_rank_key)
-    wanted = strands or 1
-    pool = [c for c in candidates if c.method == method and c.strands == wanted]
-    feasible = [c for c in pool if c.feasible]
-    if not feasible:
-        _raise_shortfall(pool, method, drive)
-    best = min(feasible, key=lambda c: (c.mass_per_length, c.pitch))
-    chosen = next(c for c in family if c.designation == best.designation)
-    return SelectionResult(chosen, method, tuple(candidates))
+    settings = settings_for(drive, service_factor=service_factor, design_factor=design_factor,
+                            operating_factor=operating_factor,
+                            method=KE if forced == KE else None)
+    family = _family(_catalog(catalog, extra_files), standard, series, strands)
+    layouts = _layouts(drive, family)
+    layout_checks = {key: tuple(geometry_checks(drive, g)) for key, g in layouts.items()
+                     if not isinstance(g, str)}
+    found = [candidate(drive, spec, layouts[(spec.pitch, spec.roller_diameter)], settings,
+                       layout_checks.get((spec.pitch, spec.roller_diameter)))
+             for spec in family]
+    found.sort(key=rank_key)
+    return SelectionResult(tuple(found), {s.designation: s for s in family})
 
 
-def _raise_shortfall(pool: list[Candidate], method: str, drive: Drive) -> None:
-    if not pool:
-        raise DesignError("chain.strands", f"no candidate chain can be checked by {method}")
-    best = max(pool, key=lambda c: c.margin)
-    raise DesignError(
-        "chain",
-        f"no chain can carry {drive.power:.4g} W by {method}: the best candidate "
-        f"{best.designation} falls short by {-best.margin:.1%} ({best.governing}); "
-        f"try more strands, a larger pitch or another series",
-    )
+def select_chain(drive: Drive, **options: Any) -> SelectionResult:
+    """:func:`rank_chains`, raising a DesignError naming the closest candidate and what it
+    misses when no chain passes every check."""
+    result = rank_chains(drive, **options)
+    if result.chosen is None:
+        raise DesignError("chain", result.shortfall())
+    return result

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from chaindrive.analysis import Analysis
-from chaindrive.checks import CheckLimits
+from chaindrive.checks import Check, CheckLimits
 from chaindrive.cost import CostModel
 from chaindrive.errors import ChainDriveError
 from chaindrive.model import Drive
@@ -25,7 +25,7 @@ from chaindrive.synthesis.objectives import OBJECTIVES
 from chaindrive.synthesis.problem import Constraints, Problem
 
 __all__ = ["FAILED", "Evaluation", "analysis_of", "base_ratios", "check_limits",
-           "constraint_names", "evaluate_drive", "evaluate_vector"]
+           "constrained", "constraint_names", "evaluate_drive", "evaluate_vector"]
 
 TWO_PI = 2.0 * math.pi
 #: objective value given to a design that cannot be built (a finite stand-in for ∞)
@@ -34,35 +34,36 @@ FAILED = 1e12
 
 def check_limits(settings: Constraints) -> CheckLimits:
     """The limits of the analysis's checks that ``[optimize.constraints]`` sets."""
-    return CheckLimits(min_driver_wrap=settings.min_driver_wrap,
-                       min_teeth_in_mesh=settings.min_teeth_in_mesh,
-                       allowable_dynamic_safety=settings.allowable_dynamic_safety,
+    return CheckLimits(allowable_dynamic_safety=settings.allowable_dynamic_safety,
                        resonance_band_percent=(settings.resonance_band
-                                               if settings.resonance_band else 10.0),
-                       static_safety=settings.min_static_safety)
+                                               if settings.resonance_band else 10.0))
 
 
-def constraint_names(settings: Constraints) -> tuple[str, ...]:
-    """The analysis checks that ``[optimize.constraints]`` makes constraints."""
-    names = ["driver_wrap"]
-    if settings.min_teeth_in_mesh > 0:
-        names.append("teeth_in_mesh")
-    if settings.speed_limit:
-        names.append("speed_limit")
-    if settings.static_safety:
-        names += ["hinge_pressure", "static_safety"]
-    if settings.resonance_band:
-        names.append("resonance_margin")
-    names += ["k2", "k2_min"]
-    if settings.startup_safety:
-        names.append("k1")
-    return tuple(names)
+def constrained(check: Check, settings: Constraints) -> bool:
+    """Whether ``[optimize.constraints]`` keeps an analysis check as a constraint: every
+    check, except the chain's strength checks when ``static_safety = false``, the speed
+    limit when ``speed_limit = false`` and k₁ unless ``startup_safety = true`` (it needs a
+    time integration per design)."""
+    if check.name == "speed limit":
+        return settings.speed_limit
+    if check.part == "chain":
+        return settings.static_safety
+    if check.name == "k1":
+        return settings.startup_safety
+    return True
+
+
+def constraint_names(analysis: Analysis, settings: Constraints) -> tuple[str, ...]:
+    """Keys of the analysis checks that are constraints (:func:`constrained`)."""
+    return tuple(c.key for c in analysis.checks() if constrained(c, settings))
 
 
 def analysis_of(drive: Drive, settings: Constraints,
                 cost_model: CostModel | None = None) -> Analysis:
-    """The lazy analysis of ``drive`` with the limits the problem sets."""
-    return Analysis(drive, limits=check_limits(settings), cost_model=cost_model)
+    """The lazy analysis of ``drive`` with the limits the problem sets; k₁ (a start-up per
+    design) only when the problem asks for it."""
+    return Analysis(drive, limits=check_limits(settings), cost_model=cost_model,
+                    startup=settings.startup_safety)
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,12 +97,24 @@ def _failed(objectives: Sequence[str], error: str) -> Evaluation:
 
 def _wishes(a: Analysis, settings: Constraints, ratios: Sequence[float] | None,
             tolerance: float) -> dict[str, float]:
-    """The designer's wishes that are not engineering rules: mean chain speed ≤ the maximum,
-    driven ratios within the tolerance of the start design."""
-    d = a.drive
+    """The designer's wishes beyond the engineering rules (g ≤ 0 satisfied): mean chain speed
+    ≤ the maximum, driver wrap and teeth in mesh on loaded sprockets at least the minima,
+    static safety at least the designer's [s] when given, driven ratios within the tolerance
+    of the start design."""
+    d, g = a.drive, a.geometry
     assert d.driver.speed is not None
     v = d.driver.teeth * d.chain.spec.pitch * d.driver.speed / TWO_PI
-    out = {"chain_speed": (v - settings.max_chain_speed) / settings.max_chain_speed}
+    out = {"chain_speed": (v - settings.max_chain_speed) / settings.max_chain_speed,
+           "min_driver_wrap": (settings.min_driver_wrap
+                               - g.sprockets[d.driver_index].wrap_angle)
+           / settings.min_driver_wrap}
+    if settings.min_teeth_in_mesh > 0:
+        fewest = min(sg.teeth_in_mesh for sg, s in zip(g.sprockets, d.sprockets, strict=True)
+                     if s.role != "idler")
+        out["min_teeth_in_mesh"] = (settings.min_teeth_in_mesh - fewest) / settings.min_teeth_in_mesh
+    if settings.min_static_safety is not None and a.strength is not None:
+        out["min_static_safety"] = ((settings.min_static_safety - a.strength.safety_factor_static)
+                                    / settings.min_static_safety)
     if ratios is not None:
         z1 = d.driver.teeth
         dev = max((abs(sp.teeth / z1 - i0) / i0 for sp, i0 in zip(d.sprockets, ratios,
@@ -121,10 +134,9 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
     try:
         obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}
         cons: dict[str, float] = {"buildable": 0.0}
-        for name in constraint_names(settings):
-            check = a.check(name)
-            if check is not None:
-                cons[name] = check.violation
+        for check in a.checks():
+            if constrained(check, settings):
+                cons[check.key] = check.violation
         cons.update(_wishes(a, settings, base_ratios, ratio_tolerance))
     except ChainDriveError as exc:
         return _failed(objectives, str(exc))

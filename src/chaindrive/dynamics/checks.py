@@ -1,0 +1,64 @@
+"""The dynamic checks of a drive: the working frequencies' distance from resonance, and the
+two-stage safety factors k₁, k₂, k₂min against [k] [MultimassChainDrives, §3.6]."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from chaindrive.checks import Check, judged
+from chaindrive.dynamics.resonance import Resonance
+
+__all__ = ["dynamic_safety_check", "resonance_check"]
+
+
+def dynamic_safety_check(name: str, value: float | None, allowable: float, note: str = ""
+                         ) -> Check:
+    """k₁ = Q/F₁max, k₂ = Q/(F_R + F₂) or k₂min = Q/(F_R + F₂max) ≥ [k]
+    [MultimassChainDrives, §3.6].
+
+    Parameters
+    ----------
+    name : str
+        "k1", "k2" or "k2min".
+    value : float | None
+        The factor [-] (None when it could not be computed).
+    allowable : float
+        [k] [-].
+    note : str
+        What the factor rests on.
+
+    Returns
+    -------
+    Check
+    """
+    return judged(name, {"k1": "start-up", "k2": "steady motion",
+                         "k2min": "resonance in the run-up"}.get(name, name),
+                  value, allowable, "min", "[MultimassChainDrives, §3.6]", note=note,
+                  part="dynamics")
+
+
+def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | None:
+    """The least distance |f_w − f_n|/f_n [%] of a working frequency from its nearest natural
+    frequency (ring modes, and the spans' principal parametric resonance) ≥ the band
+    [MultimassChainDrives, §3.2], [API684]; None when there is no working frequency.
+
+    Parameters
+    ----------
+    rows : sequence of Resonance
+        The resonance table.
+    band_percent : float
+        The least distance required [%].
+
+    Returns
+    -------
+    Check | None
+    """
+    if not rows:
+        return None
+    closest = min(rows, key=lambda r: abs(r.margin_percent))
+    what = ("parametric resonance of a span" if closest.working.kind == "parametric"
+            else "natural frequency")
+    return judged("resonance margin", closest.working.label, abs(closest.margin_percent),
+                  band_percent, "min", "[MultimassChainDrives, §3.2], [API684]", "%",
+                  note=f"{closest.working.frequency:.4g} Hz against the {what} "
+                       f"{closest.natural_frequency:.4g} Hz", part="dynamics")

@@ -1,0 +1,117 @@
+"""Chain length choices: the even link counts below and above the tight length, each with
+its centre distance and take-up, and the installed position with a sag allowance.
+
+The tight length L_p of the layout as designed is rarely a whole even number. Rounding up
+lengthens the chain and the take-up moves the adjustable sprocket out; rounding down (what
+many designers do, e.g. [Jindal2010, ex. 30-2]: 80.21 → 80 links) moves it in. Both are
+laid out with the contour solver (:func:`chaindrive.geometry.contour.contour_geometry`), so
+they hold for any contour with an adjustable sprocket, not only for two sprockets.
+
+Sag allowance: installed with a slack-span sag s·ℓ, the chain keeps ΔL = (8/3)·s²·ℓ of
+slack (:mod:`chaindrive.geometry.sag`) and the adjustable sprocket stops short of the tight
+position by that much chain.
+
+References
+----------
+[Shigley2015] Eq. 17-34/17-35; [Bhandari2010] ex. 14.4 (Δa = 0.002·a); [ChainDesignRU] §6–7.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from chaindrive.errors import DesignError
+from chaindrive.geometry.contour import (
+    contour_geometry,
+    pitch_radii,
+    round_links,
+    tight_pitches_of,
+)
+from chaindrive.geometry.sag import sag_of_slack
+from chaindrive.model import Drive
+
+
+@dataclass(frozen=True, slots=True)
+class LengthOption:
+    """One whole link count laid out.
+
+    rounding: "round down" or "round up"; links; centre_distance [m] (two sprockets, else
+    None); take_up [m]: how far the adjustable sprocket moved from the designed position
+    (positive: out; None without an adjustable sprocket); slack_sag [m]: sag of the slack
+    span from the slack the chain keeps (0 when laid out tight); error: why this count
+    cannot be laid out (None when it can).
+    """
+
+    rounding: str
+    links: int
+    centre_distance: float | None
+    take_up: float | None
+    slack_sag: float | None
+    error: str | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (lengths in mm)."""
+        def mm(x: float | None) -> float | None:
+            return None if x is None else x * 1e3
+
+        return {"rounding": self.rounding, "links": self.links,
+                "centre_distance_mm": mm(self.centre_distance), "take_up_mm": mm(self.take_up),
+                "slack_sag_mm": mm(self.slack_sag), "error": self.error}
+
+
+@dataclass(frozen=True, slots=True)
+class LengthChoice:
+    """The tight length of the layout as designed and the even counts around it.
+
+    tight_pitches: L_p of the designed layout; options: round down, round up; chosen: the
+    design's pick ("round up" by default, "round down", or "given" for an imposed count);
+    sag_fraction: the installed sag asked for (None: tight).
+    """
+
+    tight_pitches: float
+    options: tuple[LengthOption, ...]
+    chosen: str
+    sag_fraction: float | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {"tight_length_pitches": self.tight_pitches, "chosen": self.chosen,
+                "sag_fraction": self.sag_fraction,
+                "options": [o.to_dict() for o in self.options]}
+
+
+def _option(drive: Drive, rounding: str, links: int) -> LengthOption:
+    chain = replace(drive.chain, links=links, request=None)
+    try:
+        g = contour_geometry(replace(drive, chain=chain))
+    except DesignError as exc:
+        return LengthOption(rounding, links, None, None, None, str(exc))
+    slack_span = g.spans[drive.driver_index]
+    sag = sag_of_slack(slack_span.length, g.slack) if g.slack > 0 else 0.0
+    return LengthOption(rounding, links, g.center_distance,
+                        None if g.adjusted is None else g.adjustment, sag)
+
+
+def tight_pitches_as_designed(drive: Drive) -> float:
+    """Tight length L_p [pitches] at the sprocket positions of the design (no take-up)."""
+    p = drive.chain.spec.pitch
+    centres = np.array([[s.x, s.y] for s in drive.sprockets], dtype=float)
+    teeth = np.array([s.teeth for s in drive.sprockets])
+    inside = np.array([s.side == "inside" for s in drive.sprockets])
+    return tight_pitches_of(centres, pitch_radii(p, teeth), inside, teeth, p)
+
+
+def length_options(drive: Drive) -> LengthChoice:
+    """The even (odd too with ``allow_odd``) link counts below and above the tight length of
+    ``drive`` as designed, laid out with its take-up and sag allowance (module docstring)."""
+    tight = tight_pitches_as_designed(drive)
+    odd = drive.chain.allow_odd
+    down, up = round_links(tight, odd, down=True), round_links(tight, odd)
+    options = [_option(drive, "round down", down)]
+    if up != down:
+        options.append(_option(drive, "round up", up))
+    chosen = "given" if drive.chain.links is not None else drive.chain.rounding
+    return LengthChoice(tight, tuple(options), chosen, drive.chain.sag)

@@ -1,0 +1,27 @@
+"""Sag of the slack span: the extra chain length a given sag takes, and the sag a given
+extra length makes (shallow parabola).
+
+A span of chord ℓ hanging with mid-span sag f is, for f ≪ ℓ, a parabola of arc length
+ℓ + 8f²/(3ℓ) [Irvine1981, ch. 1]; so a sag f = s·ℓ takes the extra length
+ΔL = (8/3)·s²·ℓ, and an extra length ΔL makes f = √(3ℓ·ΔL/8).
+
+The installed sag is a design choice: s = 0.02 is the sag the static model of
+:func:`chaindrive.strength.loads.sag_factor` assumes (k_f = 1/(8s) = 6.25, the textbook
+k_f = 6 of a horizontal drive [ChainDesignRU, §8]); textbooks reduce the centre distance by
+Δa = (0.002 … 0.004)·a for it [ChainDesignRU, §7], [Bhandari2010, ex. 14.4].
+"""
+
+from __future__ import annotations
+
+import math
+
+
+def slack_for_sag(span: float, sag_fraction: float) -> float:
+    """Extra chain length ΔL = (8/3)·s²·ℓ [m] that makes a span of chord ℓ [m] sag by s·ℓ."""
+    return 8.0 / 3.0 * sag_fraction**2 * span
+
+
+def sag_of_slack(span: float, slack: float) -> float:
+    """Mid-span sag f = √(3ℓ·ΔL/8) [m] of a span of chord ℓ [m] carrying the extra length
+    ΔL [m] (0 for ΔL ≤ 0)."""
+    return math.sqrt(3.0 * span * max(slack, 0.0) / 8.0)

@@ -1,0 +1,149 @@
+"""The checks a chain selection makes, one pure function each.
+
+Every function takes numbers (SI) and returns a :class:`Check`: the value, the limit it is
+held to, the verdict — ``"pass"``, ``"fail"`` or ``"cannot be verified"`` (the rule has no
+limit for this chain or operating point; a selection treats it as a failure and says so) —
+and the source of the rule as a key of ``docs/references.md``. The functions know nothing
+about catalogues or drives, so the analysis can list the same checks for the chain it
+analyses (``Analysis.checks()``) as the selection made for every candidate.
+
+Rules and their sources
+-----------------------
+* hinge pressure p = Kэ·F_t/A ≤ [p] (Russian method, GOST chains) [ChainDesignRU, Table 2A];
+* static safety s = Q/(kд·F_t + F_0 + F_v) ≥ [s]: [s] by pitch and speed for GOST chains
+  [TrinhChat2006, Table 5.10]; for rating-method (ISO/ANSI) chains the working load at most
+  1/6 of the breaking load, s ≥ 6 [DiamondChain, §working load];
+* speed limit: small-sprocket speed ≤ n1 max by pitch [TrinhChat2006, Table 5.8] (GOST), the
+  pin–bush galling limit [Shigley2015, §17-5] (ACA), the manufacturer's chain speed limit
+  (polymer chains);
+* power rating: rated power ≥ design power (ACA, European table, see
+  :mod:`chaindrive.strength.ratings`);
+* wear life ≥ the rating basis, 15 000 h to 3 % elongation [Shigley2015, Eq. 17-40];
+* teeth in mesh ≥ 3 on every sprocket, idlers included [Renold-DG, idler sprockets];
+  wrap ≥ 120° on the driver and the small loaded sprocket [Mott2014, ch. 7];
+* longest free span ≤ 80 pitches: the centre-distance factor kа of the Kэ method is given
+  up to a = 80 t [TrinhChat2006, Table 5.2] — longer spans are outside every rule found;
+* polymer chains: chain pull ≤ the maintenance-free allowable load of the chain
+  (catalogue ``allowable_load``).
+
+References
+----------
+See ``docs/references.md`` and ``docs/selection.md``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Kind, Status, verdict, worst
+from chaindrive.units import RAD_S_TO_RPM
+
+__all__ = ["FAIL", "PASS", "UNVERIFIED", "Check", "Status", "allowable_load_check",
+           "hinge_pressure_check", "power_rating_check", "span_length_check",
+           "speed_limit_check", "static_safety_check", "teeth_in_mesh_check", "verdict",
+           "wear_life_check", "worst", "wrap_check"]
+
+MPA = 1e6
+
+#: Least teeth in mesh on any sprocket, idlers included [Renold-DG].
+MIN_TEETH_IN_MESH = 3.0
+#: Least wrap angle on the driver and the small loaded sprocket [rad] (120°) [Mott2014].
+MIN_WRAP = math.radians(120.0)
+#: Least static safety factor of a chain checked by its power rating (working load ≤ 1/6 of
+#: the minimum ultimate tensile strength) [DiamondChain].
+MIN_SAFETY_RATED = 6.0
+#: Longest span between two sprockets, in pitches (kа given up to a = 80 t) [TrinhChat2006].
+MAX_SPAN_PITCHES = 80.0
+#: Wear-life basis of the ratings [h] [Shigley2015, §17-5].
+BASIS_LIFE_H = 15000.0
+
+
+def _check(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
+           source: str, unit: str = "", scale: float = 1.0, note: str = "",
+           part: str = "chain", item: str = "") -> Check:
+    return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
+                 unit, scale, note, part, item)
+
+
+def hinge_pressure_check(subject: str, pressure: float, allowable: float | None,
+                         source: str = "[ChainDesignRU, Table 2A]", note: str = "") -> Check:
+    """p ≤ [p]: pressure and allowable [Pa]; ``allowable`` None (outside the table) →
+    "cannot be verified"."""
+    if allowable is None:
+        note = note or "no [p] in the table for this pitch and speed"
+    return _check("hinge pressure", subject, pressure, allowable, "max", source, "MPa",
+                  1 / MPA, note)
+
+
+def static_safety_check(subject: str, safety: float, allowable: float | None,
+                        source: str, note: str = "") -> Check:
+    """s ≥ [s] (both dimensionless); ``allowable`` None → "cannot be verified"."""
+    if allowable is None:
+        note = note or "no [s] in the table for this pitch and speed"
+    return _check("static safety", subject, safety, allowable, "min", source, note=note)
+
+
+def speed_limit_check(subject: str, speed: float, max_speed: float | None, source: str,
+                      note: str = "", *, linear: bool = False) -> Check:
+    """Speed ≤ its limit: small-sprocket speed [rad/s] (shown in rpm) or, with ``linear``,
+    chain speed [m/s]; ``max_speed`` None → "cannot be verified"."""
+    if max_speed is None:
+        note = note or "no speed limit known for this pitch"
+    unit, scale = ("m/s", 1.0) if linear else ("rpm", RAD_S_TO_RPM)
+    return _check("speed limit", subject, speed, max_speed, "max", source, unit, scale, note)
+
+
+def power_rating_check(subject: str, rated: float | None, design: float, source: str,
+                       note: str = "") -> Check:
+    """Rated power of the chain ≥ design power (P·K_s·n_d) [W]; ``rated`` None → "cannot be
+    verified"."""
+    if rated is None:
+        note = note or "no rating for this chain at this speed"
+    return _check("power rating", subject, rated, design, "min", source, "kW", 1e-3, note)
+
+
+def wear_life_check(subject: str, life_h: float | None, required_h: float = BASIS_LIFE_H,
+                    source: str = "[Shigley2015, Eq. 17-40]", note: str = "") -> Check:
+    """Wear life [h] to the permitted elongation ≥ the required life (default the 15 000 h
+    rating basis); ``life_h`` None → "cannot be verified"."""
+    if life_h is None:
+        note = note or "no wear-life model for this chain"
+    return _check("wear life", subject, life_h, required_h, "min", source, "h", note=note)
+
+
+def teeth_in_mesh_check(sprocket: str, teeth_in_mesh: float, role: str) -> Check:
+    """At least 3 teeth in mesh on every sprocket — driver, driven and idler alike
+    [Renold-DG]: fewer lets the chain jump or climb the teeth under load."""
+    return _check("teeth in mesh", sprocket, teeth_in_mesh, MIN_TEETH_IN_MESH, "min",
+                  "[Renold-DG, idler sprockets]", "teeth", note=role, part="geometry",
+                  item=sprocket)
+
+
+def wrap_check(sprocket: str, wrap: float, role: str, small: bool = False) -> Check:
+    """Wrap angle [rad] ≥ 120° on the driver and on the small loaded sprocket (the one the
+    rating refers to) [Mott2014, ch. 7]; other sprockets — the driven sprockets of a
+    serpentine contour, idlers — are held to the teeth-in-mesh rule only (the result then
+    passes with no limit)."""
+    limit = MIN_WRAP if role == "driver" or small else 0.0
+    note = ("driver" if role == "driver" else "small loaded sprocket") if limit else (
+        f"{role}: held to the teeth-in-mesh rule only")
+    return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, ch. 7]", "deg",
+                  180.0 / math.pi, note, part="geometry", item=sprocket)
+
+
+def span_length_check(subject: str, span_pitches: float,
+                      limit: float = MAX_SPAN_PITCHES) -> Check:
+    """Longest free span ≤ 80 pitches [TrinhChat2006, Table 5.2] (the kа factor covers
+    a ≤ 80 t): a longer span needs guides or intermediate sprockets (whip, sag)."""
+    return _check("span length", subject, span_pitches, limit, "max",
+                  "[TrinhChat2006, Table 5.2]", "pitches", part="geometry")
+
+
+def allowable_load_check(subject: str, tension: float, allowable: float | None,
+                         source: str, note: str = "") -> Check:
+    """Chain pull [N] ≤ the manufacturer's allowable (working) load [N]; None → "cannot be
+    verified"."""
+    if allowable is None:
+        note = note or "the catalogue gives no allowable load for this chain"
+    return _check("allowable load", subject, tension, allowable, "max", source, "kN", 1e-3,
+                  note)

@@ -1,0 +1,195 @@
+"""Every check of one chain on one laid-out drive: the list the selection ranks by.
+
+:func:`checks_for` returns the :class:`~chaindrive.strength.checks.Check` list of a drive
+(its chain, its geometry): the analysis lists the same checks for the chain it analyses as
+the selection made for every candidate, so a chosen chain cannot fail the analysis.
+
+Which checks, by the chain's method (:func:`chaindrive.strength.ratings.method_for`):
+
+* rating methods (ACA for ISO 606 A / ANSI, the B-series table for ISO 606 B): power
+  rating ≥ P·K_s·n_d; wear life [Shigley2015, Eq. 17-40] ≥ the required life (default the
+  rating's own basis, 15 000 h·L_p/100); small-sprocket speed ≤ the pin–bush galling
+  limit [Shigley2015, §17-5]; static safety ≥ 6 [DiamondChain]. The joint pressure [p] of
+  the Russian method is not applied: the rating is the wear and fatigue limit of these
+  chains (it is listed by :mod:`.ke_method` for GOST chains);
+* Kэ (GOST 13568): hinge pressure p = Kэ·F_t/A ≤ [p]; small-sprocket speed ≤ n1 max;
+  impacts per second ≤ [i]; static safety ≥ [s] (tables by pitch and speed);
+* polymer: chain pull ≤ the allowable load; chain speed ≤ the maker's limit;
+* every chain: teeth in mesh ≥ 3 on every sprocket (idlers included), wrap ≥ 120° on the
+  driver and the small loaded sprocket, longest span ≤ 80 pitches.
+
+A table without a value for the pitch or speed gives "cannot be verified" — a failure, said
+as such — never a silent pass.
+
+References
+----------
+See :mod:`chaindrive.strength.checks` and ``docs/selection.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from chaindrive.geometry.results import GeometryResult
+from chaindrive.model import Drive
+from chaindrive.strength import checks as ck
+from chaindrive.strength import iso10823, ke_method, ratings
+from chaindrive.strength.loads import (
+    centrifugal_tension,
+    chain_speed,
+    peripheral_force,
+    sag_tension,
+    small_sprocket,
+)
+from chaindrive.strength.safety import static_safety_factor
+from chaindrive.strength.wear import wear_life_hours
+
+
+@dataclass(frozen=True, slots=True)
+class CheckSettings:
+    """What the checks are held to.
+
+    service_factor K_s and design_factor n_d of the design power P·K_s·n_d (rating methods
+    and the polymer allowable load); operating_factor Kэ (Kэ method); dynamic_factor kд of
+    the static safety s = Q/(kд·F_t + F_0 + F_v); required_life_h of the wear-life check
+    [h] (None: the life the rating promises for the chain's length, 15 000 h·L_p/100 —
+    then the check agrees with the rating check; give a service life to require more);
+    method: force "Kэ" (or a rating method) instead of the chain's own (None).
+    """
+
+    service_factor: float = 1.0
+    design_factor: float = 1.0
+    operating_factor: float = 1.0
+    dynamic_factor: float = 1.0
+    required_life_h: float | None = None
+    method: str | None = None
+
+
+def settings_for(drive: Drive, **overrides: float | str | None) -> CheckSettings:
+    """Settings with K_s and Kэ defaulting to ``drive.service_factor`` (or 1)."""
+    base = drive.service_factor or 1.0
+    values = {"service_factor": base, "operating_factor": base}
+    values.update({k: v for k, v in overrides.items() if v is not None})
+    return CheckSettings(**values)  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True, slots=True)
+class _Forces:
+    """The chain forces the checks need: speed v [m/s], F_t, F_0, F_v [N]."""
+
+    speed: float
+    peripheral_force: float
+    sag_tension: float
+    centrifugal_tension: float
+
+
+def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
+    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver — the same
+    formulas as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
+    spec, driver = drive.chain.spec, drive.driver
+    assert drive.power is not None and driver.speed is not None
+    v = chain_speed(driver.teeth, spec.pitch, driver.speed)
+    slack = next(sp for sp in geometry.spans if sp.start == drive.driver_index)
+    return _Forces(v, peripheral_force(drive.power, v),
+                   sag_tension(spec.mass_per_length, slack.length, slack.inclination),
+                   centrifugal_tension(spec.mass_per_length, v))
+
+
+def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
+                   s: CheckSettings) -> list[ck.Check]:
+    spec = drive.chain.spec
+    name = spec.designation
+    assert drive.power is not None
+    teeth, speed = small_sprocket(drive)
+    design = drive.power * s.service_factor * s.design_factor
+    rating = ratings.chain_rating(spec, teeth, speed)
+    out = [ck.power_rating_check(name, rating.rated_power, design, rating.source,
+                                 f"{rating.method}: {rating.note}")]
+    life = (None if rating.rated_power is None else
+            float(wear_life_hours(rating.rated_power, design, geometry.links)))
+    if s.required_life_h is None:  # the life the rating promises for this chain length
+        required = ck.BASIS_LIFE_H * geometry.links / 100.0
+        note = (f"{geometry.links} links: the rating basis 15 000 h × L_p/100 (set a "
+                "required life for a service-life requirement)")
+    else:
+        required, note = s.required_life_h, f"{geometry.links} links, required life"
+    out.append(ck.wear_life_check(name, life, required, note=f"{rating.method}; {note}"))
+    galling = iso10823.galling_speed_limit(spec.pitch, teeth, design / loads.speed / spec.strands)
+    out.append(ck.speed_limit_check(name, speed, galling, "[Shigley2015, §17-5]",
+                                    "pin–bush galling limit"))
+    safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
+                                  loads.centrifugal_tension, s.dynamic_factor)
+    out.append(ck.static_safety_check(name, safety, ck.MIN_SAFETY_RATED, "[DiamondChain]",
+                                      "working load ≤ 1/6 of the breaking load"))
+    return out
+
+
+def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
+               s: CheckSettings) -> list[ck.Check]:
+    spec = drive.chain.spec
+    name = spec.designation
+    teeth, speed = small_sprocket(drive)
+    area, estimated = ke_method.bearing_area(spec)
+    pressure = loads.peripheral_force * s.operating_factor / area
+    note = "bearing area estimated" if estimated else ""
+    out = [ck.hinge_pressure_check(name, pressure,
+                                   ke_method.allowable_pressure(spec.pitch, speed), note=note)]
+    out.append(ck.speed_limit_check(name, speed, ke_method.max_speed(spec.pitch),
+                                    "[TrinhChat2006, Table 5.8]"))
+    hits = ke_method.impacts_per_second(teeth, speed, geometry.links)
+    allowed = ke_method.allowable_impacts(spec.pitch)
+    out.append(ck.Check("impacts per second", name, hits, allowed, "max",
+                        ck.verdict(hits, allowed, "max"), "[TrinhChat2006, Table 5.9]", "1/s",
+                        note="" if allowed is not None else "no [i] for this pitch",
+                        part="chain"))
+    safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
+                                  loads.centrifugal_tension, s.dynamic_factor)
+    out.append(ck.static_safety_check(name, safety,
+                                      ke_method.allowable_safety_factor(spec.pitch, speed),
+                                      "[TrinhChat2006, Table 5.10]"))
+    return out
+
+
+def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.Check]:
+    spec = drive.chain.spec
+    pull = (loads.peripheral_force * s.service_factor * s.design_factor + loads.sag_tension
+            + loads.centrifugal_tension)
+    return [ck.allowable_load_check(spec.designation, pull, spec.allowable_load,
+                                    f"catalogue row: {spec.source}"),
+            ck.speed_limit_check(spec.designation, loads.speed, spec.max_speed,
+                                 f"catalogue row: {spec.source}",
+                                 "" if spec.max_speed else "the catalogue gives no speed limit",
+                                 linear=True)]
+
+
+def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
+    """Teeth in mesh and wrap of every sprocket, and the longest span (module docstring)."""
+    out: list[ck.Check] = []
+    loaded = [s for s in drive.sprockets if s.role in ("driver", "driven")]
+    small = min(loaded, key=lambda s: s.teeth).name
+    for s, g in zip(drive.sprockets, geometry.sprockets, strict=True):
+        out.append(ck.teeth_in_mesh_check(s.name, g.teeth_in_mesh, s.role))
+        out.append(ck.wrap_check(s.name, g.wrap_angle, s.role, small=s.name == small))
+    longest = max(geometry.spans, key=lambda sp: sp.pitches)
+    out.append(ck.span_length_check(f"span {longest.start_name} → {longest.end_name}",
+                                    longest.pitches))
+    return out
+
+
+def chain_checks(drive: Drive, geometry: GeometryResult,
+                 settings: CheckSettings | None = None) -> list[ck.Check]:
+    """The checks of the chain itself (strength, speed, life) by its method."""
+    s = settings or settings_for(drive)
+    loads = _forces(drive, geometry)
+    method = s.method or ratings.method_for(drive.chain.spec)
+    if method == ratings.POLYMER:
+        return _polymer_checks(drive, loads, s)
+    if method == ratings.KE:
+        return _ke_checks(drive, geometry, loads, s)
+    return _rating_checks(drive, geometry, loads, s)
+
+
+def checks_for(drive: Drive, geometry: GeometryResult,
+               settings: CheckSettings | None = None) -> tuple[ck.Check, ...]:
+    """Every check of ``drive`` (power and driver speed given) laid out as ``geometry``."""
+    return (*chain_checks(drive, geometry, settings), *geometry_checks(drive, geometry))

@@ -1,0 +1,107 @@
+"""Lubrication advice for every chain: the regime by chain speed and pitch.
+
+Regimes, from slow to fast: "manual" (brush or oil can), "drip", "bath/disc" (oil bath or
+slinger disc), "forced" (oil stream from a pump) — the ANSI/ACA lubrication types A (manual
+or drip), B (bath or disc) and C (stream) [Shigley2015, §17-5]. Boundaries:
+
+* manual up to 0.5 m/s, drip up to about 1.5 m/s [KettenfabrikUnna];
+* drip (type A) and bath/disc (type B) upper speeds by chain pitch from the ANSI table of
+  [McGuireLube] (ANSI 40 … 160, pitch 12.7 … 50.8 mm). A chain without an ANSI number (ISO B
+  series, GOST, user) takes the limits of its pitch: log–log interpolation in pitch between
+  the tabulated chains, and outside 12.7 … 50.8 mm the end segments extended (flagged as an
+  extrapolation in the note);
+* a polymer chain runs dry: "none: dry-running polymer" (the point of a polymer chain; its
+  maker's catalogue; no oil).
+
+References
+----------
+[Shigley2015] §17-5 (lubrication types); [McGuireLube]; [KettenfabrikUnna].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from chaindrive.model import ChainSpec
+from chaindrive.strength import iso10823
+
+MANUAL_MAX = 0.5  # [m/s] [KettenfabrikUnna]
+REGIMES = ("manual", "drip", "bath/disc", "forced", "none: dry-running polymer")
+ANSI_TYPE = {"manual": "A", "drip": "A", "bath/disc": "B", "forced": "C"}
+_SOURCE = "[McGuireLube]; [KettenfabrikUnna]; [Shigley2015, §17-5]"
+
+
+@dataclass(frozen=True, slots=True)
+class LubricationAdvice:
+    """The lubrication regime of a chain at chain speed ``speed`` [m/s].
+
+    regime: one of :data:`REGIMES`; ansi_type: "A", "B", "C" (None for a polymer chain);
+    drip_max / bath_max: upper chain speeds [m/s] of drip and bath/disc lubrication for this
+    pitch (None for a polymer chain); source; note (extrapolation, table used).
+    """
+
+    chain: str
+    speed: float
+    regime: str
+    ansi_type: str | None
+    drip_max: float | None
+    bath_max: float | None
+    source: str
+    note: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {"chain": self.chain, "chain_speed_m_s": self.speed, "regime": self.regime,
+                "ansi_type": self.ansi_type, "manual_max_m_s": None if self.drip_max is None
+                else MANUAL_MAX, "drip_max_m_s": self.drip_max,
+                "bath_max_m_s": self.bath_max, "source": self.source, "note": self.note}
+
+
+def _table() -> list[tuple[float, float, float]]:
+    """(pitch [m], drip max [m/s], bath max [m/s]) of the ANSI table, by pitch."""
+    rows = [(int(k) / 80.0 * 0.0254, float(v[0]), float(v[1]))
+            for k, v in iso10823.data()["lubrication"].items()]
+    return sorted(rows)
+
+
+def speed_limits(pitch: float) -> tuple[float, float, str]:
+    """Drip (type A) and bath/disc (type B) upper chain speeds [m/s] for ``pitch`` [m], and a
+    note when the pitch is outside the table (log–log in pitch; see the module docstring)."""
+    rows = _table()
+    for p, a, b in rows:
+        if abs(p - pitch) <= 1e-6:
+            return a, b, ""
+    if pitch < rows[0][0]:
+        lo, hi, note = rows[0], rows[1], "pitch below the table: extrapolated"
+    elif pitch > rows[-1][0]:
+        lo, hi, note = rows[-2], rows[-1], "pitch above the table: extrapolated"
+    else:
+        i = next(k for k in range(len(rows) - 1) if rows[k][0] < pitch < rows[k + 1][0])
+        lo, hi, note = rows[i], rows[i + 1], "interpolated in pitch"
+    t = math.log(pitch / lo[0]) / math.log(hi[0] / lo[0])
+
+    def interp(j: int) -> float:
+        return math.exp((1 - t) * math.log(lo[j]) + t * math.log(hi[j]))
+
+    return interp(1), interp(2), note
+
+
+def lubrication_advice(chain: ChainSpec, speed: float) -> LubricationAdvice:
+    """The lubrication regime of ``chain`` at the chain speed ``speed`` [m/s] (module doc)."""
+    if chain.material != "steel":
+        return LubricationAdvice(chain.designation, speed, REGIMES[4], None, None, None,
+                                 f"chain material {chain.material}: its maker's catalogue",
+                                 "runs without oil; keep it clean and dry")
+    drip, bath, note = speed_limits(chain.pitch)
+    if speed <= MANUAL_MAX:
+        regime = "manual"
+    elif speed <= drip:
+        regime = "drip"
+    elif speed <= bath:
+        regime = "bath/disc"
+    else:
+        regime = "forced"
+    return LubricationAdvice(chain.designation, speed, regime, ANSI_TYPE[regime], drip, bath,
+                             _SOURCE, note)

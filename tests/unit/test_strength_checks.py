@@ -1,0 +1,89 @@
+"""Unit tests of chaindrive.strength.checks and drive_checks: verdicts, margins as fractions,
+"cannot be verified" as a failure, and the limits users found missing (idler and driver teeth
+in mesh, a 380-pitch span, speeds outside every table). Limits are the cited rules of the
+module (≥ 3 teeth in mesh [Renold-DG], wrap ≥ 120° [Mott2014], span ≤ 80 p)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from chaindrive.catalog import find_chain
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.model import Chain, Drive, Sprocket
+from chaindrive.strength import checks as ck
+from chaindrive.strength.drive_checks import checks_for, geometry_checks
+
+RPM = math.pi / 30
+
+
+def test_verdicts_and_margins():
+    c = ck.hinge_pressure_check("x", 20e6, 25e6)
+    assert c.status == "pass" and c.margin_fraction == pytest.approx(0.25)
+    assert c.to_dict()["value"] == pytest.approx(20.0) and c.to_dict()["unit"] == "MPa"
+    c = ck.static_safety_check("x", 5.0, 6.0, "[DiamondChain]")
+    assert c.status == "fail" and c.margin_fraction == pytest.approx(5 / 6 - 1)
+    c = ck.hinge_pressure_check("x", 20e6, None)
+    assert c.status == "cannot be verified" and not c.passed and c.margin_fraction is None
+    assert "no [p]" in c.note
+
+
+def test_worst_orders_failures_then_unverified_then_smallest_margin():
+    a = ck.wear_life_check("x", 20000.0, 15000.0)
+    b = ck.speed_limit_check("x", 10.0, None, "s")
+    f = ck.power_rating_check("x", 900.0, 1000.0, "s")
+    assert ck.worst([a, b, f]) is f and ck.worst([a, b]) is b and ck.worst([a]) is a
+
+
+def _drive(idler_y: float | None = None, driven_x: float = 1.0, teeth: int = 19) -> Drive:
+    sps = [Sprocket("A", teeth, 0.0, 0.0, "driver", speed=300 * RPM),
+           Sprocket("B", 38, driven_x, 0.0, "driven", adjustable=True)]
+    if idler_y is not None:
+        sps.append(Sprocket("I", 14, driven_x / 2, idler_y, "idler"))
+    return Drive("t", Chain(find_chain("16A-1")), tuple(sps), power=1000.0)
+
+
+def test_idler_with_a_fraction_of_a_tooth_in_mesh_fails():
+    """An idler barely touching the slack span (the seed layout: 0.28 teeth) fails the
+    3-teeth rule; its wrap has no limit of its own."""
+    d = _drive(idler_y=0.1315)
+    g = contour_geometry(d)
+    checks = {(c.name, c.subject): c for c in geometry_checks(d, g)}
+    idler = checks[("teeth in mesh", "I")]
+    assert idler.value < 1.0 and idler.status == "fail"
+    assert checks[("wrap", "I")].passed
+
+
+def test_driver_with_few_teeth_in_mesh_fails():
+    """A 6-tooth driver wraps about half its teeth: 2.x teeth in mesh < 3."""
+    d = _drive(teeth=6)
+    g = contour_geometry(d)
+    c = next(c for c in geometry_checks(d, g) if c.name == "teeth in mesh" and c.subject == "A")
+    assert 2.0 < c.value < 3.0 and c.status == "fail"
+
+
+def test_span_of_380_pitches_fails():
+    d = _drive(driven_x=380 * 0.0254)
+    c = next(c for c in geometry_checks(d, contour_geometry(d)) if c.name == "span length")
+    assert c.value == pytest.approx(380, rel=0.01) and c.status == "fail"
+
+
+def test_rated_chain_at_30000_rpm_fails_instead_of_passing():
+    """At 30 000 rpm the galling limit [Shigley2015] is far below: the chain fails."""
+    d = Drive("fast", Chain(find_chain("08A-1")),
+              (Sprocket("A", 19, 0, 0, "driver", speed=30000 * RPM),
+               Sprocket("B", 19, 0.5, 0, "driven")), power=100.0)
+    checks = checks_for(d, contour_geometry(d))
+    assert not all(c.passed for c in checks)
+    assert next(c for c in checks if c.name == "speed limit").status == "fail"
+
+
+def test_polymer_chain_checks_allowable_load_and_says_what_it_cannot_verify():
+    d = Drive("poly", Chain(find_chain("POM 08B")),
+              (Sprocket("A", 19, 0, 0, "driver", speed=100 * RPM),
+               Sprocket("B", 38, 0.5, 0, "driven")), power=20.0)
+    checks = {c.name: c for c in checks_for(d, contour_geometry(d))}
+    assert checks["allowable load"].limit == pytest.approx(find_chain("POM 08B").allowable_load)
+    assert checks["speed limit"].status == "cannot be verified"
+    assert "power rating" not in checks and "hinge pressure" not in checks
