@@ -1,0 +1,406 @@
+r"""Compiled step loop of the link-level model (numba, ``@njit(cache=True)``).
+
+State: roller centres x (N, 2) [m] and velocities v (N, 2) [m/s]; rotational coordinates
+θ (D,) [rad] and speeds ω (D,) [rad/s], the first n of which are the sprockets (the rest:
+an optional linear torsional system attached to them, see :mod:`chaindrive.linklevel.model`).
+
+Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sources):
+
+* gravity m g;
+* links (pin–bush joints) i = (r, r+1): axial spring–damper T = k·s + c·ℓ̇ on the elongation
+  s = ℓ − ℓ₀ outside the clearance band |ℓ − ℓ₀| ≤ Δ (s = 0 inside it, no force);
+* hinge friction at roller r between its two links: a moment
+  M = −sat(ω_rel)·f·T̄·d₂/2 on the leading link and −M on the trailing one, T̄ the mean
+  tension of the two links (≥ 0), ω_rel their relative angular speed; sat regularises the
+  Coulomb law as a viscous moment of the largest coefficient the step keeps stable
+  (``hinge_cmax``) below the sliding limit;
+* roller–tooth contact with the nearest tooth gap of the sprocket the roller is near
+  (contact search every ``search_every`` steps bounded to the rollers within reach of each
+  sprocket): penetration δ into the tooth = tip disc minus the gap, the gap being the
+  seating arc (radius r_i about the gap centre, half angle α) continued by its tangents
+  (the flanks); force F = max(0, k_c δ + c_c δ̇) along the normal, reacted on the sprocket
+  through the roller centre (exactly work-conjugate to δ).
+
+Integrator: semi-implicit (symplectic) Euler, v ← v + Δt·a(x, v), x ← x + Δt·v (Hairer,
+Lubich & Wanner, Geometric Numerical Integration, 2006, §I.1.2) — explicit, one force
+evaluation a step, energy error bounded (no drift) for the conservative part.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numba
+import numpy as np
+
+__all__ = ["run_kernel"]
+
+MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
+RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
+#: Energy accumulators (indices of ``energy``): work of the motor, of the resistance
+#: laws, dissipated in link dampers, contact dampers, hinge friction, torsional dampers.
+E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
+
+
+@numba.njit(cache=True)
+def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
+    """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
+    :mod:`chaindrive.dynamics.startup`: constant, ramp, Kloss)."""
+    if kind == MOTOR_CONSTANT:
+        return mp[0]
+    if kind == MOTOR_RAMP:
+        return mp[0] * min(1.0, t / mp[1]) if mp[1] > 0 else mp[0]
+    s = 1.0 - w / mp[2]
+    return mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
+
+
+@numba.njit(cache=True)
+def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> float:
+    """Moment of resistance [N·m] at forward speed w [rad/s] (ResistanceLaw kinds)."""
+    r = w / wn
+    if kind == RESISTANCE_LINEAR:
+        return M * r
+    if kind == RESISTANCE_QUADRATIC:
+        return M * r * abs(r)
+    if kind == RESISTANCE_CONSTANT:
+        return M * min(max(r / brk, -1.0), 1.0)
+    return 0.0
+
+
+@numba.njit(cache=True)
+def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, win: Any) -> None:
+    """cand[r] = the sprocket whose reach circle holds roller r, else −1; a roller that
+    comes within reach of sprocket s from outside every reach starts an engagement window
+    of win[s] steps (eng[r] = (s, steps left, peak force))."""
+    for r in range(x.shape[0]):
+        old = cand[r]
+        cand[r] = -1
+        for s in range(cx.size):
+            dx = x[r, 0] - cx[s]
+            dy = x[r, 1] - cy[s]
+            if dx * dx + dy * dy < reach[s] * reach[s]:
+                cand[r] = s
+                break
+        if old == -1 and cand[r] >= 0 and eng[r, 0] < 0:
+            eng[r, 0] = cand[r]
+            eng[r, 1] = win[cand[r]]
+            eng[r, 2] = 0.0
+
+
+@numba.njit(cache=True)
+def _engagements(t: float, Fc: Any, eng: Any, events: Any, count: Any) -> None:
+    """Track the peak contact force of every engaging roller; a finished window is written
+    as an event row (time of entry [s], sprocket, roller, peak force [N])."""
+    for r in range(Fc.size):
+        if eng[r, 0] < 0:
+            continue
+        if Fc[r] > eng[r, 2]:
+            eng[r, 2] = Fc[r]
+        eng[r, 1] -= 1.0
+        if eng[r, 1] <= 0.0:
+            k = count[0]
+            if k < events.shape[0]:
+                events[k, 0] = t
+                events[k, 1] = eng[r, 0]
+                events[k, 2] = r
+                events[k, 3] = eng[r, 2]
+                count[0] = k + 1
+            eng[r, 0] = -1.0
+
+
+@numba.njit(cache=True)
+def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float, ri: float,
+                 ah: float, Ra: float) -> tuple[float, float, float, int]:
+    """(δ [m], n_x, n_y, gap) of a roller centred at (px, py) relative to the sprocket
+    centre, the sprocket at angle th: n the unit normal of the force on the roller."""
+    rho_c = math.sqrt(px * px + py * py)
+    step = 2.0 * math.pi / z
+    a = math.atan2(py, px)
+    j = int(math.floor((a - th) / step + 0.5))
+    ga = th + j * step
+    er_x, er_y = math.cos(ga), math.sin(ga)
+    wx, wy = px - R * er_x, py - R * er_y
+    wi = -(wx * er_x + wy * er_y)  # along the inward radial
+    wt = -wx * er_y + wy * er_x  # along the tangent (+ counter-clockwise)
+    theta = math.atan2(wt, wi)
+    if abs(theta) <= ah:
+        rho = math.sqrt(wx * wx + wy * wy)
+        d_gap = rho + rr - ri
+        if rho > 1e-15:
+            nx, ny = -wx / rho, -wy / rho
+        else:
+            nx, ny = er_x, er_y
+    else:
+        sg = 1.0 if theta > 0 else -1.0
+        ca, sa = math.cos(ah), sg * math.sin(ah)
+        fx = -ca * er_x - sa * er_y  # flank normal into the tooth: ca(−e_r) + sa e_t
+        fy = -ca * er_y + sa * er_x
+        d_gap = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
+        nx, ny = -fx, -fy
+    d_tip = Ra + rr - rho_c
+    if d_tip < d_gap:
+        return d_tip, px / rho_c, py / rho_c, j
+    return d_gap, nx, ny, j
+
+
+@numba.njit(cache=True)
+def _links(x: Any, v: Any, f: Any, L0: Any, k: float, c: float, clear: float, T: Any,
+           thd: Any, lsq: Any) -> float:
+    """Axial link forces into f; tensions T, angular speeds thd, squared lengths lsq of every
+    link; returns the damper power dissipated [W]."""
+    N = x.shape[0]
+    diss = 0.0
+    for i in range(N):
+        b = i + 1 if i + 1 < N else 0
+        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+        dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
+        l2 = dx * dx + dy * dy
+        ell = math.sqrt(l2)
+        e = ell - L0[i]
+        rate = (dx * dvx + dy * dvy) / ell
+        if e > clear:
+            tension = k * (e - clear) + c * rate
+            diss += c * rate * rate
+        elif e < -clear:
+            tension = k * (e + clear) + c * rate
+            diss += c * rate * rate
+        else:
+            tension = 0.0
+        T[i] = tension
+        thd[i] = (dx * dvy - dy * dvx) / l2
+        lsq[i] = l2
+        ux, uy = tension * dx / ell, tension * dy / ell
+        f[i, 0] += ux
+        f[i, 1] += uy
+        f[b, 0] -= ux
+        f[b, 1] -= uy
+    return diss
+
+
+@numba.njit(cache=True)
+def _hinges(x: Any, f: Any, T: Any, thd: Any, lsq: Any, mu_r: float, cmax: float) -> float:
+    """Hinge friction moments (module docstring) into f; returns the power dissipated [W]."""
+    N = x.shape[0]
+    diss = 0.0
+    for r in range(N):
+        a = r - 1 if r > 0 else N - 1  # trailing link (a → r)
+        b = r + 1 if r + 1 < N else 0  # leading link is link r (r → b)
+        wrel = thd[r] - thd[a]
+        tm = 0.5 * (T[r] + T[a])
+        if tm <= 0.0 or wrel == 0.0:
+            continue
+        limit = mu_r * tm
+        visc = cmax * abs(wrel)
+        M = -(limit if visc > limit else visc) * (1.0 if wrel > 0 else -1.0)
+        diss -= M * wrel
+        # moment M on link r: forces ±(M/ℓ²)·d⊥ at its ends
+        dx, dy = x[b, 0] - x[r, 0], x[b, 1] - x[r, 1]
+        s = M / lsq[r]
+        f[b, 0] -= s * dy
+        f[b, 1] += s * dx
+        f[r, 0] += s * dy
+        f[r, 1] -= s * dx
+        # moment −M on link a
+        dx, dy = x[r, 0] - x[a, 0], x[r, 1] - x[a, 1]
+        s = -M / lsq[a]
+        f[r, 0] -= s * dy
+        f[r, 1] += s * dx
+        f[a, 0] += s * dy
+        f[a, 1] -= s * dx
+    return diss
+
+
+@numba.njit(cache=True)
+def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
+               ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
+    """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
+    the gap whose centre direction is the unit vector (gx, gy): the trigonometry-free form of
+    :func:`_penetration` (α given by its cosine, sine and tangent)."""
+    wx, wy = px - R * gx, py - R * gy
+    wi = -(wx * gx + wy * gy)
+    wt = -wx * gy + wy * gx
+    if wi > 0.0 and abs(wt) <= ta * wi:
+        rho = math.sqrt(wx * wx + wy * wy)
+        d = rho + rr - ri
+        if rho > 1e-15:
+            nx, ny = -wx / rho, -wy / rho
+        else:
+            nx, ny = gx, gy
+    else:
+        s = sa if wt > 0.0 else -sa
+        fx = -ca * gx - s * gy
+        fy = -ca * gy + s * gx
+        d = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
+        nx, ny = -fx, -fy
+    lim = Ra + rr - d  # the tip disc governs when |p| > R_a + r − δ_gap
+    rc2 = px * px + py * py
+    if lim < 0.0 or rc2 > lim * lim:
+        rc = math.sqrt(rc2)
+        return Ra + rr - rc, px / rc, py / rc
+    return d, nx, ny
+
+
+@numba.njit(cache=True)
+def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
+              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any) -> float:
+    """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
+    Fc [N], sprocket Sc and gap Gc of every roller (Gc ≥ 0 also serves as the guess of the
+    next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
+    the nearest by angle); returns the damper power [W].
+
+    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c; trig rows: cos α, sin α, tan α;
+    gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame.
+    """
+    diss = 0.0
+    ns = th.size if th.size < spr.shape[1] else spr.shape[1]
+    cth = np.empty(spr.shape[1])
+    sth = np.empty(spr.shape[1])
+    for s in range(ns):
+        cth[s] = math.cos(th[s])
+        sth[s] = math.sin(th[s])
+    for r in range(x.shape[0]):
+        s = cand[r]
+        Fc[r] = 0.0
+        Sc[r] = -1
+        if s < 0:
+            Gc[r] = -1
+            continue
+        px, py = x[r, 0] - spr[0, s], x[r, 1] - spr[1, s]
+        z = spr[2, s]
+        R = spr[3, s]
+        step = 2.0 * math.pi / z
+        j = Gc[r]
+        if j < 0:
+            a = math.atan2(py * cth[s] - px * sth[s], px * cth[s] + py * sth[s])
+            j = int(math.floor(a / step + 0.5))
+            gx = math.cos(th[s] + j * step)
+            gy = math.sin(th[s] + j * step)
+        else:
+            best = 1e300
+            gx, gy = 0.0, 0.0
+            jb = j
+            zi = int(z + 0.5)
+            for jj in range(j - 1, j + 2):
+                k = jj % zi
+                ux = gtab[s, k, 0]  # gap direction in the sprocket frame
+                uy = gtab[s, k, 1]
+                ex = ux * cth[s] - uy * sth[s]
+                ey = ux * sth[s] + uy * cth[s]
+                dx, dy = px - R * ex, py - R * ey
+                d2 = dx * dx + dy * dy
+                if d2 < best:
+                    best, gx, gy, jb = d2, ex, ey, jj
+            j = jb
+        zi = int(z + 0.5)
+        Gc[r] = j % zi
+        d, nx, ny = _gap_local(px, py, gx, gy, R, spr[4, s], spr[5, s], trig[0, s], trig[1, s],
+                               trig[2, s], spr[7, s])
+        if d <= 0.0:
+            continue
+        vrx = v[r, 0] + w[s] * py  # roller velocity relative to the sprocket point under it
+        vry = v[r, 1] - w[s] * px
+        dd = -(vrx * nx + vry * ny)
+        F = spr[8, s] * d + spr[9, s] * dd
+        if F < 0.0:
+            F = 0.0
+        diss += (F - spr[8, s] * d) * dd
+        f[r, 0] += F * nx
+        f[r, 1] += F * ny
+        tq[s] -= F * (px * ny - py * nx)
+        Fc[r] = F
+        Sc[r] = s
+    return diss
+
+
+@numba.njit(cache=True)
+def _rotational(t: float, th: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any, mkind: int,
+                mp: Any, mdof: int, msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float,
+                rsign: Any, energy: Any, dt: float) -> None:
+    """Torques of the torsional system, motor and resistances into tq; work into energy."""
+    D = J.size
+    diss = 0.0
+    for i in range(D):
+        acc = 0.0
+        dmp = 0.0
+        for k in range(D):
+            acc -= Kt[i, k] * th[k]
+            dmp -= Ct[i, k] * w[k]
+        tq[i] += acc + dmp
+        diss -= dmp * w[i]
+    energy[E_TORSION] += diss * dt
+    m = msign * _motor_torque(t, msign * w[mdof], mkind, mp)
+    tq[mdof] += m
+    energy[E_MOTOR] += m * w[mdof] * dt
+    for i in range(rM.size):
+        if rM[i] != 0.0:
+            mr = -rsign[i] * _resistance_torque(rsign[i] * w[i], rkind, rM[i], rwn[i], rbrk)
+            tq[i] += mr
+            energy[E_LOAD] += mr * w[i] * dt
+
+
+@numba.njit(cache=True)
+def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float,
+               record_every: int, m: float, gx: float, gy: float, L0: Any, k: float, c: float,
+               clear: float, mu_r: float, cmax: float, spr: Any, trig: Any, gtab: Any,
+               reach: Any,
+               search_every: int, win: Any, J: Any, Kt: Any, Ct: Any, mkind: int, mp: Any, mdof: int,
+               msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float, rsign: Any,
+               rec_x: Any, rec_th: Any, rec_w: Any, rec_T: Any, rec_F: Any, rec_S: Any,
+               rec_G: Any, energy: Any, cand: Any, eng: Any, events: Any,
+               count: Any) -> None:
+    """Advance the state ``steps`` steps of Δt from time t0, recording every
+    ``record_every`` steps into the rec_* arrays (row 0: the initial state); x, v, th, w are
+    updated in place, energy accumulates the work and dissipation (E_* indices); cand, eng
+    carry the contact candidates and engagement windows from call to call, events (E, 4)
+    collects the engagement impacts (count[0] of them); event times are those of the window
+    ends."""
+    N = x.shape[0]
+    D = J.size
+    f = np.empty((N, 2))
+    T = np.empty(N)
+    thd = np.empty(N)
+    lsq = np.empty(N)
+    tq = np.empty(D)
+    Fc = np.zeros(N)
+    Sc = np.full(N, -1, dtype=np.int64)
+    Gc = np.full(N, -1, dtype=np.int64)
+    row = 0
+    for step in range(steps + 1):
+        t = t0 + step * dt
+        if step % search_every == 0:
+            _search(x, spr[0], spr[1], reach, cand, eng, win)
+        for r in range(N):
+            f[r, 0] = m * gx
+            f[r, 1] = m * gy
+        for i in range(D):
+            tq[i] = 0.0
+        p_link = _links(x, v, f, L0, k, c, clear, T, thd, lsq)
+        p_hinge = _hinges(x, f, T, thd, lsq, mu_r, cmax) if mu_r > 0.0 else 0.0
+        p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
+        if step % record_every == 0:
+            rec_x[row] = x
+            rec_th[row] = th
+            rec_w[row] = w
+            rec_T[row] = T
+            rec_F[row] = Fc
+            rec_S[row] = Sc
+            rec_G[row] = Gc
+            row += 1
+        if step == steps:
+            break
+        _engagements(t, Fc, eng, events, count)
+        energy[E_LINK] += p_link * dt
+        energy[E_HINGE] += p_hinge * dt
+        energy[E_CONTACT] += p_contact * dt
+        _rotational(t, th, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
+                    rsign, energy, dt)
+        h = dt / m
+        for r in range(N):
+            v[r, 0] += h * f[r, 0]
+            v[r, 1] += h * f[r, 1]
+            x[r, 0] += dt * v[r, 0]
+            x[r, 1] += dt * v[r, 1]
+        for i in range(D):
+            w[i] += dt * tq[i] / J[i]
+            th[i] += dt * w[i]

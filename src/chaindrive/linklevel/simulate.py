@@ -1,0 +1,269 @@
+"""Entry point of the link-level model: :func:`simulate` (drive → :class:`LinkLevelResult`).
+
+Time step (explicit integration, :mod:`chaindrive.linklevel.kernel`): the semi-implicit
+Euler step is stable for Δt < 2/ω_max (Hairer, Lubich & Wanner 2006, §I.1.2, the
+Störmer–Verlet stability interval), ω_max bounded by the stiffest local oscillator, a roller
+between two links on one tooth, ω_max² ≤ (4k_link + k_c)/m (Gershgorin's theorem on
+M⁻¹K). The default Δt = C·2/ω_max with C = :data:`COURANT` (below 1 for the contact
+nonlinearity and the dampers).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.errors import DesignError
+from chaindrive.linklevel.assembly import Assembly, assemble_chain
+from chaindrive.linklevel.kernel import (
+    MOTOR_CONSTANT,
+    MOTOR_KLOSS,
+    MOTOR_RAMP,
+    RESISTANCE_CONSTANT,
+    RESISTANCE_LINEAR,
+    RESISTANCE_NONE,
+    RESISTANCE_QUADRATIC,
+    run_kernel,
+)
+from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
+from chaindrive.linklevel.result import LinkLevelResult, state_energy
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive
+
+__all__ = ["COURANT", "simulate"]
+
+TWO_PI = 2.0 * math.pi
+#: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
+COURANT = 0.8
+#: Contact search every this many steps; the reach circle is widened by a quarter pitch,
+#: which a roller at 0.25·p/(8Δt) ≈ 100 m/s could cross: never in a roller chain.
+SEARCH_EVERY = 8
+Start = Literal["rest", "steady"]
+
+
+def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.startup`."""
+    if type(motor) is ConstantTorque:
+        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
+    if type(motor) is RampTorque:
+        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
+    if type(motor) is KlossMotor:
+        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
+                                      motor.critical_slip, motor.synchronous_speed])
+    raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque or "
+                      f"KlossMotor, got {type(motor).__name__}")
+
+
+_RESISTANCE = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
+               "quadratic": RESISTANCE_QUADRATIC}
+
+
+def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
+                ) -> tuple[int, NDArray[np.float64], NDArray[np.float64], float]:
+    """(code, M_i [N·m], ω_n,i [rad/s], breakaway) of the resistance on the driven sprockets:
+    their power shares of P at the nominal speeds, as the ring model's start-up."""
+    n = len(drive.sprockets)
+    if kind is None or not drive.power:
+        return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
+    if kind not in _RESISTANCE:
+        raise DesignError("resistance", f"must be one of {sorted(_RESISTANCE)}, got {kind!r}")
+    from chaindrive.strength.loads import power_shares
+
+    torques = np.asarray(power_shares(drive), dtype=float) * drive.power / speeds
+    torques[drive.driver_index] = 0.0
+    law = ResistanceLaw(kind, torques, speeds)  # type: ignore[arg-type]
+    return _RESISTANCE[kind], law.torques, law.nominal_speeds, law.breakaway
+
+
+def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
+    """Mean sprocket speeds [rad/s], ω_i = ω_driver z_driver / z_i."""
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    z = np.array([s.teeth for s in drive.sprockets], dtype=float)
+    return driver.speed * driver.teeth / z
+
+
+def _initial_velocities(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
+                        omega: NDArray[np.float64]) -> tuple[NDArray[np.float64],
+                                                             NDArray[np.float64]]:
+    """Roller velocities (N, 2) and sprocket speeds (n,) of steady running at mean chain
+    speed V = R̄ω: rollers within a pitch circle's reach turn with that sprocket, the others
+    move along their span."""
+    speed = float(omega[model.driver] * model.teeth[model.driver] * model.pitch / TWO_PI)
+    w = model.turn * omega
+    v = np.zeros_like(asm.positions)
+    d = asm.positions[:, None, :] - model.centres[None, :, :]
+    near = np.hypot(d[..., 0], d[..., 1]) <= model.pitch_radii[None, :] * (1 + 1e-9)
+    directions = np.array([sp.direction for sp in geometry.spans])
+    nxt = np.roll(asm.positions, -1, axis=0) - asm.positions
+    for r in range(asm.positions.shape[0]):
+        hit = np.flatnonzero(near[r])
+        if hit.size:
+            s = int(hit[0])
+            v[r] = w[s] * np.array([-d[r, s, 1], d[r, s, 0]])
+        else:
+            u = nxt[r] / np.hypot(*nxt[r])
+            k = int(np.argmax(directions @ u))
+            v[r] = speed * directions[k]
+    return v, w
+
+
+def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult | None = None,
+             model: LinkLevelModel | None = None, start: Start = "rest",
+             motor: Callable[[float, float], float] | None = None,
+             resistance: str | None = "linear", dt_s: float | None = None,
+             sample_rate_hz: float | None = None, hinge_friction: float | None = None,
+             clearance_m: float = 0.0, torsional: TorsionalAttachment | None = None,
+             steady_window: float = 0.5) -> LinkLevelResult:
+    """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
+
+    geometry : its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`);
+    model : link-level parameters (None: :func:`chaindrive.linklevel.model.build_model`
+    with ``hinge_friction`` (None: f = 0.1), ``clearance_m`` [m] and ``torsional``);
+    start : "rest" (a start-up) or "steady" (every body moving at its mean speed);
+    motor(t, ω) [N·m] on the driver: a ConstantTorque, RampTorque or KlossMotor (None: the
+    drive's ``[dynamics]`` motor rated at its power and driver speed); resistance : the law
+    of the driven sprockets' moments ("linear", "quadratic", "constant", None: none) with
+    their power shares at the nominal speeds; dt_s [s] (None: :data:`COURANT`·2/ω_max);
+    sample_rate_hz [Hz] of the recorded history (None: about 10× the ring model's first
+    natural frequency); steady_window : the closing fraction of the run over which the steady
+    span loads are taken.
+    """
+    from chaindrive.dynamics.response import motor_of
+    from chaindrive.geometry.contour import contour_geometry
+
+    if not (duration_s > 0 and 0 < steady_window <= 1):
+        raise DesignError("duration_s", f"need duration_s > 0 and 0 < steady_window ≤ 1, got "
+                          f"{duration_s!r}, {steady_window!r}")
+    geometry = geometry or contour_geometry(drive)
+    if model is None:
+        kw = {} if hinge_friction is None else {"hinge_friction": hinge_friction}
+        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional, **kw)
+    omega = _nominal_speeds(drive)
+    if motor is None:
+        if not drive.power:
+            raise DesignError("drive.power", "a link-level run needs the power (or a motor)")
+        motor = motor_of(drive.dynamics, drive.power, float(omega[drive.driver_index]))
+    omega_max = TWO_PI * model.highest_frequency_hz
+    dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / omega_max
+    steps = max(1, math.ceil(duration_s / dt))
+    rate = sample_rate_hz or 10.0 * max(model.ring_first_frequency_hz, 100.0)
+    every = max(1, round(1.0 / (rate * dt)))
+    asm = assemble_chain(geometry, drive.driver_index)
+    state = _initial_state(model, asm, geometry, omega, start)
+    return _run(drive, geometry, model, asm, state, motor, resistance, omega, dt, steps, every,
+                steady_window)
+
+
+State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+              NDArray[np.float64]]
+
+
+def _initial_state(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
+                   omega: NDArray[np.float64], start: Start) -> State:
+    """(x, v, θ, ω) at t = 0: the assembled chain at rest or at its mean speed."""
+    n_extra = 0 if model.torsional is None else model.torsional.extra_inertias.size
+    th = np.concatenate([asm.angles, np.zeros(n_extra)])
+    w = np.zeros(th.size)
+    x = asm.positions.copy()
+    v = np.zeros_like(x)
+    if start == "steady":
+        v, w[:model.centres.shape[0]] = _initial_velocities(model, asm, geometry, omega)
+        if model.torsional is not None and n_extra:
+            w[model.centres.shape[0]:] = np.nan  # filled by the caller's attachment
+            raise DesignError("start", "a steady start with an attached torsional system "
+                              "needs its initial speeds: start from rest")
+    elif start != "rest":
+        raise DesignError("start", f"must be 'rest' or 'steady', got {start!r}")
+    return x, v, th, w
+
+
+def _rest_lengths(model: LinkLevelModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """ℓ₀ of every link: its assembled length less T₀/k (each link starts at T₀)."""
+    d = np.roll(x, -1, axis=0) - x
+    return np.hypot(d[:, 0], d[:, 1]) - model.pretension / model.link_stiffness
+
+
+def _rotational_system(model: LinkLevelModel) -> tuple[NDArray[np.float64], ...]:
+    """J (D,), K (D, D), C (D, D) of the sprockets and an attached torsional system."""
+    n = model.inertias.size
+    att = model.torsional
+    if att is None:
+        return model.inertias.copy(), np.zeros((n, n)), np.zeros((n, n))
+    D = n + att.extra_inertias.size
+    K, C = np.asarray(att.stiffness, float), np.asarray(att.damping, float)
+    if K.shape != (D, D) or C.shape != (D, D):
+        raise DesignError("torsional", f"stiffness and damping must be {D}×{D}")
+    return np.concatenate([model.inertias, att.extra_inertias]), K, C
+
+
+def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Assembly,
+         state: State, motor: Callable[[float, float], float], resistance: str | None,
+         omega: NDArray[np.float64], dt: float, steps: int, every: int,
+         steady_window: float) -> LinkLevelResult:
+    """Set up the kernel's arrays, run it, wrap the result."""
+    x, v, th, w = (np.ascontiguousarray(a, dtype=float) for a in state)
+    x0, v0, th0, w0 = x.copy(), v.copy(), th.copy(), w.copy()
+    L0 = _rest_lengths(model, x)
+    J, K, C = _rotational_system(model)
+    mkind, mp = _motor_code(motor)
+    rkind, rM, rwn, rbrk = _resistance(drive, resistance, omega)
+    n, N = model.centres.shape[0], x.shape[0]
+    mdof = model.driver if model.torsional is None or model.torsional.motor_dof is None \
+        else int(model.torsional.motor_dof)
+    msign = float(model.turn[model.driver])
+    spr = np.ascontiguousarray(np.vstack([
+        model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
+        np.full(n, model.roller_radius), model.seating_radii, model.seating_half_angles,
+        model.tip_radii, model.contact_stiffness, model.contact_damping]))
+    a = model.seating_half_angles
+    trig = np.ascontiguousarray(np.vstack([np.cos(a), np.sin(a), np.tan(a)]))
+    zmax = int(model.teeth.max())
+    gtab = np.zeros((n, zmax, 2))
+    for i, zi in enumerate(model.teeth):
+        ang = TWO_PI * np.arange(zi) / zi
+        gtab[i, :zi, 0], gtab[i, :zi, 1] = np.cos(ang), np.sin(ang)
+    reach = model.tip_radii + model.roller_radius + 0.25 * model.pitch
+    win = np.maximum(1.0, np.round(TWO_PI / (model.teeth * np.abs(omega)) / dt))
+    # the largest stable viscous hinge moment coefficient: a link's inertia m p²/2 over
+    # 4Δt keeps the regularised friction's rate at half the explicit limit 2/Δt
+    cmax = model.roller_mass * model.pitch**2 / 2.0 / (4.0 * dt)
+    rows = steps // every + 1
+    rec = (np.empty((rows, N, 2)), np.empty((rows, J.size)), np.empty((rows, J.size)),
+           np.empty((rows, N)), np.empty((rows, N)), np.empty((rows, N), dtype=np.int64),
+           np.empty((rows, N), dtype=np.int64))
+    energy = np.zeros(6)
+    d = x[:, None, :] - model.centres[None, :, :]
+    inside = np.hypot(d[..., 0], d[..., 1]) < reach[None, :]
+    cand = np.where(inside.any(axis=1), inside.argmax(axis=1), -1).astype(np.int64)
+    eng = np.full((N, 3), -1.0)
+    capacity = int(4 * N + 2 * duration_events(model, omega, steps * dt)) + 16
+    events, count = np.zeros((capacity, 4)), np.zeros(1, dtype=np.int64)
+    run_kernel(x, v, th, w, 0.0, steps, dt, every, model.roller_mass, float(model.gravity[0]),
+               float(model.gravity[1]), L0, model.link_stiffness, model.link_damping,
+               model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
+               SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
+               model.turn.copy(), *rec, energy, cand, eng, events, count)
+    times = np.arange(rows) * every * dt
+    kernel_args = (L0, spr, J, K)
+    e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
+    e_end = state_energy(model, x, v, th, w, *kernel_args)
+    return LinkLevelResult.build(
+        drive=drive, geometry=geometry, model=model, times=times, records=rec, dt=dt,
+        steps=steps, energy_terms=energy, energy_start=e_start, energy_end=e_end,
+        events=events[:int(count[0])], closing_misfit=asm.closing_misfit,
+        steady_window=steady_window)
+
+
+def duration_events(model: LinkLevelModel, omega: NDArray[np.float64], duration: float) -> float:
+    """Expected number of roller engagements in ``duration`` [s]: Σ z_i |ω_i| t / 2π."""
+    return float(np.sum(model.teeth * np.abs(omega)) * duration / TWO_PI)
