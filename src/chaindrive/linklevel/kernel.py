@@ -7,8 +7,9 @@ an optional linear torsional system attached to them, see :mod:`chaindrive.linkl
 Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sources):
 
 * gravity m g;
-* links (pin–bush joints) i = (r, r+1): axial spring–damper T = k·s + c·ℓ̇ on the elongation
-  s = ℓ − ℓ₀ outside the clearance band |ℓ − ℓ₀| ≤ Δ (s = 0 inside it, no force);
+* links (pin–bush joints) i = (r, r+1): axial spring k·s on the elongation s = ℓ − ℓ₀
+  outside the clearance band |ℓ − ℓ₀| ≤ Δ (s = 0 inside it) and an axial damper c·ℓ̇,
+  the damper taken implicitly (:func:`_velocity_update`) so that it sets no step limit;
 * hinge friction at roller r between its two links: a moment
   M = −sat(ω_rel)·f·T̄·d₂/2 on the leading link and −M on the trailing one, T̄ the mean
   tension of the two links (≥ 0), ω_rel their relative angular speed; sat regularises the
@@ -69,10 +70,10 @@ def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> 
 
 
 @numba.njit(cache=True)
-def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, win: Any) -> None:
-    """cand[r] = the sprocket whose reach circle holds roller r, else −1; a roller that
-    comes within reach of sprocket s from outside every reach starts an engagement window
-    of win[s] steps (eng[r] = (s, steps left, peak force))."""
+def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any) -> None:
+    """cand[r] = the sprocket whose reach circle holds roller r, else −1. A roller that
+    comes within reach of sprocket s from outside every reach is armed for an engagement
+    (eng[r] = (s, −1, 0)); one that leaves every reach before touching is disarmed."""
     for r in range(x.shape[0]):
         old = cand[r]
         cand[r] = -1
@@ -84,25 +85,36 @@ def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, win: Any)
                 break
         if old == -1 and cand[r] >= 0 and eng[r, 0] < 0:
             eng[r, 0] = cand[r]
-            eng[r, 1] = win[cand[r]]
+            eng[r, 1] = -1.0
             eng[r, 2] = 0.0
+        elif cand[r] < 0 and eng[r, 1] < 0:
+            eng[r, 0] = -1.0
 
 
 @numba.njit(cache=True)
-def _engagements(t: float, Fc: Any, eng: Any, events: Any, count: Any) -> None:
-    """Track the peak contact force of every engaging roller; a finished window is written
-    as an event row (time of entry [s], sprocket, roller, peak force [N])."""
+def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any) -> None:
+    """Engagement impacts: an armed roller's first contact opens a window of win[s] steps
+    (one tooth period at the nominal speed) over which its peak contact force is kept; a
+    closed window is written as an event row (time of first contact [s], sprocket, roller,
+    peak force [N])."""
     for r in range(Fc.size):
-        if eng[r, 0] < 0:
+        s = int(eng[r, 0])
+        if s < 0:
             continue
+        if eng[r, 1] < 0.0:
+            if Fc[r] > 0.0:
+                eng[r, 1] = win[s]
+                eng[r, 3] = t
+            else:
+                continue
         if Fc[r] > eng[r, 2]:
             eng[r, 2] = Fc[r]
         eng[r, 1] -= 1.0
         if eng[r, 1] <= 0.0:
             k = count[0]
             if k < events.shape[0]:
-                events[k, 0] = t
-                events[k, 1] = eng[r, 0]
+                events[k, 0] = eng[r, 3]
+                events[k, 1] = s
                 events[k, 2] = r
                 events[k, 3] = eng[r, 2]
                 count[0] = k + 1
@@ -145,12 +157,11 @@ def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float,
 
 
 @numba.njit(cache=True)
-def _links(x: Any, v: Any, f: Any, L0: Any, k: float, c: float, clear: float, T: Any,
-           thd: Any, lsq: Any) -> float:
-    """Axial link forces into f; tensions T, angular speeds thd, squared lengths lsq of every
-    link; returns the damper power dissipated [W]."""
+def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: Any,
+           uy: Any, thd: Any, lsq: Any) -> None:
+    """Elastic axial link forces into f; elastic tensions T, unit vectors (ux, uy), angular
+    speeds thd and squared lengths lsq of every link."""
     N = x.shape[0]
-    diss = 0.0
     for i in range(N):
         b = i + 1 if i + 1 < N else 0
         dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
@@ -158,24 +169,81 @@ def _links(x: Any, v: Any, f: Any, L0: Any, k: float, c: float, clear: float, T:
         l2 = dx * dx + dy * dy
         ell = math.sqrt(l2)
         e = ell - L0[i]
-        rate = (dx * dvx + dy * dvy) / ell
         if e > clear:
-            tension = k * (e - clear) + c * rate
-            diss += c * rate * rate
+            tension = k * (e - clear)
         elif e < -clear:
-            tension = k * (e + clear) + c * rate
-            diss += c * rate * rate
+            tension = k * (e + clear)
         else:
             tension = 0.0
         T[i] = tension
         thd[i] = (dx * dvy - dy * dvx) / l2
         lsq[i] = l2
-        ux, uy = tension * dx / ell, tension * dy / ell
-        f[i, 0] += ux
-        f[i, 1] += uy
-        f[b, 0] -= ux
-        f[b, 1] -= uy
-    return diss
+        ex, ey = dx / ell, dy / ell
+        ux[i] = ex
+        uy[i] = ey
+        f[i, 0] += tension * ex
+        f[i, 1] += tension * ey
+        f[b, 0] -= tension * ex
+        f[b, 1] -= tension * ey
+
+
+@numba.njit(cache=True)
+def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: Any,
+                     rhs: Any, zz: Any, cp: Any) -> None:
+    """v ← v + h·f with the link dampers taken implicitly (backward Euler in the axial
+    rates, directions frozen over the step): the rates g_i = u_i·(v′_{i+1} − v′_i) solve the
+    cyclic tridiagonal system (1 + 2h_c) g_i − h_c (u_i·u_{i+1}) g_{i+1}
+    − h_c (u_i·u_{i−1}) g_{i−1} = u_i·(v*_{i+1} − v*_i), h_c = Δt c/m, v* = v + h f
+    (Thomas algorithm with the Sherman–Morrison correction for the closing corners,
+    Press et al., Numerical Recipes, 3rd ed., §2.7.2); then v′_r = v*_r + h_c (g_r u_r −
+    g_{r−1} u_{r−1}). Unconditionally stable for any damping."""
+    N = v.shape[0]
+    for r in range(N):
+        v[r, 0] += h * f[r, 0]
+        v[r, 1] += h * f[r, 1]
+    if hc == 0.0:
+        for i in range(N):
+            g[i] = 0.0
+        return
+    last = N - 1
+    for i in range(last):  # rhs and the off-diagonal dot products o_i = u_i·u_{i+1}
+        rhs[i] = ux[i] * (v[i + 1, 0] - v[i, 0]) + uy[i] * (v[i + 1, 1] - v[i, 1])
+        cp[i] = ux[i] * ux[i + 1] + uy[i] * uy[i + 1]
+    rhs[last] = ux[last] * (v[0, 0] - v[last, 0]) + uy[last] * (v[0, 1] - v[last, 1])
+    o_close = ux[last] * ux[0] + uy[last] * uy[0]
+    diag = 1.0 + 2.0 * hc
+    corner = -hc * o_close  # entries (0, N−1) and (N−1, 0)
+    gamma = -diag
+    # Thomas forward sweep on both right-hand sides (rhs, and zz = (γ, 0, …, 0, corner))
+    bi = diag - gamma
+    c_prev = -hc * cp[0] / bi
+    rhs[0] /= bi
+    zz[0] = gamma / bi
+    cp[0] = c_prev
+    for i in range(1, N):
+        o_prev = ux[i] * ux[i - 1] + uy[i] * uy[i - 1]
+        ai = -hc * o_prev
+        bi = diag - (corner * corner / gamma if i == last else 0.0)
+        den = bi - ai * c_prev
+        ci = -hc * cp[i] if i < last else 0.0
+        c_prev = ci / den
+        cp[i] = c_prev
+        rhs[i] = (rhs[i] - ai * rhs[i - 1]) / den
+        zz[i] = ((corner if i == last else 0.0) - ai * zz[i - 1]) / den
+    for i in range(N - 2, -1, -1):
+        rhs[i] -= cp[i] * rhs[i + 1]
+        zz[i] -= cp[i] * zz[i + 1]
+    fac = (rhs[0] + corner * rhs[last] / gamma) / (1.0 + zz[0] + corner * zz[last] / gamma)
+    ga = rhs[last] - fac * zz[last]
+    g[last] = ga
+    gx, gy = ga * ux[last], ga * uy[last]
+    for r in range(N):
+        gr = rhs[r] - fac * zz[r]
+        g[r] = gr
+        px, py = gr * ux[r], gr * uy[r]
+        v[r, 0] += hc * (px - gx)
+        v[r, 1] += hc * (py - gy)
+        gx, gy = px, py
 
 
 @numba.njit(cache=True)
@@ -361,6 +429,12 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     T = np.empty(N)
     thd = np.empty(N)
     lsq = np.empty(N)
+    ux = np.empty(N)
+    uy = np.empty(N)
+    g = np.zeros(N)
+    rhs = np.empty(N)
+    zz = np.empty(N)
+    cp = np.empty(N)
     tq = np.empty(D)
     Fc = np.zeros(N)
     Sc = np.full(N, -1, dtype=np.int64)
@@ -369,15 +443,27 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     for step in range(steps + 1):
         t = t0 + step * dt
         if step % search_every == 0:
-            _search(x, spr[0], spr[1], reach, cand, eng, win)
+            _search(x, spr[0], spr[1], reach, cand, eng)
         for r in range(N):
             f[r, 0] = m * gx
             f[r, 1] = m * gy
         for i in range(D):
             tq[i] = 0.0
-        p_link = _links(x, v, f, L0, k, c, clear, T, thd, lsq)
+        _links(x, v, f, L0, k, clear, T, ux, uy, thd, lsq)
         p_hinge = _hinges(x, f, T, thd, lsq, mu_r, cmax) if mu_r > 0.0 else 0.0
         p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
+        if step < steps:
+            _engagements(t, Fc, eng, win, events, count)
+            _rotational(t, th, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
+                        rbrk, rsign, energy, dt)
+            _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp)
+            p_link = 0.0
+            for i in range(N):
+                p_link += c * g[i] * g[i]
+                T[i] += c * g[i]
+            energy[E_LINK] += p_link * dt
+            energy[E_HINGE] += p_hinge * dt
+            energy[E_CONTACT] += p_contact * dt
         if step % record_every == 0:
             rec_x[row] = x
             rec_th[row] = th
@@ -389,16 +475,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             row += 1
         if step == steps:
             break
-        _engagements(t, Fc, eng, events, count)
-        energy[E_LINK] += p_link * dt
-        energy[E_HINGE] += p_hinge * dt
-        energy[E_CONTACT] += p_contact * dt
-        _rotational(t, th, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
-                    rsign, energy, dt)
-        h = dt / m
         for r in range(N):
-            v[r, 0] += h * f[r, 0]
-            v[r, 1] += h * f[r, 1]
             x[r, 0] += dt * v[r, 0]
             x[r, 1] += dt * v[r, 1]
         for i in range(D):

@@ -5,9 +5,11 @@
   the discrete model of [Pedersen2004] and [Pedersen2005].
 * Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.stiffness.link_stiffness`
   (plates and pin, the ring model's own value, so both models share it); viscous link damping
-  c = η·k_link/ω₁, the viscous equivalent at the ring's first elastic frequency ω₁ of the
-  chain material's loss factor η (:func:`chaindrive.damping.loss_factor`); optional
-  clearance Δ (a dead band of the joint).
+  c = β·k_link with the ring model's β = 2ζ/ω₁ (ζ the drive's damping ratio, 0.06 measured
+  on chain drives [MultimassChainDrives, §3.2], plus the material part of
+  :func:`chaindrive.dynamics.stiffness.ring_damping_ratio`; ω₁ the ring's first elastic
+  frequency): a span of L/p such links is the ring's branch damper β·c_span, so the two
+  models carry the same damping; optional clearance Δ (a dead band of the joint).
 * Hinge friction: moment f·T̄·d₂/2 opposing the relative rotation of two links,
   f = 0.1 and d₂ the pin diameter [ChainHingeDissipation, eqs. 7–8].
 * Roller–tooth contact: linear penalty k_c = the tooth stiffness of
@@ -40,13 +42,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.damping import DEFAULT_DAMPING_RATIO, loss_factor
+from chaindrive.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
     TOOTH_WIDTH_FACTOR,
     drive_ring_parameters,
     link_stiffness,
+    ring_damping_ratio,
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError
@@ -188,12 +191,14 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                 hinge_friction: float = HINGE_FRICTION, clearance: float = 0.0,
                 contact_damping_ratio: float = DEFAULT_DAMPING_RATIO,
                 pretension: float | None = None, gravity: float = GRAVITY,
+                damping_ratio: float | None = None,
                 torsional: TorsionalAttachment | None = None,
                 material_lookup: Callable[[str], Material] | None = None) -> LinkLevelModel:
     """Link-level parameters of ``drive`` on its built contour ``geometry`` (module
     docstring). hinge_friction f [–] (0: frictionless hinges); clearance Δ [m] of the
     pin–bush joint; contact_damping_ratio ζ_c [–]; pretension T₀ [N] (None: sag tension);
-    gravity g [m/s²] (acting along −y); torsional: optional attached torsional system."""
+    gravity g [m/s²] (acting along −y); damping_ratio ζ of the first mode (None: the drive's
+    ``[dynamics] damping_ratio``); torsional: optional attached torsional system."""
     if not (hinge_friction >= 0 and clearance >= 0 and 0 <= contact_damping_ratio < 1):
         raise DesignError("linklevel", "need hinge_friction ≥ 0, clearance ≥ 0 and "
                           f"0 ≤ contact_damping_ratio < 1, got {hinge_friction!r}, "
@@ -213,12 +218,13 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                                       spec.inner_width)
     tips = 0.5 * np.asarray(tip_diameter(spec.pitch, teeth, spec.roller_diameter,
                                          form=drive.tooth_form), dtype=float)
-    eta = loss_factor(chain_mat.family, chain_mat.is_polymer)
+    zeta = ring_damping_ratio(ring, drive.dynamics.damping_ratio if damping_ratio is None
+                              else float(damping_ratio))
     t0 = _pretension(drive, geometry) if pretension is None else float(pretension)
     return LinkLevelModel(
         names=tuple(s.name for s in drive.sprockets), links=geometry.links, pitch=spec.pitch,
         roller_mass=m, roller_radius=0.5 * spec.roller_diameter, link_stiffness=k_link,
-        link_damping=eta * k_link / (2.0 * math.pi * f1) if f1 > 0 else 0.0,
+        link_damping=2.0 * zeta * k_link / (2.0 * math.pi * f1) if f1 > 0 else 0.0,
         clearance=float(clearance), hinge_friction=float(hinge_friction),
         pin_radius=0.5 * spec.pin_diameter, pretension=t0,
         gravity=np.array([0.0, -float(gravity)]),

@@ -117,7 +117,7 @@ class LinkLevelResult:
     contact_sprocket (T, N) (−1: free) of every roller; span_forces, span_offsets (T, n) [N],
     [m]; sprocket_speeds (T, n) [rad/s] in the running sense; tooth_loads: per sprocket the
     mean load per place on the wrap over the steady window [N]; impacts (E, 4): time of the
-    window's end [s], sprocket, roller, peak contact force [N] of every engagement; energy
+    first contact [s], sprocket, roller, peak contact force [N] of every engagement; energy
     balance terms [J]; dt [s], steps; closing_misfit [m] of the assembly.
     """
 

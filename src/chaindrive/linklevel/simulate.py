@@ -245,7 +245,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     d = x[:, None, :] - model.centres[None, :, :]
     inside = np.hypot(d[..., 0], d[..., 1]) < reach[None, :]
     cand = np.where(inside.any(axis=1), inside.argmax(axis=1), -1).astype(np.int64)
-    eng = np.full((N, 3), -1.0)
+    eng = np.full((N, 4), -1.0)
     capacity = int(4 * N + 2 * duration_events(model, omega, steps * dt)) + 16
     events, count = np.zeros((capacity, 4)), np.zeros(1, dtype=np.int64)
     run_kernel(x, v, th, w, 0.0, steps, dt, every, model.roller_mass, float(model.gravity[0]),
