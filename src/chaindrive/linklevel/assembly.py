@@ -8,7 +8,8 @@ on a pitch circle of radius R = p/(2 sin(π/z)) spans exactly one tooth, so the 
 wrap sit at the gap centres of the pitch polygon). Each sprocket is turned so that one gap
 centre lies under the first roller that reaches its arc. The N-th chord does not close
 exactly (the spans meet the polygons, not the pitch circles): the rollers of the last span
-are spaced evenly between its two ends instead, and the misfit is returned.
+are spaced evenly between its two ends instead (or hung in a sag when the contour has
+slack that no take-up removes), and the misfit is returned.
 """
 
 from __future__ import annotations
@@ -87,7 +88,8 @@ class Assembly:
     """The assembled chain: positions (N, 2) [m] of the roller centres, path parameters s
     (N,) [m], sprocket angles (n,) [rad] (a gap centre at angle θ_i + 2πj/z_i),
     closing_misfit [m] (the last span's length minus its links' pitches), last_span
-    (index of the span evened out), path length [m]."""
+    (index of the span evened out), path length [m]; sprocket_of (N,) the sprocket whose
+    arc holds each roller (−1 on a span), span_of (N,) its span (−1 on an arc)."""
 
     positions: NDArray[np.float64]
     parameters: NDArray[np.float64]
@@ -95,6 +97,8 @@ class Assembly:
     closing_misfit: float
     last_span: int
     path_length: float
+    sprocket_of: NDArray[np.int64]
+    span_of: NDArray[np.int64]
 
 
 def _next_parameter(path: _Path, s0: float, pitch: float) -> float:
@@ -114,9 +118,10 @@ def _next_parameter(path: _Path, s0: float, pitch: float) -> float:
 def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
     """Place the N rollers on the contour and turn the sprockets under them (module
     docstring); the walk ends in span ``slack_span`` (default the last), whose rollers are
-    spaced evenly (chain too short for the path by less than a pitch: each of its links
-    a little longer) or hung on a circular arc of equal chords p sagging along −y (chain
-    longer than the path: a slack span). Raises GeometryError beyond one pitch."""
+    spaced evenly on its line when the contour is taut (a take-up sprocket, or no slack:
+    the links of that span then differ from p by misfit/count, a few µm, which their rest
+    lengths absorb) or else hung on a circular arc of equal chords p sagging along −y (the
+    slack the contour leaves). Raises GeometryError beyond one pitch."""
     n = len(geometry.spans)
     last = slack_span % n
     path = contour_path(geometry, (last + 1) % n)
@@ -129,26 +134,31 @@ def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
     span_start = float(path.starts[-1])
     tail = np.flatnonzero(s > span_start)
     x_end = np.array(path.point(total))
-    if tail.size:
-        first = int(tail[0])
-        anchor = np.array(path.point(float(s[first - 1])))
-    else:
-        first = n_links
-        anchor = np.array(path.point(float(s[-1])))
+    pos = np.array([path.point(float(v)) for v in s])
+    # the first roller on the last span stays where the walk put it (a chord p from the
+    # arc); the ones after it are re-placed between it and the closing point
+    first = int(tail[0]) if tail.size else n_links - 1
+    anchor = pos[first].copy()
     gap = float(np.hypot(*(x_end - anchor)))
-    count = n_links - first + 1  # links between the anchor and roller 0
+    count = n_links - first  # links from the anchor round to roller 0
     misfit = gap - count * p
     if abs(misfit) > p:
         raise GeometryError("chain.links", f"the {n_links} links do not close on the contour "
                             f"(misfit {misfit * 1e3:.2f} mm)")
-    pos = np.array([path.point(float(v)) for v in s])
-    if count > 1 and misfit >= 0:
+    taut = geometry.adjusted is not None or geometry.slack <= 0.0
+    if count > 1 and (misfit >= 0 or taut):
         frac = np.arange(1, count)[:, None] / count
-        pos[first:] = anchor + frac * (x_end - anchor)
+        pos[first + 1:] = anchor + frac * (x_end - anchor)
     elif count > 1:
-        pos[first:] = sagging_polygon(anchor, x_end, count, p)[1:-1]
+        pos[first + 1:] = sagging_polygon(anchor, x_end, count, p)[1:-1]
     angles = _sprocket_angles(geometry, path, s, pos)
-    return Assembly(pos, s, angles, misfit, last, total)
+    piece = np.array([path.piece(float(v)) for v in s])
+    if tail.size:
+        piece[first:] = len(path.kinds) - 1
+    kinds = np.array(path.kinds)[piece]
+    owners = np.array(path.owners)[piece]
+    return Assembly(pos, s, angles, misfit, last, total,
+                    np.where(kinds == 0, owners, -1), np.where(kinds == 1, owners, -1))
 
 
 def sagging_polygon(a: NDArray[np.float64], b: NDArray[np.float64], count: int,

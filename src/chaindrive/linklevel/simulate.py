@@ -33,7 +33,7 @@ from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, buil
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Sequence
 
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
@@ -95,25 +95,23 @@ def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
 def _initial_velocities(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
                         omega: NDArray[np.float64]) -> tuple[NDArray[np.float64],
                                                              NDArray[np.float64]]:
-    """Roller velocities (N, 2) and sprocket speeds (n,) of steady running at mean chain
-    speed V = R̄ω: rollers within a pitch circle's reach turn with that sprocket, the others
-    move along their span."""
-    speed = float(omega[model.driver] * model.teeth[model.driver] * model.pitch / TWO_PI)
+    """Roller velocities (N, 2) and sprocket speeds (n,) of steady running: the sprockets at
+    their mean speeds, the rollers on a wrap turning with it, the rollers of a span moving
+    along it at the speed its leaving hinge gives it (R ω cos β), so that no link starts
+    stretching except where a span meets the next sprocket (the polygonal mismatch)."""
     w = model.turn * omega
-    v = np.zeros_like(asm.positions)
-    d = asm.positions[:, None, :] - model.centres[None, :, :]
-    near = np.hypot(d[..., 0], d[..., 1]) <= model.pitch_radii[None, :] * (1 + 1e-9)
-    directions = np.array([sp.direction for sp in geometry.spans])
-    nxt = np.roll(asm.positions, -1, axis=0) - asm.positions
-    for r in range(asm.positions.shape[0]):
-        hit = np.flatnonzero(near[r])
-        if hit.size:
-            s = int(hit[0])
-            v[r] = w[s] * np.array([-d[r, s, 1], d[r, s, 0]])
+    x = asm.positions
+    v = np.zeros_like(x)
+    carried = np.zeros(2)
+    for r in range(x.shape[0]):
+        s = int(asm.sprocket_of[r])
+        if s >= 0:
+            d = x[r] - model.centres[s]
+            v[r] = w[s] * np.array([-d[1], d[0]])
+            carried = v[r]
         else:
-            u = nxt[r] / np.hypot(*nxt[r])
-            k = int(np.argmax(directions @ u))
-            v[r] = speed * directions[k]
+            u = np.array(geometry.spans[int(asm.span_of[r])].direction)
+            v[r] = float(carried @ u) * u
     return v, w
 
 
@@ -123,7 +121,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
              resistance: str | None = "linear", dt_s: float | None = None,
              sample_rate_hz: float | None = None, hinge_friction: float | None = None,
              clearance_m: float = 0.0, torsional: TorsionalAttachment | None = None,
-             steady_window: float = 0.5) -> LinkLevelResult:
+             steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
+             span_kick_m_s: tuple[int, float] | None = None) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
     geometry : its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`);
@@ -136,7 +135,9 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     their power shares at the nominal speeds; dt_s [s] (None: :data:`COURANT`·2/ω_max);
     sample_rate_hz [Hz] of the recorded history (None: about 10× the ring model's first
     natural frequency); steady_window : the closing fraction of the run over which the steady
-    span loads are taken.
+    span loads are taken. Impulses at t = 0 (for natural frequencies): kick_rad_s (n,) speeds
+    added to the sprockets [rad/s]; span_kick_m_s (span k, u [m/s]) a transverse velocity
+    u·sin(πξ) on the rollers of span k (ξ ∈ (0, 1) along it, to the left of the travel).
     """
     from chaindrive.dynamics.response import motor_of
     from chaindrive.geometry.contour import contour_geometry
@@ -160,6 +161,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     every = max(1, round(1.0 / (rate * dt)))
     asm = assemble_chain(geometry, drive.driver_index)
     state = _initial_state(model, asm, geometry, omega, start)
+    _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
     return _run(drive, geometry, model, asm, state, motor, resistance, omega, dt, steps, every,
                 steady_window)
 
@@ -185,6 +187,28 @@ def _initial_state(model: LinkLevelModel, asm: Assembly, geometry: GeometryResul
     elif start != "rest":
         raise DesignError("start", f"must be 'rest' or 'steady', got {start!r}")
     return x, v, th, w
+
+
+def _apply_kicks(state: State, model: LinkLevelModel, geometry: GeometryResult,
+                 kick: Sequence[float] | None, span_kick: tuple[int, float] | None) -> None:
+    """Add the impulses of :func:`simulate` to the initial velocities (in place)."""
+    x, v, _, w = state
+    n = model.centres.shape[0]
+    if kick is not None:
+        k = np.asarray(kick, dtype=float)
+        if k.shape != (n,):
+            raise DesignError("kick_rad_s", f"need {n} sprocket speeds, got shape {k.shape}")
+        w[:n] += k * model.turn
+    if span_kick is not None:
+        index, speed = span_kick
+        if not 0 <= index < len(geometry.spans):
+            raise DesignError("span_kick_m_s", f"no span {index}")
+        sp = geometry.spans[index]
+        a, u = np.array(sp.start_point), np.array(sp.direction)
+        xi = (x - a) @ u / sp.length
+        off = np.abs((x - a) @ np.array([-u[1], u[0]]))
+        on = (xi > 0) & (xi < 1) & (off < model.pitch)
+        v[on] += speed * np.sin(np.pi * xi[on])[:, None] * np.array([-u[1], u[0]])
 
 
 def _rest_lengths(model: LinkLevelModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
