@@ -160,7 +160,7 @@ def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float,
 def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: Any,
            uy: Any, thd: Any, lsq: Any) -> None:
     """Elastic axial link forces into f; elastic tensions T, unit vectors (ux, uy), angular
-    speeds thd and squared lengths lsq of every link."""
+    speeds thd and inverse squared lengths lsq (1/ℓ²) of every link."""
     N = x.shape[0]
     for i in range(N):
         b = i + 1 if i + 1 < N else 0
@@ -168,6 +168,7 @@ def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: 
         dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
         l2 = dx * dx + dy * dy
         ell = math.sqrt(l2)
+        inv = 1.0 / ell
         e = ell - L0[i]
         if e > clear:
             tension = k * (e - clear)
@@ -176,9 +177,10 @@ def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: 
         else:
             tension = 0.0
         T[i] = tension
-        thd[i] = (dx * dvy - dy * dvx) / l2
-        lsq[i] = l2
-        ex, ey = dx / ell, dy / ell
+        inv2 = inv * inv
+        thd[i] = (dx * dvy - dy * dvx) * inv2
+        lsq[i] = inv2
+        ex, ey = dx * inv, dy * inv
         ux[i] = ex
         uy[i] = ey
         f[i, 0] += tension * ex
@@ -224,12 +226,12 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         o_prev = ux[i] * ux[i - 1] + uy[i] * uy[i - 1]
         ai = -hc * o_prev
         bi = diag - (corner * corner / gamma if i == last else 0.0)
-        den = bi - ai * c_prev
+        inv = 1.0 / (bi - ai * c_prev)
         ci = -hc * cp[i] if i < last else 0.0
-        c_prev = ci / den
+        c_prev = ci * inv
         cp[i] = c_prev
-        rhs[i] = (rhs[i] - ai * rhs[i - 1]) / den
-        zz[i] = ((corner if i == last else 0.0) - ai * zz[i - 1]) / den
+        rhs[i] = (rhs[i] - ai * rhs[i - 1]) * inv
+        zz[i] = ((corner if i == last else 0.0) - ai * zz[i - 1]) * inv
     for i in range(N - 2, -1, -1):
         rhs[i] -= cp[i] * rhs[i + 1]
         zz[i] -= cp[i] * zz[i + 1]
@@ -264,14 +266,14 @@ def _hinges(x: Any, f: Any, T: Any, thd: Any, lsq: Any, mu_r: float, cmax: float
         diss -= M * wrel
         # moment M on link r: forces ±(M/ℓ²)·d⊥ at its ends
         dx, dy = x[b, 0] - x[r, 0], x[b, 1] - x[r, 1]
-        s = M / lsq[r]
+        s = M * lsq[r]
         f[b, 0] -= s * dy
         f[b, 1] += s * dx
         f[r, 0] += s * dy
         f[r, 1] -= s * dx
         # moment −M on link a
         dx, dy = x[r, 0] - x[a, 0], x[r, 1] - x[a, 1]
-        s = -M / lsq[a]
+        s = -M * lsq[a]
         f[r, 0] -= s * dy
         f[r, 1] += s * dx
         f[a, 0] += s * dy
@@ -317,7 +319,7 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
     next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
     the nearest by angle); returns the damper power [W].
 
-    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c; trig rows: cos α, sin α, tan α;
+    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z; trig rows: cos α, sin α, tan α;
     gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame.
     """
     diss = 0.0
@@ -337,7 +339,8 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
         px, py = x[r, 0] - spr[0, s], x[r, 1] - spr[1, s]
         z = spr[2, s]
         R = spr[3, s]
-        step = 2.0 * math.pi / z
+        step = spr[10, s]
+        zi = int(z + 0.5)
         j = Gc[r]
         if j < 0:
             a = math.atan2(py * cth[s] - px * sth[s], px * cth[s] + py * sth[s])
@@ -348,9 +351,9 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
             best = 1e300
             gx, gy = 0.0, 0.0
             jb = j
-            zi = int(z + 0.5)
             for jj in range(j - 1, j + 2):
-                k = jj % zi
+                k = jj if jj >= 0 else jj + zi
+                k = k if k < zi else k - zi
                 ux = gtab[s, k, 0]  # gap direction in the sprocket frame
                 uy = gtab[s, k, 1]
                 ex = ux * cth[s] - uy * sth[s]
@@ -360,8 +363,8 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
                 if d2 < best:
                     best, gx, gy, jb = d2, ex, ey, jj
             j = jb
-        zi = int(z + 0.5)
-        Gc[r] = j % zi
+        j = j % zi if (j < 0 or j >= zi) else j
+        Gc[r] = j
         d, nx, ny = _gap_local(px, py, gx, gy, R, spr[4, s], spr[5, s], trig[0, s], trig[1, s],
                                trig[2, s], spr[7, s])
         if d <= 0.0:
@@ -388,7 +391,7 @@ def _rotational(t: float, th: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any, mk
     """Torques of the torsional system, motor and resistances into tq; work into energy."""
     D = J.size
     diss = 0.0
-    for i in range(D):
+    for i in range(D if Kt.shape[0] > 0 else 0):
         acc = 0.0
         dmp = 0.0
         for k in range(D):

@@ -62,7 +62,7 @@ def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.fl
         "kinetic_j": 0.5 * m * float(np.sum(v * v)) + 0.5 * float(np.sum(J * w * w)),
         "link_elastic_j": 0.5 * model.link_stiffness * float(np.sum(s * s)),
         "contact_elastic_j": contact,
-        "torsional_elastic_j": 0.5 * float(th @ K @ th),
+        "torsional_elastic_j": 0.5 * float(th @ K @ th) if K.size else 0.0,
         "gravity_j": -m * float(np.sum(x @ model.gravity)),
     }
 

@@ -11,6 +11,7 @@ nonlinearity and the dampers).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -38,7 +39,7 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["COURANT", "simulate"]
+__all__ = ["COURANT", "InitialState", "initial_state", "simulate"]
 
 TWO_PI = 2.0 * math.pi
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
@@ -211,6 +212,27 @@ def _apply_kicks(state: State, model: LinkLevelModel, geometry: GeometryResult,
         v[on] += speed * np.sin(np.pi * xi[on])[:, None] * np.array([-u[1], u[0]])
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class InitialState:
+    """The state a run starts from (what a peer engine needs to start from the same one):
+    roller positions x and velocities v (N, 2) [m], [m/s]; rotational coordinates θ and
+    speeds ω (D,) [rad], [rad/s]; link rest lengths ℓ₀ (N,) [m]."""
+
+    positions: NDArray[np.float64]
+    velocities: NDArray[np.float64]
+    angles: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    rest_lengths: NDArray[np.float64]
+
+
+def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
+                  start: Start = "rest") -> InitialState:
+    """The assembled chain and its start state, as :func:`simulate` builds them."""
+    asm = assemble_chain(geometry, drive.driver_index)
+    x, v, th, w = _initial_state(model, asm, geometry, _nominal_speeds(drive), start)
+    return InitialState(x, v, th, w, _rest_lengths(model, x))
+
+
 def _rest_lengths(model: LinkLevelModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
     """ℓ₀ of every link: its assembled length less T₀/k (each link starts at T₀)."""
     d = np.roll(x, -1, axis=0) - x
@@ -221,8 +243,8 @@ def _rotational_system(model: LinkLevelModel) -> tuple[NDArray[np.float64], ...]
     """J (D,), K (D, D), C (D, D) of the sprockets and an attached torsional system."""
     n = model.inertias.size
     att = model.torsional
-    if att is None:
-        return model.inertias.copy(), np.zeros((n, n)), np.zeros((n, n))
+    if att is None:  # no torsional system: empty matrices (the kernel skips them)
+        return model.inertias.copy(), np.zeros((0, 0)), np.zeros((0, 0))
     D = n + att.extra_inertias.size
     K, C = np.asarray(att.stiffness, float), np.asarray(att.damping, float)
     if K.shape != (D, D) or C.shape != (D, D):
@@ -248,7 +270,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     spr = np.ascontiguousarray(np.vstack([
         model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
         np.full(n, model.roller_radius), model.seating_radii, model.seating_half_angles,
-        model.tip_radii, model.contact_stiffness, model.contact_damping]))
+        model.tip_radii, model.contact_stiffness, model.contact_damping, TWO_PI / model.teeth]))
     a = model.seating_half_angles
     trig = np.ascontiguousarray(np.vstack([np.cos(a), np.sin(a), np.tan(a)]))
     zmax = int(model.teeth.max())
