@@ -385,17 +385,19 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
 
 
 @numba.njit(cache=True)
-def _rotational(t: float, th: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any, mkind: int,
+def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any,
+                mkind: int,
                 mp: Any, mdof: int, msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float,
                 rsign: Any, energy: Any, dt: float) -> None:
-    """Torques of the torsional system, motor and resistances into tq; work into energy."""
+    """Torques of the torsional system (on the turns θ − θ₀ since the start), motor and
+    resistances into tq; work into energy."""
     D = J.size
     diss = 0.0
     for i in range(D if Kt.shape[0] > 0 else 0):
         acc = 0.0
         dmp = 0.0
         for k in range(D):
-            acc -= Kt[i, k] * th[k]
+            acc -= Kt[i, k] * (th[k] - th0[k])
             dmp -= Ct[i, k] * w[k]
         tq[i] += acc + dmp
         diss -= dmp * w[i]
@@ -428,6 +430,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     ends."""
     N = x.shape[0]
     D = J.size
+    th0 = th.copy()
     f = np.empty((N, 2))
     T = np.empty(N)
     thd = np.empty(N)
@@ -457,7 +460,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
         p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
         if step < steps:
             _engagements(t, Fc, eng, win, events, count)
-            _rotational(t, th, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
+            _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
                         rbrk, rsign, energy, dt)
             _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp)
             p_link = 0.0

@@ -43,9 +43,9 @@ TWO_PI = 2.0 * math.pi
 def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.float64],
                  th: NDArray[np.float64], w: NDArray[np.float64], L0: NDArray[np.float64],
                  spr: NDArray[np.float64], J: NDArray[np.float64],
-                 K: NDArray[np.float64]) -> dict[str, float]:
-    """Kinetic, elastic (links, contacts, torsional system) and gravity energy [J] of a
-    state (x, v rollers; th, w rotational coordinates)."""
+                 K: NDArray[np.float64], th0: NDArray[np.float64]) -> dict[str, float]:
+    """Kinetic, elastic (links, contacts, torsional system on the turns θ − θ₀ since the
+    start) and gravity energy [J] of a state (x, v rollers; th, w rotational coordinates)."""
     m = model.roller_mass
     d = np.roll(x, -1, axis=0) - x
     e = np.hypot(d[:, 0], d[:, 1]) - L0
@@ -62,7 +62,7 @@ def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.fl
         "kinetic_j": 0.5 * m * float(np.sum(v * v)) + 0.5 * float(np.sum(J * w * w)),
         "link_elastic_j": 0.5 * model.link_stiffness * float(np.sum(s * s)),
         "contact_elastic_j": contact,
-        "torsional_elastic_j": 0.5 * float(th @ K @ th) if K.size else 0.0,
+        "torsional_elastic_j": 0.5 * float((th - th0) @ K @ (th - th0)) if K.size else 0.0,
         "gravity_j": -m * float(np.sum(x @ model.gravity)),
     }
 

@@ -300,7 +300,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
                SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
                model.turn.copy(), *rec, energy, cand, eng, events, count)
     times = np.arange(rows) * every * dt
-    kernel_args = (L0, spr, J, K)
+    kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
     e_end = state_energy(model, x, v, th, w, *kernel_args)
     return LinkLevelResult.build(
