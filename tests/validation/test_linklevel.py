@@ -113,7 +113,7 @@ def test_slow_running_chain_speed_is_r_omega_cos_beta(slow_run):
 
 def _flank_limit_ratio(teeth: int, half_angle: float) -> float:
     """Tension ratio T_k/T_{k−1} of a rigid chain on a rigid sprocket with every roller on
-    the flank (Naji & Marshek 1983 [Naji1983], their rigid case; Binder 1956 [Binder1956]):
+    the flank (Naji & Marshek 1983 [Naji1983], their rigid case):
     the roller's two link tensions and the flank's normal force in equilibrium (three forces,
     Lami's theorem), rollers at the gap centres of the pitch polygon, the flank normal at
     the seating half-angle α from the inward radial."""
@@ -249,8 +249,8 @@ def _impulse_peak_hz(drive: Drive, duration: float) -> float:
 
 def _ring_with_chain_mass(drive: Drive, geometry, params) -> np.ndarray:
     """Elastic frequencies [Hz] of the ring with the chain's mass added: a third of each
-    span to each of its end sprockets (Rayleigh's estimate of a spring's own mass, e.g.
-    Rao, Mechanical Vibrations, 5th ed., §2.5) and the wrapped chain to its sprocket."""
+    span to each of its end sprockets (Rayleigh's energy method for a spring's own mass,
+    [Rao2011, ch. 2]) and the wrapped chain to its sprocket."""
     q = drive.chain.spec.mass_per_length
     extra = np.zeros(len(drive.sprockets))
     for span in geometry.spans:
@@ -295,3 +295,21 @@ def test_ring_model_dynamic_loads_against_link_level(name):
     excess = (link.coefficient_of_dynamics - 1) / (ring.coefficient_of_dynamics - 1)
     assert 3.0 < excess < 60.0
     assert link.impacts[:, 3].max() > link.nominal_force
+
+
+def test_ring_model_startup_peak_against_link_level():
+    """Ring model [MultimassChainDrives] vs link-level, start-up from rest by the Kloss motor
+    over 1 s (seed contour): the peak force of the loaded spans (static tension over half
+    the largest) agrees within 15 % (measured −6 % and −5 %); the slack span's does not (the
+    ring's slack span goes slack, the link-level's carries the engagement waves:
+    docs/linklevel.md §6)."""
+    from chaindrive import analyze
+
+    drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
+    analysis = analyze(drive)
+    ring = analysis.response.startup.max_span_force
+    static = np.asarray(analysis.strength.loads.span_tensions)
+    loaded = static > 0.5 * static.max()
+    link = simulate(drive, 1.0, sample_rate_hz=2000).peak_span_force
+    assert loaded.sum() >= 2
+    np.testing.assert_allclose(link[loaded], ring[loaded], rtol=0.15)
