@@ -135,7 +135,7 @@ def build(model, state, dt: float, t_end: float):
                                       outputVariableType=exu.OutputVariableType.AngularVelocity))
     mbs.Assemble()
     settings = exu.SimulationSettings()
-    settings.timeIntegration.numberOfSteps = int(round(t_end / dt))
+    settings.timeIntegration.numberOfSteps = round(t_end / dt)
     settings.timeIntegration.endTime = t_end
     settings.timeIntegration.verboseMode = 0
     settings.displayComputationTime = False
@@ -149,7 +149,7 @@ def build(model, state, dt: float, t_end: float):
 def run(model, state, dt: float, t_end: float,
         solver=exu.DynamicSolverType.RK44) -> tuple[float, np.ndarray]:
     """(wall time of the solve [s], (T, 2) time [s] and driven sprocket speed [rad/s])."""
-    SC, mbs, settings, sensor = build(model, state, dt, t_end)
+    _container, mbs, settings, sensor = build(model, state, dt, t_end)
     start = time.perf_counter()
     exu.SolveDynamic(mbs, settings, solverType=solver)
     wall = time.perf_counter() - start

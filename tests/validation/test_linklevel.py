@@ -70,7 +70,7 @@ def test_slow_running_driven_speed_follows_polygonal_law(slow_run):
     tight span's ends, read from the simulated sprocket angles. Within 1 % of the mean
     speed at 95 % of the samples (the rest are the engagement impacts, which the kinematic
     law leaves out); the median deviation is under 0.2 %."""
-    drive, geometry, r = slow_run
+    _drive, geometry, r = slow_run
     gd, gn = geometry.sprockets
     arrive = math.atan2(gd.arrive[1] - gd.y, gd.arrive[0] - gd.x)
     leave = math.atan2(gn.leave[1] - gn.y, gn.leave[0] - gn.x)

@@ -22,9 +22,13 @@ Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sour
   (the flanks); force F = max(0, k_c δ + c_c δ̇) along the normal, reacted on the sprocket
   through the roller centre (exactly work-conjugate to δ).
 
-Integrator: semi-implicit (symplectic) Euler, v ← v + Δt·a(x, v), x ← x + Δt·v (Hairer,
-Lubich & Wanner, Geometric Numerical Integration, 2006, §I.1.2) — explicit, one force
-evaluation a step, energy error bounded (no drift) for the conservative part.
+Integrator: semi-implicit (symplectic) Euler, v ← v + Δt·a(x, v), x ← x + Δt·v
+[Hairer2006, §I.1] — explicit, one force evaluation a step, energy error bounded (no drift)
+for the conservative part; the link dampers implicit (:func:`_velocity_update`).
+
+Model: [Pedersen2004], [Pedersen2005] (particles, spring–dampers, continuous contact on the
+real tooth profile); hinge friction [ChainHingeDissipation]; tooth forms [ISO606],
+[GOST591].
 """
 
 from __future__ import annotations
@@ -129,7 +133,7 @@ def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float,
     rho_c = math.sqrt(px * px + py * py)
     step = 2.0 * math.pi / z
     a = math.atan2(py, px)
-    j = int(math.floor((a - th) / step + 0.5))
+    j = math.floor((a - th) / step + 0.5)
     ga = th + j * step
     er_x, er_y = math.cos(ga), math.sin(ga)
     wx, wy = px - R * er_x, py - R * er_y
@@ -197,7 +201,7 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
     cyclic tridiagonal system (1 + 2h_c) g_i − h_c (u_i·u_{i+1}) g_{i+1}
     − h_c (u_i·u_{i−1}) g_{i−1} = u_i·(v*_{i+1} − v*_i), h_c = Δt c/m, v* = v + h f
     (Thomas algorithm with the Sherman–Morrison correction for the closing corners,
-    Press et al., Numerical Recipes, 3rd ed., §2.7.2); then v′_r = v*_r + h_c (g_r u_r −
+    [Press2007, §2.4, §2.7]); then v′_r = v*_r + h_c (g_r u_r −
     g_{r−1} u_{r−1}). Unconditionally stable for any damping."""
     N = v.shape[0]
     for r in range(N):
@@ -344,7 +348,7 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
         j = Gc[r]
         if j < 0:
             a = math.atan2(py * cth[s] - px * sth[s], px * cth[s] + py * sth[s])
-            j = int(math.floor(a / step + 0.5))
+            j = math.floor(a / step + 0.5)
             gx = math.cos(th[s] + j * step)
             gy = math.sin(th[s] + j * step)
         else:

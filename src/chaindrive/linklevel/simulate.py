@@ -1,8 +1,8 @@
 """Entry point of the link-level model: :func:`simulate` (drive → :class:`LinkLevelResult`).
 
 Time step (explicit integration, :mod:`chaindrive.linklevel.kernel`): the semi-implicit
-Euler step is stable for Δt < 2/ω_max (Hairer, Lubich & Wanner 2006, §I.1.2, the
-Störmer–Verlet stability interval), ω_max bounded by the stiffest local oscillator, a roller
+Euler step is stable for Δt < 2/ω_max ([Hairer2006], the Störmer–Verlet stability
+interval of a linear oscillator), ω_max bounded by the stiffest local oscillator, a roller
 between two links on one tooth, ω_max² ≤ (4k_link + k_c)/m (Gershgorin's theorem on
 M⁻¹K). The default Δt = C·2/ω_max with C = :data:`COURANT` (below 1 for the contact
 nonlinearity and the dampers).
