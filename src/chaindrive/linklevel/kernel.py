@@ -226,16 +226,18 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
     rhs[0] /= bi
     zz[0] = gamma / bi
     cp[0] = c_prev
-    for i in range(1, N):
-        o_prev = ux[i] * ux[i - 1] + uy[i] * uy[i - 1]
-        ai = -hc * o_prev
-        bi = diag - (corner * corner / gamma if i == last else 0.0)
-        inv = 1.0 / (bi - ai * c_prev)
-        ci = -hc * cp[i] if i < last else 0.0
-        c_prev = ci * inv
+    for i in range(1, last):
+        ai = -hc * (ux[i] * ux[i - 1] + uy[i] * uy[i - 1])
+        inv = 1.0 / (diag - ai * c_prev)
+        c_prev = -hc * cp[i] * inv
         cp[i] = c_prev
         rhs[i] = (rhs[i] - ai * rhs[i - 1]) * inv
-        zz[i] = ((corner if i == last else 0.0) - ai * zz[i - 1]) * inv
+        zz[i] = -ai * zz[i - 1] * inv
+    ai = -hc * (ux[last] * ux[last - 1] + uy[last] * uy[last - 1])
+    inv = 1.0 / (diag - corner * corner / gamma - ai * c_prev)
+    cp[last] = 0.0
+    rhs[last] = (rhs[last] - ai * rhs[last - 1]) * inv
+    zz[last] = (corner - ai * zz[last - 1]) * inv
     for i in range(N - 2, -1, -1):
         rhs[i] -= cp[i] * rhs[i + 1]
         zz[i] -= cp[i] * zz[i + 1]
