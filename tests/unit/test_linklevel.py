@@ -136,18 +136,20 @@ def test_result_dict_and_history(jindal):
 
 
 def test_attached_torsional_system_keeps_the_energy_balance(jindal):
-    """A load inertia on a shaft spring behind the driven sprocket (a torsional train): the
-    work of the motor equals the change of stored energy plus the dissipation (closed form
-    energy balance) to 1 %, and the train turns with the sprocket."""
+    """A load inertia on a shaft spring behind the driven sprocket (a torsional train)
+    carrying the driven sprocket's moment of resistance: the work of the motor and the load
+    equals the change of stored energy plus the dissipation (closed form energy balance) to
+    1 % of the motor's work, and the train turns with the sprocket."""
     drive, geometry = jindal
     k, c = 2.0e3, 0.5
     K = np.array([[0, 0, 0], [0, k, -k], [0, -k, k]], dtype=float)
     C = np.array([[0, 0, 0], [0, c, -c], [0, -c, c]], dtype=float)
-    train = TorsionalAttachment(np.array([5e-3]), K, C)
+    train = TorsionalAttachment(np.array([5e-3]), K, C, load_dofs=(0, 2))
     model = build_model(drive, geometry, torsional=train)
-    r = simulate(drive, 0.05, geometry=geometry, model=model, motor=ConstantTorque(5.0),
-                 resistance=None)
+    r = simulate(drive, 0.05, geometry=geometry, model=model, motor=ConstantTorque(25.0),
+                 resistance="linear")
     assert abs(r.energy_residual_j) < 0.01 * r.energy["motor_work_j"]
+    assert r.energy["resistance_work_j"] < 0 and r.energy["torsional_damping_j"] > 0
     assert r.speeds[-1, 2] * model.turn[1] > 0.5 * r.sprocket_speeds[-1, 1] > 0
 
 

@@ -77,17 +77,21 @@ class TorsionalAttachment:
     """A linear torsional system coupled to the sprockets (e.g. the trains of
     :mod:`chaindrive.dynamics.torsional`): rotational coordinates θ = (sprockets…, extra…).
 
-    extra_inertias (e,) [kg·m²] of the extra coordinates; stiffness, damping (n+e, n+e)
-    [N·m/rad], [N·m·s/rad] acting on all n+e coordinates (symmetric, positive
-    semi-definite: shafts, couplings, gear meshes reduced to one speed per coordinate);
-    motor_dof: the coordinate the motor drives (None: the driver sprocket); load_dofs (n,):
-    the coordinate that carries sprocket i's resistance (None: the sprocket itself).
+    extra_inertias (e,) [kg·m²] of the extra coordinates, each turning in the plane,
+    counter-clockwise positive like the sprockets (a coordinate geared to run the other way
+    is entered with its sign flipped in K and C); stiffness, damping (n+e, n+e)
+    [N·m/rad], [N·m·s/rad] acting on the turns of all n+e coordinates since the start
+    (symmetric, positive semi-definite: shafts, couplings, gear meshes reduced to one speed
+    per coordinate); motor_dof: the coordinate the motor drives (None: the driver
+    sprocket); load_dofs (n,): the coordinate that carries sprocket i's moment of
+    resistance (None: each sprocket its own).
     """
 
     extra_inertias: NDArray[np.float64]
     stiffness: NDArray[np.float64]
     damping: NDArray[np.float64]
     motor_dof: int | None = None
+    load_dofs: tuple[int, ...] | None = None
 
 
 @dataclass(frozen=True, slots=True, eq=False)

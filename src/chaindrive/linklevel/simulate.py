@@ -252,6 +252,28 @@ def _rotational_system(model: LinkLevelModel) -> tuple[NDArray[np.float64], ...]
     return np.concatenate([model.inertias, att.extra_inertias]), K, C
 
 
+def _loads_on_dofs(model: LinkLevelModel, dofs: int, torques: NDArray[np.float64],
+                   speeds: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """Moments of resistance M [N·m], nominal speeds [rad/s] and running senses (D,) on
+    the rotational coordinates: sprocket i's on its own, or on ``load_dofs[i]`` of an
+    attached torsional system."""
+    n = model.centres.shape[0]
+    target = list(range(n))
+    att = model.torsional
+    if att is not None and att.load_dofs is not None:
+        if len(att.load_dofs) != n or not all(0 <= k < dofs for k in att.load_dofs):
+            raise DesignError("torsional.load_dofs", f"need {n} coordinates in 0…{dofs - 1}, "
+                              f"got {att.load_dofs!r}")
+        target = [int(k) for k in att.load_dofs]
+    M, wn, sign = np.zeros(dofs), np.ones(dofs), np.ones(dofs)
+    for i, k in enumerate(target):
+        if torques[i] != 0.0:
+            M[k] += torques[i]
+            wn[k] = speeds[i]
+            sign[k] = model.turn[i]
+    return M, wn, sign
+
+
 def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Assembly,
          state: State, motor: Callable[[float, float], float], resistance: str | None,
          omega: NDArray[np.float64], dt: float, steps: int, every: int,
@@ -263,6 +285,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     J, K, C = _rotational_system(model)
     mkind, mp = _motor_code(motor)
     rkind, rM, rwn, rbrk = _resistance(drive, resistance, omega)
+    rM, rwn, rsign = _loads_on_dofs(model, J.size, rM, rwn)
     n, N = model.centres.shape[0], x.shape[0]
     mdof = model.driver if model.torsional is None or model.torsional.motor_dof is None \
         else int(model.torsional.motor_dof)
@@ -298,7 +321,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
                float(model.gravity[1]), L0, model.link_stiffness, model.link_damping,
                model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
                SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
-               model.turn.copy(), *rec, energy, cand, eng, events, count)
+               rsign, *rec, energy, cand, eng, events, count)
     times = np.arange(rows) * every * dt
     kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
