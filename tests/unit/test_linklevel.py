@@ -28,13 +28,18 @@ def test_implicit_damper_solves_backward_euler_exactly():
     """The cyclic tridiagonal solve equals the dense backward-Euler step
     (I + h_c AᵀA) v′ = v + h f, A the links' axial-rate operator (closed form)."""
     rng = np.random.default_rng(3)
-    n = 9
+    for n in (3, 4, 9, 10):
+        _check_damper_solve(rng, n)
+
+
+def _check_damper_solve(rng: np.random.Generator, n: int) -> None:
     v, f = rng.normal(size=(n, 2)), rng.normal(size=(n, 2))
     angle = rng.uniform(0.0, 2 * math.pi, n)
     ux, uy = np.cos(angle), np.sin(angle)
     h, hc = 0.2, 1.7
     out, g = v.copy(), np.zeros(n)
-    _velocity_update(out, f, h, hc, ux, uy, g, np.empty(n), np.empty(n), np.empty(n))
+    _velocity_update(out, f, h, hc, ux, uy, g, np.empty(n), np.empty(n), np.empty(n),
+                     np.empty(n))
     A = np.zeros((n, 2 * n))
     for i in range(n):
         b = (i + 1) % n

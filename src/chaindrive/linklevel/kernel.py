@@ -166,43 +166,100 @@ def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: 
     """Elastic axial link forces into f; elastic tensions T, unit vectors (ux, uy), angular
     speeds thd and inverse squared lengths lsq (1/ℓ²) of every link."""
     N = x.shape[0]
-    for i in range(N):
-        b = i + 1 if i + 1 < N else 0
+    last = N - 1
+    for i in range(N):  # no dependence between iterations: the compiler vectorises it
+        b = i + 1 if i < last else 0
         dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
         dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
         l2 = dx * dx + dy * dy
         ell = math.sqrt(l2)
         inv = 1.0 / ell
         e = ell - L0[i]
-        if e > clear:
-            tension = k * (e - clear)
-        elif e < -clear:
-            tension = k * (e + clear)
-        else:
-            tension = 0.0
+        tension = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
         T[i] = tension
         inv2 = inv * inv
         thd[i] = (dx * dvy - dy * dvx) * inv2
         lsq[i] = inv2
-        ex, ey = dx * inv, dy * inv
-        ux[i] = ex
-        uy[i] = ey
-        f[i, 0] += tension * ex
-        f[i, 1] += tension * ey
-        f[b, 0] -= tension * ex
-        f[b, 1] -= tension * ey
+        ux[i] = dx * inv
+        uy[i] = dy * inv
+    px, py = T[last] * ux[last], T[last] * uy[last]
+    for i in range(N):  # roller i: + its leading link's pull, − its trailing link's
+        cx, cy = T[i] * ux[i], T[i] * uy[i]
+        f[i, 0] += cx - px
+        f[i, 1] += cy - py
+        px, py = cx, cy
+
+
+@numba.njit(cache=True)
+def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any, z: Any,
+                   cp: Any) -> None:
+    """Solve the tridiagonal system with diagonal (b0, diag, …, diag, bl) and off-diagonals
+    −h_c·o_i (entries (i, i+1) and (i+1, i)) for the right-hand sides d and z in place, by
+    the twisted (two-sided) factorisation: eliminated from both ends towards the middle row
+    and substituted back outwards ([Press2007, §2.4] applied from both ends), so that the
+    two halves' dependency chains run side by side. cp: work array."""
+    n = d.size
+    last = n - 1
+    k = n // 2
+    cprev, dprev, zprev = 0.0, 0.0, 0.0  # top: c′_{j−1}, d′_{j−1}, z′_{j−1}
+    anext, dnext, znext = 0.0, 0.0, 0.0  # bottom: a″_{j+1}, d″_{j+1}, z″_{j+1}
+    for t in range(k):
+        j = t  # top row j: sub-diagonal −h_c o_{j−1}, super-diagonal −h_c o_j
+        a = -hc * o[j - 1] if j > 0 else 0.0
+        inv = 1.0 / ((b0 if j == 0 else diag) - a * cprev)
+        cprev = -hc * o[j] * inv
+        dprev = (d[j] - a * dprev) * inv
+        zprev = (z[j] - a * zprev) * inv
+        cp[j] = cprev
+        d[j] = dprev
+        z[j] = zprev
+        jb = last - t  # bottom row jb, above the middle row k
+        if jb > k:
+            c = -hc * o[jb] if jb < last else 0.0
+            inv = 1.0 / ((bl if jb == last else diag) - c * anext)
+            anext = -hc * o[jb - 1] * inv
+            dnext = (d[jb] - c * dnext) * inv
+            znext = (z[jb] - c * znext) * inv
+            cp[jb] = anext
+            d[jb] = dnext
+            z[jb] = znext
+    a = -hc * o[k - 1] if k > 0 else 0.0
+    c = -hc * o[k] if k < last else 0.0
+    bk = b0 if k == 0 else (bl if k == last else diag)
+    aright = cp[k + 1] if k < last else 0.0
+    dright = d[k + 1] if k < last else 0.0
+    zright = z[k + 1] if k < last else 0.0
+    inv = 1.0 / (bk - a * cprev - c * aright)
+    xk = (d[k] - a * dprev - c * dright) * inv
+    yk = (z[k] - a * zprev - c * zright) * inv
+    d[k] = xk
+    z[k] = yk
+    up_x, up_y, dn_x, dn_y = xk, yk, xk, yk
+    for t in range(1, max(k + 1, n - k)):
+        j = k - t  # back-substitution upwards: x_j = d′_j − c′_j x_{j+1}
+        if j >= 0:
+            up_x = d[j] - cp[j] * up_x
+            up_y = z[j] - cp[j] * up_y
+            d[j] = up_x
+            z[j] = up_y
+        jb = k + t  # and downwards: x_j = d″_j − a″_j x_{j−1}
+        if jb <= last:
+            dn_x = d[jb] - cp[jb] * dn_x
+            dn_y = z[jb] - cp[jb] * dn_y
+            d[jb] = dn_x
+            z[jb] = dn_y
 
 
 @numba.njit(cache=True)
 def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: Any,
-                     rhs: Any, zz: Any, cp: Any) -> None:
+                     rhs: Any, zz: Any, cp: Any, oo: Any) -> None:
     """v ← v + h·f with the link dampers taken implicitly (backward Euler in the axial
     rates, directions frozen over the step): the rates g_i = u_i·(v′_{i+1} − v′_i) solve the
     cyclic tridiagonal system (1 + 2h_c) g_i − h_c (u_i·u_{i+1}) g_{i+1}
     − h_c (u_i·u_{i−1}) g_{i−1} = u_i·(v*_{i+1} − v*_i), h_c = Δt c/m, v* = v + h f
-    (Thomas algorithm with the Sherman–Morrison correction for the closing corners,
-    [Press2007, §2.4, §2.7]); then v′_r = v*_r + h_c (g_r u_r −
-    g_{r−1} u_{r−1}). Unconditionally stable for any damping."""
+    (the corners by the Sherman–Morrison formula [Press2007, §2.7], the tridiagonal part by
+    :func:`_twisted_solve`); then v′_r = v*_r + h_c (g_r u_r − g_{r−1} u_{r−1}).
+    Unconditionally stable for any damping. Needs N ≥ 3 links."""
     N = v.shape[0]
     for r in range(N):
         v[r, 0] += h * f[r, 0]
@@ -214,33 +271,15 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
     last = N - 1
     for i in range(last):  # rhs and the off-diagonal dot products o_i = u_i·u_{i+1}
         rhs[i] = ux[i] * (v[i + 1, 0] - v[i, 0]) + uy[i] * (v[i + 1, 1] - v[i, 1])
-        cp[i] = ux[i] * ux[i + 1] + uy[i] * uy[i + 1]
+        oo[i] = ux[i] * ux[i + 1] + uy[i] * uy[i + 1]
+        zz[i] = 0.0
     rhs[last] = ux[last] * (v[0, 0] - v[last, 0]) + uy[last] * (v[0, 1] - v[last, 1])
-    o_close = ux[last] * ux[0] + uy[last] * uy[0]
     diag = 1.0 + 2.0 * hc
-    corner = -hc * o_close  # entries (0, N−1) and (N−1, 0)
+    corner = -hc * (ux[last] * ux[0] + uy[last] * uy[0])  # entries (0, N−1), (N−1, 0)
     gamma = -diag
-    # Thomas forward sweep on both right-hand sides (rhs, and zz = (γ, 0, …, 0, corner))
-    bi = diag - gamma
-    c_prev = -hc * cp[0] / bi
-    rhs[0] /= bi
-    zz[0] = gamma / bi
-    cp[0] = c_prev
-    for i in range(1, last):
-        ai = -hc * (ux[i] * ux[i - 1] + uy[i] * uy[i - 1])
-        inv = 1.0 / (diag - ai * c_prev)
-        c_prev = -hc * cp[i] * inv
-        cp[i] = c_prev
-        rhs[i] = (rhs[i] - ai * rhs[i - 1]) * inv
-        zz[i] = -ai * zz[i - 1] * inv
-    ai = -hc * (ux[last] * ux[last - 1] + uy[last] * uy[last - 1])
-    inv = 1.0 / (diag - corner * corner / gamma - ai * c_prev)
-    cp[last] = 0.0
-    rhs[last] = (rhs[last] - ai * rhs[last - 1]) * inv
-    zz[last] = (corner - ai * zz[last - 1]) * inv
-    for i in range(N - 2, -1, -1):
-        rhs[i] -= cp[i] * rhs[i + 1]
-        zz[i] -= cp[i] * zz[i + 1]
+    zz[0] = gamma
+    zz[last] = corner
+    _twisted_solve(hc, oo, diag - gamma, diag - corner * corner / gamma, diag, rhs, zz, cp)
     fac = (rhs[0] + corner * rhs[last] / gamma) / (1.0 + zz[0] + corner * zz[last] / gamma)
     ga = rhs[last] - fac * zz[last]
     g[last] = ga
@@ -325,7 +364,8 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
     next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
     the nearest by angle); returns the damper power [W].
 
-    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z; trig rows: cos α, sin α, tan α;
+    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z, R sin(π/z); trig rows:
+    cos α, sin α, tan α;
     gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame.
     """
     diss = 0.0
@@ -354,21 +394,25 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
             gx = math.cos(th[s] + j * step)
             gy = math.sin(th[s] + j * step)
         else:
-            best = 1e300
-            gx, gy = 0.0, 0.0
-            jb = j
-            for jj in range(j - 1, j + 2):
-                k = jj if jj >= 0 else jj + zi
-                k = k if k < zi else k - zi
-                ux = gtab[s, k, 0]  # gap direction in the sprocket frame
-                uy = gtab[s, k, 1]
-                ex = ux * cth[s] - uy * sth[s]
-                ey = ux * sth[s] + uy * cth[s]
-                dx, dy = px - R * ex, py - R * ey
-                d2 = dx * dx + dy * dy
-                if d2 < best:
-                    best, gx, gy, jb = d2, ex, ey, jj
-            j = jb
+            # the current gap, unless the roller has moved past the bisector towards a
+            # neighbour (|tangential offset| > R sin(π/z)): then the nearest of the three
+            gx = gtab[s, j, 0] * cth[s] - gtab[s, j, 1] * sth[s]
+            gy = gtab[s, j, 0] * sth[s] + gtab[s, j, 1] * cth[s]
+            if abs(-px * gy + py * gx) > spr[11, s]:
+                best = 1e300
+                jb = j
+                for jj in range(j - 1, j + 2):
+                    k = jj if jj >= 0 else jj + zi
+                    k = k if k < zi else k - zi
+                    ux = gtab[s, k, 0]  # gap direction in the sprocket frame
+                    uy = gtab[s, k, 1]
+                    ex = ux * cth[s] - uy * sth[s]
+                    ey = ux * sth[s] + uy * cth[s]
+                    dx, dy = px - R * ex, py - R * ey
+                    d2 = dx * dx + dy * dy
+                    if d2 < best:
+                        best, gx, gy, jb = d2, ex, ey, jj
+                j = jb
         j = j % zi if (j < 0 or j >= zi) else j
         Gc[r] = j
         d, nx, ny = _gap_local(px, py, gx, gy, R, spr[4, s], spr[5, s], trig[0, s], trig[1, s],
@@ -447,6 +491,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     rhs = np.empty(N)
     zz = np.empty(N)
     cp = np.empty(N)
+    oo = np.empty(N)
     tq = np.empty(D)
     Fc = np.zeros(N)
     Sc = np.full(N, -1, dtype=np.int64)
@@ -468,7 +513,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             _engagements(t, Fc, eng, win, events, count)
             _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
                         rbrk, rsign, energy, dt)
-            _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp)
+            _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp, oo)
             p_link = 0.0
             for i in range(N):
                 p_link += c * g[i] * g[i]

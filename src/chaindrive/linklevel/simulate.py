@@ -293,7 +293,8 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     spr = np.ascontiguousarray(np.vstack([
         model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
         np.full(n, model.roller_radius), model.seating_radii, model.seating_half_angles,
-        model.tip_radii, model.contact_stiffness, model.contact_damping, TWO_PI / model.teeth]))
+        model.tip_radii, model.contact_stiffness, model.contact_damping, TWO_PI / model.teeth,
+        model.pitch_radii * np.sin(np.pi / model.teeth)]))
     a = model.seating_half_angles
     trig = np.ascontiguousarray(np.vstack([np.cos(a), np.sin(a), np.tan(a)]))
     zmax = int(model.teeth.max())
