@@ -161,13 +161,13 @@ def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float,
 
 
 @numba.njit(cache=True)
-def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: Any,
-           uy: Any, thd: Any, lsq: Any) -> None:
-    """Elastic axial link forces into f; elastic tensions T, unit vectors (ux, uy), angular
-    speeds thd and inverse squared lengths lsq (1/ℓ²) of every link."""
+def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
+           thd: Any, invl: Any) -> None:
+    """Elastic tensions T, unit vectors (ux, uy), angular speeds thd and inverse lengths
+    invl (1/ℓ) of every link (no dependence between iterations: the loop vectorises)."""
     N = x.shape[0]
     last = N - 1
-    for i in range(N):  # no dependence between iterations: the compiler vectorises it
+    for i in range(N):
         b = i + 1 if i < last else 0
         dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
         dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
@@ -175,16 +175,48 @@ def _links(x: Any, v: Any, f: Any, L0: Any, k: float, clear: float, T: Any, ux: 
         ell = math.sqrt(l2)
         inv = 1.0 / ell
         e = ell - L0[i]
-        tension = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
-        T[i] = tension
-        inv2 = inv * inv
-        thd[i] = (dx * dvy - dy * dvx) * inv2
-        lsq[i] = inv2
+        T[i] = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
+        thd[i] = (dx * dvy - dy * dvx) * inv * inv
+        invl[i] = inv
         ux[i] = dx * inv
         uy[i] = dy * inv
-    px, py = T[last] * ux[last], T[last] * uy[last]
-    for i in range(N):  # roller i: + its leading link's pull, − its trailing link's
-        cx, cy = T[i] * ux[i], T[i] * uy[i]
+
+
+@numba.njit(cache=True)
+def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
+    """Hinge friction moment M_r at every roller r on its leading link r (−M_r on the
+    trailing link r−1), module docstring; returns the power dissipated [W]."""
+    N = T.size
+    diss = 0.0
+    tprev, wprev = T[N - 1], thd[N - 1]
+    for r in range(N):
+        wrel = thd[r] - wprev
+        tm = 0.5 * (T[r] + tprev)
+        tprev, wprev = T[r], thd[r]
+        limit = mu_r * tm if tm > 0.0 else 0.0
+        visc = cmax * abs(wrel)
+        mag = limit if visc > limit else visc
+        moment = -mag if wrel > 0.0 else mag
+        M[r] = moment
+        diss -= moment * wrel
+    return diss
+
+
+@numba.njit(cache=True)
+def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
+    """Forces of the links on the rollers into f: link i pulls its ends together with T_i
+    along u_i and turns with the net moment M_i − M_{i+1} of its two hinges, the force pair
+    ±(M/ℓ)·u⊥ at its ends; roller r gets link r's start share s_r minus link r−1's, s_i =
+    T_i u_i − (M_i − M_{i+1})/ℓ_i · u⊥_i."""
+    N = T.size
+    last = N - 1
+    mnet = (M[last] - M[0]) * invl[last]
+    px = T[last] * ux[last] + mnet * uy[last]
+    py = T[last] * uy[last] - mnet * ux[last]
+    for i in range(N):
+        mnet = (M[i] - M[i + 1 if i < last else 0]) * invl[i]
+        cx = T[i] * ux[i] + mnet * uy[i]
+        cy = T[i] * uy[i] - mnet * ux[i]
         f[i, 0] += cx - px
         f[i, 1] += cy - py
         px, py = cx, cy
@@ -291,39 +323,6 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         v[r, 0] += hc * (px - gx)
         v[r, 1] += hc * (py - gy)
         gx, gy = px, py
-
-
-@numba.njit(cache=True)
-def _hinges(x: Any, f: Any, T: Any, thd: Any, lsq: Any, mu_r: float, cmax: float) -> float:
-    """Hinge friction moments (module docstring) into f; returns the power dissipated [W]."""
-    N = x.shape[0]
-    diss = 0.0
-    for r in range(N):
-        a = r - 1 if r > 0 else N - 1  # trailing link (a → r)
-        b = r + 1 if r + 1 < N else 0  # leading link is link r (r → b)
-        wrel = thd[r] - thd[a]
-        tm = 0.5 * (T[r] + T[a])
-        if tm <= 0.0 or wrel == 0.0:
-            continue
-        limit = mu_r * tm
-        visc = cmax * abs(wrel)
-        M = -(limit if visc > limit else visc) * (1.0 if wrel > 0 else -1.0)
-        diss -= M * wrel
-        # moment M on link r: forces ±(M/ℓ²)·d⊥ at its ends
-        dx, dy = x[b, 0] - x[r, 0], x[b, 1] - x[r, 1]
-        s = M * lsq[r]
-        f[b, 0] -= s * dy
-        f[b, 1] += s * dx
-        f[r, 0] += s * dy
-        f[r, 1] -= s * dx
-        # moment −M on link a
-        dx, dy = x[r, 0] - x[a, 0], x[r, 1] - x[a, 1]
-        s = -M * lsq[a]
-        f[r, 0] -= s * dy
-        f[r, 1] += s * dx
-        f[a, 0] += s * dy
-        f[a, 1] -= s * dx
-    return diss
 
 
 @numba.njit(cache=True)
@@ -484,7 +483,8 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     f = np.empty((N, 2))
     T = np.empty(N)
     thd = np.empty(N)
-    lsq = np.empty(N)
+    invl = np.empty(N)
+    M = np.zeros(N)
     ux = np.empty(N)
     uy = np.empty(N)
     g = np.zeros(N)
@@ -506,8 +506,9 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             f[r, 1] = m * gy
         for i in range(D):
             tq[i] = 0.0
-        _links(x, v, f, L0, k, clear, T, ux, uy, thd, lsq)
-        p_hinge = _hinges(x, f, T, thd, lsq, mu_r, cmax) if mu_r > 0.0 else 0.0
+        _links(x, v, L0, k, clear, T, ux, uy, thd, invl)
+        p_hinge = _hinge_moments(T, thd, mu_r, cmax, M) if mu_r > 0.0 else 0.0
+        _link_forces(f, T, ux, uy, invl, M)
         p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
         if step < steps:
             _engagements(t, Fc, eng, win, events, count)
