@@ -1,0 +1,541 @@
+r"""Compiled step loop of the link-level model (numba, ``@njit(cache=True)``).
+
+State: roller centres x (N, 2) [m] and velocities v (N, 2) [m/s]; rotational coordinates
+θ (D,) [rad] and speeds ω (D,) [rad/s], the first n of which are the sprockets (the rest:
+an optional linear torsional system attached to them, see :mod:`chaindrive.linklevel.model`).
+
+Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sources):
+
+* gravity m g;
+* links (pin–bush joints) i = (r, r+1): axial spring k·s on the elongation s = ℓ − ℓ₀
+  outside the clearance band |ℓ − ℓ₀| ≤ Δ (s = 0 inside it) and an axial damper c·ℓ̇,
+  the damper taken implicitly (:func:`_velocity_update`) so that it sets no step limit;
+* hinge friction at roller r between its two links: a moment
+  M = −sat(ω_rel)·f·T̄·d₂/2 on the leading link and −M on the trailing one, T̄ the mean
+  tension of the two links (≥ 0), ω_rel their relative angular speed; sat regularises the
+  Coulomb law as a viscous moment of the largest coefficient the step keeps stable
+  (``hinge_cmax``) below the sliding limit;
+* roller–tooth contact with the nearest tooth gap of the sprocket the roller is near
+  (contact search every ``search_every`` steps bounded to the rollers within reach of each
+  sprocket): penetration δ into the tooth = tip disc minus the gap, the gap being the
+  seating arc (radius r_i about the gap centre, half angle α) continued by its tangents
+  (the flanks); force F = max(0, k_c δ + c_c δ̇) along the normal, reacted on the sprocket
+  through the roller centre (exactly work-conjugate to δ).
+
+Integrator: semi-implicit (symplectic) Euler, v ← v + Δt·a(x, v), x ← x + Δt·v
+[Hairer2006, §I.1] — explicit, one force evaluation a step, energy error bounded (no drift)
+for the conservative part; the link dampers implicit (:func:`_velocity_update`).
+
+Model: [Pedersen2004], [Pedersen2005] (particles, spring–dampers, continuous contact on the
+real tooth profile); hinge friction [ChainHingeDissipation]; tooth forms [ISO606],
+[GOST591].
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numba
+import numpy as np
+
+__all__ = ["run_kernel"]
+
+MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
+RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
+#: Energy accumulators (indices of ``energy``): work of the motor, of the resistance
+#: laws, dissipated in link dampers, contact dampers, hinge friction, torsional dampers.
+E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
+
+
+@numba.njit(cache=True)
+def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
+    """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
+    :mod:`chaindrive.dynamics.startup`: constant, ramp, Kloss)."""
+    if kind == MOTOR_CONSTANT:
+        return mp[0]
+    if kind == MOTOR_RAMP:
+        return mp[0] * min(1.0, t / mp[1]) if mp[1] > 0 else mp[0]
+    s = 1.0 - w / mp[2]
+    return mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
+
+
+@numba.njit(cache=True)
+def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> float:
+    """Moment of resistance [N·m] at forward speed w [rad/s] (ResistanceLaw kinds)."""
+    r = w / wn
+    if kind == RESISTANCE_LINEAR:
+        return M * r
+    if kind == RESISTANCE_QUADRATIC:
+        return M * r * abs(r)
+    if kind == RESISTANCE_CONSTANT:
+        return M * min(max(r / brk, -1.0), 1.0)
+    return 0.0
+
+
+@numba.njit(cache=True)
+def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any) -> None:
+    """cand[r] = the sprocket whose reach circle holds roller r, else −1. A roller that
+    comes within reach of sprocket s from outside every reach is armed for an engagement
+    (eng[r] = (s, −1, 0)); one that leaves every reach before touching is disarmed."""
+    for r in range(x.shape[0]):
+        old = cand[r]
+        cand[r] = -1
+        for s in range(cx.size):
+            dx = x[r, 0] - cx[s]
+            dy = x[r, 1] - cy[s]
+            if dx * dx + dy * dy < reach[s] * reach[s]:
+                cand[r] = s
+                break
+        if old == -1 and cand[r] >= 0 and eng[r, 0] < 0:
+            eng[r, 0] = cand[r]
+            eng[r, 1] = -1.0
+            eng[r, 2] = 0.0
+        elif cand[r] < 0 and eng[r, 1] < 0:
+            eng[r, 0] = -1.0
+
+
+@numba.njit(cache=True)
+def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any) -> None:
+    """Engagement impacts: an armed roller's first contact opens a window of win[s] steps
+    (one tooth period at the nominal speed) over which its peak contact force is kept; a
+    closed window is written as an event row (time of first contact [s], sprocket, roller,
+    peak force [N])."""
+    for r in range(Fc.size):
+        s = int(eng[r, 0])
+        if s < 0:
+            continue
+        if eng[r, 1] < 0.0:
+            if Fc[r] > 0.0:
+                eng[r, 1] = win[s]
+                eng[r, 3] = t
+            else:
+                continue
+        if Fc[r] > eng[r, 2]:
+            eng[r, 2] = Fc[r]
+        eng[r, 1] -= 1.0
+        if eng[r, 1] <= 0.0:
+            k = count[0]
+            if k < events.shape[0]:
+                events[k, 0] = eng[r, 3]
+                events[k, 1] = s
+                events[k, 2] = r
+                events[k, 3] = eng[r, 2]
+                count[0] = k + 1
+            eng[r, 0] = -1.0
+
+
+@numba.njit(cache=True)
+def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float, ri: float,
+                 ah: float, Ra: float) -> tuple[float, float, float, int]:
+    """(δ [m], n_x, n_y, gap) of a roller centred at (px, py) relative to the sprocket
+    centre, the sprocket at angle th: n the unit normal of the force on the roller."""
+    rho_c = math.sqrt(px * px + py * py)
+    step = 2.0 * math.pi / z
+    a = math.atan2(py, px)
+    j = math.floor((a - th) / step + 0.5)
+    ga = th + j * step
+    er_x, er_y = math.cos(ga), math.sin(ga)
+    wx, wy = px - R * er_x, py - R * er_y
+    wi = -(wx * er_x + wy * er_y)  # along the inward radial
+    wt = -wx * er_y + wy * er_x  # along the tangent (+ counter-clockwise)
+    theta = math.atan2(wt, wi)
+    if abs(theta) <= ah:
+        rho = math.sqrt(wx * wx + wy * wy)
+        d_gap = rho + rr - ri
+        if rho > 1e-15:
+            nx, ny = -wx / rho, -wy / rho
+        else:
+            nx, ny = er_x, er_y
+    else:
+        sg = 1.0 if theta > 0 else -1.0
+        ca, sa = math.cos(ah), sg * math.sin(ah)
+        fx = -ca * er_x - sa * er_y  # flank normal into the tooth: ca(−e_r) + sa e_t
+        fy = -ca * er_y + sa * er_x
+        d_gap = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
+        nx, ny = -fx, -fy
+    d_tip = Ra + rr - rho_c
+    if d_tip < d_gap:
+        return d_tip, px / rho_c, py / rho_c, j
+    return d_gap, nx, ny, j
+
+
+@numba.njit(cache=True)
+def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
+           thd: Any, invl: Any) -> None:
+    """Elastic tensions T, unit vectors (ux, uy), angular speeds thd and inverse lengths
+    invl (1/ℓ) of every link (no dependence between iterations: the loop vectorises)."""
+    N = x.shape[0]
+    last = N - 1
+    for i in range(N):
+        b = i + 1 if i < last else 0
+        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+        dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
+        l2 = dx * dx + dy * dy
+        ell = math.sqrt(l2)
+        inv = 1.0 / ell
+        e = ell - L0[i]
+        T[i] = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
+        thd[i] = (dx * dvy - dy * dvx) * inv * inv
+        invl[i] = inv
+        ux[i] = dx * inv
+        uy[i] = dy * inv
+
+
+@numba.njit(cache=True)
+def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
+    """Hinge friction moment M_r at every roller r on its leading link r (−M_r on the
+    trailing link r−1), module docstring; returns the power dissipated [W]."""
+    N = T.size
+    diss = 0.0
+    tprev, wprev = T[N - 1], thd[N - 1]
+    for r in range(N):
+        wrel = thd[r] - wprev
+        tm = 0.5 * (T[r] + tprev)
+        tprev, wprev = T[r], thd[r]
+        limit = mu_r * tm if tm > 0.0 else 0.0
+        visc = cmax * abs(wrel)
+        mag = limit if visc > limit else visc
+        moment = -mag if wrel > 0.0 else mag
+        M[r] = moment
+        diss -= moment * wrel
+    return diss
+
+
+@numba.njit(cache=True)
+def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
+    """Forces of the links on the rollers into f: link i pulls its ends together with T_i
+    along u_i and turns with the net moment M_i − M_{i+1} of its two hinges, the force pair
+    ±(M/ℓ)·u⊥ at its ends; roller r gets link r's start share s_r minus link r−1's, s_i =
+    T_i u_i − (M_i − M_{i+1})/ℓ_i · u⊥_i."""
+    N = T.size
+    last = N - 1
+    mnet = (M[last] - M[0]) * invl[last]
+    px = T[last] * ux[last] + mnet * uy[last]
+    py = T[last] * uy[last] - mnet * ux[last]
+    for i in range(N):
+        mnet = (M[i] - M[i + 1 if i < last else 0]) * invl[i]
+        cx = T[i] * ux[i] + mnet * uy[i]
+        cy = T[i] * uy[i] - mnet * ux[i]
+        f[i, 0] += cx - px
+        f[i, 1] += cy - py
+        px, py = cx, cy
+
+
+@numba.njit(cache=True)
+def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any, z: Any,
+                   cp: Any) -> None:
+    """Solve the tridiagonal system with diagonal (b0, diag, …, diag, bl) and off-diagonals
+    −h_c·o_i (entries (i, i+1) and (i+1, i)) for the right-hand sides d and z in place, by
+    the twisted (two-sided) factorisation: eliminated from both ends towards the middle row
+    and substituted back outwards ([Press2007, §2.4] applied from both ends), so that the
+    two halves' dependency chains run side by side. cp: work array."""
+    n = d.size
+    last = n - 1
+    k = n // 2
+    cprev, dprev, zprev = 0.0, 0.0, 0.0  # top: c′_{j−1}, d′_{j−1}, z′_{j−1}
+    anext, dnext, znext = 0.0, 0.0, 0.0  # bottom: a″_{j+1}, d″_{j+1}, z″_{j+1}
+    for t in range(k):
+        j = t  # top row j: sub-diagonal −h_c o_{j−1}, super-diagonal −h_c o_j
+        a = -hc * o[j - 1] if j > 0 else 0.0
+        inv = 1.0 / ((b0 if j == 0 else diag) - a * cprev)
+        cprev = -hc * o[j] * inv
+        dprev = (d[j] - a * dprev) * inv
+        zprev = (z[j] - a * zprev) * inv
+        cp[j] = cprev
+        d[j] = dprev
+        z[j] = zprev
+        jb = last - t  # bottom row jb, above the middle row k
+        if jb > k:
+            c = -hc * o[jb] if jb < last else 0.0
+            inv = 1.0 / ((bl if jb == last else diag) - c * anext)
+            anext = -hc * o[jb - 1] * inv
+            dnext = (d[jb] - c * dnext) * inv
+            znext = (z[jb] - c * znext) * inv
+            cp[jb] = anext
+            d[jb] = dnext
+            z[jb] = znext
+    a = -hc * o[k - 1] if k > 0 else 0.0
+    c = -hc * o[k] if k < last else 0.0
+    bk = b0 if k == 0 else (bl if k == last else diag)
+    aright = cp[k + 1] if k < last else 0.0
+    dright = d[k + 1] if k < last else 0.0
+    zright = z[k + 1] if k < last else 0.0
+    inv = 1.0 / (bk - a * cprev - c * aright)
+    xk = (d[k] - a * dprev - c * dright) * inv
+    yk = (z[k] - a * zprev - c * zright) * inv
+    d[k] = xk
+    z[k] = yk
+    up_x, up_y, dn_x, dn_y = xk, yk, xk, yk
+    for t in range(1, max(k + 1, n - k)):
+        j = k - t  # back-substitution upwards: x_j = d′_j − c′_j x_{j+1}
+        if j >= 0:
+            up_x = d[j] - cp[j] * up_x
+            up_y = z[j] - cp[j] * up_y
+            d[j] = up_x
+            z[j] = up_y
+        jb = k + t  # and downwards: x_j = d″_j − a″_j x_{j−1}
+        if jb <= last:
+            dn_x = d[jb] - cp[jb] * dn_x
+            dn_y = z[jb] - cp[jb] * dn_y
+            d[jb] = dn_x
+            z[jb] = dn_y
+
+
+@numba.njit(cache=True)
+def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: Any,
+                     rhs: Any, zz: Any, cp: Any, oo: Any) -> None:
+    """v ← v + h·f with the link dampers taken implicitly (backward Euler in the axial
+    rates, directions frozen over the step): the rates g_i = u_i·(v′_{i+1} − v′_i) solve the
+    cyclic tridiagonal system (1 + 2h_c) g_i − h_c (u_i·u_{i+1}) g_{i+1}
+    − h_c (u_i·u_{i−1}) g_{i−1} = u_i·(v*_{i+1} − v*_i), h_c = Δt c/m, v* = v + h f
+    (the corners by the Sherman–Morrison formula [Press2007, §2.7], the tridiagonal part by
+    :func:`_twisted_solve`); then v′_r = v*_r + h_c (g_r u_r − g_{r−1} u_{r−1}).
+    Unconditionally stable for any damping. Needs N ≥ 3 links."""
+    N = v.shape[0]
+    for r in range(N):
+        v[r, 0] += h * f[r, 0]
+        v[r, 1] += h * f[r, 1]
+    if hc == 0.0:
+        for i in range(N):
+            g[i] = 0.0
+        return
+    last = N - 1
+    for i in range(last):  # rhs and the off-diagonal dot products o_i = u_i·u_{i+1}
+        rhs[i] = ux[i] * (v[i + 1, 0] - v[i, 0]) + uy[i] * (v[i + 1, 1] - v[i, 1])
+        oo[i] = ux[i] * ux[i + 1] + uy[i] * uy[i + 1]
+        zz[i] = 0.0
+    rhs[last] = ux[last] * (v[0, 0] - v[last, 0]) + uy[last] * (v[0, 1] - v[last, 1])
+    diag = 1.0 + 2.0 * hc
+    corner = -hc * (ux[last] * ux[0] + uy[last] * uy[0])  # entries (0, N−1), (N−1, 0)
+    gamma = -diag
+    zz[0] = gamma
+    zz[last] = corner
+    _twisted_solve(hc, oo, diag - gamma, diag - corner * corner / gamma, diag, rhs, zz, cp)
+    fac = (rhs[0] + corner * rhs[last] / gamma) / (1.0 + zz[0] + corner * zz[last] / gamma)
+    ga = rhs[last] - fac * zz[last]
+    g[last] = ga
+    gx, gy = ga * ux[last], ga * uy[last]
+    for r in range(N):
+        gr = rhs[r] - fac * zz[r]
+        g[r] = gr
+        px, py = gr * ux[r], gr * uy[r]
+        v[r, 0] += hc * (px - gx)
+        v[r, 1] += hc * (py - gy)
+        gx, gy = px, py
+
+
+@numba.njit(cache=True)
+def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
+               ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
+    """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
+    the gap whose centre direction is the unit vector (gx, gy): the trigonometry-free form of
+    :func:`_penetration` (α given by its cosine, sine and tangent)."""
+    wx, wy = px - R * gx, py - R * gy
+    wi = -(wx * gx + wy * gy)
+    wt = -wx * gy + wy * gx
+    if wi > 0.0 and abs(wt) <= ta * wi:
+        rho = math.sqrt(wx * wx + wy * wy)
+        d = rho + rr - ri
+        if rho > 1e-15:
+            nx, ny = -wx / rho, -wy / rho
+        else:
+            nx, ny = gx, gy
+    else:
+        s = sa if wt > 0.0 else -sa
+        fx = -ca * gx - s * gy
+        fy = -ca * gy + s * gx
+        d = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
+        nx, ny = -fx, -fy
+    lim = Ra + rr - d  # the tip disc governs when |p| > R_a + r − δ_gap
+    rc2 = px * px + py * py
+    if lim < 0.0 or rc2 > lim * lim:
+        rc = math.sqrt(rc2)
+        return Ra + rr - rc, px / rc, py / rc
+    return d, nx, ny
+
+
+@numba.njit(cache=True)
+def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
+              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any) -> float:
+    """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
+    Fc [N], sprocket Sc and gap Gc of every roller (Gc ≥ 0 also serves as the guess of the
+    next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
+    the nearest by angle); returns the damper power [W].
+
+    spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z, R sin(π/z); trig rows:
+    cos α, sin α, tan α;
+    gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame.
+    """
+    diss = 0.0
+    ns = th.size if th.size < spr.shape[1] else spr.shape[1]
+    cth = np.empty(spr.shape[1])
+    sth = np.empty(spr.shape[1])
+    for s in range(ns):
+        cth[s] = math.cos(th[s])
+        sth[s] = math.sin(th[s])
+    for r in range(x.shape[0]):
+        s = cand[r]
+        Fc[r] = 0.0
+        Sc[r] = -1
+        if s < 0:
+            Gc[r] = -1
+            continue
+        px, py = x[r, 0] - spr[0, s], x[r, 1] - spr[1, s]
+        z = spr[2, s]
+        R = spr[3, s]
+        step = spr[10, s]
+        zi = int(z + 0.5)
+        j = Gc[r]
+        if j < 0:
+            a = math.atan2(py * cth[s] - px * sth[s], px * cth[s] + py * sth[s])
+            j = math.floor(a / step + 0.5)
+            gx = math.cos(th[s] + j * step)
+            gy = math.sin(th[s] + j * step)
+        else:
+            # the current gap, unless the roller has moved past the bisector towards a
+            # neighbour (|tangential offset| > R sin(π/z)): then the nearest of the three
+            gx = gtab[s, j, 0] * cth[s] - gtab[s, j, 1] * sth[s]
+            gy = gtab[s, j, 0] * sth[s] + gtab[s, j, 1] * cth[s]
+            if abs(-px * gy + py * gx) > spr[11, s]:
+                best = 1e300
+                jb = j
+                for jj in range(j - 1, j + 2):
+                    k = jj if jj >= 0 else jj + zi
+                    k = k if k < zi else k - zi
+                    ux = gtab[s, k, 0]  # gap direction in the sprocket frame
+                    uy = gtab[s, k, 1]
+                    ex = ux * cth[s] - uy * sth[s]
+                    ey = ux * sth[s] + uy * cth[s]
+                    dx, dy = px - R * ex, py - R * ey
+                    d2 = dx * dx + dy * dy
+                    if d2 < best:
+                        best, gx, gy, jb = d2, ex, ey, jj
+                j = jb
+        j = j % zi if (j < 0 or j >= zi) else j
+        Gc[r] = j
+        d, nx, ny = _gap_local(px, py, gx, gy, R, spr[4, s], spr[5, s], trig[0, s], trig[1, s],
+                               trig[2, s], spr[7, s])
+        if d <= 0.0:
+            continue
+        vrx = v[r, 0] + w[s] * py  # roller velocity relative to the sprocket point under it
+        vry = v[r, 1] - w[s] * px
+        dd = -(vrx * nx + vry * ny)
+        F = spr[8, s] * d + spr[9, s] * dd
+        if F < 0.0:
+            F = 0.0
+        diss += (F - spr[8, s] * d) * dd
+        f[r, 0] += F * nx
+        f[r, 1] += F * ny
+        tq[s] -= F * (px * ny - py * nx)
+        Fc[r] = F
+        Sc[r] = s
+    return diss
+
+
+@numba.njit(cache=True)
+def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any,
+                mkind: int,
+                mp: Any, mdof: int, msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float,
+                rsign: Any, energy: Any, dt: float) -> None:
+    """Torques of the torsional system (on the turns θ − θ₀ since the start), motor and
+    resistances into tq; work into energy."""
+    D = J.size
+    diss = 0.0
+    for i in range(D if Kt.shape[0] > 0 else 0):
+        acc = 0.0
+        dmp = 0.0
+        for k in range(D):
+            acc -= Kt[i, k] * (th[k] - th0[k])
+            dmp -= Ct[i, k] * w[k]
+        tq[i] += acc + dmp
+        diss -= dmp * w[i]
+    energy[E_TORSION] += diss * dt
+    m = msign * _motor_torque(t, msign * w[mdof], mkind, mp)
+    tq[mdof] += m
+    energy[E_MOTOR] += m * w[mdof] * dt
+    for i in range(rM.size):
+        if rM[i] != 0.0:
+            mr = -rsign[i] * _resistance_torque(rsign[i] * w[i], rkind, rM[i], rwn[i], rbrk)
+            tq[i] += mr
+            energy[E_LOAD] += mr * w[i] * dt
+
+
+@numba.njit(cache=True)
+def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float,
+               record_every: int, m: float, gx: float, gy: float, L0: Any, k: float, c: float,
+               clear: float, mu_r: float, cmax: float, spr: Any, trig: Any, gtab: Any,
+               reach: Any,
+               search_every: int, win: Any, J: Any, Kt: Any, Ct: Any, mkind: int, mp: Any, mdof: int,
+               msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float, rsign: Any,
+               rec_x: Any, rec_th: Any, rec_w: Any, rec_T: Any, rec_F: Any, rec_S: Any,
+               rec_G: Any, energy: Any, cand: Any, eng: Any, events: Any,
+               count: Any) -> None:
+    """Advance the state ``steps`` steps of Δt from time t0, recording every
+    ``record_every`` steps into the rec_* arrays (row 0: the initial state); x, v, th, w are
+    updated in place, energy accumulates the work and dissipation (E_* indices); cand, eng
+    carry the contact candidates and engagement windows from call to call, events (E, 4)
+    collects the engagement impacts (count[0] of them); event times are those of the window
+    ends."""
+    N = x.shape[0]
+    D = J.size
+    th0 = th.copy()
+    f = np.empty((N, 2))
+    T = np.empty(N)
+    thd = np.empty(N)
+    invl = np.empty(N)
+    M = np.zeros(N)
+    ux = np.empty(N)
+    uy = np.empty(N)
+    g = np.zeros(N)
+    rhs = np.empty(N)
+    zz = np.empty(N)
+    cp = np.empty(N)
+    oo = np.empty(N)
+    tq = np.empty(D)
+    Fc = np.zeros(N)
+    Sc = np.full(N, -1, dtype=np.int64)
+    Gc = np.full(N, -1, dtype=np.int64)
+    row = 0
+    for step in range(steps + 1):
+        t = t0 + step * dt
+        if step % search_every == 0:
+            _search(x, spr[0], spr[1], reach, cand, eng)
+        for r in range(N):
+            f[r, 0] = m * gx
+            f[r, 1] = m * gy
+        for i in range(D):
+            tq[i] = 0.0
+        _links(x, v, L0, k, clear, T, ux, uy, thd, invl)
+        p_hinge = _hinge_moments(T, thd, mu_r, cmax, M) if mu_r > 0.0 else 0.0
+        _link_forces(f, T, ux, uy, invl, M)
+        p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
+        if step < steps:
+            _engagements(t, Fc, eng, win, events, count)
+            _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
+                        rbrk, rsign, energy, dt)
+            _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp, oo)
+            p_link = 0.0
+            for i in range(N):
+                p_link += c * g[i] * g[i]
+                T[i] += c * g[i]
+            energy[E_LINK] += p_link * dt
+            energy[E_HINGE] += p_hinge * dt
+            energy[E_CONTACT] += p_contact * dt
+        if step % record_every == 0:
+            rec_x[row] = x
+            rec_th[row] = th
+            rec_w[row] = w
+            rec_T[row] = T
+            rec_F[row] = Fc
+            rec_S[row] = Sc
+            rec_G[row] = Gc
+            row += 1
+        if step == steps:
+            break
+        for r in range(N):
+            x[r, 0] += dt * v[r, 0]
+            x[r, 1] += dt * v[r, 1]
+        for i in range(D):
+            w[i] += dt * tq[i] / J[i]
+            th[i] += dt * w[i]

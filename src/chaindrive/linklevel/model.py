@@ -1,0 +1,242 @@
+"""Parameters of the link-level model of a drive (SI units), each from its source.
+
+* Roller (hinge) masses: one pitch of chain per roller, m = q·p [kg] (q the catalogue mass
+  per metre) — the chain as mass particles at the roller centres joined by spring–dampers,
+  the discrete model of [Pedersen2004] and [Pedersen2005].
+* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.stiffness.link_stiffness`
+  (plates and pin, the ring model's own value, so both models share it); viscous link damping
+  c = β·k_link with the ring model's β = 2ζ/ω₁ (ζ the drive's damping ratio, 0.06 measured
+  on chain drives [MultimassChainDrives, §3.2], plus the material part of
+  :func:`chaindrive.dynamics.stiffness.ring_damping_ratio`; ω₁ the ring's first elastic
+  frequency): a span of L/p such links is the ring's branch damper β·c_span, so the two
+  models carry the same damping; optional clearance Δ (a dead band of the joint).
+* Hinge friction: moment f·T̄·d₂/2 opposing the relative rotation of two links,
+  f = 0.1 and d₂ the pin diameter [ChainHingeDissipation, eqs. 7–8].
+* Roller–tooth contact: linear penalty k_c = the tooth stiffness of
+  :func:`chaindrive.dynamics.stiffness.tooth_stiffness` (ISO 6336-1 single-pair stiffness c′
+  scaled by the tooth width and the pair's modulus [ISO6336-1]) — the same tooth spring the
+  ring model's wrap stiffness is built from, so the two models differ only in what they
+  resolve; contact damping c_c = 2ζ_c·√(k_c·m) with ζ_c the damping ratio measured on chain
+  drives [MultimassChainDrives, §3.2] (0.06, a restitution of 0.83 for a linear
+  spring–dashpot [Gilardi2002]); the force is clamped at 0 (no adhesion).
+* Tooth gap: seating radius r_i, seating half-angle α and tip radius R_a of the drive's tooth
+  form — ISO 606 (mean of the limits) or GOST 591-69
+  (:mod:`chaindrive.geometry.sprocket`); the flanks are taken as the tangents of the seating
+  arc at ±α (see docs/linklevel.md: ISO's flank arc r_e ≥ 0.12·d₁(z+2) is nearly straight
+  over the roller's travel; GOST's r₁ arc and straight part are replaced by the tangent).
+* Sprockets: rigid, rotating about fixed centres, inertia as the ring model
+  (``Sprocket.inertia`` or the steel/polymer body of
+  :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`); an optional linear
+  torsional system (:class:`TorsionalAttachment`) can be coupled to them.
+* Pre-tension T₀: the sag tension of the span leaving the driver, as the ring model's start-up
+  (:func:`chaindrive.strength.loads.sag_tension`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from chaindrive.damping import DEFAULT_DAMPING_RATIO
+from chaindrive.dynamics.ring import modal_analysis
+from chaindrive.dynamics.stiffness import (
+    GRAVITY,
+    TOOTH_WIDTH_FACTOR,
+    drive_ring_parameters,
+    link_stiffness,
+    ring_damping_ratio,
+    tooth_stiffness,
+)
+from chaindrive.errors import DesignError
+from chaindrive.geometry.sprocket import (
+    gost591_seating_radius,
+    gost591_tooth_form,
+    iso606_seating_angle_range,
+    iso606_seating_radius_range,
+    tip_diameter,
+)
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, Material
+
+__all__ = ["HINGE_FRICTION", "LinkLevelModel", "TorsionalAttachment", "build_model",
+           "seating_geometry"]
+
+#: Friction coefficient in the pin–bush joint, f = 0.1 [ChainHingeDissipation] (worked data).
+HINGE_FRICTION = 0.1
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class TorsionalAttachment:
+    """A linear torsional system coupled to the sprockets (e.g. the trains of
+    :mod:`chaindrive.dynamics.torsional`): rotational coordinates θ = (sprockets…, extra…).
+
+    extra_inertias (e,) [kg·m²] of the extra coordinates, each turning in the plane,
+    counter-clockwise positive like the sprockets (a coordinate geared to run the other way
+    is entered with its sign flipped in K and C); stiffness, damping (n+e, n+e)
+    [N·m/rad], [N·m·s/rad] acting on the turns of all n+e coordinates since the start
+    (symmetric, positive semi-definite: shafts, couplings, gear meshes reduced to one speed
+    per coordinate); motor_dof: the coordinate the motor drives (None: the driver
+    sprocket); load_dofs (n,): the coordinate that carries sprocket i's moment of
+    resistance (None: each sprocket its own).
+    """
+
+    extra_inertias: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    motor_dof: int | None = None
+    load_dofs: tuple[int, ...] | None = None
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LinkLevelModel:
+    """Everything the link-level kernel needs, in SI units (module docstring for sources).
+
+    Chain: links N, pitch p [m], roller_mass m [kg], roller_radius d₁/2 [m], link_stiffness
+    [N/m], link_damping [N·s/m], clearance Δ [m], hinge_friction f [–], pin_radius d₂/2 [m],
+    pretension T₀ [N], gravity (2,) [m/s²]. Sprockets (n,): centres (n, 2) [m], teeth,
+    pitch_radii, seating_radii, seating_half_angles [rad], tip_radii [m], contact_stiffness
+    [N/m], contact_damping [N·s/m], turn (+1 counter-clockwise), inertias [kg·m²].
+    """
+
+    names: tuple[str, ...]
+    links: int
+    pitch: float
+    roller_mass: float
+    roller_radius: float
+    link_stiffness: float
+    link_damping: float
+    clearance: float
+    hinge_friction: float
+    pin_radius: float
+    pretension: float
+    gravity: NDArray[np.float64]
+    centres: NDArray[np.float64]
+    teeth: NDArray[np.int64]
+    pitch_radii: NDArray[np.float64]
+    seating_radii: NDArray[np.float64]
+    seating_half_angles: NDArray[np.float64]
+    tip_radii: NDArray[np.float64]
+    contact_stiffness: NDArray[np.float64]
+    contact_damping: NDArray[np.float64]
+    turn: NDArray[np.float64]
+    inertias: NDArray[np.float64]
+    driver: int
+    ring_first_frequency_hz: float
+    torsional: TorsionalAttachment | None = field(default=None)
+
+    @property
+    def highest_frequency_hz(self) -> float:
+        """Bound on the highest natural frequency [Hz]: a roller between two links and one
+        tooth, ω² ≤ (4k_link + k_c)/m (Gershgorin bound of the stiffness matrix)."""
+        k = 4.0 * self.link_stiffness + float(self.contact_stiffness.max())
+        return math.sqrt(k / self.roller_mass) / (2.0 * math.pi)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready parameters (SI, units in the keys)."""
+        return {
+            "links": self.links, "pitch_m": self.pitch, "roller_mass_kg": self.roller_mass,
+            "roller_radius_m": self.roller_radius,
+            "link_stiffness_n_per_m": self.link_stiffness,
+            "link_damping_n_s_per_m": self.link_damping, "clearance_m": self.clearance,
+            "hinge_friction": self.hinge_friction, "pin_radius_m": self.pin_radius,
+            "pretension_n": self.pretension,
+            "seating_radius_m": self.seating_radii.tolist(),
+            "seating_half_angle_deg": np.degrees(self.seating_half_angles).tolist(),
+            "tip_radius_m": self.tip_radii.tolist(),
+            "contact_stiffness_n_per_m": self.contact_stiffness.tolist(),
+            "contact_damping_n_s_per_m": self.contact_damping.tolist(),
+            "sprocket_inertia_kg_m2": self.inertias.tolist(),
+            "highest_frequency_hz": self.highest_frequency_hz,
+        }
+
+
+def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter: float,
+                     inner_width: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Seating radius r_i [m] and seating half-angle α [rad] of every sprocket.
+
+    ISO 606: the means of the limits, r_i = (r_i,min + r_i,max)/2 and α = (α_min + α_max)/4
+    (the standard gives the full seating angle); GOST 591-69: r = 0.5025·d₁ + 0.05 mm and
+    α = 55° − 60°/z (its half-space angle).
+    """
+    z = np.atleast_1d(np.asarray(teeth, dtype=int))
+    if form == "GOST 591":
+        r = np.full(z.size, float(gost591_seating_radius(roller_diameter)))
+        alpha = np.array([gost591_tooth_form(pitch, int(k), roller_diameter, inner_width)
+                          .half_space_angle for k in z])
+        return r, alpha
+    lo, hi = iso606_seating_radius_range(roller_diameter)
+    a_lo, a_hi = iso606_seating_angle_range(z)
+    r = np.full(z.size, 0.5 * (float(lo) + float(hi)))
+    return r, 0.25 * (np.asarray(a_lo, float) + np.asarray(a_hi, float))
+
+
+def _default_lookup() -> Callable[[str], Material]:
+    from chaindrive.catalog import find_material
+
+    return find_material
+
+
+def _pretension(drive: Drive, geometry: GeometryResult) -> float:
+    """Sag tension of the span leaving the driver [N] (as the ring model's start-up)."""
+    from chaindrive.strength.loads import sag_tension
+
+    span = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
+    return float(sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination))
+
+
+def build_model(drive: Drive, geometry: GeometryResult, *,
+                hinge_friction: float = HINGE_FRICTION, clearance: float = 0.0,
+                contact_damping_ratio: float = DEFAULT_DAMPING_RATIO,
+                pretension: float | None = None, gravity: float = GRAVITY,
+                damping_ratio: float | None = None,
+                torsional: TorsionalAttachment | None = None,
+                material_lookup: Callable[[str], Material] | None = None) -> LinkLevelModel:
+    """Link-level parameters of ``drive`` on its built contour ``geometry`` (module
+    docstring). hinge_friction f [–] (0: frictionless hinges); clearance Δ [m] of the
+    pin–bush joint; contact_damping_ratio ζ_c [–]; pretension T₀ [N] (None: sag tension);
+    gravity g [m/s²] (acting along −y); damping_ratio ζ of the first mode (None: the drive's
+    ``[dynamics] damping_ratio``); torsional: optional attached torsional system."""
+    if not (hinge_friction >= 0 and clearance >= 0 and 0 <= contact_damping_ratio < 1):
+        raise DesignError("linklevel", "need hinge_friction ≥ 0, clearance ≥ 0 and "
+                          f"0 ≤ contact_damping_ratio < 1, got {hinge_friction!r}, "
+                          f"{clearance!r}, {contact_damping_ratio!r}")
+    lookup = material_lookup or _default_lookup()
+    spec = drive.chain.spec
+    chain_mat = lookup(spec.material)
+    k_link = link_stiffness(spec, chain_mat.youngs_modulus)
+    ring = drive_ring_parameters(drive, geometry, link_stiffness=k_link, material_lookup=lookup)
+    f1 = modal_analysis(ring.masses_kg, ring.stiffness_n_per_m).first_elastic_frequency_hz
+    m = spec.mass_per_length * spec.pitch
+    teeth = np.array([s.teeth for s in drive.sprockets], dtype=np.int64)
+    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    k_c = np.array([tooth_stiffness(width, lookup(s.material).youngs_modulus,
+                                    chain_mat.youngs_modulus) for s in drive.sprockets])
+    seat_r, seat_a = seating_geometry(drive.tooth_form, spec.pitch, teeth, spec.roller_diameter,
+                                      spec.inner_width)
+    tips = 0.5 * np.asarray(tip_diameter(spec.pitch, teeth, spec.roller_diameter,
+                                         form=drive.tooth_form), dtype=float)
+    zeta = ring_damping_ratio(ring, drive.dynamics.damping_ratio if damping_ratio is None
+                              else float(damping_ratio))
+    t0 = _pretension(drive, geometry) if pretension is None else float(pretension)
+    return LinkLevelModel(
+        names=tuple(s.name for s in drive.sprockets), links=geometry.links, pitch=spec.pitch,
+        roller_mass=m, roller_radius=0.5 * spec.roller_diameter, link_stiffness=k_link,
+        link_damping=2.0 * zeta * k_link / (2.0 * math.pi * f1) if f1 > 0 else 0.0,
+        clearance=float(clearance), hinge_friction=float(hinge_friction),
+        pin_radius=0.5 * spec.pin_diameter, pretension=t0,
+        gravity=np.array([0.0, -float(gravity)]),
+        centres=np.array([[g.x, g.y] for g in geometry.sprockets], dtype=float),
+        teeth=teeth, pitch_radii=np.array([g.pitch_radius for g in geometry.sprockets]),
+        seating_radii=seat_r, seating_half_angles=seat_a, tip_radii=tips,
+        contact_stiffness=k_c, contact_damping=2.0 * contact_damping_ratio * np.sqrt(k_c * m),
+        turn=np.array([float(g.turn) for g in geometry.sprockets]),
+        inertias=ring.inertias_kg_m2.copy(), driver=drive.driver_index,
+        ring_first_frequency_hz=float(f1), torsional=torsional,
+    )

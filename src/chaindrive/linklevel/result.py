@@ -1,0 +1,259 @@
+"""Result of a link-level run and the quantities read from it (SI units).
+
+Span force: the tension of the link nearest the middle of the span's nominal line (the
+tangent of :func:`chaindrive.geometry.contour.contour_geometry`); transverse motion: that
+link's midpoint offset from the line (positive to the left of the chain travel). Steady
+span dynamic load F_D,i = max |F_i(t) − F̄_i| over the closing ``steady_window`` of the run,
+and K_D = 1 + F_D/F_t with F_D the RMS over the spans
+(:func:`chaindrive.dynamics.quality.coefficient_of_dynamics`, [MultimassChainDrives]) — the
+ring model's definitions, so both sit side by side. Tooth loads: the contact force of each
+roller in mesh, binned by its place on the wrap (tooth 0 at the arrival of the chain).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.dynamics.quality import coefficient_of_dynamics, nominal_peripheral_force
+from chaindrive.linklevel.kernel import (
+    E_CONTACT,
+    E_HINGE,
+    E_LINK,
+    E_LOAD,
+    E_MOTOR,
+    E_TORSION,
+    _penetration,
+)
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.linklevel.model import LinkLevelModel
+    from chaindrive.model import Drive
+
+__all__ = ["LinkLevelResult", "state_energy"]
+
+TWO_PI = 2.0 * math.pi
+
+
+def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.float64],
+                 th: NDArray[np.float64], w: NDArray[np.float64], L0: NDArray[np.float64],
+                 spr: NDArray[np.float64], J: NDArray[np.float64],
+                 K: NDArray[np.float64], th0: NDArray[np.float64]) -> dict[str, float]:
+    """Kinetic, elastic (links, contacts, torsional system on the turns θ − θ₀ since the
+    start) and gravity energy [J] of a state (x, v rollers; th, w rotational coordinates)."""
+    m = model.roller_mass
+    d = np.roll(x, -1, axis=0) - x
+    e = np.hypot(d[:, 0], d[:, 1]) - L0
+    s = np.sign(e) * np.maximum(np.abs(e) - model.clearance, 0.0)
+    contact = 0.0
+    for r in range(x.shape[0]):
+        rel = x[r] - model.centres
+        k = int(np.argmin(np.hypot(rel[:, 0], rel[:, 1])))
+        delta = _penetration(float(rel[k, 0]), float(rel[k, 1]), float(th[k]), spr[2, k],
+                             spr[3, k], spr[4, k], spr[5, k], spr[6, k], spr[7, k])[0]
+        if delta > 0:
+            contact += 0.5 * spr[8, k] * delta * delta
+    return {
+        "kinetic_j": 0.5 * m * float(np.sum(v * v)) + 0.5 * float(np.sum(J * w * w)),
+        "link_elastic_j": 0.5 * model.link_stiffness * float(np.sum(s * s)),
+        "contact_elastic_j": contact,
+        "torsional_elastic_j": 0.5 * float((th - th0) @ K @ (th - th0)) if K.size else 0.0,
+        "gravity_j": -m * float(np.sum(x @ model.gravity)),
+    }
+
+
+def _span_probe(geometry: GeometryResult, positions: NDArray[np.float64],
+                tensions: NDArray[np.float64]) -> tuple[NDArray[np.float64],
+                                                        NDArray[np.float64]]:
+    """Span forces (T, n) [N] and mid-span transverse offsets (T, n) [m] (module docstring)."""
+    mids = 0.5 * (positions + np.roll(positions, -1, axis=1))
+    T = positions.shape[0]
+    n = len(geometry.spans)
+    force, offset = np.empty((T, n)), np.empty((T, n))
+    rows = np.arange(T)
+    for k, sp in enumerate(geometry.spans):
+        a, b = np.array(sp.start_point), np.array(sp.end_point)
+        centre, u = 0.5 * (a + b), np.array(sp.direction)
+        rel = mids - centre
+        j = np.argmin(np.einsum("tnk,tnk->tn", rel, rel), axis=1)
+        force[:, k] = tensions[rows, j]
+        offset[:, k] = rel[rows, j, 1] * u[0] - rel[rows, j, 0] * u[1]
+    return force, offset
+
+
+def _tooth_loads(model: LinkLevelModel, geometry: GeometryResult, positions: NDArray[np.float64],
+                 forces: NDArray[np.float64], sprockets: NDArray[np.int64]
+                 ) -> list[NDArray[np.float64]]:
+    """Mean contact force [N] per place on each wrap (tooth 0 where the chain arrives)."""
+    out = []
+    samples = max(positions.shape[0], 1)
+    for i, g in enumerate(geometry.sprockets):
+        z = int(model.teeth[i])
+        places = max(1, math.ceil(g.teeth_in_mesh) + 1)
+        mask = sprockets == i
+        rel = positions[mask] - model.centres[i]
+        a = np.arctan2(rel[:, 1], rel[:, 0])
+        a0 = math.atan2(g.arrive[1] - g.y, g.arrive[0] - g.x)
+        turned = np.mod(g.turn * (a - a0) + 0.5 * TWO_PI / z, TWO_PI)
+        place = np.floor(turned / (TWO_PI / z)).astype(int)
+        ok = place < places
+        out.append(np.bincount(place[ok], weights=forces[mask][ok], minlength=places)[:places]
+                   / samples)
+    return out
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LinkLevelResult:
+    """Histories and summaries of a link-level run (module docstring).
+
+    times (T,) [s]; positions (T, N, 2) [m] roller centres; angles, speeds (T, D) [rad],
+    [rad/s] rotational coordinates (sprockets first, counter-clockwise positive);
+    link_tensions (T, N) [N] (link i joins roller i and i+1); contact_forces (T, N) [N],
+    contact_sprocket (T, N) (−1: free) of every roller; span_forces, span_offsets (T, n) [N],
+    [m]; sprocket_speeds (T, n) [rad/s] in the running sense; tooth_loads: per sprocket the
+    mean load per place on the wrap over the steady window [N]; impacts (E, 4): time of the
+    first contact [s], sprocket, roller, peak contact force [N] of every engagement; energy
+    balance terms [J]; dt [s], steps; closing_misfit [m] of the assembly.
+    """
+
+    names: tuple[str, ...]
+    span_names: tuple[str, ...]
+    times: NDArray[np.float64]
+    positions: NDArray[np.float64]
+    angles: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    link_tensions: NDArray[np.float64]
+    contact_forces: NDArray[np.float64]
+    contact_sprocket: NDArray[np.int64]
+    span_forces: NDArray[np.float64]
+    span_offsets: NDArray[np.float64]
+    sprocket_speeds: NDArray[np.float64]
+    tooth_loads: tuple[NDArray[np.float64], ...]
+    impacts: NDArray[np.float64]
+    energy: dict[str, float]
+    dt: float
+    steps: int
+    closing_misfit: float
+    steady_from: float
+    nominal_force: float | None
+    model: LinkLevelModel
+    geometry: GeometryResult
+
+    @classmethod
+    def build(cls, *, drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
+              times: NDArray[np.float64], records: tuple[NDArray[Any], ...], dt: float,
+              steps: int, energy_terms: NDArray[np.float64], energy_start: dict[str, float],
+              energy_end: dict[str, float], events: NDArray[np.float64], closing_misfit: float,
+              steady_window: float) -> LinkLevelResult:
+        """Assemble the result from the kernel's records (see :mod:`.simulate`)."""
+        pos, ang, spd, ten, fc, sc, _gap = records
+        n = model.centres.shape[0]
+        span_f, span_y = _span_probe(geometry, pos, ten)
+        steady_from = float(times[-1] * (1.0 - steady_window))
+        late = times >= steady_from
+        loads = _tooth_loads(model, geometry, pos[late], fc[late], sc[late])
+        energy = {f"start_{k}": v for k, v in energy_start.items()}
+        energy |= {f"end_{k}": v for k, v in energy_end.items()}
+        energy |= {"motor_work_j": float(energy_terms[E_MOTOR]),
+                   "resistance_work_j": float(energy_terms[E_LOAD]),
+                   "link_damping_j": float(energy_terms[E_LINK]),
+                   "contact_damping_j": float(energy_terms[E_CONTACT]),
+                   "hinge_friction_j": float(energy_terms[E_HINGE]),
+                   "torsional_damping_j": float(energy_terms[E_TORSION])}
+        ft = None
+        if drive.power and drive.driver.speed:
+            ft = nominal_peripheral_force(drive.power, 2.0 * model.pitch_radii[model.driver],
+                                          drive.driver.speed)
+        return cls(
+            names=model.names,
+            span_names=tuple(f"{s.start_name}-{s.end_name}" for s in geometry.spans),
+            times=times, positions=pos, angles=ang, speeds=spd, link_tensions=ten,
+            contact_forces=fc, contact_sprocket=sc, span_forces=span_f, span_offsets=span_y,
+            sprocket_speeds=spd[:, :n] * model.turn, tooth_loads=tuple(loads), impacts=events,
+            energy=energy, dt=dt, steps=steps, closing_misfit=closing_misfit,
+            steady_from=steady_from, nominal_force=ft, model=model, geometry=geometry)
+
+    # --- summaries ----------------------------------------------------------------------
+    @property
+    def energy_residual_j(self) -> float:
+        """ΔE − W − D [J]: change of the stored energy minus the work of motor and loads plus
+        all dissipation (0 for an exact integration)."""
+        e = self.energy
+        keys = ("kinetic_j", "link_elastic_j", "contact_elastic_j", "torsional_elastic_j",
+                "gravity_j")
+        stored = sum(e[f"end_{k}"] - e[f"start_{k}"] for k in keys)
+        work = e["motor_work_j"] + e["resistance_work_j"]
+        lost = (e["link_damping_j"] + e["contact_damping_j"] + e["hinge_friction_j"]
+                + e["torsional_damping_j"])
+        return stored - work + lost
+
+    @property
+    def span_dynamic_load(self) -> NDArray[np.float64]:
+        """F_D,i = max |F_i − F̄_i| over the steady window [N] (module docstring)."""
+        f = self.span_forces[self.times >= self.steady_from]
+        return np.abs(f - f.mean(axis=0)).max(axis=0)
+
+    @property
+    def span_mean_force(self) -> NDArray[np.float64]:
+        """F̄_i over the steady window [N]."""
+        return self.span_forces[self.times >= self.steady_from].mean(axis=0)
+
+    @property
+    def coefficient_of_dynamics(self) -> float | None:
+        """K_D = 1 + F_D/F_t (None without power)."""
+        if self.nominal_force is None:
+            return None
+        return coefficient_of_dynamics(self.span_dynamic_load, self.nominal_force)
+
+    @property
+    def peak_span_force(self) -> NDArray[np.float64]:
+        """Largest span force over the whole run [N] (the start-up peak F₁max from rest)."""
+        return self.span_forces.max(axis=0)
+
+    def history(self) -> tuple[list[str], NDArray[np.float64]]:
+        """CSV-ready history: column names (unit in each) and a (T, columns) array — time,
+        sprocket speeds, span forces, span transverse offsets."""
+        cols = ["time_s"]
+        cols += [f"speed_{s}_rad_s" for s in self.names]
+        cols += [f"span_force_{s}_n" for s in self.span_names]
+        cols += [f"span_offset_{s}_m" for s in self.span_names]
+        data = np.column_stack([self.times, self.sprocket_speeds, self.span_forces,
+                                self.span_offsets])
+        return cols, data
+
+    def to_dict(self, include_history: bool = False) -> dict[str, Any]:
+        """JSON-ready dict (SI, unit in the key names); histories only with
+        ``include_history``."""
+        kd = self.coefficient_of_dynamics
+        out: dict[str, Any] = {
+            "model": "link-level",
+            "parameters": self.model.to_dict(),
+            "time_step_s": self.dt, "steps": self.steps,
+            "duration_s": float(self.times[-1]),
+            "closing_misfit_m": self.closing_misfit,
+            "span_names": list(self.span_names),
+            "span_mean_force_n": self.span_mean_force.tolist(),
+            "span_dynamic_load_n": self.span_dynamic_load.tolist(),
+            "peak_span_force_n": self.peak_span_force.tolist(),
+            "nominal_force_n": self.nominal_force,
+            "coefficient_of_dynamics": kd,
+            "final_sprocket_speed_rad_s": self.sprocket_speeds[-1].tolist(),
+            "tooth_load_n": {s: v.tolist() for s, v in zip(self.names, self.tooth_loads,
+                                                             strict=True)},
+            "impacts": {"time_s": self.impacts[:, 0].tolist(),
+                        "sprocket": [self.names[int(k)] for k in self.impacts[:, 1]],
+                        "roller": self.impacts[:, 2].astype(int).tolist(),
+                        "peak_force_n": self.impacts[:, 3].tolist()},
+            "energy_j": dict(self.energy),
+            "energy_residual_j": self.energy_residual_j,
+        }
+        if include_history:
+            cols, data = self.history()
+            out["history"] = {c: data[:, k].tolist() for k, c in enumerate(cols)}
+            out["link_tension_n"] = self.link_tensions.tolist()
+        return out

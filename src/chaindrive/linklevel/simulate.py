@@ -1,0 +1,339 @@
+"""Entry point of the link-level model: :func:`simulate` (drive → :class:`LinkLevelResult`).
+
+Time step (explicit integration, :mod:`chaindrive.linklevel.kernel`): the semi-implicit
+Euler step is stable for Δt < 2/ω_max ([Hairer2006], the Störmer–Verlet stability
+interval of a linear oscillator), ω_max bounded by the stiffest local oscillator, a roller
+between two links on one tooth, ω_max² ≤ (4k_link + k_c)/m (Gershgorin's theorem on
+M⁻¹K). The default Δt = C·2/ω_max with C = :data:`COURANT` (below 1 for the contact
+nonlinearity and the dampers).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.errors import DesignError
+from chaindrive.linklevel.assembly import Assembly, assemble_chain
+from chaindrive.linklevel.kernel import (
+    MOTOR_CONSTANT,
+    MOTOR_KLOSS,
+    MOTOR_RAMP,
+    RESISTANCE_CONSTANT,
+    RESISTANCE_LINEAR,
+    RESISTANCE_NONE,
+    RESISTANCE_QUADRATIC,
+    run_kernel,
+)
+from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
+from chaindrive.linklevel.result import LinkLevelResult, state_energy
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive
+
+__all__ = ["COURANT", "InitialState", "initial_state", "simulate"]
+
+TWO_PI = 2.0 * math.pi
+#: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
+COURANT = 0.8
+#: Contact search every this many steps; the reach circle is widened by a quarter pitch,
+#: which a roller at 0.25·p/(8Δt) ≈ 100 m/s could cross: never in a roller chain.
+SEARCH_EVERY = 8
+Start = Literal["rest", "steady"]
+
+
+def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.startup`."""
+    if type(motor) is ConstantTorque:
+        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
+    if type(motor) is RampTorque:
+        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
+    if type(motor) is KlossMotor:
+        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
+                                      motor.critical_slip, motor.synchronous_speed])
+    raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque or "
+                      f"KlossMotor, got {type(motor).__name__}")
+
+
+_RESISTANCE = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
+               "quadratic": RESISTANCE_QUADRATIC}
+
+
+def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
+                ) -> tuple[int, NDArray[np.float64], NDArray[np.float64], float]:
+    """(code, M_i [N·m], ω_n,i [rad/s], breakaway) of the resistance on the driven sprockets:
+    their power shares of P at the nominal speeds, as the ring model's start-up."""
+    n = len(drive.sprockets)
+    if kind is None or not drive.power:
+        return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
+    if kind not in _RESISTANCE:
+        raise DesignError("resistance", f"must be one of {sorted(_RESISTANCE)}, got {kind!r}")
+    from chaindrive.strength.loads import power_shares
+
+    torques = np.asarray(power_shares(drive), dtype=float) * drive.power / speeds
+    torques[drive.driver_index] = 0.0
+    law = ResistanceLaw(kind, torques, speeds)  # type: ignore[arg-type]
+    return _RESISTANCE[kind], law.torques, law.nominal_speeds, law.breakaway
+
+
+def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
+    """Mean sprocket speeds [rad/s], ω_i = ω_driver z_driver / z_i."""
+    driver = drive.driver
+    if driver.speed is None:
+        raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
+    z = np.array([s.teeth for s in drive.sprockets], dtype=float)
+    return driver.speed * driver.teeth / z
+
+
+def _initial_velocities(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
+                        omega: NDArray[np.float64]) -> tuple[NDArray[np.float64],
+                                                             NDArray[np.float64]]:
+    """Roller velocities (N, 2) and sprocket speeds (n,) of steady running: the sprockets at
+    their mean speeds, the rollers on a wrap turning with it, the rollers of a span moving
+    along it at the speed its leaving hinge gives it (R ω cos β), so that no link starts
+    stretching except where a span meets the next sprocket (the polygonal mismatch)."""
+    w = model.turn * omega
+    x = asm.positions
+    v = np.zeros_like(x)
+    carried = np.zeros(2)
+    for r in range(x.shape[0]):
+        s = int(asm.sprocket_of[r])
+        if s >= 0:
+            d = x[r] - model.centres[s]
+            v[r] = w[s] * np.array([-d[1], d[0]])
+            carried = v[r]
+        else:
+            u = np.array(geometry.spans[int(asm.span_of[r])].direction)
+            v[r] = float(carried @ u) * u
+    return v, w
+
+
+def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult | None = None,
+             model: LinkLevelModel | None = None, start: Start = "rest",
+             motor: Callable[[float, float], float] | None = None,
+             resistance: str | None = "linear", dt_s: float | None = None,
+             sample_rate_hz: float | None = None, hinge_friction: float | None = None,
+             clearance_m: float = 0.0, torsional: TorsionalAttachment | None = None,
+             steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
+             span_kick_m_s: tuple[int, float] | None = None) -> LinkLevelResult:
+    """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
+
+    geometry : its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`);
+    model : link-level parameters (None: :func:`chaindrive.linklevel.model.build_model`
+    with ``hinge_friction`` (None: f = 0.1), ``clearance_m`` [m] and ``torsional``);
+    start : "rest" (a start-up) or "steady" (every body moving at its mean speed);
+    motor(t, ω) [N·m] on the driver: a ConstantTorque, RampTorque or KlossMotor (None: the
+    drive's ``[dynamics]`` motor rated at its power and driver speed); resistance : the law
+    of the driven sprockets' moments ("linear", "quadratic", "constant", None: none) with
+    their power shares at the nominal speeds; dt_s [s] (None: :data:`COURANT`·2/ω_max);
+    sample_rate_hz [Hz] of the recorded history (None: about 10× the ring model's first
+    natural frequency); steady_window : the closing fraction of the run over which the steady
+    span loads are taken. Impulses at t = 0 (for natural frequencies): kick_rad_s (n,) speeds
+    added to the sprockets [rad/s]; span_kick_m_s (span k, u [m/s]) a transverse velocity
+    u·sin(πξ) on the rollers of span k (ξ ∈ (0, 1) along it, to the left of the travel).
+    """
+    from chaindrive.dynamics.response import motor_of
+    from chaindrive.geometry.contour import contour_geometry
+
+    if not (duration_s > 0 and 0 < steady_window <= 1):
+        raise DesignError("duration_s", f"need duration_s > 0 and 0 < steady_window ≤ 1, got "
+                          f"{duration_s!r}, {steady_window!r}")
+    geometry = geometry or contour_geometry(drive)
+    if model is None:
+        kw = {} if hinge_friction is None else {"hinge_friction": hinge_friction}
+        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional, **kw)
+    omega = _nominal_speeds(drive)
+    if motor is None:
+        if not drive.power:
+            raise DesignError("drive.power", "a link-level run needs the power (or a motor)")
+        motor = motor_of(drive.dynamics, drive.power, float(omega[drive.driver_index]))
+    omega_max = TWO_PI * model.highest_frequency_hz
+    dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / omega_max
+    steps = max(1, math.ceil(duration_s / dt))
+    rate = sample_rate_hz or 10.0 * max(model.ring_first_frequency_hz, 100.0)
+    every = max(1, round(1.0 / (rate * dt)))
+    asm = assemble_chain(geometry, drive.driver_index)
+    state = _initial_state(model, asm, geometry, omega, start)
+    _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
+    return _run(drive, geometry, model, asm, state, motor, resistance, omega, dt, steps, every,
+                steady_window)
+
+
+State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+              NDArray[np.float64]]
+
+
+def _initial_state(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
+                   omega: NDArray[np.float64], start: Start) -> State:
+    """(x, v, θ, ω) at t = 0: the assembled chain at rest or at its mean speed."""
+    n_extra = 0 if model.torsional is None else model.torsional.extra_inertias.size
+    th = np.concatenate([asm.angles, np.zeros(n_extra)])
+    w = np.zeros(th.size)
+    x = asm.positions.copy()
+    v = np.zeros_like(x)
+    if start == "steady":
+        v, w[:model.centres.shape[0]] = _initial_velocities(model, asm, geometry, omega)
+        if model.torsional is not None and n_extra:
+            w[model.centres.shape[0]:] = np.nan  # filled by the caller's attachment
+            raise DesignError("start", "a steady start with an attached torsional system "
+                              "needs its initial speeds: start from rest")
+    elif start != "rest":
+        raise DesignError("start", f"must be 'rest' or 'steady', got {start!r}")
+    return x, v, th, w
+
+
+def _apply_kicks(state: State, model: LinkLevelModel, geometry: GeometryResult,
+                 kick: Sequence[float] | None, span_kick: tuple[int, float] | None) -> None:
+    """Add the impulses of :func:`simulate` to the initial velocities (in place)."""
+    x, v, _, w = state
+    n = model.centres.shape[0]
+    if kick is not None:
+        k = np.asarray(kick, dtype=float)
+        if k.shape != (n,):
+            raise DesignError("kick_rad_s", f"need {n} sprocket speeds, got shape {k.shape}")
+        w[:n] += k * model.turn
+    if span_kick is not None:
+        index, speed = span_kick
+        if not 0 <= index < len(geometry.spans):
+            raise DesignError("span_kick_m_s", f"no span {index}")
+        sp = geometry.spans[index]
+        a, u = np.array(sp.start_point), np.array(sp.direction)
+        xi = (x - a) @ u / sp.length
+        off = np.abs((x - a) @ np.array([-u[1], u[0]]))
+        on = (xi > 0) & (xi < 1) & (off < model.pitch)
+        v[on] += speed * np.sin(np.pi * xi[on])[:, None] * np.array([-u[1], u[0]])
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class InitialState:
+    """The state a run starts from (what a peer engine needs to start from the same one):
+    roller positions x and velocities v (N, 2) [m], [m/s]; rotational coordinates θ and
+    speeds ω (D,) [rad], [rad/s]; link rest lengths ℓ₀ (N,) [m]."""
+
+    positions: NDArray[np.float64]
+    velocities: NDArray[np.float64]
+    angles: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    rest_lengths: NDArray[np.float64]
+
+
+def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
+                  start: Start = "rest") -> InitialState:
+    """The assembled chain and its start state, as :func:`simulate` builds them."""
+    asm = assemble_chain(geometry, drive.driver_index)
+    x, v, th, w = _initial_state(model, asm, geometry, _nominal_speeds(drive), start)
+    return InitialState(x, v, th, w, _rest_lengths(model, x))
+
+
+def _rest_lengths(model: LinkLevelModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """ℓ₀ of every link: its assembled length less T₀/k (each link starts at T₀)."""
+    d = np.roll(x, -1, axis=0) - x
+    return np.hypot(d[:, 0], d[:, 1]) - model.pretension / model.link_stiffness
+
+
+def _rotational_system(model: LinkLevelModel) -> tuple[NDArray[np.float64], ...]:
+    """J (D,), K (D, D), C (D, D) of the sprockets and an attached torsional system."""
+    n = model.inertias.size
+    att = model.torsional
+    if att is None:  # no torsional system: empty matrices (the kernel skips them)
+        return model.inertias.copy(), np.zeros((0, 0)), np.zeros((0, 0))
+    D = n + att.extra_inertias.size
+    K, C = np.asarray(att.stiffness, float), np.asarray(att.damping, float)
+    if K.shape != (D, D) or C.shape != (D, D):
+        raise DesignError("torsional", f"stiffness and damping must be {D}×{D}")
+    return np.concatenate([model.inertias, att.extra_inertias]), K, C
+
+
+def _loads_on_dofs(model: LinkLevelModel, dofs: int, torques: NDArray[np.float64],
+                   speeds: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """Moments of resistance M [N·m], nominal speeds [rad/s] and running senses (D,) on
+    the rotational coordinates: sprocket i's on its own, or on ``load_dofs[i]`` of an
+    attached torsional system."""
+    n = model.centres.shape[0]
+    target = list(range(n))
+    att = model.torsional
+    if att is not None and att.load_dofs is not None:
+        if len(att.load_dofs) != n or not all(0 <= k < dofs for k in att.load_dofs):
+            raise DesignError("torsional.load_dofs", f"need {n} coordinates in 0…{dofs - 1}, "
+                              f"got {att.load_dofs!r}")
+        target = [int(k) for k in att.load_dofs]
+    M, wn, sign = np.zeros(dofs), np.ones(dofs), np.ones(dofs)
+    for i, k in enumerate(target):
+        if torques[i] != 0.0:
+            M[k] += torques[i]
+            wn[k] = speeds[i]
+            sign[k] = model.turn[i]
+    return M, wn, sign
+
+
+def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Assembly,
+         state: State, motor: Callable[[float, float], float], resistance: str | None,
+         omega: NDArray[np.float64], dt: float, steps: int, every: int,
+         steady_window: float) -> LinkLevelResult:
+    """Set up the kernel's arrays, run it, wrap the result."""
+    x, v, th, w = (np.ascontiguousarray(a, dtype=float) for a in state)
+    x0, v0, th0, w0 = x.copy(), v.copy(), th.copy(), w.copy()
+    L0 = _rest_lengths(model, x)
+    J, K, C = _rotational_system(model)
+    mkind, mp = _motor_code(motor)
+    rkind, rM, rwn, rbrk = _resistance(drive, resistance, omega)
+    rM, rwn, rsign = _loads_on_dofs(model, J.size, rM, rwn)
+    n, N = model.centres.shape[0], x.shape[0]
+    mdof = model.driver if model.torsional is None or model.torsional.motor_dof is None \
+        else int(model.torsional.motor_dof)
+    msign = float(model.turn[model.driver])
+    spr = np.ascontiguousarray(np.vstack([
+        model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
+        np.full(n, model.roller_radius), model.seating_radii, model.seating_half_angles,
+        model.tip_radii, model.contact_stiffness, model.contact_damping, TWO_PI / model.teeth,
+        model.pitch_radii * np.sin(np.pi / model.teeth)]))
+    a = model.seating_half_angles
+    trig = np.ascontiguousarray(np.vstack([np.cos(a), np.sin(a), np.tan(a)]))
+    zmax = int(model.teeth.max())
+    gtab = np.zeros((n, zmax, 2))
+    for i, zi in enumerate(model.teeth):
+        ang = TWO_PI * np.arange(zi) / zi
+        gtab[i, :zi, 0], gtab[i, :zi, 1] = np.cos(ang), np.sin(ang)
+    reach = model.tip_radii + model.roller_radius + 0.25 * model.pitch
+    win = np.maximum(1.0, np.round(TWO_PI / (model.teeth * np.abs(omega)) / dt))
+    # the largest stable viscous hinge moment coefficient: a link's inertia m p²/2 over
+    # 4Δt keeps the regularised friction's rate at half the explicit limit 2/Δt
+    cmax = model.roller_mass * model.pitch**2 / 2.0 / (4.0 * dt)
+    rows = steps // every + 1
+    rec = (np.empty((rows, N, 2)), np.empty((rows, J.size)), np.empty((rows, J.size)),
+           np.empty((rows, N)), np.empty((rows, N)), np.empty((rows, N), dtype=np.int64),
+           np.empty((rows, N), dtype=np.int64))
+    energy = np.zeros(6)
+    d = x[:, None, :] - model.centres[None, :, :]
+    inside = np.hypot(d[..., 0], d[..., 1]) < reach[None, :]
+    cand = np.where(inside.any(axis=1), inside.argmax(axis=1), -1).astype(np.int64)
+    eng = np.full((N, 4), -1.0)
+    capacity = int(4 * N + 2 * duration_events(model, omega, steps * dt)) + 16
+    events, count = np.zeros((capacity, 4)), np.zeros(1, dtype=np.int64)
+    run_kernel(x, v, th, w, 0.0, steps, dt, every, model.roller_mass, float(model.gravity[0]),
+               float(model.gravity[1]), L0, model.link_stiffness, model.link_damping,
+               model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
+               SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
+               rsign, *rec, energy, cand, eng, events, count)
+    times = np.arange(rows) * every * dt
+    kernel_args = (L0, spr, J, K, th0)
+    e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
+    e_end = state_energy(model, x, v, th, w, *kernel_args)
+    return LinkLevelResult.build(
+        drive=drive, geometry=geometry, model=model, times=times, records=rec, dt=dt,
+        steps=steps, energy_terms=energy, energy_start=e_start, energy_end=e_end,
+        events=events[:int(count[0])], closing_misfit=asm.closing_misfit,
+        steady_window=steady_window)
+
+
+def duration_events(model: LinkLevelModel, omega: NDArray[np.float64], duration: float) -> float:
+    """Expected number of roller engagements in ``duration`` [s]: Σ z_i |ω_i| t / 2π."""
+    return float(np.sum(model.teeth * np.abs(omega)) * duration / TWO_PI)

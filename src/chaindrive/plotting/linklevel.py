@@ -1,0 +1,134 @@
+"""Frames of the link-level model (:mod:`chaindrive.linklevel`): the chain's rollers and
+links over the sprockets at recorded instants, coloured by link tension; and the tooth-load
+distribution of every sprocket. Plotting only reads the result: it computes nothing."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.linklevel import LinkLevelResult
+
+__all__ = ["chain_frame", "chain_frames", "tooth_loads"]
+
+
+def _sample(result: LinkLevelResult, time_s: float | None) -> int:
+    """Index of the recorded sample nearest ``time_s`` (None: the last)."""
+    if time_s is None:
+        return len(result.times) - 1
+    return int(np.argmin(np.abs(result.times - time_s)))
+
+
+def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float) -> None:
+    """One frame on ``ax``: pitch and tip circles with the gap centres, links coloured by
+    tension, rollers (filled where in contact); transverse deviations from the nominal
+    spans multiplied by ``magnify``."""
+    from matplotlib.collections import LineCollection
+
+    model, geometry = result.model, result.geometry
+    pos = result.positions[k]
+    if magnify != 1.0:
+        pos = pos.copy()
+        for span in geometry.spans:
+            a, u = np.array(span.start_point), np.array(span.direction)
+            rel = pos - a
+            along = rel @ u
+            normal = np.array([-u[1], u[0]])
+            across = rel @ normal
+            on = ((along > 0) & (along < span.length) & (np.abs(across) < 2.0 * model.pitch)
+                  & (result.contact_sprocket[k] < 0))
+            pos[on] = a + np.outer(along[on], u) + np.outer(magnify * across[on], normal)
+    for i, g in enumerate(geometry.sprockets):
+        ax.add_patch(_circle((g.x, g.y), model.tip_radii[i], GREY, 0.6))
+        ax.add_patch(_circle((g.x, g.y), g.pitch_radius, GREY, 0.3, dashed=True))
+        angle = result.angles[k, i] + 2 * math.pi * np.arange(g.teeth) / g.teeth
+        ax.plot(g.x + g.pitch_radius * np.cos(angle), g.y + g.pitch_radius * np.sin(angle),
+                ".", color=GREY, markersize=2)
+        ax.annotate(g.name, (g.x, g.y), ha="center", va="center", fontsize="small")
+    segments = np.stack([pos, np.roll(pos, -1, axis=0)], axis=1)
+    lines = LineCollection(segments, cmap="viridis", linewidths=1.5)
+    lines.set_array(result.link_tensions[k])
+    lines.set_clim(0.0, vmax)
+    ax.add_collection(lines)
+    touching = result.contact_sprocket[k] >= 0
+    ax.plot(pos[~touching, 0], pos[~touching, 1], "o", mfc="none", color=CYCLE[0],
+            markersize=2.5)
+    ax.plot(pos[touching, 0], pos[touching, 1], "o", color=CYCLE[1], markersize=2.5)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_title(f"t = {result.times[k] * 1e3:.1f} ms", fontsize="small")
+
+
+def _circle(centre: tuple[float, float], radius: float, color: str, alpha: float,
+            dashed: bool = False) -> object:
+    from matplotlib.patches import Circle
+
+    return Circle(centre, radius, fill=False, color=color, alpha=alpha,
+                  linestyle="--" if dashed else "-", linewidth=0.8)
+
+
+def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axes | None = None,
+                magnify: float = 1.0) -> Figure:
+    """The chain at the recorded instant nearest ``time_s`` [s] (None: the last): sprockets
+    (tip and pitch circles, gap centres), links coloured by tension [N], rollers in contact
+    filled; ``magnify`` scales the transverse deviations of the free rollers within two
+    pitches of a span's line (taut spans) to make them visible."""
+    fig, ax = figure_axes(ax, (7.0, 4.0))
+    k = _sample(result, time_s)
+    vmax = float(max(result.link_tensions[k].max(), 1.0))
+    _draw(result, k, ax, vmax, magnify)
+    _colorbar(fig, ax, vmax)
+    finish(ax, None, grid=False)
+    ax.set_title(f"Link-level model, t = {result.times[k] * 1e3:.1f} ms")
+    return fig
+
+
+def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *, columns: int = 2,
+                 magnify: float = 1.0) -> Figure:
+    """A sequence of frames (one axes per instant, :func:`chain_frame`), on one tension
+    scale."""
+    from matplotlib.figure import Figure
+
+    idx = [_sample(result, t) for t in times_s]
+    rows = math.ceil(len(idx) / columns)
+    fig = Figure(figsize=(4.0 * columns, 2.6 * rows), layout="constrained")
+    axes = fig.subplots(rows, columns, squeeze=False)
+    vmax = float(max(result.link_tensions[idx].max(), 1.0))
+    for ax, k in zip(axes.ravel(), idx, strict=False):
+        _draw(result, k, ax, vmax, magnify)
+        ax.tick_params(labelsize="x-small")
+    for ax in axes.ravel()[len(idx):]:
+        ax.set_visible(False)
+    _colorbar(fig, axes.ravel()[0], vmax, axes=list(axes.ravel()))
+    return fig
+
+
+def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None) -> None:
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    mappable = ScalarMappable(Normalize(0.0, vmax), cmap="viridis")
+    fig.colorbar(mappable, ax=axes or ax, label="link tension [N]", shrink=0.8)
+
+
+def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
+    """Mean contact force on the rollers at each place of every sprocket's wrap (place 0
+    where the chain arrives) over the steady window, one line per sprocket."""
+    fig, ax = figure_axes(ax, (6.4, 3.6))
+    for i, (name, loads) in enumerate(zip(result.names, result.tooth_loads, strict=True)):
+        ax.plot(np.arange(loads.size), loads, "o-", color=CYCLE[i % len(CYCLE)], label=name,
+                markersize=3)
+    ax.set_xlabel("place on the wrap (from the chain's arrival)")
+    ax.set_ylabel("mean tooth load [N]")
+    ax.legend(fontsize="x-small", ncol=2)
+    finish(ax, "Tooth load distribution")
+    return fig

@@ -1,0 +1,168 @@
+"""Unit tests of the link-level model's parts (chaindrive.linklevel): the implicit damper
+solve, the roller–gap penetration, the assembly, inputs, outputs and the plotting."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from chaindrive.dynamics.startup import ConstantTorque
+from chaindrive.errors import DesignError
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.io.design import load_drive
+from chaindrive.linklevel import TorsionalAttachment, build_model, simulate
+from chaindrive.linklevel.assembly import assemble_chain, sagging_polygon
+from chaindrive.linklevel.kernel import _gap_local, _penetration, _velocity_update
+from tests.conftest import EXAMPLES
+
+
+@pytest.fixture(scope="module")
+def jindal():
+    drive = load_drive(EXAMPLES / "two_sprocket_jindal.toml")
+    return drive, contour_geometry(drive)
+
+
+def test_implicit_damper_solves_backward_euler_exactly():
+    """The cyclic tridiagonal solve equals the dense backward-Euler step
+    (I + h_c AᵀA) v′ = v + h f, A the links' axial-rate operator (closed form)."""
+    rng = np.random.default_rng(3)
+    for n in (3, 4, 9, 10):
+        _check_damper_solve(rng, n)
+
+
+def _check_damper_solve(rng: np.random.Generator, n: int) -> None:
+    v, f = rng.normal(size=(n, 2)), rng.normal(size=(n, 2))
+    angle = rng.uniform(0.0, 2 * math.pi, n)
+    ux, uy = np.cos(angle), np.sin(angle)
+    h, hc = 0.2, 1.7
+    out, g = v.copy(), np.zeros(n)
+    _velocity_update(out, f, h, hc, ux, uy, g, np.empty(n), np.empty(n), np.empty(n),
+                     np.empty(n))
+    A = np.zeros((n, 2 * n))
+    for i in range(n):
+        b = (i + 1) % n
+        A[i, 2 * b:2 * b + 2] += (ux[i], uy[i])
+        A[i, 2 * i:2 * i + 2] -= (ux[i], uy[i])
+    dense = np.linalg.solve(np.eye(2 * n) + hc * A.T @ A, (v + h * f).ravel())
+    np.testing.assert_allclose(out.ravel(), dense, atol=1e-13)
+    np.testing.assert_allclose(g, A @ dense, atol=1e-13)
+
+
+def test_penetration_of_a_roller_in_its_gap():
+    """Closed forms of the gap (seating arc r_i about the gap centre, tangent flanks, tip
+    circle R_a): a roller centred in the gap has δ = r − r_i < 0; one moved along the
+    seating normal by d has δ = d + r − r_i; one pushed into the flank beyond the arc has
+    δ equal to its distance past the flank line; the two kernels agree."""
+    z, R, rr, ri, alpha, Ra = 15, 0.0611, 0.00794, 0.00803, math.radians(51.0), 0.0665
+    th = 0.3
+    centre = R * np.array([math.cos(th), math.sin(th)])
+    d, nx, ny, j = _penetration(*centre, th, z, R, rr, ri, alpha, Ra)
+    assert j == 0 and d == pytest.approx(rr - ri)
+    inward = -centre / R
+    p = centre + 0.0002 * inward
+    d, nx, ny, _ = _penetration(*p, th, z, R, rr, ri, alpha, Ra)
+    assert d == pytest.approx(0.0002 + rr - ri)
+    assert (nx, ny) == pytest.approx(tuple(-inward))
+    gx, gy = math.cos(th), math.sin(th)
+    same = _gap_local(*p, gx, gy, R, rr, ri, math.cos(alpha), math.sin(alpha),
+                      math.tan(alpha), Ra)
+    assert same == pytest.approx((d, nx, ny))
+    # beyond the arc's end at +α: δ grows as the distance past the tangent line
+    tangent = np.array([-gy, gx])
+    flank_normal = math.cos(alpha) * inward + math.sin(alpha) * tangent
+    end = centre + ri * flank_normal
+    along = np.array([-flank_normal[1], flank_normal[0]])  # along the flank line
+    if along @ centre < 0:  # the flank runs outwards from the arc's end
+        along = -along
+    q = end - rr * flank_normal + 0.0001 * flank_normal + 0.001 * along
+    d, *_ = _penetration(*q, th, z, R, rr, ri, alpha, Ra)
+    assert d == pytest.approx(0.0001, abs=1e-9)
+
+
+def test_assembly_seats_rollers_one_pitch_apart(jindal):
+    """Every link of the assembled chain is one pitch long but those of the closing span
+    (misfit shared, µm), and the rollers on each wrap sit on gap centres."""
+    drive, geometry = jindal
+    asm = assemble_chain(geometry, drive.driver_index)
+    p = geometry.pitch
+    lengths = np.hypot(*(np.roll(asm.positions, -1, axis=0) - asm.positions).T)
+    assert np.all(np.abs(lengths - p) < 1e-4 * p)
+    assert np.sum(np.abs(lengths - p) > 1e-9) <= geometry.spans[0].pitches + 2
+    for i, g in enumerate(geometry.sprockets):
+        on = asm.sprocket_of == i
+        rel = asm.positions[on] - (g.x, g.y)
+        phase = np.mod(np.arctan2(rel[:, 1], rel[:, 0]) - asm.angles[i], 2 * math.pi / g.teeth)
+        phase = np.minimum(phase, 2 * math.pi / g.teeth - phase)
+        assert on.sum() >= math.floor(g.teeth_in_mesh) - 1
+        assert np.all(phase < 1e-9)
+        assert np.allclose(np.hypot(rel[:, 0], rel[:, 1]), g.pitch_radius)
+
+
+def test_sagging_polygon_has_equal_chords_and_sags_down():
+    """count chords of length p between two points closer than count·p, bowing to −y."""
+    a, b = np.array([0.0, 0.0]), np.array([1.0, 0.0])
+    pts = sagging_polygon(a, b, 40, 0.0254)
+    chords = np.hypot(*np.diff(pts, axis=0).T)
+    np.testing.assert_allclose(chords, 0.0254, rtol=1e-12)
+    np.testing.assert_allclose(pts[-1], b, atol=1e-12)
+    assert pts[:, 1].min() < -0.01
+
+
+@pytest.mark.parametrize(("kwargs", "field"), [
+    ({"duration_s": 0.0}, "duration_s"),
+    ({"start": "running"}, "start"),
+    ({"kick_rad_s": [1.0]}, "kick_rad_s"),
+    ({"motor": lambda t, w: 1.0}, "motor"),
+    ({"resistance": "cubic"}, "resistance"),
+])
+def test_bad_input_names_its_field(jindal, kwargs, field):
+    drive, geometry = jindal
+    run = {"duration_s": 0.001, "geometry": geometry} | kwargs
+    with pytest.raises(DesignError) as err:
+        simulate(drive, **run)
+    assert err.value.field == field
+
+
+def test_result_dict_and_history(jindal):
+    """Outputs carry their unit in the key; the history is a (times × columns) table."""
+    drive, geometry = jindal
+    r = simulate(drive, 0.005, geometry=geometry, start="steady")
+    out = r.to_dict(include_history=True)
+    for key in ("span_dynamic_load_n", "peak_span_force_n", "time_step_s", "nominal_force_n",
+                "energy_residual_j", "closing_misfit_m"):
+        assert key in out
+    names, table = r.history()
+    assert names[0] == "time_s" and table.shape == (len(r.times), len(names))
+    assert all(n.endswith(("_s", "_n", "_m", "_rad_s")) for n in names)
+    assert r.link_tensions.shape == (len(r.times), geometry.links)
+    assert np.all(np.isfinite(r.positions))
+
+
+def test_attached_torsional_system_keeps_the_energy_balance(jindal):
+    """A load inertia on a shaft spring behind the driven sprocket (a torsional train)
+    carrying the driven sprocket's moment of resistance: the work of the motor and the load
+    equals the change of stored energy plus the dissipation (closed form energy balance) to
+    1 % of the motor's work, and the train turns with the sprocket."""
+    drive, geometry = jindal
+    k, c = 2.0e3, 0.5
+    K = np.array([[0, 0, 0], [0, k, -k], [0, -k, k]], dtype=float)
+    C = np.array([[0, 0, 0], [0, c, -c], [0, -c, c]], dtype=float)
+    train = TorsionalAttachment(np.array([5e-3]), K, C, load_dofs=(0, 2))
+    model = build_model(drive, geometry, torsional=train)
+    r = simulate(drive, 0.05, geometry=geometry, model=model, motor=ConstantTorque(25.0),
+                 resistance="linear")
+    assert abs(r.energy_residual_j) < 0.01 * r.energy["motor_work_j"]
+    assert r.energy["resistance_work_j"] < 0 and r.energy["torsional_damping_j"] > 0
+    assert r.speeds[-1, 2] * model.turn[1] > 0.5 * r.sprocket_speeds[-1, 1] > 0
+
+
+def test_plotting_draws_frames_and_tooth_loads(jindal):
+    from chaindrive.plotting.linklevel import chain_frame, chain_frames, tooth_loads
+
+    drive, geometry = jindal
+    r = simulate(drive, 0.004, geometry=geometry, start="steady")
+    assert chain_frame(r, magnify=10).axes
+    assert len(chain_frames(r, [0.0, 0.002, 0.004], columns=2).axes) >= 3
+    assert tooth_loads(r).axes[0].get_lines()
