@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from chaindrive.dynamics.startup import ConstantTorque
+from chaindrive.dynamics.motors import ConstantTorque
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.linklevel import build_model, simulate

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from chaindrive.dynamics.startup import ConstantTorque
+from chaindrive.dynamics.motors import ConstantTorque
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive

@@ -13,9 +13,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from chaindrive.dynamics.drive import drive_ring_parameters
+from chaindrive.dynamics.motors import ConstantTorque
 from chaindrive.dynamics.ring import modal_analysis
-from chaindrive.dynamics.startup import ConstantTorque
-from chaindrive.dynamics.stiffness import drive_ring_parameters
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.kinematics import instantaneous_chain_speed

@@ -7,7 +7,7 @@
   (plates and pin, the ring model's own value, so both models share it); viscous link damping
   c = β·k_link with the ring model's β = 2ζ/ω₁ (ζ the drive's damping ratio, 0.06 measured
   on chain drives [MultimassChainDrives, §3.2], plus the material part of
-  :func:`chaindrive.dynamics.stiffness.ring_damping_ratio`; ω₁ the ring's first elastic
+  :func:`chaindrive.dynamics.drive.ring_damping_ratio`; ω₁ the ring's first elastic
   frequency): a span of L/p such links is the ring's branch damper β·c_span, so the two
   models carry the same damping; optional clearance Δ (a dead band of the joint).
 * Hinge friction: moment f·T̄·d₂/2 opposing the relative rotation of two links,
@@ -42,14 +42,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.damping import DEFAULT_DAMPING_RATIO
+from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
+from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
     TOOTH_WIDTH_FACTOR,
-    drive_ring_parameters,
     link_stiffness,
-    ring_damping_ratio,
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError

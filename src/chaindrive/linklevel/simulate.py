@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.startup import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 from chaindrive.errors import DesignError
 from chaindrive.linklevel.assembly import Assembly, assemble_chain
 from chaindrive.linklevel.kernel import (
