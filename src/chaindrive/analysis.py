@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,11 +54,13 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
-from chaindrive.multicontour.drive import ContourCheck, contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.selection import rank_chains
 from chaindrive.units import RAD_S_TO_RPM
+
+if TYPE_CHECKING:
+    from chaindrive.multicontour.drive import ContourCheck
 
 __all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
 
@@ -180,6 +182,10 @@ class Analysis:
         m = d.chain.contours
         if m == 1 or st is None or d.power is None or d.driver.speed is None:
             return None
+        # imported here: it imports scipy.special, 0.46 s of every command's start-up
+        # (python -X importtime), which only drives of several contours need
+        from chaindrive.multicontour.drive import contour_check
+
         return contour_check(m, d.power / d.driver.speed,
                              self.geometry.sprockets[d.driver_index].pitch_radius,
                              st.loads.peripheral_force * m,
