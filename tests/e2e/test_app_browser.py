@@ -164,9 +164,15 @@ def _metric(pg: Page, label: str) -> Locator:
 
 
 def _choose(pg: Page, box: str, option: str) -> None:
-    """Pick ``option`` in the select box labelled ``box`` (click it, click the option)."""
-    pg.get_by_role("combobox", name=box).click()
-    pg.get_by_role("option", name=option, exact=True).click()
+    """Pick ``option`` in the select box labelled ``box`` as a keyboard user does: focus the
+    box, type the option's text (the list filters to it) and press Enter, then wait until the
+    box shows it. (Clicking an option of the open list races the list's own re-rendering on a
+    busy machine: the option is detached between locating and clicking it.)"""
+    combo = pg.get_by_role("combobox", name=box)
+    combo.click()
+    pg.keyboard.type(option)
+    pg.keyboard.press("Enter")
+    expect(combo).to_have_value(option)
 
 
 def _edit_teeth(pg: Page, shown: int, teeth: int) -> int:
