@@ -36,9 +36,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
-from chaindrive._numeric import teeth_array as _teeth
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius as _radius
+from chaindrive.geometry.sprocket import teeth_array as _teeth
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult

@@ -18,10 +18,10 @@ Bearing area
 ------------
 ``ChainSpec.bearing_area`` is the projected hinge bearing area of the whole chain as the
 GOST/Russian method uses it (p = Kэ·Ft/A): for n rows A = m_r·A₁ with the row factor
-m_r = 1, 1.7, 2.5, 3.0 for 1–4 rows (Trịnh Chất & Lê Văn Uyển table 5.12; the same factors
-in [VN-CODE] of ``shared/data/chain_design_method_ru.md``). GOST chains carry the tabulated
-value; for ISO chains no source gives A, and it is DERIVED by
-:func:`bearing_area_estimate`: A₁ = d₂·B with the bush length B ≈ (b₁ + p_t)/2.
+m_r = 1, 1.7, 2.5, 3.0 for 1–4 rows [TrinhChat2006, Table 5.12], [ChainDesignRU, §1]. GOST
+chains carry the tabulated value; for ISO chains no source gives A, and it is DERIVED by
+:func:`bearing_area_estimate`: A₁ = d₂·B with the bush length B ≈ (b₁ + p_t)/2, or
+B ≈ 1.42·b₁ when the transverse pitch is not known (:func:`bush_length_estimate`).
 """
 
 from __future__ import annotations
@@ -32,19 +32,25 @@ import re
 import tomllib
 import unicodedata
 from collections.abc import Iterable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, Generic, TypeVar
 
+import numpy as np
+from numpy.typing import ArrayLike
+
+from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import CatalogError, DesignError, closest
 from chaindrive.model import ChainSpec, Material
+from chaindrive.units import parse_quantity
 
 __all__ = [
     "PACKAGED_CHAIN_FILES",
     "PACKAGED_MATERIAL_FILES",
-    "STRAND_FACTORS",
+    "ROW_FACTORS",
     "bearing_area_estimate",
     "bush_length_estimate",
     "chains",
@@ -56,60 +62,114 @@ __all__ = [
     "load_material_file",
     "material_key",
     "materials",
-    "strand_factor",
+    "row_factor",
 ]
 
 PACKAGED_CHAIN_FILES: tuple[str, ...] = ("chains_iso606.csv", "chains_ansi_b29.csv",
                                          "chains_gost13568.csv", "chains_polymer.csv")
 PACKAGED_MATERIAL_FILES: tuple[str, ...] = ("materials.csv",)
 
-#: Row factor m_r of multi-row chains (effective bearing area / single-row area), 1–4 rows.
-#: Source: Trịnh Chất & Lê Văn Uyển table 5.12 (ratios of its columns); [VN-CODE]
-#: ``K_x_arr = [1, 1.7, 2.5, 3.0]`` in ``shared/data/chain_design_method_ru.md`` §1.
-STRAND_FACTORS: dict[int, float] = {1: 1.0, 2: 1.7, 3: 2.5, 4: 3.0}
+#: Row factor m_r of multi-row chains (effective bearing area / single-row area), 1–4 rows
+#: [TrinhChat2006, Table 5.12] (ratios of its columns), [ChainDesignRU, §1]. Not the
+#: multiple-strand factor of a power rating (:func:`chaindrive.strength.iso10823.strand_factor`).
+ROW_FACTORS: dict[int, float] = {1: 1.0, 2: 1.7, 3: 2.5, 4: 3.0}
+#: Median ratio of the bush length B to the inner width b₁ of the GOST 13568 ПР chains of
+#: 19.05…50.8 mm pitch (17.75/12.70, 22.61/15.88, …) [GOST13568, Table 1].
+BUSH_TO_INNER_WIDTH = 1.42
 
 PathLike = str | Path
 
 
 # --------------------------------------------------------------------------- formulas
-def strand_factor(strands: int) -> float:
-    """Row factor m_r for ``strands`` rows (1 → 1, 2 → 1.7, 3 → 2.5, 4 → 3.0).
+def row_factor(strands: int) -> float:
+    """Row factor m_r of the bearing area of a multi-row chain.
 
-    Source: see :data:`STRAND_FACTORS`. Raises :class:`CatalogError` beyond 4 rows
-    (no source gives a factor).
+    Parameters
+    ----------
+    strands : int
+        Number of rows n [-].
+
+    Returns
+    -------
+    float
+        m_r [-]: 1, 1.7, 2.5, 3.0 for 1–4 rows (:data:`ROW_FACTORS`).
+
+    Raises
+    ------
+    CatalogError
+        On ``chain.strands`` beyond 4 rows (no source gives a factor).
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.12]; [ChainDesignRU, §1].
     """
     try:
-        return STRAND_FACTORS[strands]
+        return ROW_FACTORS[strands]
     except KeyError:
         raise CatalogError(
             "chain.strands", f"no row factor for {strands!r} strands (known for 1 to 4)"
         ) from None
 
 
-def bush_length_estimate(inner_width: Any, transverse_pitch: Any) -> Any:
-    """Bush length B ≈ (b₁ + p_t)/2 [m] — an approximation derived for chaindrive.
+def bush_length_estimate(inner_width: ArrayLike, transverse_pitch: ArrayLike) -> FloatOrArray:
+    """Bush length B [m] — an approximation derived for chaindrive.
 
-    The transverse pitch spans the inner width, two inner and two outer plates,
-    p_t ≈ b₁ + 2s_i + 2s_o; with s_i ≈ s_o the bush (inner-link) length is
-    B = b₁ + 2s_i ≈ (b₁ + p_t)/2. Checked against the bush lengths of Trịnh Chất & Lê Văn
-    Uyển table 5.5 (e.g. 16A/ПР-25,4: (15.88 + 29.29)/2 = 22.59 vs 22.61 mm).
+    B ≈ (b₁ + p_t)/2: the transverse pitch spans the inner width, two inner and two outer
+    plates, p_t ≈ b₁ + 2s_i + 2s_o; with s_i ≈ s_o the bush (inner-link) length is
+    B = b₁ + 2s_i ≈ (b₁ + p_t)/2. Checked against the bush lengths of [TrinhChat2006,
+    Table 5.5] (e.g. 16A/ПР-25,4: (15.88 + 29.29)/2 = 22.59 vs 22.61 mm). Where p_t is not
+    known (0), B ≈ 1.42·b₁ (:data:`BUSH_TO_INNER_WIDTH`).
 
-    inner_width : float | ndarray — b₁ [m]; transverse_pitch : float | ndarray — p_t [m].
+    Parameters
+    ----------
+    inner_width : float or array_like
+        Inner width b₁ [m].
+    transverse_pitch : float or array_like
+        Transverse pitch p_t [m] (0: not known).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        B [m].
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.5]; [GOST13568, Table 1].
     """
-    return 0.5 * (inner_width + transverse_pitch)
+    b1 = np.asarray(inner_width, dtype=float)
+    pt = np.asarray(transverse_pitch, dtype=float)
+    return float_or_array(np.where(pt > 0, 0.5 * (b1 + pt), BUSH_TO_INNER_WIDTH * b1))
 
 
-def bearing_area_estimate(pin_diameter: Any, inner_width: Any, transverse_pitch: Any,
-                          strands: int = 1) -> Any:
-    """Projected bearing area of the whole chain A = m_r·d₂·B [m²] (DERIVED, see module doc).
+def bearing_area_estimate(pin_diameter: ArrayLike, inner_width: ArrayLike,
+                          transverse_pitch: ArrayLike, strands: int = 1) -> FloatOrArray:
+    """Projected bearing area of the whole chain A = m_r·d₂·B [m²] (DERIVED, module doc).
 
-    pin_diameter : d₂ [m]; inner_width : b₁ [m]; transverse_pitch : p_t [m];
-    strands : rows n (m_r from :func:`strand_factor`). B from :func:`bush_length_estimate`.
     Reproduces the GOST 13568 / table 5.12 areas within 4.5 % for every multi-row GOST chain
     (tested in ``tests/unit/test_catalog.py``).
+
+    Parameters
+    ----------
+    pin_diameter : float or array_like
+        Pin diameter d₂ [m].
+    inner_width : float or array_like
+        Inner width b₁ [m].
+    transverse_pitch : float or array_like
+        Transverse pitch p_t [m] (0: not known).
+    strands : int
+        Rows n [-] (m_r from :func:`row_factor`).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A [m²], B from :func:`bush_length_estimate`.
+
+    References
+    ----------
+    [TrinhChat2006, Tables 5.5 and 5.12]; [ChainDesignRU, §1].
     """
-    return strand_factor(strands) * pin_diameter * bush_length_estimate(inner_width,
-                                                                         transverse_pitch)
+    bush = np.asarray(bush_length_estimate(inner_width, transverse_pitch))
+    return float_or_array(row_factor(strands) * np.asarray(pin_diameter, dtype=float) * bush)
 
 
 # --------------------------------------------------------------------------- names
@@ -125,6 +185,16 @@ def designation_key(designation: str) -> str:
 
     ``"ISO 606 16B"`` → ``"16B-1"``; ``"ANSI 80"`` → ``"80-1"``;
     ``"GOST 13568 ПР-25,4-60"`` and ``"пр-25.40-60"`` → ``"ПР-25.4-60"``.
+
+    Parameters
+    ----------
+    designation : str
+        A chain designation as a user writes it.
+
+    Returns
+    -------
+    str
+        The key the catalogue index uses.
     """
     s = unicodedata.normalize("NFKC", designation).upper()
     s = re.sub(r"\s+", "", s).replace(",", ".")
@@ -139,25 +209,39 @@ def designation_key(designation: str) -> str:
 
 
 def material_key(name: str) -> str:
-    """Normalised look-up key of a material name (case, spaces, '-', '.', '/' ignored;
-    Cyrillic 'Х' in steel grades read as Latin 'X')."""
+    """Normalised look-up key of a material name.
+
+    Parameters
+    ----------
+    name : str
+        A material name as a user writes it (case, spaces, '-', '.', '/' ignored; Cyrillic
+        'Х' in steel grades read as Latin 'X').
+
+    Returns
+    -------
+    str
+        The key the catalogue index uses.
+    """
     s = unicodedata.normalize("NFKC", name).lower().replace("х", "x")
     return re.sub(r"[\s\-_./]", "", s)
 
 
 # --------------------------------------------------------------------------- file parsing
+Entry = TypeVar("Entry", ChainSpec, Material)
+
+
 @dataclass(frozen=True, slots=True)
-class _Named:
+class _Named(Generic[Entry]):
     """An entry with the extra names it may be looked up by."""
 
-    item: Any
+    item: Entry
     aliases: tuple[str, ...]
 
 
 @dataclass(frozen=True, slots=True)
 class _FileContent:
-    chains: tuple[_Named, ...]
-    materials: tuple[_Named, ...]
+    chains: tuple[_Named[ChainSpec], ...]
+    materials: tuple[_Named[Material], ...]
 
 
 # column → (ChainSpec field, factor to SI, required, kind)  kind: pos | nonneg | opt
@@ -238,7 +322,7 @@ def _csv_rows(text: str, name: str) -> tuple[list[str], list[tuple[int, dict[str
         raise CatalogError(name, "no header line (the file is empty or only comments)")
     parsed = list(csv.reader(line for _, line in lines))
     header = [h.strip() for h in parsed[0]]
-    rows = []
+    rows: list[tuple[int, dict[str, str]]] = []
     for (lineno, _), cells in zip(lines[1:], parsed[1:], strict=True):
         if len(cells) > len(header):
             raise CatalogError(f"{name}: row {len(rows) + 1} (line {lineno})",
@@ -261,7 +345,7 @@ def _check_columns(header: list[str], known: Iterable[str], required: Iterable[s
             raise CatalogError(f"{name}: header", f"missing required column '{column}'")
 
 
-def _chain_from_cells(cells: dict[str, str], where: str, source: str) -> _Named:
+def _chain_from_cells(cells: dict[str, str], where: str, source: str) -> _Named[ChainSpec]:
     values: dict[str, Any] = {}
     for column, (field, factor, kind) in _CHAIN_NUMBERS.items():
         value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'")
@@ -294,7 +378,8 @@ def _chain_spec(designation: str, strands: int, values: dict[str, Any], where: s
         raise CatalogError(where, str(exc)) from None
 
 
-def _material_from_cells(cells: dict[str, str], where: str, source: str) -> _Named:
+def _material_from_cells(cells: dict[str, str], where: str,
+                         source: str) -> _Named[Material]:
     values: dict[str, Any] = {}
     for column, (field, factor, kind) in _MATERIAL_NUMBERS.items():
         value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'")
@@ -310,22 +395,21 @@ def _material_from_cells(cells: dict[str, str], where: str, source: str) -> _Nam
 def _parse_csv(text: str, name: str) -> _FileContent:
     """Chains or materials of one CSV text (the header tells which)."""
     header, rows = _csv_rows(text, name)
-    is_chain = "pitch_mm" in header or "designation" in header
-    if is_chain:
+    where = [(f"{name}: row {i} (line {lineno})", cells)
+             for i, (lineno, cells) in enumerate(rows, start=1)]
+    if "pitch_mm" in header or "designation" in header:
         _check_columns(header, [*_CHAIN_TEXT, *_CHAIN_NUMBERS], _CHAIN_REQUIRED, name)
-    else:
-        _check_columns(header, [*_MATERIAL_TEXT, *_MATERIAL_NUMBERS], _MATERIAL_REQUIRED, name)
-    build = _chain_from_cells if is_chain else _material_from_cells
-    entries = tuple(build(cells, f"{name}: row {i} (line {lineno})", Path(name).name)
-                    for i, (lineno, cells) in enumerate(rows, start=1))
-    _check_unique(entries, name)
-    return _FileContent(entries, ()) if is_chain else _FileContent((), entries)
+        chain_rows = tuple(_chain_from_cells(c, w, Path(name).name) for w, c in where)
+        _check_unique(chain_rows, name)
+        return _FileContent(chain_rows, ())
+    _check_columns(header, [*_MATERIAL_TEXT, *_MATERIAL_NUMBERS], _MATERIAL_REQUIRED, name)
+    material_rows = tuple(_material_from_cells(c, w, Path(name).name) for w, c in where)
+    _check_unique(material_rows, name)
+    return _FileContent((), material_rows)
 
 
 def _toml_value(table: dict[str, Any], key: str, dimension: str, kind: str,
                 where: str) -> float | None:
-    from chaindrive.units import parse_quantity
-
     if key not in table:
         if kind == "pos":
             raise CatalogError(f"{where}.{key}", "is missing")
@@ -355,7 +439,7 @@ def _toml_aliases(table: dict[str, Any], where: str) -> tuple[str, ...]:
     return tuple(value)
 
 
-def _check_keys(table: Any, known: Iterable[str], where: str) -> None:
+def _check_keys(table: object, known: Iterable[str], where: str) -> None:
     if not isinstance(table, dict):
         raise CatalogError(where, "must be a table")
     known = list(known)
@@ -366,7 +450,7 @@ def _check_keys(table: Any, known: Iterable[str], where: str) -> None:
                                "unknown field" + (f"; did you mean '{best}'?" if best else ""))
 
 
-def _toml_chain(table: dict[str, Any], where: str, source: str) -> _Named:
+def _toml_chain(table: dict[str, Any], where: str, source: str) -> _Named[ChainSpec]:
     _check_keys(table, [*_CHAIN_TOML, *_CHAIN_TEXT], where)
     values = {key: _toml_value(table, key, dim, kind, where)
               for key, (dim, kind) in _CHAIN_TOML.items()}
@@ -386,10 +470,10 @@ def _toml_chain(table: dict[str, Any], where: str, source: str) -> _Named:
     return _Named(spec, _toml_aliases(table, where))
 
 
-def _toml_material(table: dict[str, Any], where: str, source: str) -> _Named:
+def _toml_material(table: dict[str, Any], where: str, source: str) -> _Named[Material]:
     _check_keys(table, [*_MATERIAL_TOML, "friction_vs_steel", *_MATERIAL_TEXT], where)
-    values = {key: _toml_value(table, key, dim, kind, where)
-              for key, (dim, kind) in _MATERIAL_TOML.items()}
+    values: dict[str, Any] = {key: _toml_value(table, key, dim, kind, where)
+                              for key, (dim, kind) in _MATERIAL_TOML.items()}
     friction = table.get("friction_vs_steel")
     if friction is not None and (isinstance(friction, bool)
                                  or not isinstance(friction, int | float) or friction <= 0):
@@ -411,25 +495,34 @@ def _parse_toml(text: str, name: str) -> _FileContent:
     except tomllib.TOMLDecodeError as exc:
         raise CatalogError(name, f"TOML syntax error: {exc}") from None
     _check_keys(data, ["chains", "materials"], name)
-    found: dict[str, tuple[_Named, ...]] = {}
-    for key, build in (("chains", _toml_chain), ("materials", _toml_material)):
-        tables = data.get(key, [])
-        if not isinstance(tables, list):
-            raise CatalogError(f"{name}: {key}", f"must be an array of tables ([[{key}]])")
-        entries = []
-        for i, table in enumerate(tables):
-            if not isinstance(table, dict):
-                raise CatalogError(f"{name}: {key}[{i}]", "must be a table")
-            entries.append(build(table, f"{name}: {key}[{i}]", Path(name).name))
-        _check_unique(entries, name)
-        found[key] = tuple(entries)
-    return _FileContent(found["chains"], found["materials"])
+    chain_rows = tuple(_toml_chain(table, where, Path(name).name)
+                       for where, table in _toml_tables(data, "chains", name))
+    material_rows = tuple(_toml_material(table, where, Path(name).name)
+                          for where, table in _toml_tables(data, "materials", name))
+    _check_unique(chain_rows, name)
+    _check_unique(material_rows, name)
+    return _FileContent(chain_rows, material_rows)
 
 
-def _check_unique(entries: Sequence[_Named], name: str) -> None:
+def _toml_tables(data: dict[str, Any], key: str, name: str) -> list[tuple[str, dict[str, Any]]]:
+    """(where, table) of each ``[[key]]`` table of a parsed catalogue file."""
+    tables = data.get(key, [])
+    if not isinstance(tables, list):
+        raise CatalogError(f"{name}: {key}", f"must be an array of tables ([[{key}]])")
+    out = []
+    for i, table in enumerate(tables):
+        if not isinstance(table, dict):
+            raise CatalogError(f"{name}: {key}[{i}]", "must be a table")
+        out.append((f"{name}: {key}[{i}]", table))
+    return out
+
+
+def _check_unique(entries: Sequence[_Named[ChainSpec]] | Sequence[_Named[Material]],
+                  name: str) -> None:
     seen: set[str] = set()
     for entry in entries:
-        label = getattr(entry.item, "designation", None) or entry.item.name
+        item = entry.item
+        label = item.designation if isinstance(item, ChainSpec) else item.name
         if label in seen:
             raise CatalogError(name, f"{label!r} is listed twice")
         seen.add(label)
@@ -457,8 +550,8 @@ def _cached_parse(text: str, name: str, suffix: str) -> _FileContent:
 def _packaged() -> _FileContent:
     """The packaged chain and material files (read once per process)."""
     data = resources.files("chaindrive.catalog").joinpath("data")
-    chain_entries: list[_Named] = []
-    material_entries: list[_Named] = []
+    chain_entries: list[_Named[ChainSpec]] = []
+    material_entries: list[_Named[Material]] = []
     for file_name in PACKAGED_CHAIN_FILES + PACKAGED_MATERIAL_FILES:
         content = _parse_csv(data.joinpath(file_name).read_text(encoding="utf-8"), file_name)
         chain_entries += content.chains
@@ -478,6 +571,16 @@ def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
     ``mass_per_length = "2.6 kg/m"``, ``bearing_area = "180 mm^2"``), ``aliases`` a list.
     A blank bearing area is derived as in :func:`bearing_area_estimate` when p_t is given.
     A malformed file raises a one-line :class:`CatalogError` naming file, row and column.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The user's catalogue file (``.csv`` or ``.toml``).
+
+    Returns
+    -------
+    tuple of ChainSpec
+        Its chains, in SI units.
     """
     content = _read_user_file(path)
     if not content.chains:
@@ -486,9 +589,20 @@ def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
 
 
 def load_material_file(path: PathLike) -> tuple[Material, ...]:
-    """Materials of a user's file: CSV with the columns of ``materials.csv``
-    (density_kg_m3, youngs_modulus_GPa, tensile_strength_MPa …) or TOML ``[[materials]]``
-    (``density = "1140 kg/m^3"``, ``youngs_modulus = "2.8 GPa"``, ``friction_vs_steel = 0.3``)."""
+    """Materials of a user's file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        CSV with the columns of ``materials.csv`` (density_kg_m3, youngs_modulus_GPa,
+        tensile_strength_MPa …) or TOML ``[[materials]]`` (``density = "1140 kg/m^3"``,
+        ``youngs_modulus = "2.8 GPa"``, ``friction_vs_steel = 0.3``).
+
+    Returns
+    -------
+    tuple of Material
+        Its materials, in SI units.
+    """
     content = _read_user_file(path)
     if not content.materials:
         raise CatalogError(str(path), "no materials in this file")
@@ -497,9 +611,9 @@ def load_material_file(path: PathLike) -> tuple[Material, ...]:
 
 # --------------------------------------------------------------------------- indexes
 @dataclass(frozen=True, slots=True)
-class _Index:
-    items: tuple[Any, ...]
-    by_key: dict[str, Any]
+class _Index(Generic[Entry]):
+    items: tuple[Entry, ...]
+    by_key: dict[str, Entry]
     display: dict[str, str]
 
 
@@ -514,24 +628,25 @@ def _file_stamps(extra_files: Sequence[PathLike]) -> tuple[tuple[str, int], ...]
     return tuple(stamps)
 
 
-def _chain_names(entry: _Named) -> list[str]:
-    spec: ChainSpec = entry.item
+def _chain_names(entry: _Named[ChainSpec]) -> list[str]:
+    spec = entry.item
     names = [spec.designation]
     if spec.ansi:
         names.append(f"ANSI {spec.ansi}")
     return names + list(entry.aliases)
 
 
-def _material_names(entry: _Named) -> list[str]:
+def _material_names(entry: _Named[Material]) -> list[str]:
     return [entry.item.name, *entry.aliases]
 
 
-def _build_index(entries: Sequence[_Named], names: Any, key: Any, label: Any) -> _Index:
+def _build_index(entries: Sequence[_Named[Entry]], names: Callable[[_Named[Entry]], list[str]],
+                 key: Callable[[str], str], label: Callable[[Entry], str]) -> _Index[Entry]:
     """Index entries by every normalised name; later entries replace earlier ones."""
-    by_label: dict[str, _Named] = {}
+    by_label: dict[str, _Named[Entry]] = {}
     for entry in entries:
         by_label[label(entry.item)] = entry
-    by_key: dict[str, Any] = {}
+    by_key: dict[str, Entry] = {}
     display: dict[str, str] = {}
     for entry in by_label.values():
         for name in names(entry):
@@ -541,7 +656,7 @@ def _build_index(entries: Sequence[_Named], names: Any, key: Any, label: Any) ->
 
 
 @lru_cache(maxsize=32)
-def _chain_index(stamps: tuple[tuple[str, int], ...]) -> _Index:
+def _chain_index(stamps: tuple[tuple[str, int], ...]) -> _Index[ChainSpec]:
     entries = list(_packaged().chains)
     for path, _ in stamps:
         entries += _read_user_file(path).chains
@@ -549,14 +664,15 @@ def _chain_index(stamps: tuple[tuple[str, int], ...]) -> _Index:
 
 
 @lru_cache(maxsize=32)
-def _material_index(stamps: tuple[tuple[str, int], ...]) -> _Index:
+def _material_index(stamps: tuple[tuple[str, int], ...]) -> _Index[Material]:
     entries = list(_packaged().materials)
     for path, _ in stamps:
         entries += _read_user_file(path).materials
     return _build_index(entries, _material_names, material_key, lambda m: m.name)
 
 
-def _not_found(what: str, index: _Index, key: str, field: str, hint: str) -> CatalogError:
+def _not_found(what: str, index: _Index[ChainSpec] | _Index[Material], key: str, field: str,
+               hint: str) -> CatalogError:
     best = closest(key, index.display)
     suggestion = f"; did you mean '{index.display[best]}'?" if best else f"; {hint}"
     return CatalogError(field, f"{what} is not in the catalogue{suggestion}")
@@ -564,7 +680,18 @@ def _not_found(what: str, index: _Index, key: str, field: str, hint: str) -> Cat
 
 # --------------------------------------------------------------------------- public API
 def chains(extra_files: Sequence[PathLike] = ()) -> tuple[ChainSpec, ...]:
-    """Every catalogue chain: packaged ISO 606 and GOST 13568 files, then ``extra_files``."""
+    """Every catalogue chain.
+
+    Parameters
+    ----------
+    extra_files : sequence of str or pathlib.Path
+        The user's catalogue files; their entries replace packaged ones of the same name.
+
+    Returns
+    -------
+    tuple of ChainSpec
+        The packaged ISO 606, ANSI, GOST 13568 and polymer chains, then the user's.
+    """
     return _chain_index(_file_stamps(extra_files)).items
 
 
@@ -575,8 +702,26 @@ def find_chain(designation: str, extra_files: Sequence[PathLike] = (), *,
     Accepted forms: ``"ISO 606 16B-1"``, ``"16B-1"``, ``"16B"`` (simplex), ``"ANSI 80"``,
     ``"ANSI 80-2"``, ``"80-2"`` (ANSI names resolve to the ISO A-series entry, which keeps
     ``ansi``), ``"GOST 13568 ПР-25,4-60"``, ``"ПР-25.4-60"``, ``"2ПР-25,4-114"`` and the old
-    GOST 13568-75 names with the load in kgf (``"ПР-25,4-5670"``). Raises
-    :class:`CatalogError` (field ``chain.designation``) suggesting the nearest name.
+    GOST 13568-75 names with the load in kgf (``"ПР-25,4-5670"``).
+
+    Parameters
+    ----------
+    designation : str
+        The chain's name.
+    extra_files : sequence of str or pathlib.Path
+        The user's catalogue files.
+    field : str
+        The field an error names.
+
+    Returns
+    -------
+    ChainSpec
+        The chain, in SI units.
+
+    Raises
+    ------
+    CatalogError
+        On ``field``, suggesting the nearest name.
     """
     if not isinstance(designation, str) or not designation.strip():
         raise CatalogError(field, f"must be a chain designation such as 'ISO 606 16B-1', "
@@ -596,11 +741,22 @@ _STANDARD_ALIASES = {"ISO": "ISO 606", "ISO606": "ISO 606", "GOST": "GOST 13568"
 
 def chains_by_pitch(pitch: float, standard: str | None = None,
                     extra_files: Sequence[PathLike] = ()) -> tuple[ChainSpec, ...]:
-    """Catalogue chains of pitch ``pitch`` [m] (±1 µm), optionally of one standard.
+    """Catalogue chains of one pitch, optionally of one standard.
 
-    standard : ``"ISO 606"`` (or ``"ISO"``), ``"ANSI"`` (chains with an ANSI number),
-    ``"GOST 13568"`` (or ``"GOST"``), or the ``standard`` of a user's entries.
-    Sorted by standard, strands and designation; empty when none has that pitch.
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m] (matched to ±1 µm).
+    standard : str or None
+        ``"ISO 606"`` (or ``"ISO"``), ``"ANSI"`` (chains with an ANSI number),
+        ``"GOST 13568"`` (or ``"GOST"``), or the ``standard`` of a user's entries.
+    extra_files : sequence of str or pathlib.Path
+        The user's catalogue files.
+
+    Returns
+    -------
+    tuple of ChainSpec
+        Sorted by standard, strands and designation; empty when none has that pitch.
     """
     every = chains(extra_files)
     selected = [s for s in every if abs(s.pitch - pitch) <= 1e-6]
@@ -618,7 +774,18 @@ def chains_by_pitch(pitch: float, standard: str | None = None,
 
 
 def materials(extra_files: Sequence[PathLike] = ()) -> tuple[Material, ...]:
-    """Every catalogue material: the packaged ``materials.csv``, then ``extra_files``."""
+    """Every catalogue material.
+
+    Parameters
+    ----------
+    extra_files : sequence of str or pathlib.Path
+        The user's material files.
+
+    Returns
+    -------
+    tuple of Material
+        The packaged ``materials.csv``, then the user's.
+    """
     return _material_index(_file_stamps(extra_files)).items
 
 
@@ -627,7 +794,26 @@ def find_material(name: str, extra_files: Sequence[PathLike] = (), *,
     """The material called ``name`` or one of its aliases (case/space/hyphen-insensitive).
 
     Generic names resolve too: ``"steel"``, ``"cast iron"`` (grey cast iron), ``"polymer"``
-    (PA66). Raises :class:`CatalogError` suggesting the nearest name.
+    (PA66).
+
+    Parameters
+    ----------
+    name : str
+        The material's name or alias.
+    extra_files : sequence of str or pathlib.Path
+        The user's material files.
+    field : str
+        The field an error names.
+
+    Returns
+    -------
+    Material
+        The material, in SI units.
+
+    Raises
+    ------
+    CatalogError
+        On ``field``, suggesting the nearest name.
     """
     if not isinstance(name, str) or not name.strip():
         raise CatalogError(field, f"must be a material name such as 'steel 45', got {name!r}")

@@ -2,13 +2,11 @@
 
 Pure, vectorised functions at the bottom of the geometry layer. Sources:
 
-* pitch diameter d = p / sin(π/z): ISO 606 (DIN 8196), GOST 591-69, seed 003;
-* ISO 606 tooth-form limits (minimum and maximum tooth-gap forms): ISO 606 as implemented
-  in the open codes compiled in ``shared/data/gost591_sprocket_profile.md`` §2, confirmed
-  by Bhandari, *Design of Machine Elements*, 3rd ed., Example 14.5;
-* GOST 591-69 tooth profile: Anuriev, *Справочник конструктора-машиностроителя*, т. 2,
-  гл. 5, and the GOST 13568 sprocket codes compiled in the same file, §1;
-* polymeric sprocket proportions: seed 000, §3.4 (``shared/spec/seed-notes.md`` §7).
+* pitch diameter d = p / sin(π/z): [ISO606], [DIN8196], [GOST591], [ChainNonUniformity];
+* ISO 606 tooth-form limits (minimum and maximum tooth-gap forms): [ISO606], confirmed by
+  [Bhandari2010, Example 14.5];
+* GOST 591-69 tooth profile: [GOST591] as given by [Anuriev, vol. 2, ch. 5];
+* polymeric sprocket proportions: [MultimassChainDrives, §3.4].
 
 Several formulas of the standards carry dimensional constants in millimetres (e.g.
 r = 0.5025·d1 + 0.05 mm); they are applied here with the constants converted to metres.
@@ -26,13 +24,37 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
-from chaindrive._numeric import teeth_array as _teeth
 from chaindrive.errors import DesignError
 
 TOOTH_FORM_NAMES: tuple[str, ...] = ("ISO 606", "GOST 591")
 _MM = 1e-3  # one millimetre [m]
 
 
+def teeth_array(teeth: ArrayLike) -> NDArray[np.float64]:
+    """Tooth counts as floats, refusing anything below 3 or not finite.
+
+    Parameters
+    ----------
+    teeth : array_like
+        Numbers of teeth z [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        z as float64 [-].
+
+    Raises
+    ------
+    DesignError
+        On the field ``teeth`` when a count is below 3 or not finite.
+    """
+    z = np.asarray(teeth, dtype=float)
+    if np.any(~np.isfinite(z)) or np.any(z < 3):
+        raise DesignError("teeth", f"must be a whole number of at least 3, got {teeth!r}")
+    return z
+
+
+_teeth = teeth_array
 
 
 def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
@@ -60,7 +82,7 @@ def _dict_with_units(obj: Any, lengths: tuple[str, ...], angles: tuple[str, ...]
 # ---------------------------------------------------------------------------------------
 
 def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
-    """Pitch diameter d = p / sin(π/z) [m] (ISO 606, GOST 591-69 dд, seed 003).
+    """Pitch diameter d = p / sin(π/z) [m] ([ISO606]; dд of [GOST591]; [ChainNonUniformity]).
 
     pitch : float — chain pitch p [m]; teeth : int — number of teeth z.
     """
@@ -68,15 +90,17 @@ def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
 
 
 def pitch_radius(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
-    """Pitch radius R = p / (2 sin(π/z)) [m]: radius of the hinge centres (seed 003 R)."""
+    """Pitch radius R = p / (2 sin(π/z)) [m]: radius of the hinge centres (R of [ChainNonUniformity])."""
     return _out(0.5 * np.asarray(pitch_diameter(pitch, teeth)))
 
 
 def approximate_pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
-    """The seed's approximate diameter t·z/π [m] (seed 000 §3.4 and its worked example).
+    """Approximate pitch diameter t·z/π [m] of [MultimassChainDrives, §3.4] and its worked
+    example.
 
     It is the diameter of a circle whose circumference is z pitches; it is smaller than the
-    true pitch diameter p/sin(π/z) (seed-notes §3: 121.3 vs 122.2 mm for z = 15, t = 25.4).
+    true pitch diameter p/sin(π/z) (121.3 vs 122.2 mm for z = 15, t = 25.4 mm, the worked
+    example of [MultimassChainDrives]).
     """
     return _out(_positive("pitch", pitch) * _teeth(teeth) / np.pi)
 
@@ -363,7 +387,7 @@ class Gost591ToothForm:
 
 def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
                        inner_width: float) -> Gost591ToothForm:
-    """GOST 591-69 tooth profile (Anuriev т. 2 гл. 5; shared/data/gost591_sprocket_profile.md §1).
+    """GOST 591-69 tooth profile ([GOST591] as given by [Anuriev, vol. 2, ch. 5]).
 
     pitch : float — t [m]; teeth : int — z; roller_diameter : float — d1 [m];
     inner_width : float — Bвн [m] (single-row rim width only: multi-row is not confirmed).
@@ -431,11 +455,11 @@ def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike
 
 @dataclass(frozen=True, slots=True)
 class PolymericProportions:
-    """Seed 000 §3.4 proportions of a polymeric sprocket (seed-notes §7), SI metres.
+    """Proportions of a polymeric sprocket [MultimassChainDrives, §3.4], SI metres.
 
-    The seed's figure naming each diameter is lost. Reading used here (D = t·z/π):
+    The paper's figure naming each diameter is lost. Reading used here (D = t·z/π):
 
-    * ``d_pitch`` d_∂ = D — the seed's pitch diameter;
+    * ``d_pitch`` d_∂ = D — the paper's pitch diameter;
     * ``rim_inner_diameter`` d_2 = 0.8 D — the rim (toothed ring) runs from d_2 outwards;
     * ``hub_outer_diameter`` d_1 = 0.33 D — the web joins the hub here;
     * ``hole_circle_diameter`` d_H = 0.56 D — lightening holes centred on this circle
@@ -463,7 +487,7 @@ class PolymericProportions:
 
 def polymeric_sprocket_proportions(pitch: float, teeth: int,
                                    inner_width: float) -> PolymericProportions:
-    """Polymeric sprocket proportions from t, z and the chain inner width B_in (seed 000 §3.4):
+    """Polymeric sprocket proportions from t, z and the chain inner width B_in [MultimassChainDrives, §3.4]:
     d_∂ ≈ tz/π, d_1 ≈ 0.33 tz/π, d_2 ≈ 0.8 tz/π, d_н ≈ 0.3 tz/π, d_H ≈ 0.56 tz/π,
     d_0 ≈ 0.19 tz/π, b ≈ 0.85 B_in, h ≈ 0.5 b, l_min ≈ 3 b. See :class:`PolymericProportions`
     for the reading of each symbol. pitch, inner_width [m]."""
@@ -513,14 +537,14 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     The toothed ring is replaced by a full ring out to the true pitch diameter d = p/sin(π/z)
     (the teeth above the pitch circle roughly fill the tooth gaps below it).
 
-    * polymeric (seed 000 §3.4, reading of :class:`PolymericProportions`): rim d_2…d of
+    * polymeric ([MultimassChainDrives, §3.4], reading of :class:`PolymericProportions`): rim d_2…d of
       width b = 0.85 B_in, web d_1…d_2 of thickness h = 0.5 b with ``hole_count`` lightening
-      holes of diameter ``hole_diameter_ratio``·(d_2 − d_1)/2 centred on d_H (the seed gives
+      holes of diameter ``hole_diameter_ratio``·(d_2 − d_1)/2 centred on d_H (the paper gives
       neither number nor size: 6 holes of half the web height are our assumption), and hub
       d_0…d_1 of length l_min = 3 b.
     * steel (plate sprocket, ISO 606 "type A" without hub): a disc of diameter d and
       thickness bf1 (ISO 606 simplex tooth width, :func:`iso606_tooth_width`) minus a bore of
-      0.19·tz/π (the seed's bore proportion, so both models share the bore). A hub, if any,
+      0.19·tz/π (the paper's bore proportion, so both models share the bore). A hub, if any,
       should be added by the user as an extra inertia. A multi-strand steel sprocket is
       :func:`multi_strand_width` thick (strands, transverse_pitch [m]).
 
@@ -546,4 +570,4 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     rc = prop.hole_circle_diameter / 2
     m -= hole_count * m_hole
     inertia -= hole_count * m_hole * (dh**2 / 8 + rc**2)
-    return SprocketMassProperties(m, inertia, "polymeric rim + web with holes + hub (seed 000)")
+    return SprocketMassProperties(m, inertia, "polymeric rim + web with holes + hub [MultimassChainDrives, §3.4]")
