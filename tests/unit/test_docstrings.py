@@ -8,8 +8,9 @@ docstring. A test fails when
 * a parameter of the signature is not documented (``name : type`` line in ``Parameters``),
 * a documented parameter does not exist in the signature,
 * a public module-level function that returns something has no ``Returns`` section,
-* a number (a parameter whose type says ``float`` or ``array``) carries no unit in brackets
-  (``[m]``, ``[-]`` for a pure number, ``[rad/s]`` …) in its description.
+* a number (a parameter whose type says ``float`` or ``array``, not a boolean mask) carries
+  no unit in brackets (``[m]``, ``[-]`` for a pure number, ``[rad/s]`` …) in its
+  description.
 
 The style follows python-control's test of its docstrings; the parser is written here (a few
 regular expressions, no documentation tool at test time). The closed form it checks against
@@ -132,7 +133,8 @@ def _problems(qualname: str, func: Callable[..., object], doc: str | None, *,
                 and not var_kw:
             yield f"{qualname}: documents {name!r}, which is not a parameter"
     for name, (kind, text) in documented.items():
-        if _NUMBER_TYPE.search(kind) and "[" not in text:
+        boolean = "bool" in kind or re.match(r"(\(.*?\)\s*)?(True|False)\b", text)
+        if _NUMBER_TYPE.search(kind) and not boolean and "[" not in text:
             yield f"{qualname}: the number {name!r} has no unit in brackets ([m], [-] …)"
     if needs_returns and "Returns" not in _sections(doc) and "Yields" not in _sections(doc):
         ret = inspect.signature(func).return_annotation
