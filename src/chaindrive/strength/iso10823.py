@@ -169,7 +169,7 @@ def tooth_factor_bhandari(teeth: int) -> float:
     """
     table = data()["bhandari_tooth_factor"]
     if str(teeth) not in table:
-        raise DesignError("z1", f"Bhandari Table 14.5 values known for {', '.join(table)} teeth, "
+        raise DesignError("z1", f"[Bhandari2010, Table 14.5] gives values for {', '.join(table)} teeth, "
                           f"got {teeth}")
     return float(table[str(teeth)])
 
