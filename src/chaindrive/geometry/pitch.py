@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +17,9 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
 
 __all__ = ["MM", "approximate_pitch_diameter", "dict_with_units", "pitch_diameter",
            "pitch_radius", "positive_length", "teeth_array"]
@@ -80,7 +83,7 @@ def positive_length(name: str, value: ArrayLike) -> NDArray[np.float64]:
 _positive = positive_length
 
 
-def dict_with_units(obj: Any, lengths: tuple[str, ...],
+def dict_with_units(obj: DataclassInstance, lengths: tuple[str, ...],
                     angles: tuple[str, ...]) -> dict[str, Any]:
     """The ``to_dict`` of a dataclass of dimensions: lengths in mm, angles in degrees.
 

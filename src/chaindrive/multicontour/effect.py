@@ -150,7 +150,7 @@ class EffectMap:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (lengths in mm; NaN as None)."""
-        def grid(a: NDArray[Any], scale: float = 1.0) -> list[list[float | None]]:
+        def grid(a: NDArray[np.float64], scale: float = 1.0) -> list[list[float | None]]:
             return [[None if not np.isfinite(v) else float(v) * scale for v in row] for row in a]
         return {
             "pitches_mm": [p * 1e3 for p in self.pitches], "teeth": list(self.teeth),

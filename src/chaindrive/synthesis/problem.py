@@ -31,7 +31,7 @@ value and what is allowed (the style of :mod:`chaindrive.io.design`).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -127,7 +127,7 @@ class Gene:
     high: float
     target: str
     index: int = -1
-    choices: tuple[Any, ...] = ()
+    choices: tuple[str | int, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -256,7 +256,7 @@ def _start_value(problem: Problem, g: Gene) -> float:
         z = drive.sprockets[g.index].teeth
         if g.kind == "int":
             return float(z)
-        lo, hi = g.choices  # the start's tooth count among those keeping its ratio
+        lo, hi = _tooth_range(g)  # the start's tooth count among those keeping its ratio
         i0 = z / drive.driver.teeth
         allowed = [k for k in range(lo, hi + 1)
                    if abs(k / drive.driver.teeth - i0) <= problem.ratio_tolerance * i0 + 1e-12]
@@ -348,7 +348,8 @@ def _position_genes(drive: Drive, table: Mapping[str, Any]) -> list[Gene]:
     return genes
 
 
-def _choice_gene(name: str, values: Any, path: str, target: str, check: Any) -> Gene:
+def _choice_gene(name: str, values: object, path: str, target: str,
+                 check: Callable[[object, str], None]) -> Gene:
     if not isinstance(values, list) or not values:
         raise DesignError(path, f"must be a non-empty list, got {values!r}")
     for k, v in enumerate(values):
@@ -356,7 +357,7 @@ def _choice_gene(name: str, values: Any, path: str, target: str, check: Any) -> 
     return Gene(name, "choice", 0.0, float(len(values)), target, -1, tuple(values))
 
 
-def _check_chain(value: Any, path: str) -> None:
+def _check_chain(value: object, path: str) -> None:
     if not isinstance(value, str):
         raise DesignError(path, f"must be a catalogue designation, got {value!r}")
     try:
@@ -365,12 +366,12 @@ def _check_chain(value: Any, path: str) -> None:
         raise DesignError(path, f"{value!r} is not in the catalogue ({exc})") from None
 
 
-def _check_strands(value: Any, path: str) -> None:
+def _check_strands(value: object, path: str) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 4:
         raise DesignError(path, f"must be a whole number from 1 to 4, got {value!r}")
 
 
-def _check_material(value: Any, path: str) -> None:
+def _check_material(value: object, path: str) -> None:
     if not isinstance(value, str):
         raise DesignError(path, f"must be a material name, got {value!r}")
     try:
@@ -505,7 +506,12 @@ def _chain_spec(designation: str, strands: int | None) -> ChainSpec:
     return same[0]
 
 
-def _pick(g: Gene, v: float) -> Any:
+def _tooth_range(g: Gene) -> tuple[int, int]:
+    """(low, high) tooth counts of a ratio gene."""
+    return int(g.choices[0]), int(g.choices[1])
+
+
+def _pick(g: Gene, v: float) -> str | int:
     k = math.floor(v)
     return g.choices[min(max(k, 0), len(g.choices) - 1)]
 
@@ -514,7 +520,7 @@ def _ratio_teeth(problem: Problem, g: Gene, u: float, z_driver: int) -> int:
     """The tooth count that u ∈ [0, 1) picks among those in [low, high] keeping the ratio."""
     base = problem.base
     i0 = base.sprockets[g.index].teeth / base.driver.teeth
-    lo, hi = g.choices
+    lo, hi = _tooth_range(g)
     tol = problem.ratio_tolerance
     allowed = [z for z in range(lo, hi + 1) if abs(z / z_driver - i0) <= tol * i0 + 1e-12]
     if not allowed:
@@ -564,7 +570,7 @@ def decode_vector(problem: Problem, x: Sequence[float]) -> Drive:
         elif g.target == "inertia":
             sp[g.index]["flywheel"] = min(max(v, g.low), g.high)
         elif g.target == "chain":
-            designation = _pick(g, v)
+            designation = str(_pick(g, v))
         elif g.target == "strands":
             strands = int(_pick(g, v))
         elif g.target == "material":
