@@ -63,9 +63,9 @@ from chaindrive.geometry.sag import slack_for_sag
 from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
 from chaindrive.model import Drive
 
-__all__ = ["Layout", "bracketed_root", "contour_geometry", "round_links", "solve_layout", "span_lengths",
-           "span_normals", "tight_pitches_of", "two_sprocket_center_distance_exact",
-           "two_sprocket_center_distance_iso10823", "two_sprocket_links_exact",
+__all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry", "round_links",
+           "solve_layout", "span_lengths", "span_normals", "tight_pitches_of",
+           "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823", "two_sprocket_links_exact",
            "two_sprocket_links_iso10823", "wrap_angles"]
 
 TWO_PI = 2.0 * math.pi
@@ -422,15 +422,33 @@ def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = Fals
     return links
 
 
-def _adjustment_direction(layout: Layout, orientation: int, index: int, inside: bool,
+def adjustment_direction(layout: Layout, orientation: int, index: int, inside: bool,
                          angle: float | None) -> NDArray[np.float64]:
     """Unit vector of the line of adjustment of sprocket ``index``.
 
-    Given ``angle`` [rad] (from the x axis): (cos, sin). Default: from the centre towards the middle of the
-    arc the chain wraps, i.e. into the chain. Moving a sprocket that way lengthens the
+    Given ``angle``: (cos, sin). Default: from the centre towards the middle of the arc the
+    chain wraps, i.e. into the chain. Moving a sprocket that way lengthens the
     contour at the rate 2·sin(θ/2) per unit of travel (the two spans' directions), for an
     outside and an inside sprocket alike; in a two-sprocket drive it is the line of
     centres, away from the other sprocket.
+
+    Parameters
+    ----------
+    layout : Layout
+        The contour solved in the counter-clockwise frame.
+    orientation : int
+        +1 or −1 (:func:`solve_layout`).
+    index : int
+        The sprocket.
+    inside : bool
+        True for a sprocket on the inside of the contour.
+    angle : float or None
+        Direction of the line of adjustment from the x axis [rad] (None: into the chain).
+
+    Returns
+    -------
+    numpy.ndarray
+        (2,) unit vector [-] in the user's frame.
     """
     if angle is not None:
         return np.array([math.cos(angle), math.sin(angle)])
@@ -622,7 +640,7 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     adjustment = 0.0
     if adjusted is not None:
         s = sps[adjusted]
-        direction = _adjustment_direction(layout, orientation, adjusted, s.side == "inside",
+        direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
                                          s.adjust_angle)
         adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, links,
                               s.name)
