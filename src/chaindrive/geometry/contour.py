@@ -65,8 +65,8 @@ from chaindrive.model import Drive
 
 __all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry", "round_links",
            "solve_layout", "span_lengths", "span_normals", "tight_pitches_of",
-           "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823", "two_sprocket_links_exact",
-           "two_sprocket_links_iso10823", "wrap_angles"]
+           "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823",
+           "two_sprocket_links_exact", "two_sprocket_links_iso10823", "wrap_angles"]
 
 TWO_PI = 2.0 * math.pi
 _CLOSE_TOL = 1e-6
