@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT := out
 
-.PHONY: demo test lint bench app clean bytecode flaky
+.PHONY: demo test lint typecheck bench app clean bytecode flaky
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -44,7 +44,11 @@ demo: $(VENV)/.installed $(VENV)/.kernel bytecode
 lint: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	$(BIN)/ruff check src tests benchmarks
 
-test: lint
+# mypy on src/ (settings and the per-module overrides in pyproject.toml [tool.mypy])
+typecheck: $(VENV)/.installed-test
+	$(BIN)/python -m mypy
+
+test: lint typecheck
 	$(BIN)/python -m pytest -q
 
 # The tests of time, threads, processes, Dask, the web server and the browser (marker
@@ -62,5 +66,5 @@ app: $(VENV)/.installed $(VENV)/.kernel bytecode
 	$(BIN)/chaindrive app
 
 clean:
-	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache src/chaindrive/dynamics/_startup_aot.*
+	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache .mypy_cache src/chaindrive/dynamics/_startup_aot.*
 	find src tests benchmarks -name __pycache__ -type d -prune -exec rm -rf {} +

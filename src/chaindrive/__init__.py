@@ -7,7 +7,7 @@ Nothing heavy is imported here.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.model import Chain, ChainRequest, ChainSpec, Drive, Material, Sprocket
@@ -16,6 +16,8 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from chaindrive.analysis import Analysis
+    from chaindrive.checks import CheckLimits
+    from chaindrive.cost import CostModel
 
 __all__ = ["Chain", "ChainDriveError", "ChainRequest", "ChainSpec", "DesignError", "Drive", "Material",
            "Sprocket", "analyze", "load"]
@@ -23,15 +25,52 @@ __version__ = "0.1.0"
 
 
 def load(path: str | Path) -> Drive:
-    """Read a TOML design file into a validated :class:`Drive`."""
+    """Read a TOML design file into a validated :class:`Drive`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The design file.
+
+    Returns
+    -------
+    Drive
+        The validated design.
+    """
+    # lazy: the design-file reader brings pint, which `import chaindrive` does not need
     from chaindrive.io.design import load_drive
 
     return load_drive(path)
 
 
-def analyze(drive: Drive, **options: Any) -> Analysis:
-    """Run every analysis of the drive (``response=False``: stop after the modal analysis);
-    see :func:`chaindrive.analysis.analyze`."""
+def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
+            cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
+            lazy: bool = False) -> Analysis:
+    """Run every analysis of the drive; see :func:`chaindrive.analysis.analyze`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    response : bool
+        False stops after the modal analysis.
+    limits : CheckLimits or None
+        Limits of the checks a designer sets (None: the defaults).
+    cost_model : CostModel or None
+        Prices (None: the packaged estimates).
+    studies : tuple of str
+        Optional studies to run as well.
+    lazy : bool
+        True computes each stage on first access only.
+
+    Returns
+    -------
+    Analysis
+        The analysis of the drive.
+    """
+    # lazy: the analysis brings scipy and the dynamics, which `import chaindrive` (and the
+    # commands that only read or list) do not need
     from chaindrive.analysis import analyze as _analyze
 
-    return _analyze(drive, **options)
+    return _analyze(drive, response=response, limits=limits, cost_model=cost_model,
+                    studies=studies, lazy=lazy)

@@ -17,11 +17,12 @@ passes. ``violation`` is its negative (≤ 0 satisfied), the optimiser's constra
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
-__all__ = ["FAIL", "PASS", "UNVERIFIED", "Check", "CheckLimits", "Kind", "Status", "judged",
-           "verdict", "worst"]
+__all__ = ["ALLOWABLE_DYNAMIC_SAFETY", "FAIL", "PASS", "RESONANCE_BAND_PERCENT", "UNVERIFIED",
+           "Check", "CheckLimits", "Kind", "Status", "judged", "verdict", "worst"]
 
 Status = Literal["pass", "fail", "cannot be verified"]
 Kind = Literal["max", "min"]
@@ -30,6 +31,11 @@ FAIL: Status = "fail"
 UNVERIFIED: Status = "cannot be verified"
 #: Violation of a check that cannot be verified (a failure of unknown size).
 UNVERIFIED_VIOLATION = 1.0
+#: [k], the allowable dynamic safety factor of the two-stage check k₁, k₂, k₂min [-]
+#: [MultimassChainDrives, §3.6].
+ALLOWABLE_DYNAMIC_SAFETY = 2.5
+#: Least distance of a working frequency from a natural frequency [%] [API684].
+RESONANCE_BAND_PERCENT = 10.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,9 +48,9 @@ class Check:
         What is checked ("hinge pressure", "teeth in mesh", "k2" …).
     subject : str
         The chain, sprocket or span it is about.
-    value : float | None
+    value : float or None
         The design's value [SI] (None when it could not be computed).
-    limit : float | None
+    limit : float or None
         The limit [SI] (None when no rule covers the design).
     kind : str
         "max" (value ≤ limit) or "min" (value ≥ limit).
@@ -55,7 +61,7 @@ class Check:
     unit : str
         The unit the value is read in (e.g. "MPa").
     scale : float
-        Factor from SI to ``unit`` (e.g. 1e-6 for Pa → MPa).
+        Factor from SI to ``unit`` [unit/SI] (e.g. 1e-6 for Pa → MPa).
     note : str
         What the verdict rests on (an estimate, a table edge …).
     part : str
@@ -108,7 +114,18 @@ class Check:
         return -1.0 if math.isinf(m) else -m
 
     def shown(self, x: float | None) -> float | None:
-        """A value in the unit the check is read in."""
+        """A value in the unit the check is read in.
+
+        Parameters
+        ----------
+        x : float or None
+            A value in SI [SI unit of the check].
+
+        Returns
+        -------
+        float or None
+            ``x`` times :attr:`scale` [``unit``] (None for None).
+        """
         return None if x is None else x * self.scale
 
     def to_dict(self) -> dict[str, Any]:
@@ -122,8 +139,23 @@ class Check:
 
 
 def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
-    """"pass"/"fail" of value against limit (``kind`` "max": ≤, "min": ≥), "cannot be
-    verified" when either is missing or not finite."""
+    """The verdict of a value against its limit.
+
+    Parameters
+    ----------
+    value : float or None
+        The design's value [SI].
+    limit : float or None
+        The limit [SI, the unit of ``value``].
+    kind : {"max", "min"}
+        "max": pass when value ≤ limit; "min": pass when value ≥ limit (both to a relative
+        1e-12).
+
+    Returns
+    -------
+    str
+        "pass" or "fail"; "cannot be verified" when either is missing or not finite.
+    """
     if value is None or limit is None or not (math.isfinite(value) and math.isfinite(limit)):
         return UNVERIFIED
     ok = value <= limit * (1 + 1e-12) if kind == "max" else value >= limit * (1 - 1e-12)
@@ -133,14 +165,44 @@ def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
 def judged(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
            source: str, unit: str = "", scale: float = 1.0, note: str = "", part: str = "",
            item: str = "") -> Check:
-    """A :class:`Check` with its verdict decided by :func:`verdict`."""
+    """A :class:`Check` with its verdict decided by :func:`verdict`.
+
+    Parameters
+    ----------
+    name, subject, source, unit, note, part, item : str
+        As in :class:`Check`.
+    value : float or None
+        The design's value [SI].
+    limit : float or None
+        The limit [SI].
+    kind : {"max", "min"}
+        Upper or lower limit.
+    scale : float
+        Factor from SI to ``unit`` [unit/SI].
+
+    Returns
+    -------
+    Check
+        The check with its status.
+    """
     return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
                  unit, scale, note, part, item)
 
 
-def worst(checks: list[Check] | tuple[Check, ...]) -> Check | None:
-    """The check furthest from passing: a failure with the smallest margin first, then a
-    "cannot be verified", then the passing check with the smallest margin."""
+def worst(checks: Sequence[Check]) -> Check | None:
+    """The check furthest from passing.
+
+    Parameters
+    ----------
+    checks : sequence of Check
+        The checks to rank.
+
+    Returns
+    -------
+    Check or None
+        A failure with the smallest margin first, then a "cannot be verified", then the
+        passing check with the smallest margin; None for no checks.
+    """
     if not checks:
         return None
 
@@ -164,10 +226,10 @@ class CheckLimits:
     resonance_band_percent : float
         Least distance of every working frequency from a natural frequency [%]; 10
         [API684].
-    required_life_h : float | None
+    required_life_h : float or None
         Required wear life [h] (None: the life the chain's rating promises for its length).
     """
 
-    allowable_dynamic_safety: float = 2.5
-    resonance_band_percent: float = 10.0
+    allowable_dynamic_safety: float = ALLOWABLE_DYNAMIC_SAFETY
+    resonance_band_percent: float = RESONANCE_BAND_PERCENT
     required_life_h: float | None = None

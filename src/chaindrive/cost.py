@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from collections.abc import Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
@@ -27,17 +27,33 @@ from chaindrive.errors import DesignError
 from chaindrive.io.design import read_toml
 from chaindrive.model import Drive
 
-__all__ = ["CostBreakdown", "CostItem", "CostModel", "cost_breakdown", "default_cost_model",
-           "load_cost_model"]
+__all__ = ["CostBreakdown", "CostItem", "CostModel", "cost_breakdown", "cost_model_from_mapping",
+           "default_cost_model", "load_cost_model"]
 
 
 @dataclass(frozen=True, slots=True)
 class CostModel:
     """Prices per kg by material family and per metre of chain.
 
-    material_per_kg, manufacturing_per_kg : family → price [currency/kg] (key ``default`` for
-    unlisted families, ``flywheel`` for added inertia); chain_per_kg [currency/kg] of chain;
-    chain_per_metre : designation → price [currency/m] (overrides chain_per_kg); currency.
+    Parameters
+    ----------
+    material_per_kg : dict of str to float
+        Material family → price of the material [currency/kg] (key ``default`` for unlisted
+        families, ``flywheel`` for added inertia).
+    manufacturing_per_kg : dict of str to float
+        Material family → price of making a part of it [currency/kg].
+    chain_per_kg : float
+        Price of chain by mass [currency/kg].
+    chain_per_metre : dict of str to float
+        Chain designation → price [currency/m] (overrides ``chain_per_kg``).
+    currency : str
+        The currency of every price.
+    source : str
+        Where the prices come from.
+    per_tooth : dict of str to float
+        Material family → price of cutting one tooth [currency].
+    sources : dict of str to str
+        Table name → basis and date of its prices (says what rests on an estimate).
     """
 
     material_per_kg: dict[str, float]
@@ -50,20 +66,59 @@ class CostModel:
     sources: dict[str, str] = field(default_factory=dict)
 
     def part_price_per_kg(self, family: str) -> float:
-        """Material + manufacturing price of one kg of a part of ``family`` [currency/kg]."""
+        """Material + manufacturing price of one kg of a part.
+
+        Parameters
+        ----------
+        family : str
+            Material family (``default`` covers the unlisted ones).
+
+        Returns
+        -------
+        float
+            Price [currency/kg].
+        """
         def get(table: dict[str, float]) -> float:
             return table.get(family, table.get("default", 0.0))
 
         return get(self.material_per_kg) + get(self.manufacturing_per_kg)
 
     def sprocket_price(self, family: str, mass: float, teeth: int) -> float:
-        """Price of one sprocket [currency]: mass [kg] × (material + manufacturing per kg)
-        plus ``teeth`` × the tooth-cutting price of its family."""
+        """Price of one sprocket: mass × (material + manufacturing per kg) + teeth × the
+        tooth-cutting price of its family.
+
+        Parameters
+        ----------
+        family : str
+            Material family of the sprocket.
+        mass : float
+            Mass of the sprocket body [kg].
+        teeth : int
+            Number of teeth z [-].
+
+        Returns
+        -------
+        float
+            Price [currency].
+        """
         cut = self.per_tooth.get(family, self.per_tooth.get("default", 0.0))
         return mass * self.part_price_per_kg(family) + teeth * cut
 
     def chain_price_per_metre(self, designation: str, mass_per_length: float) -> float:
-        """Price of one metre of chain [currency/m]: listed, else chain_per_kg · q."""
+        """Price of one metre of chain: listed, else ``chain_per_kg`` · q.
+
+        Parameters
+        ----------
+        designation : str
+            The chain.
+        mass_per_length : float
+            Its mass per metre q [kg/m].
+
+        Returns
+        -------
+        float
+            Price [currency/m].
+        """
         return self.chain_per_metre.get(designation, self.chain_per_kg * mass_per_length)
 
     def to_dict(self) -> dict[str, Any]:
@@ -76,7 +131,7 @@ class CostModel:
                 "sources": dict(self.sources)}
 
 
-def _prices(data: Any, path: str) -> dict[str, float]:
+def _prices(data: object, path: str) -> dict[str, float]:
     if not isinstance(data, dict):
         raise DesignError(path, f"must be a table of prices, got {data!r}")
     out = {}
@@ -87,14 +142,35 @@ def _prices(data: Any, path: str) -> dict[str, float]:
     return out
 
 
-def _table(data: Any, path: str) -> dict[str, Any]:
+def _table(data: object, path: str) -> dict[str, Any]:
     if not isinstance(data, dict):
         raise DesignError(path, f"must be a table, got {data!r}")
-    return data
+    return {str(k): v for k, v in data.items()}
 
 
 def cost_model_from_mapping(data: dict[str, Any], source: str) -> CostModel:
-    """Validate the tables of a cost file (see the packaged ``cost.toml``)."""
+    """A cost model from the tables of a cost file (see the packaged ``cost.toml``).
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML: ``currency``, ``chain_per_kg`` [currency/kg], ``material_per_kg``,
+        ``manufacturing_per_kg`` [currency/kg], ``chain_per_metre`` [currency/m],
+        ``per_tooth`` [currency], ``sources``.
+    source : str
+        Where the tables come from (a file name).
+
+    Returns
+    -------
+    CostModel
+        The validated model.
+
+    Raises
+    ------
+    DesignError
+        Naming the field (``cost.<table>.<key>``) of an unknown field or a price that is not
+        a number ≥ 0.
+    """
     known = {"currency", "chain_per_kg", "material_per_kg", "manufacturing_per_kg",
              "chain_per_metre", "per_tooth", "sources"}
     for key in data:
@@ -114,22 +190,57 @@ def cost_model_from_mapping(data: dict[str, Any], source: str) -> CostModel:
 
 
 def load_cost_model(path: str | Path) -> CostModel:
-    """A cost model from a TOML file of the packaged form."""
+    """A cost model from a TOML file of the packaged form.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The cost file.
+
+    Returns
+    -------
+    CostModel
+        The validated model (:func:`cost_model_from_mapping`).
+    """
     return cost_model_from_mapping(read_toml(path, "cost file"), str(Path(path)))
 
 
 @lru_cache(maxsize=1)
 def default_cost_model() -> CostModel:
-    """The packaged estimated prices (``chaindrive/data/cost.toml``)."""
+    """The packaged estimated prices (``chaindrive/data/cost.toml``, read once).
+
+    Returns
+    -------
+    CostModel
+        The estimates, each table's basis in :attr:`CostModel.sources`.
+    """
     text = resources.files("chaindrive").joinpath("data/cost.toml").read_text("utf-8")
     return cost_model_from_mapping(tomllib.loads(text), "packaged estimates (cost.toml)")
 
 
 @dataclass(frozen=True, slots=True)
 class CostItem:
-    """One priced part: name, kind ("sprocket", "chain", "flywheel"), family or designation,
-    quantity (mass [kg] of a sprocket, length [m] of chain), price [currency], the basis of
-    the price (which table entries) and whether it rests on an estimate."""
+    """One priced part.
+
+    Parameters
+    ----------
+    name : str
+        The part (a sprocket's name, the chain's designation).
+    kind : str
+        "sprocket", "chain" or "flywheel".
+    what : str
+        Material family or chain designation.
+    quantity : float
+        Mass of a sprocket or flywheel [kg] or length of chain [m] (see ``unit``).
+    unit : str
+        "kg" or "m".
+    price : float
+        Price of the part [currency].
+    basis : str
+        The table entries the price rests on.
+    estimate : bool
+        True when the price rests on an estimate.
+    """
 
     name: str
     kind: str
@@ -149,7 +260,17 @@ class CostItem:
 
 @dataclass(frozen=True, slots=True)
 class CostBreakdown:
-    """The cost of a drive part by part, in ``currency``; total; the model's source."""
+    """The cost of a drive part by part.
+
+    Parameters
+    ----------
+    items : tuple of CostItem
+        Every priced part.
+    currency : str
+        The currency of the prices.
+    source : str
+        The cost model's source.
+    """
 
     items: tuple[CostItem, ...]
     currency: str
@@ -171,12 +292,29 @@ def _estimated(model: CostModel, *keys: str) -> tuple[str, bool]:
     return "; ".join(notes) or model.source, any("estimate" in n.lower() for n in notes)
 
 
-def cost_breakdown(drive: Drive, chain_length: float, sprocket_masses: Sequence[float],
+def cost_breakdown(drive: Drive, chain_length: float, sprocket_masses: Iterable[float],
                    model: CostModel | None = None,
-                   flywheel_masses: Sequence[float] | None = None) -> CostBreakdown:
-    """Cost of ``drive``: each sprocket (mass [kg] from ``sprocket_masses``, its material's
-    family, its teeth; one per contour on its shaft), the chain (``chain_length`` [m] ×
-    contours) and the flywheels (``flywheel_masses`` [kg], at the ``flywheel`` family)."""
+                   flywheel_masses: Iterable[float] | None = None) -> CostBreakdown:
+    """The cost of a drive, part by part.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design: sprockets with their materials, the chain, the number of contours.
+    chain_length : float
+        Length of one contour's chain [m] (× contours).
+    sprocket_masses : sequence of float
+        Mass of each sprocket body [kg] (one per contour on its shaft).
+    model : CostModel or None
+        Prices (None: :func:`default_cost_model`).
+    flywheel_masses : sequence of float or None
+        Mass of each sprocket's flywheel [kg], priced at the ``flywheel`` family.
+
+    Returns
+    -------
+    CostBreakdown
+        Sprockets, flywheels and chain with their prices and bases.
+    """
     cm = model or default_cost_model()
     m = drive.chain.contours
     items = []

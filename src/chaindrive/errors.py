@@ -15,7 +15,15 @@ class ChainDriveError(Exception):
 
 
 class DesignError(ChainDriveError, ValueError):
-    """A design (file, form or code) is invalid: a field has a value that is not allowed."""
+    """A design (file, form or code) is invalid: a field has a value that is not allowed.
+
+    Parameters
+    ----------
+    field : str
+        The field, e.g. ``"sprockets[S1].teeth"`` (empty for a message about no one field).
+    message : str
+        What is wrong: the value and what is allowed.
+    """
 
     def __init__(self, field: str, message: str) -> None:
         self.field = field
@@ -77,7 +85,20 @@ class ChainDriveWarning(UserWarning):
 
 
 def closest(name: str, choices: Iterable[str]) -> str | None:
-    """Return the choice closest to ``name`` (difflib ratio ≥ 0.5), or None."""
+    """The choice closest to ``name`` (case-insensitive difflib ratio ≥ 0.5).
+
+    Parameters
+    ----------
+    name : str
+        What the user wrote.
+    choices : iterable of str
+        The valid names.
+
+    Returns
+    -------
+    str or None
+        The closest valid name, or None when none is close.
+    """
     choices = list(choices)
     lowered = {c.lower(): c for c in choices}
     match = difflib.get_close_matches(name.lower(), list(lowered), n=1, cutoff=0.5)
@@ -85,6 +106,19 @@ def closest(name: str, choices: Iterable[str]) -> str | None:
 
 
 def did_you_mean(name: str, choices: Iterable[str]) -> str:
-    """``"; did you mean 'x'?"`` when a close choice exists, else ``""``."""
+    """The hint of an error message for a misspelt name.
+
+    Parameters
+    ----------
+    name : str
+        What the user wrote.
+    choices : iterable of str
+        The valid names.
+
+    Returns
+    -------
+    str
+        ``"; did you mean 'x'?"`` when a close choice exists (:func:`closest`), else ``""``.
+    """
     best = closest(name, choices)
     return f"; did you mean '{best}'?" if best else ""

@@ -1,8 +1,8 @@
 r"""Polygonal (chordal) kinematics of a roller chain on a sprocket (SI units).
 
-Pure, vectorised laws of seed 003 and ``shared/spec/seed-notes.md`` §1 and §5; the
-drive-level kinematics (speeds of every sprocket of a contour) is built on them at the end
-(:func:`drive_kinematics`).
+Pure, vectorised laws of [ChainNonUniformity] and of the harmonic excitation of
+[MultimassChainDrives, §3.1]; the drive-level kinematics (speeds of every sprocket of a
+contour) is built on them at the end (:func:`drive_kinematics`).
 The formulas and the derivation of the Fourier series are in ``docs/kinematics.md``.
 
 Conventions
@@ -11,7 +11,7 @@ Conventions
 * The **tooth phase** ψ [rad] counts sprocket rotation in units of the angular pitch:
   ψ = z·ω·τ + ψ0 advances by 2π per tooth (per period of the tooth frequency). The
   articulation angle of the hinge that drives the span is β = wrap(ψ)/z ∈ [−π/z, π/z)
-  (seed 003: β from −φ1/2 to φ1/2, φ1 = 2π/z). ψ = 0 (β = 0) is the instant when the
+  ([ChainNonUniformity]: β from −φ1/2 to φ1/2, φ1 = 2π/z). ψ = 0 (β = 0) is the instant when the
   radius to that hinge is perpendicular to the span: the chain speed is then largest.
 * The hinge position along the span is R·sin β with R = p/(2 sin(π/z)); over one tooth
   it advances 2R sin(π/z) = p, the same as uniform motion at the mean speed
@@ -36,41 +36,86 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
-from chaindrive._numeric import teeth_array as _teeth
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius as _radius
+from chaindrive.geometry.sprocket import teeth_array as _teeth
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
-
-
-
-
-
 
 # ---------------------------------------------------------------------------------------
 # Mean motion
 # ---------------------------------------------------------------------------------------
 
 def mean_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
-    """Mean chain speed v̄ = z·p·ω/(2π) [m/s] (seed 003 eq. 4: v = z1 p n1 / 60000).
+    """Mean chain speed v̄ = z·p·ω/(2π) (v = z1 p n1 / 60 000 with n1 in rpm and p in mm).
 
-    pitch : float — p [m]; teeth : int — z; speed : float — ω [rad/s].
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z of the sprocket [-].
+    speed : float or array_like
+        Its angular speed ω [rad/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        v̄ [m/s].
+
+    References
+    ----------
+    [ChainNonUniformity, eq. 4]; [Shigley2015, Eq. 17-30].
     """
     return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / (2 * np.pi))
 
 
 def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
-    """Tooth (mesh) frequency f_z = z·ω/(2π) [Hz]; the same for every sprocket of one
-    contour (seed 000: ω_z = z1 ω1 = z2 ω2 = …)."""
+    """Tooth (mesh) frequency f_z = z·ω/(2π), the same for every sprocket of one contour.
+
+    Parameters
+    ----------
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        f_z [Hz].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1] (ω_z = z1 ω1 = z2 ω2 = …).
+    """
     return _out(_teeth(teeth) * np.asarray(speed, float) / (2 * np.pi))
 
 
 def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
                       teeth_driven: ArrayLike) -> FloatOrArray:
-    """Mean speed of a sprocket driven by the same chain ω2 = z1·ω1/z2 [rad/s]
-    (seed 003 eq. 4: z1 n1 = z2 n2)."""
+    """Mean speed of a sprocket driven by the same chain ω2 = z1·ω1/z2.
+
+    Parameters
+    ----------
+    teeth_driver : int or array_like
+        z1 [-].
+    speed_driver : float or array_like
+        ω1 [rad/s].
+    teeth_driven : int or array_like
+        z2 [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ω2 [rad/s].
+
+    References
+    ----------
+    [ChainNonUniformity, eq. 4] (z1 n1 = z2 n2).
+    """
     return _out(_teeth(teeth_driver) * np.asarray(speed_driver, float) / _teeth(teeth_driven))
 
 
@@ -79,30 +124,98 @@ def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
 # ---------------------------------------------------------------------------------------
 
 def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
-    """v_max = R·ω [m/s] at β = 0 (seed 003)."""
+    """Largest chain speed v_max = R·ω, at β = 0.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        v_max [m/s].
+
+    References
+    ----------
+    [ChainNonUniformity].
+    """
     z = _teeth(teeth)
     return _out(_radius(pitch, z) * np.asarray(speed, float))
 
 
 def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
-    """v_min = R·ω·cos(π/z) [m/s] at β = ±π/z (seed 003)."""
+    """Smallest chain speed v_min = R·ω·cos(π/z), at β = ±π/z.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        v_min [m/s].
+
+    References
+    ----------
+    [ChainNonUniformity].
+    """
     z = _teeth(teeth)
     return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(np.pi / z))
 
 
 def speed_variation_percent(teeth: ArrayLike) -> FloatOrArray:
-    """Polygonal speed variation 100·(v_max − v_min)/v_max = 100·(1 − cos(π/z)) [%].
+    """Polygonal speed variation 100·(v_max − v_min)/v_max = 100·(1 − cos(π/z)).
 
-    This is the definition chaindrive reports (issue 2; seed 003 v_max = Rω,
-    v_min = Rω cos(π/z); DIN/Roloff-Matek "Ungleichförmigkeit", case POLYGON-BSWIKI-Z16:
-    z = 16 → 1.92 %). See :func:`speed_variation_about_mean_percent` for Shigley's.
+    This is the definition chaindrive reports (docs/kinematics.md): v_max = Rω and
+    v_min = Rω cos(π/z) of [ChainNonUniformity], the "Ungleichförmigkeit" of German
+    practice [BSWikiPolygon] (z = 16 → 1.92 %). See
+    :func:`speed_variation_about_mean_percent` for Shigley's definition.
+
+    Parameters
+    ----------
+    teeth : int or array_like
+        Number of teeth z [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The variation [%].
+
+    References
+    ----------
+    [ChainNonUniformity]; [BSWikiPolygon].
     """
     return _out(100.0 * (1.0 - np.cos(np.pi / _teeth(teeth))))
 
 
 def speed_variation_about_mean_percent(teeth: ArrayLike) -> FloatOrArray:
-    """Shigley's ΔV/V = (v_max − v_min)/v̄ = (π/z)·(1/sin(π/z) − 1/tan(π/z))·100 [%]
-    (Shigley's Mechanical Engineering Design, ch. 17, chordal speed variation)."""
+    """Chordal speed variation about the mean ΔV/V = (v_max − v_min)/v̄
+    = (π/z)·(1/sin(π/z) − 1/tan(π/z)).
+
+    Parameters
+    ----------
+    teeth : int or array_like
+        Number of teeth z [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ΔV/V [%].
+
+    References
+    ----------
+    [Shigley2015, §17-5].
+    """
     a = np.pi / _teeth(teeth)
     return _out(100.0 * a * (1.0 / np.sin(a) - 1.0 / np.tan(a)))
 
@@ -113,26 +226,89 @@ def speed_variation_about_mean_percent(teeth: ArrayLike) -> FloatOrArray:
 
 def tooth_phase(teeth: ArrayLike, speed: ArrayLike, time: ArrayLike,
                 phase: ArrayLike = 0.0) -> FloatOrArray:
-    """Tooth phase ψ = z·ω·τ + ψ0 [rad] (2π per tooth). time τ [s]; phase ψ0 [rad]."""
+    """Tooth phase ψ = z·ω·τ + ψ0 (2π per tooth).
+
+    Parameters
+    ----------
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+    time : float or array_like
+        Time τ [s].
+    phase : float or array_like
+        ψ0 [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ψ [rad].
+    """
     return _out(_teeth(teeth) * np.asarray(speed, float) * np.asarray(time, float)
                 + np.asarray(phase, float))
 
 
 def wrap_phase(phase: ArrayLike) -> FloatOrArray:
-    """ψ wrapped into [−π, π) [rad]."""
+    """A tooth phase wrapped into [−π, π).
+
+    Parameters
+    ----------
+    phase : float or array_like
+        ψ [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        wrap(ψ) [rad].
+    """
     return _out(np.mod(np.asarray(phase, float) + np.pi, 2 * np.pi) - np.pi)
 
 
 def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
-    """Angle β = wrap(ψ)/z ∈ [−π/z, π/z) [rad] of the hinge that drives the span (seed 003)."""
+    """Angle β = wrap(ψ)/z ∈ [−π/z, π/z) of the hinge that drives the span.
+
+    Parameters
+    ----------
+    teeth : int or array_like
+        Number of teeth z [-].
+    phase : float or array_like
+        Tooth phase ψ [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        β [rad].
+
+    References
+    ----------
+    [ChainNonUniformity].
+    """
     return _out(np.asarray(wrap_phase(phase)) / _teeth(teeth))
 
 
 def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                               phase: ArrayLike) -> FloatOrArray:
-    """Chain speed along the span v = R·ω·cos β [m/s] (seed 003 eq. 6), β = wrap(ψ)/z.
+    """Chain speed along the span v = R·ω·cos β, β = wrap(ψ)/z.
 
-    phase : tooth phase ψ [rad] (see the module docstring; use :func:`tooth_phase` for time).
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+    phase : float or array_like
+        Tooth phase ψ [rad] (module docstring; :func:`tooth_phase` for a time).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        v [m/s].
+
+    References
+    ----------
+    [ChainNonUniformity, eq. 6].
     """
     z = _teeth(teeth)
     beta = np.asarray(articulation_angle(z, phase))
@@ -141,7 +317,28 @@ def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLi
 
 def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                            phase: ArrayLike) -> FloatOrArray:
-    """Speed of the span end across the span v' = R·ω·sin β [m/s] (seed 003)."""
+    """Speed of the span end across the span v' = R·ω·sin β.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+    phase : float or array_like
+        Tooth phase ψ [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        v' [m/s].
+
+    References
+    ----------
+    [ChainNonUniformity].
+    """
     z = _teeth(teeth)
     beta = np.asarray(articulation_angle(z, phase))
     return _out(_radius(pitch, z) * np.asarray(speed, float) * np.sin(beta))
@@ -150,7 +347,7 @@ def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
 def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
                                teeth_driven: ArrayLike, speed_driver: ArrayLike,
                                phase: ArrayLike, phase_offset: ArrayLike = 0.0) -> FloatOrArray:
-    """Angular speed of the driven sprocket ω2 = v / (R2·cos γ) [rad/s] (seed 003).
+    """Angular speed of the driven sprocket ω2 = v / (R2·cos γ).
 
     v = R1 ω1 cos β is the chain speed set by the driver (β = wrap(ψ)/z1). Model of γ
     (first order, stated): the driven sprocket turns uniformly at its mean speed
@@ -159,6 +356,28 @@ def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
     two ends of the tight span (2π × the fractional part of the span length in pitches,
     with the sign of the contour's convention). The exact coupled motion differs from this
     at second order in π/z.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth_driver, teeth_driven : int or array_like
+        z1, z2 [-].
+    speed_driver : float or array_like
+        ω1 [rad/s].
+    phase : float or array_like
+        Tooth phase ψ of the driver [rad].
+    phase_offset : float or array_like
+        Tooth-phase difference of the two ends of the tight span [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ω2 [rad/s].
+
+    References
+    ----------
+    [ChainNonUniformity, eq. 5–6].
     """
     z1, z2 = _teeth(teeth_driver), _teeth(teeth_driven)
     v = np.asarray(instantaneous_chain_speed(pitch, z1, speed_driver, phase))
@@ -168,10 +387,28 @@ def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
 
 def instantaneous_ratio(teeth_driver: ArrayLike, teeth_driven: ArrayLike, phase: ArrayLike,
                         phase_offset: ArrayLike = 0.0) -> FloatOrArray:
-    """Instantaneous transmission ratio i = ω1/ω2 = R2 cos γ / (R1 cos β) (seed 003).
+    """Instantaneous transmission ratio i = ω1/ω2 = R2 cos γ / (R1 cos β).
 
     β = wrap(ψ)/z1, γ = wrap(ψ + phase_offset)/z2 as in :func:`instantaneous_driven_speed`;
     independent of the pitch. Its mean over a tooth period is close to (not exactly) z2/z1.
+
+    Parameters
+    ----------
+    teeth_driver, teeth_driven : int or array_like
+        z1, z2 [-].
+    phase : float or array_like
+        Tooth phase ψ of the driver [rad].
+    phase_offset : float or array_like
+        Tooth-phase difference of the two ends of the tight span [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        i [-].
+
+    References
+    ----------
+    [ChainNonUniformity, eq. 5–6].
     """
     z1, z2 = _teeth(teeth_driver), _teeth(teeth_driven)
     beta = np.asarray(wrap_phase(phase)) / z1
@@ -189,9 +426,27 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
     """Deviation δ [m] of the terminal hinge from uniform motion at the mean chain speed.
 
     δ(ψ) = R·sin(ψ_w/z) − p·ψ_w/(2π), ψ_w = wrap(ψ) ∈ [−π, π) — the position R sin β
-    (seed 003) minus the uniform position. Odd in ψ, hence zero-mean; continuous and
-    periodic at the tooth period (it vanishes at ψ = ±π because 2R sin(π/z) = p);
-    positive (chain ahead) for ψ in (0, π). phase : tooth phase ψ [rad].
+    minus the uniform position. Odd in ψ, hence zero-mean; continuous and periodic at the
+    tooth period (it vanishes at ψ = ±π because 2R sin(π/z) = p); positive (chain ahead)
+    for ψ in (0, π).
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    phase : float or array_like
+        Tooth phase ψ [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        δ [m].
+
+    References
+    ----------
+    [ChainNonUniformity] (position R sin β); docs/kinematics.md (derivation).
     """
     z = _teeth(teeth)
     psi = np.asarray(wrap_phase(phase))
@@ -200,8 +455,21 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
 
 
 def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
-    """Largest deviation max δ [m], at cos β* = z sin(π/z)/π (where dδ/dψ = 0, i.e. where the
-    instantaneous chain speed equals the mean speed)."""
+    """Largest deviation max δ, at cos β* = z sin(π/z)/π (where dδ/dψ = 0, i.e. where the
+    instantaneous chain speed equals the mean speed).
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        max δ [m].
+    """
     z = _teeth(teeth)
     beta = np.arccos(z * np.sin(np.pi / z) / np.pi)
     p = np.asarray(pitch, float)
@@ -217,6 +485,26 @@ def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonic
     b_k = (p/π)·(−1)^{k+1} / (k (k² z² − 1)) [m] (docs/kinematics.md),
     A_k = b_k cos(kψ0), B_k = b_k sin(kψ0). A shift ψ0 of the tooth phase shifts harmonic k by
     k·ψ0. The last axis of each array is k; leading axes broadcast over pitch, teeth, phase.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    harmonics : int
+        Number of harmonics N [-].
+    phase : float or array_like
+        Shift ψ0 of the tooth phase [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (A_k, B_k) [m], last axis k = 1…N.
+
+    References
+    ----------
+    docs/kinematics.md (derivation); [MultimassChainDrives, §3.1] (harmonic excitation).
     """
     if int(harmonics) < 1:
         raise DesignError("harmonics", f"must be a whole number ≥ 1, got {harmonics!r}")
@@ -230,9 +518,32 @@ def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonic
 
 def hinge_displacement_fourier(pitch: ArrayLike, teeth: ArrayLike, phase: ArrayLike,
                                harmonics: int = 10) -> FloatOrArray:
-    """δ(ψ) [m] summed over the first N harmonics (seed-notes §1; seed 000 uses N = 10):
-    δ_N(ψ) = (p/π) Σ_{k=1..N} (−1)^{k+1} sin(kψ)/(k(k²z² − 1)). Converges to
-    :func:`hinge_displacement_exact` like N⁻³. pitch and teeth broadcast with phase."""
+    """δ(ψ) summed over the first N harmonics
+    δ_N(ψ) = (p/π) Σ_{k=1..N} (−1)^{k+1} sin(kψ)/(k(k²z² − 1)).
+
+    Converges to :func:`hinge_displacement_exact` like N⁻³; [MultimassChainDrives] uses
+    N = 10.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m] (broadcast with ``phase``).
+    teeth : int or array_like
+        Number of teeth z [-] (broadcast with ``phase``).
+    phase : float or array_like
+        Tooth phase ψ [rad].
+    harmonics : int
+        N [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        δ_N [m].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1]; docs/kinematics.md.
+    """
     A, _ = hinge_displacement_coefficients(pitch, teeth, harmonics)
     psi = np.asarray(phase, float)[..., None]
     k = np.arange(1, int(harmonics) + 1, dtype=float)
@@ -241,7 +552,24 @@ def hinge_displacement_fourier(pitch: ArrayLike, teeth: ArrayLike, phase: ArrayL
 
 def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                              phase: ArrayLike) -> FloatOrArray:
-    """dδ/dτ = v(τ) − v̄ = R ω cos β − z p ω/(2π) [m/s]: the speed deviation of the hinge."""
+    """Speed deviation of the hinge dδ/dτ = v(τ) − v̄ = R ω cos β − z p ω/(2π).
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Chain pitch p [m].
+    teeth : int or array_like
+        Number of teeth z [-].
+    speed : float or array_like
+        Angular speed ω [rad/s].
+    phase : float or array_like
+        Tooth phase ψ [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        dδ/dτ [m/s].
+    """
     z = _teeth(teeth)
     v = np.asarray(instantaneous_chain_speed(pitch, z, speed, phase))
     return _out(v - np.asarray(mean_chain_speed(pitch, z, speed)))
@@ -252,9 +580,24 @@ def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLik
 
 @dataclass(frozen=True, slots=True)
 class SprocketMotion:
-    """Motion of one sprocket: mean speed [rad/s], direction, polygonal speed variation [%],
-    peak deviation of its terminal hinge from uniform motion [m], and the range of the
-    instantaneous ratio ω_driver/ω over one tooth period (seed 003; 1 for the driver)."""
+    """Motion of one sprocket.
+
+    Parameters
+    ----------
+    name : str
+        The sprocket.
+    speed : float
+        Mean angular speed [rad/s].
+    direction : str
+        "ccw" or "cw".
+    speed_variation_percent : float
+        Polygonal speed variation [%] (:func:`speed_variation_percent`).
+    hinge_deviation_peak : float
+        Peak deviation of its terminal hinge from uniform motion [m].
+    ratio_min, ratio_max : float
+        Range of the instantaneous ratio ω_driver/ω over one tooth period [-] (1 for the
+        driver) [ChainNonUniformity].
+    """
 
     name: str
     speed: float
@@ -266,16 +609,30 @@ class SprocketMotion:
 
     @property
     def speed_rpm(self) -> float:
-        """Speed in revolutions per minute."""
+        """Mean speed [rpm]."""
         return self.speed * 30.0 / math.pi
 
 
 @dataclass(frozen=True, slots=True)
 class KinematicsResult:
-    """Speeds of a contour: chain speed [m/s], tooth frequency [Hz], per-sprocket motion,
-    and over one tooth period of the driver (``phase`` [rad] of the driver within ±π/z):
-    the instantaneous chain speed ``chain_speed_trace`` [m/s] and the instantaneous ratio
-    ω_driver/ω_i of every sprocket ``ratio_traces`` (n, samples) (1 for the driver)."""
+    """Speeds of a contour.
+
+    Parameters
+    ----------
+    chain_speed : float
+        Mean chain speed [m/s].
+    tooth_frequency : float
+        [Hz].
+    sprockets : tuple of SprocketMotion
+        Per-sprocket motion.
+    phase : numpy.ndarray
+        (samples,) angle of the driver within ±π/z over one tooth period [rad].
+    chain_speed_trace : numpy.ndarray
+        (samples,) instantaneous chain speed [m/s].
+    ratio_traces : numpy.ndarray
+        (n, samples) instantaneous ratio ω_driver/ω_i of every sprocket [-] (1 for the
+        driver).
+    """
 
     chain_speed: float
     tooth_frequency: float
@@ -308,10 +665,24 @@ class KinematicsResult:
 
 
 def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64]:
-    """Tooth-phase offset [rad] of every sprocket against the driver: 2π × the fractional
-    part of the chain path, in pitches, from the point where the chain leaves sprocket i to
-    the point where it arrives on the driver (spans ℓ/p plus wraps z·θ/2π in between), the
-    phase_offset of :func:`instantaneous_ratio`. 0 for the driver."""
+    """Tooth-phase offset of every sprocket against the driver.
+
+    2π × the fractional part of the chain path, in pitches, from the point where the chain
+    leaves sprocket i to the point where it arrives on the driver (spans ℓ/p plus wraps
+    z·θ/2π in between): the ``phase_offset`` of :func:`instantaneous_ratio`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    geometry : GeometryResult
+        Its contour.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) offsets [rad], 0 for the driver.
+    """
     n = len(geometry.sprockets)
     d = drive.driver_index
     out = np.zeros(n)
@@ -331,11 +702,29 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
 
 def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257) -> KinematicsResult:
     """Kinematics of a contour: every sprocket's speed and direction, chain speed, tooth
-    frequency and polygonal non-uniformity (seed 003; seed 000 §3.1).
+    frequency and polygonal non-uniformity.
 
     The tooth (mesh) frequency f_z = z_i·n_i is the same for every sprocket of one
     contour, so ω_i = ω_driver·z_driver/z_i; a sprocket on the inside of the contour
     turns the other way (its ``turn`` in the geometry).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (the driver's speed is needed).
+    geometry : GeometryResult
+        Its contour.
+    samples : int
+        Points over one tooth period of the driver [-].
+
+    Returns
+    -------
+    KinematicsResult
+        Speeds, tooth frequency and the traces over one tooth period.
+
+    References
+    ----------
+    [ChainNonUniformity]; [MultimassChainDrives, §3.1].
     """
     driver = drive.driver
     if driver.speed is None:
@@ -360,7 +749,7 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257)
             ratio_min=float(ratio.min()), ratio_max=float(ratio.max()),
         ))
     r_d = geometry.sprockets[drive.driver_index].pitch_radius
-    trace = r_d * omega_d * np.cos(phase)  # seed 003 eq. (6): v = R₁ω₁ cos β
+    trace = r_d * omega_d * np.cos(phase)  # v = R₁ω₁ cos β [ChainNonUniformity, eq. 6]
     return KinematicsResult(
         chain_speed=float(mean_chain_speed(p, z_d, omega_d)),
         tooth_frequency=float(tooth_frequency(z_d, omega_d)),

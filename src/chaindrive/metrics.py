@@ -25,6 +25,7 @@ from chaindrive.model import ChainSpec, Drive
 
 __all__ = ["DesignMetrics", "chain_width", "design_metrics", "sprocket_body_masses"]
 
+
 def chain_width(spec: ChainSpec) -> float:
     """Overall chain width b ≈ b₁ + 4 s + (strands − 1) p_t [m].
 
@@ -56,7 +57,7 @@ class DesignMetrics:
     flywheel_masses_kg : numpy.ndarray
         (n,) mass of the flywheels [kg] (steel discs of the pitch radius).
     contours : int
-        Identical contours side by side.
+        Identical contours side by side [-].
     cost_breakdown : CostBreakdown
         The price of every part, with its basis and whether it rests on an estimate.
     volume_m3 : float
@@ -97,8 +98,19 @@ class DesignMetrics:
 
 
 def sprocket_body_masses(drive: Drive) -> NDArray[np.float64]:
-    """Mass of each sprocket body [kg] from its tooth count, the chain and its material
-    (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`)."""
+    """Mass of each sprocket body from its tooth count, the chain and its material.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) mass of each sprocket body [kg]
+        (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`).
+    """
     spec = drive.chain.spec
     out = []
     for s in drive.sprockets:
@@ -132,8 +144,8 @@ def design_metrics(drive: Drive, geometry: GeometryResult, cost_model: CostModel
     Returns
     -------
     DesignMetrics
-        The flywheel of inertia ΔI is a steel disc of the pitch radius R, m = 2ΔI/R² (solid
-        disc, I = m R²/2).
+        Mass, cost and volume. The flywheel of inertia ΔI is a steel disc of the pitch
+        radius R, m = 2ΔI/R² (solid disc, I = m R²/2 [Rao2011]).
     """
     spec = drive.chain.spec
     m = drive.chain.contours

@@ -12,10 +12,10 @@ from numpy.testing import assert_allclose
 
 from chaindrive.geometry.contour import (
     contour_geometry,
-    pitch_radii,
     tight_pitches_of,
     two_sprocket_links_exact,
 )
+from chaindrive.geometry.sprocket import pitch_radius
 from chaindrive.model import Chain, Drive, Sprocket
 from tests.conftest import make_spec, rpm
 
@@ -82,7 +82,7 @@ def test_two_sprockets_match_the_closed_form(z1: int, z2: int, spare: float,
     )
     # Compare before the take-up: the layout as given.
     centres = np.array([[0.0, 0.0], [a * math.cos(angle), a * math.sin(angle)]])
-    lp = tight_pitches_of(centres, pitch_radii(P, [z1, z2]), np.array([False, False]),
+    lp = tight_pitches_of(centres, np.asarray(pitch_radius(P, [z1, z2])), np.array([False, False]),
                           np.array([z1, z2]), P)
     assert_allclose(lp, two_sprocket_links_exact(a, P, z1, z2), rtol=1e-12)
     g = contour_geometry(drive)

@@ -18,7 +18,7 @@ from numpy.testing import assert_allclose
 
 from chaindrive import catalog
 from chaindrive.catalog import (
-    STRAND_FACTORS,
+    ROW_FACTORS,
     bearing_area_estimate,
     bush_length_estimate,
     chains,
@@ -78,7 +78,7 @@ def test_every_row_is_positive_and_consistent(spec: ChainSpec):
     assert spec.bearing_area is not None and spec.bearing_area > 0
     # the bush length implied by A = m_r·d2·B spans the inner width plus two inner plates,
     # each thinner than 0.2 p
-    bush = spec.bearing_area / (STRAND_FACTORS[spec.strands] * spec.pin_diameter)
+    bush = spec.bearing_area / (ROW_FACTORS[spec.strands] * spec.pin_diameter)
     assert spec.inner_width < bush < spec.inner_width + 0.4 * spec.pitch
     if spec.strands > 1:
         assert spec.transverse_pitch > spec.inner_width
@@ -245,7 +245,7 @@ def test_row_factors_reproduce_the_gost_table():
         twin = _single_row_twin(spec) if spec.standard == "GOST 13568" else None
         if spec.strands > 1 and twin is not None:
             assert_allclose(spec.bearing_area / twin.bearing_area,
-                            STRAND_FACTORS[spec.strands], rtol=0.01, err_msg=spec.designation)
+                            ROW_FACTORS[spec.strands], rtol=0.01, err_msg=spec.designation)
             checked += 1
     assert checked >= 15
 
@@ -278,10 +278,10 @@ def test_iso_bearing_areas_agree_with_their_gost_twins():
     assert twins >= 15
 
 
-def test_strand_factor_beyond_the_table_is_refused():
-    assert catalog.strand_factor(3) == 2.5
+def test_row_factor_beyond_the_table_is_refused():
+    assert catalog.row_factor(3) == 2.5
     with pytest.raises(CatalogError, match="strands"):
-        catalog.strand_factor(5)
+        catalog.row_factor(5)
 
 
 # --------------------------------------------------------------------------- materials

@@ -61,7 +61,7 @@ def test_exact_tends_to_linearised_simplified_form() -> None:
 
 def test_seed_c4_differs_from_the_limit_by_cos_beta() -> None:
     beta = key_corner_angle(JOINT.key_width, JOINT.shaft_radius, JOINT.key_height)
-    ratio = clearance_coefficient_c4(JOINT, "seed") / clearance_coefficient_c4(JOINT, "linearised")
+    ratio = clearance_coefficient_c4(JOINT, "printed") / clearance_coefficient_c4(JOINT, "linearised")
     assert_allclose(ratio, math.cos(beta), rtol=1e-12)
     exact = float(length_error_exact(JOINT, 1e-7))
     assert_allclose(float(length_error_simplified(JOINT, 1e-7)), exact * math.cos(beta),
@@ -109,7 +109,7 @@ def test_all_sixteen_placements_and_their_probabilities() -> None:
                                               2: Fraction(2, 16)}
     for row in rows:
         assert row.total == abs((row.joints[2] + row.joints[3]) - (row.joints[0] + row.joints[1]))
-    seed = {r.joints for r in clearance_placements("seed")}
+    seed = {r.joints for r in clearance_placements("table")}
     missing = {r.joints for r in rows} - seed
     assert missing == {(True, True, False, True), (True, False, True, True)}
 
@@ -122,7 +122,7 @@ def test_placement_model_monte_carlo_matches_its_mixture() -> None:
     assert_allclose(np.mean(samples == 0.0), 1 / 14, rtol=0.05)
     # the mixture's second moment: Σ over rows of (n_clear·σ_z² + (n_II − n_I)²·z̄²)·C4² / 14
     sz, zbar = 10e-6, 30e-6
-    rows = clearance_placements("seed")
+    rows = clearance_placements("table")
     m2 = sum(sum(r.joints) * sz**2 + (r.contour_ii - r.contour_i) ** 2 * zbar**2
              for r in rows) * 4.0 / len(rows)
     assert_allclose(np.mean(samples**2), m2, rtol=0.02)
@@ -230,8 +230,8 @@ def test_more_contours_lose_more_but_keep_order() -> None:
 def test_effect_map_is_frozen_json_ready_and_sensitive_to_the_fit() -> None:
     normal = effect_map(pitches=(0.0254, 0.0508), teeth=(15, 45))
     free = effect_map(pitches=(0.0254, 0.0508), teeth=(15, 45), fit="free")
-    assert np.all(free.km_seed < normal.km_seed)
-    assert np.all(normal.km_linear <= normal.km_seed)
+    assert np.all(free.km_printed < normal.km_printed)
+    assert np.all(normal.km_linear <= normal.km_printed)
     json.dumps(normal.to_dict())
     with pytest.raises(AttributeError):
         normal.risk = 0.1  # type: ignore[misc]

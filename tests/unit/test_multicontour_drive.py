@@ -34,7 +34,7 @@ def test_two_contours_share_and_strength(eight: chaindrive.Drive) -> None:
     assert 1.0 <= check.km <= check.km_mean <= 2.0
     assert_allclose(check.max_share, 1.0 / check.km)
     # the seed's eq. 16–17 value for the same joint and stretch
-    assert check.km_seed == pytest.approx(contour_factor_at_risk(
+    assert check.km_printed == pytest.approx(contour_factor_at_risk(
         check.c4, check.joint.max_clearance, check.span_deformation, 0.05))
     # the strength is made for the most loaded contour: P / K_m
     assert one.strength is not None and two.strength is not None

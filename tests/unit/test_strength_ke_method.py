@@ -1,6 +1,6 @@
 """Unit tests of chaindrive.strength.ke_method (Kэ, [p], pitch estimate, limits).
 
-Table values: shared/data/chain_design_method_ru.md §1–§5, §10 (sources named there).
+Table values: [ChainDesignRU] §1–§5, §10 (docs/references.md; sources named in the data file).
 """
 
 from __future__ import annotations
@@ -13,6 +13,8 @@ from numpy.testing import assert_allclose
 from chaindrive.errors import DesignError
 from chaindrive.model import ChainSpec
 from chaindrive.strength import ke_method as ke
+from chaindrive.strength.checks import hinge_pressure_check, speed_limit_check
+from chaindrive.strength.loads import hinge_pressure
 
 RPM = math.pi / 30
 
@@ -67,20 +69,23 @@ def test_recommended_teeth(u, z1):
     assert ke.recommended_teeth(u) == z1
 
 
-def test_links_two_sprocket():
-    # Lt = 2·50 + (21 + 42)/2 + ((42 − 21)/2π)²/50 = 131.72
-    assert_allclose(ke.links_two_sprocket(50 * 0.00952, 0.00952, 21, 42), 131.7234, rtol=1e-5)
-
-
-def test_check_pressure_governing_limits():
+def test_pressure_and_speed_checks_by_the_tables():
+    # p = Kэ·Ft/A against [p] of Table 2A, n1 against n1 max of table 5.8 [ChainDesignRU]
     chain = gost(25.4, 180.0)
-    ok = ke.check_pressure(chain, 1000.0, 1.0, 19, 300 * RPM, links=100)
-    assert ok.feasible and ok.pressure == pytest.approx(1000.0 / 180e-6)
-    fast = ke.check_pressure(chain, 100.0, 1.0, 19, 900 * RPM, links=100)
-    assert not fast.feasible and fast.governing in {"speed limit", "outside the [p] table"}
-    heavy = ke.check_pressure(chain, 5000.0, 1.0, 19, 300 * RPM, links=100)
-    assert heavy.governing == "joint pressure"
-    assert_allclose(heavy.margin, heavy.allowable_pressure / heavy.pressure - 1, rtol=1e-12)
+    area, estimated = ke.bearing_area(chain)
+    assert not estimated and area == pytest.approx(180e-6)
+    p = hinge_pressure(1000.0, 1.0, area)
+    ok = hinge_pressure_check(chain.designation, p, ke.allowable_pressure(chain.pitch, 300 * RPM))
+    assert ok.passed and p == pytest.approx(1000.0 / 180e-6)
+    heavy_p = hinge_pressure(5000.0, 1.0, area)
+    allowed = ke.allowable_pressure(chain.pitch, 300 * RPM)
+    heavy = hinge_pressure_check(chain.designation, heavy_p, allowed)
+    assert heavy.margin_fraction < ok.margin_fraction
+    assert_allclose(heavy.margin_fraction, allowed / heavy_p - 1, rtol=1e-12)
+    fast = speed_limit_check(chain.designation, 900 * RPM, ke.max_speed(chain.pitch), "x")
+    fast_p = hinge_pressure_check(chain.designation, p, ke.allowable_pressure(chain.pitch,
+                                                                                900 * RPM))
+    assert not (fast.passed and fast_p.passed)
 
 
 def test_bearing_area_estimate_when_missing():

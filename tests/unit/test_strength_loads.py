@@ -10,6 +10,7 @@ from numpy.testing import assert_allclose
 
 from chaindrive.errors import DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Chain, Drive, Sprocket
 from chaindrive.strength import loads as ld
 from tests.conftest import make_spec, rpm
@@ -56,7 +57,7 @@ def eight_sprockets(shares: dict[str, float] | None = None) -> Drive:
 
 def test_chain_speed_is_z_p_n_over_60():
     # v = z·p·n/60 (Shigley Eq. 17-30 in SI) for z = 17, p = 19.05 mm, n = 1000 rpm
-    assert_allclose(ld.chain_speed(17, 0.01905, rpm(1000)), 17 * 0.01905 * 1000 / 60, rtol=1e-12)
+    assert_allclose(mean_chain_speed(0.01905, 17, rpm(1000)), 17 * 0.01905 * 1000 / 60, rtol=1e-12)
 
 
 def test_power_shares_default_equal_split_idlers_none():
@@ -84,7 +85,7 @@ def test_eight_sprocket_contour_balance(shares):
     geometry = hand_geometry(drive)
     res = ld.loads_of(drive, geometry)
     t = np.array(res.span_tensions)
-    v = ld.chain_speed(19, 0.01905, rpm(400))
+    v = mean_chain_speed(0.01905, 19, rpm(400))
     ft = 4000.0 / v
     expected = ld.power_shares(drive) * ft
     expected[drive.driver_index] = -ft   # the driver puts F_t in

@@ -15,7 +15,6 @@ from chaindrive.strength.safety import (
     startup_safety_factor,
     static_safety_factor,
     steady_safety_factor,
-    two_stage_check,
 )
 from chaindrive.strength.wear import wear_life_hours
 from tests.conftest import make_spec, rpm
@@ -27,14 +26,13 @@ def test_static_safety_factor_formula():
     assert static_safety_factor(60_000, 1000, 50, 30, 1.2) == pytest.approx(60_000 / 1280)
 
 
-def test_two_stage_check():
+def test_two_stage_factors():
+    # [MultimassChainDrives, §3.6]: k1 = Q/F1max, k2 = Q/(F_R + F2), k2min with F2max; [k] = 2.5
     assert ALLOWABLE_DYNAMIC_SAFETY == 2.5
     assert startup_safety_factor(10_000, 2_000) == 5.0
     assert steady_safety_factor(10_000, 1_500, 500) == 5.0
-    ok = two_stage_check(10_000, 2_000, 1_500, 500, resonance_force=2_000)
-    assert ok.passed and ok.k2_min == pytest.approx(10_000 / 3_500)
-    bad = two_stage_check(10_000, 2_000, 1_500, 500, resonance_force=3_000)
-    assert not bad.passed and bad.to_dict()["k2_min_resonance"] == pytest.approx(2.2222, 1e-4)
+    assert steady_safety_factor(10_000, 1_500, 2_000) == pytest.approx(10_000 / 3_500)
+    assert steady_safety_factor(10_000, 1_500, 3_000) == pytest.approx(2.2222, 1e-4)
 
 
 def test_wear_life_scaling():

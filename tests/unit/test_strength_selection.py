@@ -14,7 +14,7 @@ from chaindrive.catalog import chains, find_chain
 from chaindrive.errors import DesignError
 from chaindrive.model import Chain, Drive, Sprocket
 from chaindrive.strength import ratings, select_chain
-from chaindrive.strength.selection import estimated_links, method_for, rank_chains, rank_key
+from chaindrive.strength.selection import estimated_links, family_method, rank_chains, rank_key
 from tests.conftest import make_spec, rpm
 
 
@@ -29,7 +29,7 @@ def drive(power: float, n1: float = 500.0, standard: str = "ISO 606", a: float =
 
 
 def test_method_by_family_and_by_chain():
-    assert method_for("ISO 606") == "rating" and method_for("GOST 13568") == "Kэ"
+    assert family_method("ISO 606") == "rating" and family_method("GOST 13568") == "Kэ"
     assert ratings.method_for(find_chain("16A-1")) == ratings.ACA
     assert ratings.method_for(find_chain("ANSI 80H")) == ratings.ACA
     assert ratings.method_for(find_chain("16B-1")) == ratings.B_TABLE

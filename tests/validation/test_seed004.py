@@ -38,14 +38,14 @@ def _code(joints: tuple[bool, ...]) -> str:
 
 def test_table_1_is_reproduced_by_enumeration() -> None:
     # seed 004, Table 1 (14 rows) — our rows are enumerated, then compared with the print
-    rows = clearance_placements("seed")
+    rows = clearance_placements("table")
     assert len(rows) == 14
     assert {_code(r.joints): r.total for r in rows} == SEED_TABLE_1
 
 
 def test_placement_probabilities_match_seed_percentages() -> None:
     # seed 004, after eq. 10: P(z=0) = 42.8 %, P(z) = 42.8 %, P(2z) = 14.2 % (truncated)
-    probs = placement_probabilities("seed")
+    probs = placement_probabilities("table")
     assert [probs[k] * 14 for k in (0, 1, 2)] == [6, 6, 2]
     printed = {0: 42.8, 1: 42.8, 2: 14.2}
     for k, percent in printed.items():
@@ -103,5 +103,5 @@ def test_conclusion_3_small_effect_below_50_8_mm_and_40_teeth(fit: str) -> None:
     assert result.km_min_inside > result.km_min_outside
     # the effect grows with teeth, and from the smallest to the largest pitch (fixed span
     # length; not strictly row by row, because key sizes and fits change in steps)
-    assert np.all(np.diff(result.km_seed, axis=1) < 0)
-    assert np.all(result.km_seed[-1, :] < result.km_seed[0, :])
+    assert np.all(np.diff(result.km_printed, axis=1) < 0)
+    assert np.all(result.km_printed[-1, :] < result.km_printed[0, :])

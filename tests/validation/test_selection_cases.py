@@ -13,9 +13,10 @@ import pytest
 from numpy.testing import assert_allclose
 
 from chaindrive.catalog import chains
+from chaindrive.geometry.contour import two_sprocket_links_iso10823
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.strength import iso10823 as iso
-from chaindrive.strength.ke_method import links_two_sprocket
-from chaindrive.strength.loads import chain_speed, peripheral_force
+from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.safety import static_safety_factor
 
 RPM = math.pi / 30
@@ -25,7 +26,7 @@ def test_bhandari_dme_ex14_1():
     """BHANDARI-DME-EX14.1 (Bhandari, DME 3rd ed., ex. 14.1, via FOSSEE 764/CH14): 12A simplex,
     z1 = 17, 1000 rpm, table 14.2 rating 14.32 kW; v, tension P/v, fs = Q/P1. rel 1e-3."""
     rating = iso.textbook_rating("Bhandari table 14.2", "12A", 1000)
-    v = chain_speed(17, 0.01905, 1000 * RPM)
+    v = mean_chain_speed(0.01905, 17, 1000 * RPM)
     tension = peripheral_force(rating, v)
     fs = static_safety_factor(31100.0, tension, 0.0, 0.0)   # book: fs = Q/P1 (no F0, Fv)
     assert_allclose([v, tension, fs], [5.3975, 2653.08, 11.72], rtol=1e-3)
@@ -56,7 +57,7 @@ def test_bhandari_dme_ex14_7():
     rating = iso.textbook_rating("Bhandari table 14.2", "10B", 1400)
     k2 = iso.tooth_factor_bhandari(19)
     permissible = rating * 1.0 * k2 / 1.0
-    v = chain_speed(19, 0.015875, 1400 * RPM)
+    v = mean_chain_speed(0.015875, 19, 1400 * RPM)
     tension = peripheral_force(permissible, v)
     fs = static_safety_factor(22200.0, tension, 0.0, 0.0)
     assert_allclose([permissible, v, tension, fs], [12954.0, 7.038, 1840.56, 12.06], rtol=1e-3)
@@ -71,11 +72,11 @@ def test_jindal_md_ex30_3():
     Flag (cases.yaml): the companion multiplies the non-integer Lp = 131.72 by p; a real chain
     has an even number of links, 132 → 1256.64 mm, which is inside the same ±3 mm."""
     capacity = iso.textbook_rating("Jindal table 30-8", "06B", 1000) * 1.26 / 1.0
-    v = chain_speed(21, 0.00952, 1000 * RPM)
+    v = mean_chain_speed(0.00952, 21, 1000 * RPM)
     tension = peripheral_force(capacity, v)
     fos = static_safety_factor(10700.0, tension, 0.0, 0.0)
     assert_allclose([capacity, v, tension, fos], [2560.0, 3.332, 767.6, 13.94], rtol=1e-3)
-    lp = links_two_sprocket(50 * 0.00952, 0.00952, 21, 42)
+    lp = two_sprocket_links_iso10823(50 * 0.00952, 0.00952, 21, 42)
     assert abs(lp * 9.52 - 1254.01) <= 3.0
     even = 2 * math.ceil(lp / 2)
     assert even == 132

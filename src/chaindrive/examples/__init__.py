@@ -27,12 +27,34 @@ def _files() -> dict[str, Traversable]:
 
 
 def names() -> tuple[str, ...]:
-    """The names of the bundled designs (file names without ``.toml``), sorted."""
+    """The names of the bundled designs.
+
+    Returns
+    -------
+    tuple of str
+        File names without ``.toml``, sorted.
+    """
     return tuple(sorted(_files()))
 
 
 def text(name: str) -> str:
-    """The TOML text of the bundled design ``name``."""
+    """The TOML text of a bundled design.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`names`.
+
+    Returns
+    -------
+    str
+        The design file's text.
+
+    Raises
+    ------
+    DesignError
+        On the field ``example`` for an unknown name, suggesting the closest.
+    """
     files = _files()
     if name not in files:
         raise DesignError("example", f"no bundled design {name!r}" + did_you_mean(name, files)
@@ -41,5 +63,16 @@ def text(name: str) -> str:
 
 
 def load(name: str) -> Drive:
-    """The validated :class:`~chaindrive.model.Drive` of the bundled design ``name``."""
+    """The validated drive of a bundled design.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`names`.
+
+    Returns
+    -------
+    Drive
+        The design, validated as :func:`chaindrive.load` validates a file.
+    """
     return drive_from_mapping(parse_toml(text(name), f"{name}.toml"))

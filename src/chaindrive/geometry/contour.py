@@ -1,8 +1,9 @@
 """Contour geometry of a closed chain round 2 to 24 sprockets anywhere in a plane.
 
-The chain is modelled on the pitch circles (radius R = p / (2 sin(π/z)), ISO 606 /
-GOST 591 pitch diameter) joined by straight tangent spans, in the order in which the
-sprockets are listed (the order the chain runs round the contour, seed 000 §3.6).
+The chain is modelled on the pitch circles (radius R = p / (2 sin(π/z)), the pitch diameter
+of [ISO606] and [GOST591]) joined by straight tangent spans, in the order in which the
+sprockets are listed (the order the chain runs round the contour,
+[MultimassChainDrives, §3.6]).
 
 Signed radii
 ------------
@@ -21,8 +22,7 @@ which, with D = c_j − c_i, L = |D|, u = D/L and u⊥ = u rotated +90°, gives
     n = a·u − √(1 − a²)·u⊥,   a = (r_i − r_j) / L                          (2)
 
 (the outer common tangent for equal signs of r, the crossed tangent when the side changes;
-this is the standard belt-drive construction, e.g. Shigley's belt length and any
-computational-geometry text on circle tangents). Span length ℓ = √(L² − (r_i − r_j)²).
+the belt-drive construction of [Shigley2015, §17-2]). Span length ℓ = √(L² − (r_i − r_j)²).
 
 Wrap angle on sprocket i: θ_i = (sgn r_i · (φ_out − φ_in)) mod 2π, φ the polar angles of
 the normals of the arriving and leaving spans. A contour that closes once has
@@ -40,8 +40,8 @@ For two sprockets on the outside this is exactly (sin γ = (R₂ − R₁)/a)
 
     L_p = 2a·cos γ / p + (z₁ + z₂)/2 + (z₂ − z₁)·γ/π                       (4)
 
-and ISO 10823:2004 §… (and every textbook: Shigley eq. 17-37, Bhandari eq. 14.7) uses its
-small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
+and [ISO10823] (and the textbooks: [Shigley2015, Eq. 17-34], [Bhandari2010, Eq. 14.7])
+uses its small-angle form L_p ≈ 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/2π)²·p/a.
 The number of links is L_p rounded up (or, when the design asks, down) to an even number
 (odd only when allowed: it needs an offset link). The *take-up* moves the adjustable
 sprocket along its line of adjustment until L_p equals the number of links exactly (less
@@ -60,16 +60,33 @@ from numpy.typing import NDArray
 from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sag import slack_for_sag
-from chaindrive.geometry.sprocket import pitch_diameter, root_diameter, tip_diameter
+from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
 from chaindrive.model import Drive
+
+__all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry", "round_links",
+           "solve_layout", "span_lengths", "span_normals", "tight_pitches_of",
+           "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823",
+           "two_sprocket_links_exact", "two_sprocket_links_iso10823", "wrap_angles"]
 
 TWO_PI = 2.0 * math.pi
 _CLOSE_TOL = 1e-6
 
 
 @dataclass(frozen=True, slots=True)
-class _Layout:
-    """Internal: the contour solved in the counter-clockwise frame."""
+class Layout:
+    """The contour solved in the counter-clockwise frame.
+
+    Parameters
+    ----------
+    normals : numpy.ndarray
+        (n, 2) span normals [-], span k from sprocket k to k+1.
+    span_lengths : numpy.ndarray
+        (n,) span lengths [m].
+    wraps : numpy.ndarray
+        (n,) wrap angle of each sprocket [rad].
+    tight_pitches : float
+        Tight chain length L_p [pitches].
+    """
 
     normals: NDArray[np.float64]  # (n, 2) span normals, span k from k to k+1
     span_lengths: NDArray[np.float64]  # (n,)
@@ -77,16 +94,30 @@ class _Layout:
     tight_pitches: float
 
 
-def pitch_radii(pitch: float, teeth: NDArray[np.int_] | list[int]) -> NDArray[np.float64]:
-    """Pitch-circle radii R = p / (2 sin(π/z)) [m] (ISO 606, GOST 591)."""
-    return 0.5 * np.asarray(pitch_diameter(pitch, np.asarray(teeth)), dtype=float)
+def _radii(pitch: float, teeth: NDArray[np.int_] | list[int]) -> NDArray[np.float64]:
+    """Pitch radii as an array (:func:`chaindrive.geometry.sprocket.pitch_radius`) [m]."""
+    return np.atleast_1d(np.asarray(pitch_radius(pitch, teeth), dtype=float))
 
 
 def span_normals(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
     """Unit normals of the tangent spans k → k+1 (eq. 2 of the module docstring).
 
-    centres (n, 2) [m]; radii (n,) signed radii [m]. Raises GeometryError when two
-    consecutive circles admit no such tangent (one inside the other).
+    Parameters
+    ----------
+    centres : numpy.ndarray
+        (n, 2) sprocket centres [m].
+    radii : numpy.ndarray
+        (n,) signed pitch radii [m] (negative on the inside of the contour).
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, 2) unit normals [-], span k from sprocket k to k+1.
+
+    Raises
+    ------
+    GeometryError
+        When two consecutive circles admit no such tangent (one inside the other).
     """
     d = np.roll(centres, -1, axis=0) - centres
     length = np.hypot(d[:, 0], d[:, 1])
@@ -102,47 +133,96 @@ def span_normals(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> ND
             "sprockets", f"no chain span can join sprocket {k} to sprocket {(k + 1) % len(radii)}: "
             "one lies inside the other"
         )
-    return a[:, None] * u - np.sqrt(1.0 - a * a)[:, None] * u_perp
+    normals: NDArray[np.float64] = a[:, None] * u - np.sqrt(1.0 - a * a)[:, None] * u_perp
+    return normals
 
 
 def span_lengths(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Tangent span lengths ℓ = √(L² − (r_i − r_j)²) [m] for spans k → k+1."""
+    """Tangent span lengths ℓ = √(L² − (r_i − r_j)²) for spans k → k+1.
+
+    Parameters
+    ----------
+    centres : numpy.ndarray
+        (n, 2) sprocket centres [m].
+    radii : numpy.ndarray
+        (n,) signed pitch radii [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) span lengths ℓ [m].
+    """
     d = np.roll(centres, -1, axis=0) - centres
     dist2 = np.einsum("ij,ij->i", d, d)
-    return np.sqrt(dist2 - (radii - np.roll(radii, -1)) ** 2)
+    lengths: NDArray[np.float64] = np.sqrt(dist2 - (radii - np.roll(radii, -1)) ** 2)
+    return lengths
 
 
 def wrap_angles(normals: NDArray[np.float64], signs: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Wrap angles θ_i = (sgn_i·(φ_out − φ_in)) mod 2π [rad] (module docstring)."""
+    """Wrap angles θ_i = (sgn_i·(φ_out − φ_in)) mod 2π (module docstring).
+
+    Parameters
+    ----------
+    normals : numpy.ndarray
+        (n, 2) span normals [-] (:func:`span_normals`).
+    signs : numpy.ndarray
+        (n,) sign of each signed radius [-] (+1 outside, −1 inside).
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) wrap angle θ of each sprocket [rad].
+    """
     phi = np.arctan2(normals[:, 1], normals[:, 0])
     phi_in = np.roll(phi, 1)  # span i-1 → i arrives on sprocket i
-    return np.mod(signs * (phi - phi_in), TWO_PI)
+    wraps: NDArray[np.float64] = np.mod(signs * (phi - phi_in), TWO_PI)
+    return wraps
 
 
 def _solve_ccw(centres: NDArray[np.float64], radii: NDArray[np.float64], teeth: NDArray[np.int_],
-               pitch: float) -> _Layout | None:
+               pitch: float) -> Layout | None:
     """Solve the contour assuming counter-clockwise travel; None if it does not close."""
     normals = span_normals(centres, radii)
     signs = np.sign(radii)
     wraps = wrap_angles(normals, signs)
-    if len(radii) == 2 and np.all(signs > 0):
-        pass  # always closes
     turning = float(np.sum(signs * wraps))
     if abs(turning - TWO_PI) > _CLOSE_TOL:
         return None
     lengths = span_lengths(centres, radii)
     tight = float(np.sum(lengths) / pitch + np.sum(teeth * wraps) / TWO_PI)
-    return _Layout(normals, lengths, wraps, tight)
+    return Layout(normals, lengths, wraps, tight)
 
 
 def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
                  inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float,
-                 ) -> tuple[_Layout, int]:
+                 ) -> tuple[Layout, int]:
     """Solve the contour in whichever travel direction closes it.
 
-    Returns the layout (in the frame where travel is counter-clockwise) and the
-    orientation: +1 if the listing runs counter-clockwise in the user's frame, −1 if it
-    runs clockwise (then the layout is in the mirrored frame y → −y).
+    Parameters
+    ----------
+    centres : numpy.ndarray
+        (n, 2) sprocket centres [m].
+    radii_abs : numpy.ndarray
+        (n,) pitch radii R [m].
+    inside : numpy.ndarray
+        (n,) True for a sprocket on the inside of the contour.
+    teeth : numpy.ndarray
+        (n,) numbers of teeth z [-].
+    pitch : float
+        Chain pitch p [m].
+
+    Returns
+    -------
+    tuple
+        The layout (in the frame where travel is counter-clockwise: span normals, span
+        lengths [m], wraps [rad], tight length [pitches]) and the orientation: +1 if the
+        listing runs counter-clockwise in the user's frame, −1 if it runs clockwise (then
+        the layout is in the mirrored frame y → −y).
+
+    Raises
+    ------
+    GeometryError
+        When the contour closes in neither direction.
     """
     radii = np.where(inside, -radii_abs, radii_abs)
     layout = _solve_ccw(centres, radii, teeth, pitch)
@@ -161,7 +241,31 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
 
 def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
                      inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float) -> float:
-    """Tight chain length in pitches, eq. (3), for a layout (raises if it cannot close)."""
+    """Tight chain length L_p = Σ ℓ_k/p + Σ z_i θ_i/(2π), eq. (3), of a layout.
+
+    Parameters
+    ----------
+    centres : numpy.ndarray
+        (n, 2) sprocket centres [m].
+    radii_abs : numpy.ndarray
+        (n,) pitch radii R [m].
+    inside : numpy.ndarray
+        (n,) True for a sprocket on the inside of the contour.
+    teeth : numpy.ndarray
+        (n,) numbers of teeth z [-].
+    pitch : float
+        Chain pitch p [m].
+
+    Returns
+    -------
+    float
+        L_p [pitches].
+
+    Raises
+    ------
+    GeometryError
+        When the contour cannot close.
+    """
     return solve_layout(centres, radii_abs, inside, teeth, pitch)[0].tight_pitches
 
 
@@ -169,30 +273,82 @@ def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64
 
 
 def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: int) -> float:
-    """Tight length in pitches of a two-sprocket drive, exact on the pitch polygons, eq. (4).
+    """Tight length of a two-sprocket drive, exact on the pitch polygons, eq. (4).
 
     L_p = 2a·cos γ/p + (z₁+z₂)/2 + (z₂−z₁)·γ/π, sin γ = (R₂ − R₁)/a, R = p/(2 sin(π/z)).
+
+    Parameters
+    ----------
+    center_distance : float
+        Centre distance a [m].
+    pitch : float
+        Chain pitch p [m].
+    z1, z2 : int
+        Teeth of the two sprockets [-].
+
+    Returns
+    -------
+    float
+        L_p [pitches] (not rounded).
     """
-    r1, r2 = pitch_radii(pitch, [z1, z2])
+    r1, r2 = _radii(pitch, [z1, z2])
     gamma = math.asin((r2 - r1) / center_distance)
     return 2.0 * center_distance * math.cos(gamma) / pitch + (z1 + z2) / 2 + (z2 - z1) * gamma / math.pi
 
 
 def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z2: int) -> float:
-    """Chain length in pitches by the ISO 10823 / textbook approximation.
+    """Chain length by the ISO 10823 / textbook approximation
+    L_p = 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/(2π))²·p/a.
 
-    L_p = 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/(2π))²·p/a  (ISO 10823:2004 eq. for L_p;
-    Shigley 9th ed. eq. 17-37; Bhandari DME eq. 14.7).
+    Parameters
+    ----------
+    center_distance : float
+        Centre distance a [m].
+    pitch : float
+        Chain pitch p [m].
+    z1, z2 : int
+        Teeth of the two sprockets [-].
+
+    Returns
+    -------
+    float
+        L_p [pitches] (not rounded).
+
+    References
+    ----------
+    [ISO10823]; [Shigley2015, Eq. 17-34]; [Bhandari2010, Eq. 14.7];
+    [ChainDesignRU, §6].
     """
     return (2.0 * center_distance / pitch + (z1 + z2) / 2
             + ((z2 - z1) / TWO_PI) ** 2 * pitch / center_distance)
 
 
 def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z2: int) -> float:
-    """Centre distance [m] for a number of links, ISO 10823 inverse of the approximation.
+    """Centre distance for a number of links, the inverse of the ISO 10823 approximation
+    a = p/4·[ (L_p − (z₁+z₂)/2) + √((L_p − (z₁+z₂)/2)² − 8((z₂−z₁)/(2π))²) ].
 
-    a = p/4·[ (L_p − (z₁+z₂)/2) + √((L_p − (z₁+z₂)/2)² − 8((z₂−z₁)/(2π))²) ]
-    (ISO 10823:2004; Shigley eq. 17-38 in the form C = p/4·(−A + √(A² − 8((N₂−N₁)/2π)²))).
+    Parameters
+    ----------
+    links : float
+        Chain length L_p [pitches].
+    pitch : float
+        Chain pitch p [m].
+    z1, z2 : int
+        Teeth of the two sprockets [-].
+
+    Returns
+    -------
+    float
+        Centre distance a [m].
+
+    Raises
+    ------
+    GeometryError
+        On ``chain.links`` when the links are too few for the sprockets.
+
+    References
+    ----------
+    [ISO10823]; [Shigley2015, Eq. 17-35] (C = p/4·(−A + √(A² − 8((N₂−N₁)/2π)²))).
     """
     b = links - (z1 + z2) / 2
     disc = b * b - 8.0 * ((z2 - z1) / TWO_PI) ** 2
@@ -202,25 +358,61 @@ def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z
 
 
 def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: int) -> float:
-    """Centre distance [m] at which ``links`` fit exactly, eq. (4) solved by brentq."""
-    r1, r2 = pitch_radii(pitch, [z1, z2])
+    """Centre distance at which ``links`` fit exactly: eq. (4) solved for a.
+
+    Parameters
+    ----------
+    links : float
+        Chain length L_p [pitches].
+    pitch : float
+        Chain pitch p [m].
+    z1, z2 : int
+        Teeth of the two sprockets [-].
+
+    Returns
+    -------
+    float
+        Centre distance a [m].
+
+    Raises
+    ------
+    GeometryError
+        On ``chain.links`` when the links are too few for the sprockets.
+    """
+    r1, r2 = _radii(pitch, [z1, z2])
     a_min = abs(r2 - r1) * (1 + 1e-12) + 1e-12
     a_max = links * pitch
-    from scipy.optimize import brentq  # lazy: scipy.optimize costs ~0.5 s to import
 
-    f_min = two_sprocket_links_exact(a_min, pitch, z1, z2) - links
+    def excess(a: float) -> float:
+        return two_sprocket_links_exact(a, pitch, z1, z2) - links
+
+    f_min, f_max = excess(a_min), excess(a_max)
     if f_min > 0:
         raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
-    return float(brentq(lambda a: two_sprocket_links_exact(a, pitch, z1, z2) - links,
-                        a_min, a_max, xtol=1e-13, rtol=1e-14))
+    return bracketed_root(excess, a_min, a_max, f_min, f_max, xtol=1e-14)
 
 
 # --- the drive -----------------------------------------------------------------------------
 
 
 def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = False) -> int:
-    """Smallest whole (even unless ``allow_odd``) number of links ≥ the tight length, or
-    with ``down`` the largest one ≤ it (the take-up then shortens the layout)."""
+    """Whole number of links for a tight length.
+
+    Parameters
+    ----------
+    tight_pitches : float
+        Tight chain length L_p [pitches].
+    allow_odd : bool
+        Allow an odd count (it needs an offset link).
+    down : bool
+        Round down (the take-up then shortens the layout) instead of up.
+
+    Returns
+    -------
+    int
+        The smallest whole (even unless ``allow_odd``) count ≥ L_p, or with ``down`` the
+        largest one ≤ it [links].
+    """
     if down:
         links = math.floor(tight_pitches + 1e-9)
         return links if allow_odd or links % 2 == 0 else links - 1
@@ -230,15 +422,33 @@ def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = Fals
     return links
 
 
-def adjustment_direction(layout: _Layout, orientation: int, index: int, inside: bool,
+def adjustment_direction(layout: Layout, orientation: int, index: int, inside: bool,
                          angle: float | None) -> NDArray[np.float64]:
     """Unit vector of the line of adjustment of sprocket ``index``.
 
-    Given ``angle`` [rad]: (cos, sin). Default: from the centre towards the middle of the
-    arc the chain wraps, i.e. into the chain. Moving a sprocket that way lengthens the
+    Given ``angle``: (cos, sin). Default: from the centre towards the middle of the arc the
+    chain wraps, i.e. into the chain. Moving a sprocket that way lengthens the
     contour at the rate 2·sin(θ/2) per unit of travel (the two spans' directions), for an
     outside and an inside sprocket alike; in a two-sprocket drive it is the line of
     centres, away from the other sprocket.
+
+    Parameters
+    ----------
+    layout : Layout
+        The contour solved in the counter-clockwise frame.
+    orientation : int
+        +1 or −1 (:func:`solve_layout`).
+    index : int
+        The sprocket.
+    inside : bool
+        True for a sprocket on the inside of the contour.
+    angle : float or None
+        Direction of the line of adjustment from the x axis [rad] (None: into the chain).
+
+    Returns
+    -------
+    numpy.ndarray
+        (2,) unit vector [-] in the user's frame.
     """
     if angle is not None:
         return np.array([math.cos(angle), math.sin(angle)])
@@ -248,19 +458,50 @@ def adjustment_direction(layout: _Layout, orientation: int, index: int, inside: 
     half = sgn * 0.5 * float(layout.wraps[index])
     c, s = math.cos(half), math.sin(half)
     mid = np.array([c * radial_in[0] - s * radial_in[1], s * radial_in[0] + c * radial_in[1]])
-    return mid * np.array([1.0, float(orientation)])
+    direction: NDArray[np.float64] = mid * np.array([1.0, float(orientation)])
+    return direction
 
 
 def bracketed_root(f: Callable[[float], float], lo: float, hi: float, f_lo: float, f_hi: float,
                    xtol: float = 1e-12, maxiter: int = 100) -> float:
-    """Root of ``f`` in [lo, hi] (f_lo, f_hi of opposite signs): the Illinois variant of
-    regula falsi (Dowell & Jarratt, BIT 11 (1971) 168–174), superlinear and never leaving
-    the bracket.
+    """Root of ``f`` in a bracket: the Illinois variant of regula falsi, superlinear and
+    never leaving the bracket.
 
     Written here rather than calling scipy.optimize.brentq because importing
     scipy.optimize takes 0.5–0.7 s on the project machine, more than half of the 1 s that
     ``chaindrive analyze`` of a 24-sprocket contour may take (benchmarks/bench_analyze.py).
+
+    Parameters
+    ----------
+    f : callable
+        f(x) [any unit], continuous on [lo, hi].
+    lo, hi : float
+        The bracket [unit of x].
+    f_lo, f_hi : float
+        f(lo) and f(hi), of opposite signs (or one of them 0) [unit of f].
+    xtol : float
+        Width of the bracket at which to stop [unit of x].
+    maxiter : int
+        Most evaluations of ``f`` [-].
+
+    Returns
+    -------
+    float
+        The root [unit of x].
+
+    Raises
+    ------
+    ConvergenceError
+        After ``maxiter`` evaluations.
+
+    References
+    ----------
+    [DowellJarratt1971].
     """
+    if f_lo == 0.0:
+        return lo
+    if f_hi == 0.0:
+        return hi
     side = 0
     for _ in range(maxiter):
         x = hi - f_hi * (hi - lo) / (f_hi - f_lo)
@@ -358,7 +599,28 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     Steps: pitch radii → solve the layout in the direction that closes (module docstring
     eqs. 1–3) → links (imposed, or L_p rounded up to even) → take-up of the adjustable
     sprocket until L_p equals the links exactly → checks (overlap, spans through
-    sprockets, driver wrap ≥ 120°, ≥ 3 teeth in mesh on loaded sprockets).
+    sprockets) and warnings (driver wrap < 120°, < 3 teeth in mesh on loaded sprockets).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design: chain, sprockets in the order the chain runs, take-up.
+
+    Returns
+    -------
+    GeometryResult
+        The contour in the user's frame.
+
+    Raises
+    ------
+    GeometryError
+        When sprockets overlap, a span cuts a sprocket or the contour cannot close.
+    DesignError
+        When an imposed number of links cannot be fitted.
+
+    References
+    ----------
+    [Mott2014, ch. 7] (wrap ≥ 120°); [Renold-DG] (three teeth in mesh).
     """
     spec = drive.chain.spec
     p = spec.pitch
@@ -367,7 +629,7 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     teeth = np.array([s.teeth for s in sps])
     inside = np.array([s.side == "inside" for s in sps])
     centres = np.array([[s.x, s.y] for s in sps], dtype=float)
-    radii = pitch_radii(p, teeth)
+    radii = _radii(p, teeth)
     tips = np.asarray(tip_diameter(p, teeth, spec.roller_diameter, form=drive.tooth_form), float)
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
@@ -403,7 +665,7 @@ def contour_geometry(drive: Drive) -> GeometryResult:
 
 
 def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.float64],
-              tips: NDArray[np.float64], inside: NDArray[np.bool_], layout: _Layout,
+              tips: NDArray[np.float64], inside: NDArray[np.bool_], layout: Layout,
               orientation: int, links: int, adjusted: int | None,
               adjustment: float) -> GeometryResult:
     """Turn a solved layout into the user-frame GeometryResult, with its checks."""

@@ -24,13 +24,9 @@ from typing import Any
 import numpy as np
 
 from chaindrive.errors import DesignError
-from chaindrive.geometry.contour import (
-    contour_geometry,
-    pitch_radii,
-    round_links,
-    tight_pitches_of,
-)
+from chaindrive.geometry.contour import contour_geometry, round_links, tight_pitches_of
 from chaindrive.geometry.sag import sag_of_slack
+from chaindrive.geometry.sprocket import pitch_radius
 from chaindrive.model import Drive
 
 
@@ -38,11 +34,21 @@ from chaindrive.model import Drive
 class LengthOption:
     """One whole link count laid out.
 
-    rounding: "round down" or "round up"; links; centre_distance [m] (two sprockets, else
-    None); take_up [m]: how far the adjustable sprocket moved from the designed position
-    (positive: out; None without an adjustable sprocket); slack_sag [m]: sag of the slack
-    span from the slack the chain keeps (0 when laid out tight); error: why this count
-    cannot be laid out (None when it can).
+    Parameters
+    ----------
+    rounding : str
+        "round down" or "round up".
+    links : int
+        The count [-].
+    centre_distance : float or None
+        Two sprockets: the centre distance [m] (else None).
+    take_up : float or None
+        How far the adjustable sprocket moved from the designed position [m] (positive:
+        out; None without an adjustable sprocket).
+    slack_sag : float or None
+        Sag of the slack span from the slack the chain keeps [m] (0 when laid out tight).
+    error : str or None
+        Why this count cannot be laid out (None when it can).
     """
 
     rounding: str
@@ -66,9 +72,17 @@ class LengthOption:
 class LengthChoice:
     """The tight length of the layout as designed and the even counts around it.
 
-    tight_pitches: L_p of the designed layout; options: round down, round up; chosen: the
-    design's pick ("round up" by default, "round down", or "given" for an imposed count);
-    sag_fraction: the installed sag asked for (None: tight).
+    Parameters
+    ----------
+    tight_pitches : float
+        L_p of the designed layout [pitches].
+    options : tuple of LengthOption
+        Round down, round up.
+    chosen : str
+        The design's pick ("round up" by default, "round down", or "given" for an imposed
+        count).
+    sag_fraction : float or None
+        The installed sag asked for [-] (None: tight).
     """
 
     tight_pitches: float
@@ -96,17 +110,43 @@ def _option(drive: Drive, rounding: str, links: int) -> LengthOption:
 
 
 def tight_pitches_as_designed(drive: Drive) -> float:
-    """Tight length L_p [pitches] at the sprocket positions of the design (no take-up)."""
+    """Tight length at the sprocket positions of the design (no take-up).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    float
+        L_p [pitches] (:func:`chaindrive.geometry.contour.tight_pitches_of`).
+    """
     p = drive.chain.spec.pitch
     centres = np.array([[s.x, s.y] for s in drive.sprockets], dtype=float)
     teeth = np.array([s.teeth for s in drive.sprockets])
     inside = np.array([s.side == "inside" for s in drive.sprockets])
-    return tight_pitches_of(centres, pitch_radii(p, teeth), inside, teeth, p)
+    radii = np.atleast_1d(np.asarray(pitch_radius(p, teeth), dtype=float))
+    return tight_pitches_of(centres, radii, inside, teeth, p)
 
 
 def length_options(drive: Drive) -> LengthChoice:
-    """The even (odd too with ``allow_odd``) link counts below and above the tight length of
-    ``drive`` as designed, laid out with its take-up and sag allowance (module docstring)."""
+    """The link counts below and above the tight length of a design, laid out.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (even counts, odd too with ``chain.allow_odd``).
+
+    Returns
+    -------
+    LengthChoice
+        Both counts laid out with the take-up and sag allowance (module docstring).
+
+    References
+    ----------
+    [Shigley2015, Eq. 17-34/17-35]; [Bhandari2010, ex. 14.4]; [ChainDesignRU, §6–7].
+    """
     tight = tight_pitches_as_designed(drive)
     odd = drive.chain.allow_odd
     down, up = round_links(tight, odd, down=True), round_links(tight, odd)

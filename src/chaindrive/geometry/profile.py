@@ -3,12 +3,12 @@ closed toothed outline, and the body of a polymeric sprocket.
 
 Tooth profiles (from the dimensions of :mod:`chaindrive.geometry.sprocket`):
 
-* GOST 591-69 (Anuriev т. 2 гл. 5; shared/data/gost591_sprocket_profile.md §1.3): seating
+* GOST 591-69 ([GOST591] as given by [Anuriev, vol. 2, ch. 5]): seating
   arc r over the half space angle α, joining arc r1 centred at O1 = 0.8·d1·(sin α, cos α)
   over β, the straight part FC, and the head arc r2 centred at
   O2 = 1.24·d1·(cos 180°/z, sin 180°/z) up to the tip circle De (drawn without the offset
   e of the root-arc centres, which GOST 591 permits);
-* ISO 606 (mean of the minimum and maximum tooth-gap forms): seating arc ri over the seating
+* ISO 606 [ISO606] (mean of the minimum and maximum tooth-gap forms): seating arc ri over the seating
   angle α, then the convex flank arc re tangent to it, up to the tip circle da (mean).
 
 The profile of a tooth gap is drawn in a frame at the seat centre (x along the tangent, y
@@ -48,8 +48,26 @@ def _arc(centre: NDArray[np.float64], radius: float, a0: float, a1: float,
 
 
 def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.float64]:
-    """The left wall (x < 0) of a GOST 591-69 tooth gap in the seat frame [m], from the
-    bottom of the seat up along the head arc (longer than needed; clipped later)."""
+    """The left wall (x < 0) of a GOST 591-69 tooth gap in the seat frame.
+
+    From the bottom of the seat up along the head arc (longer than needed; clipped later).
+
+    Parameters
+    ----------
+    form : Gost591ToothForm
+        The tooth profile (dimensions [m], angles [rad]).
+    samples : int
+        Points per arc [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        (k, 2) points of the wall, x along the tangent, y radial outward [m].
+
+    References
+    ----------
+    [GOST591]; [Anuriev, vol. 2, ch. 5].
+    """
     d1, a, b = form.roller_diameter, form.half_space_angle, form.joining_angle
     r, r1, r2, fc = form.seating_radius, form.joining_radius, form.head_radius, form.straight_part
     t = np.linspace(0.0, a, samples)
@@ -61,12 +79,31 @@ def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.fl
     o2 = 1.24 * d1 * np.array([-math.cos(math.pi / form.teeth), -math.sin(math.pi / form.teeth)])
     a0 = math.atan2(p3[1] - o2[1], p3[0] - o2[0])
     head = _arc(o2, r2, a0, a0 + math.radians(150), 3 * samples)
-    return np.vstack([seat, joint, head])
+    wall: NDArray[np.float64] = np.vstack([seat, joint, head])
+    return wall
 
 
 def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
-    """The left wall of an ISO 606 tooth gap (mean form) in the seat frame [m]: seating arc
-    ri over half the seating angle, then the convex flank re tangent to it."""
+    """The left wall of an ISO 606 tooth gap (mean form) in the seat frame.
+
+    Seating arc ri over half the seating angle, then the convex flank re tangent to it.
+
+    Parameters
+    ----------
+    form : ToothForm
+        The tooth-form limits (dimensions [m], angles [rad]).
+    samples : int
+        Points per arc [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        (k, 2) points of the wall, x along the tangent, y radial outward [m].
+
+    References
+    ----------
+    [ISO606].
+    """
     ri, re = form.seating_radius_mean, form.flank_radius_mean
     half = 0.25 * (form.seating_angle_min + form.seating_angle_max)
     t = np.linspace(0.0, half, samples)
@@ -78,7 +115,8 @@ def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
     # the flank turns towards the tooth (away from the gap): pick the sense that rises
     sense = 1.0 if _arc(centre, re, a0, a0 + 1e-3, 2)[1, 1] > seat[-1, 1] else -1.0
     flank = _arc(centre, re, a0, a0 + sense * sweep, 4 * samples)
-    return np.vstack([seat, flank])
+    wall: NDArray[np.float64] = np.vstack([seat, flank])
+    return wall
 
 
 def _clip_wall(wall: NDArray[np.float64], seat: NDArray[np.float64], u_r: NDArray[np.float64],
@@ -86,7 +124,7 @@ def _clip_wall(wall: NDArray[np.float64], seat: NDArray[np.float64], u_r: NDArra
     """Wall points (global, centred on the sprocket) up to the tip circle or the tooth's
     bisector, with the crossing point interpolated."""
     u_t = np.array([-u_r[1], u_r[0]])
-    pts = seat + wall[:, :1] * u_t + wall[:, 1:] * u_r
+    pts: NDArray[np.float64] = seat + wall[:, :1] * u_t + wall[:, 1:] * u_r
     rel = np.arctan2(pts @ u_t, pts @ u_r)
     f = np.maximum(np.hypot(pts[:, 0], pts[:, 1]) / tip_radius - 1.0,
                    (np.abs(rel) - half_pitch_angle) / half_pitch_angle)
@@ -102,8 +140,24 @@ def _clip_wall(wall: NDArray[np.float64], seat: NDArray[np.float64], u_r: NDArra
 
 def sprocket_outline(wall: NDArray[np.float64], teeth: int, pitch_radius: float,
                      tip_radius: float) -> NDArray[np.float64]:
-    """Closed outline [m] of a toothed sprocket centred at the origin from the left wall of
-    one tooth gap (seat frame); gap k is centred at the angle 2πk/z."""
+    """Closed outline of a toothed sprocket centred at the origin.
+
+    Parameters
+    ----------
+    wall : numpy.ndarray
+        (k, 2) left wall of one tooth gap in the seat frame [m].
+    teeth : int
+        Number of teeth z [-]; gap k is centred at the angle 2πk/z.
+    pitch_radius : float
+        R [m].
+    tip_radius : float
+        Radius of the tip circle [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        (m, 2) points of the closed outline [m].
+    """
     half = math.pi / teeth
     parts = []
     for k in range(teeth):
@@ -118,11 +172,25 @@ def sprocket_outline(wall: NDArray[np.float64], teeth: int, pitch_radius: float,
             # from this gap's right end to the next gap's left end (by symmetry)
             t = np.linspace(th + rel, th + 2 * half - rel, 5)[1:-1]
             parts.append(tip_radius * np.column_stack([np.cos(t), np.sin(t)]))
-    return np.vstack(parts)
+    outline: NDArray[np.float64] = np.vstack(parts)
+    return outline
 
 
 def tooth_form_of(drive: Drive, teeth: int) -> Gost591ToothForm | ToothForm:
-    """The tooth form of a sprocket of ``drive`` by the drive's standard."""
+    """The tooth form of a sprocket of a drive, by the drive's standard.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (chain and tooth form).
+    teeth : int
+        Number of teeth of the sprocket [-].
+
+    Returns
+    -------
+    Gost591ToothForm or ToothForm
+        The profile by GOST 591-69 or the ISO 606 limits.
+    """
     spec = drive.chain.spec
     if drive.tooth_form == "GOST 591":
         return gost591_tooth_form(spec.pitch, teeth, spec.roller_diameter, spec.inner_width)
@@ -131,7 +199,18 @@ def tooth_form_of(drive: Drive, teeth: int) -> Gost591ToothForm | ToothForm:
 
 
 def outline_of(form: Gost591ToothForm | ToothForm) -> NDArray[np.float64]:
-    """Closed toothed outline [m] of a sprocket with this tooth form (centred at 0)."""
+    """Closed toothed outline of a sprocket with a tooth form.
+
+    Parameters
+    ----------
+    form : Gost591ToothForm or ToothForm
+        The tooth form (dimensions [m]).
+
+    Returns
+    -------
+    numpy.ndarray
+        (m, 2) outline centred at the origin [m].
+    """
     if isinstance(form, Gost591ToothForm):
         return sprocket_outline(gost591_gap_wall(form), form.teeth, form.pitch_diameter / 2,
                                 form.tip_diameter / 2)
@@ -181,7 +260,18 @@ class SprocketProfile:
 
 
 def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
-    """The profile of every sprocket of ``drive``, in contour order."""
+    """The profile of every sprocket of a drive.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    tuple of SprocketProfile
+        In contour order.
+    """
     spec = drive.chain.spec
     out = []
     for s in drive.sprockets:

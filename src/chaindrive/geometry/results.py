@@ -11,11 +11,30 @@ from chaindrive.errors import ChainDriveWarning
 class SprocketGeometry:
     """One sprocket of the built contour.
 
-    x, y [m]: centre after the take-up; pitch_radius R = p / (2 sin(π/z)) [m];
-    tip_diameter / root_diameter [m] by the drive's tooth form; wrap_angle θ [rad];
-    teeth_in_mesh = z·θ/(2π); turn = +1 if the sprocket turns counter-clockwise (y up),
-    −1 clockwise; arrive/leave: the points where the chain arrives on / leaves the
-    pitch circle [m].
+    Parameters
+    ----------
+    name : str
+        The sprocket.
+    teeth : int
+        Number of teeth z [-].
+    side : str
+        "outside" or "inside" of the contour.
+    x, y : float
+        Centre after the take-up [m] (x horizontal, y up).
+    pitch_radius : float
+        R = p / (2 sin(π/z)) [m].
+    pitch_diameter : float
+        2R [m].
+    tip_diameter, root_diameter : float
+        By the drive's tooth form [m].
+    wrap_angle : float
+        θ [rad].
+    teeth_in_mesh : float
+        z·θ/(2π) [-].
+    turn : int
+        +1 if the sprocket turns counter-clockwise, −1 clockwise.
+    arrive, leave : tuple of float
+        Where the chain arrives on / leaves the pitch circle (x, y) [m].
     """
 
     name: str
@@ -36,11 +55,29 @@ class SprocketGeometry:
 
 @dataclass(frozen=True, slots=True)
 class SpanGeometry:
-    """Span (branch) ``index`` from sprocket ``start`` to sprocket ``start+1`` (the last
-    closes the ring). length [m] between the tangent points of the pitch circles;
-    pitches = length / p; direction: unit vector of chain travel; inclination [rad] of
-    the span to the x axis in [−π/2, π/2] (x horizontal, y up); tight: True for the
-    span that runs into the driver."""
+    """A span (branch) from one sprocket to the next (the last closes the ring).
+
+    Parameters
+    ----------
+    index : int
+        The span's index k.
+    start, end : int
+        Indices of the sprockets it runs from and to (end = start + 1, cyclic).
+    start_name, end_name : str
+        Their names.
+    length : float
+        Between the tangent points of the pitch circles [m].
+    pitches : float
+        length / p [pitches].
+    direction : tuple of float
+        Unit vector of chain travel [-].
+    start_point, end_point : tuple of float
+        The tangent points (x, y) [m].
+    inclination : float
+        Of the span to the x axis, in [−π/2, π/2] [rad] (x horizontal, y up).
+    tight : bool
+        True for the span that runs into the driver.
+    """
 
     index: int
     start: int
@@ -60,13 +97,34 @@ class SpanGeometry:
 class GeometryResult:
     """The contour: sprockets, spans, length and links.
 
-    tight_pitches: length of the tight chain in pitches (Σ span/p + Σ z·θ/2π) for the
-    final layout; links: number of links; chain_length = links·p [m];
-    tight_length = tight_pitches·p [m]; slack = chain_length − tight_length [m] (0 after
-    a take-up); center_distance [m] for two-sprocket drives; adjusted: index of the
-    sprocket moved by the take-up (None if none); adjustment [m] how far it moved
-    (positive: away from the contour); orientation +1 when the chain runs
-    counter-clockwise round the contour.
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m].
+    sprockets : tuple of SprocketGeometry
+        In contour order.
+    spans : tuple of SpanGeometry
+        Span k from sprocket k to k+1.
+    tight_pitches : float
+        Length of the tight chain Σ ℓ/p + Σ z·θ/2π of the final layout [pitches].
+    links : int
+        Number of links [-].
+    chain_length : float
+        links·p [m].
+    tight_length : float
+        tight_pitches·p [m].
+    slack : float
+        chain_length − tight_length [m] (0 after a take-up).
+    center_distance : float or None
+        For two-sprocket drives [m].
+    adjusted : int or None
+        Index of the sprocket moved by the take-up (None if none).
+    adjustment : float
+        How far it moved [m] (positive: away from the contour).
+    orientation : int
+        +1 when the chain runs counter-clockwise round the contour, −1 clockwise.
+    warnings : tuple of ChainDriveWarning
+        Driver wrap, teeth in mesh, untaken slack.
     """
 
     pitch: float

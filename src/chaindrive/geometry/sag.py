@@ -17,11 +17,44 @@ import math
 
 
 def slack_for_sag(span: float, sag_fraction: float) -> float:
-    """Extra chain length ΔL = (8/3)·s²·ℓ [m] that makes a span of chord ℓ [m] sag by s·ℓ."""
+    """Extra chain length ΔL = (8/3)·s²·ℓ that makes a span of chord ℓ sag by s·ℓ.
+
+    Parameters
+    ----------
+    span : float
+        Chord ℓ of the span [m].
+    sag_fraction : float
+        Mid-span sag as a fraction s of the chord [-].
+
+    Returns
+    -------
+    float
+        ΔL [m].
+
+    References
+    ----------
+    [Irvine1981, ch. 1].
+    """
     return 8.0 / 3.0 * sag_fraction**2 * span
 
 
 def sag_of_slack(span: float, slack: float) -> float:
-    """Mid-span sag f = √(3ℓ·ΔL/8) [m] of a span of chord ℓ [m] carrying the extra length
-    ΔL [m] (0 for ΔL ≤ 0)."""
+    """Mid-span sag f = √(3ℓ·ΔL/8) of a span carrying an extra length.
+
+    Parameters
+    ----------
+    span : float
+        Chord ℓ of the span [m].
+    slack : float
+        Extra chain length ΔL [m] (≤ 0: no sag).
+
+    Returns
+    -------
+    float
+        f [m].
+
+    References
+    ----------
+    [Irvine1981, ch. 1].
+    """
     return math.sqrt(3.0 * span * max(slack, 0.0) / 8.0)

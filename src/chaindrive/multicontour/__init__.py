@@ -1,9 +1,9 @@
 """Multi-strand and multi-contour drives: keyed-joint clearances and load capacity.
 
-Seed ``004_a4f9a325039ac76c.txt`` (eq. 1–18, Table 1) and its generalisation to m contours;
+[Lyashuk] (eq. 1–18, Table 1) and its generalisation to m contours;
 see ``docs/multicontour.md``. Modules: :mod:`.joints` (keys, fits, ΔL), :mod:`.clearance`
 (clearance distribution, Table 1, ΔL₃, Monte-Carlo), :mod:`.capacity` (K_m, load sharing),
-:mod:`.effect` (the seed's conclusion over pitch × teeth).
+:mod:`.effect` (the paper's conclusion over pitch × teeth).
 """
 
 from chaindrive.multicontour.capacity import (

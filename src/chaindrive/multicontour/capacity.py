@@ -1,8 +1,8 @@
 """Load capacity of multi-contour drives: the contour factor K_m and load sharing.
 
-Seed ``004_a4f9a325039ac76c.txt``, eq. 15–18 (after Кривий, Дубиняк, Куцевич 1999, the
-seed's ref. [4]) for two contours; the generalisation to m contours by compatibility of
-deformations is ours (issue 3, point 4): contour j, longer than the tightest by s_j, carries
+[Lyashuk, eq. 15–18] (after Кривий, Дубиняк, Куцевич 1999, [Lyashuk, ref. 4]) for two
+contours; the generalisation to m contours by compatibility of deformations is ours
+(docs/multicontour.md): contour j, longer than the tightest by s_j, carries
 F_j = k_j·max(0, δ − s_j) once its slack is taken up, with Σ F_j = F.
 """
 
@@ -27,42 +27,114 @@ MAX_CONTOURS = 24
 
 def span_deformation(force: ArrayLike, links: ArrayLike, alpha: float, force_exponent: float,
                      links_exponent: float) -> NDArray[np.float64]:
-    """Δ_y = α·F^x·N^y [m], elastic deformation of the working span (seed 004, eq. 18).
+    """Elastic deformation of the working span Δ_y = α·F^x·N^y.
 
-    force : F [N]; links : N, links in the working span; alpha, x, y : empirical constants
-    of the chain (the seed gives none; with x = y = 1, α = ε·p/F for an elastic strain ε at
-    force F, i.e. a linear spring of N links of pitch p).
+    The paper gives no α, x, y; with x = y = 1, α = ε·p/F for an elastic strain ε at force F,
+    i.e. a linear spring of N links of pitch p.
+
+    Parameters
+    ----------
+    force : float or array_like
+        F [N].
+    links : float or array_like
+        N, links in the working span [-].
+    alpha : float
+        α, empirical constant of the chain [m/(N^x)].
+    force_exponent, links_exponent : float
+        x, y [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Δ_y [m].
+
+    References
+    ----------
+    [Lyashuk, eq. 18].
     """
-    return alpha * np.asarray(force, dtype=float) ** force_exponent * np.asarray(
-        links, dtype=float) ** links_exponent
+    out: NDArray[np.float64] = alpha * np.asarray(force, dtype=float) ** force_exponent \
+        * np.asarray(links, dtype=float) ** links_exponent
+    return out
 
 
 def contour_factor_km(length_difference: ArrayLike,
                       span_deformation: ArrayLike) -> NDArray[np.float64]:
-    """K_m = 1 + 2Δ_y / (|ΔL₃| + 2Δ_y) [–] (seed 004, eq. 16).
+    """Contour factor K_m = 1 + 2Δ_y / (|ΔL₃| + 2Δ_y).
 
-    length_difference : ΔL₃ [m] (sign ignored); span_deformation : Δ_y [m].
-    K_m = 2 with no length difference, 1.5 when |ΔL₃| = 2Δ_y, → 1 as |ΔL₃| → ∞.
-    Read as linear load sharing: it is F_II/F_I + 1 with the slacker contour stretched by
-    2Δ_y and the tighter by |ΔL₃| + 2Δ_y (see :func:`contour_factor_compatibility`).
+    K_m = 2 with no length difference, 1.5 when |ΔL₃| = 2Δ_y, → 1 as |ΔL₃| → ∞. Read as
+    linear load sharing: it is F_II/F_I + 1 with the slacker contour stretched by 2Δ_y and
+    the tighter by |ΔL₃| + 2Δ_y (see :func:`contour_factor_compatibility`).
+
+    Parameters
+    ----------
+    length_difference : float or array_like
+        ΔL₃ [m] (sign ignored).
+    span_deformation : float or array_like
+        Δ_y [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        K_m [-].
+
+    References
+    ----------
+    [Lyashuk, eq. 16].
     """
     d = np.abs(np.asarray(length_difference, dtype=float))
     two_dy = 2.0 * np.asarray(span_deformation, dtype=float)
-    return 1.0 + two_dy / (d + two_dy)
+    km: NDArray[np.float64] = 1.0 + two_dy / (d + two_dy)
+    return km
 
 
 def allowable_pressure_multicontour(allowable_pressure: ArrayLike,
                                     contour_factor: ArrayLike) -> NDArray[np.float64]:
-    """[p₀]_m = [p₀]·K_m [Pa] (seed 004, eq. 15 and 17)."""
-    return np.asarray(allowable_pressure, dtype=float) * np.asarray(contour_factor, dtype=float)
+    """Allowable pressure of a multi-contour drive [p₀]_m = [p₀]·K_m.
+
+    Parameters
+    ----------
+    allowable_pressure : float or array_like
+        [p₀] of one contour [Pa].
+    contour_factor : float or array_like
+        K_m [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        [p₀]_m [Pa].
+
+    References
+    ----------
+    [Lyashuk, eq. 15 and 17].
+    """
+    out: NDArray[np.float64] = np.asarray(allowable_pressure, dtype=float) * np.asarray(
+        contour_factor, dtype=float)
+    return out
 
 
 def contour_factor_at_risk(c4: float, max_clearance: float, span_deformation: float,
                            risk: float = 0.05) -> float:
-    """K_m at a risk level: eq. 16 at the (1 − risk) quantile of |ΔL₃| (seed 004, eq. 17–18).
+    """K_m at a risk level: eq. 16 at the (1 − risk) quantile of |ΔL₃|.
 
-    c4 : C₄ [–]; max_clearance : z_max [m]; span_deformation : Δ_y [m]; risk : probability
-    that the real K_m is lower (default 5 %, the seed's).
+    Parameters
+    ----------
+    c4 : float
+        C₄ [-].
+    max_clearance : float
+        z_max [m].
+    span_deformation : float
+        Δ_y [m].
+    risk : float
+        Probability that the real K_m is lower [-] (default 5 %, the paper's).
+
+    Returns
+    -------
+    float
+        K_m [-].
+
+    References
+    ----------
+    [Lyashuk, eq. 16–18].
     """
     if not 0.0 < risk < 1.0:
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")
@@ -73,11 +145,22 @@ def contour_factor_at_risk(c4: float, max_clearance: float, span_deformation: fl
 
 @dataclass(frozen=True, slots=True)
 class ContourSharingResult:
-    """How m parallel contours share a load (compatibility of deformations), SI units.
+    """How m parallel contours share a load (compatibility of deformations).
 
-    extra_lengths : s_j, slack of each contour before it takes load [m]; forces : F_j [N];
-    deformation : stretch of the tightest contour δ − min s [m]; shares : F_j / F;
-    max_share : largest share; effective_contours : F / max F_j (= m when all are equal).
+    Parameters
+    ----------
+    extra_lengths : tuple of float
+        s_j, slack of each contour before it takes load [m].
+    forces : tuple of float
+        F_j [N].
+    deformation : float
+        Stretch of the tightest contour δ − min s [m].
+    shares : tuple of float
+        F_j / F [-].
+    max_share : float
+        Largest share [-].
+    effective_contours : float
+        F / max F_j [-] (= m when all are equal).
     """
 
     extra_lengths: tuple[float, ...]
@@ -101,9 +184,26 @@ def load_sharing(extra_lengths: ArrayLike, total_force: float,
 
     F_j = k_j·max(0, δ − s_j), Σ F_j = F, solved exactly: with the contours sorted by s, the
     n tightest carry load and δ = (F + Σ k_j s_j)/Σ k_j over them, n the first count for which
-    δ ≤ s_(n+1). extra_lengths : s_j [m]; total_force : F [N]; stiffness : k_j [N/m], one
-    value or one per contour. Compatibility of deformations (issue 3; e.g. Решетов, Детали
-    машин, 1974, on statically indeterminate parallel members).
+    δ ≤ s_(n+1).
+
+    Parameters
+    ----------
+    extra_lengths : float or array_like
+        s_j [m].
+    total_force : float
+        F [N].
+    stiffness : float or array_like
+        k_j [N/m], one value or one per contour.
+
+    Returns
+    -------
+    ContourSharingResult
+        Forces and shares.
+
+    References
+    ----------
+    [Reshetov1974] (compatibility of deformations of statically indeterminate parallel
+    members).
     """
     s = np.asarray(extra_lengths, dtype=float).ravel()
     if not 1 <= s.size <= MAX_CONTOURS or not np.all(np.isfinite(s)):
@@ -134,10 +234,27 @@ def contour_factor_compatibility(extra_lengths: ArrayLike, allowable_deformation
 
     The tightest contour is stretched by its allowable Δ_a (the deformation at the allowable
     force F_a); contour j, s_j − min s longer, is stretched by Δ_a − (s_j − min s) if positive.
-    With Δ = α·F^x (eq. 18) the force ratio is (Δ/Δ_a)^(1/x). extra_lengths : s, shape
-    (..., m) [m]; allowable_deformation : Δ_a [m], broadcast over the leading axes.
-    For m = 2, x = 1: K = max(1, 2 − |ΔL₃|/Δ_a); the seed's eq. 16 is this K with
-    Δ_a = |ΔL₃| + 2Δ_y, and agrees with it to first order in |ΔL₃| when Δ_a = 2Δ_y.
+    With Δ = α·F^x (eq. 18) the force ratio is (Δ/Δ_a)^(1/x). For m = 2, x = 1:
+    K = max(1, 2 − |ΔL₃|/Δ_a); the paper's eq. 16 is this K with Δ_a = |ΔL₃| + 2Δ_y, and
+    agrees with it to first order in |ΔL₃| when Δ_a = 2Δ_y.
+
+    Parameters
+    ----------
+    extra_lengths : array_like
+        s, shape (..., m) [m].
+    allowable_deformation : float or array_like
+        Δ_a [m], broadcast over the leading axes.
+    deformation_exponent : float
+        x [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        K [-], shape (...).
+
+    References
+    ----------
+    [Lyashuk, eq. 16 and 18]; [Reshetov1974].
     """
     if not deformation_exponent > 0:
         raise DesignError("deformation_exponent", f"must be positive, got {deformation_exponent!r}")
@@ -145,17 +262,28 @@ def contour_factor_compatibility(extra_lengths: ArrayLike, allowable_deformation
     slack = s - s.min(axis=-1, keepdims=True)
     limit = np.asarray(allowable_deformation, dtype=float)[..., None]
     ratio = np.clip(1.0 - slack / limit, 0.0, None)
-    return np.sum(ratio ** (1.0 / deformation_exponent), axis=-1)
+    k: NDArray[np.float64] = np.sum(ratio ** (1.0 / deformation_exponent), axis=-1)
+    return k
 
 
 @dataclass(frozen=True, slots=True)
 class LoadSharingSimulation:
     """Monte-Carlo of m contours with random keyed-joint clearances, at capacity load.
 
-    contours : m; samples : n; risk : the risk level; km_mean, km_at_risk : mean and
-    risk-quantile (lower tail) of K (effective number of contours); max_share_mean,
-    max_share_at_risk : mean and (1 − risk) quantile of the most-loaded contour's share
-    (= 1/K); km_percentiles : K at 1, 5, 50, 95, 99 %.
+    Parameters
+    ----------
+    contours : int
+        m [-].
+    samples : int
+        n [-].
+    risk : float
+        The risk level [-].
+    km_mean, km_at_risk : float
+        Mean and risk-quantile (lower tail) of K, the effective number of contours [-].
+    max_share_mean, max_share_at_risk : float
+        Mean and (1 − risk) quantile of the most-loaded contour's share (= 1/K) [-].
+    km_percentiles : tuple of float
+        K at 1, 5, 50, 95, 99 % [-].
     """
 
     contours: int
@@ -185,9 +313,38 @@ def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int 
 
     Each contour j has a keyed driving and driven sprocket with independent clearances
     (eq. 7, all joints clear as in the eq. 13 model), so its slack is s_j = C₄(z_1j + z_2j);
-    K per sample from :func:`contour_factor_compatibility`. c4 [–], max_clearance z_max [m],
-    allowable_deformation Δ_a [m]; rng : Generator or seed. For m = 2 and x = 1 the
-    result is K = max(1, 2 − |ΔL₃|/Δ_a) with |ΔL₃| half-normal (eq. 14).
+    K per sample from :func:`contour_factor_compatibility`. For m = 2 and x = 1 the result
+    is K = max(1, 2 − |ΔL₃|/Δ_a) with |ΔL₃| half-normal (eq. 14).
+
+    Parameters
+    ----------
+    contours : int
+        m, 2 to 24 [-].
+    n : int
+        Samples [-].
+    rng : numpy.random.Generator or int or None
+        A generator or the seed of one.
+    c4 : float
+        C₄ [-].
+    max_clearance : float
+        z_max [m].
+    allowable_deformation : float
+        Δ_a [m].
+    deformation_exponent : float
+        x [-].
+    risk : float
+        The risk level [-].
+    truncated : bool
+        Clearances restricted to [0, z_max].
+
+    Returns
+    -------
+    LoadSharingSimulation
+        K and the largest share at the risk level.
+
+    References
+    ----------
+    [Lyashuk, eq. 7, 14, 16].
     """
     if not isinstance(contours, int) or not 2 <= contours <= MAX_CONTOURS:
         raise DesignError("contours", f"must be a whole number 2 to {MAX_CONTOURS}, "
@@ -214,9 +371,29 @@ def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int 
 
 def contour_factor_linear_at_risk(c4: float, max_clearance: float,
                                   allowable_deformation: float, risk: float = 0.05) -> float:
-    """K = max(1, 2 − q/Δ_a) for m = 2, q the (1 − risk) quantile of |ΔL₃| (eq. 14) [–].
+    """K = max(1, 2 − q/Δ_a) for m = 2, q the (1 − risk) quantile of |ΔL₃| (eq. 14).
 
     The compatibility-of-deformations counterpart of :func:`contour_factor_at_risk`.
+
+    Parameters
+    ----------
+    c4 : float
+        C₄ [-].
+    max_clearance : float
+        z_max [m].
+    allowable_deformation : float
+        Δ_a [m].
+    risk : float
+        The risk level [-].
+
+    Returns
+    -------
+    float
+        K [-].
+
+    References
+    ----------
+    [Lyashuk, eq. 14].
     """
     if not 0.0 < risk < 1.0:
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")

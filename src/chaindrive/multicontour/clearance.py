@@ -1,19 +1,19 @@
 """Random keyed-joint clearances of a two-contour drive and the length difference ΔL₃.
 
-Source: seed ``004_a4f9a325039ac76c.txt``, eq. 7–14 and Table 1. Joints are named as in the
-seed: ``1-I``, ``2-I`` — driving and driven sprocket of contour I; ``1-II``, ``2-II`` — of
+Source: [Lyashuk], eq. 7–14 and Table 1. Joints are named as in the
+paper: ``1-I``, ``2-I`` — driving and driven sprocket of contour I; ``1-II``, ``2-II`` — of
 contour II. A clearance z in a joint lengthens its contour's working span by C₄·z (eq. 6),
 so what loads the contours unequally is the difference ΔL₃ = ΔL_II − ΔL_I (eq. 12).
 
-Two readings of the seed are kept apart (see ``docs/multicontour.md``):
+Two readings of the paper are kept apart (see ``docs/multicontour.md``):
 
 * the **eq. 13 model** — all four joints have a clearance, each z independent and
   Normal(z_max/2, z_max/6) (eq. 7); then ΔL_II, ΔL_I ~ Normal(2C₄z̄, 2C₄²σ_z²) (eq. 11) and
-  ΔL₃ ~ Normal(0, (2C₄σ_z)²) (eq. 13), |ΔL₃| half-normal (eq. 14). This is what the seed
+  ΔL₃ ~ Normal(0, (2C₄σ_z)²) (eq. 13), |ΔL₃| half-normal (eq. 14). This is what the paper
   computes; it is placement No. 13 of Table 1, not the "2z" placements (No. 6, 8) that the
   text says it is considering, which would give a non-zero mean C₄·z_max.
 * the **placement model** — a placement of Table 1 is drawn (all equally likely, as the
-  seed's P(0), P(z), P(2z) assume) and only the joints it marks have a clearance.
+  paper's P(0), P(z), P(2z) assume) and only the joints it marks have a clearance.
 """
 
 from __future__ import annotations
@@ -22,20 +22,21 @@ import itertools
 import math
 from dataclasses import dataclass
 from fractions import Fraction
+from statistics import NormalDist
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ndtr, ndtri
 
 from chaindrive.errors import DesignError, did_you_mean
 
 JOINTS: tuple[str, ...] = ("1-I", "2-I", "1-II", "2-II")
-PlacementRule = Literal["seed", "all"]
-PLACEMENT_RULES: tuple[str, ...] = ("seed", "all")
+PlacementRule = Literal["table", "all"]
+PLACEMENT_RULES: tuple[str, ...] = ("table", "all")
 LengthModel = Literal["all_joints", "placements"]
 LENGTH_MODELS: tuple[str, ...] = ("all_joints", "placements")
-SIGMAS_IN_RANGE = 3.0  # z_max = 6 σ_z, z̄ = z_max/2 (seed 004, after eq. 7)
+SIGMAS_IN_RANGE = 3.0  # z_max = 6 σ_z, z̄ = z_max/2 [Lyashuk, after eq. 7]
+_NORMAL = NormalDist()  # the standard normal: cdf Φ, inv_cdf Φ⁻¹ (scalars)
 
 
 def _check_positive(name: str, value: float) -> None:
@@ -45,11 +46,27 @@ def _check_positive(name: str, value: float) -> None:
 
 def clearance_pdf(clearance: ArrayLike, max_clearance: float, *,
                   truncated: bool = True) -> NDArray[np.float64]:
-    """Density f(z) [1/m] of the key/keyway clearance z [m] (seed 004, eq. 7–8).
+    """Density f(z) of the key/keyway clearance z ~ Normal(z̄ = z_max/2, σ_z = z_max/6).
 
-    z ~ Normal(z̄ = z_max/2, σ_z = z_max/6). ``truncated=True`` renormalises it on
-    [0, z_max] (zero outside; peak 2.400/z_max); ``truncated=False`` is eq. 7 as printed
-    (peak 6/√(2π)/z_max = 2.394/z_max; the seed's eq. 8 prints the constant as 2.382).
+    Parameters
+    ----------
+    clearance : float or array_like
+        z [m].
+    max_clearance : float
+        z_max [m].
+    truncated : bool
+        True renormalises it on [0, z_max] (zero outside; peak 2.400/z_max); False is eq. 7
+        as printed (peak 6/√(2π)/z_max = 2.394/z_max; the paper's eq. 8 prints the constant
+        as 2.382).
+
+    Returns
+    -------
+    numpy.ndarray
+        f(z) [1/m].
+
+    References
+    ----------
+    [Lyashuk, eq. 7–8].
     """
     _check_positive("max_clearance", max_clearance)
     z = np.asarray(clearance, dtype=float)
@@ -58,17 +75,23 @@ def clearance_pdf(clearance: ArrayLike, max_clearance: float, *,
     density = np.exp(-0.5 * u**2) / (sigma * math.sqrt(2.0 * math.pi))
     if not truncated:
         return density
-    mass = float(ndtr(SIGMAS_IN_RANGE) - ndtr(-SIGMAS_IN_RANGE))
+    mass = _NORMAL.cdf(SIGMAS_IN_RANGE) - _NORMAL.cdf(-SIGMAS_IN_RANGE)
     return np.where((z >= 0.0) & (z <= max_clearance), density / mass, 0.0)
 
 
 @dataclass(frozen=True, slots=True)
 class ClearancePlacement:
-    """One placement of clearances over the four joints (a row of the seed's Table 1).
+    """One placement of clearances over the four joints (a row of [Lyashuk, Table 1]).
 
-    joints : presence of a clearance in (1-I, 2-I, 1-II, 2-II); contour_i, contour_ii :
-    clearances in each contour, in units of z; total : |contour_ii − contour_i|, the
-    "total maximal clearance" of the seed's last column, in units of z.
+    Parameters
+    ----------
+    joints : tuple of bool
+        Presence of a clearance in (1-I, 2-I, 1-II, 2-II).
+    contour_i, contour_ii : int
+        Clearances in each contour [z].
+    total : int
+        |contour_ii − contour_i|, the "total maximal clearance" of the table's last column
+        [z].
     """
 
     joints: tuple[bool, bool, bool, bool]
@@ -84,21 +107,35 @@ class ClearancePlacement:
                 "total_z": self.total}
 
 
-def _seed_rule(clear: tuple[int, ...]) -> bool:
-    """The seed's enumeration: any set of ≤ 2 joints, or a run of consecutive joints."""
+def _table_rule(clear: tuple[int, ...]) -> bool:
+    """The paper's enumeration: any set of ≤ 2 joints, or a run of consecutive joints."""
     return len(clear) <= 2 or clear[-1] - clear[0] + 1 == len(clear)
 
 
-def clearance_placements(rule: str = "seed") -> tuple[ClearancePlacement, ...]:
+def clearance_placements(rule: str = "table") -> tuple[ClearancePlacement, ...]:
     """Placements of clearances over the joints 1-I, 2-I, 1-II, 2-II, enumerated.
 
     Each joint has a clearance z or none; a contour's working span grows by z per clear joint
-    (seed 004, eq. 1), and the contours differ by |n_II − n_I|·z (Table 1, last column).
-    rule : ``"all"`` — all 2⁴ = 16 presence/absence patterns; ``"seed"`` — the 14 rows of
-    Table 1. The seed states no rule; its rows are exactly the sets of at most two joints
-    plus the runs of consecutive joints in the order (1-I, 2-I, 1-II, 2-II) — the two split
-    triples {1-I, 2-I, 2-II} and {1-I, 1-II, 2-II} are missing although they are as possible
-    as the two triples listed (No. 9, 10). ``"seed"`` reproduces the table; see the docs.
+    (eq. 1), and the contours differ by |n_II − n_I|·z (Table 1, last column). The paper
+    states no rule; its rows are exactly the sets of at most two joints plus the runs of
+    consecutive joints in the order (1-I, 2-I, 1-II, 2-II) — the two split triples
+    {1-I, 2-I, 2-II} and {1-I, 1-II, 2-II} are missing although they are as possible as the
+    two triples listed (No. 9, 10). See docs/multicontour.md.
+
+    Parameters
+    ----------
+    rule : str
+        ``"all"`` — all 2⁴ = 16 presence/absence patterns; ``"table"`` — the 14 rows of
+        Table 1.
+
+    Returns
+    -------
+    tuple of ClearancePlacement
+        The placements.
+
+    References
+    ----------
+    [Lyashuk, eq. 1 and Table 1].
     """
     if rule not in PLACEMENT_RULES:
         raise DesignError("rule", f"must be one of {PLACEMENT_RULES}, got {rule!r}"
@@ -106,7 +143,7 @@ def clearance_placements(rule: str = "seed") -> tuple[ClearancePlacement, ...]:
     rows = []
     for count in range(len(JOINTS) + 1):
         for clear in itertools.combinations(range(len(JOINTS)), count):
-            if rule == "seed" and not _seed_rule(clear):
+            if rule == "table" and not _table_rule(clear):
                 continue
             on = tuple(i in clear for i in range(len(JOINTS)))
             n_i, n_ii = on[0] + on[1], on[2] + on[3]
@@ -114,11 +151,23 @@ def clearance_placements(rule: str = "seed") -> tuple[ClearancePlacement, ...]:
     return tuple(rows)
 
 
-def placement_probabilities(rule: str = "seed") -> dict[int, Fraction]:
-    """P(total = k·z) for k = 0, 1, 2, every placement equally likely (seed 004, after eq. 10).
+def placement_probabilities(rule: str = "table") -> dict[int, Fraction]:
+    """P(total = k·z) for k = 0, 1, 2, every placement equally likely.
 
-    With ``rule="seed"`` (Table 1): P(0) = P(z) = 6/14, P(2z) = 2/14 (the seed's 42.8 %, 42.8 %,
-    14.2 %, truncated); with ``rule="all"``: 6/16, 8/16, 2/16.
+    Parameters
+    ----------
+    rule : str
+        ``"table"`` (Table 1): P(0) = P(z) = 6/14, P(2z) = 2/14 (the paper's 42.8 %, 42.8 %,
+        14.2 %, truncated); ``"all"``: 6/16, 8/16, 2/16.
+
+    Returns
+    -------
+    dict of int to fractions.Fraction
+        k → P [-].
+
+    References
+    ----------
+    [Lyashuk, after eq. 10].
     """
     rows = clearance_placements(rule)
     counts: dict[int, int] = {}
@@ -129,12 +178,24 @@ def placement_probabilities(rule: str = "seed") -> dict[int, Fraction]:
 
 @dataclass(frozen=True, slots=True)
 class LengthDifferenceStats:
-    """Analytic distribution of ΔL₃ in the eq. 13 model (seed 004, eq. 11–14), SI units.
+    """Analytic distribution of ΔL₃ in the eq. 13 model [Lyashuk, eq. 11–14].
 
-    Attributes: c4 [–]; max_clearance, clearance_mean (z̄), clearance_sigma (σ_z) [m];
-    contour_mean = 2C₄z̄ and contour_sigma = √2·C₄σ_z of ΔL_I, ΔL_II (eq. 11) [m];
-    sigma = 2C₄σ_z of ΔL₃ (eq. 13) [m]; mean_abs = √(2/π)·σ, variance_abs = σ²(1 − 2/π)
-    of |ΔL₃| (eq. 14) [m], [m²]; quantile_95_abs = σ·Φ⁻¹(0.975) [m].
+    Parameters
+    ----------
+    c4 : float
+        C₄ [-].
+    max_clearance, clearance_mean, clearance_sigma : float
+        z_max, z̄, σ_z [m].
+    contour_mean, contour_sigma : float
+        2C₄z̄ and √2·C₄σ_z of ΔL_I, ΔL_II (eq. 11) [m].
+    sigma : float
+        2C₄σ_z of ΔL₃ (eq. 13) [m].
+    mean_abs : float
+        √(2/π)·σ of |ΔL₃| (eq. 14) [m].
+    variance_abs : float
+        σ²(1 − 2/π) of |ΔL₃| [m²].
+    quantile_95_abs : float
+        σ·Φ⁻¹(0.975) [m].
     """
 
     c4: float
@@ -149,7 +210,18 @@ class LengthDifferenceStats:
     quantile_95_abs: float
 
     def quantile_abs(self, probability: float) -> float:
-        """Quantile of |ΔL₃| [m]: P(|ΔL₃| ≤ q) = probability (half-normal, eq. 14)."""
+        """Quantile of |ΔL₃| (half-normal, eq. 14).
+
+        Parameters
+        ----------
+        probability : float
+            P(|ΔL₃| ≤ q) [-].
+
+        Returns
+        -------
+        float
+            q [m].
+        """
         return half_normal_quantile(self.sigma, probability)
 
     def to_dict(self) -> dict[str, Any]:
@@ -162,16 +234,43 @@ class LengthDifferenceStats:
 
 
 def half_normal_quantile(sigma: float, probability: float) -> float:
-    """q with P(|X| ≤ q) = probability for X ~ Normal(0, σ²): q = σ·Φ⁻¹((1 + P)/2) [same unit]."""
+    """q with P(|X| ≤ q) = probability for X ~ Normal(0, σ²): q = σ·Φ⁻¹((1 + P)/2).
+
+    Parameters
+    ----------
+    sigma : float
+        σ [any unit].
+    probability : float
+        P in [0, 1) [-].
+
+    Returns
+    -------
+    float
+        q [unit of σ].
+    """
     if not 0.0 <= probability < 1.0:
         raise DesignError("probability", f"must be in [0, 1), got {probability!r}")
-    return float(sigma * ndtri(0.5 * (1.0 + probability)))
+    return float(sigma * _NORMAL.inv_cdf(0.5 * (1.0 + probability)))
 
 
 def length_difference_stats(c4: float, max_clearance: float) -> LengthDifferenceStats:
-    """Mean, spread and 95 % quantile of ΔL₃ and |ΔL₃| (seed 004, eq. 11–14).
+    """Mean, spread and 95 % quantile of ΔL₃ and |ΔL₃|.
 
-    c4 : C₄ of eq. 6 [–]; max_clearance : z_max [m].
+    Parameters
+    ----------
+    c4 : float
+        C₄ of eq. 6 [-].
+    max_clearance : float
+        z_max [m].
+
+    Returns
+    -------
+    LengthDifferenceStats
+        The distribution.
+
+    References
+    ----------
+    [Lyashuk, eq. 11–14].
     """
     _check_positive("c4", c4)
     _check_positive("max_clearance", max_clearance)
@@ -189,29 +288,76 @@ def length_difference_stats(c4: float, max_clearance: float) -> LengthDifference
 
 def sample_clearances(shape: tuple[int, ...], rng: np.random.Generator, max_clearance: float,
                       *, truncated: bool = False) -> NDArray[np.float64]:
-    """Random clearances z [m] ~ Normal(z_max/2, z_max/6) (seed 004, eq. 7).
+    """Random clearances z ~ Normal(z_max/2, z_max/6).
 
-    ``truncated=True`` draws from the same normal restricted to [0, z_max] (inverse CDF).
+    Parameters
+    ----------
+    shape : tuple of int
+        Shape of the sample.
+    rng : numpy.random.Generator
+        The generator.
+    max_clearance : float
+        z_max [m].
+    truncated : bool
+        Draw from the same normal restricted to [0, z_max] (inverse CDF).
+
+    Returns
+    -------
+    numpy.ndarray
+        z [m].
+
+    References
+    ----------
+    [Lyashuk, eq. 7].
     """
     mean, sigma = max_clearance / 2.0, max_clearance / (2.0 * SIGMAS_IN_RANGE)
     if not truncated:
         return rng.normal(mean, sigma, size=shape)
-    lo, hi = ndtr(-SIGMAS_IN_RANGE), ndtr(SIGMAS_IN_RANGE)
-    return mean + sigma * ndtri(rng.uniform(lo, hi, size=shape))
+    # lazy: scipy.special costs 0.4 s to import (python -X importtime), more than a third of
+    # the 1 s `chaindrive analyze` may take; only the truncated draw needs the vectorised Φ⁻¹
+    from scipy.special import ndtri
+
+    lo, hi = _NORMAL.cdf(-SIGMAS_IN_RANGE), _NORMAL.cdf(SIGMAS_IN_RANGE)
+    z: NDArray[np.float64] = mean + sigma * ndtri(rng.uniform(lo, hi, size=shape))
+    return z
 
 
 def simulate_length_difference(n: int, rng: np.random.Generator | int | None = None, *,
                                c4: float, max_clearance: float, model: str = "all_joints",
-                               rule: str = "seed", truncated: bool = False,
+                               rule: str = "table", truncated: bool = False,
                                ) -> NDArray[np.float64]:
     """Monte-Carlo samples of ΔL₃ = (ΔL_1II + ΔL_2II) − (ΔL_1I + ΔL_2I) [m], shape (n,).
 
     Per sample: a clearance z per joint (eq. 7, ``truncated`` as in :func:`sample_clearances`),
     ΔL = C₄·z (eq. 6), summed per contour (eq. 1) and differenced (eq. 12).
-    model : ``"all_joints"`` — every joint has a clearance (the model behind eq. 13, which
-    the analytic :func:`length_difference_stats` describes); ``"placements"`` — first a
-    placement of :func:`clearance_placements` (``rule``) is drawn uniformly and only its
-    joints have a clearance. rng : a numpy Generator or a seed.
+    Parameters
+    ----------
+    n : int
+        Samples [-].
+    rng : numpy.random.Generator or int or None
+        A generator or the seed of one.
+    c4 : float
+        C₄ [-].
+    max_clearance : float
+        z_max [m].
+    model : str
+        ``"all_joints"`` — every joint has a clearance (the model behind eq. 13, which the
+        analytic :func:`length_difference_stats` describes); ``"placements"`` — first a
+        placement of :func:`clearance_placements` (``rule``) is drawn uniformly and only its
+        joints have a clearance.
+    rule : str
+        As in :func:`clearance_placements`.
+    truncated : bool
+        As in :func:`sample_clearances`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) ΔL₃ [m].
+
+    References
+    ----------
+    [Lyashuk, eq. 1, 6, 7, 12].
     """
     if model not in LENGTH_MODELS:
         raise DesignError("model", f"must be one of {LENGTH_MODELS}, got {model!r}"

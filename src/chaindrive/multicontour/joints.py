@@ -1,9 +1,9 @@
 """Keyed joints (sprocket – key – shaft): standard key sizes, fit clearances, ΔL of eq. 2–6.
 
-Source of the model: seed ``004_a4f9a325039ac76c.txt`` (Ляшук О.Л., «Вплив точності шпонкових
-з'єднань на несучу здатність багатоконтурних ланцюгових передач»), eq. 2–6 and Fig. 4.
+Source of the model: [Lyashuk, eq. 2–6 and Fig. 4]; keys [DIN6885-1], [GOST23360]; fits
+[ISO286-1].
 
-Geometry of Fig. 4 (the seed's nominal picture): a parallel key of width b and height h sits
+Geometry of Fig. 4 (the paper's nominal picture): a parallel key of width b and height h sits
 with half its height in the shaft of radius R, so its outer corner A lies at
 ``R_1 = ½·√(b² + (2R + h)²)`` from the shaft axis. The keyway in the sprocket bore has width
 L = b + z; with the clearance z the sprocket can turn on the shaft by α (eq. 4) and the chain's
@@ -22,13 +22,13 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.errors import DesignError, did_you_mean
 
 Fit = Literal["tight", "normal", "free"]
-C4Form = Literal["seed", "linearised"]
+C4Form = Literal["printed", "linearised"]
 FITS: tuple[str, ...] = ("tight", "normal", "free")
-C4_FORMS: tuple[str, ...] = ("seed", "linearised")
+C4_FORMS: tuple[str, ...] = ("printed", "linearised")
 
 #: Parallel keys by shaft diameter: (d over [mm], d up to [mm], b [mm], h [mm]).
-#: DIN 6885-1 form A = ISO/R 773 = GOST 23360-78 (same ranges); checked against the table in
-#: Siemens MD 31.1 (2016) p. 7/3 "Parallel key and keyway according to DIN 6885-1".
+#: [DIN6885-1] form A = ISO/R 773 = [GOST23360] (same ranges); checked against the table of
+#: [SiemensMD31, p. 7/3].
 PARALLEL_KEYS_MM: tuple[tuple[float, float, float, float], ...] = (
     (6, 8, 2, 2), (8, 10, 3, 3), (10, 12, 4, 4), (12, 17, 5, 5), (17, 22, 6, 6),
     (22, 30, 8, 7), (30, 38, 10, 8), (38, 44, 12, 8), (44, 50, 14, 9), (50, 58, 16, 10),
@@ -38,7 +38,7 @@ PARALLEL_KEYS_MM: tuple[tuple[float, float, float, float], ...] = (
     (290, 330, 70, 36), (330, 380, 80, 40), (380, 440, 90, 45), (440, 500, 100, 50),
 )
 
-#: ISO 286-1 (1988/2010) Table 1 and Table 3 for nominal sizes (over, up to] in mm:
+#: [ISO286-1, Tables 1 and 3] for nominal sizes (over, up to] in mm:
 #: standard tolerance IT9, IT10 and the fundamental deviations of holes D (EI) and P (ES = −p,
 #: for grades above IT7), all in µm.
 ISO286_MM_UM: tuple[tuple[float, float, float, float, float, float], ...] = (
@@ -50,10 +50,21 @@ ISO286_MM_UM: tuple[tuple[float, float, float, float, float, float], ...] = (
 
 
 def parallel_key(shaft_diameter: float) -> tuple[float, float]:
-    """Key width b and height h [m] of the standard parallel key for a shaft diameter [m].
+    """Width and height of the standard parallel key for a shaft diameter.
 
-    Source: DIN 6885-1 / ISO 773 / GOST 23360-78 table of keys by shaft diameter
-    (:data:`PARALLEL_KEYS_MM`; a diameter on a boundary takes the smaller key).
+    Parameters
+    ----------
+    shaft_diameter : float
+        d [m] (a diameter on a boundary of :data:`PARALLEL_KEYS_MM` takes the smaller key).
+
+    Returns
+    -------
+    tuple of (float, float)
+        Key width b and height h [m].
+
+    References
+    ----------
+    [DIN6885-1]; [GOST23360].
     """
     d_mm = shaft_diameter * 1e3
     for lower, upper, b, h in PARALLEL_KEYS_MM:
@@ -72,12 +83,27 @@ def _iso286_row(size_mm: float) -> tuple[float, float, float, float, float, floa
 
 
 def keyway_max_clearance(key_width: float, fit: str = "normal") -> float:
-    """Largest clearance z_max = L_max − b_min [m] between a key (h9) and the hub keyway.
+    """Largest clearance z_max = L_max − b_min between a key (h9) and the hub keyway.
 
-    key_width : b [m]; fit : hub keyway tolerance of DIN 6885-1 / GOST 23360 — ``"tight"``
-    P9, ``"normal"`` JS9, ``"free"`` D10; the key is h9 (ei = −IT9). Deviations from ISO 286-1
-    (:data:`ISO286_MM_UM`). The seed takes the clearance on [0, z_max] (eq. 7–8); for the
-    tight and normal fits the smallest value is an interference, read as zero clearance.
+    The paper takes the clearance on [0, z_max] (eq. 7–8); for the tight and normal fits the
+    smallest value is an interference, read as zero clearance.
+
+    Parameters
+    ----------
+    key_width : float
+        b [m].
+    fit : str
+        Hub keyway tolerance: ``"tight"`` P9, ``"normal"`` JS9, ``"free"`` D10; the key is h9
+        (ei = −IT9).
+
+    Returns
+    -------
+    float
+        z_max [m].
+
+    References
+    ----------
+    [DIN6885-1]; [GOST23360]; [ISO286-1] (:data:`ISO286_MM_UM`); [Lyashuk, eq. 7–8].
     """
     if fit not in FITS:
         raise DesignError("fit", f"must be one of {FITS}, got {fit!r}{did_you_mean(fit, FITS)}")
@@ -87,23 +113,76 @@ def keyway_max_clearance(key_width: float, fit: str = "normal") -> float:
 
 
 def key_corner_radius(shaft_radius: float, key_width: float, key_height: float) -> float:
-    """R_1 = AO = ½·√(b² + (2R + h)²) [m], radius of the key corner A (seed 004, Fig. 4, eq. 3)."""
+    """Radius of the key corner A, R_1 = AO = ½·√(b² + (2R + h)²).
+
+    Parameters
+    ----------
+    shaft_radius : float
+        R [m].
+    key_width : float
+        b [m].
+    key_height : float
+        h [m].
+
+    Returns
+    -------
+    float
+        R_1 [m].
+
+    References
+    ----------
+    [Lyashuk, Fig. 4, eq. 3].
+    """
     return 0.5 * math.hypot(key_width, 2.0 * shaft_radius + key_height)
 
 
 def key_corner_angle(key_width: float, shaft_radius: float, key_height: float) -> float:
-    """β = arcsin(b / √(b² + (2R + h)²)) [rad], angle of the key corner (seed 004, eq. 3).
+    """Angle of the key corner β = arcsin(b / √(b² + (2R + h)²)).
 
-    key_width : b [m]; shaft_radius : R [m]; key_height : h [m].
+    Parameters
+    ----------
+    key_width : float
+        b [m].
+    shaft_radius : float
+        R [m].
+    key_height : float
+        h [m].
+
+    Returns
+    -------
+    float
+        β [rad].
+
+    References
+    ----------
+    [Lyashuk, eq. 3].
     """
     return math.asin(key_width / math.hypot(key_width, 2.0 * shaft_radius + key_height))
 
 
 def sprocket_turn_angle(key_width: float, shaft_radius: float, key_height: float,
                         keyway_width: ArrayLike) -> NDArray[np.float64]:
-    """α = arcsin((2L − b)/√(b² + (2R + h)²)) − β [rad], free turn of the sprocket (eq. 4).
+    """Free turn of the sprocket α = arcsin((2L − b)/√(b² + (2R + h)²)) − β.
 
-    keyway_width : L = b + z [m] (array allowed). Source: seed 004, eq. 4 (α = δ − β).
+    Parameters
+    ----------
+    key_width : float
+        b [m].
+    shaft_radius : float
+        R [m].
+    key_height : float
+        h [m].
+    keyway_width : float or array_like
+        L = b + z [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        α [rad].
+
+    References
+    ----------
+    [Lyashuk, eq. 4] (α = δ − β).
     """
     root = math.hypot(key_width, 2.0 * shaft_radius + key_height)
     ratio = (2.0 * np.asarray(keyway_width, dtype=float) - key_width) / root
@@ -115,16 +194,22 @@ def sprocket_turn_angle(key_width: float, shaft_radius: float, key_height: float
 
 @dataclass(frozen=True, slots=True)
 class KeyedJoint:
-    """A sprocket keyed to a shaft by a parallel key, SI units.
+    """A sprocket keyed to a shaft by a parallel key.
 
-    Attributes
+    Parameters
     ----------
-    pitch_radius : float — R_δ, pitch-circle radius of the sprocket [m]
-    shaft_radius : float — R, nominal shaft radius [m]
-    key_width : float — b [m]
-    key_height : float — h [m]
-    max_clearance : float — z_max, largest key/keyway clearance of the fit [m]
-    fit : str — name of the fit the clearance comes from (``"given"`` when typed in)
+    pitch_radius : float
+        R_δ, pitch-circle radius of the sprocket [m].
+    shaft_radius : float
+        R, nominal shaft radius [m].
+    key_width : float
+        b [m].
+    key_height : float
+        h [m].
+    max_clearance : float
+        z_max, largest key/keyway clearance of the fit [m].
+    fit : str
+        Name of the fit the clearance comes from (``"given"`` when typed in).
     """
 
     pitch_radius: float
@@ -150,13 +235,32 @@ class KeyedJoint:
     @classmethod
     def from_standard(cls, pitch_radius: float, shaft_diameter: float,
                       fit: str = "normal") -> KeyedJoint:
-        """Joint with the DIN 6885-1 / ISO 773 / GOST 23360 key for the shaft and the fit's z_max."""
+        """A joint with the standard key for the shaft and the fit's z_max.
+
+        Parameters
+        ----------
+        pitch_radius : float
+            R_δ [m].
+        shaft_diameter : float
+            d [m].
+        fit : str
+            ``"tight"``, ``"normal"`` or ``"free"`` (:func:`keyway_max_clearance`).
+
+        Returns
+        -------
+        KeyedJoint
+            The joint.
+
+        References
+        ----------
+        [DIN6885-1]; [GOST23360]; [ISO286-1].
+        """
         b, h = parallel_key(shaft_diameter)
         return cls(pitch_radius, shaft_diameter / 2.0, b, h, keyway_max_clearance(b, fit), fit)
 
     @property
     def corner_radius(self) -> float:
-        """R_1'' = AO [m], radius of the key corner (seed 004, Fig. 4)."""
+        """R_1'' = AO [m], radius of the key corner [Lyashuk, Fig. 4]."""
         return key_corner_radius(self.shaft_radius, self.key_width, self.key_height)
 
     def to_dict(self) -> dict[str, Any]:
@@ -174,9 +278,23 @@ class KeyedJoint:
 
 
 def length_error_exact(joint: KeyedJoint, clearance: ArrayLike) -> NDArray[np.float64]:
-    """Exact ΔL = R_δ·α [m] for a key/keyway clearance z [m] (seed 004, eq. 2–5).
+    """Exact length error ΔL = R_δ·α for a key/keyway clearance (L = b + z, α from eq. 4).
 
-    The keyway width is L = b + z; α from eq. 4. Vectorised over ``clearance``.
+    Parameters
+    ----------
+    joint : KeyedJoint
+        The joint.
+    clearance : float or array_like
+        z [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        ΔL [m].
+
+    References
+    ----------
+    [Lyashuk, eq. 2–5].
     """
     z = np.asarray(clearance, dtype=float)
     if np.any(z < 0):
@@ -186,15 +304,31 @@ def length_error_exact(joint: KeyedJoint, clearance: ArrayLike) -> NDArray[np.fl
     return joint.pitch_radius * alpha
 
 
-def clearance_coefficient_c4(joint: KeyedJoint, form: str = "seed") -> float:
-    """C₄ = ΔL/z, the clearance-to-length coefficient of eq. 6 [–].
+def clearance_coefficient_c4(joint: KeyedJoint, form: str = "printed") -> float:
+    """C₄ = ΔL/z, the clearance-to-length coefficient of eq. 6.
 
-    form : ``"seed"`` — C₄ = R_δ / R_1'' as printed (seed 004, eq. 6: the arc AC at the key
-    corner is taken equal to z); ``"linearised"`` — C₄ = R_δ / (R + h/2), the exact first-order
-    limit of eq. 5 as z → 0 (d/dz of eq. 4 at z = 0 is 1/(R_1·cos β) = 1/(R + h/2)).
-    The two differ by the factor cos β = (R + h/2)/R_1 (≈ 0.97–0.99 for standard keys).
+    The two forms differ by the factor cos β = (R + h/2)/R_1 (≈ 0.97–0.99 for standard
+    keys).
+
+    Parameters
+    ----------
+    joint : KeyedJoint
+        The joint.
+    form : str
+        ``"printed"`` — C₄ = R_δ / R_1'' as printed (eq. 6: the arc AC at the key corner is
+        taken equal to z); ``"linearised"`` — C₄ = R_δ / (R + h/2), the exact first-order
+        limit of eq. 5 as z → 0 (d/dz of eq. 4 at z = 0 is 1/(R_1·cos β) = 1/(R + h/2)).
+
+    Returns
+    -------
+    float
+        C₄ [-].
+
+    References
+    ----------
+    [Lyashuk, eq. 5–6].
     """
-    if form == "seed":
+    if form == "printed":
         return joint.pitch_radius / joint.corner_radius
     if form == "linearised":
         return joint.pitch_radius / (joint.shaft_radius + joint.key_height / 2.0)
@@ -203,6 +337,25 @@ def clearance_coefficient_c4(joint: KeyedJoint, form: str = "seed") -> float:
 
 
 def length_error_simplified(joint: KeyedJoint, clearance: ArrayLike,
-                            form: str = "seed") -> NDArray[np.float64]:
-    """Simplified ΔL = C₄·z [m] (seed 004, eq. 6); ``form`` as in :func:`clearance_coefficient_c4`."""
+                            form: str = "printed") -> NDArray[np.float64]:
+    """Simplified length error ΔL = C₄·z.
+
+    Parameters
+    ----------
+    joint : KeyedJoint
+        The joint.
+    clearance : float or array_like
+        z [m].
+    form : str
+        As in :func:`clearance_coefficient_c4`.
+
+    Returns
+    -------
+    numpy.ndarray
+        ΔL [m].
+
+    References
+    ----------
+    [Lyashuk, eq. 6].
+    """
     return clearance_coefficient_c4(joint, form) * np.asarray(clearance, dtype=float)

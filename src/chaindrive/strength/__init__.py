@@ -16,7 +16,13 @@ from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import ke_method, ratings
-from chaindrive.strength.loads import DEFAULT_SAG_RATIO, LoadsResult, loads_of, small_sprocket
+from chaindrive.strength.loads import (
+    DEFAULT_SAG_RATIO,
+    LoadsResult,
+    hinge_pressure,
+    loads_of,
+    small_sprocket,
+)
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
 from chaindrive.strength.wear import (
@@ -32,14 +38,34 @@ __all__ = ["Candidate", "LoadsResult", "SelectionResult", "StrengthResult", "loa
 
 @dataclass(frozen=True, slots=True)
 class StrengthResult:
-    """Static strength of a drive (SI units).
+    """Static strength of a drive.
 
-    loads: the contour loads; operating_factor Kэ and dynamic_factor kд used;
-    hinge_pressure p = F_t·Kэ/A [Pa]; allowable_pressure [p] [Pa] (None outside the table or
-    for non-steel chains); safety_factor_static s; allowable_safety_factor [s] (None when not
-    tabulated); rated_power [W] of the chain by ``rating_method`` (ACA, the ISO 606 B table;
-    None for Kэ and polymer chains, :mod:`chaindrive.strength.ratings`); wear_life_h
-    hours to the permitted elongation (None when not applicable); warnings.
+    Parameters
+    ----------
+    loads : LoadsResult
+        The contour loads.
+    operating_factor : float
+        Kэ used [-].
+    dynamic_factor : float
+        kд used [-].
+    hinge_pressure : float
+        p = F_t·Kэ/A [Pa].
+    allowable_pressure : float or None
+        [p] [Pa] (None outside the table or for non-steel chains).
+    safety_factor_static : float
+        s [-].
+    allowable_safety_factor : float or None
+        [s] [-] (None when not tabulated).
+    rated_power : float or None
+        Of the chain by ``rating_method`` [W] (None for Kэ and polymer chains).
+    wear_life_h : float or None
+        Hours to the permitted elongation [h] (None when not applicable).
+    elongation : float
+        Permitted elongation [-].
+    warnings : tuple of ChainDriveWarning
+        Estimates and models that do not apply.
+    rating_method : str
+        ACA, the ISO 606 B table … (:mod:`chaindrive.strength.ratings`).
     """
 
     loads: LoadsResult
@@ -80,16 +106,41 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
                 dynamic_factor: float = 1.0, service_factor: float | None = None,
                 elongation: float = BASIS_ELONGATION, sag_ratio: float = DEFAULT_SAG_RATIO,
                 shaft_load_factor: float = 1.0) -> StrengthResult:
-    """Loads, joint pressure, static safety and wear life of ``drive`` laid out as ``geometry``.
+    """Loads, joint pressure, static safety and wear life of a laid-out drive.
 
-    operating_factor Kэ (default ``drive.service_factor`` or 1) for p = F_t·Kэ/A;
-    dynamic_factor kд for s = Q/(kд·F_t + F_0 + F_v); service_factor K_s for the wear life
-    (default ``drive.service_factor`` or 1); elongation: permitted elongation for the wear
-    life (default 3 %). [p] and [s] are the Russian tables for steel roller chains (by pitch
-    and the small-sprocket speed); the wear life is the ACA load–life model
+    [p] and [s] are the Russian tables for steel roller chains (by pitch and the
+    small-sprocket speed); the wear life is the ACA load–life model
     (:mod:`chaindrive.strength.wear`). Non-steel (polymer) chains: [p], [s] and the wear
     life are not given (the steel tables do not apply) and a warning says so; s uses the
     chain's own breaking load Q (from its material strength).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed needed).
+    geometry : GeometryResult
+        Its contour.
+    operating_factor : float or None
+        Kэ for p = F_t·Kэ/A [-] (default ``drive.service_factor`` or 1).
+    dynamic_factor : float
+        kд for s = Q/(kд·F_t + F_0 + F_v) [-].
+    service_factor : float or None
+        K_s for the wear life [-] (default ``drive.service_factor`` or 1).
+    elongation : float
+        Permitted elongation for the wear life [-] (default 3 %).
+    sag_ratio : float
+        Sag of the slack span as a fraction of its length [-].
+    shaft_load_factor : float
+        kв of the shaft loads [-].
+
+    Returns
+    -------
+    StrengthResult
+        The static strength.
+
+    References
+    ----------
+    [ChainDesignRU, Table 2A, Table 9A]; [Shigley2015, Eq. 17-40].
     """
     if not 0 < elongation <= 0.1:
         raise DesignError("elongation", f"must be a fraction in (0, 0.1], got {elongation!r}")
@@ -104,8 +155,8 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
         warnings.append(ChainDriveWarning(
             "strength.bearing-area-estimated", "chain",
             f"{spec.designation}: no bearing area in the catalogue; estimated "
-            f"A = {area * 1e6:.1f} mm² (1.42·d2·b1·mр)"))
-    pressure = loads.peripheral_force * ke / area
+            f"A = {area * 1e6:.1f} mm² (mр·d2·B, chaindrive.catalog.bearing_area_estimate)"))
+    pressure = hinge_pressure(loads.peripheral_force, ke, area)
     s = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                              loads.centrifugal_tension, dynamic_factor)
     steel = spec.material == "steel"

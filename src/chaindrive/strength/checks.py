@@ -28,22 +28,23 @@ Rules and their sources
 
 References
 ----------
-See ``docs/references.md`` and ``docs/selection.md``.
+Each rule above names its source; see also ``docs/selection.md``.
 """
 
 from __future__ import annotations
 
 import math
 
-from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Kind, Status, verdict, worst
+from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Status, judged, verdict, worst
+from chaindrive.strength.ke_method import MPA
+from chaindrive.strength.wear import BASIS_LIFE_H
 from chaindrive.units import RAD_S_TO_RPM
 
-__all__ = ["FAIL", "PASS", "UNVERIFIED", "Check", "Status", "allowable_load_check",
+__all__ = ["BASIS_LIFE_H", "FAIL", "MAX_SPAN_PITCHES", "MIN_SAFETY_RATED", "MIN_TEETH_IN_MESH",
+           "MIN_WRAP", "PASS", "UNVERIFIED", "Check", "Status", "allowable_load_check",
            "hinge_pressure_check", "power_rating_check", "span_length_check",
            "speed_limit_check", "static_safety_check", "teeth_in_mesh_check", "verdict",
            "wear_life_check", "worst", "wrap_check"]
-
-MPA = 1e6
 
 #: Least teeth in mesh on any sprocket, idlers included [Renold-DG].
 MIN_TEETH_IN_MESH = 3.0
@@ -54,67 +55,194 @@ MIN_WRAP = math.radians(120.0)
 MIN_SAFETY_RATED = 6.0
 #: Longest span between two sprockets, in pitches (kа given up to a = 80 t) [TrinhChat2006].
 MAX_SPAN_PITCHES = 80.0
-#: Wear-life basis of the ratings [h] [Shigley2015, §17-5].
-BASIS_LIFE_H = 15000.0
-
-
-def _check(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
-           source: str, unit: str = "", scale: float = 1.0, note: str = "",
-           part: str = "chain", item: str = "") -> Check:
-    return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
-                 unit, scale, note, part, item)
 
 
 def hinge_pressure_check(subject: str, pressure: float, allowable: float | None,
                          source: str = "[ChainDesignRU, Table 2A]", note: str = "") -> Check:
-    """p ≤ [p]: pressure and allowable [Pa]; ``allowable`` None (outside the table) →
-    "cannot be verified"."""
+    """Hinge pressure p ≤ [p].
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    pressure : float
+        p = Kэ·F_t/A [Pa].
+    allowable : float or None
+        [p] [Pa]; None (outside the table) → "cannot be verified".
+    source : str
+        The rule's reference key.
+    note : str
+        What the verdict rests on.
+
+    Returns
+    -------
+    Check
+        Shown in MPa.
+
+    References
+    ----------
+    [ChainDesignRU, Table 2A].
+    """
     if allowable is None:
         note = note or "no [p] in the table for this pitch and speed"
-    return _check("hinge pressure", subject, pressure, allowable, "max", source, "MPa",
-                  1 / MPA, note)
+    return judged("hinge pressure", subject, pressure, allowable, "max", source, "MPa",
+                  1 / MPA, note, "chain")
 
 
 def static_safety_check(subject: str, safety: float, allowable: float | None,
                         source: str, note: str = "") -> Check:
-    """s ≥ [s] (both dimensionless); ``allowable`` None → "cannot be verified"."""
+    """Static safety s ≥ [s].
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    safety : float
+        s [-].
+    allowable : float or None
+        [s] [-]; None → "cannot be verified".
+    source : str
+        The rule's reference key.
+    note : str
+        What the verdict rests on.
+
+    Returns
+    -------
+    Check
+        The check.
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.10]; [DiamondChain].
+    """
     if allowable is None:
         note = note or "no [s] in the table for this pitch and speed"
-    return _check("static safety", subject, safety, allowable, "min", source, note=note)
+    return judged("static safety", subject, safety, allowable, "min", source, note=note,
+                  part="chain")
 
 
 def speed_limit_check(subject: str, speed: float, max_speed: float | None, source: str,
                       note: str = "", *, linear: bool = False) -> Check:
-    """Speed ≤ its limit: small-sprocket speed [rad/s] (shown in rpm) or, with ``linear``,
-    chain speed [m/s]; ``max_speed`` None → "cannot be verified"."""
+    """Speed ≤ its limit.
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    speed : float
+        Small-sprocket speed [rad/s] (shown in rpm) or, with ``linear``, chain speed [m/s].
+    max_speed : float or None
+        The limit [rad/s or m/s]; None → "cannot be verified".
+    source : str
+        The rule's reference key.
+    note : str
+        What the verdict rests on.
+    linear : bool
+        True for a chain speed.
+
+    Returns
+    -------
+    Check
+        The check.
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.8]; [Shigley2015, §17-5].
+    """
     if max_speed is None:
         note = note or "no speed limit known for this pitch"
     unit, scale = ("m/s", 1.0) if linear else ("rpm", RAD_S_TO_RPM)
-    return _check("speed limit", subject, speed, max_speed, "max", source, unit, scale, note)
+    return judged("speed limit", subject, speed, max_speed, "max", source, unit, scale, note,
+                  "chain")
 
 
 def power_rating_check(subject: str, rated: float | None, design: float, source: str,
                        note: str = "") -> Check:
-    """Rated power of the chain ≥ design power (P·K_s·n_d) [W]; ``rated`` None → "cannot be
-    verified"."""
+    """Rated power of the chain ≥ the design power P·K_s·n_d.
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    rated : float or None
+        Rated power of the whole chain [W]; None → "cannot be verified".
+    design : float
+        Design power [W].
+    source : str
+        The rule's reference key.
+    note : str
+        What the verdict rests on.
+
+    Returns
+    -------
+    Check
+        Shown in kW.
+
+    References
+    ----------
+    [Shigley2015, §17-5].
+    """
     if rated is None:
         note = note or "no rating for this chain at this speed"
-    return _check("power rating", subject, rated, design, "min", source, "kW", 1e-3, note)
+    return judged("power rating", subject, rated, design, "min", source, "kW", 1e-3, note,
+                  "chain")
 
 
 def wear_life_check(subject: str, life_h: float | None, required_h: float = BASIS_LIFE_H,
                     source: str = "[Shigley2015, Eq. 17-40]", note: str = "") -> Check:
-    """Wear life [h] to the permitted elongation ≥ the required life (default the 15 000 h
-    rating basis); ``life_h`` None → "cannot be verified"."""
+    """Wear life to the permitted elongation ≥ the required life.
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    life_h : float or None
+        Wear life [h]; None → "cannot be verified".
+    required_h : float
+        Required life [h] (default the 15 000 h rating basis).
+    source : str
+        The rule's reference key.
+    note : str
+        What the verdict rests on.
+
+    Returns
+    -------
+    Check
+        The check.
+
+    References
+    ----------
+    [Shigley2015, Eq. 17-40].
+    """
     if life_h is None:
         note = note or "no wear-life model for this chain"
-    return _check("wear life", subject, life_h, required_h, "min", source, "h", note=note)
+    return judged("wear life", subject, life_h, required_h, "min", source, "h", note=note,
+                  part="chain")
 
 
 def teeth_in_mesh_check(sprocket: str, teeth_in_mesh: float, role: str) -> Check:
-    """At least 3 teeth in mesh on every sprocket — driver, driven and idler alike
-    [Renold-DG]: fewer lets the chain jump or climb the teeth under load."""
-    return _check("teeth in mesh", sprocket, teeth_in_mesh, MIN_TEETH_IN_MESH, "min",
+    """At least 3 teeth in mesh on every sprocket — driver, driven and idler alike: fewer
+    lets the chain jump or climb the teeth under load.
+
+    Parameters
+    ----------
+    sprocket : str
+        The sprocket.
+    teeth_in_mesh : float
+        z·θ/2π [-].
+    role : str
+        "driver", "driven" or "idler" (the note).
+
+    Returns
+    -------
+    Check
+        Keyed ``teeth_in_mesh[<sprocket>]``.
+
+    References
+    ----------
+    [Renold-DG].
+    """
+    return judged("teeth in mesh", sprocket, teeth_in_mesh, MIN_TEETH_IN_MESH, "min",
                   "[Renold-DG, idler sprockets]", "teeth", note=role, part="geometry",
                   item=sprocket)
 
@@ -123,27 +251,85 @@ def wrap_check(sprocket: str, wrap: float, role: str, small: bool = False) -> Ch
     """Wrap angle [rad] ≥ 120° on the driver and on the small loaded sprocket (the one the
     rating refers to) [Mott2014, ch. 7]; other sprockets — the driven sprockets of a
     serpentine contour, idlers — are held to the teeth-in-mesh rule only (the result then
-    passes with no limit)."""
+    passes with no limit).
+
+    Parameters
+    ----------
+    sprocket : str
+        The sprocket.
+    wrap : float
+        Wrap angle [rad] (shown in degrees).
+    role : str
+        "driver", "driven" or "idler".
+    small : bool
+        True for the small loaded sprocket.
+
+    Returns
+    -------
+    Check
+        Keyed ``wrap[<sprocket>]``.
+
+    References
+    ----------
+    [Mott2014, ch. 7].
+    """
     limit = MIN_WRAP if role == "driver" or small else 0.0
     note = ("driver" if role == "driver" else "small loaded sprocket") if limit else (
         f"{role}: held to the teeth-in-mesh rule only")
-    return _check("wrap", sprocket, wrap, limit, "min", "[Mott2014, ch. 7]", "deg",
+    return judged("wrap", sprocket, wrap, limit, "min", "[Mott2014, ch. 7]", "deg",
                   180.0 / math.pi, note, part="geometry", item=sprocket)
 
 
 def span_length_check(subject: str, span_pitches: float,
                       limit: float = MAX_SPAN_PITCHES) -> Check:
-    """Longest free span ≤ 80 pitches [TrinhChat2006, Table 5.2] (the kа factor covers
-    a ≤ 80 t): a longer span needs guides or intermediate sprockets (whip, sag)."""
-    return _check("span length", subject, span_pitches, limit, "max",
+    """Longest free span ≤ 80 pitches (the kа factor covers a ≤ 80 t): a longer span needs
+    guides or intermediate sprockets (whip, sag).
+
+    Parameters
+    ----------
+    subject : str
+        The span.
+    span_pitches : float
+        Its length [pitches].
+    limit : float
+        The longest allowed [pitches].
+
+    Returns
+    -------
+    Check
+        The check.
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.2].
+    """
+    return judged("span length", subject, span_pitches, limit, "max",
                   "[TrinhChat2006, Table 5.2]", "pitches", part="geometry")
 
 
 def allowable_load_check(subject: str, tension: float, allowable: float | None,
                          source: str, note: str = "") -> Check:
-    """Chain pull [N] ≤ the manufacturer's allowable (working) load [N]; None → "cannot be
-    verified"."""
+    """Chain pull ≤ the manufacturer's allowable (working) load.
+
+    Parameters
+    ----------
+    subject : str
+        The chain.
+    tension : float
+        Chain pull [N].
+    allowable : float or None
+        Allowable load [N]; None → "cannot be verified".
+    source : str
+        The catalogue row.
+    note : str
+        What the verdict rests on.
+
+    Returns
+    -------
+    Check
+        Shown in kN.
+    """
     if allowable is None:
         note = note or "the catalogue gives no allowable load for this chain"
-    return _check("allowable load", subject, tension, allowable, "max", source, "kN", 1e-3,
-                  note)
+    return judged("allowable load", subject, tension, allowable, "max", source, "kN", 1e-3,
+                  note, "chain")

@@ -30,31 +30,44 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from chaindrive.checks import judged
 from chaindrive.geometry.results import GeometryResult
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import iso10823, ke_method, ratings
 from chaindrive.strength.loads import (
     centrifugal_tension,
-    chain_speed,
+    hinge_pressure,
     peripheral_force,
     sag_tension,
     small_sprocket,
 )
 from chaindrive.strength.safety import static_safety_factor
-from chaindrive.strength.wear import wear_life_hours
+from chaindrive.strength.wear import BASIS_LIFE_H, BASIS_LINKS, wear_life_hours
+
+__all__ = ["CheckSettings", "chain_checks", "checks_for", "geometry_checks", "settings_for"]
 
 
 @dataclass(frozen=True, slots=True)
 class CheckSettings:
     """What the checks are held to.
 
-    service_factor K_s and design_factor n_d of the design power P·K_s·n_d (rating methods
-    and the polymer allowable load); operating_factor Kэ (Kэ method); dynamic_factor kд of
-    the static safety s = Q/(kд·F_t + F_0 + F_v); required_life_h of the wear-life check
-    [h] (None: the life the rating promises for the chain's length, 15 000 h·L_p/100 —
-    then the check agrees with the rating check; give a service life to require more);
-    method: force "Kэ" (or a rating method) instead of the chain's own (None).
+    Parameters
+    ----------
+    service_factor, design_factor : float
+        K_s and n_d of the design power P·K_s·n_d [-] (rating methods and the polymer
+        allowable load).
+    operating_factor : float
+        Kэ [-] (Kэ method).
+    dynamic_factor : float
+        kд of the static safety s = Q/(kд·F_t + F_0 + F_v) [-].
+    required_life_h : float or None
+        Required wear life [h] (None: the life the rating promises for the chain's length,
+        15 000 h·L_p/100 — then the check agrees with the rating check; give a service life
+        to require more).
+    method : str or None
+        Force "Kэ" (or a rating method) instead of the chain's own (None).
     """
 
     service_factor: float = 1.0
@@ -65,12 +78,35 @@ class CheckSettings:
     method: str | None = None
 
 
-def settings_for(drive: Drive, **overrides: float | str | None) -> CheckSettings:
-    """Settings with K_s and Kэ defaulting to ``drive.service_factor`` (or 1)."""
+def settings_for(drive: Drive, *, service_factor: float | None = None,
+                 design_factor: float | None = None, operating_factor: float | None = None,
+                 dynamic_factor: float | None = None, required_life_h: float | None = None,
+                 method: str | None = None) -> CheckSettings:
+    """Settings with K_s and Kэ defaulting to ``drive.service_factor`` (or 1).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    service_factor, design_factor, operating_factor, dynamic_factor : float or None
+        K_s, n_d, Kэ, kд [-] (None: the default).
+    required_life_h : float or None
+        Required wear life [h] (None: the rating's own).
+    method : str or None
+        Force a method (None: each chain's own).
+
+    Returns
+    -------
+    CheckSettings
+        The settings.
+    """
     base = drive.service_factor or 1.0
-    values = {"service_factor": base, "operating_factor": base}
-    values.update({k: v for k, v in overrides.items() if v is not None})
-    return CheckSettings(**values)  # type: ignore[arg-type]
+    return CheckSettings(
+        service_factor=base if service_factor is None else service_factor,
+        design_factor=1.0 if design_factor is None else design_factor,
+        operating_factor=base if operating_factor is None else operating_factor,
+        dynamic_factor=1.0 if dynamic_factor is None else dynamic_factor,
+        required_life_h=required_life_h, method=method)
 
 
 @dataclass(frozen=True, slots=True)
@@ -88,7 +124,7 @@ def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
     formulas as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
     spec, driver = drive.chain.spec, drive.driver
     assert drive.power is not None and driver.speed is not None
-    v = chain_speed(driver.teeth, spec.pitch, driver.speed)
+    v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
     slack = next(sp for sp in geometry.spans if sp.start == drive.driver_index)
     return _Forces(v, peripheral_force(drive.power, v),
                    sag_tension(spec.mass_per_length, slack.length, slack.inclination),
@@ -108,7 +144,7 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     life = (None if rating.rated_power is None else
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
     if s.required_life_h is None:  # the life the rating promises for this chain length
-        required = ck.BASIS_LIFE_H * geometry.links / 100.0
+        required = BASIS_LIFE_H * geometry.links / BASIS_LINKS
         note = (f"{geometry.links} links: the rating basis 15 000 h × L_p/100 (set a "
                 "required life for a service-life requirement)")
     else:
@@ -130,7 +166,7 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     name = spec.designation
     teeth, speed = small_sprocket(drive)
     area, estimated = ke_method.bearing_area(spec)
-    pressure = loads.peripheral_force * s.operating_factor / area
+    pressure = hinge_pressure(loads.peripheral_force, s.operating_factor, area)
     note = "bearing area estimated" if estimated else ""
     out = [ck.hinge_pressure_check(name, pressure,
                                    ke_method.allowable_pressure(spec.pitch, speed), note=note)]
@@ -138,10 +174,9 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                                     "[TrinhChat2006, Table 5.8]"))
     hits = ke_method.impacts_per_second(teeth, speed, geometry.links)
     allowed = ke_method.allowable_impacts(spec.pitch)
-    out.append(ck.Check("impacts per second", name, hits, allowed, "max",
-                        ck.verdict(hits, allowed, "max"), "[TrinhChat2006, Table 5.9]", "1/s",
-                        note="" if allowed is not None else "no [i] for this pitch",
-                        part="chain"))
+    out.append(judged("impacts per second", name, hits, allowed, "max",
+                      "[TrinhChat2006, Table 5.9]", "1/s",
+                      note="" if allowed is not None else "no [i] for this pitch", part="chain"))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
     out.append(ck.static_safety_check(name, safety,
@@ -163,7 +198,20 @@ def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.C
 
 
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
-    """Teeth in mesh and wrap of every sprocket, and the longest span (module docstring)."""
+    """Teeth in mesh and wrap of every sprocket, and the longest span (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    geometry : GeometryResult
+        Its contour.
+
+    Returns
+    -------
+    list of Check
+        The layout's checks.
+    """
     out: list[ck.Check] = []
     loaded = [s for s in drive.sprockets if s.role in ("driver", "driven")]
     small = min(loaded, key=lambda s: s.teeth).name
@@ -178,7 +226,22 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
 
 def chain_checks(drive: Drive, geometry: GeometryResult,
                  settings: CheckSettings | None = None) -> list[ck.Check]:
-    """The checks of the chain itself (strength, speed, life) by its method."""
+    """The checks of the chain itself (strength, speed, life) by its method.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed given).
+    geometry : GeometryResult
+        Its contour.
+    settings : CheckSettings or None
+        What the checks are held to (None: :func:`settings_for` the drive).
+
+    Returns
+    -------
+    list of Check
+        The chain's checks.
+    """
     s = settings or settings_for(drive)
     loads = _forces(drive, geometry)
     method = s.method or ratings.method_for(drive.chain.spec)
@@ -191,5 +254,20 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
 
 def checks_for(drive: Drive, geometry: GeometryResult,
                settings: CheckSettings | None = None) -> tuple[ck.Check, ...]:
-    """Every check of ``drive`` (power and driver speed given) laid out as ``geometry``."""
+    """Every check of a drive: its chain's and its layout's.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed given).
+    geometry : GeometryResult
+        Its contour.
+    settings : CheckSettings or None
+        What the checks are held to (None: :func:`settings_for` the drive).
+
+    Returns
+    -------
+    tuple of Check
+        :func:`chain_checks` then :func:`geometry_checks`.
+    """
     return (*chain_checks(drive, geometry, settings), *geometry_checks(drive, geometry))

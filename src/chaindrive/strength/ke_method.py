@@ -4,34 +4,46 @@ Kэ = kд·kа·kн·kрег·kсм·kреж; pressure check p = Kэ·Ft/A ≤ [
 the whole chain); pitch estimate t ≥ 2.8·∛(T₁·Kэ/(z₁·[p]·mр)) (T₁ [N·mm], [p] [MPa], t [mm]);
 recommended z₁ = 29 − 2u; limits on the small-sprocket speed and on chain impacts per second.
 
-Sources (tags as in ``shared/data/chain_design_method_ru.md``; the textbooks — Иванов,
+Source: the classical Russian method [ChainDesignRU] (the textbooks — Иванов,
 Дунаев–Леликов, Решетов, Чернавский, Шейнблит — reached us only through course programs that
-reproduce them): [JAVA], [PY], [CS], [CPP], [VN-SQL], [VN-CODE]; data in
-``strength/data/ke_method.toml``.
+reproduce them) and the Russian-derived tables of [TrinhChat2006]; the data, with the tag of
+the program each value comes from, in ``strength/data/ke_method.toml``.
 """
 
 from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from typing import Any
 
 import numpy as np
 
+from chaindrive.catalog import bearing_area_estimate, row_factor
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
 from chaindrive.units import RAD_S_TO_RPM
 
+__all__ = ["MPA", "allowable_impacts", "allowable_pressure", "allowable_safety_factor",
+           "bearing_area", "center_distance_factor", "data", "factor", "impacts_per_second",
+           "inclination_factor", "max_speed", "operating_factor", "pitch_estimate",
+           "recommended_teeth", "row_factor", "teeth_corrected_pressure"]
+
+#: One megapascal [Pa].
 MPA = 1e6
 PITCH_TOL = 1e-6  # [m] when matching a pitch to a table group
 
 
 @cache
 def data() -> dict[str, Any]:
-    """The Kэ-method tables (``data/ke_method.toml``)."""
+    """The Kэ-method tables (``data/ke_method.toml``, read once).
+
+    Returns
+    -------
+    dict
+        The parsed tables, each with the tag of its source in the file.
+    """
     text = resources.files("chaindrive.strength").joinpath("data/ke_method.toml").read_bytes()
     return tomllib.loads(text.decode("utf-8"))
 
@@ -39,9 +51,22 @@ def data() -> dict[str, Any]:
 def factor(kind: str, condition: str | int) -> float:
     """One partial factor of Kэ from its table.
 
-    kind : "dynamic" (kд: calm / shocks / heavy_shocks), "adjustment" (kрег: adjustable_shaft /
-    idler / none), "lubrication" (kсм: continuous / drip / periodic), "mode" (kреж: 1, 2, 3
-    shifts). Sources: [JAVA], [PY], [CS], [VN-SQL].
+    Parameters
+    ----------
+    kind : str
+        "dynamic" (kд), "adjustment" (kрег), "lubrication" (kсм) or "mode" (kреж).
+    condition : str or int
+        kд: calm / shocks / heavy_shocks; kрег: adjustable_shaft / idler / none;
+        kсм: continuous / drip / periodic; kреж: 1, 2, 3 shifts.
+
+    Returns
+    -------
+    float
+        The factor [-].
+
+    References
+    ----------
+    [ChainDesignRU, §2]; [TrinhChat2006, Table 5.6].
     """
     tables = data()["factors"]
     if kind not in tables or kind in {"center_distance", "inclination"}:
@@ -56,10 +81,26 @@ def factor(kind: str, condition: str | int) -> float:
 
 
 def center_distance_factor(center_distance: float, pitch: float) -> float:
-    """kа by the centre distance in pitches a/t ([VN-SQL], [CS]).
+    """kа by the centre distance in pitches a/t.
 
     ≤ 25 t: 1.25 (direction of the inequality unconfirmed); up to 60 t: 1.0 (30…50 t in the
     source; 25…30 and 50…60 t are not tabulated and take 1.0 here); ≥ 60 t: 0.8.
+
+    Parameters
+    ----------
+    center_distance : float
+        a [m].
+    pitch : float
+        t [m].
+
+    Returns
+    -------
+    float
+        kа [-].
+
+    References
+    ----------
+    [ChainDesignRU, §2]; [TrinhChat2006, Table 5.6].
     """
     ratio = center_distance / pitch
     table = data()["factors"]["center_distance"]
@@ -71,8 +112,23 @@ def center_distance_factor(center_distance: float, pitch: float) -> float:
 
 
 def inclination_factor(inclination: float) -> float:
-    """kн by the inclination ψ [rad] of the line of centres to the horizontal ([VN-SQL] k0):
-    1.0 up to 60°, 1.25 above."""
+    """kн by the inclination of the line of centres to the horizontal: 1.0 up to 60°, 1.25
+    above.
+
+    Parameters
+    ----------
+    inclination : float
+        ψ [rad].
+
+    Returns
+    -------
+    float
+        kн [-].
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.6] (k0); [ChainDesignRU, §2].
+    """
     table = data()["factors"]["inclination"]
     limit = math.radians(table["limit_deg"])
     return float(table["below"] if abs(inclination) <= limit else table["above"])
@@ -80,16 +136,23 @@ def inclination_factor(inclination: float) -> float:
 
 def operating_factor(kd: float = 1.0, ka: float = 1.0, kn: float = 1.0, kreg: float = 1.0,
                      ksm: float = 1.0, kmode: float = 1.0) -> float:
-    """Operating (exploitation) factor Kэ = kд·kа·kн·kрег·kсм·kреж ([JAVA], [CS], [PY], [VN-SQL])."""
+    """Operating (exploitation) factor Kэ = kд·kа·kн·kрег·kсм·kреж.
+
+    Parameters
+    ----------
+    kd, ka, kn, kreg, ksm, kmode : float
+        The partial factors kд, kа, kн, kрег, kсм, kреж [-] (:func:`factor`).
+
+    Returns
+    -------
+    float
+        Kэ [-].
+
+    References
+    ----------
+    [ChainDesignRU, §2].
+    """
     return kd * ka * kn * kreg * ksm * kmode
-
-
-def row_factor(rows: int) -> float:
-    """Row factor mр = 1, 1.7, 2.5, 3.0 for 1…4 rows ([VN-CODE])."""
-    table = data()["row_factor"]
-    if str(rows) not in table:
-        raise DesignError("chain.strands", f"the Kэ method covers 1 to 4 rows, got {rows!r}")
-    return float(table[str(rows)])
 
 
 def _grid_value(section: str, pitch: float, speed: float) -> float | None:
@@ -108,24 +171,71 @@ def _grid_value(section: str, pitch: float, speed: float) -> float | None:
 
 
 def allowable_pressure(pitch: float, speed: float) -> float | None:
-    """Allowable mean joint pressure [p] [Pa] for pitch [m] and small-sprocket speed [rad/s].
+    """Allowable mean joint pressure [p], interpolated linearly in n1 (below 50 rpm the
+    50 rpm value).
 
-    Table 2A of chain_design_method_ru.md ([JAVA], [PY]), interpolated linearly in n1 (below
-    50 rpm the 50 rpm value); None outside the table (pitch outside 12.7…50.8 mm, or speed
-    above the last column of its group).
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch [m].
+    speed : float
+        Small-sprocket speed [rad/s].
+
+    Returns
+    -------
+    float or None
+        [p] [Pa]; None outside the table (pitch outside 12.7…50.8 mm, or speed above the last
+        column of its group).
+
+    References
+    ----------
+    [ChainDesignRU, Table 2A].
     """
     value = _grid_value("allowable_pressure", pitch, speed)
     return None if value is None else value * MPA
 
 
 def teeth_corrected_pressure(allowable: float, teeth: int) -> float:
-    """[p]·[1 + 0.01·(z1 − 17)]: the table is for z1 = 17 (Чернавский, via [CPP])."""
+    """[p]·[1 + 0.01·(z1 − 17)]: the table is for z1 = 17.
+
+    Parameters
+    ----------
+    allowable : float
+        [p] of the table [Pa].
+    teeth : int
+        z1 [-].
+
+    Returns
+    -------
+    float
+        The corrected [p] [Pa].
+
+    References
+    ----------
+    [ChainDesignRU, §3] (after Чернавский).
+    """
     return allowable * (1.0 + 0.01 * (teeth - 17))
 
 
 def allowable_safety_factor(pitch: float, speed: float) -> float | None:
-    """Allowable static safety factor [s] for pitch [m] and speed [rad/s] (Table 9A, [VN-SQL]
-    table 5.10), interpolated in n1; None outside the table."""
+    """Allowable static safety factor [s], interpolated in n1.
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch [m].
+    speed : float
+        Small-sprocket speed [rad/s].
+
+    Returns
+    -------
+    float or None
+        [s] [-]; None outside the table.
+
+    References
+    ----------
+    [ChainDesignRU, Table 9A]; [TrinhChat2006, Table 5.10].
+    """
     return _grid_value("allowable_safety", pitch, speed)
 
 
@@ -138,28 +248,89 @@ def _by_pitch(section: str, key: str, pitch: float) -> float | None:
 
 
 def max_speed(pitch: float) -> float | None:
-    """Highest small-sprocket speed [rad/s] for the pitch [m] ([VN-SQL] table 5.8, column
-    n1_z1_15, equal to [JAVA] n1p); None for pitches not in the table."""
+    """Highest small-sprocket speed for a pitch (column z1 = 15).
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch [m].
+
+    Returns
+    -------
+    float or None
+        n1 max [rad/s]; None for pitches not in the table.
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.8]; [ChainDesignRU, §5].
+    """
     value = _by_pitch("speed_limit", "max_rpm", pitch)
     return None if value is None else value / RAD_S_TO_RPM
 
 
 def impacts_per_second(teeth: int, speed: float, links: int | float) -> float:
-    """Chain impacts (hits) per second i = z1·n1/(15·Lt) [1/s], n1 in rpm; speed [rad/s]
-    ([VN-CODE]; the Russian form ν = 4·z1·n1/(60·Lt) is the same)."""
+    """Chain impacts (hits) per second i = z1·n1/(15·Lt), n1 in rpm (the Russian form
+    ν = 4·z1·n1/(60·Lt) is the same).
+
+    Parameters
+    ----------
+    teeth : int
+        z1 [-].
+    speed : float
+        Small-sprocket speed [rad/s].
+    links : int or float
+        Lt [links].
+
+    Returns
+    -------
+    float
+        i [1/s].
+
+    References
+    ----------
+    [ChainDesignRU, §5]; [TrinhChat2006, Table 5.9].
+    """
     return teeth * (speed * RAD_S_TO_RPM) / (15.0 * links)
 
 
 def allowable_impacts(pitch: float) -> float | None:
-    """Allowable impacts per second [i] for roller/bush chains ([VN-SQL] table 5.9); None when
-    the pitch is not tabulated."""
+    """Allowable impacts per second [i] for roller/bush chains.
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch [m].
+
+    Returns
+    -------
+    float or None
+        [i] [1/s]; None when the pitch is not tabulated.
+
+    References
+    ----------
+    [TrinhChat2006, Table 5.9].
+    """
     return _by_pitch("impacts", "max_per_s", pitch)
 
 
 def recommended_teeth(ratio: float) -> int:
-    """Recommended small-sprocket teeth z1 = 29 − 2u ([JAVA], [PY], [VN-CODE]), rounded to the
-    nearest odd number (an even value goes up: more teeth run smoother) and kept ≥ 13
-    ([JAVA] rejects z1 < 13)."""
+    """Recommended small-sprocket teeth z1 = 29 − 2u, rounded to the nearest odd number (an
+    even value goes up: more teeth run smoother) and kept ≥ 13.
+
+    Parameters
+    ----------
+    ratio : float
+        Transmission ratio u [-].
+
+    Returns
+    -------
+    int
+        z1 [-].
+
+    References
+    ----------
+    [ChainDesignRU, §4].
+    """
     z = 29.0 - 2.0 * ratio
     odd = 2 * math.floor(z / 2.0) + 1
     return max(13, int(odd))
@@ -167,81 +338,60 @@ def recommended_teeth(ratio: float) -> int:
 
 def pitch_estimate(torque: float, operating: float, teeth: int, allowable: float,
                    rows: int = 1) -> float:
-    """Minimum pitch t ≥ 2.8·∛(T₁·Kэ/(z₁·[p]·mр)) [m].
+    """Minimum pitch t ≥ 2.8·∛(T₁·Kэ/(z₁·[p]·mр)).
 
-    torque T₁ [N·m] on the small sprocket; allowable [p] [Pa]; rows → mр. The source formula
-    takes T₁ in N·mm and [p] in MPa and gives t in mm ([CPP]; same as 28·∛ with T in N·m [PY]).
+    The source formula takes T₁ in N·mm and [p] in MPa and gives t in mm (the same as 28·∛
+    with T in N·m).
+
+    Parameters
+    ----------
+    torque : float
+        T₁ on the small sprocket [N·m].
+    operating : float
+        Kэ [-].
+    teeth : int
+        z₁ [-].
+    allowable : float
+        [p] [Pa].
+    rows : int
+        Rows of the chain [-] (mр from :func:`chaindrive.catalog.row_factor`).
+
+    Returns
+    -------
+    float
+        t [m].
+
+    References
+    ----------
+    [ChainDesignRU, §3].
     """
     t_mm = 2.8 * np.cbrt(torque * 1e3 * operating / (teeth * (allowable / MPA) * row_factor(rows)))
     return float(t_mm) * 1e-3
 
 
-def links_two_sprocket(center_distance: float, pitch: float, teeth1: int, teeth2: int) -> float:
-    """Chain length in pitches Lt = 2·a/t + (z1 + z2)/2 + ((z2 − z1)/2π)²·t/a (not rounded).
-
-    Sources: [CPP], [PY], [CS]; Shigley Eq. 17-34 is the same.
-    """
-    at = center_distance / pitch
-    delta = (teeth2 - teeth1) / (2.0 * math.pi)
-    return 2.0 * at + 0.5 * (teeth1 + teeth2) + delta**2 / at
-
-
 def bearing_area(chain: ChainSpec) -> tuple[float, bool]:
-    """Projected bearing area A of the whole chain [m²] and whether it was estimated.
+    """Projected bearing area A of the whole chain and whether it was estimated.
 
-    The catalogue value when present; otherwise A ≈ 1.42·d2·b1·mр, with 1.42 the median ratio
-    of bushing length B to inner width Bвн of the GOST 13568 ПР chains of 19.05…50.8 mm pitch
-    (``shared/data/gost13568_pr_chains.csv`` [S5]: 17.75/12.70, 22.61/15.88, …) — an estimate
-    for chains whose catalogue gives no area.
+    The catalogue value when present; otherwise the estimate of the catalogue,
+    :func:`chaindrive.catalog.bearing_area_estimate` (A = mр·d2·B, B from the transverse
+    pitch, or 1.42·b1 without it).
+
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+
+    Returns
+    -------
+    tuple of (float, bool)
+        A [m²] and True when it is an estimate.
+
+    References
+    ----------
+    [TrinhChat2006, Tables 5.5 and 5.12]; [GOST13568, Table 1].
     """
     if chain.bearing_area:
         return chain.bearing_area, False
-    rows = min(chain.strands, 4)
-    return 1.42 * chain.pin_diameter * chain.inner_width * row_factor(rows), True
-
-
-@dataclass(frozen=True, slots=True)
-class PressureCheck:
-    """Kэ-method check of one chain (SI): pressure p [Pa] vs [p] [Pa], speed vs n1 max [rad/s],
-    impacts vs [i] [1/s]; margin = the smallest of allowable/actual − 1; governing names it."""
-
-    pressure: float
-    allowable_pressure: float | None
-    speed: float
-    max_speed: float | None
-    impacts: float | None
-    allowable_impacts: float | None
-    margin: float
-    governing: str
-    area_estimated: bool
-
-    @property
-    def feasible(self) -> bool:
-        """True when every limit is met (margin ≥ 0)."""
-        return self.margin >= -1e-12
-
-
-def check_pressure(chain: ChainSpec, force: float, operating: float, teeth: int, speed: float,
-                   links: float | None = None) -> PressureCheck:
-    """Check p = Kэ·Ft/A ≤ [p], n1 ≤ n1 max and i ≤ [i] for ``chain``.
-
-    force Ft [N]; operating Kэ; speed of the small sprocket [rad/s]; links Lt (None: no
-    impacts check). A limit whose table has no entry for this pitch/speed makes the chain
-    infeasible with governing "outside the [p] table" (the method has no value there).
-    """
-    area, estimated = bearing_area(chain)
-    p = force * operating / area
-    allowed = allowable_pressure(chain.pitch, speed)
-    nmax = max_speed(chain.pitch)
-    hits = impacts_per_second(teeth, speed, links) if links else None
-    hits_max = allowable_impacts(chain.pitch)
-    margins: dict[str, float] = {}
-    margins["joint pressure"] = (allowed / p - 1.0) if allowed else -1.0
-    if nmax is not None:
-        margins["speed limit"] = nmax / speed - 1.0
-    if hits is not None and hits_max is not None:
-        margins["impacts per second"] = hits_max / hits - 1.0
-    key = min(margins, key=lambda k: margins[k])
-    governing = "outside the [p] table" if allowed is None and key == "joint pressure" else key
-    return PressureCheck(p, allowed, speed, nmax, hits, hits_max, margins[key], governing,
-                         estimated)
+    area = bearing_area_estimate(chain.pin_diameter, chain.inner_width, chain.transverse_pitch,
+                                 min(chain.strands, 4))
+    return float(area), True

@@ -8,8 +8,7 @@ the chain puts on sprocket k is (T_out − T_in)·R_k. The driver therefore take
 T_tight − T_slack = F_t from the motor, and every driven sprocket k gives T_out − T_in = F_t,k
 to its load: going *against* the chain travel from the tight span, each driven sprocket lowers
 the tension by its peripheral force (idlers leave it unchanged), down to the slack span leaving
-the driver, which carries F_0 + F_v (Russian practice, e.g. Решетов/Иванов as reproduced in
-``shared/data/chain_design_method_ru.md`` §8; Shigley §17-5 for F = P/v).
+the driver, which carries F_0 + F_v [ChainDesignRU, §8]; F = P/v [Shigley2015, §17-5].
 """
 
 from __future__ import annotations
@@ -19,30 +18,42 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
+
+__all__ = ["DEFAULT_SAG_RATIO", "G", "LoadsResult", "centrifugal_tension", "hinge_pressure",
+           "loads_of", "peripheral_force", "power_shares", "sag_factor", "sag_tension",
+           "shaft_load_vectors", "small_sprocket", "span_tensions"]
 
 G = 9.80665  # standard gravity [m/s²]
 DEFAULT_SAG_RATIO = 0.02  # f/a, sag of the slack span as a fraction of its length
 SHARE_TOLERANCE = 1e-6
 
 
-def chain_speed(teeth: int | float, pitch: float, omega: float) -> float:
-    """Mean chain speed v = z·p·ω/(2π) [m/s].
+def power_shares(drive: Drive) -> NDArray[np.float64]:
+    """Fraction of the drive power taken off at each sprocket.
 
-    teeth : z of the sprocket; pitch : p [m]; omega : its angular speed ω [rad/s].
-    Source: Shigley Eq. 17-30 (V = N·p·n/12) in SI; Russian v = z1·t·n1/60000.
-    """
-    return teeth * pitch * omega / (2.0 * math.pi)
+    Driven sprockets without ``power_share`` split what the others leave equally.
 
+    Parameters
+    ----------
+    drive : Drive
+        The design.
 
-def power_shares(drive: Drive) -> np.ndarray:
-    """Fraction of the drive power taken off at each sprocket (0 for the driver and idlers).
+    Returns
+    -------
+    numpy.ndarray
+        (n,) share of each sprocket [-], 0 for the driver and idlers.
 
-    Driven sprockets without ``power_share`` split what the others leave equally; the shares
-    must add up to 1 (DesignError naming ``sprockets[...].power_share`` otherwise).
+    Raises
+    ------
+    DesignError
+        Naming ``sprockets[...].power_share`` when the shares do not add up to 1.
     """
     shares = np.zeros(len(drive.sprockets))
     driven = [i for i, s in enumerate(drive.sprockets) if s.role == "driven"]
@@ -53,8 +64,8 @@ def power_shares(drive: Drive) -> np.ndarray:
             raise DesignError(f"sprockets[{s.name}].power_share",
                               f"only driven sprockets take power; a {s.role} takes none, "
                               f"got {s.power_share!r}")
-    given = {i: drive.sprockets[i].power_share for i in driven
-             if drive.sprockets[i].power_share is not None}
+    given: dict[int, float] = {i: share for i in driven
+                               if (share := drive.sprockets[i].power_share) is not None}
     free = [i for i in driven if i not in given]
     rest = 1.0 - sum(given.values())
     names = ", ".join(drive.sprockets[i].name for i in given) or "none"
@@ -74,48 +85,131 @@ def power_shares(drive: Drive) -> np.ndarray:
 
 
 def peripheral_force(power: float, speed: float) -> float:
-    """Peripheral (useful) force F_t = P/v [N]; power [W], speed v [m/s] (Shigley §17-5)."""
+    """Peripheral (useful) force F_t = P/v.
+
+    Parameters
+    ----------
+    power : float
+        Transmitted power P [W].
+    speed : float
+        Chain speed v [m/s].
+
+    Returns
+    -------
+    float
+        F_t [N].
+
+    References
+    ----------
+    [Shigley2015, §17-5].
+    """
     return power / speed
 
 
 def centrifugal_tension(mass_per_length: float, speed: float) -> float:
-    """Centrifugal tension F_v = q·v² [N]; q [kg/m], v [m/s] (Russian practice, [CPP], [PY])."""
+    """Centrifugal tension F_v = q·v².
+
+    Parameters
+    ----------
+    mass_per_length : float
+        Chain mass per metre q [kg/m].
+    speed : float
+        Chain speed v [m/s].
+
+    Returns
+    -------
+    float
+        F_v [N].
+
+    References
+    ----------
+    [ChainDesignRU, §8].
+    """
     return mass_per_length * speed**2
 
 
-def sag_factor(inclination: float | np.ndarray, sag_ratio: float = DEFAULT_SAG_RATIO
-               ) -> float | np.ndarray:
-    """Sag coefficient k_f of F_0 = k_f·q·g·a for a span inclined by ψ [rad] to the horizontal.
+def sag_factor(inclination: ArrayLike, sag_ratio: float = DEFAULT_SAG_RATIO) -> FloatOrArray:
+    """Sag coefficient k_f of F_0 = k_f·q·g·a for a span inclined by ψ to the horizontal.
 
     Parabolic approximation of the catenary: a slack span of length a sagging by f = s·a
     (s = sag_ratio, 0.02 by default) carries the horizontal pull H = q·g·a²·cos ψ/(8 f), and
     at its upper end the weight of the hanging chain adds about q·g·a·|sin ψ|, so
     k_f = cos ψ/(8 s) + |sin ψ|. For s = 0.02: 6.25 horizontal, 1 vertical — the textbook
-    range "k_f = 6 for a horizontal drive … 1 for a vertical one" (Russian practice, e.g.
-    [VN-CODE] F0 = 9.81·kf·q·a with kf = 6; the intermediate textbook values 1.5 at ~45° are
-    not confirmed, see docs/strength.md).
+    range "k_f = 6 for a horizontal drive … 1 for a vertical one" (F0 = 9.81·kf·q·a with
+    kf = 6 [ChainDesignRU, §8]; the intermediate textbook values 1.5 at ~45° are not
+    confirmed, see docs/strength.md).
+
+    Parameters
+    ----------
+    inclination : float or array_like
+        ψ [rad].
+    sag_ratio : float
+        Sag of the slack span as a fraction s of its length [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        k_f [-].
+
+    References
+    ----------
+    [ChainDesignRU, §8]; [Irvine1981, ch. 1] (parabolic cable).
     """
-    psi = np.abs(inclination)
-    return np.cos(psi) / (8.0 * sag_ratio) + np.sin(psi)
+    psi = np.abs(np.asarray(inclination, dtype=float))
+    return float_or_array(np.cos(psi) / (8.0 * sag_ratio) + np.sin(psi))
 
 
 def sag_tension(mass_per_length: float, length: float, inclination: float,
                 sag_ratio: float = DEFAULT_SAG_RATIO, gravity: float = G) -> float:
-    """Sag (gravity) tension F_0 = k_f·q·g·a [N] of a span of length a [m], q [kg/m].
+    """Sag (gravity) tension F_0 = k_f·q·g·a of a span, k_f from :func:`sag_factor`.
 
-    k_f from :func:`sag_factor`. Source: Russian practice F0 = 9.81·kf·q·a ([VN-CODE], [CPP]).
+    Parameters
+    ----------
+    mass_per_length : float
+        Chain mass per metre q [kg/m].
+    length : float
+        Span length a [m].
+    inclination : float
+        Of the span to the horizontal ψ [rad].
+    sag_ratio : float
+        Sag as a fraction s of the span [-].
+    gravity : float
+        g [m/s²].
+
+    Returns
+    -------
+    float
+        F_0 [N].
+
+    References
+    ----------
+    [ChainDesignRU, §8] (F0 = 9.81·kf·q·a).
     """
     return float(sag_factor(inclination, sag_ratio)) * mass_per_length * gravity * length
 
 
-def span_tensions(slack_index: int, sprocket_forces: np.ndarray, spans: tuple[SpanGeometry, ...],
-                  base_tension: float) -> np.ndarray:
-    """Static tension in every span [N].
+def span_tensions(slack_index: int, sprocket_forces: NDArray[np.float64],
+                  spans: tuple[SpanGeometry, ...], base_tension: float) -> NDArray[np.float64]:
+    """Static tension in every span.
 
-    slack_index : index of the span leaving the driver (tension = base_tension = F_0 + F_v);
-    sprocket_forces : F_t,k [N] given off at each sprocket k (0 for idlers and the driver).
     Going with the chain from the slack span, sprocket ``end`` of each span adds its force to
-    the tension of the next span (torque balance (T_out − T_in)·R = F_t,k·R, see module doc).
+    the tension of the next span (torque balance (T_out − T_in)·R = F_t,k·R, module doc).
+
+    Parameters
+    ----------
+    slack_index : int
+        Index of the span leaving the driver.
+    sprocket_forces : numpy.ndarray
+        (n,) F_t,k given off at each sprocket k [N] (0 for idlers and the driver).
+    spans : tuple of SpanGeometry
+        The spans of the contour.
+    base_tension : float
+        Tension of the slack span F_0 + F_v [N].
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) tension of every span [N].
     """
     n = len(spans)
     by_start = {span.start: span.index for span in spans}
@@ -130,15 +224,34 @@ def span_tensions(slack_index: int, sprocket_forces: np.ndarray, spans: tuple[Sp
     return tensions
 
 
-def shaft_load_vectors(geometry: GeometryResult, tensions: np.ndarray,
-                       centrifugal: float = 0.0, load_factor: float = 1.0) -> np.ndarray:
-    """Shaft load vector on each sprocket [N], shape (n, 2).
+def shaft_load_vectors(geometry: GeometryResult, tensions: NDArray[np.float64],
+                       centrifugal: float = 0.0, load_factor: float = 1.0) -> NDArray[np.float64]:
+    """Shaft load vector on each sprocket.
 
     F_k = kв·[(T_out − F_v)·d_out − (T_in − F_v)·d_in]: the pull of the leaving span along its
     direction of travel plus the pull of the arriving span back along its own. The centrifugal
-    tension F_v is balanced by the chain over the wrap and does not reach the shaft (Russian
-    practice: Fв = kв·Ft + 2F0, [CPP], [VN-CODE]; pass centrifugal=0 to keep it).
-    load_factor : kв (1.15 horizontal, 1.05 vertical in [VN-CODE]/[JAVA]; default 1).
+    tension F_v is balanced by the chain over the wrap and does not reach the shaft
+    (Fв = kв·Ft + 2F0 [ChainDesignRU, §8]; pass ``centrifugal=0`` to keep it).
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    tensions : numpy.ndarray
+        (n,) span tensions [N].
+    centrifugal : float
+        F_v [N].
+    load_factor : float
+        kв [-] (1.15 horizontal, 1.05 vertical [ChainDesignRU, §8]; default 1).
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, 2) load on each shaft [N].
+
+    References
+    ----------
+    [ChainDesignRU, §8].
     """
     n = len(geometry.sprockets)
     loads = np.zeros((n, 2))
@@ -147,28 +260,64 @@ def shaft_load_vectors(geometry: GeometryResult, tensions: np.ndarray,
         d = np.asarray(span.direction, dtype=float)
         loads[span.start] += t * d   # leaving span pulls forward
         loads[span.end] -= t * d     # arriving span pulls back
-    return load_factor * loads
+    out: NDArray[np.float64] = load_factor * loads
+    return out
 
 
 def hinge_pressure(force: float, operating_factor: float, bearing_area: float) -> float:
-    """Mean bearing pressure in the chain joints p = F·Kэ/A [Pa].
+    """Mean bearing pressure in the chain joints p = F·Kэ/A.
 
-    force : F [N] (peripheral force of the tight span); operating_factor : Kэ;
-    bearing_area : projected area A = d·B of the whole chain [m²] (all rows).
-    Source: Russian method, p = Kэ·Ft/(A·mр) ≤ [p] ([JAVA], [CS]); A of a multi-row chain
-    already includes mр in the GOST tables.
+    A of a multi-row chain already includes the row factor mр in the GOST tables.
+
+    Parameters
+    ----------
+    force : float
+        Peripheral force of the tight span F [N].
+    operating_factor : float
+        Kэ [-].
+    bearing_area : float
+        Projected bearing area of the whole chain A = d·B·mр [m²].
+
+    Returns
+    -------
+    float
+        p [Pa].
+
+    References
+    ----------
+    [ChainDesignRU, Table 2A]; [TrinhChat2006].
     """
     return force * operating_factor / bearing_area
 
 
 @dataclass(frozen=True, slots=True)
 class LoadsResult:
-    """Static loads of one contour (SI units).
+    """Static loads of one contour.
 
-    speed v [m/s]; peripheral_force F_t [N] of the driver; sprocket_forces [N] per sprocket
-    (power given off, 0 for the driver and idlers); power_shares per sprocket;
-    centrifugal_tension F_v [N]; sag_tension F_0 [N] (from the slack span); sag_factor k_f;
-    span_tensions [N] per span; slack_span / tight_span indices; shaft_loads (n, 2) [N].
+    Parameters
+    ----------
+    speed : float
+        Chain speed v [m/s].
+    peripheral_force : float
+        F_t of the driver [N].
+    sprocket_forces : tuple of float
+        Force given off at each sprocket [N] (0 for the driver and idlers).
+    power_shares : tuple of float
+        Share of the power of each sprocket [-].
+    centrifugal_tension : float
+        F_v [N].
+    sag_tension : float
+        F_0 of the slack span [N].
+    sag_factor : float
+        k_f [-].
+    span_tensions : tuple of float
+        Tension of each span [N].
+    slack_span, tight_span : int
+        Indices of the spans leaving and entering the driver.
+    shaft_loads : tuple of tuple of float
+        (n, 2) load vector on each shaft [N].
+    warnings : tuple of ChainDriveWarning
+        What the balance found.
     """
 
     speed: float
@@ -218,11 +367,31 @@ def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
 
 def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAULT_SAG_RATIO,
              shaft_load_factor: float = 1.0) -> LoadsResult:
-    """Static loads round the contour of ``drive`` laid out as ``geometry``.
+    """Static loads round the contour of a drive.
 
-    Needs ``drive.power`` [W] and the driver's speed [rad/s]. F_0 is the sag tension of the
-    slack span (the one leaving the driver), F_v = q·v²; tight span F_t + F_0 + F_v, slack
-    span F_0 + F_v; see the module docstring for the balance at each sprocket.
+    F_0 is the sag tension of the slack span (the one leaving the driver), F_v = q·v²;
+    tight span F_t + F_0 + F_v, slack span F_0 + F_v; see the module docstring for the
+    balance at each sprocket.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power [W] and the driver's speed [rad/s] needed).
+    geometry : GeometryResult
+        Its contour.
+    sag_ratio : float
+        Sag of the slack span as a fraction of its length [-].
+    shaft_load_factor : float
+        kв of the shaft loads [-].
+
+    Returns
+    -------
+    LoadsResult
+        Speed, forces, tensions and shaft loads.
+
+    References
+    ----------
+    [ChainDesignRU, §8]; [Shigley2015, §17-5].
     """
     if drive.power is None:
         raise DesignError("drive.power", "power is needed to compute the loads")
@@ -233,7 +402,7 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAU
         raise DesignError("geometry.spans",
                           f"expected {len(drive.sprockets)} spans, got {len(geometry.spans)}")
     spec = drive.chain.spec
-    v = chain_speed(driver.teeth, spec.pitch, driver.speed)
+    v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
     shares = power_shares(drive)
     ft = peripheral_force(drive.power, v)
     forces = shares * ft
@@ -259,11 +428,25 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAU
 
 
 def small_sprocket(drive: Drive) -> tuple[int, float]:
-    """Teeth and angular speed [rad/s] of the smallest loaded sprocket (driver or driven).
+    """Teeth and angular speed of the smallest loaded sprocket (driver or driven).
 
-    Ratings and the [p] / [s] tables refer to the small sprocket of the drive (Shigley §17-5;
-    Russian n1); its speed follows from the driver's, ω_k = ω_d·z_d/z_k (one chain speed).
-    Idlers transmit no torque and are left out.
+    Ratings and the [p] / [s] tables refer to the small sprocket of the drive; its speed
+    follows from the driver's, ω_k = ω_d·z_d/z_k (one chain speed). Idlers transmit no
+    torque and are left out.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (the driver's speed is needed).
+
+    Returns
+    -------
+    tuple of (int, float)
+        Teeth z [-] and angular speed ω [rad/s].
+
+    References
+    ----------
+    [Shigley2015, §17-5]; n1 of [ChainDesignRU].
     """
     driver = drive.driver
     if driver.speed is None:

@@ -27,6 +27,9 @@ from typing import Any
 from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823
 
+__all__ = ["ANSI_TYPE", "MANUAL_MAX", "REGIMES", "LubricationAdvice", "lubrication_advice",
+           "speed_limits"]
+
 MANUAL_MAX = 0.5  # [m/s] [KettenfabrikUnna]
 REGIMES = ("manual", "drip", "bath/disc", "forced", "none: dry-running polymer")
 ANSI_TYPE = {"manual": "A", "drip": "A", "bath/disc": "B", "forced": "C"}
@@ -35,11 +38,25 @@ _SOURCE = "[McGuireLube]; [KettenfabrikUnna]; [Shigley2015, §17-5]"
 
 @dataclass(frozen=True, slots=True)
 class LubricationAdvice:
-    """The lubrication regime of a chain at chain speed ``speed`` [m/s].
+    """The lubrication regime of a chain at a chain speed.
 
-    regime: one of :data:`REGIMES`; ansi_type: "A", "B", "C" (None for a polymer chain);
-    drip_max / bath_max: upper chain speeds [m/s] of drip and bath/disc lubrication for this
-    pitch (None for a polymer chain); source; note (extrapolation, table used).
+    Parameters
+    ----------
+    chain : str
+        The chain's designation.
+    speed : float
+        Chain speed [m/s].
+    regime : str
+        One of :data:`REGIMES`.
+    ansi_type : str or None
+        "A", "B", "C" (None for a polymer chain).
+    drip_max, bath_max : float or None
+        Upper chain speeds of drip and bath/disc lubrication for this pitch [m/s] (None for
+        a polymer chain).
+    source : str
+        Reference keys of the table.
+    note : str
+        Extrapolation, table used.
     """
 
     chain: str
@@ -67,8 +84,23 @@ def _table() -> list[tuple[float, float, float]]:
 
 
 def speed_limits(pitch: float) -> tuple[float, float, str]:
-    """Drip (type A) and bath/disc (type B) upper chain speeds [m/s] for ``pitch`` [m], and a
-    note when the pitch is outside the table (log–log in pitch; see the module docstring)."""
+    """Drip (type A) and bath/disc (type B) upper chain speeds for a pitch.
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m].
+
+    Returns
+    -------
+    tuple of (float, float, str)
+        Drip and bath limits [m/s] and a note when the pitch is outside the table (log–log
+        interpolation or extrapolation in pitch; module docstring).
+
+    References
+    ----------
+    [McGuireLube].
+    """
     rows = _table()
     for p, a, b in rows:
         if abs(p - pitch) <= 1e-6:
@@ -89,7 +121,24 @@ def speed_limits(pitch: float) -> tuple[float, float, str]:
 
 
 def lubrication_advice(chain: ChainSpec, speed: float) -> LubricationAdvice:
-    """The lubrication regime of ``chain`` at the chain speed ``speed`` [m/s] (module doc)."""
+    """The lubrication regime of a chain at a chain speed (module docstring).
+
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+    speed : float
+        Chain speed [m/s].
+
+    Returns
+    -------
+    LubricationAdvice
+        Regime, ANSI type and the limits of the pitch.
+
+    References
+    ----------
+    [Shigley2015, §17-5]; [McGuireLube]; [KettenfabrikUnna].
+    """
     if chain.material != "steel":
         return LubricationAdvice(chain.designation, speed, REGIMES[4], None, None, None,
                                  f"chain material {chain.material}: its maker's catalogue",

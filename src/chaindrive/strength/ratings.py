@@ -43,6 +43,10 @@ from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823
 from chaindrive.units import RAD_S_TO_RPM
 
+__all__ = ["ACA", "B_TABLE", "KE", "METHOD_SOURCES", "POLYMER", "Alternative", "RatingResult",
+           "TablePoint", "b_table", "chain_number", "chain_rating", "method_for", "table_rating",
+           "tooth_correction"]
+
 ACA = "ACA"
 B_TABLE = "ISO 606 B table"
 KE = "Kэ"
@@ -59,8 +63,25 @@ SPEED_TOL = 1e-6
 
 @dataclass(frozen=True, slots=True)
 class TablePoint:
-    """One printed rating: chain number, n1 [rpm], single-strand rating [W], reference teeth,
-    rating life [h], lubrication assumed, source."""
+    """One printed rating.
+
+    Parameters
+    ----------
+    chain : str
+        ISO chain number, e.g. "12B".
+    speed_rpm : float
+        n1 [rpm].
+    rating : float
+        Single-strand rating [W].
+    reference_teeth : int
+        Teeth the value is printed for [-].
+    life_h : float
+        Rating life [h].
+    lubrication : str
+        Lubrication assumed.
+    source : str
+        Reference key of the table.
+    """
 
     chain: str
     speed_rpm: float
@@ -73,7 +94,17 @@ class TablePoint:
 
 @cache
 def b_table() -> tuple[TablePoint, ...]:
-    """The published B-series ratings (``strength/data/ratings_iso606_b.csv``)."""
+    """The published B-series ratings (``strength/data/ratings_iso606_b.csv``, read once).
+
+    Returns
+    -------
+    tuple of TablePoint
+        Every printed value.
+
+    References
+    ----------
+    [Bhandari2010, Table 14.2]; [Jindal2010, Table 30-8].
+    """
     text = resources.files("chaindrive.strength").joinpath(
         "data/ratings_iso606_b.csv").read_text(encoding="utf-8")
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")]
@@ -84,14 +115,36 @@ def b_table() -> tuple[TablePoint, ...]:
 
 
 def chain_number(chain: ChainSpec) -> str:
-    """The ISO 606 chain number of a catalogue chain: ``"ISO 606 12B-2"`` → ``"12B"``."""
+    """The ISO 606 chain number of a catalogue chain: ``"ISO 606 12B-2"`` → ``"12B"``.
+
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+
+    Returns
+    -------
+    str
+        Its number.
+    """
     name = chain.designation.split()[-1]
     return name.split("-")[0]
 
 
 def method_for(chain: ChainSpec) -> str:
-    """The rating method of a chain: Kэ (GOST), allowable load (non-steel), B table (ISO 606
-    B series), ACA (ISO 606 A, ANSI, and user chains of another family)."""
+    """The rating method of a chain.
+
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+
+    Returns
+    -------
+    str
+        Kэ (GOST), allowable load (non-steel), B table (ISO 606 B series), ACA (ISO 606 A,
+        ANSI, and user chains of another family).
+    """
     if chain.material != "steel":
         return POLYMER
     if chain.standard.upper().startswith("GOST"):
@@ -102,15 +155,50 @@ def method_for(chain: ChainSpec) -> str:
 
 
 def tooth_correction(teeth: int, reference_teeth: int) -> float:
-    """(z1/z_ref)^1.08: multiplies a rating printed for z_ref teeth (module docstring)."""
-    return (teeth / reference_teeth) ** TOOTH_EXPONENT
+    """(z1/z_ref)^1.08: multiplies a rating printed for z_ref teeth (module docstring).
+
+    Parameters
+    ----------
+    teeth : int
+        z1 [-].
+    reference_teeth : int
+        z_ref [-].
+
+    Returns
+    -------
+    float
+        The correction [-].
+
+    References
+    ----------
+    [ISO10823]; [Shigley2015, Table 17-22].
+    """
+    return float((teeth / reference_teeth) ** TOOTH_EXPONENT)
 
 
 def table_rating(chain: ChainSpec, teeth: int, speed: float) -> tuple[float, str] | None:
-    """Single-strand B-table rating [W] at ``speed`` [rad/s] for z1 = ``teeth``, and its source.
+    """Single-strand B-table rating and its source.
 
     A printed value at that speed, or log–log interpolation between the two printed values
-    that bracket it; None outside the printed speeds of the chain.
+    that bracket it.
+
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+    teeth : int
+        z1 [-].
+    speed : float
+        Small-sprocket speed [rad/s].
+
+    Returns
+    -------
+    tuple of (float, str) or None
+        Rating [W] and source; None outside the printed speeds of the chain.
+
+    References
+    ----------
+    [Bhandari2010, Table 14.2]; [Jindal2010, Table 30-8].
     """
     n1 = speed * RAD_S_TO_RPM
     points = sorted((p for p in b_table() if p.chain == chain_number(chain)),
@@ -129,8 +217,19 @@ def table_rating(chain: ChainSpec, teeth: int, speed: float) -> tuple[float, str
 
 @dataclass(frozen=True, slots=True)
 class Alternative:
-    """A method computed beside the governing one: rated power of the whole chain [W] (None
-    when the method has no value here) and what it rests on."""
+    """A method computed beside the governing one.
+
+    Parameters
+    ----------
+    method : str
+        The method.
+    rated_power : float or None
+        Rated power of the whole chain [W] (None when the method has no value here).
+    source : str
+        Reference keys.
+    note : str
+        What it rests on.
+    """
 
     method: str
     rated_power: float | None
@@ -147,10 +246,23 @@ class Alternative:
 class RatingResult:
     """The power rating of one chain at one operating point (all strands).
 
-    method: the method that governs; rated_power [W] (None for methods without a power
-    rating: Kэ, allowable load); envelope: the ACA envelope that limits ("link-plate
-    fatigue", "roller-bush impact") or "table"; source; alternatives: every other method
-    computed; note: why this method governs.
+    Parameters
+    ----------
+    chain : str
+        The chain.
+    method : str
+        The method that governs.
+    rated_power : float or None
+        [W] (None for methods without a power rating: Kэ, allowable load).
+    envelope : str
+        The ACA envelope that limits ("link-plate fatigue", "roller-bush impact") or
+        "table".
+    source : str
+        Reference keys.
+    alternatives : tuple of Alternative
+        Every other method computed.
+    note : str
+        Why this method governs.
     """
 
     chain: str
@@ -180,10 +292,29 @@ def _aca(chain: ChainSpec, teeth: int, speed: float, links: float,
 
 def chain_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 100.0,
                  life_h: float = 15000.0) -> RatingResult:
-    """Rating of ``chain`` on a small sprocket of ``teeth`` turning at ``speed`` [rad/s].
+    """Rating of a chain on a small sprocket (the method of each family: module docstring).
 
-    links, life_h: chain length [pitches] and life [h] for the ACA roller–bush correction
-    (Shigley Eq. 17-39/17-40). See the module docstring for the method of each family.
+    Parameters
+    ----------
+    chain : ChainSpec
+        The chain.
+    teeth : int
+        Teeth of the small sprocket [-].
+    speed : float
+        Its speed [rad/s].
+    links : float
+        Chain length [pitches], for the ACA roller–bush correction.
+    life_h : float
+        Life [h], likewise.
+
+    Returns
+    -------
+    RatingResult
+        The governing method's rating and the others beside it.
+
+    References
+    ----------
+    [Shigley2015, Eq. 17-32/17-33, 17-39/17-40]; [Bhandari2010, Table 14.2].
     """
     method = method_for(chain)
     aca = _aca(chain, teeth, speed, links, life_h) if chain.material == "steel" else None

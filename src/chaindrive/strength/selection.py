@@ -21,9 +21,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from chaindrive.catalog import chains
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import ratings
@@ -34,8 +36,11 @@ from chaindrive.strength.drive_checks import (
     geometry_checks,
     settings_for,
 )
-from chaindrive.strength.loads import chain_speed, small_sprocket
+from chaindrive.strength.loads import small_sprocket
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
+
+__all__ = ["KE", "METHODS", "RATING", "Candidate", "SelectionResult", "candidate",
+           "estimated_links", "family_method", "rank_chains", "rank_key", "select_chain"]
 
 RATING = "rating"
 KE = ratings.KE
@@ -43,9 +48,20 @@ METHODS = (RATING, KE)
 _LEGACY = {"ISO 10823": RATING, "ACA": RATING}
 
 
-def method_for(standard: str) -> str:
-    """The selection method of a chain family: Kэ for GOST 13568, rating otherwise (the
-    rating method of each chain is :func:`chaindrive.strength.ratings.method_for`)."""
+def family_method(standard: str) -> str:
+    """The selection method of a chain family (the rating method of each chain is
+    :func:`chaindrive.strength.ratings.method_for`).
+
+    Parameters
+    ----------
+    standard : str
+        The family's standard.
+
+    Returns
+    -------
+    str
+        "Kэ" for GOST 13568, "rating" otherwise.
+    """
     return KE if standard.upper().startswith("GOST") else RATING
 
 
@@ -53,11 +69,32 @@ def method_for(standard: str) -> str:
 class Candidate:
     """One chain checked on the drive.
 
-    method: the chain's method ("ACA", "ISO 606 B table", "Kэ", "allowable load");
-    passed: every check passed; margin_fraction: the margin of the worst check (None when
-    it cannot be verified); governing: the name of that check; checks: every check;
-    rating / lubrication: the rating result and the lubrication advice (None when the
-    chain could not be laid out).
+    Parameters
+    ----------
+    designation : str
+        The chain.
+    method : str
+        Its method ("ACA", "ISO 606 B table", "Kэ", "allowable load").
+    pitch : float
+        Chain pitch [m].
+    strands : int
+        Strands [-].
+    mass_per_length : float
+        [kg/m].
+    passed : bool
+        Every check passed.
+    margin_fraction : float or None
+        Margin of the worst check [-] (None when it cannot be verified).
+    governing : str
+        The name of that check.
+    checks : tuple of Check
+        Every check.
+    rating : RatingResult or None
+        The rating result.
+    lubrication : LubricationAdvice or None
+        The lubrication advice (None when the chain could not be laid out).
+    notes : tuple of str
+        Remarks.
     """
 
     designation: str
@@ -84,7 +121,18 @@ class Candidate:
         return tuple(c for c in self.checks if not c.passed)
 
     def to_dict(self, *, with_checks: bool = True) -> dict[str, Any]:
-        """JSON-ready dictionary (margin as a fraction; every check when ``with_checks``)."""
+        """JSON-ready dictionary (margin as a fraction).
+
+        Parameters
+        ----------
+        with_checks : bool
+            Include every check and the rating.
+
+        Returns
+        -------
+        dict
+            The candidate.
+        """
         d: dict[str, Any] = {
             "chain": self.designation, "method": self.method, "pitch_mm": self.pitch * 1e3,
             "strands": self.strands, "mass_kg_m": self.mass_per_length, "passed": self.passed,
@@ -103,8 +151,14 @@ class Candidate:
 class SelectionResult:
     """Every candidate, ranked by the one rule; the chosen chain first.
 
-    chosen: the first candidate when it passes (None when nothing passes); closest: the
-    candidate least short of passing (the chosen one when something passes).
+    Parameters
+    ----------
+    candidates : tuple of Candidate
+        Ranked (:func:`rank_key`).
+    specs : dict of str to ChainSpec
+        The chains by designation.
+    warnings : tuple of str
+        Remarks on the selection.
     """
 
     candidates: tuple[Candidate, ...]
@@ -148,14 +202,36 @@ class SelectionResult:
                 "another series or a change to the layout")
 
     def top(self, n: int) -> tuple[Candidate, ...]:
-        """The first ``n`` candidates of the ranking (the chosen chain is the first)."""
+        """The head of the ranking.
+
+        Parameters
+        ----------
+        n : int
+            How many [-].
+
+        Returns
+        -------
+        tuple of Candidate
+            The first ``n`` (the chosen chain is the first).
+        """
         if n < 1:
             raise DesignError("top", f"must be a whole number ≥ 1, got {n!r}")
         return self.candidates[:n]
 
     def to_dict(self, top: int | None = None) -> dict[str, Any]:
         """JSON-ready dictionary: chosen chain (None when nothing passes), closest candidate
-        and what it misses, the (first ``top``) ranked candidates."""
+        and what it misses, the ranked candidates.
+
+        Parameters
+        ----------
+        top : int or None
+            Only the first ``top`` candidates (None: all).
+
+        Returns
+        -------
+        dict
+            The selection.
+        """
         chosen, closest = self.chosen, self.closest
         shown = self.candidates if top is None else self.top(top)
         return {"chain": None if chosen is None else chosen.designation,
@@ -185,15 +261,39 @@ def _closeness(c: Candidate) -> tuple[bool, int, float]:
 
 
 def rank_key(c: Candidate) -> tuple[bool, float, float, int, float]:
-    """The one rule: passing first, then mass per metre, pitch, strands, larger margin."""
+    """The one rule: passing first, then mass per metre, pitch, strands, larger margin.
+
+    Parameters
+    ----------
+    c : Candidate
+        A candidate.
+
+    Returns
+    -------
+    tuple
+        Its sort key.
+    """
     margin = c.margin_fraction if c.margin_fraction is not None else -math.inf
     return (not c.passed, c.mass_per_length, c.pitch, c.strands, -margin)
 
 
 def estimated_links(drive: Drive, pitch: float) -> float:
-    """Chain length in pitches before the geometry is built: perimeter of the centre polygon / p
-    plus the mean tooth count (exact for the straight part of a two-sprocket drive:
-    2a/p + (z1 + z2)/2, Shigley Eq. 17-34 without the small last term)."""
+    """Chain length before the geometry is built: perimeter of the centre polygon / p plus
+    the mean tooth count (for two sprockets 2a/p + (z1 + z2)/2, [Shigley2015, Eq. 17-34]
+    without the small last term).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    pitch : float
+        Chain pitch p [m].
+
+    Returns
+    -------
+    float
+        The estimate [pitches].
+    """
     pts = [(s.x, s.y) for s in drive.sprockets]
     perimeter = sum(math.dist(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts)))
     return perimeter / pitch + sum(s.teeth for s in drive.sprockets) / len(pts)
@@ -203,8 +303,6 @@ def _catalog(catalog: Sequence[ChainSpec] | None,
              extra_files: Sequence[str]) -> Sequence[ChainSpec]:
     if catalog is not None:
         return catalog
-    from chaindrive.catalog import chains
-
     return chains(extra_files)
 
 
@@ -229,14 +327,32 @@ def _family(catalog: Sequence[ChainSpec], standard: str, series: str | None,
 def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
               settings: CheckSettings,
               layout_checks: tuple[ck.Check, ...] | None = None) -> Candidate:
-    """``spec`` checked on ``drive`` laid out as ``geometry`` (a string: why it could not be
-    laid out — the candidate then fails a "geometry" check). ``layout_checks``: the
-    geometry checks of that layout when already made (they do not depend on the chain
-    beyond its pitch and roller)."""
+    """A chain checked on a drive.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    spec : ChainSpec
+        The chain.
+    geometry : GeometryResult or str
+        The drive laid out with that chain, or why it could not be laid out (the candidate
+        then fails a "geometry" check).
+    settings : CheckSettings
+        What the checks are held to.
+    layout_checks : tuple of Check or None
+        The geometry checks of that layout when already made (they do not depend on the
+        chain beyond its pitch and roller).
+
+    Returns
+    -------
+    Candidate
+        The chain with every check.
+    """
     on = drive.with_chain(spec)
     teeth, speed = small_sprocket(on)
     rating = ratings.chain_rating(spec, teeth, speed)
-    lube = lubrication_advice(spec, chain_speed(teeth, spec.pitch, speed))
+    lube = lubrication_advice(spec, float(mean_chain_speed(spec.pitch, teeth, speed)))
     method = settings.method or rating.method
     if isinstance(geometry, str):
         fail = ck.Check("geometry", spec.designation, None, None, "min", ck.FAIL,
@@ -284,6 +400,31 @@ def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None
     "ISO 10823" means "rating"); service_factor K_s, design_factor n_d, operating_factor Kэ
     (defaults ``drive.service_factor`` or 1); catalog: the chains to choose from (default:
     the packaged catalogue and ``extra_files``, the user's catalogue files).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed needed).
+    standard, series : str or None
+        The family (default: that of ``drive.chain``; "ANSI" = every chain with an ANSI
+        number).
+    strands : int or None
+        Only that number of strands [-] (default: every count).
+    method : str or None
+        "Kэ" or "rating" to force one on every chain.
+    service_factor, operating_factor : float or None
+        K_s, Kэ [-] (default ``drive.service_factor`` or 1).
+    design_factor : float
+        n_d [-].
+    catalog : sequence of ChainSpec or None
+        The chains to choose from.
+    extra_files : sequence of str
+        The user's catalogue files.
+
+    Returns
+    -------
+    SelectionResult
+        Every candidate ranked.
     """
     if drive.power is None:
         raise DesignError("drive.power", "selection needs the transmitted power")
@@ -311,10 +452,47 @@ def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None
     return SelectionResult(tuple(found), {s.designation: s for s in family})
 
 
-def select_chain(drive: Drive, **options: Any) -> SelectionResult:
-    """:func:`rank_chains`, raising a DesignError naming the closest candidate and what it
-    misses when no chain passes every check."""
-    result = rank_chains(drive, **options)
+def select_chain(drive: Drive, *, standard: str | None = None, series: str | None = None,
+                 strands: int | None = None, method: str | None = None,
+                 service_factor: float | None = None, design_factor: float = 1.0,
+                 operating_factor: float | None = None,
+                 catalog: Sequence[ChainSpec] | None = None,
+                 extra_files: Sequence[str] = ()) -> SelectionResult:
+    """:func:`rank_chains`, refusing a drive on which no chain passes.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    standard, series : str or None
+        The family.
+    strands : int or None
+        Only that number of strands [-].
+    method : str or None
+        Force a method.
+    service_factor, operating_factor : float or None
+        K_s, Kэ [-].
+    design_factor : float
+        n_d [-].
+    catalog : sequence of ChainSpec or None
+        The chains to choose from.
+    extra_files : sequence of str
+        The user's catalogue files.
+
+    Returns
+    -------
+    SelectionResult
+        Every candidate ranked; the chosen chain passes every check.
+
+    Raises
+    ------
+    DesignError
+        On ``chain``, naming the closest candidate and what it misses, when no chain passes.
+    """
+    result = rank_chains(drive, standard=standard, series=series, strands=strands,
+                         method=method, service_factor=service_factor,
+                         design_factor=design_factor, operating_factor=operating_factor,
+                         catalog=catalog, extra_files=extra_files)
     if result.chosen is None:
         raise DesignError("chain", result.shortfall())
     return result

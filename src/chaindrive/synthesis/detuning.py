@@ -1,8 +1,8 @@
-"""The seed's detuning task: move the natural frequencies out of bands round the working
-frequencies and minimise the normalised amplitudes, by varying masses and/or stiffnesses
-within bounds.
+"""The detuning task of [MultimassChainDrives, §3.2]: move the natural frequencies out of
+bands round the working frequencies and minimise the normalised amplitudes, by varying masses
+and/or stiffnesses within bounds.
 
-Seed 000 §3.2 (seed-notes §1): "varying masses and stiffnesses within bounds
+[MultimassChainDrives, §3.2]: "varying masses and stiffnesses within bounds
 (M_k* ≤ M_k ≤ M_k**, C_l* ≤ C_l ≤ C_l**) detunes the spectrum from working frequencies";
 "minimising [the normalised amplitude] for the masses near a working frequency reduces
 vibroactivity". The objective (minimised)::
@@ -12,15 +12,15 @@ vibroactivity". The objective (minimised)::
 b the band (default 10 % plus a 1 % safety), f_j the elastic natural frequencies, f_w the
 working frequencies, A the largest normalised amplitude at the working frequencies
 (:func:`normalised_amplitude_at`) and W = 10⁴ so that
-clearing the bands comes first. Solved by differential evolution (Storn & Price 1997,
-:func:`scipy.optimize.differential_evolution`) in log m, log c over the whole population
+clearing the bands comes first. Solved by differential evolution [StornPrice1997]
+(:func:`scipy.optimize.differential_evolution`) in log m, log c over the whole population
 at once (stacked eigenproblems), reproducible with a seed.
 """
 
 from __future__ import annotations
 
 import inspect
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -44,8 +44,25 @@ PENALTY = 1e4
 
 def ring_modes_batch(masses: NDArray[np.float64], stiffness: NDArray[np.float64]
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Elastic frequencies (B, n−1) [Hz] and largest normalised amplitude per mode (B, n−1)
-    of B closed rings (seed 000 eq. 2; μ_k^(j) = |X_k|/Σ|X_i|)."""
+    """Elastic frequencies and largest normalised amplitude per mode of B closed rings.
+
+    Parameters
+    ----------
+    masses : numpy.ndarray
+        (B, n) reduced masses [kg].
+    stiffness : numpy.ndarray
+        (B, n) branch stiffnesses [N/m], branch k between masses k and k+1.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Frequencies (B, n−1) [Hz] and the largest normalised amplitude
+        μ_k^(j) = |X_k|/Σ|X_i| of each mode (B, n−1) [-].
+
+    References
+    ----------
+    [MultimassChainDrives, eq. 2].
+    """
     B, n = masses.shape
     d = 1.0 / np.sqrt(masses)
     i = np.arange(n)
@@ -64,28 +81,85 @@ def ring_modes_batch(masses: NDArray[np.float64], stiffness: NDArray[np.float64]
 
 def band_shortfall(frequencies_hz: NDArray[np.float64], working_hz: ArrayLike,
                    band: float) -> NDArray[np.float64]:
-    """Σ max(0, band − |f_j − f_w|/f_w)² over modes and working frequencies, per design (B,)."""
+    """Σ max(0, band − |f_j − f_w|/f_w)² over modes and working frequencies, per design.
+
+    Parameters
+    ----------
+    frequencies_hz : numpy.ndarray
+        (B, modes) natural frequencies [Hz].
+    working_hz : float or array_like
+        Working frequencies [Hz].
+    band : float
+        Relative half-width of the band [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        (B,) shortfall [-].
+    """
     w = np.asarray(working_hz, dtype=float)
     rel = np.abs(frequencies_hz[:, :, None] - w[None, None, :]) / w[None, None, :]
-    return (np.maximum(0.0, band - rel) ** 2).sum(axis=(1, 2))
+    shortfall: NDArray[np.float64] = (np.maximum(0.0, band - rel) ** 2).sum(axis=(1, 2))
+    return shortfall
 
 
 def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float64],
                        working_hz: ArrayLike, band: float = BAND + 0.01,
                        damping: float = 0.06) -> NDArray[np.float64]:
-    """J of the module docstring for B designs (masses, stiffness (B, n)) → (B,)."""
+    """The objective J of the module docstring for B designs.
+
+    Parameters
+    ----------
+    masses : numpy.ndarray
+        (B, n) reduced masses [kg].
+    stiffness : numpy.ndarray
+        (B, n) branch stiffnesses [N/m].
+    working_hz : float or array_like
+        Working frequencies [Hz].
+    band : float
+        Relative half-width of the band [-].
+    damping : float
+        Damping ratio ζ [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        (B,) J [-].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2]; [Rao2011, §3.4] (single-mode magnification).
+    """
     f, mu = ring_modes_batch(masses, stiffness)
     w = np.asarray(working_hz, dtype=float)
     r = w[None, :, None] / f[:, None, :]
     h = 1.0 / np.sqrt((1 - r**2) ** 2 + (2 * damping * r) ** 2)
     amp = (mu[:, None, :] * h).max(axis=(1, 2))
-    return PENALTY * band_shortfall(f, w, band) + amp
+    objective: NDArray[np.float64] = PENALTY * band_shortfall(f, w, band) + amp
+    return objective
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class DetuningResult:
-    """masses_kg, stiffness_n_per_m (n,) found; frequencies_hz (n−1,) elastic; working_hz;
-    min_distance: smallest |f_j − f_w|/f_w; cleared: min_distance ≥ band; objective J."""
+    """The result of a detuning.
+
+    Parameters
+    ----------
+    masses_kg : numpy.ndarray
+        (n,) masses found [kg].
+    stiffness_n_per_m : numpy.ndarray
+        (n,) stiffnesses found [N/m].
+    frequencies_hz : numpy.ndarray
+        (n−1,) elastic natural frequencies [Hz].
+    working_hz : numpy.ndarray
+        Working frequencies [Hz].
+    min_distance : float
+        Smallest |f_j − f_w|/f_w [-].
+    band : float
+        The band asked for [-] (``cleared``: min_distance ≥ band).
+    objective : float
+        J [-].
+    """
 
     masses_kg: NDArray[np.float64]
     stiffness_n_per_m: NDArray[np.float64]
@@ -128,12 +202,40 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
            band: float = BAND, mass_bounds: ArrayLike | None = None,
            stiffness_bounds: ArrayLike | None = None, damping: float = 0.06,
            seed: int = 0, maxiter: int = 200, popsize: int = 20) -> DetuningResult:
-    """Masses [kg] and/or stiffnesses [N/m] within bounds that clear ±band round every
-    working frequency [Hz] and minimise the normalised amplitude (module docstring).
+    """Masses and/or stiffnesses within bounds that clear ±band round every working
+    frequency and minimise the normalised amplitude (module docstring).
 
-    mass_bounds, stiffness_bounds : (n, 2) [low, high] per mass / branch (None: fixed; a
-    pair with low = high fixes one value). Starts from (and keeps, if no better is found)
-    the given values when they lie inside the bounds.
+    Starts from (and keeps, if no better is found) the given values when they lie inside the
+    bounds.
+
+    Parameters
+    ----------
+    masses : array_like
+        (n,) reduced masses [kg].
+    stiffness : array_like
+        (n,) branch stiffnesses [N/m].
+    working_hz : array_like
+        Working frequencies [Hz].
+    band : float
+        Relative half-width of the band to clear [-].
+    mass_bounds, stiffness_bounds : array_like or None
+        (n, 2) [low, high] per mass [kg] / branch [N/m] (None: fixed; a pair with
+        low = high fixes one value).
+    damping : float
+        Damping ratio ζ [-].
+    seed : int
+        Seed of the differential evolution.
+    maxiter, popsize : int
+        Of the differential evolution [-].
+
+    Returns
+    -------
+    DetuningResult
+        The masses and stiffnesses found.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2]; [StornPrice1997].
     """
     m0 = np.asarray(masses, dtype=float)
     c0 = np.asarray(stiffness, dtype=float)
@@ -160,13 +262,16 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
         p[:, free] = np.exp(z.T)
         return p[:, :n], p[:, n:]
 
-    def func(z: NDArray) -> NDArray:
+    def func(z: NDArray, /) -> NDArray:
         return detuning_objective(*unpack(z), w, band + 0.01, damping)
 
     x0 = np.log(np.concatenate([m0, c0]))[free]
     inside = bool(np.all(x0 >= b[free, 0]) and np.all(x0 <= b[free, 1]))
-    res = differential_evolution(func, b[free], maxiter=maxiter, popsize=popsize, tol=1e-8,
-                                 polish=False, vectorized=True, updating="deferred",
+    # vectorized=True: func takes the (free, S) population and returns (S,), which the
+    # stubs (a scalar function) do not describe
+    res = differential_evolution(func, b[free],  # type: ignore[arg-type]
+                                 maxiter=maxiter, popsize=popsize, tol=1e-8, polish=False,
+                                 vectorized=True, updating="deferred",
                                  x0=x0 if inside else None, **_de_kwargs(seed))
     m, c = unpack(res.x[:, None])
     f, _ = ring_modes_batch(m, c)
@@ -179,11 +284,33 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
                  maxiter: int = 200) -> tuple[Drive, DetuningResult]:
     """Detune a drive by added inertia (flywheels) on the named shafts.
 
-    added_inertia : sprocket name → (ΔI_min, ΔI_max) [kg·m²]; the masses m_k = (I_k + ΔI_k)/R_k²
-    (seed 000 §3.1) vary, the stiffnesses stay those of the drive (static span tensions);
-    working frequencies: shafts and the tooth frequency with ``harmonics`` harmonics
-    (:func:`chaindrive.dynamics.resonance.working_frequencies`). Returns the drive with the
-    new inertias (``Sprocket.inertia`` = I_k + ΔI_k) and the result.
+    The masses m_k = (I_k + ΔI_k)/R_k² vary, the stiffnesses stay those of the drive (static
+    span tensions); the working frequencies are the shafts' and the tooth frequency with its
+    harmonics (:func:`chaindrive.dynamics.resonance.working_frequencies`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    added_inertia : mapping of str to (float, float)
+        Sprocket name → (ΔI_min, ΔI_max) [kg·m²].
+    band : float
+        Relative half-width of the band to clear [-].
+    seed : int
+        Seed of the differential evolution.
+    harmonics : int
+        Harmonics of the tooth frequency [-].
+    maxiter : int
+        Generations of the differential evolution [-].
+
+    Returns
+    -------
+    tuple of (Drive, DetuningResult)
+        The drive with the new inertias (``Sprocket.inertia`` = I_k + ΔI_k) and the result.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1–3.2].
     """
     a = Analysis(drive, response=False)
     p = a.ring_parameters
@@ -209,7 +336,7 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     return drive.with_sprockets(sprockets), res
 
 
-def normalised_amplitude_at(modal: ModalResult, working_hz: Sequence[float],
+def normalised_amplitude_at(modal: ModalResult, working_hz: ArrayLike,
                             damping: float) -> float:
     """Largest normalised amplitude at the working frequencies.
 
@@ -222,7 +349,7 @@ def normalised_amplitude_at(modal: ModalResult, working_hz: Sequence[float],
     ----------
     modal : ModalResult
         The modes.
-    working_hz : sequence of float
+    working_hz : array_like
         Working frequencies [Hz].
     damping : float
         Damping ratio ζ [-].
@@ -240,8 +367,23 @@ def normalised_amplitude_at(modal: ModalResult, working_hz: Sequence[float],
     return float((mu[None, :] * h).max())
 
 
-def detuning_metric_value(frequencies_hz: Sequence[float], working_hz: Sequence[float],
+def detuning_metric_value(frequencies_hz: ArrayLike, working_hz: ArrayLike,
                           band: float = BAND) -> float:
-    """Band shortfall of one design (0 when every mode is clear), for the objective registry."""
+    """Band shortfall of one design, for the objective registry.
+
+    Parameters
+    ----------
+    frequencies_hz : array_like
+        Natural frequencies [Hz].
+    working_hz : array_like
+        Working frequencies [Hz].
+    band : float
+        Relative half-width of the band [-].
+
+    Returns
+    -------
+    float
+        Σ squared shortfall [-] (0 when every mode is clear; :func:`band_shortfall`).
+    """
     return float(band_shortfall(np.asarray(frequencies_hz, dtype=float)[None, :], working_hz,
                                 band)[0])

@@ -17,9 +17,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from chaindrive.analysis import Analysis
-from chaindrive.checks import Check, CheckLimits
+from chaindrive.checks import RESONANCE_BAND_PERCENT, Check, CheckLimits
 from chaindrive.cost import CostModel
 from chaindrive.errors import ChainDriveError
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 from chaindrive.synthesis.objectives import OBJECTIVES
 from chaindrive.synthesis.problem import Constraints, Problem
@@ -27,23 +28,47 @@ from chaindrive.synthesis.problem import Constraints, Problem
 __all__ = ["FAILED", "Evaluation", "analysis_of", "base_ratios", "check_limits",
            "constrained", "constraint_names", "evaluate_drive", "evaluate_vector"]
 
-TWO_PI = 2.0 * math.pi
 #: objective value given to a design that cannot be built (a finite stand-in for ∞)
 FAILED = 1e12
 
 
 def check_limits(settings: Constraints) -> CheckLimits:
-    """The limits of the analysis's checks that ``[optimize.constraints]`` sets."""
+    """The limits of the analysis's checks that ``[optimize.constraints]`` sets.
+
+    Parameters
+    ----------
+    settings : Constraints
+        The problem's constraints.
+
+    Returns
+    -------
+    CheckLimits
+        [k] and the resonance band (the default band when the problem sets none).
+    """
     return CheckLimits(allowable_dynamic_safety=settings.allowable_dynamic_safety,
                        resonance_band_percent=(settings.resonance_band
-                                               if settings.resonance_band else 10.0))
+                                               if settings.resonance_band
+                                               else RESONANCE_BAND_PERCENT))
 
 
 def constrained(check: Check, settings: Constraints) -> bool:
     """Whether ``[optimize.constraints]`` keeps an analysis check as a constraint: every
     check, except the chain's strength checks when ``static_safety = false``, the speed
     limit when ``speed_limit = false`` and k₁ unless ``startup_safety = true`` (it needs a
-    time integration per design)."""
+    time integration per design).
+
+    Parameters
+    ----------
+    check : Check
+        An analysis check.
+    settings : Constraints
+        The problem's constraints.
+
+    Returns
+    -------
+    bool
+        True when the check is a constraint.
+    """
     if check.name == "speed limit":
         return settings.speed_limit
     if check.part == "chain":
@@ -54,22 +79,60 @@ def constrained(check: Check, settings: Constraints) -> bool:
 
 
 def constraint_names(analysis: Analysis, settings: Constraints) -> tuple[str, ...]:
-    """Keys of the analysis checks that are constraints (:func:`constrained`)."""
+    """Keys of the analysis checks that are constraints.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of a design.
+    settings : Constraints
+        The problem's constraints.
+
+    Returns
+    -------
+    tuple of str
+        Check keys (:func:`constrained`).
+    """
     return tuple(c.key for c in analysis.checks() if constrained(c, settings))
 
 
 def analysis_of(drive: Drive, settings: Constraints,
                 cost_model: CostModel | None = None) -> Analysis:
-    """The lazy analysis of ``drive`` with the limits the problem sets; k₁ (a start-up per
-    design) only when the problem asks for it."""
+    """The lazy analysis of a design with the limits the problem sets.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    settings : Constraints
+        The problem's constraints (k₁, a start-up per design, only when they ask for it).
+    cost_model : CostModel or None
+        Prices (None: the packaged estimates).
+
+    Returns
+    -------
+    Analysis
+        Lazy: each stage is computed when read.
+    """
     return Analysis(drive, limits=check_limits(settings), cost_model=cost_model,
                     startup=settings.startup_safety)
 
 
 @dataclass(frozen=True, slots=True)
 class Evaluation:
-    """Objectives (natural sign and unit), constraint values g (≤ 0 satisfied), feasible,
-    error (why the design could not be built, or None)."""
+    """The evaluation of one design.
+
+    Parameters
+    ----------
+    objectives : dict of str to float
+        Objective values, natural sign [the unit of each objective, ``Metric.unit``].
+    constraints : dict of str to float
+        Constraint values g [-] (≤ 0 satisfied).
+    feasible : bool
+        Every constraint satisfied.
+    error : str or None
+        Why the design could not be built, or None.
+    """
 
     objectives: dict[str, float]
     constraints: dict[str, float]
@@ -77,7 +140,18 @@ class Evaluation:
     error: str | None = None
 
     def minimised(self, names: Sequence[str]) -> list[float]:
-        """Objective values with the sense applied (every one minimised)."""
+        """Objective values with the sense applied (every one minimised).
+
+        Parameters
+        ----------
+        names : sequence of str
+            The objectives, in order.
+
+        Returns
+        -------
+        list of float
+            Sense × value.
+        """
         return [OBJECTIVES[n].sense * self.objectives[n] for n in names]
 
     def violation(self) -> float:
@@ -103,7 +177,7 @@ def _wishes(a: Analysis, settings: Constraints, ratios: Sequence[float] | None,
     of the start design."""
     d, g = a.drive, a.geometry
     assert d.driver.speed is not None
-    v = d.driver.teeth * d.chain.spec.pitch * d.driver.speed / TWO_PI
+    v = float(mean_chain_speed(d.chain.spec.pitch, d.driver.teeth, d.driver.speed))
     out = {"chain_speed": (v - settings.max_chain_speed) / settings.max_chain_speed,
            "min_driver_wrap": (settings.min_driver_wrap
                                - g.sprockets[d.driver_index].wrap_angle)
@@ -129,7 +203,28 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
                    cost_model: CostModel | None = None) -> Evaluation:
     """Objectives and constraints of one design, from its lazy :class:`Analysis`; a design
     that cannot be built (the geometry or strength raises: span interference, impossible
-    take-up …) gets objectives :data:`FAILED` and the constraint ``buildable`` = 1."""
+    take-up …) gets objectives :data:`FAILED` and the constraint ``buildable`` = 1.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    objectives : sequence of str
+        Names of the objectives.
+    settings : Constraints
+        The problem's constraints.
+    base_ratios : sequence of float or None
+        z_i/z_driver of the start design [-] (None: no ratio constraint).
+    ratio_tolerance : float
+        Allowed relative deviation of a driven ratio [-].
+    cost_model : CostModel or None
+        Prices.
+
+    Returns
+    -------
+    Evaluation
+        Objectives and constraint values.
+    """
     a = analysis_of(drive, settings, cost_model)
     try:
         obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}
@@ -146,13 +241,39 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
 
 
 def base_ratios(drive: Drive) -> list[float]:
-    """z_i/z_driver of every sprocket."""
+    """The ratio of every sprocket to the driver.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    list of float
+        z_i/z_driver [-].
+    """
     return [s.teeth / drive.driver.teeth for s in drive.sprockets]
 
 
 def evaluate_vector(problem: Problem, x: Sequence[float],
                     cost_model: CostModel | None = None) -> tuple[Evaluation, Drive | None]:
-    """Decode and evaluate one search vector; the drive is None when it cannot be decoded."""
+    """Decode and evaluate one search vector.
+
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem.
+    x : sequence of float
+        The search vector [the unit of each gene] (:class:`chaindrive.synthesis.problem.Gene`).
+    cost_model : CostModel or None
+        Prices.
+
+    Returns
+    -------
+    tuple of (Evaluation, Drive or None)
+        The evaluation and the drive (None when it cannot be decoded).
+    """
     try:
         drive = problem.decode(x)
     except ChainDriveError as exc:

@@ -1,6 +1,6 @@
 """The inverse eigenvalue problem of the ring model: masses, or stiffnesses, for a spectrum.
 
-Seed 000 §3.2 (seed-notes §1): the inverse problem — masses or rigidities for a prescribed
+[MultimassChainDrives, §3.2]: the inverse problem — masses or rigidities for a prescribed
 spectrum of natural frequencies — "is only determinate when just masses, or just as many
 stiffnesses as degrees of freedom, are varied". A free ring of n masses has n − 1 elastic
 natural frequencies (one is the rigid-body zero), so:
@@ -13,8 +13,8 @@ natural frequencies (one is the rigid-body zero), so:
 
 Anything else is refused with a :class:`~chaindrive.errors.DesignError`. The equations
 λ_j(p) = (2π f_j)² are solved by Gauss–Newton (:func:`scipy.optimize.least_squares`) in
-log p with the exact eigenvalue derivatives of a symmetric pencil (Fox & Kapoor, AIAA J. 6,
-1968): ∂λ_j/∂m_k = −λ_j φ_kj², ∂λ_j/∂c_l = (φ_{l+1,j} − φ_{l,j})², φ mass-normalised.
+log p with the exact eigenvalue derivatives of a symmetric pencil [FoxKapoor1968]:
+∂λ_j/∂m_k = −λ_j φ_kj², ∂λ_j/∂c_l = (φ_{l+1,j} − φ_{l,j})², φ mass-normalised.
 An inverse eigenproblem has in general several (finitely many) solutions, some close to
 each other: the one on the continuation path from ``initial`` (the prescribed spectrum is
 approached from the spectrum of the start values in steps) is returned, and the spectrum
@@ -26,12 +26,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
+from chaindrive.dynamics.ring import ring_stiffness_matrix
 from chaindrive.errors import ConvergenceError, DesignError
 
 __all__ = ["masses_for_spectrum", "ring_eigen", "solve_inverse", "stiffnesses_for_spectrum"]
@@ -47,10 +49,25 @@ RESTARTS = 20
 
 def ring_eigen(masses: NDArray[np.float64], stiffness: NDArray[np.float64]
                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Eigenvalues λ = ω² [rad²/s²] (ascending) and mass-normalised vectors of the closed
-    ring K φ = λ M φ (K the ring Laplacian, :func:`chaindrive.dynamics.ring_stiffness_matrix`)."""
-    from chaindrive.dynamics.ring import ring_stiffness_matrix
+    """Eigenvalues and mass-normalised vectors of the closed ring K φ = λ M φ.
 
+    Parameters
+    ----------
+    masses : numpy.ndarray
+        (n,) masses [kg].
+    stiffness : numpy.ndarray
+        (n,) branch stiffnesses [N/m] (K the ring Laplacian,
+        :func:`chaindrive.dynamics.ring.ring_stiffness_matrix`).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        λ = ω² [rad²/s²] (ascending) and the mass-normalised vectors φ [kg^-1/2].
+
+    References
+    ----------
+    [MultimassChainDrives, eq. 2].
+    """
     lam, phi = scipy.linalg.eigh(ring_stiffness_matrix(stiffness, True), np.diag(masses))
     return lam, phi
 
@@ -72,8 +89,8 @@ def _check_request(m: NDArray, c: NDArray, f: NDArray, modes: NDArray) -> str:
     um, uc = int(np.isnan(m).sum()), int(np.isnan(c).sum())
     if um and uc:
         raise DesignError("inverse", f"{um} masses and {uc} stiffnesses unknown: vary either "
-                          "the masses or the stiffnesses, not both (seed 000: only then is the "
-                          "inverse problem determinate)")
+                          "the masses or the stiffnesses, not both (only then is the inverse "
+                          "problem determinate [MultimassChainDrives, §3.2])")
     unknown, what = (um, "masses") if um else (uc, "stiffnesses")
     if unknown == 0:
         raise DesignError("inverse", "nothing to find: mark the unknown masses or stiffnesses "
@@ -95,17 +112,91 @@ def _check_request(m: NDArray, c: NDArray, f: NDArray, modes: NDArray) -> str:
     return "masses" if um else "stiffnesses"
 
 
+@dataclass(frozen=True, slots=True)
+class _InverseProblem:
+    """The equations λ_j(p) = (2π f_j)² in log p of one inverse request."""
+
+    masses: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    kind: str
+    unknown: NDArray[np.intp]
+    modes: NDArray[np.intp]
+    target: NDArray[np.float64]
+
+    def full(self, logp: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(masses, stiffness) with the unknowns set to exp(logp)."""
+        mm, cc = self.masses.copy(), self.stiffness.copy()
+        (mm if self.kind == "masses" else cc)[self.unknown] = np.exp(logp)
+        return mm, cc
+
+    def residual(self, logp: NDArray[np.float64],
+                 goal: NDArray[np.float64]) -> NDArray[np.float64]:
+        """λ_j/goal_j − 1 of the prescribed modes."""
+        lam, _ = ring_eigen(*self.full(logp))
+        out: NDArray[np.float64] = lam[1:][self.modes] / goal - 1.0
+        return out
+
+    def jacobian(self, logp: NDArray[np.float64],
+                 goal: NDArray[np.float64]) -> NDArray[np.float64]:
+        """∂(λ_j/goal_j)/∂ log p from the eigenvalue derivatives [FoxKapoor1968]."""
+        mm, cc = self.full(logp)
+        lam, phi = ring_eigen(mm, cc)
+        ph = phi[:, 1:][:, self.modes]                               # (n, F)
+        u = self.unknown
+        if self.kind == "masses":
+            d = -lam[1:][self.modes][None, :] * ph[u] ** 2 * mm[u][:, None]
+        else:
+            diff = np.roll(ph, -1, axis=0) - ph                      # φ_{l+1} − φ_l
+            d = diff[u] ** 2 * cc[u][:, None]
+        out: NDArray[np.float64] = (d / goal[None, :]).T
+        return out
+
+    def follow(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], float]:
+        """Continuation: move the target from the start's own spectrum to the prescribed one
+        in CONTINUATION_STEPS geometric steps, following the solution branch of the start;
+        the end point and its largest relative error."""
+        lam0 = ring_eigen(*self.full(x))[0][1:][self.modes]
+        for t in np.linspace(0.0, 1.0, CONTINUATION_STEPS + 1)[1:]:
+            goal = lam0 ** (1 - t) * self.target ** t
+            x = least_squares(self.residual, x, jac=self.jacobian, args=(goal,), method="lm",
+                              xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=500).x
+        return x, float(np.max(np.abs(self.residual(x, self.target))))
+
+
 def solve_inverse(masses: ArrayLike, stiffness: ArrayLike, frequencies_hz: ArrayLike, *,
                   modes: Sequence[int] | None = None, initial: ArrayLike | None = None
                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Masses [kg] and stiffnesses [N/m] of a closed ring with the prescribed spectrum.
+    """Masses and stiffnesses of a closed ring with the prescribed spectrum.
 
-    masses, stiffness : (n,) with nan for the unknowns (masses or stiffnesses, not both);
-    frequencies_hz : the prescribed elastic natural frequencies [Hz], one per unknown;
-    modes : which elastic modes (0 = lowest elastic) they are (default the lowest, in
-    ascending order of the sorted frequencies); initial : start values of the unknowns
-    (default: the mean of the known values of that kind, or scaled to match the mean
-    frequency). Returns the full (masses, stiffness).
+    Parameters
+    ----------
+    masses, stiffness : array_like
+        (n,) masses [kg] and branch stiffnesses [N/m] with nan for the unknowns (masses or
+        stiffnesses, not both).
+    frequencies_hz : array_like
+        The prescribed elastic natural frequencies [Hz], one per unknown.
+    modes : sequence of int or None
+        Which elastic modes (0 = lowest elastic) they are (default the lowest, in ascending
+        order of the sorted frequencies).
+    initial : array_like or None
+        Start values of the unknowns [kg or N/m] (default: the mean of the known values of
+        that kind, scaled to match the mean frequency).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The full (masses [kg], stiffness [N/m]).
+
+    Raises
+    ------
+    DesignError
+        For an indeterminate request (module docstring).
+    ConvergenceError
+        When no solution near the start values reproduces the spectrum.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2]; [FoxKapoor1968].
     """
     m = _parse(masses, "masses")
     c = _parse(stiffness, "stiffness")
@@ -116,48 +207,18 @@ def solve_inverse(masses: ArrayLike, stiffness: ArrayLike, frequencies_hz: Array
     unknown = np.flatnonzero(np.isnan(m if kind == "masses" else c))
     vec = m if kind == "masses" else c
     p0 = _initial(vec, unknown, initial, m, c, target, kind)
-
-    def full(logp: NDArray) -> tuple[NDArray, NDArray]:
-        mm, cc = m.copy(), c.copy()
-        (mm if kind == "masses" else cc)[unknown] = np.exp(logp)
-        return mm, cc
-
-    def residual(logp: NDArray, goal: NDArray = target) -> NDArray:
-        lam, _ = ring_eigen(*full(logp))
-        return lam[1:][md] / goal - 1.0
-
-    def jacobian(logp: NDArray, goal: NDArray = target) -> NDArray:
-        mm, cc = full(logp)
-        lam, phi = ring_eigen(mm, cc)
-        ph = phi[:, 1:][:, md]                                       # (n, F)
-        if kind == "masses":
-            d = -lam[1:][md][None, :] * ph[unknown] ** 2 * mm[unknown][:, None]
-        else:
-            diff = np.roll(ph, -1, axis=0) - ph                      # φ_{l+1} − φ_l
-            d = diff[unknown] ** 2 * cc[unknown][:, None]
-        return (d / goal[None, :]).T
-
-    def follow(x: NDArray) -> tuple[NDArray, float]:
-        # continuation: move the target from the start's own spectrum to the prescribed one
-        # in CONTINUATION_STEPS geometric steps, following the solution branch of the start
-        lam0 = ring_eigen(*full(x))[0][1:][md]
-        for t in np.linspace(0.0, 1.0, CONTINUATION_STEPS + 1)[1:]:
-            goal = lam0 ** (1 - t) * target ** t
-            x = least_squares(residual, x, jac=jacobian, args=(goal,), method="lm",
-                              xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=500).x
-        return x, float(np.max(np.abs(residual(x))))
-
-    x, err = follow(np.log(p0))
+    problem = _InverseProblem(m, c, kind, unknown, md, target)
+    x, err = problem.follow(np.log(p0))
     rng = np.random.default_rng(0)  # restarts only without given start values, reproducible
     for _ in range(0 if initial is not None else RESTARTS):
         if err <= SPECTRUM_TOL:
             break
-        x, err = follow(np.log(p0) + rng.uniform(-0.7, 0.7, p0.size))
+        x, err = problem.follow(np.log(p0) + rng.uniform(-0.7, 0.7, p0.size))
     if err > SPECTRUM_TOL:
         raise ConvergenceError(f"inverse problem: no {kind} near the start values reproduce the "
                                f"spectrum (largest relative error {err:.2e}); try other initial "
                                "values or frequencies the model can reach")
-    return full(x)
+    return problem.full(x)
 
 
 def _initial(vec: NDArray, unknown: NDArray, initial: ArrayLike | None, m: NDArray,
@@ -179,8 +240,26 @@ def _initial(vec: NDArray, unknown: NDArray, initial: ArrayLike | None, m: NDArr
 def masses_for_spectrum(stiffness: ArrayLike, frequencies_hz: ArrayLike,
                         known_masses: ArrayLike, *, modes: Sequence[int] | None = None,
                         initial: ArrayLike | None = None) -> NDArray[np.float64]:
-    """Masses [kg] (nan in ``known_masses`` = unknown) giving the prescribed frequencies
-    [Hz] with the stiffnesses [N/m] fixed; see :func:`solve_inverse`."""
+    """Masses giving the prescribed frequencies with the stiffnesses fixed.
+
+    Parameters
+    ----------
+    stiffness : array_like
+        (n,) branch stiffnesses [N/m], all known.
+    frequencies_hz : array_like
+        The prescribed elastic natural frequencies [Hz].
+    known_masses : array_like
+        (n,) masses [kg], nan for the unknowns.
+    modes : sequence of int or None
+        As in :func:`solve_inverse`.
+    initial : array_like or None
+        Start values of the unknown masses [kg].
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) masses [kg].
+    """
     c = np.asarray(stiffness, dtype=float)
     if np.any(np.isnan(c)):
         raise DesignError("stiffness", "must all be known when solving for masses")
@@ -190,8 +269,26 @@ def masses_for_spectrum(stiffness: ArrayLike, frequencies_hz: ArrayLike,
 def stiffnesses_for_spectrum(masses: ArrayLike, frequencies_hz: ArrayLike,
                              known_stiffness: ArrayLike, *, modes: Sequence[int] | None = None,
                              initial: ArrayLike | None = None) -> NDArray[np.float64]:
-    """Branch stiffnesses [N/m] (nan in ``known_stiffness`` = unknown) giving the prescribed
-    frequencies [Hz] with the masses [kg] fixed; see :func:`solve_inverse`."""
+    """Branch stiffnesses giving the prescribed frequencies with the masses fixed.
+
+    Parameters
+    ----------
+    masses : array_like
+        (n,) masses [kg], all known.
+    frequencies_hz : array_like
+        The prescribed elastic natural frequencies [Hz].
+    known_stiffness : array_like
+        (n,) branch stiffnesses [N/m], nan for the unknowns.
+    modes : sequence of int or None
+        As in :func:`solve_inverse`.
+    initial : array_like or None
+        Start values of the unknown stiffnesses [N/m].
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) stiffnesses [N/m].
+    """
     m = np.asarray(masses, dtype=float)
     if np.any(np.isnan(m)):
         raise DesignError("masses", "must all be known when solving for stiffnesses")

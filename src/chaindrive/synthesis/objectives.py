@@ -26,7 +26,21 @@ __all__ = ["OBJECTIVES", "Metric", "available_objectives", "register_objective"]
 
 @dataclass(frozen=True, slots=True)
 class Metric:
-    """An objective: value(analysis) in ``unit``; sense +1 minimise, −1 maximise."""
+    """An objective of the synthesis.
+
+    Parameters
+    ----------
+    name : str
+        Its name in ``[optimize] objectives``.
+    unit : str
+        The unit of its value.
+    sense : int
+        +1 minimise, −1 maximise.
+    value : callable
+        Analysis → value [``unit``].
+    description : str
+        What it measures.
+    """
 
     name: str
     unit: str
@@ -39,13 +53,30 @@ OBJECTIVES: dict[str, Metric] = {}
 
 
 def register_objective(metric: Metric) -> Metric:
-    """Add (or replace) an objective by name."""
+    """Add (or replace) an objective by name.
+
+    Parameters
+    ----------
+    metric : Metric
+        The objective.
+
+    Returns
+    -------
+    Metric
+        The same objective.
+    """
     OBJECTIVES[metric.name] = metric
     return metric
 
 
 def available_objectives() -> tuple[str, ...]:
-    """Names of the registered objectives."""
+    """Names of the registered objectives.
+
+    Returns
+    -------
+    tuple of str
+        In the order of registration.
+    """
     return tuple(OBJECTIVES)
 
 
@@ -70,7 +101,8 @@ for _m in (
     Metric("resonance_margin", "%", -1, _resonance_margin,
            "least distance of a working frequency from resonance (maximised)"),
     Metric("normalised_amplitude", "-", 1,
-           lambda a: normalised_amplitude_at(a.dynamics.modal, a.working_frequencies_hz,
+           lambda a: normalised_amplitude_at(a.dynamics.modal,
+                                             a.working_frequencies_hz,
                                              a.ring.damping_ratio),
            "largest normalised amplitude at the working frequencies"),
     Metric("coefficient_of_dynamics", "-", 1, _kd,

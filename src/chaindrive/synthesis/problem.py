@@ -1,6 +1,6 @@
 """The ``[optimize]`` table of a design file: variables, objectives, constraints, solver.
 
-Seed 000 §3.6 and conclusion: build a contour "meeting the optimal-design requirements:
+[MultimassChainDrives, §3.6] and conclusion: build a contour "meeting the optimal-design requirements:
 minimum cost, material, occupied volume and weight, maximum dynamic quality". The table::
 
     [optimize]
@@ -31,12 +31,13 @@ value and what is allowed (the style of :mod:`chaindrive.io.design`).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from chaindrive.catalog import chains, find_chain, find_material
+from chaindrive.checks import ALLOWABLE_DYNAMIC_SAFETY
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.design import (
     Field,
@@ -55,6 +56,7 @@ __all__ = [
     "Gene",
     "Problem",
     "SolverSettings",
+    "decode_vector",
     "load_problem",
     "problem_from_mapping",
 ]
@@ -68,18 +70,19 @@ CONSTRAINT_FIELDS: tuple[Field, ...] = (
           minimum=0.0, maximum=2 * math.pi),
     Field("min_teeth_in_mesh", "float", "smallest number of teeth in mesh on loaded sprockets",
           default=3.0, minimum=0.0, maximum=50.0),
-    Field("static_safety", "bool", "static safety factor s ≥ [s] (Table 9A)", default=True),
+    Field("static_safety", "bool", "static safety factor s ≥ [s] [ChainDesignRU, Table 9A]",
+          default=True),
     Field("min_static_safety", "float", "your own [s] where the table gives none (without "
           "it such a design cannot be verified and counts as failing)", minimum=1.0,
           maximum=50.0),
-    Field("allowable_dynamic_safety", "float", "[k] for k2 and k2min (seed 000 §3.6)",
-          default=2.5, minimum=1.0, maximum=20.0),
+    Field("allowable_dynamic_safety", "float", "[k] for k2 and k2min [MultimassChainDrives, §3.6]",
+          default=ALLOWABLE_DYNAMIC_SAFETY, minimum=1.0, maximum=20.0),
     Field("startup_safety", "bool", "k1 = Q/F1max ≥ [k] from the start-up transient (costly: "
           "one time integration per design)", default=False),
     Field("max_chain_speed", "velocity", "highest mean chain speed", default=15.0, minimum=0.0,
           exclusive_minimum=True),
-    Field("speed_limit", "bool", "small-sprocket speed ≤ n1max of the pitch (table 5.8)",
-          default=True),
+    Field("speed_limit", "bool", "small-sprocket speed ≤ n1max of the pitch "
+          "[TrinhChat2006, Table 5.8]", default=True),
     Field("resonance_band", "float", "if given: every working frequency at least this many "
           "percent from every natural frequency", minimum=0.0, maximum=100.0),
 )
@@ -99,10 +102,23 @@ SECTIONS = ("objectives", "ratio_tolerance", "teeth", "position", "chain", "mate
 class Gene:
     """One coordinate of the search vector.
 
-    kind: ``"int"`` (rounded in [low, high]), ``"ratio"`` (u ∈ [0, 1) picks one of the tooth
-    counts that keep the ratio; see :meth:`Problem.decode`), ``"float"``, ``"choice"`` (index
-    into ``choices``); target: what it sets (``teeth``, ``x``, ``y``, ``inertia``, ``chain``,
-    ``strands``, ``material``) and sprocket index (−1 for drive-wide genes).
+    Parameters
+    ----------
+    name : str
+        E.g. ``teeth.M``.
+    kind : str
+        ``"int"`` (rounded in [low, high]), ``"ratio"`` (u ∈ [0, 1) picks one of the tooth
+        counts that keep the ratio; see :meth:`Problem.decode`), ``"float"``, ``"choice"``
+        (index into ``choices``).
+    low, high : float
+        Bounds [the unit of the target: teeth, m, kg·m², or an index].
+    target : str
+        What it sets (``teeth``, ``x``, ``y``, ``inertia``, ``chain``, ``strands``,
+        ``material``).
+    index : int
+        Sprocket index (−1 for drive-wide genes).
+    choices : tuple
+        The categories (or the tooth-count range of a ratio gene).
     """
 
     name: str
@@ -111,18 +127,40 @@ class Gene:
     high: float
     target: str
     index: int = -1
-    choices: tuple[Any, ...] = ()
+    choices: tuple[str | int, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
 class Constraints:
-    """Constraint settings in SI (see :data:`CONSTRAINT_FIELDS`)."""
+    """Constraint settings (:data:`CONSTRAINT_FIELDS`).
+
+    Parameters
+    ----------
+    min_driver_wrap : float
+        Smallest wrap on the driver [rad].
+    min_teeth_in_mesh : float
+        Smallest teeth in mesh on loaded sprockets [-].
+    static_safety : bool
+        Keep the chain's strength checks.
+    min_static_safety : float or None
+        The designer's own [s] [-] where the table gives none.
+    allowable_dynamic_safety : float
+        [k] [-].
+    startup_safety : bool
+        Keep k₁ (a start-up per design).
+    max_chain_speed : float
+        Highest mean chain speed [m/s].
+    speed_limit : bool
+        Keep the small-sprocket speed limit.
+    resonance_band : float or None
+        Least distance of a working frequency from a natural one [%].
+    """
 
     min_driver_wrap: float = math.radians(120)
     min_teeth_in_mesh: float = 3.0
     static_safety: bool = True
     min_static_safety: float | None = None
-    allowable_dynamic_safety: float = 2.5
+    allowable_dynamic_safety: float = ALLOWABLE_DYNAMIC_SAFETY
     startup_safety: bool = False
     max_chain_speed: float = 15.0
     speed_limit: bool = True
@@ -131,8 +169,19 @@ class Constraints:
 
 @dataclass(frozen=True, slots=True)
 class SolverSettings:
-    """method (``nsga2`` = pymoo NSGA-II, ``optuna`` = Optuna NSGA-II sampler), population,
-    generations, seed."""
+    """The search settings (:data:`SOLVER_FIELDS`).
+
+    Parameters
+    ----------
+    method : str
+        ``nsga2`` = pymoo NSGA-II, ``optuna`` = Optuna NSGA-II sampler [Deb2002].
+    population : int
+        Designs per generation [-].
+    generations : int
+        [-].
+    seed : int
+        Random seed (same seed, same result).
+    """
 
     method: str = "optuna"
     population: int = 16
@@ -144,9 +193,22 @@ class SolverSettings:
 class Problem:
     """A synthesis problem: the start design, the genes, objectives and constraints.
 
-    base : the start :class:`Drive`; base_mapping : the design file's tables without
-    ``[optimize]``; genes : the search vector; ratios : z_i/z_driver of the start design per
-    sprocket; ratio_tolerance; objectives : names in :data:`chaindrive.synthesis.objectives.OBJECTIVES`.
+    Parameters
+    ----------
+    base : Drive
+        The start design.
+    base_mapping : dict
+        The design file's tables without ``[optimize]``.
+    genes : tuple of Gene
+        The search vector.
+    ratio_tolerance : float
+        Allowed relative deviation of every driven ratio from the start design [-].
+    objectives : tuple of str
+        Names in :data:`chaindrive.synthesis.objectives.OBJECTIVES`.
+    constraints : Constraints
+        The constraint settings.
+    solver : SolverSettings
+        The search settings.
     """
 
     base: Drive
@@ -163,12 +225,28 @@ class Problem:
         return [g.low for g in self.genes], [g.high for g in self.genes]
 
     def start_vector(self) -> list[float]:
-        """The search vector of the start design (each gene at the start's value)."""
+        """The search vector of the start design (each gene at the start's value).
+
+        Returns
+        -------
+        list of float
+            One value per gene.
+        """
         return [_start_value(self, g) for g in self.genes]
 
     def decode(self, x: Sequence[float]) -> Drive:
-        """The drive of a search vector; raises DesignError when no tooth count keeps a ratio
-        (:func:`decode_vector`)."""
+        """The drive of a search vector (:func:`decode_vector`).
+
+        Parameters
+        ----------
+        x : sequence of float
+            One value per gene [the unit of each gene].
+
+        Returns
+        -------
+        Drive
+            The design.
+        """
         return decode_vector(self, x)
 
 
@@ -178,7 +256,7 @@ def _start_value(problem: Problem, g: Gene) -> float:
         z = drive.sprockets[g.index].teeth
         if g.kind == "int":
             return float(z)
-        lo, hi = g.choices  # the start's tooth count among those keeping its ratio
+        lo, hi = _tooth_range(g)  # the start's tooth count among those keeping its ratio
         i0 = z / drive.driver.teeth
         allowed = [k for k in range(lo, hi + 1)
                    if abs(k / drive.driver.teeth - i0) <= problem.ratio_tolerance * i0 + 1e-12]
@@ -187,10 +265,13 @@ def _start_value(problem: Problem, g: Gene) -> float:
         return float(getattr(drive.sprockets[g.index], g.target))
     if g.target == "inertia":
         return float(g.low)
-    current = {"chain": drive.chain.spec.designation, "strands": drive.chain.spec.strands,
-               "material": drive.sprockets[0].material}[g.target]
-    key = _chain_key(current) if g.target == "chain" else current
-    keys = [_chain_key(c) if g.target == "chain" else c for c in g.choices]
+    key: str | int
+    if g.target == "chain":
+        key = _chain_key(drive.chain.spec.designation)
+        keys: list[object] = [_chain_key(str(c)) for c in g.choices]
+    else:
+        key = drive.chain.spec.strands if g.target == "strands" else drive.sprockets[0].material
+        keys = list(g.choices)
     return float(keys.index(key)) + 0.5 if key in keys else 0.5
 
 
@@ -267,7 +348,8 @@ def _position_genes(drive: Drive, table: Mapping[str, Any]) -> list[Gene]:
     return genes
 
 
-def _choice_gene(name: str, values: Any, path: str, target: str, check: Any) -> Gene:
+def _choice_gene(name: str, values: object, path: str, target: str,
+                 check: Callable[[object, str], None]) -> Gene:
     if not isinstance(values, list) or not values:
         raise DesignError(path, f"must be a non-empty list, got {values!r}")
     for k, v in enumerate(values):
@@ -275,7 +357,7 @@ def _choice_gene(name: str, values: Any, path: str, target: str, check: Any) -> 
     return Gene(name, "choice", 0.0, float(len(values)), target, -1, tuple(values))
 
 
-def _check_chain(value: Any, path: str) -> None:
+def _check_chain(value: object, path: str) -> None:
     if not isinstance(value, str):
         raise DesignError(path, f"must be a catalogue designation, got {value!r}")
     try:
@@ -284,12 +366,12 @@ def _check_chain(value: Any, path: str) -> None:
         raise DesignError(path, f"{value!r} is not in the catalogue ({exc})") from None
 
 
-def _check_strands(value: Any, path: str) -> None:
+def _check_strands(value: object, path: str) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 4:
         raise DesignError(path, f"must be a whole number from 1 to 4, got {value!r}")
 
 
-def _check_material(value: Any, path: str) -> None:
+def _check_material(value: object, path: str) -> None:
     if not isinstance(value, str):
         raise DesignError(path, f"must be a material name, got {value!r}")
     try:
@@ -348,7 +430,25 @@ def _objectives(data: Mapping[str, Any]) -> tuple[str, ...]:
 
 
 def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) -> Problem:
-    """Build a :class:`Problem` from the parsed TOML of a design file with ``[optimize]``."""
+    """A synthesis problem from the parsed TOML of a design file with ``[optimize]``.
+
+    Parameters
+    ----------
+    data : mapping
+        The design file's tables.
+    base_dir : pathlib.Path or None
+        Where relative paths of the design file start.
+
+    Returns
+    -------
+    Problem
+        The validated problem.
+
+    Raises
+    ------
+    DesignError
+        Naming the field path, the value and what is allowed.
+    """
     base_mapping = {k: v for k, v in data.items() if k != "optimize"}
     drive = drive_from_mapping(base_mapping, base_dir)
     opt = data.get("optimize")
@@ -377,7 +477,18 @@ def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) 
 
 
 def load_problem(path: str | Path) -> Problem:
-    """Read a design file and its ``[optimize]`` table."""
+    """Read a design file and its ``[optimize]`` table.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The design file.
+
+    Returns
+    -------
+    Problem
+        The validated problem.
+    """
     return problem_from_mapping(read_toml(path), base_dir=Path(path).parent)
 
 
@@ -395,7 +506,12 @@ def _chain_spec(designation: str, strands: int | None) -> ChainSpec:
     return same[0]
 
 
-def _pick(g: Gene, v: float) -> Any:
+def _tooth_range(g: Gene) -> tuple[int, int]:
+    """(low, high) tooth counts of a ratio gene."""
+    return int(g.choices[0]), int(g.choices[1])
+
+
+def _pick(g: Gene, v: float) -> str | int:
     k = math.floor(v)
     return g.choices[min(max(k, 0), len(g.choices) - 1)]
 
@@ -404,7 +520,7 @@ def _ratio_teeth(problem: Problem, g: Gene, u: float, z_driver: int) -> int:
     """The tooth count that u ∈ [0, 1) picks among those in [low, high] keeping the ratio."""
     base = problem.base
     i0 = base.sprockets[g.index].teeth / base.driver.teeth
-    lo, hi = g.choices
+    lo, hi = _tooth_range(g)
     tol = problem.ratio_tolerance
     allowed = [z for z in range(lo, hi + 1) if abs(z / z_driver - i0) <= tol * i0 + 1e-12]
     if not allowed:
@@ -421,6 +537,23 @@ def decode_vector(problem: Problem, x: Sequence[float]) -> Drive:
     among the tooth counts that keep the ratio; an added inertia becomes the sprocket's
     ``flywheel`` (so the drive, and its design file, analyse to the same masses and count the
     flywheel's mass and cost).
+
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem.
+    x : sequence of float
+        One value per gene [the unit of each gene].
+
+    Returns
+    -------
+    Drive
+        The design.
+
+    Raises
+    ------
+    DesignError
+        When no tooth count keeps a ratio.
     """
     base = problem.base
     vals = dict(zip((g.name for g in problem.genes), (float(v) for v in x), strict=True))
@@ -437,7 +570,7 @@ def decode_vector(problem: Problem, x: Sequence[float]) -> Drive:
         elif g.target == "inertia":
             sp[g.index]["flywheel"] = min(max(v, g.low), g.high)
         elif g.target == "chain":
-            designation = _pick(g, v)
+            designation = str(_pick(g, v))
         elif g.target == "strands":
             strands = int(_pick(g, v))
         elif g.target == "material":

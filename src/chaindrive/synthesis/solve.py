@@ -43,14 +43,37 @@ BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
 
 
 def design_mapping(drive: Drive) -> dict[str, Any]:
-    """The dictionary a design file of ``drive`` loads to
-    (:func:`chaindrive.io.design.drive_to_mapping`)."""
+    """The dictionary a design file of a drive loads to.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    dict
+        :func:`chaindrive.io.design.drive_to_mapping` of it.
+    """
     return drive_to_mapping(drive)
 
 
 def serial_evaluator(problem: Problem, xs: Sequence[Sequence[float]]
                      ) -> list[tuple[Evaluation, dict[str, Any] | None]]:
-    """Evaluate a batch in this process."""
+    """Evaluate a batch of search vectors in this process, in order.
+
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem.
+    xs : sequence of sequence of float
+        The search vectors [the unit of each gene].
+
+    Returns
+    -------
+    list of (Evaluation, dict or None)
+        Each evaluation and its design mapping (None when it cannot be decoded).
+    """
     out = []
     for x in xs:
         ev, drive = evaluate_vector(problem, x)
@@ -60,8 +83,21 @@ def serial_evaluator(problem: Problem, xs: Sequence[Sequence[float]]
 
 @dataclass(frozen=True, slots=True)
 class ParetoDesign:
-    """One design of the Pareto set: objectives (natural sign), constraint values g,
-    constraints_ok, design (the TOML mapping) and its search vector."""
+    """One design of the Pareto set.
+
+    Parameters
+    ----------
+    objectives : dict of str to float
+        Objective values, natural sign [the unit of each objective].
+    constraints : dict of str to float
+        Constraint values g [-] (≤ 0 satisfied).
+    constraints_ok : bool
+        Every constraint satisfied.
+    design : dict
+        The TOML mapping of the design.
+    vector : tuple of float
+        Its search vector [the unit of each gene].
+    """
 
     objectives: dict[str, float]
     constraints: dict[str, float]
@@ -77,8 +113,25 @@ class ParetoDesign:
 
 @dataclass(frozen=True, slots=True)
 class SynthesisResult:
-    """Pareto set (sorted by the first objective), the start design's evaluation, the
-    number of designs evaluated, method, seed and wall time [s]."""
+    """The result of a search.
+
+    Parameters
+    ----------
+    objectives : tuple of str
+        The objectives.
+    start : Evaluation
+        The start design's evaluation.
+    pareto : tuple of ParetoDesign
+        The Pareto set, sorted by the first objective.
+    evaluations : int
+        Designs evaluated [-].
+    method : str
+        The search library.
+    seed : int
+        The random seed.
+    seconds : float
+        Wall time [s].
+    """
 
     objectives: tuple[str, ...]
     start: Evaluation
@@ -96,13 +149,43 @@ class SynthesisResult:
 
 
 def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
-    """a Pareto-dominates b (all minimised): no worse in every objective, better in one."""
+    """Whether a Pareto-dominates b (all minimised): no worse in every objective, better in one.
+
+    Parameters
+    ----------
+    a, b : sequence of float
+        Objective vectors [the unit of each objective].
+
+    Returns
+    -------
+    bool
+        True when a dominates b.
+
+    References
+    ----------
+    [Deb2002].
+    """
     a_, b_ = np.asarray(a), np.asarray(b)
     return bool(np.all(a_ <= b_) and np.any(a_ < b_))
 
 
 def pareto_indices(F: NDArray[np.float64]) -> list[int]:
-    """Indices of the non-dominated rows of F (minimised), duplicates kept once."""
+    """Indices of the non-dominated rows of F (minimised), duplicates kept once.
+
+    Parameters
+    ----------
+    F : numpy.ndarray
+        (designs, objectives) objective values [the unit of each objective].
+
+    Returns
+    -------
+    list of int
+        The rows of the Pareto front.
+
+    References
+    ----------
+    [Deb2002].
+    """
     keep: list[int] = []
     for i in range(F.shape[0]):
         dominated = np.any(np.all(F[i] >= F, axis=1) & np.any(F[i] > F, axis=1))
@@ -143,6 +226,7 @@ def _arrays(problem: Problem, evs: Sequence[Evaluation]) -> tuple[NDArray, NDArr
 
 
 def _solve_pymoo(problem: Problem, archive: _Archive, pop: int, gens: int, seed: int) -> None:
+    # lazy: pymoo takes seconds to import and only this search method needs it
     from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.problem import Problem as PymooProblem
     from pymoo.optimize import minimize
@@ -185,6 +269,7 @@ def _start_params(problem: Problem) -> dict[str, Any]:
 
 
 def _solve_optuna(problem: Problem, archive: _Archive, pop: int, gens: int, seed: int) -> None:
+    # lazy: optuna (with sqlalchemy) takes seconds to import and only this method needs it
     import optuna
 
     optuna.logging.set_verbosity(optuna.logging.WARNING)
@@ -205,13 +290,27 @@ def _solve_optuna(problem: Problem, archive: _Archive, pop: int, gens: int, seed
 def solve(problem: Problem, *, method: str | None = None, population: int | None = None,
           generations: int | None = None, seed: int | None = None,
           evaluator: BatchEvaluator | None = None) -> SynthesisResult:
-    """Search the Pareto set of ``problem``.
+    """Search the Pareto set of a synthesis problem.
 
-    method ``"optuna"`` (Optuna NSGAIISampler) or ``"nsga2"`` (pymoo); population,
-    generations, seed: default the problem's ``[optimize.solver]``; evaluator: evaluates a
-    batch of vectors in order
-    (default :func:`serial_evaluator`; :func:`chaindrive.synthesis.studies.dask_evaluator`
-    spreads a population over a Dask cluster and stores it in a study database).
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    method : str or None
+        ``"optuna"`` (Optuna NSGAIISampler) or ``"nsga2"`` (pymoo) [Deb2002].
+    population, generations : int or None
+        [-] (default: the problem's ``[optimize.solver]``).
+    seed : int or None
+        Random seed (default: the problem's).
+    evaluator : callable or None
+        Evaluates a batch of vectors in order (default :func:`serial_evaluator`;
+        :func:`chaindrive.synthesis.studies.dask_evaluator` spreads a population over a Dask
+        cluster and stores it in a study database).
+
+    Returns
+    -------
+    SynthesisResult
+        The Pareto set and the start design's evaluation.
     """
     s = problem.solver
     method = method or s.method

@@ -20,26 +20,74 @@ __all__ = ["ParetoDesignFile", "chosen_analysis", "pareto_design_files", "pareto
 
 @dataclass(frozen=True, slots=True)
 class ParetoDesignFile:
-    """One Pareto design as a design file: its file name and TOML text."""
+    """One Pareto design as a design file.
+
+    Parameters
+    ----------
+    name : str
+        Its file name.
+    text : str
+        Its TOML text.
+    """
 
     name: str
     text: str
 
 
 def pareto_drives(result: SynthesisResult, base_dir: Path | None = None) -> tuple[Drive, ...]:
-    """The validated drives of the Pareto set, in its order."""
+    """The validated drives of the Pareto set.
+
+    Parameters
+    ----------
+    result : SynthesisResult
+        The search.
+    base_dir : pathlib.Path or None
+        Where relative paths of the designs start.
+
+    Returns
+    -------
+    tuple of Drive
+        In the order of the Pareto set.
+    """
     return tuple(drive_from_mapping(p.design, base_dir) for p in result.pareto)
 
 
 def pareto_design_files(result: SynthesisResult, stem: str,
                         base_dir: Path | None = None) -> tuple[ParetoDesignFile, ...]:
-    """The Pareto designs as design files ``<stem>_pareto_<k>.toml``."""
+    """The Pareto designs as design files ``<stem>_pareto_<k>.toml``.
+
+    Parameters
+    ----------
+    result : SynthesisResult
+        The search.
+    stem : str
+        Start of the file names.
+    base_dir : pathlib.Path or None
+        Where relative paths of the designs start.
+
+    Returns
+    -------
+    tuple of ParetoDesignFile
+        One per Pareto design.
+    """
     return tuple(ParetoDesignFile(f"{stem}_pareto_{k:02d}.toml", drive_to_toml(d))
                  for k, d in enumerate(pareto_drives(result, base_dir), start=1))
 
 
 def chosen_analysis(result: SynthesisResult, base_dir: Path | None = None) -> Analysis | None:
-    """The analysis of the first Pareto design (the one the report presents), or None when
-    the set is empty."""
+    """The analysis of the first Pareto design (the one the report presents).
+
+    Parameters
+    ----------
+    result : SynthesisResult
+        The search.
+    base_dir : pathlib.Path or None
+        Where relative paths of the designs start.
+
+    Returns
+    -------
+    Analysis or None
+        None when the set is empty.
+    """
     drives = pareto_drives(result, base_dir)
     return analyze(drives[0]) if drives else None
