@@ -34,6 +34,8 @@ from chaindrive.errors import DesignError
 
 __all__ = [
     "DEFAULT_DAMPING_RATIO",
+    "PAIR_DAMPING_RATIOS",
+    "TABLE1_FREQUENCIES_RAD_S",
     "PR_12_7_1820_1",
     "HingeFrictionCoefficients",
     "HingeFrictionResult",
@@ -44,13 +46,119 @@ __all__ = [
     "equivalent_damping_ratio",
     "hinge_friction_damping",
     "hinge_rotation_sum",
+    "pair_damping_ratio",
+    "span_hinge_damping_ratios",
+    "table1_damping_ratio",
     "max_dynamic_force",
     "max_potential_energy",
     "span_elongation_max",
 ]
 
-#: Dimensionless damping coefficient D = ζ measured for chain drives (seed 000 §3.2).
+#: Dimensionless damping coefficient D = ζ measured for chain drives [MultimassChainDrives,
+#: §3.2].
 DEFAULT_DAMPING_RATIO = 0.06
+
+#: [MultimassChainDrives], Table 1: undamped and damped natural frequency [rad/s] of one chain
+#: drive by (chain, sprockets) material: "metal" or "polymer".
+TABLE1_FREQUENCIES_RAD_S: dict[tuple[str, str], tuple[float, float]] = {
+    ("metal", "metal"): (612.4, 611.3),
+    ("polymer", "metal"): (155.0, 152.6),
+    ("metal", "polymer"): (548.0, 546.9),
+    ("polymer", "polymer"): (153.8, 151.4),
+}
+
+
+def table1_damping_ratio(undamped: float, damped: float) -> float:
+    """Damping ratio ζ = √(1 − (ω_d/ω)²) [-] of a mode whose damped and undamped natural
+    frequencies are ω_d and ω (any one unit): ω_d = ω√(1 − ζ²) of a viscously damped
+    single-degree-of-freedom system [Rao2011, §2.6].
+
+    Parameters
+    ----------
+    undamped : float
+        ω, undamped natural frequency [rad/s].
+    damped : float
+        ω_d ≤ ω, damped natural frequency [rad/s].
+
+    Returns
+    -------
+    float
+        ζ [-].
+
+    References
+    ----------
+    [Rao2011, §2.6]; applied to [MultimassChainDrives], Table 1.
+    """
+    r = damped / undamped
+    if not 0.0 < r <= 1.0:
+        raise DesignError("damped", f"need 0 < ω_d ≤ ω, got {damped!r} and {undamped!r}")
+    return math.sqrt(1.0 - r * r)
+
+
+#: Damping ratio of a chain on its sprockets by (chain, sprockets) material, derived from the
+#: damped and undamped frequencies of [MultimassChainDrives], Table 1 (ζ = √(1 − (ω_d/ω)²)):
+#: 0.060 metal chain on metal sprockets (the measured D = 0.06 of the same paper, §3.2),
+#: 0.175 polymer chain on metal, 0.063 metal chain on polymer, 0.176 polymer on polymer.
+#: Table 1 prints four significant figures: ζ is known to about ±0.002 (metal) and ±0.001.
+PAIR_DAMPING_RATIOS: dict[tuple[str, str], float] = {
+    pair: table1_damping_ratio(*w) for pair, w in TABLE1_FREQUENCIES_RAD_S.items()}
+
+
+def pair_damping_ratio(chain_polymer: bool, sprocket_polymer: bool) -> float:
+    """Damping ratio ζ [-] of a chain on a sprocket by their materials
+    (:data:`PAIR_DAMPING_RATIOS`, [MultimassChainDrives], Table 1).
+
+    Parameters
+    ----------
+    chain_polymer : bool
+        The chain is of a polymer (else a metal).
+    sprocket_polymer : bool
+        The sprocket is of a polymer.
+
+    Returns
+    -------
+    float
+        ζ [-].
+    """
+    key = ("polymer" if chain_polymer else "metal", "polymer" if sprocket_polymer else "metal")
+    return PAIR_DAMPING_RATIOS[key]
+
+
+def span_hinge_damping_ratios(tensions: ArrayLike, lengths: ArrayLike, pin_diameter: float,
+                              relative_amplitude: float,
+                              coefficients: HingeFrictionCoefficients | None = None,
+                              ) -> NDArray[np.float64]:
+    """Damping ratio ζ = ψ/4π [-] of every span from the hinge friction at its own tension
+    [ChainHingeDissipation, eq. 14]: ψ = 6π f d₂/(ȳ₀ a K_aF).
+
+    Parameters
+    ----------
+    tensions : array_like
+        Static tension F₀ of every span [N] (> 0; a slack span is given the least tension of
+        the fit's range, 250 N, and its damping matters little).
+    lengths : array_like
+        Span length a [m].
+    pin_diameter : float
+        Pin diameter d₂ of the chain [m].
+    relative_amplitude : float
+        Relative transverse amplitude ȳ₀ = y₀/a [-] (the paper: 0.015–0.03).
+    coefficients : HingeFrictionCoefficients | None
+        The F_max fit and friction f (None: the paper's ПР-12,7-1820-1; for another chain an
+        extrapolation).
+
+    Returns
+    -------
+    ndarray
+        ζ of every span [-].
+
+    References
+    ----------
+    [ChainHingeDissipation], eqs. 11–14; ζ = ψ/4π [Panovko] (:func:`equivalent_damping_ratio`).
+    """
+    c = coefficients or PR_12_7_1820_1
+    f0 = np.maximum(np.asarray(tensions, dtype=float), 250.0)
+    psi = absorption_coefficient(c.friction, pin_diameter, lengths, relative_amplitude, f0, c)
+    return equivalent_damping_ratio(psi)
 
 
 @dataclass(frozen=True, slots=True)

@@ -52,7 +52,7 @@ from chaindrive.strength.loads import loads_of
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
-    from chaindrive.model import Drive, Material
+    from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
 __all__ = ["DynamicsResult", "RingParameters", "drive_dynamics", "drive_ring_parameters",
            "ring_damping_ratio", "ring_model", "static_span_tensions"]
@@ -111,6 +111,38 @@ def _default_lookup() -> Callable[[str], Material]:
     return find_material
 
 
+def sprocket_inertia(sprocket: Sprocket, pitch_radius: float, spec: ChainSpec,
+                     material: Material) -> float:
+    """Moment of inertia [kg·m²] of what turns rigidly with a sprocket (its flywheel aside).
+
+    Parameters
+    ----------
+    sprocket : Sprocket
+        Its ``inertia``, else its ``reduced_mass`` m at the pitch radius, J = m R²
+        [MultimassChainDrives, §3.1], else the sprocket body from its geometry
+        (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`).
+    pitch_radius : float
+        R [m].
+    spec : ChainSpec
+        The chain (pitch, width, strands).
+    material : Material
+        The sprocket's material (density of the body).
+
+    Returns
+    -------
+    float
+        J [kg·m²].
+    """
+    if sprocket.inertia is not None:
+        return sprocket.inertia
+    if sprocket.reduced_mass is not None:
+        return sprocket.reduced_mass * pitch_radius**2
+    return sprocket_mass_and_inertia(spec.pitch, sprocket.teeth, spec.inner_width,
+                                     material.density, material.is_polymer,
+                                     strands=spec.strands,
+                                     transverse_pitch=spec.transverse_pitch).moment_of_inertia
+
+
 def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           span_tensions: Sequence[float] | None = None,
                           link_stiffness: float | None = None,
@@ -150,11 +182,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
         mat = lookup(s.material)
         eta_wrap[i] = loss_factor(mat.family, mat.is_polymer)
-        inertia[i] = s.flywheel + (s.inertia if s.inertia is not None else
-                                   sprocket_mass_and_inertia(
-                                       spec.pitch, s.teeth, spec.inner_width, mat.density,
-                                       mat.is_polymer, strands=spec.strands,
-                                       transverse_pitch=spec.transverse_pitch).moment_of_inertia)
+        inertia[i] = s.flywheel + sprocket_inertia(s, radius[i], spec, mat)
         k_t = tooth_stiffness(width, mat.youngs_modulus, chain_mat.youngs_modulus)
         wrap[i] = wrap_stiffness(k_t, k_link, g.teeth_in_mesh)
     lengths = np.array([sp.length for sp in geometry.spans])

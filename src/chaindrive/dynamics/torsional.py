@@ -137,7 +137,9 @@ class TorsionalSystem:
     motion M q̈ + C q̇ + K q = Σ_n factor_n·T_n (:meth:`generalized_force`) with
     K = stiffness_linear + Bᵀ diag(c_span·active) B and C likewise, span elongations e = B q
     (``span_incidence``) [m]. ``mass`` [kg·m²] is the diagonal of M; a 0 marks a massless
-    coordinate (see :meth:`condensed`). ``rigid_motions`` (size, r): one exact strain-free
+    coordinate (see :meth:`condensed`); ``mass_coupling`` (size, size) the off-diagonal part
+    of M (a span's consistent chain mass couples its two ends; zero diagonal, all zeros when
+    every chain mass is lumped). ``rigid_motions`` (size, r): one exact strain-free
     motion per free group (no ground spring, no loop of mismatched ratios), from the graph.
     """
 
@@ -146,6 +148,7 @@ class TorsionalSystem:
     node_factor: FloatArray
     node_inertia_kg_m2: FloatArray
     mass: FloatArray
+    mass_coupling: FloatArray
     stiffness_linear: FloatArray
     damping_linear: FloatArray
     span_names: tuple[str, ...]
@@ -175,8 +178,13 @@ class TorsionalSystem:
         return int(self.node_dof[i]), float(self.node_factor[i])
 
     def mass_matrix(self) -> FloatArray:
-        """M [kg·m²] (diagonal)."""
-        return np.diag(self.mass)
+        """M [kg·m²]: the diagonal ``mass`` plus the ``mass_coupling`` of consistent spans."""
+        return np.diag(self.mass) + self.mass_coupling
+
+    @property
+    def has_mass_coupling(self) -> bool:
+        """True when M is not diagonal (a span carries a consistent chain mass)."""
+        return bool(np.any(self.mass_coupling))
 
     def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
@@ -223,7 +231,7 @@ class TorsionalSystem:
         T = np.zeros((self.size, int((~massless).sum())))
         T[~massless] = np.eye(T.shape[1])
         T[massless] = -X
-        return T, T.T @ np.diag(self.mass) @ T, T.T @ K @ T, T.T @ C @ T
+        return T, T.T @ self.mass_matrix() @ T, T.T @ K @ T, T.T @ C @ T
 
 
 def _condensation(K: FloatArray, massless: NDArray[np.bool_], names: Sequence[str],
@@ -357,6 +365,8 @@ class TorsionalModel:
         self._inertia: list[float] = []
         self._given: list[bool] = []
         self._chain: list[float] = []
+        # consistent chain mass of the spans: (node a, node b, m/6·r_a·r_b) [kg·m²]
+        self._mass_pairs: list[tuple[int, int, float]] = []
         self._gears = _WeightedUnion()
         # strain-free kinematics of all elements of stiffness > 0 and meshes: rigid-body modes
         self._kin = _WeightedUnion()
@@ -404,6 +414,24 @@ class TorsionalModel:
         self._system = None
         return self
 
+    def add_inertia_to(self, name: str, inertia: float) -> TorsionalModel:
+        """Add J [kg·m²] ≥ 0 to the inertia of an existing node (a body on the same shaft)."""
+        i = self._node(name, False, name)
+        self._inertia[i] += _nonneg(name, inertia, "inertia [kg·m²]")
+        self._given[i] = True
+        self._system = None
+        return self
+
+    def rename_node(self, old: str, new: str) -> TorsionalModel:
+        """Give node ``old`` the name ``new`` (not yet used)."""
+        if new in self._index:
+            raise DesignError(new, "a node of that name exists already")
+        i = self._node(old, False, old)
+        self._index = {(new if k == old else k): v for k, v in self._index.items()}
+        self._system = None
+        del i
+        return self
+
     def add_shaft(self, a: str, b: str, stiffness: float, damping: float = 0.0,
                   name: str | None = None) -> TorsionalModel:
         """Shaft or coupling of torsional stiffness k [N·m/rad] and damping c [N·m·s/rad]
@@ -447,10 +475,15 @@ class TorsionalModel:
 
     def add_span(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
                  damping: float = 0.0, tension_only: bool = True, mass: float = 0.0,
-                 name: str | None = None) -> TorsionalModel:
+                 name: str | None = None, consistent_mass: bool = False) -> TorsionalModel:
         """Chain span from sprocket a to b: elongation e = r_b φ_b − r_a φ_a [m] with signed
-        pitch radii r [m], stiffness c [N/m], damping d [N·s/m]. ``mass`` [kg] (q·L of the
-        span) is split to its ends, m/2·r² on each sprocket (docs/torsional.md)."""
+        pitch radii r [m], stiffness c [N/m], damping d [N·s/m].
+
+        ``mass`` [kg] (q·L of the span) is split to its ends, m/2·r² on each sprocket, or with
+        ``consistent_mass`` distributed as the consistent mass of a linear velocity profile
+        along the span: m/3·r² on each end and m/6·r_a·r_b between them (kinetic energy
+        m/6·(v_a² + v_a v_b + v_b²) [Rao2011, §8.4]; docs/torsional.md §5 measures both).
+        """
         name = self._element_name(name, f"span:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
@@ -461,9 +494,42 @@ class TorsionalModel:
         self._elements.append((name, "span", ia, ib, -ra, rb, k,
                                _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
         self._kinematics(ia, ib, ra / rb, k)
-        self._chain[ia] += 0.5 * m * ra * ra
-        self._chain[ib] += 0.5 * m * rb * rb
+        if consistent_mass:
+            self._chain[ia] += m / 3.0 * ra * ra
+            self._chain[ib] += m / 3.0 * rb * rb
+            if m > 0.0:
+                self._mass_pairs.append((ia, ib, m / 6.0 * ra * rb))
+        else:
+            self._chain[ia] += 0.5 * m * ra * ra
+            self._chain[ib] += 0.5 * m * rb * rb
         return self
+
+    def add_link(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
+                 damping: float = 0.0, name: str | None = None,
+                 kind: str = "link") -> TorsionalModel:
+        """Linear spring between two nodes at radii r_a, r_b [m]: strain e = r_b φ_b − r_a φ_a
+        [m], force k·e + c·ė [N] (k [N/m], c [N·s/m]); pushes and pulls (e.g. the tooth contact
+        of a sprocket with the chain wrapped on it, kind "wrap"). A node of radius 1 m is a
+        translational body whose "angle" is its displacement [m] and "inertia" its mass [kg]."""
+        name = self._element_name(name, f"{kind}:{a}-{b}")
+        ra, rb = float(radius_a), float(radius_b)
+        if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
+            raise DesignError(name, f"radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
+        ia, ib = self._pair(a, b, name)
+        k = _nonneg(name, stiffness, "stiffness [N/m]")
+        self._elements.append((name, kind, ia, ib, -ra, rb, k,
+                               _nonneg(name, damping, "damping [N·s/m]"), False))
+        self._kinematics(ia, ib, ra / rb, k)
+        return self
+
+    def set_damping(self, element: str, damping: float) -> TorsionalModel:
+        """Replace the damping coefficient of an existing element [N·s/m or N·m·s/rad]."""
+        for k, e in enumerate(self._elements):
+            if e[0] == element:
+                self._elements[k] = (*e[:7], _nonneg(element, damping, "damping"), e[8])
+                self._system = None
+                return self
+        raise DesignError(element, "no element of that name")
 
     def add_chain_wrap(self, node: str, mass: float, radius: float) -> TorsionalModel:
         """Links wrapped on a sprocket turn with it: adds m_wrap·r² [kg·m²] to its inertia."""
@@ -566,7 +632,7 @@ class TorsionalModel:
                      chain_mass_per_length_kg_per_m: float = 0.0,
                      span_lengths_m: ArrayLike | None = None,
                      wrap_lengths_m: ArrayLike | None = None,
-                     closed: bool = True) -> TorsionalModel:
+                     closed: bool = True, consistent_mass: bool = False) -> TorsionalModel:
         """The model of a chain contour with a train on any sprocket, from plain data.
 
         Parameters
@@ -589,6 +655,8 @@ class TorsionalModel:
             mass q·L is split to its two sprockets, with ``wrap_lengths_m`` (n,) [m] the links
             wrapped on each sprocket turn with it (docs/torsional.md)
         closed : False for an open contour (the last span is left out)
+        consistent_mass : distribute each span's mass consistently (m/3 on each end, m/6
+            coupling) instead of half to each end (:meth:`add_span`)
         """
         from chaindrive.dynamics.torsional_build import build_contour
 
@@ -597,7 +665,7 @@ class TorsionalModel:
                              span_damping_n_s_per_m=span_damping_n_s_per_m, trains=trains,
                              chain_mass_per_length_kg_per_m=chain_mass_per_length_kg_per_m,
                              span_lengths_m=span_lengths_m, wrap_lengths_m=wrap_lengths_m,
-                             closed=closed)
+                             closed=closed, consistent_mass=consistent_mass)
 
 
 def _assemble(model: TorsionalModel) -> TorsionalSystem:
@@ -618,6 +686,15 @@ def _assemble(model: TorsionalModel) -> TorsionalSystem:
     n = len(dof_of_root)
     inertia = np.asarray(model._inertia) + np.asarray(model._chain)
     mass = np.bincount(node_dof, weights=inertia * factor * factor, minlength=n)
+    coupling = np.zeros((n, n))
+    for ia_, ib_, m_ab in model._mass_pairs:
+        ka, kb = node_dof[ia_], node_dof[ib_]
+        w_ab = m_ab * factor[ia_] * factor[ib_]
+        if ka == kb:  # both ends on one coordinate (meshed): it is diagonal mass
+            mass[ka] += 2.0 * w_ab
+        else:
+            coupling[ka, kb] += w_ab
+            coupling[kb, ka] += w_ab
     held = set(kin_root[np.asarray(model._held, dtype=bool)].tolist())
     free = [r for r in dict.fromkeys(kin_root.tolist()) if r not in held]
     rigid = np.zeros((n, len(free)))
@@ -640,7 +717,7 @@ def _assemble(model: TorsionalModel) -> TorsionalSystem:
     Bl = B[lin]
     return TorsionalSystem(
         node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
-        node_inertia_kg_m2=inertia, mass=mass,
+        node_inertia_kg_m2=inertia, mass=mass, mass_coupling=coupling,
         stiffness_linear=(Bl.T * k_all[lin]) @ Bl, damping_linear=(Bl.T * c_all[lin]) @ Bl,
         span_names=tuple(x for x, sp in zip(names, span, strict=True) if sp),
         span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
@@ -680,10 +757,39 @@ def _deflated_eigh(A: FloatArray, W: FloatArray,
     return lam, basis @ Ve
 
 
-def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, FloatArray, FloatArray,
+@dataclass(frozen=True, slots=True, eq=False)
+class _Scaling:
+    """y = S q of the massed coordinates with Sᵀ S = M: S = diag(√m) for a diagonal M, else
+    S = Lᵀ of the Cholesky factor M = L Lᵀ (a consistent chain mass couples two ends)."""
+
+    sqrt_m: FloatArray | None
+    L: FloatArray | None
+
+    def y_of(self, q: FloatArray) -> FloatArray:
+        """S q."""
+        return q * self.sqrt_m[:, None] if self.sqrt_m is not None else self.L.T @ q  # type: ignore[union-attr]
+
+    def q_of(self, y: FloatArray) -> FloatArray:
+        """S⁻¹ y."""
+        if self.sqrt_m is not None:
+            return y / self.sqrt_m[:, None]
+        return np.linalg.solve(self.L.T, y)  # type: ignore[union-attr]
+
+    def scaled(self, K: FloatArray) -> FloatArray:
+        """S⁻ᵀ K S⁻¹ (symmetric)."""
+        if self.sqrt_m is not None:
+            d = 1.0 / self.sqrt_m
+            return K * d[:, None] * d[None, :]
+        Y = np.linalg.solve(self.L, K)  # type: ignore[arg-type]
+        A = np.linalg.solve(self.L, Y.T)  # type: ignore[arg-type]
+        return 0.5 * (A + A.T)
+
+
+def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, _Scaling, FloatArray,
                                                       FloatArray | None, NDArray[np.bool_]]:
-    """(A = M^{-1/2} K_c M^{-1/2}, m, U, X, massed): the condensed, mass-scaled stiffness, the
-    masses and rigid-body motions of the massed coordinates, the condensation X."""
+    """(A = S⁻ᵀ K_c S⁻¹, S, U, X, massed): the condensed, mass-scaled stiffness, the scaling
+    Sᵀ S = M of the massed coordinates, their rigid-body motions U made M-orthonormal, the
+    condensation X."""
     mass = system.mass
     massed = mass > 0.0
     if not massed.any():
@@ -697,21 +803,29 @@ def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, FloatArray, Fl
         U = system.rigid_motions[massed]
     else:
         U = system.rigid_motions
-    m = mass[massed]
-    d = 1.0 / np.sqrt(m)
-    return K * d[:, None] * d[None, :], m, U, X, massed
+    if system.has_mass_coupling:
+        Mm = system.mass_matrix()[np.ix_(massed, massed)]
+        scaling = _Scaling(None, np.linalg.cholesky(Mm))
+        if U.shape[1]:  # M-orthonormal rigid motions (groups may touch through a span's mass)
+            G = U.T @ Mm @ U
+            U = U @ np.linalg.inv(np.linalg.cholesky(G)).T
+    else:
+        m = mass[massed]
+        scaling = _Scaling(np.sqrt(m), None)
+        if U.shape[1]:  # disjoint groups are M-orthogonal already
+            U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
+    return scaling.scaled(K), scaling, U, X, massed
 
 
 def _frequencies(system: TorsionalSystem) -> FloatArray:
     """Natural frequencies only [Hz] (rigid-body zeros first), no eigenvectors."""
-    A, m, U, _, _ = _scaled_problem(system)
-    nr = int(U.shape[1])
-    f = np.zeros(m.size)
+    A, scaling, U, _, _ = _scaled_problem(system)
+    nm, nr = int(A.shape[0]), int(U.shape[1])
+    f = np.zeros(nm)
     if nr == 0:
         lam = np.linalg.eigvalsh(A)
-    elif nr < m.size:
-        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
-        lam = _deflated_eigh(A, U * np.sqrt(m)[:, None], vectors=False)[0]
+    elif nr < nm:
+        lam = _deflated_eigh(A, scaling.y_of(U), vectors=False)[0]
     else:
         return f
     f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
@@ -720,18 +834,15 @@ def _frequencies(system: TorsionalSystem) -> FloatArray:
 
 def _modal(system: TorsionalSystem) -> TorsionalModes:
     """Modes of the assembled system (module docstring: condensation, rigid-body modes)."""
-    A, m, U, X, massed = _scaled_problem(system)
-    sqrt_m = np.sqrt(m)
-    d = 1.0 / sqrt_m
-    nm, nr = int(m.size), int(U.shape[1])
+    A, scaling, U, X, massed = _scaled_problem(system)
+    nm, nr = int(A.shape[0]), int(U.shape[1])
     if nr:
-        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))  # M-orthonormal (disjoint groups)
-        lam, V = _deflated_eigh(A, U * sqrt_m[:, None]) if nr < nm else \
+        lam, V = _deflated_eigh(A, scaling.y_of(U)) if nr < nm else \
             (np.empty(0), np.empty((nm, 0)))
-        Qm = np.concatenate([U, V * d[:, None]], axis=1)
+        Qm = np.concatenate([U, scaling.q_of(V)], axis=1)
     else:
         lam, V = np.linalg.eigh(A)
-        Qm = V * d[:, None]
+        Qm = scaling.q_of(V)
     if X is None:
         Q = Qm
     else:

@@ -38,7 +38,7 @@ def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m
                    trains: Mapping[str, Sequence[TrainElement]] | None,
                    chain_mass_per_length_kg_per_m: float,
                    span_lengths_m: ArrayLike | None, wrap_lengths_m: ArrayLike | None,
-                   closed: bool) -> TorsionalModel:
+                   closed: bool, consistent_mass: bool = False) -> TorsionalModel:
     """Adds a chain contour with trains to ``model``: see :meth:`TorsionalModel.from_contour`
     (its docstring lists the parameters and their units)."""
     names = [str(s) for s in sprockets]
@@ -65,7 +65,7 @@ def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m
     for i in range(n if closed else n - 1):
         b = (i + 1) % n
         model.add_span(names[i], names[b], c[i], r[i], r[b], damping=d[i], mass=span_mass[i],
-                       name=f"span:{names[i]}-{names[b]}")
+                       name=f"span:{names[i]}-{names[b]}", consistent_mass=consistent_mass)
     for name, m, radius in zip(names, wrap_mass.tolist(), R.tolist(), strict=True):
         if m > 0.0:
             model.add_chain_wrap(name, m, radius)
