@@ -184,6 +184,7 @@ def polygonal_steady(drive: Drive, geometry: GeometryResult, model: RingModel, *
                                    .pitch_diameter, w_d) if drive.power else None)
     radii = np.array([g.pitch_radius for g in geometry.sprockets])
     return steady_state(model, ex, radii=radii, nominal_force=Ft,
+                        teeth=[s.teeth for s in drive.sprockets],
                         breaking_load=drive.chain.spec.breaking_load,
                         operating_forces=np.asarray(span_tensions, float),
                         resonance_loads=resonance_loads)

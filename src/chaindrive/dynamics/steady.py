@@ -29,7 +29,7 @@ All harmonics are solved at once by :func:`numpy.linalg.solve` on the stacked sy
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -123,7 +123,10 @@ class SteadyStateResult:
     span_force_trace (T, n) [N] and displacement_trace (T, n) [m] over it;
     span_dynamic_load (n,) max |F_i(t)| [N]; span_load_amplitude (n,) (max − min)/2 [N];
     inertia_load (n,) max |m_i ẍ_i| [N]; displacement_amplitude (n,) x_A [m];
-    irregularity_percent (n,) Δ = 2 x_A/R·100 (seed 000); dynamic_load_rms F_D [N] (RMS of
+    irregularity_percent (n,) Δ = (ω_max − ω_min)/ω_mean·100 of every sprocket from its speed
+    history (2 x_A z/R·100 for one harmonic [MultimassChainDrives, §3.3]); rotor_names and
+    rotor_irregularity_percent the same for the rotors of the trains (whole-drive model);
+    dynamic_load_rms F_D [N] (RMS of
     span_dynamic_load); coefficient_of_dynamics K_D (None without F_t); k2, k2_min (None
     without Q and F_R); periodic : False when the frequencies are not all harmonics of ω_z
     (then the peaks are the sums of harmonic amplitudes: exact for incommensurate
@@ -147,6 +150,9 @@ class SteadyStateResult:
     k2: float | None
     k2_min: float | None
     periodic: bool
+    rotor_names: tuple[str, ...] = ()
+    rotor_irregularity_percent: NDArray[np.float64] = field(
+        default_factory=lambda: np.zeros(0))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (forces N, displacements mm)."""
@@ -159,6 +165,8 @@ class SteadyStateResult:
             "inertia_load_n": self.inertia_load.tolist(),
             "displacement_amplitude_mm": (self.displacement_amplitude * 1e3).tolist(),
             "irregularity_percent": self.irregularity_percent.tolist(),
+            "rotor_irregularity_percent": dict(zip(
+                self.rotor_names, self.rotor_irregularity_percent.tolist(), strict=True)),
             "dynamic_load_rms_n": self.dynamic_load_rms,
             "coefficient_of_dynamics": self.coefficient_of_dynamics,
             "k2": self.k2,
@@ -181,13 +189,15 @@ def _peaks(amplitudes: NDArray[np.complex128], trace: NDArray[np.float64] | None
 def steady_state(model: RingModel, excitation: SpanExcitation, *,
                  radii: ArrayLike | None = None, beta: float | None = None,
                  samples: int = 128, nominal_force: float | None = None,
+                 teeth: ArrayLike | None = None,
                  breaking_load: float | None = None,
                  operating_forces: ArrayLike | None = None,
                  resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
     """Steady response of ``model`` to ``excitation`` in the frequency domain.
 
-    radii (n,) pitch radii R_i [m] for the irregularity Δ = 2x_A/R·100 (seed 000; None: Δ
-    is nan); beta [s] (None: :func:`damping_beta`); samples per tooth period of the traces;
+    radii (n,) pitch radii R_i [m] and teeth (n,) z_i for the irregularity of rotation
+    Δ = (ω_max − ω_min)/ω_mean·100 from the speed history, ω_mean = ω_z/z_i (2 x_A z/R·100 for
+    one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None: :func:`damping_beta`); samples per tooth period of the traces;
     nominal_force F_t [N] → K_D = 1 + F_D/F_t (seed-notes §1); breaking_load Q [N] with
     operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
     and, with resonance_loads F_2max (n,) [N], k2_min (seed 000 §3.6, seed-notes §2).
@@ -209,6 +219,9 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
     _, x_amp = _peaks(X, x_tr if periodic else None)
     acc, _ = _peaks(-(w**2)[:, None] * X, a_tr if periodic else None)
     R = np.full(m.size, np.nan) if radii is None else np.asarray(radii, dtype=float)
+    z = np.full(m.size, np.nan) if teeth is None else np.asarray(teeth, dtype=float)
+    v_tr = (E @ (1j * w[:, None] * X)).real
+    v_range = np.ptp(v_tr, axis=0) if periodic else 2.0 * np.abs(w[:, None] * X).sum(axis=0)
     rms = float(np.sqrt(np.mean(f_max**2)))
     kd = (coefficient_of_dynamics(f_max, nominal_force)
           if nominal_force is not None and np.any(f_max > 0) else None)
@@ -223,6 +236,6 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
         tooth_angular_frequency=wz, angular_frequencies=w, displacement=X, span_force=F,
         times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,
         span_load_amplitude=f_amp, inertia_load=m * acc, displacement_amplitude=x_amp,
-        irregularity_percent=200.0 * x_amp / R, dynamic_load_rms=rms,
+        irregularity_percent=100.0 * v_range * z / (R * wz), dynamic_load_rms=rms,
         coefficient_of_dynamics=kd, k2=k2, k2_min=k2min, periodic=periodic,
     )
