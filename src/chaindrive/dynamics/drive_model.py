@@ -57,7 +57,7 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material, Sprocket, TrainElement
 
-__all__ = ["CHAIN_NODE", "DriveModel", "LinearModel", "LoadPlacement", "MotorPlacement",
+__all__ = ["CHAIN_NODE", "DriveModel", "chain_damping_ratio", "LinearModel", "LoadPlacement", "MotorPlacement",
            "drive_model", "model_completeness", "shaft_stiffness"]
 
 TWO_PI = 2.0 * math.pi
@@ -200,6 +200,8 @@ class DriveModel:
     every node of the trains with an inertia (motor and machines among them); motor; loads;
     span_damping_ratios (S,) ζ of the chain spans [-] and their source; reference_frequency_hz
     of the damping; contours m (the spans carry m contours: forces per contour are F/m);
+    ring: the ring reduction (reduced masses, series branch stiffnesses) for the ring-model
+    tools; driver_index;
     missing: what makes the model incomplete (empty: complete); notes: what it rests on.
     """
 
@@ -224,9 +226,11 @@ class DriveModel:
     reference_frequency_hz: float
     contours: int
     ring: RingParameters
+    driver_index: int
     missing: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
     trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
+    modes: TorsionalModes | None = None
 
     @property
     def complete(self) -> bool:
@@ -234,8 +238,9 @@ class DriveModel:
         return not self.missing
 
     def modal(self) -> TorsionalModes:
-        """Undamped natural frequencies and shapes (:meth:`TorsionalModel.modal`)."""
-        return self.torsional.modal()
+        """Undamped natural frequencies and shapes (:meth:`TorsionalModel.modal`, computed
+        when the model was built)."""
+        return self.modes if self.modes is not None else self.torsional.modal()
 
     def warnings(self) -> tuple[ChainDriveWarning, ...]:
         """One ``dynamics.model-incomplete`` warning when the model is incomplete."""
@@ -389,6 +394,32 @@ def _chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
     return spans, wraps, "material pair [MultimassChainDrives, Table 1]"
 
 
+def chain_damping_ratio(drive: Drive,
+                        material_lookup: Callable[[str], Material] | None = None) -> float:
+    """One damping ratio ζ [-] of a drive's chain: ``[dynamics] damping_ratio`` when given,
+    else the mean over its sprockets of the ratio of the chain/sprocket material pair
+    ([MultimassChainDrives], Table 1; :func:`chaindrive.dynamics.damping.pair_damping_ratio`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    material_lookup : callable | None
+        name → Material (None: the catalogue).
+
+    Returns
+    -------
+    float
+        ζ [-].
+    """
+    if drive.dynamics.damping_ratio is not None:
+        return drive.dynamics.damping_ratio
+    lookup = material_lookup or find_material
+    chain = lookup(drive.chain.spec.material).is_polymer
+    return float(np.mean([pair_damping_ratio(chain, lookup(s.material).is_polymer)
+                          for s in drive.sprockets]))
+
+
 def _motor_law(drive: Drive, rated_power: float, rated_speed: float
                ) -> Callable[[float, float], float]:
     """The torque law of the motor (``[motor]`` over ``[dynamics]``)."""
@@ -455,15 +486,14 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
     [MultimassChainDrives, §3.1] (the ring of reduced masses it generalises), [Rao2011, ch. 6]
     (torsional systems), [Guyan1965] (condensation).
     """
-    lookup = material_lookup or find_material
+    lookup = _memoized(material_lookup or find_material)
     ring = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
                                  material_lookup=lookup)
-    first = _build(drive, geometry, ring, lookup, np.zeros(len(drive.sprockets)),
-                   np.zeros(len(drive.sprockets)), 0.0)
-    modes = first.torsional.modal()
+    model = _build(drive, geometry, ring, lookup)
+    modes = model.torsional.modal()
     w_ref = _reference_angular_frequency(modes)
     zs, zw, source = _chain_damping(drive, geometry, ring, lookup)
-    model = _build(drive, geometry, ring, lookup, zs, zw, w_ref)
+    model.linear = _chain_dampers(model, zs, zw, w_ref)
     missing = model_completeness(drive)
     if missing and drive.dynamics.require_complete_model:
         raise DesignError("dynamics.require_complete_model", "the dynamic model is incomplete: "
@@ -471,8 +501,40 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
                           "every driven sprocket, or set require_complete_model = false)")
     values = {f.name: getattr(model, f.name) for f in fields(model)}
     values.update(span_damping_ratios=zs, damping_source=source,
-                  reference_frequency_hz=w_ref / TWO_PI, missing=missing)
+                  reference_frequency_hz=w_ref / TWO_PI, missing=missing, modes=modes)
     return DriveModel(**values)
+
+
+def _memoized(lookup: Callable[[str], Material]) -> Callable[[str], Material]:
+    """The material lookup with its answers kept (a catalogue search per sprocket is slow)."""
+    found: dict[str, Material] = {}
+
+    def get(name: str) -> Material:
+        if name not in found:
+            found[name] = lookup(name)
+        return found[name]
+
+    return get
+
+
+def _chain_dampers(model: _Built, span_zeta: FloatArray, wrap_zeta: FloatArray,
+                   w_ref: float) -> LinearModel:
+    """The linear model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
+    docstring); the torsional model's elements get them too."""
+    lin, sys, t = model.linear, model.system, model.torsional
+    if w_ref <= 0:
+        return lin
+    d_span = 2.0 * span_zeta * lin.span_stiffness / w_ref
+    kinds = np.array(sys.element_kinds)
+    wraps = np.flatnonzero(kinds == "wrap")
+    d_wrap = 2.0 * wrap_zeta * sys.element_stiffness[wraps] / w_ref
+    Bw = sys.element_incidence[wraps] @ model.condensation
+    for name, d in zip(sys.span_names, d_span.tolist(), strict=True):
+        t.set_damping(name, d)
+    for k, d in zip(wraps.tolist(), d_wrap.tolist(), strict=True):
+        t.set_damping(sys.element_names[k], d)
+    return LinearModel(lin.mass, lin.stiffness_linear, lin.damping_linear + (Bw.T * d_wrap) @ Bw,
+                       lin.span_incidence, lin.span_stiffness, d_span, lin.span_tension_only)
 
 
 def _reference_angular_frequency(modes: TorsionalModes) -> float:
@@ -515,14 +577,14 @@ class _Built:
     reference_frequency_hz: float
     contours: int
     ring: RingParameters
+    driver_index: int
     notes: tuple[str, ...]
     trains: dict[str, list[dict[str, Any]]]
 
 
 def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
-           lookup: Callable[[str], Material], span_zeta: FloatArray, wrap_zeta: FloatArray,
-           w_ref: float) -> _Built:
-    """The model with chain dampers 2ζk/ω_ref (none when ω_ref = 0)."""
+           lookup: Callable[[str], Material]) -> _Built:
+    """The model without the chain's dampers (they follow from its modes)."""
     spec = drive.chain.spec
     m = drive.chain.contours
     q = spec.mass_per_length * m
@@ -533,7 +595,6 @@ def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
     Rbar = np.array([s.teeth for s in drive.sprockets], float) * spec.pitch / TWO_PI
     w_d = drive.driver.speed or 1.0
     speeds = sense * w_d * drive.driver.teeth / np.array([s.teeth for s in drive.sprockets])
-    beta = (lambda z: 2.0 * z / w_ref) if w_ref > 0 else (lambda z: 0.0 * z)
     t = TorsionalModel()
     chain = [CHAIN_NODE.format(x) for x in names]
     for i, g in enumerate(geometry.sprockets):
@@ -543,13 +604,11 @@ def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
     k_wrap = ring.wrap_stiffness_n_per_m * m
     for i, sp in enumerate(geometry.spans):
         b = (i + 1) % n
-        t.add_span(chain[i], chain[b], float(k_span[i]), 1.0, 1.0,
-                   damping=float(beta(span_zeta[i]) * k_span[i]), mass=q * sp.length,
+        t.add_span(chain[i], chain[b], float(k_span[i]), 1.0, 1.0, mass=q * sp.length,
                    consistent_mass=True, name=f"span:{names[i]}-{names[b]}")
     for i in range(n):
         t.add_link(names[i], chain[i], float(k_wrap[i]), float(sense[i] * R[i]), 1.0,
-                   damping=float(beta(wrap_zeta[i]) * k_wrap[i]), name=f"wrap:{names[i]}",
-                   kind="wrap")
+                   name=f"wrap:{names[i]}", kind="wrap")
     trains: dict[str, _Train] = {}
     for i, s in enumerate(drive.sprockets):
         tr = _Train(s.name, s.name, float(speeds[i]), 1.0)
@@ -573,7 +632,7 @@ def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
     system = t.system()
     T, lin, massed_index = _condensed(system, notes)
     return _placements(drive, t, system, T, lin, massed_index, trains, speeds, R, Rbar, ring,
-                       rated_power, rated_speed, j_rotor, estimated, notes, span_zeta)
+                       rated_power, rated_speed, j_rotor, estimated, notes)
 
 
 def _condensed(system: TorsionalSystem, notes: list[str]
@@ -626,7 +685,7 @@ def _placements(drive: Drive, t: TorsionalModel, system: TorsionalSystem, T: Flo
                 lin: LinearModel, index: NDArray[np.intp], trains: dict[str, _Train],
                 speeds: FloatArray, R: FloatArray, Rbar: FloatArray, ring: RingParameters,
                 rated_power: float | None, rated_speed: float, j_rotor: float,
-                estimated: bool, notes: list[str], span_zeta: FloatArray) -> _Built:
+                estimated: bool, notes: list[str]) -> _Built:
     """Coordinates of the sprockets, rotors, motor and machines."""
     names = tuple(s.name for s in drive.sprockets)
     sc, sg = zip(*(_node_coordinate(system, T, x) for x in names), strict=True)
@@ -664,6 +723,6 @@ def _placements(drive: Drive, t: TorsionalModel, system: TorsionalSystem, T: Flo
         nominal_speeds=np.abs(speeds), rotor_names=tuple(rotors),
         rotor_coordinate=np.array([k for k, _ in rot], dtype=np.intp), rotor_gain=r_gain,
         rotor_nominal_speed=np.array([abs(nominal[x]) for x in rotors]), motor=motor,
-        loads=tuple(loads), span_damping_ratios=span_zeta, damping_source="",
+        loads=tuple(loads), span_damping_ratios=np.zeros(len(names)), damping_source="",
         reference_frequency_hz=0.0, contours=drive.chain.contours, ring=ring,
-        notes=tuple(notes), trains={k: v.description for k, v in trains.items() if v.description})
+        driver_index=drive.driver_index, notes=tuple(notes), trains={k: v.description for k, v in trains.items() if v.description})

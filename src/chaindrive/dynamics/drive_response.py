@@ -107,18 +107,28 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
     orders = excitation.orders
     wz = float(w[0] / orders[0]) if w.size else 0.0
     periodic = bool(np.allclose(orders, np.round(orders)) and np.all(orders >= 1))
-    if not periodic:
-        raise DesignError("excitation", "the steady state of the whole model needs whole "
-                          "harmonics of the tooth frequency")
+    # one tooth period; disturbances at other orders: their peaks are the sums of the
+    # harmonic amplitudes (exact for incommensurate frequencies, else an upper bound)
     times = np.linspace(0.0, TWO_PI / wz, int(samples), endpoint=False)
     k, g = model.sprocket_coordinate, model.sprocket_gain
     phi = X[:, k] * g                                        # forward angle (F, n) [rad]
     x = phi * model.mean_radii                               # chain displacement [m]
+    rot = X[:, model.rotor_coordinate] * model.rotor_gain
     f_tr = _traces(F, w, times)
     x_tr = _traces(x, w, times)
-    speed_tr = _traces(1j * w[:, None] * phi, w, times)
-    acc_tr = _traces(-(w * w)[:, None] * phi, w, times)
-    f_max = np.abs(f_tr).max(axis=0)
+    if periodic:
+        f_max = np.abs(f_tr).max(axis=0)
+        f_amp = 0.5 * np.ptp(f_tr, axis=0)
+        x_amp = 0.5 * np.ptp(x_tr, axis=0)
+        acc = np.abs(_traces(-(w * w)[:, None] * phi, w, times)).max(axis=0)
+        speed_range = np.ptp(_traces(1j * w[:, None] * phi, w, times), axis=0)
+        rot_range = np.ptp(_traces(1j * w[:, None] * rot, w, times), axis=0)
+    else:
+        f_max = f_amp = np.abs(F).sum(axis=0)
+        x_amp = np.abs(x).sum(axis=0)
+        acc = np.abs((w * w)[:, None] * phi).sum(axis=0)
+        speed_range = 2.0 * np.abs(w[:, None] * phi).sum(axis=0)
+        rot_range = 2.0 * np.abs(w[:, None] * rot).sum(axis=0)
     rms = float(np.sqrt(np.mean(f_max**2)))
     kd = (coefficient_of_dynamics(f_max, nominal_force)
           if nominal_force is not None and np.any(f_max > 0) else None)
@@ -129,20 +139,16 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
         if resonance_loads is not None:
             k2min = float(np.min(steady_safety_factor(breaking_load, fr,
                                                       np.asarray(resonance_loads, float))))
-    rot = X[:, model.rotor_coordinate] * model.rotor_gain
-    rot_tr = _traces(1j * w[:, None] * rot, w, times)
     J = model.ring.inertias_kg_m2
     return SteadyStateResult(
         tooth_angular_frequency=wz, angular_frequencies=w, displacement=x, span_force=F,
         times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,
-        span_load_amplitude=0.5 * (f_tr.max(axis=0) - f_tr.min(axis=0)),
-        inertia_load=J * np.abs(acc_tr).max(axis=0) / model.pitch_radii,
-        displacement_amplitude=0.5 * (x_tr.max(axis=0) - x_tr.min(axis=0)),
-        irregularity_percent=100.0 * np.ptp(speed_tr, axis=0) / model.nominal_speeds,
+        span_load_amplitude=f_amp, inertia_load=J * acc / model.pitch_radii,
+        displacement_amplitude=x_amp,
+        irregularity_percent=100.0 * speed_range / model.nominal_speeds,
         dynamic_load_rms=rms, coefficient_of_dynamics=kd, k2=k2, k2_min=k2min,
         periodic=periodic, rotor_names=model.rotor_names,
-        rotor_irregularity_percent=(100.0 * np.ptp(rot_tr, axis=0) / model.rotor_nominal_speed
-                                    if rot.shape[1] else np.zeros(0)))
+        rotor_irregularity_percent=100.0 * rot_range / model.rotor_nominal_speed)
 
 
 def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcitation,

@@ -54,8 +54,9 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, DynamicsSettings
 
-__all__ = ["DynamicResponse", "disturbance_responses", "drive_startup", "dynamics_response",
-           "mean_radii", "motor_of", "polygonal_steady", "speed_sweep"]
+__all__ = ["DynamicResponse", "disturbance_excitations", "disturbance_responses",
+           "drive_startup", "dynamics_response", "mean_radii", "motor_of", "polygonal_law",
+           "polygonal_steady", "speed_sweep", "startup_pretension"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -73,9 +74,61 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
     return driver.speed, driver.speed * driver.teeth / z
 
 
-def _pretension(drive: Drive, geometry: GeometryResult) -> float:
+def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
+    """Pre-tension T₀ [N] of the spans at rest: the sag tension of the span leaving the driver
+    (:func:`chaindrive.strength.loads.sag_tension`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+
+    Returns
+    -------
+    float
+        T₀ [N].
+    """
     slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
     return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination))
+
+
+def disturbance_excitations(drive: Drive, geometry: GeometryResult, *,
+                            eccentricity: Sequence[float] | None = None,
+                            pitch_scatter: float = 0.0, accumulated_error: float = 0.0
+                            ) -> dict[str, SpanExcitation]:
+    """The optional internal disturbances as span excitations at the nominal speed: sprocket
+    eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
+    chain error Δ [m] (once per chain revolution; :mod:`chaindrive.dynamics.excitation`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (the driver's speed).
+    geometry : GeometryResult
+        Its contour.
+    eccentricity : sequence of float | None
+        ε of every sprocket [m].
+    pitch_scatter : float
+        σ [m].
+    accumulated_error : float
+        Δ [m].
+
+    Returns
+    -------
+    dict
+        "eccentricity" and/or "chain_error" → SpanExcitation.
+    """
+    w_d, _ = _speeds(drive)
+    wz = drive.driver.teeth * w_d
+    extra: dict[str, SpanExcitation] = {}
+    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
+        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
+    if pitch_scatter > 0 or accumulated_error != 0:
+        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
+                                                      accumulated_error=accumulated_error)
+    return extra
 
 
 def _shares(drive: Drive) -> NDArray[np.float64]:
@@ -107,7 +160,7 @@ def drive_startup(drive: Drive, geometry: GeometryResult, model: RingModel, *,
     if motor is None:
         motor = KlossMotor(P, w_d)
     law = ResistanceLaw(resistance, _shares(drive) * P / w, w) if P > 0 else None
-    T0 = _pretension(drive, geometry) if pretension is None else pretension
+    T0 = startup_pretension(drive, geometry) if pretension is None else pretension
     if dt is None:
         f1 = model.modal().first_elastic_frequency_hz
         fz = drive.driver.teeth * w_d / TWO_PI
@@ -208,16 +261,12 @@ def disturbance_responses(drive: Drive, geometry: GeometryResult, model: RingMod
     """Steady loads of the optional internal disturbances, each on its own: sprocket
     eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
     chain error Δ [m] (see :mod:`chaindrive.dynamics.excitation`)."""
-    w_d, _ = _speeds(drive)
-    wz = drive.driver.teeth * w_d
-    extra: dict[str, SpanExcitation] = {}
-    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
-        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
-    if pitch_scatter > 0 or accumulated_error != 0:
-        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
-                                                      accumulated_error=accumulated_error)
+    extra = disturbance_excitations(drive, geometry, eccentricity=eccentricity,
+                                    pitch_scatter=pitch_scatter,
+                                    accumulated_error=accumulated_error)
     radii = np.array([g.pitch_radius for g in geometry.sprockets])
-    return {k: steady_state(model, v, radii=radii) for k, v in extra.items()}
+    return {k: steady_state(model, v, radii=radii, teeth=[s.teeth for s in drive.sprockets])
+            for k, v in extra.items()}
 
 
 def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, *,
