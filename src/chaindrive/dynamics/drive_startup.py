@@ -101,7 +101,7 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
 
 def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration: float,
                   pretension: float, tooth_frequency_hz: float,
-                  breaking_load: float | None = None,
+                  breaking_load: float | None = None, keep_states: bool = False,
                   backend: Backend = "auto") -> StartupResult:
     """Start-up of the whole-drive model from rest (module docstring).
 
@@ -119,6 +119,9 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
         f_z at the nominal speed [Hz] (the step).
     breaking_load : float | None
         Q of one contour [N] → k₁ = Q/F₁max.
+    keep_states : bool
+        Keep the state (q, q̇) of every step (``StartupResult.states``; the memory grows with
+        the steps: for checks such as the energy balance).
     backend : str
         See :func:`chaindrive.dynamics.startup.solve_startup`.
 
@@ -147,7 +150,7 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
         load_kind=tuple(ld.kind for ld in loads), breakaway=0.01, polygonal=polygonal,
         travel_coordinate=model.sprocket_coordinate,
         travel_gain=model.sprocket_gain * model.mean_radii, dt=dt, steps=steps,
-        record_every=max(1, math.ceil(steps / MAX_RECORDS)), scale=m)
+        record_every=1 if keep_states else max(1, math.ceil(steps / MAX_RECORDS)), scale=m)
     times, forces, states, fmax, _ = solve_startup(p, backend)
     n = lin.size
     speeds = states[:, n + model.sprocket_coordinate] * model.sprocket_gain
@@ -158,4 +161,4 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
     return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
                          int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
                          max(0.0, settle - runup) if not math.isnan(runup) else math.nan,
-                         model.rotor_names, rotors, None, dt)
+                         model.rotor_names, rotors, states if keep_states else None, dt)
