@@ -95,13 +95,15 @@ def table1_damping_ratio(undamped: float, damped: float) -> float:
     return math.sqrt(1.0 - r * r)
 
 
-#: Damping ratio of a chain on its sprockets by (chain, sprockets) material, derived from the
-#: damped and undamped frequencies of [MultimassChainDrives], Table 1 (ζ = √(1 − (ω_d/ω)²)):
-#: 0.060 metal chain on metal sprockets (the measured D = 0.06 of the same paper, §3.2),
-#: 0.175 polymer chain on metal, 0.063 metal chain on polymer, 0.176 polymer on polymer.
-#: Table 1 prints four significant figures: ζ is known to about ±0.002 (metal) and ±0.001.
+#: Damping ratio of a chain on its sprockets by (chain, sprockets) material: a metal chain on
+#: metal sprockets the measured D = 0.06 [MultimassChainDrives, §3.2] (Table 1 gives 0.0599);
+#: the other pairs derived from the damped and undamped frequencies of its Table 1
+#: (ζ = √(1 − (ω_d/ω)²)): 0.175 polymer chain on metal, 0.063 metal chain on polymer, 0.176
+#: polymer on polymer. Table 1 prints four significant figures: ζ is known to about ±0.002
+#: (metal chain) and ±0.001 (polymer chain).
 PAIR_DAMPING_RATIOS: dict[tuple[str, str], float] = {
-    pair: table1_damping_ratio(*w) for pair, w in TABLE1_FREQUENCIES_RAD_S.items()}
+    **{pair: table1_damping_ratio(*w) for pair, w in TABLE1_FREQUENCIES_RAD_S.items()},
+    ("metal", "metal"): DEFAULT_DAMPING_RATIO}
 
 
 def pair_damping_ratio(chain_polymer: bool, sprocket_polymer: bool) -> float:
