@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.torsional import TorsionalModes
 
-__all__ = ["DriveModes", "StateModes", "drive_modes", "state_modes"]
+__all__ = ["DriveModes", "StateModes", "drive_modes", "inertia_modes_batch", "state_modes"]
 
 TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
@@ -204,3 +204,40 @@ def drive_modes(model: DriveModel) -> tuple[DriveModes, StateModes]:
     return DriveModes(modes.frequencies_hz, modes.rigid_body, fd, zeta, phi, governing, chain,
                       model.ring.masses_kg, model.linear.span_stiffness / model.contours,
                       float(zeta[j_ref]), modes), state
+
+
+def inertia_modes_batch(model: DriveModel, added_inertia: NDArray[np.float64]
+                        ) -> tuple[FloatArray, FloatArray]:
+    """Elastic frequencies and the sprockets' largest normalised amplitude per mode of B
+    variants of a whole-drive model whose sprockets carry added inertias (flywheels).
+
+    Parameters
+    ----------
+    model : DriveModel
+        The model.
+    added_inertia : ndarray
+        (B, n) inertia added on every sprocket's shaft [kg·m²].
+
+    Returns
+    -------
+    tuple of ndarray
+        f (B, E) elastic natural frequencies [Hz], ascending; μ (B, E) the largest
+        μ_k = |X_k|/Σ_i|X_i| over the sprockets of every mode [MultimassChainDrives, eq. 2].
+        Stacked Cholesky factors and symmetric eigenproblems (one NumPy call each); the
+        rigid-body modes (their count from the model's graph) are the lowest eigenvalues.
+    """
+    lin = model.linear
+    dJ = np.atleast_2d(np.asarray(added_inertia, dtype=float))
+    k, g = model.sprocket_coordinate, model.sprocket_gain
+    M = np.repeat(lin.mass[None], dJ.shape[0], axis=0)
+    np.add.at(M, (slice(None), k, k), dJ * g * g)
+    L = np.linalg.cholesky(M)
+    Y = np.linalg.solve(L, np.broadcast_to(lin.stiffness(), M.shape))
+    A = np.linalg.solve(L, np.swapaxes(Y, 1, 2))
+    lam, V = np.linalg.eigh(0.5 * (A + np.swapaxes(A, 1, 2)))
+    r = int(model.system.rigid_motions.shape[1])
+    X = np.linalg.solve(np.swapaxes(L, 1, 2), V)[:, k, r:] * (
+        model.mean_radii * g)[None, :, None]
+    a = np.abs(X)
+    mu = (a / np.maximum(a.sum(axis=1, keepdims=True), 1e-300)).max(axis=1)
+    return np.sqrt(np.maximum(lam[:, r:], 0.0)) / TWO_PI, mu

@@ -20,7 +20,7 @@ at once (stacked eigenproblems), reproducible with a seed.
 from __future__ import annotations
 
 import inspect
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import differential_evolution
 
 from chaindrive.analysis import Analysis
+from chaindrive.dynamics.modes import inertia_modes_batch
 from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.dynamics.ring import ModalResult
 from chaindrive.errors import DesignError
@@ -70,11 +71,17 @@ def band_shortfall(frequencies_hz: NDArray[np.float64], working_hz: ArrayLike,
     return (np.maximum(0.0, band - rel) ** 2).sum(axis=(1, 2))
 
 
+ModesBatch = Callable[[NDArray[np.float64], NDArray[np.float64]],
+                      tuple[NDArray[np.float64], NDArray[np.float64]]]
+
+
 def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float64],
                        working_hz: ArrayLike, band: float = BAND + 0.01,
-                       damping: float = 0.06) -> NDArray[np.float64]:
-    """J of the module docstring for B designs (masses, stiffness (B, n)) → (B,)."""
-    f, mu = ring_modes_batch(masses, stiffness)
+                       damping: float = 0.06, modes: ModesBatch | None = None
+                       ) -> NDArray[np.float64]:
+    """J of the module docstring for B designs (masses, stiffness (B, n)) → (B,); ``modes``
+    gives their elastic frequencies and amplitudes (None: :func:`ring_modes_batch`)."""
+    f, mu = (modes or ring_modes_batch)(masses, stiffness)
     w = np.asarray(working_hz, dtype=float)
     r = w[None, :, None] / f[:, None, :]
     h = 1.0 / np.sqrt((1 - r**2) ** 2 + (2 * damping * r) ** 2)
@@ -127,13 +134,16 @@ def _de_kwargs(seed: int) -> dict[str, Any]:
 def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
            band: float = BAND, mass_bounds: ArrayLike | None = None,
            stiffness_bounds: ArrayLike | None = None, damping: float = 0.06,
-           seed: int = 0, maxiter: int = 200, popsize: int = 20) -> DetuningResult:
+           seed: int = 0, maxiter: int = 200, popsize: int = 20,
+           modes: ModesBatch | None = None) -> DetuningResult:
     """Masses [kg] and/or stiffnesses [N/m] within bounds that clear ±band round every
     working frequency [Hz] and minimise the normalised amplitude (module docstring).
 
     mass_bounds, stiffness_bounds : (n, 2) [low, high] per mass / branch (None: fixed; a
     pair with low = high fixes one value). Starts from (and keeps, if no better is found)
-    the given values when they lie inside the bounds.
+    the given values when they lie inside the bounds. ``modes`` : (masses, stiffness) (B, n)
+    → elastic frequencies [Hz] and largest normalised amplitudes (B, E) of the model to
+    detune (None: the ring, :func:`ring_modes_batch`).
     """
     m0 = np.asarray(masses, dtype=float)
     c0 = np.asarray(stiffness, dtype=float)
@@ -161,7 +171,7 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
         return p[:, :n], p[:, n:]
 
     def func(z: NDArray) -> NDArray:
-        return detuning_objective(*unpack(z), w, band + 0.01, damping)
+        return detuning_objective(*unpack(z), w, band + 0.01, damping, modes)
 
     x0 = np.log(np.concatenate([m0, c0]))[free]
     inside = bool(np.all(x0 >= b[free, 0]) and np.all(x0 <= b[free, 1]))
@@ -169,7 +179,7 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
                                  polish=False, vectorized=True, updating="deferred",
                                  x0=x0 if inside else None, **_de_kwargs(seed))
     m, c = unpack(res.x[:, None])
-    f, _ = ring_modes_batch(m, c)
+    f, _ = (modes or ring_modes_batch)(m, c)
     dist = float(np.min(np.abs(f[0][:, None] - w[None, :]) / w[None, :]))
     return DetuningResult(m[0], c[0], f[0], w, dist, band, float(func(res.x[:, None])[0]))
 
@@ -201,10 +211,18 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     w = [x.frequency for x in working_frequencies(d.driver.speed, d.driver.teeth,
                                                   [s.teeth for s in d.sprockets],
                                                   harmonics=harmonics)]
+    model = a.drive_model
+    m0 = p.masses_kg.copy()
+
+    def modes(masses: NDArray[np.float64], _: NDArray[np.float64]
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        # the analysis' whole-drive model with the added inertias (m − m₀)R² on the shafts
+        return inertia_modes_batch(model, (masses - m0) * p.pitch_radii_m**2)
+
     res = detune(p.masses_kg, p.stiffness_n_per_m, w, band=band, mass_bounds=bounds,
-                 seed=seed, maxiter=maxiter)
+                 seed=seed, maxiter=maxiter, modes=modes)
     inertia = res.masses_kg * p.pitch_radii_m**2
-    sprockets = tuple(replace(s, inertia=float(inertia[k])) if s.name in added_inertia else s
+    sprockets = tuple(replace(s, inertia=float(inertia[k]), reduced_mass=None) if s.name in added_inertia else s
                       for k, s in enumerate(drive.sprockets))
     return drive.with_sprockets(sprockets), res
 
