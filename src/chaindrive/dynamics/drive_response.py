@@ -188,12 +188,18 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
     orders = excitation.orders
     wz = np.asarray(tooth_angular_frequencies, dtype=float)
     out = np.empty((wz.size, D.shape[1]))
+    nk, ns = D.shape
+    PT, BVT = np.ascontiguousarray(P.T), np.ascontiguousarray(BV.T)
     for a in range(0, wz.size, block):
         W = wz[a:a + block, None] * orders[None, :]                  # (b, K)
         cd = lin.span_stiffness + 1j * W[..., None] * lin.span_damping  # (b, K, S)
-        G = -(cd * D) @ P.T                                          # (b, K, 2E)
-        G /= 1j * W[..., None] - lam
-        F = cd * (G @ BV.T + D) / model.contours                     # (b, K, S)
+        CD = (cd * D).reshape(-1, ns)
+        G = -(CD @ PT)                                               # (b·K, 2E)
+        G /= (1j * W.reshape(-1, 1)) - lam
+        F = (G @ BVT).reshape(cd.shape)
+        F += D
+        F *= cd
+        F /= model.contours                                          # (b, K, S)
         out[a:a + block] = _peak_over_period(F, orders, samples)
     return out
 
