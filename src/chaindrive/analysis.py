@@ -42,7 +42,6 @@ from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
 from chaindrive.dynamics.quality import nominal_peripheral_force
 from chaindrive.dynamics.resonance import resonance_warnings
-from chaindrive.dynamics.warnings import dynamics_warnings
 from chaindrive.dynamics.response import (
     DynamicResponse,
     disturbance_excitations,
@@ -50,8 +49,9 @@ from chaindrive.dynamics.response import (
     startup_pretension,
 )
 from chaindrive.dynamics.startup import StartupResult
-from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.dynamics.steady import SteadyStateResult
+from chaindrive.dynamics.warnings import dynamics_warnings
+from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles

@@ -13,7 +13,7 @@ import pytest
 import chaindrive
 from chaindrive import examples
 from chaindrive.dynamics.damping import span_hinge_damping_ratios
-from chaindrive.dynamics.drive_model import drive_model, shaft_stiffness
+from chaindrive.dynamics.drive_model import shaft_stiffness
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_from_mapping, drive_to_toml, parse_toml, schema
@@ -190,7 +190,10 @@ def test_a_vanishing_sprocket_inertia_ends_with_a_result_or_one_line() -> None:
     try:
         a = chaindrive.analyze(tiny)
     except DesignError as exc:
-        assert "inertia" in str(exc) and "\n" not in str(exc)
+        message = str(exc)
+        a = None
+    if a is None:
+        assert "inertia" in message and "\n" not in message
     else:
         assert a.startup is not None and np.all(np.isfinite(a.startup.max_span_force))
         assert a.startup.steps < 1e6

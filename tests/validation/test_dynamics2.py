@@ -7,10 +7,10 @@ import pytest
 
 from chaindrive.dynamics.drive import ring_model
 from chaindrive.dynamics.materials import _case
-from chaindrive.strength.loads import loads_of
 from chaindrive.dynamics.response import dynamics_response
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
+from chaindrive.strength.loads import loads_of
 from tests.conftest import EXAMPLES
 
 

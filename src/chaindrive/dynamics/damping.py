@@ -35,8 +35,8 @@ from chaindrive.errors import DesignError
 __all__ = [
     "DEFAULT_DAMPING_RATIO",
     "PAIR_DAMPING_RATIOS",
-    "TABLE1_FREQUENCIES_RAD_S",
     "PR_12_7_1820_1",
+    "TABLE1_FREQUENCIES_RAD_S",
     "HingeFrictionCoefficients",
     "HingeFrictionResult",
     "absorption_coefficient",
@@ -46,12 +46,12 @@ __all__ = [
     "equivalent_damping_ratio",
     "hinge_friction_damping",
     "hinge_rotation_sum",
-    "pair_damping_ratio",
-    "span_hinge_damping_ratios",
-    "table1_damping_ratio",
     "max_dynamic_force",
     "max_potential_energy",
+    "pair_damping_ratio",
     "span_elongation_max",
+    "span_hinge_damping_ratios",
+    "table1_damping_ratio",
 ]
 
 #: Dimensionless damping coefficient D = ζ measured for chain drives [MultimassChainDrives,

@@ -55,10 +55,19 @@ from chaindrive.strength.loads import power_shares
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
-    from chaindrive.model import Drive, Material, Sprocket, TrainElement
+    from chaindrive.model import Drive, Material, TrainElement
 
-__all__ = ["CHAIN_NODE", "DriveModel", "chain_damping_ratio", "LinearModel", "LoadPlacement", "MotorPlacement",
-           "drive_model", "model_completeness", "shaft_stiffness"]
+__all__ = [
+    "CHAIN_NODE",
+    "DriveModel",
+    "LinearModel",
+    "LoadPlacement",
+    "MotorPlacement",
+    "chain_damping_ratio",
+    "drive_model",
+    "model_completeness",
+    "shaft_stiffness",
+]
 
 TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
@@ -725,4 +734,5 @@ def _placements(drive: Drive, t: TorsionalModel, system: TorsionalSystem, T: Flo
         rotor_nominal_speed=np.array([abs(nominal[x]) for x in rotors]), motor=motor,
         loads=tuple(loads), span_damping_ratios=np.zeros(len(names)), damping_source="",
         reference_frequency_hz=0.0, contours=drive.chain.contours, ring=ring,
-        driver_index=drive.driver_index, notes=tuple(notes), trains={k: v.description for k, v in trains.items() if v.description})
+        driver_index=drive.driver_index, notes=tuple(notes),
+        trains={k: v.description for k, v in trains.items() if v.description})

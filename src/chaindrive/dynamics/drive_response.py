@@ -188,7 +188,7 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
     orders = excitation.orders
     wz = np.asarray(tooth_angular_frequencies, dtype=float)
     out = np.empty((wz.size, D.shape[1]))
-    nk, ns = D.shape
+    ns = D.shape[1]
     PT, BVT = np.ascontiguousarray(P.T), np.ascontiguousarray(BV.T)
     for a in range(0, wz.size, block):
         W = wz[a:a + block, None] * orders[None, :]                  # (b, K)

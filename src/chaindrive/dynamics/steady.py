@@ -197,7 +197,8 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
 
     radii (n,) pitch radii R_i [m] and teeth (n,) z_i for the irregularity of rotation
     Δ = (ω_max − ω_min)/ω_mean·100 from the speed history, ω_mean = ω_z/z_i (2 x_A z/R·100 for
-    one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None: :func:`damping_beta`); samples per tooth period of the traces;
+    one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None:
+    :func:`damping_beta`); samples per tooth period of the traces;
     nominal_force F_t [N] → K_D = 1 + F_D/F_t (seed-notes §1); breaking_load Q [N] with
     operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
     and, with resonance_loads F_2max (n,) [N], k2_min (seed 000 §3.6, seed-notes §2).

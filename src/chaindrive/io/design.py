@@ -22,9 +22,9 @@ from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import (
     LOAD_LAWS,
     MAX_CONTOURS,
-    MAX_TRAIN_ELEMENTS,
     MAX_SPROCKETS,
     MAX_TEETH,
+    MAX_TRAIN_ELEMENTS,
     MIN_SPROCKETS,
     MIN_TEETH,
     MOTORS,

@@ -222,8 +222,8 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     res = detune(p.masses_kg, p.stiffness_n_per_m, w, band=band, mass_bounds=bounds,
                  seed=seed, maxiter=maxiter, modes=modes)
     inertia = res.masses_kg * p.pitch_radii_m**2
-    sprockets = tuple(replace(s, inertia=float(inertia[k]), reduced_mass=None) if s.name in added_inertia else s
-                      for k, s in enumerate(drive.sprockets))
+    sprockets = tuple(replace(s, inertia=float(inertia[k]), reduced_mass=None)
+                      if s.name in added_inertia else s for k, s in enumerate(drive.sprockets))
     return drive.with_sprockets(sprockets), res
 
 
