@@ -102,7 +102,7 @@ def test_conveyor_trains_motor_and_machines(conveyor) -> None:
 
 def test_motor_power_in_steady_running_covers_the_losses(conveyor) -> None:
     """After the run-up the motor delivers the machines' power over the reducer's efficiency:
-    T_m ω_m η = Σ P_i (power balance of the gear stage, [Shigley2011, §13-16])."""
+    T_m ω_m η = Σ P_i (power balance of the gear stage, [Shigley2015, ch. 13])."""
     m = conveyor.drive_model
     st = conveyor.startup
     w = float(st.rotor_speeds[-500:, st.rotor_names.index("motor")].mean())

@@ -49,8 +49,10 @@ def test_seed_first_frequency(seed) -> None:
     """The paper prints F1 = 67.68 Hz for its entered masses (17.26, 28.44, 2.0 kg) on polymer
     sprockets. Measured with the chain's mass: 73.06 Hz, +7.9 % (the test's 3 % is out of
     reach): the paper gives no span tension (installed sag), which sets the sagging spans'
-    stiffness here; 14 % softer spans would give 67.68 Hz (docs/dynamics.md §7). Without the
-    chain's own mass the model gives 78 Hz, with bare sprocket discs 207 Hz."""
+    stiffness here; spans 15 % softer — the slack span's sag tension 195 N instead of our
+    228 N (k_f q g a), the tight spans 457 N instead of 490 N — would give 67.68 Hz
+    (docs/dynamics.md §7). With bare sprocket discs instead of the entered masses the model
+    gives 207 Hz."""
     f1 = seed.dynamics.modal.first_elastic_frequency_hz
     assert f1 == pytest.approx(73.06, rel=0.005)
     assert abs(f1 / 67.68 - 1) < 0.10
@@ -177,7 +179,7 @@ def test_irregularity_of_one_harmonic_is_2xz_over_r(seed) -> None:
 
 
 def test_band_holds_every_frequency_for_element_wise_variations() -> None:
-    """Courant–Fischer [Parlett1998, §10.2]: with every stiffness and inertia within ±10 %
+    """Courant–Fischer [Horn2013, §4.2]: with every stiffness and inertia within ±10 %
     independently, each natural frequency stays within f·[√(0.9/1.1), √(1.1/0.9)]."""
     rng = np.random.default_rng(3)
     R = [0.06, 0.1, 0.05, 0.08]

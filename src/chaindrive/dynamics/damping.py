@@ -155,7 +155,7 @@ def span_hinge_damping_ratios(tensions: ArrayLike, lengths: ArrayLike, pin_diame
 
     References
     ----------
-    [ChainHingeDissipation], eqs. 11–14; ζ = ψ/4π [Panovko] (:func:`equivalent_damping_ratio`).
+    [ChainHingeDissipation], eqs. 11–14; ζ = ψ/4π [Panovko1960] (:func:`equivalent_damping_ratio`).
     """
     c = coefficients or PR_12_7_1820_1
     f0 = np.maximum(np.asarray(tensions, dtype=float), 250.0)

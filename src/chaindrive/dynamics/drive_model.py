@@ -74,7 +74,7 @@ FloatArray = NDArray[np.float64]
 #: Name of the chain node at sprocket S: ``CHAIN_NODE.format("S")``.
 CHAIN_NODE = "chain@{}"
 #: Poisson's ratio of a shaft's material for its shear modulus G = E/(2(1 + ν)): 0.3, the
-#: value of steels [Shigley2011, Table A-5].
+#: value of steels [Shigley2015, Table A-5].
 SHAFT_POISSON_RATIO = 0.3
 #: Least share of the strain energy the chain (spans and wraps) holds in the mode whose
 #: frequency is the reference of the chain's damping.
@@ -103,7 +103,7 @@ def shaft_stiffness(diameter: float, length: float, youngs_modulus: float,
 
     References
     ----------
-    [Shigley2011, §4-12] (torsion of a round bar), [Roark2012, Table 10.1].
+    [Shigley2015, ch. 3] (torsion of a round bar), [Roark2012, Table 10.1].
     """
     g = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
     return g * math.pi * diameter**4 / (32.0 * length)

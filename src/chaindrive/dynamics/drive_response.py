@@ -21,7 +21,7 @@ period, for every sprocket and every rotor of the trains; for one harmonic of am
 **Bands.** With every stiffness within (1 ± u) k and every inertia within (1 ± u) J, each
 natural frequency lies within f·[√((1−u)/(1+u)), √((1+u)/(1−u))]: K' ⪯ (1+u)K and
 M' ⪰ (1−u)M in the Loewner order, and the eigenvalues of the pencil are monotone in both
-(Courant–Fischer minimax [Parlett1998, §10.2]). For all stiffnesses scaled by a and all
+(Courant–Fischer minimax [Horn2013, §4.2]). For all stiffnesses scaled by a and all
 inertias by b (damping ratios kept) the span forces are a·F(ω√(b/a)) of the nominal model, so
 the band of K_D follows from a short sweep of the nominal model around the working speed.
 """
@@ -245,7 +245,7 @@ def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation
 
 def frequency_band_factors(uncertainty: float) -> tuple[float, float]:
     """(low, high) factors on every natural frequency when stiffnesses and inertias are known
-    to ±u: √((1−u)/(1+u)) and √((1+u)/(1−u)) [-] (module docstring, [Parlett1998, §10.2])."""
+    to ±u: √((1−u)/(1+u)) and √((1+u)/(1−u)) [-] (module docstring, [Horn2013, §4.2])."""
     u = float(uncertainty)
     if not 0.0 <= u < 1.0:
         raise DesignError("dynamics.uncertainty", f"must be from 0 to below 1, got {u!r}")

@@ -1,7 +1,7 @@
 r"""Kinematic excitation of the spans of a chain contour (seed 000 §3.1–3.3, seed-notes §1).
 
 Every disturbance is written as a **prescribed elongation** d_i(t) of span i, added to the
-elastic elongation of the ring model (docs/dynamics2.md §1)::
+elastic elongation of the ring model (docs/dynamic_response.md §1)::
 
     F_i = c_i (e_i + d_i) + β c_i (ė_i + ḋ_i),    e_i = x_{i+1} − x_i,
 

@@ -5,7 +5,7 @@ Entry point for :mod:`chaindrive.analysis` (issue 5 §5): :func:`dynamics_respon
 ``dynamics.steady``, ``dynamics.afc``, ``dynamics.coefficient_of_dynamics`` and
 ``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6, seed-notes §2).
 
-Defaults (docs/dynamics2.md §5): induction motor by Kloss with the drive's power and the
+Defaults (docs/dynamic_response.md §5): induction motor by Kloss with the drive's power and the
 driver's speed as rated values, λ = 2.5, s_k = 0.25; resistance ∝ speed on the driven
 sprockets with their power shares at the nominal speed; pre-tension T_0 the sag tension of
 the span leaving the driver; polygonal excitation with 10 harmonics; damping ζ of the model.

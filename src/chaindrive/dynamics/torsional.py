@@ -38,11 +38,16 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive
 
 __all__ = ["TorsionalModel", "TorsionalModes", "TorsionalSystem", "reducer_input_torque"]
 
@@ -482,7 +487,7 @@ class TorsionalModel:
         ``mass`` [kg] (q·L of the span) is split to its ends, m/2·r² on each sprocket, or with
         ``consistent_mass`` distributed as the consistent mass of a linear velocity profile
         along the span: m/3·r² on each end and m/6·r_a·r_b between them (kinetic energy
-        m/6·(v_a² + v_a v_b + v_b²) [Rao2011, §8.4]; docs/torsional.md §5 measures both).
+        m/6·(v_a² + v_a v_b + v_b²) [Rao2011, ch. 2]; docs/torsional.md §5 measures both).
         """
         name = self._element_name(name, f"span:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
@@ -622,6 +627,34 @@ class TorsionalModel:
                              "ratio": m[3], "efficiency": m[4], "same_sense": m[5] > 0}
                             for m in self._meshes],
         }
+
+    @classmethod
+    def from_drive(cls, drive: Drive, geometry: GeometryResult | None = None, *,
+                   span_tensions: Sequence[float] | None = None) -> TorsionalModel:
+        """The whole-drive model of a design: its contour with the chain's own mass, the
+        teeth, every sprocket's train, the motor and the machines
+        (:func:`chaindrive.dynamics.drive_model.drive_model`; docs/dynamics.md §1).
+
+        Parameters
+        ----------
+        drive : Drive
+            The design.
+        geometry : GeometryResult | None
+            Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
+        span_tensions : sequence of float | None
+            Static span tensions [N] for the sag stiffness (None: from the drive's loads).
+
+        Returns
+        -------
+        TorsionalModel
+        """
+        # imported here: drive_model builds on this module (an import at the top would be
+        # circular)
+        from chaindrive.dynamics.drive_model import drive_model
+        from chaindrive.geometry.contour import contour_geometry
+
+        return drive_model(drive, geometry or contour_geometry(drive),
+                           span_tensions=span_tensions).torsional
 
     @classmethod
     def from_contour(cls, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,

@@ -20,11 +20,12 @@ __all__ = ["expm", "zoh_matrices"]
 
 FloatArray = NDArray[np.float64]
 
-# Padé(13) coefficients b_0 … b_13 of [Higham2005, Table 10.4 / eq. (10.33)]
+# Padé(13) coefficients b_0 … b_13 [Higham2005, Alg. 2.3]
 _B13 = (64764752532480000.0, 32382376266240000.0, 7771770303897600.0, 1187353796428800.0,
         129060195264000.0, 10559470521600.0, 670442572800.0, 33522128640.0, 1323241920.0,
         40840800.0, 960960.0, 16380.0, 182.0, 1.0)
-#: θ₁₃: the largest 1-norm for which Padé(13) is accurate to double precision [Higham2005].
+#: θ₁₃: the largest 1-norm for which Padé(13) is accurate to double precision
+#: [Higham2005, Table 2.3].
 _THETA13 = 5.371920351148152
 
 
@@ -95,7 +96,7 @@ def zoh_matrices(mass: FloatArray, stiffness: FloatArray, damping: FloatArray,
     Minv = np.linalg.inv(mass)
     # balanced state (q, q̇/s), s_i the partial frequency √(K_ii/M_ii) (1/Δt where there is
     # none): the state matrix of a stiff oscillator is far from normal, and scaling and
-    # squaring loses accuracy on it without this similarity transform [Higham2005, §6]
+    # squaring loses accuracy on it without this similarity transform (balancing)
     kd, md = np.abs(np.diag(stiffness)), np.abs(np.diag(mass))
     s = np.sqrt(np.divide(kd, md, out=np.full(n, 0.0), where=md > 0))
     s = np.where(s * dt > 1.0, s, 1.0 / dt)
