@@ -146,6 +146,9 @@ class TorsionalSystem:
     of M (a span's consistent chain mass couples its two ends; zero diagonal, all zeros when
     every chain mass is lumped). ``rigid_motions`` (size, r): one exact strain-free
     motion per free group (no ground spring, no loop of mismatched ratios), from the graph.
+    ``element_columns``, ``element_coefficients`` (elements, 2): the (at most two) nonzero
+    entries of every row of ``element_incidence``, for assembling K and C by scatter;
+    ``span_mask`` (elements,): the spans among the elements.
     """
 
     node_names: tuple[str, ...]
@@ -167,11 +170,74 @@ class TorsionalSystem:
     element_stiffness: FloatArray
     element_damping: FloatArray
     rigid_motions: FloatArray
+    element_columns: NDArray[np.intp]
+    element_coefficients: FloatArray
+    span_mask: NDArray[np.bool_]
 
     @property
     def size(self) -> int:
         """Number of reduced coordinates (massless ones included)."""
         return int(self.mass.size)
+
+    def updated(self, node_inertia_kg_m2: ArrayLike | None = None,
+                element_stiffness: ArrayLike | None = None,
+                element_damping: ArrayLike | None = None) -> TorsionalSystem:
+        """The same topology with new values (what an optimiser varies), without a new
+        assembly: the meshes, coordinates, incidence and rigid-body motions are reused.
+
+        Parameters
+        ----------
+        node_inertia_kg_m2 : array_like | None
+            (nodes,) J of every node, chain inertia included [kg·m²] (None: unchanged).
+        element_stiffness : array_like | None
+            (elements,) k of every element [N·m/rad or N/m] (None: unchanged); an element
+            must keep k > 0 or k = 0 (its strain-free relation is part of the topology).
+        element_damping : array_like | None
+            (elements,) c of every element (None: unchanged).
+
+        Returns
+        -------
+        TorsionalSystem
+        """
+        J = self.node_inertia_kg_m2 if node_inertia_kg_m2 is None else \
+            np.asarray(node_inertia_kg_m2, dtype=float)
+        k = self.element_stiffness if element_stiffness is None else \
+            np.asarray(element_stiffness, dtype=float)
+        c = self.element_damping if element_damping is None else \
+            np.asarray(element_damping, dtype=float)
+        if J.shape != self.node_inertia_kg_m2.shape or k.shape != self.element_stiffness.shape \
+                or c.shape != self.element_damping.shape:
+            raise DesignError("updated", "need one value per node and per element")
+        if np.any((k > 0) != (self.element_stiffness > 0)) or np.any(J < 0) or np.any(k < 0):
+            raise DesignError("element_stiffness", "an element changed between k = 0 and k > 0 "
+                              "(or a value is negative): that is another topology, rebuild it")
+        f2 = self.node_factor * self.node_factor
+        n = self.size
+        mass = self.mass + np.bincount(self.node_dof, weights=(J - self.node_inertia_kg_m2) * f2,
+                                       minlength=n)
+        span = self.span_mask
+        cols, coef = self.element_columns[~span], self.element_coefficients[~span]
+        return TorsionalSystem(
+            node_names=self.node_names, node_dof=self.node_dof, node_factor=self.node_factor,
+            node_inertia_kg_m2=J, mass=mass, mass_coupling=self.mass_coupling,
+            stiffness_linear=_gram(cols, coef, k[~span], n),
+            damping_linear=_gram(cols, coef, c[~span], n), span_names=self.span_names, span_incidence=self.span_incidence,
+            span_stiffness_n_per_m=k[span], span_damping_n_s_per_m=c[span],
+            span_tension_only=self.span_tension_only, element_names=self.element_names,
+            element_kinds=self.element_kinds, element_incidence=self.element_incidence,
+            element_stiffness=k, element_damping=c, rigid_motions=self.rigid_motions,
+            element_columns=self.element_columns,
+            element_coefficients=self.element_coefficients, span_mask=span)
+
+    def modal(self) -> TorsionalModes:
+        """Undamped natural frequencies, shapes and strain-energy shares (as
+        :meth:`TorsionalModel.modal`)."""
+        return _modal(self)
+
+    def frequencies_hz(self) -> FloatArray:
+        """The natural frequencies [Hz] without the shapes (as
+        :meth:`TorsionalModel.frequencies_hz`)."""
+        return _frequencies(self)
 
     def dof_of(self, node: str) -> tuple[int, float]:
         """(reduced coordinate, factor) of a node: φ_node = factor·q[coordinate]."""
@@ -195,15 +261,19 @@ class TorsionalSystem:
         """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
         c = self.span_stiffness_n_per_m if span_active is None else \
             self.span_stiffness_n_per_m * np.asarray(span_active, dtype=float)
-        B = self.span_incidence
-        return self.stiffness_linear + (B.T * c) @ B
+        return self.stiffness_linear + self._span_gram(c)
 
     def damping_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """C with the spans flagged in ``span_active`` (default: all) [N·m·s/rad]."""
         d = self.span_damping_n_s_per_m if span_active is None else \
             self.span_damping_n_s_per_m * np.asarray(span_active, dtype=float)
-        B = self.span_incidence
-        return self.damping_linear + (B.T * d) @ B
+        return self.damping_linear + self._span_gram(d)
+
+    def _span_gram(self, weights: FloatArray) -> FloatArray:
+        """Bᵀ diag(w) B of the spans, by scatter."""
+        span = self.span_mask
+        return _gram(self.element_columns[span], self.element_coefficients[span], weights,
+                     self.size)
 
     def generalized_force(self, torques: Mapping[str, float]) -> FloatArray:
         """Q = Σ factor_n·T_n [N·m] of external torques T_n [N·m] on named nodes (ideal meshes;
@@ -747,17 +817,38 @@ def _assemble(model: TorsionalModel) -> TorsionalSystem:
     k_all, c_all = np.array(k, dtype=float), np.array(c, dtype=float)
     span = np.array([kd == "span" for kd in kinds], dtype=bool)
     lin = ~span
-    Bl = B[lin]
+    nz = B != 0.0
+    if n > 1:  # the (at most two) nonzero entries of every row first
+        cols = np.argsort(~nz, axis=1, kind="stable")[:, :2]
+        coef = np.take_along_axis(B, cols, axis=1)
+    else:
+        cols = np.zeros((ne, 2), dtype=np.intp)
+        coef = np.column_stack([B[:, 0], np.zeros(ne)]) if ne else np.zeros((0, 2))
     return TorsionalSystem(
         node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
         node_inertia_kg_m2=inertia, mass=mass, mass_coupling=coupling,
-        stiffness_linear=(Bl.T * k_all[lin]) @ Bl, damping_linear=(Bl.T * c_all[lin]) @ Bl,
+        stiffness_linear=_gram(cols[lin], coef[lin], k_all[lin], n),
+        damping_linear=_gram(cols[lin], coef[lin], c_all[lin], n),
         span_names=tuple(x for x, sp in zip(names, span, strict=True) if sp),
         span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
         span_damping_n_s_per_m=c_all[span],
         span_tension_only=np.array(tension, dtype=bool)[span],
         element_names=tuple(names), element_kinds=tuple(kinds), element_incidence=B,
-        element_stiffness=k_all, element_damping=c_all, rigid_motions=rigid)
+        element_stiffness=k_all, element_damping=c_all, rigid_motions=rigid,
+        element_columns=cols, element_coefficients=coef, span_mask=span)
+
+
+def _gram(cols: NDArray[np.intp], coef: FloatArray, weights: FloatArray, n: int) -> FloatArray:
+    """Σ_e w_e b_e b_eᵀ (n, n) of elements whose incidence rows b_e have at most two nonzero
+    entries ``coef`` in the columns ``cols`` (elements, 2): a scatter of four products per
+    element instead of a dense Bᵀ diag(w) B."""
+    if cols.shape[0] == 0:
+        return np.zeros((n, n))
+    a, b = cols[:, 0], cols[:, 1]
+    va, vb = coef[:, 0] * weights, coef[:, 1]
+    idx = np.concatenate([a * n + a, b * n + b, a * n + b, b * n + a])
+    w = np.concatenate([va * coef[:, 0], vb * vb * weights, va * vb, va * vb])
+    return np.bincount(idx, weights=w, minlength=n * n).reshape(n, n)
 
 
 def _deflated_eigh(A: FloatArray, W: FloatArray,
@@ -775,10 +866,12 @@ def _deflated_eigh(A: FloatArray, W: FloatArray,
         v[0] += math.copysign(1.0, w[0])  # H = I − 2 v vᵀ / vᵀv maps w to ∓e₁
         v /= np.linalg.norm(v)
         Av = A @ v
-        HAH = A - 2.0 * np.outer(v, Av) - 2.0 * np.outer(Av, v) + 4.0 * (v @ Av) * np.outer(v, v)
+        u = Av - (v @ Av) * v            # H A H = A − 2 (v uᵀ + u vᵀ)
+        v1, u1 = v[1:], u[1:]
+        B = A[1:, 1:] - 2.0 * (np.outer(v1, u1) + np.outer(u1, v1))
         if not vectors:
-            return np.linalg.eigvalsh(HAH[1:, 1:]), np.empty((n, 0))
-        lam, Ve = np.linalg.eigh(HAH[1:, 1:])
+            return np.linalg.eigvalsh(B), np.empty((n, 0))
+        lam, Ve = np.linalg.eigh(B)
         V = np.zeros((n, n - 1))
         V[1:] = Ve
         V -= 2.0 * np.outer(v, v @ V)
