@@ -120,6 +120,16 @@ def _matvec_add(A: Any, y: Any, out: Any) -> None:
         out[i] += acc
 
 
+@(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
+def _matvec_cols_add(A: Any, cols: Any, y: Any, out: Any) -> None:
+    """out += A[:, cols] @ y[cols] (the forces act on few coordinates)."""
+    for i in range(A.shape[0]):
+        acc = 0.0
+        for j in cols:
+            acc += A[i, j] * y[j]
+        out[i] += acc
+
+
 @_njit
 def _find(masks: Any, npat: int, mask: Any) -> int:
     """Index of ``mask`` among the first ``npat`` stacked patterns, −1 if absent."""
@@ -152,8 +162,9 @@ def _span_part(mask: Any, fr: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool,
 
 @_njit
 def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any, y_new: Any,
-             lw: tuple, work: Any) -> None:
-    """One step; the law forces linearly implicit on their own coordinate's speed."""
+             lw: tuple, work: Any, fcols: Any, lcols: Any) -> None:
+    """One step; the law forces linearly implicit on their own coordinate's speed (the
+    forces act on the coordinates ``fcols``, the laws on ``lcols``)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
     n = fr.size
     v = y[n:]
@@ -168,11 +179,11 @@ def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any,
         f[i] = fr[i] + fl[i]
     y_new[:] = 0.0
     _matvec_add(Phi, y, y_new)
-    _matvec_add(Gam, f, y_new)
-    for i in range(n):
+    _matvec_cols_add(Gam, fcols, f, y_new)
+    for i in lcols:
         J = (f2[i] - fl[i]) / hv[i]
         df[i] = J * (y_new[n + i] - v[i]) / max(1.0 - gvv[i] * J, 0.1)
-    _matvec_add(Gam, df, y_new)
+    _matvec_cols_add(Gam, lcols, df, y_new)
 
 
 @_njit
@@ -200,12 +211,13 @@ def _span_force(y: Any, F: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d:
 def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int, masks: Any,
                Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any, ds: Any,
                tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
-               states: Any, fmax: Any, need: Any) -> int:
+               states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
     y (2N,) state, fr_prev (N,) explicit forces of the previous step, state = [step, slack
     count, pattern index] (all updated in place); forces (R, S) and states (R, 2N) filled at
-    every ``rec``-th step, fmax (S,) the largest span forces. Returns < steps when a step
+    every ``rec``-th step, fmax (S,) the largest span forces; fcols the coordinates the span
+    and law forces act on, lcols those of the laws. Returns < steps when a step
     needs a slack pattern not among the first ``npat``: it is written into ``need`` and
     nothing of that step is kept.
     """
@@ -229,7 +241,7 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
         _span_part(mask, fr, B, c, ds, T0, poly, d, dd, span)
         for i in range(n):
             fe[i] = 1.5 * fr[i] - 0.5 * fr_prev[i]
-        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
+        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
         _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
         for i in range(ns):
@@ -242,7 +254,7 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
                 return k
             p = q
             _span_part(masks[p], fr, B, c, ds, T0, poly, d, dd, span)
-            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
+            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
             _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
@@ -273,14 +285,14 @@ def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec
                     mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
                     lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
                     pidx: Any, pgain: Any, pk: float, plin: float, pd0: Any, forces: Any,
-                    states: Any, fmax: Any, need: Any) -> int:
+                    states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
     """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
     (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
     return run_kernel(y, fr_prev, state, steps, dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
                       ds, tonly, T0,
                       (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
                       poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
-                      fmax, need)
+                      fmax, need, fcols, lcols)
 
 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
@@ -288,5 +300,6 @@ FLAT_SIGNATURE = (
     "i8(f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1],"
     " f8[:, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8, f8, f8, i8, f8[::1],"
     " i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1, f8[::1], f8[::1], f8[::1],"
-    " f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1], f8[::1], b1[::1])"
+    " f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1], f8[::1], b1[::1],"
+    " i8[::1], i8[::1])"
 )
