@@ -63,8 +63,8 @@ def _harmonic(model: DriveModel, w: FloatArray, D: ComplexArray
     cd = lin.span_stiffness[None, :] + 1j * w[:, None] * lin.span_damping[None, :]  # (F, S)
     A = K[None] + 1j * w[:, None, None] * C[None] - (w * w)[:, None, None] * M[None]
     rhs = -(cd * D) @ B                                                   # (F, N)
-    X = np.linalg.solve(A, rhs[..., None])[..., 0]
-    F = cd * (X @ B.T + D) / model.contours
+    X = np.asarray(np.linalg.solve(A, rhs[..., None])[..., 0], dtype=np.complex128)
+    F = np.asarray(cd * (X @ B.T + D) / model.contours, dtype=np.complex128)
     return X, F
 
 
@@ -134,11 +134,12 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
           if nominal_force is not None and np.any(f_max > 0) else None)
     k2 = k2min = None
     if breaking_load is not None and operating_forces is not None:
-        fr = np.asarray(operating_forces, dtype=float)
-        k2 = float(np.min(steady_safety_factor(breaking_load, fr, f_max)))
+        fr = np.asarray(operating_forces, dtype=float).tolist()
+        k2 = min(steady_safety_factor(breaking_load, a, b)
+                 for a, b in zip(fr, f_max.tolist(), strict=True))
         if resonance_loads is not None:
-            k2min = float(np.min(steady_safety_factor(breaking_load, fr,
-                                                      np.asarray(resonance_loads, float))))
+            k2min = min(steady_safety_factor(breaking_load, a, b) for a, b in
+                        zip(fr, np.asarray(resonance_loads, float).tolist(), strict=True))
     J = model.ring.inertias_kg_m2
     return SteadyStateResult(
         tooth_angular_frequency=wz, angular_frequencies=w, displacement=x, span_force=F,

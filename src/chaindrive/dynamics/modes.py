@@ -230,7 +230,8 @@ def inertia_modes_batch(model: DriveModel, added_inertia: NDArray[np.float64]
     dJ = np.atleast_2d(np.asarray(added_inertia, dtype=float))
     k, g = model.sprocket_coordinate, model.sprocket_gain
     M = np.repeat(lin.mass[None], dJ.shape[0], axis=0)
-    np.add.at(M, (slice(None), k, k), dJ * g * g)
+    rows = np.arange(dJ.shape[0])[:, None]
+    np.add.at(M, (rows, k[None, :], k[None, :]), dJ * g * g)
     L = np.linalg.cholesky(M)
     Y = np.linalg.solve(L, np.broadcast_to(lin.stiffness(), M.shape))
     A = np.linalg.solve(L, np.swapaxes(Y, 1, 2))

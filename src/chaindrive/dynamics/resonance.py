@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -23,8 +23,26 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import tooth_frequency
 
-if TYPE_CHECKING:
-    from chaindrive.dynamics.ring import ModalResult
+
+class Modes(Protocol):
+    """What the resonance table and the Campbell data read of a modal result (the ring's
+    :class:`~chaindrive.dynamics.ring.ModalResult` or the whole drive's
+    :class:`~chaindrive.dynamics.modes.DriveModes`)."""
+
+    @property
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies [Hz], ascending, rigid-body zeros first."""
+        ...
+
+    @property
+    def rigid_body(self) -> NDArray[np.bool_]:
+        """True for the rigid-body modes."""
+        ...
+
+    @property
+    def elastic_frequencies_hz(self) -> NDArray[np.float64]:
+        """The elastic natural frequencies [Hz]."""
+        ...
 
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
            "resonance_table", "shaft_frequencies", "working_frequencies"]
@@ -104,7 +122,7 @@ def _nearest(f: float, natural: NDArray[np.float64]) -> tuple[int, float, float]
     return k, fn, (f - fn) / fn * 100.0
 
 
-def resonance_table(modal: ModalResult, working: Sequence[WorkingFrequency],
+def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
                     span_transverse_hz: ArrayLike | None = None,
                     tooth_hz: float | None = None,
                     span_names: Sequence[str] = ()) -> tuple[Resonance, ...]:
@@ -179,7 +197,7 @@ def _crossings(speeds: NDArray[np.float64], line: NDArray[np.float64],
     return out
 
 
-def campbell_data(modal: ModalResult, driver_speeds: ArrayLike, driver_teeth: int,
+def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                   teeth: Sequence[int], names: Sequence[str] | None = None, harmonics: int = 3,
                   span_lengths: ArrayLike | None = None, span_tensions: ArrayLike | None = None,
                   mass_per_length: float | None = None, pitch: float | None = None,

@@ -237,7 +237,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
     """
     n = m.size
     lapack = _scipy_lapack() if cut is not None and n > 2 else None
-    if lapack is not None:
+    if lapack is not None and cut is not None:
         last = cut == n - 1
         order = None if last else np.roll(_ALL[:n] if n <= _ALL.size else np.arange(n),
                                            -(cut + 1))
@@ -283,7 +283,7 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     else:
         for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
             shapes[:, k] = 0.0
-            shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
+            shapes[g, k] = 1.0 / math.sqrt(m[g].sum())  # type: ignore[index,call-overload]
     rigid = np.zeros(n, dtype=bool)
     rigid[:n_rigid] = True
     np.sqrt(lam, out=lam)

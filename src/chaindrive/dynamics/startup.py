@@ -492,7 +492,7 @@ def solve_startup(p: StartupProblem, backend: Backend = "auto"
                           "compiled kernel knows (use backend='numpy')")
     else:
         forces, states, fmax, slack = _run_numpy(p)
-    times = np.arange(forces.shape[0]) * p.dt * p.record_every
+    times = np.arange(forces.shape[0], dtype=np.float64) * (p.dt * p.record_every)
     return times, forces / p.scale, states, fmax / p.scale, slack
 
 

@@ -45,7 +45,7 @@ try:  # numba is optional (project rule: compiled hot loop with a NumPy fallback
 
     HAVE_NUMBA = True
 except ImportError:  # pragma: no cover - exercised only without numba
-    numba = None
+    numba = None  # type: ignore[assignment]
     HAVE_NUMBA = False
 
 __all__ = ["FLAT_SIGNATURE", "HAVE_NUMBA", "run_kernel_flat"]

@@ -228,11 +228,12 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
           if nominal_force is not None and np.any(f_max > 0) else None)
     k2 = k2min = None
     if breaking_load is not None and operating_forces is not None:
-        fr = np.asarray(operating_forces, dtype=float)
-        k2 = float(np.min(steady_safety_factor(breaking_load, fr, f_max)))
+        fr = np.asarray(operating_forces, dtype=float).tolist()
+        k2 = min(steady_safety_factor(breaking_load, a, b)
+                 for a, b in zip(fr, f_max.tolist(), strict=True))
         if resonance_loads is not None:
-            k2min = float(np.min(steady_safety_factor(breaking_load, fr,
-                                                      np.asarray(resonance_loads, float))))
+            k2min = min(steady_safety_factor(breaking_load, a, b) for a, b in
+                        zip(fr, np.asarray(resonance_loads, float).tolist(), strict=True))
     return SteadyStateResult(
         tooth_angular_frequency=wz, angular_frequencies=w, displacement=X, span_force=F,
         times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,

@@ -213,15 +213,16 @@ class TorsionalSystem:
                               "(or a value is negative): that is another topology, rebuild it")
         f2 = self.node_factor * self.node_factor
         n = self.size
-        mass = self.mass + np.bincount(self.node_dof, weights=(J - self.node_inertia_kg_m2) * f2,
-                                       minlength=n)
+        mass = self.mass + np.asarray(np.bincount(
+            self.node_dof, weights=(J - self.node_inertia_kg_m2) * f2, minlength=n), dtype=float)
         span = self.span_mask
         cols, coef = self.element_columns[~span], self.element_coefficients[~span]
         return TorsionalSystem(
             node_names=self.node_names, node_dof=self.node_dof, node_factor=self.node_factor,
             node_inertia_kg_m2=J, mass=mass, mass_coupling=self.mass_coupling,
             stiffness_linear=_gram(cols, coef, k[~span], n),
-            damping_linear=_gram(cols, coef, c[~span], n), span_names=self.span_names, span_incidence=self.span_incidence,
+            damping_linear=_gram(cols, coef, c[~span], n), span_names=self.span_names,
+            span_incidence=self.span_incidence,
             span_stiffness_n_per_m=k[span], span_damping_n_s_per_m=c[span],
             span_tension_only=self.span_tension_only, element_names=self.element_names,
             element_kinds=self.element_kinds, element_incidence=self.element_incidence,
@@ -788,7 +789,8 @@ def _assemble(model: TorsionalModel) -> TorsionalSystem:
         kin_root[i], kin_w[i] = kin.find(i)
     n = len(dof_of_root)
     inertia = np.asarray(model._inertia) + np.asarray(model._chain)
-    mass = np.bincount(node_dof, weights=inertia * factor * factor, minlength=n)
+    mass = np.asarray(np.bincount(node_dof, weights=inertia * factor * factor, minlength=n),
+                      dtype=np.float64)
     coupling = np.zeros((n, n))
     for ia_, ib_, m_ab in model._mass_pairs:
         ka, kb = node_dof[ia_], node_dof[ib_]
@@ -848,7 +850,7 @@ def _gram(cols: NDArray[np.intp], coef: FloatArray, weights: FloatArray, n: int)
     va, vb = coef[:, 0] * weights, coef[:, 1]
     idx = np.concatenate([a * n + a, b * n + b, a * n + b, b * n + a])
     w = np.concatenate([va * coef[:, 0], vb * vb * weights, va * vb, va * vb])
-    return np.bincount(idx, weights=w, minlength=n * n).reshape(n, n)
+    return np.asarray(np.bincount(idx, weights=w, minlength=n * n), dtype=np.float64).reshape(n, n)
 
 
 def _deflated_eigh(A: FloatArray, W: FloatArray,
@@ -870,12 +872,12 @@ def _deflated_eigh(A: FloatArray, W: FloatArray,
         v1, u1 = v[1:], u[1:]
         B = A[1:, 1:] - 2.0 * (np.outer(v1, u1) + np.outer(u1, v1))
         if not vectors:
-            return np.linalg.eigvalsh(B), np.empty((n, 0))
+            return np.asarray(np.linalg.eigvalsh(B), dtype=np.float64), np.empty((n, 0))
         lam, Ve = np.linalg.eigh(B)
         V = np.zeros((n, n - 1))
         V[1:] = Ve
         V -= 2.0 * np.outer(v, v @ V)
-        return lam, V
+        return np.asarray(lam, dtype=np.float64), V
     basis = np.linalg.qr(W, mode="complete")[0][:, r:]
     if not vectors:
         return np.linalg.eigvalsh(basis.T @ A @ basis), np.empty((n, 0))
@@ -931,7 +933,7 @@ def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, _Scaling, Floa
         U = system.rigid_motions
     if system.has_mass_coupling:
         Mm = system.mass_matrix()[np.ix_(massed, massed)]
-        scaling = _Scaling(None, np.linalg.cholesky(Mm))
+        scaling = _Scaling(None, np.asarray(np.linalg.cholesky(Mm), dtype=np.float64))
         if U.shape[1]:  # M-orthonormal rigid motions (groups may touch through a span's mass)
             G = U.T @ Mm @ U
             U = U @ np.linalg.inv(np.linalg.cholesky(G)).T

@@ -65,7 +65,7 @@ def expm(A: FloatArray) -> FloatArray:
     R = np.linalg.solve(V - U, V + U)
     for _ in range(s):
         R = R @ R
-    return R
+    return np.asarray(R, dtype=np.float64)
 
 
 def zoh_matrices(mass: FloatArray, stiffness: FloatArray, damping: FloatArray,
