@@ -70,7 +70,7 @@ __all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
 #: Speed range of the Campbell data and of the speed sweep (run-up), as fractions of the
 #: nominal driver speed.
 SPEED_RANGE = (0.1, 1.5)
-#: Speeds of the speed sweep (AFC) over :data:`SPEED_RANGE` (issue 5: 2000 points).
+#: Speeds of the speed sweep (AFC) over :data:`SPEED_RANGE` (2000 points).
 AFC_POINTS = 2000
 #: Speeds of the short sweep over the band of the speed factors (the band of K_D).
 BAND_POINTS = 101

@@ -376,13 +376,14 @@ class DynamicsSettings:
     bands of the natural frequencies, margins and K_D); require_complete_model: an incomplete
     model (a driver without its motor, a driven sprocket with nothing on its shaft) is an
     error instead of a warning; harmonics of the tooth frequency in the polygonal
-    excitation (seed 000: 10 are practically exact); transient: run the start-up;
+    excitation ([MultimassChainDrives]: 10 are practically exact); transient: run the start-up;
     startup_duration [s]; motor: "kloss" (induction motor with the drive's power and the
     driver speed as rated values, breakdown_ratio λ = M_k/M_r and critical_slip s_k),
     "constant" (rated torque from t = 0) or "ramp" (soft start over ramp_time [s]);
     resistance on the driven sprockets: "constant", "linear" or "quadratic" in speed;
     eccentricity [m] of every sprocket, pitch_scatter σ [m] of the link pitches and
-    accumulated_error [m] of the chain length: optional internal disturbances (seed 000 §2).
+    accumulated_error [m] of the chain length: optional internal disturbances
+    ([MultimassChainDrives, §2]).
     """
 
     damping_ratio: float | None = None

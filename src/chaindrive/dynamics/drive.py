@@ -158,7 +158,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     material's E); material_lookup : name → Material (default
     ``chaindrive.catalog.find_material``). Sprocket masses: ``Sprocket.inertia`` when
     given, else :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate
-    disc, or the polymeric rim–web–hub proportions of seed 000 §3.4 for a polymer sprocket).
+    disc, or the polymeric rim–web–hub proportions of [MultimassChainDrives, §3.4] for a polymer sprocket).
     With ``drive.chain.contours`` = m identical contours the branch stiffness is m times that
     of one contour (span tensions are then those of one contour); chain_stiffness and
     wrap_stiffness stay per contour.
@@ -199,7 +199,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
         incl = np.array([sp.inclination for sp in geometry.spans])
         sag = sag_stiffness_factor(k_link * spec.pitch, spec.mass_per_length * GRAVITY,
                                    lengths * np.cos(incl), tensions)
-    # m identical contours side by side (seed 004) act in parallel on the common shafts
+    # m identical contours side by side ([Lyashuk]) act in parallel on the common shafts
     stiffness = series_stiffness(chain_c, wrap[starts], wrap[ends]) * sag * drive.chain.contours
     return RingParameters(
         masses_kg=reduced_mass(inertia, radius), inertias_kg_m2=inertia,
@@ -214,9 +214,9 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
 
 def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
     """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given
-    (seed 000: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
+    ([MultimassChainDrives]: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
     strain energy method (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets
-    about +0.0003; a polyamide chain about +0.015 (seed 000 Fig. 2: polymer chains damp more).
+    about +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains damp more).
     """
 
     modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
@@ -251,7 +251,7 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class DynamicsResult:
-    """Everything a designer reads about a drive's vibration (issue 4, JSON ``dynamics``).
+    """Everything a designer reads about a drive's vibration (JSON ``dynamics``).
 
     parameters : masses and stiffnesses with their parts
     (:class:`~chaindrive.dynamics.drive.RingParameters`); modal : the ring's modes;
@@ -269,7 +269,7 @@ class DynamicsResult:
     damping_ratio: float
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict with the keys of issue 4 §6."""
+        """JSON-ready dict (the JSON ``dynamics`` section)."""
         m = self.modal.to_dict()
         st = self.span_transverse_hz
         return {

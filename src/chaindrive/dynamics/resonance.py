@@ -1,6 +1,6 @@
 """Working frequencies, the resonance table and Campbell-diagram data.
 
-Seed 000 §3.2–3.3 (seed-notes §1): the disturbing frequencies of a contour are the shaft
+[MultimassChainDrives, §3.2–3.3]: the disturbing frequencies of a contour are the shaft
 rotation frequencies ω_i and the tooth (mesh) frequency ω_z = z_1 ω_1 = … = z_n ω_n with
 its harmonics k ω_z; the natural frequencies must be kept away from them. The parametric
 resonance of a span (tension pulsating at the tooth frequency, principal zone
@@ -56,7 +56,7 @@ def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
 
     driver_speed ω_1 [rad/s] (scalar or array of S speeds); driver_teeth z_1; teeth z_i.
     Returns shape (..., n). Source: ω_i = z_1 ω_1 / z_i (same chain speed on every
-    sprocket, seed-notes §1 and §5).
+    sprocket).
     """
     w = np.asarray(driver_speed, dtype=float)
     z = np.asarray(teeth, dtype=float)
@@ -86,7 +86,7 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
     """The shaft frequencies and the tooth frequency with harmonics k = 1…``harmonics``.
 
     driver_speed ω_1 [rad/s]; driver_teeth z_1; teeth z_i of all sprockets; names of the
-    sprockets (default S1, S2, …). Source: seed 000 §3.3, seed-notes §1.
+    sprockets (default S1, S2, …). Source: [MultimassChainDrives, §3.3].
     """
     if harmonics < 1:
         raise DesignError("harmonics", f"must be at least 1, got {harmonics!r}")
@@ -236,7 +236,7 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
 
 
 #: Half-width of the band round a natural frequency that a working frequency should stay
-#: out of (seed 000 §3.2 "detune the spectrum from the working frequencies"; the ±10 %
+#: out of ([MultimassChainDrives, §3.2] "detune the spectrum from the working frequencies"; the ±10 %
 #: band is the usual rotordynamics separation margin, e.g. API 684 §2.8 asks 10–26 %).
 RESONANCE_BAND_PERCENT = 10.0
 

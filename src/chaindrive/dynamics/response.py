@@ -1,9 +1,9 @@
 """Dynamic response of a drive: start-up, steady state, AFC and the two-stage check.
 
-Entry point for :mod:`chaindrive.analysis` (issue 5 §5): :func:`dynamics_response` returns a
+Entry point for :mod:`chaindrive.analysis`: :func:`dynamics_response` returns a
 :class:`DynamicResponse` whose ``to_dict()`` holds the fragments ``dynamics.startup``,
 ``dynamics.steady``, ``dynamics.afc``, ``dynamics.coefficient_of_dynamics`` and
-``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6, seed-notes §2).
+``strength.k1/k2/k2min/allowable_k`` ([MultimassChainDrives, §3.6]).
 
 Defaults (docs/dynamic_response.md §5): induction motor by Kloss with the drive's power and the
 driver's speed as rated values, λ = 2.5, s_k = 0.25; resistance ∝ speed on the driven
@@ -62,7 +62,7 @@ TWO_PI = 2.0 * math.pi
 
 
 def mean_radii(drive: Drive) -> NDArray[np.float64]:
-    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i (seed-notes §5)."""
+    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i [ChainNonUniformity]."""
     return np.array([s.teeth for s in drive.sprockets], float) * drive.chain.pitch / TWO_PI
 
 
@@ -185,7 +185,7 @@ class DynamicResponse:
     allowable_k: float
 
     def strength_dict(self) -> dict[str, Any]:
-        """``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6)."""
+        """``strength.k1/k2/k2min/allowable_k`` ([MultimassChainDrives, §3.6])."""
         k1 = self.startup.k1 if self.startup is not None else None
         factors = [k for k in (k1, self.steady.k2, self.steady.k2_min) if k is not None]
         return {"k1": k1, "k2": self.steady.k2, "k2min": self.steady.k2_min,

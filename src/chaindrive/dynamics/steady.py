@@ -1,6 +1,6 @@
 r"""Steady periodic response of the ring model to kinematic span excitation (frequency domain).
 
-Seed 000 §3.2–3.3, seed-notes §1: the equations of motion with the disturbance functions
+[MultimassChainDrives, §3.2–3.3]: the equations of motion with the disturbance functions
 (prescribed span elongations d, :mod:`chaindrive.dynamics.excitation`)::
 
     M ẍ + β K ẋ + K x = −Bᵀ C_s (d + β ḋ),      F = C_s (B x + d) + β C_s (B ẋ + ḋ)
@@ -10,9 +10,10 @@ K = Bᵀ C_s B the ring Laplacian of :mod:`chaindrive.dynamics.ring`.
 
 **Damping matrix.** Stiffness-proportional (Rayleigh β-) damping C = β K with
 β = 2ζ/ω_ref, ω_ref the first elastic natural frequency, so that mode has exactly the ratio
-ζ (seed 000: D = 0.06; or ζ = ψ/4π from seed 001) and mode j has ζ_j = ζ ω_j/ω_ref
+ζ ([MultimassChainDrives]: D = 0.06; or ζ = ψ/4π from [ChainHingeDissipation]) and mode j
+has ζ_j = ζ ω_j/ω_ref
 (Rao, Mechanical Vibrations, 6th ed., §6.13 "proportional damping"). Chosen because the
-damping of a chain is in the chain (hinge friction, seed 001): β K is a dashpot β c_i in
+damping of a chain is in the chain (hinge friction, [ChainHingeDissipation]): β K is a dashpot β c_i in
 parallel with every span, so the span force, the slack-span rule of the start-up and the
 energy balance stay local to the spans, and the same model serves the frequency domain,
 the modal sweep (β K is classical: the undamped modes decouple it) and the time domain.
@@ -116,7 +117,7 @@ def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class SteadyStateResult:
-    """Steady response of the ring to a kinematic excitation (seed 000 §3.3).
+    """Steady response of the ring to a kinematic excitation ([MultimassChainDrives, §3.3]).
 
     tooth_angular_frequency ω_z [rad/s]; angular_frequencies (F,) of the harmonics [rad/s];
     displacement, span_force (F, n) complex amplitudes [m], [N]; times (T,) one period [s];
@@ -199,9 +200,9 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
     Δ = (ω_max − ω_min)/ω_mean·100 from the speed history, ω_mean = ω_z/z_i (2 x_A z/R·100 for
     one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None:
     :func:`damping_beta`); samples per tooth period of the traces;
-    nominal_force F_t [N] → K_D = 1 + F_D/F_t (seed-notes §1); breaking_load Q [N] with
+    nominal_force F_t [N] → K_D = 1 + F_D/F_t; breaking_load Q [N] with
     operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
-    and, with resonance_loads F_2max (n,) [N], k2_min (seed 000 §3.6, seed-notes §2).
+    and, with resonance_loads F_2max (n,) [N], k2_min ([MultimassChainDrives, §3.6]).
     """
     m = model.masses_kg
     c = _stiffness(model)
