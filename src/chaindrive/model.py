@@ -180,7 +180,7 @@ class Chain:
 
 
 
-TRAIN_KINDS: tuple[str, ...] = ("shaft", "coupling", "gear", "rotor")
+TRAIN_KINDS: tuple[str, ...] = ("shaft", "coupling", "gear", "rotor", "ground")
 LOAD_LAWS: tuple[str, ...] = ("constant", "linear", "quadratic")
 #: Most elements one sprocket's train may carry (the model stays a few hundred degrees of
 #: freedom at most, so that every response is bounded work).
@@ -197,7 +197,9 @@ class TrainElement:
         "gear" — a rigid gear stage (a reducer taken as a whole) of ``ratio`` i = input speed /
         output speed in the direction the power flows (from the motor to the driver sprocket,
         from a driven sprocket to its machine) and ``efficiency`` η, to a new node;
-        "rotor" — ``inertia`` added to the current node (a body on the same shaft).
+        "rotor" — ``inertia`` added to the current node (a body on the same shaft);
+        "ground" — a spring ``stiffness`` (and ``damping``) from the current node to the frame
+        (a torque arm, an elastic foundation).
     name : the new node's name (shaft, coupling, gear) or the current node's (rotor); None:
         ``<sprocket>.<k>``.
     inertia : J [kg·m²] of the new node (shaft, coupling: the body at its far end; gear: the
@@ -224,7 +226,11 @@ class TrainElement:
             v = getattr(self, key)
             if not (math.isfinite(v) and v >= 0):
                 raise DesignError(f"{where}.{key}", f"must be finite and ≥ 0, got {v!r}")
-        if self.kind in ("shaft", "coupling"):
+        if self.kind == "ground":
+            if self.stiffness is None or not (math.isfinite(self.stiffness) and self.stiffness > 0):
+                raise DesignError(f"{where}.stiffness", f"a ground spring needs a stiffness > 0, "
+                                  f"got {self.stiffness!r}")
+        elif self.kind in ("shaft", "coupling"):
             geometric = self.diameter is not None or self.length is not None
             if (self.stiffness is None) == (not geometric) or (
                     geometric and (self.diameter is None or self.length is None)):

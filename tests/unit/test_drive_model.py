@@ -68,6 +68,23 @@ def test_bad_train_element_names_its_field(element: str, field: str | None) -> N
     assert str(err.value).startswith(field or "sprockets[0].train[0].stiffness")
 
 
+def test_a_ground_spring_holds_the_drive() -> None:
+    # a spring to the frame on a driven machine (a torque arm): no rigid-body mode is left,
+    # and as its stiffness vanishes the first frequency tends to 0 (the free drive)
+    drive = examples.load("conveyor_five_sprocket")
+
+    def f1(k: float) -> float:
+        s = drive.sprockets[1]
+        ground = TrainElement("ground", stiffness=k)
+        d = replace(drive, sprockets=(drive.sprockets[0], replace(s, train=(*s.train, ground)),
+                                      *drive.sprockets[2:]))
+        modes = chaindrive.analyze(d, response=False).dynamics.modal
+        assert not modes.rigid_body.any()
+        return float(modes.frequencies_hz[0])
+
+    assert f1(1e-3) < 0.01 < 1.0 < f1(1e5)
+
+
 def test_shaft_stiffness_closed_form() -> None:
     # k = G J_p / l, G = E/(2(1 + ν)), J_p = π d⁴/32 (Shigley §4-12): a 50 × 300 mm steel shaft
     k = shaft_stiffness(0.05, 0.3, 210e9)

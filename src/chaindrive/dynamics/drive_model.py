@@ -18,7 +18,8 @@ chain's own mass, the motor and the driven machines (docs/dynamics.md §1).
   difference of the tensions of its two spans (an idler with a small wrap stays out of the
   load path);
 * **trains** — shafts and couplings (springs with dampers), gear stages (rigid meshes with
-  ratio and efficiency; the inertias behind a mesh are referred through it), rotors;
+  ratio and efficiency; the inertias behind a mesh are referred through it), rotors, springs
+  to the frame;
 * **motor** — its rotor on the outermost node of the driver's train (on the driver's shaft
   when it has none); its torque law acts there, through the efficiencies of the gear stages
   between it and the sprocket;
@@ -350,6 +351,13 @@ def _add_element(t: TorsionalModel, tr: _Train, k: int, e: TrainElement,
             tr.nodes[-1] = tr.node = e.name
         t.add_inertia_to(tr.node, e.inertia)
         tr.description.append({"kind": "rotor", "node": tr.node, "inertia_kg_m2": e.inertia})
+        return
+    if e.kind == "ground":
+        assert e.stiffness is not None
+        t.add_ground_spring(tr.node, e.stiffness, e.damping, name=f"ground:{tr.node}:{k}")
+        tr.description.append({"kind": "ground", "node": tr.node,
+                                "stiffness_n_m_per_rad": e.stiffness,
+                                "damping_n_m_s_per_rad": e.damping})
         return
     new = e.name or f"{tr.sprocket}.{k + 1}"
     if new in t.node_names:

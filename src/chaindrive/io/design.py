@@ -152,12 +152,13 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
 TRAIN_FIELDS: tuple[Field, ...] = (
     Field("kind", "choice", "shaft or coupling: a torsional spring to a new node; gear: a "
           "rigid gear stage (a reducer as a whole) to a new node; rotor: an inertia on the "
-          "current node", required=True, choices=TRAIN_KINDS),
+          "current node; ground: a spring from the current node to the frame", required=True,
+          choices=TRAIN_KINDS),
     Field("name", "str", "name of the new node (of the current node for a rotor), e.g. "
           '"motor", "reducer", "drum"'),
     Field("inertia", "inertia", "the new node's moment of inertia (rotor: added to the current "
           "node)", default=0.0, minimum=0.0),
-    Field("stiffness", "torsional_stiffness", "shaft or coupling: torsional stiffness",
+    Field("stiffness", "torsional_stiffness", "shaft, coupling or ground: torsional stiffness",
           minimum=0, exclusive_minimum=True),
     Field("damping", "torsional_damping", "shaft or coupling: viscous damping coefficient",
           default=0.0, minimum=0.0),
