@@ -27,31 +27,37 @@ from chaindrive.dynamics.damping import (
     HingeFrictionResult,
     hinge_friction_grid,
 )
-from chaindrive.dynamics.drive import (
-    DynamicsResult,
-    RingParameters,
-    drive_dynamics,
-    drive_ring_parameters,
-    ring_damping_ratio,
+from chaindrive.dynamics.drive import RingParameters
+from chaindrive.dynamics.drive_model import DriveModel, drive_model
+from chaindrive.dynamics.drive_response import (
+    Bands,
+    drive_steady,
+    drive_sweep,
+    frequency_band_factors,
+    span_loads_over,
+    uncertainty_bands,
 )
+from chaindrive.dynamics.drive_startup import model_startup
+from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
+from chaindrive.dynamics.published import published_comparison
+from chaindrive.dynamics.quality import nominal_peripheral_force
 from chaindrive.dynamics.resonance import resonance_warnings
 from chaindrive.dynamics.response import (
     DynamicResponse,
-    disturbance_responses,
-    drive_startup,
-    motor_of,
-    polygonal_steady,
-    speed_sweep,
+    disturbance_excitations,
+    polygonal_law,
+    startup_pretension,
 )
-from chaindrive.dynamics.ring import RingModel
 from chaindrive.dynamics.startup import StartupResult
 from chaindrive.dynamics.steady import SteadyStateResult
+from chaindrive.dynamics.warnings import dynamics_warnings
+from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
-from chaindrive.kinematics import KinematicsResult, drive_kinematics
+from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_frequency
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
@@ -67,6 +73,10 @@ __all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
 #: Speed range of the Campbell data and of the speed sweep (run-up), as fractions of the
 #: nominal driver speed.
 SPEED_RANGE = (0.1, 1.5)
+#: Speeds of the speed sweep (AFC) over :data:`SPEED_RANGE` (2000 points).
+AFC_POINTS = 2000
+#: Speeds of the short sweep over the band of the speed factors (the band of K_D).
+BAND_POINTS = 101
 #: Comparative studies an analysis runs when asked (``studies=``): the four chain/sprocket
 #: material pairs on this layout, and the hinge-friction damping model over its range.
 STUDIES = ("material_pairs", "hinge_friction")
@@ -203,28 +213,27 @@ class Analysis:
 
     # ------------------------------------------------------------------ dynamics
     @cached_property
-    def ring_parameters(self) -> RingParameters:
-        """Reduced masses and branch stiffnesses of the ring (static span tensions of one
-        contour for the sag)."""
+    def drive_model(self) -> DriveModel:
+        """The whole-drive model: the contour with the chain's own mass, every sprocket's
+        train, the motor and the machines (:mod:`chaindrive.dynamics.drive_model`); the
+        static span tensions of one contour set the sag stiffness."""
         st = self._static
-        return drive_ring_parameters(self._contour_drive, self.geometry,
-                                     span_tensions=None if st is None
-                                     else st.loads.span_tensions)
+        return drive_model(self.drive, self.geometry,
+                           span_tensions=None if st is None else st.loads.span_tensions)
 
     @cached_property
-    def ring(self) -> RingModel:
-        """The ring model with the damping of ``[dynamics]`` plus the material damping."""
-        p = self.ring_parameters
-        return RingModel(p.masses_kg, p.stiffness_n_per_m, closed=True,
-                         damping_ratio=ring_damping_ratio(p, self.drive.dynamics.damping_ratio),
-                         names=tuple(s.name for s in self.drive.sprockets))
+    def ring_parameters(self) -> RingParameters:
+        """The ring reduction of the drive (reduced masses, series branch stiffnesses) for the
+        ring-model tools (detuning, the inverse problem, the multi-contour check); the
+        analysis itself uses :attr:`drive_model`."""
+        return self.drive_model.ring
 
     @cached_property
-    def dynamics(self) -> DynamicsResult:
-        """Modes, span transverse frequencies, resonance table and Campbell data."""
+    def dynamics(self) -> DriveDynamics:
+        """Modes, span transverse frequencies, resonance table and Campbell data of the
+        whole-drive model."""
         w = self.drive.driver.speed
-        return drive_dynamics(self._contour_drive, self.geometry, self.ring,
-                              self.ring_parameters,
+        return model_dynamics(self.drive, self.geometry, self.drive_model,
                               speed_range=None if w is None
                               else (SPEED_RANGE[0] * w, SPEED_RANGE[1] * w))
 
@@ -234,34 +243,59 @@ class Analysis:
         return d.power is not None and d.driver.speed is not None and self._static is not None
 
     @cached_property
+    def _excitation(self) -> SpanExcitation:
+        """The polygonal excitation at the nominal speed."""
+        d = self.drive
+        assert d.driver.speed is not None
+        return polygonal_excitation(self.geometry, d.driver.teeth * d.driver.speed,
+                                    d.dynamics.harmonics)
+
+    @cached_property
+    def _nominal_force(self) -> float | None:
+        """F_t = P/v of one contour [N]."""
+        d = self._contour_drive
+        if d.power is None or d.driver.speed is None:
+            return None
+        return nominal_peripheral_force(d.power, self.geometry.sprockets[d.driver_index]
+                                        .pitch_diameter, d.driver.speed)
+
+    @cached_property
     def afc(self) -> AfcResult | None:
         """The speed sweep over :data:`SPEED_RANGE` (its maxima are F₂max)."""
         if not self._responds:
             return None
-        return speed_sweep(self._contour_drive, self.geometry, self.ring,
-                           harmonics=self.drive.dynamics.harmonics, speed_range=SPEED_RANGE)
+        d = self.drive
+        assert d.driver.speed is not None
+        dyn = self.dynamics
+        return drive_sweep(self.drive_model, dyn.state, self._excitation,
+                           np.linspace(*SPEED_RANGE, AFC_POINTS) * d.driver.speed,
+                           d.driver.teeth, dyn.modal.elastic_frequencies_hz)
 
     @cached_property
     def steady(self) -> SteadyStateResult | None:
         """Steady polygonal response at the nominal speed, K_D, k₂ and k₂min."""
         if not self._responds or self.afc is None or self._static is None:
             return None
-        return polygonal_steady(self._contour_drive, self.geometry, self.ring,
-                                span_tensions=self._static.loads.span_tensions,
-                                harmonics=self.drive.dynamics.harmonics,
-                                resonance_loads=self.afc.max_span_load)
+        return drive_steady(self.drive_model, self._excitation,
+                            nominal_force=self._nominal_force,
+                            breaking_load=self.drive.chain.spec.breaking_load,
+                            operating_forces=self._static.loads.span_tensions,
+                            resonance_loads=self.afc.max_span_load)
 
     @cached_property
     def startup(self) -> StartupResult | None:
-        """The start-up from rest with the motor law of ``[dynamics]`` (None when the
-        design asks for none)."""
-        d, s = self._contour_drive, self.drive.dynamics
+        """The start-up from rest with the motor law on the motor's rotor and the machines'
+        moments on theirs (None when the design asks for none)."""
+        d, s = self.drive, self.drive.dynamics
         if (not self._responds or not s.transient or not self.with_startup or d.power is None
                 or d.driver.speed is None):
             return None
-        return drive_startup(d, self.geometry, self.ring,
-                             motor=motor_of(s, d.power, d.driver.speed),
-                             resistance=s.resistance, duration=s.startup_duration)  # type: ignore[arg-type]
+        return model_startup(self.drive_model, polygonal_law(self.geometry),
+                             duration=s.startup_duration,
+                             pretension=startup_pretension(d, self.geometry),
+                             tooth_frequency_hz=float(tooth_frequency(d.driver.teeth,
+                                                                      d.driver.speed)),
+                             breaking_load=d.chain.spec.breaking_load)
 
     @cached_property
     def disturbances(self) -> dict[str, SteadyStateResult]:
@@ -270,10 +304,29 @@ class Analysis:
         if not self._responds:
             return {}
         n = len(self.drive.sprockets)
-        return disturbance_responses(
-            self._contour_drive, self.geometry, self.ring,
+        return {k: drive_steady(self.drive_model, ex) for k, ex in disturbance_excitations(
+            self.drive, self.geometry,
             eccentricity=[s.eccentricity] * n if s.eccentricity > 0 else None,
-            pitch_scatter=s.pitch_scatter, accumulated_error=s.accumulated_error)
+            pitch_scatter=s.pitch_scatter, accumulated_error=s.accumulated_error).items()}
+
+    @cached_property
+    def bands(self) -> Bands:
+        """Bands of the natural frequencies, resonance margins and K_D for stiffness and
+        inertia known to ± ``[dynamics] uncertainty``."""
+        u = self.drive.dynamics.uncertainty
+        dyn = self.dynamics
+        sweep = None
+        steady = self.steady if self.with_response else None
+        if steady is not None and steady.coefficient_of_dynamics is not None:
+            lo, hi = frequency_band_factors(u)
+            factors = np.linspace(lo, hi, BAND_POINTS)
+            loads = span_loads_over(self.drive_model, dyn.state, self._excitation,
+                                    factors * steady.tooth_angular_frequency)
+            sweep = (factors, np.sqrt(np.mean(loads**2, axis=1)))
+        return uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances,
+                                 sweep=sweep, nominal_force=self._nominal_force,
+                                 nominal_kd=None if steady is None
+                                 else steady.coefficient_of_dynamics)
 
     @cached_property
     def response(self) -> DynamicResponse | None:
@@ -294,8 +347,9 @@ class Analysis:
         ([MultimassChainDrives], Fig. 2–3, Table 1); None unless asked for in ``studies``."""
         if "material_pairs" not in self.studies or not self._responds:
             return None
-        return material_comparison(self._contour_drive, self.geometry,
-                                   damping=self.drive.dynamics.damping_ratio)
+        return material_comparison(self.drive, self.geometry,
+                                   span_tensions=None if self._static is None
+                                   else self._static.loads.span_tensions)
 
     @cached_property
     def hinge_friction(self) -> tuple[HingeFrictionResult, ...] | None:
@@ -307,6 +361,13 @@ class Analysis:
         return hinge_friction_grid(c, (250.0, 500.0, 750.0, 1000.0),
                                    tuple(np.linspace(0.015, 0.03, 7).tolist()),
                                    c.pitch * 48)  # the paper's span: 49 hinges, a = t(z − 1)
+
+    @cached_property
+    def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:
+        """The printed figures of a published example beside this analysis' own
+        (:func:`chaindrive.dynamics.published.published_comparison`): (source, rows of
+        quantity, printed value, ours, unit); None for a drive that is not one of them."""
+        return published_comparison(self)
 
     # ------------------------------------------------------------------ manufacture
     @cached_property
@@ -393,6 +454,7 @@ class Analysis:
             out += self._static.loads.warnings
             out += self._static.warnings
         out += resonance_warnings(self.dynamics.resonances)
+        out += dynamics_warnings(self.drive_model, self.bands)
         return tuple(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ the document
@@ -412,6 +474,7 @@ class Analysis:
             strength["multicontour"] = self.contours.to_dict()
             strength["contour_factor_km"] = self.contours.km
         dynamics = self.dynamics.to_dict()
+        dynamics["bands"] = self.bands.to_dict()
         if self.response is not None:
             fragment = self.response.to_dict()
             dynamics.update(fragment["dynamics"])

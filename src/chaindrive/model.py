@@ -179,12 +179,90 @@ class Chain:
         return self.spec.pitch
 
 
+
+TRAIN_KINDS: tuple[str, ...] = ("shaft", "coupling", "gear", "rotor", "ground")
+LOAD_LAWS: tuple[str, ...] = ("constant", "linear", "quadratic")
+#: Most elements one sprocket's train may carry (the model stays a few hundred degrees of
+#: freedom at most, so that every response is bounded work).
+MAX_TRAIN_ELEMENTS = 12
+
+
+@dataclass(frozen=True, slots=True)
+class TrainElement:
+    """One element of the open train on a sprocket's shaft, listed outward from the sprocket.
+
+    kind : "shaft" or "coupling" — a torsional spring (``stiffness`` k [N·m/rad], or a solid
+        round shaft of ``diameter`` d [m], ``length`` l [m] and ``material``: k = G π d⁴/(32 l))
+        with a damper ``damping`` c [N·m·s/rad], from the current node to a new node;
+        "gear" — a rigid gear stage (a reducer taken as a whole) of ``ratio`` i = input speed /
+        output speed in the direction the power flows (from the motor to the driver sprocket,
+        from a driven sprocket to its machine) and ``efficiency`` η, to a new node;
+        "rotor" — ``inertia`` added to the current node (a body on the same shaft);
+        "ground" — a spring ``stiffness`` (and ``damping``) from the current node to the frame
+        (a torque arm, an elastic foundation).
+    name : the new node's name (shaft, coupling, gear) or the current node's (rotor); None:
+        ``<sprocket>.<k>``.
+    inertia : J [kg·m²] of the new node (shaft, coupling: the body at its far end; gear: the
+        output-side gear and what turns with it) or added to the current node (rotor).
+    """
+
+    kind: str
+    name: str | None = None
+    inertia: float = 0.0
+    stiffness: float | None = None
+    damping: float = 0.0
+    ratio: float | None = None
+    efficiency: float = 1.0
+    diameter: float | None = None
+    length: float | None = None
+    material: str = "steel"
+
+    def __post_init__(self) -> None:
+        where = f"train[{self.name or self.kind}]"
+        if self.kind not in TRAIN_KINDS:
+            raise DesignError(f"{where}.kind", f"must be one of {', '.join(TRAIN_KINDS)}, "
+                              f"got {self.kind!r}")
+        for key in ("inertia", "damping"):
+            v = getattr(self, key)
+            if not (math.isfinite(v) and v >= 0):
+                raise DesignError(f"{where}.{key}", f"must be finite and ≥ 0, got {v!r}")
+        if self.kind == "ground":
+            if self.stiffness is None or not (math.isfinite(self.stiffness) and self.stiffness > 0):
+                raise DesignError(f"{where}.stiffness", f"a ground spring needs a stiffness > 0, "
+                                  f"got {self.stiffness!r}")
+        elif self.kind in ("shaft", "coupling"):
+            geometric = self.diameter is not None or self.length is not None
+            if (self.stiffness is None) == (not geometric) or (
+                    geometric and (self.diameter is None or self.length is None)):
+                raise DesignError(f"{where}.stiffness", "give the stiffness, or the diameter "
+                                  "and the length of a solid shaft (not both)")
+            for key in ("stiffness", "diameter", "length"):
+                v = getattr(self, key)
+                if v is not None and not (math.isfinite(v) and v > 0):
+                    raise DesignError(f"{where}.{key}", f"must be positive, got {v!r}")
+        elif self.kind == "gear":
+            if self.ratio is None or not (math.isfinite(self.ratio) and self.ratio > 0):
+                raise DesignError(f"{where}.ratio", f"a gear stage needs a ratio > 0, got "
+                                  f"{self.ratio!r}")
+            if not (math.isfinite(self.efficiency) and 0 < self.efficiency <= 1):
+                raise DesignError(f"{where}.efficiency", f"must be in (0, 1], got "
+                                  f"{self.efficiency!r}")
+        elif self.kind == "rotor" and not self.inertia > 0:
+            raise DesignError(f"{where}.inertia", f"a rotor needs an inertia > 0, got "
+                              f"{self.inertia!r}")
+
+
 @dataclass(frozen=True, slots=True)
 class Sprocket:
     """A sprocket of the contour, listed in the order the chain runs round it.
 
-    x, y [m] centre; speed [rad/s] (driver only); inertia [kg·m²] of everything rotating
-    with it (None: computed later from geometry); ``flywheel`` [kg·m²] an inertia added as a
+    x, y [m] centre; speed [rad/s] (driver only); inertia [kg·m²] of what turns rigidly with
+    it — without a train everything on its shaft referred to it (None: the sprocket body from
+    its geometry); ``reduced_mass`` [kg] the same as a mass at the pitch radius, m = J/R²
+    [MultimassChainDrives, §3.1] (give one of the two); ``train`` the open train on its
+    shaft, outward from it (:class:`TrainElement`); ``load`` the law of the driven machine's
+    moment ("constant", "linear", "quadratic" in speed; None: ``[dynamics] resistance``);
+    ``flywheel`` [kg·m²] an inertia added as a
     steel flywheel on its shaft (counted in the dynamics, the mass and the cost); ``side``
     is ``"inside"`` when the chain wraps it from the inside of the contour (it then turns the other way);
     ``adjust_angle`` [rad] the direction of its line of adjustment (None: the default,
@@ -204,9 +282,25 @@ class Sprocket:
     material: str = "steel"
     power_share: float | None = None
     flywheel: float = 0.0
+    reduced_mass: float | None = None
+    train: tuple[TrainElement, ...] = ()
+    load: str | None = None
 
     def __post_init__(self) -> None:
         where = f"sprockets[{self.name}]"
+        if self.reduced_mass is not None:
+            if not (math.isfinite(self.reduced_mass) and self.reduced_mass > 0):
+                raise DesignError(f"{where}.reduced_mass", f"must be positive, got "
+                                  f"{self.reduced_mass!r} kg")
+            if self.inertia is not None:
+                raise DesignError(f"{where}.reduced_mass", "give the inertia or the reduced "
+                                  "mass, not both")
+        if len(self.train) > MAX_TRAIN_ELEMENTS:
+            raise DesignError(f"{where}.train", f"at most {MAX_TRAIN_ELEMENTS} elements, got "
+                              f"{len(self.train)}")
+        if self.load is not None and self.load not in LOAD_LAWS:
+            raise DesignError(f"{where}.load", f"must be one of {', '.join(LOAD_LAWS)}, got "
+                              f"{self.load!r}")
         if (not isinstance(self.teeth, int) or isinstance(self.teeth, bool)
                 or not MIN_TEETH <= self.teeth <= MAX_TEETH):
             raise DesignError(
@@ -235,24 +329,70 @@ class Sprocket:
 
 
 MOTORS: tuple[str, ...] = ("kloss", "constant", "ramp")
-RESISTANCES: tuple[str, ...] = ("constant", "linear", "quadratic")
+RESISTANCES: tuple[str, ...] = LOAD_LAWS
+
+
+@dataclass(frozen=True, slots=True)
+class Motor:
+    """The motor on the driver's train (the ``[motor]`` table of a design file).
+
+    law : "kloss" (induction motor, Kloss formula), "constant" or "ramp" torque (None: the
+        ``[dynamics] motor`` law); rated_power [W] (None: the drive's power); rated_speed
+        [rad/s] of the motor shaft (None: the driver's speed times the ratios of its train);
+        rotor_inertia [kg·m²] (None: estimated from the rated power and synchronous speed,
+        :func:`chaindrive.dynamics.motor_inertia.estimated_rotor_inertia`); breakdown_ratio
+        λ = M_k/M_r and critical_slip s_k of the Kloss law, ramp_time [s] of the ramp (None:
+        the ``[dynamics]`` values); torque [N·m] of the constant or ramp law (None: the rated
+        torque). The rotor sits on the outermost node of the driver's train (on the driver's
+        shaft when it has no train).
+    """
+
+    law: str | None = None
+    rated_power: float | None = None
+    rated_speed: float | None = None
+    rotor_inertia: float | None = None
+    breakdown_ratio: float | None = None
+    critical_slip: float | None = None
+    ramp_time: float | None = None
+    torque: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.law is not None and self.law not in MOTORS:
+            raise DesignError("motor.law", f"must be one of {', '.join(MOTORS)}, got {self.law!r}")
+        for key in ("rated_power", "rated_speed", "rotor_inertia", "ramp_time", "torque"):
+            v = getattr(self, key)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise DesignError(f"motor.{key}", f"must be positive, got {v!r}")
+        if self.breakdown_ratio is not None and not 1 < self.breakdown_ratio <= 5:
+            raise DesignError("motor.breakdown_ratio", f"must be in (1, 5], got "
+                              f"{self.breakdown_ratio!r}")
+        if self.critical_slip is not None and not 0 < self.critical_slip < 1:
+            raise DesignError("motor.critical_slip", f"must be in (0, 1), got "
+                              f"{self.critical_slip!r}")
 
 
 @dataclass(frozen=True, slots=True)
 class DynamicsSettings:
     """What the dynamic analyses of a drive use (the ``[dynamics]`` table of a design file).
 
-    damping_ratio ζ (seed 000: D = 0.06); harmonics of the tooth frequency in the polygonal
-    excitation (seed 000: 10 are practically exact); transient: run the start-up;
+    damping_ratio ζ of the chain spans (None: by the chain/sprocket material pair,
+    :data:`chaindrive.dynamics.damping.PAIR_DAMPING_RATIOS`); hinge_friction: each span's ζ
+    = ψ/4π at its own tension instead [ChainHingeDissipation], with the relative transverse
+    amplitude hinge_amplitude ȳ₀; uncertainty u: stiffnesses and inertias known to ±u (the
+    bands of the natural frequencies, margins and K_D); require_complete_model: an incomplete
+    model (a driver without its motor, a driven sprocket with nothing on its shaft) is an
+    error instead of a warning; harmonics of the tooth frequency in the polygonal
+    excitation ([MultimassChainDrives]: 10 are practically exact); transient: run the start-up;
     startup_duration [s]; motor: "kloss" (induction motor with the drive's power and the
     driver speed as rated values, breakdown_ratio λ = M_k/M_r and critical_slip s_k),
     "constant" (rated torque from t = 0) or "ramp" (soft start over ramp_time [s]);
     resistance on the driven sprockets: "constant", "linear" or "quadratic" in speed;
     eccentricity [m] of every sprocket, pitch_scatter σ [m] of the link pitches and
-    accumulated_error [m] of the chain length: optional internal disturbances (seed 000 §2).
+    accumulated_error [m] of the chain length: optional internal disturbances
+    ([MultimassChainDrives, §2]).
     """
 
-    damping_ratio: float = 0.06
+    damping_ratio: float | None = None
     harmonics: int = 10
     transient: bool = True
     startup_duration: float = 1.0
@@ -264,9 +404,19 @@ class DynamicsSettings:
     eccentricity: float = 0.0
     pitch_scatter: float = 0.0
     accumulated_error: float = 0.0
+    hinge_friction: bool = False
+    hinge_amplitude: float = 0.02
+    uncertainty: float = 0.1
+    require_complete_model: bool = False
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.damping_ratio < 1.0:
+        if not 0.0 <= self.uncertainty < 0.5:
+            raise DesignError("dynamics.uncertainty", f"must be from 0 to below 0.5, got "
+                              f"{self.uncertainty!r}")
+        if not 0.0 < self.hinge_amplitude <= 0.1:
+            raise DesignError("dynamics.hinge_amplitude", f"must be in (0, 0.1], got "
+                              f"{self.hinge_amplitude!r}")
+        if self.damping_ratio is not None and not 0.0 <= self.damping_ratio < 1.0:
             raise DesignError("dynamics.damping_ratio",
                               f"must be from 0 to below 1, got {self.damping_ratio!r}")
         if self.motor not in MOTORS:
@@ -282,7 +432,8 @@ class Drive:
     """A chain drive: one closed chain contour round 2 to 24 sprockets.
 
     power [W] transmitted from the driver (None when only geometry is wanted);
-    tooth_form: sprocket tooth form used for tip/root diameters.
+    tooth_form: sprocket tooth form used for tip/root diameters; motor: the motor on the
+    driver's train (None: not modelled; the start-up then uses the ``[dynamics]`` law).
     """
 
     name: str
@@ -293,6 +444,7 @@ class Drive:
     service_factor: float | None = None
     dynamics: DynamicsSettings = field(default_factory=DynamicsSettings)
     notes: dict[str, str] = field(default_factory=dict)
+    motor: Motor | None = None
 
     def __post_init__(self) -> None:
         n = len(self.sprockets)

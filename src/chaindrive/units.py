@@ -33,6 +33,8 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "pressure": ("[mass]/[length]/[time]**2", "Pa", "30 MPa"),
     "density": ("[mass]/[length]**3", "kg/m**3", "7850 kg/m^3"),
     "linear_density": ("[mass]/[length]", "kg/m", "2.6 kg/m"),
+    "torsional_stiffness": ("[mass]*[length]**2/[time]**2", "N*m/rad", "1.9e5 N*m/rad"),
+    "torsional_damping": ("[mass]*[length]**2/[time]", "N*m*s/rad", "20 N*m*s/rad"),
     "area": ("[length]**2", "m**2", "180 mm^2"),
 }
 

@@ -65,9 +65,6 @@ PRESENTER_MAY_IMPORT = (
 KNOWN_PRESENTER_IMPORTS: dict[tuple[str, str], str] = {}
 #: import cycles that exist today → who removes them. May only shrink.
 KNOWN_CYCLES: dict[frozenset[str], str] = {
-    # TorsionalModel.from_contour imports build_contour lazily, which imports torsional
-    frozenset({"chaindrive.dynamics.torsional", "chaindrive.dynamics.torsional_build"}):
-        "drive-train dynamics",
 }
 
 

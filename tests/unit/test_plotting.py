@@ -10,8 +10,8 @@ import pytest
 
 import chaindrive
 from chaindrive import plotting
-from chaindrive.dynamics import drive_dynamics
 from chaindrive.dynamics.damping import hinge_friction_damping
+from chaindrive.dynamics.whole import model_dynamics
 from chaindrive.multicontour import contour_factor_km, simulate_length_difference
 
 EXAMPLES = sorted(p for p in (Path(__file__).parents[2] / "examples").glob("*.toml")
@@ -54,9 +54,8 @@ def test_layout_draws_every_span_and_circle(analysis) -> None:
 
 def test_dynamics_figures_build(analysis) -> None:
     w = analysis.drive.driver.speed
-    dyn = drive_dynamics(analysis.drive, analysis.geometry, analysis.ring,
-                         analysis.ring_parameters, speed_range=(0.2 * w, 2 * w),
-                         speed_points=15)
+    dyn = model_dynamics(analysis.drive, analysis.geometry, analysis.drive_model,
+                         speed_range=(0.2 * w, 2 * w), speed_points=15)
     names = [s.name for s in analysis.drive.sprockets]
     fig = plotting.mode_shapes(dyn.modal, names=names)
     assert _rendered(fig)

@@ -223,6 +223,17 @@ def test_energy_balance_over_a_start_up():
     assert r.energy["hinge_friction_j"] > 0 and r.energy["link_damping_j"] > 0
 
 
+def _load(name: str) -> Drive:
+    """An example drive; "seed_three_sprocket.toml" as the ring and link-level comparisons
+    were made on it: bare steel sprocket discs (the example now carries the paper's entered
+    reduced masses on polymer sprockets, tests/validation/test_drive_dynamics.py)."""
+    drive = load_drive(EXAMPLES / name)
+    if name != "seed_three_sprocket.toml":
+        return drive
+    return replace(drive, sprockets=tuple(replace(s, reduced_mass=None, material="steel")
+                                          for s in drive.sprockets))
+
+
 def _impulse_peak_hz(drive: Drive, duration: float) -> float:
     """Strongest natural frequency above 20 Hz [Hz] of the link-level model carrying its
     nominal torque quasi-statically (at 1 % of the nominal speed, where engagement impacts
@@ -268,7 +279,7 @@ def test_ring_model_frequency_against_link_level(name):
     0.45 on the seed contour, 0.71 on the eight-sprocket one: band 0.35–0.85), because the
     ring leaves out the chain's own mass; the ring with the chain's mass added (Rayleigh)
     comes within 25 % of the link-level (measured: 21 % and 3 %). docs/linklevel.md §6."""
-    drive = load_drive(EXAMPLES / name)
+    drive = _load(name)
     geometry = contour_geometry(drive)
     peak = _impulse_peak_hz(drive, 0.2)
     params = drive_ring_parameters(drive, geometry)
@@ -289,7 +300,7 @@ def test_ring_model_dynamic_loads_against_link_level(name):
     sprockets, 10× on the seed's 15-tooth driver)."""
     from chaindrive import analyze
 
-    drive = load_drive(EXAMPLES / name)
+    drive = _load(name)
     ring = analyze(drive).response.steady
     link = simulate(drive, 0.3, start="steady")
     excess = (link.coefficient_of_dynamics - 1) / (ring.coefficient_of_dynamics - 1)
@@ -298,18 +309,22 @@ def test_ring_model_dynamic_loads_against_link_level(name):
 
 
 def test_ring_model_startup_peak_against_link_level():
-    """Ring model [MultimassChainDrives] vs link-level, start-up from rest by the Kloss motor
-    over 1 s (seed contour): the peak force of the loaded spans (static tension over half
-    the largest) agrees within 15 % (measured −6 % and −5 %); the slack span's does not (the
-    ring's slack span goes slack, the link-level's carries the engagement waves:
-    docs/linklevel.md §6)."""
+    """The analysis' start-up (now the whole-drive model [MultimassChainDrives, §3.1] with the
+    chain's own mass) vs link-level, from rest by the Kloss motor over 1 s (bare seed
+    contour): the peak force of the loaded spans (static tension over half the largest)
+    agrees within 35 % and lies below the link-level's (measured −25 % and −16 %): the
+    link-level's roller–tooth engagement impacts add to its peaks, which are chaotic (a
+    0.2 % change of its damping ratio moves them by 8 %: 791/784 N against 857/859 N);
+    docs/linklevel.md §6. The slack span's does not agree (the analysis' slack span goes
+    slack, the link-level's carries the engagement waves)."""
     from chaindrive import analyze
 
-    drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
+    drive = _load("seed_three_sprocket.toml")
     analysis = analyze(drive)
     ring = analysis.response.startup.max_span_force
     static = np.asarray(analysis.strength.loads.span_tensions)
     loaded = static > 0.5 * static.max()
     link = simulate(drive, 1.0, sample_rate_hz=2000).peak_span_force
     assert loaded.sum() >= 2
-    np.testing.assert_allclose(link[loaded], ring[loaded], rtol=0.15)
+    np.testing.assert_allclose(ring[loaded], link[loaded], rtol=0.35)
+    assert np.all(ring[loaded] < link[loaded])

@@ -59,6 +59,7 @@ SPROCKET_COLUMNS: tuple[Column, ...] = (
     Column("speed_rpm", "speed", "speed [rpm]", "rpm", "speed", RPM_PER_RAD_S),
     Column("power_share", "power_share", "power share"),
     Column("inertia_kg_m2", "inertia", "inertia [kg·m²]", "kg*m^2", "inertia", 1.0),
+    Column("reduced_mass_kg", "reduced_mass", "reduced mass [kg]", "kg", "mass", 1.0),
     Column("material", "material", "material"),
 )
 COLUMN_OF_FIELD: dict[str, Column] = {c.field: c for c in SPROCKET_COLUMNS}

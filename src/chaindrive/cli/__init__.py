@@ -322,7 +322,7 @@ def schema(
         return
     con = _console()
     for section, fields in doc.items():
-        header = f"[[{section}]]" if section == "sprockets" else f"[{section}]"
+        header = f"[[{section}]]" if section.startswith("sprockets") else f"[{section}]"
         con.print(_table(header, ["field", "unit", "default", "required", "allowed",
                                   "description"],
                          [[f["field"], f["si_unit"] or "—", f["default"], f["required"],

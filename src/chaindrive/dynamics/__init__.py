@@ -1,5 +1,5 @@
 """Dynamics of a chain contour: the n-mass ring model, modes, transverse span vibration,
-working frequencies and resonances (seed 000; docs/dynamics.md).
+working frequencies and resonances ([MultimassChainDrives]; docs/dynamics.md).
 
 Low-level API::
 

@@ -1,4 +1,4 @@
-r"""Amplitude–frequency characteristics (AFC) of a chain contour (seed 000 §3.3, Fig. 3).
+r"""Amplitude–frequency characteristics (AFC) of a chain contour ([MultimassChainDrives, §3.3], Fig. 3).
 
 The driver speed is swept (default 10 %–150 % of nominal, 2000 points) and, at every speed,
 the steady response to the kinematic excitation (:mod:`chaindrive.dynamics.excitation`) is
@@ -70,7 +70,7 @@ class AfcResult:
     """Dynamic load of every span against the driver speed / tooth frequency.
 
     driver_speeds (S,) [rad/s]; tooth_frequencies_hz (S,); span_load (S, n) peak dynamic
-    load [N]; max_span_load (n,) its largest value over the sweep (F_2max, seed 000 §3.6);
+    load [N]; max_span_load (n,) its largest value over the sweep (F_2max, [MultimassChainDrives, §3.6]);
     natural_frequencies_hz (elastic, Dynamics I); markers : (mode, harmonic, f_nat [Hz],
     tooth frequency [Hz]) of every resonance inside the sweep; peak_tooth_frequencies_hz :
     local maxima of max_i span_load.

@@ -1,11 +1,11 @@
-"""Damping of a chain drive: hinge friction in a transversely vibrating span (seed 001).
+"""Damping of a chain drive: hinge friction in a transversely vibrating span ([ChainHingeDissipation]).
 
 The tight span of length a (z hinges, pitch t, a = t (z − 1)) vibrates as a string with
 fixed ends in its first mode, y = y_0 sin(πx/a) cos(ωτ), relative amplitude ȳ_0 = y_0/a
 (≤ 0.03). Friction in the hinges (pin diameter d_2, friction coefficient f) under the
 initial tension F_0 dissipates W per cycle; E is the largest potential energy of the
 cycle; the absorption coefficient (relative dissipation) is ψ = W/E. Equation numbers are
-seed 001's, restated in seed-notes §4::
+[ChainHingeDissipation]'s, restated in docs/dynamics.md §4::
 
     Σφ = 4π ȳ_0                                         (6)
     W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 ȳ_0             (7, 8)
@@ -16,7 +16,7 @@ seed 001's, restated in seed-notes §4::
     ψ = 6π f d_2 / (ȳ_0 a K_aF) ≈ 18.9 f d_2 / (ȳ_0 t (z − 1) K_aF)   (14)
 
 Equivalent viscous damping ratio ζ = ψ / (4π) (ψ = 2δ, δ = 2πζ the logarithmic decrement
-for light damping). Alternative: the plain ratio D = 0.06 measured in seed 000 §3.2
+for light damping). Alternative: the plain ratio D = 0.06 measured in [MultimassChainDrives, §3.2]
 (Table 1: damped and undamped frequencies then differ by 0.18 %, √(1 − 0.06²) = 0.9982).
 """
 
@@ -34,7 +34,9 @@ from chaindrive.errors import DesignError
 
 __all__ = [
     "DEFAULT_DAMPING_RATIO",
+    "PAIR_DAMPING_RATIOS",
     "PR_12_7_1820_1",
+    "TABLE1_FREQUENCIES_RAD_S",
     "HingeFrictionCoefficients",
     "HingeFrictionResult",
     "absorption_coefficient",
@@ -46,17 +48,125 @@ __all__ = [
     "hinge_rotation_sum",
     "max_dynamic_force",
     "max_potential_energy",
+    "pair_damping_ratio",
     "span_elongation_max",
+    "span_hinge_damping_ratios",
+    "table1_damping_ratio",
 ]
 
-#: Dimensionless damping coefficient D = ζ measured for chain drives (seed 000 §3.2).
+#: Dimensionless damping coefficient D = ζ measured for chain drives [MultimassChainDrives,
+#: §3.2].
 DEFAULT_DAMPING_RATIO = 0.06
+
+#: [MultimassChainDrives], Table 1: undamped and damped natural frequency [rad/s] of one chain
+#: drive by (chain, sprockets) material: "metal" or "polymer".
+TABLE1_FREQUENCIES_RAD_S: dict[tuple[str, str], tuple[float, float]] = {
+    ("metal", "metal"): (612.4, 611.3),
+    ("polymer", "metal"): (155.0, 152.6),
+    ("metal", "polymer"): (548.0, 546.9),
+    ("polymer", "polymer"): (153.8, 151.4),
+}
+
+
+def table1_damping_ratio(undamped: float, damped: float) -> float:
+    """Damping ratio ζ = √(1 − (ω_d/ω)²) [-] of a mode whose damped and undamped natural
+    frequencies are ω_d and ω (any one unit): ω_d = ω√(1 − ζ²) of a viscously damped
+    single-degree-of-freedom system [Rao2011, §2.6].
+
+    Parameters
+    ----------
+    undamped : float
+        ω, undamped natural frequency [rad/s].
+    damped : float
+        ω_d ≤ ω, damped natural frequency [rad/s].
+
+    Returns
+    -------
+    float
+        ζ [-].
+
+    References
+    ----------
+    [Rao2011, §2.6]; applied to [MultimassChainDrives], Table 1.
+    """
+    r = damped / undamped
+    if not 0.0 < r <= 1.0:
+        raise DesignError("damped", f"need 0 < ω_d ≤ ω, got {damped!r} and {undamped!r}")
+    return math.sqrt(1.0 - r * r)
+
+
+#: Damping ratio of a chain on its sprockets by (chain, sprockets) material: a metal chain on
+#: metal sprockets the measured D = 0.06 [MultimassChainDrives, §3.2] (Table 1 gives 0.0599);
+#: the other pairs derived from the damped and undamped frequencies of its Table 1
+#: (ζ = √(1 − (ω_d/ω)²)): 0.175 polymer chain on metal, 0.063 metal chain on polymer, 0.176
+#: polymer on polymer. Table 1 prints four significant figures: ζ is known to about ±0.002
+#: (metal chain) and ±0.001 (polymer chain).
+PAIR_DAMPING_RATIOS: dict[tuple[str, str], float] = {
+    **{pair: table1_damping_ratio(*w) for pair, w in TABLE1_FREQUENCIES_RAD_S.items()},
+    ("metal", "metal"): DEFAULT_DAMPING_RATIO}
+
+
+def pair_damping_ratio(chain_polymer: bool, sprocket_polymer: bool) -> float:
+    """Damping ratio ζ [-] of a chain on a sprocket by their materials
+    (:data:`PAIR_DAMPING_RATIOS`, [MultimassChainDrives], Table 1).
+
+    Parameters
+    ----------
+    chain_polymer : bool
+        The chain is of a polymer (else a metal).
+    sprocket_polymer : bool
+        The sprocket is of a polymer.
+
+    Returns
+    -------
+    float
+        ζ [-].
+    """
+    key = ("polymer" if chain_polymer else "metal", "polymer" if sprocket_polymer else "metal")
+    return PAIR_DAMPING_RATIOS[key]
+
+
+def span_hinge_damping_ratios(tensions: ArrayLike, lengths: ArrayLike, pin_diameter: float,
+                              relative_amplitude: float,
+                              coefficients: HingeFrictionCoefficients | None = None,
+                              ) -> NDArray[np.float64]:
+    """Damping ratio ζ = ψ/4π [-] of every span from the hinge friction at its own tension
+    [ChainHingeDissipation, eq. 14]: ψ = 6π f d₂/(ȳ₀ a K_aF).
+
+    Parameters
+    ----------
+    tensions : array_like
+        Static tension F₀ of every span [N] (> 0; a slack span is given the least tension of
+        the fit's range, 250 N, and its damping matters little).
+    lengths : array_like
+        Span length a [m].
+    pin_diameter : float
+        Pin diameter d₂ of the chain [m].
+    relative_amplitude : float
+        Relative transverse amplitude ȳ₀ = y₀/a [-] (the paper: 0.015–0.03).
+    coefficients : HingeFrictionCoefficients | None
+        The F_max fit and friction f (None: the paper's ПР-12,7-1820-1; for another chain an
+        extrapolation).
+
+    Returns
+    -------
+    ndarray
+        ζ of every span [-].
+
+    References
+    ----------
+    [ChainHingeDissipation], eqs. 11–14; ζ = ψ/4π [Panovko1960] (:func:`equivalent_damping_ratio`).
+    """
+    c = coefficients or PR_12_7_1820_1
+    f0 = np.maximum(np.asarray(tensions, dtype=float), 250.0)
+    psi = absorption_coefficient(c.friction, pin_diameter, lengths, relative_amplitude, f0, c)
+    return equivalent_damping_ratio(psi)
 
 
 @dataclass(frozen=True, slots=True)
 class HingeFrictionCoefficients:
     """Empirical fit F_max = k1 + k2 ȳ_0 + k3 F_0 + k4 ȳ_0² + k5 ȳ_0 F_0 + k6 F_0² of one
-    chain (seed 001 eq. 11) with the chain's hinge data.
+    chain ([ChainHingeDissipation, eq. 11]) with the chain's hinge data.
 
     k1 [N], k2 [N], k3 [–], k4 [N], k5 [–], k6 [1/N]; pin_diameter d_2 [m]; pitch t [m];
     friction f in the hinges [–]. Replace with the coefficients of your chain.
@@ -79,13 +189,13 @@ class HingeFrictionCoefficients:
         return asdict(self)
 
 
-#: Seed 001's set for chain ПР-12,7-1820-1 (GOST 13568-97): d_2 = 4.45 mm, t = 12.7 mm,
+#: [ChainHingeDissipation]'s set for chain ПР-12,7-1820-1 (GOST 13568-97): d_2 = 4.45 mm, t = 12.7 mm,
 #: f = 0.1; the signs of the k's are unreadable in the source, all taken positive
-#: (seed-notes §4: then F_max at ȳ_0 → 0 stays within 10 % of F_0).
+#: (then F_max at ȳ_0 → 0 stays within 10 % of F_0).
 PR_12_7_1820_1 = HingeFrictionCoefficients(
     chain="GOST 13568 ПР-12,7-1820-1", k1=32.55, k2=8276.0, k3=0.904, k4=1.374e6, k5=10.2,
     k6=15.7e-5, pin_diameter=4.45e-3, pitch=12.7e-3, friction=0.1,
-    source="seed 001 (coefficients of its ref. [16]); seed-notes §4",
+    source="[ChainHingeDissipation] (coefficients of its ref. [16])",
 )
 
 
@@ -99,7 +209,7 @@ def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
 def hinge_rotation_sum(relative_amplitude: ArrayLike) -> NDArray[np.float64]:
     """Total rotation of the pins in their bushes per quarter period, Σφ = 4π ȳ_0 [rad].
 
-    relative_amplitude ȳ_0 = y_0 / a [–]. Seed 001 eq. (6).
+    relative_amplitude ȳ_0 = y_0 / a [–]. [ChainHingeDissipation, eq. 6].
     """
     return 4.0 * math.pi * _positive("relative_amplitude", relative_amplitude)
 
@@ -108,7 +218,7 @@ def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_dia
                                 amplitude: ArrayLike, span_length: ArrayLike) -> NDArray[np.float64]:
     """Energy W [J] dissipated by hinge friction per cycle of transverse vibration.
 
-    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 y_0 / a (seed 001 eqs. 7–8 with ȳ_0 = y_0/a).
+    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 y_0 / a ([ChainHingeDissipation, eqs. 7–8] with ȳ_0 = y_0/a).
     friction f [–]; tension F_0 [N]; pin_diameter d_2 [m]; amplitude y_0 at mid-span [m];
     span_length a [m].
     """
@@ -121,7 +231,7 @@ def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_dia
 def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -> NDArray[np.float64]:
     """Elongation Δl_max = (8/3) a ȳ_0² [m] of a span at its largest deflection.
 
-    span_length a [m]; relative_amplitude ȳ_0 [–]. Seed 001 eq. (10) (sin-shaped span).
+    span_length a [m]; relative_amplitude ȳ_0 [–]. [ChainHingeDissipation, eq. 10] (sin-shaped span).
     """
     y = _positive("relative_amplitude", relative_amplitude)
     return 8.0 / 3.0 * _positive("span_length", span_length) * y * y
@@ -130,7 +240,7 @@ def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -
 def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
                       coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                       ) -> NDArray[np.float64]:
-    """Largest span force F_max [N] during the vibration, seed 001 eq. (11) (empirical).
+    """Largest span force F_max [N] during the vibration, [ChainHingeDissipation, eq. 11] (empirical).
 
     tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
     """
@@ -143,7 +253,7 @@ def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
 def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
                         coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                         ) -> NDArray[np.float64]:
-    """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [–], seed 001 eq. (13).
+    """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [–], [ChainHingeDissipation, eq. 13].
 
     tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
     """
@@ -157,7 +267,7 @@ def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
                          ) -> NDArray[np.float64]:
     """Largest potential energy of the cycle E = 0.5 F_a Δl_max = (4/3) a ȳ_0² F_0 K_aF [J].
 
-    Seed 001 eqs. (9), (12). span_length a [m]; relative_amplitude ȳ_0; tension F_0 [N].
+    [ChainHingeDissipation, eqs. 9, 12]. span_length a [m]; relative_amplitude ȳ_0; tension F_0 [N].
     """
     F0 = _positive("tension", tension)
     k_af = dynamic_load_factor(F0, relative_amplitude, coefficients)
@@ -168,7 +278,7 @@ def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_le
                            relative_amplitude: ArrayLike, tension: ArrayLike,
                            coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                            ) -> NDArray[np.float64]:
-    """Absorption coefficient ψ = W / E = 6π f d_2 / (ȳ_0 a K_aF) [–], seed 001 eq. (14).
+    """Absorption coefficient ψ = W / E = 6π f d_2 / (ȳ_0 a K_aF) [–], [ChainHingeDissipation, eq. 14].
 
     friction f; pin_diameter d_2 [m]; span_length a = t (z − 1) [m]; relative_amplitude
     ȳ_0; tension F_0 [N]; coefficients of the chain's F_max fit.
@@ -185,7 +295,7 @@ def equivalent_damping_ratio(absorption: ArrayLike) -> NDArray[np.float64]:
     """Viscous damping ratio ζ = ψ / (4π) [–] equivalent to an absorption coefficient ψ.
 
     ψ = ΔW/W = 2δ for light damping and δ = 2πζ (logarithmic decrement) — Panovko,
-    Internal friction in vibrations of elastic systems; seed-notes §4.
+    Internal friction in vibrations of elastic systems [Panovko1960].
     """
     return np.asarray(absorption, dtype=float) / (4.0 * math.pi)
 
@@ -194,7 +304,7 @@ def damped_frequencies(frequencies: ArrayLike, damping_ratio: ArrayLike) -> NDAr
     """Damped natural frequencies ω_d = ω sqrt(1 − ζ²) (any frequency unit).
 
     Source: single-degree-of-freedom viscous damping, applied mode by mode (modal damping);
-    seed 000 Table 1 compares undamped and damped frequencies this way.
+    [MultimassChainDrives, Table 1] compares undamped and damped frequencies this way.
     """
     z = np.asarray(damping_ratio, dtype=float)
     if np.any((z < 0) | (z >= 1)):
@@ -229,7 +339,7 @@ class HingeFrictionResult:
 def hinge_friction_damping(tension: float, relative_amplitude: float, span_length: float,
                            coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                            ) -> HingeFrictionResult:
-    """Seed 001's model for one span: W, E, K_aF, ψ and ζ = ψ/4π.
+    """[ChainHingeDissipation]'s model for one span: W, E, K_aF, ψ and ζ = ψ/4π.
 
     tension F_0 [N]; relative_amplitude ȳ_0 [–] (seed: 0.015…0.03); span_length a [m];
     coefficients: the chain's fit and hinge data (friction, pin diameter).

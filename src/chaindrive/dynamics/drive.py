@@ -52,7 +52,7 @@ from chaindrive.strength.loads import loads_of
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
-    from chaindrive.model import Drive, Material
+    from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
 __all__ = ["DynamicsResult", "RingParameters", "drive_dynamics", "drive_ring_parameters",
            "ring_damping_ratio", "ring_model", "static_span_tensions"]
@@ -111,6 +111,38 @@ def _default_lookup() -> Callable[[str], Material]:
     return find_material
 
 
+def sprocket_inertia(sprocket: Sprocket, pitch_radius: float, spec: ChainSpec,
+                     material: Material) -> float:
+    """Moment of inertia [kg·m²] of what turns rigidly with a sprocket (its flywheel aside).
+
+    Parameters
+    ----------
+    sprocket : Sprocket
+        Its ``inertia``, else its ``reduced_mass`` m at the pitch radius, J = m R²
+        [MultimassChainDrives, §3.1], else the sprocket body from its geometry
+        (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`).
+    pitch_radius : float
+        R [m].
+    spec : ChainSpec
+        The chain (pitch, width, strands).
+    material : Material
+        The sprocket's material (density of the body).
+
+    Returns
+    -------
+    float
+        J [kg·m²].
+    """
+    if sprocket.inertia is not None:
+        return sprocket.inertia
+    if sprocket.reduced_mass is not None:
+        return sprocket.reduced_mass * pitch_radius**2
+    return sprocket_mass_and_inertia(spec.pitch, sprocket.teeth, spec.inner_width,
+                                     material.density, material.is_polymer,
+                                     strands=spec.strands,
+                                     transverse_pitch=spec.transverse_pitch).moment_of_inertia
+
+
 def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           span_tensions: Sequence[float] | None = None,
                           link_stiffness: float | None = None,
@@ -126,7 +158,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     material's E); material_lookup : name → Material (default
     ``chaindrive.catalog.find_material``). Sprocket masses: ``Sprocket.inertia`` when
     given, else :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate
-    disc, or the polymeric rim–web–hub proportions of seed 000 §3.4 for a polymer sprocket).
+    disc, or the polymeric rim–web–hub proportions of [MultimassChainDrives, §3.4] for a polymer sprocket).
     With ``drive.chain.contours`` = m identical contours the branch stiffness is m times that
     of one contour (span tensions are then those of one contour); chain_stiffness and
     wrap_stiffness stay per contour.
@@ -150,11 +182,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
         mat = lookup(s.material)
         eta_wrap[i] = loss_factor(mat.family, mat.is_polymer)
-        inertia[i] = s.flywheel + (s.inertia if s.inertia is not None else
-                                   sprocket_mass_and_inertia(
-                                       spec.pitch, s.teeth, spec.inner_width, mat.density,
-                                       mat.is_polymer, strands=spec.strands,
-                                       transverse_pitch=spec.transverse_pitch).moment_of_inertia)
+        inertia[i] = s.flywheel + sprocket_inertia(s, radius[i], spec, mat)
         k_t = tooth_stiffness(width, mat.youngs_modulus, chain_mat.youngs_modulus)
         wrap[i] = wrap_stiffness(k_t, k_link, g.teeth_in_mesh)
     lengths = np.array([sp.length for sp in geometry.spans])
@@ -171,7 +199,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
         incl = np.array([sp.inclination for sp in geometry.spans])
         sag = sag_stiffness_factor(k_link * spec.pitch, spec.mass_per_length * GRAVITY,
                                    lengths * np.cos(incl), tensions)
-    # m identical contours side by side (seed 004) act in parallel on the common shafts
+    # m identical contours side by side ([Lyashuk]) act in parallel on the common shafts
     stiffness = series_stiffness(chain_c, wrap[starts], wrap[ends]) * sag * drive.chain.contours
     return RingParameters(
         masses_kg=reduced_mass(inertia, radius), inertias_kg_m2=inertia,
@@ -186,9 +214,9 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
 
 def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
     """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given
-    (seed 000: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
+    ([MultimassChainDrives]: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
     strain energy method (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets
-    about +0.0003; a polyamide chain about +0.015 (seed 000 Fig. 2: polymer chains damp more).
+    about +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains damp more).
     """
 
     modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
@@ -223,7 +251,7 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class DynamicsResult:
-    """Everything a designer reads about a drive's vibration (issue 4, JSON ``dynamics``).
+    """Everything a designer reads about a drive's vibration (JSON ``dynamics``).
 
     parameters : masses and stiffnesses with their parts
     (:class:`~chaindrive.dynamics.drive.RingParameters`); modal : the ring's modes;
@@ -241,7 +269,7 @@ class DynamicsResult:
     damping_ratio: float
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict with the keys of issue 4 §6."""
+        """JSON-ready dict (the JSON ``dynamics`` section)."""
         m = self.modal.to_dict()
         st = self.span_transverse_hz
         return {

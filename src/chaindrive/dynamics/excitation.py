@@ -1,11 +1,11 @@
-r"""Kinematic excitation of the spans of a chain contour (seed 000 §3.1–3.3, seed-notes §1).
+r"""Kinematic excitation of the spans of a chain contour ([MultimassChainDrives, §3.1–3.3]).
 
 Every disturbance is written as a **prescribed elongation** d_i(t) of span i, added to the
-elastic elongation of the ring model (docs/dynamics2.md §1)::
+elastic elongation of the ring model (docs/dynamic_response.md §1)::
 
     F_i = c_i (e_i + d_i) + β c_i (ė_i + ḋ_i),    e_i = x_{i+1} − x_i,
 
-x_i is the displacement of mass i along the chain travel (x_i = R_i φ_i, seed 000); span i
+x_i is the displacement of mass i along the chain travel (x_i = R_i φ_i, [MultimassChainDrives]); span i
 leaves sprocket i and runs onto sprocket i+1 (chain travel from i to i+1, as in
 :mod:`chaindrive.geometry.results`). A disturbance that moves the hinge at the **end** of the
 span (on sprocket i+1) forward by δ_end pulls δ_end more chain out of the span, one that
@@ -32,7 +32,7 @@ matters), the seed's "difference of phases between nearby sprockets".
 
 Polygonal effect
 ----------------
-δ(ψ) = Σ_k b_k sin kψ, b_k = (p/π)(−1)^{k+1}/(k(k²z² − 1)) (seed-notes §1,
+δ(ψ) = Σ_k b_k sin kψ, b_k = (p/π)(−1)^{k+1}/(k(k²z² − 1)) (docs/dynamics.md,
 :func:`chaindrive.kinematics.hinge_displacement_coefficients`); harmonic k of the tooth
 frequency has the complex amplitude −i b_k e^{−i 2π k s}. The amplitudes do not depend on the
 speed: only the frequencies k ω_z do.
@@ -141,8 +141,8 @@ def polygonal_span_elongation(pitch: float, teeth_start: ArrayLike, teeth_end: A
 
     pitch p [m]; teeth_start / teeth_end : (n,) teeth of the sprocket at the start / end of
     each span; s_start / s_end : (n,) path positions [pitches] of the tangent points;
-    harmonics N of the tooth frequency (seed 000: 10). d_i = δ_end − δ_start with
-    δ(ψ) = Σ A_k sin kψ + B_k cos kψ (seed-notes §1, phase ψ0 = −2π s), so
+    harmonics N of the tooth frequency ([MultimassChainDrives]: 10). d_i = δ_end − δ_start with
+    δ(ψ) = Σ A_k sin kψ + B_k cos kψ (phase ψ0 = −2π s), so
     D_k = (B_k − i A_k)_end − (B_k − i A_k)_start. Shape (N, n).
     """
     a_s, b_s = hinge_displacement_coefficients(pitch, teeth_start, harmonics,
@@ -163,7 +163,7 @@ def polygonal_excitation(geometry: GeometryResult, tooth_angular_frequency: floa
                          harmonics: int = 10) -> SpanExcitation:
     """Polygonal excitation of every span of a contour at ω_z = z_1 ω_1 [rad/s].
 
-    Harmonics k = 1…N (default 10, seed 000) of the tooth frequency; the phases follow
+    Harmonics k = 1…N (default 10, [MultimassChainDrives]) of the tooth frequency; the phases follow
     from the span lengths and wraps in pitches (:func:`path_positions`).
     """
     s_start, s_end = path_positions(geometry)

@@ -15,12 +15,13 @@ from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["motor_code", "resistance_code"]
+__all__ = ["RESISTANCE_KINDS", "motor_code", "resistance_code"]
 
 MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
 RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
-_RESISTANCE_KINDS = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
-                     "quadratic": RESISTANCE_QUADRATIC}
+#: Kernel code of every load law (:class:`~chaindrive.dynamics.motors.ResistanceLaw` kinds).
+RESISTANCE_KINDS = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
+                    "quadratic": RESISTANCE_QUADRATIC}
 
 
 def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
@@ -47,7 +48,7 @@ def resistance_code(law: Any, n: int) -> tuple[int, NDArray[np.float64], NDArray
     is unknown."""
     if law is None:
         return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
-    kind = _RESISTANCE_KINDS.get(law.kind)
+    kind = RESISTANCE_KINDS.get(law.kind)
     if kind is None:
         return None
     return (kind, np.broadcast_to(np.asarray(law.torques, float), (n,)).copy(),

@@ -1,38 +1,50 @@
-"""The four material pairs of seed 000 (Fig. 2–3, Table 1) on one layout.
+"""The four chain/sprocket material pairs of [MultimassChainDrives] (Fig. 2–3, Table 1) on one
+layout, with the whole-drive model.
 
-Metal or polymer chain on metal or polymer sprockets: for each pair the ring model is rebuilt
-(:func:`chaindrive.dynamics.drive.ring_model`: chain E, sprocket E and density from
-``chaindrive.catalog.find_material``), then the start-up peak span force
-(:func:`chaindrive.dynamics.response.drive_startup`), the first elastic natural frequency and
-the first resonance of the AFC (tooth frequency of the largest peak near it and its
-amplitude) are tabulated. Seed 000 reports 542 N (metal chain) vs 470 N (polymer chain) at
-start-up and a polymer-chain resonance at a lower frequency with ≈ 3× smaller amplitude.
+Metal or polymer chain on metal or polymer sprockets: for each pair the whole-drive model is
+rebuilt (:func:`chaindrive.dynamics.drive_model.drive_model`: the chain's E and the sprockets'
+E from ``chaindrive.catalog.find_material``; the damping ratio of the pair, Table 1), then the
+start-up peak span force, the first elastic natural frequency, its damped value and the first
+resonance of the AFC (the tooth frequency of the largest peak of a sweep through 0.3–1.5 f₁,
+and its amplitude) are tabulated. A polymer chain has the catalogue chain's dimensions and
+its mass per length scaled by the densities, q·ρ/ρ_chain (the estimate of the packaged
+polymer chains, catalog/data/chains_polymer.csv). The paper reports 542 N (metal chain) vs
+470 N (polymer chain) at start-up and a polymer-chain resonance at a lower frequency with
+≈ 3× smaller amplitude.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from chaindrive.dynamics.afc import afc_sweep
-from chaindrive.dynamics.drive import ring_model
+from chaindrive.catalog import find_material
+from chaindrive.dynamics.drive_model import drive_model
+from chaindrive.dynamics.drive_response import drive_sweep
+from chaindrive.dynamics.drive_startup import model_startup
 from chaindrive.dynamics.excitation import polygonal_excitation
-from chaindrive.dynamics.response import drive_startup
+from chaindrive.dynamics.modes import drive_modes
+from chaindrive.dynamics.response import polygonal_law, startup_pretension
+from chaindrive.kinematics import tooth_frequency
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["MaterialCase", "material_comparison"]
+__all__ = ["MaterialCase", "material_comparison", "with_materials"]
+
+TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True, slots=True)
 class MaterialCase:
     """One pair: chain and sprocket materials, start-up peak [N], first natural frequency
-    [Hz], resonance tooth frequency [Hz] and resonance amplitude [N] (largest span load at
-    the AFC peak below 1.5× the first natural frequency)."""
+    [Hz] and its damped value [Hz], resonance tooth frequency [Hz] and resonance amplitude [N]
+    (largest span load at the AFC peak)."""
 
     chain_material: str
     sprocket_material: str
@@ -40,6 +52,7 @@ class MaterialCase:
     first_natural_frequency_hz: float
     resonance_tooth_frequency_hz: float
     resonance_amplitude_n: float
+    first_damped_frequency_hz: float = math.nan
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready row."""
@@ -47,34 +60,85 @@ class MaterialCase:
                 "sprocket_material": self.sprocket_material,
                 "startup_peak_n": self.startup_peak_n,
                 "first_natural_frequency_hz": self.first_natural_frequency_hz,
+                "first_damped_frequency_hz": self.first_damped_frequency_hz,
                 "resonance_tooth_frequency_hz": self.resonance_tooth_frequency_hz,
                 "resonance_amplitude_n": self.resonance_amplitude_n}
 
 
+def with_materials(drive: Drive, chain_material: str, sprocket_material: str) -> Drive:
+    """The drive with its chain and all its sprockets of other materials (module docstring:
+    the chain's mass per length scales with the density).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    chain_material, sprocket_material : str
+        Catalogue names.
+
+    Returns
+    -------
+    Drive
+    """
+    spec = drive.chain.spec
+    rho = find_material(chain_material).density / find_material(spec.material).density
+    spec = replace(spec, material=chain_material, mass_per_length=spec.mass_per_length * rho)
+    return replace(drive, chain=replace(drive.chain, spec=spec),
+                   sprockets=tuple(replace(s, material=sprocket_material)
+                                   for s in drive.sprockets))
+
+
 def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: str,
-          damping: float, duration: float, points: int) -> MaterialCase:
-    spec = replace(drive.chain.spec, material=chain_mat)
-    d = replace(drive, chain=replace(drive.chain, spec=spec),
-                sprockets=tuple(replace(s, material=sprocket_mat) for s in drive.sprockets))
-    model = ring_model(d, geometry, damping=damping)
-    f1 = model.modal().first_elastic_frequency_hz
-    st = drive_startup(d, geometry, model, duration=duration)
-    wz = d.driver.teeth * d.driver.speed
+          span_tensions: Sequence[float] | None, duration: float, points: int) -> MaterialCase:
+    d = with_materials(drive, chain_mat, sprocket_mat)
+    model = drive_model(d, geometry, span_tensions=span_tensions)
+    modes, state = drive_modes(model)
+    j = int(np.flatnonzero(~modes.rigid_body)[0])
+    f1 = float(modes.frequencies_hz[j])
+    w = d.driver.speed
+    assert w is not None
+    fz = float(tooth_frequency(d.driver.teeth, w))
+    peak = math.nan
+    if duration > 0 and d.power is not None:
+        st = model_startup(model, polygonal_law(geometry), duration=duration,
+                           pretension=startup_pretension(d, geometry), tooth_frequency_hz=fz)
+        peak = float(st.max_span_force.max())
     # sweep the tooth frequency through 0.3 f1 … 1.5 f1: the first harmonic crosses f1
-    fz = np.linspace(0.3 * f1, 1.5 * f1, points)
-    afc = afc_sweep(model, polygonal_excitation(geometry, wz), fz * 2 * np.pi / d.driver.teeth,
-                    d.driver.teeth)
+    ex = polygonal_excitation(geometry, d.driver.teeth * w)
+    speeds = np.linspace(0.3 * f1, 1.5 * f1, points) * TWO_PI / d.driver.teeth
+    afc = drive_sweep(model, state, ex, speeds, d.driver.teeth, modes.elastic_frequencies_hz)
     curve = afc.span_load.max(axis=1)
     k = int(np.argmax(curve))
-    return MaterialCase(chain_mat, sprocket_mat, float(st.max_span_force.max()), f1,
-                        float(afc.tooth_frequencies_hz[k]), float(curve[k]))
+    return MaterialCase(chain_mat, sprocket_mat, peak, f1, float(afc.tooth_frequencies_hz[k]),
+                        float(curve[k]), float(modes.damped_frequencies_hz[j]))
 
 
-def material_comparison(drive: Drive, geometry: GeometryResult, *, metal: str = "steel",
-                        polymer: str = "PA6-GF30", damping: float = 0.06,
-                        duration: float = 0.3, points: int = 600) -> tuple[MaterialCase, ...]:
+def material_comparison(drive: Drive, geometry: GeometryResult, *,
+                        span_tensions: Sequence[float] | None = None, metal: str = "steel",
+                        polymer: str = "PA6-GF30", duration: float = 0.3,
+                        points: int = 600) -> tuple[MaterialCase, ...]:
     """The four pairs (chain, sprockets): metal/metal, polymer/metal, metal/polymer,
-    polymer/polymer (seed 000 Table 1 order); start-up over ``duration`` [s]; AFC with
-    ``points`` tooth frequencies."""
+    polymer/polymer ([MultimassChainDrives] Table 1 order).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (its power and driver speed).
+    geometry : GeometryResult
+        Its contour.
+    span_tensions : sequence of float | None
+        Static span tensions of one contour [N] (the sag stiffness).
+    metal, polymer : str
+        Catalogue names of the two materials.
+    duration : float
+        Start-up simulated [s] (0: none, the peak is nan).
+    points : int
+        Tooth frequencies of the sweep.
+
+    Returns
+    -------
+    tuple of MaterialCase
+    """
     pairs = ((metal, metal), (polymer, metal), (metal, polymer), (polymer, polymer))
-    return tuple(_case(drive, geometry, a, b, damping, duration, points) for a, b in pairs)
+    return tuple(_case(drive, geometry, a, b, span_tensions, duration, points)
+                 for a, b in pairs)

@@ -1,4 +1,4 @@
-"""Integral indices of dynamic quality of a drive (seed 000 §3.2, seed-notes §1)."""
+"""Integral indices of dynamic quality of a drive ([MultimassChainDrives, §3.2])."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ def nominal_peripheral_force(power: float, pitch_diameter: float, speed: float) 
     """Nominal peripheral force F_t = P / v = 2P / (D ω) [N].
 
     power P [W]; pitch_diameter D of the driver [m]; speed ω of the driver [rad/s]
-    (seed-notes §1: F_t = 60 P / (π D n) with n in rpm).
+    (F_t = 60 P / (π D n) with n in rpm).
     """
     if not (power > 0 and pitch_diameter > 0 and speed > 0):
         raise DesignError("power", "power, pitch diameter and speed must be positive")
@@ -28,7 +28,7 @@ def coefficient_of_dynamics(dynamic_loads: ArrayLike, nominal_force: float) -> f
 
     dynamic_loads : the largest dynamic load [N] of every branch (sign ignored);
     nominal_force F_t [N]. F_D is the root mean square of the branch loads. Reading of
-    seed 000's lost formula used by the project (seed-notes §1; its 3-sprocket example:
+    [MultimassChainDrives]'s lost formula used by the project (its 3-sprocket example:
     44.75 N at F_t ≈ 262 N gives 1.17 against the printed 1.18).
     """
     loads = np.abs(np.asarray(dynamic_loads, dtype=float)).ravel()

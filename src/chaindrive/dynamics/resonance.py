@@ -1,6 +1,6 @@
 """Working frequencies, the resonance table and Campbell-diagram data.
 
-Seed 000 §3.2–3.3 (seed-notes §1): the disturbing frequencies of a contour are the shaft
+[MultimassChainDrives, §3.2–3.3]: the disturbing frequencies of a contour are the shaft
 rotation frequencies ω_i and the tooth (mesh) frequency ω_z = z_1 ω_1 = … = z_n ω_n with
 its harmonics k ω_z; the natural frequencies must be kept away from them. The parametric
 resonance of a span (tension pulsating at the tooth frequency, principal zone
@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -23,8 +23,26 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import tooth_frequency
 
-if TYPE_CHECKING:
-    from chaindrive.dynamics.ring import ModalResult
+
+class Modes(Protocol):
+    """What the resonance table and the Campbell data read of a modal result (the ring's
+    :class:`~chaindrive.dynamics.ring.ModalResult` or the whole drive's
+    :class:`~chaindrive.dynamics.modes.DriveModes`)."""
+
+    @property
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies [Hz], ascending, rigid-body zeros first."""
+        ...
+
+    @property
+    def rigid_body(self) -> NDArray[np.bool_]:
+        """True for the rigid-body modes."""
+        ...
+
+    @property
+    def elastic_frequencies_hz(self) -> NDArray[np.float64]:
+        """The elastic natural frequencies [Hz]."""
+        ...
 
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
            "resonance_table", "shaft_frequencies", "working_frequencies"]
@@ -38,7 +56,7 @@ def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
 
     driver_speed ω_1 [rad/s] (scalar or array of S speeds); driver_teeth z_1; teeth z_i.
     Returns shape (..., n). Source: ω_i = z_1 ω_1 / z_i (same chain speed on every
-    sprocket, seed-notes §1 and §5).
+    sprocket).
     """
     w = np.asarray(driver_speed, dtype=float)
     z = np.asarray(teeth, dtype=float)
@@ -68,7 +86,7 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
     """The shaft frequencies and the tooth frequency with harmonics k = 1…``harmonics``.
 
     driver_speed ω_1 [rad/s]; driver_teeth z_1; teeth z_i of all sprockets; names of the
-    sprockets (default S1, S2, …). Source: seed 000 §3.3, seed-notes §1.
+    sprockets (default S1, S2, …). Source: [MultimassChainDrives, §3.3].
     """
     if harmonics < 1:
         raise DesignError("harmonics", f"must be at least 1, got {harmonics!r}")
@@ -104,7 +122,7 @@ def _nearest(f: float, natural: NDArray[np.float64]) -> tuple[int, float, float]
     return k, fn, (f - fn) / fn * 100.0
 
 
-def resonance_table(modal: ModalResult, working: Sequence[WorkingFrequency],
+def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
                     span_transverse_hz: ArrayLike | None = None,
                     tooth_hz: float | None = None,
                     span_names: Sequence[str] = ()) -> tuple[Resonance, ...]:
@@ -179,7 +197,7 @@ def _crossings(speeds: NDArray[np.float64], line: NDArray[np.float64],
     return out
 
 
-def campbell_data(modal: ModalResult, driver_speeds: ArrayLike, driver_teeth: int,
+def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                   teeth: Sequence[int], names: Sequence[str] | None = None, harmonics: int = 3,
                   span_lengths: ArrayLike | None = None, span_tensions: ArrayLike | None = None,
                   mass_per_length: float | None = None, pitch: float | None = None,
@@ -218,7 +236,7 @@ def campbell_data(modal: ModalResult, driver_speeds: ArrayLike, driver_teeth: in
 
 
 #: Half-width of the band round a natural frequency that a working frequency should stay
-#: out of (seed 000 §3.2 "detune the spectrum from the working frequencies"; the ±10 %
+#: out of ([MultimassChainDrives, §3.2] "detune the spectrum from the working frequencies"; the ±10 %
 #: band is the usual rotordynamics separation margin, e.g. API 684 §2.8 asks 10–26 %).
 RESONANCE_BAND_PERCENT = 10.0
 

@@ -1,11 +1,11 @@
 """Dynamic response of a drive: start-up, steady state, AFC and the two-stage check.
 
-Entry point for :mod:`chaindrive.analysis` (issue 5 §5): :func:`dynamics_response` returns a
+Entry point for :mod:`chaindrive.analysis`: :func:`dynamics_response` returns a
 :class:`DynamicResponse` whose ``to_dict()`` holds the fragments ``dynamics.startup``,
 ``dynamics.steady``, ``dynamics.afc``, ``dynamics.coefficient_of_dynamics`` and
-``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6, seed-notes §2).
+``strength.k1/k2/k2min/allowable_k`` ([MultimassChainDrives, §3.6]).
 
-Defaults (docs/dynamics2.md §5): induction motor by Kloss with the drive's power and the
+Defaults (docs/dynamic_response.md §5): induction motor by Kloss with the drive's power and the
 driver's speed as rated values, λ = 2.5, s_k = 0.25; resistance ∝ speed on the driven
 sprockets with their power shares at the nominal speed; pre-tension T_0 the sag tension of
 the span leaving the driver; polygonal excitation with 10 harmonics; damping ζ of the model.
@@ -54,14 +54,15 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, DynamicsSettings
 
-__all__ = ["DynamicResponse", "disturbance_responses", "drive_startup", "dynamics_response",
-           "mean_radii", "motor_of", "polygonal_steady", "speed_sweep"]
+__all__ = ["DynamicResponse", "disturbance_excitations", "disturbance_responses",
+           "drive_startup", "dynamics_response", "mean_radii", "motor_of", "polygonal_law",
+           "polygonal_steady", "speed_sweep", "startup_pretension"]
 
 TWO_PI = 2.0 * math.pi
 
 
 def mean_radii(drive: Drive) -> NDArray[np.float64]:
-    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i (seed-notes §5)."""
+    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i [ChainNonUniformity]."""
     return np.array([s.teeth for s in drive.sprockets], float) * drive.chain.pitch / TWO_PI
 
 
@@ -73,9 +74,61 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
     return driver.speed, driver.speed * driver.teeth / z
 
 
-def _pretension(drive: Drive, geometry: GeometryResult) -> float:
+def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
+    """Pre-tension T₀ [N] of the spans at rest: the sag tension of the span leaving the driver
+    (:func:`chaindrive.strength.loads.sag_tension`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+
+    Returns
+    -------
+    float
+        T₀ [N].
+    """
     slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
     return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination))
+
+
+def disturbance_excitations(drive: Drive, geometry: GeometryResult, *,
+                            eccentricity: Sequence[float] | None = None,
+                            pitch_scatter: float = 0.0, accumulated_error: float = 0.0
+                            ) -> dict[str, SpanExcitation]:
+    """The optional internal disturbances as span excitations at the nominal speed: sprocket
+    eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
+    chain error Δ [m] (once per chain revolution; :mod:`chaindrive.dynamics.excitation`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (the driver's speed).
+    geometry : GeometryResult
+        Its contour.
+    eccentricity : sequence of float | None
+        ε of every sprocket [m].
+    pitch_scatter : float
+        σ [m].
+    accumulated_error : float
+        Δ [m].
+
+    Returns
+    -------
+    dict
+        "eccentricity" and/or "chain_error" → SpanExcitation.
+    """
+    w_d, _ = _speeds(drive)
+    wz = drive.driver.teeth * w_d
+    extra: dict[str, SpanExcitation] = {}
+    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
+        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
+    if pitch_scatter > 0 or accumulated_error != 0:
+        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
+                                                      accumulated_error=accumulated_error)
+    return extra
 
 
 def _shares(drive: Drive) -> NDArray[np.float64]:
@@ -107,7 +160,7 @@ def drive_startup(drive: Drive, geometry: GeometryResult, model: RingModel, *,
     if motor is None:
         motor = KlossMotor(P, w_d)
     law = ResistanceLaw(resistance, _shares(drive) * P / w, w) if P > 0 else None
-    T0 = _pretension(drive, geometry) if pretension is None else pretension
+    T0 = startup_pretension(drive, geometry) if pretension is None else pretension
     if dt is None:
         f1 = model.modal().first_elastic_frequency_hz
         fz = drive.driver.teeth * w_d / TWO_PI
@@ -132,7 +185,7 @@ class DynamicResponse:
     allowable_k: float
 
     def strength_dict(self) -> dict[str, Any]:
-        """``strength.k1/k2/k2min/allowable_k`` (seed 000 §3.6)."""
+        """``strength.k1/k2/k2min/allowable_k`` ([MultimassChainDrives, §3.6])."""
         k1 = self.startup.k1 if self.startup is not None else None
         factors = [k for k in (k1, self.steady.k2, self.steady.k2_min) if k is not None]
         return {"k1": k1, "k2": self.steady.k2, "k2min": self.steady.k2_min,
@@ -184,6 +237,7 @@ def polygonal_steady(drive: Drive, geometry: GeometryResult, model: RingModel, *
                                    .pitch_diameter, w_d) if drive.power else None)
     radii = np.array([g.pitch_radius for g in geometry.sprockets])
     return steady_state(model, ex, radii=radii, nominal_force=Ft,
+                        teeth=[s.teeth for s in drive.sprockets],
                         breaking_load=drive.chain.spec.breaking_load,
                         operating_forces=np.asarray(span_tensions, float),
                         resonance_loads=resonance_loads)
@@ -207,16 +261,12 @@ def disturbance_responses(drive: Drive, geometry: GeometryResult, model: RingMod
     """Steady loads of the optional internal disturbances, each on its own: sprocket
     eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
     chain error Δ [m] (see :mod:`chaindrive.dynamics.excitation`)."""
-    w_d, _ = _speeds(drive)
-    wz = drive.driver.teeth * w_d
-    extra: dict[str, SpanExcitation] = {}
-    if eccentricity is not None and np.any(np.asarray(eccentricity) > 0):
-        extra["eccentricity"] = eccentricity_excitation(geometry, wz, eccentricity)
-    if pitch_scatter > 0 or accumulated_error != 0:
-        extra["chain_error"] = chain_error_excitation(geometry, wz, pitch_scatter=pitch_scatter,
-                                                      accumulated_error=accumulated_error)
+    extra = disturbance_excitations(drive, geometry, eccentricity=eccentricity,
+                                    pitch_scatter=pitch_scatter,
+                                    accumulated_error=accumulated_error)
     radii = np.array([g.pitch_radius for g in geometry.sprockets])
-    return {k: steady_state(model, v, radii=radii) for k, v in extra.items()}
+    return {k: steady_state(model, v, radii=radii, teeth=[s.teeth for s in drive.sprockets])
+            for k, v in extra.items()}
 
 
 def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, *,

@@ -1,6 +1,6 @@
 """The n-mass ring model of a chain contour and its modal analysis.
 
-Seed 000 (§3.1–3.2, seed-notes §1): the rotating masses of sprocket i are reduced to the
+[MultimassChainDrives] (§3.1–3.2): the rotating masses of sprocket i are reduced to the
 radius of the hinge centres, m_i = I_i / R_i², the displacement is x_i = R_i φ_i, and branch
 (span) i joins mass i to mass i+1 (the last joins mass n to mass 1 and closes the ring)::
 
@@ -8,7 +8,7 @@ radius of the hinge centres, m_i = I_i / R_i², the displacement is x_i = R_i φ
 
 — K is the weighted Laplacian of the ring graph. Sign convention: the elongation of branch
 i is e_i = x_{i+1} − x_i, a branch in tension has e > 0 and pulls mass i forward.
-The natural frequencies are the roots of det(K − ω² M) = 0 (seed 000 eq. 2), solved here as
+The natural frequencies are the roots of det(K − ω² M) = 0 ([MultimassChainDrives, eq. 2]), solved here as
 the symmetric eigenproblem of M^{-1/2} K M^{-1/2} (M is diagonal) with LAPACK ``syevd``.
 A branch of stiffness 0 (a slack span) drops out: the ring becomes an open chain. Each
 connected group of masses has one rigid-body mode; its frequency is set to exactly 0 and its
@@ -44,7 +44,7 @@ def ring_stiffness_matrix(stiffness: ArrayLike, closed: bool = True) -> NDArray[
 
     Branch i joins mass i and i+1; with ``closed`` the last branch joins mass n and 1,
     otherwise the last entry is ignored (open chain of n masses and n−1 branches).
-    K is the weighted graph Laplacian (seed-notes §1): symmetric, positive semi-definite,
+    K is the weighted graph Laplacian: symmetric, positive semi-definite,
     rows summing to 0.
     """
     c = np.asarray(stiffness, dtype=float).copy()
@@ -86,12 +86,12 @@ class ModalResult:
         exactly 0 and come first
     angular_frequencies_rad_s : (n,) ω_j = 2π f_j [rad/s]
     shapes : (n, n) mode shapes X^(j) as columns, mass-normalised (Xᵀ M X = I) [kg^-1/2]
-    normalized_amplitudes : (n, n) seed 000's μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns
+    normalized_amplitudes : (n, n) [MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns
         per mode (each column sums to 1)
     partial_frequencies_hz : (n,) partial frequency of each mass with its neighbours held,
-        sqrt(K_kk / m_k) / 2π [Hz] (the diagonal terms of seed 000 eq. 2)
+        sqrt(K_kk / m_k) / 2π [Hz] (the diagonal terms of [MultimassChainDrives, eq. 2])
     rigid_body : (n,) True for rigid-body modes
-    damping_ratio : ζ used for the damped frequencies (seed 000: D = 0.06)
+    damping_ratio : ζ used for the damped frequencies ([MultimassChainDrives]: D = 0.06)
     damped_frequencies_hz : (n,) f_d = f·sqrt(1 − ζ²) [Hz]
     masses_kg, stiffness_n_per_m : the model's reduced masses and branch stiffnesses
     """
@@ -112,7 +112,7 @@ class ModalResult:
 
     @property
     def normalized_amplitudes(self) -> NDArray[np.float64]:
-        """Seed 000's μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
+        """[MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
         absx = np.abs(self.shapes)
         return absx / absx.sum(axis=0)
 
@@ -162,7 +162,7 @@ def _check_damping(damping_ratio: float) -> float:
 
 def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
                    damping_ratio: float = 0.0) -> ModalResult:
-    """Undamped modal analysis of masses on a ring (seed 000 eq. 2).
+    """Undamped modal analysis of masses on a ring ([MultimassChainDrives, eq. 2]).
 
     Parameters
     ----------
@@ -237,7 +237,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
     """
     n = m.size
     lapack = _scipy_lapack() if cut is not None and n > 2 else None
-    if lapack is not None:
+    if lapack is not None and cut is not None:
         last = cut == n - 1
         order = None if last else np.roll(_ALL[:n] if n <= _ALL.size else np.arange(n),
                                            -(cut + 1))
@@ -283,7 +283,7 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     else:
         for k, g in enumerate(groups):  # exact rigid-body shapes, M-orthonormal
             shapes[:, k] = 0.0
-            shapes[g, k] = 1.0 / math.sqrt(m[g].sum())
+            shapes[g, k] = 1.0 / math.sqrt(m[g].sum())  # type: ignore[index,call-overload]
     rigid = np.zeros(n, dtype=bool)
     rigid[:n_rigid] = True
     np.sqrt(lam, out=lam)
@@ -318,7 +318,7 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
     Returns (B, n) ascending frequencies [Hz]; the rigid-body modes (one per connected group
     of masses) come out as exactly 0. Builds the stacked symmetric matrices
     M^{-1/2} K M^{-1/2} with vectorised indexing and calls :func:`numpy.linalg.eigvalsh`
-    once (same eigenproblem as :func:`modal_analysis`, seed 000 eq. 2).
+    once (same eigenproblem as :func:`modal_analysis`, [MultimassChainDrives, eq. 2]).
     """
     m = np.atleast_2d(np.asarray(masses, dtype=float))
     c = np.array(np.atleast_2d(np.asarray(stiffness, dtype=float)))
@@ -355,12 +355,12 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class RingModel:
-    """Reduced masses on a closed chain contour (seed 000, seed-notes §1).
+    """Reduced masses on a closed chain contour ([MultimassChainDrives]).
 
     ``RingModel(masses_kg=[...], stiffness_n_per_m=[...], closed=True)``: branch i joins
     mass i and i+1 and, when ``closed``, the last joins mass n and mass 1. ``closed=False``
     or a stiffness of 0 (a slack span) gives an open chain. ``damping_ratio`` ζ is used for
-    the damped frequencies (seed 000: D = 0.06); ``names`` label the masses.
+    the damped frequencies ([MultimassChainDrives]: D = 0.06); ``names`` label the masses.
     """
 
     masses_kg: NDArray[np.float64]

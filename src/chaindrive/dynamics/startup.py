@@ -1,88 +1,108 @@
-r"""Start-up transient of a chain contour from rest (seed 000 §3.1, Fig. 2; seed-notes §1–2).
+r"""Start-up transient from rest: the nonlinear time integration of a drive model with
+tension-only chain spans [MultimassChainDrives, §3.1, Fig. 2].
 
-Equations (x_i along the chain travel, span i joins mass i and i+1, e = B x)::
+Equations, for coordinates q of any drive model (the whole drive of
+:mod:`chaindrive.dynamics.drive_model`, or the ring of reduced masses of
+:func:`simulate_startup`)::
 
-    M ẍ = −Bᵀ F + f_ext(t, ẋ),    F_i = s_i · [T_0 + c_i (e_i + d_i) + β c_i (ė_i + ḋ_i)],
+    M q̈ + C_lin q̇ + K_lin q = −Bᵀ F + Q_laws(t, q̇),
+    F_i = s_i · [T₀,i + c_i (e_i + d_i) + d_s,i (ė_i + ḋ_i)],   e = B q,
 
-s_i = 1 while the bracket is positive and 0 when the span goes slack (tension only: a
-chain cannot push; it takes up again when the bracket turns positive); T_0 the
-pre-tension from sag (equal in every span, so the contour is in equilibrium at rest);
-d_i the polygonal elongation (:mod:`chaindrive.dynamics.excitation`, exact hinge law
-δ(ψ) = R sin(ψ_w/z) − pψ_w/2π with the tooth phase ψ = 2π(x/p − s) following each
-sprocket's own motion, offset so that d(0) = 0: the chain is assembled at rest);
-β = 2ζ/ω_1 as in :mod:`chaindrive.dynamics.steady`. f_ext: the motor torque M_D(t, ω_1)/R̄_1
-on the driver, −M_R,i(ω_i)/R̄_i on driven sprockets, R̄ = z p/2π (the chain moves z p per
-revolution; x_i is the chain coordinate, so rigid rotation keeps every e_i = 0).
+s_i = 1 while the bracket is positive and 0 when the span goes slack (a chain cannot push; it
+takes up again when the bracket turns positive); T₀ the pre-tension from sag; d_i the
+polygonal elongation (:mod:`chaindrive.dynamics.excitation`, exact hinge law δ(ψ) = R sin(ψ/z)
+− pψ/2π with the tooth phase ψ = 2π(x/p − s) following each sprocket's own chain travel x,
+offset so that d(0) = 0: the chain is assembled at rest). Q_laws: the motor torque g·η·T(t, ω)
+on the motor's coordinate, the machines' moments −g·M·φ(ω/ω_n)/η on theirs (g the gain of a
+coordinate to the node's forward speed, η the efficiencies of the gear stages between it and
+its sprocket; :mod:`chaindrive.dynamics.motors`).
 
-**Integrator** (exponential / zero-order-hold, Van Loan 1978, "Computing integrals
-involving the matrix exponential", IEEE TAC 23): for each slack pattern s the linear part
-ẏ = A_s y + E f (y = (x, ẋ)) is discretised exactly,
+**Integrator** (exponential / zero-order-hold [VanLoan1978]): for each slack pattern s the
+linear part ẏ = A_s y + E f (y = (q, q̇)) is discretised exactly,
+expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.zoh`), and
+y_{k+1} = Φ_s y_k + Γ_s f_{k+½}, f_{k+½} = (3 f_k − f_{k−1})/2 for the explicit span forces
+(pre-tension, polygonal); the laws are linearly implicit on their own coordinate's speed.
+Φ_s, Γ_s are cached per pattern. The linear part is exact at any step (no stability limit
+from stiff modes); a step whose end state changes the slack pattern is redone once with the
+new pattern.
 
-    expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]],   y_{k+1} = Φ_s y_k + Γ_s f_{k+½},
+**Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.startup_kernel`)
+when the motor is a ConstantTorque, RampTorque or KlossMotor — compiled ahead of time when
+that build is present and current (:mod:`chaindrive.dynamics.kernel_build`), else just in
+time; otherwise in NumPy. Both take the same steps and agree to round-off on small cases
+(with slack spans and polygonal excitation the trajectory itself amplifies round-off: peak
+forces are the robust output).
 
-with f_{k+½} = (3 f_k − f_{k−1})/2 (second-order extrapolation of the explicit forces:
-motor, resistance, pre-tension, polygonal). Φ_s, Γ_s are cached per pattern. The linear
-stiff part is exact at any step (no stability limit from the kHz modes); a step whose end
-state changes the slack pattern is redone once with the new pattern. Δt defaults to
-1/(160 f_1) and 1/(160 f_z) at most (f_1 first elastic frequency, f_z tooth frequency).
-
-**Compiled kernel.** The step loop of :func:`simulate_startup` runs in numba
-(:mod:`chaindrive.dynamics.startup_kernel`) when the motor is a ConstantTorque, RampTorque
-or KlossMotor — compiled ahead of time when that build is present and current
-(:mod:`chaindrive.dynamics.kernel_build`), else just in time when numba is importable;
-otherwise in NumPy. Both take the same steps and
-agree to round-off (tests); note that with slack spans and polygonal excitation the
-trajectory itself amplifies round-off (a 1e-13 change of T_0 moves the 24-sprocket speed
-history by ~3 % pointwise; the two backends there differ as much pointwise, while their
-peak forces agree to 1e-14), so equivalence is tested on small cases.
+**Bounded work.** The state is kept every ``record_every`` steps (at most
+:data:`MAX_RECORDS` samples) and the largest span forces at every step, so memory does not
+grow with the steps; :func:`work_estimate` counts the floating-point operations a run takes
+and the callers refuse a run beyond :data:`WORK_BUDGET`.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.dynamics.linear import mode_roots
+from chaindrive.dynamics.kernel_codes import RESISTANCE_KINDS, motor_code
 from chaindrive.dynamics.motors import ResistanceLaw
+from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.steady import span_incidence
+from chaindrive.dynamics.zoh import zoh_matrices
 from chaindrive.errors import DesignError
 
-if TYPE_CHECKING:
-    from collections.abc import Callable
-
-__all__ = ["PolygonalLaw", "StartupResult", "settling_time", "simulate_startup"]
+__all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
+           "StartupResult", "runup_time", "settling_time", "simulate_startup", "solve_startup",
+           "work_estimate"]
 
 TWO_PI = 2.0 * math.pi
-#: Default steps per period of the first elastic mode (or tooth period): slack events and the
+FloatArray = NDArray[np.float64]
+#: Default steps per period of the reference mode (or tooth period): slack events and the
 #: explicit forces need it (measured: 40 is unstable on the 24-sprocket example, 160 agrees
 #: with a tight LSODA solution to 0.3 % in the peak force).
 STEPS_PER_PERIOD = 160
+#: Most samples of a history kept (the largest span forces are tracked at every step).
+MAX_RECORDS = 20_000
+#: Most floating-point operations a start-up may take (:func:`work_estimate`): about 2–5 s on
+#: the project machine.
+WORK_BUDGET = 4.0e9
+Backend = Literal["auto", "numba", "jit", "numpy"]
 
 
 # --- results -------------------------------------------------------------------------------
 
 @dataclass(frozen=True, slots=True, eq=False)
 class StartupResult:
-    """Time histories of a start-up (seed 000 Fig. 2).
+    """Time histories of a start-up [MultimassChainDrives, Fig. 2].
 
-    times (N,) [s]; span_forces (N, n) [N]; speeds (N, n) sprocket speeds [rad/s];
-    max_span_force (n,) F₁max per span [N]; settling_time [s] (:func:`settling_time`);
-    k1 = Q/max F₁max (None without Q; seed 000 §3.6); steps taken; slack_steps: number of
-    recorded samples with at least one slack span.
+    times (R,) [s]; span_forces (R, S) [N] (one contour); speeds (R, n) sprocket speeds
+    [rad/s]; max_span_force (S,) F₁max per span [N] (every step); settling_time [s]
+    (:func:`settling_time`: run-up and decay together); k1 = Q/max F₁max (None without Q;
+    [MultimassChainDrives, §3.6]); steps taken; slack_steps: recorded samples with a slack
+    span; runup_time [s] (:func:`runup_time`); decay_time [s]: settling after the run-up;
+    rotor_names, rotor_speeds (R, r) [rad/s]: the rotors of the trains; states (R, 2N) the
+    coordinates and their rates, or None.
     """
 
-    times: NDArray[np.float64]
-    span_forces: NDArray[np.float64]
-    speeds: NDArray[np.float64]
-    max_span_force: NDArray[np.float64]
+    times: FloatArray
+    span_forces: FloatArray
+    speeds: FloatArray
+    max_span_force: FloatArray
     settling_time: float
     k1: float | None
     steps: int
     slack_steps: int
+    runup_time: float = math.nan
+    decay_time: float = math.nan
+    rotor_names: tuple[str, ...] = ()
+    rotor_speeds: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+    states: FloatArray | None = None
+    time_step: float = math.nan
 
     def to_dict(self, include_history: bool = False) -> dict[str, Any]:
         """JSON-ready dict; histories only with ``include_history``."""
@@ -90,9 +110,15 @@ class StartupResult:
             "max_span_force_n": self.max_span_force.tolist(),
             "max_force_n": float(self.max_span_force.max()),
             "settling_time_s": self.settling_time,
+            "runup_time_s": None if math.isnan(self.runup_time) else self.runup_time,
+            "decay_time_s": None if math.isnan(self.decay_time) else self.decay_time,
             "k1": self.k1,
             "final_speed_rad_s": self.speeds[-1].tolist(),
+            "final_rotor_speed_rad_s": dict(zip(
+                self.rotor_names, self.rotor_speeds[-1].tolist() if self.rotor_names else [],
+                strict=True)),
             "steps": self.steps,
+            "time_step_s": None if math.isnan(self.time_step) else self.time_step,
             "slack_samples": self.slack_steps,
         }
         if include_history:
@@ -102,8 +128,8 @@ class StartupResult:
         return out
 
 
-def settling_time(times: NDArray[np.float64], forces: NDArray[np.float64],
-                  tolerance: float = 0.05, tail: float = 0.1) -> float:
+def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05,
+                  tail: float = 0.1) -> float:
     """Time [s] after which every span force stays in its final band.
 
     The final state is the last ``tail`` fraction of the record: its mean F̄_i and
@@ -119,247 +145,257 @@ def settling_time(times: NDArray[np.float64], forces: NDArray[np.float64],
     return float(times[min(idx[-1] + 1, len(times) - 1)]) if idx.size else 0.0
 
 
-# --- the nonlinear integrator ---------------------------------------------------------------
+def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
+               tail: float = 0.1) -> float:
+    """Time [s] at which a speed history first reaches ``fraction`` of its final mean (the
+    mean over the last ``tail`` of the record); nan if it never does.
 
-def _discretise(m: NDArray[np.float64], c_eff: NDArray[np.float64], beta: float,
-                dt: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Exact zero-order-hold Φ, Γ of ẏ = A y + E f, K = Bᵀ diag(c_eff) B, C = βK.
+    Parameters
+    ----------
+    times : ndarray
+        (R,) [s].
+    speed : ndarray
+        (R,) forward speed [rad/s].
+    fraction : float
+        [-].
+    tail : float
+        [-].
 
-    Built from the modes (classical damping): mode j moves over dt by
-    [[1 − ω²S, h], [−ω²h, h']] on (q, q̇) and by (S, h)·u under a held modal force u, S the
-    unit-step response and h = Ṡ (Rao §4.5); rigid modes [[1, dt], [0, 1]], (dt²/2, dt).
-    Equal to Van Loan's block exponential expm([[A, E], [0, 0]] dt) (checked in the tests),
-    ~50× cheaper for a 24-mass ring.
+    Returns
+    -------
+    float
+        [s].
     """
-    from chaindrive.dynamics.ring import modal_analysis
-
-    modal = modal_analysis(m, c_eff)
-    X, w = modal.shapes, modal.angular_frequencies_rad_s
-    rigid = w <= 0
-    ww = np.where(rigid, 1.0, w)
-    s1, s2 = mode_roots(ww, 0.5 * beta * ww)
-    e1, e2 = np.exp(s1 * dt), np.exp(s2 * dt)
-    S = ((1.0 - (s2 * e1 - s1 * e2) / (s2 - s1)) / ww**2).real
-    h = ((e1 - e2) / (s1 - s2)).real
-    hd = ((s1 * e1 - s2 * e2) / (s1 - s2)).real
-    p11, p12, p21, p22 = 1.0 - ww**2 * S, h, -(ww**2) * h, hd
-    p11[rigid], p12[rigid], p21[rigid], p22[rigid] = 1.0, dt, 0.0, 1.0
-    S[rigid], h[rigid] = 0.5 * dt * dt, dt
-    XtM = X.T * m
-    n = m.size
-    Phi = np.empty((2 * n, 2 * n))
-    Phi[:n, :n] = (X * p11) @ XtM
-    Phi[:n, n:] = (X * p12) @ XtM
-    Phi[n:, :n] = (X * p21) @ XtM
-    Phi[n:, n:] = (X * p22) @ XtM
-    Gam = np.vstack([(X * S) @ X.T, (X * h) @ X.T])
-    return Phi, Gam
+    final = float(speed[int(len(times) * (1.0 - tail)):].mean())
+    idx = np.flatnonzero(speed >= fraction * final) if final > 0 else np.zeros(0, int)
+    return float(times[idx[0]]) if idx.size else math.nan
 
 
-def _discretise_expm(m: NDArray[np.float64], c_eff: NDArray[np.float64], beta: float,
-                     dt: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Reference Φ, Γ by Van Loan's block exponential (used by the tests)."""
-    n = m.size
-    B = span_incidence(n)
-    K = B.T @ (c_eff[:, None] * B)
-    Minv = 1.0 / m
-    S = np.zeros((3 * n, 3 * n))
-    S[:n, n:2 * n] = np.eye(n)
-    S[n:2 * n, :n] = -Minv[:, None] * K
-    S[n:2 * n, n:2 * n] = -beta * Minv[:, None] * K
-    S[n:2 * n, 2 * n:] = np.diag(Minv)
-    import scipy.linalg  # the reference form only (tests): not on the command line's path
-
-    E = scipy.linalg.expm(S * dt)
-    return E[:2 * n, :2 * n], E[:2 * n, 2 * n:]
-
+# --- the problem ---------------------------------------------------------------------------
 
 @dataclass(frozen=True, slots=True)
 class PolygonalLaw:
     """Data of the exact polygonal hinge law at both ends of every span (module docstring).
 
-    pitch p [m]; teeth_start, teeth_end (n,); s_start, s_end (n,) path positions [pitches].
+    pitch p [m]; teeth_start, teeth_end (S,); s_start, s_end (S,) path positions [pitches].
     """
 
     pitch: float
-    teeth_start: NDArray[np.float64]
-    teeth_end: NDArray[np.float64]
-    s_start: NDArray[np.float64]
-    s_end: NDArray[np.float64]
+    teeth_start: FloatArray
+    teeth_end: FloatArray
+    s_start: FloatArray
+    s_end: FloatArray
 
 
-PolyData = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
-                 NDArray[np.float64], NDArray[np.intp], float, float]
+@dataclass(frozen=True, slots=True, eq=False)
+class StartupProblem:
+    """Checked inputs of :func:`solve_startup` (SI units; module docstring).
+
+    mass, stiffness_linear, damping_linear (N, N); span_incidence (S, N); span_stiffness,
+    span_damping (S,); span_tension_only (S,); pretension T₀ (S,) [N]; motor: (coordinate,
+    gain, efficiency, law(t, ω) [N·m]) or None; load_coordinate, load_gain, load_efficiency,
+    load_torque [N·m], load_speed ω_n [rad/s] (L,), load_kind (L,) "constant", "linear" or
+    "quadratic"; breakaway: the constant law's ramp below ω_n·breakaway; polygonal law with
+    the chain travel of each sprocket x_i = travel_gain_i · q[travel_coordinate_i] (span i
+    leaves sprocket i and runs onto i+1); dt [s]; steps; record_every; scale: the span
+    forces reported are F/scale (m contours: scale m).
+    """
+
+    mass: FloatArray
+    stiffness_linear: FloatArray
+    damping_linear: FloatArray
+    span_incidence: FloatArray
+    span_stiffness: FloatArray
+    span_damping: FloatArray
+    span_tension_only: NDArray[np.bool_]
+    pretension: FloatArray
+    motor: tuple[int, float, float, Callable[[float, float], float]] | None
+    load_coordinate: NDArray[np.intp]
+    load_gain: FloatArray
+    load_efficiency: FloatArray
+    load_torque: FloatArray
+    load_speed: FloatArray
+    load_kind: tuple[str, ...]
+    breakaway: float
+    polygonal: PolygonalLaw | None
+    travel_coordinate: NDArray[np.intp]
+    travel_gain: FloatArray
+    dt: float
+    steps: int
+    record_every: int = 1
+    scale: float = 1.0
+
+    @property
+    def size(self) -> int:
+        """N coordinates."""
+        return int(self.mass.shape[0])
 
 
-def _polygonal_data(law: PolygonalLaw) -> PolyData:
-    """Hinge-law data of the 2n span ends (start ends, then end ends): teeth z, radii
-    R = p/(2 sin(π/z)) [m], path positions s [pitches], signs (−1 start, +1 end), the mass
-    each end follows, k = 2π/p [1/m], p/2π [m]."""
+def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
+    """Floating-point operations of a start-up [-]: two (2N)×(2N)/(2N)×N products per step
+    and a (3N)³ matrix exponential (about 20 products) per slack pattern."""
+    return 2.0 * steps * (2 * size) ** 2 * 1.5 + patterns * 20.0 * (3 * size) ** 3
+
+
+PolyData = tuple[FloatArray, FloatArray, FloatArray, FloatArray, NDArray[np.intp], FloatArray,
+                 float, float]
+
+
+def _polygonal_data(p: StartupProblem) -> PolyData:
+    """Hinge-law data of the 2S span ends (start ends, then end ends): teeth z, radii
+    R = p/(2 sin(π/z)) [m], path positions s [pitches], signs (−1 start, +1 end), the
+    coordinate and travel gain each end follows, k = 2π/p [1/m], p/2π [m]."""
+    law = p.polygonal
+    assert law is not None
     n = law.teeth_start.size
     nxt = (np.arange(n) + 1) % n
     z = np.concatenate([law.teeth_start, law.teeth_end]).astype(float)
     R = law.pitch / (2.0 * np.sin(np.pi / z))
     s = np.concatenate([law.s_start, law.s_end]).astype(float)
     sign = np.concatenate([-np.ones(n), np.ones(n)])
-    idx = np.concatenate([np.arange(n), nxt])
-    return z, R, s, sign, idx, TWO_PI / law.pitch, law.pitch / TWO_PI
+    sprocket = np.concatenate([np.arange(n), nxt])
+    return (z, R, s, sign, p.travel_coordinate[sprocket], p.travel_gain[sprocket],
+            TWO_PI / law.pitch, law.pitch / TWO_PI)
 
 
-def _polygonal_raw(data: PolyData, x: NDArray[np.float64], v: NDArray[np.float64]
-                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(d, ḋ) [m, m/s] of every span by the exact hinge law (seed-notes §1), d(0) kept."""
-    z, R, s, sign, idx, k, lin = data
-    n = x.size
-    psi = k * x[idx] - TWO_PI * s
+def _polygonal_raw(data: PolyData, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(d, ḋ) [m, m/s] of every span at the state y by the exact hinge law, d(0) kept."""
+    z, R, s, sign, idx, gain, k, lin = data
+    n2 = z.size
+    N = y.size // 2
+    x, v = gain * y[idx], gain * y[N + idx]
+    psi = k * x - TWO_PI * s
     psi = np.mod(psi + np.pi, TWO_PI) - np.pi
     dl = sign * (R * np.sin(psi / z) - lin * psi)
-    dv = sign * (R / z * np.cos(psi / z) * k - 1.0) * v[idx]
-    return dl[:n] + dl[n:], dv[:n] + dv[n:]
-
-
-def _polygonal_offset(data: PolyData) -> NDArray[np.float64]:
-    """d(0) [m]: the elongation at rest, removed (the chain is assembled at rest)."""
-    n = data[0].size // 2
-    return _polygonal_raw(data, np.zeros(n), np.zeros(n))[0]
-
-
-def _polygonal_terms(law: PolygonalLaw) -> Callable[[NDArray[np.float64], NDArray[np.float64]],
-                                                    tuple[NDArray[np.float64],
-                                                          NDArray[np.float64]]]:
-    """(x, v) → (d, ḋ) [m, m/s] of every span, exact hinge law, d(0) removed."""
-    data = _polygonal_data(law)
-    d0 = _polygonal_offset(data)
-
-    def terms(x: NDArray[np.float64], v: NDArray[np.float64]
-              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        d, dd = _polygonal_raw(data, x, v)
-        return d - d0, dd
-
-    return terms
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class _Problem:
-    """Checked inputs of :func:`simulate_startup` (SI units, see there)."""
-
-    m: NDArray[np.float64]
-    c: NDArray[np.float64]
-    R: NDArray[np.float64]
-    beta: float
-    motor: Callable[[float, float], float]
-    driver: int
-    resistance: ResistanceLaw | None
-    dt: float
-    steps: int
-    pretension: float
-    polygonal: PolygonalLaw | None
+    dv = sign * (R / z * np.cos(psi / z) * k - 1.0) * v
+    return dl[:n2 // 2] + dl[n2 // 2:], dv[:n2 // 2] + dv[n2 // 2:]
 
 
 class _Patterns:
     """Φ_s, Γ_s and diag Γ_vv of the slack patterns met so far, cached by pattern."""
 
-    def __init__(self, p: _Problem) -> None:
+    def __init__(self, p: StartupProblem) -> None:
         self.p = p
-        self.cache: dict[bytes, tuple[NDArray[np.float64], NDArray[np.float64],
-                                      NDArray[np.float64]]] = {}
+        self.cache: dict[bytes, tuple[FloatArray, FloatArray, FloatArray]] = {}
 
-    def __call__(self, mask: NDArray[np.bool_]) -> tuple[NDArray[np.float64],
-                                                          NDArray[np.float64],
-                                                          NDArray[np.float64]]:
+    def __call__(self, mask: NDArray[np.bool_]) -> tuple[FloatArray, FloatArray, FloatArray]:
         key = mask.tobytes()
         if key not in self.cache:
-            n = self.p.m.size
-            P, G = _discretise(self.p.m, self.p.c * mask, self.p.beta, self.p.dt)
-            self.cache[key] = (P, G, G[n:].diagonal().copy())
+            p = self.p
+            B = p.span_incidence
+            K = p.stiffness_linear + (B.T * (p.span_stiffness * mask)) @ B
+            C = p.damping_linear + (B.T * (p.span_damping * mask)) @ B
+            P, G = zoh_matrices(p.mass, K, C, p.dt)
+            self.cache[key] = (P, G, G[p.size:].diagonal().copy())
         return self.cache[key]
 
 
-def _run_numpy(p: _Problem) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
-    """The step loop in NumPy (fallback without numba): forces, speeds (steps+1, n), slack
-    re-steps."""
-    c, R, n, dt, T0 = p.c, p.R, p.m.size, p.dt, p.pretension
-    nxt, prv = (np.arange(n) + 1) % n, (np.arange(n) - 1) % n
-    bc = p.beta * c
-    poly = _polygonal_terms(p.polygonal) if p.polygonal is not None else None
-    driven = (np.arange(n) != p.driver).astype(float)
-    Rd = R[p.driver]
+def _law_arrays(p: StartupProblem) -> tuple[Any, ...] | None:
+    """The laws as the kernel's codes and arrays (None: a motor law it does not know)."""
+    if p.motor is None:
+        mk, mgain, meff, mkind, mp = -1, 0.0, 1.0, 0, np.zeros(3)
+    else:
+        code = motor_code(p.motor[3])
+        if code is None:
+            return None
+        mk, mgain, meff = int(p.motor[0]), float(p.motor[1]), float(p.motor[2])
+        mkind, mp = code
+    kinds = np.array([RESISTANCE_KINDS[k] for k in p.load_kind], dtype=np.int64)
+    f8 = np.ascontiguousarray
+    return (mk, mgain, meff, int(mkind), f8(mp, dtype=float),
+            f8(p.load_coordinate, dtype=np.int64), f8(p.load_gain, dtype=float),
+            f8(p.load_efficiency, dtype=float), kinds, f8(p.load_torque, dtype=float),
+            f8(p.load_speed, dtype=float), float(p.breakaway))
+
+
+def _laws_numpy(p: StartupProblem, t: float, v: FloatArray) -> FloatArray:
+    """Generalised forces of the motor and the loads at the coordinate speeds v."""
+    out = np.zeros(p.size)
+    r = p.load_gain * v[p.load_coordinate] / p.load_speed
+    for j, kind in enumerate(p.load_kind):
+        law = ResistanceLaw(kind, p.load_torque[j:j + 1], np.ones(1), p.breakaway)  # type: ignore[arg-type]
+        out[p.load_coordinate[j]] -= p.load_gain[j] * float(law(r[j:j + 1])[0]) / \
+            p.load_efficiency[j]
+    if p.motor is not None:
+        k, g, eta, law_m = p.motor
+        out[k] += g * eta * law_m(t, g * v[k])
+    return out
+
+
+def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, int]:
+    """The step loop in NumPy (fallback without numba): forces (R, S), states (R, 2N), the
+    largest span forces (S,), slack re-steps."""
+    n, dt = p.size, p.dt
+    B, c, ds, T0 = p.span_incidence, p.span_stiffness, p.span_damping, p.pretension
+    poly = _polygonal_data(p) if p.polygonal is not None else None
+    d0 = _polygonal_raw(poly, np.zeros(2 * n))[0] if poly is not None else None
     mats = _Patterns(p)
 
-    def span_part(x: NDArray[np.float64], v: NDArray[np.float64],
-                  mask: NDArray[np.bool_]) -> NDArray[np.float64]:
-        """−Bᵀ of the pre-tension and polygonal span forces [N] (explicit part)."""
-        span = np.where(mask, T0, 0.0)
-        if poly is not None:
-            d, dd = poly(x, v)
-            span = span + mask * (c * d + bc * dd)
-        return span - span[prv]
+    def pdd(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        assert poly is not None and d0 is not None
+        d, dd = _polygonal_raw(poly, y)
+        return d - d0, dd
 
-    def laws(t: float, v: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Motor and resistance forces [N] at the chain speeds v (each on its own mass)."""
-        f = -driven * p.resistance(v / R) / R if p.resistance is not None else np.zeros(n)
-        f[p.driver] += p.motor(t, v[p.driver] / Rd) / Rd
-        return f
-
-    def span_force(y: NDArray[np.float64]) -> NDArray[np.float64]:
-        x, v = y[:n], y[n:]
-        e, ed = x[nxt] - x, v[nxt] - v
+    def span_part(y: FloatArray, mask: NDArray[np.bool_]) -> FloatArray:
+        span = T0.copy()
         if poly is not None:
-            d, dd = poly(x, v)
+            d, dd = pdd(y)
+            span = span + c * d + ds * dd
+        return -(np.where(mask, span, 0.0) @ B)
+
+    def span_force(y: FloatArray) -> FloatArray:
+        e, ed = B @ y[:n], B @ y[n:]
+        if poly is not None:
+            d, dd = pdd(y)
             e, ed = e + d, ed + dd
-        return T0 + c * e + bc * ed
+        return T0 + c * e + ds * ed
 
-    def advance(y: NDArray[np.float64], t: float, fr: NDArray[np.float64],
-                mask: NDArray[np.bool_]) -> NDArray[np.float64]:
-        """One step; the speed laws linearly implicit on each mass's own speed."""
+    def advance(y: FloatArray, t: float, fr: FloatArray,
+                mask: NDArray[np.bool_]) -> FloatArray:
         Phi, Gam, gvv = mats(mask)
         v = y[n:]
-        fl = laws(t + 0.5 * dt, v)
+        fl = _laws_numpy(p, t + 0.5 * dt, v)
         hv = 1e-6 * (1.0 + np.abs(v))
-        J = (laws(t + 0.5 * dt, v + hv) - fl) / hv                 # ∂f_i/∂v_i
+        J = (_laws_numpy(p, t + 0.5 * dt, v + hv) - fl) / hv
         y_star = Phi @ y + Gam @ (fr + fl)
         df = J * (y_star[n:] - v) / np.maximum(1.0 - gvv * J, 0.1)
         return y_star + Gam @ df
 
+    rec = p.record_every
+    rows = p.steps // rec + 1
+    forces, states, fmax = np.zeros((rows, c.size)), np.zeros((rows, 2 * n)), np.zeros(c.size)
     y, mask = np.zeros(2 * n), c > 0
-    forces, speeds = np.empty((p.steps + 1, n)), np.empty((p.steps + 1, n))
-    forces[0], speeds[0] = np.where(mask, T0, 0.0), 0.0
-    fr_prev = span_part(y[:n], y[n:], mask)
+    forces[0] = np.where(mask, T0, 0.0)
+    fmax[:] = np.maximum(forces[0], 0.0)
+    fr_prev = span_part(y, mask)
     slack = 0
     for k in range(p.steps):
         t = k * dt
-        fr = span_part(y[:n], y[n:], mask)
+        fr = span_part(y, mask)
         y_new = advance(y, t, 1.5 * fr - 0.5 * fr_prev, mask)
         F = span_force(y_new)
-        new_mask = (F > 0) & (c > 0)
+        new_mask = ((F > 0) | ~p.span_tension_only) & (c > 0)
         if not np.array_equal(new_mask, mask):
             mask = new_mask
-            fr = span_part(y[:n], y[n:], mask)
+            fr = span_part(y, mask)
             y_new = advance(y, t, fr, mask)
             F = span_force(y_new)
             slack += 1
         fr_prev, y = fr, y_new
-        forces[k + 1] = np.maximum(F, 0.0) * mask
-        speeds[k + 1] = y[n:] / R
-    return forces, speeds, slack
-
-
-def _kernel_laws(p: _Problem) -> tuple[Any, ...] | None:
-    """Motor and resistance laws as the kernel's codes and arrays (None: not supported)."""
-    from chaindrive.dynamics.kernel_codes import motor_code, resistance_code
-
-    n = p.m.size
-    mot, res = motor_code(p.motor), resistance_code(p.resistance, n)
-    if mot is None or res is None:
-        return None
-    driven = (np.arange(n) != p.driver).astype(float)
-    return (p.R, driven, p.driver, mot[0], mot[1], res[0], res[1], res[2], res[3])
+        F = np.where(mask, F, 0.0)
+        F = np.where(p.span_tension_only, np.maximum(F, 0.0), F)
+        np.maximum(fmax, F, out=fmax)
+        if (k + 1) % rec == 0:
+            forces[(k + 1) // rec] = F
+            states[(k + 1) // rec] = y
+    return forces, states, fmax, slack
 
 
 def _compiled_runner(backend: Backend) -> Any:
     """The compiled step loop: the ahead-of-time module when built from the current source
     (:mod:`chaindrive.dynamics.kernel_build`; loads without numba), else numba's
     just-in-time ``run_kernel_flat`` (backend "jit" forces it), else None."""
+    # imported here: the kernel module imports numba (0.25 s), the ahead-of-time module not
     if backend != "jit":
         from chaindrive.dynamics.kernel_build import compiled_kernel
 
@@ -371,14 +407,14 @@ def _compiled_runner(backend: Backend) -> Any:
     return run_kernel_flat if HAVE_NUMBA else None
 
 
-def _run_compiled(p: _Problem, lw: tuple[Any, ...], runner: Any
-                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
+                  ) -> tuple[FloatArray, FloatArray, FloatArray, int]:
     """The step loop compiled (:mod:`chaindrive.dynamics.startup_kernel`); same output as
     :func:`_run_numpy`. Slack patterns new to the kernel are discretised here, then the
     kernel resumes from the step that met them."""
-    c, n = p.c, p.m.size
+    n, ns = p.size, p.span_stiffness.size
     mats = _Patterns(p)
-    masks = np.zeros((4, n), dtype=np.bool_)
+    masks = np.zeros((4, ns), dtype=np.bool_)
     Phis, Gams, gvvs = np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, n)), np.empty((4, n))
     npat = 0
 
@@ -391,40 +427,76 @@ def _run_compiled(p: _Problem, lw: tuple[Any, ...], runner: Any
         Phis[npat], Gams[npat], gvvs[npat] = mats(mask)
         npat += 1
 
+    c = np.ascontiguousarray(p.span_stiffness, dtype=float)
     add(c > 0)
     f8 = np.ascontiguousarray
     if p.polygonal is not None:
-        data = _polygonal_data(p.polygonal)
+        data = _polygonal_data(p)
+        d0 = _polygonal_raw(data, np.zeros(2 * n))[0]
         pg = (*(f8(a, dtype=float) for a in data[:4]), f8(data[4], dtype=np.int64),
-              float(data[5]), float(data[6]), f8(_polygonal_offset(data), dtype=float))
+              f8(data[5], dtype=float), float(data[6]), float(data[7]), f8(d0, dtype=float))
     else:
-        e = np.zeros(2 * n)
-        pg = (e, e, e, e, np.zeros(2 * n, dtype=np.int64), 0.0, 0.0, np.zeros(n))
-    R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk = lw
-    laws = (f8(R, dtype=float), f8(driven, dtype=float), int(driver), int(mkind),
-            f8(mp, dtype=float), int(rkind), f8(rM, dtype=float), f8(rwn, dtype=float),
-            float(rbrk))
-    forces, speeds = np.empty((p.steps + 1, n)), np.empty((p.steps + 1, n))
-    forces[0], speeds[0] = np.where(c > 0, p.pretension, 0.0), 0.0
-    y, need = np.zeros(2 * n), np.zeros(n, dtype=np.bool_)
-    fr_prev = _kernel_span_part(p, masks[0])
+        e, i0 = np.zeros(2 * ns), np.zeros(2 * ns, dtype=np.int64)
+        pg = (e, e, e, e, i0, e, 0.0, 0.0, np.zeros(ns))
+    rec = p.record_every
+    rows = p.steps // rec + 1
+    forces, states = np.zeros((rows, ns)), np.zeros((rows, 2 * n))
+    forces[0] = np.where(c > 0, p.pretension, 0.0)
+    fmax = np.maximum(forces[0], 0.0)
+    y, need = np.zeros(2 * n), np.zeros(ns, dtype=np.bool_)
+    fr_prev = -(np.where(masks[0], p.pretension, 0.0) @ p.span_incidence)
     state = np.zeros(3, dtype=np.int64)
-    cc, bc = f8(c, dtype=float), f8(p.beta * c, dtype=float)
-    while runner(y, fr_prev, state, p.steps, p.dt, masks, Phis, Gams, gvvs, npat, cc, bc,
-                 float(p.pretension), *laws, p.polygonal is not None, *pg, forces, speeds,
-                 need) < p.steps:
+    B = f8(p.span_incidence, dtype=float)
+    ds, T0 = f8(p.span_damping, dtype=float), f8(p.pretension, dtype=float)
+    tonly = f8(p.span_tension_only, dtype=np.bool_)
+    # the coordinates the forces act on (a Python set: np.unique imports numpy.ma, 12 ms)
+    law = {int(k) for k in p.load_coordinate} | ({int(p.motor[0])} if p.motor else set())
+    spans = {int(k) for k in np.flatnonzero(np.any(p.span_incidence != 0.0, axis=0))}
+    lcols = np.array(sorted(law), dtype=np.int64)
+    fcols = np.array(sorted(law | spans), dtype=np.int64)
+    while runner(y, fr_prev, state, p.steps, p.dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
+                 ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
+                 need, fcols, lcols) < p.steps:
         add(need.copy())
-    return forces, speeds, int(state[1])
+    return forces, states, fmax, int(state[1])
 
 
-def _kernel_span_part(p: _Problem, mask: NDArray[np.bool_]) -> NDArray[np.float64]:
-    """Explicit span part at rest (d(0) = 0): −Bᵀ of the pre-tension [N]."""
-    span = np.where(mask, p.pretension, 0.0)
-    return span - np.roll(span, 1)
+def solve_startup(p: StartupProblem, backend: Backend = "auto"
+                  ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, int]:
+    """Integrate a start-up problem from rest (module docstring).
+
+    Parameters
+    ----------
+    p : StartupProblem
+        The model, laws, step and records.
+    backend : str
+        "numba" the compiled kernel (its ahead-of-time build when current, else numba's
+        just-in-time compilation; needs a ConstantTorque/RampTorque/KlossMotor motor), "jit"
+        the just-in-time one only, "numpy" the NumPy loop, "auto" the compiled kernel when it
+        can, else NumPy.
+
+    Returns
+    -------
+    tuple
+        times (R,) [s], span forces (R, S) [N] divided by ``p.scale``, states (R, 2N)
+        (coordinates and rates), the largest span forces (S,) [N] / scale, slack re-steps.
+    """
+    if backend not in ("auto", "numba", "jit", "numpy"):
+        raise DesignError("backend", f"unknown start-up backend {backend!r}")
+    laws = _law_arrays(p) if backend != "numpy" else None
+    runner = _compiled_runner(backend) if laws is not None else None
+    if runner is not None and laws is not None:
+        forces, states, fmax, slack = _run_compiled(p, laws, runner)
+    elif backend in ("numba", "jit"):
+        raise DesignError("backend", "numba is not installed or the motor law is not one the "
+                          "compiled kernel knows (use backend='numpy')")
+    else:
+        forces, states, fmax, slack = _run_numpy(p)
+    times = np.arange(forces.shape[0], dtype=np.float64) * (p.dt * p.record_every)
+    return times, forces / p.scale, states, fmax / p.scale, slack
 
 
-Backend = Literal["auto", "numba", "jit", "numpy"]
-
+# --- the ring of reduced masses ------------------------------------------------------------
 
 def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, beta: float,
                      motor: Callable[[float, float], float], driver_index: int,
@@ -433,18 +505,41 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
                      polygonal: PolygonalLaw | None = None,
                      breaking_load: float | None = None,
                      backend: Backend = "auto") -> StartupResult:
-    """Nonlinear start-up from rest (module docstring).
+    """Nonlinear start-up of the ring of reduced masses [MultimassChainDrives, §3.1].
 
-    masses (n,) [kg]; stiffness (n,) c_i [N/m] (span i joins mass i and i+1, closed ring;
-    0: slack for good); radii (n,) R̄_i = z_i p/2π [m] converting torques and speeds;
-    beta [s]; motor(t, ω) → torque [N·m] on mass ``driver_index``; resistance laws (None:
-    none); duration [s]; dt [s] (None: 1/(160 f_1)); pretension T_0 [N]; polygonal hinge
-    law (None: no polygonal excitation); breaking_load Q [N] → k1. backend: "numba" the
-    compiled kernel (:mod:`chaindrive.dynamics.startup_kernel`: its ahead-of-time build
-    when current, else numba's just-in-time compilation; needs a
-    ConstantTorque/RampTorque/KlossMotor motor), "jit" the just-in-time one only, "numpy"
-    the NumPy loop, "auto" the compiled kernel when it can, else NumPy. All give the same
-    result to round-off.
+    Parameters
+    ----------
+    masses : array_like
+        (n,) reduced masses [kg]; x_i is the chain travel at sprocket i [m].
+    stiffness : array_like
+        (n,) span stiffness c_i [N/m] (span i joins mass i and i+1, closed ring; 0: slack for
+        good).
+    radii : array_like
+        (n,) R̄_i = z_i p/2π [m] converting torques and speeds.
+    beta : float
+        Stiffness-proportional damping, span dampers β c_i [s].
+    motor : callable
+        motor(t, ω) → torque [N·m] on mass ``driver_index``.
+    driver_index : int
+        The driver.
+    resistance : ResistanceLaw | None
+        Moments of the other sprockets (None: none).
+    duration : float
+        [s].
+    dt : float | None
+        Step [s] (None: 1/(160 f₁), f₁ the first elastic frequency of the taut ring).
+    pretension : float
+        T₀ [N] of every span.
+    polygonal : PolygonalLaw | None
+        The polygonal hinge law (None: no polygonal excitation).
+    breaking_load : float | None
+        Q [N] → k₁.
+    backend : str
+        See :func:`solve_startup`.
+
+    Returns
+    -------
+    StartupResult
     """
     m = np.asarray(masses, dtype=float)
     c = np.asarray(stiffness, dtype=float)
@@ -454,37 +549,40 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
         raise DesignError("startup", "masses, stiffness and radii must have one entry per mass")
     if dt is None:
         dt = _default_step(m, c)
-    p = _Problem(m, c, R, float(beta), motor, int(driver_index), resistance, float(dt),
-                 max(1, math.ceil(duration / dt)), float(pretension), polygonal)
-    forces, speeds, _ = _run(p, backend)
-    times = np.arange(p.steps + 1) * p.dt
-    fmax = forces.max(axis=0)
-    k1 = breaking_load / float(fmax.max()) if breaking_load is not None and fmax.max() > 0 else None
-    return StartupResult(times, forces, speeds, fmax, settling_time(times, forces), k1, p.steps,
-                         int(np.count_nonzero((forces <= 0).any(axis=1))))
+    steps = max(1, math.ceil(duration / dt))
+    others = np.flatnonzero(np.arange(n) != driver_index)
+    law = resistance
+    p = StartupProblem(
+        mass=np.diag(m), stiffness_linear=np.zeros((n, n)), damping_linear=np.zeros((n, n)),
+        span_incidence=span_incidence(n), span_stiffness=c, span_damping=beta * c,
+        span_tension_only=np.ones(n, dtype=bool), pretension=np.full(n, float(pretension)),
+        motor=(int(driver_index), 1.0 / float(R[driver_index]), 1.0, motor),
+        load_coordinate=others if law is not None else np.zeros(0, np.intp),
+        load_gain=1.0 / R[others] if law is not None else np.zeros(0),
+        load_efficiency=np.ones(others.size if law is not None else 0),
+        load_torque=(np.broadcast_to(np.asarray(law.torques, float), (n,))[others]
+                     if law is not None else np.zeros(0)),
+        load_speed=(np.broadcast_to(np.asarray(law.nominal_speeds, float), (n,))[others]
+                    if law is not None else np.zeros(0)),
+        load_kind=(law.kind,) * others.size if law is not None else (),
+        breakaway=law.breakaway if law is not None else 0.01, polygonal=polygonal,
+        travel_coordinate=np.arange(n), travel_gain=np.ones(n), dt=float(dt), steps=steps,
+        record_every=max(1, math.ceil(steps / MAX_RECORDS)))
+    times, forces, states, fmax, _ = solve_startup(p, backend)
+    speeds = states[:, n:] / R
+    k1 = breaking_load / float(fmax.max()) if breaking_load is not None and fmax.max() > 0 \
+        else None
+    settle = settling_time(times, forces)
+    runup = runup_time(times, speeds[:, driver_index])
+    return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
+                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
+                         max(0.0, settle - runup) if not math.isnan(runup) else math.nan,
+                         time_step=float(dt))
 
 
-def _run(p: _Problem, backend: Backend) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
-    """Dispatch to the compiled kernel or the NumPy loop (see ``simulate_startup``)."""
-    if backend not in ("auto", "numba", "jit", "numpy"):
-        raise DesignError("backend", f"unknown start-up backend {backend!r}")
-    lw = _kernel_laws(p) if backend != "numpy" else None
-    runner = _compiled_runner(backend) if lw is not None else None
-    if runner is not None:
-        return _run_compiled(p, lw, runner)
-    if backend in ("numba", "jit"):
-        raise DesignError("backend", "numba is not installed or the motor/resistance law is "
-                          "not one the compiled kernel knows (use backend='numpy')")
-    return _run_numpy(p)
-
-
-def _default_step(m: NDArray[np.float64], c: NDArray[np.float64]) -> float:
+def _default_step(m: FloatArray, c: FloatArray) -> float:
     """1/(160 f_1) [s], f_1 the first elastic natural frequency of the taut ring."""
-    from chaindrive.dynamics.ring import modal_analysis
-
     modal = modal_analysis(m, np.maximum(c, 0.0))
     f1 = modal.first_elastic_frequency_hz
     return 1.0 / (STEPS_PER_PERIOD * f1) if f1 > 0 else 1e-3
 
-
-# --- linear closed form -------------------------------------------------------------------

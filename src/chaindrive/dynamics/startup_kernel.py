@@ -1,22 +1,28 @@
 r"""Compiled time-stepping kernel of the nonlinear start-up (:mod:`chaindrive.dynamics.startup`).
 
-The same step as the NumPy loop of :func:`chaindrive.dynamics.startup.simulate_startup`
-(exact zero-order-hold transition Φ_s, Γ_s per slack pattern s, Van Loan 1978; explicit
-pre-tension and polygonal span forces extrapolated to mid-step; motor and resistance laws
-linearly implicit on each mass's own speed; a step that changes the slack pattern redone
-once with the new pattern), written on plain arrays so that numba compiles it
-(``@njit(cache=True)``: the machine code is cached on disk, later runs skip compilation).
+The same step as the NumPy loop of :func:`chaindrive.dynamics.startup.run_startup`, for a
+model M q̈ + C q̇ + K q = Q of any coordinates q (the whole drive, or the ring as a special
+case): exact zero-order-hold transition Φ_s, Γ_s per slack pattern s [VanLoan1978];
+explicit pre-tension and polygonal span forces −Bᵀ(...) extrapolated to mid-step; the motor
+and load laws linearly implicit on the speed of their own coordinate; a step that changes the
+slack pattern redone once with the new pattern. Written on plain arrays so that numba
+compiles it (``@njit(cache=True)``).
 
-The motor and resistance laws are passed as codes and parameter arrays
-(:mod:`chaindrive.dynamics.kernel_codes`); the Φ_s, Γ_s of the slack patterns met so far
-are stacked in arrays. When a step meets a pattern not yet in the stack the kernel returns
-the step index and the pattern; the caller adds Φ_s, Γ_s and calls the kernel again from
-that step (the state is left untouched, so the result does not depend on the interruption).
+Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.kernel_codes`): the motor acts
+on coordinate ``mk`` with gain g and efficiency η (torque g·η·T(t, g q̇)); every load l on
+coordinate lk[l] (moment −g_l M_l φ(g_l q̇/ω_n,l)/η_l, φ by its kind). The span forces are
+F = T₀ + c (B q + d) + d_s (B q̇ + ḋ) with the polygonal elongations d at the span ends
+(tooth phase from the chain travel x = g_p q of the sprocket at each end).
+
+The Φ_s, Γ_s of the slack patterns met so far are stacked in arrays. When a step meets a
+pattern not yet in the stack the kernel returns the step index and the pattern; the caller
+adds Φ_s, Γ_s and calls the kernel again from that step (the state is left untouched, so the
+result does not depend on the interruption). The state (q, q̇) and the span forces are kept
+every ``rec`` steps; the largest force of every span is tracked at every step.
 
 numba is optional: :data:`HAVE_NUMBA` is False when it is not importable and the caller
 falls back to the NumPy loop. :func:`run_kernel_flat` is the entry point with plain arguments
-(arrays, numbers), the one :mod:`chaindrive.dynamics.kernel_build` compiles ahead of time into
-an extension module that loads without numba.
+that :mod:`chaindrive.dynamics.kernel_build` compiles ahead of time.
 """
 
 from __future__ import annotations
@@ -39,32 +45,36 @@ try:  # numba is optional (project rule: compiled hot loop with a NumPy fallback
 
     HAVE_NUMBA = True
 except ImportError:  # pragma: no cover - exercised only without numba
-    numba = None
+    numba = None  # type: ignore[assignment]
     HAVE_NUMBA = False
 
-__all__ = ["FLAT_SIGNATURE", "HAVE_NUMBA", "run_kernel", "run_kernel_flat"]
+__all__ = ["FLAT_SIGNATURE", "HAVE_NUMBA", "run_kernel_flat"]
+
 
 def _njit(fn: Any) -> Any:
     return numba.njit(cache=True, fastmath=False)(fn) if HAVE_NUMBA else fn
 
 
 @_njit
-def _laws(t: float, v: Any, out: Any, R: Any, driven: Any, driver: int, mkind: int, mp: Any,
-          rkind: int, rM: Any, rwn: Any, rbrk: float) -> None:
-    """Motor and resistance forces [N] at the chain speeds v (as ``simulate_startup.laws``)."""
-    n = v.size
-    for i in range(n):
-        r = (v[i] / R[i]) / rwn[i]
-        if rkind == RESISTANCE_LINEAR:
-            mr = rM[i] * r
-        elif rkind == RESISTANCE_QUADRATIC:
-            mr = rM[i] * r * abs(r)
-        elif rkind == RESISTANCE_CONSTANT:
-            mr = rM[i] * min(max(r / rbrk, -1.0), 1.0)
+def _laws(t: float, v: Any, out: Any, mk: int, mgain: float, meff: float, mkind: int, mp: Any,
+          lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float) -> None:
+    """Generalised forces of the motor and the loads at the coordinate speeds v."""
+    for i in range(out.size):
+        out[i] = 0.0
+    for j in range(lk.size):
+        r = lgain[j] * v[lk[j]] / lwn[j]
+        if lkind[j] == RESISTANCE_LINEAR:
+            phi = r
+        elif lkind[j] == RESISTANCE_QUADRATIC:
+            phi = r * abs(r)
+        elif lkind[j] == RESISTANCE_CONSTANT:
+            phi = min(max(r / brk, -1.0), 1.0)
         else:
-            mr = 0.0
-        out[i] = -driven[i] * mr / R[i]
-    w = v[driver] / R[driver]
+            phi = 0.0
+        out[lk[j]] -= lgain[j] * lM[j] * phi / leff[j]
+    if mk < 0:
+        return
+    w = mgain * v[mk]
     if mkind == MOTOR_CONSTANT:
         torque = mp[0]
     elif mkind == MOTOR_RAMP:
@@ -72,39 +82,50 @@ def _laws(t: float, v: Any, out: Any, R: Any, driven: Any, driver: int, mkind: i
     else:
         s = 1.0 - w / mp[2]
         torque = mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
-    out[driver] += torque / R[driver]
+    out[mk] += mgain * meff * torque
 
 
 @_njit
-def _polygonal(x: Any, v: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any,
-               pidx: Any, pk: float, plin: float, pd0: Any) -> None:
+def _polygonal(y: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any,
+               pgain: Any, pk: float, plin: float, pd0: Any) -> None:
     """Polygonal elongation d and its rate ḋ of every span (exact hinge law, d(0) removed)."""
-    n = d.size
-    for i in range(n):
+    ns = d.size
+    n = y.size // 2
+    for i in range(ns):
         d[i] = 0.0
         dd[i] = 0.0
-    for j in range(2 * n):
-        psi = pk * x[pidx[j]] - 2.0 * math.pi * ps[j]
+    for j in range(2 * ns):
+        x = pgain[j] * y[pidx[j]]
+        v = pgain[j] * y[n + pidx[j]]
+        psi = pk * x - 2.0 * math.pi * ps[j]
         psi = np.mod(psi + math.pi, 2.0 * math.pi) - math.pi
         sa = math.sin(psi / pz[j])
-        # |ψ/z| ≤ π/3 (|ψ| ≤ π, z ≥ 3): cos(ψ/z) ≥ 1/2 is sqrt(1 − sin²), a square root
-        # instead of a second transcendental per span end and step
+        # |ψ/z| ≤ π/3 (|ψ| ≤ π, z ≥ 3): cos(ψ/z) = √(1 − sin²) ≥ 1/2
         ca = math.sqrt(1.0 - sa * sa)
         dl = psign[j] * (pR[j] * sa - plin * psi)
-        dv = psign[j] * (pR[j] / pz[j] * ca * pk - 1.0) * v[pidx[j]]
-        d[j % n] += dl
-        dd[j % n] += dv
-    for i in range(n):
+        dv = psign[j] * (pR[j] / pz[j] * ca * pk - 1.0) * v
+        d[j % ns] += dl
+        dd[j % ns] += dv
+    for i in range(ns):
         d[i] -= pd0[i]
 
 
 @(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
 def _matvec_add(A: Any, y: Any, out: Any) -> None:
-    """out += A @ y (the dot products reassociated so that they run in SIMD lanes: round-off
-    order as in a BLAS matrix-vector product, not left to right)."""
+    """out += A @ y (sums reassociated so that they run in SIMD lanes)."""
     for i in range(A.shape[0]):
         acc = 0.0
         for j in range(A.shape[1]):
+            acc += A[i, j] * y[j]
+        out[i] += acc
+
+
+@(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
+def _matvec_cols_add(A: Any, cols: Any, y: Any, out: Any) -> None:
+    """out += A[:, cols] @ y[cols] (the forces act on few coordinates)."""
+    for i in range(A.shape[0]):
+        acc = 0.0
+        for j in cols:
             acc += A[i, j] * y[j]
         out[i] += acc
 
@@ -124,104 +145,107 @@ def _find(masks: Any, npat: int, mask: Any) -> int:
 
 
 @_njit
-def _span_part(mask: Any, fr: Any, c: Any, bc: Any, T0: float, poly: bool, d: Any, dd: Any,
-               span: Any) -> None:
-    """−Bᵀ of the pre-tension and polygonal span forces [N] (explicit part), from the
-    polygonal elongations d, ḋ at the current state (``span``: work array)."""
-    n = fr.size
-    for i in range(n):
-        s = T0 if mask[i] else 0.0
+def _span_part(mask: Any, fr: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
+               dd: Any, span: Any) -> None:
+    """fr = −Bᵀ (pre-tension and polygonal span forces) of the spans in ``mask``."""
+    for i in range(span.size):
+        s = T0[i]
         if poly:
-            s = s + (1.0 if mask[i] else 0.0) * (c[i] * d[i] + bc[i] * dd[i])
-        span[i] = s
-    for i in range(n):
-        fr[i] = span[i] - span[i - 1]
+            s += c[i] * d[i] + ds[i] * dd[i]
+        span[i] = s if mask[i] else 0.0
+    for k in range(fr.size):
+        acc = 0.0
+        for i in range(span.size):
+            acc += B[i, k] * span[i]
+        fr[k] = -acc
 
 
 @_njit
 def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any, y_new: Any,
-             lw: tuple, work: Any) -> None:
-    """One step; the speed laws linearly implicit on each mass's own speed (``work``:
-    (6, n) work array)."""
-    R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk = lw
+             lw: tuple, work: Any, fcols: Any, lcols: Any) -> None:
+    """One step; the law forces linearly implicit on their own coordinate's speed (the
+    forces act on the coordinates ``fcols``, the laws on ``lcols``)."""
+    mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
     n = fr.size
     v = y[n:]
     fl, f2, hv, vh, f, df = work[0], work[1], work[2], work[3], work[4], work[5]
     th = t + 0.5 * dt
-    _laws(th, v, fl, R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk)
+    _laws(th, v, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for i in range(n):
         hv[i] = 1e-6 * (1.0 + abs(v[i]))
         vh[i] = v[i] + hv[i]
-    _laws(th, vh, f2, R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk)
+    _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for i in range(n):
         f[i] = fr[i] + fl[i]
     y_new[:] = 0.0
     _matvec_add(Phi, y, y_new)
-    _matvec_add(Gam, f, y_new)
-    for i in range(n):
+    _matvec_cols_add(Gam, fcols, f, y_new)
+    for i in lcols:
         J = (f2[i] - fl[i]) / hv[i]
         df[i] = J * (y_new[n + i] - v[i]) / max(1.0 - gvv[i] * J, 0.1)
-    _matvec_add(Gam, df, y_new)
+    _matvec_cols_add(Gam, lcols, df, y_new)
 
 
 @_njit
-def _span_force(y: Any, F: Any, c: Any, bc: Any, T0: float, poly: bool, d: Any, dd: Any,
-                pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any, pk: float, plin: float,
-                pd0: Any) -> None:
-    """Span forces [N] before the slack rule at the state y = (x, ẋ); the polygonal
-    elongations d, ḋ at y are left in ``d``, ``dd`` (the next step's explicit part uses
-    them: the same state, not evaluated twice)."""
-    n = F.size
-    x = y[:n]
-    v = y[n:]
+def _span_force(y: Any, F: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
+                dd: Any, pg: tuple) -> None:
+    """Span forces [N] before the slack rule at the state y; the polygonal elongations at y
+    are left in d, ḋ (the next step's explicit part uses them)."""
+    pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
+    n = y.size // 2
     if poly:
-        _polygonal(x, v, d, dd, pz, pR, ps, psign, pidx, pk, plin, pd0)
-    for i in range(n):
-        j = (i + 1) % n
-        e = x[j] - x[i]
-        ed = v[j] - v[i]
+        _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
+    for i in range(F.size):
+        e = 0.0
+        ed = 0.0
+        for k in range(n):
+            e += B[i, k] * y[k]
+            ed += B[i, k] * y[n + k]
         if poly:
-            e, ed = e + d[i], ed + dd[i]
-        F[i] = T0 + c[i] * e + bc[i] * ed
+            e += d[i]
+            ed += dd[i]
+        F[i] = T0[i] + c[i] * e + ds[i] * ed
 
 
 @_njit
-def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: Any, Phis: Any,
-               Gams: Any, gvvs: Any, npat: int, c: Any, bc: Any, T0: float, lw: tuple,
-               poly: bool, pg: tuple, forces: Any, speeds: Any, need: Any) -> int:
+def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int, masks: Any,
+               Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any, ds: Any,
+               tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
+               states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
-    y (2n,) state, fr_prev (n,) explicit forces of the previous step, state = [step, slack
-    count, pattern index] (all updated in place); forces, speeds (steps+1, n) filled in.
-    Returns < steps when a step needs a slack pattern not among the first ``npat``: it is
-    written into ``need`` and nothing of that step is kept.
+    y (2N,) state, fr_prev (N,) explicit forces of the previous step, state = [step, slack
+    count, pattern index] (all updated in place); forces (R, S) and states (R, 2N) filled at
+    every ``rec``-th step, fmax (S,) the largest span forces; fcols the coordinates the span
+    and law forces act on, lcols those of the laws. Returns < steps when a step
+    needs a slack pattern not among the first ``npat``: it is written into ``need`` and
+    nothing of that step is kept.
     """
-    pz, pR, ps, psign, pidx, pk, plin, pd0 = pg
-    R = lw[0]
-    n = c.size
-    d, dd = np.zeros(n), np.zeros(n)  # polygonal elongation and rate at the state y
-    d_new, dd_new = np.zeros(n), np.zeros(n)  # … at the candidate state y_new
+    ns = c.size
+    n = fr_prev.size
+    d, dd = np.zeros(ns), np.zeros(ns)
+    d_new, dd_new = np.zeros(ns), np.zeros(ns)
     if poly:
-        _polygonal(y[:n], y[n:], d, dd, pz, pR, ps, psign, pidx, pk, plin, pd0)
+        pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
+        _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
     fr = np.empty(n)
     fe = np.empty(n)
-    span = np.empty(n)
+    span = np.empty(ns)
     work = np.empty((6, n))
     y_new = np.empty(2 * n)
-    F = np.empty(n)
+    F = np.empty(ns)
     p = state[2]
     for k in range(state[0], steps):
         t = k * dt
         mask = masks[p]
-        _span_part(mask, fr, c, bc, T0, poly, d, dd, span)
+        _span_part(mask, fr, B, c, ds, T0, poly, d, dd, span)
         for i in range(n):
             fe[i] = 1.5 * fr[i] - 0.5 * fr_prev[i]
-        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
-        _span_force(y_new, F, c, bc, T0, poly, d_new, dd_new, pz, pR, ps, psign, pidx, pk,
-                    plin, pd0)
+        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
+        _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
-        for i in range(n):
-            need[i] = F[i] > 0 and c[i] > 0
+        for i in range(ns):
+            need[i] = (F[i] > 0 or not tonly[i]) and c[i] > 0
             changed = changed or need[i] != mask[i]
         if changed:
             q = _find(masks, npat, need)
@@ -229,41 +253,53 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: A
                 state[0], state[2] = k, p
                 return k
             p = q
-            _span_part(masks[p], fr, c, bc, T0, poly, d, dd, span)
-            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work)
-            _span_force(y_new, F, c, bc, T0, poly, d_new, dd_new, pz, pR, ps, psign, pidx,
-                        pk, plin, pd0)
+            _span_part(masks[p], fr, B, c, ds, T0, poly, d, dd, span)
+            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
+            _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
         fr_prev[:] = fr
         y[:] = y_new
         d, d_new = d_new, d
         dd, dd_new = dd_new, dd
-        for i in range(n):
-            forces[k + 1, i] = max(F[i], 0.0) * (1.0 if mask[i] else 0.0)
-            speeds[k + 1, i] = y[n + i] / R[i]
+        for i in range(ns):
+            f = F[i] if mask[i] else 0.0
+            f = max(f, 0.0) if tonly[i] else f
+            F[i] = f
+            if f > fmax[i]:
+                fmax[i] = f
+        if (k + 1) % rec == 0:
+            r = (k + 1) // rec
+            for i in range(ns):
+                forces[r, i] = F[i]
+            for i in range(2 * n):
+                states[r, i] = y[i]
     state[0], state[2] = steps, p
     return steps
 
 
 @_njit
-def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, masks: Any,
-                    Phis: Any, Gams: Any, gvvs: Any, npat: int, c: Any, bc: Any, T0: float,
-                    R: Any, driven: Any, driver: int, mkind: int, mp: Any, rkind: int, rM: Any,
-                    rwn: Any, rbrk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
-                    pidx: Any, pk: float, plin: float, pd0: Any, forces: Any, speeds: Any,
-                    need: Any) -> int:
-    """:func:`run_kernel` with the law and polygonal tuples spread out (lw = R … rbrk,
-    pg = pz … pd0): one fixed signature (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, fr_prev, state, steps, dt, masks, Phis, Gams, gvvs, npat, c, bc, T0,
-                      (R, driven, driver, mkind, mp, rkind, rM, rwn, rbrk), poly,
-                      (pz, pR, ps, psign, pidx, pk, plin, pd0), forces, speeds, need)
+def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int,
+                    masks: Any, Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any,
+                    ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
+                    mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
+                    lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
+                    pidx: Any, pgain: Any, pk: float, plin: float, pd0: Any, forces: Any,
+                    states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
+    """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
+    (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
+    return run_kernel(y, fr_prev, state, steps, dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
+                      ds, tonly, T0,
+                      (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
+                      poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
+                      fmax, need, fcols, lcols)
 
 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
 FLAT_SIGNATURE = (
-    "i8(f8[::1], f8[::1], i8[::1], i8, f8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1], f8[:, ::1],"
-    " i8, f8[::1], f8[::1], f8, f8[::1], f8[::1], i8, i8, f8[::1], i8, f8[::1], f8[::1], f8,"
-    " b1, f8[::1], f8[::1], f8[::1], f8[::1], i8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1],"
-    " b1[::1])"
+    "i8(f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1],"
+    " f8[:, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8, f8, f8, i8, f8[::1],"
+    " i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1, f8[::1], f8[::1], f8[::1],"
+    " f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1], f8[::1], b1[::1],"
+    " i8[::1], i8[::1])"
 )

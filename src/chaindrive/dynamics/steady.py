@@ -1,6 +1,6 @@
 r"""Steady periodic response of the ring model to kinematic span excitation (frequency domain).
 
-Seed 000 §3.2–3.3, seed-notes §1: the equations of motion with the disturbance functions
+[MultimassChainDrives, §3.2–3.3]: the equations of motion with the disturbance functions
 (prescribed span elongations d, :mod:`chaindrive.dynamics.excitation`)::
 
     M ẍ + β K ẋ + K x = −Bᵀ C_s (d + β ḋ),      F = C_s (B x + d) + β C_s (B ẋ + ḋ)
@@ -10,9 +10,10 @@ K = Bᵀ C_s B the ring Laplacian of :mod:`chaindrive.dynamics.ring`.
 
 **Damping matrix.** Stiffness-proportional (Rayleigh β-) damping C = β K with
 β = 2ζ/ω_ref, ω_ref the first elastic natural frequency, so that mode has exactly the ratio
-ζ (seed 000: D = 0.06; or ζ = ψ/4π from seed 001) and mode j has ζ_j = ζ ω_j/ω_ref
+ζ ([MultimassChainDrives]: D = 0.06; or ζ = ψ/4π from [ChainHingeDissipation]) and mode j
+has ζ_j = ζ ω_j/ω_ref
 (Rao, Mechanical Vibrations, 6th ed., §6.13 "proportional damping"). Chosen because the
-damping of a chain is in the chain (hinge friction, seed 001): β K is a dashpot β c_i in
+damping of a chain is in the chain (hinge friction, [ChainHingeDissipation]): β K is a dashpot β c_i in
 parallel with every span, so the span force, the slack-span rule of the start-up and the
 energy balance stay local to the spans, and the same model serves the frequency domain,
 the modal sweep (β K is classical: the undamped modes decouple it) and the time domain.
@@ -29,7 +30,7 @@ All harmonics are solved at once by :func:`numpy.linalg.solve` on the stacked sy
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -116,14 +117,17 @@ def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class SteadyStateResult:
-    """Steady response of the ring to a kinematic excitation (seed 000 §3.3).
+    """Steady response of the ring to a kinematic excitation ([MultimassChainDrives, §3.3]).
 
     tooth_angular_frequency ω_z [rad/s]; angular_frequencies (F,) of the harmonics [rad/s];
     displacement, span_force (F, n) complex amplitudes [m], [N]; times (T,) one period [s];
     span_force_trace (T, n) [N] and displacement_trace (T, n) [m] over it;
     span_dynamic_load (n,) max |F_i(t)| [N]; span_load_amplitude (n,) (max − min)/2 [N];
     inertia_load (n,) max |m_i ẍ_i| [N]; displacement_amplitude (n,) x_A [m];
-    irregularity_percent (n,) Δ = 2 x_A/R·100 (seed 000); dynamic_load_rms F_D [N] (RMS of
+    irregularity_percent (n,) Δ = (ω_max − ω_min)/ω_mean·100 of every sprocket from its speed
+    history (2 x_A z/R·100 for one harmonic [MultimassChainDrives, §3.3]); rotor_names and
+    rotor_irregularity_percent the same for the rotors of the trains (whole-drive model);
+    dynamic_load_rms F_D [N] (RMS of
     span_dynamic_load); coefficient_of_dynamics K_D (None without F_t); k2, k2_min (None
     without Q and F_R); periodic : False when the frequencies are not all harmonics of ω_z
     (then the peaks are the sums of harmonic amplitudes: exact for incommensurate
@@ -147,6 +151,9 @@ class SteadyStateResult:
     k2: float | None
     k2_min: float | None
     periodic: bool
+    rotor_names: tuple[str, ...] = ()
+    rotor_irregularity_percent: NDArray[np.float64] = field(
+        default_factory=lambda: np.zeros(0))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (forces N, displacements mm)."""
@@ -159,6 +166,8 @@ class SteadyStateResult:
             "inertia_load_n": self.inertia_load.tolist(),
             "displacement_amplitude_mm": (self.displacement_amplitude * 1e3).tolist(),
             "irregularity_percent": self.irregularity_percent.tolist(),
+            "rotor_irregularity_percent": dict(zip(
+                self.rotor_names, self.rotor_irregularity_percent.tolist(), strict=True)),
             "dynamic_load_rms_n": self.dynamic_load_rms,
             "coefficient_of_dynamics": self.coefficient_of_dynamics,
             "k2": self.k2,
@@ -181,16 +190,19 @@ def _peaks(amplitudes: NDArray[np.complex128], trace: NDArray[np.float64] | None
 def steady_state(model: RingModel, excitation: SpanExcitation, *,
                  radii: ArrayLike | None = None, beta: float | None = None,
                  samples: int = 128, nominal_force: float | None = None,
+                 teeth: ArrayLike | None = None,
                  breaking_load: float | None = None,
                  operating_forces: ArrayLike | None = None,
                  resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
     """Steady response of ``model`` to ``excitation`` in the frequency domain.
 
-    radii (n,) pitch radii R_i [m] for the irregularity Δ = 2x_A/R·100 (seed 000; None: Δ
-    is nan); beta [s] (None: :func:`damping_beta`); samples per tooth period of the traces;
-    nominal_force F_t [N] → K_D = 1 + F_D/F_t (seed-notes §1); breaking_load Q [N] with
+    radii (n,) pitch radii R_i [m] and teeth (n,) z_i for the irregularity of rotation
+    Δ = (ω_max − ω_min)/ω_mean·100 from the speed history, ω_mean = ω_z/z_i (2 x_A z/R·100 for
+    one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None:
+    :func:`damping_beta`); samples per tooth period of the traces;
+    nominal_force F_t [N] → K_D = 1 + F_D/F_t; breaking_load Q [N] with
     operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
-    and, with resonance_loads F_2max (n,) [N], k2_min (seed 000 §3.6, seed-notes §2).
+    and, with resonance_loads F_2max (n,) [N], k2_min ([MultimassChainDrives, §3.6]).
     """
     m = model.masses_kg
     c = _stiffness(model)
@@ -209,20 +221,24 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
     _, x_amp = _peaks(X, x_tr if periodic else None)
     acc, _ = _peaks(-(w**2)[:, None] * X, a_tr if periodic else None)
     R = np.full(m.size, np.nan) if radii is None else np.asarray(radii, dtype=float)
+    z = np.full(m.size, np.nan) if teeth is None else np.asarray(teeth, dtype=float)
+    v_tr = (E @ (1j * w[:, None] * X)).real
+    v_range = np.ptp(v_tr, axis=0) if periodic else 2.0 * np.abs(w[:, None] * X).sum(axis=0)
     rms = float(np.sqrt(np.mean(f_max**2)))
     kd = (coefficient_of_dynamics(f_max, nominal_force)
           if nominal_force is not None and np.any(f_max > 0) else None)
     k2 = k2min = None
     if breaking_load is not None and operating_forces is not None:
-        fr = np.asarray(operating_forces, dtype=float)
-        k2 = float(np.min(steady_safety_factor(breaking_load, fr, f_max)))
+        fr = np.asarray(operating_forces, dtype=float).tolist()
+        k2 = min(steady_safety_factor(breaking_load, a, b)
+                 for a, b in zip(fr, f_max.tolist(), strict=True))
         if resonance_loads is not None:
-            k2min = float(np.min(steady_safety_factor(breaking_load, fr,
-                                                      np.asarray(resonance_loads, float))))
+            k2min = min(steady_safety_factor(breaking_load, a, b) for a, b in
+                        zip(fr, np.asarray(resonance_loads, float).tolist(), strict=True))
     return SteadyStateResult(
         tooth_angular_frequency=wz, angular_frequencies=w, displacement=X, span_force=F,
         times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,
         span_load_amplitude=f_amp, inertia_load=m * acc, displacement_amplitude=x_amp,
-        irregularity_percent=200.0 * x_amp / R, dynamic_load_rms=rms,
+        irregularity_percent=100.0 * v_range * z / (R * wz), dynamic_load_rms=rms,
         coefficient_of_dynamics=kd, k2=k2, k2_min=k2min, periodic=periodic,
     )

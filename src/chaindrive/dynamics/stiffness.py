@@ -6,7 +6,7 @@ low tension — reduced by the sag of the span (equivalent-modulus formula)::
 
     1/c_i = L_i / (p·k_link) + 1/k_wrap(start) + 1/k_wrap(end),   c_i ← c_i · s_sag(T_i)
 
-Masses: m_i = I_i / R_i² (seed 000 §3.1, seed-notes §1). See docs/dynamics.md.
+Masses: m_i = I_i / R_i² ([MultimassChainDrives, §3.1]). See docs/dynamics.md.
 """
 
 from __future__ import annotations
@@ -51,8 +51,8 @@ def reduced_mass(inertia: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     """Reduced mass m = I / R² [kg] of a rotating mass brought to the hinge radius.
 
     inertia : I [kg·m²]; radius : R, pitch radius of the hinge centres [m].
-    Source: seed 000 §3.1 ("bringing the revolved masses over to the radii of the end
-    hinges"), seed-notes §1.
+    Source: [MultimassChainDrives, §3.1] ("bringing the revolved masses over to the radii of the end
+    hinges").
     """
     return np.asarray(inertia, dtype=float) / np.asarray(radius, dtype=float) ** 2
 

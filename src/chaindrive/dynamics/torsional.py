@@ -1,561 +1,70 @@
-"""Torsional model of a whole chain drive train: the ring of sprockets with an open train of
-shafts, couplings, gear pairs and machines on every sprocket (docs/torsional.md).
+"""The torsional model of a whole chain drive train: the ring of sprockets (with the chain's
+own mass) and an open train of shafts, couplings, gear pairs and machines on every sprocket
+(docs/torsional.md). The engine — nodes, elements, gear constraints, condensation, the modal
+analysis — is :class:`chaindrive.dynamics.torsional_engine.TorsionalEngine`; this class adds
+the builders from plain data and from a design::
 
-Nodes are rotating bodies with a moment of inertia J [kg·m²] (0: a massless node, condensed
-out) and an angle φ [rad]. Elements:
-
-- shaft or coupling between two nodes: twist e = φ_b − φ_a, torque k·e + c·ė;
-- ground spring at a node: e = φ, torque k·e + c·ė to a fixed frame;
-- rigid gear mesh, a constraint: φ_driven = s·φ_driver / i with the ratio i = ω_driver /
-  ω_driven and s = −1 for a pair of external gears (the sense reverses), s = +1 for a
-  same-sense stage (internal gear, idler, a reducer taken as a whole); frequencies do not
-  depend on s, torques and shapes do;
-- chain span between two sprockets: elongation e = r_b·φ_b − r_a·φ_a with signed pitch radii
-  r (negative for a sprocket wrapped from the inside, which turns the other way), force
-  c·e + d·ė along the span, tension-only (a start-up integrator may switch a slack span off).
-  This is the ring model of :mod:`chaindrive.dynamics.ring` ([MultimassChainDrives, §3.1])
-  written in sprocket angles: x_i = R_i φ_i, m_i = J_i / R_i².
-
-Rigid gear meshes are eliminated: every node's angle is ``factor × q_k`` of one reduced
-coordinate q_k per gear tree (gear trains are trees; a mesh that closes a loop must agree with
-the ratios already there, else it over-constrains: DesignError). The reduced mass matrix
-M_kk = Σ J_n·factor_n² is diagonal, so the modes come from the symmetric eigenproblem of
-M^{-1/2} K M^{-1/2} [Rao2011, ch. 6]. Massless coordinates are condensed out exactly by static
-(Guyan) condensation K_c = K_mm − K_m0 K_00⁻¹ K_0m [Guyan1965] for the undamped modes; the
-massless nodes' angles follow as q_0 = −K_00⁻¹ K_0m q_m. Damping on a massless node is not
-condensable in the time domain (the node is then a first-order state, C_00 q̇_0 + K_00 q_0 =
-…): :meth:`TorsionalSystem.condensed` refuses it, and an integrator must keep such a node.
-
-Rigid-body modes are counted from the graph (each connected group of coordinates whose
-elements all admit a common strain-free motion — no ground spring, no loop of mismatched
-ratios), set to exactly 0 Hz with their exact shapes, and projected out before the
-eigensolver; no eigenvalue is ever zeroed by a round-off threshold.
+    from chaindrive.dynamics import TorsionalModel
+    t = TorsionalModel()
+    t.add_inertia("motor", 400.0)                    # kg·m²; 0.0 is a massless node
+    t.add_shaft("motor", "pinion", 1.88e5)           # N·m/rad
+    t.add_gear_mesh("pinion", "wheel", ratio=3.0)    # the wheel turns 3× slower; rigid mesh
+    t.add_ground_spring("wheel", 5.0e4)              # N·m/rad to a fixed frame
+    modes = t.modal()
+    TorsionalModel.from_drive(drive)                 # ring + every sprocket's train
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
-from types import MappingProxyType
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from chaindrive.errors import DesignError
+from chaindrive.dynamics.drive_model import drive_model
+from chaindrive.dynamics.torsional_build import build_contour
+from chaindrive.dynamics.torsional_engine import (
+    FloatArray,
+    TorsionalEngine,
+    TorsionalModes,
+    TorsionalSystem,
+    TrainElement,
+    reducer_input_torque,
+)
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.results import GeometryResult
+from chaindrive.model import Drive
 
-__all__ = ["TorsionalModel", "TorsionalModes", "TorsionalSystem", "reducer_input_torque"]
-
-TWO_PI = 2.0 * math.pi
-#: Relative tolerance of kinematic ratios (gear loops, strain-free rigid motions).
-RATIO_RTOL = 1e-9
-FloatArray = NDArray[np.float64]
-#: One element of a train in :meth:`TorsionalModel.from_contour` (plain data).
-TrainElement = Mapping[str, "float | str | bool"]
-
-
-def reducer_input_torque(output_torque: float, ratio: float, efficiency: float = 1.0,
-                         driving: bool = True) -> float:
-    """Torque [N·m] at the input of a reducer of ratio i = ω_in / ω_out and efficiency η.
-
-    Driving direction (power flows input → output): T_in = T_out / (i·η); back-driven (power
-    flows output → input): T_in = T_out·η / i. Closed form: the power balance
-    T_in ω_in η = T_out ω_out, η being by definition the ratio of output to input power.
-
-    Parameters
-    ----------
-    output_torque : T_out [N·m]
-    ratio : i = ω_in / ω_out (> 0)
-    efficiency : η ∈ (0, 1]
-    driving : True when power flows from the input to the output
-
-    Returns
-    -------
-    float
-        T_in [N·m].
-    """
-    _check_ratio("ratio", ratio)
-    _check_efficiency("efficiency", efficiency)
-    return output_torque / (ratio * efficiency) if driving else output_torque * efficiency / ratio
+__all__ = ["FloatArray", "TorsionalModel", "TorsionalModes", "TorsionalSystem", "TrainElement",
+           "reducer_input_torque"]
 
 
-def _check_ratio(field: str, ratio: float) -> None:
-    if not (math.isfinite(ratio) and ratio > 0.0):
-        raise DesignError(field, f"gear ratio must be finite and > 0, got {ratio!r}")
+class TorsionalModel(TorsionalEngine):
+    """A torsional model of a drive train (see :class:`TorsionalEngine` for the elements and
+    the modal analysis), with builders from plain data and from a design."""
 
+    @classmethod
+    def from_drive(cls, drive: Drive, geometry: GeometryResult | None = None, *,
+                   span_tensions: Sequence[float] | None = None) -> TorsionalEngine:
+        """The whole-drive model of a design: its contour with the chain's own mass, the
+        teeth, every sprocket's train, the motor and the machines
+        (:func:`chaindrive.dynamics.drive_model.drive_model`; docs/dynamics.md §1).
 
-def _check_efficiency(field: str, efficiency: float) -> None:
-    if not (math.isfinite(efficiency) and 0.0 < efficiency <= 1.0):
-        raise DesignError(field, f"efficiency must be in (0, 1], got {efficiency!r}")
+        Parameters
+        ----------
+        drive : Drive
+            The design.
+        geometry : GeometryResult | None
+            Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
+        span_tensions : sequence of float | None
+            Static span tensions [N] for the sag stiffness (None: from the drive's loads).
 
-
-def _nonneg(field: str, value: float, what: str) -> float:
-    value = float(value)
-    if not 0.0 <= value < math.inf:  # also False for nan
-        raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
-    return value
-
-
-class _WeightedUnion:
-    """Union–find of coordinates tied by linear relations x_child = w·x_parent."""
-
-    __slots__ = ("parent", "weight")
-
-    def __init__(self) -> None:
-        self.parent: list[int] = []
-        self.weight: list[float] = []
-
-    def find(self, i: int) -> tuple[int, float]:
-        """(root, w) with x_i = w·x_root (path halving)."""
-        parent, weight = self.parent, self.weight
-        w = 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:  # compress: point i at its grandparent
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            w *= weight[i]
-            i = parent[i]
-        return i, w
-
-    def relate(self, a: int, b: int, w_ab: float) -> bool:
-        """Impose x_b = w_ab·x_a; False if it contradicts the relations already there."""
-        ra, fa = self.find(a)
-        rb, fb = self.find(b)
-        if ra == rb:
-            return abs(fb - w_ab * fa) <= RATIO_RTOL * max(abs(fb), abs(w_ab * fa))
-        self.parent[rb] = ra
-        self.weight[rb] = w_ab * fa / fb
-        return True
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class TorsionalSystem:
-    """Assembled matrices of a :class:`TorsionalModel` in reduced coordinates q.
-
-    Node n turns by φ_n = node_factor[n]·q[node_dof[n]] (gear meshes eliminated). Equations of
-    motion M q̈ + C q̇ + K q = Σ_n factor_n·T_n (:meth:`generalized_force`) with
-    K = stiffness_linear + Bᵀ diag(c_span·active) B and C likewise, span elongations e = B q
-    (``span_incidence``) [m]. ``mass`` [kg·m²] is the diagonal of M; a 0 marks a massless
-    coordinate (see :meth:`condensed`). ``rigid_motions`` (size, r): one exact strain-free
-    motion per free group (no ground spring, no loop of mismatched ratios), from the graph.
-    """
-
-    node_names: tuple[str, ...]
-    node_dof: NDArray[np.intp]
-    node_factor: FloatArray
-    node_inertia_kg_m2: FloatArray
-    mass: FloatArray
-    stiffness_linear: FloatArray
-    damping_linear: FloatArray
-    span_names: tuple[str, ...]
-    span_incidence: FloatArray
-    span_stiffness_n_per_m: FloatArray
-    span_damping_n_s_per_m: FloatArray
-    span_tension_only: NDArray[np.bool_]
-    element_names: tuple[str, ...]
-    element_kinds: tuple[str, ...]
-    element_incidence: FloatArray
-    element_stiffness: FloatArray
-    element_damping: FloatArray
-    rigid_motions: FloatArray
-
-    @property
-    def size(self) -> int:
-        """Number of reduced coordinates (massless ones included)."""
-        return int(self.mass.size)
-
-    def dof_of(self, node: str) -> tuple[int, float]:
-        """(reduced coordinate, factor) of a node: φ_node = factor·q[coordinate]."""
-        try:
-            i = self.node_names.index(node)
-        except ValueError:
-            raise DesignError("node", f"unknown node {node!r}; nodes: {list(self.node_names)}") \
-                from None
-        return int(self.node_dof[i]), float(self.node_factor[i])
-
-    def mass_matrix(self) -> FloatArray:
-        """M [kg·m²] (diagonal)."""
-        return np.diag(self.mass)
-
-    def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
-        """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
-        c = self.span_stiffness_n_per_m if span_active is None else \
-            self.span_stiffness_n_per_m * np.asarray(span_active, dtype=float)
-        B = self.span_incidence
-        return self.stiffness_linear + (B.T * c) @ B
-
-    def damping_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
-        """C with the spans flagged in ``span_active`` (default: all) [N·m·s/rad]."""
-        d = self.span_damping_n_s_per_m if span_active is None else \
-            self.span_damping_n_s_per_m * np.asarray(span_active, dtype=float)
-        B = self.span_incidence
-        return self.damping_linear + (B.T * d) @ B
-
-    def generalized_force(self, torques: Mapping[str, float]) -> FloatArray:
-        """Q = Σ factor_n·T_n [N·m] of external torques T_n [N·m] on named nodes (ideal meshes;
-        mesh losses: :meth:`TorsionalModel.referred_torque`)."""
-        Q = np.zeros(self.size)
-        for node, torque in torques.items():
-            k, g = self.dof_of(node)
-            Q[k] += g * float(torque)
-        return Q
-
-    def node_angles(self, q: ArrayLike) -> dict[str, float]:
-        """Angles φ_n [rad] of all nodes for reduced coordinates q."""
-        phi = self.node_factor * np.asarray(q, dtype=float)[self.node_dof]
-        return dict(zip(self.node_names, phi.tolist(), strict=True))
-
-    def condensed(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """(T, M_c, K_c, C_c): static condensation of the massless coordinates, q = T q_m.
-
-        Exact for undamped motion [Guyan1965]. A damper on a massless coordinate makes it a
-        first-order state, which no condensation reproduces: DesignError then (keep the node
-        as a state C_00 q̇_0 = −K_00 q_0 − … instead).
+        Returns
+        -------
+        TorsionalEngine
+            The model (its nodes, elements and modal analysis).
         """
-        massless = self.mass <= 0.0
-        K, C = self.stiffness_matrix(), self.damping_matrix()
-        if np.any(C[massless]):
-            names = [n for n, k in zip(self.node_names, self.node_dof, strict=True) if massless[k]]
-            raise DesignError("damping", f"a damper acts on the massless node(s) {names}: "
-                              "give them an inertia or keep them as first-order states")
-        X = _condensation(K, massless, self.node_names, self.node_dof)
-        T = np.zeros((self.size, int((~massless).sum())))
-        T[~massless] = np.eye(T.shape[1])
-        T[massless] = -X
-        return T, T.T @ np.diag(self.mass) @ T, T.T @ K @ T, T.T @ C @ T
-
-
-def _condensation(K: FloatArray, massless: NDArray[np.bool_], names: Sequence[str],
-                  node_dof: NDArray[np.intp]) -> FloatArray:
-    """X = K_00⁻¹ K_0m (massless rows 0, massed columns m); DesignError if K_00 is singular."""
-    m = ~massless
-    K00 = K[np.ix_(massless, massless)]
-    try:
-        L = np.linalg.cholesky(K00)
-    except np.linalg.LinAlgError:
-        free = [n for n, k in zip(names, node_dof, strict=True) if massless[k]]
-        raise DesignError("inertia", f"massless node(s) among {free} are not held by any "
-                          "spring (singular stiffness): give them an inertia or a spring") from None
-    Y = np.linalg.solve(L, K[np.ix_(massless, m)])
-    return np.linalg.solve(L.T, Y)
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class TorsionalModes:
-    """Undamped natural frequencies and mode shapes of a :class:`TorsionalModel`.
-
-    Attributes
-    ----------
-    frequencies_hz : (n,) natural frequencies f_j [Hz], ascending; rigid-body modes exactly 0,
-        first
-    rigid_body : (n,) True for rigid-body modes
-    system : the assembled :class:`TorsionalSystem`
-    modal_coordinates : (size, n) reduced coordinates q of each mode, mass-normalised
-        (qᵀ M q = 1; massless coordinates recovered statically)
-
-    Derived on access (so that a modal analysis costs little more than LAPACK):
-    ``shape_matrix`` (nodes, n) angles φ [rad] of every node, ``shapes`` by node name,
-    ``strain_energy_shares`` (elements, n) share of each element in the strain energy of each
-    mode (columns sum to 1; 0 for rigid-body modes), ``participation`` by element name.
-    """
-
-    frequencies_hz: FloatArray
-    rigid_body: NDArray[np.bool_]
-    system: TorsionalSystem
-    modal_coordinates: FloatArray
-
-    @property
-    def node_names(self) -> tuple[str, ...]:
-        """Node names, rows of ``shape_matrix``."""
-        return self.system.node_names
-
-    @property
-    def element_names(self) -> tuple[str, ...]:
-        """Element names, rows of ``strain_energy_shares``."""
-        return self.system.element_names
-
-    @property
-    def shape_matrix(self) -> FloatArray:
-        """(nodes, n) angle of every node in each mode [rad] (mass-normalised)."""
-        s = self.system
-        return s.node_factor[:, None] * self.modal_coordinates[s.node_dof]
-
-    @property
-    def strain_energy_shares(self) -> FloatArray:
-        """(elements, n) share of each element in the strain energy ½ k e² of each mode."""
-        s = self.system
-        strain = s.element_incidence @ self.modal_coordinates
-        energy = s.element_stiffness[:, None] * strain * strain
-        total = energy.sum(axis=0)
-        shares = np.divide(energy, total, out=np.zeros_like(energy), where=total > 0.0)
-        shares[:, self.rigid_body] = 0.0
-        return shares
-
-    @property
-    def angular_frequencies_rad_s(self) -> FloatArray:
-        """ω_j = 2π f_j [rad/s]."""
-        return self.frequencies_hz * TWO_PI
-
-    @property
-    def shapes(self) -> Mapping[str, FloatArray]:
-        """Node name → its angle in every mode [rad] (a row of ``shape_matrix``)."""
-        return MappingProxyType(dict(zip(self.system.node_names, self.shape_matrix,
-                                         strict=True)))
-
-    @property
-    def participation(self) -> Mapping[str, FloatArray]:
-        """Element name → its strain-energy share in every mode (which element governs)."""
-        return MappingProxyType(dict(zip(self.system.element_names, self.strain_energy_shares,
-                                         strict=True)))
-
-    @property
-    def elastic_frequencies_hz(self) -> FloatArray:
-        """The elastic (non rigid-body) natural frequencies [Hz], ascending."""
-        return self.frequencies_hz[~self.rigid_body]
-
-    @property
-    def first_elastic_frequency_hz(self) -> float:
-        """The lowest elastic natural frequency [Hz] (nan if none)."""
-        f = self.elastic_frequencies_hz
-        return float(f[0]) if f.size else math.nan
-
-    def governing_element(self, mode: int) -> str:
-        """Name of the element with the largest strain-energy share in ``mode``."""
-        if self.rigid_body[mode] or not self.system.element_names:
-            return ""
-        return self.system.element_names[int(np.argmax(self.strain_energy_shares[:, mode]))]
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict; ``mode_shapes[node][j]`` is the node's angle in mode j."""
-        shares = self.strain_energy_shares
-        governing = ["" if r or not self.system.element_names else
-                     self.system.element_names[int(np.argmax(shares[:, j]))]
-                     for j, r in enumerate(self.rigid_body.tolist())]
-        return {
-            "natural_frequencies_hz": self.frequencies_hz.tolist(),
-            "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
-            "rigid_body_modes": self.rigid_body.tolist(),
-            "mode_shapes": {n: row.tolist() for n, row in self.shapes.items()},
-            "strain_energy_shares": dict(zip(self.system.element_names, shares.tolist(),
-                                             strict=True)),
-            "governing_elements": governing,
-        }
-
-
-class TorsionalModel:
-    """Builder of the torsional model of a drive train (module docstring; docs/torsional.md).
-
-    Nodes are named. ``add_inertia`` creates a node (or gives its inertia to a node that an
-    element created massless); shafts, meshes and spans create the nodes they name when new
-    (massless until given an inertia); ground springs, torques and queries need an existing
-    node. Every error is a DesignError naming the element.
-    """
-
-    def __init__(self) -> None:
-        self._index: dict[str, int] = {}
-        self._inertia: list[float] = []
-        self._given: list[bool] = []
-        self._chain: list[float] = []
-        self._gears = _WeightedUnion()
-        # strain-free kinematics of all elements of stiffness > 0 and meshes: rigid-body modes
-        self._kin = _WeightedUnion()
-        self._held: list[bool] = []
-        self._meshes: list[tuple[str, int, int, float, float, float]] = []
-        # elements: name, kind, a, b (-1: ground), coef_a, coef_b, k, c, tension_only
-        self._elements: list[tuple[str, str, int, int, float, float, float, float, bool]] = []
-        self._names: set[str] = set()
-        self._system: TorsionalSystem | None = None
-
-    # -- construction -------------------------------------------------------------------
-    def _node(self, name: str, create: bool, field: str) -> int:
-        i = self._index.get(name)
-        if i is not None:
-            return i
-        if not create:
-            raise DesignError(field, f"unknown node {name!r}; nodes: {list(self._index)}")
-        if not isinstance(name, str) or not name:
-            raise DesignError(field, f"a node needs a non-empty name, got {name!r}")
-        self._index[name] = i = len(self._inertia)
-        self._inertia.append(0.0)
-        self._given.append(False)
-        self._chain.append(0.0)
-        for tree in (self._gears, self._kin):  # a new root of its own
-            tree.parent.append(i)
-            tree.weight.append(1.0)
-        self._held.append(False)
-        return i
-
-    def _element_name(self, name: str | None, default: str) -> str:
-        name = name or default
-        if name in self._names:
-            raise DesignError(name, "an element of that name already exists")
-        self._names.add(name)
-        self._system = None
-        return name
-
-    def add_inertia(self, name: str, inertia: float) -> TorsionalModel:
-        """Node ``name`` with moment of inertia J [kg·m²] ≥ 0 (0: massless)."""
-        i = self._node(name, True, name)
-        if self._given[i]:
-            raise DesignError(name, "the node already has an inertia")
-        self._inertia[i] = _nonneg(name, inertia, "inertia [kg·m²]")
-        self._given[i] = True
-        self._system = None
-        return self
-
-    def add_shaft(self, a: str, b: str, stiffness: float, damping: float = 0.0,
-                  name: str | None = None) -> TorsionalModel:
-        """Shaft or coupling of torsional stiffness k [N·m/rad] and damping c [N·m·s/rad]
-        between nodes a and b (twist φ_b − φ_a)."""
-        name = self._element_name(name, f"shaft:{a}-{b}")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
-        self._kinematics(ia, ib, 1.0, k)
-        return self
-
-    def add_ground_spring(self, node: str, stiffness: float, damping: float = 0.0,
-                          name: str | None = None) -> TorsionalModel:
-        """Spring k [N·m/rad] (and damper c [N·m·s/rad]) from an existing node to the frame."""
-        name = self._element_name(name, f"ground:{node}")
-        i = self._node(node, False, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "ground", i, -1, 1.0, 0.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
-        self._held[i] = self._held[i] or k > 0.0
-        return self
-
-    def add_gear_mesh(self, driver: str, driven: str, ratio: float, efficiency: float = 1.0,
-                      same_sense: bool = False, name: str | None = None) -> TorsionalModel:
-        """Rigid mesh: φ_driven = s·φ_driver / i, i = ω_driver/ω_driven > 0 (driven turns i×
-        slower), s = −1 (external pair) or +1 (``same_sense``). ``efficiency`` η ∈ (0, 1] is
-        kept for torques (:meth:`referred_torque`); the modes do not use it."""
-        name = self._element_name(name, f"mesh:{driver}-{driven}")
-        _check_ratio(name, ratio)
-        _check_efficiency(name, efficiency)
-        ia, ib = self._pair(driver, driven, name)
-        w = (1.0 if same_sense else -1.0) / ratio
-        if not self._gears.relate(ia, ib, w):
-            raise DesignError(name, f"gear loop over-constrains: the ratio {ratio!r} between "
-                              f"{driver!r} and {driven!r} contradicts the meshes already "
-                              "joining them")
-        self._meshes.append((name, ia, ib, float(ratio), float(efficiency), w))
-        self._kinematics(ia, ib, w, 1.0)
-        return self
-
-    def add_span(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
-                 damping: float = 0.0, tension_only: bool = True, mass: float = 0.0,
-                 name: str | None = None) -> TorsionalModel:
-        """Chain span from sprocket a to b: elongation e = r_b φ_b − r_a φ_a [m] with signed
-        pitch radii r [m], stiffness c [N/m], damping d [N·s/m]. ``mass`` [kg] (q·L of the
-        span) is split to its ends, m/2·r² on each sprocket (docs/torsional.md)."""
-        name = self._element_name(name, f"span:{a}-{b}")
-        ra, rb = float(radius_a), float(radius_b)
-        if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
-            raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
-        m = _nonneg(name, mass, "span mass [kg]")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N/m]")
-        self._elements.append((name, "span", ia, ib, -ra, rb, k,
-                               _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
-        self._kinematics(ia, ib, ra / rb, k)
-        self._chain[ia] += 0.5 * m * ra * ra
-        self._chain[ib] += 0.5 * m * rb * rb
-        return self
-
-    def add_chain_wrap(self, node: str, mass: float, radius: float) -> TorsionalModel:
-        """Links wrapped on a sprocket turn with it: adds m_wrap·r² [kg·m²] to its inertia."""
-        i = self._node(node, False, f"wrap:{node}")
-        m = _nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
-        self._chain[i] += m * float(radius) ** 2
-        self._system = None
-        return self
-
-    def _kinematics(self, a: int, b: int, w: float, stiffness: float) -> None:
-        """Strain-free relation φ_b = w·φ_a of an element (ignored at stiffness 0); one that
-        contradicts the others holds its group (no rigid-body motion)."""
-        if stiffness > 0.0 and not self._kin.relate(a, b, w):
-            self._held[a] = True
-
-    def _pair(self, a: str, b: str, name: str) -> tuple[int, int]:
-        if a == b:
-            raise DesignError(name, f"an element must join two different nodes, got {a!r} twice")
-        return self._node(a, True, name), self._node(b, True, name)
-
-    @property
-    def node_names(self) -> tuple[str, ...]:
-        """Names of the nodes, in the order they were created."""
-        return tuple(self._index)
-
-    # -- results ------------------------------------------------------------------------
-    def system(self) -> TorsionalSystem:
-        """The assembled :class:`TorsionalSystem` (cached until the model changes)."""
-        if self._system is None:
-            self._system = _assemble(self)
-        return self._system
-
-    def modal(self) -> TorsionalModes:
-        """Undamped natural frequencies, shapes and strain-energy shares."""
-        return _modal(self.system())
-
-    def frequencies_hz(self) -> FloatArray:
-        """The natural frequencies of :meth:`modal` [Hz] without the shapes (LAPACK computes
-        no eigenvectors: 2–3× faster, see benchmarks/bench_torsional.py)."""
-        return _frequencies(self.system())
-
-    def referred_torque(self, torque: float, at: str, to: str, driving: bool = True) -> float:
-        """Torque T_at [N·m] acting at node ``at`` referred to node ``to`` through the gear
-        meshes between them, with their efficiencies.
-
-        Power flowing from ``to`` to ``at`` (``driving``): T_to = T_at·(g_at/g_to) / Πη; the
-        other way: T_to = T_at·(g_at/g_to)·Πη, g the nodes' factors (signed ratios; for one
-        reducer |g_at/g_to| = 1/i, see :func:`reducer_input_torque`).
-        """
-        ia, it = self._node(at, False, "at"), self._node(to, False, "to")
-        (ra, ga), (rt, gt) = self._gears.find(ia), self._gears.find(it)
-        if ra != rt:
-            raise DesignError("to", f"{at!r} and {to!r} are not joined by gear meshes")
-        eta = math.prod(self._meshes[k][4] for k in self._mesh_path(ia, it))
-        return float(torque) * (ga / gt) * (1.0 / eta if driving else eta)
-
-    def _mesh_path(self, a: int, b: int) -> list[int]:
-        """Indices of the meshes on a path from node a to node b (breadth-first)."""
-        adjacency: dict[int, list[tuple[int, int]]] = {}
-        for k, (_, i, j, *_rest) in enumerate(self._meshes):
-            adjacency.setdefault(i, []).append((j, k))
-            adjacency.setdefault(j, []).append((i, k))
-        previous: dict[int, tuple[int, int]] = {a: (a, -1)}
-        frontier = [a]
-        while frontier and b not in previous:
-            nxt = []
-            for i in frontier:
-                for j, k in adjacency.get(i, []):
-                    if j not in previous:
-                        previous[j] = (i, k)
-                        nxt.append(j)
-            frontier = nxt
-        path, i = [], b
-        while i != a:
-            i, k = previous[i]
-            path.append(k)
-        return path
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready description of the model."""
-        names = list(self._index)
-        return {
-            "nodes": {n: {"inertia_kg_m2": self._inertia[i], "chain_inertia_kg_m2": self._chain[i]}
-                      for n, i in self._index.items()},
-            "elements": [{"name": e[0], "kind": e[1], "a": names[e[2]],
-                          "b": None if e[3] < 0 else names[e[3]], "coef_a": e[4], "coef_b": e[5],
-                          "stiffness": e[6], "damping": e[7], "tension_only": e[8]}
-                         for e in self._elements],
-            "gear_meshes": [{"name": m[0], "driver": names[m[1]], "driven": names[m[2]],
-                             "ratio": m[3], "efficiency": m[4], "same_sense": m[5] > 0}
-                            for m in self._meshes],
-        }
+        return drive_model(drive, geometry or contour_geometry(drive),
+                           span_tensions=span_tensions).torsional
 
     @classmethod
     def from_contour(cls, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,
@@ -566,7 +75,7 @@ class TorsionalModel:
                      chain_mass_per_length_kg_per_m: float = 0.0,
                      span_lengths_m: ArrayLike | None = None,
                      wrap_lengths_m: ArrayLike | None = None,
-                     closed: bool = True) -> TorsionalModel:
+                     closed: bool = True, consistent_mass: bool = False) -> TorsionalEngine:
         """The model of a chain contour with a train on any sprocket, from plain data.
 
         Parameters
@@ -589,157 +98,13 @@ class TorsionalModel:
             mass q·L is split to its two sprockets, with ``wrap_lengths_m`` (n,) [m] the links
             wrapped on each sprocket turn with it (docs/torsional.md)
         closed : False for an open contour (the last span is left out)
+        consistent_mass : True: each span's mass q·L as the consistent mass of a linear
+            velocity profile along it (coupling its two sprockets); False: lumped, split in
+            halves (docs/torsional.md)
         """
-        from chaindrive.dynamics.torsional_build import build_contour
-
         return build_contour(cls(), sprockets, inertias_kg_m2, pitch_radii_m,
                              span_stiffness_n_per_m, senses=senses,
                              span_damping_n_s_per_m=span_damping_n_s_per_m, trains=trains,
                              chain_mass_per_length_kg_per_m=chain_mass_per_length_kg_per_m,
                              span_lengths_m=span_lengths_m, wrap_lengths_m=wrap_lengths_m,
-                             closed=closed)
-
-
-def _assemble(model: TorsionalModel) -> TorsionalSystem:
-    """Reduced coordinates (one per gear tree), element incidence, rigid-body motions."""
-    n_nodes = len(model._inertia)
-    if n_nodes == 0:
-        raise DesignError("nodes", "the model has no node")
-    gears, kin = model._gears, model._kin
-    dof_of_root: dict[int, int] = {}
-    node_dof = np.empty(n_nodes, dtype=np.intp)
-    factor = np.empty(n_nodes)
-    kin_root = np.empty(n_nodes, dtype=np.intp)
-    kin_w = np.empty(n_nodes)
-    for i in range(n_nodes):
-        root, factor[i] = gears.find(i)
-        node_dof[i] = dof_of_root.setdefault(root, len(dof_of_root))
-        kin_root[i], kin_w[i] = kin.find(i)
-    n = len(dof_of_root)
-    inertia = np.asarray(model._inertia) + np.asarray(model._chain)
-    mass = np.bincount(node_dof, weights=inertia * factor * factor, minlength=n)
-    held = set(kin_root[np.asarray(model._held, dtype=bool)].tolist())
-    free = [r for r in dict.fromkeys(kin_root.tolist()) if r not in held]
-    rigid = np.zeros((n, len(free)))
-    for j, r in enumerate(free):  # q_k = φ_n / factor_n of any node n of coordinate k
-        nodes = kin_root == r
-        rigid[node_dof[nodes], j] = kin_w[nodes] / factor[nodes]
-    el = model._elements
-    ne = len(el)
-    names, kinds, a, b, ca, cb, k, c, tension = (list(col) for col in zip(*el, strict=True)) \
-        if ne else ([], [], [], [], [], [], [], [], [])
-    B = np.zeros((ne, n))
-    ia, ib = np.array(a, dtype=np.intp), np.array(b, dtype=np.intp)
-    rows = np.arange(ne)
-    B[rows, node_dof[ia]] = np.array(ca) * factor[ia]
-    two = ib >= 0
-    np.add.at(B, (rows[two], node_dof[ib[two]]), np.array(cb)[two] * factor[ib[two]])
-    k_all, c_all = np.array(k, dtype=float), np.array(c, dtype=float)
-    span = np.array([kd == "span" for kd in kinds], dtype=bool)
-    lin = ~span
-    Bl = B[lin]
-    return TorsionalSystem(
-        node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
-        node_inertia_kg_m2=inertia, mass=mass,
-        stiffness_linear=(Bl.T * k_all[lin]) @ Bl, damping_linear=(Bl.T * c_all[lin]) @ Bl,
-        span_names=tuple(x for x, sp in zip(names, span, strict=True) if sp),
-        span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
-        span_damping_n_s_per_m=c_all[span],
-        span_tension_only=np.array(tension, dtype=bool)[span],
-        element_names=tuple(names), element_kinds=tuple(kinds), element_incidence=B,
-        element_stiffness=k_all, element_damping=c_all, rigid_motions=rigid)
-
-
-def _deflated_eigh(A: FloatArray, W: FloatArray,
-                   vectors: bool = True) -> tuple[FloatArray, FloatArray]:
-    """Eigenpairs of the symmetric A on the orthogonal complement of the orthonormal columns
-    W (exact null vectors of A): (λ, V) with V orthonormal and Wᵀ V = 0.
-
-    One null vector: a Householder reflector H (H w = −e₁) makes H A H block-diagonal, O(n²);
-    more: a complete QR basis of the complement.
-    """
-    n, r = W.shape
-    if r == 1:
-        w = W[:, 0]
-        v = w.copy()
-        v[0] += math.copysign(1.0, w[0])  # H = I − 2 v vᵀ / vᵀv maps w to ∓e₁
-        v /= np.linalg.norm(v)
-        Av = A @ v
-        HAH = A - 2.0 * np.outer(v, Av) - 2.0 * np.outer(Av, v) + 4.0 * (v @ Av) * np.outer(v, v)
-        if not vectors:
-            return np.linalg.eigvalsh(HAH[1:, 1:]), np.empty((n, 0))
-        lam, Ve = np.linalg.eigh(HAH[1:, 1:])
-        V = np.zeros((n, n - 1))
-        V[1:] = Ve
-        V -= 2.0 * np.outer(v, v @ V)
-        return lam, V
-    basis = np.linalg.qr(W, mode="complete")[0][:, r:]
-    if not vectors:
-        return np.linalg.eigvalsh(basis.T @ A @ basis), np.empty((n, 0))
-    lam, Ve = np.linalg.eigh(basis.T @ A @ basis)
-    return lam, basis @ Ve
-
-
-def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, FloatArray, FloatArray,
-                                                      FloatArray | None, NDArray[np.bool_]]:
-    """(A = M^{-1/2} K_c M^{-1/2}, m, U, X, massed): the condensed, mass-scaled stiffness, the
-    masses and rigid-body motions of the massed coordinates, the condensation X."""
-    mass = system.mass
-    massed = mass > 0.0
-    if not massed.any():
-        raise DesignError("inertia", "every node is massless: no mode to compute")
-    K = system.stiffness_matrix()
-    massless = ~massed
-    X = None
-    if massless.any():
-        X = _condensation(K, massless, system.node_names, system.node_dof)
-        K = K[np.ix_(massed, massed)] - K[np.ix_(massed, massless)] @ X
-        U = system.rigid_motions[massed]
-    else:
-        U = system.rigid_motions
-    m = mass[massed]
-    d = 1.0 / np.sqrt(m)
-    return K * d[:, None] * d[None, :], m, U, X, massed
-
-
-def _frequencies(system: TorsionalSystem) -> FloatArray:
-    """Natural frequencies only [Hz] (rigid-body zeros first), no eigenvectors."""
-    A, m, U, _, _ = _scaled_problem(system)
-    nr = int(U.shape[1])
-    f = np.zeros(m.size)
-    if nr == 0:
-        lam = np.linalg.eigvalsh(A)
-    elif nr < m.size:
-        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
-        lam = _deflated_eigh(A, U * np.sqrt(m)[:, None], vectors=False)[0]
-    else:
-        return f
-    f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
-    return f
-
-
-def _modal(system: TorsionalSystem) -> TorsionalModes:
-    """Modes of the assembled system (module docstring: condensation, rigid-body modes)."""
-    A, m, U, X, massed = _scaled_problem(system)
-    sqrt_m = np.sqrt(m)
-    d = 1.0 / sqrt_m
-    nm, nr = int(m.size), int(U.shape[1])
-    if nr:
-        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))  # M-orthonormal (disjoint groups)
-        lam, V = _deflated_eigh(A, U * sqrt_m[:, None]) if nr < nm else \
-            (np.empty(0), np.empty((nm, 0)))
-        Qm = np.concatenate([U, V * d[:, None]], axis=1)
-    else:
-        lam, V = np.linalg.eigh(A)
-        Qm = V * d[:, None]
-    if X is None:
-        Q = Qm
-    else:
-        Q = np.empty((system.size, nm))
-        Q[massed] = Qm
-        Q[~massed] = -X @ Qm
-    f = np.zeros(nm)
-    f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
-    rigid = np.zeros(nm, dtype=bool)
-    rigid[:nr] = True
-    return TorsionalModes(frequencies_hz=f, rigid_body=rigid, system=system, modal_coordinates=Q)
+                             closed=closed, consistent_mass=consistent_mass)

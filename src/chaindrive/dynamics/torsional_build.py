@@ -1,5 +1,5 @@
 """Plain-data builder of the torsional model of a chain contour with a train on any
-sprocket: the body of :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`
+sprocket: the body of :meth:`chaindrive.dynamics.torsional.TorsionalEngine.from_contour`
 (docs/torsional.md)."""
 
 from __future__ import annotations
@@ -10,11 +10,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from chaindrive.dynamics.torsional import FloatArray, TrainElement, _nonneg
+from chaindrive.dynamics.torsional_engine import FloatArray, TrainElement, _nonneg
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.torsional import TorsionalModel
+    from chaindrive.dynamics.torsional_engine import TorsionalEngine
 
 __all__ = ["build_contour"]
 
@@ -31,15 +31,16 @@ def _per_sprocket(field: str, values: ArrayLike | None, n: int, default: float) 
     return a
 
 
-def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,
+def build_contour(model: TorsionalEngine, sprockets: Sequence[str], inertias_kg_m2: ArrayLike,
                    pitch_radii_m: ArrayLike, span_stiffness_n_per_m: ArrayLike, *,
                    senses: Sequence[int] | None,
                    span_damping_n_s_per_m: ArrayLike | None,
                    trains: Mapping[str, Sequence[TrainElement]] | None,
                    chain_mass_per_length_kg_per_m: float,
                    span_lengths_m: ArrayLike | None, wrap_lengths_m: ArrayLike | None,
-                   closed: bool) -> TorsionalModel:
-    """Adds a chain contour with trains to ``model``: see :meth:`TorsionalModel.from_contour`
+                   closed: bool, consistent_mass: bool = False) -> TorsionalEngine:
+    """Adds a chain contour with trains to ``model``: see
+    :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`
     (its docstring lists the parameters and their units)."""
     names = [str(s) for s in sprockets]
     n = len(names)
@@ -65,7 +66,7 @@ def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m
     for i in range(n if closed else n - 1):
         b = (i + 1) % n
         model.add_span(names[i], names[b], c[i], r[i], r[b], damping=d[i], mass=span_mass[i],
-                       name=f"span:{names[i]}-{names[b]}")
+                       name=f"span:{names[i]}-{names[b]}", consistent_mass=consistent_mass)
     for name, m, radius in zip(names, wrap_mass.tolist(), R.tolist(), strict=True):
         if m > 0.0:
             model.add_chain_wrap(name, m, radius)
@@ -76,8 +77,9 @@ def build_contour(model: TorsionalModel, sprockets: Sequence[str], inertias_kg_m
     return model
 
 
-def _add_train(model: TorsionalModel, sprocket: str, train: Sequence[TrainElement]) -> None:
-    """Adds an open train outward from ``sprocket`` (see :meth:`TorsionalModel.from_contour`)."""
+def _add_train(model: TorsionalEngine, sprocket: str, train: Sequence[TrainElement]) -> None:
+    """Adds an open train outward from ``sprocket`` (see
+    :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`)."""
     previous = sprocket
     for k, element in enumerate(train):
         field = f"trains.{sprocket}[{k}]"

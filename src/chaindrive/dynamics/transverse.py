@@ -15,7 +15,7 @@ Parametric resonance: a tension pulsating at the tooth frequency f_z,
 T(t) = T (1 + μ cos 2π f_z t), makes the span a Mathieu system; the principal instability
 zone lies near f_z = 2 f_1 (more generally f_z ≈ 2 f_n / k), of half-width μ/4 in
 f_z/(2 f_n) to first order (V.V. Bolotin, The Dynamic Stability of Elastic Systems, 1964,
-ch. 1). Seed 000 names the parametric vibrations of the tight span among the phenomena to
+ch. 1). [MultimassChainDrives] names the parametric vibrations of the tight span among the phenomena to
 check.
 """
 

@@ -20,9 +20,11 @@ import tomli_w
 
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import (
+    LOAD_LAWS,
     MAX_CONTOURS,
     MAX_SPROCKETS,
     MAX_TEETH,
+    MAX_TRAIN_ELEMENTS,
     MIN_SPROCKETS,
     MIN_TEETH,
     MOTORS,
@@ -31,12 +33,15 @@ from chaindrive.model import (
     ROUNDINGS,
     SIDES,
     TOOTH_FORMS,
+    TRAIN_KINDS,
     Chain,
     ChainRequest,
     ChainSpec,
     Drive,
     DynamicsSettings,
+    Motor,
     Sprocket,
+    TrainElement,
 )
 from chaindrive.units import DIMENSIONS, parse_quantity
 
@@ -68,6 +73,8 @@ class Field:
             return "true or false"
         if self.kind == "str":
             return "text"
+        if self.kind == "tables":
+            return "a list of tables"
         lo = "" if self.minimum is None else (f"> {self.minimum:g}" if self.exclusive_minimum
                                                else f"≥ {self.minimum:g}")
         hi = "" if self.maximum is None else f"≤ {self.maximum:g}"
@@ -127,17 +134,77 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
     Field("adjust_angle", "angle", "direction of the line of adjustment (default: away from "
           "the contour)"),
-    Field("inertia", "inertia", "moment of inertia of everything turning with it", minimum=0,
-          exclusive_minimum=True),
+    Field("inertia", "inertia", "moment of inertia of what turns rigidly with it; without a "
+          "train, everything on its shaft (motor, reducer, machine) referred to it (default: "
+          "the sprocket body from its geometry)", minimum=0, exclusive_minimum=True),
+    Field("reduced_mass", "mass", "the same as a mass at the pitch radius, m = J/R² (the "
+          "seed's 'brought mass'); instead of inertia", minimum=0, exclusive_minimum=True),
     Field("flywheel", "inertia", "inertia added as a steel flywheel on the shaft (in the "
           "dynamics, the mass and the cost)", default=0.0, minimum=0.0),
     Field("material", "str", "sprocket material (catalogue name)", default="steel"),
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
           minimum=0.0, maximum=1.0),
+    Field("load", "choice", "law of the driven machine's moment in speed (default: "
+          "[dynamics] resistance)", choices=LOAD_LAWS),
+    Field("train", "tables", "the open train on its shaft, outward from the sprocket: "
+          "[[sprockets.train]] tables (below)"),
+)
+TRAIN_FIELDS: tuple[Field, ...] = (
+    Field("kind", "choice", "shaft or coupling: a torsional spring to a new node; gear: a "
+          "rigid gear stage (a reducer as a whole) to a new node; rotor: an inertia on the "
+          "current node; ground: a spring from the current node to the frame", required=True,
+          choices=TRAIN_KINDS),
+    Field("name", "str", "name of the new node (of the current node for a rotor), e.g. "
+          '"motor", "reducer", "drum"'),
+    Field("inertia", "inertia", "the new node's moment of inertia (rotor: added to the current "
+          "node)", default=0.0, minimum=0.0),
+    Field("stiffness", "torsional_stiffness", "shaft, coupling or ground: torsional stiffness",
+          minimum=0, exclusive_minimum=True),
+    Field("damping", "torsional_damping", "shaft or coupling: viscous damping coefficient",
+          default=0.0, minimum=0.0),
+    Field("diameter", "length", "shaft: diameter of a solid round shaft (with length, "
+          "instead of stiffness)", minimum=0, exclusive_minimum=True),
+    Field("length", "length", "shaft: length of a solid round shaft", minimum=0,
+          exclusive_minimum=True),
+    Field("material", "str", "shaft: material (catalogue name)", default="steel"),
+    Field("ratio", "float", "gear: input speed / output speed in the direction of the power "
+          "flow (motor → driver sprocket, driven sprocket → machine)", minimum=0,
+          exclusive_minimum=True),
+    Field("efficiency", "float", "gear: efficiency", default=1.0, minimum=0.0, maximum=1.0,
+          exclusive_minimum=True),
+)
+MOTOR_FIELDS: tuple[Field, ...] = (
+    Field("law", "choice", "torque law (default: [dynamics] motor)", choices=MOTORS),
+    Field("rated_power", "power", "rated power (default: the drive's power)", minimum=0,
+          exclusive_minimum=True),
+    Field("rated_speed", "speed", "rated speed of the motor shaft (default: the driver's speed "
+          "times the ratios of its train)", minimum=0, exclusive_minimum=True),
+    Field("rotor_inertia", "inertia", "rotor moment of inertia (default: estimated from the "
+          "rated power and synchronous speed, IEC cage motors)", minimum=0,
+          exclusive_minimum=True),
+    Field("breakdown_ratio", "float", "Kloss: breakdown torque / rated torque (default: "
+          "[dynamics])", minimum=1.0, maximum=5.0, exclusive_minimum=True),
+    Field("critical_slip", "float", "Kloss: critical slip (default: [dynamics])", minimum=0.0,
+          maximum=1.0, exclusive_minimum=True),
+    Field("ramp_time", "time", "ramp: time to full torque (default: [dynamics])", minimum=0.0,
+          exclusive_minimum=True),
+    Field("torque", "torque", "constant or ramp law: the torque (default: the rated torque)",
+          minimum=0, exclusive_minimum=True),
 )
 DYNAMICS_FIELDS: tuple[Field, ...] = (
-    Field("damping_ratio", "float", "damping ratio ζ of the ring (seed 000: D = 0.06)",
-          default=0.06, minimum=0.0, maximum=0.9),
+    Field("damping_ratio", "float", "damping ratio ζ of the chain (default: by the "
+          "chain/sprocket material pair, 0.06 metal chain, 0.175 polymer chain)", minimum=0.0,
+          maximum=0.9),
+    Field("hinge_friction", "bool", "damp each span by its hinge friction at its own tension "
+          "(ζ = ψ/4π) instead", default=False),
+    Field("hinge_amplitude", "float", "hinge friction: relative transverse amplitude of the "
+          "spans y₀/a", default=0.02, minimum=0.0, maximum=0.1, exclusive_minimum=True),
+    Field("uncertainty", "float", "relative uncertainty of every stiffness and inertia (the "
+          "bands of the frequencies, margins and K_D)", default=0.1, minimum=0.0,
+          maximum=0.49),
+    Field("require_complete_model", "bool", "an incomplete model (a driver without its motor, "
+          "a driven sprocket with nothing on its shaft) is an error, not a warning",
+          default=False),
     Field("harmonics", "int", "harmonics of the tooth frequency in the polygonal excitation",
           default=10, minimum=1, maximum=50),
     Field("transient", "bool", "run the start-up transient", default=True),
@@ -164,8 +231,12 @@ SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
     "chain": CHAIN_FIELDS,
     "sprockets": SPROCKET_FIELDS,
+    "sprockets.train": TRAIN_FIELDS,
+    "motor": MOTOR_FIELDS,
     "dynamics": DYNAMICS_FIELDS,
 }
+#: Sections of :data:`SECTIONS` that are nested in another table, not top-level tables.
+NESTED_SECTIONS: tuple[str, ...] = ("sprockets.train",)
 
 
 #: Sections read by other parts of chaindrive, not by the drive loader: ``[optimize]``
@@ -324,7 +395,7 @@ def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> Cha
 
 def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) -> Drive:
     """Build a validated :class:`Drive` from the parsed TOML of a design file."""
-    known = (*SECTIONS, *OTHER_SECTIONS)
+    known = (*(k for k in SECTIONS if k not in NESTED_SECTIONS), *OTHER_SECTIONS)
     for key in data:
         if key not in known:
             raise DesignError(key, "unknown section" + did_you_mean(key, known)
@@ -332,6 +403,8 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
     drive_values = parse_section(data.get("drive", {}), DRIVE_FIELDS, "drive")
     dynamics = DynamicsSettings(**parse_section(data.get("dynamics", {}), DYNAMICS_FIELDS,
                                                 "dynamics"))
+    motor = (Motor(**parse_section(data["motor"], MOTOR_FIELDS, "motor"))
+             if "motor" in data else None)
     chain_values = parse_section(data.get("chain", {}), CHAIN_FIELDS, "chain")
     raw_sprockets = data.get("sprockets")
     if raw_sprockets is None:
@@ -345,7 +418,12 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
     sprockets = []
     seen: dict[str, int] = {}
     for i, raw in enumerate(raw_sprockets):
-        v = parse_section(raw, SPROCKET_FIELDS, f"sprockets[{i}]")
+        raw_train = raw.get("train", []) if isinstance(raw, Mapping) else []
+        v = parse_section({k: x for k, x in raw.items() if k != "train"}
+                          if isinstance(raw, Mapping) else raw,
+                          tuple(f for f in SPROCKET_FIELDS if f.kind != "tables"),
+                          f"sprockets[{i}]")
+        v["train"] = parse_train(raw_train, f"sprockets[{i}].train")
         if v["name"] in seen:
             raise DesignError(f"sprockets[{i}].name", f"duplicate name {v['name']!r} (also "
                               f"sprockets[{seen[v['name']]}]); names must be unique")
@@ -377,7 +455,26 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
                   sag=chain_values["sag"])
     return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                  power=drive_values["power"], tooth_form=tooth_form,
-                 service_factor=drive_values["service_factor"], dynamics=dynamics)
+                 service_factor=drive_values["service_factor"], dynamics=dynamics,
+                 motor=motor)
+
+
+def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
+    """The elements of a sprocket's train (a list of tables, outward from the sprocket)."""
+    if not isinstance(data, list):
+        raise DesignError(path, "must be a list of [[sprockets.train]] tables")
+    if len(data) > MAX_TRAIN_ELEMENTS:
+        raise DesignError(path, f"at most {MAX_TRAIN_ELEMENTS} elements, got {len(data)}")
+    out = []
+    for k, raw in enumerate(data):
+        v = parse_section(raw, TRAIN_FIELDS, f"{path}[{k}]")
+        try:
+            out.append(TrainElement(**v))
+        except DesignError as exc:  # name the element by its place in the file
+            field = exc.field.rsplit(".", 1)[-1]
+            message = str(exc)[len(exc.field) + 2:] if exc.field else str(exc)
+            raise DesignError(f"{path}[{k}].{field}", message) from None
+    return tuple(out)
 
 
 def parse_toml(text: str, name: str) -> dict[str, Any]:
@@ -433,9 +530,36 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     head["tooth_form"] = drive.tooth_form
     if drive.service_factor is not None:
         head["service_factor"] = drive.service_factor
-    return {"drive": head, "chain": chain,
-            "sprockets": [_sprocket_table(s) for s in drive.sprockets],
-            "dynamics": _dynamics_table(drive.dynamics)}
+    out: dict[str, Any] = {"drive": head, "chain": chain,
+                           "sprockets": [_sprocket_table(s) for s in drive.sprockets]}
+    if drive.motor is not None:
+        out["motor"] = _motor_table(drive.motor)
+    out["dynamics"] = _dynamics_table(drive.dynamics)
+    return out
+
+
+def _motor_table(m: Motor) -> dict[str, Any]:
+    units = {"rated_power": (1e-3, "kW"), "rated_speed": (30.0 / math.pi, "rpm"),
+             "rotor_inertia": (1.0, "kg*m^2"), "ramp_time": (1.0, "s"),
+             "torque": (1.0, "N*m")}
+    out: dict[str, Any] = {}
+    for f in MOTOR_FIELDS:
+        value = getattr(m, f.name)
+        if value is not None:
+            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+    return out
+
+
+def _train_table(e: TrainElement) -> dict[str, Any]:
+    units = {"inertia": (1.0, "kg*m^2"), "stiffness": (1.0, "N*m/rad"),
+             "damping": (1.0, "N*m*s/rad"), "diameter": (1e3, "mm"), "length": (1e3, "mm")}
+    out: dict[str, Any] = {"kind": e.kind}
+    for f in TRAIN_FIELDS[1:]:
+        value = getattr(e, f.name)
+        if value is None or value == f.default:
+            continue
+        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+    return out
 
 
 def _sprocket_table(s: Sprocket) -> dict[str, Any]:
@@ -457,6 +581,12 @@ def _sprocket_table(s: Sprocket) -> dict[str, Any]:
         t["material"] = s.material
     if s.power_share is not None:
         t["power_share"] = s.power_share
+    if s.reduced_mass is not None:
+        t["reduced_mass"] = _q(s.reduced_mass, 1.0, "kg")
+    if s.load is not None:
+        t["load"] = s.load
+    if s.train:
+        t["train"] = [_train_table(e) for e in s.train]
     return t
 
 
@@ -467,7 +597,8 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for f in DYNAMICS_FIELDS:
         value = getattr(d, f.name)
-        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+        if value is not None:
+            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
     return out
 
 

@@ -44,6 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
+from chaindrive.dynamics.drive_model import chain_damping_ratio
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
@@ -221,7 +222,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                                       spec.inner_width)
     tips = 0.5 * np.asarray(tip_diameter(spec.pitch, teeth, spec.roller_diameter,
                                          form=drive.tooth_form), dtype=float)
-    zeta = ring_damping_ratio(ring, drive.dynamics.damping_ratio if damping_ratio is None
+    zeta = ring_damping_ratio(ring, chain_damping_ratio(drive) if damping_ratio is None
                               else float(damping_ratio))
     t0 = _pretension(drive, geometry) if pretension is None else float(pretension)
     return LinkLevelModel(

@@ -190,11 +190,15 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     dyn = inp.dynamics
     modal = dyn.modal
     names = [s.name for s in inp.analysis.drive.sprockets]
+    model = inp.analysis.drive_model
     blocks: list[Block] = [
-        Text(f"Ring model of {len(names)} reduced masses (seed 000), damping ratio "
-             f"ζ = {dyn.damping_ratio:g}. Mode 0 is the rigid-body rotation of the contour."),
-        Table("Masses and branches", ("sprocket", "reduced mass, kg",
-                                      "branch stiffness to next, N/m"),
+        Text(f"Whole-drive model (docs/dynamics.md): {len(names)} sprockets, the chain with its "
+             f"own mass, the trains; {model.linear.size} degrees of freedom"
+             + ("" if model.complete else ", INCOMPLETE: " + "; ".join(model.missing))
+             + f". Damping ratio ζ = {dyn.damping_ratio:.3g} ({model.damping_source}). "
+             "Mode 0 is the rigid-body rotation of the drive."),
+        Table("Sprockets and spans", ("sprocket", "own reduced mass, kg",
+                                      "span stiffness to next, N/m"),
               _rows(zip(names, modal.masses_kg.tolist(), modal.stiffness_n_per_m.tolist(),
                         strict=True))),
         Table("Natural frequencies", ("mode", "f, Hz", "damped f, Hz", "rigid body"),
@@ -212,6 +216,11 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
                             ("working frequency", "f, Hz", "natural f, Hz", "mode", "margin, %"),
                             _rows(rows), tuple(i for i, r in enumerate(dyn.resonances)
                                                if abs(r.margin_percent) < band)))
+    published = inp.analysis.published
+    if published is not None:
+        blocks.append(Table(f"Beside the published figures ({published[0]})",
+                            ("quantity", "published", "this analysis", "unit"),
+                            _rows(published[1])))
     if dyn.campbell is not None:
         w = inp.analysis.drive.driver.speed
         blocks.append(plot_block(campbell_diagram(dyn.campbell,
@@ -307,7 +316,8 @@ def response_section(inp: ReportInput) -> list[Block] | None:
     blocks: list[Block] = [
         Text("Kinematic excitation by the polygonal effect at the tooth frequency and its "
              "harmonics, solved in the frequency domain; start-up from rest with the motor law "
-             "of the design ([dynamics]); spans carry tension only (seed 000, docs/dynamics2.md)."),
+             "of the design ([motor]) on the motor's rotor; spans carry tension only "
+             "(docs/dynamic_response.md)."),
         Table("Two-stage safety check (seed 000 §3.6)", ("check", "value", "required", "result"),
               _rows(k_rows), tuple(i for i, r in enumerate(k_rows) if r[3] == "FAIL")),
         Table("Dynamic loads", ("quantity", "value", "unit"),

@@ -20,17 +20,17 @@ at once (stacked eigenproblems), reproducible with a seed.
 from __future__ import annotations
 
 import inspect
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import differential_evolution
 
 from chaindrive.analysis import Analysis
+from chaindrive.dynamics.modes import inertia_modes_batch
 from chaindrive.dynamics.resonance import working_frequencies
-from chaindrive.dynamics.ring import ModalResult
 from chaindrive.errors import DesignError
 from chaindrive.model import Drive
 
@@ -103,9 +103,14 @@ def band_shortfall(frequencies_hz: NDArray[np.float64], working_hz: ArrayLike,
     return shortfall
 
 
+ModesBatch = Callable[[NDArray[np.float64], NDArray[np.float64]],
+                      tuple[NDArray[np.float64], NDArray[np.float64]]]
+
+
 def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float64],
                        working_hz: ArrayLike, band: float = BAND + 0.01,
-                       damping: float = 0.06) -> NDArray[np.float64]:
+                       damping: float = 0.06, modes: ModesBatch | None = None
+                       ) -> NDArray[np.float64]:
     """The objective J of the module docstring for B designs.
 
     Parameters
@@ -120,6 +125,9 @@ def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float6
         Relative half-width of the band [-].
     damping : float
         Damping ratio ζ [-].
+    modes : callable or None
+        (masses, stiffness) (B, n) → elastic frequencies [Hz] and largest normalised
+        amplitudes (B, E) of the model to detune (None: the ring, :func:`ring_modes_batch`).
 
     Returns
     -------
@@ -130,7 +138,7 @@ def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float6
     ----------
     [MultimassChainDrives, §3.2]; [Rao2011, §3.4] (single-mode magnification).
     """
-    f, mu = ring_modes_batch(masses, stiffness)
+    f, mu = (modes or ring_modes_batch)(masses, stiffness)
     w = np.asarray(working_hz, dtype=float)
     r = w[None, :, None] / f[:, None, :]
     h = 1.0 / np.sqrt((1 - r**2) ** 2 + (2 * damping * r) ** 2)
@@ -201,7 +209,8 @@ def _de_kwargs(seed: int) -> dict[str, Any]:
 def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
            band: float = BAND, mass_bounds: ArrayLike | None = None,
            stiffness_bounds: ArrayLike | None = None, damping: float = 0.06,
-           seed: int = 0, maxiter: int = 200, popsize: int = 20) -> DetuningResult:
+           seed: int = 0, maxiter: int = 200, popsize: int = 20,
+           modes: ModesBatch | None = None) -> DetuningResult:
     """Masses and/or stiffnesses within bounds that clear ±band round every working
     frequency and minimise the normalised amplitude (module docstring).
 
@@ -227,6 +236,9 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
         Seed of the differential evolution.
     maxiter, popsize : int
         Of the differential evolution [-].
+    modes : callable or None
+        (masses, stiffness) (B, n) → elastic frequencies [Hz] and largest normalised
+        amplitudes (B, E) of the model to detune (None: the ring, :func:`ring_modes_batch`).
 
     Returns
     -------
@@ -263,7 +275,7 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
         return p[:, :n], p[:, n:]
 
     def func(z: NDArray, /) -> NDArray:
-        return detuning_objective(*unpack(z), w, band + 0.01, damping)
+        return detuning_objective(*unpack(z), w, band + 0.01, damping, modes)
 
     x0 = np.log(np.concatenate([m0, c0]))[free]
     inside = bool(np.all(x0 >= b[free, 0]) and np.all(x0 <= b[free, 1]))
@@ -274,7 +286,7 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
                                  vectorized=True, updating="deferred",
                                  x0=x0 if inside else None, **_de_kwargs(seed))
     m, c = unpack(res.x[:, None])
-    f, _ = ring_modes_batch(m, c)
+    f, _ = (modes or ring_modes_batch)(m, c)
     dist = float(np.min(np.abs(f[0][:, None] - w[None, :]) / w[None, :]))
     return DetuningResult(m[0], c[0], f[0], w, dist, band, float(func(res.x[:, None])[0]))
 
@@ -328,15 +340,41 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     w = [x.frequency for x in working_frequencies(d.driver.speed, d.driver.teeth,
                                                   [s.teeth for s in d.sprockets],
                                                   harmonics=harmonics)]
+    model = a.drive_model
+    m0 = p.masses_kg.copy()
+
+    def modes(masses: NDArray[np.float64], _: NDArray[np.float64]
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        # the analysis' whole-drive model with the added inertias (m − m₀)R² on the shafts
+        return inertia_modes_batch(model, (masses - m0) * p.pitch_radii_m**2)
+
     res = detune(p.masses_kg, p.stiffness_n_per_m, w, band=band, mass_bounds=bounds,
-                 seed=seed, maxiter=maxiter)
+                 seed=seed, maxiter=maxiter, modes=modes)
     inertia = res.masses_kg * p.pitch_radii_m**2
-    sprockets = tuple(replace(s, inertia=float(inertia[k])) if s.name in added_inertia else s
-                      for k, s in enumerate(drive.sprockets))
+    sprockets = tuple(replace(s, inertia=float(inertia[k]), reduced_mass=None)
+                      if s.name in added_inertia else s for k, s in enumerate(drive.sprockets))
     return drive.with_sprockets(sprockets), res
 
 
-def normalised_amplitude_at(modal: ModalResult, working_hz: ArrayLike,
+class Modes(Protocol):
+    """What :func:`normalised_amplitude_at` reads of a modal result (a ring's
+    :class:`~chaindrive.dynamics.ring.ModalResult` or a whole drive's
+    :class:`~chaindrive.dynamics.modes.DriveModes`)."""
+
+    @property
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies [Hz]."""
+
+    @property
+    def rigid_body(self) -> NDArray[np.bool_]:
+        """True for rigid-body modes."""
+
+    @property
+    def normalized_amplitudes(self) -> NDArray[np.float64]:
+        """μ_k^(j), columns per mode [-]."""
+
+
+def normalised_amplitude_at(modal: Modes, working_hz: ArrayLike,
                             damping: float) -> float:
     """Largest normalised amplitude at the working frequencies.
 
@@ -347,8 +385,8 @@ def normalised_amplitude_at(modal: ModalResult, working_hz: ArrayLike,
 
     Parameters
     ----------
-    modal : ModalResult
-        The modes.
+    modal : Modes
+        The modes (of a ring or of a whole drive).
     working_hz : array_like
         Working frequencies [Hz].
     damping : float

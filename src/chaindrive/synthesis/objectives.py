@@ -103,7 +103,7 @@ for _m in (
     Metric("normalised_amplitude", "-", 1,
            lambda a: normalised_amplitude_at(a.dynamics.modal,
                                              a.working_frequencies_hz,
-                                             a.ring.damping_ratio),
+                                             a.dynamics.modal.damping_ratio),
            "largest normalised amplitude at the working frequencies"),
     Metric("coefficient_of_dynamics", "-", 1, _kd,
            "K_D = 1 + F_D/F_t in steady motion [MultimassChainDrives]"),

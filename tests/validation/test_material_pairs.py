@@ -1,4 +1,5 @@
-"""Seed 000 (§3.1–3.3, §3.6, Fig. 2–3, Table 1) qualitative results of Dynamics II."""
+"""[MultimassChainDrives] (§3.1–3.3, §3.6, Fig. 2–3, Table 1): the qualitative results of the
+material pairs on the whole-drive model, and the ring model's response fragment."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from chaindrive.dynamics.materials import _case
 from chaindrive.dynamics.response import dynamics_response
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
+from chaindrive.strength.loads import loads_of
 from tests.conftest import EXAMPLES
 
 
@@ -21,27 +23,27 @@ def seed_drive():
 @pytest.fixture(scope="module")
 def metal_polymer(seed_drive):
     d, g = seed_drive
-    return (_case(d, g, "steel", "steel", 0.06, 0.05, 300),
-            _case(d, g, "PA6-GF30", "steel", 0.06, 0.05, 300))
+    t = loads_of(d, g).span_tensions
+    return (_case(d, g, "steel", "steel", t, 0.3, 300),
+            _case(d, g, "PA66", "steel", t, 0.3, 300))
 
 
 def test_polymer_chain_resonance_lower_and_smaller(metal_polymer) -> None:
-    # seed 000 Fig. 3 / Table 1: a polymer chain's resonance lies lower, ≈ 3× smaller
+    # Fig. 3 / Table 1: a polymer chain's resonance lies lower, ≈ 3× smaller (measured on the
+    # seed example: 25.9 against 74.5 Hz, 50× smaller: its damping ratio 0.175 against 0.06
+    # and its lighter, softer chain)
     metal, polymer = metal_polymer
-    assert polymer.resonance_tooth_frequency_hz < metal.resonance_tooth_frequency_hz
-    assert polymer.resonance_amplitude_n < metal.resonance_amplitude_n / 2
+    assert polymer.resonance_tooth_frequency_hz < metal.resonance_tooth_frequency_hz / 2
+    assert polymer.resonance_amplitude_n < metal.resonance_amplitude_n / 3
 
 
-def test_polymer_chain_lowers_startup_peak(seed_drive, metal_polymer) -> None:
-    """Seed 000 Fig. 2: polymeric parts lower the start-up peak (542 N → 470 N, −13 %), most
-    with a polymer chain on polymer sprockets. In our model the reduction comes from the
-    polymer's material damping (chaindrive.dynamics.damping.LOSS_FACTORS, modal strain energy):
-    −1.5 % for the chain alone, about −10 % for chain and sprockets (lighter sprockets too)."""
+def test_polymer_chain_lowers_startup_peak(metal_polymer) -> None:
+    """Fig. 2: a polymer chain lowers the start-up peak (542 N → 470 N, −13 %); on the
+    seed example's masses (whole-drive model, damping of the material pair) measured −48 %:
+    the metal chain's first mode lies at the tooth frequency (tests/validation/
+    test_drive_dynamics.py)."""
     metal, polymer = metal_polymer
-    assert polymer.startup_peak_n < metal.startup_peak_n
-    d, g = seed_drive
-    both = _case(d, g, "PA6-GF30", "PA6-GF30", 0.06, 0.05, 300)
-    assert both.startup_peak_n < 0.95 * metal.startup_peak_n
+    assert polymer.startup_peak_n < 0.87 * metal.startup_peak_n
 
 
 def test_dynamics_response_fragment(seed_drive) -> None:

@@ -1,0 +1,746 @@
+"""The dynamic model of a whole drive: the chain contour with every sprocket's train, the
+chain's own mass, the motor and the driven machines (docs/dynamics.md §1).
+
+:func:`drive_model` builds it from a :class:`~chaindrive.model.Drive` and its contour as a
+:class:`~chaindrive.dynamics.torsional.TorsionalEngine` [Rao2011, ch. 6]:
+
+* **sprockets** — rotating bodies of inertia J_i (``inertia``, ``reduced_mass``·R², or the
+  sprocket body) with their flywheels;
+* **the chain** — one translational node per sprocket (a body of unit radius: its "angle" is
+  the chain's displacement [m] there) carrying the links wrapped on that sprocket; each span
+  joins the chain nodes of its two sprockets as a tension-only spring c = k_link p/L · s_sag
+  (docs/dynamics.md §2) with the span's mass q·L distributed consistently (m/3 on each end,
+  m/6 between them; docs/torsional.md §5: +0.03 % in f₁ against a wave model of the span,
+  the half-and-half lumping −3.5 %);
+* **the wrap** — the teeth in mesh hold the chain node to its sprocket by the wrap stiffness
+  (ladder of tooth springs, docs/dynamics.md §2), a spring that pulls and pushes. The chain
+  runs on from span to span through the chain node, so a sprocket carries only the
+  difference of the tensions of its two spans (an idler with a small wrap stays out of the
+  load path);
+* **trains** — shafts and couplings (springs with dampers), gear stages (rigid meshes with
+  ratio and efficiency; the inertias behind a mesh are referred through it), rotors, springs
+  to the frame;
+* **motor** — its rotor on the outermost node of the driver's train (on the driver's shaft
+  when it has none); its torque law acts there, through the efficiencies of the gear stages
+  between it and the sprocket;
+* **machines** — the outermost node of every driven sprocket's train takes the moment of
+  resistance of its power share, divided by the efficiencies between it and the sprocket.
+
+Nodes of zero inertia are condensed out statically [Guyan1965] (exact for the undamped
+modes; a damper on such a node is condensed with the same static shape, an approximation
+the model's ``notes`` state). The damping of the chain is the damping ratio of its material
+pair [MultimassChainDrives, Table 1] (or the design's, or each span's hinge friction at its
+own tension [ChainHingeDissipation]): span and wrap dampers d = 2ζ k/ω_ref proportional to
+their stiffness, ω_ref the first elastic mode in which the chain holds most of the strain
+energy, so that mode has the ratio ζ (times the chain's share of its strain energy).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.catalog import find_material
+from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
+from chaindrive.dynamics.drive import RingParameters, drive_ring_parameters
+from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
+from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
+from chaindrive.dynamics.torsional_engine import TorsionalEngine, TorsionalModes, TorsionalSystem
+from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.strength.loads import power_shares
+
+if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, Material, TrainElement
+
+__all__ = [
+    "CHAIN_NODE",
+    "DriveModel",
+    "LinearModel",
+    "LoadPlacement",
+    "MotorPlacement",
+    "chain_damping_ratio",
+    "drive_model",
+    "model_completeness",
+    "shaft_stiffness",
+]
+
+TWO_PI = 2.0 * math.pi
+FloatArray = NDArray[np.float64]
+#: Name of the chain node at sprocket S: ``CHAIN_NODE.format("S")``.
+CHAIN_NODE = "chain@{}"
+#: Poisson's ratio of a shaft's material for its shear modulus G = E/(2(1 + ν)): 0.3, the
+#: value of steels [Shigley2015, Table A-5].
+SHAFT_POISSON_RATIO = 0.3
+#: Least share of the strain energy the chain (spans and wraps) holds in the mode whose
+#: frequency is the reference of the chain's damping.
+CHAIN_MODE_SHARE = 0.5
+
+
+def shaft_stiffness(diameter: float, length: float, youngs_modulus: float,
+                    poisson_ratio: float = SHAFT_POISSON_RATIO) -> float:
+    """Torsional stiffness k = G π d⁴/(32 l) [N·m/rad] of a solid round shaft, G = E/(2(1+ν)).
+
+    Parameters
+    ----------
+    diameter : float
+        d [m].
+    length : float
+        l [m].
+    youngs_modulus : float
+        E [Pa].
+    poisson_ratio : float
+        ν [-].
+
+    Returns
+    -------
+    float
+        k [N·m/rad].
+
+    References
+    ----------
+    [Shigley2015, ch. 3] (torsion of a round bar), [Roark2012, Table 10.1].
+    """
+    g = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
+    return g * math.pi * diameter**4 / (32.0 * length)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LinearModel:
+    """M q̈ + C q̇ + K q = Q of a drive in its coordinates q (condensed).
+
+    mass (N, N) M [kg·m²]; stiffness_linear, damping_linear (N, N): every element but the
+    chain spans [N·m/rad, N·m·s/rad]; span_incidence (S, N): span elongations e = B q [m per
+    coordinate]; span_stiffness (S,) c [N/m]; span_damping (S,) d [N·s/m]; span_tension_only
+    (S,): a span that goes slack drops out. K = K_lin + Bᵀ diag(c·a) B, C likewise, a the
+    spans that carry (all, unless told).
+    """
+
+    mass: FloatArray
+    stiffness_linear: FloatArray
+    damping_linear: FloatArray
+    span_incidence: FloatArray
+    span_stiffness: FloatArray
+    span_damping: FloatArray
+    span_tension_only: NDArray[np.bool_]
+
+    @property
+    def size(self) -> int:
+        """Number of coordinates N."""
+        return int(self.mass.shape[0])
+
+    def stiffness(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
+        """K [N·m/rad] with the spans ``active`` (default all)."""
+        c = self.span_stiffness if active is None else self.span_stiffness * active
+        B = self.span_incidence
+        return self.stiffness_linear + (B.T * c) @ B
+
+    def damping(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
+        """C [N·m·s/rad] with the spans ``active`` (default all)."""
+        d = self.span_damping if active is None else self.span_damping * active
+        B = self.span_incidence
+        return self.damping_linear + (B.T * d) @ B
+
+    def scaled(self, stiffness: float = 1.0, inertia: float = 1.0) -> LinearModel:
+        """The same model with every stiffness times ``stiffness`` and every inertia times
+        ``inertia`` [-], dampers times √(stiffness·inertia) (damping ratios kept)."""
+        d = math.sqrt(stiffness * inertia)
+        return LinearModel(self.mass * inertia, self.stiffness_linear * stiffness,
+                           self.damping_linear * d, self.span_incidence,
+                           self.span_stiffness * stiffness, self.span_damping * d,
+                           self.span_tension_only)
+
+
+@dataclass(frozen=True, slots=True)
+class MotorPlacement:
+    """The motor of a drive model: the node its rotor is on and its law.
+
+    node, coordinate; gain g [-]: forward speed of the node ω = g q̇ [rad/s] (g > 0 turning as
+    in running); efficiency η [-] of the gear stages to the sprocket (the torque on q is
+    g·η·T); law(t, ω) [N·m]; nominal_speed [rad/s] of the node; rotor_inertia [kg·m²] (0:
+    not modelled); estimated: the rotor inertia is an estimate.
+    """
+
+    node: str
+    coordinate: int
+    gain: float
+    efficiency: float
+    law: Callable[[float, float], float]
+    nominal_speed: float
+    rotor_inertia: float
+    estimated: bool
+
+
+@dataclass(frozen=True, slots=True)
+class LoadPlacement:
+    """A driven machine: its node, the law of its moment and the torque at the nominal speed.
+
+    sprocket, node, coordinate; gain g [-] (forward speed ω = g q̇); efficiency η [-] of the
+    gear stages from the sprocket (the moment on q is −g·M·φ(ω/ω_n)/η); kind "constant",
+    "linear" or "quadratic"; torque M [N·m] at the nominal speed ω_n [rad/s] (its power share
+    P_i = M ω_n).
+    """
+
+    sprocket: str
+    node: str
+    coordinate: int
+    gain: float
+    efficiency: float
+    kind: str
+    torque: float
+    nominal_speed: float
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class DriveModel:
+    """The whole-drive model (module docstring) in the coordinates q of its
+    :class:`LinearModel`.
+
+    torsional : the :class:`TorsionalEngine` (nodes, elements; the modal analysis);
+    linear : its matrices in q (massless nodes condensed); condensation (size, N): the
+    reduced coordinates of :attr:`system` as T q; sprocket_names; sprocket_coordinate (n,),
+    sprocket_gain (n,) [-]: the forward angular speed of sprocket i is g_i q̇[k_i];
+    pitch_radii (n,) R [m]; mean_radii (n,) R̄ = z p/2π [m] (chain travel per radian);
+    nominal_speeds (n,) [rad/s]; rotor_names, rotor_coordinate, rotor_gain, rotor_nominal_speed:
+    every node of the trains with an inertia (motor and machines among them); motor; loads;
+    span_damping_ratios (S,) ζ of the chain spans [-] and their source; reference_frequency_hz
+    of the damping; contours m (the spans carry m contours: forces per contour are F/m);
+    ring: the ring reduction (reduced masses, series branch stiffnesses) for the ring-model
+    tools; driver_index;
+    missing: what makes the model incomplete (empty: complete); notes: what it rests on.
+    """
+
+    torsional: TorsionalEngine
+    system: TorsionalSystem
+    linear: LinearModel
+    condensation: FloatArray
+    sprocket_names: tuple[str, ...]
+    sprocket_coordinate: NDArray[np.intp]
+    sprocket_gain: FloatArray
+    pitch_radii: FloatArray
+    mean_radii: FloatArray
+    nominal_speeds: FloatArray
+    rotor_names: tuple[str, ...]
+    rotor_coordinate: NDArray[np.intp]
+    rotor_gain: FloatArray
+    rotor_nominal_speed: FloatArray
+    motor: MotorPlacement | None
+    loads: tuple[LoadPlacement, ...]
+    span_damping_ratios: FloatArray
+    damping_source: str
+    reference_frequency_hz: float
+    contours: int
+    ring: RingParameters
+    driver_index: int
+    missing: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+    trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
+    modes: TorsionalModes | None = None
+
+    @property
+    def complete(self) -> bool:
+        """True when the driver carries its motor and every driven sprocket its machine."""
+        return not self.missing
+
+    def modal(self) -> TorsionalModes:
+        """Undamped natural frequencies and shapes (:meth:`TorsionalEngine.modal`, computed
+        when the model was built)."""
+        return self.modes if self.modes is not None else self.torsional.modal()
+
+    def warnings(self) -> tuple[ChainDriveWarning, ...]:
+        """One ``dynamics.model-incomplete`` warning when the model is incomplete."""
+        if self.complete:
+            return ()
+        return (ChainDriveWarning(
+            "dynamics.model-incomplete", "dynamics",
+            "the dynamic model is incomplete (" + "; ".join(self.missing) + "): its natural "
+            "frequencies are upper bounds and the start-up is not meaningful; give the motor "
+            "([motor]) and what turns with every driven sprocket (its train, inertia or "
+            "reduced_mass)"),)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: completeness, trains, motor, loads, damping."""
+        m = self.motor
+        return {
+            "complete": self.complete,
+            "missing": list(self.missing),
+            "notes": list(self.notes),
+            "degrees_of_freedom": self.linear.size,
+            "nodes": self.torsional.to_dict()["nodes"],
+            "trains": self.trains,
+            "motor": None if m is None else {
+                "node": m.node, "rotor_inertia_kg_m2": m.rotor_inertia,
+                "rotor_inertia_estimated": m.estimated, "efficiency": m.efficiency,
+                "nominal_speed_rpm": m.nominal_speed * 30.0 / math.pi},
+            "loads": [{"sprocket": ld.sprocket, "node": ld.node, "law": ld.kind,
+                       "torque_n_m": ld.torque, "efficiency": ld.efficiency,
+                       "nominal_speed_rpm": ld.nominal_speed * 30.0 / math.pi}
+                      for ld in self.loads],
+            "span_damping_ratios": self.span_damping_ratios.tolist(),
+            "damping_source": self.damping_source,
+            "damping_reference_frequency_hz": self.reference_frequency_hz,
+            "span_stiffness_n_per_m": (self.linear.span_stiffness / self.contours).tolist(),
+            "sprocket_inertias_kg_m2": self.ring.inertias_kg_m2.tolist(),
+            "reduced_masses_kg": self.ring.masses_kg.tolist(),
+            "pitch_radii_m": self.pitch_radii.tolist(),
+            "wrap_stiffness_n_per_m": self.ring.wrap_stiffness_n_per_m.tolist(),
+            "chain_stiffness_n_per_m": self.ring.chain_stiffness_n_per_m.tolist(),
+            "sag_factors": self.ring.sag_factors.tolist(),
+            "span_tensions_n": (None if self.ring.span_tensions_n is None
+                                else self.ring.span_tensions_n.tolist()),
+            "link_stiffness_n_per_m": self.ring.link_stiffness_n_per_m,
+            "contours": self.contours,
+        }
+
+
+# --------------------------------------------------------------------------- completeness
+def model_completeness(drive: Drive) -> tuple[str, ...]:
+    """What the whole-drive model of ``drive`` lacks (empty when complete).
+
+    The driver needs its motor: a ``[motor]`` table, or (without a train) its ``inertia`` or
+    ``reduced_mass`` holding everything on its shaft; a driven sprocket needs what it drives:
+    a train, or its ``inertia`` or ``reduced_mass``. Idlers need nothing.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    tuple of str
+        One phrase per gap.
+    """
+    out = []
+    for s in drive.sprockets:
+        given = s.inertia is not None or s.reduced_mass is not None
+        if s.role == "driver" and drive.motor is None and (s.train or not given):
+            out.append(f"the driver {s.name} has no motor")
+        elif s.role == "driven" and not s.train and not given:
+            out.append(f"the driven sprocket {s.name} has nothing on its shaft")
+    return tuple(out)
+
+
+# --------------------------------------------------------------------------- the builder
+@dataclass(slots=True)
+class _Train:
+    """State of one train while it is built: its nodes and their kinematics."""
+
+    sprocket: str
+    node: str
+    speed: float          # nominal angular speed of the current node [rad/s], signed
+    efficiency: float     # product of the gear efficiencies from the sprocket
+    nodes: list[str] = field(default_factory=list)
+    description: list[dict[str, Any]] = field(default_factory=list)
+
+
+def _add_element(t: TorsionalEngine, tr: _Train, k: int, e: TrainElement,
+                 lookup: Callable[[str], Material], inward: bool) -> None:
+    """Add one train element outward from the train's current node."""
+    where = f"sprockets[{tr.sprocket}].train[{k}]"
+    if e.kind == "rotor":
+        if e.name and e.name != tr.node and tr.node != tr.sprocket:
+            if e.name in t.node_names:
+                raise DesignError(f"{where}.name", f"a node named {e.name!r} exists already")
+            t.rename_node(tr.node, e.name)
+            tr.nodes[-1] = tr.node = e.name
+        t.add_inertia_to(tr.node, e.inertia)
+        tr.description.append({"kind": "rotor", "node": tr.node, "inertia_kg_m2": e.inertia})
+        return
+    if e.kind == "ground":
+        assert e.stiffness is not None
+        t.add_ground_spring(tr.node, e.stiffness, e.damping, name=f"ground:{tr.node}:{k}")
+        tr.description.append({"kind": "ground", "node": tr.node,
+                                "stiffness_n_m_per_rad": e.stiffness,
+                                "damping_n_m_s_per_rad": e.damping})
+        return
+    new = e.name or f"{tr.sprocket}.{k + 1}"
+    if new in t.node_names:
+        raise DesignError(f"{where}.name", f"a node named {new!r} exists already")
+    t.add_inertia(new, e.inertia)
+    if e.kind in ("shaft", "coupling"):
+        if e.stiffness is not None:
+            k_t = e.stiffness
+        else:
+            assert e.diameter is not None and e.length is not None
+            k_t = shaft_stiffness(e.diameter, e.length, lookup(e.material).youngs_modulus)
+        t.add_shaft(tr.node, new, k_t, e.damping, name=f"{e.kind}:{tr.node}-{new}")
+        tr.description.append({"kind": e.kind, "from": tr.node, "to": new,
+                               "stiffness_n_m_per_rad": k_t, "damping_n_m_s_per_rad": e.damping,
+                               "inertia_kg_m2": e.inertia})
+    else:
+        assert e.ratio is not None
+        # ratio = input/output speed along the power flow: inward on the driver's train
+        mesh_ratio = 1.0 / e.ratio if inward else e.ratio  # ω_prev / ω_new
+        t.add_gear_mesh(tr.node, new, mesh_ratio, e.efficiency, same_sense=True,
+                        name=f"gear:{tr.node}-{new}")
+        tr.speed /= mesh_ratio
+        tr.efficiency *= e.efficiency
+        tr.description.append({"kind": "gear", "from": tr.node, "to": new, "ratio": e.ratio,
+                               "efficiency": e.efficiency, "inertia_kg_m2": e.inertia})
+    tr.node = new
+    tr.nodes.append(new)
+
+
+def _chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
+                   lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
+    """ζ of every span and of every sprocket's wrap [-], and their source."""
+    spec = drive.chain.spec
+    n = len(drive.sprockets)
+    chain_polymer = lookup(spec.material).is_polymer
+    sprocket_polymer = [lookup(s.material).is_polymer for s in drive.sprockets]
+    wraps = np.array([pair_damping_ratio(chain_polymer, p) for p in sprocket_polymer])
+    settings = drive.dynamics
+    if settings.damping_ratio is not None:
+        z = settings.damping_ratio
+        return np.full(n, z), np.full(n, z), "given ([dynamics] damping_ratio)"
+    spans = 0.5 * (wraps + np.roll(wraps, -1))
+    if settings.hinge_friction:
+        if ring.span_tensions_n is None:
+            raise DesignError("dynamics.hinge_friction", "needs the span tensions: give the "
+                              "drive's power")
+        lengths = np.array([sp.length for sp in geometry.spans])
+        spans = span_hinge_damping_ratios(ring.span_tensions_n, lengths, spec.pin_diameter,
+                                          settings.hinge_amplitude)
+        return spans, wraps, "hinge friction [ChainHingeDissipation]"
+    return spans, wraps, "material pair [MultimassChainDrives, Table 1]"
+
+
+def chain_damping_ratio(drive: Drive,
+                        material_lookup: Callable[[str], Material] | None = None) -> float:
+    """One damping ratio ζ [-] of a drive's chain: ``[dynamics] damping_ratio`` when given,
+    else the mean over its sprockets of the ratio of the chain/sprocket material pair
+    ([MultimassChainDrives], Table 1; :func:`chaindrive.dynamics.damping.pair_damping_ratio`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    material_lookup : callable | None
+        name → Material (None: the catalogue).
+
+    Returns
+    -------
+    float
+        ζ [-].
+    """
+    if drive.dynamics.damping_ratio is not None:
+        return drive.dynamics.damping_ratio
+    lookup = material_lookup or find_material
+    chain = lookup(drive.chain.spec.material).is_polymer
+    return float(np.mean([pair_damping_ratio(chain, lookup(s.material).is_polymer)
+                          for s in drive.sprockets]))
+
+
+def _motor_law(drive: Drive, rated_power: float, rated_speed: float
+               ) -> Callable[[float, float], float]:
+    """The torque law of the motor (``[motor]`` over ``[dynamics]``)."""
+    m, s = drive.motor, drive.dynamics
+    law = (m.law if m is not None and m.law is not None else s.motor)
+    lam = m.breakdown_ratio if m is not None and m.breakdown_ratio is not None else \
+        s.breakdown_ratio
+    sk = m.critical_slip if m is not None and m.critical_slip is not None else s.critical_slip
+    torque = m.torque if m is not None and m.torque is not None else rated_power / rated_speed
+    if law == "kloss":
+        return KlossMotor(rated_power, rated_speed, lam, sk)
+    if law == "ramp":
+        ramp = m.ramp_time if m is not None and m.ramp_time is not None else s.ramp_time
+        return RampTorque(torque, ramp)
+    return ConstantTorque(torque)
+
+
+def _rotor_inertia(drive: Drive, rated_power: float, rated_speed: float
+                   ) -> tuple[float, bool]:
+    """(J [kg·m²], estimated) of the motor's rotor (0 without a ``[motor]`` table)."""
+    m = drive.motor
+    if m is None:
+        return 0.0, False
+    if m.rotor_inertia is not None:
+        return m.rotor_inertia, False
+    s = drive.dynamics
+    lam = m.breakdown_ratio or s.breakdown_ratio
+    sk = m.critical_slip or s.critical_slip
+    synchronous = rated_speed / (1.0 - sk * (lam - math.sqrt(lam * lam - 1.0)))
+    try:
+        return estimated_rotor_inertia(rated_power, synchronous).inertia_kg_m2, True
+    except DesignError as exc:
+        raise DesignError("motor.rotor_inertia", f"cannot be estimated ({exc}); give the "
+                          "motor's rotor inertia, or a reducer on the driver's train") from None
+
+
+def _sprocket_senses(geometry: GeometryResult) -> FloatArray:
+    return np.array([-1.0 if g.side == "inside" else 1.0 for g in geometry.sprockets])
+
+
+def drive_model(drive: Drive, geometry: GeometryResult, *,
+                span_tensions: Sequence[float] | None = None,
+                material_lookup: Callable[[str], Material] | None = None) -> DriveModel:
+    """The whole-drive model of ``drive`` (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (all its power: with m contours the spans carry all m).
+    geometry : GeometryResult
+        Its contour (sprockets where the take-up put them).
+    span_tensions : sequence of float | None
+        Static tension of every span of one contour [N] for the sag stiffness and the hinge
+        friction (None: from the drive's loads when it has a power, else taut spans).
+    material_lookup : callable | None
+        name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    DriveModel
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1] (the ring of reduced masses it generalises), [Rao2011, ch. 6]
+    (torsional systems), [Guyan1965] (condensation).
+    """
+    lookup = _memoized(material_lookup or find_material)
+    ring = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                                 material_lookup=lookup)
+    model = _build(drive, geometry, ring, lookup)
+    modes = model.torsional.modal()
+    w_ref = _reference_angular_frequency(modes)
+    zs, zw, source = _chain_damping(drive, geometry, ring, lookup)
+    model.linear = _chain_dampers(model, zs, zw, w_ref)
+    missing = model_completeness(drive)
+    if missing and drive.dynamics.require_complete_model:
+        raise DesignError("dynamics.require_complete_model", "the dynamic model is incomplete: "
+                          + "; ".join(missing) + " (give the [motor] table and what turns with "
+                          "every driven sprocket, or set require_complete_model = false)")
+    values = {f.name: getattr(model, f.name) for f in fields(model)}
+    values.update(span_damping_ratios=zs, damping_source=source,
+                  reference_frequency_hz=w_ref / TWO_PI, missing=missing, modes=modes)
+    return DriveModel(**values)
+
+
+def _memoized(lookup: Callable[[str], Material]) -> Callable[[str], Material]:
+    """The material lookup with its answers kept (a catalogue search per sprocket is slow)."""
+    found: dict[str, Material] = {}
+
+    def get(name: str) -> Material:
+        if name not in found:
+            found[name] = lookup(name)
+        return found[name]
+
+    return get
+
+
+def _chain_dampers(model: _Built, span_zeta: FloatArray, wrap_zeta: FloatArray,
+                   w_ref: float) -> LinearModel:
+    """The linear model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
+    docstring); the torsional model's elements get them too."""
+    lin, sys, t = model.linear, model.system, model.torsional
+    if w_ref <= 0:
+        return lin
+    d_span = 2.0 * span_zeta * lin.span_stiffness / w_ref
+    kinds = np.array(sys.element_kinds)
+    wraps = np.flatnonzero(kinds == "wrap")
+    d_wrap = 2.0 * wrap_zeta * sys.element_stiffness[wraps] / w_ref
+    Bw = sys.element_incidence[wraps] @ model.condensation
+    for name, d in zip(sys.span_names, d_span.tolist(), strict=True):
+        t.set_damping(name, d)
+    for k, d in zip(wraps.tolist(), d_wrap.tolist(), strict=True):
+        t.set_damping(sys.element_names[k], d)
+    return LinearModel(lin.mass, lin.stiffness_linear, lin.damping_linear + (Bw.T * d_wrap) @ Bw,
+                       lin.span_incidence, lin.span_stiffness, d_span, lin.span_tension_only)
+
+
+def _reference_angular_frequency(modes: TorsionalModes) -> float:
+    """ω [rad/s] of the first elastic mode in which the chain's elements (spans and wraps)
+    hold at least :data:`CHAIN_MODE_SHARE` of the strain energy (else the first elastic)."""
+    kinds = np.array(modes.system.element_kinds)
+    chain = (kinds == "span") | (kinds == "wrap")
+    shares = modes.strain_energy_shares[chain].sum(axis=0)
+    elastic = np.flatnonzero(~modes.rigid_body)
+    if elastic.size == 0:
+        return 0.0
+    for j in elastic:
+        if shares[j] >= CHAIN_MODE_SHARE:
+            return float(modes.angular_frequencies_rad_s[j])
+    return float(modes.angular_frequencies_rad_s[elastic[0]])
+
+
+@dataclass(slots=True)
+class _Built:
+    """What :func:`_build` returns (the fields of :class:`DriveModel` it fills)."""
+
+    torsional: TorsionalEngine
+    system: TorsionalSystem
+    linear: LinearModel
+    condensation: FloatArray
+    sprocket_names: tuple[str, ...]
+    sprocket_coordinate: NDArray[np.intp]
+    sprocket_gain: FloatArray
+    pitch_radii: FloatArray
+    mean_radii: FloatArray
+    nominal_speeds: FloatArray
+    rotor_names: tuple[str, ...]
+    rotor_coordinate: NDArray[np.intp]
+    rotor_gain: FloatArray
+    rotor_nominal_speed: FloatArray
+    motor: MotorPlacement | None
+    loads: tuple[LoadPlacement, ...]
+    span_damping_ratios: FloatArray
+    damping_source: str
+    reference_frequency_hz: float
+    contours: int
+    ring: RingParameters
+    driver_index: int
+    notes: tuple[str, ...]
+    trains: dict[str, list[dict[str, Any]]]
+
+
+def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
+           lookup: Callable[[str], Material]) -> _Built:
+    """The model without the chain's dampers (they follow from its modes)."""
+    spec = drive.chain.spec
+    m = drive.chain.contours
+    q = spec.mass_per_length * m
+    names = [s.name for s in drive.sprockets]
+    n = len(names)
+    sense = _sprocket_senses(geometry)
+    R = ring.pitch_radii_m
+    Rbar = np.array([s.teeth for s in drive.sprockets], float) * spec.pitch / TWO_PI
+    w_d = drive.driver.speed or 1.0
+    speeds = sense * w_d * drive.driver.teeth / np.array([s.teeth for s in drive.sprockets])
+    t = TorsionalEngine()
+    chain = [CHAIN_NODE.format(x) for x in names]
+    for i, g in enumerate(geometry.sprockets):
+        t.add_inertia(names[i], float(ring.inertias_kg_m2[i]))
+        t.add_inertia(chain[i], q * g.pitch_radius * g.wrap_angle)
+    k_span = ring.chain_stiffness_n_per_m * ring.sag_factors * m
+    k_wrap = ring.wrap_stiffness_n_per_m * m
+    for i, sp in enumerate(geometry.spans):
+        b = (i + 1) % n
+        t.add_span(chain[i], chain[b], float(k_span[i]), 1.0, 1.0, mass=q * sp.length,
+                   consistent_mass=True, name=f"span:{names[i]}-{names[b]}")
+    for i in range(n):
+        t.add_link(names[i], chain[i], float(k_wrap[i]), float(sense[i] * R[i]), 1.0,
+                   name=f"wrap:{names[i]}", kind="wrap")
+    trains: dict[str, _Train] = {}
+    for i, s in enumerate(drive.sprockets):
+        tr = _Train(s.name, s.name, float(speeds[i]), 1.0)
+        for k, e in enumerate(s.train):
+            _add_element(t, tr, k, e, lookup, inward=s.role == "driver")
+        trains[s.name] = tr
+    notes: list[str] = []
+    motor_node = trains[drive.driver.name].node
+    rated_power = (drive.motor.rated_power if drive.motor and drive.motor.rated_power
+                   else drive.power)
+    nominal_motor = abs(trains[drive.driver.name].speed)
+    rated_speed = (drive.motor.rated_speed if drive.motor and drive.motor.rated_speed
+                   else nominal_motor)
+    j_rotor, estimated = (0.0, False) if rated_power is None else \
+        _rotor_inertia(drive, rated_power, rated_speed)
+    if j_rotor > 0:
+        t.add_inertia_to(motor_node, j_rotor)
+    if estimated:
+        notes.append(f"the motor's rotor inertia {j_rotor:.4g} kg·m² is estimated from its "
+                     "rated power and speed [MotiveDelphi] (a factor 2 either way)")
+    system = t.system()
+    T, lin, massed_index = _condensed(system, notes)
+    return _placements(drive, t, system, T, lin, massed_index, trains, speeds, R, Rbar, ring,
+                       rated_power, rated_speed, j_rotor, estimated, notes)
+
+
+def _condensed(system: TorsionalSystem, notes: list[str]
+               ) -> tuple[FloatArray, LinearModel, NDArray[np.intp]]:
+    """(T, linear model in q, index of each reduced coordinate in q or −1): static condensation
+    of the massless coordinates [Guyan1965]."""
+    massless = system.mass <= 0.0
+    n = system.size
+    K = system.stiffness_linear
+    C = system.damping_linear
+    if massless.any():
+        massed = ~massless
+        K00 = K[np.ix_(massless, massless)]
+        try:
+            X = np.linalg.solve(K00, K[np.ix_(massless, massed)])
+        except np.linalg.LinAlgError:
+            free = [nm for nm, k in zip(system.node_names, system.node_dof, strict=True)
+                    if massless[k]]
+            raise DesignError("train", f"massless node(s) among {free} are held by no spring: "
+                              "give them an inertia") from None
+        T = np.zeros((n, int(massed.sum())))
+        T[massed] = np.eye(T.shape[1])
+        T[massless] = -X
+        if np.any(C[massless]):
+            notes.append("dampers on massless nodes are condensed with their static shape "
+                         "(approximate)")
+    else:
+        T = np.eye(n)
+    index = np.full(n, -1, dtype=np.intp)
+    index[~massless] = np.arange(int((~massless).sum()))
+    M = T.T @ system.mass_matrix() @ T
+    lin = LinearModel(M, T.T @ K @ T, T.T @ C @ T, system.span_incidence @ T,
+                      system.span_stiffness_n_per_m.copy(), system.span_damping_n_s_per_m.copy(),
+                      system.span_tension_only.copy())
+    return T, lin, index
+
+
+def _node_coordinate(system: TorsionalSystem, T: FloatArray, node: str) -> tuple[int, float]:
+    """(coordinate k of q, factor f): the node turns by f·q_k (a node condensed rigidly onto
+    one massed coordinate, e.g. a massless end, maps to that coordinate)."""
+    k, f = system.dof_of(node)
+    row = T[k]
+    nz = np.flatnonzero(np.abs(row) > 1e-12 * max(1.0, np.abs(row).max()))
+    if nz.size != 1:
+        raise DesignError(node, "a motor or a machine must sit on a node with an inertia")
+    return int(nz[0]), float(f * row[nz[0]])
+
+
+def _placements(drive: Drive, t: TorsionalEngine, system: TorsionalSystem, T: FloatArray,
+                lin: LinearModel, index: NDArray[np.intp], trains: dict[str, _Train],
+                speeds: FloatArray, R: FloatArray, Rbar: FloatArray, ring: RingParameters,
+                rated_power: float | None, rated_speed: float, j_rotor: float,
+                estimated: bool, notes: list[str]) -> _Built:
+    """Coordinates of the sprockets, rotors, motor and machines."""
+    names = tuple(s.name for s in drive.sprockets)
+    sc, sg = zip(*(_node_coordinate(system, T, x) for x in names), strict=True)
+    s_coord = np.array(sc, dtype=np.intp)
+    s_gain = np.array(sg) * np.sign(speeds)
+    rotors = [x for tr in trains.values() for x in tr.nodes
+              if system.node_inertia_kg_m2[system.node_names.index(x)] > 0]
+    rot = [_node_coordinate(system, T, x) for x in rotors]
+    nominal = {x: tr.speed for tr in trains.values() for x in tr.nodes}
+    nominal.update({tr.node: tr.speed for tr in trains.values()})
+    r_gain = np.array([f * math.copysign(1.0, nominal[x]) for x, (_, f) in
+                       zip(rotors, rot, strict=True)])
+    motor = None
+    if rated_power is not None and drive.driver.speed is not None:
+        tr = trains[drive.driver.name]
+        k, f = _node_coordinate(system, T, tr.node)
+        motor = MotorPlacement(tr.node, k, f * math.copysign(1.0, tr.speed), tr.efficiency,
+                               _motor_law(drive, rated_power, rated_speed), abs(tr.speed),
+                               j_rotor, estimated)
+    loads = []
+    if drive.power is not None and drive.driver.speed is not None:
+        shares = power_shares(drive)
+        for i, s in enumerate(drive.sprockets):
+            if shares[i] <= 0:
+                continue
+            tr = trains[s.name]
+            k, f = _node_coordinate(system, T, tr.node)
+            w_n = abs(tr.speed)
+            loads.append(LoadPlacement(s.name, tr.node, k, f * math.copysign(1.0, tr.speed),
+                                       tr.efficiency, s.load or drive.dynamics.resistance,
+                                       shares[i] * drive.power / w_n, w_n))
+    return _Built(
+        torsional=t, system=system, linear=lin, condensation=T, sprocket_names=names,
+        sprocket_coordinate=s_coord, sprocket_gain=s_gain, pitch_radii=R, mean_radii=Rbar,
+        nominal_speeds=np.abs(speeds), rotor_names=tuple(rotors),
+        rotor_coordinate=np.array([k for k, _ in rot], dtype=np.intp), rotor_gain=r_gain,
+        rotor_nominal_speed=np.array([abs(nominal[x]) for x in rotors]), motor=motor,
+        loads=tuple(loads), span_damping_ratios=np.zeros(len(names)), damping_source="",
+        reference_frequency_hz=0.0, contours=drive.chain.contours, ring=ring,
+        driver_index=drive.driver_index, notes=tuple(notes),
+        trains={k: v.description for k, v in trains.items() if v.description})

@@ -1,0 +1,51 @@
+"""Warnings of the whole-drive dynamics: an incomplete model, estimated inputs, a resonance
+inside the band of uncertain stiffness and inertia, hinge friction outside its data."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from chaindrive.errors import ChainDriveWarning
+
+if TYPE_CHECKING:
+    from chaindrive.dynamics.drive_model import DriveModel
+    from chaindrive.dynamics.drive_response import Bands
+
+__all__ = ["dynamics_warnings"]
+
+
+def dynamics_warnings(model: DriveModel, bands: Bands) -> list[ChainDriveWarning]:
+    """The warnings of a drive model and its bands.
+
+    Parameters
+    ----------
+    model : DriveModel
+        The whole-drive model (completeness, estimates, damping source).
+    bands : Bands
+        The bands for the design's uncertainty.
+
+    Returns
+    -------
+    list of ChainDriveWarning
+        ``dynamics.model-incomplete`` (its frequencies are upper bounds, the start-up not
+        meaningful), ``dynamics.estimate`` (an input the model estimated),
+        ``dynamics.resonance-in-band`` (a working frequency inside the band of a natural
+        frequency), ``dynamics.hinge-friction-extrapolated``.
+    """
+    out = list(model.warnings())
+    out += [ChainDriveWarning("dynamics.estimate", "motor.rotor_inertia", note)
+            for note in model.notes if "estimated" in note]
+    inside = bands.resonances_inside
+    if inside:
+        pct = f"{100 * bands.uncertainty:g}"
+        out.append(ChainDriveWarning(
+            "dynamics.resonance-in-band", "dynamics",
+            f"{', '.join(inside)} lie(s) within the band of a natural frequency for ±{pct} % "
+            "on every stiffness and inertia: a resonance cannot be ruled out; detune the "
+            "drive (masses, span lengths, teeth) or know its parameters better"))
+    if model.damping_source.startswith("hinge friction"):
+        out.append(ChainDriveWarning(
+            "dynamics.hinge-friction-extrapolated", "dynamics.hinge_friction",
+            "the hinge-friction damping rests on the friction fit of one chain "
+            "(ПР-12,7-1820-1) [ChainHingeDissipation]; for this chain it is an extrapolation"))
+    return out
