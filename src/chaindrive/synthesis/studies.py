@@ -2,7 +2,9 @@
 populations on Dask, stored in a study database.
 
 * Dask: a :class:`distributed.LocalCluster` of worker processes by default, or an existing
-  cluster when a scheduler address is given (``tcp://host:8786``).
+  cluster when a scheduler address is given (``tcp://host:8786``). One cluster serves a
+  whole study: :class:`DaskEvaluator` starts it on the optimiser's first population and
+  keeps it for every generation (closed with the evaluator).
 * Storage: SQLAlchemy, a SQLite file by default (``sqlite:///study.db``) or any URL it
   accepts (``postgresql+psycopg://user@host/db``). Each evaluation is stored once, keyed by
   the SHA-256 of its inputs (and the study and function names). A second insert of a key
@@ -14,7 +16,9 @@ populations on Dask, stored in a study database.
   client stores each finished evaluation of a batch before it re-raises a failure. So a
   study that stops (an exception, Ctrl-C) resumes where it stopped: finished keys are read,
   not recomputed. A worker lost mid-chunk takes only that chunk's work with it; the
-  scheduler runs the chunk again elsewhere, and nothing stored is lost.
+  scheduler runs the chunk again elsewhere, and nothing stored is lost. A chunk whose
+  workers keep dying (Dask gives up on it after its ``allowed-failures``) is submitted
+  again, up to :data:`RESUBMITS` times, with only its unfinished evaluations.
 * A rich progress bar while it runs, silent when the output is not a terminal.
 
 Compute functions receive one JSON-ready input mapping and return a JSON-ready mapping;
@@ -52,10 +56,13 @@ from sqlalchemy.exc import IntegrityError
 
 from chaindrive.errors import ChainDriveError, DesignError
 
-__all__ = ["StudyResult", "StudyStore", "dask_evaluator", "evaluate_design", "input_key",
+__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
+           "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
+#: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
+RESUBMITS = 3
 _META = MetaData()
 EVALUATIONS = Table(
     "evaluations", _META,
@@ -92,9 +99,11 @@ class StudyStore:
     def __init__(self, url: str = DEFAULT_DB) -> None:
         try:
             self.engine = create_engine(url)
-        except Exception as exc:  # sqlalchemy raises several types for a bad URL
-            raise DesignError("db", f"cannot open the study database {url!r} ({exc})") from None
-        _META.create_all(self.engine)
+            _META.create_all(self.engine)
+        except Exception as exc:  # sqlalchemy raises several types for a bad URL or file
+            reason = str(getattr(exc, "orig", None) or exc).splitlines()[0][:200]
+            raise DesignError("db", f"cannot open the study database {url[:200]!r} "
+                              f"({type(exc).__name__}: {reason})") from None
         self.url = url
 
     def keys(self, study: str) -> set[str]:
@@ -208,13 +217,28 @@ def _chunk_size(count: int, workers: int) -> int:
 
 
 def _client(scheduler: str | None, n_workers: int | None) -> tuple[Any, Any]:
+    """A client of the scheduler at ``scheduler``, or of a new LocalCluster (one try more
+    when a worker is lost while the cluster starts)."""
     from distributed import Client, LocalCluster
 
     if scheduler:
-        return Client(scheduler), None
-    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0")
-    return Client(cluster), cluster
+        try:
+            return Client(scheduler, timeout="30s"), None
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise DesignError("scheduler", f"cannot reach the Dask scheduler {scheduler[:200]!r} "
+                              f"({type(exc).__name__})") from None
+    for attempt in (1, 2):
+        cluster = None
+        try:
+            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0")
+            return Client(cluster), cluster
+        except Exception:
+            if cluster is not None:
+                cluster.close()
+            if attempt == 2:
+                raise
+    raise AssertionError("unreachable")
 
 
 def _progress(enabled: bool | None) -> Any:
@@ -228,20 +252,58 @@ def _progress(enabled: bool | None) -> Any:
                     disable=not show)
 
 
-def _finished(batch: Sequence[Any], todo: Mapping[str, Any]
-              ) -> tuple[list[tuple[str, Any, Any]], BaseException | None]:
-    """(key, inputs, result) of every evaluation the futures of ``batch`` finished, and the
-    first failure among them (an evaluation that raised, or a task Dask gave up on)."""
-    rows: list[tuple[str, Any, Any]] = []
-    failure: BaseException | None = None
-    for fut in batch:
-        try:
-            done, exc = fut.result()
-        except Exception as lost:  # the task itself failed (e.g. its workers kept dying)
-            done, exc = [], lost
-        rows += [(k, todo[k], r) for k, r in done]
-        failure = failure or exc
-    return rows, failure
+def _lost(exc: BaseException) -> bool:
+    """True when a task failed because its workers were lost (not by its own error)."""
+    from distributed import KilledWorker
+
+    return isinstance(exc, KilledWorker)
+
+
+def _submit(client: Any, func: Callable[[Any], Any], items: list[tuple[str, Any]], key: str
+            ) -> Any:
+    return client.submit(_chunk, func, items, key=key, pure=False)
+
+
+def _evaluate_on(client: Any, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
+                 store: StudyStore, bar: Any, task: Any, chunk: int | None) -> int:
+    """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
+    stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
+    failure is raised after the finished evaluations are stored."""
+    from distributed import as_completed
+
+    run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
+    items = list(todo.items())
+    size = chunk or _chunk_size(len(items), len(client.scheduler_info()["workers"]))
+    chunks = {_submit(client, func, items[i:i + size], f"{study}-{items[i][0]}-{run}"):
+              (items[i:i + size], 0) for i in range(0, len(items), size)}
+    pending = as_completed(list(chunks))
+    computed = 0
+    try:
+        for batch in pending.batches():
+            failure: BaseException | None = None
+            rows: list[tuple[str, Any, Any]] = []
+            for fut in batch:
+                part, tries = chunks.pop(fut)
+                try:
+                    done, exc = fut.result()
+                except Exception as lost:  # the task itself failed (e.g. its workers died)
+                    done, exc = [], lost
+                rows += [(k, todo[k], r) for k, r in done]
+                finished = {k for k, _ in done}
+                rest = [(k, x) for k, x in part if k not in finished]
+                if exc is not None and _lost(exc) and rest and tries < RESUBMITS:
+                    again = _submit(client, func, rest, f"{study}-{rest[0][0]}-{run}-{tries + 1}")
+                    chunks[again] = (rest, tries + 1)
+                    pending.add(again)
+                    continue
+                failure = failure or exc
+            computed += store.put_many(study, rows)
+            bar.advance(task, len(rows))
+            if failure is not None:
+                raise failure
+    finally:
+        client.cancel(list(chunks))
+    return computed
 
 
 def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
@@ -252,12 +314,10 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
 
     study : name of the study in the database; db : URL or an open store; scheduler : address
     of an existing Dask scheduler (None: a LocalCluster of ``n_workers`` processes, closed at
-    the end); client : an existing :class:`distributed.Client` (takes precedence);
+    the end); client : an existing :class:`distributed.Client` (takes precedence; left open);
     progress : None = only on a terminal; chunk : evaluations per Dask task (None: by the
     number of workers, :func:`_chunk_size`). Inputs whose key is stored are not recomputed.
     """
-    from distributed import as_completed
-
     store = db if isinstance(db, StudyStore) else StudyStore(db)
     name = f"{func.__module__}.{func.__qualname__}"
     keys = [input_key(name, x) for x in inputs]
@@ -272,26 +332,11 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
         cluster = None
         if own:
             client, cluster = _client(scheduler, n_workers)
-        run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
-        futures: dict[Any, str] = {}
         try:
-            items = list(todo.items())
-            size = chunk or _chunk_size(len(items), len(client.scheduler_info()["workers"]))
-            futures = {client.submit(_chunk, func, items[i:i + size],
-                                     key=f"{study}-{items[i][0]}-{run}"): i
-                       for i in range(0, len(items), size)}
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
-                # results are stored as they arrive, in the batches Dask hands over; every
-                # evaluation a batch finished is stored before a failure in it is re-raised
-                for batch in as_completed(futures).batches():
-                    rows, failure = _finished(batch, todo)
-                    computed += store.put_many(study, rows)
-                    bar.advance(task, len(rows))
-                    if failure is not None:
-                        raise failure
+                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk)
         finally:
-            client.cancel(list(futures))
             if own:
                 client.close()
                 if cluster is not None:
@@ -425,22 +470,59 @@ def problem_fingerprint(problem: Any) -> str:
                                  problem.ratio_tolerance]).encode()).hexdigest()[:16]
 
 
-def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                   scheduler: str | None = None, client: Any = None,
-                   progress: bool | None = False) -> Callable[..., list[tuple[Any, Any]]]:
-    """A batch evaluator for :func:`chaindrive.synthesis.solve.solve` that runs each population
-    on Dask and stores it (study default: ``optimize-<problem hash>``), so a rerun with the same
-    seed resumes from the database."""
-    from chaindrive.synthesis.evaluation import Evaluation
+class DaskEvaluator:
+    """A batch evaluator for :func:`chaindrive.synthesis.solve.solve` that runs each
+    population on one Dask cluster and stores it (study default: ``optimize-<problem
+    hash>``), so a rerun with the same seed resumes from the database.
 
-    store = db if isinstance(db, StudyStore) else StudyStore(db)
+    The cluster (a LocalCluster unless ``scheduler`` or ``client`` is given) starts with the
+    first population and serves every generation; :meth:`close` (or leaving a ``with``
+    block) shuts it down. A worker lost at any time costs only the chunk it was running,
+    which runs again (:func:`run_study`).
 
-    def evaluate(problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
-        name = study or f"optimize-{problem_fingerprint(problem)}"
+    Parameters
+    ----------
+    db : str | StudyStore
+        The study database.
+    study : str | None
+        Name of the study (None: from the problem's fingerprint).
+    scheduler : str | None
+        Address of an existing scheduler.
+    client : distributed.Client | None
+        An existing client (left open by :meth:`close`).
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+    n_workers : int | None
+        Workers of the LocalCluster (None: Dask's default).
+    """
+
+    def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
+                 scheduler: str | None = None, client: Any = None,
+                 progress: bool | None = False, n_workers: int | None = None) -> None:
+        self.store = db if isinstance(db, StudyStore) else StudyStore(db)
+        self.study = study
+        self.scheduler = scheduler
+        self.progress = progress
+        self.n_workers = n_workers
+        self._client = client
+        self._own = client is None
+        self._cluster: Any = None
+
+    @property
+    def client(self) -> Any:
+        """The Dask client, started on first use."""
+        if self._client is None:
+            self._client, self._cluster = _client(self.scheduler, self.n_workers)
+        return self._client
+
+    def __call__(self, problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
+        from chaindrive.synthesis.evaluation import Evaluation
+
         fp = problem_fingerprint(problem)
+        name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
-        res = run_study(_evaluate_vector, wrapped, study=name, db=store, scheduler=scheduler,
-                        client=client, progress=progress)
+        res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
+                        client=self.client, progress=self.progress)
         out = []
         for r in res.results:
             e = r["evaluation"]
@@ -448,7 +530,27 @@ def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = Non
                                    e["error"]), r["design"]))
         return out
 
-    return evaluate
+    def close(self) -> None:
+        """Shut down the cluster this evaluator started (an existing client is left open)."""
+        if self._own and self._client is not None:
+            self._client.close()
+            if self._cluster is not None:
+                self._cluster.close()
+            self._client = self._cluster = None
+
+    def __enter__(self) -> DaskEvaluator:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
+                   scheduler: str | None = None, client: Any = None,
+                   progress: bool | None = False) -> DaskEvaluator:
+    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done)."""
+    return DaskEvaluator(db=db, study=study, scheduler=scheduler, client=client,
+                         progress=progress)
 
 
 class _VectorInput(dict):  # type: ignore[type-arg]

@@ -1,0 +1,166 @@
+"""Plausibility limits of what chaindrive reads: file sizes, and the physical ranges of the
+numbers of a design and of a catalogue row.
+
+A value outside its range is refused with one :class:`~chaindrive.errors.DesignError`
+line (the command line exits 2) before any computation: a number no drive can have never
+reaches a formula where it would overflow, allocate gigabytes or give a NaN. The ranges are
+wide — they bound what is physically possible, not what is good design (the checks judge
+that) — and each states its reason; ``chaindrive schema`` prints them. The ranges of the
+design fields are on the fields themselves (:mod:`chaindrive.io.design`); this module holds
+the file limits, the catalogue columns and the checks that need more than one field.
+
+References
+----------
+[ISO606], [Shigley2015], [Irvine1981], [Lyashuk]
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from chaindrive.errors import CatalogError, DesignError
+from chaindrive.model import Drive
+
+__all__ = ["CATALOG_LIMITS", "MAX_CATALOG_BYTES", "MAX_DESIGN_BYTES", "MIN_INERTIA_SHARE",
+           "Range", "check_catalog_value", "check_file_size", "check_inertias", "shown_key"]
+
+#: Largest design file read [bytes]: the largest example is under 4 kB; a design of 24
+#: sprockets with every field set and an [optimize] table stays under 20 kB.
+MAX_DESIGN_BYTES = 1_000_000
+#: Largest catalogue file read [bytes] (the packaged ISO 606 file is about 20 kB).
+MAX_CATALOG_BYTES = 5_000_000
+#: A sprocket's given inertia must be at least this share of the inertia of its own plate
+#: (estimated as the dynamics does when none is given).
+MIN_INERTIA_SHARE = 0.1
+
+
+@dataclass(frozen=True, slots=True)
+class Range:
+    """An allowed range [low, high] in SI, and why.
+
+    Attributes
+    ----------
+    low, high : float
+        The bounds [SI unit of the value].
+    reason : str
+        Where the bounds come from (shown by ``chaindrive schema``).
+    """
+
+    low: float
+    high: float
+    reason: str
+
+    def contains(self, value: float) -> bool:
+        """True for a finite value within [low, high]."""
+        return math.isfinite(value) and self.low <= value <= self.high
+
+
+#: Catalogue columns (CSV name; the TOML keys map to them) → allowed range in the file's
+#: units (mm, kN, kg/m, mm², m/s). Roller chains of [ISO606] run from 8 mm to 114.3 mm pitch
+#: with breaking loads from 4.4 kN to 1 800 kN; the ranges leave a factor of about 5 beyond
+#: (polymer and special chains) and refuse what no chain can be.
+CATALOG_LIMITS: dict[str, Range] = {
+    "pitch_mm": Range(1.0, 500.0, "chain pitches of [ISO606] run from 8 to 114.3 mm"),
+    "roller_diameter_mm": Range(0.5, 500.0, "roller diameters below the pitch"),
+    "pin_diameter_mm": Range(0.2, 250.0, "pin diameters below the roller diameter"),
+    "inner_width_mm": Range(0.5, 500.0, "inner widths of [ISO606] chains: 3 to 69 mm"),
+    "plate_depth_mm": Range(0.5, 500.0, "plate depths below the pitch × 1.5"),
+    "transverse_pitch_mm": Range(0.0, 1000.0, "transverse pitches of [ISO606]: up to 117 mm"),
+    "breaking_load_kN": Range(0.01, 20_000.0,
+                              "breaking loads of [ISO606] chains: 4.4 to 1 800 kN"),
+    "mass_kg_m": Range(0.001, 1000.0, "chain masses of [ISO606] chains: 0.18 to 122 kg/m"),
+    "bearing_area_mm2": Range(0.1, 1_000_000.0, "projected hinge areas d₂·B of real chains"),
+    "allowable_load_kN": Range(0.001, 20_000.0, "at most the breaking-load range"),
+    "max_speed_m_s": Range(0.001, 100.0, "roller chains run at up to about 30 m/s"),
+    "density_kg_m3": Range(100.0, 25_000.0, "from foamed polymers to tungsten"),
+    "youngs_modulus_GPa": Range(0.01, 1000.0, "from soft polymers to carbides"),
+    "tensile_strength_MPa": Range(1.0, 10_000.0, "from soft polymers to high-strength steel"),
+    "friction_vs_steel": Range(0.01, 2.0, "dry friction coefficients of engineering pairs"),
+}
+
+
+def check_catalog_value(column: str, value: float, where: str) -> float:
+    """``value`` of a catalogue ``column`` (in the file's units) when it lies in
+    :data:`CATALOG_LIMITS`; otherwise a :class:`CatalogError` naming ``where``.
+
+    Parameters
+    ----------
+    column : str
+        The CSV column name (``pitch_mm`` …).
+    value : float
+        The number as read [the column's unit].
+    where : str
+        File, row and column, for the message.
+
+    Returns
+    -------
+    float
+        ``value`` unchanged.
+    """
+    limit = CATALOG_LIMITS.get(column)
+    if limit is not None and not limit.contains(value):
+        raise CatalogError(where, f"{value:g} is outside the plausible range {limit.low:g} to "
+                           f"{limit.high:g} ({limit.reason})")
+    return value
+
+
+def check_file_size(size: int, limit: int, name: str, what: str) -> None:
+    """Refuse a file larger than ``limit`` [bytes] with one line naming it."""
+    if size > limit:
+        raise DesignError(name, f"is {size:,} bytes, too large for a {what} (at most "
+                          f"{limit:,} bytes)")
+
+
+def shown_key(key: object, limit: int = 60) -> str:
+    """A key of a design file (or a file name) as an error path shows it: control
+    characters escaped (a key with a newline keeps the message on one line), at most
+    ``limit`` characters."""
+    text = str(key)
+    if text.isprintable() and len(text) <= limit:
+        return text
+    escaped = text if text.isprintable() else text.encode("unicode_escape").decode("ascii")
+    return escaped if len(escaped) <= limit else escaped[:limit - 1] + "…"
+
+
+def check_inertias(drive: Drive) -> None:
+    """Refuse a sprocket whose given inertia is below :data:`MIN_INERTIA_SHARE` of the
+    inertia of its own plate.
+
+    The inertia of a sprocket is that of *everything turning with it*, so it cannot be less
+    than the sprocket's own; the plate estimate is the one the dynamics uses when no inertia
+    is given (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`: a plate of the
+    chain's width with lightening holes), and a tenth of it leaves room for spoked or
+    polymer wheels. A smaller value is a slip of a unit (g for kg, mm² for m²) — and would
+    make the ring's highest natural frequency, and with it the start-up's step count, grow
+    as 1/√J.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design as read.
+
+    Raises
+    ------
+    DesignError
+        On ``sprockets[i].inertia`` with the value and the least plausible one [kg·m²].
+    """
+    from chaindrive.catalog import find_material
+    from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
+
+    spec = drive.chain.spec
+    for i, s in enumerate(drive.sprockets):
+        if s.inertia is None:
+            continue
+        material = find_material(s.material, field=f"sprockets[{i}].material")
+        plate = sprocket_mass_and_inertia(
+            spec.pitch, s.teeth, spec.inner_width, material.density, material.is_polymer,
+            strands=spec.strands, transverse_pitch=spec.transverse_pitch).moment_of_inertia
+        least = MIN_INERTIA_SHARE * plate
+        if s.inertia < least:
+            raise DesignError(
+                f"sprockets[{i}].inertia",
+                f"{s.inertia:.3g} kg·m² is less than a tenth of the inertia of the sprocket's "
+                f"own plate ({plate:.3g} kg·m² for {s.teeth} teeth of {spec.designation} in "
+                f"{material.name}); give the inertia of everything turning with it, at least "
+                f"{least:.3g} kg·m²")
