@@ -2,6 +2,10 @@
 drawing as bytes. Each part may be missing from an installation (a module not written yet,
 an optional dependency not installed): :func:`missing` says why, and the page shows that
 instead of the tab's button.
+
+The ``bounded_*`` functions are what the page calls: each runs its work in a child process
+with a time and memory limit (:func:`chaindrive.app.worker.run_bounded`), so that one
+session's heavy design never stalls the server for the others.
 """
 
 from __future__ import annotations
@@ -11,8 +15,14 @@ import io
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from chaindrive.app.worker import FULL_SECONDS, INTERACTIVE_SECONDS, run_bounded
+from chaindrive.errors import ChainDriveError
+
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from chaindrive.analysis import Analysis
+    from chaindrive.app.views import Screen
     from chaindrive.model import Drive
 
 #: What each on-demand feature needs: feature → modules that must be importable.
@@ -71,3 +81,42 @@ def figure_png(fig: Any, dpi: int = 100) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     return buf.getvalue()
+
+
+def full_report(drive: Drive) -> bytes:
+    """The HTML report of the :func:`full_analysis` of ``drive`` (one run: analysis and
+    report in the same process)."""
+    return report_html(full_analysis(drive))
+
+
+def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
+    """:func:`chaindrive.app.views.recompute` in a bounded run; a run past its limit is shown
+    as the design's message (never raises)."""
+    from chaindrive.app.state import Location, Outcome
+    from chaindrive.app.views import Screen, recompute
+
+    try:
+        return run_bounded(recompute, design, catalogs, seconds=INTERACTIVE_SECONDS,
+                           what="the analysis")
+    except ChainDriveError as exc:
+        return Screen(Outcome(message=str(exc), location=Location("design")))
+    except Exception as exc:  # the page must never show a traceback
+        return Screen(Outcome(unexpected=True, location=Location("design"),
+                              message=f"the analysis failed unexpectedly ({exc})"[:300]))
+
+
+def bounded_full_analysis(drive: Drive) -> Analysis:
+    """:func:`full_analysis` in a bounded run (raises its ChainDriveError, or
+    RunLimitError)."""
+    return run_bounded(full_analysis, drive, seconds=FULL_SECONDS,
+                       what="the dynamic analysis")
+
+
+def bounded_report(drive: Drive) -> bytes:
+    """:func:`full_report` in a bounded run."""
+    return run_bounded(full_report, drive, seconds=FULL_SECONDS, what="the report")
+
+
+def bounded_drawing(analysis: Analysis) -> bytes:
+    """:func:`drawing_dxf` in a bounded run."""
+    return run_bounded(drawing_dxf, analysis, seconds=FULL_SECONDS, what="the drawing")
