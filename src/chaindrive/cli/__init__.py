@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
-from chaindrive.cli.safety import EXIT_USER_ERROR, guarded, one_line
+from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
 from chaindrive.display import RAD_S_TO_RPM, fmt
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.atomic import atomic_directory, write_text
@@ -586,5 +586,11 @@ def run(argv: list[str] | None = None) -> int:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Entry point of the ``chaindrive`` script: exits with the status of :func:`run`."""
+    """Entry point of the ``chaindrive`` script: exits with the status of :func:`run`.
+
+    Outside the command (before it starts, after it ended) SIGINT and SIGTERM end the
+    process at once with 128 + the signal number, stdout flushed and no traceback
+    (:func:`chaindrive.cli.safety.exit_on_signal`).
+    """
+    exit_on_signal()
     sys.exit(run(argv))

@@ -33,8 +33,8 @@ import click
 
 from chaindrive.errors import ChainDriveError
 
-__all__ = ["EXIT_INTERNAL", "EXIT_USER_ERROR", "LOG_DIR_ENV", "Interrupted", "guarded",
-           "log_dir", "one_line", "signals_raise"]
+__all__ = ["EXIT_INTERNAL", "EXIT_USER_ERROR", "LOG_DIR_ENV", "Interrupted", "exit_on_signal",
+           "guarded", "log_dir", "one_line", "signals_raise"]
 
 EXIT_USER_ERROR = 2
 EXIT_INTERNAL = 1
@@ -83,6 +83,20 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     finally:
         for s, handler in previous.items():
             signal.signal(s, handler)
+
+
+def _exit_now(signum: int, frame: FrameType | None) -> None:
+    with suppress(OSError, ValueError):
+        sys.stdout.flush()
+    os._exit(128 + signum)
+
+
+def exit_on_signal(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> None:
+    """Make ``signums`` end the process at once with 128 + the signal number (stdout
+    flushed): what the ``chaindrive`` script does outside its command, where nothing is
+    being written and there is nothing to unwind."""
+    for s in signums:
+        signal.signal(s, _exit_now)
 
 
 def one_line(text: str) -> str:
