@@ -35,13 +35,15 @@ __all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_RUNS", "MEMORY_BYTES", "P
 
 T = TypeVar("T")
 
-#: Time limit of the analysis redrawn after every edit [s].
-INTERACTIVE_SECONDS = 20.0
-#: Time limit of an on-demand run: the full dynamic analysis, the report, the drawing [s].
-FULL_SECONDS = 60.0
-#: Address-space limit of a run [bytes]: the full analysis of the 24-sprocket example uses
-#: about 0.5 GB of it (numpy, scipy and numba mapped in), a report about 0.6 GB.
-MEMORY_BYTES = 3 * 1024**3
+#: Time limit of the analysis redrawn after every edit [s] (``CHAINDRIVE_APP_SECONDS``).
+INTERACTIVE_SECONDS = float(os.environ.get("CHAINDRIVE_APP_SECONDS", "20"))
+#: Time limit of an on-demand run: the full dynamic analysis, the report, the drawing [s]
+#: (``CHAINDRIVE_APP_FULL_SECONDS``).
+FULL_SECONDS = float(os.environ.get("CHAINDRIVE_APP_FULL_SECONDS", "60"))
+#: Address-space limit of a run [bytes] (``CHAINDRIVE_APP_MEMORY_GB``): a run maps about
+#: 0.3 GB of modules; the full analysis of the eight-sprocket example with a 60 s start-up
+#: (the longest the design file allows) peaks at 1.2 GB resident.
+MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024**3)
 #: Runs at once (each may use up to MEMORY_BYTES).
 MAX_RUNS = 4
 #: Modules the fork server imports once, so that a run starts without importing them.

@@ -11,7 +11,7 @@ the file limits, the catalogue columns and the checks that need more than one fi
 
 References
 ----------
-[ISO606], [Shigley2015], [Irvine1981], [Lyashuk]
+[ISO606], [GOST13568], [ANSI-B29.1]
 """
 
 from __future__ import annotations
@@ -57,19 +57,19 @@ class Range:
 
 
 #: Catalogue columns (CSV name; the TOML keys map to them) → allowed range in the file's
-#: units (mm, kN, kg/m, mm², m/s). Roller chains of [ISO606] run from 8 mm to 114.3 mm pitch
-#: with breaking loads from 4.4 kN to 1 800 kN; the ranges leave a factor of about 5 beyond
-#: (polymer and special chains) and refuse what no chain can be.
+#: units (mm, kN, kg/m, mm², m/s). The packaged catalogue ([ISO606], [GOST13568],
+#: [ANSI-B29.1] and polymer chains) spans the ranges quoted; the bounds leave a factor of
+#: about 5 beyond them and refuse what no chain can be.
 CATALOG_LIMITS: dict[str, Range] = {
-    "pitch_mm": Range(1.0, 500.0, "chain pitches of [ISO606] run from 8 to 114.3 mm"),
-    "roller_diameter_mm": Range(0.5, 500.0, "roller diameters below the pitch"),
-    "pin_diameter_mm": Range(0.2, 250.0, "pin diameters below the roller diameter"),
-    "inner_width_mm": Range(0.5, 500.0, "inner widths of [ISO606] chains: 3 to 69 mm"),
-    "plate_depth_mm": Range(0.5, 500.0, "plate depths below the pitch × 1.5"),
-    "transverse_pitch_mm": Range(0.0, 1000.0, "transverse pitches of [ISO606]: up to 117 mm"),
+    "pitch_mm": Range(1.0, 500.0, "catalogue pitches: 8 to 114.3 mm"),
+    "roller_diameter_mm": Range(0.5, 500.0, "catalogue rollers: 5 to 72.4 mm"),
+    "pin_diameter_mm": Range(0.2, 250.0, "below the roller diameter"),
+    "inner_width_mm": Range(0.5, 500.0, "catalogue inner widths: 2.4 to 68.6 mm"),
+    "plate_depth_mm": Range(0.5, 500.0, "catalogue plate depths: 7.1 to 104 mm"),
+    "transverse_pitch_mm": Range(0.0, 1000.0, "catalogue transverse pitches: up to 136 mm"),
     "breaking_load_kN": Range(0.01, 20_000.0,
-                              "breaking loads of [ISO606] chains: 4.4 to 1 800 kN"),
-    "mass_kg_m": Range(0.001, 1000.0, "chain masses of [ISO606] chains: 0.18 to 122 kg/m"),
+                              "catalogue breaking loads: 0.73 kN (polymer) to 2 002 kN"),
+    "mass_kg_m": Range(0.001, 1000.0, "catalogue masses: 0.057 to 122 kg/m"),
     "bearing_area_mm2": Range(0.1, 1_000_000.0, "projected hinge areas d₂·B of real chains"),
     "allowable_load_kN": Range(0.001, 20_000.0, "at most the breaking-load range"),
     "max_speed_m_s": Range(0.001, 100.0, "roller chains run at up to about 30 m/s"),
