@@ -26,7 +26,7 @@ SEED = EXAMPLES / "seed_three_sprocket.toml"
 
 
 @pytest.fixture(autouse=True)
-def _logs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+def logs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     logs = tmp_path / "logs"
     monkeypatch.setenv("CHAINDRIVE_LOG_DIR", str(logs))
     return logs
@@ -40,7 +40,7 @@ def _one_line(err: str) -> str:
 
 
 def _internal(capsys: pytest.CaptureFixture[str], status: int, logs: Path, kind: str) -> None:
-    out, err = capsys.readouterr()
+    _, err = capsys.readouterr()
     line = _one_line(err)
     assert status == 1
     assert line.startswith("error: internal error in `chaindrive analyze`") and kind in line
@@ -57,29 +57,29 @@ def _internal(capsys: pytest.CaptureFixture[str], status: int, logs: Path, kind:
 def test_unforeseen_errors_are_one_line_and_a_log(fault: BaseException,
                                                   monkeypatch: pytest.MonkeyPatch,
                                                   capsys: pytest.CaptureFixture[str],
-                                                  _logs: Path) -> None:
+                                                  logs: Path) -> None:
     def broken(*args: object, **kwargs: object) -> None:
         raise fault
 
     monkeypatch.setattr(chaindrive, "analyze", broken)
     status = run(["analyze", str(SEED), "--json"])
-    _internal(capsys, status, _logs, type(fault).__name__)
+    _internal(capsys, status, logs, type(fault).__name__)
 
 
 def test_a_numpy_warning_stops_the_command(monkeypatch: pytest.MonkeyPatch,
                                            capsys: pytest.CaptureFixture[str],
-                                           _logs: Path) -> None:
+                                           logs: Path) -> None:
     def overflowing(*args: object, **kwargs: object) -> None:
         np.exp(np.array([1000.0]))  # RuntimeWarning: overflow encountered in exp
 
     monkeypatch.setattr(chaindrive, "analyze", overflowing)
     status = run(["analyze", str(SEED), "--json"])
-    _internal(capsys, status, _logs, "RuntimeWarning")
+    _internal(capsys, status, logs, "RuntimeWarning")
 
 
 def test_a_nan_in_the_result_is_never_printed(monkeypatch: pytest.MonkeyPatch,
                                               capsys: pytest.CaptureFixture[str],
-                                              _logs: Path) -> None:
+                                              logs: Path) -> None:
     real = Analysis.to_dict
 
     def with_nan(self: Analysis) -> dict[str, object]:
@@ -92,7 +92,7 @@ def test_a_nan_in_the_result_is_never_printed(monkeypatch: pytest.MonkeyPatch,
     out, err = capsys.readouterr()
     assert status == 1 and out == ""
     assert "nan at geometry.chain_length_mm" in _one_line(err)  # the line names where
-    assert "Traceback" in next(_logs.glob("crash-*.log")).read_text(encoding="utf-8")
+    assert "Traceback" in next(logs.glob("crash-*.log")).read_text(encoding="utf-8")
 
 
 def test_a_good_run_gives_finite_json(capsys: pytest.CaptureFixture[str]) -> None:

@@ -26,21 +26,24 @@ def test_the_target_appears_complete(tmp_path: Path) -> None:
     assert _files(tmp_path) == ["a.html", "sub"]
 
 
+def _write_half_then(target: Path, failure: BaseException) -> None:
+    with atomic_path(target) as tmp:
+        tmp.write_text("half", encoding="utf-8")
+        raise failure
+
+
 def test_a_failing_writer_leaves_the_old_target(tmp_path: Path) -> None:
     target = tmp_path / "a.csv"
     write_text(target, "old\n")
-    with pytest.raises(ZeroDivisionError), atomic_path(target) as tmp:
-        tmp.write_text("half", encoding="utf-8")
-        _ = 1 / 0
+    with pytest.raises(ZeroDivisionError):
+        _write_half_then(target, ZeroDivisionError())
     assert target.read_text(encoding="utf-8") == "old\n"
     assert _files(tmp_path) == ["a.csv"]
 
 
 def test_an_interrupt_leaves_nothing(tmp_path: Path) -> None:
-    target = tmp_path / "a.csv"
-    with pytest.raises(KeyboardInterrupt), atomic_path(target) as tmp:
-        tmp.write_text("half", encoding="utf-8")
-        raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        _write_half_then(tmp_path / "a.csv", KeyboardInterrupt())
     assert _files(tmp_path) == []
 
 
@@ -61,9 +64,14 @@ def test_os_errors_are_one_line(tmp_path: Path, case: str) -> None:
 
 def test_a_directory_of_outputs_is_all_or_nothing(tmp_path: Path) -> None:
     out = tmp_path / "pareto"
-    with pytest.raises(RuntimeError), atomic_directory(out) as tmp:
-        (tmp / "a.toml").write_text("a", encoding="utf-8")
-        raise RuntimeError("the report failed")
+
+    def fail_after_one() -> None:
+        with atomic_directory(out) as tmp:
+            (tmp / "a.toml").write_text("a", encoding="utf-8")
+            raise RuntimeError("the report failed")
+
+    with pytest.raises(RuntimeError):
+        fail_after_one()
     assert _files(tmp_path) == []
     with atomic_directory(out) as tmp:
         (tmp / "a.toml").write_text("a", encoding="utf-8")
