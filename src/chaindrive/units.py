@@ -112,8 +112,19 @@ def registry() -> Any:
 
 
 def shown(text: str) -> str:
-    """``text`` as an error message quotes it: ``repr``, cut to :data:`MAX_TEXT` characters
-    (control characters such as a newline are escaped, so the message stays one line)."""
+    """``text`` as an error message quotes it.
+
+    Parameters
+    ----------
+    text : str
+        A value of a design file.
+
+    Returns
+    -------
+    str
+        Its ``repr`` (control characters such as a newline escaped, so the message stays one
+        line), cut to :data:`MAX_TEXT` characters.
+    """
     r = repr(text)
     return r if len(r) <= MAX_TEXT + 2 else r[:MAX_TEXT] + "…'"
 
@@ -259,5 +270,18 @@ def _finite(value: float, text: str, field: str, example: str) -> float:
 
 
 def format_si(value: float, unit: str) -> str:
-    """Format an SI value for a design file: the inverse of :func:`parse_quantity`."""
+    """Format an SI value for a design file: the inverse of :func:`parse_quantity`.
+
+    Parameters
+    ----------
+    value : float
+        The value [SI unit of ``unit``].
+    unit : str
+        The SI unit written after it (``"m"``, ``"rad/s"`` …).
+
+    Returns
+    -------
+    str
+        ``"<value> <unit>"``.
+    """
     return f"{value:g} {unit}"

@@ -21,11 +21,23 @@ PAGE = Path(__file__).with_name("main.py")
 
 
 def streamlit_command(host: str = "127.0.0.1", port: int = 8501) -> list[str]:
-    """The ``streamlit run`` command line of the page on ``host:port``: headless, no usage
-    statistics, no file watcher, uploads of at most
-    :data:`~chaindrive.app.uploads.MAX_UPLOAD_MB` MB, and no exception details in the
-    browser (the page catches every error itself; this is the safety net that keeps
-    tracebacks off the screen)."""
+    """The ``streamlit run`` command line of the page: headless, no usage statistics, no
+    file watcher, uploads of at most :data:`~chaindrive.app.uploads.MAX_UPLOAD_MB` MB, and no
+    exception details in the browser (the page catches every error itself; this is the
+    safety net that keeps tracebacks off the screen).
+
+    Parameters
+    ----------
+    host : str
+        Address to serve on (this machine only by default).
+    port : int
+        Port to serve on.
+
+    Returns
+    -------
+    list of str
+        The command line.
+    """
     from chaindrive.app.uploads import MAX_UPLOAD_MB
 
     return [sys.executable, "-m", "streamlit", "run", str(PAGE),
@@ -64,13 +76,23 @@ def _stop(proc: subprocess.Popen[bytes]) -> None:
 
 
 def run_app(host: str = "127.0.0.1", port: int = 8501) -> int:
-    """Start the web page on ``host:port`` (this machine only unless told otherwise), print
-    its address and serve until interrupted. Returns the exit status of Streamlit (2 when
-    Streamlit is not installed).
+    """Start the web page, print its address and serve until interrupted.
 
     The server is a child process; it stops with this one: on SIGINT or SIGTERM (raised in
     here by the command line's safety net, :mod:`chaindrive.cli.safety`) the ``finally``
     stops it, and on Linux it gets SIGTERM even when this process is killed outright.
+
+    Parameters
+    ----------
+    host : str
+        Address to serve on (this machine only unless told otherwise).
+    port : int
+        Port to serve on.
+
+    Returns
+    -------
+    int
+        The exit status of Streamlit (2 when Streamlit is not installed).
     """
     if importlib.util.find_spec("streamlit") is None:
         print("error: the web page needs Streamlit: pip install 'chaindrive[app]'",

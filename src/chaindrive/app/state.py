@@ -299,7 +299,21 @@ def _toml_ready(value: Any) -> Any:
 def design_to_toml(design: Mapping[str, Any], comment: str | None = None) -> str:
     """The design mapping as a TOML design file, written as entered (it need not be valid:
     a half-finished design can be saved and loaded again), by tomli-w: any name — with
-    quotes, backslashes or newlines — is written so that it reads back the same."""
+    quotes, backslashes or newlines — is written so that it reads back the same.
+
+    Parameters
+    ----------
+    design : Mapping
+        The design mapping (:func:`design_from_form`).
+    comment : str | None
+        Lines written as ``#`` comments at the top (lines with control characters are
+        left out).
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
     import tomli_w
 
     lines = [f"# {line}" for line in (comment or "").splitlines() if line.isprintable()]
@@ -350,12 +364,25 @@ def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
     """Validate the design mapping and analyse it (:func:`interactive_analysis`, or the whole
     :func:`chaindrive.analyze` with ``full``); never raises for a bad design.
 
-    ``catalogs``: the catalogues uploaded in the session (name → file); ``chain.catalog``
-    can name only these — the page never opens a path a design gives (``base_dir`` is kept
-    for the callers that pass it and plays no part in that). A
-    :class:`~chaindrive.errors.ChainDriveError` gives ``message`` = ``str(error)`` (the
+    A :class:`~chaindrive.errors.ChainDriveError` gives ``message`` = ``str(error)`` (the
     line the command line prints) and ``location`` from its ``field``; any other exception
     gives a short note with its class name and ``unexpected=True``.
+
+    Parameters
+    ----------
+    design : Mapping
+        The design mapping.
+    base_dir : Path | None
+        Kept for the callers that pass it; it plays no part in finding a catalogue.
+    full : bool
+        Analyse with the dynamic response.
+    catalogs : Mapping of str to Path | None
+        The catalogues uploaded in the session (name → file): ``chain.catalog`` can name
+        only these — the page never opens a path a design gives.
+
+    Returns
+    -------
+    Outcome
     """
     import chaindrive
     from chaindrive.io.design import drive_from_mapping

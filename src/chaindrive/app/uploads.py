@@ -38,7 +38,13 @@ CATALOG_SUFFIXES = (".csv", ".toml")
 
 
 def store_dir() -> Path:
-    """The directory of the uploaded catalogues (created, private to this user)."""
+    """The directory of the uploaded catalogues.
+
+    Returns
+    -------
+    Path
+        ``<temporary directory>/chaindrive-uploads-<uid>``, created private to this user.
+    """
     path = Path(tempfile.gettempdir()) / f"chaindrive-uploads-{os.getuid()}"
     path.mkdir(mode=0o700, exist_ok=True)
     return path
@@ -56,7 +62,20 @@ def _checked(name: str, data: bytes, suffixes: tuple[str, ...]) -> str:
 
 
 def design_text(name: str, data: bytes) -> str:
-    """The text of an uploaded design file (size, suffix and UTF-8 checked)."""
+    """The text of an uploaded design file.
+
+    Parameters
+    ----------
+    name : str
+        The file's name as uploaded.
+    data : bytes
+        Its content.
+
+    Returns
+    -------
+    str
+        The text (size, suffix and UTF-8 checked: a :class:`DesignError` line otherwise).
+    """
     shown = _checked(name, data, (".toml",))
     try:
         return data.decode("utf-8")
@@ -73,14 +92,33 @@ def _prune(directory: Path) -> None:
 
 @dataclass
 class Uploads:
-    """The catalogues uploaded in one session: name → content (kept in the session, so a
-    file pruned from the store is written again when needed)."""
+    """The catalogues uploaded in one session.
+
+    Parameters
+    ----------
+    content : dict of str to bytes
+        Name → content (kept in the session, so a file pruned from the store is written
+        again when needed).
+    """
 
     content: dict[str, bytes] = field(default_factory=dict)
 
     def add(self, name: str, data: bytes) -> str:
         """Accept a catalogue upload (size, suffix, UTF-8 and content checked — a malformed
-        file is refused now with the catalogue reader's line); the name designs use."""
+        file is refused now with the catalogue reader's line).
+
+        Parameters
+        ----------
+        name : str
+            The file's name as uploaded.
+        data : bytes
+            Its content.
+
+        Returns
+        -------
+        str
+            The name designs use in ``chain.catalog``.
+        """
         from chaindrive import catalog
 
         shown = _checked(name, data, CATALOG_SUFFIXES)
@@ -109,5 +147,10 @@ class Uploads:
 
     def paths(self) -> dict[str, Path]:
         """Name → file of every catalogue of the session (what
-        :func:`chaindrive.io.design.drive_from_mapping` takes as ``catalogs``)."""
+        :func:`chaindrive.io.design.drive_from_mapping` takes as ``catalogs``).
+
+        Returns
+        -------
+        dict of str to Path
+        """
         return {name: self._path(name, data) for name, data in self.content.items()}

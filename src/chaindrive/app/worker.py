@@ -111,7 +111,7 @@ def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE
     ----------
     func : callable
         A module-level function (pickled by name); its arguments and result must pickle.
-    *args
+    *args : object
         Its arguments.
     seconds : float
         Time limit [s], counted from the request (a wait for a slot included).

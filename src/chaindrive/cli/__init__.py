@@ -576,8 +576,19 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
 
 
 def run(argv: list[str] | None = None) -> int:
-    """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`);
-    its exit status. ``argv`` None: the process's arguments."""
+    """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
+
+    Parameters
+    ----------
+    argv : list of str | None
+        The arguments (None: the process's).
+
+    Returns
+    -------
+    int
+        The exit status: 0, 2 for a mistake, 1 for anything unforeseen, 128 + the signal
+        number after SIGINT or SIGTERM.
+    """
     args = list(sys.argv[1:] if argv is None else argv)
     command: Any = typer.main.get_command(app)
     invoke: Callable[[], object] = lambda: command.main(args=args, prog_name="chaindrive",  # noqa: E731
@@ -591,6 +602,11 @@ def main(argv: list[str] | None = None) -> None:
     Outside the command (before it starts, after it ended) SIGINT and SIGTERM end the
     process at once with 128 + the signal number, stdout flushed and no traceback
     (:func:`chaindrive.cli.safety.exit_on_signal`).
+
+    Parameters
+    ----------
+    argv : list of str | None
+        The arguments (None: the process's).
     """
     exit_on_signal()
     sys.exit(run(argv))

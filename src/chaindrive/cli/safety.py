@@ -71,7 +71,17 @@ def _raise(signum: int, frame: FrameType | None) -> None:
 def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> Iterator[None]:
     """Within the block, the signals ``signums`` raise :class:`Interrupted` (the previous
     handlers are restored after it). Outside the main thread, where Python cannot install
-    handlers, it does nothing."""
+    handlers, it does nothing.
+
+    Parameters
+    ----------
+    signums : sequence of int
+        The signals.
+
+    Yields
+    ------
+    None
+    """
     import threading
 
     if threading.current_thread() is not threading.main_thread():
@@ -94,23 +104,46 @@ def _exit_now(signum: int, frame: FrameType | None) -> None:
 def exit_on_signal(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> None:
     """Make ``signums`` end the process at once with 128 + the signal number (stdout
     flushed): what the ``chaindrive`` script does outside its command, where nothing is
-    being written and there is nothing to unwind."""
+    being written and there is nothing to unwind.
+
+    Parameters
+    ----------
+    signums : sequence of int
+        The signals.
+    """
     for s in signums:
         signal.signal(s, _exit_now)
 
 
 def one_line(text: str) -> str:
-    """``text`` as one printable line: newlines, tabs and other control characters escaped,
-    cut to :data:`MAX_LINE` characters."""
+    """``text`` as one printable line.
+
+    Parameters
+    ----------
+    text : str
+        A message.
+
+    Returns
+    -------
+    str
+        The message with newlines, tabs and other control characters escaped, cut to
+        :data:`MAX_LINE` characters.
+    """
     out = "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii")
                   for c in text)
     return out if len(out) <= MAX_LINE else out[:MAX_LINE - 1] + "…"
 
 
 def log_dir() -> Path:
-    """The directory of the crash logs: ``$CHAINDRIVE_LOG_DIR``, else
-    ``$XDG_STATE_HOME/chaindrive`` (``~/.local/state/chaindrive``), else the temporary
-    directory when that cannot be created."""
+    """The directory of the crash logs.
+
+    Returns
+    -------
+    Path
+        ``$CHAINDRIVE_LOG_DIR``, else ``$XDG_STATE_HOME/chaindrive``
+        (``~/.local/state/chaindrive``); the log goes to the temporary directory when that
+        cannot be written.
+    """
     given = os.environ.get(LOG_DIR_ENV)
     if given:
         return Path(given)

@@ -44,6 +44,10 @@ def signals_held() -> Iterator[None]:
     """Hold SIGINT and SIGTERM back within the block (they are delivered when it ends).
 
     Only the main thread receives Python's signal handlers; elsewhere it does nothing.
+
+    Yields
+    ------
+    None
     """
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -128,14 +132,44 @@ def atomic_path(target: str | Path, *, field: str = "output") -> Iterator[Path]:
 
 
 def write_text(target: str | Path, text: str, *, field: str = "output") -> Path:
-    """Write ``text`` (UTF-8) to ``target`` atomically (:func:`atomic_path`); the path."""
+    """Write ``text`` (UTF-8) to ``target`` atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    target : str | Path
+        The file to write.
+    text : str
+        Its whole content.
+    field : str
+        What the output is called in an error line.
+
+    Returns
+    -------
+    Path
+        ``target``.
+    """
     with atomic_path(target, field=field) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(target)
 
 
 def write_bytes(target: str | Path, data: bytes, *, field: str = "output") -> Path:
-    """Write ``data`` to ``target`` atomically (:func:`atomic_path`); the path."""
+    """Write ``data`` to ``target`` atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    target : str | Path
+        The file to write.
+    data : bytes
+        Its whole content.
+    field : str
+        What the output is called in an error line.
+
+    Returns
+    -------
+    Path
+        ``target``.
+    """
     with atomic_path(target, field=field) as tmp:
         tmp.write_bytes(data)
     return Path(target)

@@ -38,6 +38,7 @@ from chaindrive.model import (
     Drive,
     DynamicsSettings,
     Sprocket,
+    ToothFormName,
 )
 from chaindrive.units import DIMENSIONS, MAX_TEXT, parse_quantity, shown
 
@@ -49,11 +50,29 @@ MAX_NAME = 200
 class Field:
     """One field of a design file: its kind, unit, default, allowed range and meaning.
 
-    kind: a dimension of :data:`chaindrive.units.DIMENSIONS` (value is a string with a
-    unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``, ``"links"`` (a
-    whole number or a rounding rule of :data:`chaindrive.model.ROUNDINGS`). ``minimum`` and
-    ``maximum`` [SI] bound what is physically plausible (:mod:`chaindrive.io.limits`), and
-    ``reason`` says where the bounds come from.
+    Parameters
+    ----------
+    name : str
+        The key in its table.
+    kind : str
+        A dimension of :data:`chaindrive.units.DIMENSIONS` (the value is a string with a
+        unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``, ``"links"``
+        (a whole number or a rounding rule of :data:`chaindrive.model.ROUNDINGS`).
+    description : str
+        What it means.
+    required : bool
+        True when a design must give it.
+    default : object
+        The value when it is left out (SI for a quantity).
+    minimum, maximum : float | None
+        The bounds of what is physically plausible [SI unit of the field]
+        (:mod:`chaindrive.io.limits`).
+    choices : tuple of str
+        The allowed values of a ``"choice"``.
+    exclusive_minimum : bool
+        True when ``minimum`` itself is not allowed.
+    reason : str
+        Where the bounds come from (printed by ``chaindrive schema``).
     """
 
     name: str
@@ -225,7 +244,14 @@ OTHER_SECTIONS: tuple[str, ...] = ("optimize",)
 
 
 def schema() -> dict[str, list[dict[str, Any]]]:
-    """Every field of a design file with its kind, unit, default and allowed values."""
+    """Every field of a design file with its kind, unit, default and allowed values.
+
+    Returns
+    -------
+    dict
+        Section → list of {field, kind, si_unit, example, required, default, allowed,
+        reason, description}.
+    """
     out: dict[str, list[dict[str, Any]]] = {}
     for section, fields in SECTIONS.items():
         out[section] = [
@@ -272,7 +298,27 @@ def _shown_value(value: Any) -> str:
 
 
 def parse_field(f: Field, value: Any, path: str) -> Any:
-    """Check and convert one value of a design file (SI for quantities)."""
+    """Check and convert one value of a design file.
+
+    Parameters
+    ----------
+    f : Field
+        Its field.
+    value : object
+        The value as read from TOML.
+    path : str
+        Its path (``sprockets[1].x``), for the message.
+
+    Returns
+    -------
+    object
+        The value (SI for a quantity).
+
+    Raises
+    ------
+    DesignError
+        One line naming the path, the value and what is allowed.
+    """
     if f.kind == "str":
         if not isinstance(value, str) or not value.strip():
             raise DesignError(path, f"must be non-empty text, got {_shown_value(value)}")
@@ -310,7 +356,22 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
 
 
 def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, Any]:
-    """Check a TOML table against its fields: unknown names, required ones, values."""
+    """Check a TOML table against its fields: unknown names, required ones, values.
+
+    Parameters
+    ----------
+    data : object
+        The table as read.
+    fields : tuple of Field
+        Its fields.
+    path : str
+        Its path (``sprockets[1]``), for the messages.
+
+    Returns
+    -------
+    dict
+        Field name → checked value (the default when left out).
+    """
     if not isinstance(data, Mapping):
         raise DesignError(path, f"must be a table, got {type(data).__name__}")
     known = {f.name: f for f in fields}
@@ -379,7 +440,21 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None,
                   ) -> tuple[ChainSpec, ChainRequest | None]:
     """The catalogue chain named by the [chain] table (designation, or standard + pitch), or
     — when only a standard is given — a provisional chain of that family and the request
-    that :func:`chaindrive.analyze` selects from. ``catalogs``: see :func:`drive_from_mapping`."""
+    that :func:`chaindrive.analyze` selects from.
+
+    Parameters
+    ----------
+    values : dict
+        The checked [chain] table (:func:`parse_section`) and ``strands_given``.
+    base_dir : Path | None
+        The design file's directory.
+    catalogs : Mapping of str to Path | None
+        See :func:`drive_from_mapping`.
+
+    Returns
+    -------
+    tuple of (ChainSpec, ChainRequest | None)
+    """
     from chaindrive import catalog
 
     extra: tuple[Path, ...] = ()
@@ -495,8 +570,8 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
     if request is not None and drive_values["power"] is None:
         raise DesignError("drive.power", "is required when the design names no chain "
                           "(the chain is selected for the power)")
-    tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
-                                                else "ISO 606")
+    tooth_form: ToothFormName = drive_values["tooth_form"] or (
+        "GOST 591" if spec.standard == "GOST 13568" else "ISO 606")
     links = chain_values["links"]
     chain = Chain(spec, links=links if not isinstance(links, str) else None,
                   allow_odd=chain_values["allow_odd"], request=request,
@@ -511,9 +586,25 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
 
 
 def parse_toml(text: str, name: str) -> dict[str, Any]:
-    """The mapping of a TOML text; a syntax error, a text over
-    :data:`~chaindrive.io.limits.MAX_DESIGN_BYTES` or arrays nested too deeply for the
-    parser is one :class:`DesignError` naming ``name``."""
+    """The mapping of a TOML text.
+
+    Parameters
+    ----------
+    text : str
+        The TOML text.
+    name : str
+        Where it comes from, for the message.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    DesignError
+        On a syntax error, a text over :data:`~chaindrive.io.limits.MAX_DESIGN_BYTES`, or
+        arrays nested too deeply for the parser: one line naming ``name``.
+    """
     where = shown_key(name, 300)
     check_file_size(len(text.encode("utf-8", "surrogatepass")), MAX_DESIGN_BYTES, where,
                     "design file")
@@ -526,8 +617,24 @@ def parse_toml(text: str, name: str) -> dict[str, Any]:
 
 
 def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
-    """The mapping of a TOML file; a missing, unreadable, oversized or malformed file is one
-    :class:`DesignError` naming it (``what`` says what kind of file was expected)."""
+    """The mapping of a TOML file.
+
+    Parameters
+    ----------
+    path : str | Path
+        The file.
+    what : str
+        What kind of file is expected, for the message.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    DesignError
+        For a missing, unreadable, oversized or malformed file: one line naming it.
+    """
     p = Path(path)
     name = shown_key(path, 300)
     try:
@@ -544,7 +651,17 @@ def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
 
 
 def load_drive(path: str | Path) -> Drive:
-    """Read and validate a TOML design file."""
+    """Read and validate a TOML design file.
+
+    Parameters
+    ----------
+    path : str | Path
+        The design file.
+
+    Returns
+    -------
+    Drive
+    """
     return drive_from_mapping(read_toml(path), base_dir=Path(path).parent)
 
 
@@ -557,7 +674,18 @@ def _q(value: float, factor: float, unit: str) -> str:
 def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     """The tables of a design file of ``drive`` (lengths in mm, speeds in rpm): what
     :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
-    written by its designation."""
+    written by its designation.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    dict
+        The tables [drive], [chain], [[sprockets]] and [dynamics].
+    """
     chain: dict[str, Any] = {"designation": drive.chain.spec.designation}
     if drive.chain.links is not None:
         chain["links"] = drive.chain.links
@@ -614,5 +742,16 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
 
 
 def drive_to_toml(drive: Drive) -> str:
-    """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`)."""
+    """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
     return tomli_w.dumps(drive_to_mapping(drive))

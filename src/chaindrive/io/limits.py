@@ -37,12 +37,12 @@ MIN_INERTIA_SHARE = 0.1
 
 @dataclass(frozen=True, slots=True)
 class Range:
-    """An allowed range [low, high] in SI, and why.
+    """An allowed range [low, high], and why.
 
-    Attributes
+    Parameters
     ----------
     low, high : float
-        The bounds [SI unit of the value].
+        The bounds [the unit of the value they bound].
     reason : str
         Where the bounds come from (shown by ``chaindrive schema``).
     """
@@ -52,7 +52,13 @@ class Range:
     reason: str
 
     def contains(self, value: float) -> bool:
-        """True for a finite value within [low, high]."""
+        """True for a finite value within [low, high].
+
+        Parameters
+        ----------
+        value : float
+            The value [the unit of the bounds].
+        """
         return math.isfinite(value) and self.low <= value <= self.high
 
 
@@ -106,16 +112,45 @@ def check_catalog_value(column: str, value: float, where: str) -> float:
 
 
 def check_file_size(size: int, limit: int, name: str, what: str) -> None:
-    """Refuse a file larger than ``limit`` [bytes] with one line naming it."""
+    """Refuse a file larger than ``limit`` with one line naming it.
+
+    Parameters
+    ----------
+    size : int
+        The file's size [bytes].
+    limit : int
+        The largest size allowed [bytes].
+    name : str
+        The file, for the message.
+    what : str
+        What kind of file it is (``"design file"``).
+
+    Raises
+    ------
+    DesignError
+        When ``size`` exceeds ``limit``.
+    """
     if size > limit:
         raise DesignError(name, f"is {size:,} bytes, too large for a {what} (at most "
                           f"{limit:,} bytes)")
 
 
 def shown_key(key: object, limit: int = 60) -> str:
-    """A key of a design file (or a file name) as an error path shows it: control
-    characters escaped (a key with a newline keeps the message on one line), at most
-    ``limit`` characters."""
+    """A key of a design file (or a file name) as an error path shows it.
+
+    Parameters
+    ----------
+    key : object
+        The key or name.
+    limit : int
+        The most characters shown.
+
+    Returns
+    -------
+    str
+        The key with its control characters escaped (a key with a newline keeps the message
+        on one line), cut to ``limit`` characters.
+    """
     text = str(key)
     if text.isprintable() and len(text) <= limit:
         return text

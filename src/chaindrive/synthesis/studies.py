@@ -89,12 +89,32 @@ def _plain(value: Any) -> Any:
 
 
 def input_key(function: str, inputs: Any) -> str:
-    """SHA-256 (hex) of the function name and the canonical JSON of the inputs."""
+    """The key of one evaluation.
+
+    Parameters
+    ----------
+    function : str
+        The evaluated function's qualified name.
+    inputs : object
+        Its JSON-ready inputs.
+
+    Returns
+    -------
+    str
+        SHA-256 (hex) of the function name and the canonical JSON of the inputs.
+    """
     return hashlib.sha256(_json([function, inputs]).encode()).hexdigest()
 
 
 class StudyStore:
-    """The study database: one row per (study, key) with the inputs and the result (JSON)."""
+    """The study database: one row per (study, key) with the inputs and the result (JSON).
+
+    Parameters
+    ----------
+    url : str
+        SQLAlchemy URL (``sqlite:///study.db``, ``postgresql+psycopg://…``); a URL that
+        cannot be opened is one :class:`DesignError` line (field ``db``).
+    """
 
     def __init__(self, url: str = DEFAULT_DB) -> None:
         try:
@@ -107,13 +127,38 @@ class StudyStore:
         self.url = url
 
     def keys(self, study: str) -> set[str]:
-        """Keys already stored for ``study``."""
+        """Keys already stored for ``study``.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+
+        Returns
+        -------
+        set of str
+        """
         with self.engine.connect() as con:
             rows = con.execute(select(EVALUATIONS.c.key).where(EVALUATIONS.c.study == study))
             return {r[0] for r in rows}
 
     def put(self, study: str, key: str, inputs: Any, result: Any) -> bool:
-        """Store one evaluation; False (and nothing written) when the key is already there."""
+        """Store one evaluation.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        key : str
+            The evaluation's key (:func:`input_key`).
+        inputs, result : object
+            Its inputs and result (JSON-ready).
+
+        Returns
+        -------
+        bool
+            False (and nothing written) when the key is already there.
+        """
         try:
             with self.engine.begin() as con:
                 con.execute(EVALUATIONS.insert().values(
@@ -124,8 +169,20 @@ class StudyStore:
         return True
 
     def put_many(self, study: str, rows: Sequence[tuple[str, Any, Any]]) -> int:
-        """Store (key, inputs, result) rows in one transaction, skipping stored keys;
-        returns how many were written."""
+        """Store rows in one transaction, skipping stored keys.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        rows : sequence of (str, object, object)
+            (key, inputs, result) of each evaluation.
+
+        Returns
+        -------
+        int
+            How many were written.
+        """
         if not rows:
             return 0
         stored = self.get_keys(study, [k for k, _, _ in rows])
@@ -142,14 +199,39 @@ class StudyStore:
         return len(fresh)
 
     def get_keys(self, study: str, keys: Sequence[str]) -> set[str]:
-        """The subset of ``keys`` already stored."""
+        """The subset of ``keys`` already stored.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        keys : sequence of str
+            Keys to look up.
+
+        Returns
+        -------
+        set of str
+        """
         with self.engine.connect() as con:
             rows = con.execute(select(EVALUATIONS.c.key).where(
                 EVALUATIONS.c.study == study, EVALUATIONS.c.key.in_(list(keys))))
             return {r[0] for r in rows}
 
     def get(self, study: str, keys: Iterable[str]) -> dict[str, Any]:
-        """Stored results by key (missing keys are absent)."""
+        """Stored results by key.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        keys : iterable of str
+            Keys to look up.
+
+        Returns
+        -------
+        dict
+            Key → result (missing keys are absent).
+        """
         wanted = list(keys)
         out: dict[str, Any] = {}
         with self.engine.connect() as con:
@@ -160,7 +242,17 @@ class StudyStore:
         return out
 
     def count(self, study: str) -> int:
-        """Number of evaluations stored for ``study``."""
+        """Number of evaluations stored for ``study``.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+
+        Returns
+        -------
+        int
+        """
         return len(self.keys(study))
 
     def close(self) -> None:
@@ -170,7 +262,19 @@ class StudyStore:
 
 @dataclass(frozen=True, slots=True)
 class StudyResult:
-    """results in the order of the inputs; computed now and reused from the database."""
+    """The outcome of :func:`run_study`.
+
+    Parameters
+    ----------
+    study : str
+        The study's name.
+    results : tuple
+        The results, in the order of the inputs.
+    computed : int
+        Evaluations computed now.
+    reused : int
+        Evaluations read from the database.
+    """
 
     study: str
     results: tuple[Any, ...]
@@ -310,13 +414,34 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Any = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None) -> StudyResult:
-    """Evaluate ``func`` on every input through Dask, storing each result once.
+    """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
+    key is stored are not recomputed.
 
-    study : name of the study in the database; db : URL or an open store; scheduler : address
-    of an existing Dask scheduler (None: a LocalCluster of ``n_workers`` processes, closed at
-    the end); client : an existing :class:`distributed.Client` (takes precedence; left open);
-    progress : None = only on a terminal; chunk : evaluations per Dask task (None: by the
-    number of workers, :func:`_chunk_size`). Inputs whose key is stored are not recomputed.
+    Parameters
+    ----------
+    func : callable
+        A module-level function of one JSON-ready input.
+    inputs : sequence
+        The inputs.
+    study : str
+        Name of the study in the database.
+    db : str | StudyStore
+        URL or an open store.
+    scheduler : str | None
+        Address of an existing Dask scheduler (None: a LocalCluster of ``n_workers``
+        processes, closed at the end).
+    client : distributed.Client | None
+        An existing client (takes precedence; left open).
+    n_workers : int | None
+        Workers of the LocalCluster (None: Dask's default).
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+    chunk : int | None
+        Evaluations per Dask task (None: by the number of workers, :func:`_chunk_size`).
+
+    Returns
+    -------
+    StudyResult
     """
     store = db if isinstance(db, StudyStore) else StudyStore(db)
     name = f"{func.__module__}.{func.__qualname__}"
@@ -351,7 +476,17 @@ _PATH = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
 
 
 def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
-    """Set ``sprockets[2].x``-style ``path`` in a design mapping (in place)."""
+    """Set a value in a design mapping (in place).
+
+    Parameters
+    ----------
+    mapping : dict
+        The design mapping.
+    path : str
+        A ``sprockets[2].x``-style path.
+    value : object
+        The new value.
+    """
     node: Any = mapping
     parts = path.split(".")
     for depth, part in enumerate(parts):
@@ -376,7 +511,19 @@ def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
 
 
 def get_path(mapping: Mapping[str, Any], path: str) -> Any:
-    """The value at a ``sprockets[2].x``-style path."""
+    """The value at a path of a design mapping.
+
+    Parameters
+    ----------
+    mapping : Mapping
+        The design mapping.
+    path : str
+        A ``sprockets[2].x``-style path.
+
+    Returns
+    -------
+    object
+    """
     node: Any = mapping
     for part in path.split("."):
         m = _PATH.fullmatch(part)
@@ -390,8 +537,22 @@ def get_path(mapping: Mapping[str, Any], path: str) -> Any:
 
 def sweep_inputs(base: Mapping[str, Any], grid: Mapping[str, Sequence[Any]],
                  objectives: Sequence[str] = ("cost", "mass", "volume")) -> list[dict[str, Any]]:
-    """Inputs of :func:`evaluate_design` for the Cartesian product of ``grid`` (path → values,
-    in the design file's notation, e.g. ``{"sprockets[1].x": ["790 mm", "810 mm"]}``)."""
+    """Inputs of :func:`evaluate_design` for the Cartesian product of ``grid``.
+
+    Parameters
+    ----------
+    base : Mapping
+        The design mapping.
+    grid : Mapping of str to sequence
+        Path → values, in the design file's notation (e.g.
+        ``{"sprockets[1].x": ["790 mm", "810 mm"]}``).
+    objectives : sequence of str
+        Objectives to evaluate.
+
+    Returns
+    -------
+    list of dict
+    """
     paths = list(grid)
     out = []
     for combo in itertools.product(*(grid[p] for p in paths)):
@@ -419,9 +580,24 @@ def monte_carlo_inputs(base: Mapping[str, Any], tolerances: Mapping[str, Any], s
                        ) -> list[dict[str, Any]]:
     """Inputs of :func:`evaluate_design` with normally distributed deviations.
 
-    tolerances : path → standard deviation in the unit of the value at that path (e.g.
-    ``{"sprockets[1].x": "0.2 mm"}`` for ``x = "800 mm"``); samples; seed (same seed,
-    same samples)."""
+    Parameters
+    ----------
+    base : Mapping
+        The design mapping.
+    tolerances : Mapping
+        Path → standard deviation in the unit of the value at that path (e.g.
+        ``{"sprockets[1].x": "0.2 mm"}`` for ``x = "800 mm"``).
+    samples : int
+        Number of samples.
+    seed : int
+        Random seed (same seed, same samples).
+    objectives : sequence of str
+        Objectives to evaluate.
+
+    Returns
+    -------
+    list of dict
+    """
     from chaindrive.units import registry
 
     ureg = registry()
@@ -444,8 +620,18 @@ def monte_carlo_inputs(base: Mapping[str, Any], tolerances: Mapping[str, Any], s
 
 
 def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker function of sweeps and Monte-Carlo studies: ``{"design": mapping, "objectives":
-    [...]}`` → the evaluation (objectives, constraints, constraints_ok) of that design."""
+    """Worker function of sweeps and Monte-Carlo studies.
+
+    Parameters
+    ----------
+    inputs : Mapping
+        ``{"design": mapping, "objectives": [...]}``.
+
+    Returns
+    -------
+    dict
+        The evaluation (objectives, constraints, constraints_ok) of that design.
+    """
     from chaindrive.io.design import drive_from_mapping
     from chaindrive.synthesis.evaluation import evaluate_drive
     from chaindrive.synthesis.problem import Constraints
@@ -548,12 +734,30 @@ class DaskEvaluator:
 def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
                    scheduler: str | None = None, client: Any = None,
                    progress: bool | None = False) -> DaskEvaluator:
-    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done)."""
+    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done).
+
+    Parameters
+    ----------
+    db : str | StudyStore
+        The study database.
+    study : str | None
+        Name of the study (None: from the problem's fingerprint).
+    scheduler : str | None
+        Address of an existing scheduler.
+    client : distributed.Client | None
+        An existing client.
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+
+    Returns
+    -------
+    DaskEvaluator
+    """
     return DaskEvaluator(db=db, study=study, scheduler=scheduler, client=client,
                          progress=progress)
 
 
-class _VectorInput(dict):  # type: ignore[type-arg]
+class _VectorInput(dict[str, Any]):
     """Input of one vector: hashed by (problem fingerprint, vector), carries the problem."""
 
     def __init__(self, problem: Any, vector: list[float], fingerprint: str) -> None:
