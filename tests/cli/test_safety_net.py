@@ -151,3 +151,8 @@ def test_outputs_in_the_way_are_one_line_and_nothing_is_left(
         assert line.startswith("error: output: cannot write"), line
         assert sorted(p.name for p in tmp_path.rglob("*")) == before  # nothing new
     assert blocker.read_text(encoding="utf-8") == "in the way"
+
+
+def test_a_file_name_too_long_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:
+    assert run(["analyze", "d" * 3000 + ".toml"]) == 2
+    assert len(_one_line(capsys.readouterr().err)) < 700

@@ -199,3 +199,28 @@ def test_catalogue_only_from_the_given_names(tmp_path: Path) -> None:
             drive_from_mapping(data, tmp_path, catalogs={})
         assert "not a catalogue uploaded in this session" in str(info.value)
         assert "TOPSECRET" not in str(info.value)
+
+
+@pytest.mark.parametrize(("section", "name", "value", "path"), [
+    ("sprockets", "speed", "1e30 rpm", "sprockets[0].speed"),
+    ("sprockets", "speed", "1e-6 rpm", "sprockets[0].speed"),
+    ("drive", "power", "1e12 W", "drive.power"),
+    ("sprockets", "x", "123 km", "sprockets[0].x"),  # a 123 km centre distance passed
+    ("dynamics", "eccentricity", "1 m", "dynamics.eccentricity"),
+    ("dynamics", "accumulated_error", "1 km", "dynamics.accumulated_error"),
+])
+def test_the_values_the_fuzzer_found(section: str, name: str, value: str, path: str) -> None:
+    with pytest.raises(DesignError) as info:
+        drive_from_mapping(_design(section, name, value))
+    assert str(info.value).startswith(path + ": must be")
+
+
+def test_a_possible_design_that_breaks_its_chain_fails_loudly() -> None:
+    """30 000 rpm on the Jindal drive (100 m/s of chain): allowed, and its checks fail."""
+    import chaindrive
+
+    data = copy.deepcopy(JINDAL)
+    data["sprockets"][0]["speed"] = "30000 rpm"
+    analysis = chaindrive.analyze(drive_from_mapping(data), response=False)
+    failed = {c.name for c in analysis.checks() if c.status != "pass"}
+    assert {"speed limit", "static safety", "power rating"} <= failed

@@ -73,3 +73,15 @@ def test_dynamics_contours_and_names_survive_the_file() -> None:
         assert a == (pytest.approx(b, rel=1e-11) if isinstance(b, float) else b), f.name
     assert again.chain.contours == 2 and again.name == drive.name
     _same(chaindrive.analyze(again).to_dict(), chaindrive.analyze(drive).to_dict())
+
+
+def test_an_optimised_drive_named_with_quotes_and_backslashes() -> None:
+    """A drive name with " or \\ once crashed the optimiser's file writer."""
+    from chaindrive.io.design import read_toml
+    from chaindrive.synthesis.problem import problem_from_mapping
+
+    data = read_toml(EXAMPLES / "eight_sprocket_optimize.toml")
+    data["drive"]["name"] = 'a "quoted" \\ name'
+    result = solve(problem_from_mapping(data, EXAMPLES), population=4, generations=1, seed=1)
+    for f in pareto_design_files(result, "q", EXAMPLES):
+        assert _reloaded(f.text).name == data["drive"]["name"]
