@@ -33,7 +33,7 @@ from chaindrive.catalog import find_chain
 from chaindrive.cli import run
 from tests.conftest import EXAMPLES
 
-SHORT = 120
+SHORT = 200
 EXAMPLES_N = int(os.environ.get("CHAINDRIVE_FUZZ_EXAMPLES", SHORT))
 LONG = "CHAINDRIVE_FUZZ_EXAMPLES" in os.environ
 #: A case running longer than this fails the promise of bounded time [s] (generous: the
