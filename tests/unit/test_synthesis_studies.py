@@ -288,3 +288,30 @@ def test_a_study_survives_workers_lost_at_any_time(tmp_path, monkeypatch) -> Non
         thread.join()
     assert kills[0] == -1 and len(kills) >= 2, kills  # at the start and part-way
     assert [p.objectives for p in result.pareto] == [p.objectives for p in serial.pareto]
+
+
+def test_the_watchdog_brings_back_workers_the_nanny_gave_up_on() -> None:
+    """Workers killed again and again as they restart: Dask's nanny gives up on them (the
+    cluster shrank to no worker at all, and a study waited for ever); the watchdog
+    re-creates them and work goes on."""
+    from chaindrive.synthesis.studies import _Watchdog
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        watchdog = _Watchdog(cluster, period=0.2)
+        try:
+            kills, deadline = 0, time.monotonic() + 120  # a bound on a stuck test
+            while kills < 12 and time.monotonic() < deadline:
+                try:
+                    pids = list(client.run(os.getpid).values())
+                except Exception:  # a worker died during the call: ask again
+                    pids = []
+                if pids:
+                    os.kill(pids[0], signal.SIGKILL)
+                    kills += 1
+                time.sleep(0.01)
+            client.wait_for_workers(2, timeout=120)
+            assert client.submit(sum, [1, 2], pure=False).result(timeout=120) == 3
+        finally:
+            watchdog.stop()

@@ -18,7 +18,9 @@ populations on Dask, stored in a study database.
   not recomputed. A worker lost mid-chunk takes only that chunk's work with it; the
   scheduler runs the chunk again elsewhere, and nothing stored is lost. A chunk whose
   workers keep dying (Dask gives up on it after its ``allowed-failures``) is submitted
-  again, up to :data:`RESUBMITS` times, with only its unfinished evaluations.
+  again, up to :data:`RESUBMITS` times, with only its unfinished evaluations; and when
+  Dask's nanny gives up on a worker (it was lost again while it restarted), a watchdog
+  re-creates it, so a LocalCluster never runs out of workers.
 * A rich progress bar while it runs, silent when the output is not a terminal.
 
 Compute functions receive one JSON-ready input mapping and return a JSON-ready mapping;
@@ -32,9 +34,11 @@ import hashlib
 import itertools
 import json
 import re
+import threading
 import traceback
 import uuid
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from contextlib import suppress
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any
@@ -345,6 +349,50 @@ def _client(scheduler: str | None, n_workers: int | None) -> tuple[Any, Any]:
     raise AssertionError("unreachable")
 
 
+class _Watchdog:
+    """Keeps a LocalCluster at its number of workers while a study runs.
+
+    Dask's nanny restarts a lost worker, but gives up when the new one is lost again while
+    it starts: the cluster then shrinks, and with no worker left a study would wait for
+    ever. Every ``period`` seconds the watchdog re-creates the workers whose nanny closed
+    (seen once, gone now); workers still starting are left alone.
+    """
+
+    def __init__(self, cluster: Any, period: float = 1.0) -> None:
+        self.cluster = cluster
+        self.size = len(cluster.worker_spec)
+        self.period = period
+        self._seen: set[Any] = set()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True,
+                                        name="chaindrive-dask-watchdog")
+        self._thread.start()
+
+    def revive(self) -> bool:
+        """Re-create the workers that were lost for good; True when it did."""
+        workers = dict(self.cluster.workers)
+        running = {k for k, w in workers.items()
+                   if getattr(w.status, "name", "") not in ("closed", "failed", "closing")}
+        self._seen |= running
+        gone = [k for k in list(self.cluster.worker_spec) if k in self._seen and k not in running]
+        if not gone:
+            return False
+        for name in gone:
+            self.cluster.worker_spec.pop(name, None)
+        self.cluster.scale(self.size)
+        return True
+
+    def _run(self) -> None:
+        while not self._stop.wait(self.period):
+            with suppress(Exception):  # the cluster is closing: nothing to keep
+                self.revive()
+
+    def stop(self) -> None:
+        """Stop watching (before the cluster is closed)."""
+        self._stop.set()
+        self._thread.join()
+
+
 def _progress(enabled: bool | None) -> Any:
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
@@ -454,15 +502,18 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
     computed = 0
     if todo:
         own = client is None
-        cluster = None
+        cluster = watchdog = None
         if own:
             client, cluster = _client(scheduler, n_workers)
+            watchdog = None if cluster is None else _Watchdog(cluster)
         try:
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
                 computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk)
         finally:
             if own:
+                if watchdog is not None:
+                    watchdog.stop()
                 client.close()
                 if cluster is not None:
                     cluster.close()
@@ -693,12 +744,16 @@ class DaskEvaluator:
         self._client = client
         self._own = client is None
         self._cluster: Any = None
+        self._watchdog: _Watchdog | None = None
 
     @property
     def client(self) -> Any:
-        """The Dask client, started on first use."""
+        """The Dask client, started on first use (with a watchdog that keeps its own
+        LocalCluster at full strength)."""
         if self._client is None:
             self._client, self._cluster = _client(self.scheduler, self.n_workers)
+            if self._cluster is not None:
+                self._watchdog = _Watchdog(self._cluster)
         return self._client
 
     def __call__(self, problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
@@ -719,6 +774,9 @@ class DaskEvaluator:
     def close(self) -> None:
         """Shut down the cluster this evaluator started (an existing client is left open)."""
         if self._own and self._client is not None:
+            if self._watchdog is not None:
+                self._watchdog.stop()
+                self._watchdog = None
             self._client.close()
             if self._cluster is not None:
                 self._cluster.close()
