@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT := out
 
-.PHONY: demo test lint typecheck bench app clean bytecode flaky
+.PHONY: demo test lint typecheck bench app clean bytecode flaky fuzz
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -58,6 +58,13 @@ N ?= 30
 LOAD ?= 0
 flaky: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	$(BIN)/python -m tests.flaky --count $(N) --load $(LOAD)
+
+# The long fuzzing run of docs/reliability.md: FUZZ new random mutated designs (make test
+# runs a short derandomised profile of the same test).
+FUZZ ?= 2000
+fuzz: $(VENV)/.installed-test $(VENV)/.kernel bytecode
+	CHAINDRIVE_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/python -m pytest -q -p no:cacheprovider \
+		tests/property/test_fuzz.py --hypothesis-show-statistics
 
 bench: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

@@ -21,7 +21,11 @@ from numpy.typing import NDArray
 from chaindrive.checks import Check, CheckLimits
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.afc import AfcResult
-from chaindrive.dynamics.checks import dynamic_safety_check, resonance_check
+from chaindrive.dynamics.checks import (
+    disturbed_safety_check,
+    dynamic_safety_check,
+    resonance_check,
+)
 from chaindrive.dynamics.damping import (
     PR_12_7_1820_1,
     HingeFrictionResult,
@@ -429,6 +433,11 @@ class Analysis:
             out.append(dynamic_safety_check("k2", None if steady is None else steady.k2, k))
             out.append(dynamic_safety_check("k2min", None if steady is None else steady.k2_min,
                                             k))
+            if steady is not None and self.disturbances and self._static is not None:
+                out.append(disturbed_safety_check(
+                    self.drive.chain.spec.breaking_load, self._static.loads.span_tensions,
+                    steady.span_dynamic_load,
+                    {n: r.span_dynamic_load for n, r in self.disturbances.items()}, k))
         return tuple(out)
 
     def checks(self) -> tuple[Check, ...]:

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from chaindrive.errors import DesignError
+from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -174,11 +175,11 @@ def write_drawing(analysis: Analysis, path: str | Path) -> Path:
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .dxf or .svg, got {out.name!r}")
     doc = drawing_document(analysis)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    if suffix == ".dxf":
-        doc.saveas(out)
-    else:
-        out.write_text(svg_string(doc), encoding="utf-8")
+    with atomic_path(out) as tmp:  # complete or absent, never half-written
+        if suffix == ".dxf":
+            doc.saveas(tmp)
+        else:
+            tmp.write_text(svg_string(doc), encoding="utf-8")
     return out
 
 

@@ -27,7 +27,12 @@ class DesignError(ChainDriveError, ValueError):
 
     def __init__(self, field: str, message: str) -> None:
         self.field = field
+        self.detail = message
         super().__init__(f"{field}: {message}" if field else message)
+
+    def __reduce__(self) -> tuple[type, tuple[str, str]]:
+        """Pickle by (field, message), so the error crosses to a worker process and back."""
+        return type(self), (self.field, self.detail)
 
 
 class CatalogError(DesignError):
@@ -68,6 +73,10 @@ class ChainDriveWarning(UserWarning):
 
     def __str__(self) -> str:
         return self.message
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, str]]:
+        """Pickle by (code, part, message), so results that carry warnings cross processes."""
+        return type(self), (self.code, self.part, self.message)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.code!r}, {self.part!r}, {self.message!r})"

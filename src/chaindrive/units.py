@@ -3,11 +3,34 @@
 Each field of a design declares the dimension it expects (e.g. ``"[length]"``); a value
 without a unit, with an unknown unit or a unit of the wrong kind is refused with a
 one-line :class:`~chaindrive.errors.DesignError` naming the field.
+
+What is read
+------------
+A quantity is a decimal number followed by a unit expression: ``"25.4 mm"``,
+``"0.06 kg*m^2"``, ``"300 min⁻¹"``. The number is read by Python (``float``), never by
+pint's expression evaluator, and the unit expression is limited to unit names, ``* / ^ **
+· ( )``, the superscripts and exponents of at most two digits: a design file cannot make
+the parser compute (``"9**9**9 mm"`` is refused, not evaluated). A text is at most
+:data:`MAX_TEXT` characters.
+
+Spellings: pint's names and symbols as written (``MPa`` and ``mPa`` differ), and, where a
+name is not defined as written, the case-insensitive common spellings of
+:data:`ALIASES` that have one reading only (``kw``, ``KW`` → kW; ``RPM`` → rpm; ``r/min``,
+``rev/min`` → rpm; ``in`` → inch; ``Nm`` → N·m).
+
+Rotational speed: ``rpm``, ``rad/s``, ``revolution/s`` and — the rotational frequency of
+[ISO80000-3] — ``1/min``, ``min⁻¹``, ``min^-1``, ``1/s`` (revolutions per unit time). A
+bare ``Hz`` is refused as ambiguous (it is read as a tooth or a natural frequency too).
+
+References
+----------
+[ISO80000-3]
 """
 
 from __future__ import annotations
 
 import math
+import re
 import sys
 from functools import lru_cache
 from typing import Any
@@ -37,6 +60,23 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "torsional_damping": ("[mass]*[length]**2/[time]", "N*m*s/rad", "20 N*m*s/rad"),
     "area": ("[length]**2", "m**2", "180 mm^2"),
 }
+
+#: Longest text read as a quantity [characters].
+MAX_TEXT = 80
+
+#: Common spellings that pint does not define as written, by their lower-case form → the
+#: unit they mean. Only spellings with one reading are listed (``mw`` could be mW or MW and
+#: is not; ``nm`` is the nanometre and is left to pint).
+ALIASES: dict[str, str] = {
+    "kw": "kW", "hp": "hp", "rpm": "rpm", "r": "revolution", "rev": "revolution",
+    "revs": "revolution", "in": "inch", "inch": "inch", "inches": "inch", "lbf": "lbf",
+    "kn": "kN", "nm": "N*m", "knm": "kN*m",
+}
+
+_NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", re.DOTALL)
+_UNIT_CHARS = re.compile(r"[^\W_]|[\s*/^·⋅().\-°'\"⁻⁰¹²³⁴⁵⁶⁷⁸⁹µμΩ_]")
+_WORD = re.compile(r"[^\W\d_]+")
+_LONG_DIGITS = re.compile(r"\d{3,}")
 
 
 def _import_pint() -> Any:
@@ -73,48 +113,177 @@ def registry() -> Any:
         return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
+def shown(text: str) -> str:
+    """``text`` as an error message quotes it.
+
+    Parameters
+    ----------
+    text : str
+        A value of a design file.
+
+    Returns
+    -------
+    str
+        Its ``repr`` (control characters such as a newline escaped, so the message stays one
+        line), cut to :data:`MAX_TEXT` characters.
+    """
+    r = repr(text)
+    return r if len(r) <= MAX_TEXT + 2 else r[:MAX_TEXT] + "…'"
+
+
+@lru_cache(maxsize=512)
+def _defined(word: str) -> bool:
+    """True when pint reads ``word`` as a unit (with its prefixes and plurals)."""
+    pint = _import_pint()
+    try:
+        registry().parse_units(word)
+    except (pint.errors.UndefinedUnitError, AttributeError, ValueError, TypeError):
+        return False
+    return True
+
+
+def _spelled(unit: str) -> str:
+    """The unit expression with the common spellings of :data:`ALIASES` replaced where pint
+    does not define the word as written."""
+    def one(m: re.Match[str]) -> str:
+        word = m.group(0)
+        if word == "Nm" or not _defined(word):
+            return ALIASES.get(word.lower(), word)
+        return word
+
+    return _WORD.sub(one, unit)
+
+
+def _split(text: str, field: str, example: str) -> tuple[float, str]:
+    """(number, unit expression) of a quantity text; :class:`DesignError` when it is not one."""
+    if len(text) > MAX_TEXT:
+        raise DesignError(field, f"{shown(text)} is too long for a quantity (at most "
+                          f"{MAX_TEXT} characters); write it like \"{example}\"")
+    m = _NUMBER.fullmatch(text)
+    if m is None:
+        raise DesignError(field, f"cannot read {shown(text)} as a quantity; write it like "
+                          f"\"{example}\"")
+    number, unit = m.group(1), m.group(2)
+    value = float(number)
+    if not math.isfinite(value):
+        raise DesignError(field, f"{shown(text)} is out of range; write it like \"{example}\"")
+    if not unit:
+        raise DesignError(field, f"missing unit in {shown(text)}; write it like \"{example}\"")
+    if not all(_UNIT_CHARS.fullmatch(c) for c in unit) or _LONG_DIGITS.search(unit):
+        raise DesignError(field, f"cannot read the unit of {shown(text)}; write it like "
+                          f"\"{example}\"")
+    return value, _spelled(unit)
+
+
+def _units(unit: str, text: str, field: str, example: str) -> Any:
+    """The pint unit of a unit expression (no scaling factor, nothing evaluated)."""
+    pint = _import_pint()
+    try:
+        units = registry().parse_units(unit)
+    except pint.errors.UndefinedUnitError as exc:
+        names = exc.unit_names if isinstance(exc.unit_names, list | tuple) else [exc.unit_names]
+        raise DesignError(field, f"unknown unit in {shown(text)} "
+                          f"({', '.join(repr(str(n)) for n in names)})") from None
+    except Exception:  # pint raises several types for a malformed expression
+        raise DesignError(field, f"cannot read the unit of {shown(text)}; write it like "
+                          f"\"{example}\"") from None
+    return units
+
+
+def _is_angle(q: Any) -> bool:
+    """True for a quantity in an angle unit (radian, degree, revolution …)."""
+    return bool(q.dimensionless) and not q.unitless and str(q.to_root_units().units) == "radian"
+
+
 def parse_quantity(text: object, dimension: str, field: str) -> float:
     """Parse ``text`` such as ``"25.4 mm"`` as a quantity of ``dimension``; return SI float.
 
-    Angular speed: ``rpm`` and ``rad/s`` are both 1/[time] in pint (rad is dimensionless);
-    a bare ``Hz``/``1/s`` is taken as revolutions per second is NOT assumed: frequency
-    units are converted as rad/s only when written with ``rad`` or ``rpm``/``revolution``.
-    """
-    pint = _import_pint()
+    Parameters
+    ----------
+    text : object
+        The value of the field (a string with a unit; anything else is refused).
+    dimension : str
+        A key of :data:`DIMENSIONS`.
+    field : str
+        The field's path in the design file, for the message.
 
-    dim, si_unit, example = DIMENSIONS[dimension]
+    Returns
+    -------
+    float
+        The value in the SI unit of the dimension (rad/s for a speed, rad for an angle).
+
+    Raises
+    ------
+    DesignError
+        One line naming the field, the text and what is expected.
+
+    Notes
+    -----
+    A speed in reciprocal time without an angle unit (``1/min``, ``min⁻¹``, ``1/s``) is a
+    rotational frequency n, revolutions per unit time [ISO80000-3]: ω = 2π·n. ``Hz`` is
+    refused as ambiguous. An angle needs an angle unit (``deg``, ``rad``, ``revolution``).
+    """
+    _dim, si_unit, example = DIMENSIONS[dimension]
     if isinstance(text, bool) or not isinstance(text, str):
+        shown_value = shown(text) if isinstance(text, str) else repr(text)[:MAX_TEXT]
         raise DesignError(
-            field, f"must be a string with a unit such as \"{example}\", got {text!r}"
+            field, f"must be a string with a unit such as \"{example}\", got {shown_value}"
         )
-    ureg = registry()
-    try:
-        q = ureg.Quantity(text.strip())
-    except pint.errors.UndefinedUnitError as exc:
-        raise DesignError(field, f"unknown unit in {text!r} ({exc.unit_names!s})") from None
-    except Exception:
-        raise DesignError(
-            field, f"cannot read {text!r} as a quantity; write it like \"{example}\""
-        ) from None
-    if not isinstance(q, ureg.Quantity) or (q.dimensionless and dimension != "angle"):
-        raise DesignError(field, f"missing unit in {text!r}; write it like \"{example}\"")
+    value, unit = _split(text, field, example)
+    units = _units(unit, text, field, example)
+    q = registry().Quantity(value, units)
+    if dimension == "angle":
+        if not _is_angle(q):
+            raise DesignError(field, f"{shown(text)} is not an angle (expected a unit like "
+                              f"\"{example}\", got {q.units:~})")
+        return _finite(float(q.to("radian").magnitude), text, field, example)
+    if q.dimensionless:
+        raise DesignError(field, f"missing unit in {shown(text)}; write it like \"{example}\"")
     if dimension == "speed":
-        unit_text = str(q.units)
-        if "hertz" in unit_text or unit_text in {"1 / second", "1 / minute"}:
-            raise DesignError(
-                field,
-                f"ambiguous speed unit in {text!r}; use rpm, revolution/s or rad/s (e.g. \"{example}\")",
-            )
-    if dim and not q.check(dim):
+        return _speed(q, text, field, example)
+    if not q.check(_dim):
         raise DesignError(
             field,
-            f"{text!r} is not a {dimension.replace('_', ' ')} (expected a unit like "
+            f"{shown(text)} is not a {dimension.replace('_', ' ')} (expected a unit like "
             f"\"{example}\", got {q.units:~})",
         )
-    value = float(q.to(si_unit).magnitude)
+    return _finite(float(q.to(si_unit).magnitude), text, field, example)
+
+
+def _speed(q: Any, text: str, field: str, example: str) -> float:
+    """A rotational speed [rad/s]: angle per time, or revolutions per time (see
+    :func:`parse_quantity`)."""
+    if "hertz" in str(q.units):
+        raise DesignError(field, f"ambiguous speed unit in {shown(text)}; use rpm, min⁻¹, "
+                          f"revolution/s or rad/s (e.g. \"{example}\")")
+    if not q.check("1/[time]"):
+        raise DesignError(field, f"{shown(text)} is not a speed (expected a unit like "
+                          f"\"{example}\", got {q.units:~})")
+    root = q.to_root_units()
+    if "radian" in str(root.units):
+        return _finite(float(q.to("rad/s").magnitude), text, field, example)
+    return _finite(2.0 * math.pi * float(q.to("1/s").magnitude), text, field, example)
+
+
+def _finite(value: float, text: str, field: str, example: str) -> float:
+    if not math.isfinite(value):
+        raise DesignError(field, f"{shown(text)} is out of range; write it like \"{example}\"")
     return value
 
 
 def format_si(value: float, unit: str) -> str:
-    """Format an SI value for a design file: the inverse of :func:`parse_quantity`."""
+    """Format an SI value for a design file: the inverse of :func:`parse_quantity`.
+
+    Parameters
+    ----------
+    value : float
+        The value [SI unit of ``unit``].
+    unit : str
+        The SI unit written after it (``"m"``, ``"rad/s"`` …).
+
+    Returns
+    -------
+    str
+        ``"<value> <unit>"``.
+    """
     return f"{value:g} {unit}"

@@ -183,3 +183,135 @@ def test_optimiser_population_on_dask_matches_serial_and_resumes(tmp_path) -> No
     assert [p.objectives for p in first.pareto] == [p.objectives for p in serial.pareto]
     assert [p.objectives for p in again.pareto] == [p.objectives for p in serial.pareto]
     assert StudyStore(url).count("opt") == stored  # the rerun computed nothing new
+
+
+def test_a_bad_database_url_is_one_line(tmp_path) -> None:
+    from chaindrive.errors import DesignError
+
+    for url in ("sqlite:////missing/dir/x.db", "nosuchdialect://x", "sqlite:///"
+                + str(tmp_path / "no" / "such" / "dir" / "x.db")):
+        with pytest.raises(DesignError) as info:
+            StudyStore(url)
+        line = str(info.value)
+        assert line.startswith("db: cannot open the study database") and "\n" not in line
+
+
+def test_optimize_with_a_bad_db_is_one_line_and_exit_2(capsys) -> None:
+    from chaindrive.cli import run
+
+    status = run(["optimize", str(EXAMPLES / "eight_sprocket_optimize.toml"), "--db",
+                  "sqlite:////missing/dir/x.db"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 2 and len(err) == 1 and err[0].startswith("error: db: cannot open")
+
+
+def _small_problem():  # type: ignore[no-untyped-def]
+    from chaindrive.synthesis.problem import load_problem
+
+    return load_problem(EXAMPLES / "eight_sprocket_optimize.toml")
+
+
+def test_one_cluster_serves_every_generation(tmp_path, monkeypatch) -> None:
+    """The evaluator starts one cluster for the study, not one per generation (a new
+    LocalCluster per generation made a worker lost while one started abort the study)."""
+    from chaindrive.synthesis import studies
+    from chaindrive.synthesis.solve import solve
+
+    pytest.importorskip("optuna")
+    started: list[object] = []
+
+    def client(scheduler, n_workers):  # type: ignore[no-untyped-def]
+        cluster = distributed.LocalCluster(n_workers=1, threads_per_worker=1,
+                                           processes=False, dashboard_address=":0")
+        started.append(cluster)
+        return distributed.Client(cluster), cluster
+
+    monkeypatch.setattr(studies, "_client", client)
+    url = f"sqlite:///{tmp_path / 'one.db'}"
+    with studies.dask_evaluator(db=url, study="one") as evaluator:
+        result = solve(_small_problem(), population=4, generations=3, seed=2,
+                       evaluator=evaluator)
+        assert len(started) == 1 and evaluator.client.status == "running"
+    assert evaluator._client is None  # closed with the evaluator
+    assert result.evaluations >= 12
+
+
+def test_a_study_survives_workers_lost_at_any_time(tmp_path, monkeypatch) -> None:
+    """Workers killed (SIGKILL) as the cluster starts, then in the middle of generations
+    and between them: the optimisation ends with the same Pareto set as the serial run."""
+    from chaindrive.synthesis import studies
+    from chaindrive.synthesis.solve import solve
+
+    pytest.importorskip("optuna")
+    problem = _small_problem()
+    serial = solve(problem, population=6, generations=3, seed=3)
+    url = f"sqlite:///{tmp_path / 'lost.db'}"
+    StudyStore(url).close()
+    kills: list[int] = []
+    real_client = studies._client
+
+    def client_losing_a_worker(scheduler, n_workers):  # type: ignore[no-untyped-def]
+        client, cluster = real_client(scheduler, n_workers)
+        os.kill(next(iter(client.run(os.getpid).values())), signal.SIGKILL)
+        kills.append(-1)  # lost while the cluster starts, before any task
+        return client, cluster
+
+    monkeypatch.setattr(studies, "_client", client_losing_a_worker)
+    stop = threading.Event()
+    evaluator = studies.DaskEvaluator(db=url, study="lost", n_workers=2)
+
+    def killer() -> None:
+        """Kill a worker each time 4 more evaluations are stored (6 per generation)."""
+        watcher = StudyStore(url)
+        next_at = 4
+        while not stop.is_set():
+            client = evaluator._client
+            if client is not None and watcher.count("lost") >= next_at:
+                try:
+                    pids = list(client.run(os.getpid).values())
+                except Exception:  # a worker is being restarted: try again
+                    pids = []
+                if pids:
+                    os.kill(pids[0], signal.SIGKILL)
+                    kills.append(watcher.count("lost"))
+                    next_at = kills[-1] + 4
+            stop.wait(0.01)
+        watcher.close()
+
+    thread = threading.Thread(target=killer)
+    thread.start()
+    try:
+        with evaluator:
+            result = solve(problem, population=6, generations=3, seed=3, evaluator=evaluator)
+    finally:
+        stop.set()
+        thread.join()
+    assert kills[0] == -1 and len(kills) >= 2, kills  # at the start and part-way
+    assert [p.objectives for p in result.pareto] == [p.objectives for p in serial.pareto]
+
+
+def test_the_watchdog_brings_back_workers_the_nanny_gave_up_on() -> None:
+    """Workers killed again and again as they restart: Dask's nanny gives up on them (the
+    cluster shrank to no worker at all, and a study waited for ever); the watchdog
+    re-creates them and work goes on."""
+    from chaindrive.synthesis.studies import _Watchdog
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        watchdog = _Watchdog(cluster, period=0.2)
+        try:
+            kills, deadline = 0, time.monotonic() + 120  # a bound on a stuck test
+            while kills < 12 and time.monotonic() < deadline:
+                try:
+                    pids = list(client.run(os.getpid).values())
+                except Exception:  # a worker died during the call: ask again
+                    pids = []
+                if pids:
+                    os.kill(pids[0], signal.SIGKILL)
+                    kills += 1
+                time.sleep(0.01)
+            client.wait_for_workers(2, timeout=120)
+            assert client.submit(sum, [1, 2], pure=False).result(timeout=120) == 3
+        finally:
+            watchdog.stop()

@@ -33,11 +33,11 @@ from chaindrive.app.state import (
     read_design_text,
     sprocket_label,
 )
+from chaindrive.app.uploads import Uploads, design_text
 from chaindrive.app.views import (
     Screen,
     check_records,
     modal_records,
-    recompute,
     resonance_records,
     span_records,
     sprocket_records,
@@ -109,13 +109,12 @@ def _sidebar(design: dict[str, Any] | None) -> None:
     if upload is not None and st.session_state.get("uploaded") != upload.file_id:
         st.session_state["uploaded"] = upload.file_id
         try:
-            text = upload.getvalue().decode("utf-8")
+            text = design_text(upload.name, upload.getvalue())
             _load(read_design_text(text, upload.name), upload.name)
             st.rerun()
-        except UnicodeDecodeError:
-            st.session_state["load_error"] = f"{upload.name}: cannot read the file (not UTF-8)"
         except ChainDriveError as exc:
             st.session_state["load_error"] = str(exc)
+    _catalog_upload(sb)
     if "load_error" in st.session_state:
         sb.error(st.session_state["load_error"])
     if design is not None:
@@ -125,6 +124,35 @@ def _sidebar(design: dict[str, Any] | None) -> None:
     sb.caption(f"Loaded: {st.session_state.get('source', '—')}. Edits apply at once (the "
                "“edit one sprocket” form on Apply); a field with a bad value shows the same "
                "message as `chaindrive analyze`.")
+
+
+def _catalog_upload(sb: Any) -> None:
+    """The catalogue files of this session: a design's ``chain.catalog`` names one of them
+    (never a file of the server)."""
+    uploads: Uploads = st.session_state.setdefault("uploads", Uploads())
+    files = sb.file_uploader("Add a catalogue (CSV or TOML)", type=["csv", "toml"],
+                             key="catalog_upload", accept_multiple_files=True)
+    seen = st.session_state.setdefault("catalog_ids", set())
+    for f in files or []:
+        if f.file_id in seen:
+            continue
+        seen.add(f.file_id)
+        try:
+            uploads.add(f.name, f.getvalue())
+            st.session_state.pop("catalog_error", None)
+        except ChainDriveError as exc:
+            st.session_state["catalog_error"] = str(exc)
+    if "catalog_error" in st.session_state:
+        sb.error(st.session_state["catalog_error"])
+    if uploads.content:
+        sb.caption("Catalogues of this session (name them in chain.catalog): "
+                   + ", ".join(uploads.content))
+
+
+def _catalogs() -> dict[str, str]:
+    """Name → file of the catalogues uploaded in this session."""
+    uploads: Uploads = st.session_state.setdefault("uploads", Uploads())
+    return {k: str(v) for k, v in uploads.paths().items()}
 
 
 def _file_name(suffix: str) -> str:
@@ -355,8 +383,11 @@ def _sprocket_editor(rows: list[dict[str, Any]]) -> tuple[int, dict[str, Any]] |
 # --- results -------------------------------------------------------------------------------------
 
 @st.cache_resource(max_entries=32, show_spinner=False)
-def _screen(design_json: str) -> Screen:
-    return recompute(json.loads(design_json))
+def _screen(design_json: str, catalogs_json: str = "{}") -> Screen:
+    """The screen of a design (and the session's catalogues), computed in a bounded run
+    (:func:`chaindrive.app.runs.bounded_screen`) and kept for every session."""
+    catalogs = {k: Path(v) for k, v in json.loads(catalogs_json).items()}
+    return runs.bounded_screen(json.loads(design_json), catalogs)
 
 
 def _show_error(screen: Screen, slots: dict[tuple[str, str], Any], table_slot: Any,
@@ -512,7 +543,7 @@ def _full(screen: Screen, label: str, button: str) -> Any:
     if key not in store and st.button(button, key=f"run_{label}"):
         with st.status(f"{label}: running the dynamic analysis…", expanded=False) as status:
             try:
-                store[key] = runs.full_analysis(drive)
+                store[key] = runs.bounded_full_analysis(drive)
                 status.update(label=f"{label}: done", state="complete")
             except ChainDriveError as exc:
                 store[key] = exc
@@ -602,7 +633,7 @@ def _tab_files(screen: Screen, design: dict[str, Any]) -> None:
     for col, kind, label, make, suffix, mime in (
             (c2, "report", "report (HTML)", lambda x: _make_report(screen), ".html",
              "text/html"),
-            (c3, "drawing", "drawing (DXF)", lambda x: runs.drawing_dxf(x), ".dxf",
+            (c3, "drawing", "drawing (DXF)", lambda x: runs.bounded_drawing(x), ".dxf",
              "application/dxf")):
         with col:
             reason = runs.missing(kind)
@@ -625,21 +656,10 @@ def _tab_files(screen: Screen, design: dict[str, Any]) -> None:
 
 
 def _make_report(screen: Screen) -> bytes:
-    """The report of the full analysis (with the dynamic response), with a progress bar."""
-    bar = st.progress(0.0, text="Running the full analysis…")
-    a = runs.full_analysis(screen.outcome.drive)
-    from chaindrive.report.content import SECTIONS
-
-    total = max(len(SECTIONS), 1)
-    done = {"n": 0}
-
-    def step(title: str) -> None:
-        done["n"] += 1
-        bar.progress(min(done["n"] / total, 1.0), text=f"Building the report: {title}")
-
-    data = runs.report_html(a, progress=step)
-    bar.empty()
-    return data
+    """The report of the full analysis (with the dynamic response), built in a bounded run
+    (:func:`chaindrive.app.runs.bounded_report`)."""
+    with st.spinner("Running the full analysis and building the report…"):
+        return runs.bounded_report(screen.outcome.drive)
 
 
 def _results(screen: Screen, design: dict[str, Any]) -> None:
@@ -714,7 +734,8 @@ def page() -> None:
     form = DesignForm(drive, chain, rows, base.other)
     design = design_from_form(form)
     _sidebar(design)
-    screen = _screen(json.dumps(design, sort_keys=True, default=str))
+    screen = _screen(json.dumps(design, sort_keys=True, default=str),
+                     json.dumps(_catalogs(), sort_keys=True))
     _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
         st.session_state["last_good"] = (screen, design)

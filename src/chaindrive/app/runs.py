@@ -2,6 +2,10 @@
 drawing as bytes. Each part may be missing from an installation (a module not written yet,
 an optional dependency not installed): :func:`missing` says why, and the page shows that
 instead of the tab's button.
+
+The ``bounded_*`` functions are what the page calls: each runs its work in a child process
+with a time and memory limit (:func:`chaindrive.app.worker.run_bounded`), so that one
+session's heavy design never stalls the server for the others.
 """
 
 from __future__ import annotations
@@ -11,8 +15,14 @@ import io
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from chaindrive.app.worker import FULL_SECONDS, INTERACTIVE_SECONDS, run_bounded
+from chaindrive.errors import ChainDriveError
+
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from chaindrive.analysis import Analysis
+    from chaindrive.app.views import Screen
     from chaindrive.model import Drive
 
 #: What each on-demand feature needs: feature → modules that must be importable.
@@ -33,7 +43,18 @@ def _importable(name: str) -> bool:
 
 
 def missing(feature: str) -> str | None:
-    """None when ``feature`` (a key of :data:`NEEDS`) can run, else the reason it cannot."""
+    """Whether an on-demand feature can run in this installation.
+
+    Parameters
+    ----------
+    feature : str
+        A key of :data:`NEEDS`.
+
+    Returns
+    -------
+    str | None
+        None when it can run, else the reason it cannot.
+    """
     absent = [m for m in NEEDS[feature] if not _importable(m)]
     return None if not absent else f"not available yet (needs {', '.join(absent)})"
 
@@ -42,7 +63,17 @@ def full_analysis(drive: Drive) -> Analysis:
     """Every analysis of the drive, with the dynamic response the page leaves out of its
     interactive loop: start-up transient, steady state, AFC sweep and the two-stage check
     (:func:`chaindrive.analyze` with the design's ``[dynamics]`` settings — the same
-    numbers as ``chaindrive analyze``)."""
+    numbers as ``chaindrive analyze``).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    Analysis
+    """
     import chaindrive
 
     return chaindrive.analyze(drive)
@@ -50,14 +81,38 @@ def full_analysis(drive: Drive) -> Analysis:
 
 def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = None) -> bytes:
     """The HTML design report of the analysis (:func:`chaindrive.report.build_report`; give
-    it the :func:`full_analysis` so that the dynamic response is in it)."""
+    it the :func:`full_analysis` so that the dynamic response is in it).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis to report.
+    progress : callable | None
+        Called with each section's title before it is built.
+
+    Returns
+    -------
+    bytes
+        The HTML document (UTF-8).
+    """
     from chaindrive.report import build_report, render_html
 
     return render_html(build_report(analysis, progress=progress)).encode("utf-8")
 
 
 def drawing_dxf(analysis: Analysis) -> bytes:
-    """The DXF drawing of the drive (:func:`chaindrive.drawing.drawing_document`)."""
+    """The DXF drawing of the drive (:func:`chaindrive.drawing.drawing_document`).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis whose drive is drawn.
+
+    Returns
+    -------
+    bytes
+        The DXF file.
+    """
     from chaindrive.drawing import drawing_document
 
     doc = drawing_document(analysis)
@@ -67,7 +122,114 @@ def drawing_dxf(analysis: Analysis) -> bytes:
 
 
 def figure_png(fig: Any, dpi: int = 100) -> bytes:
-    """A matplotlib Figure rendered to PNG bytes (Agg, no pyplot)."""
+    """A matplotlib Figure rendered to PNG bytes (Agg, no pyplot).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    dpi : int
+        Resolution [dots per inch].
+
+    Returns
+    -------
+    bytes
+        The PNG image.
+    """
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     return buf.getvalue()
+
+
+def full_report(drive: Drive) -> bytes:
+    """The HTML report of the :func:`full_analysis` of ``drive`` (one run: analysis and
+    report in the same process).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    bytes
+        The HTML document (UTF-8).
+    """
+    return report_html(full_analysis(drive))
+
+
+def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
+    """:func:`chaindrive.app.views.recompute` in a bounded run; a run past its limit is shown
+    as the design's message (never raises).
+
+    Parameters
+    ----------
+    design : dict
+        The design mapping of the form.
+    catalogs : dict of str to Path | None
+        The session's uploaded catalogues.
+
+    Returns
+    -------
+    Screen
+    """
+    from chaindrive.app.state import Location, Outcome
+    from chaindrive.app.views import Screen, recompute
+
+    try:
+        return run_bounded(recompute, design, catalogs, seconds=INTERACTIVE_SECONDS,
+                           what="the analysis")
+    except ChainDriveError as exc:
+        return Screen(Outcome(message=str(exc), location=Location("design")))
+    except Exception as exc:  # the page must never show a traceback
+        return Screen(Outcome(unexpected=True, location=Location("design"),
+                              message=f"the analysis failed unexpectedly ({exc})"[:300]))
+
+
+def bounded_full_analysis(drive: Drive) -> Analysis:
+    """:func:`full_analysis` in a bounded run (raises its ChainDriveError, or
+    RunLimitError).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    Analysis
+    """
+    return run_bounded(full_analysis, drive, seconds=FULL_SECONDS,
+                       what="the dynamic analysis")
+
+
+def bounded_report(drive: Drive) -> bytes:
+    """:func:`full_report` in a bounded run.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    bytes
+        The HTML document (UTF-8).
+    """
+    return run_bounded(full_report, drive, seconds=FULL_SECONDS, what="the report")
+
+
+def bounded_drawing(analysis: Analysis) -> bytes:
+    """:func:`drawing_dxf` in a bounded run.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis whose drive is drawn.
+
+    Returns
+    -------
+    bytes
+        The DXF file.
+    """
+    return run_bounded(drawing_dxf, analysis, seconds=FULL_SECONDS, what="the drawing")

@@ -284,28 +284,42 @@ def design_from_form(form: DesignForm) -> dict[str, Any]:
 
 # --- the design mapping as a TOML file ------------------------------------------------------
 
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int | float):
-        return repr(value)
-    text = str(value).replace("\\", "\\\\").replace('"', '\\"')
-    return f'"{text}"'
+def _toml_ready(value: Any) -> Any:
+    """``value`` with what TOML cannot hold made TOML: numpy/pandas scalars unwrapped, other
+    objects as their text."""
+    value = plain(value)
+    if isinstance(value, Mapping):
+        return {str(k): _toml_ready(v) for k, v in value.items() if not is_empty(v)}
+    if isinstance(value, list | tuple):
+        return [_toml_ready(v) for v in value]
+    if isinstance(value, bool | int | float | str):
+        return value
+    return str(value)
 
 
 def design_to_toml(design: Mapping[str, Any], comment: str | None = None) -> str:
     """The design mapping as a TOML design file, written as entered (it need not be valid:
-    a half-finished design can be saved and loaded again)."""
-    lines = [f"# {line}" for line in (comment or "").splitlines()]
-    tables = [k for k, v in design.items() if k != "sprockets" and isinstance(v, Mapping)]
-    for section in tables:
-        values = design.get(section) or {}
-        if values:
-            lines += ([""] if lines else []) + [f"[{section}]"]
-            lines += [f"{k} = {_toml_value(v)}" for k, v in values.items()]
-    for row in design.get("sprockets") or []:
-        lines += ["", "[[sprockets]]"] + [f"{k} = {_toml_value(v)}" for k, v in row.items()]
-    return "\n".join(lines) + "\n"
+    a half-finished design can be saved and loaded again), by tomli-w: any name — with
+    quotes, backslashes or newlines — is written so that it reads back the same.
+
+    Parameters
+    ----------
+    design : Mapping
+        The design mapping (:func:`design_from_form`).
+    comment : str | None
+        Lines written as ``#`` comments at the top (lines with control characters are
+        left out).
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
+    import tomli_w
+
+    lines = [f"# {line}" for line in (comment or "").splitlines() if line.isprintable()]
+    body = tomli_w.dumps(_toml_ready(design))
+    return "\n".join(lines) + ("\n\n" if lines else "") + body
 
 
 # --- evaluation -----------------------------------------------------------------------------
@@ -347,25 +361,45 @@ def interactive_analysis(drive: Drive) -> Analysis:
 
 
 def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
-             full: bool = False) -> Outcome:
+             full: bool = False, catalogs: Mapping[str, Path] | None = None) -> Outcome:
     """Validate the design mapping and analyse it (:func:`interactive_analysis`, or the whole
     :func:`chaindrive.analyze` with ``full``); never raises for a bad design.
 
     A :class:`~chaindrive.errors.ChainDriveError` gives ``message`` = ``str(error)`` (the
     line the command line prints) and ``location`` from its ``field``; any other exception
     gives a short note with its class name and ``unexpected=True``.
+
+    Parameters
+    ----------
+    design : Mapping
+        The design mapping.
+    base_dir : Path | None
+        Kept for the callers that pass it; it plays no part in finding a catalogue.
+    full : bool
+        Analyse with the dynamic response.
+    catalogs : Mapping of str to Path | None
+        The catalogues uploaded in the session (name → file): ``chain.catalog`` can name
+        only these — the page never opens a path a design gives.
+
+    Returns
+    -------
+    Outcome
     """
     import chaindrive
     from chaindrive.io.design import drive_from_mapping
 
+    uploaded = dict(catalogs or {})
     names = [str(r.get("name")) for r in design.get("sprockets") or [] if isinstance(r, Mapping)]
     drive = None
     try:
-        drive = drive_from_mapping(design, base_dir)
+        drive = drive_from_mapping(design, base_dir, catalogs=uploaded)
         analysis = chaindrive.analyze(drive) if full else interactive_analysis(drive)
     except ChainDriveError as exc:
         where = getattr(exc, "field", "")
-        return Outcome(drive=drive, message=str(exc), location=locate(where, names))
+        message = str(exc)
+        for name, path in uploaded.items():  # the upload's name, not the server's file
+            message = message.replace(str(path), name)
+        return Outcome(drive=drive, message=message, location=locate(where, names))
     except Exception as exc:  # the page must never show a traceback
         return Outcome(drive=drive, unexpected=True, location=Location("design"),
                        message=f"the analysis failed unexpectedly ({type(exc).__name__}); "

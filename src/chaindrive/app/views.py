@@ -11,6 +11,7 @@ from __future__ import annotations
 import html
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -213,12 +214,13 @@ class Screen:
     svg: str | None = None
 
 
-def recompute(design: dict[str, Any]) -> Screen:
+def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
     """Evaluate the design mapping and derive what is always on screen (the work the page
-    does after every edit; timed by ``benchmarks/bench_app_recompute.py``)."""
+    does after every edit; timed by ``benchmarks/bench_app_recompute.py``); ``catalogs``:
+    the session's uploaded catalogues (:func:`chaindrive.app.state.evaluate`)."""
     from chaindrive.app.state import evaluate
 
-    outcome = evaluate(design)
+    outcome = evaluate(design, catalogs=catalogs)
     if outcome.analysis is None:
         return Screen(outcome)
     analysis = outcome.analysis

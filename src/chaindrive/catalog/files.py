@@ -18,6 +18,7 @@ from typing import Any, Generic, TypeVar
 
 from chaindrive.catalog.bearing import bearing_area_estimate
 from chaindrive.errors import CatalogError, DesignError, closest
+from chaindrive.io.limits import MAX_CATALOG_BYTES, check_catalog_value, check_file_size
 from chaindrive.model import ChainSpec, Material
 from chaindrive.units import parse_quantity
 
@@ -89,8 +90,9 @@ _MATERIAL_TOML: dict[str, tuple[str, str]] = {
 }
 
 
-def _number(text: str, kind: str, where: str) -> float | None:
-    """Parse one numeric cell; ``kind`` pos (> 0), nonneg (≥ 0, blank = 0) or opt (blank = None)."""
+def _number(text: str, kind: str, where: str, column: str = "") -> float | None:
+    """Parse one numeric cell; ``kind`` pos (> 0), nonneg (≥ 0, blank = 0) or opt (blank = None);
+    a value outside the plausible range of ``column`` (:mod:`chaindrive.io.limits`) is refused."""
     text = text.strip()
     if not text:
         if kind == "pos":
@@ -99,16 +101,16 @@ def _number(text: str, kind: str, where: str) -> float | None:
     try:
         value = float(text)
     except ValueError:
-        raise CatalogError(where, f"must be a number, got {text!r}") from None
+        raise CatalogError(where, f"must be a number, got {text[:40]!r}") from None
     if not math.isfinite(value) or value < 0 or (value == 0 and kind != "nonneg"):
         allowed = "zero or positive" if kind == "nonneg" else "positive"
-        raise CatalogError(where, f"must be a {allowed} number, got {text!r}")
-    return value
+        raise CatalogError(where, f"must be a {allowed} number, got {text[:40]!r}")
+    return check_catalog_value(column, value, where) if value or kind != "nonneg" else value
 
 
 def _strands(text: str, where: str) -> int:
     text = text.strip() or "1"
-    if not text.isdigit() or not 1 <= int(text) <= 8:
+    if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 8:
         raise CatalogError(where, f"must be a whole number from 1 to 8, got {text!r}")
     return int(text)
 
@@ -123,7 +125,12 @@ def _csv_rows(text: str, name: str) -> tuple[list[str], list[tuple[int, dict[str
              if line.strip() and not line.lstrip().startswith("#")]
     if not lines:
         raise CatalogError(name, "no header line (the file is empty or only comments)")
-    parsed = list(csv.reader(line for _, line in lines))
+    try:
+        parsed = list(csv.reader(line for _, line in lines))
+    except csv.Error as exc:  # an unterminated quote, a cell over the csv module's limit
+        raise CatalogError(name, f"cannot read the CSV ({exc})") from None
+    if len(parsed) != len(lines):
+        raise CatalogError(name, "a quoted cell runs over the end of its line")
     header = [h.strip() for h in parsed[0]]
     rows: list[tuple[int, dict[str, str]]] = []
     for (lineno, _), cells in zip(lines[1:], parsed[1:], strict=True):
@@ -151,7 +158,7 @@ def _check_columns(header: list[str], known: Iterable[str], required: Iterable[s
 def _chain_from_cells(cells: dict[str, str], where: str, source: str) -> Named[ChainSpec]:
     values: dict[str, Any] = {}
     for column, (field, factor, kind) in _CHAIN_NUMBERS.items():
-        value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'")
+        value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'", column)
         values[field] = None if value is None else value * factor
     designation = cells["designation"].strip()
     if not designation:
@@ -185,7 +192,7 @@ def _material_from_cells(cells: dict[str, str], where: str,
                          source: str) -> Named[Material]:
     values: dict[str, Any] = {}
     for column, (field, factor, kind) in _MATERIAL_NUMBERS.items():
-        value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'")
+        value = _number(cells.get(column, ""), kind, f"{where}, column '{column}'", column)
         values[field] = None if value is None else value * factor
     for column in ("name", "family"):
         if not cells[column].strip():
@@ -211,6 +218,12 @@ def _parse_csv(text: str, name: str) -> FileContent:
     return FileContent((), material_rows)
 
 
+#: TOML key of a catalogue → (CSV column, factor from the column's unit to SI).
+_COLUMN_OF_KEY: dict[str, tuple[str, float]] = {
+    field: (column, factor)
+    for column, (field, factor, _) in (*_CHAIN_NUMBERS.items(), *_MATERIAL_NUMBERS.items())}
+
+
 def _toml_value(table: dict[str, Any], key: str, dimension: str, kind: str,
                 where: str) -> float | None:
     if key not in table:
@@ -225,7 +238,9 @@ def _toml_value(table: dict[str, Any], key: str, dimension: str, kind: str,
         raise CatalogError(exc.field, str(exc)[len(exc.field) + 2:]) from None
     if not math.isfinite(value) or value < 0 or (value == 0 and kind != "nonneg"):
         raise CatalogError(f"{where}.{key}", f"must be positive, got {table[key]!r}")
-    return value
+    column, factor = _COLUMN_OF_KEY[key]
+    return check_catalog_value(column, value / factor, f"{where}.{key}") * factor if value \
+        else value
 
 
 def _toml_text(table: dict[str, Any], key: str, where: str, default: str = "") -> str:
@@ -282,6 +297,8 @@ def _toml_material(table: dict[str, Any], where: str, source: str) -> Named[Mate
                                  or not isinstance(friction, int | float) or friction <= 0):
         raise CatalogError(f"{where}.friction_vs_steel",
                            f"must be a positive number, got {friction!r}")
+    if friction is not None:
+        check_catalog_value("friction_vs_steel", float(friction), f"{where}.friction_vs_steel")
     name = _toml_text(table, "name", where)
     family = _toml_text(table, "family", where)
     if not name or not family:
@@ -297,6 +314,8 @@ def _parse_toml(text: str, name: str) -> FileContent:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CatalogError(name, f"TOML syntax error: {exc}") from None
+    except RecursionError:
+        raise CatalogError(name, "arrays or tables are nested too deeply to read") from None
     _check_keys(data, ["chains", "materials"], name)
     chain_rows = tuple(_toml_chain(table, where, Path(name).name)
                        for where, table in _toml_tables(data, "chains", name))
@@ -336,11 +355,15 @@ def read_catalog_file(path: PathLike) -> FileContent:
     if path.suffix.lower() not in {".csv", ".toml"}:
         raise CatalogError(str(path), "a catalogue file must be .csv or .toml")
     try:
+        check_file_size(path.stat().st_size, MAX_CATALOG_BYTES, str(path), "catalogue file")
         text = path.read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise CatalogError(str(path), "catalogue file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CatalogError(str(path), f"cannot read the file ({exc})") from None
+    except DesignError as exc:
+        raise CatalogError(exc.field, str(exc)[len(exc.field) + 2:]) from None
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
+        raise CatalogError(str(path), f"cannot read the file ({reason})") from None
     return _cached_parse(text, str(path), path.suffix.lower())
 
 

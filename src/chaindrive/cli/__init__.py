@@ -1,7 +1,10 @@
 """The ``chaindrive`` command line (typer + rich): a presenter, it computes nothing itself.
 
-A user's mistake prints one line ``error: <field>: <what is wrong>`` on stderr and exits
-with status 2; nothing is written half-way.
+Every command runs inside the safety net of :mod:`chaindrive.cli.safety`: a user's mistake
+prints one line ``error: <field>: <what is wrong>`` on stderr and exits with status 2;
+anything unforeseen prints one line naming it and the log file with its traceback, and
+exits with status 1. Every file is written atomically (:mod:`chaindrive.io.atomic`): it is
+complete or absent, never half-written.
 """
 
 from __future__ import annotations
@@ -16,8 +19,10 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 import typer
 
+from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
 from chaindrive.display import RAD_S_TO_RPM, fmt
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.io.atomic import atomic_directory, write_text
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -30,7 +35,9 @@ app = typer.Typer(
     no_args_is_help=True,
     pretty_exceptions_enable=False,
 )
-EXIT_USER_ERROR = 2
+#: Resolution of the report's figures [dpi]: 50 is legible on screen; 600 prints finer than
+#: the eye resolves at reading distance (a 600 dpi figure is 5 000 px wide, 60 MB in memory).
+DPI_RANGE = (50, 600)
 TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
                           "subject",
                           "required", "result", "unit",
@@ -43,7 +50,7 @@ def user_errors() -> Iterator[None]:
     try:
         yield
     except ChainDriveError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(one_line(f"error: {exc}"), file=sys.stderr)
         raise typer.Exit(EXIT_USER_ERROR) from None
 
 
@@ -77,7 +84,21 @@ def _fmt(value: Any) -> str:
 
 
 def _write_json(document: dict[str, Any]) -> None:
-    sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+    """Print one JSON document; a NaN or infinity in it is a bug, named by its path."""
+    _check_finite(document, "")
+    sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+
+
+def _check_finite(value: Any, path: str) -> None:
+    """Raise ``ArithmeticError`` naming the first non-finite number in ``value``."""
+    if isinstance(value, float) and not np.isfinite(value):
+        raise ArithmeticError(f"the result holds {value} at {path or 'the top'}")
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _check_finite(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(value, list | tuple):
+        for i, v in enumerate(value):
+            _check_finite(v, f"{path}[{i}]")
 
 
 @app.command()
@@ -198,8 +219,10 @@ def select(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
     method: Annotated[str | None, typer.Option(
         help='"Kэ" or "rating" for every chain (default: each chain by its own method)')] = None,
-    strands: Annotated[int | None, typer.Option(help="fix the number of strands")] = None,
-    top: Annotated[int, typer.Option(help="show the first N ranked candidates")] = 10,
+    strands: Annotated[int | None, typer.Option(help="fix the number of strands (1 to 8)",
+                                                min=1, max=8)] = None,
+    top: Annotated[int, typer.Option(help="show the first N ranked candidates", min=1,
+                                     max=10_000)] = 10,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Rank the family's chains by every check; the first is the one selected."""
@@ -297,16 +320,13 @@ def _csv_suffix(path: Path) -> None:
 
 
 def _write_csv(path: Path, header: list[str], rows: Any) -> None:
-    """Write a table at once (nothing half-way: the text is built before the file opens)."""
+    """Write a table atomically (:func:`chaindrive.io.atomic.write_text`)."""
     import io
 
     buffer = io.StringIO()
     buffer.write(",".join(header) + "\n")
     np.savetxt(buffer, rows, delimiter=",", fmt="%.9g")
-    try:
-        path.write_text(buffer.getvalue(), encoding="utf-8")
-    except OSError as exc:
-        raise DesignError("output", f"cannot write {str(path)!r} ({exc.strerror})") from None
+    write_text(path, buffer.getvalue())
 
 
 @app.command()
@@ -326,7 +346,9 @@ def schema(
         con.print(_table(header, ["field", "unit", "default", "required", "allowed",
                                   "description"],
                          [[f["field"], f["si_unit"] or "—", f["default"], f["required"],
-                           f["allowed"], f["description"]] for f in fields]))
+                           f["allowed"], f["description"]
+                           + (f" — limits: {f['reason']}" if f["reason"] else "")]
+                          for f in fields]))
 
 
 @app.command()
@@ -334,7 +356,9 @@ def report(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
     output: Annotated[Path, typer.Option("-o", "--output", help="report.html or report.pdf")]
     = Path("report.html"),
-    dpi: Annotated[int, typer.Option(help="resolution of the figures")] = 110,
+    dpi: Annotated[int, typer.Option(help=f"resolution of the figures ({DPI_RANGE[0]} to "
+                                     f"{DPI_RANGE[1]})", min=DPI_RANGE[0],
+                                     max=DPI_RANGE[1])] = 110,
     study: Annotated[list[str] | None, typer.Option(
         "--study", help="add a comparative study: material-pairs, hinge-friction")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
@@ -393,7 +417,6 @@ def optimize(
     docs/synthesis.md)."""
     from chaindrive.synthesis import load_problem
     from chaindrive.synthesis.solve import solve
-    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
 
     with user_errors():
         problem = load_problem(file)
@@ -402,28 +425,15 @@ def optimize(
             from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
 
             evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
-        result = solve(problem, seed=seed, evaluator=evaluator)
+        try:
+            result = solve(problem, seed=seed, evaluator=evaluator)
+        finally:
+            if evaluator is not None:
+                evaluator.close()
         written: list[str] = []
         plot = None
         if out is not None:
-            files = pareto_design_files(result, file.stem, file.parent)
-            chosen = chosen_analysis(result, file.parent)
-            try:
-                out.mkdir(parents=True, exist_ok=True)
-                for f in files:
-                    (out / f.name).write_text(f.text, encoding="utf-8")
-                    written.append(str(out / f.name))
-                if chosen is not None:
-                    from chaindrive.plotting import pareto_front
-                    from chaindrive.report import write_report
-
-                    plot = out / f"{file.stem}_pareto_front.png"
-                    pareto_front(result).savefig(plot, dpi=120)
-                    report = write_report(chosen, out / f"{file.stem}_pareto_01.html",
-                                          source=out / files[0].name, synthesis=result)
-                    written.append(str(report))
-            except OSError as exc:
-                raise DesignError("--out", f"cannot write to {str(out)!r} ({exc.strerror})") from None
+            written, plot = _write_pareto(result, file, out)
     doc = result.to_dict()
     if as_json:
         _write_json({**doc, "files": written, "plot": None if plot is None else str(plot)})
@@ -449,6 +459,30 @@ def optimize(
         con.print(f"wrote {path}")
     if plot is not None:
         con.print(f"wrote {plot}")
+
+
+def _write_pareto(result: Any, file: Path, out: Path) -> tuple[list[str], Path | None]:
+    """Write the Pareto designs (one TOML each), the plot of the front and the report of the
+    first into ``out`` — all or nothing (:func:`chaindrive.io.atomic.atomic_directory`)."""
+    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
+
+    files = pareto_design_files(result, file.stem, file.parent)
+    chosen = chosen_analysis(result, file.parent)
+    names = [f.name for f in files]
+    plot_name = None
+    with atomic_directory(out, field="--out") as tmp:
+        for f in files:
+            (tmp / f.name).write_text(f.text, encoding="utf-8")
+        if chosen is not None:
+            from chaindrive.plotting import pareto_front
+            from chaindrive.report import write_report
+
+            plot_name = f"{file.stem}_pareto_front.png"
+            pareto_front(result).savefig(tmp / plot_name, dpi=120)
+            report = write_report(chosen, tmp / f"{file.stem}_pareto_01.html",
+                                  source=tmp / files[0].name, synthesis=result)
+            names.append(report.name)
+    return [str(out / n) for n in names], None if plot_name is None else out / plot_name
 
 
 @app.command(name="app")
@@ -541,7 +575,38 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
     con.print(table)
 
 
+def run(argv: list[str] | None = None) -> int:
+    """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
+
+    Parameters
+    ----------
+    argv : list of str | None
+        The arguments (None: the process's).
+
+    Returns
+    -------
+    int
+        The exit status: 0, 2 for a mistake, 1 for anything unforeseen, 128 + the signal
+        number after SIGINT or SIGTERM.
+    """
+    args = list(sys.argv[1:] if argv is None else argv)
+    command: Any = typer.main.get_command(app)
+    invoke: Callable[[], object] = lambda: command.main(args=args, prog_name="chaindrive",  # noqa: E731
+                                                        standalone_mode=False)
+    return guarded(invoke, args)
+
+
 def main(argv: list[str] | None = None) -> None:
-    """Entry point of the ``chaindrive`` script."""
-    run: Callable[..., Any] = app
-    run(args=argv, prog_name="chaindrive")
+    """Entry point of the ``chaindrive`` script: exits with the status of :func:`run`.
+
+    Outside the command (before it starts, after it ended) SIGINT and SIGTERM end the
+    process at once with 128 + the signal number, stdout flushed and no traceback
+    (:func:`chaindrive.cli.safety.exit_on_signal`).
+
+    Parameters
+    ----------
+    argv : list of str | None
+        The arguments (None: the process's).
+    """
+    exit_on_signal()
+    sys.exit(run(argv))

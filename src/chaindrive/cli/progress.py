@@ -20,8 +20,23 @@ T = TypeVar("T")
 
 
 def progress_enabled(quiet: bool = False) -> bool:
-    """True when a bar should be drawn: not ``quiet`` (``--json``) and stdout is a terminal."""
+    """Whether a bar should be drawn.
+
+    Parameters
+    ----------
+    quiet : bool
+        True in ``--json`` mode.
+
+    Returns
+    -------
+    bool
+        True when not ``quiet`` and stdout is a terminal.
+    """
     return not quiet and sys.stdout.isatty()
+
+
+def _no_progress(label: str | None = None) -> None:
+    """What ``advance`` is when no bar is drawn."""
 
 
 @contextmanager
@@ -29,9 +44,24 @@ def progress_bar(description: str, total: int | None = None, *,
                  quiet: bool = False) -> Iterator[Callable[[str | None], None]]:
     """A context giving ``advance(label=None)``, which moves the bar one step (and shows
     ``label``). A no-op when :func:`progress_enabled` is False. The bar is drawn on stderr
-    and removed when done, so stdout stays clean."""
+    and removed when done, so stdout stays clean.
+
+    Parameters
+    ----------
+    description : str
+        What runs.
+    total : int | None
+        Steps in all (None: unknown).
+    quiet : bool
+        True in ``--json`` mode (no bar).
+
+    Yields
+    ------
+    callable
+        ``advance(label=None)``.
+    """
     if not progress_enabled(quiet):
-        yield lambda label=None: None
+        yield _no_progress
         return
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -48,7 +78,24 @@ def progress_bar(description: str, total: int | None = None, *,
 
 def track(items: Iterable[T], description: str, total: int | None = None, *,
           quiet: bool = False) -> Iterator[T]:
-    """Iterate over ``items`` with a progress bar (see :func:`progress_bar`)."""
+    """Iterate over ``items`` with a progress bar (see :func:`progress_bar`).
+
+    Parameters
+    ----------
+    items : iterable
+        What to iterate over.
+    description : str
+        What runs.
+    total : int | None
+        Steps in all (None: ``len(items)`` when it has one).
+    quiet : bool
+        True in ``--json`` mode (no bar).
+
+    Yields
+    ------
+    object
+        Each item.
+    """
     if total is None and hasattr(items, "__len__"):
         total = len(items)  # type: ignore[arg-type]
     with progress_bar(description, total, quiet=quiet) as advance:
@@ -60,7 +107,19 @@ def track(items: Iterable[T], description: str, total: int | None = None, *,
 @contextmanager
 def spinner(description: str, *, quiet: bool = False) -> Iterator[None]:
     """An indeterminate indicator (a spinner with the elapsed time) for one long call, such
-    as an analysis with the start-up transient; same rules as :func:`progress_bar`."""
+    as an analysis with the start-up transient; same rules as :func:`progress_bar`.
+
+    Parameters
+    ----------
+    description : str
+        What runs.
+    quiet : bool
+        True in ``--json`` mode (no spinner).
+
+    Yields
+    ------
+    None
+    """
     if not progress_enabled(quiet):
         yield
         return

@@ -3,12 +3,15 @@ two-stage safety factors k₁, k₂, k₂min against [k] [MultimassChainDrives, 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
 
 from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
 
-__all__ = ["dynamic_safety_check", "resonance_check"]
+__all__ = ["disturbed_safety_check", "dynamic_safety_check", "resonance_check"]
 
 
 def dynamic_safety_check(name: str, value: float | None, allowable: float, note: str = ""
@@ -62,3 +65,41 @@ def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | N
                   band_percent, "min", "[MultimassChainDrives, §3.2], [API684]", "%",
                   note=f"{closest.working.frequency:.4g} Hz against the {what} "
                        f"{closest.natural_frequency:.4g} Hz", part="dynamics")
+
+
+def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal: ArrayLike,
+                           disturbances: Mapping[str, ArrayLike], allowable: float) -> Check:
+    """k₂ with the internal disturbances: Q/max_i(F_R,i + F_2,i + Σ_d F_d,i) ≥ [k]
+    [MultimassChainDrives, §3.6].
+
+    The steady dynamic loads of the sprockets' eccentricity and of the chain's pitch
+    scatter and accumulated error (``[dynamics]``) add to the polygonal load F₂ of each span;
+    their peaks are summed — exact when the frequencies are incommensurate, an upper bound
+    otherwise (the superposition of :mod:`chaindrive.dynamics.steady`).
+
+    Parameters
+    ----------
+    breaking_load : float
+        Q [N].
+    operating : array_like
+        F_R of each span [N].
+    polygonal : array_like
+        F₂, the polygonal steady dynamic load of each span [N].
+    disturbances : Mapping[str, array_like]
+        Each disturbance's steady dynamic load of each span [N].
+    allowable : float
+        [k] [-].
+
+    Returns
+    -------
+    Check
+    """
+    total = np.asarray(operating, float) + np.asarray(polygonal, float)
+    for loads in disturbances.values():
+        total = total + np.asarray(loads, float)
+    worst = float(np.max(total))
+    value = breaking_load / worst if worst > 0 else None
+    return judged("k2 with disturbances", "steady motion with " + " and ".join(
+        k.replace("_", " ") for k in disturbances), value, allowable, "min",
+        "[MultimassChainDrives, §3.6]", part="dynamics",
+        note=f"largest span load {worst:.4g} N with the disturbances' peaks added")

@@ -19,6 +19,8 @@ from typing import Any
 import tomli_w
 
 from chaindrive.errors import DesignError, did_you_mean
+from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
+from chaindrive.io.plausible import check_inertias
 from chaindrive.model import (
     LOAD_LAWS,
     MAX_CONTOURS,
@@ -41,18 +43,42 @@ from chaindrive.model import (
     DynamicsSettings,
     Motor,
     Sprocket,
+    ToothFormName,
     TrainElement,
 )
-from chaindrive.units import DIMENSIONS, parse_quantity
+from chaindrive.units import DIMENSIONS, MAX_TEXT, parse_quantity, shown
+
+#: Longest name or other text field [characters].
+MAX_NAME = 200
 
 
 @dataclass(frozen=True, slots=True)
 class Field:
     """One field of a design file: its kind, unit, default, allowed range and meaning.
 
-    kind: a dimension of :data:`chaindrive.units.DIMENSIONS` (value is a string with a
-    unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``, ``"links"`` (a
-    whole number or a rounding rule of :data:`chaindrive.model.ROUNDINGS`).
+    Parameters
+    ----------
+    name : str
+        The key in its table.
+    kind : str
+        A dimension of :data:`chaindrive.units.DIMENSIONS` (the value is a string with a
+        unit), or ``"int"``, ``"float"``, ``"str"``, ``"bool"``, ``"choice"``, ``"links"``
+        (a whole number or a rounding rule of :data:`chaindrive.model.ROUNDINGS`).
+    description : str
+        What it means.
+    required : bool
+        True when a design must give it.
+    default : object
+        The value when it is left out (SI for a quantity).
+    minimum, maximum : float | None
+        The bounds of what is physically plausible [SI unit of the field]
+        (:mod:`chaindrive.io.limits`).
+    choices : tuple of str
+        The allowed values of a ``"choice"``.
+    exclusive_minimum : bool
+        True when ``minimum`` itself is not allowed.
+    reason : str
+        Where the bounds come from (printed by ``chaindrive schema``).
     """
 
     name: str
@@ -64,6 +90,7 @@ class Field:
     maximum: float | None = None
     choices: tuple[str, ...] = ()
     exclusive_minimum: bool = False
+    reason: str = ""
 
     def allowed(self) -> str:
         """Human description of the allowed values."""
@@ -75,9 +102,11 @@ class Field:
             return "text"
         if self.kind == "tables":
             return "a list of tables"
-        lo = "" if self.minimum is None else (f"> {self.minimum:g}" if self.exclusive_minimum
-                                               else f"≥ {self.minimum:g}")
-        hi = "" if self.maximum is None else f"≤ {self.maximum:g}"
+        unit, factor = DISPLAY_UNITS.get(self.kind, ("", 1.0))
+        tail = f" {unit}" if unit else ""
+        lo = "" if self.minimum is None else (
+            f"{'>' if self.exclusive_minimum else '≥'} {self.minimum * factor:g}{tail}")
+        hi = "" if self.maximum is None else f"≤ {self.maximum * factor:g}{tail}"
         span = " and ".join(x for x in (lo, hi) if x)
         if self.kind == "links":
             return (f'a whole number from {self.minimum:g} to {self.maximum:g}, '
@@ -88,62 +117,113 @@ class Field:
             return "a whole number" + (f" {span}" if span else "")
         if self.kind == "float":
             return "a number" + (f" {span}" if span else "")
-        unit = DIMENSIONS[self.kind][2]
-        return f'a {self.kind.replace("_", " ")} with a unit such as "{unit}"' + (
-            f", {span} (SI)" if span else "")
+        example = DIMENSIONS[self.kind][2]
+        noun = self.kind.replace("_", " ")
+        article = "an" if noun[0] in "aeiou" else "a"
+        return f'{article} {noun} with a unit such as "{example}"' + (f", {span}" if span else "")
 
 
+#: The unit the allowed range of a quantity is written in: dimension → (unit, SI → unit).
+DISPLAY_UNITS: dict[str, tuple[str, float]] = {
+    "length": ("mm", 1e3), "speed": ("rpm", 30.0 / math.pi), "power": ("kW", 1e-3),
+    "inertia": ("kg·m²", 1.0), "time": ("s", 1.0), "angle": ("deg", 180.0 / math.pi),
+}
+RPM = math.pi / 30.0  # 1 rev/min [rad/s]
+_POWER = ("1 W to 20 MW: the largest catalogue chain (4 strands of 114.3 mm pitch) carries "
+          "about 10 MW at its best speed by the ACA ratings [Shigley2015, eq. 17-32/17-33]")
+_SPEED = ("1 to 30 000 rev/min: slower, the start-up and the sweep cover hours of motion; "
+          "faster, the tooth frequency of a large sprocket passes 10 kHz, beyond a model of "
+          "the chain as springs and masses")
+_XY = ("within 100 m of the origin: [ISO10823] centre distances are 30 to 80 pitches, 9 m "
+       "at the largest pitch; conveyor layouts stay within some tens of metres")
+_INERTIA = ("1e-8 to 1e6 kg·m²: from the smallest catalogue sprocket (6 teeth of 8 mm pitch "
+            "in UHMW-PE, 1.7e-8 kg·m²) to a 50 t flywheel of 6 m radius; at least a tenth of "
+            "the sprocket's own plate (chaindrive.io.plausible.check_inertias)")
+_REDUCED_MASS = ("0.1 g to 1000 t at the pitch radius: the inertia's range (above) over the "
+                 "pitch radii of the catalogue's sprockets")
+_TORSIONAL_STIFFNESS = ("1 N·m/rad to 1e10 N·m/rad: from a soft elastic coupling of a "
+                        "fractional-kW drive to a 0.5 m solid steel shaft 0.1 m long "
+                        "(k = G·π·d⁴/32/L [Roark2012, Table 10.1])")
+_TORSIONAL_DAMPING = ("at most 2e8 N·m·s/rad: critical damping 2√(kJ) of the stiffest shaft "
+                      "on the heaviest rotor allowed")
+_SHAFT = "2 mm to 2 m across, 5 mm to 50 m long: shafts of chain drives and line shafts"
+_GEAR_RATIO = ("0.01 to 1000: a stage or a whole reducer either way (worm and planetary "
+               "reducers reach some hundreds)")
+_ROTOR = ("1e-6 to 1e5 kg·m²: from a 10 W micro-motor to the rotor of a 20 MW machine "
+          "(the rotor inertias of [MotiveDelphi] grow about as P^1.3)")
+_BREAKDOWN = ("above 1 (a motor that could not carry its rated torque) and at most 5 "
+              "([IEC60034-12] design N breakdown torques are 1.6 to about 3.5 times rated)")
+_TORQUE = "1 mN·m to 10 MN·m: the rated torques of the power and speed limits above"
+_RUNOUT = ("at most 10 mm: sprocket run-out tolerances are fractions of a millimetre; 10 mm "
+           "is the eccentricity of a sprocket bored off-centre by a whole pitch of 05B")
 DRIVE_FIELDS: tuple[Field, ...] = (
     Field("name", "str", "name of the drive", required=True),
-    Field("power", "power", "power transmitted from the driver", minimum=0,
-          exclusive_minimum=True),
+    Field("power", "power", "power transmitted from the driver", minimum=1.0, maximum=20e6,
+          reason=_POWER),
     Field("tooth_form", "choice", "sprocket tooth form (default: GOST 591 for GOST chains, "
           "ISO 606 otherwise)", choices=TOOTH_FORMS),
     Field("service_factor", "float", "service (application) factor of the drive", minimum=1.0,
-          maximum=5.0),
+          maximum=5.0, reason="published application factors run from 1 to about 2.5; 5 is "
+          "twice the largest"),
 )
 CHAIN_FIELDS: tuple[Field, ...] = (
     Field("designation", "str", 'catalogue designation, e.g. "ISO 606 16B-1", "ANSI 80", '
           '"GOST 13568 ПР-25,4-60"'),
-    Field("standard", "choice", "chain standard, used with pitch when no designation is given",
+    Field("standard", "choice", "chain standard, used with pitch when no designation is given "
+          "(with a designation it must agree with it)",
           choices=("ISO 606", "ANSI", "GOST 13568", "polymer")),
-    Field("series", "choice", "series: ISO 606 A or B, ANSI heavy H", choices=("A", "B", "H")),
-    Field("pitch", "length", "chain pitch, used with standard when no designation is given",
-          minimum=0, exclusive_minimum=True),
-    Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8),
+    Field("series", "choice", "series: ISO 606 A or B, ANSI heavy H (with a designation it "
+          "must agree with it)", choices=("A", "B", "H")),
+    Field("pitch", "length", "chain pitch, used with standard when no designation is given "
+          "(with a designation it must agree with it)", minimum=0.005, maximum=0.2,
+          reason="5 to 200 mm: the pitches of [ISO606] chains run from 8 to 114.3 mm"),
+    Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8,
+          reason="multi-strand chains are made with up to 8 strands; the catalogue lists 1 to 4"),
     Field("links", "links", 'impose the number of links (the take-up fits it), or how the '
           'tight length is rounded to an even count: "round up" (default) or "round down"',
-          minimum=4, maximum=10000),
+          minimum=4, maximum=10000, reason="4: the shortest closed chain round two sprockets; "
+          "10 000: beyond the longest drive chains (80 m at 8 mm pitch)"),
     Field("sag", "float", "installed sag of the slack span as a fraction of its length "
-          "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True),
+          "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True,
+          reason="at most 10 % of the span: the shallow-sag (parabolic) catenary [Irvine1981]"),
     Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
           default=False),
-    Field("contours", "int", "identical chain contours side by side on common shafts (seed 004)",
-          default=1, minimum=1, maximum=MAX_CONTOURS),
-    Field("catalog", "str", "a catalogue file of your own (CSV or TOML), relative to the design"),
+    Field("contours", "int", "identical chain contours side by side on common shafts "
+          "[Lyashuk]", default=1, minimum=1, maximum=MAX_CONTOURS,
+          reason="the load-sharing model of [Lyashuk] for up to 8 contours"),
+    Field("catalog", "str", "a catalogue file of your own (CSV or TOML), relative to the "
+          "design (on the web page: the name of a catalogue uploaded in the session)"),
 )
 SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("name", "str", "unique name of the sprocket", required=True),
-    Field("teeth", "int", "number of teeth", required=True, minimum=MIN_TEETH, maximum=MAX_TEETH),
-    Field("x", "length", "x of the centre", required=True),
-    Field("y", "length", "y of the centre", required=True),
+    Field("teeth", "int", "number of teeth", required=True, minimum=MIN_TEETH, maximum=MAX_TEETH,
+          reason="6: the chordal speed variation 1 − cos(180°/z) reaches 13 % "
+          "[ChainNonUniformity]; 150: a plausibility bound on large sprockets"),
+    Field("x", "length", "x of the centre", required=True, minimum=-100.0, maximum=100.0,
+          reason=_XY),
+    Field("y", "length", "y of the centre", required=True, minimum=-100.0, maximum=100.0,
+          reason=_XY),
     Field("role", "choice", "driver, driven or idler", default="driven", choices=ROLES),
-    Field("speed", "speed", "rotational speed (driver only)", minimum=0, exclusive_minimum=True),
+    Field("speed", "speed", "rotational speed (driver only)", minimum=1.0 * RPM,
+          maximum=30_000.0 * RPM, reason=_SPEED),
     Field("side", "choice", "outside: the chain wraps round it; inside: the chain wraps it from "
           "outside the loop (it turns the other way)", default="outside", choices=SIDES),
     Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
     Field("adjust_angle", "angle", "direction of the line of adjustment (default: away from "
-          "the contour)"),
+          "the contour)", minimum=-2 * math.pi, maximum=2 * math.pi,
+          reason="a direction: one turn either way"),
     Field("inertia", "inertia", "moment of inertia of what turns rigidly with it; without a "
           "train, everything on its shaft (motor, reducer, machine) referred to it (default: "
-          "the sprocket body from its geometry)", minimum=0, exclusive_minimum=True),
+          "the sprocket body from its geometry)", minimum=1e-8, maximum=1e6, reason=_INERTIA),
     Field("reduced_mass", "mass", "the same as a mass at the pitch radius, m = J/R² (the "
-          "seed's 'brought mass'); instead of inertia", minimum=0, exclusive_minimum=True),
+          "'brought mass' of [MultimassChainDrives]); instead of inertia", minimum=1e-4,
+          maximum=1e6, exclusive_minimum=True, reason=_REDUCED_MASS),
     Field("flywheel", "inertia", "inertia added as a steel flywheel on the shaft (in the "
-          "dynamics, the mass and the cost)", default=0.0, minimum=0.0),
+          "dynamics, the mass and the cost)", default=0.0, minimum=0.0, maximum=1e6,
+          reason="at most a 50 t flywheel of 6 m radius"),
     Field("material", "str", "sprocket material (catalogue name)", default="steel"),
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
-          minimum=0.0, maximum=1.0),
+          minimum=0.0, maximum=1.0, reason="a share of the whole"),
     Field("load", "choice", "law of the driven machine's moment in speed (default: "
           "[dynamics] resistance)", choices=LOAD_LAWS),
     Field("train", "tables", "the open train on its shaft, outward from the sprocket: "
@@ -157,75 +237,85 @@ TRAIN_FIELDS: tuple[Field, ...] = (
     Field("name", "str", "name of the new node (of the current node for a rotor), e.g. "
           '"motor", "reducer", "drum"'),
     Field("inertia", "inertia", "the new node's moment of inertia (rotor: added to the current "
-          "node)", default=0.0, minimum=0.0),
+          "node; 0: a massless node)", default=0.0, minimum=0.0, maximum=1e6,
+          reason="at most a 50 t flywheel of 6 m radius"),
     Field("stiffness", "torsional_stiffness", "shaft, coupling or ground: torsional stiffness",
-          minimum=0, exclusive_minimum=True),
+          minimum=1.0, maximum=1e10, reason=_TORSIONAL_STIFFNESS),
     Field("damping", "torsional_damping", "shaft or coupling: viscous damping coefficient",
-          default=0.0, minimum=0.0),
+          default=0.0, minimum=0.0, maximum=2e8, reason=_TORSIONAL_DAMPING),
     Field("diameter", "length", "shaft: diameter of a solid round shaft (with length, "
-          "instead of stiffness)", minimum=0, exclusive_minimum=True),
-    Field("length", "length", "shaft: length of a solid round shaft", minimum=0,
-          exclusive_minimum=True),
+          "instead of stiffness)", minimum=0.002, maximum=2.0, reason=_SHAFT),
+    Field("length", "length", "shaft: length of a solid round shaft", minimum=0.005,
+          maximum=50.0, reason=_SHAFT),
     Field("material", "str", "shaft: material (catalogue name)", default="steel"),
     Field("ratio", "float", "gear: input speed / output speed in the direction of the power "
-          "flow (motor → driver sprocket, driven sprocket → machine)", minimum=0,
-          exclusive_minimum=True),
+          "flow (motor → driver sprocket, driven sprocket → machine)", minimum=0.01,
+          maximum=1000.0, reason=_GEAR_RATIO),
     Field("efficiency", "float", "gear: efficiency", default=1.0, minimum=0.0, maximum=1.0,
-          exclusive_minimum=True),
+          exclusive_minimum=True, reason="a share of the power passed on"),
 )
 MOTOR_FIELDS: tuple[Field, ...] = (
     Field("law", "choice", "torque law (default: [dynamics] motor)", choices=MOTORS),
-    Field("rated_power", "power", "rated power (default: the drive's power)", minimum=0,
-          exclusive_minimum=True),
+    Field("rated_power", "power", "rated power (default: the drive's power)", minimum=1.0,
+          maximum=20e6, reason=_POWER),
     Field("rated_speed", "speed", "rated speed of the motor shaft (default: the driver's speed "
-          "times the ratios of its train)", minimum=0, exclusive_minimum=True),
+          "times the ratios of its train)", minimum=1.0 * RPM, maximum=30_000.0 * RPM,
+          reason=_SPEED),
     Field("rotor_inertia", "inertia", "rotor moment of inertia (default: estimated from the "
-          "rated power and synchronous speed, IEC cage motors)", minimum=0,
-          exclusive_minimum=True),
+          "rated power and synchronous speed, IEC cage motors)", minimum=1e-6, maximum=1e5,
+          reason=_ROTOR),
     Field("breakdown_ratio", "float", "Kloss: breakdown torque / rated torque (default: "
-          "[dynamics])", minimum=1.0, maximum=5.0, exclusive_minimum=True),
+          "[dynamics])", minimum=1.0, maximum=5.0, exclusive_minimum=True,
+          reason=_BREAKDOWN),
     Field("critical_slip", "float", "Kloss: critical slip (default: [dynamics])", minimum=0.0,
-          maximum=1.0, exclusive_minimum=True),
+          maximum=1.0, exclusive_minimum=True, reason="a slip: a share of the synchronous speed"),
     Field("ramp_time", "time", "ramp: time to full torque (default: [dynamics])", minimum=0.0,
-          exclusive_minimum=True),
+          maximum=60.0, exclusive_minimum=True, reason="within the longest start-up simulated"),
     Field("torque", "torque", "constant or ramp law: the torque (default: the rated torque)",
-          minimum=0, exclusive_minimum=True),
+          minimum=1e-3, maximum=1e7, reason=_TORQUE),
 )
 DYNAMICS_FIELDS: tuple[Field, ...] = (
     Field("damping_ratio", "float", "damping ratio ζ of the chain (default: by the "
           "chain/sprocket material pair, 0.06 metal chain, 0.175 polymer chain)", minimum=0.0,
-          maximum=0.9),
+          maximum=0.9, reason="below 1: an oscillating ring; roller chains show a few per cent"),
     Field("hinge_friction", "bool", "damp each span by its hinge friction at its own tension "
           "(ζ = ψ/4π) instead", default=False),
     Field("hinge_amplitude", "float", "hinge friction: relative transverse amplitude of the "
-          "spans y₀/a", default=0.02, minimum=0.0, maximum=0.1, exclusive_minimum=True),
+          "spans y₀/a", default=0.02, minimum=0.0, maximum=0.1, exclusive_minimum=True,
+          reason="[ChainHingeDissipation] measured 0.015 to 0.03"),
     Field("uncertainty", "float", "relative uncertainty of every stiffness and inertia (the "
           "bands of the frequencies, margins and K_D)", default=0.1, minimum=0.0,
-          maximum=0.49),
+          maximum=0.49, reason="below a half: a stiffness or inertia stays positive"),
     Field("require_complete_model", "bool", "an incomplete model (a driver without its motor, "
           "a driven sprocket with nothing on its shaft) is an error, not a warning",
           default=False),
     Field("harmonics", "int", "harmonics of the tooth frequency in the polygonal excitation",
-          default=10, minimum=1, maximum=50),
+          default=10, minimum=1, maximum=50,
+          reason="[MultimassChainDrives]: 10 harmonics are practically exact"),
     Field("transient", "bool", "run the start-up transient", default=True),
     Field("startup_duration", "time", "simulated time of the start-up", default=1.0,
-          minimum=0.0, maximum=60.0, exclusive_minimum=True),
+          minimum=0.0, maximum=60.0, exclusive_minimum=True,
+          reason="a motor start lasts seconds; 60 s bounds the work of the simulation"),
     Field("motor", "choice", "motor law on the driver: induction motor (Kloss), constant "
           "torque or soft-start ramp", default="kloss", choices=MOTORS),
     Field("breakdown_ratio", "float", "Kloss motor: breakdown torque / rated torque",
-          default=2.5, minimum=1.0, maximum=5.0, exclusive_minimum=True),
+          default=2.5, minimum=1.0, maximum=5.0, exclusive_minimum=True,
+          reason="induction motors have breakdown torques of 1.6 to 3.5 times the rated one"),
     Field("critical_slip", "float", "Kloss motor: critical slip", default=0.25, minimum=0.0,
-          maximum=1.0, exclusive_minimum=True),
+          maximum=1.0, exclusive_minimum=True, reason="a slip lies between 0 and 1"),
     Field("ramp_time", "time", "ramp motor: time to full torque", default=0.5, minimum=0.0,
-          exclusive_minimum=True),
+          maximum=60.0, exclusive_minimum=True,
+          reason="soft starters ramp over seconds; at most the longest start-up"),
     Field("resistance", "choice", "resistance law on the driven sprockets", default="linear",
           choices=RESISTANCES),
     Field("eccentricity", "length", "eccentricity of every sprocket (disturbance once per "
-          "revolution)", default=0.0, minimum=0.0),
+          "revolution)", default=0.0, minimum=0.0, maximum=0.01, reason=_RUNOUT),
     Field("pitch_scatter", "length", "scatter (standard deviation) of the link pitches",
-          default=0.0, minimum=0.0),
+          default=0.0, minimum=0.0, maximum=0.001,
+          reason="at most 1 mm: [ISO606] length tolerances are +0.15 % of the pitch"),
     Field("accumulated_error", "length", "accumulated error of the chain length", default=0.0,
-          minimum=0.0),
+          minimum=0.0, maximum=1.0, reason="at most 1 m: a chain is replaced at 3 % "
+          "elongation, 1 m on the longest drive chains"),
 )
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
@@ -245,7 +335,14 @@ OTHER_SECTIONS: tuple[str, ...] = ("optimize",)
 
 
 def schema() -> dict[str, list[dict[str, Any]]]:
-    """Every field of a design file with its kind, unit, default and allowed values."""
+    """Every field of a design file with its kind, unit, default and allowed values.
+
+    Returns
+    -------
+    dict
+        Section → list of {field, kind, si_unit, example, required, default, allowed,
+        reason, description}.
+    """
     out: dict[str, list[dict[str, Any]]] = {}
     for section, fields in SECTIONS.items():
         out[section] = [
@@ -257,6 +354,7 @@ def schema() -> dict[str, list[dict[str, Any]]]:
                 "required": f.required,
                 "default": f.default,
                 "allowed": f.allowed(),
+                "reason": f.reason,
                 "description": f.description,
             }
             for f in fields
@@ -265,46 +363,83 @@ def schema() -> dict[str, list[dict[str, Any]]]:
 
 
 def _number_text(value: Any) -> str:
-    return repr(value) if isinstance(value, str) else str(value)
+    return shown(value) if isinstance(value, str) else str(value)[:MAX_TEXT]
 
 
-def _check_range(f: Field, path: str, value: float, shown: Any) -> None:
+def _check_range(f: Field, path: str, value: float, given: Any) -> None:
     low_bad = f.minimum is not None and (value <= f.minimum if f.exclusive_minimum
                                          else value < f.minimum)
     high_bad = f.maximum is not None and value > f.maximum
     if low_bad or high_bad or not math.isfinite(value):
-        raise DesignError(path, f"must be {f.allowed()}, got {_number_text(shown)}")
+        why = f" ({f.reason})" if f.reason else ""
+        raise DesignError(path, f"must be {f.allowed()}, got {_number_text(given)}{why}")
+
+
+def _as_float(value: int | float) -> float:
+    """``value`` as a float; an integer too large for one is infinite (and then refused)."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf
+
+
+def _shown_value(value: Any) -> str:
+    """A value of a design file as a message quotes it (one line, cut to a readable length)."""
+    return shown(value) if isinstance(value, str) else repr(value)[:MAX_TEXT]
 
 
 def parse_field(f: Field, value: Any, path: str) -> Any:
-    """Check and convert one value of a design file (SI for quantities)."""
+    """Check and convert one value of a design file.
+
+    Parameters
+    ----------
+    f : Field
+        Its field.
+    value : object
+        The value as read from TOML.
+    path : str
+        Its path (``sprockets[1].x``), for the message.
+
+    Returns
+    -------
+    object
+        The value (SI for a quantity).
+
+    Raises
+    ------
+    DesignError
+        One line naming the path, the value and what is allowed.
+    """
     if f.kind == "str":
         if not isinstance(value, str) or not value.strip():
-            raise DesignError(path, f"must be non-empty text, got {value!r}")
+            raise DesignError(path, f"must be non-empty text, got {_shown_value(value)}")
+        if len(value) > MAX_NAME or not value.strip().isprintable():
+            raise DesignError(path, f"must be one line of at most {MAX_NAME} printable "
+                              f"characters, got {_shown_value(value)}")
         return value.strip()
     if f.kind == "bool":
         if not isinstance(value, bool):
-            raise DesignError(path, f"must be true or false, got {value!r}")
+            raise DesignError(path, f"must be true or false, got {_shown_value(value)}")
         return value
     if f.kind == "choice":
-        if value not in f.choices:
-            raise DesignError(path, f"must be {f.allowed()}, got {value!r}"
-                              + did_you_mean(str(value), f.choices))
+        if not isinstance(value, str) or value not in f.choices:
+            raise DesignError(path, f"must be {f.allowed()}, got {_shown_value(value)}"
+                              + did_you_mean(str(value)[:MAX_NAME], f.choices))
         return value
     if f.kind == "links" and isinstance(value, str):
         if value not in ROUNDINGS:
             raise DesignError(path, f'must be a whole number, "round up" or "round down", '
-                              f"got {value!r}" + did_you_mean(value, ROUNDINGS))
+                              f"got {shown(value)}" + did_you_mean(value[:MAX_NAME], ROUNDINGS))
         return value
     if f.kind in ("int", "links"):
         if isinstance(value, bool) or not isinstance(value, int):
             raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
-        _check_range(f, path, value, value)
+        _check_range(f, path, _as_float(value), value)
         return value
     if f.kind == "float":
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
-        _check_range(f, path, float(value), value)
+        _check_range(f, path, _as_float(value), value)
         return float(value)
     si = parse_quantity(value, f.kind, path)
     _check_range(f, path, si, value)
@@ -312,13 +447,29 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
 
 
 def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, Any]:
-    """Check a TOML table against its fields: unknown names, required ones, values."""
+    """Check a TOML table against its fields: unknown names, required ones, values.
+
+    Parameters
+    ----------
+    data : object
+        The table as read.
+    fields : tuple of Field
+        Its fields.
+    path : str
+        Its path (``sprockets[1]``), for the messages.
+
+    Returns
+    -------
+    dict
+        Field name → checked value (the default when left out).
+    """
     if not isinstance(data, Mapping):
         raise DesignError(path, f"must be a table, got {type(data).__name__}")
     known = {f.name: f for f in fields}
     for key in data:
         if key not in known:
-            raise DesignError(f"{path}.{key}", "unknown field" + did_you_mean(key, known)
+            raise DesignError(f"{path}.{shown_key(key)}", "unknown field"
+                              + did_you_mean(str(key)[:MAX_NAME], known)
                               + f" (known: {', '.join(known)})")
     out: dict[str, Any] = {}
     for f in fields:
@@ -334,21 +485,72 @@ def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, 
 _STRANDS_SUFFIX = re.compile(r"-(\d)$")
 
 
-def resolve_chain(values: dict[str, Any], base_dir: Path | None
+def _catalog_path(name: str, base_dir: Path | None,
+                  catalogs: Mapping[str, Path] | None) -> Path:
+    """The file of ``chain.catalog``: with ``catalogs`` (the web page) only a name among its
+    keys, never a path of the machine; otherwise the path, relative to ``base_dir``."""
+    if catalogs is not None:
+        if name not in catalogs:
+            uploaded = ", ".join(repr(k) for k in catalogs) or "none"
+            raise DesignError("chain.catalog", f"{shown(name)} is not a catalogue uploaded in "
+                              f"this session (uploaded: {uploaded}); upload the file first")
+        return catalogs[name]
+    path = Path(name)
+    if base_dir is not None and not path.is_absolute():
+        path = base_dir / path
+    try:
+        found = path.is_file()
+    except (OSError, ValueError):  # a name too long, or with a NUL, for the file system
+        found = False
+    if not found:
+        raise DesignError("chain.catalog", f"no such file: {shown(str(path))}")
+    return path
+
+
+def _check_agrees(spec: ChainSpec, values: dict[str, Any]) -> None:
+    """With a designation, a standard, series or pitch given too must describe that chain."""
+    given = {"standard": values["standard"], "series": values["series"],
+             "pitch": values["pitch"]}
+    if given["standard"] is not None:
+        same = (spec.standard == given["standard"]
+                or (given["standard"] == "ANSI" and spec.ansi is not None))
+        if not same:
+            raise DesignError("chain.standard", f"{given['standard']!r} contradicts the "
+                              f"designation {spec.designation!r} ({spec.standard}); give one")
+    if given["series"] is not None and spec.series != given["series"]:
+        raise DesignError("chain.series", f"{given['series']!r} contradicts the designation "
+                          f"{spec.designation!r} (series {spec.series}); give one")
+    if given["pitch"] is not None and abs(given["pitch"] - spec.pitch) > 1e-6:
+        raise DesignError("chain.pitch", f"{given['pitch'] * 1e3:g} mm contradicts the "
+                          f"designation {spec.designation!r} (pitch {spec.pitch * 1e3:g} mm); "
+                          "give one")
+
+
+def resolve_chain(values: dict[str, Any], base_dir: Path | None,
+                  catalogs: Mapping[str, Path] | None = None
                   ) -> tuple[ChainSpec, ChainRequest | None]:
     """The catalogue chain named by the [chain] table (designation, or standard + pitch), or
     — when only a standard is given — a provisional chain of that family and the request
-    that :func:`chaindrive.analyze` selects from."""
+    that :func:`chaindrive.analyze` selects from.
+
+    Parameters
+    ----------
+    values : dict
+        The checked [chain] table (:func:`parse_section`) and ``strands_given``.
+    base_dir : Path | None
+        The design file's directory.
+    catalogs : Mapping of str to Path | None
+        See :func:`drive_from_mapping`.
+
+    Returns
+    -------
+    tuple of (ChainSpec, ChainRequest | None)
+    """
     from chaindrive import catalog
 
     extra: tuple[Path, ...] = ()
     if values["catalog"]:
-        path = Path(values["catalog"])
-        if base_dir is not None and not path.is_absolute():
-            path = base_dir / path
-        if not path.is_file():
-            raise DesignError("chain.catalog", f"no such file: {str(path)!r}")
-        extra = (path,)
+        extra = (_catalog_path(values["catalog"], base_dir, catalogs),)
     strands = values["strands"]
     designation = values["designation"]
     if designation:
@@ -360,6 +562,7 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None
                                   f"{designation!r} ({spec.strands} strands)")
             if strands != 1:
                 spec = _with_strands(spec, strands, extra)
+        _check_agrees(spec, values)
         return spec, None
     if values["standard"] is None:
         raise DesignError("chain.designation", "give a designation, or a standard (and a pitch)")
@@ -371,7 +574,7 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None
                               f"{values['series']!r} in the catalogue")
         request = ChainRequest(values["standard"], values["series"], values["strands_given"])
         return min(family, key=lambda c: c.breaking_load), request
-    found = [c for c in catalog.chains_by_pitch(values["pitch"], values["standard"])
+    found = [c for c in catalog.chains_by_pitch(values["pitch"], values["standard"], extra)
              if c.strands == strands and (values["series"] is None
                                           or c.series == values["series"])]
     if not found:
@@ -393,12 +596,32 @@ def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> Cha
     return same[0]
 
 
-def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) -> Drive:
-    """Build a validated :class:`Drive` from the parsed TOML of a design file."""
+def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
+                       catalogs: Mapping[str, Path] | None = None) -> Drive:
+    """Build a validated :class:`Drive` from the parsed TOML of a design file.
+
+    Parameters
+    ----------
+    data : Mapping
+        The tables of the design file.
+    base_dir : Path | None
+        The design file's directory: ``chain.catalog`` is relative to it.
+    catalogs : Mapping[str, Path] | None
+        None: ``chain.catalog`` is a path of this machine. A mapping (what the web page
+        passes): ``chain.catalog`` must be one of its names — the catalogues uploaded in the
+        session — and no other file is ever opened.
+
+    Returns
+    -------
+    Drive
+    """
+    if not isinstance(data, Mapping):
+        raise DesignError("design", f"must be a table, got {type(data).__name__}")
     known = (*(k for k in SECTIONS if k not in NESTED_SECTIONS), *OTHER_SECTIONS)
     for key in data:
         if key not in known:
-            raise DesignError(key, "unknown section" + did_you_mean(key, known)
+            raise DesignError(shown_key(key), "unknown section"
+                              + did_you_mean(str(key)[:MAX_NAME], known)
                               + f" (known: {', '.join(known)})")
     drive_values = parse_section(data.get("drive", {}), DRIVE_FIELDS, "drive")
     dynamics = DynamicsSettings(**parse_section(data.get("dynamics", {}), DYNAMICS_FIELDS,
@@ -441,22 +664,24 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
         raise DesignError(f"sprockets[{drivers[0]}].speed", 'the driver needs a speed such as '
                           '"300 rpm"')
     chain_values["strands_given"] = (data.get("chain") or {}).get("strands")
-    spec, request = resolve_chain(chain_values, base_dir)
+    spec, request = resolve_chain(chain_values, base_dir, catalogs)
     if request is not None and drive_values["power"] is None:
         raise DesignError("drive.power", "is required when the design names no chain "
                           "(the chain is selected for the power)")
-    tooth_form = drive_values["tooth_form"] or ("GOST 591" if spec.standard == "GOST 13568"
-                                                else "ISO 606")
+    tooth_form: ToothFormName = drive_values["tooth_form"] or (
+        "GOST 591" if spec.standard == "GOST 13568" else "ISO 606")
     links = chain_values["links"]
     chain = Chain(spec, links=links if not isinstance(links, str) else None,
                   allow_odd=chain_values["allow_odd"], request=request,
                   contours=chain_values["contours"],
                   rounding=links if isinstance(links, str) else "round up",
                   sag=chain_values["sag"])
-    return Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
-                 power=drive_values["power"], tooth_form=tooth_form,
-                 service_factor=drive_values["service_factor"], dynamics=dynamics,
-                 motor=motor)
+    drive = Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
+                  power=drive_values["power"], tooth_form=tooth_form,
+                  service_factor=drive_values["service_factor"], dynamics=dynamics,
+                  motor=motor)
+    check_inertias(drive)
+    return drive
 
 
 def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
@@ -478,28 +703,82 @@ def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
 
 
 def parse_toml(text: str, name: str) -> dict[str, Any]:
-    """The mapping of a TOML text; a syntax error is one :class:`DesignError` naming ``name``."""
+    """The mapping of a TOML text.
+
+    Parameters
+    ----------
+    text : str
+        The TOML text.
+    name : str
+        Where it comes from, for the message.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    DesignError
+        On a syntax error, a text over :data:`~chaindrive.io.limits.MAX_DESIGN_BYTES`, or
+        arrays nested too deeply for the parser: one line naming ``name``.
+    """
+    where = shown_key(name, 300)
+    check_file_size(len(text.encode("utf-8", "surrogatepass")), MAX_DESIGN_BYTES, where,
+                    "design file")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise DesignError(name, f"TOML syntax error: {exc}") from None
+        raise DesignError(where, f"TOML syntax error: {exc}") from None
+    except RecursionError:
+        raise DesignError(where, "arrays or tables are nested too deeply to read") from None
 
 
 def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
-    """The mapping of a TOML file; a missing, unreadable or malformed file is one
-    :class:`DesignError` naming it (``what`` says what kind of file was expected)."""
+    """The mapping of a TOML file.
+
+    Parameters
+    ----------
+    path : str | Path
+        The file.
+    what : str
+        What kind of file is expected, for the message.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    DesignError
+        For a missing, unreadable, oversized or malformed file: one line naming it.
+    """
     p = Path(path)
-    if not p.is_file():
-        raise DesignError(str(path), f"no such {what}")
+    name = shown_key(path, 300)
     try:
+        if not p.is_file():
+            raise DesignError(name, f"no such {what}")
+        check_file_size(p.stat().st_size, MAX_DESIGN_BYTES, name, what)
         text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DesignError(str(path), f"cannot read the file ({exc.__class__.__name__})") from None
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        if isinstance(exc, DesignError):
+            raise
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
+        raise DesignError(name, f"cannot read the file ({reason})") from None
     return parse_toml(text, str(path))
 
 
 def load_drive(path: str | Path) -> Drive:
-    """Read and validate a TOML design file."""
+    """Read and validate a TOML design file.
+
+    Parameters
+    ----------
+    path : str | Path
+        The design file.
+
+    Returns
+    -------
+    Drive
+    """
     return drive_from_mapping(read_toml(path), base_dir=Path(path).parent)
 
 
@@ -512,7 +791,18 @@ def _q(value: float, factor: float, unit: str) -> str:
 def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     """The tables of a design file of ``drive`` (lengths in mm, speeds in rpm): what
     :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
-    written by its designation."""
+    written by its designation.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    dict
+        The tables [drive], [chain], [[sprockets]] and [dynamics].
+    """
     chain: dict[str, Any] = {"designation": drive.chain.spec.designation}
     if drive.chain.links is not None:
         chain["links"] = drive.chain.links
@@ -603,5 +893,16 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
 
 
 def drive_to_toml(drive: Drive) -> str:
-    """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`)."""
+    """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
     return tomli_w.dumps(drive_to_mapping(drive))

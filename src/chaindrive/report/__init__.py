@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from chaindrive.errors import DesignError
+from chaindrive.io.atomic import atomic_path
 from chaindrive.report.content import (
     SECTIONS,
     Block,
@@ -90,11 +91,11 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
                           synthesis=synthesis)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    if suffix == ".pdf":
-        from chaindrive.report.pdf import write_pdf
+    with atomic_path(out) as tmp:  # complete or absent, never half-written
+        if suffix == ".pdf":
+            from chaindrive.report.pdf import write_pdf
 
-        write_pdf(report, out)
-    else:
-        out.write_text(render_html(report), encoding="utf-8")
+            write_pdf(report, tmp)
+        else:
+            tmp.write_text(render_html(report), encoding="utf-8")
     return out

@@ -359,8 +359,11 @@ def galling_speed_limit(pitch: float, teeth: int, tension: float) -> float:
     """
     p = pitch / INCH
     f = tension / LBF
-    ratio = 82.5 / (7.95**p * 1.0278**teeth * 1.323 ** (f / 1000.0))
-    return float(1000.0 * ratio ** (1.0 / (1.59 * math.log10(p) + 1.873)) / RAD_S_TO_RPM)
+    # in logarithms: 1.323^(F/1000) overflows a float for F above about 2.5e6 lbf
+    log_ratio = (math.log(82.5) - p * math.log(7.95) - teeth * math.log(1.0278)
+                 - f / 1000.0 * math.log(1.323))
+    exponent = log_ratio / (1.59 * math.log10(p) + 1.873)
+    return float(1000.0 * math.exp(min(exponent, 700.0)) / RAD_S_TO_RPM)
 
 
 def lubrication_type(chain: ChainSpec, speed: float) -> Lubrication | None:

@@ -2,7 +2,9 @@
 populations on Dask, stored in a study database.
 
 * Dask: a :class:`distributed.LocalCluster` of worker processes by default, or an existing
-  cluster when a scheduler address is given (``tcp://host:8786``).
+  cluster when a scheduler address is given (``tcp://host:8786``). One cluster serves a
+  whole study: :class:`DaskEvaluator` starts it on the optimiser's first population and
+  keeps it for every generation (closed with the evaluator).
 * Storage: SQLAlchemy, a SQLite file by default (``sqlite:///study.db``) or any URL it
   accepts (``postgresql+psycopg://user@host/db``). Each evaluation is stored once, keyed by
   the SHA-256 of its inputs (and the study and function names). A second insert of a key
@@ -14,7 +16,11 @@ populations on Dask, stored in a study database.
   client stores each finished evaluation of a batch before it re-raises a failure. So a
   study that stops (an exception, Ctrl-C) resumes where it stopped: finished keys are read,
   not recomputed. A worker lost mid-chunk takes only that chunk's work with it; the
-  scheduler runs the chunk again elsewhere, and nothing stored is lost.
+  scheduler runs the chunk again elsewhere, and nothing stored is lost. A chunk whose
+  workers keep dying (Dask gives up on it after its ``allowed-failures``) is submitted
+  again, up to :data:`RESUBMITS` times, with only its unfinished evaluations; and when
+  Dask's nanny gives up on a worker (it was lost again while it restarted), a watchdog
+  re-creates it, so a LocalCluster never runs out of workers.
 * A rich progress bar while it runs, silent when the output is not a terminal.
 
 Compute functions receive one JSON-ready input mapping and return a JSON-ready mapping;
@@ -28,9 +34,11 @@ import hashlib
 import itertools
 import json
 import re
+import threading
 import traceback
 import uuid
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from contextlib import suppress
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Any
@@ -52,10 +60,13 @@ from sqlalchemy.exc import IntegrityError
 
 from chaindrive.errors import ChainDriveError, DesignError
 
-__all__ = ["StudyResult", "StudyStore", "dask_evaluator", "evaluate_design", "input_key",
+__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
+           "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
+#: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
+RESUBMITS = 3
 _META = MetaData()
 EVALUATIONS = Table(
     "evaluations", _META,
@@ -82,29 +93,76 @@ def _plain(value: Any) -> Any:
 
 
 def input_key(function: str, inputs: Any) -> str:
-    """SHA-256 (hex) of the function name and the canonical JSON of the inputs."""
+    """The key of one evaluation.
+
+    Parameters
+    ----------
+    function : str
+        The evaluated function's qualified name.
+    inputs : object
+        Its JSON-ready inputs.
+
+    Returns
+    -------
+    str
+        SHA-256 (hex) of the function name and the canonical JSON of the inputs.
+    """
     return hashlib.sha256(_json([function, inputs]).encode()).hexdigest()
 
 
 class StudyStore:
-    """The study database: one row per (study, key) with the inputs and the result (JSON)."""
+    """The study database: one row per (study, key) with the inputs and the result (JSON).
+
+    Parameters
+    ----------
+    url : str
+        SQLAlchemy URL (``sqlite:///study.db``, ``postgresql+psycopg://…``); a URL that
+        cannot be opened is one :class:`DesignError` line (field ``db``).
+    """
 
     def __init__(self, url: str = DEFAULT_DB) -> None:
         try:
             self.engine = create_engine(url)
-        except Exception as exc:  # sqlalchemy raises several types for a bad URL
-            raise DesignError("db", f"cannot open the study database {url!r} ({exc})") from None
-        _META.create_all(self.engine)
+            _META.create_all(self.engine)
+        except Exception as exc:  # sqlalchemy raises several types for a bad URL or file
+            reason = str(getattr(exc, "orig", None) or exc).splitlines()[0][:200]
+            raise DesignError("db", f"cannot open the study database {url[:200]!r} "
+                              f"({type(exc).__name__}: {reason})") from None
         self.url = url
 
     def keys(self, study: str) -> set[str]:
-        """Keys already stored for ``study``."""
+        """Keys already stored for ``study``.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+
+        Returns
+        -------
+        set of str
+        """
         with self.engine.connect() as con:
             rows = con.execute(select(EVALUATIONS.c.key).where(EVALUATIONS.c.study == study))
             return {r[0] for r in rows}
 
     def put(self, study: str, key: str, inputs: Any, result: Any) -> bool:
-        """Store one evaluation; False (and nothing written) when the key is already there."""
+        """Store one evaluation.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        key : str
+            The evaluation's key (:func:`input_key`).
+        inputs, result : object
+            Its inputs and result (JSON-ready).
+
+        Returns
+        -------
+        bool
+            False (and nothing written) when the key is already there.
+        """
         try:
             with self.engine.begin() as con:
                 con.execute(EVALUATIONS.insert().values(
@@ -115,8 +173,20 @@ class StudyStore:
         return True
 
     def put_many(self, study: str, rows: Sequence[tuple[str, Any, Any]]) -> int:
-        """Store (key, inputs, result) rows in one transaction, skipping stored keys;
-        returns how many were written."""
+        """Store rows in one transaction, skipping stored keys.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        rows : sequence of (str, object, object)
+            (key, inputs, result) of each evaluation.
+
+        Returns
+        -------
+        int
+            How many were written.
+        """
         if not rows:
             return 0
         stored = self.get_keys(study, [k for k, _, _ in rows])
@@ -133,14 +203,39 @@ class StudyStore:
         return len(fresh)
 
     def get_keys(self, study: str, keys: Sequence[str]) -> set[str]:
-        """The subset of ``keys`` already stored."""
+        """The subset of ``keys`` already stored.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        keys : sequence of str
+            Keys to look up.
+
+        Returns
+        -------
+        set of str
+        """
         with self.engine.connect() as con:
             rows = con.execute(select(EVALUATIONS.c.key).where(
                 EVALUATIONS.c.study == study, EVALUATIONS.c.key.in_(list(keys))))
             return {r[0] for r in rows}
 
     def get(self, study: str, keys: Iterable[str]) -> dict[str, Any]:
-        """Stored results by key (missing keys are absent)."""
+        """Stored results by key.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+        keys : iterable of str
+            Keys to look up.
+
+        Returns
+        -------
+        dict
+            Key → result (missing keys are absent).
+        """
         wanted = list(keys)
         out: dict[str, Any] = {}
         with self.engine.connect() as con:
@@ -151,7 +246,17 @@ class StudyStore:
         return out
 
     def count(self, study: str) -> int:
-        """Number of evaluations stored for ``study``."""
+        """Number of evaluations stored for ``study``.
+
+        Parameters
+        ----------
+        study : str
+            The study's name.
+
+        Returns
+        -------
+        int
+        """
         return len(self.keys(study))
 
     def close(self) -> None:
@@ -161,7 +266,19 @@ class StudyStore:
 
 @dataclass(frozen=True, slots=True)
 class StudyResult:
-    """results in the order of the inputs; computed now and reused from the database."""
+    """The outcome of :func:`run_study`.
+
+    Parameters
+    ----------
+    study : str
+        The study's name.
+    results : tuple
+        The results, in the order of the inputs.
+    computed : int
+        Evaluations computed now.
+    reused : int
+        Evaluations read from the database.
+    """
 
     study: str
     results: tuple[Any, ...]
@@ -208,13 +325,72 @@ def _chunk_size(count: int, workers: int) -> int:
 
 
 def _client(scheduler: str | None, n_workers: int | None) -> tuple[Any, Any]:
+    """A client of the scheduler at ``scheduler``, or of a new LocalCluster (one try more
+    when a worker is lost while the cluster starts)."""
     from distributed import Client, LocalCluster
 
     if scheduler:
-        return Client(scheduler), None
-    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0")
-    return Client(cluster), cluster
+        try:
+            return Client(scheduler, timeout="30s"), None
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise DesignError("scheduler", f"cannot reach the Dask scheduler {scheduler[:200]!r} "
+                              f"({type(exc).__name__})") from None
+    for attempt in (1, 2):
+        cluster = None
+        try:
+            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0")
+            return Client(cluster), cluster
+        except Exception:
+            if cluster is not None:
+                cluster.close()
+            if attempt == 2:
+                raise
+    raise AssertionError("unreachable")
+
+
+class _Watchdog:
+    """Keeps a LocalCluster at its number of workers while a study runs.
+
+    Dask's nanny restarts a lost worker, but gives up when the new one is lost again while
+    it starts: the cluster then shrinks, and with no worker left a study would wait for
+    ever. Every ``period`` seconds the watchdog re-creates the workers whose nanny closed
+    (seen once, gone now); workers still starting are left alone.
+    """
+
+    def __init__(self, cluster: Any, period: float = 1.0) -> None:
+        self.cluster = cluster
+        self.size = len(cluster.worker_spec)
+        self.period = period
+        self._seen: set[Any] = set()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True,
+                                        name="chaindrive-dask-watchdog")
+        self._thread.start()
+
+    def revive(self) -> bool:
+        """Re-create the workers that were lost for good; True when it did."""
+        workers = dict(self.cluster.workers)
+        running = {k for k, w in workers.items()
+                   if getattr(w.status, "name", "") not in ("closed", "failed", "closing")}
+        self._seen |= running
+        gone = [k for k in list(self.cluster.worker_spec) if k in self._seen and k not in running]
+        if not gone:
+            return False
+        for name in gone:
+            self.cluster.worker_spec.pop(name, None)
+        self.cluster.scale(self.size)
+        return True
+
+    def _run(self) -> None:
+        while not self._stop.wait(self.period):
+            with suppress(Exception):  # the cluster is closing: nothing to keep
+                self.revive()
+
+    def stop(self) -> None:
+        """Stop watching (before the cluster is closed)."""
+        self._stop.set()
+        self._thread.join()
 
 
 def _progress(enabled: bool | None) -> Any:
@@ -228,36 +404,93 @@ def _progress(enabled: bool | None) -> Any:
                     disable=not show)
 
 
-def _finished(batch: Sequence[Any], todo: Mapping[str, Any]
-              ) -> tuple[list[tuple[str, Any, Any]], BaseException | None]:
-    """(key, inputs, result) of every evaluation the futures of ``batch`` finished, and the
-    first failure among them (an evaluation that raised, or a task Dask gave up on)."""
-    rows: list[tuple[str, Any, Any]] = []
-    failure: BaseException | None = None
-    for fut in batch:
-        try:
-            done, exc = fut.result()
-        except Exception as lost:  # the task itself failed (e.g. its workers kept dying)
-            done, exc = [], lost
-        rows += [(k, todo[k], r) for k, r in done]
-        failure = failure or exc
-    return rows, failure
+def _lost(exc: BaseException) -> bool:
+    """True when a task failed because its workers were lost (not by its own error)."""
+    from distributed import KilledWorker
+
+    return isinstance(exc, KilledWorker)
+
+
+def _submit(client: Any, func: Callable[[Any], Any], items: list[tuple[str, Any]], key: str
+            ) -> Any:
+    return client.submit(_chunk, func, items, key=key, pure=False)
+
+
+def _evaluate_on(client: Any, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
+                 store: StudyStore, bar: Any, task: Any, chunk: int | None) -> int:
+    """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
+    stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
+    failure is raised after the finished evaluations are stored."""
+    from distributed import as_completed
+
+    run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
+    items = list(todo.items())
+    size = chunk or _chunk_size(len(items), len(client.scheduler_info()["workers"]))
+    chunks = {_submit(client, func, items[i:i + size], f"{study}-{items[i][0]}-{run}"):
+              (items[i:i + size], 0) for i in range(0, len(items), size)}
+    pending = as_completed(list(chunks))
+    computed = 0
+    try:
+        for batch in pending.batches():
+            failure: BaseException | None = None
+            rows: list[tuple[str, Any, Any]] = []
+            for fut in batch:
+                part, tries = chunks.pop(fut)
+                try:
+                    done, exc = fut.result()
+                except Exception as lost:  # the task itself failed (e.g. its workers died)
+                    done, exc = [], lost
+                rows += [(k, todo[k], r) for k, r in done]
+                finished = {k for k, _ in done}
+                rest = [(k, x) for k, x in part if k not in finished]
+                if exc is not None and _lost(exc) and rest and tries < RESUBMITS:
+                    again = _submit(client, func, rest, f"{study}-{rest[0][0]}-{run}-{tries + 1}")
+                    chunks[again] = (rest, tries + 1)
+                    pending.add(again)
+                    continue
+                failure = failure or exc
+            computed += store.put_many(study, rows)
+            bar.advance(task, len(rows))
+            if failure is not None:
+                raise failure
+    finally:
+        client.cancel(list(chunks))
+    return computed
 
 
 def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Any = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None) -> StudyResult:
-    """Evaluate ``func`` on every input through Dask, storing each result once.
+    """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
+    key is stored are not recomputed.
 
-    study : name of the study in the database; db : URL or an open store; scheduler : address
-    of an existing Dask scheduler (None: a LocalCluster of ``n_workers`` processes, closed at
-    the end); client : an existing :class:`distributed.Client` (takes precedence);
-    progress : None = only on a terminal; chunk : evaluations per Dask task (None: by the
-    number of workers, :func:`_chunk_size`). Inputs whose key is stored are not recomputed.
+    Parameters
+    ----------
+    func : callable
+        A module-level function of one JSON-ready input.
+    inputs : sequence
+        The inputs.
+    study : str
+        Name of the study in the database.
+    db : str | StudyStore
+        URL or an open store.
+    scheduler : str | None
+        Address of an existing Dask scheduler (None: a LocalCluster of ``n_workers``
+        processes, closed at the end).
+    client : distributed.Client | None
+        An existing client (takes precedence; left open).
+    n_workers : int | None
+        Workers of the LocalCluster (None: Dask's default).
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+    chunk : int | None
+        Evaluations per Dask task (None: by the number of workers, :func:`_chunk_size`).
+
+    Returns
+    -------
+    StudyResult
     """
-    from distributed import as_completed
-
     store = db if isinstance(db, StudyStore) else StudyStore(db)
     name = f"{func.__module__}.{func.__qualname__}"
     keys = [input_key(name, x) for x in inputs]
@@ -269,30 +502,18 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
     computed = 0
     if todo:
         own = client is None
-        cluster = None
+        cluster = watchdog = None
         if own:
             client, cluster = _client(scheduler, n_workers)
-        run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
-        futures: dict[Any, str] = {}
+            watchdog = None if cluster is None else _Watchdog(cluster)
         try:
-            items = list(todo.items())
-            size = chunk or _chunk_size(len(items), len(client.scheduler_info()["workers"]))
-            futures = {client.submit(_chunk, func, items[i:i + size],
-                                     key=f"{study}-{items[i][0]}-{run}"): i
-                       for i in range(0, len(items), size)}
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
-                # results are stored as they arrive, in the batches Dask hands over; every
-                # evaluation a batch finished is stored before a failure in it is re-raised
-                for batch in as_completed(futures).batches():
-                    rows, failure = _finished(batch, todo)
-                    computed += store.put_many(study, rows)
-                    bar.advance(task, len(rows))
-                    if failure is not None:
-                        raise failure
+                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk)
         finally:
-            client.cancel(list(futures))
             if own:
+                if watchdog is not None:
+                    watchdog.stop()
                 client.close()
                 if cluster is not None:
                     cluster.close()
@@ -306,7 +527,17 @@ _PATH = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
 
 
 def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
-    """Set ``sprockets[2].x``-style ``path`` in a design mapping (in place)."""
+    """Set a value in a design mapping (in place).
+
+    Parameters
+    ----------
+    mapping : dict
+        The design mapping.
+    path : str
+        A ``sprockets[2].x``-style path.
+    value : object
+        The new value.
+    """
     node: Any = mapping
     parts = path.split(".")
     for depth, part in enumerate(parts):
@@ -331,7 +562,19 @@ def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
 
 
 def get_path(mapping: Mapping[str, Any], path: str) -> Any:
-    """The value at a ``sprockets[2].x``-style path."""
+    """The value at a path of a design mapping.
+
+    Parameters
+    ----------
+    mapping : Mapping
+        The design mapping.
+    path : str
+        A ``sprockets[2].x``-style path.
+
+    Returns
+    -------
+    object
+    """
     node: Any = mapping
     for part in path.split("."):
         m = _PATH.fullmatch(part)
@@ -345,8 +588,22 @@ def get_path(mapping: Mapping[str, Any], path: str) -> Any:
 
 def sweep_inputs(base: Mapping[str, Any], grid: Mapping[str, Sequence[Any]],
                  objectives: Sequence[str] = ("cost", "mass", "volume")) -> list[dict[str, Any]]:
-    """Inputs of :func:`evaluate_design` for the Cartesian product of ``grid`` (path → values,
-    in the design file's notation, e.g. ``{"sprockets[1].x": ["790 mm", "810 mm"]}``)."""
+    """Inputs of :func:`evaluate_design` for the Cartesian product of ``grid``.
+
+    Parameters
+    ----------
+    base : Mapping
+        The design mapping.
+    grid : Mapping of str to sequence
+        Path → values, in the design file's notation (e.g.
+        ``{"sprockets[1].x": ["790 mm", "810 mm"]}``).
+    objectives : sequence of str
+        Objectives to evaluate.
+
+    Returns
+    -------
+    list of dict
+    """
     paths = list(grid)
     out = []
     for combo in itertools.product(*(grid[p] for p in paths)):
@@ -374,9 +631,24 @@ def monte_carlo_inputs(base: Mapping[str, Any], tolerances: Mapping[str, Any], s
                        ) -> list[dict[str, Any]]:
     """Inputs of :func:`evaluate_design` with normally distributed deviations.
 
-    tolerances : path → standard deviation in the unit of the value at that path (e.g.
-    ``{"sprockets[1].x": "0.2 mm"}`` for ``x = "800 mm"``); samples; seed (same seed,
-    same samples)."""
+    Parameters
+    ----------
+    base : Mapping
+        The design mapping.
+    tolerances : Mapping
+        Path → standard deviation in the unit of the value at that path (e.g.
+        ``{"sprockets[1].x": "0.2 mm"}`` for ``x = "800 mm"``).
+    samples : int
+        Number of samples.
+    seed : int
+        Random seed (same seed, same samples).
+    objectives : sequence of str
+        Objectives to evaluate.
+
+    Returns
+    -------
+    list of dict
+    """
     from chaindrive.units import registry
 
     ureg = registry()
@@ -399,8 +671,18 @@ def monte_carlo_inputs(base: Mapping[str, Any], tolerances: Mapping[str, Any], s
 
 
 def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker function of sweeps and Monte-Carlo studies: ``{"design": mapping, "objectives":
-    [...]}`` → the evaluation (objectives, constraints, constraints_ok) of that design."""
+    """Worker function of sweeps and Monte-Carlo studies.
+
+    Parameters
+    ----------
+    inputs : Mapping
+        ``{"design": mapping, "objectives": [...]}``.
+
+    Returns
+    -------
+    dict
+        The evaluation (objectives, constraints, constraints_ok) of that design.
+    """
     from chaindrive.io.design import drive_from_mapping
     from chaindrive.synthesis.evaluation import evaluate_drive
     from chaindrive.synthesis.problem import Constraints
@@ -425,22 +707,63 @@ def problem_fingerprint(problem: Any) -> str:
                                  problem.ratio_tolerance]).encode()).hexdigest()[:16]
 
 
-def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                   scheduler: str | None = None, client: Any = None,
-                   progress: bool | None = False) -> Callable[..., list[tuple[Any, Any]]]:
-    """A batch evaluator for :func:`chaindrive.synthesis.solve.solve` that runs each population
-    on Dask and stores it (study default: ``optimize-<problem hash>``), so a rerun with the same
-    seed resumes from the database."""
-    from chaindrive.synthesis.evaluation import Evaluation
+class DaskEvaluator:
+    """A batch evaluator for :func:`chaindrive.synthesis.solve.solve` that runs each
+    population on one Dask cluster and stores it (study default: ``optimize-<problem
+    hash>``), so a rerun with the same seed resumes from the database.
 
-    store = db if isinstance(db, StudyStore) else StudyStore(db)
+    The cluster (a LocalCluster unless ``scheduler`` or ``client`` is given) starts with the
+    first population and serves every generation; :meth:`close` (or leaving a ``with``
+    block) shuts it down. A worker lost at any time costs only the chunk it was running,
+    which runs again (:func:`run_study`).
 
-    def evaluate(problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
-        name = study or f"optimize-{problem_fingerprint(problem)}"
+    Parameters
+    ----------
+    db : str | StudyStore
+        The study database.
+    study : str | None
+        Name of the study (None: from the problem's fingerprint).
+    scheduler : str | None
+        Address of an existing scheduler.
+    client : distributed.Client | None
+        An existing client (left open by :meth:`close`).
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+    n_workers : int | None
+        Workers of the LocalCluster (None: Dask's default).
+    """
+
+    def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
+                 scheduler: str | None = None, client: Any = None,
+                 progress: bool | None = False, n_workers: int | None = None) -> None:
+        self.store = db if isinstance(db, StudyStore) else StudyStore(db)
+        self.study = study
+        self.scheduler = scheduler
+        self.progress = progress
+        self.n_workers = n_workers
+        self._client = client
+        self._own = client is None
+        self._cluster: Any = None
+        self._watchdog: _Watchdog | None = None
+
+    @property
+    def client(self) -> Any:
+        """The Dask client, started on first use (with a watchdog that keeps its own
+        LocalCluster at full strength)."""
+        if self._client is None:
+            self._client, self._cluster = _client(self.scheduler, self.n_workers)
+            if self._cluster is not None:
+                self._watchdog = _Watchdog(self._cluster)
+        return self._client
+
+    def __call__(self, problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
+        from chaindrive.synthesis.evaluation import Evaluation
+
         fp = problem_fingerprint(problem)
+        name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
-        res = run_study(_evaluate_vector, wrapped, study=name, db=store, scheduler=scheduler,
-                        client=client, progress=progress)
+        res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
+                        client=self.client, progress=self.progress)
         out = []
         for r in res.results:
             e = r["evaluation"]
@@ -448,10 +771,51 @@ def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = Non
                                    e["error"]), r["design"]))
         return out
 
-    return evaluate
+    def close(self) -> None:
+        """Shut down the cluster this evaluator started (an existing client is left open)."""
+        if self._own and self._client is not None:
+            if self._watchdog is not None:
+                self._watchdog.stop()
+                self._watchdog = None
+            self._client.close()
+            if self._cluster is not None:
+                self._cluster.close()
+            self._client = self._cluster = None
+
+    def __enter__(self) -> DaskEvaluator:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
 
-class _VectorInput(dict):  # type: ignore[type-arg]
+def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
+                   scheduler: str | None = None, client: Any = None,
+                   progress: bool | None = False) -> DaskEvaluator:
+    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done).
+
+    Parameters
+    ----------
+    db : str | StudyStore
+        The study database.
+    study : str | None
+        Name of the study (None: from the problem's fingerprint).
+    scheduler : str | None
+        Address of an existing scheduler.
+    client : distributed.Client | None
+        An existing client.
+    progress : bool | None
+        Progress bar (None: only on a terminal).
+
+    Returns
+    -------
+    DaskEvaluator
+    """
+    return DaskEvaluator(db=db, study=study, scheduler=scheduler, client=client,
+                         progress=progress)
+
+
+class _VectorInput(dict[str, Any]):
     """Input of one vector: hashed by (problem fingerprint, vector), carries the problem."""
 
     def __init__(self, problem: Any, vector: list[float], fingerprint: str) -> None:

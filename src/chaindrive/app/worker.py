@@ -1,0 +1,176 @@
+"""The page's heavy work, off the server: every run in a child process with a time and a
+memory limit.
+
+Streamlit runs each session's script in a thread of the server process, next to the event
+loop that answers every browser (and the health check). A computation that holds the
+interpreter — a start-up of a stiff ring, a large sweep — would stall them all. So the page
+hands each analysis, start-up, report and drawing to :func:`run_bounded`: it runs in a
+child process forked from a server of preloaded modules (``forkserver``: a start costs a
+few milliseconds, not the seconds of importing numpy, scipy and numba again), under an
+address-space limit (``RLIMIT_AS``), and is killed when it runs past its time. The
+session's thread only waits on a pipe, which holds no lock: other sessions stay responsive.
+
+A limit that is hit becomes a :class:`RunLimitError` — a
+:class:`~chaindrive.errors.ChainDriveError`, so the page shows it as one line like any
+other mistake in a design. At most :data:`MAX_RUNS` runs go at once; a further one waits
+for a slot (within its own time limit).
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import threading
+import time
+import traceback
+from collections.abc import Callable
+from contextlib import suppress
+from multiprocessing.connection import Connection
+from typing import Any, TypeVar
+
+from chaindrive.errors import ChainDriveError
+
+__all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_RUNS", "MEMORY_BYTES", "PRELOAD",
+           "RunLimitError", "run_bounded"]
+
+T = TypeVar("T")
+
+#: Time limit of the analysis redrawn after every edit [s] (``CHAINDRIVE_APP_SECONDS``).
+INTERACTIVE_SECONDS = float(os.environ.get("CHAINDRIVE_APP_SECONDS", "20"))
+#: Time limit of an on-demand run: the full dynamic analysis, the report, the drawing [s]
+#: (``CHAINDRIVE_APP_FULL_SECONDS``).
+FULL_SECONDS = float(os.environ.get("CHAINDRIVE_APP_FULL_SECONDS", "60"))
+#: Address-space limit of a run [bytes] (``CHAINDRIVE_APP_MEMORY_GB``): a run maps about
+#: 0.3 GB of modules; the full analysis of the eight-sprocket example with a 60 s start-up
+#: (the longest the design file allows) peaks at 1.2 GB resident.
+MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024**3)
+#: Runs at once (each may use up to MEMORY_BYTES).
+MAX_RUNS = 4
+#: Modules the fork server imports once, so that a run starts without importing them.
+PRELOAD = ["chaindrive.app.worker", "chaindrive.app.preload", "chaindrive.report",
+           "chaindrive.drawing"]
+
+_slots = threading.BoundedSemaphore(MAX_RUNS)
+_context_lock = threading.Lock()
+_context: Any = None
+
+
+class RunLimitError(ChainDriveError):
+    """A run of the page passed its time or memory limit, or its process was lost."""
+
+
+def _mp() -> Any:
+    """The multiprocessing context: a fork server with the page's modules preloaded."""
+    global _context
+    with _context_lock:
+        if _context is None:
+            ctx = multiprocessing.get_context("forkserver")
+            ctx.set_forkserver_preload(PRELOAD)
+            _context = ctx
+        return _context
+
+
+def _child(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...],
+           memory: int) -> None:
+    """In the child: limit the memory, run, send ("ok", result) or ("error", …)."""
+    import resource
+
+    with suppress(ValueError, OSError):  # a hard limit below ours: keep it
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    try:
+        result: tuple[Any, ...] = ("ok", func(*args))
+    except ChainDriveError as exc:
+        result = ("error", exc)
+    except MemoryError:
+        result = ("memory", None)
+    except BaseException as exc:
+        result = ("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc())
+    try:
+        conn.send(result)
+    except MemoryError:
+        conn.send(("memory", None))
+    except Exception as exc:  # the result could not be pickled
+        conn.send(("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc()))
+    finally:
+        conn.close()
+
+
+def _stop(process: Any) -> None:
+    """Kill a run and reap its process."""
+    if process.is_alive():
+        process.kill()
+    process.join(5.0)
+
+
+def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE_SECONDS,
+                memory: int = MEMORY_BYTES, what: str = "the analysis") -> T:
+    """``func(*args)`` in a child process, killed after ``seconds`` or when it needs more
+    than ``memory`` bytes of address space.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level function (pickled by name); its arguments and result must pickle.
+    *args : object
+        Its arguments.
+    seconds : float
+        Time limit [s], counted from the request (a wait for a slot included).
+    memory : int
+        Address-space limit of the child [bytes].
+    what : str
+        What the run is, for the message.
+
+    Returns
+    -------
+    The function's result.
+
+    Raises
+    ------
+    ChainDriveError
+        The function's own (a user's mistake), or :class:`RunLimitError` for a run past a
+        limit or a process lost.
+    RuntimeError
+        When the function failed unexpectedly (its message; the page shows a short note).
+    """
+    start = time.monotonic()
+    if not _slots.acquire(timeout=seconds):
+        raise RunLimitError("run", f"{what} waited {seconds:g} s for a free slot (the server "
+                            f"runs at most {MAX_RUNS} computations at once); try again")
+    try:
+        ctx = _mp()
+        receive, send = ctx.Pipe(duplex=False)
+        process = ctx.Process(target=_child, args=(send, func, args, memory), daemon=True)
+        process.start()
+        send.close()
+        try:
+            left = max(seconds - (time.monotonic() - start), 0.0)
+            if not receive.poll(left):
+                raise RunLimitError("run", f"{what} took longer than {seconds:g} s, the limit "
+                                    "of one run on this page; simplify the design or run "
+                                    "`chaindrive analyze` on your own machine")
+            try:
+                outcome = receive.recv()
+            except (EOFError, OSError):
+                process.join(5.0)
+                raise RunLimitError("run", f"{what} stopped (its process ended with status "
+                                    f"{process.exitcode}); it may have needed more than "
+                                    f"{memory / 1024**3:.3g} GB of memory") from None
+        finally:
+            receive.close()
+            _stop(process)
+    finally:
+        _slots.release()
+    kind = outcome[0]
+    if kind == "ok":
+        return outcome[1]  # type: ignore[no-any-return]
+    if kind == "error":
+        raise outcome[1]
+    if kind == "memory":
+        raise RunLimitError("run", f"{what} needed more than {memory / 1024**3:.3g} GB of "
+                            "memory, the limit of one run on this page")
+    raise RuntimeError(f"{what} failed unexpectedly ({outcome[1]})")
+
+
+def child_pid() -> int:
+    """The process id of the process that runs it (a run's own, in :func:`run_bounded`)."""
+    return os.getpid()

@@ -1,0 +1,174 @@
+"""The web page under load and abuse, in a real browser (issue: reliability): one session's
+heavy run does not stall another session or the server's health check; a design with an
+implausible inertia ends at once with the loader's line; a design naming a file of the
+server as its catalogue gets the "not uploaded" line and never the file's content.
+
+Outcomes only: the second session completes its run and the health check answers while the
+first session's run is still shown running (a 60 s start-up of the eight-sprocket example:
+seconds of work, against the fraction of a second the other session needs). Skipped (with
+the reason) when Chromium or Playwright is not installed, like tests/e2e/test_app_browser.py.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import time
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from chaindrive.app import streamlit_command
+from tests.conftest import EXAMPLES, ROOT
+
+pytestmark = pytest.mark.concurrency  # a web server and a browser
+
+CHROMIUM = Path(os.environ.get("CHAINDRIVE_CHROMIUM", "/usr/bin/chromium"))
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+FIRST_MS, STEP_MS = 90_000, 30_000
+
+if not (CHROMIUM.is_file() and os.access(CHROMIUM, os.X_OK)):
+    pytest.skip(f"Chromium not found at {CHROMIUM} (apt-get install -y chromium)",
+                allow_module_level=True)
+try:
+    from playwright.sync_api import Page, expect, sync_playwright
+except ImportError:
+    pytest.skip("Playwright for Python is not installed (pip install playwright)",
+                allow_module_level=True)
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _healthy(url: str, timeout: float = 2.0) -> bool:
+    try:
+        with urllib.request.urlopen(f"{url}/_stcore/health", timeout=timeout) as r:
+            return r.status == 200
+    except OSError:
+        return False
+
+
+@pytest.fixture(scope="module")
+def app_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    log = tmp_path_factory.mktemp("app") / "streamlit.log"
+    for _ in range(3):
+        port = _free_port()
+        url = f"http://127.0.0.1:{port}"
+        with log.open("ab") as out:
+            proc = subprocess.Popen(streamlit_command("127.0.0.1", port), cwd=ROOT, stdout=out,
+                                    stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        end = time.monotonic() + 90
+        while time.monotonic() < end and proc.poll() is None and not _healthy(url):
+            time.sleep(0.2)
+        if _healthy(url):
+            break
+        proc.kill()
+        proc.wait()
+    else:
+        raise RuntimeError(f"the app did not start: {log.read_text(errors='replace')[-2000:]}")
+    try:
+        yield url
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+@pytest.fixture(scope="module")
+def browser(app_url: str) -> Iterator[Any]:
+    with sync_playwright() as pw:
+        chromium = pw.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+        try:
+            yield chromium
+        finally:
+            chromium.close()
+
+
+def _session(browser: Any, url: str) -> tuple[Any, Page]:
+    """A new browser context (a session of its own) on the page, after its first run."""
+    context = browser.new_context(viewport={"width": 1500, "height": 1400})
+    pg = context.new_page()
+    pg.set_default_timeout(STEP_MS)
+    expect.set_options(timeout=STEP_MS)
+    pg.goto(url)
+    expect(pg.locator("#chaindrive-ready")).to_have_attribute("data-state", "ok",
+                                                              timeout=FIRST_MS)
+    return context, pg
+
+
+def _upload(pg: Page, path: Path, state: str) -> None:
+    """Open the design file ``path`` from the sidebar; wait for the page to show it."""
+    pg.locator("[data-testid='stSidebar'] input[type='file']").first.set_input_files(str(path))
+    marker = pg.locator("#chaindrive-ready")
+    expect(marker).to_have_attribute("data-source", path.name)
+    expect(marker).to_have_attribute("data-state", state)
+
+
+def test_a_heavy_run_does_not_stall_another_session(browser: Any, app_url: str,
+                                                    tmp_path: Path) -> None:
+    heavy = tmp_path / "heavy.toml"
+    heavy.write_text((EXAMPLES / "eight_sprocket.toml").read_text(encoding="utf-8")
+                     + '\n[dynamics]\nstartup_duration = "60 s"\n', encoding="utf-8")
+    a_context, a = _session(browser, app_url)
+    try:
+        _upload(a, heavy, "ok")
+        a.get_by_role("tab", name="Start-up").click()
+        a.get_by_role("button", name="Run the start-up simulation").click()
+        running = a.get_by_text("Start-up: running the dynamic analysis")
+        expect(running).to_be_visible()
+        assert _healthy(app_url, timeout=10.0)  # the server answers meanwhile
+        b_context, b = _session(browser, app_url)  # another user: a full first run
+        try:
+            b.get_by_role("tab", name="Modes & Campbell").click()
+            expect(b.get_by_test_id("stImage").first).to_be_visible()
+        finally:
+            b_context.close()
+        expect(running).to_be_visible(timeout=1)  # A's run is still going
+    finally:
+        a_context.close()
+
+
+def test_an_implausible_inertia_is_one_line_on_the_page(browser: Any, app_url: str,
+                                                       tmp_path: Path) -> None:
+    design = tmp_path / "tiny_inertia.toml"
+    design.write_text((EXAMPLES / "two_sprocket_jindal.toml").read_text(encoding="utf-8")
+                      .replace('role = "driven"', 'role = "driven"\ninertia = "1e-10 kg*m^2"'),
+                      encoding="utf-8")
+    context, pg = _session(browser, app_url)
+    try:
+        _upload(pg, design, "error")
+        expect(pg.get_by_text("inertia: must be an inertia", exact=False).first).to_be_visible()
+        expect(pg.get_by_test_id("stException")).to_have_count(0)
+    finally:
+        context.close()
+
+
+def test_a_server_file_is_never_read_as_a_catalogue(browser: Any, app_url: str,
+                                                   tmp_path: Path) -> None:
+    secret = tmp_path / "secret.csv"
+    secret.write_text("TOPSECRET_HEADER,pitch_mm\n", encoding="utf-8")
+    context, pg = _session(browser, app_url)
+    try:
+        for k, name in enumerate((str(secret), "../" * 10 + str(secret).lstrip("/"))):
+            design = tmp_path / f"traversal{k}.toml"
+            text = (EXAMPLES / "two_sprocket_jindal.toml").read_text(encoding="utf-8")
+            design.write_text(text.replace('designation = "ISO 606 06B-1"',
+                                           f'designation = "X"\ncatalog = "{name}"'),
+                              encoding="utf-8")
+            _upload(pg, design, "error")
+            expect(pg.get_by_text("is not a catalogue uploaded in this session").first
+                   ).to_be_visible()
+            assert "TOPSECRET" not in pg.content()
+    finally:
+        context.close()
