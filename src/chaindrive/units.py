@@ -106,11 +106,16 @@ def parse_quantity(text: object, dimension: str, field: str) -> float:
     if dim and not q.check(dim):
         raise DesignError(
             field,
-            f"{text!r} is not a {dimension.replace('_', ' ')} (expected a unit like "
+            f"{text!r} is not {_article(dimension.replace('_', ' '))} (expected a unit like "
             f"\"{example}\", got {q.units:~})",
         )
     value = float(q.to(si_unit).magnitude)
     return value
+
+
+def _article(noun: str) -> str:
+    """``noun`` with its indefinite article ("an angle", "a length")."""
+    return f"{'an' if noun[:1] in 'aeiou' else 'a'} {noun}"
 
 
 def format_si(value: float, unit: str) -> str:

@@ -59,6 +59,13 @@ class Field:
     maximum: float | None = None
     choices: tuple[str, ...] = ()
     exclusive_minimum: bool = False
+    example: str = ""
+
+    def example_text(self) -> str:
+        """An example value that fits this field (its own, or its dimension's)."""
+        if self.example or self.kind not in DIMENSIONS:
+            return self.example
+        return DIMENSIONS[self.kind][2]
 
     def allowed(self) -> str:
         """Human description of the allowed values."""
@@ -81,9 +88,11 @@ class Field:
             return "a whole number" + (f" {span}" if span else "")
         if self.kind == "float":
             return "a number" + (f" {span}" if span else "")
-        unit = DIMENSIONS[self.kind][2]
-        return f'a {self.kind.replace("_", " ")} with a unit such as "{unit}"' + (
-            f", {span} (SI)" if span else "")
+        what = self.kind.replace("_", " ")
+        article = "an" if what[0] in "aeiou" else "a"
+        si = DIMENSIONS[self.kind][1].replace("**2", "²").replace("**3", "³").replace("*", "·")
+        return f'{article} {what} with a unit such as "{self.example_text()}"' + (
+            f", {span.replace(' and ', f' {si} and ')} {si}" if span else "")
 
 
 DRIVE_FIELDS: tuple[Field, ...] = (
@@ -111,15 +120,15 @@ CHAIN_FIELDS: tuple[Field, ...] = (
           "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True),
     Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
           default=False),
-    Field("contours", "int", "identical chain contours side by side on common shafts (seed 004)",
+    Field("contours", "int", "identical chain contours side by side on common shafts ([Lyashuk])",
           default=1, minimum=1, maximum=MAX_CONTOURS),
     Field("catalog", "str", "a catalogue file of your own (CSV or TOML), relative to the design"),
 )
 SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("name", "str", "unique name of the sprocket", required=True),
     Field("teeth", "int", "number of teeth", required=True, minimum=MIN_TEETH, maximum=MAX_TEETH),
-    Field("x", "length", "x of the centre", required=True),
-    Field("y", "length", "y of the centre", required=True),
+    Field("x", "length", "x of the centre", required=True, example="1364 mm"),
+    Field("y", "length", "y of the centre", required=True, example="60.67 mm"),
     Field("role", "choice", "driver, driven or idler", default="driven", choices=ROLES),
     Field("speed", "speed", "rotational speed (driver only)", minimum=0, exclusive_minimum=True),
     Field("side", "choice", "outside: the chain wraps round it; inside: the chain wraps it from "
@@ -130,19 +139,19 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("inertia", "inertia", "moment of inertia of everything turning with it", minimum=0,
           exclusive_minimum=True),
     Field("flywheel", "inertia", "inertia added as a steel flywheel on the shaft (in the "
-          "dynamics, the mass and the cost)", default=0.0, minimum=0.0),
+          "dynamics, the mass and the cost)", default=0.0, minimum=0.0, example="0.05 kg*m^2"),
     Field("material", "str", "sprocket material (catalogue name)", default="steel"),
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
           minimum=0.0, maximum=1.0),
 )
 DYNAMICS_FIELDS: tuple[Field, ...] = (
-    Field("damping_ratio", "float", "damping ratio ζ of the ring (seed 000: D = 0.06)",
+    Field("damping_ratio", "float", "damping ratio ζ of the ring ([MultimassChainDrives]: D = 0.06)",
           default=0.06, minimum=0.0, maximum=0.9),
     Field("harmonics", "int", "harmonics of the tooth frequency in the polygonal excitation",
           default=10, minimum=1, maximum=50),
     Field("transient", "bool", "run the start-up transient", default=True),
     Field("startup_duration", "time", "simulated time of the start-up", default=1.0,
-          minimum=0.0, maximum=60.0, exclusive_minimum=True),
+          minimum=0.0, maximum=60.0, exclusive_minimum=True, example="1 s"),
     Field("motor", "choice", "motor law on the driver: induction motor (Kloss), constant "
           "torque or soft-start ramp", default="kloss", choices=MOTORS),
     Field("breakdown_ratio", "float", "Kloss motor: breakdown torque / rated torque",
@@ -150,15 +159,15 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
     Field("critical_slip", "float", "Kloss motor: critical slip", default=0.25, minimum=0.0,
           maximum=1.0, exclusive_minimum=True),
     Field("ramp_time", "time", "ramp motor: time to full torque", default=0.5, minimum=0.0,
-          exclusive_minimum=True),
+          exclusive_minimum=True, example="0.5 s"),
     Field("resistance", "choice", "resistance law on the driven sprockets", default="linear",
           choices=RESISTANCES),
     Field("eccentricity", "length", "eccentricity of every sprocket (disturbance once per "
-          "revolution)", default=0.0, minimum=0.0),
+          "revolution)", default=0.0, minimum=0.0, example="0.1 mm"),
     Field("pitch_scatter", "length", "scatter (standard deviation) of the link pitches",
-          default=0.0, minimum=0.0),
+          default=0.0, minimum=0.0, example="0.02 mm"),
     Field("accumulated_error", "length", "accumulated error of the chain length", default=0.0,
-          minimum=0.0),
+          minimum=0.0, example="0.5 mm"),
 )
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
@@ -182,7 +191,7 @@ def schema() -> dict[str, list[dict[str, Any]]]:
                 "field": f.name,
                 "kind": f.kind,
                 "si_unit": DIMENSIONS[f.kind][1] if f.kind in DIMENSIONS else "",
-                "example": DIMENSIONS[f.kind][2] if f.kind in DIMENSIONS else "",
+                "example": f.example_text(),
                 "required": f.required,
                 "default": f.default,
                 "allowed": f.allowed(),
@@ -355,6 +364,9 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) ->
                               f"(this one is {v['role']})")
         sprockets.append(Sprocket(**v))
     drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
+    if not drivers:
+        raise DesignError("sprockets.role", 'the driver is missing: give one sprocket '
+                          'role = "driver" and its speed')
     if len(drivers) != 1:
         shown = ", ".join(f"sprockets[{i}]" for i in drivers) or "none"
         raise DesignError("sprockets.role", f"exactly one sprocket must be the driver, got "
