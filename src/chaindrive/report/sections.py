@@ -30,6 +30,8 @@ if TYPE_CHECKING:
 
 #: How many passing checks with the smallest margins page 1 shows beside the failures.
 GOVERNING = 4
+#: How many warnings page 1 shows (the section Checks lists them all).
+FIRST_WARNINGS = 5
 
 
 def rows(items: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
@@ -65,14 +67,16 @@ def _estimates(inp: ReportInput) -> list[str]:
     out = []
     guessed = [s.name for s in d.sprockets if s.inertia is None]
     if guessed:
-        out.append(f"Moments of inertia of {', '.join(guessed)} estimated from the material "
+        which = (f"all {len(guessed)} sprockets" if len(guessed) == len(d.sprockets) > 3
+                 else ", ".join(guessed))
+        out.append(f"Moments of inertia of {which} estimated from the material "
                    "and plate proportions (a steel plate of the tooth width with the bore "
                    "0.19·z·p/π; no hub, shaft or coupling): give `inertia` for the real parts.")
     if d.dynamics.damping_ratio == 0.06:
-        out.append("Damping ratio ζ = 0.06, the value of [MultimassChainDrives, Table 1] "
-                   "(no measurement of this drive).")
+        out.append("Damping ratio 0.06 of the chain hinges, the value of "
+                   "[MultimassChainDrives, Table 1] (no measurement of this drive).")
     if inp.analysis.response is not None:
-        out.append("Coefficient of dynamics K_D = 1 + F_D/F_t with F_D the RMS of the span "
+        out.append("Coefficient of dynamics from the root mean square of the spans' dynamic "
                    "loads: the reading of [MultimassChainDrives, §3.3] this package uses.")
     return out
 
@@ -100,8 +104,12 @@ def summary_section(inp: ReportInput) -> list[Block]:
                          "source"), rows([_check_cells(c, inp) for c in gov]),
                         tuple(i for i, c in enumerate(gov) if not c.passed)))
     warnings = [w.message for w in a.warnings] + inp.notes
-    blocks.append(Text("Warnings" if warnings else "No warnings.", "text"))
-    blocks += [Text(w, "warning") for w in warnings]
+    shown = warnings if len(warnings) <= FIRST_WARNINGS else warnings[:FIRST_WARNINGS - 1]
+    blocks.append(Text(f"Warnings ({len(warnings)})" if warnings else "No warnings.", "text"))
+    blocks += [Text(w, "warning") for w in shown]
+    if len(shown) < len(warnings):
+        blocks.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in the "
+                           "section Checks.", "note"))
     estimates = _estimates(inp)
     if estimates:
         blocks.append(Text("The results rest on these defaults and estimates:", "text"))
@@ -117,19 +125,20 @@ def _glance(inp: ReportInput) -> Table:
     d, g, k = a.drive, a.geometry, a.kinematics
     items: list[tuple[str, Any, str]] = [
         ("chain", d.chain.spec.designation, ""),
-        ("links L_p", g.links, ""),
+        ("links", g.links, ""),
         ("chain length", inp.val(g.chain_length, "length"), inp.unit("length")),
-        ("power P", inp.val(d.power, "power"), inp.unit("power")),
-        ("driver speed n₁", inp.val(d.driver.speed, "speed"), "rpm"),
-        ("chain speed v", inp.val(k.chain_speed, "velocity"), inp.unit("velocity")),
-        ("tooth frequency f_z", k.tooth_frequency, "Hz"),
-        ("first natural frequency f₁", a.dynamics.modal.first_elastic_frequency_hz, "Hz")]
+        ("power", inp.val(d.power, "power"), inp.unit("power")),
+        ("driver speed", inp.val(d.driver.speed, "speed"), "rpm"),
+        ("chain speed", inp.val(k.chain_speed, "velocity"), inp.unit("velocity")),
+        ("tooth frequency", k.tooth_frequency, "Hz"),
+        ("lowest natural frequency", a.dynamics.modal.first_elastic_frequency_hz, "Hz")]
     response = a.response
     if response is not None:
         s = response.strength_dict()
-        items += [("coefficient of dynamics K_D", response.steady.coefficient_of_dynamics, ""),
-                  ("k₁, k₂, k₂min", ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")),
-                   f"[k] = {fmt(s['allowable_k'])}")]
+        items += [("coefficient of dynamics", response.steady.coefficient_of_dynamics, ""),
+                  ("dynamic safety: start-up, steady, run-up",
+                   ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")),
+                   f"allowable {fmt(s['allowable_k'])}")]
     m = a.metrics
     items += [("mass of chain and sprockets", inp.val(m.mass_kg, "mass"), inp.unit("mass")),
               ("cost (estimate)", m.cost, m.cost_breakdown.currency)]
@@ -352,6 +361,10 @@ def checks_section(inp: ReportInput) -> list[Block]:
     notes = [f"{c.name} ({c.subject}): {c.note}" for c in checks if c.note and c.passed]
     if notes:
         blocks.append(Text("Notes: " + "; ".join(notes) + ".", "note"))
+    warnings = [w.message for w in inp.analysis.warnings] + inp.notes
+    if warnings:
+        blocks.append(Text(f"Warnings ({len(warnings)})", "text"))
+        blocks += [Text(w, "item") for w in warnings]
     return blocks
 
 
