@@ -41,6 +41,7 @@ __all__ = [
     "check_value",
     "clean",
     "convert",
+    "dimension",
     "doc_quantity",
     "doc_value",
     "fmt",
@@ -305,3 +306,9 @@ def check_line(check: Check, system: UnitSystem = "SI") -> str:
     sep = "" if unit in ("°", "%", "") else " "
     shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
     return f"{result}: {label} = {shown} (required {required})"
+
+
+def dimension(value: float, decimals: int = 2) -> str:
+    """A dimension of a drawing [mm] to ``decimals`` places (``122.18``; −0.00 is 0.00)."""
+    text = f"{value:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text

@@ -208,8 +208,9 @@ def report(
     study: Annotated[list[str] | None, typer.Option(
         "--study", help="add a comparative study: material-pairs, hinge-friction")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
-    """Write the design report: inputs, every result table and figure, warnings first."""
+    """Write the design report: the verdict first, then inputs, results and checks."""
     import chaindrive
     from chaindrive.cli.progress import progress_bar
     from chaindrive.report import SECTIONS, write_report
@@ -218,7 +219,8 @@ def report(
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
-            path = write_report(result, output, source=file, dpi=dpi, progress=advance)
+            path = write_report(result, output, source=file, dpi=dpi, progress=advance,
+                                units=unit_system(units))
     if as_json:
         _write_json({"report": str(path.resolve())})
         return
@@ -230,14 +232,18 @@ def draw(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
     output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf or layout.svg")]
     = Path("layout.dxf"),
+    sprocket: Annotated[str | None, typer.Option(
+        "--sprocket", help="draw this sprocket alone (its manufacturing drawing)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
-    """Write the drawing: contour layout and each sprocket's tooth profile (DXF or SVG, mm)."""
+    """Write the drawing: the dimensioned layout and each sprocket's manufacturing drawing,
+    or one sprocket alone (DXF or SVG, mm)."""
     import chaindrive
     from chaindrive.drawing import write_drawing
 
     with user_errors():
-        path = write_drawing(chaindrive.analyze(chaindrive.load(file)), output)
+        analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        path = write_drawing(analysis, output, sprocket=sprocket)
     if as_json:
         _write_json({"drawing": str(path.resolve())})
         return
