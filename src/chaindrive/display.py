@@ -40,6 +40,7 @@ __all__ = [
     "check_unit",
     "check_value",
     "clean",
+    "constraint_row",
     "convert",
     "dimension",
     "doc_quantity",
@@ -312,3 +313,23 @@ def dimension(value: float, decimals: int = 2) -> str:
     """A dimension of a drawing [mm] to ``decimals`` places (``122.18``; −0.00 is 0.00)."""
     text = f"{value:.{decimals}f}"
     return text[1:] if text.startswith("-") and float(text) == 0 else text
+
+
+def constraint_row(report: Any) -> tuple[str, int, int, str, str]:
+    """A constraint of an optimisation run as shown (:class:`chaindrive.synthesis.solve.
+    ConstraintReport`): (constraint, designs rejected, designs evaluated, by how much the
+    closest rejected design missed, that design: its chain and tooth counts)."""
+    if report.least_violation is None:
+        miss = "—"
+    elif report.name == "buildable":
+        miss = f"not buildable: {report.error}" if report.error else "not buildable"
+    else:
+        miss = f"by {fmt(100 * report.least_violation, 3)} % of the limit"
+    design = report.closest
+    if design is None:
+        what = "—"
+    else:
+        chain = (design.get("chain") or {}).get("designation", "")
+        teeth = " ".join(str(s.get("teeth")) for s in design.get("sprockets") or [])
+        what = f"{chain}, teeth {teeth}".strip(", ")
+    return report.name, report.rejected, report.evaluated, miss, what

@@ -16,6 +16,7 @@ from chaindrive.display import (
     UnitSystem,
     check_row,
     check_unit,
+    constraint_row,
     doc_value,
     fmt,
     header,
@@ -32,11 +33,13 @@ if TYPE_CHECKING:
 __all__ = ["console", "escape", "print_analysis", "print_checks", "print_optimisation",
            "print_schema", "print_selection", "table"]
 
+#: A Pareto set smaller than this is "poor": the table of rejections is printed with it.
+POOR_PARETO = 3
 #: Columns printed left-aligned (text); the others are numbers, right-aligned.
 TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
                           "subject", "required", "result", "unit", "direction", "side",
                           "source", "allowed", "description", "example", "working",
-                          "position", "span", "constraint", "worst design", "designation",
+                          "position", "span", "constraint", "closest design", "closest miss", "designation",
                           "what", "design"})
 
 
@@ -230,11 +233,12 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
                       c["governing"]] for c in doc["candidates"]]))
 
 
-def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str]) -> None:
+def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],
+                       con: Console | None = None) -> None:
     """The optimiser's start design, Pareto set and, when the set is empty or poor, each
     constraint with the designs it rejected and how far the best of them missed."""
     names = list(result.objectives)
-    con = console()
+    con = con or console()
     con.print(f"[bold]{escape(name)}[/bold] — {result.evaluations} designs evaluated by "
               f"{escape(result.method)} (seed {result.seed}) in {fmt(result.seconds, 3)} s")
     con.print(table("Start design", ["design", *names, "constraints ok"],
@@ -248,13 +252,12 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
                      *[p.objectives[n] for n in names], p.constraints_ok])
     con.print(table(f"Pareto set ({len(rows)} designs)",
                     ["design", "chain", "teeth", *names, "constraints ok"], rows))
-    diagnostics = getattr(result, "constraint_report", ())
-    if diagnostics and (not rows or len(rows) < 3):
-        con.print(table("Why designs were rejected (each constraint: designs it rejected, "
-                        "and by how much the closest one missed)",
-                        ["constraint", "rejected", "of", "closest miss", "worst design"],
-                        [[c.name, c.rejected, c.evaluated, c.closest_text, c.closest_design]
-                         for c in diagnostics]))
+    diagnostics = [c for c in result.constraint_report if c.rejected]
+    if diagnostics and len(rows) < POOR_PARETO:
+        con.print(table("Why designs were rejected: each constraint, the designs it rejected "
+                        "and by how much the closest of them missed",
+                        ["constraint", "rejected", "of", "closest miss", "closest design"],
+                        [list(constraint_row(c)) for c in diagnostics]))
     if not rows:
         worst = diagnostics[0].name if diagnostics else "a constraint"
         con.print(f"[red]no design met every constraint[/red]: {escape(worst)} rejected the "

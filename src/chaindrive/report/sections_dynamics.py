@@ -9,6 +9,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from chaindrive.display import constraint_row
 from chaindrive.report.content import (
     Block,
     ReportInput,
@@ -271,12 +272,12 @@ def synthesis_section(inp: ReportInput) -> list[Block] | None:
              f"{result.seed}); this report is of Pareto design 1."),
         Table("Pareto set", ("design", *names, "constraints met"), rows(table_rows)),
     ]
-    report = getattr(result, "constraint_report", ())
+    report = [c for c in result.constraint_report if c.rejected]
     if report:
-        blocks.append(Table("Constraints: designs rejected and the closest miss",
+        blocks.append(Table("Constraints: the designs each rejected and by how much the "
+                            "closest of them missed",
                             ("constraint", "rejected", "of", "closest miss", "closest design"),
-                            rows([(c.name, c.rejected, c.evaluated, c.closest_text,
-                                   c.closest_design) for c in report])))
+                            rows([constraint_row(c) for c in report])))
     if result.pareto:
         blocks.append(plot_block(pareto_front(result), "Pareto front", inp.dpi,
                                  "pareto_front"))
