@@ -181,17 +181,17 @@ def header(label: str, key: str, system: UnitSystem = "SI") -> str:
     return label if q is None else f"{label}, {unit_of(q[0], system)}"
 
 
+#: Below this magnitude a value shown to people is zero (round-off of a computed zero).
+ZERO = 1e-9
+
+
 def clean(value: float, digits: int = 4) -> float:
     """``value`` rounded to ``digits`` significant digits (round-off such as
     ``700.0000000000001`` or ``-6.4e-16`` next to values of order one removed; −0 → 0)."""
-    if value == 0 or not math.isfinite(value):
-        return 0.0 if value == 0 else value
+    if abs(value) < ZERO or not math.isfinite(value):
+        return value if not math.isfinite(value) else 0.0
     out = float(f"{value:.{digits}g}")
     return 0.0 if out == 0 else out
-
-
-#: Below this magnitude a value shown to people is zero (round-off of a computed zero).
-ZERO = 1e-9
 
 
 def fmt(value: Any, digits: int = 4) -> str:
