@@ -21,7 +21,11 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "afc": ("chaindrive.dynamics.afc", "chaindrive.dynamics.response"),
     "response": ("chaindrive.dynamics.response",),
     "report": ("chaindrive.report", "matplotlib"),
+    "report_html": ("chaindrive.report", "matplotlib"),
+    "report_pdf": ("chaindrive.report", "matplotlib", "typst"),
     "drawing": ("chaindrive.drawing", "ezdxf"),
+    "drawing_svg": ("chaindrive.drawing", "ezdxf"),
+    "drawing_dxf": ("chaindrive.drawing", "ezdxf"),
 }
 
 
@@ -54,6 +58,23 @@ def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = 
     from chaindrive.report import build_report, render_html
 
     return render_html(build_report(analysis, progress=progress)).encode("utf-8")
+
+
+def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
+                 progress: Callable[[str], None] | None = None, units: str = "SI") -> bytes:
+    """The design report of the analysis as PDF (``fmt`` "pdf", typeset by Typst) or HTML
+    ("html"), in the unit system ``units``."""
+    from chaindrive.report import build_report, render_html, render_pdf
+
+    report = build_report(analysis, progress=progress, units=units)
+    return render_pdf(report) if fmt == "pdf" else render_html(report).encode("utf-8")
+
+
+def drawing_svg(analysis: Analysis) -> bytes:
+    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`)."""
+    from chaindrive.drawing import drawing_document, svg_string
+
+    return svg_string(drawing_document(analysis)).encode("utf-8")
 
 
 def drawing_dxf(analysis: Analysis) -> bytes:
