@@ -399,7 +399,7 @@ def page_test() -> Any:
 
 def test_page_edit_form_changes_the_tooth_count(tmp_path: Path) -> None:
     at = page_test().run()
-    at.selectbox(key="edit_row").select(2).run()
+    at.selectbox(key=f"edit_row@{at.session_state['loads']}").select(2).run()
     teeth = [n for n in at.number_input if n.label == "Teeth"]
     assert len(teeth) == 1 and teeth[0].value == 14     # the form shows the chosen row
     teeth[0].set_value(30)

@@ -72,8 +72,8 @@ def _load(data: dict[str, Any], source: str) -> None:
     st.session_state["version"] = st.session_state.get("version", 0) + 1
     st.session_state["loads"] = st.session_state.get("loads", 0) + 1
     st.session_state.pop("load_error", None)
-    # a new file: the edit form starts at its first row, the deltas at its own numbers
-    st.session_state.pop("edit_row", None)
+    # a new file: the edit form starts at its first row (its chooser's key is new), the
+    # deltas at the file's own numbers
     st.session_state.pop("previous_numbers", None)
 
 
@@ -326,12 +326,12 @@ def _sprocket_editor(rows: list[dict[str, Any]]) -> None:
 
     if not rows:
         return
-    if st.session_state.get("edit_row") not in range(len(rows)):
-        st.session_state.pop("edit_row", None)
+    if st.session_state.get(_key("edit_row")) not in range(len(rows)):
+        st.session_state.pop(_key("edit_row"), None)
     with st.container(key="sprocket_editor", border=True):
         pick, note = st.columns([1.2, 2], vertical_alignment="bottom")
         with pick:
-            index = st.selectbox("Sprocket to edit", range(len(rows)), key="edit_row",
+            index = st.selectbox("Sprocket to edit", range(len(rows)), key=_key("edit_row"),
                                  format_func=lambda i: sprocket_label(i, rows[i]))
         note.caption("Edit one sprocket from the keyboard: choose it, change the fields (Tab "
                      "moves on), press Apply or Enter. An empty field takes the default.")
@@ -509,7 +509,8 @@ def _ready(state: str, screen: Screen | None = None) -> None:
     _marker("chaindrive-ready", {"data-state": state,
                                  "data-version": str(st.session_state.get("version", 0)),
                                  "data-source": str(st.session_state.get("source", "")),
-                                 "data-editing": str(st.session_state.get("edit_row", "")),
+                                 "data-editing": str(st.session_state.get(_key("edit_row"),
+                                                                          "")),
                                  "data-design": st.session_state.get("design_tag", "")},
             text)
 
