@@ -51,6 +51,9 @@ def test_markup_in_a_name_prints_as_written(tmp_path: Path) -> None:
     proc = run_cli("analyze", str(path), "--quick")
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines()[0].startswith("[/bold] x [red]drive — chain")
+    full = run_cli("analyze", str(SEED))  # the dynamic safety line names [k]
+    assert full.returncode == 0, full.stderr
+    assert "(allowable [k] 2.5)" in full.stdout
 
 
 def test_numbers_without_round_off_and_us_units() -> None:

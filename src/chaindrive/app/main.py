@@ -199,10 +199,11 @@ def _drive_fields(base: DesignForm, slots: dict[tuple[str, str], Any]
         name = _field(slots, ("drive", "name"), lambda: st.text_input(
             "Drive name", value=d.get("name") or "", key=_key("drive.name")))
     with c2:
-        forms = [AUTO_FORM, "ISO 606", "GOST 591"]
-        current = d.get("tooth_form") if d.get("tooth_form") in forms else AUTO_FORM
+        forms: list[str] = [AUTO_FORM, "ISO 606", "GOST 591"]
+        given = d.get("tooth_form")
+        current = forms.index(given) if given in forms else 0
         tooth_form = _field(slots, ("drive", "tooth_form"), lambda: st.selectbox(
-            "Tooth form", forms, index=forms.index(current), key=_key("drive.tooth_form")))
+            "Tooth form", forms, index=current, key=_key("drive.tooth_form")))
     c3, c4, c5 = st.columns(3)
     with c3:
         power = _field(slots, ("drive", "power_kw"), lambda: _number(

@@ -173,7 +173,7 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
                   f"time {fmt(startup['settling_time_s'])} s")
     if st is not None and "k1" in st:
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}, k2 {fmt(st['k2'])}, k2min "
-                  f"{fmt(st['k2min'])} (allowable [k] {fmt(st['allowable_k'])})")
+                  f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
 
 
 def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str],

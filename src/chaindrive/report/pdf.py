@@ -14,7 +14,7 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from chaindrive.display import exponent_parts, fmt
 from chaindrive.report.content import Block, Definitions, Plot, Report, Table, Text, Verdict
@@ -223,19 +223,23 @@ def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     return "".join(out), figures
 
 
-def _compile(report: Report, fmt_: str, ppi: float | None = None) -> Any:
-    """Compile the report with Typst in a temporary directory (``fmt_`` "pdf" or "png")."""
+def _staged(report: Report, tmp: str) -> tuple[Path, Path]:
+    """The Typst source and its figures written to ``tmp``: (main file, root)."""
+    source, figures = typst_source(report)
+    root = Path(tmp)
+    for name, data in figures.items():
+        (root / name).write_bytes(data)
+    main = root / "report.typ"
+    main.write_text(source, encoding="utf-8")
+    return main, root
+
+
+def _compile(report: Report, fmt_: Literal["pdf", "png"], ppi: float | None = None) -> Any:
+    """Compile the report with Typst in a temporary directory."""
     import typst
 
-    source, figures = typst_source(report)
     with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
-        root = Path(tmp)
-        for name, data in figures.items():
-            (root / name).write_bytes(data)
-        main = root / "report.typ"
-        main.write_text(source, encoding="utf-8")
-        if fmt_ == "query":
-            return typst.query(str(main), "<chaindrive-where>", root=str(root))
+        main, root = _staged(report, tmp)
         return typst.compile(str(main), root=str(root), format=fmt_, ppi=ppi)
 
 
@@ -256,7 +260,11 @@ def page_map(report: Report) -> dict[str, int]:
     """The page each section (by key) and the verdict (``"verdict"``) land on."""
     import json
 
-    found = json.loads(_compile(report, "query"))
+    import typst
+
+    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
+        main, root = _staged(report, tmp)
+        found = json.loads(typst.query(str(main), "<chaindrive-where>", root=str(root)))
     return {item["value"]["key"]: int(item["value"]["page"]) for item in found}
 
 

@@ -9,7 +9,7 @@ analysis only: the report never computes.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
@@ -34,7 +34,7 @@ GOVERNING = 4
 FIRST_WARNINGS = 5
 
 
-def rows(items: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
+def rows(items: Iterable[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
     """Table rows as tuples."""
     return tuple(tuple(r) for r in items)
 

@@ -31,7 +31,8 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
     dyn = inp.analysis.dynamics
     band = inp.analysis.limits.resonance_band_percent
     spans = _span_names(inp)
-    out, inside = [], []
+    out: list[tuple[Any, ...]] = []
+    inside: list[int] = []
     for r in dyn.resonances:
         parametric = r.working.kind == "parametric"
         if parametric != (kind == "span"):
