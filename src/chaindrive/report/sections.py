@@ -71,7 +71,8 @@ def _estimates(inp: ReportInput) -> list[str]:
                  else ", ".join(guessed))
         out.append(f"Moments of inertia of {which} estimated from the material "
                    "and plate proportions (a steel plate of the tooth width with the bore "
-                   "0.19·z·p/π; no hub, shaft or coupling): give `inertia` for the real parts.")
+                   "0.19·z·p/π; no hub, shaft or coupling): give the inertia of the real parts "
+                   "in the design file.")
     if d.dynamics.damping_ratio == 0.06:
         out.append("Damping ratio 0.06 of the chain hinges, the value of "
                    "[MultimassChainDrives, Table 1] (no measurement of this drive).")
