@@ -21,7 +21,7 @@ from pathlib import Path
 
 from chaindrive.app.runs import figure_png
 from chaindrive.app.state import design_from_form, form_from_design
-from chaindrive.app.views import recompute
+from chaindrive.app.views import complete, quick_screen, recompute
 
 ROOT = Path(__file__).resolve().parents[1]
 DESIGN = ROOT / "examples" / "twenty_four_sprocket.toml"
@@ -30,17 +30,22 @@ TARGET_S = 0.300
 TEETH = (15, 16, 17, 18, 19, 20, 21, 22)
 
 
-def time_edits(repeats: int = 24) -> list[float]:
+def time_edits(repeats: int = 24) -> tuple[list[float], list[float]]:
+    """Per edit: the quick part the page draws first (contour, numbers, checks) and the
+    whole screen (plus the document with the chain selection) [s]."""
     form = form_from_design(tomllib.loads(DESIGN.read_text(encoding="utf-8")))
     recompute(design_from_form(form))  # warm-up: lazy imports, pint registry, catalogue
-    times = []
+    quick, whole = [], []
     for i in range(repeats):
         form.sprockets[1]["teeth"] = float(TEETH[i % len(TEETH)])
         t0 = time.perf_counter()
-        screen = recompute(design_from_form(form))
-        times.append(time.perf_counter() - t0)
+        screen = quick_screen(design_from_form(form))
+        t1 = time.perf_counter()
+        screen = complete(screen)
+        quick.append(t1 - t0)
+        whole.append(time.perf_counter() - t0)
         assert screen.outcome.ok, screen.outcome.message
-    return times
+    return quick, whole
 
 
 def time_campbell(repeats: int = 5) -> list[float]:
@@ -58,15 +63,18 @@ def time_campbell(repeats: int = 5) -> list[float]:
 
 
 def main() -> None:
-    edits = time_edits()
+    quick, edits = time_edits()
     campbell = time_campbell()
     print(f"{'what (24-sprocket contour)':<58}{'median s':>10}{'max s':>10}")
-    print(f"{'edit → design → analyze → document, checks, layout SVG':<58}"
+    print(f"{'edit → design → contour, numbers, checks (drawn first)':<58}"
+          f"{statistics.median(quick):>10.4f}{max(quick):>10.4f}")
+    print(f"{'edit → … and the document with the chain selection':<58}"
           f"{statistics.median(edits):>10.4f}{max(edits):>10.4f}")
     print(f"{'Campbell diagram PNG (only when its tab is open)':<58}"
           f"{statistics.median(campbell):>10.4f}{max(campbell):>10.4f}")
     print(f"target: recompute within {TARGET_S * 1e3:.0f} ms of an edit:",
-          "MET" if max(edits) < TARGET_S else "NOT MET")
+          "MET" if max(edits) < TARGET_S else "NOT MET",
+          "(the browser adds its share: benchmarks/bench_app_browser.py)")
 
 
 if __name__ == "__main__":

@@ -1,56 +1,335 @@
 """How numbers and units are shown to people: the one formatting rule of every presenter
-(command line, report, web page), and the display units.
+(command line, report, web page, drawings) and the output unit systems.
 
-Presenters format here and nowhere else; the computing modules never format.
+Presenters format here and nowhere else; the computing modules never format. Inside, every
+value is SI; the JSON document stays SI with the unit in the key (``x_mm``,
+``tension_n``). What a person reads is converted here to an output unit system:
+
+* ``"SI"`` — mm, N, kW, MPa, m/s, kg/m, kg·m² (engineering multiples of SI);
+* ``"US"`` — US customary: in, lbf, hp, psi, ft/min, lb/ft, lb·ft².
+
+Speeds of rotation stay in rpm, frequencies in Hz and angles in degrees in both systems.
+The conversion factors are the exact definitions of the international yard and pound
+(1 in = 25.4 mm, 1 lb = 0.45359237 kg) and the standard acceleration of gravity
+(1 lbf = 0.45359237 kg × 9.80665 m/s²), 1 hp = 550 ft·lbf/s [NIST-SP811, App. B].
+
+References
+----------
+[NIST-SP811] in docs/references.md.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+import re
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Literal
 
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
     from chaindrive.checks import Check
 
-__all__ = ["RAD_S_TO_RPM", "check_row", "fmt", "shown_value"]
+__all__ = [
+    "QUANTITIES",
+    "RAD_S_TO_RPM",
+    "UNIT_SYSTEMS",
+    "UnitSystem",
+    "check_line",
+    "check_row",
+    "check_unit",
+    "check_value",
+    "clean",
+    "constraint_row",
+    "convert",
+    "dimension",
+    "doc_quantity",
+    "doc_value",
+    "fmt",
+    "header",
+    "margin_percent",
+    "result_word",
+    "show",
+    "shown_value",
+    "unit_of",
+    "unit_system",
+]
 
-#: SI unit → (factor, unit it is read in) for values shown to people.
-_READ_IN = {"Pa": (1e-6, "MPa"), "rad": (180.0 / math.pi, "°"), "rad/s": (RAD_S_TO_RPM, "rpm")}
+UnitSystem = Literal["SI", "US"]
+#: The output unit systems a presenter can be asked for.
+UNIT_SYSTEMS: tuple[str, ...] = ("SI", "US")
+
+_IN = 0.0254  # m, exact
+_FT = 0.3048  # m, exact
+_LB = 0.45359237  # kg, exact
+_LBF = _LB * 9.80665  # N, exact
+_HP = 550 * _FT * _LBF  # W (mechanical horsepower)
+_PSI = _LBF / _IN**2  # Pa
+
+
+@dataclass(frozen=True, slots=True)
+class Shown:
+    """A unit a quantity is read in: its symbol and the factor from SI to it."""
+
+    unit: str
+    factor: float
+
+
+#: Kind of quantity → {unit system: (unit, factor from SI)}.
+QUANTITIES: dict[str, dict[str, Shown]] = {
+    "length": {"SI": Shown("mm", 1e3), "US": Shown("in", 1 / _IN)},
+    "distance": {"SI": Shown("m", 1.0), "US": Shown("ft", 1 / _FT)},
+    "force": {"SI": Shown("N", 1.0), "US": Shown("lbf", 1 / _LBF)},
+    "force_k": {"SI": Shown("kN", 1e-3), "US": Shown("lbf", 1 / _LBF)},
+    "power": {"SI": Shown("kW", 1e-3), "US": Shown("hp", 1 / _HP)},
+    "pressure": {"SI": Shown("MPa", 1e-6), "US": Shown("psi", 1 / _PSI)},
+    "velocity": {"SI": Shown("m/s", 1.0), "US": Shown("ft/min", 60 / _FT)},
+    "linear_density": {"SI": Shown("kg/m", 1.0), "US": Shown("lb/ft", _FT / _LB)},
+    "mass": {"SI": Shown("kg", 1.0), "US": Shown("lb", 1 / _LB)},
+    "inertia": {"SI": Shown("kg·m²", 1.0), "US": Shown("lb·ft²", 1 / (_LB * _FT**2))},
+    "stiffness": {"SI": Shown("N/m", 1.0), "US": Shown("lbf/in", _IN / _LBF)},
+    "torque": {"SI": Shown("N·m", 1.0), "US": Shown("lbf·ft", 1 / (_LBF * _FT))},
+    "area": {"SI": Shown("mm²", 1e6), "US": Shown("in²", 1 / _IN**2)},
+    "density": {"SI": Shown("kg/m³", 1.0), "US": Shown("lb/ft³", _FT**3 / _LB)},
+    "speed": {"SI": Shown("rpm", RAD_S_TO_RPM), "US": Shown("rpm", RAD_S_TO_RPM)},
+    "frequency": {"SI": Shown("Hz", 1.0), "US": Shown("Hz", 1.0)},
+    "angle": {"SI": Shown("°", 180 / math.pi), "US": Shown("°", 180 / math.pi)},
+    "time": {"SI": Shown("s", 1.0), "US": Shown("s", 1.0)},
+    "time_ms": {"SI": Shown("ms", 1e3), "US": Shown("ms", 1e3)},
+    "hours": {"SI": Shown("h", 1 / 3600), "US": Shown("h", 1 / 3600)},
+}
+
+#: Suffix of a key of the JSON document → (kind of quantity, factor from the key's unit to SI).
+#: Longest suffixes first (``_kg_m2`` before ``_kg_m`` before ``_m``).
+_KEY_UNITS: tuple[tuple[str, str, float], ...] = (
+    ("_n_per_m", "stiffness", 1.0), ("_kg_m2", "inertia", 1.0),
+    ("_kg_m3", "density", 1.0), ("_kg_m", "linear_density", 1.0), ("_m_s", "velocity", 1.0),
+    ("_mm2", "area", 1e-6), ("_mm", "length", 1e-3), ("_mpa", "pressure", 1e6),
+    ("_kn", "force_k", 1e3), ("_n_m", "torque", 1.0), ("_n", "force", 1.0),
+    ("_kw", "power", 1e3), ("_w", "power", 1.0), ("_rpm", "speed", 1 / RAD_S_TO_RPM),
+    ("_hz", "frequency", 1.0), ("_deg", "angle", math.pi / 180), ("_kg", "mass", 1.0),
+    ("_ms", "time_ms", 1e-3), ("_s", "time", 1.0), ("_h", "hours", 3600.0),
+)
+
+#: Units of the checks (:attr:`chaindrive.checks.Check.unit`) → kind of quantity.
+_CHECK_UNITS = {"MPa": "pressure", "kW": "power", "kN": "force_k", "m/s": "velocity",
+                "N": "force", "mm": "length"}
+
+
+def unit_system(name: str | None) -> UnitSystem:
+    """The unit system named ``name`` ("SI", "US", case-insensitive; None → SI).
+
+    Raises
+    ------
+    chaindrive.errors.DesignError
+        ``units``: any other name.
+    """
+    if name is None:
+        return "SI"
+    key = name.strip().upper()
+    if key not in UNIT_SYSTEMS:
+        from chaindrive.errors import DesignError
+
+        raise DesignError("units", f"must be SI or US, got {name!r}")
+    return key  # type: ignore[return-value]
+
+
+def unit_of(kind: str, system: UnitSystem = "SI") -> str:
+    """The unit a kind of quantity (a key of :data:`QUANTITIES`) is read in."""
+    return QUANTITIES[kind][system].unit
+
+
+def convert(value: float | None, kind: str, system: UnitSystem = "SI"
+            ) -> tuple[float | None, str]:
+    """An SI value in the unit ``system`` reads ``kind`` in: (value, unit)."""
+    shown = QUANTITIES[kind][system]
+    return (None if value is None else value * shown.factor), shown.unit
+
+
+def show(value: float | None, kind: str, system: UnitSystem = "SI", digits: int = 4) -> str:
+    """An SI value as text with its unit (``"122.2 mm"``, ``"4.811 in"``)."""
+    v, unit = convert(value, kind, system)
+    return fmt(v, digits) if v is None else f"{fmt(v, digits)} {unit}"
+
+
+def doc_quantity(key: str) -> tuple[str, float] | None:
+    """(kind, factor to SI) of a key of the JSON document by its unit suffix (``x_mm`` →
+    ("length", 1e-3)); None for a key without a unit suffix."""
+    for suffix, kind, to_si in _KEY_UNITS:
+        if key.endswith(suffix):
+            return kind, to_si
+    return None
+
+
+def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str]:
+    """A value of the JSON document (in the unit its key names) in ``system``: (value,
+    unit); values of keys without a unit suffix, and non-numbers, come back unchanged with
+    an empty unit."""
+    q = doc_quantity(key)
+    if q is None:
+        return value, ""
+    kind, to_si = q
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return value, unit_of(kind, system)
+    return convert(float(value) * to_si, kind, system)
+
+
+def header(label: str, key: str, system: UnitSystem = "SI") -> str:
+    """A column header ``label, unit`` for a key of the JSON document (``label`` alone when
+    the key carries no unit)."""
+    q = doc_quantity(key)
+    return label if q is None else f"{label}, {unit_of(q[0], system)}"
+
+
+#: Below this magnitude a value shown to people is zero (round-off of a computed zero).
+ZERO = 1e-9
+
+
+def clean(value: float, digits: int = 4) -> float:
+    """``value`` rounded to ``digits`` significant digits (round-off such as
+    ``700.0000000000001`` or ``-6.4e-16`` next to values of order one removed; −0 → 0)."""
+    if abs(value) < ZERO or not math.isfinite(value):
+        return value if not math.isfinite(value) else 0.0
+    out = float(f"{value:.{digits}g}")
+    return 0.0 if out == 0 else out
 
 
 def fmt(value: Any, digits: int = 4) -> str:
-    """A table cell as text: None → "—", floats with ``digits`` significant digits (large
-    values without exponent), bools yes/no."""
+    """A value as text, by the one rule of every presenter.
+
+    None and NaN → "—"; bools yes/no; ints as they are; floats with ``digits`` significant
+    digits (trailing zeros dropped): magnitudes below :data:`ZERO` are 0 (a coordinate of
+    −6.4e-16 mm is 0), from 10^digits up to 10^7 whole with thousands separators
+    (``12,345``), beyond and below 10⁻³ in exponent form without padding (``2.154e8``,
+    ``4.2e-5``); −0 is 0; ±∞ as "∞".
+    """
     if value is None:
         return "—"
     if isinstance(value, bool):
         return "yes" if value else "no"
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "—"
-        if value != 0 and (abs(value) >= 10**digits or abs(value) < 1e-3):
-            return f"{value:.{digits}g}" if abs(value) < 1e-3 else f"{value:,.0f}"
-        return f"{value:.{digits}g}"
-    return str(value)
+    if isinstance(value, int):
+        return f"{value:,}" if abs(value) >= 10**digits else str(value)
+    if not isinstance(value, float):
+        item = getattr(value, "item", None)  # numpy scalars
+        if callable(item):
+            return fmt(item(), digits)
+        return str(value)
+    if math.isnan(value):
+        return "—"
+    if math.isinf(value):
+        return "∞" if value > 0 else "−∞"
+    a = abs(value)
+    if a < ZERO:
+        return "0"
+    if a >= 1e7 or a < 1e-3:
+        mantissa, _, exponent = f"{value:.{digits}g}".partition("e")
+        if not exponent:
+            return mantissa
+        return f"{mantissa}e{int(exponent)}"
+    if a >= 10**digits:
+        return f"{value:,.0f}"
+    text = f"{value:.{digits}g}"
+    if "e" in text:  # 9999.5 rounds to 1e+04 at 4 digits
+        return f"{float(text):,.0f}"
+    return "0" if text in ("-0", "0") else text
+
+
+_EXPONENT = re.compile(r"^(-?[\d.]+)e(-?\d+)$")
+
+
+def exponent_parts(text: str) -> tuple[str, int] | None:
+    """(mantissa, exponent) of a number :func:`fmt` wrote in exponent form, else None."""
+    m = _EXPONENT.match(text)
+    return None if m is None else (m.group(1), int(m.group(2)))
 
 
 def shown_value(value: float | None, unit: str) -> tuple[float | None, str]:
     """A value in the unit it is read in (Pa → MPa, rad → °, rad/s → rpm; others as given)."""
-    if value is None or unit not in _READ_IN:
+    kinds = {"Pa": "pressure", "rad": "angle", "rad/s": "speed"}
+    if value is None or unit not in kinds:
         return value, unit
-    factor, shown = _READ_IN[unit]
-    return value * factor, shown
+    return convert(value, kinds[unit])
 
 
-def check_row(check: Check) -> tuple[str, float | None, str, str, str]:
+def _check_display(check: Check, system: UnitSystem) -> tuple[float, str]:
+    """(factor from SI, unit) of a check in ``system``."""
+    kind = _CHECK_UNITS.get(check.unit)
+    if kind is None:
+        return check.scale, "°" if check.unit == "deg" else check.unit
+    shown = QUANTITIES[kind][system]
+    return shown.factor, shown.unit
+
+
+def check_row(check: Check, system: UnitSystem = "SI"
+              ) -> tuple[str, float | None, str, str, str]:
     """A check as shown: (what, value, required, result, source), value and limit in the
-    unit the check is read in, and the result ``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``."""
+    unit the check is read in (``system``), and the result ``pass``, ``FAIL`` or ``CANNOT BE
+    VERIFIED``."""
+    factor, unit = _check_display(check, system)
     sym = "≤" if check.kind == "max" else "≥"
-    unit = f" {check.unit}" if check.unit else ""
-    limit = check.shown(check.limit)
-    required = "—" if limit is None else f"{sym} {fmt(limit)}{unit}"
+    sep = "" if unit in ("°", "%", "") else " "
+    limit = None if check.limit is None else check.limit * factor
+    required = "—" if limit is None else f"{sym} {fmt(limit)}{sep}{unit}"
     label = f"{check.name}: {check.subject}" + (f" ({check.note})" if check.note else "")
-    result = "pass" if check.passed else "FAIL" if check.status == "fail" else "CANNOT BE VERIFIED"
-    return label, check.shown(check.value), required, result, check.source
+    value = None if check.value is None else check.value * factor
+    return label, value, required, result_word(check), check.source
+
+
+def check_unit(check: Check, system: UnitSystem = "SI") -> str:
+    """The unit a check's value and limit are shown in (``system``)."""
+    return _check_display(check, system)[1]
+
+
+def check_value(check: Check, value: float | None, system: UnitSystem = "SI") -> float | None:
+    """A value of a check (its value or limit, SI) in the unit it is shown in."""
+    return None if value is None else value * _check_display(check, system)[0]
+
+
+def result_word(check: Check) -> str:
+    """``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``."""
+    if check.passed:
+        return "pass"
+    return "FAIL" if check.status == "fail" else "CANNOT BE VERIFIED"
+
+
+def margin_percent(check: Check) -> float | None:
+    """The check's margin (:attr:`chaindrive.checks.Check.margin_fraction`) in per cent:
+    ≥ 0 when it passes, < 0 when it fails; None when it cannot be verified or is unlimited."""
+    m = check.margin_fraction
+    return None if m is None or math.isinf(m) else 100.0 * m
+
+
+def check_line(check: Check, system: UnitSystem = "SI") -> str:
+    """A check in one line, the way every presenter writes a failed one:
+    ``FAIL: hinge pressure: GOST … = 31 MPa (required ≤ 28 MPa)``."""
+    label, value, required, result, _ = check_row(check, system)
+    unit = check_unit(check, system)
+    sep = "" if unit in ("°", "%", "") else " "
+    shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
+    return f"{result}: {label} = {shown} (required {required})"
+
+
+def dimension(value: float, decimals: int = 2) -> str:
+    """A dimension of a drawing [mm] to ``decimals`` places (``122.18``; −0.00 is 0.00)."""
+    text = f"{value:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text
+
+
+def constraint_row(report: Any) -> tuple[str, int, int, str, str]:
+    """A constraint of an optimisation run as shown (:class:`chaindrive.synthesis.solve.
+    ConstraintReport`): (constraint, designs rejected, designs evaluated, by how much the
+    closest rejected design missed, that design: its chain and tooth counts)."""
+    if report.least_violation is None:
+        miss = "—"
+    elif report.name == "buildable":
+        miss = f"not buildable: {report.error}" if report.error else "not buildable"
+    else:
+        miss = f"by {fmt(100 * report.least_violation, 3)} % of the limit"
+    design = report.closest
+    if design is None:
+        what = "—"
+    else:
+        chain = (design.get("chain") or {}).get("designation", "")
+        teeth = " ".join(str(s.get("teeth")) for s in design.get("sprockets") or [])
+        what = f"{chain}, teeth {teeth}".strip(", ")
+    return report.name, report.rejected, report.evaluated, miss, what

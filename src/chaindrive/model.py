@@ -457,6 +457,9 @@ class Drive:
             if name in names[:i]:
                 raise DesignError(f"sprockets[{i}].name", f"duplicate name {name!r}; names must be unique")
         drivers = [s.name for s in self.sprockets if s.role == "driver"]
+        if not drivers:
+            raise DesignError("sprockets.role", 'the driver is missing: give one sprocket '
+                              'role = "driver" and its speed')
         if len(drivers) != 1:
             raise DesignError(
                 "sprockets.role",

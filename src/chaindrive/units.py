@@ -244,7 +244,7 @@ def parse_quantity(text: object, dimension: str, field: str) -> float:
     if not q.check(_dim):
         raise DesignError(
             field,
-            f"{shown(text)} is not a {dimension.replace('_', ' ')} (expected a unit like "
+            f"{shown(text)} is not {_article(dimension.replace('_', ' '))} (expected a unit like "
             f"\"{example}\", got {q.units:~})",
         )
     return _finite(float(q.to(si_unit).magnitude), text, field, example)
@@ -269,6 +269,11 @@ def _finite(value: float, text: str, field: str, example: str) -> float:
     if not math.isfinite(value):
         raise DesignError(field, f"{shown(text)} is out of range; write it like \"{example}\"")
     return value
+
+
+def _article(noun: str) -> str:
+    """``noun`` with its indefinite article ("an angle", "a length")."""
+    return f"{'an' if noun[:1] in 'aeiou' else 'a'} {noun}"
 
 
 def format_si(value: float, unit: str) -> str:

@@ -4,8 +4,8 @@
     python -m tests.cli.signal_inject <point> <SIGINT|SIGTERM> <chaindrive arguments…>
 
 point ``midwrite``: the signal arrives while the temporary file is being written (after part
-of the text, after the first page of a PDF, after the DXF is written but before its file is
-closed); ``written``: after the temporary file is complete, just before it is renamed. The
+of the text or bytes, after the first page of a PDF drawn by matplotlib, after the DXF is
+written but before its file is closed); ``written``: after the temporary file is complete, just before it is renamed. The
 process's own signal handling (the safety net) does the rest, as with a signal from outside.
 """
 
@@ -33,6 +33,16 @@ def _midwrite(signum: int) -> None:
         return real_write_text(self, data, *args, **kwargs)  # not reached: the signal raises
 
     pathlib.Path.write_text = write_text  # type: ignore[method-assign]
+    real_write_bytes = pathlib.Path.write_bytes
+
+    def write_bytes(self: pathlib.Path, data: bytes) -> int:
+        if ".tmp" not in str(self):
+            return real_write_bytes(self, data)
+        real_write_bytes(self, data[: len(data) // 2])
+        _kill(signum)
+        return real_write_bytes(self, data)  # not reached: the signal raises
+
+    pathlib.Path.write_bytes = write_bytes  # type: ignore[method-assign]
 
     from ezdxf.document import Drawing
     from matplotlib.backends.backend_pdf import PdfPages

@@ -54,7 +54,7 @@ CASES: dict[str, tuple[str, str]] = {
     "negative power": (TWO.replace('name = "t"', 'name = "t"\npower = "-1 kW"'),
                        "drive.power: must be"),
     "no driver": (TWO.replace('role = "driver"\nspeed = "100 rpm"', ""),
-                  "sprockets.role: exactly one sprocket must be the driver, got 0"),
+                  "sprockets.role: the driver is missing"),
     "two drivers": (TWO.replace('x = "500 mm"\ny = "0 mm"\n', 'x = "500 mm"\ny = "0 mm"\n'
                                 'role = "driver"\n'),
                     "sprockets.role: exactly one sprocket must be the driver, got 2"),

@@ -59,9 +59,35 @@ def test_dynamics_figures_build(analysis) -> None:
     names = [s.name for s in analysis.drive.sprockets]
     fig = plotting.mode_shapes(dyn.modal, names=names)
     assert _rendered(fig)
-    elastic = min(4, int((~dyn.modal.rigid_body).sum()))
-    assert len(fig.axes[0].patches) == elastic * len(names)  # one bar per mass and mode
+    elastic = np.flatnonzero(~dyn.modal.rigid_body)[:4]
+    lines = [ln for ln in fig.axes[0].get_lines() if len(ln.get_ydata()) == len(names) + 1]
+    assert len(lines) == len(elastic)  # one signed line per elastic mode
+    for line, j in zip(lines, elastic, strict=True):
+        x = dyn.modal.shapes[:, j]
+        expected = x / x[np.argmax(np.abs(x))]  # largest = +1, signs kept (nodes, phase)
+        np.testing.assert_allclose(line.get_ydata()[:-1], expected, rtol=1e-12)
+        assert line.get_ydata()[-1] == line.get_ydata()[0]  # the ring closes
     assert _rendered(plotting.campbell_diagram(dyn.campbell, operating_rpm=w * 30 / np.pi))
+
+
+def test_campbell_zoomed_to_the_crossing_near_the_working_speed(analysis) -> None:
+    """The tooth line f = z₁·n/60 meets a natural frequency f_j at n = 60 f_j/z₁ (closed
+    form): with the working speed there, it is among the crossings that matter (within
+    ±30 % of the working speed) and the frequency axis ends at 1.3 × the highest of them —
+    the crossing is never lost under a scale set by the highest mode."""
+    modal = analysis.dynamics.modal
+    z1 = analysis.drive.driver.teeth
+    fj = float(modal.elastic_frequencies_hz[0])
+    n_cross = 60.0 * fj / z1  # rpm
+    w = n_cross * np.pi / 30
+    dyn = model_dynamics(analysis.drive, analysis.geometry, analysis.drive_model,
+                         speed_range=(0.5 * w, 1.5 * w), speed_points=41)
+    fig = plotting.campbell_diagram(dyn.campbell, operating_rpm=n_cross, band_percent=10)
+    top = fig.axes[0].get_ylim()[1]
+    near, limit = plotting.dynamics.campbell_window(dyn.campbell, n_cross)
+    assert any(e == "tooth x1" and abs(s - n_cross) < 1e-6 * n_cross for e, _, s, _ in near)
+    assert top == pytest.approx(limit) == pytest.approx(1.3 * max(f for *_, f in near))
+    assert top >= 1.3 * fj * (1 - 1e-9)
 
 
 def test_damping_curves_one_per_tension() -> None:

@@ -31,7 +31,11 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "afc": ("chaindrive.dynamics.afc", "chaindrive.dynamics.response"),
     "response": ("chaindrive.dynamics.response",),
     "report": ("chaindrive.report", "matplotlib"),
+    "report_html": ("chaindrive.report", "matplotlib"),
+    "report_pdf": ("chaindrive.report", "matplotlib", "typst"),
     "drawing": ("chaindrive.drawing", "ezdxf"),
+    "drawing_svg": ("chaindrive.drawing", "ezdxf"),
+    "drawing_dxf": ("chaindrive.drawing", "ezdxf"),
 }
 
 
@@ -100,6 +104,23 @@ def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = 
     return render_html(build_report(analysis, progress=progress)).encode("utf-8")
 
 
+def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
+                 progress: Callable[[str], None] | None = None, units: str = "SI") -> bytes:
+    """The design report of the analysis as PDF (``fmt`` "pdf", typeset by Typst) or HTML
+    ("html"), in the unit system ``units``."""
+    from chaindrive.report import build_report, render_html, render_pdf
+
+    report = build_report(analysis, progress=progress, units=units)
+    return render_pdf(report) if fmt == "pdf" else render_html(report).encode("utf-8")
+
+
+def drawing_svg(analysis: Analysis) -> bytes:
+    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`)."""
+    from chaindrive.drawing import drawing_document, svg_string
+
+    return svg_string(drawing_document(analysis)).encode("utf-8")
+
+
 def drawing_dxf(analysis: Analysis) -> bytes:
     """The DXF drawing of the drive (:func:`chaindrive.drawing.drawing_document`).
 
@@ -141,21 +162,25 @@ def figure_png(fig: Any, dpi: int = 100) -> bytes:
     return buf.getvalue()
 
 
-def full_report(drive: Drive) -> bytes:
-    """The HTML report of the :func:`full_analysis` of ``drive`` (one run: analysis and
-    report in the same process).
+def full_report(drive: Drive, fmt: str = "html", units: str = "SI") -> bytes:
+    """The report of the :func:`full_analysis` of ``drive`` (one run: analysis and report in
+    the same process).
 
     Parameters
     ----------
     drive : Drive
         The design.
+    fmt : str
+        "pdf" (typeset by Typst) or "html".
+    units : str
+        The unit system of the report's tables ("SI" or "US").
 
     Returns
     -------
     bytes
-        The HTML document (UTF-8).
+        The document.
     """
-    return report_html(full_analysis(drive))
+    return report_bytes(full_analysis(drive), fmt, units=units)
 
 
 def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
@@ -173,11 +198,39 @@ def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = No
     -------
     Screen
     """
+    from chaindrive.app.views import recompute
+
+    return _bounded(recompute, design, catalogs)
+
+
+def bounded_quick_screen(design: dict[str, Any],
+                         catalogs: dict[str, Path] | None = None) -> Screen:
+    """:func:`chaindrive.app.views.quick_screen` in a bounded run, as
+    :func:`bounded_screen` (never raises).
+
+    Parameters
+    ----------
+    design : dict
+        The design mapping of the form.
+    catalogs : dict of str to Path | None
+        The session's uploaded catalogues.
+
+    Returns
+    -------
+    Screen
+    """
+    from chaindrive.app.views import quick_screen
+
+    return _bounded(quick_screen, design, catalogs)
+
+
+def _bounded(func: Callable[..., Screen], design: dict[str, Any],
+             catalogs: dict[str, Path] | None) -> Screen:
     from chaindrive.app.state import Location, Outcome
-    from chaindrive.app.views import Screen, recompute
+    from chaindrive.app.views import Screen
 
     try:
-        return run_bounded(recompute, design, catalogs, seconds=INTERACTIVE_SECONDS,
+        return run_bounded(func, design, catalogs, seconds=INTERACTIVE_SECONDS,
                            what="the analysis")
     except ChainDriveError as exc:
         return Screen(Outcome(message=str(exc), location=Location("design")))
@@ -203,33 +256,41 @@ def bounded_full_analysis(drive: Drive) -> Analysis:
                        what="the dynamic analysis")
 
 
-def bounded_report(drive: Drive) -> bytes:
+def bounded_report(drive: Drive, fmt: str = "html", units: str = "SI") -> bytes:
     """:func:`full_report` in a bounded run.
 
     Parameters
     ----------
     drive : Drive
         The design.
+    fmt : str
+        "pdf" or "html".
+    units : str
+        "SI" or "US".
 
     Returns
     -------
     bytes
-        The HTML document (UTF-8).
+        The document.
     """
-    return run_bounded(full_report, drive, seconds=FULL_SECONDS, what="the report")
+    return run_bounded(full_report, drive, fmt, units, seconds=FULL_SECONDS,
+                       what="the report")
 
 
-def bounded_drawing(analysis: Analysis) -> bytes:
-    """:func:`drawing_dxf` in a bounded run.
+def bounded_drawing(analysis: Analysis, fmt: str = "dxf") -> bytes:
+    """:func:`drawing_dxf` or :func:`drawing_svg` in a bounded run.
 
     Parameters
     ----------
     analysis : Analysis
         The analysis whose drive is drawn.
+    fmt : str
+        "dxf" or "svg".
 
     Returns
     -------
     bytes
-        The DXF file.
+        The drawing file.
     """
-    return run_bounded(drawing_dxf, analysis, seconds=FULL_SECONDS, what="the drawing")
+    return run_bounded(drawing_svg if fmt == "svg" else drawing_dxf, analysis,
+                       seconds=FULL_SECONDS, what="the drawing")

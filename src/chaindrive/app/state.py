@@ -214,11 +214,12 @@ def plain(value: Any) -> Any:
 
 
 def _number_text(value: Any, unit: str) -> Any:
-    """``value`` with its unit as the design file writes it (``1364.0 mm``); a non-number is
-    passed through unchanged so that the parser names it."""
+    """``value`` with its unit as the design file writes it, to 12 significant digits
+    (``1364 mm``; the round-off of a unit conversion, ``700.0000000000001``, is not
+    written); a non-number is passed through unchanged so that the parser names it."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         return value
-    return f"{value!r} {unit}"
+    return f"{value:.12g} {unit}"
 
 
 def _whole(value: Any) -> Any:

@@ -10,32 +10,47 @@ from __future__ import annotations
 
 import html
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from chaindrive.display import check_row
+from chaindrive.display import (
+    UnitSystem,
+    check_line,
+    check_row,
+    clean,
+    doc_value,
+    fmt,
+    header,
+    margin_percent,
+)
+from chaindrive.errors import ChainDriveError
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
 
 MM = 1e3
+#: Height of the contour on the page [px]: it and the verdict fit above the fold at 900 px.
+LAYOUT_HEIGHT_PX = 370
 #: Colours of the figures of :mod:`chaindrive.plotting` (Okabe–Ito), reused for the SVG.
 TIGHT, CHAIN, PITCH, GREY = "#D55E00", "#0072B2", "#009E73", "#7f7f7f"
 
 @dataclass(frozen=True, slots=True)
 class Check:
     """One check as the page shows it: what, its value (in the unit it is read in), the
-    requirement, the result (``pass``, ``FAIL``, ``CANNOT BE VERIFIED``) and its source."""
+    requirement, the result (``pass``, ``FAIL``, ``CANNOT BE VERIFIED``), its source and its
+    margin [%] (≥ 0 passes) and the line the page writes for it when it fails."""
 
     name: str
     value: float | None
     required: str
     result: str
     source: str
+    margin: float | None = None
+    line: str = ""
 
     @property
     def passed(self) -> bool:
@@ -124,71 +139,149 @@ def layout_svg(geometry: GeometryResult, *, highlight: str | None = None,
     return "".join(parts)
 
 
+# --- small charts -------------------------------------------------------------------------------
+
+def _ticks(lo: float, hi: float, count: int = 5) -> list[float]:
+    """Round tick values between ``lo`` and ``hi``."""
+    span = hi - lo or abs(hi) or 1.0
+    raw = span / count
+    step = 10 ** math.floor(math.log10(raw))
+    step *= next(m for m in (1, 2, 2.5, 5, 10) if m * step >= raw)
+    first = math.ceil(lo / step) * step
+    return [first + i * step for i in range(int((hi - first) / step + 1e-9) + 1)]
+
+
+def line_chart_svg(x: Any, series: dict[str, Any], *, x_label: str, y_label: str,
+                   width: int = 460, height: int = 220) -> str:
+    """A small line chart as an SVG document (drawn in a millisecond, where a plotting
+    library takes a good part of a second): the ``series`` (label → y values) against
+    ``x``, with ticks, axis labels and a legend."""
+    xs = np.asarray(x, dtype=float)
+    ys = [np.asarray(v, dtype=float) for v in series.values()]
+    y_lo = min(float(v.min()) for v in ys)
+    y_hi = max(float(v.max()) for v in ys)
+    pad = 0.08 * ((y_hi - y_lo) or abs(y_hi) or 1.0)
+    y_lo, y_hi = y_lo - pad, y_hi + pad
+    left, right, top, bottom = 58, 10, 24, 40
+    w, h = width - left - right, height - top - bottom
+
+    def px(v: Any) -> Any:
+        return left + (v - xs.min()) / ((xs.max() - xs.min()) or 1.0) * w
+
+    def py(v: Any) -> Any:
+        return top + (y_hi - v) / ((y_hi - y_lo) or 1.0) * h
+
+    font = 'font-family="sans-serif" font-size="11"'
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" '
+             f'style="width:100%;max-width:{width}px" role="img" '
+             f'aria-label="{html.escape(y_label)} against {html.escape(x_label)}">',
+             f'<rect x="{left}" y="{top}" width="{w}" height="{h}" fill="white" '
+             f'stroke="{GREY}" stroke-width="0.6"/>']
+    for t in _ticks(y_lo, y_hi):
+        parts.append(f'<line x1="{left}" x2="{left + w}" y1="{py(t):.1f}" y2="{py(t):.1f}" '
+                     f'stroke="#e5e5e5"/><text x="{left - 4}" y="{py(t) + 4:.1f}" '
+                     f'text-anchor="end" {font}>{html.escape(fmt(t))}</text>')
+    for t in _ticks(float(xs.min()), float(xs.max())):
+        parts.append(f'<text x="{px(t):.1f}" y="{top + h + 14}" text-anchor="middle" {font}>'
+                     f'{html.escape(fmt(t))}</text>')
+    colours = (CHAIN, TIGHT, PITCH, GREY)
+    for i, (label, v) in enumerate(zip(series, ys, strict=True)):
+        pts = " ".join(f"{a:.1f},{b:.1f}" for a, b in zip(px(xs), py(v), strict=True))
+        colour = colours[i % len(colours)]
+        parts.append(f'<polyline points="{pts}" fill="none" stroke="{colour}" '
+                     f'stroke-width="1.8"/><text x="{left + 6 + 150 * i}" y="{top - 8}" '
+                     f'fill="{colour}" {font}>{html.escape(label)}</text>')
+    parts.append(f'<text x="{left + w / 2:.0f}" y="{height - 6}" text-anchor="middle" '
+                 f'{font}>{html.escape(x_label)}</text>')
+    parts.append(f'<text transform="translate(12,{top + h / 2:.0f}) rotate(-90)" '
+                 f'text-anchor="middle" {font}>{html.escape(y_label)}</text></svg>')
+    return "".join(parts)
+
+
 # --- numbers ----------------------------------------------------------------------------------
 
-def headline(document: dict[str, Any]) -> dict[str, Any]:
-    """The numbers always on screen, from the JSON document of the analysis."""
-    g, k, d = document["geometry"], document["kinematics"], document["drive"]
+def headline(analysis: Analysis) -> dict[str, Any]:
+    """The numbers always on screen (SI, from the analysis): chain, links, chain length,
+    slack, take-up, chain speed, tooth frequency."""
+    g, k = analysis.geometry, analysis.kinematics
     return {
-        "chain": d["chain"],
-        "links": g["links"],
-        "chain_length_mm": g["chain_length_mm"],
-        "slack_mm": g["slack_mm"],
-        "adjusted_sprocket": g["adjusted_sprocket"],
-        "adjustment_mm": g["adjustment_mm"],
-        "chain_speed_m_s": k["chain_speed_m_s"],
-        "tooth_frequency_hz": k["tooth_frequency_hz"],
+        "chain": analysis.drive.chain.spec.designation,
+        "links": g.links,
+        "chain_length_m": g.chain_length,
+        "slack_m": g.slack,
+        "adjusted_sprocket": None if g.adjusted is None else g.sprockets[g.adjusted].name,
+        "adjustment_m": g.adjustment,
+        "chain_speed_m_s": k.chain_speed,
+        "tooth_frequency_hz": k.tooth_frequency,
     }
 
 
-def checks(analysis: Analysis) -> list[Check]:
-    """The checks of the analysis (:meth:`chaindrive.analysis.Analysis.checks`), as shown."""
-    return [Check(*check_row(c)) for c in analysis.checks()]
-
-
-def _r(value: Any, digits: int = 2) -> Any:
-    """A float rounded for a table cell (other values as they are)."""
-    return round(value, digits) if isinstance(value, float) else value
+def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
+    """The checks of the analysis (:meth:`chaindrive.analysis.Analysis.checks`), as shown,
+    with the margin of :mod:`chaindrive.checks` in per cent (≥ 0 passes)."""
+    return [Check(*check_row(c, units), margin_percent(c), check_line(c, units))
+            for c in analysis.checks()]
 
 
 def check_records(items: list[Check]) -> list[dict[str, Any]]:
-    """Rows of the checks table (failed first)."""
+    """Rows of the checks table (failed first), numbers by the presenters' one rule."""
     ordered = sorted(items, key=lambda c: c.passed)
-    return [{"check": c.name, "value": None if c.value is None else float(f"{c.value:.4g}"),
-             "required": c.required, "result": c.result, "source": c.source} for c in ordered]
+    return [{"check": c.name, "value": None if c.value is None else clean(c.value),
+             "required": c.required,
+             "margin %": None if c.margin is None else clean(c.margin, 3),
+             "result": c.result, "source": c.source} for c in ordered]
 
 
-def sprocket_records(document: dict[str, Any]) -> list[dict[str, Any]]:
+def _row(item: dict[str, Any], cols: tuple[tuple[str, str], ...], units: UnitSystem
+         ) -> dict[str, Any]:
+    """One row of a result table: each (label, key) of the document part, the header with
+    the unit of ``units`` and the number cleaned of round-off."""
+    out: dict[str, Any] = {}
+    for label, key in cols:
+        value = doc_value(key, item.get(key), units)[0]
+        out[header(label, key, units)] = clean(value) if isinstance(value, float) else value
+    return out
+
+
+def sprocket_records(document: dict[str, Any], units: UnitSystem = "SI"
+                     ) -> list[dict[str, Any]]:
     """Rows of the geometry-and-speed table of the sprockets."""
     speeds = {s["name"]: s for s in document["kinematics"]["sprockets"]}
-    rows = []
-    for s in document["geometry"]["sprockets"]:
-        k = speeds.get(s["name"], {})
-        rows.append({"name": s["name"], "teeth": s["teeth"], "x mm": _r(s["x_mm"]),
-                     "y mm": _r(s["y_mm"]), "pitch Ø mm": _r(s["pitch_diameter_mm"]),
-                     "tip Ø mm": _r(s["tip_diameter_mm"]), "wrap °": _r(s["wrap_angle_deg"], 1),
-                     "teeth in mesh": _r(s["teeth_in_mesh"], 1),
-                     "speed rpm": _r(k.get("speed_rpm"), 1), "direction": k.get("direction"),
-                     "speed variation %": _r(k.get("speed_variation_percent"), 3)})
-    return rows
+    cols = (("name", "name"), ("teeth", "teeth"), ("x", "x_mm"), ("y", "y_mm"),
+            ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
+            ("wrap", "wrap_angle_deg"), ("teeth in mesh", "teeth_in_mesh"))
+    kin = (("speed", "speed_rpm"), ("direction", "direction"),
+           ("speed variation, %", "speed_variation_percent"))
+    return [{**_row(s, cols, units), **_row(speeds.get(s["name"], {}), kin, units)}
+            for s in document["geometry"]["sprockets"]]
 
 
-def span_records(document: dict[str, Any]) -> list[dict[str, Any]]:
+def span_records(document: dict[str, Any], units: UnitSystem = "SI") -> list[dict[str, Any]]:
     """Rows of the span table (with the static tensions when the strength part exists)."""
     st = document.get("strength") or {}
     tensions = st.get("span_tensions_n") or [None] * len(document["geometry"]["spans"])
-    return [{"span": f"{s['from']} → {s['to']}", "length mm": _r(s["length_mm"]),
-             "pitches": _r(s["length_pitches"], 3), "inclination °": _r(s["inclination_deg"]),
-             "tight": s["tight"], "tension N": _r(t, 1)}
+    cols = (("length", "length_mm"), ("pitches", "length_pitches"),
+            ("inclination", "inclination_deg"), ("tight", "tight"), ("tension", "tension_n"))
+    return [{"span": f"{s['from']} → {s['to']}", **_row({**s, "tension_n": t}, cols, units)}
             for s, t in zip(document["geometry"]["spans"], tensions, strict=True)]
 
 
-def resonance_records(document: dict[str, Any]) -> list[dict[str, Any]]:
-    """Rows of the resonance table: working frequency, nearest natural one, margin."""
-    return [{"working": r["label"], "f working Hz": _r(r["frequency_hz"]),
-             "mode": r["mode"], "f natural Hz": _r(r["natural_frequency_hz"]),
-             "margin %": _r(r["margin_percent"], 1)}
-            for r in document["dynamics"].get("resonances") or []]
+def resonance_records(document: dict[str, Any], spans: list[str] | None = None
+                      ) -> list[dict[str, Any]]:
+    """Rows of the resonance table: working frequency, the nearest natural one (a ring mode,
+    or for a parametric row twice the transverse frequency of a span, named by the span),
+    the detuning |f_w − f_n|/f_n ≥ 0 and whether the working frequency lies below or
+    above."""
+    out = []
+    for r in document["dynamics"].get("resonances") or []:
+        span = r["kind"] == "parametric"
+        where = (spans[r["mode"]] if span and spans and r["mode"] < len(spans)
+                 else f"span {r['mode'] + 1}" if span else f"mode {r['mode']}")
+        out.append({"working": r["label"], "f working, Hz": clean(r["frequency_hz"]),
+                    "nearest": where, "f natural, Hz": clean(r["natural_frequency_hz"]),
+                    "detuning, %": clean(abs(r["margin_percent"]), 3),
+                    "f working is": "below" if r["margin_percent"] < 0 else "above"})
+    return out
 
 
 def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
@@ -196,16 +289,48 @@ def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
     per mode)."""
     dyn = document["dynamics"]
     rigid = dyn["rigid_body_modes"]
-    return [{"mode": j, "natural Hz": _r(f), "damped Hz": _r(fd)}
+    return [{"mode": j, "natural, Hz": clean(f), "damped, Hz": clean(fd)}
             for j, (f, fd) in enumerate(zip(dyn["natural_frequencies_hz"],
                                             dyn["damped_frequencies_hz"], strict=True))
             if not rigid[j]]
 
 
+def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
+                     ) -> list[dict[str, Any]]:
+    """Rows (quantity, value, unit) of the loads and static strength."""
+    rows = (("chain speed v", "chain_speed_m_s"), ("peripheral force F_t", "peripheral_force_n"),
+            ("sag tension F₀", "sag_tension_n"), ("centrifugal tension F_v",
+                                                  "centrifugal_tension_n"),
+            ("operating factor Kэ", "operating_factor_ke"),
+            ("joint pressure p_h", "hinge_pressure_mpa"),
+            ("allowable joint pressure [p_h]", "allowable_pressure_mpa"),
+            ("static safety factor s", "safety_factor_static"),
+            ("allowable static safety factor [s]", "allowable_safety_factor"),
+            ("rated power P_r", "rated_power_w"), ("wear life L_h", "wear_life_h"))
+    out = []
+    for label, key in rows:
+        value, unit = doc_value(key, strength.get(key), units)
+        out.append({"quantity": label, "value": fmt(value), "unit": unit})
+    return out
+
+
+def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: int = 12
+                      ) -> list[dict[str, Any]]:
+    """Rows of the ranked candidates of the chain selection."""
+    mass = header("mass", "mass_kg_m", units)
+    return [{"chain": c["chain"], "method": c["method"], "strands": c["strands"],
+             mass: clean(doc_value("mass_kg_m", c["mass_kg_m"], units)[0]),
+             "passed": c["passed"],
+             "margin, %": None if c["margin_fraction"] is None
+             else clean(100 * c["margin_fraction"], 3),
+             "governing check": c["governing"]} for c in selection["candidates"][:top]]
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Screen:
     """Everything the page redraws after an edit: the outcome of the evaluation and, when
-    the design was analysed, its JSON document, headline numbers, checks and layout SVG."""
+    the design was analysed, its headline numbers, checks and layout SVG (the quick part),
+    and its JSON document (the rest, with the chain selection)."""
 
     outcome: Any
     document: dict[str, Any] | None = None
@@ -214,16 +339,58 @@ class Screen:
     svg: str | None = None
 
 
-def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
-    """Evaluate the design mapping and derive what is always on screen (the work the page
-    does after every edit; timed by ``benchmarks/bench_app_recompute.py``); ``catalogs``:
-    the session's uploaded catalogues (:func:`chaindrive.app.state.evaluate`)."""
-    from chaindrive.app.state import evaluate
+def _failure(drive: Any, exc: Exception, names: list[str]) -> Screen:
+    """The screen of a design that could not be analysed (the command line's message)."""
+    from chaindrive.app.state import Location, Outcome, locate
 
-    outcome = evaluate(design, catalogs=catalogs)
-    if outcome.analysis is None:
-        return Screen(outcome)
-    analysis = outcome.analysis
-    document = analysis.to_dict()
-    return Screen(outcome, document, headline(document), tuple(checks(analysis)),
-                  layout_svg(analysis.geometry))
+    if isinstance(exc, ChainDriveError):
+        where = getattr(exc, "field", "")
+        return Screen(Outcome(drive=drive, message=str(exc), location=locate(where, names)))
+    return Screen(Outcome(drive=drive, unexpected=True, location=Location("design"),
+                          message=f"the analysis failed unexpectedly ({type(exc).__name__}); "
+                                  "please report it with the design file"))
+
+
+def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
+    """Validate the design mapping and compute what is on screen at once: the contour,
+    the headline numbers and every check (geometry, kinematics, strength, modes) — the
+    stages of one lazy :class:`~chaindrive.analysis.Analysis`, without the chain selection
+    that :func:`complete` adds. ``catalogs``: the catalogues uploaded in the session, the
+    only files ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+    Never raises for a bad design."""
+    from chaindrive.analysis import Analysis
+    from chaindrive.app.state import Outcome
+    from chaindrive.io.design import drive_from_mapping
+
+    names = [str(r.get("name")) for r in design.get("sprockets") or []
+             if isinstance(r, dict)]
+    drive = None
+    try:
+        drive = drive_from_mapping(design, catalogs=dict(catalogs or {}))
+        analysis = Analysis(drive, response=False)
+        shown = tuple(checks(analysis))
+        return Screen(Outcome(analysis=analysis, drive=drive), None, headline(analysis), shown,
+                      layout_svg(analysis.geometry, max_height_px=LAYOUT_HEIGHT_PX))
+    except Exception as exc:  # the page must never show a traceback
+        return _failure(drive, exc, names)
+
+
+def complete(screen: Screen) -> Screen:
+    """The screen with the JSON document of its analysis (chain selection, warnings,
+    dynamics tables); a failure there becomes the screen of a bad design."""
+    analysis = screen.outcome.analysis
+    if analysis is None or screen.document is not None:
+        return screen
+    try:
+        document = analysis.to_dict()
+    except Exception as exc:
+        names = [s.name for s in analysis.design.sprockets]
+        return _failure(screen.outcome.drive, exc, names)
+    return replace(screen, document=document)
+
+
+def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
+    """Everything the page shows after an edit (:func:`quick_screen` then :func:`complete`;
+    timed by ``benchmarks/bench_app_recompute.py``); ``catalogs`` as for
+    :func:`quick_screen`."""
+    return complete(quick_screen(design, catalogs))

@@ -14,34 +14,29 @@ import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import Annotated, Any
 
 import numpy as np
 import typer
 
+from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
-from chaindrive.display import RAD_S_TO_RPM, fmt
+from chaindrive.display import RAD_S_TO_RPM, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.atomic import atomic_directory, write_text
-
-if TYPE_CHECKING:
-    from rich.console import Console
-    from rich.table import Table
 
 app = typer.Typer(
     name="chaindrive",
     help="Design and dynamic analysis of roller-chain drives.",
     add_completion=False,
+    rich_markup_mode=None,  # help texts name TOML tables such as [optimize]: no markup
     no_args_is_help=True,
     pretty_exceptions_enable=False,
 )
 #: Resolution of the report's figures [dpi]: 50 is legible on screen; 600 prints finer than
 #: the eye resolves at reading distance (a 600 dpi figure is 5 000 px wide, 60 MB in memory).
 DPI_RANGE = (50, 600)
-TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
-                          "subject",
-                          "required", "result", "unit",
-                          "direction", "side", "source", "allowed", "description"})
+UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
 
 
 @contextmanager
@@ -54,32 +49,8 @@ def user_errors() -> Iterator[None]:
         raise typer.Exit(EXIT_USER_ERROR) from None
 
 
-def escape(text: str) -> str:
-    """``text`` with rich markup escaped (a name like ``[chain]`` prints as written)."""
-    from rich.markup import escape as rich_escape
-
-    return rich_escape(text)
-
-
-def _console() -> Console:
-    from rich.console import Console  # only the table output needs rich (not --json)
-
-    return Console(highlight=False, soft_wrap=False, width=120)
-
-
-def _table(title: str, columns: list[str], rows: list[list[Any]]) -> Table:
-    from rich.table import Table
-
-    table = Table(title=escape(title), title_justify="left", header_style="bold")
-    for c in columns:
-        table.add_column(escape(c), justify="left" if c in TEXT_COLUMNS else "right")
-    for row in rows:
-        table.add_row(*[escape(_fmt(v)) for v in row])
-    return table
-
-
 def _fmt(value: Any) -> str:
-    """A table cell, formatted by the presenters' one rule (:func:`chaindrive.display.fmt`)."""
+    """A value formatted by the presenters' one rule (:func:`chaindrive.display.fmt`)."""
     return fmt(value)
 
 
@@ -108,6 +79,7 @@ def analyze(
     quick: Annotated[bool, typer.Option(
         "--quick", help="stop after the modal analysis (no start-up, steady state or sweep)")]
     = False,
+    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
     """Analyse a drive: geometry, speeds, chain, strength, modes and dynamic response.
 
@@ -117,101 +89,13 @@ def analyze(
     from chaindrive.cli.progress import spinner
 
     with user_errors(), spinner("analysing …", quiet=as_json):
+        system = unit_system(units)
         result = chaindrive.analyze(chaindrive.load(file), response=not quick)
         document = result.to_dict()
     if as_json:
         _write_json(document)
         return
-    _print_analysis(document)
-
-
-def _print_analysis(doc: dict[str, Any]) -> None:
-    """Readable tables of an analysis document."""
-    con = _console()
-    d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
-    con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])} (pitch {d['pitch_mm']:g} mm), "
-              f"tooth form {d['tooth_form']}")
-    summary = (f"links {g['links']}, chain length {g['chain_length_mm']:.1f} mm, tight length "
-               f"{g['tight_length_mm']:.1f} mm ({g['tight_length_pitches']:.3f} pitches)")
-    if g["center_distance_mm"] is not None:
-        summary += f", centre distance {g['center_distance_mm']:.2f} mm"
-    con.print(summary)
-    if g["adjusted_sprocket"] is not None:
-        con.print(f"take-up: {g['adjusted_sprocket']} moved {g['adjustment_mm']:.2f} mm")
-    con.print(_table("Sprockets", ["name", "teeth", "side", "x mm", "y mm", "pitch Ø mm",
-                                   "tip Ø mm", "wrap °", "teeth in mesh"],
-                     [[s["name"], s["teeth"], s["side"], s["x_mm"], s["y_mm"],
-                       s["pitch_diameter_mm"], s["tip_diameter_mm"], s["wrap_angle_deg"],
-                       s["teeth_in_mesh"]] for s in g["sprockets"]]))
-    con.print(_table("Spans", ["from", "to", "length mm", "pitches", "incl. °", "tight"],
-                     [[s["from"], s["to"], s["length_mm"], s["length_pitches"],
-                       s["inclination_deg"], s["tight"]] for s in g["spans"]]))
-    con.print(f"chain speed {k['chain_speed_m_s']:.3f} m/s "
-              f"({k['chain_speed_min_m_s']:.3f}…{k['chain_speed_max_m_s']:.3f}), "
-              f"tooth frequency {k['tooth_frequency_hz']:.2f} Hz")
-    con.print(_table("Kinematics", ["name", "speed rpm", "direction", "speed variation %"],
-                     [[s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"]]
-                      for s in k["sprockets"]]))
-    if doc["strength"] is not None:
-        _print_strength(con, doc["strength"], [s["name"] for s in g["sprockets"]],
-                        [f"{s['from']}→{s['to']}" for s in g["spans"]])
-    if doc["selection"] is not None:
-        sel = doc["selection"]
-        con.print(f"selection ({sel['method']}): {sel['chain'] or sel['shortfall']}")
-    _print_dynamics(con, doc["dynamics"], doc["strength"])
-    _print_checks(con, doc["checks"])
-    for w in doc["warnings"]:
-        con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
-
-
-def _print_checks(con: Console, checks: list[dict[str, Any]]) -> None:
-    """The verdict and the table of checks (failed and unverifiable ones first)."""
-    failed = [c for c in checks if c["status"] != "pass"]
-    if failed:
-        con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]")
-    else:
-        con.print(f"[bold green]all {len(checks)} checks pass[/bold green]")
-    rows = []
-    for c in sorted(checks, key=lambda c: c["status"] == "pass"):
-        sym = "≤" if c["kind"] == "max" else "≥"
-        rows.append([c["check"], c["subject"], c["value"],
-                     "—" if c["limit"] is None else f"{sym} {fmt(c['limit'])}", c["unit"],
-                     c["status"], c["source"]])
-    con.print(_table("Checks", ["check", "subject", "value", "required", "unit", "result",
-                                "source"], rows))
-
-
-def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
-    """Natural frequencies, the closest resonances and the dynamic response."""
-    freqs = ", ".join(f"{f:.1f}" for f in dyn["natural_frequencies_hz"][:8])
-    con.print(f"natural frequencies, Hz: {freqs}{' …' if len(dyn['natural_frequencies_hz']) > 8 else ''}"
-              f" (damping ratio {dyn['damping_ratio']:.3f})")
-    rows = [[r["label"], r["frequency_hz"], r["natural_frequency_hz"], r["margin_percent"]]
-            for r in dyn["resonances"][:5]]
-    con.print(_table("Closest resonances", ["name", "working Hz", "natural Hz", "margin %"], rows))
-    startup, steady = dyn.get("startup"), dyn.get("steady")
-    if steady is not None:
-        con.print(f"steady state: largest dynamic span load {max(steady['span_dynamic_load_n']):.1f} N,"
-                  f" coefficient of dynamics {dyn['coefficient_of_dynamics']:.3f}")
-    if startup is not None:
-        con.print(f"start-up: largest span force {startup['max_force_n']:.1f} N, settling time "
-                  f"{startup['settling_time_s']:.3f} s")
-    if st is not None and "k1" in st:
-        con.print(f"safety: k1 {_fmt(st['k1'])}, k2 {_fmt(st['k2'])}, k2min {_fmt(st['k2min'])} "
-                  f"(allowable {_fmt(st['allowable_k'])})")
-
-
-def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str]) -> None:
-    """Loads and safety of an analysis document."""
-    con.print(_table("Span tensions", ["from", "tension N"],
-                     [[sp, t] for sp, t in zip(spans, st["span_tensions_n"], strict=True)]))
-    con.print(_table("Shaft loads", ["name", "shaft load N"],
-                     [[n, f] for n, f in zip(names, st["shaft_loads_n"], strict=True)]))
-    con.print(f"hinge pressure {_fmt(st['hinge_pressure_mpa'])} MPa (allowable "
-              f"{_fmt(st['allowable_pressure_mpa'])}), static safety factor "
-              f"{_fmt(st['safety_factor_static'])} (allowable {_fmt(st['allowable_safety_factor'])}),"
-              f" wear life {_fmt(st['wear_life_h'])} h"
-              f"{' (extrapolated: wear does not limit)' if st['wear_life_extrapolated'] else ''}")
+    tables.print_analysis(document, result.checks(), system)
 
 
 @app.command()
@@ -224,27 +108,19 @@ def select(
     top: Annotated[int, typer.Option(help="show the first N ranked candidates", min=1,
                                      max=10_000)] = 10,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
     """Rank the family's chains by every check; the first is the one selected."""
     import chaindrive
 
     with user_errors():
+        system = unit_system(units)
         analysis = chaindrive.analyze(chaindrive.load(file), lazy=True)
         doc = analysis.selection_by(method=method, strands=strands).to_dict(top=top)
     if as_json:
         _write_json(doc)
         return
-    con = _console()
-    if doc["chain"] is not None:
-        con.print(f"selected: [bold]{escape(doc['chain'])}[/bold] ({doc['method']})")
-    else:
-        con.print(f"[red]{escape(doc['shortfall'])}[/red]")
-    con.print(_table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
-                     "ranked)", ["chain", "method", "strands", "mass kg/m", "passed",
-                                 "margin %", "governing"],
-                     [[c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
-                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
-                       c["governing"]] for c in doc["candidates"]]))
+    tables.print_selection(doc, system)
 
 
 @app.command()
@@ -340,15 +216,7 @@ def schema(
     if as_json:
         _write_json(doc)
         return
-    con = _console()
-    for section, fields in doc.items():
-        header = f"[[{section}]]" if section.startswith("sprockets") else f"[{section}]"
-        con.print(_table(header, ["field", "unit", "default", "required", "allowed",
-                                  "description"],
-                         [[f["field"], f["si_unit"] or "—", f["default"], f["required"],
-                           f["allowed"], f["description"]
-                           + (f" — limits: {f['reason']}" if f["reason"] else "")]
-                          for f in fields]))
+    tables.print_schema(doc)
 
 
 @app.command()
@@ -362,8 +230,9 @@ def report(
     study: Annotated[list[str] | None, typer.Option(
         "--study", help="add a comparative study: material-pairs, hinge-friction")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
-    """Write the design report: inputs, every result table and figure, warnings first."""
+    """Write the design report: the verdict first, then inputs, results and checks."""
     import chaindrive
     from chaindrive.cli.progress import progress_bar
     from chaindrive.report import SECTIONS, write_report
@@ -372,7 +241,8 @@ def report(
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
-            path = write_report(result, output, source=file, dpi=dpi, progress=advance)
+            path = write_report(result, output, source=file, dpi=dpi, progress=advance,
+                                units=unit_system(units))
     if as_json:
         _write_json({"report": str(path.resolve())})
         return
@@ -384,14 +254,18 @@ def draw(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
     output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf or layout.svg")]
     = Path("layout.dxf"),
+    sprocket: Annotated[str | None, typer.Option(
+        "--sprocket", help="draw this sprocket alone (its manufacturing drawing)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
-    """Write the drawing: contour layout and each sprocket's tooth profile (DXF or SVG, mm)."""
+    """Write the drawing: the dimensioned layout and each sprocket's manufacturing drawing,
+    or one sprocket alone (DXF or SVG, mm)."""
     import chaindrive
     from chaindrive.drawing import write_drawing
 
     with user_errors():
-        path = write_drawing(chaindrive.analyze(chaindrive.load(file)), output)
+        analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        path = write_drawing(analysis, output, sprocket=sprocket)
     if as_json:
         _write_json({"drawing": str(path.resolve())})
         return
@@ -438,27 +312,8 @@ def optimize(
     if as_json:
         _write_json({**doc, "files": written, "plot": None if plot is None else str(plot)})
         return
-    names = list(result.objectives)
-    con = _console()
-    con.print(f"[bold]{escape(problem.base.name)}[/bold] — {result.evaluations} designs evaluated by "
-              f"{result.method} (seed {result.seed}) in {result.seconds:.1f} s")
-    con.print(_table("Start design", ["design", *names, "constraints ok"],
-                     [["start", *[result.start.objectives[n] for n in names],
-                       result.start.feasible]]))
-    rows = []
-    for k, p in enumerate(result.pareto, start=1):
-        d = p.design
-        rows.append([str(k), d["chain"]["designation"],
-                     " ".join(str(s["teeth"]) for s in d["sprockets"]),
-                     *[p.objectives[n] for n in names], p.constraints_ok])
-    con.print(_table(f"Pareto set ({len(rows)} designs)",
-                     ["name", "chain", "teeth", *names, "constraints ok"], rows))
-    if not rows:
-        con.print("no design met every constraint: widen the bounds or the budget")
-    for path in written:
-        con.print(f"wrote {path}")
-    if plot is not None:
-        con.print(f"wrote {plot}")
+    tables.print_optimisation(problem.base.name, result,
+                              [*written, *([] if plot is None else [str(plot)])])
 
 
 def _write_pareto(result: Any, file: Path, out: Path) -> tuple[list[str], Path | None]:
@@ -563,13 +418,14 @@ LIST_HEADERS = {
 
 
 def _print_records(doc: list[dict[str, Any]], title: str) -> None:
-    con = _console()
+    con = tables.console()
     if len(doc) == 1:
         for key, value in doc[0].items():
-            con.print(f"{key:>22}: {_fmt(value)}")
+            con.print(f"{key:>22}: {tables.escape(_fmt(value))}")
         return
     keys = [k for k in (doc[0] if doc else {}) if k in LIST_HEADERS]
-    table = _table(title, [LIST_HEADERS[k] for k in keys], [[r[k] for k in keys] for r in doc])
+    table = tables.table(title, [LIST_HEADERS[k] for k in keys],
+                         [[r[k] for k in keys] for r in doc])
     table.columns[0].no_wrap = True
     table.columns[0].justify = "left"
     con.print(table)

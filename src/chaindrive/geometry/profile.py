@@ -37,8 +37,17 @@ from chaindrive.geometry.sprocket import (
 )
 from chaindrive.model import Drive
 
-__all__ = ["SprocketProfile", "gost591_gap_wall", "iso606_gap_wall", "outline_of",
-           "sprocket_outline", "sprocket_profiles", "tooth_form_of"]
+__all__ = [
+    "BORE_RATIO",
+    "SprocketProfile",
+    "gost591_gap_wall",
+    "hub_limit_diameter",
+    "iso606_gap_wall",
+    "outline_of",
+    "sprocket_outline",
+    "sprocket_profiles",
+    "tooth_form_of",
+]
 
 
 def _arc(centre: NDArray[np.float64], radius: float, a0: float, a1: float,
@@ -240,6 +249,12 @@ class SprocketProfile:
         Mass [kg] and moment of inertia [kg·m²] of the body.
     density : float
         Density of the material [kg/m³].
+    standard : str
+        The tooth-form standard ("ISO 606" or "GOST 591").
+    bore_diameter : float
+        Bore [m]: the polymeric body's, else 0.19·z·p/π [MultimassChainDrives, §3.4].
+    hub_limit_diameter : float
+        The largest hub the chain's inner plates clear [m] (:func:`hub_limit_diameter`).
     """
 
     name: str
@@ -250,6 +265,9 @@ class SprocketProfile:
     body: PolymericProportions | None
     mass: SprocketMassProperties
     density: float
+    standard: str = "ISO 606"
+    bore_diameter: float = 0.0
+    hub_limit_diameter: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (the tooth form in mm and degrees)."""
@@ -257,6 +275,11 @@ class SprocketProfile:
                 "material": self.material, "polymeric": self.polymeric,
                 "body": None if self.body is None else self.body.to_dict(),
                 "mass": self.mass.to_dict()}
+
+
+#: Bore of a metal sprocket's body, as a fraction of z·p/π (the proportion of the polymeric
+#: bodies) [MultimassChainDrives, §3.4].
+BORE_RATIO = 0.19
 
 
 def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
@@ -282,6 +305,36 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
         mass = sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
                                          mat.is_polymer, strands=spec.strands,
                                          transverse_pitch=spec.transverse_pitch)
-        out.append(SprocketProfile(s.name, form, outline_of(form), mat.name, mat.is_polymer,
-                                   body, mass, mat.density))
+        bore = (body.bore_diameter if body is not None
+                else BORE_RATIO * s.teeth * spec.pitch / math.pi)
+        out.append(SprocketProfile(
+            s.name, form, outline_of(form), mat.name, mat.is_polymer, body, mass, mat.density,
+            "GOST 591" if isinstance(form, Gost591ToothForm) else "ISO 606", bore,
+            hub_limit_diameter(spec.pitch, s.teeth, spec.plate_depth)))
     return tuple(out)
+
+
+def hub_limit_diameter(pitch: float, teeth: int, plate_depth: float) -> float:
+    """ISO 606 absolute maximum shroud (hub) diameter d_g [m]: the largest hub that the inner
+    plates of the chain clear, d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606].
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m].
+    teeth : int
+        Number of teeth z.
+    plate_depth : float
+        Inner plate depth h₂ (maximum) [m].
+
+    Returns
+    -------
+    float
+        d_g [m].
+
+    References
+    ----------
+    [ISO606]
+    """
+    return pitch / math.tan(math.pi / teeth) - 1.04 * plate_depth - 0.76e-3
+

@@ -91,6 +91,13 @@ class Field:
     choices: tuple[str, ...] = ()
     exclusive_minimum: bool = False
     reason: str = ""
+    example: str = ""
+
+    def example_text(self) -> str:
+        """An example value that fits this field (its own, or its dimension's)."""
+        if self.example or self.kind not in DIMENSIONS:
+            return self.example
+        return DIMENSIONS[self.kind][2]
 
     def allowed(self) -> str:
         """Human description of the allowed values."""
@@ -117,10 +124,10 @@ class Field:
             return "a whole number" + (f" {span}" if span else "")
         if self.kind == "float":
             return "a number" + (f" {span}" if span else "")
-        example = DIMENSIONS[self.kind][2]
         noun = self.kind.replace("_", " ")
         article = "an" if noun[0] in "aeiou" else "a"
-        return f'{article} {noun} with a unit such as "{example}"' + (f", {span}" if span else "")
+        return (f'{article} {noun} with a unit such as "{self.example_text()}"'
+                + (f", {span}" if span else ""))
 
 
 #: The unit the allowed range of a quantity is written in: dimension → (unit, SI → unit).
@@ -200,9 +207,9 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           reason="6: the chordal speed variation 1 − cos(180°/z) reaches 13 % "
           "[ChainNonUniformity]; 150: a plausibility bound on large sprockets"),
     Field("x", "length", "x of the centre", required=True, minimum=-100.0, maximum=100.0,
-          reason=_XY),
+          reason=_XY, example="1364 mm"),
     Field("y", "length", "y of the centre", required=True, minimum=-100.0, maximum=100.0,
-          reason=_XY),
+          reason=_XY, example="60.67 mm"),
     Field("role", "choice", "driver, driven or idler", default="driven", choices=ROLES),
     Field("speed", "speed", "rotational speed (driver only)", minimum=1.0 * RPM,
           maximum=30_000.0 * RPM, reason=_SPEED),
@@ -220,7 +227,7 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           maximum=1e6, exclusive_minimum=True, reason=_REDUCED_MASS),
     Field("flywheel", "inertia", "inertia added as a steel flywheel on the shaft (in the "
           "dynamics, the mass and the cost)", default=0.0, minimum=0.0, maximum=1e6,
-          reason="at most a 50 t flywheel of 6 m radius"),
+          reason="at most a 50 t flywheel of 6 m radius", example="0.05 kg*m^2"),
     Field("material", "str", "sprocket material (catalogue name)", default="steel"),
     Field("power_share", "float", "share of the power taken off here (driven sprockets)",
           minimum=0.0, maximum=1.0, reason="a share of the whole"),
@@ -295,7 +302,8 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
     Field("transient", "bool", "run the start-up transient", default=True),
     Field("startup_duration", "time", "simulated time of the start-up", default=1.0,
           minimum=0.0, maximum=60.0, exclusive_minimum=True,
-          reason="a motor start lasts seconds; 60 s bounds the work of the simulation"),
+          reason="a motor start lasts seconds; 60 s bounds the work of the simulation",
+          example="1 s"),
     Field("motor", "choice", "motor law on the driver: induction motor (Kloss), constant "
           "torque or soft-start ramp", default="kloss", choices=MOTORS),
     Field("breakdown_ratio", "float", "Kloss motor: breakdown torque / rated torque",
@@ -305,17 +313,20 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
           maximum=1.0, exclusive_minimum=True, reason="a slip lies between 0 and 1"),
     Field("ramp_time", "time", "ramp motor: time to full torque", default=0.5, minimum=0.0,
           maximum=60.0, exclusive_minimum=True,
-          reason="soft starters ramp over seconds; at most the longest start-up"),
+          reason="soft starters ramp over seconds; at most the longest start-up",
+          example="0.5 s"),
     Field("resistance", "choice", "resistance law on the driven sprockets", default="linear",
           choices=RESISTANCES),
     Field("eccentricity", "length", "eccentricity of every sprocket (disturbance once per "
-          "revolution)", default=0.0, minimum=0.0, maximum=0.01, reason=_RUNOUT),
+          "revolution)", default=0.0, minimum=0.0, maximum=0.01, reason=_RUNOUT,
+          example="0.1 mm"),
     Field("pitch_scatter", "length", "scatter (standard deviation) of the link pitches",
           default=0.0, minimum=0.0, maximum=0.001,
-          reason="at most 1 mm: [ISO606] length tolerances are +0.15 % of the pitch"),
+          reason="at most 1 mm: [ISO606] length tolerances are +0.15 % of the pitch",
+          example="0.02 mm"),
     Field("accumulated_error", "length", "accumulated error of the chain length", default=0.0,
           minimum=0.0, maximum=1.0, reason="at most 1 m: a chain is replaced at 3 % "
-          "elongation, 1 m on the longest drive chains"),
+          "elongation, 1 m on the longest drive chains", example="0.5 mm"),
 )
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
@@ -350,7 +361,7 @@ def schema() -> dict[str, list[dict[str, Any]]]:
                 "field": f.name,
                 "kind": f.kind,
                 "si_unit": DIMENSIONS[f.kind][1] if f.kind in DIMENSIONS else "",
-                "example": DIMENSIONS[f.kind][2] if f.kind in DIMENSIONS else "",
+                "example": f.example_text(),
                 "required": f.required,
                 "default": f.default,
                 "allowed": f.allowed(),
@@ -656,6 +667,9 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                               f"(this one is {v['role']})")
         sprockets.append(Sprocket(**v))
     drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
+    if not drivers:
+        raise DesignError("sprockets.role", 'the driver is missing: give one sprocket '
+                          'role = "driver" and its speed')
     if len(drivers) != 1:
         shown = ", ".join(f"sprockets[{i}]" for i in drivers) or "none"
         raise DesignError("sprockets.role", f"exactly one sprocket must be the driver, got "

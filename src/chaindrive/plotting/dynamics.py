@@ -1,5 +1,6 @@
-"""Vibration of the ring model: mode shapes (seed 000's relative-amplitude bars) and the
-Campbell diagram (natural frequencies against the working-frequency lines)."""
+"""Vibration of the ring model: mode shapes (signed, along the contour) and the Campbell
+diagram (natural frequencies against the working-frequency lines, zoomed to the crossings
+near the working speed) [MultimassChainDrives, eq. 2, §3.3]."""
 
 from __future__ import annotations
 
@@ -19,57 +20,126 @@ if TYPE_CHECKING:
 
 def mode_shapes(modal: ModalResult, *, ax: Axes | None = None,
                 names: Sequence[str] | None = None, modes: int = 4) -> Figure:
-    """Relative amplitudes μ_k^(j) = |X_k^(j)| / Σ_i|X_i^(j)| of each mass k in the first
-    ``modes`` elastic modes j, as grouped bars (seed 000, its Fig. 5–7 and Table 1;
-    rigid-body modes left out). names label the masses (default M1, M2, …)."""
+    """Mode shapes X^(j) of the first ``modes`` elastic modes as signed lines along the
+    contour: one point per mass in contour order, the first mass repeated at the end to
+    close the ring; each shape scaled to a largest |X| of 1 with its largest component
+    positive ([MultimassChainDrives, eq. 2]). A line that crosses zero between two masses
+    has a node there; masses on opposite sides of zero move in opposite directions.
+    names label the masses (default M1, M2, …)."""
     fig, ax = figure_axes(ax, (6.4, 3.6))
     elastic = np.flatnonzero(~np.asarray(modal.rigid_body))[:modes]
-    mu = np.asarray(modal.normalized_amplitudes)
-    n = mu.shape[0]
+    shapes = np.asarray(modal.shapes, dtype=float)
+    n = shapes.shape[0]
     labels = list(names) if names is not None else [f"M{i + 1}" for i in range(n)]
-    width = 0.8 / max(len(elastic), 1)
-    x = np.arange(n)
+    x = np.arange(n + 1)
     for k, j in enumerate(elastic):
-        ax.bar(x + (k - (len(elastic) - 1) / 2) * width, mu[:, j], width,
-               color=CYCLE[k % len(CYCLE)],
-               label=f"mode {j}: {modal.frequencies_hz[j]:.1f} Hz")
-    ax.set_xticks(x, labels, rotation=90 if n > 8 else 0, fontsize="small")
-    ax.set_ylabel("relative amplitude μ")
-    ax.legend(fontsize="x-small")
-    finish(ax, "Mode shapes (relative amplitudes of the masses)")
+        col = shapes[:, j]
+        big = int(np.argmax(np.abs(col)))
+        scaled = col / col[big] if col[big] != 0 else col
+        closed = np.append(scaled, scaled[0])
+        ax.plot(x, closed, marker="o", ms=3.5, lw=1.4, color=CYCLE[k % len(CYCLE)],
+                label=f"mode {j}: {modal.frequencies_hz[j]:.1f} Hz")
+    ax.axhline(0.0, color=GREY, lw=0.8)
+    ax.set_xticks(x, [*labels, labels[0]], rotation=90 if n > 8 else 0, fontsize="small")
+    ax.set_xlim(0, n)
+    ax.set_ylim(-1.1, 1.1)
+    ax.set_xlabel("masses in contour order (the ring closes on the first)")
+    ax.set_ylabel("mode shape X (largest = 1)")
+    ax.legend(fontsize="x-small", loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=4,
+              frameon=False)
+    finish(ax)
     return fig
 
 
+def campbell_window(campbell: CampbellData, operating_rpm: float | None,
+                    window: float = 0.3) -> tuple[list[tuple[str, int, float, float]], float]:
+    """The crossings that matter and the top of the frequency axis [Hz].
+
+    A crossing (excitation line meets a natural frequency) matters when it lies within
+    ±``window`` (a fraction) of the operating speed: the working point sits near it. The
+    frequency axis reaches 1.3 × the highest such crossing, or 1.3 × the lowest natural
+    frequency when there is none (so the first mode and the lines below it show). Returns
+    ([(excitation, mode, speed [rpm], frequency [Hz])], top [Hz]).
+    """
+    rpm = np.asarray(campbell.speeds_rpm)
+    nat = np.asarray(campbell.natural_frequencies_hz)
+    out = []
+    for e, _mode, s in campbell.crossings:
+        if not rpm.min() <= s <= rpm.max():
+            continue
+        if operating_rpm is not None and abs(s / operating_rpm - 1.0) > window:
+            continue
+        # a parametric zone sits on the tooth line
+        line = campbell.excitation_hz.get(e, campbell.excitation_hz.get("tooth x1", rpm * 0))
+        f = float(np.interp(s, rpm, line))
+        out.append((e, _mode, float(s), f))
+    first = float(nat[0, 0]) if nat.size else 1.0
+    top = 1.3 * max([f for *_, f in out] or [first])
+    return out, max(top, 1.0)
+
+
 def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
-                     operating_rpm: float | None = None, max_lines: int = 8) -> Figure:
-    """Campbell diagram: natural frequencies of the ring (horizontal, solid), the excitation
-    lines (shaft frequencies and tooth-frequency harmonics, dashed, at most ``max_lines``),
-    twice the spans' first transverse frequencies (parametric resonance, dotted) and the
-    crossings (circles) against the driver speed [rpm]; the operating speed as a vertical
-    line (seed 000 §3.3; seed-notes §1)."""
+                     operating_rpm: float | None = None, max_lines: int = 8,
+                     band_percent: float | None = None, window: float = 0.3,
+                     max_labels: int = 4) -> Figure:
+    """Campbell diagram zoomed to where it matters: natural frequencies of the ring
+    (horizontal, solid), the excitation lines (shaft frequencies and tooth-frequency
+    harmonics, dashed, at most ``max_lines``), twice the spans' first transverse frequencies
+    (parametric resonance, dotted) and every crossing (circles) against the driver speed
+    [rpm]; the operating speed as a vertical line with the band ±``band_percent`` round it
+    shaded; the crossings within ±``window`` of the operating speed filled, the
+    ``max_labels`` nearest to it labelled ([MultimassChainDrives, §3.3]). Tooth-frequency
+    harmonics are drawn before the shaft lines. The frequency axis is cut at 1.3 × the highest of
+    those crossings (:func:`campbell_window`): a low crossing near the working speed is
+    never lost under a scale set by the highest mode."""
     fig, ax = figure_axes(ax, (6.4, 5.0))
     rpm = np.asarray(campbell.speeds_rpm)
     nat = np.asarray(campbell.natural_frequencies_hz)
+    near, top = campbell_window(campbell, operating_rpm, window)
     for j in range(nat.shape[1]):
         ax.plot(rpm, nat[:, j], color="k", lw=1.4, label="natural frequencies" if j == 0 else None)
-    for k, (name, line) in enumerate(list(campbell.excitation_hz.items())[:max_lines]):
+    lines = sorted(campbell.excitation_hz.items(), key=lambda kv: not kv[0].startswith("tooth"))
+    for k, (name, line) in enumerate(lines[:max_lines]):
         ax.plot(rpm, line, ls="--", lw=1.0, color=CYCLE[k % len(CYCLE)], label=name)
     trans = np.asarray(campbell.span_transverse_hz)
     for i in range(trans.shape[1] if trans.ndim == 2 else 0):
         ax.plot(rpm, 2 * trans[:, i], ls=":", lw=1.0, color=GREY,
                 label="2·f₁ of spans (parametric)" if i == 0 else None)
+    tooth = campbell.excitation_hz.get("tooth x1", np.zeros_like(rpm))
     cross = [(s, e) for e, _, s in campbell.crossings if rpm.min() <= s <= rpm.max()]
     if cross:
-        ys = [np.interp(s, rpm, campbell.excitation_hz[e]) if e in campbell.excitation_hz
-              else np.nan for s, e in cross]
+        ys = [np.interp(s, rpm, campbell.excitation_hz.get(e, tooth)) for s, e in cross]
         ax.plot([s for s, _ in cross], ys, "o", mfc="none", color=TIGHT, label="crossings")
+    labelled: list[tuple[float, float]] = []
+    span_x, span_y = float(rpm.max() - rpm.min()) or 1.0, top
+    for e, mode, s, f in sorted(near, key=lambda c: abs(c[2] - (operating_rpm or c[2]))):
+        ax.plot([s], [f], "o", color=TIGHT, ms=7)
+        crowded = any(abs(s - x) < 0.12 * span_x and abs(f - y) < 0.08 * span_y
+                      for x, y in labelled)
+        if crowded or len(labelled) >= max_labels:
+            continue
+        labelled.append((s, f))
+        what = (f"{e} × mode {mode}" if mode >= 0
+                else f"tooth x1 = 2·f₁ of span {e.rsplit(' ', 1)[-1]}")
+        ax.annotate(f"{what}\n{s:.0f} rpm, {f:.3g} Hz", (s, f), textcoords="offset points",
+                    xytext=(6, 6), fontsize="x-small", color=TIGHT,
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                          "alpha": 0.8})
     if operating_rpm is not None:
+        if band_percent:
+            b = band_percent / 100.0
+            ax.axvspan(operating_rpm / (1 + b), operating_rpm / (1 - b) if b < 1 else rpm.max(),
+                       color=TIGHT, alpha=0.1, lw=0,
+                       label=f"±{band_percent:g} % of the working frequencies")
         ax.axvline(operating_rpm, color=TIGHT, lw=1.0, label=f"operating {operating_rpm:.0f} rpm")
-    top = max(float(np.nanmax(nat)) if nat.size else 0.0, 1.0) * 1.3
     ax.set_ylim(0, top)
     ax.set_xlim(rpm.min(), rpm.max())
     ax.set_xlabel("driver speed, rpm")
     ax.set_ylabel("frequency, Hz")
+    hidden = int(np.sum(nat[0] > top)) if nat.size else 0
+    if hidden:
+        ax.text(0.99, 0.98, f"{hidden} higher mode(s) above {top:.0f} Hz not shown",
+                transform=ax.transAxes, ha="right", va="top", fontsize="x-small", color=GREY)
     ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     finish(ax, "Campbell diagram")
     return fig

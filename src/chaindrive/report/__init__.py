@@ -1,5 +1,7 @@
-"""The design report: every result of an analysis in one HTML file (figures embedded) or
-one PDF (see ``docs/report.md``).
+"""The design report a checker signs: one HTML file (figures embedded) or one PDF typeset
+with Typst (see ``docs/report.md``). Page 1 gives the verdict of every check, the governing
+checks and the warnings; then the inputs, the results and the checks, every symbol defined
+with its formula and source where it first appears, and the references.
 
 ::
 
@@ -16,20 +18,24 @@ import datetime as _dt
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from chaindrive.display import UnitSystem, unit_system
 from chaindrive.errors import DesignError
-from chaindrive.io.atomic import atomic_path
+from chaindrive.io.atomic import write_bytes
 from chaindrive.report.content import (
     SECTIONS,
     Block,
+    Definitions,
     Plot,
     Report,
     ReportInput,
     Section,
     Table,
     Text,
+    Verdict,
     register_section,
 )
-from chaindrive.report.sections import register_standard_sections
+from chaindrive.report.sections import references_section, register_standard_sections
+from chaindrive.report.symbols import SYMBOLS
 
 register_standard_sections()
 
@@ -38,27 +44,43 @@ if TYPE_CHECKING:
 
     from chaindrive.analysis import Analysis
 
-__all__ = ["SECTIONS", "Block", "Plot", "Report", "ReportInput", "Section", "Table", "Text",
-           "build_report", "register_section", "render_html", "write_report"]
+__all__ = ["SECTIONS", "Block", "Definitions", "Plot", "Report", "ReportInput", "Section",
+           "Table", "Text", "Verdict", "build_report", "register_section", "render_html",
+           "render_pdf", "report_text", "write_report"]
 
 FORMATS = (".html", ".htm", ".pdf")
 
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
-                 synthesis: object = None) -> Report:
-    """Build every registered section of the report of ``analysis``.
+                 synthesis: object = None, units: str = "SI") -> Report:
+    """Build every registered section of the report of ``analysis``, then the references.
 
-    source : the design file (echoed, and its SHA-256 printed); dpi of the figures;
-    progress : called
-    with each section's title before it is built (e.g. to advance a progress bar);
-    synthesis : the optimisation that chose this design (its Pareto set and front).
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysed design (the report reads it and computes nothing).
+    source : str | Path | None
+        The design file (echoed at the end, its SHA-256 in the header).
+    dpi : int
+        Resolution of the figures [1/in].
+    progress : callable | None
+        Called with each section's title before it is built (e.g. a progress bar).
+    synthesis : SynthesisResult | None
+        The optimisation that chose this design (its Pareto set and front).
+    units : str
+        Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
+
+    Returns
+    -------
+    Report
     """
     import chaindrive
 
+    system: UnitSystem = unit_system(units)
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      synthesis=synthesis)
+                      synthesis=synthesis, units=system)
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:
@@ -66,12 +88,40 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
         blocks = spec.build(inp)
         if blocks:
             built.append(Section(spec.key, spec.title, tuple(blocks)))
+    built.append(Section("references", "References",
+                         tuple(references_section(inp, report_text(built)))))
+    date = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     meta = [("chaindrive", chaindrive.__version__)]
     if inp.source is not None:
         meta += [("design file", inp.source.name), ("SHA-256 of the file", inp.source_hash or "")]
-    meta.append(("generated", _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")))
+    meta += [("generated", date), ("units", "SI (mm, N, kW, MPa)" if system == "SI"
+                                   else "US customary (in, lbf, hp, psi)")]
     plots = tuple(b.key for s in built for b in s.blocks if isinstance(b, Plot))
-    return Report(f"Chain drive report — {analysis.drive.name}", tuple(meta), tuple(built), plots)
+    return Report(f"Chain drive report — {analysis.drive.name}", tuple(meta), tuple(built),
+                  plots, drive=analysis.drive.name, version=chaindrive.__version__,
+                  date=date, units=system)
+
+
+def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
+    """All the words of the report's sections (texts, captions, cells, symbol definitions):
+    what the references are collected from and what a test reads."""
+    parts: list[str] = []
+    for s in sections:
+        parts.append(s.title)
+        for b in s.blocks:
+            if isinstance(b, Text):
+                parts.append(b.text)
+            elif isinstance(b, Table):
+                parts += [b.caption, *b.columns, *(str(v) for r in b.rows for v in r)]
+            elif isinstance(b, Plot):
+                parts.append(b.caption)
+            elif isinstance(b, Verdict):
+                parts += [b.headline, b.detail]
+            elif isinstance(b, Definitions):
+                for k in b.keys:
+                    sym = SYMBOLS[k]
+                    parts += [sym.text, sym.meaning, sym.formula, sym.source]
+    return "\n".join(parts)
 
 
 def render_html(report: Report) -> str:
@@ -81,21 +131,24 @@ def render_html(report: Report) -> str:
     return _render(report)
 
 
+def render_pdf(report: Report) -> bytes:
+    """The report as a PDF typeset by Typst (:mod:`chaindrive.report.pdf`)."""
+    from chaindrive.report.pdf import render_pdf as _render
+
+    return _render(report)
+
+
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
-                 synthesis: object = None) -> Path:
-    """Build the report and write it as HTML or PDF (by the suffix of ``path``)."""
+                 synthesis: object = None, units: str = "SI") -> Path:
+    """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
+    is written at once, after the whole report is built."""
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
-                          synthesis=synthesis)
-    with atomic_path(out) as tmp:  # complete or absent, never half-written
-        if suffix == ".pdf":
-            from chaindrive.report.pdf import write_pdf
-
-            write_pdf(report, tmp)
-        else:
-            tmp.write_text(render_html(report), encoding="utf-8")
+                          synthesis=synthesis, units=units)
+    data = render_pdf(report) if suffix == ".pdf" else render_html(report).encode("utf-8")
+    write_bytes(out, data)  # complete or absent, never half-written
     return out

@@ -12,26 +12,49 @@ from __future__ import annotations
 
 import hashlib
 import io
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
+
+from chaindrive.display import UnitSystem, convert, unit_of
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from chaindrive.analysis import Analysis
 
-TextKind = Literal["text", "warning", "fail", "ok", "code", "note"]
+TextKind = Literal["text", "warning", "fail", "ok", "code", "note", "item"]
 
 
 @dataclass(frozen=True, slots=True)
 class Text:
-    """A paragraph; kind "warning"/"fail" is highlighted, "code" is monospaced."""
+    """A paragraph; kind "warning"/"fail" is highlighted, "code" is monospaced, "item" is a
+    bullet point."""
 
     text: str
     kind: TextKind = "text"
+
+
+@dataclass(frozen=True, slots=True)
+class Verdict:
+    """The verdict of the checks, the first thing of the report: passed, a headline
+    (``The design passes all 15 checks``) and a line of detail."""
+
+    passed: bool
+    headline: str
+    detail: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Definitions:
+    """The symbols a section introduces (keys of :data:`chaindrive.report.symbols.SYMBOLS`),
+    shown as a table of meaning, formula, unit and source; ``units`` is the report's unit
+    system."""
+
+    keys: tuple[str, ...]
+    units: str = "SI"
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,7 +79,7 @@ class Plot:
     key: str = ""
 
 
-Block = Text | Table | Plot
+Block = Text | Table | Plot | Verdict | Definitions
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,12 +122,33 @@ class ReportInput:
     figure resolution, and derived parts computed once."""
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 synthesis: Any = None) -> None:
+                 synthesis: Any = None, units: UnitSystem = "SI") -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
         self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
+        self.units: UnitSystem = units
         self.notes: list[str] = []
+        self.defined: set[str] = set()
+
+    def define(self, *keys: str) -> list[Block]:
+        """A :class:`Definitions` block of the symbols ``keys`` not defined by an earlier
+        section (none when all are), and mark them defined."""
+        new = tuple(dict.fromkeys(k for k in keys if k not in self.defined))
+        self.defined.update(new)
+        return [Definitions(new, self.units)] if new else []
+
+    def col(self, label: str, kind: str) -> str:
+        """A column header ``label, unit`` in the report's unit system."""
+        return f"{label}, {unit_of(kind, self.units)}"
+
+    def unit(self, kind: str) -> str:
+        """The unit of a kind of quantity in the report's unit system."""
+        return unit_of(kind, self.units)
+
+    def val(self, value: float | None, kind: str) -> float | None:
+        """An SI value in the report's unit system."""
+        return convert(value, kind, self.units)[0]
 
     @cached_property
     def source_bytes(self) -> bytes | None:
@@ -138,9 +182,31 @@ def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
 
 @dataclass(frozen=True, slots=True)
 class Report:
-    """A built report: title, metadata lines (label, value) and sections."""
+    """A built report: title, metadata lines (label, value), sections, the keys of its
+    figures, and the page furniture: the drive's name, the chaindrive version, the date and
+    the unit system."""
 
     title: str
     meta: tuple[tuple[str, str], ...]
     sections: tuple[Section, ...]
     plots: tuple[str, ...] = field(default=())
+    drive: str = ""
+    version: str = ""
+    date: str = ""
+    units: str = "SI"
+
+
+def rows(items: Iterable[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
+    """Table rows as tuples.
+
+    Parameters
+    ----------
+    items : iterable of sequences
+        The rows.
+
+    Returns
+    -------
+    tuple of tuple
+        The rows as tuples.
+    """
+    return tuple(tuple(r) for r in items)

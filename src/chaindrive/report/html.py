@@ -4,10 +4,12 @@
 from __future__ import annotations
 
 import base64
+import re
 from html import escape
 
-from chaindrive.display import fmt
-from chaindrive.report.content import Block, Plot, Report, Table
+from chaindrive.display import exponent_parts, fmt, unit_of
+from chaindrive.report.content import Block, Definitions, Plot, Report, Table, Text, Verdict
+from chaindrive.report.symbols import SYMBOLS, Symbol
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif;
@@ -22,20 +24,41 @@ table.data th{background:#eef3f8;text-align:left;padding:4px 10px;border-bottom:
 table.data td{padding:3px 10px;border-bottom:1px solid #e3e3e3}
 table.data td.num{text-align:right;font-variant-numeric:tabular-nums}
 table.data tr.fail td{background:#fde2e1;color:#8b0000;font-weight:600}
+table.symbols td:first-child{font-weight:600;white-space:nowrap}
 p.warning{background:#fff4d6;border-left:5px solid #e69f00;padding:6px 10px;margin:4px 0}
 p.fail{background:#fde2e1;border-left:5px solid #c00000;padding:6px 10px;margin:4px 0;font-weight:600}
 p.ok{background:#e3f4ea;border-left:5px solid #009e73;padding:6px 10px}
 p.note{color:#444;font-style:italic}
+div.verdict{padding:10px 16px;margin:.6em 0 1em 0;border-radius:4px}
+div.verdict.ok{background:#e3f4ea;border-left:8px solid #009e73}
+div.verdict.fail{background:#fde2e1;border-left:8px solid #c00000}
+div.verdict strong{font-size:1.35em;display:block}
 details{margin:.5em 0 1em 0}pre{background:#f6f6f6;padding:8px;overflow-x:auto;font-size:.85em}
 figure{margin:.6em 0 1.4em 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}
 figcaption{font-size:.9em;color:#444}
 .figs{display:flex;flex-wrap:wrap;gap:12px}.figs figure{flex:1 1 480px;max-width:100%}
 """
 
+_TITLE = re.compile(r"\*([^*]+)\*")
+
+
+def _italic(m: re.Match[str]) -> str:
+    return f"<em>{m.group(1)}</em>"
+
+
+def number_html(value: object) -> str:
+    """A value as HTML by :func:`chaindrive.display.fmt`, an exponent as a power of ten
+    (``2.154·10<sup>8</sup>``)."""
+    text = fmt(value)
+    parts = exponent_parts(text)
+    if parts is None:
+        return escape(text)
+    return f"{escape(parts[0])}·10<sup>{parts[1]}</sup>"
+
 
 def _cell(value: object) -> str:
     num = isinstance(value, int | float) and not isinstance(value, bool)
-    return f'<td class="num">{escape(fmt(value))}</td>' if num else f"<td>{escape(fmt(value))}</td>"
+    return f'<td class="num">{number_html(value)}</td>' if num else f"<td>{escape(fmt(value))}</td>"
 
 
 def table_html(t: Table) -> str:
@@ -46,6 +69,27 @@ def table_html(t: Table) -> str:
         for i, row in enumerate(t.rows))
     return (f'<table class="data"><caption>{escape(t.caption)}</caption>'
             f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
+
+
+def symbol_unit(sym: Symbol, units: str) -> str:
+    """The unit shown for a symbol: its kind's unit in ``units``, or its fixed unit."""
+    if sym.unit in ("", "1"):
+        return "—"
+    try:
+        return unit_of(sym.unit, units)  # type: ignore[arg-type]
+    except KeyError:
+        return sym.unit
+
+
+def definitions_html(d: Definitions) -> str:
+    """The symbols a section introduces: symbol, meaning, formula, unit, source."""
+    body = "".join(
+        f"<tr><td>{escape(s.text)}</td><td>{escape(s.meaning)}</td>"
+        f"<td>{escape(s.formula or '—')}</td><td>{escape(symbol_unit(s, d.units))}</td>"
+        f"<td>{escape(s.source)}</td></tr>" for s in (SYMBOLS[k] for k in d.keys))
+    return ('<table class="data symbols"><caption>Symbols</caption><thead><tr><th>symbol</th>'
+            "<th>meaning</th><th>formula</th><th>unit</th><th>source</th></tr></thead>"
+            f"<tbody>{body}</tbody></table>")
 
 
 def plot_html(p: Plot) -> str:
@@ -62,26 +106,42 @@ def block_html(b: Block) -> str:
         return table_html(b)
     if isinstance(b, Plot):
         return plot_html(b)
+    if isinstance(b, Definitions):
+        return definitions_html(b)
+    if isinstance(b, Verdict):
+        kind = "ok" if b.passed else "fail"
+        return (f'<div class="verdict {kind}" id="verdict"><strong>{escape(b.headline)}'
+                f"</strong>{escape(b.detail)}</div>")
     if b.kind == "code":
-        return (f"<details><summary>Design file as given</summary><pre>{escape(b.text)}</pre>"
-                "</details>")
+        return f"<pre>{escape(b.text)}</pre>"
+    if b.kind == "item":
+        return f"<li>{_TITLE.sub(_italic, escape(b.text))}</li>"
     return f'<p class="{b.kind}">{escape(b.text)}</p>'
 
 
 def _blocks_html(blocks: tuple[Block, ...]) -> str:
-    """Blocks in order; runs of consecutive figures side by side."""
+    """Blocks in order; runs of consecutive figures side by side, of items in one list."""
     out: list[str] = []
     run: list[str] = []
-    for b in blocks:
-        if isinstance(b, Plot):
-            run.append(plot_html(b))
-            continue
+    kind = ""
+
+    def flush() -> None:
         if run:
-            out.append(f'<div class="figs">{"".join(run)}</div>')
-            run = []
-        out.append(block_html(b))
-    if run:
-        out.append(f'<div class="figs">{"".join(run)}</div>')
+            out.append(f'<div class="figs">{"".join(run)}</div>' if kind == "figs"
+                       else f'<ul>{"".join(run)}</ul>')
+            run.clear()
+
+    for b in blocks:
+        k = "figs" if isinstance(b, Plot) else "items" if (
+            isinstance(b, Text) and b.kind == "item") else ""
+        if k != kind:
+            flush()
+            kind = k
+        if k:
+            run.append(block_html(b))
+        else:
+            out.append(block_html(b))
+    flush()
     return "\n".join(out)
 
 

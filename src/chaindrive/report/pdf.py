@@ -1,127 +1,278 @@
-"""PDF rendering of a :class:`~chaindrive.report.content.Report` with matplotlib's PdfPages:
-A4 pages laid out top to bottom (headings, wrapped text, tables as monospaced columns,
-figures as images). No dependency beyond matplotlib: works on any machine where the plots
-work (an HTML→PDF converter would need a browser or Pango/Cairo system libraries)."""
+"""PDF rendering of a :class:`~chaindrive.report.content.Report`, typeset with Typst (the
+``typst`` package of PyPI: a compiler in one wheel, no system libraries, no browser).
+
+The report becomes a Typst document (:func:`typst_source`): A4 pages with a header (drive,
+chaindrive version) and a footer (date, "page x of y"), the verdict on page 1, tables that
+break across pages with their header repeated, symbols and formulas in Typst math, figures
+as PNG files next to the source. Every section heading and the verdict carry a
+``<chaindrive-where>`` metadata with the page they land on, so that a test (or a reader of
+the source) can ask where each part is (:func:`page_map`).
+"""
 
 from __future__ import annotations
 
-import io
-import textwrap
+import tempfile
+from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any, Literal
 
-from chaindrive.display import fmt
-from chaindrive.report.content import Block, Plot, Report, Table, Text
+from chaindrive.display import exponent_parts, fmt
+from chaindrive.report.content import Block, Definitions, Plot, Report, Table, Text, Verdict
+from chaindrive.report.html import symbol_unit
+from chaindrive.report.symbols import SYMBOLS
 
-if TYPE_CHECKING:
-    from matplotlib.backends.backend_pdf import PdfPages
-    from matplotlib.figure import Figure
+__all__ = ["page_map", "render_pdf", "render_png_pages", "typst_source", "write_pdf"]
 
-A4 = (8.27, 11.69)  # [in]
-MARGIN = 0.6  # [in]
-LINE = 1.45  # line height / font size
-COLOURS = {"warning": "#9a6700", "fail": "#c00000", "ok": "#00734d", "note": "#444444"}
-
-
-class _Pager:
-    """A cursor over A4 pages: y in inches from the top."""
-
-    def __init__(self, pdf: PdfPages) -> None:
-        self.pdf, self.fig, self.y = pdf, None, MARGIN
-        self.new_page()
-
-    def new_page(self) -> None:
-        from matplotlib.figure import Figure
-
-        if self.fig is not None:
-            self.pdf.savefig(self.fig)
-        self.fig: Figure | None = Figure(figsize=A4)
-        self.y = MARGIN
-
-    def room(self, height: float) -> None:
-        if self.y + height > A4[1] - MARGIN:
-            self.new_page()
-
-    def line(self, text: str, size: float = 9.0, **kw: object) -> None:
-        h = size * LINE / 72
-        self.room(h)
-        assert self.fig is not None
-        self.fig.text(MARGIN / A4[0], 1 - (self.y + h * 0.8) / A4[1], text, fontsize=size, **kw)
-        self.y += h
-
-    def image(self, plot: Plot) -> None:
-        import matplotlib.image as mpimg
-
-        width = A4[0] - 2 * MARGIN
-        height = width * plot.height / plot.width
-        if height > 0.6 * A4[1]:
-            height, width = 0.6 * A4[1], 0.6 * A4[1] * plot.width / plot.height
-        self.room(height + 0.3)
-        assert self.fig is not None
-        ax = self.fig.add_axes((MARGIN / A4[0], 1 - (self.y + height) / A4[1],
-                                width / A4[0], height / A4[1]))
-        ax.imshow(mpimg.imread(io.BytesIO(plot.png), format="png"))
-        ax.set_axis_off()
-        self.y += height
-        self.line(plot.caption, 8.0, style="italic")
-
-    def close(self) -> None:
-        if self.fig is not None:
-            self.pdf.savefig(self.fig)
-            self.fig = None
+#: Page set-up, fonts and the look of headings and tables.
+PREAMBLE = """
+#set document(title: {title}, author: "chaindrive {version}")
+#set page(paper: "a4", margin: (x: 16mm, top: 20mm, bottom: 18mm),
+  header: context {{
+    set text(size: 8pt, fill: luma(90))
+    if counter(page).get().first() > 1 [{drive} #h(1fr) chain drive report · chaindrive {version}]
+  }},
+  footer: context {{
+    set text(size: 8pt, fill: luma(90))
+    [{date} · units {units} #h(1fr) page #counter(page).display("1 of 1", both: true)]
+  }})
+#set text(font: ("Libertinus Serif", "New Computer Modern"), size: 9.5pt, lang: "en")
+#set par(justify: false, leading: 0.55em)
+#set table(stroke: 0.4pt + luma(180), inset: (x: 4pt, y: 2.6pt))
+#show table: set text(size: 8.2pt)
+#show heading.where(level: 1): it => block(above: 1.3em, below: 0.7em,
+  text(size: 13pt, weight: "bold", fill: rgb("#0b4f7c"), it.body))
+#show raw: set text(font: "DejaVu Sans Mono", size: 7.5pt)
+"""
 
 
-def table_lines(t: Table) -> list[str]:
-    """A table as monospaced lines (header, rule, rows; failed rows marked with ✗)."""
-    cells = [list(t.columns)] + [[fmt(v) for v in row] for row in t.rows]
-    widths = [max(len(r[i]) for r in cells) for i in range(len(t.columns))]
-    def row(r: list[str]) -> str:
-        return "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True))
-    lines = [row(cells[0]), "  ".join("─" * w for w in widths)]
-    lines += [row(r) + ("  ✗" if i in t.highlight else "") for i, r in enumerate(cells[1:])]
-    return lines
+def _s(text: object) -> str:
+    """A Typst string literal of ``text`` (inserted as plain text: no markup is read)."""
+    body = str(text).replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{body}"'
 
 
-def _block(p: _Pager, b: Block) -> None:
-    width_in = A4[0] - 2 * MARGIN
+def _t(text: object) -> str:
+    """Content of plain text: ``[#"text"]``."""
+    return f"[#{_s(text)}]"
+
+
+def _number(value: Any) -> str:
+    """A table cell's content: a number by :func:`chaindrive.display.fmt` (an exponent as a
+    power of ten in math), anything else as text."""
+    text = fmt(value)
+    parts = exponent_parts(text) if isinstance(value, float) else None
+    if parts is None:
+        return _t(text)
+    return f"[${parts[0]} times 10^({parts[1]})$]"
+
+
+def _where(key: str) -> str:
+    """A metadata element recording the page ``key`` lands on."""
+    return f'#context [#metadata((key: {_s(key)}, page: here().page())) <chaindrive-where>]\n'
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
+#: Symbols as the tables write them (Unicode) → Typst math.
+MATH_OF_TEXT: dict[str, str] = {**{s.text: s.math for s in SYMBOLS.values()},
+                                "Kэ": 'K_"э"', "a": "a", "k₁": "k_1", "k₂": "k_2",
+                                "k₂min": "k_(2 min)", "F₀": "F_0", "F₁max": "F_(1 max)"}
+#: Columns whose cells are symbols.
+SYMBOL_COLUMNS = ("symbol", "factor")
+
+
+def _symbol_cell(value: Any) -> str:
+    math = MATH_OF_TEXT.get(str(value)) if value else None
+    return f"[${math}$]" if math else _number(value)
+
+
+def table_typst(t: Table) -> str:
+    """A table: caption in bold, header repeated on every page, numbers right-aligned,
+    symbols in math, failed rows highlighted."""
+    n = len(t.columns)
+    numeric = [all(_is_number(r[i]) or r[i] is None for r in t.rows) and
+               any(_is_number(r[i]) for r in t.rows) for i in range(n)]
+    align = ", ".join("right" if num else "left" for num in numeric)
+    fails = ", ".join(str(i + 1) for i in t.highlight)
+    fill = (f"fill: (x, y) => if y in ({fails},) {{ rgb(\"#fde2e1\") }} "
+            "else if y == 0 { rgb(\"#eef3f8\") },") if t.highlight else \
+        "fill: (x, y) => if y == 0 { rgb(\"#eef3f8\") },"
+    head = ", ".join(f"[*#{_s(c)}*]" for c in t.columns)
+    cell = [_symbol_cell if c in SYMBOL_COLUMNS else _number for c in t.columns]
+    body = ",\n  ".join(", ".join(f(v) for f, v in zip(cell, row, strict=True))
+                         for row in t.rows)
+    return (f"#block(breakable: true, width: 100%)[#text(weight: \"bold\", size: 9pt, "
+            f"{_s(t.caption)})\n#table(columns: {n}, align: ({align},), {fill}\n"
+            f"  table.header({head}),\n  {body}{',' if t.rows else ''}\n)]\n")
+
+
+def definitions_typst(d: Definitions) -> str:
+    """The symbols a section introduces, in Typst math with their formulas."""
+    cells = []
+    for k in d.keys:
+        s = SYMBOLS[k]
+        formula = f"${s.formula_math}$" if s.formula_math else "—"
+        cells.append(f"[${s.math}$], {_t(s.meaning)}, [{formula}], "
+                     f"{_t(symbol_unit(s, d.units))}, {_t(s.source)}")
+    body = ",\n  ".join(cells)
+    return ("#block(breakable: true, width: 100%)[#text(weight: \"bold\", size: 9pt, "
+            "\"Symbols\")\n#table(columns: (auto, 1fr, auto, auto, auto), "
+            "fill: (x, y) => if y == 0 { rgb(\"#eef3f8\") },\n"
+            "  table.header([*symbol*], [*meaning*], [*formula*], [*unit*], [*source*]),\n"
+            f"  {body},\n)]\n")
+
+
+def _text_typst(b: Text) -> str:
+    if b.kind == "code":
+        return f"#raw(block: true, {_s(b.text)})\n"
+    if b.kind == "item":
+        return f"- {_title_markup(b.text)}\n"
+    colours = {"warning": ("#fff4d6", "#e69f00"), "fail": ("#fde2e1", "#c00000"),
+               "ok": ("#e3f4ea", "#009e73")}
+    if b.kind in colours:
+        fill, edge = colours[b.kind]
+        weight = ', weight: "bold"' if b.kind == "fail" else ""
+        return (f"#block(width: 100%, fill: rgb(\"{fill}\"), inset: 5pt, "
+                f"stroke: (left: 3pt + rgb(\"{edge}\")))[#text({_s(b.text)}{weight})]\n")
+    if b.kind == "note":
+        return f"#text(style: \"italic\", fill: luma(60), {_s(b.text)})\n\n"
+    return f"#text({_s(b.text)})\n\n"
+
+
+def _title_markup(text: str) -> str:
+    """Text with ``*title*`` set in italics, everything else literal."""
+    parts = text.split("*")
+    out = []
+    for i, part in enumerate(parts):
+        if not part:
+            continue
+        out.append(f"#emph({_s(part)})" if i % 2 else f"#{_s(part)}")
+    return "".join(out)
+
+
+def block_typst(b: Block, figures: dict[str, bytes]) -> str:
+    """One block as Typst markup; a figure's PNG is added to ``figures`` (file name →
+    bytes)."""
+    if isinstance(b, Table):
+        return table_typst(b)
+    if isinstance(b, Definitions):
+        return definitions_typst(b)
     if isinstance(b, Plot):
-        p.image(b)
-    elif isinstance(b, Table):
-        lines = table_lines(b)
-        size = min(8.5, width_in * 72 / (0.61 * max(len(s) for s in lines)))
-        p.line(b.caption, 9.5, weight="bold")
-        for i, s in enumerate(lines):
-            fail = i >= 2 and (i - 2) in b.highlight
-            p.line(s, size, family="monospace", color=COLOURS["fail"] if fail else "black")
-        p.y += 0.12
-    elif b.kind == "code":
-        p.line("Design file as given:", 9.0, weight="bold")
-        for s in b.text.splitlines():
-            p.line(s, 7.5, family="monospace")
-    else:
-        prefix = {"warning": "Warning: ", "fail": "", "ok": "", "note": ""}.get(b.kind, "")
-        for s in textwrap.wrap(prefix + b.text, 100) or [""]:
-            p.line(s, 9.0, color=COLOURS.get(b.kind, "black"),
-                   weight="bold" if b.kind == "fail" else "normal")
-        p.y += 0.05
+        return plots_typst([b], figures)
+    if isinstance(b, Verdict):
+        fill, edge = ("#e3f4ea", "#009e73") if b.passed else ("#fde2e1", "#c00000")
+        return (_where("verdict")
+                + f"#block(width: 100%, fill: rgb(\"{fill}\"), inset: 9pt, radius: 2pt, "
+                f"stroke: (left: 6pt + rgb(\"{edge}\")))[#text(size: 14pt, weight: \"bold\", "
+                f"{_s(b.headline)})\\ #text({_s(b.detail)})]\n")
+    return _text_typst(b)
+
+
+def plots_typst(plots: Sequence[Plot], figures: dict[str, bytes]) -> str:
+    """Figures: one alone at 72 % of the text width, two or more side by side; each PNG is
+    added to ``figures`` (file name → bytes)."""
+    cells = []
+    for p in plots:
+        name = f"figure_{len(figures) + 1}.png"
+        figures[name] = p.png
+        width = "100%" if len(plots) > 1 else "72%"
+        cells.append(f"figure(image({_s(name)}, width: {width}), caption: {_t(p.caption)}, "
+                     "supplement: none, numbering: none)")
+    if len(cells) == 1:
+        return f"#{cells[0]}\n"
+    return f"#grid(columns: 2, gutter: 8pt, {', '.join(cells)})\n"
+
+
+def _section_typst(blocks: Sequence[Block], figures: dict[str, bytes]) -> list[str]:
+    """A section's blocks; consecutive figures two to a row."""
+    out: list[str] = []
+    run: list[Plot] = []
+    for b in blocks:
+        if isinstance(b, Plot):
+            run.append(b)
+            if len(run) == 2:
+                out.append(plots_typst(run, figures))
+                run = []
+            continue
+        if run:
+            out.append(plots_typst(run, figures))
+            run = []
+        out.append(block_typst(b, figures))
+    if run:
+        out.append(plots_typst(run, figures))
+    return out
+
+
+def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
+    """The Typst source of the report and its figures (file name → PNG bytes)."""
+    figures: dict[str, bytes] = {}
+    out = [PREAMBLE.format(title=_s(report.title), version=report.version,
+                           drive=f"#{_s(report.drive)}", date=report.date,
+                           units="SI" if report.units == "SI" else "US customary")]
+    out.append(f"#text(size: 17pt, weight: \"bold\", {_s(report.title)})\n\n")
+    meta = ", ".join(f"{_t(k)}, {_t(v)}" for k, v in report.meta)
+    out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
+               f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
+    for i, s in enumerate(report.sections):
+        if i == 1:
+            out.append("#pagebreak()\n")
+        out.append(f"= #{_s(s.title)}\n" + _where(s.key))
+        out += _section_typst(s.blocks, figures)
+    return "".join(out), figures
+
+
+def _staged(report: Report, tmp: str) -> tuple[Path, Path]:
+    """The Typst source and its figures written to ``tmp``: (main file, root)."""
+    source, figures = typst_source(report)
+    root = Path(tmp)
+    for name, data in figures.items():
+        (root / name).write_bytes(data)
+    main = root / "report.typ"
+    main.write_text(source, encoding="utf-8")
+    return main, root
+
+
+def _compile(report: Report, fmt_: Literal["pdf", "png"], ppi: float | None = None) -> Any:
+    """Compile the report with Typst in a temporary directory."""
+    import typst
+
+    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
+        main, root = _staged(report, tmp)
+        return typst.compile(str(main), root=str(root), format=fmt_, ppi=ppi)
+
+
+def render_pdf(report: Report) -> bytes:
+    """The report as PDF bytes."""
+    data = _compile(report, "pdf")
+    assert isinstance(data, bytes)
+    return data
+
+
+def render_png_pages(report: Report, ppi: float = 60.0) -> list[bytes]:
+    """Every page of the report as a PNG (what the PDF shows, page by page)."""
+    pages = _compile(report, "png", ppi)
+    return list(pages) if isinstance(pages, list) else [pages]
+
+
+def page_map(report: Report) -> dict[str, int]:
+    """The page each section (by key) and the verdict (``"verdict"``) land on."""
+    import json
+
+    import typst
+
+    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
+        main, root = _staged(report, tmp)
+        found = json.loads(typst.query(str(main), "<chaindrive-where>", root=str(root)))
+    return {item["value"]["key"]: int(item["value"]["page"]) for item in found}
 
 
 def write_pdf(report: Report, path: Path) -> None:
     """Write the report as a PDF file at ``path``."""
-    from matplotlib.backends.backend_pdf import PdfPages
-
-    with PdfPages(path, metadata={"Title": report.title, "Creator": "chaindrive"}) as pdf:
-        pager = _Pager(pdf)
-        pager.line(report.title, 15, weight="bold")
-        for k, v in report.meta:
-            pager.line(f"{k}: {v}", 8.5, color="#555555")
-        for s in report.sections:
-            pager.room(1.2)
-            pager.y += 0.15
-            pager.line(s.title, 12.5, weight="bold", color="#0b4f7c")
-            for b in s.blocks:
-                _block(pager, b)
-        pager.close()
+    Path(path).write_bytes(render_pdf(report))
 
 
-__all__ = ["Text", "table_lines", "write_pdf"]
+def blocks_of(report: Report) -> Sequence[Block]:
+    """Every block of the report in order."""
+    return [b for s in report.sections for b in s.blocks]

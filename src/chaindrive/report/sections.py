@@ -1,77 +1,186 @@
 """The standard sections of the design report, in order (see :mod:`.content` for the
-registry). Each builder returns None when its part of the analysis is absent."""
+registry): the verdict page, inputs, geometry, kinematics, selection and strength; the
+dynamics sections are in :mod:`.sections_dynamics`; then the checks, the design file and the
+references. Each builder returns None when its part of the analysis is absent, defines the
+symbols it uses the first time they appear (:meth:`ReportInput.define`) and reads the
+analysis only: the report never computes.
+"""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from chaindrive.display import RAD_S_TO_RPM, check_row, fmt
+from chaindrive.checks import worst
+from chaindrive.display import check_row, check_unit, fmt, margin_percent
+from chaindrive.report.bibliography import REFERENCES, cited_keys
 from chaindrive.report.content import (
     Block,
     ReportInput,
     Table,
     Text,
+    Verdict,
     plot_block,
     register_section,
+    rows,
 )
 
+if TYPE_CHECKING:
+    from chaindrive.checks import Check
 
-def _rows(rows: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
-    return tuple(tuple(r) for r in rows)
-
-
-# --- checks and warnings -----------------------------------------------------------------
-
-def check_rows(inp: ReportInput) -> list[tuple[str, Any, str, str, str]]:
-    """Every check of the analysis as shown: (check, value, required, result, source)."""
-    return [check_row(c) for c in inp.analysis.checks()]
+#: How many passing checks with the smallest margins page 1 shows beside the failures.
+GOVERNING = 4
+#: How many warnings page 1 shows (the section Checks lists them all).
+FIRST_WARNINGS = 5
 
 
-def checks_section(inp: ReportInput) -> list[Block]:
-    """Warnings of every part and the failed checks, first thing in the report."""
-    blocks: list[Block] = []
-    warnings = [w["message"] for w in inp.document.get("warnings", [])] + inp.notes
-    checks = check_rows(inp)
-    failed = [c for c in checks if c[3] != "pass"]
-    if not warnings and not failed:
-        blocks.append(Text("No warnings; every check passed.", "ok"))
-    for c in failed:
-        blocks.append(Text(f"{c[3]}: {c[0]} = {fmt(c[1])} (required {c[2]})", "fail"))
-    blocks += [Text(w, "warning") for w in warnings]
-    if checks:
-        blocks.append(Table("Checks", ("check", "value", "required", "result", "source"),
-                            _rows(checks),
-                            tuple(i for i, c in enumerate(checks) if c[3] != "pass")))
+# --- page 1: the verdict -------------------------------------------------------------------------
+
+def _check_cells(c: Check, inp: ReportInput) -> tuple[Any, ...]:
+    """(check, subject, value, required, margin %, result, source) of a check."""
+    _, value, required, result, source = check_row(c, inp.units)
+    unit = check_unit(c, inp.units)
+    sep = "" if unit in ("°", "%", "") else " "
+    shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
+    name = c.name + (f" ({c.note})" if c.note and not c.passed else "")
+    return name, c.subject, shown, required, margin_percent(c), result, source
+
+
+def governing_checks(checks: Sequence[Check]) -> list[Check]:
+    """The checks page 1 shows: every one that does not pass, then the passing ones with the
+    smallest margins (:func:`chaindrive.checks.worst` order), at most :data:`GOVERNING`."""
+    failed = [c for c in checks if not c.passed]
+    passed = sorted((c for c in checks if c.passed),
+                    key=lambda c: (c.margin_fraction if c.margin_fraction is not None
+                                   else math.inf))
+    return failed + passed[:max(GOVERNING - len(failed), 1)]
+
+
+def _estimates(inp: ReportInput) -> list[str]:
+    """What the results rest on that the design does not give (defaults and estimates)."""
+    d = inp.analysis.drive
+    out = []
+    guessed = [s.name for s in d.sprockets if s.inertia is None]
+    if guessed:
+        which = (f"all {len(guessed)} sprockets" if len(guessed) == len(d.sprockets) > 3
+                 else ", ".join(guessed))
+        out.append(f"Moments of inertia of {which} estimated from the material "
+                   "and plate proportions (a steel plate of the tooth width with the bore "
+                   "0.19·z·p/π; no hub, shaft or coupling): give the inertia of the real parts "
+                   "in the design file.")
+    if d.dynamics.damping_ratio == 0.06:
+        out.append("Damping ratio 0.06 of the chain hinges, the value of "
+                   "[MultimassChainDrives, Table 1] (no measurement of this drive).")
+    if inp.analysis.response is not None:
+        out.append("Coefficient of dynamics from the root mean square of the spans' dynamic "
+                   "loads: the reading of [MultimassChainDrives, §3.3] this package uses.")
+    return out
+
+
+def summary_section(inp: ReportInput) -> list[Block]:
+    """Page 1: the verdict of every check, the governing checks, the warnings, what the
+    results rest on, and the design at a glance."""
+    a = inp.analysis
+    checks = a.checks()
+    failed = [c for c in checks if not c.passed]
+    if failed:
+        first = worst(failed)
+        assert first is not None
+        verdict = Verdict(False, f"The design FAILS {len(failed)} of {len(checks)} checks.",
+                          f"Worst: {_check_cells(first, inp)[0]} on {first.subject}.")
+    else:
+        verdict = Verdict(True, f"The design passes all {len(checks)} checks.",
+                          "Each check is listed with its value, limit, margin and source in "
+                          "the section Checks.")
+    blocks: list[Block] = [verdict]
+    blocks += inp.define("margin")
+    gov = governing_checks(checks)
+    blocks.append(Table("Governing checks (those that fail, then the smallest margins)",
+                        ("check", "subject", "value", "required", "margin, %", "result",
+                         "source"), rows([_check_cells(c, inp) for c in gov]),
+                        tuple(i for i, c in enumerate(gov) if not c.passed)))
+    warnings = [w.message for w in a.warnings] + inp.notes
+    shown = warnings if len(warnings) <= FIRST_WARNINGS else warnings[:FIRST_WARNINGS - 1]
+    blocks.append(Text(f"Warnings ({len(warnings)})" if warnings else "No warnings.", "text"))
+    blocks += [Text(w, "warning") for w in shown]
+    if len(shown) < len(warnings):
+        blocks.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in the "
+                           "section Checks.", "note"))
+    estimates = _estimates(inp)
+    if estimates:
+        blocks.append(Text("The results rest on these defaults and estimates:", "text"))
+        blocks += [Text(e, "item") for e in estimates]
+    blocks.append(_glance(inp))
     return blocks
+
+
+def _glance(inp: ReportInput) -> Table:
+    """The design at a glance: chain, links, power, speeds, first natural frequency, K_D
+    and the dynamic safety factors, mass and cost."""
+    a = inp.analysis
+    d, g, k = a.drive, a.geometry, a.kinematics
+    items: list[tuple[str, Any, str]] = [
+        ("chain", d.chain.spec.designation, ""),
+        ("links", g.links, ""),
+        ("chain length", inp.val(g.chain_length, "length"), inp.unit("length")),
+        ("power", inp.val(d.power, "power"), inp.unit("power")),
+        ("driver speed", inp.val(d.driver.speed, "speed"), "rpm"),
+        ("chain speed", inp.val(k.chain_speed, "velocity"), inp.unit("velocity")),
+        ("tooth frequency", k.tooth_frequency, "Hz"),
+        ("lowest natural frequency", a.dynamics.modal.first_elastic_frequency_hz, "Hz")]
+    response = a.response
+    if response is not None:
+        s = response.strength_dict()
+        items += [("coefficient of dynamics", response.steady.coefficient_of_dynamics, ""),
+                  ("dynamic safety: start-up, steady, run-up",
+                   ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")),
+                   f"allowable {fmt(s['allowable_k'])}")]
+    m = a.metrics
+    items += [("mass of chain and sprockets", inp.val(m.mass_kg, "mass"), inp.unit("mass")),
+              ("cost (estimate)", m.cost, m.cost_breakdown.currency)]
+    return Table("The design at a glance", ("quantity", "value", "unit"), rows(items))
 
 
 # --- inputs ----------------------------------------------------------------------------------
 
 def inputs_section(inp: ReportInput) -> list[Block]:
-    """The design as read (SI converted to engineering units), and the file itself."""
+    """The design as read, in the report's units."""
     d = inp.analysis.drive
     spec = d.chain.spec
-    rows = [("chain", spec.designation, ""), ("pitch p", spec.pitch * 1e3, "mm"),
-            ("strands", spec.strands, ""), ("roller diameter d1", spec.roller_diameter * 1e3, "mm"),
-            ("inner width b1", spec.inner_width * 1e3, "mm"),
-            ("breaking load Q", spec.breaking_load / 1e3, "kN"),
-            ("mass per length q", spec.mass_per_length, "kg/m"),
-            ("power P", None if d.power is None else d.power / 1e3, "kW"),
-            ("service factor", d.service_factor, ""), ("tooth form", d.tooth_form, "")]
+    blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
+    items = [("chain", "", spec.designation, ""), ("pitch", "p", inp.val(spec.pitch, "length"),
+                                                   inp.unit("length")),
+             ("strands", "", spec.strands, ""),
+             ("roller diameter", "d₁", inp.val(spec.roller_diameter, "length"),
+              inp.unit("length")),
+             ("width between inner plates", "b₁", inp.val(spec.inner_width, "length"),
+              inp.unit("length")),
+             ("breaking load", "Q", inp.val(spec.breaking_load, "force_k"),
+              inp.unit("force_k")),
+             ("mass per length", "q", inp.val(spec.mass_per_length, "linear_density"),
+              inp.unit("linear_density")),
+             ("power", "P", inp.val(d.power, "power"), inp.unit("power")),
+             ("service factor", "K_s", d.service_factor, ""),
+             ("tooth form", "", d.tooth_form, ""),
+             ("damping ratio", "ζ", inp.analysis.dynamics.damping_ratio, "")]
     if d.chain.links is not None:
-        rows.append(("links (imposed)", d.chain.links, ""))
-    blocks: list[Block] = [Table("Drive and chain", ("quantity", "value", "unit"), _rows(rows))]
+        items.append(("links (imposed)", "L_p", d.chain.links, ""))
+    blocks.append(Table("Drive and chain", ("quantity", "symbol", "value", "unit"),
+                        rows(items)))
     blocks.append(Table(
         "Sprockets as given (positions after the take-up)",
-        ("name", "role", "teeth", "x, mm", "y, mm", "side", "speed, rpm", "adjustable",
-         "material", "inertia, kg·m²"),
-        _rows([(s.name, s.role, s.teeth, s.x * 1e3, s.y * 1e3, s.side,
-                None if s.speed is None else s.speed * RAD_S_TO_RPM, s.adjustable, s.material, s.inertia)
-               for s in d.sprockets])))
-    if inp.source_bytes is not None:
-        blocks.append(Text(inp.source_bytes.decode("utf-8", errors="replace"), "code"))
+        ("name", "role", "teeth z", inp.col("x", "length"), inp.col("y", "length"), "side",
+         "speed n, rpm", "adjustable", "material", inp.col("inertia", "inertia")),
+        rows([(s.name, s.role, s.teeth, inp.val(s.x, "length"), inp.val(s.y, "length"),
+               s.side, inp.val(s.speed, "speed"), s.adjustable, s.material,
+               inp.val(s.inertia, "inertia")) for s in d.sprockets])))
+    dyn = d.dynamics
+    blocks.append(Table("Dynamics settings ([dynamics])", ("setting", "value"), rows([
+        ("harmonics of the tooth frequency", dyn.harmonics),
+        ("start-up simulated", dyn.transient),
+        ("start-up duration, s", dyn.startup_duration),
+        ("motor law", dyn.motor), ("resistance law", dyn.resistance)])))
     return blocks
 
 
@@ -81,328 +190,214 @@ def geometry_section(inp: ReportInput) -> list[Block]:
     """Contour summary, sprockets, spans and the layout to scale."""
     from chaindrive.plotting import contour_layout
 
-    g = inp.document["geometry"]
-    summary = [("links", g["links"], ""), ("chain length", g["chain_length_mm"], "mm"),
-               ("tight length", g["tight_length_mm"], "mm"),
-               ("tight length", g["tight_length_pitches"], "pitches"),
-               ("slack", g["slack_mm"], "mm"),
-               ("centre distance", g["center_distance_mm"], "mm"),
-               ("adjusted sprocket", g["adjusted_sprocket"], ""),
-               ("adjustment", g["adjustment_mm"], "mm"),
-               ("direction of travel", g["direction_of_travel"], "")]
-    return [
-        Table("Contour", ("quantity", "value", "unit"), _rows(summary)),
-        Table("Sprockets", ("name", "teeth", "side", "x, mm", "y, mm", "pitch Ø, mm",
-                            "tip Ø, mm", "root Ø, mm", "wrap, °", "teeth in mesh"),
-              _rows([(s["name"], s["teeth"], s["side"], s["x_mm"], s["y_mm"],
-                      s["pitch_diameter_mm"], s["tip_diameter_mm"], s["root_diameter_mm"],
-                      s["wrap_angle_deg"], s["teeth_in_mesh"]) for s in g["sprockets"]])),
-        Table("Spans", ("from", "to", "length, mm", "pitches", "inclination, °", "tight"),
-              _rows([(s["from"], s["to"], s["length_mm"], s["length_pitches"],
-                      s["inclination_deg"], s["tight"]) for s in g["spans"]])),
-        plot_block(contour_layout(inp.analysis.geometry), "Contour layout to scale",
-                   inp.dpi, "layout"),
+    a = inp.analysis
+    g = a.geometry
+    gost = a.drive.tooth_form == "GOST 591"
+    tip, root = ("da_gost", "df_gost") if gost else ("da_iso", "df_iso")
+    blocks = inp.define("d", tip, root, "theta", "zm", "ell", "Lp")
+    L = inp.unit("length")
+    summary = [("links", "L_p", g.links, ""),
+               ("chain length L_p·p", "", inp.val(g.chain_length, "length"), L),
+               ("tight length Σℓ + Σ θd/2", "", inp.val(g.tight_length, "length"), L),
+               ("tight length in pitches", "", g.tight_pitches, ""),
+               ("slack (not taken up)", "", inp.val(g.slack, "length"), L),
+               ("centre distance (two sprockets)", "a",
+                inp.val(g.center_distance, "length"), L),
+               ("adjusted sprocket", "", None if g.adjusted is None
+                else g.sprockets[g.adjusted].name, ""),
+               ("adjustment", "", inp.val(g.adjustment, "length"), L),
+               ("direction of travel", "", "counter-clockwise" if g.orientation > 0
+                else "clockwise", "")]
+    ts, rs = ("D_e", "D_i") if gost else ("d_a", "d_f")
+    blocks += [
+        Table("Contour", ("quantity", "symbol", "value", "unit"),
+              rows([r for r in summary if r[2] is not None])),
+        Table("Sprockets", ("name", "teeth z", "side", inp.col("x", "length"),
+                            inp.col("y", "length"), inp.col("d", "length"),
+                            inp.col(ts, "length"), inp.col(rs, "length"), "θ, °",
+                            "teeth in mesh z_m"),
+              rows([(s.name, s.teeth, s.side, inp.val(s.x, "length"), inp.val(s.y, "length"),
+                     inp.val(s.pitch_diameter, "length"), inp.val(s.tip_diameter, "length"),
+                     inp.val(s.root_diameter, "length"), math.degrees(s.wrap_angle),
+                     s.teeth_in_mesh) for s in g.sprockets])),
+        Table("Spans", ("from", "to", inp.col("ℓ", "length"), "ℓ/p", "inclination, °",
+                        "tight"),
+              rows([(s.start_name, s.end_name, inp.val(s.length, "length"), s.pitches,
+                     math.degrees(s.inclination), s.tight) for s in g.spans])),
+        plot_block(contour_layout(g), "Contour layout to scale (tight span red)", inp.dpi,
+                   "layout"),
     ]
+    return blocks
 
 
 def kinematics_section(inp: ReportInput) -> list[Block]:
-    """Speeds and the polygonal non-uniformity (seed 003)."""
+    """Speeds and the polygonal non-uniformity [ChainNonUniformity]."""
     from chaindrive.plotting import chain_speed, transmission_ratio
 
-    k = inp.document["kinematics"]
-    return [
-        Table("Chain", ("quantity", "value", "unit"), _rows([
-            ("mean chain speed", k["chain_speed_m_s"], "m/s"),
-            ("minimum / maximum", f"{k['chain_speed_min_m_s']:.4g} / "
-                                  f"{k['chain_speed_max_m_s']:.4g}", "m/s"),
-            ("tooth frequency", k["tooth_frequency_hz"], "Hz")])),
-        Table("Sprocket speeds", ("name", "speed, rpm", "direction", "speed variation, %",
-                                  "hinge deviation peak, mm"),
-              _rows([(s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"],
-                      s["hinge_deviation_peak_mm"]) for s in k["sprockets"]])),
-        plot_block(chain_speed(inp.analysis.kinematics), "Chain speed over one tooth period",
-                   inp.dpi, "chain_speed"),
+    k = inp.analysis.kinematics
+    doc = k.to_dict()
+    blocks = inp.define("v", "fz", "dv")
+    V = inp.unit("velocity")
+    blocks += [
+        Table("Chain", ("quantity", "symbol", "value", "unit"), rows([
+            ("mean chain speed", "v", inp.val(k.chain_speed, "velocity"), V),
+            ("least / greatest chain speed", "",
+             f"{fmt(inp.val(doc['chain_speed_min_m_s'], 'velocity'))} / "
+             f"{fmt(inp.val(doc['chain_speed_max_m_s'], 'velocity'))}", V),
+            ("tooth frequency", "f_z", k.tooth_frequency, "Hz")])),
+        Table("Sprocket speeds", ("name", "speed n, rpm", "direction", "δ_v, %",
+                                  inp.col("hinge deviation peak", "length")),
+              rows([(s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"],
+                     inp.val(s["hinge_deviation_peak_mm"] * 1e-3, "length"))
+                    for s in doc["sprockets"]])),
+        plot_block(chain_speed(k), "Chain speed over one tooth period", inp.dpi,
+                   "chain_speed"),
         plot_block(transmission_ratio(inp.analysis), "Instantaneous transmission ratio",
                    inp.dpi, "ratio"),
     ]
+    return blocks
 
 
 # --- selection and strength -------------------------------------------------------------------
 
 def selection_section(inp: ReportInput) -> list[Block] | None:
     """The chain a method of the family selects, with the ranked candidates."""
-    sel = inp.document.get("selection")
+    sel = inp.analysis.selection
     if sel is None:
         return None
-    cands = sel["candidates"][:10]
-    head = (f"Selected ({sel['method']}): {sel['chain']}." if sel["chain"] is not None
-            else f"{sel['shortfall']}.")
+    doc = sel.to_dict()
+    cands = doc["candidates"][:10]
+    head = (f"Selected ({doc['method']}): {doc['chain']}." if doc["chain"] is not None
+            else f"{doc['shortfall']}.")
     return [Text(f"{head} The analysis uses the design chain "
-                 f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain keeps it)."),
-            Table("Candidates (best 10, ranked)", ("chain", "method", "strands", "mass, kg/m",
-                                                   "passed", "margin, %", "governing"),
-                  _rows([(c["chain"], c["method"], c["strands"], c["mass_kg_m"], c["passed"],
-                          None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
-                          c["governing"]) for c in cands]))]
+                 f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain "
+                 "keeps it). Each chain of the family is checked on this drive by the method "
+                 "that fits it; the margin is that of its governing check."),
+            Table("Candidates (best 10, ranked)",
+                  ("chain", "method", "strands", inp.col("q", "linear_density"), "passed",
+                   "margin, %", "governing check"),
+                  rows([(c["chain"], c["method"], c["strands"],
+                         inp.val(c["mass_kg_m"], "linear_density"), c["passed"],
+                         None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                         c["governing"]) for c in cands]))]
 
 
 def strength_section(inp: ReportInput) -> list[Block] | None:
     """Loads round the contour and static strength."""
     from chaindrive.plotting import shaft_loads, span_tensions
 
-    st = inp.document.get("strength")
+    st = inp.analysis.strength
     if st is None:
         return None
-    rows = [("chain speed v", st["chain_speed_m_s"], "m/s"),
-            ("peripheral force F_t", st["peripheral_force_n"], "N"),
-            ("sag tension F_0", st["sag_tension_n"], "N"),
-            ("centrifugal tension F_v", st["centrifugal_tension_n"], "N"),
-            ("operating factor Kэ", st["operating_factor_ke"], ""),
-            ("hinge pressure p", st["hinge_pressure_mpa"], "MPa"),
-            ("allowable pressure [p]", st["allowable_pressure_mpa"], "MPa"),
-            ("static safety factor s", st["safety_factor_static"], ""),
-            ("allowable safety factor [s]", st["allowable_safety_factor"], ""),
-            (f"rated power ({st.get('rating_method') or 'ACA'})", None if st["rated_power_w"] is None
-             else st["rated_power_w"] / 1e3, "kW"),
-            ("wear life to {:.0%} elongation{}".format(
-                st["permitted_elongation"],
-                " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""),
-             st["wear_life_h"], "h")]
+    doc = st.to_dict()
+    blocks = inp.define("Ft", "F0", "Fv", "FR", "Fs", "ph", "ph_allow", "s", "s_allow")
+    F, P = inp.unit("force"), inp.unit("pressure")
+    items = [("chain speed", "v", inp.val(doc["chain_speed_m_s"], "velocity"),
+              inp.unit("velocity")),
+             ("peripheral force", "F_t", inp.val(doc["peripheral_force_n"], "force"), F),
+             ("sag tension (k_f = " + fmt(doc["sag_factor"]) + ")", "F₀",
+              inp.val(doc["sag_tension_n"], "force"), F),
+             ("centrifugal tension", "F_v", inp.val(doc["centrifugal_tension_n"], "force"), F),
+             ("operating factor", "Kэ", doc["operating_factor_ke"], ""),
+             ("joint pressure", "p_h", inp.val(st.hinge_pressure, "pressure"), P),
+             ("allowable joint pressure", "[p_h]", inp.val(st.allowable_pressure, "pressure"),
+              P),
+             ("static safety factor", "s", doc["safety_factor_static"], ""),
+             ("allowable static safety factor", "[s]", doc["allowable_safety_factor"], "")]
+    if st.rated_power is not None:
+        blocks += inp.define("Prated", "Lh")
+        items += [(f"rated power ({doc['rating_method']})", "P_r",
+                   inp.val(st.rated_power, "power"), inp.unit("power")),
+                  ("wear life to {:.0%} elongation{}".format(
+                      doc["permitted_elongation"],
+                      " (extrapolated: wear does not limit)" if doc["wear_life_extrapolated"]
+                      else ""), "L_h", doc["wear_life_h"], "h")]
     names = [s.name for s in inp.analysis.drive.sprockets]
     spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
-    return [
-        Table("Loads and strength", ("quantity", "value", "unit"), _rows(rows)),
-        Table("Span tensions and shaft loads", ("span", "tension, N", "sprocket",
-                                                "shaft load, N"),
-              _rows([(sp, t, n, f) for sp, t, n, f in zip(
-                  spans, st["span_tensions_n"], names, st["shaft_loads_n"], strict=True)])),
-        plot_block(span_tensions(inp.analysis), "Static tension per span", inp.dpi, "tensions"),
+    blocks += [
+        Table("Loads and strength", ("quantity", "symbol", "value", "unit"), rows(items)),
+        Table("Span tensions and shaft loads", ("span", inp.col("F_R", "force"), "sprocket",
+                                                inp.col("F_s", "force")),
+              rows([(sp, inp.val(t, "force"), n, inp.val(f, "force")) for sp, t, n, f in zip(
+                  spans, doc["span_tensions_n"], names, doc["shaft_loads_n"], strict=True)])),
+        plot_block(span_tensions(inp.analysis), "Static tension per span", inp.dpi,
+                   "tensions"),
         plot_block(shaft_loads(inp.analysis), "Load per shaft", inp.dpi, "shaft_loads"),
     ]
-
-
-# --- dynamics --------------------------------------------------------------------------------
-
-def dynamics_section(inp: ReportInput) -> list[Block] | None:
-    """Natural frequencies, mode shapes, resonance table and Campbell diagram (seed 000)."""
-    from chaindrive.plotting import campbell_diagram, mode_shapes
-
-    dyn = inp.dynamics
-    modal = dyn.modal
-    names = [s.name for s in inp.analysis.drive.sprockets]
-    model = inp.analysis.drive_model
-    blocks: list[Block] = [
-        Text(f"Whole-drive model (docs/dynamics.md): {len(names)} sprockets, the chain with its "
-             f"own mass, the trains; {model.linear.size} degrees of freedom"
-             + ("" if model.complete else ", INCOMPLETE: " + "; ".join(model.missing))
-             + f". Damping ratio ζ = {dyn.damping_ratio:.3g} ({model.damping_source}). "
-             "Mode 0 is the rigid-body rotation of the drive."),
-        Table("Sprockets and spans", ("sprocket", "own reduced mass, kg",
-                                      "span stiffness to next, N/m"),
-              _rows(zip(names, modal.masses_kg.tolist(), modal.stiffness_n_per_m.tolist(),
-                        strict=True))),
-        Table("Natural frequencies", ("mode", "f, Hz", "damped f, Hz", "rigid body"),
-              _rows([(j, f, fd, bool(rb)) for j, (f, fd, rb) in enumerate(zip(
-                  modal.frequencies_hz, modal.damped_frequencies_hz, modal.rigid_body,
-                  strict=True))])),
-        plot_block(mode_shapes(modal, names=names), "Mode shapes (relative amplitudes)",
-                   inp.dpi, "mode_shapes"),
-    ]
-    if dyn.resonances:
-        band = inp.analysis.limits.resonance_band_percent
-        rows = [(r.working.label, r.working.frequency, r.natural_frequency, r.mode,
-                 r.margin_percent) for r in dyn.resonances]
-        blocks.append(Table("Resonance table (closest first)",
-                            ("working frequency", "f, Hz", "natural f, Hz", "mode", "margin, %"),
-                            _rows(rows), tuple(i for i, r in enumerate(dyn.resonances)
-                                               if abs(r.margin_percent) < band)))
-    published = inp.analysis.published
-    if published is not None:
-        blocks.append(Table(f"Beside the published figures ({published[0]})",
-                            ("quantity", "published", "this analysis", "unit"),
-                            _rows(published[1])))
-    if dyn.campbell is not None:
-        w = inp.analysis.drive.driver.speed
-        blocks.append(plot_block(campbell_diagram(dyn.campbell,
-                                                  operating_rpm=None if w is None else w * RAD_S_TO_RPM),
-                                 "Campbell diagram", inp.dpi, "campbell"))
     return blocks
 
 
-def _k_rows(response: Any) -> list[tuple[str, Any, str, str]]:
-    """The two-stage check k1, k2, k2min against [k] (seed 000 §3.6)."""
-    k = response.strength_dict()
-    return [(name, k[key], f"≥ {response.allowable_k:g}",
-             "—" if k[key] is None else "pass" if k[key] >= response.allowable_k else "FAIL")
-            for name, key in (("start-up k1 = Q/F1max", "k1"), ("steady k2 = Q/(F_R + F2)", "k2"),
-                              ("at resonance k2min = Q/(F_R + F2max)", "k2min"))]
-
-
-def _dynamic_load_rows(inp: ReportInput, response: Any) -> list[tuple[str, Any, str]]:
-    """K_D, F_D, F_t and the start-up summary."""
-    steady, startup = response.steady, response.startup
-    st = inp.document.get("strength") or {}
-    rows: list[tuple[str, Any, str]] = [
-        ("coefficient of dynamics K_D = 1 + F_D/F_t", steady.coefficient_of_dynamics, ""),
-        ("dynamic load F_D (RMS of the span peaks)", steady.dynamic_load_rms, "N"),
-        ("peripheral force F_t", st.get("peripheral_force_n"), "N"),
-        ("tooth frequency", steady.tooth_angular_frequency / (2 * math.pi), "Hz")]
-    if startup is not None:
-        rows += [("start-up peak F1max", float(startup.max_span_force.max()), "N"),
-                 ("settling time", startup.settling_time * 1e3, "ms"),
-                 ("start-up record", float(startup.times[-1]) * 1e3, "ms")]
-    return rows
-
-
-def _span_table(spans: list[str], response: Any) -> Table:
-    """Per span: static tension, steady dynamic load, start-up and resonance peaks, and the
-    loads of the optional disturbances."""
-    n = len(spans)
-    startup = response.startup
-    cols: list[tuple[str, Sequence[Any]]] = [
-        ("static F_R, N", response.span_tensions.tolist()),
-        ("steady peak F2, N", response.steady.span_dynamic_load.tolist()),
-        ("steady amplitude, N", response.steady.span_load_amplitude.tolist()),
-        ("start-up F1max, N", [None] * n if startup is None else startup.max_span_force.tolist()),
-        ("F2max over the AFC sweep, N", response.afc.max_span_load.tolist())]
-    cols += [(f"{name.replace('_', ' ')}, N", r.span_dynamic_load.tolist())
-             for name, r in response.disturbances.items()]
-    return Table("Dynamic loads per span", ("span", *(c for c, _ in cols)),
-                 _rows(zip(spans, *(v for _, v in cols), strict=True)))
-
-
-def _material_blocks(inp: ReportInput) -> list[Block]:
-    """The four material pairs ([MultimassChainDrives], Fig. 2–3, Table 1), when the analysis
-    ran that study."""
-    from chaindrive.plotting import material_comparison_chart
-
-    cases = inp.analysis.material_pairs
-    if not cases:
-        return []
-    return [
-        Text("The same layout with metal or polymer chain on metal or polymer sprockets "
-             "([MultimassChainDrives], Fig. 2–3, Table 1): ring model rebuilt per pair, "
-             "start-up over 0.3 s, first resonance from a sweep through the first natural "
-             "frequency.", "note"),
-        Table("Material pairs", ("chain", "sprockets", "start-up peak, N", "first f, Hz",
-                                 "resonance f_z, Hz", "resonance amplitude, N"),
-              _rows([(c.chain_material, c.sprocket_material, c.startup_peak_n,
-                      c.first_natural_frequency_hz, c.resonance_tooth_frequency_hz,
-                      c.resonance_amplitude_n) for c in cases])),
-        plot_block(material_comparison_chart(cases), "Material pairs: start-up peak and first "
-                   "resonance", inp.dpi, "materials"),
-    ]
-
-
-def response_section(inp: ReportInput) -> list[Block] | None:
-    """The dynamic response (Dynamics II, seed 000 §3.1–3.3, §3.6): the two-stage check,
-    K_D, the loads per span and per mass, the start-up oscillograms, the AFC and the
-    material pairs."""
-    from chaindrive.plotting import (
-        afc_curves,
-        inertia_and_irregularity,
-        startup_oscillogram,
-        startup_speeds,
-        steady_loads,
-    )
-
-    response = inp.analysis.response
-    if response is None:
-        return None
-    sprockets = [s.name for s in inp.analysis.drive.sprockets]
-    spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
-    steady, startup = response.steady, response.startup
-    k_rows = _k_rows(response)
-    blocks: list[Block] = [
-        Text("Kinematic excitation by the polygonal effect at the tooth frequency and its "
-             "harmonics, solved in the frequency domain; start-up from rest with the motor law "
-             "of the design ([motor]) on the motor's rotor; spans carry tension only "
-             "(docs/dynamic_response.md)."),
-        Table("Two-stage safety check (seed 000 §3.6)", ("check", "value", "required", "result"),
-              _rows(k_rows), tuple(i for i, r in enumerate(k_rows) if r[3] == "FAIL")),
-        Table("Dynamic loads", ("quantity", "value", "unit"),
-              _rows(_dynamic_load_rows(inp, response))),
-        _span_table(spans, response),
-    ]
-    if startup is not None:
-        blocks += [plot_block(startup_oscillogram(startup, names=spans),
-                              "Start-up oscillogram: span forces", inp.dpi, "startup"),
-                   plot_block(startup_speeds(startup, names=sprockets),
-                              "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
-    blocks += [
-        plot_block(afc_curves(response.afc, names=spans, operating_hz=steady
-                              .tooth_angular_frequency / (2 * math.pi)),
-                   "Amplitude–frequency characteristic per span", inp.dpi, "afc"),
-        plot_block(steady_loads(steady, names=spans), "Steady dynamic load per span", inp.dpi,
-                   "steady_loads"),
-        Table("Steady motion per mass", ("sprocket", "inertia load m·ẍ, N",
-                                         "displacement amplitude, mm", "irregularity Δ, %"),
-              _rows(zip(sprockets, steady.inertia_load.tolist(),
-                        (steady.displacement_amplitude * 1e3).tolist(),
-                        steady.irregularity_percent.tolist(), strict=True))),
-        plot_block(inertia_and_irregularity(steady, names=sprockets),
-                   "Inertia load and irregularity per mass", inp.dpi, "inertia"),
-    ]
-    return blocks + _material_blocks(inp)
-
-
-def damping_section(inp: ReportInput) -> list[Block] | None:
-    """The hinge-friction damping model [ChainHingeDissipation] for its reference chain, when
-    the analysis ran that study."""
-    from chaindrive.plotting import absorption_vs_amplitude
-
-    results = inp.analysis.hinge_friction
-    if not results:
-        return None
-    a = results[0].span_length
-    return [Text(f"The dynamics uses a damping ratio; the hinge-friction model gives ψ "
-                 f"(ζ = ψ/4π) from a chain's empirical coefficients, known only for the "
-                 f"reference chain of [ChainHingeDissipation]. The curves are for that chain "
-                 f"at the paper's conditions (span of 49 hinges, a = {a * 1e3:.0f} mm).", "note"),
-            plot_block(absorption_vs_amplitude(list(results)),
-                       "Absorption coefficient ψ against ȳ₀", inp.dpi, "damping")]
-
-
 def contours_section(inp: ReportInput) -> list[Block] | None:
-    """Multi-contour drives: the contour check of seed 004 (K_m), as a table of its values."""
+    """Multi-contour drives: the load share of the most loaded contour [Lyashuk]."""
     part = inp.analysis.contours
     if part is None:
         return None
-    flat = [(k, v) for k, v in part.to_dict().items() if not isinstance(v, dict | list)]
-    return [Table("Parallel contours (seed 004)", ("quantity", "value"), _rows(flat))]
+    flat = [(k.replace("_", " "), v) for k, v in part.to_dict().items()
+            if not isinstance(v, dict | list)]
+    return [*inp.define("Km"),
+            Text(f"{inp.analysis.drive.chain.contours} identical contours on common shafts; "
+                 "the strength checks use the most loaded one, P·K_m/m [Lyashuk, eq. 15]."),
+            Table("Parallel contours", ("quantity", "value"), rows(flat))]
 
 
-def synthesis_section(inp: ReportInput) -> list[Block] | None:
-    """The optimisation that chose this design (issue 8): the Pareto set and its front."""
-    from chaindrive.plotting import pareto_front
+# --- checks, design file, references ----------------------------------------------------------
 
-    result = inp.synthesis
-    if result is None:
+def checks_section(inp: ReportInput) -> list[Block]:
+    """Every check of the analysis with its value, limit, margin (≥ 0 passes) and source;
+    failed rows highlighted."""
+    checks = sorted(inp.analysis.checks(), key=lambda c: c.passed)
+    blocks = inp.define("margin")
+    blocks.append(Text("Every rule the design is held to. The margin has one sign for every "
+                       "check: m ≥ 0 passes, m < 0 fails; a check whose rule has no value "
+                       "for this design (a table that stops) cannot be verified and counts "
+                       "as a failure."))
+    blocks.append(Table("Checks", ("check", "subject", "value", "required", "margin, %",
+                                   "result", "source"),
+                        rows([_check_cells(c, inp) for c in checks]),
+                        tuple(i for i, c in enumerate(checks) if not c.passed)))
+    notes = [f"{c.name} ({c.subject}): {c.note}" for c in checks if c.note and c.passed]
+    if notes:
+        blocks.append(Text("Notes: " + "; ".join(notes) + ".", "note"))
+    warnings = [w.message for w in inp.analysis.warnings] + inp.notes
+    if warnings:
+        blocks.append(Text(f"Warnings ({len(warnings)})", "text"))
+        blocks += [Text(w, "item") for w in warnings]
+    return blocks
+
+
+def design_file_section(inp: ReportInput) -> list[Block] | None:
+    """The design file as given, with its SHA-256 (absent when the report is built from an
+    object)."""
+    if inp.source_bytes is None:
         return None
-    names = list(result.objectives)
-    rows = [("start", *[result.start.objectives.get(n) for n in names], result.start.feasible)]
-    rows += [(str(k), *[p.objectives[n] for n in names], p.constraints_ok)
-             for k, p in enumerate(result.pareto, start=1)]
-    return [
-        Text(f"{result.evaluations} designs evaluated by {result.method} (seed {result.seed}); "
-             f"this report is of Pareto design 1."),
-        Table("Pareto set", ("design", *names, "constraints ok"), _rows(rows)),
-        plot_block(pareto_front(result), "Pareto front", inp.dpi, "pareto_front"),
-    ]
+    return [Text(f"{inp.source.name if inp.source else ''}, SHA-256 {inp.source_hash}",
+                 "note"),
+            Text(inp.source_bytes.decode("utf-8", errors="replace"), "code")]
+
+
+def references_section(inp: ReportInput, cited: str) -> list[Block]:
+    """The bibliography: every source the report cites (``cited`` is the report's text)."""
+    return [Text(f"[{key}] {REFERENCES[key][1]}", "item")
+            for key in sorted(cited_keys(cited), key=str.lower)]
 
 
 def register_standard_sections() -> None:
     """Register the standard sections in report order (idempotent)."""
+    from chaindrive.report import sections_dynamics as dyn
+
     for key, title, build in (
-            ("checks", "Warnings and checks", checks_section),
+            ("summary", "Verdict", summary_section),
             ("inputs", "Inputs", inputs_section),
             ("geometry", "Contour geometry", geometry_section),
             ("kinematics", "Kinematics", kinematics_section),
             ("selection", "Chain selection", selection_section),
             ("strength", "Loads and strength", strength_section),
             ("contours", "Parallel contours", contours_section),
-            ("dynamics", "Dynamics", dynamics_section),
-            ("response", "Dynamic response", response_section),
-            ("damping", "Damping", damping_section),
-            ("synthesis", "Optimal synthesis", synthesis_section)):
+            ("dynamics", "Vibration of the contour", dyn.dynamics_section),
+            ("response", "Dynamic response", dyn.response_section),
+            ("materials", "Study: material pairs", dyn.materials_section),
+            ("damping", "Study: hinge-friction damping", dyn.damping_section),
+            ("checks", "Checks", checks_section),
+            ("synthesis", "Optimal synthesis", dyn.synthesis_section),
+            ("design_file", "Design file", design_file_section)):
         register_section(key, title, build)

@@ -34,8 +34,9 @@ from chaindrive.synthesis.evaluation import (
 )
 from chaindrive.synthesis.problem import Problem
 
-__all__ = ["BatchEvaluator", "ParetoDesign", "SynthesisResult", "design_mapping", "dominates",
-           "pareto_indices", "serial_evaluator", "solve"]
+__all__ = ["BatchEvaluator", "ConstraintReport", "ParetoDesign", "SynthesisResult",
+           "constraint_reports", "design_mapping", "dominates", "pareto_indices",
+           "serial_evaluator", "solve"]
 
 #: evaluates a batch of search vectors, in order
 BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
@@ -112,6 +113,76 @@ class ParetoDesign:
 
 
 @dataclass(frozen=True, slots=True)
+class ConstraintReport:
+    """How one constraint acted on the designs of a run.
+
+    Parameters
+    ----------
+    name : str
+        The constraint (a check key such as ``teeth_in_mesh[S3]``, a wish such as
+        ``chain_speed``, or ``buildable``).
+    rejected : int
+        Designs it rejected (constraint value g > 0).
+    evaluated : int
+        Designs evaluated in the run.
+    least_violation : float | None
+        The smallest g [-] of the designs it rejected: by how much the closest one missed, as
+        a fraction of the limit (g = −margin of :mod:`chaindrive.checks`); None when it
+        rejected none.
+    closest : dict | None
+        That design (the mapping a TOML design file loads to; None when it could not be
+        built).
+    error : str | None
+        For ``buildable``: the most frequent reason a design could not be built.
+    """
+
+    name: str
+    rejected: int
+    evaluated: int
+    least_violation: float | None
+    closest: dict[str, Any] | None = None
+    error: str | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (``constraints[]`` of ``chaindrive optimize --json``)."""
+        return {"constraint": self.name, "rejected": self.rejected,
+                "evaluated": self.evaluated, "least_violation": self.least_violation,
+                "closest_design": self.closest, "error": self.error}
+
+
+def constraint_reports(rows: Sequence[tuple[Evaluation, dict[str, Any] | None]]
+                       ) -> tuple[ConstraintReport, ...]:
+    """Every constraint of the evaluated designs with the designs it rejected and the
+    closest miss, the most rejecting first.
+
+    Parameters
+    ----------
+    rows : sequence of (Evaluation, dict | None)
+        Each evaluated design with its design mapping (None when it could not be built).
+
+    Returns
+    -------
+    tuple of ConstraintReport
+        One per constraint, the most rejecting first.
+    """
+    from collections import Counter
+
+    names = list(dict.fromkeys(k for ev, _ in rows for k in ev.constraints))
+    out = []
+    for name in names:
+        missed = [(ev.constraints[name], ev, d) for ev, d in rows
+                  if ev.constraints.get(name, 0.0) > 0]
+        if not missed:
+            out.append(ConstraintReport(name, 0, len(rows), None))
+            continue
+        g, _, design = min(missed, key=lambda m: m[0])
+        errors = Counter(ev.error for _, ev, _ in missed if ev.error)
+        out.append(ConstraintReport(name, len(missed), len(rows), float(g), design,
+                                    errors.most_common(1)[0][0] if errors else None))
+    return tuple(sorted(out, key=lambda c: -c.rejected))
+
+
+@dataclass(frozen=True, slots=True)
 class SynthesisResult:
     """The result of a search.
 
@@ -131,6 +202,8 @@ class SynthesisResult:
         The random seed.
     seconds : float
         Wall time [s].
+    constraint_report : tuple of ConstraintReport
+        How each constraint acted on the designs, the most rejecting first.
     """
 
     objectives: tuple[str, ...]
@@ -140,12 +213,14 @@ class SynthesisResult:
     method: str
     seed: int
     seconds: float
+    constraint_report: tuple[ConstraintReport, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
         return {"objectives": list(self.objectives), "method": self.method, "seed": self.seed,
                 "evaluations": self.evaluations, "seconds": self.seconds,
-                "start": self.start.to_dict(), "pareto": [p.to_dict() for p in self.pareto]}
+                "start": self.start.to_dict(), "pareto": [p.to_dict() for p in self.pareto],
+                "constraints": [c.to_dict() for c in self.constraint_report]}
 
 
 def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
@@ -330,4 +405,5 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
     else:
         raise DesignError("optimize.solver.method", f'must be "nsga2" or "optuna", got {method!r}')
     return SynthesisResult(problem.objectives, start, archive.pareto(), len(archive.rows),
-                           method, seed, time.perf_counter() - t0)
+                           method, seed, time.perf_counter() - t0,
+                           constraint_reports([(ev, d) for _, ev, d in archive.rows]))

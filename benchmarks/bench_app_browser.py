@@ -1,0 +1,72 @@
+"""Benchmark: the time from an edit of the 24-sprocket example to its results on screen, in
+a real browser (Chromium driven by Playwright), at 1400×900.
+
+The measurement is the browser test's own
+(``tests/e2e/test_app_browser.py::test_24_sprockets_fold_reset_and_edit_time``): eight edits
+of a tooth count typed in the sprocket table (committed by Enter) and eight through the
+"edit one sprocket" form (committed by Apply), each timed from the committing key to
+
+* the results of its design on screen: the contour, the headline numbers and the verdict
+  (the page's results marker, written right after them), and
+* the end of the page's run (its ready marker, written after the chain selection, the
+  warnings and the open tab).
+
+This script runs that test ``--runs`` times and reports the medians and the worst edit.
+Beside it, ``bench_app_recompute.py`` times the server side alone (the analysis the page
+runs after an edit). The machine is shared: run it idle, and read ``uptime`` beside it.
+
+Run: .venv/bin/python benchmarks/bench_app_browser.py [--runs 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+TEST = ("tests/e2e/test_app_browser.py::test_24_sprockets_fold_reset_and_edit_time")
+TARGET_S = 0.300
+
+
+def run_once() -> dict[str, list[float]]:
+    """One run of the browser test; its measured times [s]."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "times.json"
+        env = {**os.environ, "CHAINDRIVE_BENCH_OUT": str(out)}
+        proc = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                               TEST], cwd=ROOT, env=env, capture_output=True, text=True,
+                              check=False)
+        if proc.returncode != 0 or not out.exists():
+            raise SystemExit(f"the browser test failed:\n{proc.stdout[-3000:]}")
+        return json.loads(out.read_text(encoding="utf-8"))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3, help="runs of the browser test")
+    args = parser.parse_args()
+    load = os.getloadavg()[0]
+    merged: dict[str, list[float]] = {}
+    for _ in range(args.runs):
+        for key, values in run_once().items():
+            merged.setdefault(key, []).extend(values)
+    print(f"24-sprocket example at 1400x900, {args.runs} run(s), load average {load:.1f}")
+    print(f"{'edit':32s} {'median s':>9s} {'max s':>7s}")
+    for way in ("table", "form"):
+        for what in ("shown", "complete"):
+            v = merged[f"{way}_{what}_s"]
+            label = f"{way}: results shown" if what == "shown" else f"{way}: page complete"
+            print(f"{label:32s} {statistics.median(v):9.3f} {max(v):7.3f}")
+    met = all(statistics.median(merged[f"{w}_shown_s"]) <= TARGET_S for w in ("table", "form"))
+    print(f"target: results shown within {TARGET_S * 1e3:.0f} ms (median): "
+          f"{'met' if met else 'NOT MET'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,285 @@
+"""The result tabs and the downloads of the web page (Streamlit): what lies below the
+contour and the verdict. Each tab draws only when it is open; figures that take matplotlib
+a second are drawn on demand and kept per design, the always-open first tab uses the
+browser's own charts. Numbers and units come from :mod:`chaindrive.display` through
+:mod:`chaindrive.app.views`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import streamlit as st
+
+from chaindrive.app import runs
+from chaindrive.app.state import design_to_toml
+from chaindrive.app.views import (
+    Screen,
+    line_chart_svg,
+    modal_records,
+    resonance_records,
+    selection_records,
+    span_records,
+    sprocket_records,
+    strength_records,
+)
+from chaindrive.display import UnitSystem, convert, fmt, header
+from chaindrive.errors import ChainDriveError
+
+UNEXPECTED = "Something went wrong on the page ({}). Reload the page; if it persists, please "\
+             "report it with the design file."
+#: The tabs, in order.
+TABS = ("Sprockets & spans", "Selection & strength", "Modes & Campbell", "Start-up", "AFC",
+        "Multi-contour", "Report & files")
+
+
+def _units() -> UnitSystem:
+    return st.session_state.get("units", "SI")  # type: ignore[no-any-return]
+
+
+def file_name(suffix: str) -> str:
+    """The download name: the loaded file's stem with ``suffix``."""
+    return Path(st.session_state.get("source") or "design.toml").stem + suffix
+
+
+def _png(key: str, make: Callable[[], Any]) -> None:
+    """Show a matplotlib figure (rendered once per design and figure key)."""
+    cache = st.session_state.setdefault("png_cache", {})
+    if key not in cache:
+        if len(cache) > 24:
+            cache.clear()
+        cache[key] = runs.figure_png(make())
+    st.image(cache[key], width="stretch")
+
+
+def _spans(screen: Screen) -> list[str]:
+    return [f"{s.start_name}→{s.end_name}" for s in screen.outcome.analysis.geometry.spans]
+
+
+def tab_geometry(screen: Screen) -> None:
+    """Sprockets and spans; chain speed and ratio over a tooth period (small SVG charts)."""
+    doc, units = screen.document or {}, _units()
+    st.dataframe(sprocket_records(doc, units), hide_index=True, width="stretch")
+    st.dataframe(span_records(doc, units), hide_index=True, width="stretch")
+    a = screen.outcome.analysis
+    kin = a.kinematics
+    beta = np.degrees(kin.phase)
+    factor, unit = convert(1.0, "velocity", units)
+    tight = next((s for s in a.geometry.spans if s.tight), a.geometry.spans[0])
+    other = a.drive.sprockets[tight.start]
+    c1, c2 = st.columns(2)
+    c1.image(line_chart_svg(beta, {"chain speed v(β)": np.asarray(kin.chain_speed_trace)
+                                  * (factor or 1.0)},
+                           x_label="driver rotation within one tooth β [°]",
+                           y_label=f"chain speed [{unit}]"), width="stretch")
+    c2.image(line_chart_svg(beta, {f"ω₁/ω₂, {a.drive.driver.name} → {other.name}":
+                                  kin.ratio_traces[tight.start]},
+                           x_label="driver rotation within one tooth β [°]",
+                           y_label="transmission ratio"), width="stretch")
+
+
+def tab_strength(screen: Screen) -> None:
+    """The chain selection and the loads and static strength, as tables with units."""
+    import pandas as pd
+
+    doc, units = screen.document or {}, _units()
+    sel = doc.get("selection")
+    if sel is not None:
+        st.write(f"Selection by **{sel['method']}**: {sel['chain'] or sel['shortfall']}")
+        st.dataframe(selection_records(sel, units), hide_index=True, width="stretch")
+    st_doc = doc.get("strength")
+    if st_doc is None:
+        st.info("No strength check: give the power of the drive.")
+        return
+    c1, c2 = st.columns([1, 1])
+    c1.dataframe(strength_records(st_doc, units), hide_index=True, width="stretch")
+    force = header("static tension", "t_n", units)
+    factor = convert(1.0, "force", units)[0] or 1.0
+    frame = pd.DataFrame({"span": _spans(screen),
+                          force: [v * factor for v in st_doc["span_tensions_n"]]})
+    c2.bar_chart(frame, x="span", y=force, horizontal=len(frame) > 8, height=320)
+
+
+def tab_modes(screen: Screen) -> None:
+    """Natural frequencies, the resonance table, the Campbell diagram and the mode shapes
+    (figures drawn when the tab is opened)."""
+    doc = screen.document or {}
+    a = screen.outcome.analysis
+    from chaindrive.plotting import campbell_diagram, mode_shapes
+
+    c1, c2 = st.columns([1, 2])
+    with c1:
+        st.dataframe(modal_records(doc), hide_index=True, width="stretch")
+        res = resonance_records(doc, _spans(screen))
+        if res:
+            st.dataframe(res, hide_index=True, width="stretch")
+    with c2:
+        if a.dynamics.campbell is not None:
+            rpm = doc["drive"]["driver_speed_rpm"]
+            band = a.limits.resonance_band_percent
+            _png(f"{id(a)}-campbell", lambda: campbell_diagram(
+                a.dynamics.campbell, operating_rpm=rpm, band_percent=band))
+        names = [s.name for s in a.drive.sprockets]
+        _png(f"{id(a)}-modes", lambda: mode_shapes(a.dynamics.modal, names=names))
+
+
+def _full(screen: Screen, label: str, button: str) -> Any:
+    """The full analysis of the design on screen (run on demand, kept per design), or None
+    until the user asks for it (the reason is shown when it cannot run)."""
+    reason = runs.missing("response")
+    if reason is not None:
+        st.info(f"{label}: {reason}.")
+        return None
+    drive = screen.outcome.drive
+    store = st.session_state.setdefault("full", {})
+    key = id(screen)
+    if key not in store and st.button(button, key=f"run_{label}"):
+        with st.status(f"{label}: running the dynamic analysis…", expanded=False) as status:
+            try:
+                store[key] = runs.bounded_full_analysis(drive)
+                status.update(label=f"{label}: done", state="complete")
+            except ChainDriveError as exc:
+                store[key] = exc
+                status.update(label=f"{label}: {exc}", state="error")
+            except Exception as exc:
+                store[key] = RuntimeError(UNEXPECTED.format(type(exc).__name__))
+                status.update(label=f"{label}: failed", state="error")
+    result = store.get(key)
+    if isinstance(result, Exception):
+        st.error(str(result))
+        return None
+    if result is None:
+        st.caption("Runs on demand (a second or so); the results are for the design as it "
+                   "is now, with the settings of its [dynamics] table.")
+        return None
+    if result.response is None:
+        st.info("No dynamic response: it needs the power of the drive and the driver speed.")
+        return None
+    return result
+
+
+def tab_startup(screen: Screen) -> None:
+    """The start-up transient, on demand."""
+    import pandas as pd
+
+    full = _full(screen, "Start-up", "Run the start-up simulation")
+    if full is None:
+        return
+    result = full.response.startup
+    if result is None:
+        st.info("The start-up is switched off (transient = false in [dynamics]).")
+        return
+    d = result.to_dict()
+    c = st.columns(3)
+    c[0].metric("largest span force F₁max [N]", fmt(d["max_force_n"]))
+    c[1].metric("settling time [s]", fmt(d["settling_time_s"]))
+    c[2].metric("k₁ = Q / F₁max", fmt(d["k1"]))
+    names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
+    step = max(1, len(result.times) // 1500)
+    frame = pd.DataFrame(result.span_forces[::step], columns=names,
+                         index=pd.Index(result.times[::step], name="time [s]"))
+    st.line_chart(frame, x_label="time [s]", y_label="span force [N]")
+
+
+def tab_afc(screen: Screen) -> None:
+    """The amplitude–frequency characteristic and the dynamic safety factors, on demand."""
+    import pandas as pd
+
+    full = _full(screen, "AFC", "Run the AFC sweep")
+    if full is None:
+        return
+    response = full.response
+    afc = response.afc
+    names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
+    frame = pd.DataFrame(afc.span_load, columns=names,
+                         index=pd.Index(afc.driver_speeds * 30 / math.pi,
+                                        name="driver speed [rpm]"))
+    st.line_chart(frame, x_label="driver speed [rpm]", y_label="peak dynamic span load [N]")
+    s = response.strength_dict()
+    c = st.columns(4)
+    c[0].metric("K_D", fmt(response.steady.coefficient_of_dynamics))
+    c[1].metric("k₂", fmt(s["k2"]))
+    c[2].metric("k₂min", fmt(s["k2min"]))
+    c[3].metric("allowable [k]", fmt(s["allowable_k"]))
+
+
+def tab_contours(screen: Screen) -> None:
+    """The load share of identical contours side by side [Lyashuk]."""
+    a = screen.outcome.analysis
+    if a.contours is None:
+        st.info("Single contour. Set “Contours” above 1 (identical chains side by side on "
+                "common shafts) to check how the load shares between them.")
+        return
+    rows = [{"quantity": k.replace("_", " "), "value": fmt(v)}
+            for k, v in a.contours.to_dict().items() if not isinstance(v, dict | list)]
+    st.dataframe(rows, hide_index=True, width="stretch")
+    km = getattr(a.contours, "samples", None)
+    if km is not None:
+        from chaindrive.plotting import km_distribution
+
+        _png(f"{id(a)}-km", lambda: km_distribution(km))
+
+
+#: The downloads built on demand: kind → (button label, file suffix, MIME type).
+DOWNLOADS = {"report_pdf": ("report (PDF)", ".pdf", "application/pdf"),
+             "report_html": ("report (HTML)", ".html", "text/html"),
+             "drawing_svg": ("drawing (SVG)", ".svg", "image/svg+xml"),
+             "drawing_dxf": ("drawing (DXF)", ".dxf", "application/dxf")}
+
+
+def _build(kind: str, screen: Screen) -> bytes:
+    """The bytes of a download, each built in a bounded run (:mod:`chaindrive.app.runs`):
+    the drawing of the design, or the report of its full analysis."""
+    if kind.startswith("drawing"):
+        return runs.bounded_drawing(screen.outcome.analysis, kind.rsplit("_", 1)[1])
+    with st.spinner("Running the full analysis and building the report…"):
+        return runs.bounded_report(screen.outcome.drive, kind.rsplit("_", 1)[1], _units())
+
+
+def tab_files(screen: Screen, design: dict[str, Any]) -> None:
+    """Downloads: the design (TOML), the report (PDF, HTML) and the drawing (SVG, DXF)."""
+    a = screen.outcome.analysis
+    store = st.session_state.setdefault("files", {})
+    cols = st.columns(5)
+    with cols[0]:
+        st.download_button("Download design (TOML)", design_to_toml(design), key="dl_toml",
+                           file_name=file_name(".toml"), mime="application/toml")
+    for col, (kind, (label, suffix, mime)) in zip(cols[1:], DOWNLOADS.items(), strict=True):
+        with col:
+            reason = runs.missing(kind)
+            if reason is not None:
+                st.info(f"The {label}: {reason}.")
+                continue
+            key = (kind, id(a), _units())
+            if key not in store and st.button(f"Build {label}", key=f"build_{kind}"):
+                try:
+                    store[key] = _build(kind, screen)
+                except ChainDriveError as exc:
+                    st.error(str(exc))
+                except Exception as exc:
+                    st.error(UNEXPECTED.format(type(exc).__name__))
+            if key in store:
+                st.download_button(f"Download {label}", store[key],
+                                   file_name=file_name(suffix), mime=mime,
+                                   key=f"dl_{kind}", type="primary")
+
+
+def tabs(screen: Screen, design: dict[str, Any]) -> None:
+    """The result tabs; only the open one is drawn, an error in it is shown in it."""
+    shows = (lambda: tab_geometry(screen), lambda: tab_strength(screen),
+             lambda: tab_modes(screen), lambda: tab_startup(screen), lambda: tab_afc(screen),
+             lambda: tab_contours(screen), lambda: tab_files(screen, design))
+    for tab, show in zip(st.tabs(list(TABS), key="tabs", on_change="rerun"), shows,
+                         strict=True):
+        if tab.open:
+            with tab:
+                try:
+                    show()
+                except ChainDriveError as exc:
+                    st.error(str(exc))
+                except Exception as exc:
+                    st.error(UNEXPECTED.format(type(exc).__name__))

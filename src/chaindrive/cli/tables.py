@@ -1,0 +1,268 @@
+"""What the command line prints for people: tables and lines of an analysis, the checks,
+the design-file schema, the chain selection and the optimiser's result (rich).
+
+Every piece of text that comes from a design or a catalogue (names, designations,
+messages) is escaped for rich, so ``[drive]`` or ``[/bold] x`` prints as written; numbers
+go through :func:`chaindrive.display.fmt` and units through the output unit system
+(:mod:`chaindrive.display`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+from chaindrive.display import (
+    UnitSystem,
+    check_row,
+    check_unit,
+    constraint_row,
+    doc_value,
+    fmt,
+    header,
+    margin_percent,
+)
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
+
+    from chaindrive.checks import Check
+    from chaindrive.synthesis.solve import SynthesisResult
+
+__all__ = ["console", "escape", "print_analysis", "print_checks", "print_optimisation",
+           "print_schema", "print_selection", "table"]
+
+#: A Pareto set smaller than this is "poor": the table of rejections is printed with it.
+POOR_PARETO = 3
+#: Columns printed left-aligned (text); the others are numbers, right-aligned.
+TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "governing", "check",
+                          "subject", "required", "result", "unit", "direction", "side",
+                          "source", "allowed", "description", "example", "working",
+                          "position", "span", "constraint", "closest design", "closest miss",
+                          "designation", "what", "design"})
+
+
+def escape(text: object) -> str:
+    """``text`` with rich markup escaped (a name like ``[chain]`` prints as written)."""
+    from rich.markup import escape as rich_escape
+
+    return rich_escape(str(text))
+
+
+def console() -> Console:
+    """The console of the tables (no highlighting, 120 columns, no soft wrap)."""
+    from rich.console import Console  # only the table output needs rich (not --json)
+
+    return Console(highlight=False, soft_wrap=False, width=120)
+
+
+def table(title: str, columns: Sequence[str], rows: Sequence[Sequence[Any]]) -> Table:
+    """A rich table: every cell formatted by :func:`chaindrive.display.fmt` and escaped."""
+    from rich.table import Table
+
+    t = Table(title=escape(title), title_justify="left", header_style="bold")
+    for c in columns:
+        name = c.split(",")[0]
+        t.add_column(escape(c), justify="left" if name in TEXT_COLUMNS else "right")
+    for row in rows:
+        t.add_row(*[escape(fmt(v)) for v in row])
+    return t
+
+
+def _v(doc: dict[str, Any], key: str, units: UnitSystem) -> Any:
+    """The value of ``key`` of a document part in ``units`` (number only)."""
+    return doc_value(key, doc[key], units)[0]
+
+
+def _q(doc: dict[str, Any], key: str, units: UnitSystem, digits: int = 4) -> str:
+    """The value of ``key`` with its unit, as text."""
+    value, unit = doc_value(key, doc[key], units)
+    return fmt(value, digits) if value is None or not unit else f"{fmt(value, digits)} {unit}"
+
+
+def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSystem = "SI"
+                   ) -> None:
+    """Readable tables of an analysis document (values in ``units``)."""
+    con = console()
+    d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
+    con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])} (pitch "
+              f"{_q(d, 'pitch_mm', units)}), tooth form {escape(d['tooth_form'])}")
+    summary = (f"{g['links']} links, chain length {_q(g, 'chain_length_mm', units)}, tight "
+               f"length {_q(g, 'tight_length_mm', units)} ({fmt(g['tight_length_pitches'])} "
+               "pitches)")
+    if g["center_distance_mm"] is not None:
+        summary += f", centre distance {_q(g, 'center_distance_mm', units)}"
+    con.print(summary)
+    if g["adjusted_sprocket"] is not None:
+        con.print(f"take-up: {escape(g['adjusted_sprocket'])} moved "
+                  f"{_q(g, 'adjustment_mm', units)}")
+    cols = [("name", "name"), ("teeth", "teeth"), ("side", "side"), ("x", "x_mm"),
+            ("y", "y_mm"), ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
+            ("wrap", "wrap_angle_deg"), ("teeth in mesh", "teeth_in_mesh")]
+    con.print(_doc_table("Sprockets", cols, g["sprockets"], units))
+    spans = [("from", "from"), ("to", "to"), ("length", "length_mm"),
+             ("pitches", "length_pitches"), ("inclination", "inclination_deg"),
+             ("tight", "tight")]
+    con.print(_doc_table("Spans", spans, g["spans"], units))
+    con.print(f"chain speed {_q(k, 'chain_speed_m_s', units)} "
+              f"({fmt(_v(k, 'chain_speed_min_m_s', units))} to "
+              f"{fmt(_v(k, 'chain_speed_max_m_s', units))}), tooth frequency "
+              f"{_q(k, 'tooth_frequency_hz', units)}")
+    con.print(_doc_table("Kinematics", [("name", "name"), ("speed", "speed_rpm"),
+                                        ("direction", "direction"),
+                                        ("speed variation, %", "speed_variation_percent")],
+                         k["sprockets"], units))
+    if doc["strength"] is not None:
+        _print_strength(con, doc["strength"], [s["name"] for s in g["sprockets"]],
+                        [f"{s['from']}→{s['to']}" for s in g["spans"]], units)
+    if doc["selection"] is not None:
+        sel = doc["selection"]
+        con.print(f"selection ({escape(sel['method'])}): "
+                  f"{escape(sel['chain'] or sel['shortfall'])}")
+    _print_dynamics(con, doc["dynamics"], doc["strength"])
+    print_checks(con, checks, units)
+    for w in doc["warnings"]:
+        con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
+
+
+def _doc_table(title: str, cols: Sequence[tuple[str, str]], items: Sequence[dict[str, Any]],
+               units: UnitSystem) -> Table:
+    """A table of document items: (label, key) columns, headers with the unit of ``units``."""
+    return table(title, [header(label, key, units) for label, key in cols],
+                 [[doc_value(key, item[key], units)[0] for _, key in cols] for item in items])
+
+
+def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI") -> None:
+    """The verdict and the table of checks, failed and unverifiable ones first; the margin
+    is :attr:`chaindrive.checks.Check.margin_fraction` in per cent (≥ 0 passes)."""
+    failed = [c for c in checks if not c.passed]
+    if failed:
+        con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]")
+    else:
+        con.print(f"[bold green]all {len(checks)} checks pass[/bold green]")
+    rows = []
+    for c in sorted(checks, key=lambda c: c.passed):
+        _, value, required, result, source = check_row(c, units)
+        rows.append([c.name, c.subject, value, required, check_unit(c, units),
+                     margin_percent(c), result, source])
+    con.print(table("Checks", ["check", "subject", "value", "required", "unit", "margin, %",
+                               "result", "source"], rows))
+
+
+def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
+    """Natural frequencies, the closest resonances and the dynamic response."""
+    freqs = [f for f, rigid in zip(dyn["natural_frequencies_hz"], dyn["rigid_body_modes"],
+                                   strict=True) if not rigid]
+    more = " …" if len(freqs) > 8 else ""
+    con.print(f"natural frequencies (elastic modes), Hz: "
+              f"{', '.join(fmt(f) for f in freqs[:8])}{more} (damping ratio "
+              f"{fmt(dyn['damping_ratio'])})")
+    rows = [[r["label"], r["frequency_hz"], r["natural_frequency_hz"],
+             abs(r["margin_percent"]), "below" if r["margin_percent"] < 0 else "above"]
+            for r in dyn["resonances"][:5]]
+    con.print(table("Closest resonances", ["working", "working, Hz", "natural, Hz",
+                                           "detuning, %", "position"], rows))
+    startup, steady = dyn.get("startup"), dyn.get("steady")
+    if steady is not None:
+        con.print(f"steady state: largest dynamic span load "
+                  f"{fmt(max(steady['span_dynamic_load_n']))} N, coefficient of dynamics "
+                  f"K_D {fmt(dyn['coefficient_of_dynamics'])}")
+    if startup is not None:
+        con.print(f"start-up: largest span force {fmt(startup['max_force_n'])} N, settling "
+                  f"time {fmt(startup['settling_time_s'])} s")
+    if st is not None and "k1" in st:
+        con.print(f"dynamic safety: k1 {fmt(st['k1'])}, k2 {fmt(st['k2'])}, k2min "
+                  f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
+
+
+def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str],
+                    units: UnitSystem) -> None:
+    """Loads and safety of an analysis document."""
+    force = header("tension", "t_n", units)
+    con.print(table("Span tensions", ["span", force],
+                    [[sp, doc_value("t_n", t, units)[0]]
+                     for sp, t in zip(spans, st["span_tensions_n"], strict=True)]))
+    con.print(table("Shaft loads", ["name", header("shaft load", "f_n", units)],
+                    [[n, doc_value("f_n", f, units)[0]]
+                     for n, f in zip(names, st["shaft_loads_n"], strict=True)]))
+    allowed = st["allowable_pressure_mpa"]
+    life = "—" if st["wear_life_h"] is None else f"{fmt(st['wear_life_h'])} h"
+    extrapolated = " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""
+    con.print(f"hinge pressure {_q(st, 'hinge_pressure_mpa', units)} (allowable "
+              f"{'—' if allowed is None else _q(st, 'allowable_pressure_mpa', units)}), static "
+              f"safety factor {fmt(st['safety_factor_static'])} (allowable "
+              f"{fmt(st['allowable_safety_factor'])}), wear life {life}{extrapolated}")
+
+
+def print_schema(doc: dict[str, list[dict[str, Any]]]) -> None:
+    """Every field of a design file, one table per section with the section's TOML header
+    (``[drive]``, ``[[sprockets]]`` …) as its title."""
+    con = console()
+    for section, fields in doc.items():
+        title = f"[[{section}]]" if section.startswith("sprockets") else f"[{section}]"
+        con.print(table(title, ["field", "unit", "default", "required", "allowed", "example",
+                                "description"],
+                        [[f["field"], f["si_unit"] or "—", _default(f), f["required"],
+                          f["allowed"], f["example"] or "—", f["description"]
+                          + (f" — limits: {f['reason']}" if f.get("reason") else "")]
+                         for f in fields]))
+
+
+def _default(field: dict[str, Any]) -> Any:
+    """A field's default as a design file writes it (with its SI unit for quantities)."""
+    value, unit = field["default"], field["si_unit"]
+    if value is None or not unit or isinstance(value, bool):
+        return value
+    return f"{fmt(float(value))} {unit}"
+
+
+def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
+    """The chain selected and the ranked candidates."""
+    con = console()
+    if doc["chain"] is not None:
+        con.print(f"selected: [bold]{escape(doc['chain'])}[/bold] ({escape(doc['method'])})")
+    else:
+        con.print(f"[red]{escape(doc['shortfall'])}[/red]")
+    mass = header("mass", "mass_kg_m", units)
+    con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
+                    "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",
+                                "governing"],
+                    [[c["chain"], c["method"], c["strands"],
+                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0], c["passed"],
+                      None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
+                      c["governing"]] for c in doc["candidates"]]))
+
+
+def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],
+                       con: Console | None = None) -> None:
+    """The optimiser's start design, Pareto set and, when the set is empty or poor, each
+    constraint with the designs it rejected and how far the best of them missed."""
+    names = list(result.objectives)
+    con = con or console()
+    con.print(f"[bold]{escape(name)}[/bold] — {result.evaluations} designs evaluated by "
+              f"{escape(result.method)} (seed {result.seed}) in {fmt(result.seconds, 3)} s")
+    con.print(table("Start design", ["design", *names, "constraints ok"],
+                    [["start", *[result.start.objectives[n] for n in names],
+                      result.start.feasible]]))
+    rows = []
+    for k, p in enumerate(result.pareto, start=1):
+        d = p.design
+        rows.append([str(k), d["chain"].get("designation", "—"),
+                     " ".join(str(s["teeth"]) for s in d["sprockets"]),
+                     *[p.objectives[n] for n in names], p.constraints_ok])
+    con.print(table(f"Pareto set ({len(rows)} designs)",
+                    ["design", "chain", "teeth", *names, "constraints ok"], rows))
+    diagnostics = [c for c in result.constraint_report if c.rejected]
+    if diagnostics and len(rows) < POOR_PARETO:
+        con.print(table("Why designs were rejected: each constraint, the designs it rejected "
+                        "and by how much the closest of them missed",
+                        ["constraint", "rejected", "of", "closest miss", "closest design"],
+                        [list(constraint_row(c)) for c in diagnostics]))
+    if not rows:
+        worst = diagnostics[0].name if diagnostics else "a constraint"
+        con.print(f"[red]no design met every constraint[/red]: {escape(worst)} rejected the "
+                  "most designs; relax it, widen the bounds of the variables it depends on, "
+                  "or give the search more designs")
+    for path in written:
+        con.print(f"wrote {escape(path)}")

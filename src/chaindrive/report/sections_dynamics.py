@@ -1,0 +1,298 @@
+"""The dynamics sections of the design report: vibration of the contour (ring model, modes,
+resonances of the ring and of the spans, Campbell diagram), the dynamic response (two-stage
+check k₁, k₂, k₂min; K_D; loads per span and per mass), the comparative studies (only when
+the analysis ran them) and the optimal synthesis. Each reads the analysis only."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from chaindrive.display import constraint_row
+from chaindrive.report.content import (
+    Block,
+    ReportInput,
+    Table,
+    Text,
+    plot_block,
+    rows,
+)
+
+
+def _span_names(inp: ReportInput) -> list[str]:
+    return [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
+
+
+def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], tuple[int, ...]]:
+    """Rows of the resonance table of the ring modes (``kind`` "ring") or of the spans'
+    parametric resonances ("span"): working frequency, f_w, natural frequency, mode or span,
+    detuning Δ ≥ 0, below/above; and the rows inside the band (highlighted)."""
+    dyn = inp.analysis.dynamics
+    band = inp.analysis.limits.resonance_band_percent
+    spans = _span_names(inp)
+    out: list[tuple[Any, ...]] = []
+    inside: list[int] = []
+    for r in dyn.resonances:
+        parametric = r.working.kind == "parametric"
+        if parametric != (kind == "span"):
+            continue
+        where = (spans[r.mode] if parametric and r.mode < len(spans)
+                 else f"mode {r.mode}")
+        label = (f"f_z vs 2·f_ℓ of span {where}" if parametric else r.working.label)
+        if abs(r.margin_percent) < band:
+            inside.append(len(out))
+        out.append((label, r.working.frequency, r.natural_frequency, where,
+                    abs(r.margin_percent), "below" if r.margin_percent < 0 else "above"))
+    return out, tuple(inside)
+
+
+def dynamics_section(inp: ReportInput) -> list[Block] | None:
+    """The ring model [MultimassChainDrives, §3.1–3.3]: masses and branches, natural
+    frequencies, signed mode shapes along the contour, the resonance tables of the ring and
+    of the spans, and the Campbell diagram zoomed to the crossings near the working speed."""
+    from chaindrive.plotting import campbell_diagram, mode_shapes
+
+    a = inp.analysis
+    dyn = a.dynamics
+    modal = dyn.modal
+    names = [s.name for s in a.drive.sprockets]
+    band = a.limits.resonance_band_percent
+    blocks: list[Block] = inp.define("m_i", "c_i", "fj", "X", "mu", "fw", "detuning")
+    model = a.drive_model
+    blocks.append(Text(
+        f"The whole drive is one torsional model: the contour's {len(names)} sprockets, each "
+        "with the links wrapped on it and half of each adjacent span's chain mass, joined by "
+        "the spans, and the open train on every shaft (motor, couplings, reducers, machines); "
+        f"{model.linear.size} degrees of freedom. Damping ratio ζ = {dyn.damping_ratio:.3g} "
+        f"({model.damping_source}). Mode 0 is the rigid rotation of the whole drive (0 Hz)."))
+    if not model.complete:
+        blocks.append(Text("INCOMPLETE MODEL: " + "; ".join(model.missing) + ". Its natural "
+                           "frequencies are upper bounds and its start-up is not meaningful.",
+                           "note"))
+    blocks.append(Table("Masses and branches", ("sprocket", inp.col("m_i", "mass"),
+                                                inp.col("c_i to the next", "stiffness")),
+                        rows([(n, inp.val(m, "mass"), inp.val(c, "stiffness")) for n, m, c in
+                              zip(names, modal.masses_kg.tolist(),
+                                  modal.stiffness_n_per_m.tolist(), strict=True)])))
+    elastic = [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
+    blocks.append(Table("Natural frequencies of the ring", ("mode j", "f_j, Hz",
+                                                            "damped, Hz", "largest μ at"),
+                        rows([(j, modal.frequencies_hz[j], modal.damped_frequencies_hz[j],
+                               names[int(modal.normalized_amplitudes[:, j].argmax())])
+                              for j in elastic])))
+    blocks.append(plot_block(mode_shapes(modal, names=names),
+                             "Mode shapes X^(j) along the contour, signed (a node where a "
+                             "line crosses zero; the first mass is repeated to close the "
+                             "ring)", inp.dpi, "mode_shapes"))
+    ring, inside = resonance_rows(inp, "ring")
+    if ring:
+        blocks.append(Table(f"Resonances of the ring: every working frequency against the "
+                            f"nearest natural frequency (required Δ ≥ {band:g} %)",
+                            ("working frequency", "f_w, Hz", "f_n, Hz", "ring mode",
+                             "detuning Δ, %", "f_w is"), rows(ring), inside))
+    span, inside = resonance_rows(inp, "span")
+    if span:
+        blocks += inp.define("fspan")
+        blocks.append(Table(f"Parametric resonances of the spans: tooth frequency against "
+                            f"twice the span's transverse frequency (required Δ ≥ {band:g} %)",
+                            ("working frequency", "f_z, Hz", "2·f_ℓ, Hz", "span",
+                             "detuning Δ, %", "f_z is"), rows(span), inside))
+    if a.published is not None:
+        source, printed = a.published
+        blocks += inp.define("FD", "KD", "F1max")
+        blocks.append(Table(f"Beside the published figures of this example ({source})",
+                            ("quantity", "published", "this analysis", "unit"), rows(printed)))
+    if dyn.campbell is not None and a.drive.driver.speed is not None:
+        rpm = float(inp.val(a.drive.driver.speed, "speed") or 0.0)
+        blocks.append(plot_block(
+            campbell_diagram(dyn.campbell, operating_rpm=rpm, band_percent=band),
+            f"Campbell diagram: natural frequencies (black), working frequencies against the "
+            f"driver speed (dashed), the band ±{band:g} % round the working speed (shaded) and "
+            "the crossings (circles; labelled near the working speed)", inp.dpi, "campbell"))
+    return blocks
+
+
+def _k_rows(inp: ReportInput) -> list[tuple[str, str, Any, str, Any, str]]:
+    """The two-stage check k₁, k₂, k₂min against [k] with its margin."""
+    response = inp.analysis.response
+    assert response is not None
+    k = response.strength_dict()
+    allow = response.allowable_k
+    out = []
+    for name, sym, key in (("start-up", "k₁", "k1"), ("steady motion", "k₂", "k2"),
+                           ("resonance in the run-up", "k₂min", "k2min")):
+        value = k[key]
+        margin = None if value is None else 100 * (value / allow - 1)
+        result = "—" if value is None else "pass" if value >= allow else "FAIL"
+        out.append((name, sym, value, f"≥ {allow:g}", margin, result))
+    return out
+
+
+def response_section(inp: ReportInput) -> list[Block] | None:
+    """The dynamic response [MultimassChainDrives, §3.3, §3.6]: the two-stage check, K_D,
+    the loads per span and per mass, the start-up, the AFC."""
+    from chaindrive.plotting import (
+        afc_curves,
+        inertia_and_irregularity,
+        startup_oscillogram,
+        startup_speeds,
+        steady_loads,
+    )
+
+    a = inp.analysis
+    response = a.response
+    if response is None:
+        return None
+    sprockets = [s.name for s in a.drive.sprockets]
+    spans = _span_names(inp)
+    steady, startup = response.steady, response.startup
+    blocks: list[Block] = inp.define("F2", "F2max", "F1max", "FD", "KD", "k1", "k2", "k2min",
+                                     "k_allow", "irr")
+    blocks.append(Text(
+        "Kinematic excitation by the polygonal effect at the tooth frequency and its "
+        f"{a.drive.dynamics.harmonics} harmonics, solved in the frequency domain; start-up "
+        f"from rest with the {a.drive.dynamics.motor} motor law on the motor's rotor and the "
+        "machines' load laws on theirs; the spans carry tension only "
+        "[MultimassChainDrives, §3.3]."))
+    k_rows = _k_rows(inp)
+    blocks.append(Table("Two-stage safety check [MultimassChainDrives, §3.6]",
+                        ("stage", "factor", "value", "required", "margin, %", "result"),
+                        rows(k_rows), tuple(i for i, r in enumerate(k_rows) if r[5] == "FAIL")))
+    F = inp.unit("force")
+    st = a.strength
+    load_rows: list[tuple[str, str, Any, str]] = [
+        ("coefficient of dynamics", "K_D", steady.coefficient_of_dynamics, ""),
+        ("dynamic load", "F_D", inp.val(steady.dynamic_load_rms, "force"), F),
+        ("peripheral force", "F_t", None if st is None
+         else inp.val(st.loads.peripheral_force, "force"), F),
+        ("tooth frequency", "f_z", steady.tooth_angular_frequency / (2 * math.pi), "Hz")]
+    if startup is not None:
+        load_rows += [("largest start-up force", "F₁max",
+                       inp.val(float(startup.max_span_force.max()), "force"), F),
+                      ("settling time", "", startup.settling_time * 1e3, "ms"),
+                      ("start-up simulated", "", float(startup.times[-1]) * 1e3, "ms")]
+    blocks.append(Table("Dynamic loads", ("quantity", "symbol", "value", "unit"),
+                        rows(load_rows)))
+    blocks.append(_span_table(inp, spans))
+    if startup is not None:
+        blocks += [plot_block(startup_oscillogram(startup, names=spans),
+                              "Start-up: span forces", inp.dpi, "startup"),
+                   plot_block(startup_speeds(startup, names=sprockets),
+                              "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
+    blocks += [
+        plot_block(afc_curves(response.afc, names=spans,
+                              operating_hz=steady.tooth_angular_frequency / (2 * math.pi)),
+                   "Amplitude–frequency characteristic per span (speed sweep)", inp.dpi,
+                   "afc"),
+        plot_block(steady_loads(steady, names=spans), "Steady dynamic load per span",
+                   inp.dpi, "steady_loads"),
+        Table("Steady motion per mass", ("sprocket", inp.col("inertia load m·ẍ", "force"),
+                                         inp.col("displacement amplitude x_A", "length"),
+                                         "irregularity Δ_ω, %"),
+              rows(zip(sprockets, [inp.val(v, "force") for v in steady.inertia_load.tolist()],
+                       [inp.val(v, "length") for v in steady.displacement_amplitude.tolist()],
+                       steady.irregularity_percent.tolist(), strict=True))),
+        plot_block(inertia_and_irregularity(steady, names=sprockets),
+                   "Inertia load and irregularity per mass", inp.dpi, "inertia"),
+    ]
+    return blocks
+
+
+def _span_table(inp: ReportInput, spans: list[str]) -> Table:
+    """Per span: static tension, steady peak and amplitude, start-up and run-up peaks and
+    the loads of the optional disturbances."""
+    response = inp.analysis.response
+    assert response is not None
+    n = len(spans)
+    startup = response.startup
+
+    def forces(values: Sequence[Any]) -> list[Any]:
+        return [inp.val(v, "force") for v in values]
+
+    cols: list[tuple[str, Sequence[Any]]] = [
+        (inp.col("F_R", "force"), forces(response.span_tensions.tolist())),
+        (inp.col("F₂", "force"), forces(response.steady.span_dynamic_load.tolist())),
+        (inp.col("amplitude", "force"), forces(response.steady.span_load_amplitude.tolist())),
+        (inp.col("F₁max", "force"), [None] * n if startup is None
+         else forces(startup.max_span_force.tolist())),
+        (inp.col("F₂max", "force"), forces(response.afc.max_span_load.tolist()))]
+    cols += [(inp.col(name.replace("_", " "), "force"), forces(r.span_dynamic_load.tolist()))
+             for name, r in response.disturbances.items()]
+    return Table("Dynamic loads per span", ("span", *(c for c, _ in cols)),
+                 rows(zip(spans, *(v for _, v in cols), strict=True)))
+
+
+def materials_section(inp: ReportInput) -> list[Block] | None:
+    """The four chain/sprocket material pairs on this layout ([MultimassChainDrives], Fig.
+    2–3, Table 1), only when the analysis ran that study."""
+    from chaindrive.plotting import material_comparison_chart
+
+    cases = inp.analysis.material_pairs
+    if not cases:
+        return None
+    return [
+        Text("Asked for (--study material-pairs): the same layout with metal or polymer chain "
+             "on metal or polymer sprockets ([MultimassChainDrives], Fig. 2–3, Table 1); the "
+             "ring model rebuilt per pair, start-up over 0.3 s, first resonance from a sweep "
+             "through the first natural frequency.", "note"),
+        Table("Material pairs", ("chain", "sprockets", inp.col("start-up peak", "force"),
+                                 "first f_j, Hz", "resonance f_z, Hz",
+                                 inp.col("resonance amplitude", "force")),
+              rows([(c.chain_material, c.sprocket_material, inp.val(c.startup_peak_n, "force"),
+                     c.first_natural_frequency_hz, c.resonance_tooth_frequency_hz,
+                     inp.val(c.resonance_amplitude_n, "force")) for c in cases])),
+        plot_block(material_comparison_chart(cases), "Material pairs: start-up peak and "
+                   "first resonance", inp.dpi, "materials"),
+    ]
+
+
+def damping_section(inp: ReportInput) -> list[Block] | None:
+    """The hinge-friction damping model [ChainHingeDissipation] for its reference chain,
+    only when the analysis ran that study."""
+    from chaindrive.plotting import absorption_vs_amplitude
+
+    results = inp.analysis.hinge_friction
+    if not results:
+        return None
+    a = results[0].span_length
+    return [*inp.define("psi"),
+            Text("Asked for (--study hinge-friction): the dynamics of this report uses the "
+                 "damping ratio ζ; the hinge-friction model gives ψ from a chain's empirical "
+                 "coefficients, known only for the reference chain of "
+                 "[ChainHingeDissipation] (GOST ПР-12,7). The curves are for that chain at "
+                 f"the paper's conditions (span of 49 hinges, a = {a * 1e3:.0f} mm), not for "
+                 "the chain of this drive.", "note"),
+            plot_block(absorption_vs_amplitude(list(results)),
+                       "Absorption coefficient ψ against the amplitude ȳ₀ (reference chain)",
+                       inp.dpi, "damping")]
+
+
+def synthesis_section(inp: ReportInput) -> list[Block] | None:
+    """The optimisation that chose this design: the Pareto set and its front, and why
+    designs were rejected."""
+    from chaindrive.plotting import pareto_front
+
+    result = inp.synthesis
+    if result is None:
+        return None
+    names = list(result.objectives)
+    table_rows = [("start", *[result.start.objectives.get(n) for n in names],
+                   result.start.feasible)]
+    table_rows += [(str(k), *[p.objectives[n] for n in names], p.constraints_ok)
+                   for k, p in enumerate(result.pareto, start=1)]
+    blocks: list[Block] = [
+        Text(f"{result.evaluations} designs evaluated by {result.method} (random seed "
+             f"{result.seed}); this report is of Pareto design 1."),
+        Table("Pareto set", ("design", *names, "constraints met"), rows(table_rows)),
+    ]
+    report = [c for c in result.constraint_report if c.rejected]
+    if report:
+        blocks.append(Table("Constraints: the designs each rejected and by how much the "
+                            "closest of them missed",
+                            ("constraint", "rejected", "of", "closest miss", "closest design"),
+                            rows([constraint_row(c) for c in report])))
+    if result.pareto:
+        blocks.append(plot_block(pareto_front(result), "Pareto front", inp.dpi,
+                                 "pareto_front"))
+    return blocks
