@@ -66,7 +66,7 @@ from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
-from chaindrive.strength.selection import rank_chains
+from chaindrive.strength.selection import rank_chains, rank_key
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -138,16 +138,58 @@ class Analysis:
             return None
         request = d.chain.request
         try:  # each of m contours carries its nominal share P/m
-            return rank_chains(replace(d, power=d.power / d.chain.contours),
-                               standard=request.standard if request else None,
-                               series=request.series if request else None,
-                               strands=request.strands if request else None)
+            ranked = rank_chains(replace(d, power=d.power / d.chain.contours),
+                                 standard=request.standard if request else None,
+                                 series=request.series if request else None,
+                                 strands=request.strands if request else None)
+            return ranked if request is None else self._resonance_verified(ranked)
         except DesignError as exc:
             if request is not None:
                 raise
             self._selection_warnings.append(ChainDriveWarning("selection.none", "chain",
                                                               f"selection: {exc}"))
             return None
+
+    def _resonance_verified(self, ranked: SelectionResult) -> SelectionResult:
+        """The ranking with the resonance check of each candidate's own drive, tried in rank
+        order until one passes every check: the chosen chain then passes every check this
+        analysis makes without a response (k₁, k₂, k₂min are judged on it by the analysis
+        itself). A candidate whose drive cannot be laid out fails.
+
+        Parameters
+        ----------
+        ranked : SelectionResult
+            The ranking by the chain and layout checks.
+
+        Returns
+        -------
+        SelectionResult
+            The candidates re-ranked (:func:`chaindrive.strength.selection.rank_key`) with
+            the resonance check of those tried.
+        """
+        out = list(ranked.candidates)
+        for i, c in enumerate(out):
+            if not c.passed:
+                break  # ranked: none after it passes either
+            trial = Analysis(self.design.with_chain(ranked.specs[c.designation]),
+                             response=False, limits=self.limits, cost_model=self._cost_model)
+            try:
+                res = resonance_check(trial.dynamics.resonances,
+                                      self.limits.resonance_band_percent)
+            except DesignError as exc:
+                out[i] = replace(c, passed=False, governing="layout",
+                                 notes=(*c.notes, f"cannot be laid out: {exc}"))
+                continue
+            if res is None:
+                break
+            worse = (res.margin_fraction is not None and
+                     (c.margin_fraction is None or res.margin_fraction < c.margin_fraction))
+            out[i] = replace(c, passed=c.passed and res.passed, checks=(*c.checks, res),
+                             margin_fraction=res.margin_fraction if worse else c.margin_fraction,
+                             governing=res.name if worse else c.governing)
+            if res.passed:
+                break
+        return replace(ranked, candidates=tuple(sorted(out, key=rank_key)))
 
     @cached_property
     def _designed(self) -> Drive:
@@ -385,11 +427,14 @@ class Analysis:
         ``chaindrive select`` offers)."""
         d = self.design
         request = d.chain.request
-        return rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
-                           method=method,
-                           strands=strands or (request.strands if request else None),
-                           standard=request.standard if request else None,
-                           series=request.series if request else None)
+        if method is None and strands is None and self.selection is not None:
+            return self.selection
+        ranked = rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
+                             method=method,
+                             strands=strands or (request.strands if request else None),
+                             standard=request.standard if request else None,
+                             series=request.series if request else None)
+        return self._resonance_verified(ranked)
 
     # ------------------------------------------------------------------ metrics
     @cached_property
