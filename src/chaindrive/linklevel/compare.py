@@ -31,13 +31,13 @@ __all__ = ["DURATION", "SETTLED_SPEED", "ModelComparison", "checked_duration",
            "model_comparison"]
 
 #: Simulated time of a link-level run asked for from the command line, the report or the
-#: page [s]. Below 1 ms no tooth period of a practical drive fits (f_z ≤ 1 kHz); above 10 s
-#: the kept histories grow past a gigabyte on the 24-sprocket example (744 rollers recorded
-#: at 3 kHz, five arrays of 8 bytes per roller and sample: 0.09 GB per simulated second)
-#: and the run takes about 35 s of wall time per simulated second there (docs/linklevel.md
-#: §3). A start-up settles within one or two seconds.
-DURATION = Range(1e-3, 10.0, "from 1 ms (a tooth period) to 10 s (the histories are kept "
-                 "in memory: 0.09 GB per simulated second on 24 sprockets)")
+#: page [s]. Below 1 ms no tooth period of a practical drive fits (f_z ≤ 1 kHz); the
+#: histories are kept in memory, 0.04 GB per simulated second on the 24-sprocket example
+#: (744 rollers recorded at 1.1 kHz, five arrays of 8 bytes per roller and sample; measured),
+#: and the run takes 3.5 s of wall time per simulated second there (docs/linklevel.md §3):
+#: 10 s bounds both, and a start-up settles within one or two seconds.
+DURATION = Range(1e-3, 10.0, "at least a tooth period; at most 10 s, as the histories are "
+                 "kept in memory (0.04 GB per simulated second on 24 sprockets)")
 #: The closing half of a run counts as steady motion when the driver's mean speed over it is
 #: within this fraction of the nominal speed.
 SETTLED_SPEED = 0.02
