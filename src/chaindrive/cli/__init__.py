@@ -274,7 +274,8 @@ def report(
                                      f"{DPI_RANGE[1]})", min=DPI_RANGE[0],
                                      max=DPI_RANGE[1])] = 110,
     study: Annotated[list[str] | None, typer.Option(
-        "--study", help="add a comparative study: material-pairs, hinge-friction")] = None,
+        "--study", help="add a comparative study: material-pairs, hinge-friction, links (the "
+        "link-level model, slower)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
     units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
