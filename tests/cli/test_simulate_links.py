@@ -51,7 +51,7 @@ def test_links_history_has_its_columns_and_finite_values(tmp_path: Path) -> None
     assert doc["model"] == "link-level" and doc["history"] == str(out.resolve())
     assert doc["span_names"] == list(SPANS) and doc["parameters"]["links"] == LINKS
     # the file's largest span force is the summary's start-up peak (same samples)
-    for k, span in enumerate(SPANS):
+    for k in range(len(SPANS)):
         peak = max(r[1 + len(SPROCKETS) + k] for r in values)
         assert peak == pytest.approx(doc["peak_span_force_n"][k], rel=1e-6)
 
