@@ -99,9 +99,12 @@ def _check_efficiency(field: str, efficiency: float) -> None:
         raise DesignError(field, f"efficiency must be in (0, 1], got {efficiency!r}")
 
 
+_INF = math.inf
+
+
 def _nonneg(field: str, value: float, what: str) -> float:
     value = float(value)
-    if not 0.0 <= value < math.inf:  # also False for nan
+    if not 0.0 <= value < _INF:  # also False for nan
         raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
     return value
 
@@ -180,7 +183,7 @@ class TorsionalSystem:
         if J.shape != self.node_inertia_kg_m2.shape or k.shape != self.element_stiffness.shape \
                 or c.shape != self.element_damping.shape:
             raise DesignError("updated", "need one value per node and per element")
-        if np.any((k > 0) != (self.element_stiffness > 0)) or np.any(J < 0) or np.any(k < 0):
+        if ((k > 0) != (self.element_stiffness > 0)).any() or (J < 0).any() or (k < 0).any():
             raise DesignError("element_stiffness", "an element changed between k = 0 and k > 0 "
                               "(or a value is negative): that is another topology, rebuild it")
         f2 = self.node_factor * self.node_factor
@@ -228,7 +231,7 @@ class TorsionalSystem:
     @property
     def has_mass_coupling(self) -> bool:
         """True when M is not diagonal (a span carries a consistent chain mass)."""
-        return bool(np.any(self.mass_coupling))
+        return bool(self.mass_coupling.any())
 
     def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
@@ -489,7 +492,8 @@ class TorsionalEngine:
         k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
         self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k,
                                _nonneg(name, damping, "damping [N·m·s/rad]"), False))
-        self._kinematics(ia, ib, 1.0, k)
+        if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
+            self._relations.append((ia, ib, 1.0))
         return self
 
     def add_ground_spring(self, node: str, stiffness: float, damping: float = 0.0,
@@ -541,7 +545,10 @@ class TorsionalEngine:
         k = _nonneg(name, stiffness, "stiffness [N/m]")
         self._elements.append((name, "span", ia, ib, -ra, rb, k,
                                _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
-        self._kinematics(ia, ib, ra / rb, k)
+        if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
+            self._relations.append((ia, ib, ra / rb))
+        if m == 0.0:
+            return self
         if consistent_mass:
             self._chain[ia] += m / 3.0 * ra * ra
             self._chain[ib] += m / 3.0 * rb * rb
@@ -731,17 +738,17 @@ def _deflated_eigh(A: FloatArray, W: FloatArray,
         w = W[:, 0]
         v = w.copy()
         v[0] += math.copysign(1.0, w[0])  # H = I − 2 v vᵀ / vᵀv maps w to ∓e₁
-        v /= np.linalg.norm(v)
+        v /= math.sqrt(v @ v)
         Av = A @ v
         u = Av - (v @ Av) * v            # H A H = A − 2 (v uᵀ + u vᵀ)
-        v1, u1 = v[1:], u[1:]
-        B = A[1:, 1:] - 2.0 * (np.outer(v1, u1) + np.outer(u1, v1))
+        v1, u1 = v[1:, None], u[1:, None]
+        B = A[1:, 1:] - 2.0 * (v1 * u1.T + u1 * v1.T)
         if not vectors:
             return np.asarray(np.linalg.eigvalsh(B), dtype=np.float64), np.empty((n, 0))
         lam, Ve = np.linalg.eigh(B)
         V = np.zeros((n, n - 1))
         V[1:] = Ve
-        V -= 2.0 * np.outer(v, v @ V)
+        V -= 2.0 * (v[:, None] * (v @ V)[None, :])
         return np.asarray(lam, dtype=np.float64), V
     basis = np.linalg.qr(W, mode="complete")[0][:, r:]
     if not vectors:
