@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["RATIO_RTOL", "WeightedUnion", "gear_coordinates", "gram", "incidence",
+__all__ = ["RATIO_RTOL", "WeightedUnion", "gear_coordinates", "gram", "grams", "incidence",
            "kinematic_groups", "rigid_motions"]
 
 FloatArray = NDArray[np.float64]
@@ -148,9 +148,10 @@ def incidence(node_dof: IndexArray, factor: FloatArray, a: IndexArray, b: IndexA
     two) entries of each row, nonzero ones first in ascending column, then the first zero
     column (b < 0: an element to the ground)."""
     ne = a.size
-    ka, va = node_dof[a], coef_a * factor[a]
+    plain = n == node_dof.size  # no gear mesh: every node its own coordinate, factor 1
+    ka, va = (a, coef_a) if plain else (node_dof[a], coef_a * factor[a])
     if ne and b.min() >= 0:
-        kb, vb = node_dof[b], coef_b * factor[b]
+        kb, vb = (b, coef_b) if plain else (node_dof[b], coef_b * factor[b])
     else:
         two = b >= 0
         b_safe = np.where(two, b, a)
@@ -179,10 +180,24 @@ def gram(cols: IndexArray, coef: FloatArray, weights: FloatArray, n: int) -> Flo
     """Σ_e w_e b_e b_eᵀ (n, n) of elements whose incidence rows b_e have at most two nonzero
     entries ``coef`` in the columns ``cols`` (elements, 2): a scatter of four products per
     element instead of a dense Bᵀ diag(w) B."""
+    return grams(cols, coef, (weights,), n)[0]
+
+
+def grams(cols: IndexArray, coef: FloatArray, weights: Sequence[FloatArray],
+          n: int) -> list[FloatArray]:
+    """:func:`gram` of several weightings of the same elements (e.g. their stiffnesses and
+    their dampers), the scatter indices built once."""
     if cols.shape[0] == 0:
-        return np.zeros((n, n))
+        return [np.zeros((n, n)) for _ in weights]
     a, b = cols[:, 0], cols[:, 1]
-    va, vb = coef[:, 0] * weights, coef[:, 1]
+    ca, vb = coef[:, 0], coef[:, 1]
     idx = np.concatenate([a * n + a, b * n + b, a * n + b, b * n + a])
-    w = np.concatenate([va * coef[:, 0], vb * vb * weights, va * vb, va * vb])
-    return np.asarray(np.bincount(idx, weights=w, minlength=n * n), dtype=np.float64).reshape(n, n)
+    vbb = vb * vb
+    out = []
+    for w_e in weights:
+        va = ca * w_e
+        vab = va * vb
+        w = np.concatenate([va * ca, vbb * w_e, vab, vab])
+        out.append(np.asarray(np.bincount(idx, weights=w, minlength=n * n),
+                              dtype=np.float64).reshape(n, n))
+    return out

@@ -48,6 +48,7 @@ from chaindrive.dynamics.torsional_assembly import (
     RATIO_RTOL,
     WeightedUnion,
     gear_coordinates,
+    grams,
     incidence,
     kinematic_groups,
     rigid_motions,
@@ -191,12 +192,13 @@ class TorsionalSystem:
         mass = self.mass + np.asarray(np.bincount(
             self.node_dof, weights=(J - self.node_inertia_kg_m2) * f2, minlength=n), dtype=float)
         span = self.span_mask
-        cols, coef = self.element_columns[~span], self.element_coefficients[~span]
+        lin = ~span
+        K_lin, C_lin = grams(self.element_columns[lin], self.element_coefficients[lin],
+                             (k[lin], c[lin]), n)
         return TorsionalSystem(
             node_names=self.node_names, node_dof=self.node_dof, node_factor=self.node_factor,
             node_inertia_kg_m2=J, mass=mass, mass_coupling=self.mass_coupling,
-            stiffness_linear=_gram(cols, coef, k[~span], n),
-            damping_linear=_gram(cols, coef, c[~span], n), span_names=self.span_names,
+            stiffness_linear=K_lin, damping_linear=C_lin, span_names=self.span_names,
             span_incidence=self.span_incidence,
             span_stiffness_n_per_m=k[span], span_damping_n_s_per_m=c[span],
             span_tension_only=self.span_tension_only, element_names=self.element_names,
@@ -709,12 +711,11 @@ def _assemble(model: TorsionalEngine) -> TorsionalSystem:
     k_all, c_all = np.array(k, dtype=float), np.array(c, dtype=float)
     span = np.array([kd == "span" for kd in kinds], dtype=bool)
     lin = ~span
-    cols_lin, coef_lin = cols[lin], coef[lin]
+    K_lin, C_lin = grams(cols[lin], coef[lin], (k_all[lin], c_all[lin]), n)
     return TorsionalSystem(
         node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
         node_inertia_kg_m2=inertia, mass=mass, mass_coupling=coupling,
-        stiffness_linear=_gram(cols_lin, coef_lin, k_all[lin], n),
-        damping_linear=_gram(cols_lin, coef_lin, c_all[lin], n),
+        stiffness_linear=K_lin, damping_linear=C_lin,
         span_names=tuple(x for x, sp in zip(names, span.tolist(), strict=True) if sp),
         span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
         span_damping_n_s_per_m=c_all[span],
@@ -809,12 +810,16 @@ def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, _Scaling, Floa
         if U.shape[1]:  # M-orthonormal rigid motions (groups may touch through a span's mass)
             G = U.T @ Mm @ U
             U = U @ np.linalg.inv(np.linalg.cholesky(G)).T
-    else:
-        m = mass[massed]
-        scaling = _Scaling(np.sqrt(m), None)
-        if U.shape[1]:  # disjoint groups are M-orthogonal already
-            U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
-    return scaling.scaled(K), scaling, U, X, massed
+        return scaling.scaled(K), scaling, U, X, massed
+    m = mass if X is None else mass[massed]
+    sqrt_m = np.sqrt(m)
+    scaling = _Scaling(sqrt_m, None)
+    if U.shape[1]:  # disjoint groups are M-orthogonal already
+        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
+    d = 1.0 / sqrt_m
+    K *= d[:, None]  # K is this call's own array: S⁻ᵀ K S⁻¹ in place (as _Scaling.scaled)
+    K *= d[None, :]
+    return K, scaling, U, X, massed
 
 
 def _frequencies(system: TorsionalSystem) -> FloatArray:
