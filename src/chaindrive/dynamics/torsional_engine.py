@@ -490,10 +490,16 @@ class TorsionalEngine:
         """Shaft or coupling of torsional stiffness k [N·m/rad] and damping c [N·m·s/rad]
         between nodes a and b (twist φ_b − φ_a)."""
         name = self._element_name(name, f"shaft:{a}-{b}")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
+        ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
+        if ia is None or ib is None or a == b:
+            ia, ib = self._pair(a, b, name)
+        k = float(stiffness)
+        if not 0.0 <= k < _INF:  # also True for nan (as _nonneg, without the call)
+            _nonneg(name, k, "stiffness [N·m/rad]")
+        c = float(damping)
+        if not 0.0 <= c < _INF:
+            _nonneg(name, c, "damping [N·m·s/rad]")
+        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, 1.0))
         return self
@@ -542,11 +548,19 @@ class TorsionalEngine:
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
-        m = _nonneg(name, mass, "span mass [kg]")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N/m]")
-        self._elements.append((name, "span", ia, ib, -ra, rb, k,
-                               _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
+        m = float(mass)
+        if not 0.0 <= m < _INF:  # also True for nan (as _nonneg, without the call)
+            _nonneg(name, m, "span mass [kg]")
+        ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
+        if ia is None or ib is None or a == b:
+            ia, ib = self._pair(a, b, name)
+        k = float(stiffness)
+        if not 0.0 <= k < _INF:
+            _nonneg(name, k, "stiffness [N/m]")
+        c = float(damping)
+        if not 0.0 <= c < _INF:
+            _nonneg(name, c, "damping [N·s/m]")
+        self._elements.append((name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, ra / rb))
         if m == 0.0:
