@@ -61,8 +61,22 @@ class WeightedUnion:
 
 
 def gear_coordinates(gears: WeightedUnion, n_nodes: int) -> tuple[IndexArray, FloatArray, int]:
-    """(node_dof, factor, n): the reduced coordinate of every node (one per gear tree, in
-    order of first appearance) and its factor φ_node = factor·q, with n coordinates."""
+    """The reduced coordinate of every node: one per gear tree, in order of first appearance,
+    φ_node = factor·q (gear meshes eliminated).
+
+    Parameters
+    ----------
+    gears : WeightedUnion
+        The union–find of the gear meshes (x_driven = w·x_driver).
+    n_nodes : int
+        Number of nodes [-].
+
+    Returns
+    -------
+    tuple of ndarray, ndarray and int
+        node_dof (nodes,) coordinate of each node [-], factor (nodes,) φ_node / q [-], and the
+        number n of coordinates [-].
+    """
     if not gears.joined:
         return np.arange(n_nodes, dtype=np.intp), np.ones(n_nodes), n_nodes
     dof_of_root: dict[int, int] = {}
@@ -76,12 +90,27 @@ def gear_coordinates(gears: WeightedUnion, n_nodes: int) -> tuple[IndexArray, Fl
 
 def kinematic_groups(n_nodes: int, relations: Sequence[tuple[int, int, float]],
                      held: Sequence[bool]) -> tuple[IndexArray, FloatArray, NDArray[np.bool_]]:
-    """(root, w, held_root) of the strain-free relations φ_b = w_ab·φ_a of the stiff elements
-    and meshes: every node's group root and φ_node = w·φ_root in a strain-free motion, and
-    which roots are held (a ground spring, or a loop whose ratios disagree).
+    """The groups of strain-free motion of the stiff elements and meshes.
 
     The union–find of :class:`WeightedUnion` (path halving), written out in one loop: the
-    same products in the same order, at a third of the cost of its method calls."""
+    same products in the same order, at a third of the cost of its method calls.
+
+    Parameters
+    ----------
+    n_nodes : int
+        Number of nodes [-].
+    relations : sequence of (int, int, float)
+        (a, b, w_ab): φ_b = w_ab·φ_a in a strain-free motion [-], in the order recorded.
+    held : sequence of bool
+        Nodes held by a ground spring.
+
+    Returns
+    -------
+    tuple of ndarray
+        root (nodes,) the group's root node [-]; w (nodes,) φ_node = w·φ_root [-]; held_root
+        (nodes,) True at the roots of groups without a strain-free motion (a ground spring, or
+        a loop whose ratios disagree).
+    """
     parent = list(range(n_nodes))
     weight = [1.0] * n_nodes
     held_nodes = list(held)
@@ -128,8 +157,29 @@ def kinematic_groups(n_nodes: int, relations: Sequence[tuple[int, int, float]],
 
 def rigid_motions(node_dof: IndexArray, factor: FloatArray, kin_root: IndexArray,
                   kin_w: FloatArray, held_root: NDArray[np.bool_], n: int) -> FloatArray:
-    """(n, r) one exact strain-free motion per free group (no ground spring, no mismatched
-    loop), in reduced coordinates: q_k = φ_n / factor_n of any node n of coordinate k."""
+    """One exact strain-free motion per free group (no ground spring, no mismatched loop), in
+    reduced coordinates: q_k = φ_n / factor_n of any node n of coordinate k.
+
+    Parameters
+    ----------
+    node_dof : ndarray
+        (nodes,) coordinate of each node [-].
+    factor : ndarray
+        (nodes,) φ_node / q [-].
+    kin_root : ndarray
+        (nodes,) root of each node's group [-] (:func:`kinematic_groups`).
+    kin_w : ndarray
+        (nodes,) φ_node / φ_root in the group's strain-free motion [-].
+    held_root : ndarray
+        (nodes,) True at held roots.
+    n : int
+        Number of coordinates [-].
+
+    Returns
+    -------
+    ndarray
+        (n, r) the motions [-], one column per free group.
+    """
     free = [r for r in dict.fromkeys(kin_root.tolist()) if not held_root[r]]
     rigid = np.zeros((n, len(free)))
     if free:
@@ -144,9 +194,28 @@ def rigid_motions(node_dof: IndexArray, factor: FloatArray, kin_root: IndexArray
 def incidence(node_dof: IndexArray, factor: FloatArray, a: IndexArray, b: IndexArray,
               coef_a: FloatArray, coef_b: FloatArray,
               n: int) -> tuple[FloatArray, IndexArray, FloatArray]:
-    """(B, cols, coef): the element incidence B (elements, n), strain e = B q, and the (at most
-    two) entries of each row, nonzero ones first in ascending column, then the first zero
-    column (b < 0: an element to the ground)."""
+    """The element incidence B, strain e = B q, and the (at most two) entries of each row:
+    nonzero ones first in ascending column, then the first zero column.
+
+    Parameters
+    ----------
+    node_dof : ndarray
+        (nodes,) coordinate of each node [-].
+    factor : ndarray
+        (nodes,) φ_node / q [-].
+    a, b : ndarray
+        (elements,) the two end nodes [-] (b < 0: an element to the ground).
+    coef_a, coef_b : ndarray
+        (elements,) e = coef_a·φ_a + coef_b·φ_b [m/rad for a span, - for a shaft].
+    n : int
+        Number of coordinates [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        B (elements, n), cols (elements, 2) [-] and coef (elements, 2), in the unit of
+        ``coef_a``.
+    """
     ne = a.size
     plain = n == node_dof.size  # no gear mesh: every node its own coordinate, factor 1
     ka, va = (a, coef_a) if plain else (node_dof[a], coef_a * factor[a])
@@ -177,16 +246,49 @@ def incidence(node_dof: IndexArray, factor: FloatArray, a: IndexArray, b: IndexA
 
 
 def gram(cols: IndexArray, coef: FloatArray, weights: FloatArray, n: int) -> FloatArray:
-    """Σ_e w_e b_e b_eᵀ (n, n) of elements whose incidence rows b_e have at most two nonzero
-    entries ``coef`` in the columns ``cols`` (elements, 2): a scatter of four products per
-    element instead of a dense Bᵀ diag(w) B."""
+    """Σ_e w_e b_e b_eᵀ of elements whose incidence rows b_e have at most two nonzero entries:
+    a scatter of four products per element instead of a dense Bᵀ diag(w) B.
+
+    Parameters
+    ----------
+    cols : ndarray
+        (elements, 2) columns of the entries [-] (:func:`incidence`).
+    coef : ndarray
+        (elements, 2) the entries [m/rad for a span, - for a shaft].
+    weights : ndarray
+        (elements,) w_e: stiffnesses [N/m or N·m/rad] or dampers [N·s/m or N·m·s/rad].
+    n : int
+        Number of coordinates [-].
+
+    Returns
+    -------
+    ndarray
+        (n, n) the matrix [N·m/rad or N·m·s/rad].
+    """
     return grams(cols, coef, (weights,), n)[0]
 
 
 def grams(cols: IndexArray, coef: FloatArray, weights: Sequence[FloatArray],
           n: int) -> list[FloatArray]:
     """:func:`gram` of several weightings of the same elements (e.g. their stiffnesses and
-    their dampers), the scatter indices built once."""
+    their dampers), the scatter indices built once.
+
+    Parameters
+    ----------
+    cols : ndarray
+        (elements, 2) columns of the entries [-].
+    coef : ndarray
+        (elements, 2) the entries [m/rad for a span, - for a shaft].
+    weights : sequence of ndarray
+        Each (elements,) [N/m or N·m/rad, or N·s/m or N·m·s/rad].
+    n : int
+        Number of coordinates [-].
+
+    Returns
+    -------
+    list of ndarray
+        One (n, n) matrix per weighting.
+    """
     if cols.shape[0] == 0:
         return [np.zeros((n, n)) for _ in weights]
     a, b = cols[:, 0], cols[:, 1]
