@@ -73,6 +73,30 @@ ALIASES: dict[str, str] = {
     "kn": "kN", "nm": "N*m", "knm": "kN*m",
 }
 
+#: (dimension, unit as written) → the factor to the SI unit of :data:`DIMENSIONS`, for the
+#: units of the shipped designs and their common neighbours: read without pint (importing
+#: pint and building its registry is about an eighth of a command-line run). Each factor is
+#: the one pint computes, and pint converts by that one multiplication, so the value is
+#: pint's to the last bit (tests/unit/test_units_exact.py checks every entry against pint).
+EXACT_UNITS: dict[tuple[str, str], float] = {
+    ("length", "m"): 1.0, ("length", "mm"): 0.001, ("length", "cm"): 0.01,
+    ("angle", "rad"): 1.0, ("angle", "deg"): 0.017453292519943295,
+    ("speed", "rpm"): 0.10471975511965977, ("speed", "rad/s"): 1.0,
+    ("velocity", "m/s"): 1.0,
+    ("power", "W"): 1.0, ("power", "kW"): 1000.0,
+    ("torque", "N*m"): 1.0, ("torque", "kN*m"): 1000.0,
+    ("force", "N"): 1.0, ("force", "kN"): 1000.0,
+    ("mass", "kg"): 1.0, ("mass", "g"): 0.001,
+    ("inertia", "kg*m^2"): 1.0, ("inertia", "kg*m**2"): 1.0,
+    ("time", "s"): 1.0, ("time", "min"): 60.0, ("time", "h"): 3600.0,
+    ("stiffness", "N/m"): 1.0, ("stiffness", "N/mm"): 1000.0, ("stiffness", "kN/mm"): 1e6,
+    ("pressure", "Pa"): 1.0, ("pressure", "MPa"): 1e6, ("pressure", "N/mm^2"): 1e6,
+    ("density", "kg/m^3"): 1.0, ("linear_density", "kg/m"): 1.0,
+    ("torsional_stiffness", "N*m/rad"): 1.0, ("torsional_stiffness", "kN*m/rad"): 1000.0,
+    ("torsional_damping", "N*m*s/rad"): 1.0,
+    ("area", "m^2"): 1.0, ("area", "mm^2"): 1e-06,
+}
+
 _NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", re.DOTALL)
 _UNIT_CHARS = re.compile(r"[^\W_]|[\s*/^·⋅().\-°'\"⁻⁰¹²³⁴⁵⁶⁷⁸⁹µμΩ_]")
 _WORD = re.compile(r"[^\W\d_]+")
@@ -223,12 +247,36 @@ def parse_quantity(text: object, dimension: str, field: str) -> float:
     rotational frequency n, revolutions per unit time [ISO80000-3]: ω = 2π·n. ``Hz`` is
     refused as ambiguous. An angle needs an angle unit (``deg``, ``rad``, ``revolution``).
     """
-    _dim, si_unit, example = DIMENSIONS[dimension]
+    example = DIMENSIONS[dimension][2]
     if isinstance(text, bool) or not isinstance(text, str):
         shown_value = shown(text) if isinstance(text, str) else repr(text)[:MAX_TEXT]
         raise DesignError(
             field, f"must be a string with a unit such as \"{example}\", got {shown_value}"
         )
+    exact = _exact(text, dimension)
+    if exact is not None:
+        return _finite(exact, text, field, example)
+    return _with_pint(text, dimension, field)
+
+
+def _exact(text: str, dimension: str) -> float | None:
+    """The SI value of a quantity written in a unit of :data:`EXACT_UNITS` (pint's value,
+    without pint); None for any other text (pint reads it, or refuses it)."""
+    if len(text) > MAX_TEXT:
+        return None
+    m = _NUMBER.fullmatch(text)
+    if m is None:
+        return None
+    factor = EXACT_UNITS.get((dimension, m.group(2)))
+    if factor is None:
+        return None
+    value = float(m.group(1))
+    return value * factor if math.isfinite(value) else None
+
+
+def _with_pint(text: str, dimension: str, field: str) -> float:
+    """:func:`parse_quantity` of a string by pint (every unit and every refusal)."""
+    _dim, si_unit, example = DIMENSIONS[dimension]
     value, unit = _split(text, field, example)
     units = _units(unit, text, field, example)
     q = registry().Quantity(value, units)

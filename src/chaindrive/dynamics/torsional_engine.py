@@ -44,13 +44,22 @@ from types import MappingProxyType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.torsional_assembly import (
+    RATIO_RTOL,
+    WeightedUnion,
+    gear_coordinates,
+    grams,
+    incidence,
+    kinematic_groups,
+    rigid_motions,
+)
+from chaindrive.dynamics.torsional_assembly import gram as _gram
 from chaindrive.errors import DesignError
 
-__all__ = ["TorsionalEngine", "TorsionalModes", "TorsionalSystem", "reducer_input_torque"]
+__all__ = ["RATIO_RTOL", "TorsionalEngine", "TorsionalModes", "TorsionalSystem",
+           "reducer_input_torque"]
 
 TWO_PI = 2.0 * math.pi
-#: Relative tolerance of kinematic ratios (gear loops, strain-free rigid motions).
-RATIO_RTOL = 1e-9
 FloatArray = NDArray[np.float64]
 #: One element of a train in :meth:`TorsionalEngine.from_contour` (plain data).
 TrainElement = Mapping[str, "float | str | bool"]
@@ -91,44 +100,14 @@ def _check_efficiency(field: str, efficiency: float) -> None:
         raise DesignError(field, f"efficiency must be in (0, 1], got {efficiency!r}")
 
 
+_INF = math.inf
+
+
 def _nonneg(field: str, value: float, what: str) -> float:
     value = float(value)
-    if not 0.0 <= value < math.inf:  # also False for nan
+    if not 0.0 <= value < _INF:  # also False for nan
         raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
     return value
-
-
-class _WeightedUnion:
-    """Union–find of coordinates tied by linear relations x_child = w·x_parent."""
-
-    __slots__ = ("parent", "weight")
-
-    def __init__(self) -> None:
-        self.parent: list[int] = []
-        self.weight: list[float] = []
-
-    def find(self, i: int) -> tuple[int, float]:
-        """(root, w) with x_i = w·x_root (path halving)."""
-        parent, weight = self.parent, self.weight
-        w = 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:  # compress: point i at its grandparent
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            w *= weight[i]
-            i = parent[i]
-        return i, w
-
-    def relate(self, a: int, b: int, w_ab: float) -> bool:
-        """Impose x_b = w_ab·x_a; False if it contradicts the relations already there."""
-        ra, fa = self.find(a)
-        rb, fb = self.find(b)
-        if ra == rb:
-            return abs(fb - w_ab * fa) <= RATIO_RTOL * max(abs(fb), abs(w_ab * fa))
-        self.parent[rb] = ra
-        self.weight[rb] = w_ab * fa / fb
-        return True
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -205,7 +184,7 @@ class TorsionalSystem:
         if J.shape != self.node_inertia_kg_m2.shape or k.shape != self.element_stiffness.shape \
                 or c.shape != self.element_damping.shape:
             raise DesignError("updated", "need one value per node and per element")
-        if np.any((k > 0) != (self.element_stiffness > 0)) or np.any(J < 0) or np.any(k < 0):
+        if ((k > 0) != (self.element_stiffness > 0)).any() or (J < 0).any() or (k < 0).any():
             raise DesignError("element_stiffness", "an element changed between k = 0 and k > 0 "
                               "(or a value is negative): that is another topology, rebuild it")
         f2 = self.node_factor * self.node_factor
@@ -213,12 +192,13 @@ class TorsionalSystem:
         mass = self.mass + np.asarray(np.bincount(
             self.node_dof, weights=(J - self.node_inertia_kg_m2) * f2, minlength=n), dtype=float)
         span = self.span_mask
-        cols, coef = self.element_columns[~span], self.element_coefficients[~span]
+        lin = ~span
+        K_lin, C_lin = grams(self.element_columns[lin], self.element_coefficients[lin],
+                             (k[lin], c[lin]), n)
         return TorsionalSystem(
             node_names=self.node_names, node_dof=self.node_dof, node_factor=self.node_factor,
             node_inertia_kg_m2=J, mass=mass, mass_coupling=self.mass_coupling,
-            stiffness_linear=_gram(cols, coef, k[~span], n),
-            damping_linear=_gram(cols, coef, c[~span], n), span_names=self.span_names,
+            stiffness_linear=K_lin, damping_linear=C_lin, span_names=self.span_names,
             span_incidence=self.span_incidence,
             span_stiffness_n_per_m=k[span], span_damping_n_s_per_m=c[span],
             span_tension_only=self.span_tension_only, element_names=self.element_names,
@@ -253,7 +233,7 @@ class TorsionalSystem:
     @property
     def has_mass_coupling(self) -> bool:
         """True when M is not diagonal (a span carries a consistent chain mass)."""
-        return bool(np.any(self.mass_coupling))
+        return bool(self.mass_coupling.any())
 
     def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
@@ -440,9 +420,10 @@ class TorsionalEngine:
         self._chain: list[float] = []
         # consistent chain mass of the spans: (node a, node b, m/6·r_a·r_b) [kg·m²]
         self._mass_pairs: list[tuple[int, int, float]] = []
-        self._gears = _WeightedUnion()
-        # strain-free kinematics of all elements of stiffness > 0 and meshes: rigid-body modes
-        self._kin = _WeightedUnion()
+        self._gears = WeightedUnion()
+        # strain-free relations φ_b = w·φ_a of all elements of stiffness > 0 and meshes, in
+        # order (their groups are the rigid-body modes; resolved at assembly)
+        self._relations: list[tuple[int, int, float]] = []
         self._held: list[bool] = []
         self._meshes: list[tuple[str, int, int, float, float, float]] = []
         # elements: name, kind, a, b (-1: ground), coef_a, coef_b, k, c, tension_only
@@ -463,9 +444,8 @@ class TorsionalEngine:
         self._inertia.append(0.0)
         self._given.append(False)
         self._chain.append(0.0)
-        for tree in (self._gears, self._kin):  # a new root of its own
-            tree.parent.append(i)
-            tree.weight.append(1.0)
+        self._gears.parent.append(i)  # a new root of its own
+        self._gears.weight.append(1.0)
         self._held.append(False)
         return i
 
@@ -510,11 +490,18 @@ class TorsionalEngine:
         """Shaft or coupling of torsional stiffness k [N·m/rad] and damping c [N·m·s/rad]
         between nodes a and b (twist φ_b − φ_a)."""
         name = self._element_name(name, f"shaft:{a}-{b}")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
-        self._kinematics(ia, ib, 1.0, k)
+        ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
+        if ia is None or ib is None or a == b:
+            ia, ib = self._pair(a, b, name)
+        k = float(stiffness)
+        if not 0.0 <= k < _INF:  # also True for nan (as _nonneg, without the call)
+            _nonneg(name, k, "stiffness [N·m/rad]")
+        c = float(damping)
+        if not 0.0 <= c < _INF:
+            _nonneg(name, c, "damping [N·m·s/rad]")
+        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
+        if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
+            self._relations.append((ia, ib, 1.0))
         return self
 
     def add_ground_spring(self, node: str, stiffness: float, damping: float = 0.0,
@@ -561,12 +548,23 @@ class TorsionalEngine:
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
-        m = _nonneg(name, mass, "span mass [kg]")
-        ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N/m]")
-        self._elements.append((name, "span", ia, ib, -ra, rb, k,
-                               _nonneg(name, damping, "damping [N·s/m]"), bool(tension_only)))
-        self._kinematics(ia, ib, ra / rb, k)
+        m = float(mass)
+        if not 0.0 <= m < _INF:  # also True for nan (as _nonneg, without the call)
+            _nonneg(name, m, "span mass [kg]")
+        ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
+        if ia is None or ib is None or a == b:
+            ia, ib = self._pair(a, b, name)
+        k = float(stiffness)
+        if not 0.0 <= k < _INF:
+            _nonneg(name, k, "stiffness [N/m]")
+        c = float(damping)
+        if not 0.0 <= c < _INF:
+            _nonneg(name, c, "damping [N·s/m]")
+        self._elements.append((name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
+        if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
+            self._relations.append((ia, ib, ra / rb))
+        if m == 0.0:
+            return self
         if consistent_mass:
             self._chain[ia] += m / 3.0 * ra * ra
             self._chain[ib] += m / 3.0 * rb * rb
@@ -614,9 +612,10 @@ class TorsionalEngine:
 
     def _kinematics(self, a: int, b: int, w: float, stiffness: float) -> None:
         """Strain-free relation φ_b = w·φ_a of an element (ignored at stiffness 0); one that
-        contradicts the others holds its group (no rigid-body motion)."""
-        if stiffness > 0.0 and not self._kin.relate(a, b, w):
-            self._held[a] = True
+        contradicts the others holds its group (no rigid-body motion; resolved at assembly:
+        :func:`chaindrive.dynamics.torsional_assembly.kinematic_groups`)."""
+        if stiffness > 0.0:
+            self._relations.append((a, b, w))
 
     def _pair(self, a: str, b: str, name: str) -> tuple[int, int]:
         if a == b:
@@ -698,22 +697,14 @@ class TorsionalEngine:
 
 
 def _assemble(model: TorsionalEngine) -> TorsionalSystem:
-    """Reduced coordinates (one per gear tree), element incidence, rigid-body motions."""
+    """Reduced coordinates (one per gear tree), element incidence, rigid-body motions, on
+    whole arrays (:mod:`chaindrive.dynamics.torsional_assembly`)."""
     n_nodes = len(model._inertia)
     if n_nodes == 0:
         raise DesignError("nodes", "the model has no node")
-    gears, kin = model._gears, model._kin
-    dof_of_root: dict[int, int] = {}
-    node_dof = np.empty(n_nodes, dtype=np.intp)
-    factor = np.empty(n_nodes)
-    kin_root = np.empty(n_nodes, dtype=np.intp)
-    kin_w = np.empty(n_nodes)
-    for i in range(n_nodes):
-        root, factor[i] = gears.find(i)
-        node_dof[i] = dof_of_root.setdefault(root, len(dof_of_root))
-        kin_root[i], kin_w[i] = kin.find(i)
-    n = len(dof_of_root)
-    inertia = np.asarray(model._inertia) + np.asarray(model._chain)
+    node_dof, factor, n = gear_coordinates(model._gears, n_nodes)
+    kin_root, kin_w, held_root = kinematic_groups(n_nodes, model._relations, model._held)
+    inertia = np.array(model._inertia) + np.array(model._chain)
     mass = np.asarray(np.bincount(node_dof, weights=inertia * factor * factor, minlength=n),
                       dtype=np.float64)
     coupling = np.zeros((n, n))
@@ -725,57 +716,28 @@ def _assemble(model: TorsionalEngine) -> TorsionalSystem:
         else:
             coupling[ka, kb] += w_ab
             coupling[kb, ka] += w_ab
-    held = set(kin_root[np.asarray(model._held, dtype=bool)].tolist())
-    free = [r for r in dict.fromkeys(kin_root.tolist()) if r not in held]
-    rigid = np.zeros((n, len(free)))
-    for j, r in enumerate(free):  # q_k = φ_n / factor_n of any node n of coordinate k
-        nodes = kin_root == r
-        rigid[node_dof[nodes], j] = kin_w[nodes] / factor[nodes]
     el = model._elements
-    ne = len(el)
-    names, kinds, a, b, ca, cb, k, c, tension = (list(col) for col in zip(*el, strict=True)) \
-        if ne else ([], [], [], [], [], [], [], [], [])
-    B = np.zeros((ne, n))
-    ia, ib = np.array(a, dtype=np.intp), np.array(b, dtype=np.intp)
-    rows = np.arange(ne)
-    B[rows, node_dof[ia]] = np.array(ca) * factor[ia]
-    two = ib >= 0
-    np.add.at(B, (rows[two], node_dof[ib[two]]), np.array(cb)[two] * factor[ib[two]])
+    names, kinds, a, b, ca, cb, k, c, tension = (zip(*el, strict=True) if el else
+                                                 ((),) * 9)
+    B, cols, coef = incidence(node_dof, factor, np.array(a, dtype=np.intp),
+                              np.array(b, dtype=np.intp), np.array(ca, dtype=float),
+                              np.array(cb, dtype=float), n)
     k_all, c_all = np.array(k, dtype=float), np.array(c, dtype=float)
     span = np.array([kd == "span" for kd in kinds], dtype=bool)
     lin = ~span
-    nz = B != 0.0
-    if n > 1:  # the (at most two) nonzero entries of every row first
-        cols = np.argsort(~nz, axis=1, kind="stable")[:, :2]
-        coef = np.take_along_axis(B, cols, axis=1)
-    else:
-        cols = np.zeros((ne, 2), dtype=np.intp)
-        coef = np.column_stack([B[:, 0], np.zeros(ne)]) if ne else np.zeros((0, 2))
+    K_lin, C_lin = grams(cols[lin], coef[lin], (k_all[lin], c_all[lin]), n)
     return TorsionalSystem(
         node_names=tuple(model._index), node_dof=node_dof, node_factor=factor,
         node_inertia_kg_m2=inertia, mass=mass, mass_coupling=coupling,
-        stiffness_linear=_gram(cols[lin], coef[lin], k_all[lin], n),
-        damping_linear=_gram(cols[lin], coef[lin], c_all[lin], n),
-        span_names=tuple(x for x, sp in zip(names, span, strict=True) if sp),
+        stiffness_linear=K_lin, damping_linear=C_lin,
+        span_names=tuple(x for x, sp in zip(names, span.tolist(), strict=True) if sp),
         span_incidence=B[span], span_stiffness_n_per_m=k_all[span],
         span_damping_n_s_per_m=c_all[span],
         span_tension_only=np.array(tension, dtype=bool)[span],
         element_names=tuple(names), element_kinds=tuple(kinds), element_incidence=B,
-        element_stiffness=k_all, element_damping=c_all, rigid_motions=rigid,
+        element_stiffness=k_all, element_damping=c_all,
+        rigid_motions=rigid_motions(node_dof, factor, kin_root, kin_w, held_root, n),
         element_columns=cols, element_coefficients=coef, span_mask=span)
-
-
-def _gram(cols: NDArray[np.intp], coef: FloatArray, weights: FloatArray, n: int) -> FloatArray:
-    """Σ_e w_e b_e b_eᵀ (n, n) of elements whose incidence rows b_e have at most two nonzero
-    entries ``coef`` in the columns ``cols`` (elements, 2): a scatter of four products per
-    element instead of a dense Bᵀ diag(w) B."""
-    if cols.shape[0] == 0:
-        return np.zeros((n, n))
-    a, b = cols[:, 0], cols[:, 1]
-    va, vb = coef[:, 0] * weights, coef[:, 1]
-    idx = np.concatenate([a * n + a, b * n + b, a * n + b, b * n + a])
-    w = np.concatenate([va * coef[:, 0], vb * vb * weights, va * vb, va * vb])
-    return np.asarray(np.bincount(idx, weights=w, minlength=n * n), dtype=np.float64).reshape(n, n)
 
 
 def _deflated_eigh(A: FloatArray, W: FloatArray,
@@ -791,17 +753,17 @@ def _deflated_eigh(A: FloatArray, W: FloatArray,
         w = W[:, 0]
         v = w.copy()
         v[0] += math.copysign(1.0, w[0])  # H = I − 2 v vᵀ / vᵀv maps w to ∓e₁
-        v /= np.linalg.norm(v)
+        v /= math.sqrt(v @ v)
         Av = A @ v
         u = Av - (v @ Av) * v            # H A H = A − 2 (v uᵀ + u vᵀ)
-        v1, u1 = v[1:], u[1:]
-        B = A[1:, 1:] - 2.0 * (np.outer(v1, u1) + np.outer(u1, v1))
+        v1, u1 = v[1:, None], u[1:, None]
+        B = A[1:, 1:] - 2.0 * (v1 * u1.T + u1 * v1.T)
         if not vectors:
             return np.asarray(np.linalg.eigvalsh(B), dtype=np.float64), np.empty((n, 0))
         lam, Ve = np.linalg.eigh(B)
         V = np.zeros((n, n - 1))
         V[1:] = Ve
-        V -= 2.0 * np.outer(v, v @ V)
+        V -= 2.0 * (v[:, None] * (v @ V)[None, :])
         return np.asarray(lam, dtype=np.float64), V
     basis = np.linalg.qr(W, mode="complete")[0][:, r:]
     if not vectors:
@@ -862,12 +824,16 @@ def _scaled_problem(system: TorsionalSystem) -> tuple[FloatArray, _Scaling, Floa
         if U.shape[1]:  # M-orthonormal rigid motions (groups may touch through a span's mass)
             G = U.T @ Mm @ U
             U = U @ np.linalg.inv(np.linalg.cholesky(G)).T
-    else:
-        m = mass[massed]
-        scaling = _Scaling(np.sqrt(m), None)
-        if U.shape[1]:  # disjoint groups are M-orthogonal already
-            U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
-    return scaling.scaled(K), scaling, U, X, massed
+        return scaling.scaled(K), scaling, U, X, massed
+    m = mass if X is None else mass[massed]
+    sqrt_m = np.sqrt(m)
+    scaling = _Scaling(sqrt_m, None)
+    if U.shape[1]:  # disjoint groups are M-orthogonal already
+        U = U / np.sqrt((m[:, None] * U * U).sum(axis=0))
+    d = 1.0 / sqrt_m
+    K *= d[:, None]  # K is this call's own array: S⁻ᵀ K S⁻¹ in place (as _Scaling.scaled)
+    K *= d[None, :]
+    return K, scaling, U, X, massed
 
 
 def _frequencies(system: TorsionalSystem) -> FloatArray:
