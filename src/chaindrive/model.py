@@ -116,7 +116,7 @@ class Material:
 
 @dataclass(frozen=True, slots=True)
 class ChainRequest:
-    """A design that names no chain: the family to select from (issue 3).
+    """A design that names no chain: the family to select from.
 
     standard: "ISO 606", "ANSI" or "GOST 13568"; series: "A"/"B" or None; strands: fixed
     number of strands or None (simplex is chosen then).
@@ -139,7 +139,7 @@ class Chain:
     :mod:`chaindrive.geometry.length_options`); ``allow_odd`` permits an odd count (which
     needs an offset link); ``contours``: the
     number of identical chain contours side by side on sprockets keyed to common shafts
-    (seed 004; 1 for an ordinary drive). ``request`` is set
+    ([Lyashuk]; 1 for an ordinary drive). ``request`` is set
     when the design named no chain: ``spec`` is then provisional and
     :func:`chaindrive.analyze` replaces it with the lightest feasible chain of the family.
     """

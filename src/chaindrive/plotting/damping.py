@@ -1,5 +1,5 @@
 """Hinge-friction damping: absorption coefficient ψ against the relative amplitude ȳ₀ for
-several initial tensions F₀ (seed 001, its Fig. 2)."""
+several initial tensions F₀ ([ChainHingeDissipation, Fig. 2])."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 
 def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                             ax: Axes | None = None) -> Figure:
-    """ψ = 6πfd₂/(ȳ₀aK_aF) (seed 001 eq. 14) against ȳ₀, one curve per tension F₀ [N].
+    """ψ = 6πfd₂/(ȳ₀aK_aF) ([ChainHingeDissipation, eq. 14]) against ȳ₀, one curve per tension F₀ [N].
 
     results : :class:`chaindrive.dynamics.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
     e.g. from :func:`chaindrive.dynamics.damping.hinge_friction_damping`; grouped by tension.
@@ -37,5 +37,5 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                                                    lambda z: z * 4 * np.pi))
     right.set_ylabel("ζ = ψ/4π")
     ax.legend(fontsize="x-small")
-    finish(ax, "Hinge-friction damping (seed 001)")
+    finish(ax, "Hinge-friction damping [ChainHingeDissipation]")
     return fig

@@ -1,4 +1,4 @@
-"""Multi-contour drives: the distribution of the contour factor K_m (seed 004)."""
+"""Multi-contour drives: the distribution of the contour factor K_m ([Lyashuk])."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
 def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05,
                     bins: int = 40) -> Figure:
-    """Histogram (density) of Monte-Carlo samples of the contour factor K_m (seed 004
+    """Histogram (density) of Monte-Carlo samples of the contour factor K_m ([Lyashuk]
     eq. 16: K_m = 1 + 2Δ_y/(|ΔL₃| + 2Δ_y), e.g. from
     :func:`chaindrive.multicontour.simulate_length_difference` and
     :func:`chaindrive.multicontour.contour_factor_km`), with its mean and the value not

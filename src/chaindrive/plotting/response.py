@@ -1,4 +1,4 @@
-"""Dynamic response of a drive (seed 000 §3.2–3.6): start-up oscillograms of the span forces
+"""Dynamic response of a drive ([MultimassChainDrives, §3.2–3.6]): start-up oscillograms of the span forces
 and of the sprocket speeds (its Fig. 2), amplitude–frequency curves per span with the
 resonance marks (its Fig. 3), steady dynamic loads per span, inertia loads and irregularity
 per mass, and the four material pairs side by side (its Fig. 2–3 and Table 1).
@@ -77,7 +77,7 @@ def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
 
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
-    """Span forces F_i(t) [N] during the start-up against time [ms] (seed 000 Fig. 2), the
+    """Span forces F_i(t) [N] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), the
     largest one F₁max marked and labelled, the settling time as a dashed vertical line
     (:func:`chaindrive.dynamics.startup.settling_time`). names label the spans. When the
     start-up settles within a fifth of the record the time axis ends at 4× the settling
@@ -109,7 +109,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
 
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
                    names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
-    """Sprocket speeds [rpm] during the start-up against time [ms] (seed 000 Fig. 2), over
+    """Sprocket speeds [rpm] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), over
     the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses)."""
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
@@ -154,7 +154,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
                max_lines: int = 6, max_markers: int = 8,
                operating_hz: float | None = None) -> Figure:
     """Amplitude–frequency characteristics: peak dynamic load of each span [N] against the
-    tooth frequency [Hz] (seed 000 Fig. 3), every resonance (harmonic k of the tooth
+    tooth frequency [Hz] ([MultimassChainDrives, Fig. 3]), every resonance (harmonic k of the tooth
     frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
     "mode j × k" (the ``max_markers`` with the highest load), and the operating tooth
     frequency ``operating_hz`` as a solid line. Logarithmic load axis: the resonance peaks
@@ -186,7 +186,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
 
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None) -> Figure:
-    """Steady dynamic load of each span under the polygonal effect (seed 000 §3.3): peak
+    """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
     |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars."""
     fig, ax = figure_axes(ax, (6.0, 3.4))
     peak = np.asarray(steady.span_dynamic_load)
@@ -204,7 +204,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
 
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None) -> Figure:
-    """Two bar charts per mass (seed 000 §3.3): the inertia load max |m_i ẍ_i| [N] and the
+    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load max |m_i ẍ_i| [N] and the
     irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars when the radii were not
     given to the steady state)."""
     from matplotlib.figure import Figure
@@ -231,7 +231,7 @@ def _pair_label(case: MaterialCase) -> str:
 
 
 def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
-    """The material pairs side by side (seed 000 Fig. 2–3, Table 1): start-up peak span force
+    """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
     [N] and the amplitude of the first resonance [N] (its tooth frequency [Hz] printed on the
     bar) per pair of chain and sprocket materials
     (:func:`chaindrive.dynamics.materials.material_comparison`)."""

@@ -1,4 +1,4 @@
-"""The Pareto front of an optimal synthesis (chaindrive.synthesis, seed 000 §3.6)."""
+"""The Pareto front of an optimal synthesis (chaindrive.synthesis, [MultimassChainDrives, §3.6])."""
 
 from __future__ import annotations
 
