@@ -12,8 +12,8 @@ and per shaft), :mod:`.dynamics` (mode shapes as the relative-amplitude bars of
 [MultimassChainDrives], Campbell diagram), :mod:`.damping` (ψ against ȳ₀ for several
 tensions, [ChainHingeDissipation]), :mod:`.multicontour` (K_m distribution, [Lyashuk]),
 :mod:`.synthesis` (Pareto front), :mod:`.response` (start-up oscillograms, AFC, steady
-dynamic loads, inertia loads and irregularity, material pairs — [MultimassChainDrives, Fig.
-2–3, Table 1]).
+dynamic loads, inertia loads and irregularity, material pairs —
+[MultimassChainDrives, Fig. 2–3, Table 1]).
 """
 
 from __future__ import annotations
