@@ -62,7 +62,7 @@ def modal_harmonic_response(shapes: NDArray[np.float64], omegas_n: NDArray[np.fl
     qB += D
     qB *= stiffness
     qB *= g[..., None]
-    return qB
+    return np.asarray(qB, dtype=np.complex128)
 
 
 @dataclass(frozen=True, slots=True, eq=False)

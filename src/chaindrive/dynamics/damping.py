@@ -309,7 +309,7 @@ def damped_frequencies(frequencies: ArrayLike, damping_ratio: ArrayLike) -> NDAr
     z = np.asarray(damping_ratio, dtype=float)
     if np.any((z < 0) | (z >= 1)):
         raise DesignError("damping_ratio", f"must be from 0 to below 1, got {damping_ratio!r}")
-    return np.asarray(frequencies, dtype=float) * np.sqrt(1.0 - z * z)
+    return np.asarray(np.asarray(frequencies, dtype=float) * np.sqrt(1.0 - z * z), dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)
@@ -416,7 +416,7 @@ def series_loss_factor(loss_factors: ArrayLike, compliances: ArrayLike) -> NDArr
     stacked on the first axis, like ``loss_factors``."""
     eta = np.asarray(loss_factors, dtype=float)
     comp = np.asarray(compliances, dtype=float)
-    return np.sum(eta * comp, axis=0) / np.sum(comp, axis=0)
+    return np.asarray(np.sum(eta * comp, axis=0) / np.sum(comp, axis=0), dtype=np.float64)
 
 
 def modal_loss_factor(loss_factors: ArrayLike, stiffness: ArrayLike, shape: ArrayLike) -> float:

@@ -70,7 +70,7 @@ def _harmonic(model: DriveModel, w: FloatArray, D: ComplexArray
 
 def _traces(amplitudes: ComplexArray, w: FloatArray, times: FloatArray) -> FloatArray:
     """Re Σ_f A_f e^{i w_f t} on ``times``: (T, columns)."""
-    return (np.exp(1j * np.outer(times, w)) @ amplitudes).real
+    return np.asarray((np.exp(1j * np.outer(times, w)) @ amplitudes).real, dtype=np.float64)
 
 
 def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int = 128,

@@ -21,11 +21,12 @@ platform compiler). Without one the build reports why and the package works as b
 from __future__ import annotations
 
 import hashlib
+import importlib
 import sys
 import warnings
 from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 __all__ = ["MODULE", "build", "compiled_kernel", "source_digest"]
 
@@ -47,7 +48,8 @@ def compiled_kernel() -> Any:
     """``run_kernel_flat`` of the ahead-of-time module, or None when it is not built or was
     built from other sources (decided once per process)."""
     try:
-        from chaindrive.dynamics import _startup_aot  # type: ignore[attr-defined]
+        # imported by name: the extension module exists only once built
+        _startup_aot = importlib.import_module("chaindrive.dynamics._startup_aot")
     except ImportError:
         return None
     if _startup_aot.source_digest() != source_digest():
@@ -75,7 +77,8 @@ def build(output_dir: Path | None = None) -> Path:
     def _digest() -> int:
         return digest
 
-    cc.export("run_kernel_flat", FLAT_SIGNATURE)(run_kernel_flat.py_func)
+    # the numba dispatcher behind the typed decorator keeps the Python function as .py_func
+    cc.export("run_kernel_flat", FLAT_SIGNATURE)(cast(Any, run_kernel_flat).py_func)
     cc.compile()
     built = sorted(Path(cc.output_dir).glob(MODULE + ".*"), key=lambda p: p.stat().st_mtime)
     return built[-1]

@@ -29,7 +29,7 @@ def _exp_steps(s: NDArray[np.complex128], dt: float, count: int) -> NDArray[np.c
     U = -(-count // C)
     coarse = np.exp(np.multiply.outer((C * dt) * np.arange(U), s))[:, None, :]
     fine = np.exp(np.multiply.outer(dt * np.arange(C), s))[None, :, :]
-    return (coarse * fine).reshape(U * C, s.size)[:count]
+    return np.asarray((coarse * fine).reshape(U * C, s.size)[:count], dtype=np.complex128)
 
 
 def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
@@ -75,7 +75,7 @@ def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
                           0.0) * binom  # (nb, p, q)
         M[:, 2 * J:, :] = np.matmul(powers.transpose(0, 2, 1), p_coef.T)
     out = np.matmul(W, M)  # (nb, B, R)
-    return out.reshape(nb * B, R)[:count]
+    return np.asarray(out.reshape(nb * B, R)[:count], dtype=np.float64)
 
 
 def exp_poly_at(times: ArrayLike, exponents: ArrayLike, coef: ArrayLike, poly: ArrayLike
@@ -93,7 +93,7 @@ def exp_poly_at(times: ArrayLike, exponents: ArrayLike, coef: ArrayLike, poly: A
     out = (np.exp(np.multiply.outer(t, s)) @ np.asarray(coef, dtype=complex).T).real
     if p_coef.shape[1]:
         out += (t[:, None] ** np.arange(p_coef.shape[1])) @ p_coef.T
-    return out
+    return np.asarray(out, dtype=np.float64)
 
 
 @dataclass(frozen=True, eq=False)

@@ -142,7 +142,8 @@ class DriveModes:
         [MultimassChainDrives, eq. 2] (a mode that leaves every sprocket still: zeros)."""
         a = np.abs(self.shapes)
         total = a.sum(axis=0)
-        return np.divide(a, total, out=np.zeros_like(a), where=total > 0)
+        return np.asarray(np.divide(a, total, out=np.zeros_like(a), where=total > 0),
+                          dtype=np.float64)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict; ``mode_shapes[j]`` lists the sprockets' amplitudes in mode j."""

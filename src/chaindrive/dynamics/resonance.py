@@ -60,7 +60,7 @@ def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
     """
     w = np.asarray(driver_speed, dtype=float)
     z = np.asarray(teeth, dtype=float)
-    return (w[..., None] * driver_teeth / z) / TWO_PI
+    return np.asarray((w[..., None] * driver_teeth / z) / TWO_PI, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)

@@ -114,7 +114,7 @@ class ModalResult:
     def normalized_amplitudes(self) -> NDArray[np.float64]:
         """[MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
         absx = np.abs(self.shapes)
-        return absx / absx.sum(axis=0)
+        return np.asarray(absx / absx.sum(axis=0), dtype=np.float64)
 
     @property
     def partial_frequencies_hz(self) -> NDArray[np.float64]:
@@ -350,7 +350,7 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
     # those are set to 0, a small genuine eigenvalue is kept
     n_rigid = np.maximum((c <= 0.0).sum(axis=1), 1)
     lam[np.arange(n)[None, :] < n_rigid[:, None]] = 0.0
-    return np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
+    return np.asarray(np.sqrt(np.maximum(lam, 0.0)) / TWO_PI, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True, eq=False)

@@ -54,7 +54,8 @@ def reduced_mass(inertia: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     Source: [MultimassChainDrives, §3.1] ("bringing the revolved masses over to the radii of the end
     hinges").
     """
-    return np.asarray(inertia, dtype=float) / np.asarray(radius, dtype=float) ** 2
+    return np.asarray(np.asarray(inertia, dtype=float) / np.asarray(radius, dtype=float) ** 2,
+                      dtype=np.float64)
 
 
 def plate_thickness(spec: ChainSpec) -> float:
@@ -99,7 +100,8 @@ def chain_span_stiffness(link_k: ArrayLike, span_length: ArrayLike,
     link_k : stiffness of one link [N/m]; pitch p [m]. Equivalently c = EA_eff / L with
     EA_eff = k_link · p.
     """
-    return np.asarray(link_k, dtype=float) * pitch / np.asarray(span_length, dtype=float)
+    return np.asarray(np.asarray(link_k, dtype=float) * pitch
+                      / np.asarray(span_length, dtype=float), dtype=np.float64)
 
 
 def tooth_stiffness(width: float, e_sprocket: float, e_roller: float,

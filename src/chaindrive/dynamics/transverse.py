@@ -40,7 +40,7 @@ def transverse_wave_speed(tension: ArrayLike, mass_per_length: ArrayLike) -> NDA
     q = np.asarray(mass_per_length, dtype=float)
     if np.any(q <= 0):
         raise DesignError("mass_per_length", "must be positive")
-    return np.sqrt(np.maximum(t, 0.0) / q)
+    return np.asarray(np.sqrt(np.maximum(t, 0.0) / q), dtype=np.float64)
 
 
 def span_transverse_frequencies(length: ArrayLike, tension: ArrayLike, mass_per_length: ArrayLike,
