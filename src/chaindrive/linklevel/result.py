@@ -196,12 +196,13 @@ class LinkLevelResult:
     def span_dynamic_load(self) -> NDArray[np.float64]:
         """F_D,i = max |F_i − F̄_i| over the steady window [N] (module docstring)."""
         f = self.span_forces[self.times >= self.steady_from]
-        return np.abs(f - f.mean(axis=0)).max(axis=0)
+        return np.asarray(np.abs(f - f.mean(axis=0)).max(axis=0), dtype=np.float64)
 
     @property
     def span_mean_force(self) -> NDArray[np.float64]:
         """F̄_i over the steady window [N]."""
-        return self.span_forces[self.times >= self.steady_from].mean(axis=0)
+        return np.asarray(self.span_forces[self.times >= self.steady_from].mean(axis=0),
+                          dtype=np.float64)
 
     @property
     def coefficient_of_dynamics(self) -> float | None:
@@ -213,7 +214,7 @@ class LinkLevelResult:
     @property
     def peak_span_force(self) -> NDArray[np.float64]:
         """Largest span force over the whole run [N] (the start-up peak F₁max from rest)."""
-        return self.span_forces.max(axis=0)
+        return np.asarray(self.span_forces.max(axis=0), dtype=np.float64)
 
     def history(self) -> tuple[list[str], NDArray[np.float64]]:
         """CSV-ready history: column names (unit in each) and a (T, columns) array — time,

@@ -30,7 +30,12 @@ from chaindrive.linklevel.kernel import (
     RESISTANCE_QUADRATIC,
     run_kernel,
 )
-from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
+from chaindrive.linklevel.model import (
+    HINGE_FRICTION,
+    LinkLevelModel,
+    TorsionalAttachment,
+    build_model,
+)
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
 
 if TYPE_CHECKING:
@@ -148,8 +153,9 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
                           f"{duration_s!r}, {steady_window!r}")
     geometry = geometry or contour_geometry(drive)
     if model is None:
-        kw = {} if hinge_friction is None else {"hinge_friction": hinge_friction}
-        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional, **kw)
+        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional,
+                            hinge_friction=HINGE_FRICTION if hinge_friction is None
+                            else hinge_friction)
     omega = _nominal_speeds(drive)
     if motor is None:
         if not drive.power:
@@ -323,7 +329,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
                model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
                SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
                rsign, *rec, energy, cand, eng, events, count)
-    times = np.arange(rows) * every * dt
+    times = np.arange(rows, dtype=np.float64) * every * dt
     kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
     e_end = state_energy(model, x, v, th, w, *kernel_args)
