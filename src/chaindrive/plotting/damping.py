@@ -33,8 +33,8 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
         ax.plot(y, psi, "o-", ms=3, color=CYCLE[k % len(CYCLE)], label=f"F₀ = {f0:g} N")
     ax.set_xlabel("relative amplitude ȳ₀ = y₀/a")
     ax.set_ylabel("absorption coefficient ψ")
-    right = ax.secondary_yaxis("right", functions=(lambda p: p / (4 * np.pi),
-                                                   lambda z: z * 4 * np.pi))
+    right = ax.secondary_yaxis("right", functions=(lambda p: np.asarray(p) / (4 * np.pi),
+                                                   lambda z: np.asarray(z) * (4 * np.pi)))
     right.set_ylabel("ζ = ψ/4π")
     ax.legend(fontsize="x-small")
     finish(ax, "Hinge-friction damping [ChainHingeDissipation]")

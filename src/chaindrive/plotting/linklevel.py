@@ -15,6 +15,7 @@ from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.patches import Circle
 
     from chaindrive.linklevel import LinkLevelResult
 
@@ -55,7 +56,7 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
                 ".", color=GREY, markersize=2)
         ax.annotate(g.name, (g.x, g.y), ha="center", va="center", fontsize="small")
     segments = np.stack([pos, np.roll(pos, -1, axis=0)], axis=1)
-    lines = LineCollection(segments, cmap="viridis", linewidths=1.5)
+    lines = LineCollection(list(segments), cmap="viridis", linewidths=1.5)
     lines.set_array(result.link_tensions[k])
     lines.set_clim(0.0, vmax)
     ax.add_collection(lines)
@@ -69,7 +70,7 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
 
 
 def _circle(centre: tuple[float, float], radius: float, color: str, alpha: float,
-            dashed: bool = False) -> object:
+            dashed: bool = False) -> Circle:
     from matplotlib.patches import Circle
 
     return Circle(centre, radius, fill=False, color=color, alpha=alpha,

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -141,7 +141,8 @@ def _chosen_markers(afc: AfcResult, max_markers: int) -> list[tuple[int, int, fl
     return sorted(chosen, key=lambda m: m[3])
 
 
-def _legend(ax: Axes, curves: int, inside: str = "upper right") -> None:
+def _legend(ax: Axes, curves: int,
+            inside: Literal["upper right", "lower right", "upper left"] = "upper right") -> None:
     """Legend inside (at ``inside``) for a few curves, outside on the right for many."""
     if curves > 4:
         ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
@@ -204,9 +205,9 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
 
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None) -> Figure:
-    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load max |m_i ẍ_i| [N] and the
-    irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars when the radii were not
-    given to the steady state)."""
+    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load
+    max |m_i ẍ_i| [N] and the irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars
+    when the radii were not given to the steady state)."""
     from matplotlib.figure import Figure
 
     inertia = np.asarray(steady.inertia_load)
@@ -214,7 +215,8 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
     labels = _labels(inertia.size, names, "M")
     wide = inertia.size > 8
     fig = Figure(figsize=(6.4, 5.6) if wide else (7.6, 3.2), layout="constrained")
-    ax1, ax2 = fig.subplots(2 if wide else 1, 1 if wide else 2)
+    rows, columns = (2, 1) if wide else (1, 2)
+    ax1, ax2 = fig.add_subplot(rows, columns, 1), fig.add_subplot(rows, columns, 2)
     ax1.bar(range(inertia.size), inertia, color=CHAIN)
     ax1.set_ylabel("inertia load m·ẍ, N")
     _bar_ticks(ax1, labels)
