@@ -43,7 +43,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.report",       # presentation
     "chaindrive.plotting",     # presentation
     "chaindrive.drawing",      # presentation
-    "chaindrive.display",      # presentation
     "chaindrive.dynamics",     # drive-train dynamics
     "chaindrive.linklevel",    # drive-train dynamics (link-level model)
     "chaindrive.robust",       # robust design
