@@ -36,7 +36,14 @@ _SOURCES = ("startup_kernel.py", "kernel_codes.py")
 
 
 def source_digest() -> int:
-    """First 7 bytes of the SHA-256 of the kernel's source files, as a non-negative int64."""
+    """The fingerprint of the kernel's sources: first 7 bytes of the SHA-256 of the source
+    files, as a non-negative int64.
+
+    Returns
+    -------
+    int
+        The digest; a compiled module built from other sources carries another one.
+    """
     h = hashlib.sha256()
     for name in _SOURCES:
         h.update((_HERE / name).read_bytes())
@@ -58,8 +65,18 @@ def compiled_kernel() -> Any:
 
 
 def build(output_dir: Path | None = None) -> Path:
-    """Compile the kernel into ``output_dir`` (default: this package's folder); returns the
-    path of the extension module."""
+    """Compile the kernel ahead of time (numba.pycc) into an extension module.
+
+    Parameters
+    ----------
+    output_dir : Path or None
+        Where to write the module (None: this package's folder).
+
+    Returns
+    -------
+    Path
+        The path of the extension module written.
+    """
     from numba.core.errors import NumbaPendingDeprecationWarning
 
     with warnings.catch_warnings():  # numba.pycc is "pending deprecation" since numba 0.57
