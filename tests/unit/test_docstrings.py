@@ -49,18 +49,14 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
     "chaindrive.dynamics.excitation",          # drive-train dynamics
     "chaindrive.dynamics.linear",              # drive-train dynamics
-    "chaindrive.dynamics.modes",               # drive-train dynamics
-    "chaindrive.dynamics.motors",              # drive-train dynamics
     "chaindrive.dynamics.resonance",           # drive-train dynamics
     "chaindrive.dynamics.response",            # drive-train dynamics
-    "chaindrive.dynamics.ring",                # drive-train dynamics
     "chaindrive.dynamics.startup",             # drive-train dynamics
     "chaindrive.dynamics.steady",              # drive-train dynamics
     "chaindrive.dynamics.stiffness",           # drive-train dynamics
     "chaindrive.dynamics.torsional",           # drive-train dynamics
     "chaindrive.dynamics.torsional_build",     # drive-train dynamics
     "chaindrive.dynamics.torsional_engine",    # drive-train dynamics
-    "chaindrive.dynamics.transverse",          # drive-train dynamics
     "chaindrive.robust",       # robust design
     "chaindrive.synthesis.studies",  # reliability (clusters)
 })
