@@ -46,11 +46,9 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.dynamics.damping",             # drive-train dynamics
     "chaindrive.dynamics.drive",               # drive-train dynamics
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
-    "chaindrive.dynamics.excitation",          # drive-train dynamics
     "chaindrive.dynamics.resonance",           # drive-train dynamics
     "chaindrive.dynamics.response",            # drive-train dynamics
     "chaindrive.dynamics.startup",             # drive-train dynamics
-    "chaindrive.dynamics.steady",              # drive-train dynamics
     "chaindrive.dynamics.torsional",           # drive-train dynamics
     "chaindrive.dynamics.torsional_build",     # drive-train dynamics
     "chaindrive.dynamics.torsional_engine",    # drive-train dynamics
