@@ -46,7 +46,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.dynamics.damping",             # drive-train dynamics
     "chaindrive.dynamics.drive",               # drive-train dynamics
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
-    "chaindrive.dynamics.resonance",           # drive-train dynamics
     "chaindrive.dynamics.response",            # drive-train dynamics
     "chaindrive.dynamics.startup",             # drive-train dynamics
     "chaindrive.dynamics.torsional",           # drive-train dynamics
