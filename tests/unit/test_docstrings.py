@@ -43,7 +43,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.plotting",     # presentation
     "chaindrive.drawing",      # presentation
     "chaindrive.linklevel",    # drive-train dynamics (link-level model)
-    "chaindrive.dynamics.drive",               # drive-train dynamics
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
     "chaindrive.dynamics.response",            # drive-train dynamics
     "chaindrive.dynamics.startup",             # drive-train dynamics
