@@ -44,7 +44,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.drawing",      # presentation
     "chaindrive.linklevel",    # drive-train dynamics (link-level model)
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
-    "chaindrive.dynamics.startup",             # drive-train dynamics
     "chaindrive.dynamics.torsional",           # drive-train dynamics
     "chaindrive.dynamics.torsional_build",     # drive-train dynamics
     "chaindrive.dynamics.torsional_engine",    # drive-train dynamics
