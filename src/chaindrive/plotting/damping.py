@@ -23,7 +23,20 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
 
     results : :class:`chaindrive.dynamics.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
     e.g. from :func:`chaindrive.dynamics.damping.hinge_friction_damping`; grouped by tension.
-    The right axis reads the equivalent viscous ratio ζ = ψ/4π."""
+    The right axis reads the equivalent viscous ratio ζ = ψ/4π.
+
+    Parameters
+    ----------
+    results : sequence of HingeFrictionResult
+        Results over a grid of (F₀, ȳ₀).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.8))
     tensions = sorted({r.tension for r in results})
     for k, f0 in enumerate(tensions):

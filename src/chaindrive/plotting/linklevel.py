@@ -82,7 +82,24 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     """The chain at the recorded instant nearest ``time_s`` [s] (None: the last): sprockets
     (tip and pitch circles, gap centres), links coloured by tension [N], rollers in contact
     filled; ``magnify`` scales the transverse deviations of the free rollers within two
-    pitches of a span's line (taut spans) to make them visible."""
+    pitches of a span's line (taut spans) to make them visible.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    time_s : float or None
+        The instant [s] (None: the last recorded one).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    magnify : float
+        Scale of the transverse deviations of the free rollers [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (7.0, 4.0))
     k = _sample(result, time_s)
     vmax = float(max(result.link_tensions[k].max(), 1.0))
@@ -96,7 +113,24 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
 def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *, columns: int = 2,
                  magnify: float = 1.0) -> Figure:
     """A sequence of frames (one axes per instant, :func:`chain_frame`), on one tension
-    scale."""
+    scale.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    times_s : sequence of float
+        The instants [s].
+    columns : int
+        Axes per row [-].
+    magnify : float
+        Scale of the transverse deviations of the free rollers [-].
+
+    Returns
+    -------
+    Figure
+        A new figure with one axes per instant.
+    """
     from matplotlib.figure import Figure
 
     idx = [_sample(result, t) for t in times_s]
@@ -123,7 +157,20 @@ def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None
 
 def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
     """Mean contact force on the rollers at each place of every sprocket's wrap (place 0
-    where the chain arrives) over the steady window, one line per sprocket."""
+    where the chain arrives) over the steady window, one line per sprocket.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     for i, (name, loads) in enumerate(zip(result.names, result.tooth_loads, strict=True)):
         ax.plot(np.arange(loads.size), loads, "o-", color=CYCLE[i % len(CYCLE)], label=name,

@@ -81,7 +81,24 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     largest one F₁max marked and labelled, the settling time as a dashed vertical line
     (:func:`chaindrive.dynamics.startup.settling_time`). names label the spans. When the
     start-up settles within a fifth of the record the time axis ends at 4× the settling
-    time (the title says so)."""
+    time (the title says so).
+
+    Parameters
+    ----------
+    startup : StartupResult
+        The start-up.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+    max_lines : int
+        Spans drawn at most (those of the largest peaks) [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
     F = np.asarray(startup.span_forces)
@@ -110,7 +127,24 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
                    names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
     """Sprocket speeds [rpm] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), over
-    the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses)."""
+    the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses).
+
+    Parameters
+    ----------
+    startup : StartupResult
+        The start-up.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the sprockets (None: M1, M2, …).
+    max_lines : int
+        Sprockets drawn at most [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
     w = np.asarray(startup.speeds) * RAD_S_TO_RPM
@@ -159,7 +193,28 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
     "mode j × k" (the ``max_markers`` with the highest load), and the operating tooth
     frequency ``operating_hz`` as a solid line. Logarithmic load axis: the resonance peaks
-    stand orders of magnitude above the rest of the curves."""
+    stand orders of magnitude above the rest of the curves.
+
+    Parameters
+    ----------
+    afc : AfcResult
+        The speed sweep.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+    max_lines : int
+        Spans drawn at most (those of the largest peaks) [-].
+    max_markers : int
+        Resonance lines labelled at most [-].
+    operating_hz : float or None
+        Operating tooth frequency [Hz] (None: not drawn).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.8))
     fz = np.asarray(afc.tooth_frequencies_hz)
     F = np.asarray(afc.span_load)
@@ -188,7 +243,22 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None) -> Figure:
     """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
-    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars."""
+    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars.
+
+    Parameters
+    ----------
+    steady : SteadyStateResult
+        The steady state.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     peak = np.asarray(steady.span_dynamic_load)
     amp = np.asarray(steady.span_load_amplitude)
@@ -207,7 +277,20 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None) -> Figure:
     """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load
     max |m_i ẍ_i| [N] and the irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars
-    when the radii were not given to the steady state)."""
+    when the radii were not given to the steady state).
+
+    Parameters
+    ----------
+    steady : SteadyStateResult
+        The steady state.
+    names : sequence of str or None
+        Labels of the masses (None: M1, M2, …).
+
+    Returns
+    -------
+    Figure
+        A new figure with the two charts.
+    """
     from matplotlib.figure import Figure
 
     inertia = np.asarray(steady.inertia_load)
@@ -236,7 +319,18 @@ def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
     """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
     [N] and the amplitude of the first resonance [N] (its tooth frequency [Hz] printed on the
     bar) per pair of chain and sprocket materials
-    (:func:`chaindrive.dynamics.materials.material_comparison`)."""
+    (:func:`chaindrive.dynamics.materials.material_comparison`).
+
+    Parameters
+    ----------
+    cases : sequence of MaterialCase
+        One per material pair.
+
+    Returns
+    -------
+    Figure
+        A new figure.
+    """
     from matplotlib.figure import Figure
 
     labels = [_pair_label(c) for c in cases]
