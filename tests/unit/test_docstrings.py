@@ -40,7 +40,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.cli",          # presentation / reliability
     "chaindrive.app",          # presentation / reliability
     "chaindrive.report",       # presentation
-    "chaindrive.linklevel",    # drive-train dynamics (link-level model)
     "chaindrive.dynamics.drive_model",         # drive-train dynamics
     "chaindrive.dynamics.torsional",           # drive-train dynamics
     "chaindrive.dynamics.torsional_build",     # drive-train dynamics
