@@ -107,7 +107,24 @@ def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = 
 def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
                  progress: Callable[[str], None] | None = None, units: str = "SI") -> bytes:
     """The design report of the analysis as PDF (``fmt`` "pdf", typeset by Typst) or HTML
-    ("html"), in the unit system ``units``."""
+    ("html"), in the unit system ``units``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design.
+    fmt : str
+        ``"pdf"`` or ``"html"``.
+    progress : callable or None
+        Called with each section's title before it is built (None: silent).
+    units : str
+        Unit system of the report, ``"SI"`` or ``"US"``.
+
+    Returns
+    -------
+    bytes
+        The report file's content.
+    """
     from chaindrive.report import build_report, render_html, render_pdf
 
     report = build_report(analysis, progress=progress, units=units)
@@ -115,7 +132,18 @@ def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
 
 
 def drawing_svg(analysis: Analysis) -> bytes:
-    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`)."""
+    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design.
+
+    Returns
+    -------
+    bytes
+        The SVG text, UTF-8 encoded.
+    """
     from chaindrive.drawing import drawing_document, svg_string
 
     return svg_string(drawing_document(analysis)).encode("utf-8")
