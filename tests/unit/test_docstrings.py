@@ -43,7 +43,6 @@ TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.dynamics.torsional_engine",  # drive-train dynamics
     "chaindrive.app.main",     # a Streamlit script: importing it runs the page
     "chaindrive.app.state",    # presentation / reliability
-    "chaindrive.app.tabs",     # presentation / reliability
     "chaindrive.app.views",    # presentation / reliability
     "chaindrive.cli",          # presentation / reliability
     "chaindrive.report",       # presentation
