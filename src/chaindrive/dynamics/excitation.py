@@ -28,7 +28,7 @@ chain, so with ψ = 0 meaning "a hinge at the tangent point" (the convention of
     ψ(s, t) = ω_z t − 2π s,     ω_z = z_1 ω_1 (the common tooth frequency).
 
 The phase between the two ends of a span is therefore −2π·(L/p) (only its fractional part
-matters), the seed's "difference of phases between nearby sprockets".
+matters), [MultimassChainDrives]'s "difference of phases between nearby sprockets".
 
 Polygonal effect
 ----------------

@@ -12,7 +12,7 @@ The natural frequencies are the roots of det(K − ω² M) = 0 ([MultimassChainD
 the symmetric eigenproblem of M^{-1/2} K M^{-1/2} (M is diagonal) with LAPACK ``syevd``.
 A branch of stiffness 0 (a slack span) drops out: the ring becomes an open chain. Each
 connected group of masses has one rigid-body mode; its frequency is set to exactly 0 and its
-shape to the uniform vector of the group (not the seed's 0.08 Hz of Table 2).
+shape to the uniform vector of the group (not the 0.08 Hz of [MultimassChainDrives], Table 2).
 """
 
 from __future__ import annotations
