@@ -45,7 +45,7 @@ def load(path: str | Path) -> Drive:
 
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
             cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
-            lazy: bool = False) -> Analysis:
+            lazy: bool = False, link_duration_s: float | None = None) -> Analysis:
     """Run every analysis of the drive; see :func:`chaindrive.analysis.analyze`.
 
     Parameters
@@ -62,6 +62,8 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
         Optional studies to run as well.
     lazy : bool
         True computes each stage on first access only.
+    link_duration_s : float or None
+        Simulated time of the study "links" [s] (None: the design's start-up duration).
 
     Returns
     -------
@@ -73,4 +75,4 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
     from chaindrive.analysis import analyze as _analyze
 
     return _analyze(drive, response=response, limits=limits, cost_model=cost_model,
-                    studies=studies, lazy=lazy)
+                    studies=studies, lazy=lazy, link_duration_s=link_duration_s)

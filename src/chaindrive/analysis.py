@@ -66,10 +66,11 @@ from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
-from chaindrive.strength.selection import rank_chains
+from chaindrive.strength.selection import rank_chains, rank_key
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
+    from chaindrive.linklevel import LinkLevelResult, ModelComparison
     from chaindrive.multicontour.drive import ContourCheck
 
 __all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
@@ -82,8 +83,9 @@ AFC_POINTS = 2000
 #: Speeds of the short sweep over the band of the speed factors (the band of K_D).
 BAND_POINTS = 101
 #: Comparative studies an analysis runs when asked (``studies=``): the four chain/sprocket
-#: material pairs on this layout, and the hinge-friction damping model over its range.
-STUDIES = ("material_pairs", "hinge_friction")
+#: material pairs on this layout, the hinge-friction damping model over its range, and the
+#: link-level model of the drive (a start-up from rest, slower than the ring).
+STUDIES = ("material_pairs", "hinge_friction", "links")
 
 
 class Analysis:
@@ -105,6 +107,10 @@ class Analysis:
     startup : bool
         Run the start-up (when ``[dynamics]`` asks for one); False leaves it and its check
         k₁ out (the optimiser does, unless its problem constrains k₁).
+    link_duration_s : float | None
+        Simulated time of the link-level run of the study "links" [s], within
+        :data:`chaindrive.linklevel.DURATION` (None: the design's start-up duration, at
+        most the upper bound of that range).
 
     Attributes are the stages: ``selection``, ``drive`` (with the selected chain, the
     sprockets where the take-up put them), ``geometry``, ``kinematics``, ``strength``,
@@ -115,11 +121,16 @@ class Analysis:
     def __init__(self, design: Drive, *, response: bool = True,
                  limits: CheckLimits | None = None,
                  cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
-                 startup: bool = True) -> None:
+                 startup: bool = True, link_duration_s: float | None = None) -> None:
         unknown = sorted(set(studies) - set(STUDIES))
         if unknown:
             raise DesignError("studies", f"unknown {', '.join(unknown)} (known: "
                               f"{', '.join(STUDIES)})")
+        if link_duration_s is not None:
+            from chaindrive.linklevel import checked_duration
+
+            link_duration_s = checked_duration(link_duration_s)
+        self.link_duration_s = link_duration_s
         self.design = design
         self.with_response = response
         self.with_startup = startup
@@ -138,16 +149,58 @@ class Analysis:
             return None
         request = d.chain.request
         try:  # each of m contours carries its nominal share P/m
-            return rank_chains(replace(d, power=d.power / d.chain.contours),
-                               standard=request.standard if request else None,
-                               series=request.series if request else None,
-                               strands=request.strands if request else None)
+            ranked = rank_chains(replace(d, power=d.power / d.chain.contours),
+                                 standard=request.standard if request else None,
+                                 series=request.series if request else None,
+                                 strands=request.strands if request else None)
+            return ranked if request is None else self._resonance_verified(ranked)
         except DesignError as exc:
             if request is not None:
                 raise
             self._selection_warnings.append(ChainDriveWarning("selection.none", "chain",
                                                               f"selection: {exc}"))
             return None
+
+    def _resonance_verified(self, ranked: SelectionResult) -> SelectionResult:
+        """The ranking with the resonance check of each candidate's own drive, tried in rank
+        order until one passes every check: the chosen chain then passes every check this
+        analysis makes without a response (k₁, k₂, k₂min are judged on it by the analysis
+        itself). A candidate whose drive cannot be laid out fails.
+
+        Parameters
+        ----------
+        ranked : SelectionResult
+            The ranking by the chain and layout checks.
+
+        Returns
+        -------
+        SelectionResult
+            The candidates re-ranked (:func:`chaindrive.strength.selection.rank_key`) with
+            the resonance check of those tried.
+        """
+        out = list(ranked.candidates)
+        for i, c in enumerate(out):
+            if not c.passed:
+                break  # ranked: none after it passes either
+            trial = Analysis(self.design.with_chain(ranked.specs[c.designation]),
+                             response=False, limits=self.limits, cost_model=self._cost_model)
+            try:
+                res = resonance_check(trial.dynamics.resonances,
+                                      self.limits.resonance_band_percent)
+            except DesignError as exc:
+                out[i] = replace(c, passed=False, governing="layout",
+                                 notes=(*c.notes, f"cannot be laid out: {exc}"))
+                continue
+            if res is None:
+                break
+            worse = (res.margin_fraction is not None and
+                     (c.margin_fraction is None or res.margin_fraction < c.margin_fraction))
+            out[i] = replace(c, passed=c.passed and res.passed, checks=(*c.checks, res),
+                             margin_fraction=res.margin_fraction if worse else c.margin_fraction,
+                             governing=res.name if worse else c.governing)
+            if res.passed:
+                break
+        return replace(ranked, candidates=tuple(sorted(out, key=rank_key)))
 
     @cached_property
     def _designed(self) -> Drive:
@@ -367,6 +420,41 @@ class Analysis:
                                    c.pitch * 48)  # the paper's span: 49 hinges, a = t(z − 1)
 
     @cached_property
+    def link_level(self) -> LinkLevelResult | None:
+        """The link-level model of one contour ([Pedersen2004]; docs/linklevel.md): a
+        start-up from rest by the design's motor law over :attr:`link_duration_s` (None:
+        the design's start-up duration, at most :data:`chaindrive.linklevel.DURATION`'s
+        upper bound); None unless asked for in ``studies`` ("links")."""
+        if "links" not in self.studies or not self._responds:
+            return None
+        # imported here: numba and the link-level kernel (0.6 s) only for this study
+        from chaindrive.linklevel import DURATION, simulate
+
+        duration = self.link_duration_s or min(self.drive.dynamics.startup_duration,
+                                               DURATION.high)
+        return simulate(self._contour_drive, duration, geometry=self.geometry)
+
+    @cached_property
+    def link_level_comparison(self) -> ModelComparison | None:
+        """The summary quantities of the whole-drive model beside the link-level run's
+        (:func:`chaindrive.linklevel.model_comparison`); None without the link-level run."""
+        result = self.link_level
+        if result is None:
+            return None
+        from chaindrive.linklevel import model_comparison
+
+        steady, startup = self.steady, self.startup
+        assert self.drive.driver.speed is not None  # _responds
+        f1 = self.dynamics.modal.first_elastic_frequency_hz
+        return model_comparison(
+            result, nominal_speed=self.drive.driver.speed,
+            ring_span_dynamic_load=None if steady is None else steady.span_dynamic_load,
+            ring_dynamic_load_rms=None if steady is None else steady.dynamic_load_rms,
+            ring_kd=None if steady is None else steady.coefficient_of_dynamics,
+            ring_startup_peak=None if startup is None else startup.max_span_force,
+            ring_first_frequency_hz=f1 if math.isfinite(f1) else None)
+
+    @cached_property
     def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:
         """The printed figures of a published example beside this analysis' own
         (:func:`chaindrive.dynamics.published.published_comparison`): (source, rows of
@@ -403,11 +491,14 @@ class Analysis:
         """
         d = self.design
         request = d.chain.request
-        return rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
-                           method=method,
-                           strands=strands or (request.strands if request else None),
-                           standard=request.standard if request else None,
-                           series=request.series if request else None)
+        if method is None and strands is None and self.selection is not None:
+            return self.selection
+        ranked = rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
+                             method=method,
+                             strands=strands or (request.strands if request else None),
+                             standard=request.standard if request else None,
+                             series=request.series if request else None)
+        return self._resonance_verified(ranked)
 
     # ------------------------------------------------------------------ metrics
     @cached_property
@@ -502,7 +593,7 @@ class Analysis:
         _ = self.warnings, self.kinematics, self.strength, self.contours, self.metrics
         if self.with_response:
             _ = self.response
-        _ = self.material_pairs, self.hinge_friction
+        _ = self.material_pairs, self.hinge_friction, self.link_level_comparison
         return self
 
     def to_dict(self) -> dict[str, Any]:
@@ -518,7 +609,7 @@ class Analysis:
             dynamics.update(fragment["dynamics"])
             if strength is not None:
                 strength.update(fragment["strength"])
-        return {
+        out: dict[str, Any] = {
             "drive": drive_summary(self.drive),
             "geometry": geometry_dict(self.geometry),
             "kinematics": self.kinematics.to_dict(),
@@ -529,6 +620,11 @@ class Analysis:
             "checks": [c.to_dict() for c in self.checks()],
             "warnings": [w.to_dict() for w in self.warnings],
         }
+        if self.link_level_comparison is not None and self.link_level is not None:
+            comparison = self.link_level_comparison.to_dict()
+            out["link_level"] = {**self.link_level.to_dict(),
+                                 "dynamics_comparison": comparison.pop("rows"), **comparison}
+        return out
 
 
 def drive_summary(drive: Drive) -> dict[str, Any]:
@@ -603,7 +699,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[Chain
 
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
             cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
-            lazy: bool = False) -> Analysis:
+            lazy: bool = False, link_duration_s: float | None = None) -> Analysis:
     """Analyse a drive: selection, contour geometry with the take-up, kinematics, loads and
     strength, the dynamic model and its modes, and (``response``) the steady state, the speed
     sweep and the start-up, the metrics and the checks.
@@ -624,11 +720,14 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
     lazy : bool
         Return at once and compute each stage on first access (what the optimiser does);
         False computes everything the document reports now, so that errors are raised here.
+    link_duration_s : float | None
+        Simulated time of the link-level run of the study "links" [s] (None: the design's
+        start-up duration, at most 10 s).
 
     Returns
     -------
     Analysis
     """
     a = Analysis(drive, response=response, limits=limits, cost_model=cost_model,
-                 studies=studies)
+                 studies=studies, link_duration_s=link_duration_s)
     return a if lazy else a.evaluate()

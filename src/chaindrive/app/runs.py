@@ -13,10 +13,11 @@ from __future__ import annotations
 import importlib.util
 import io
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.app.worker import FULL_SECONDS, INTERACTIVE_SECONDS, run_bounded
-from chaindrive.errors import ChainDriveError
+from chaindrive.errors import ChainDriveError, DesignError
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -36,6 +37,7 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "drawing": ("chaindrive.drawing", "ezdxf"),
     "drawing_svg": ("chaindrive.drawing", "ezdxf"),
     "drawing_dxf": ("chaindrive.drawing", "ezdxf"),
+    "links": ("chaindrive.linklevel", "numba", "matplotlib"),
 }
 
 
@@ -322,3 +324,77 @@ def bounded_drawing(analysis: Analysis, fmt: str = "dxf") -> bytes:
     """
     return run_bounded(drawing_svg if fmt == "svg" else drawing_dxf, analysis,
                        seconds=FULL_SECONDS, what="the drawing")
+
+
+@dataclass(frozen=True, slots=True)
+class LinkLevelView:
+    """What the page shows of the link-level model.
+
+    Parameters
+    ----------
+    comparison : dict
+        The analysis' comparison with the whole-drive model
+        (:meth:`chaindrive.linklevel.ModelComparison.to_dict`: rows of quantity, whole_drive,
+        link_level, unit in SI; settled; steady_from_s; duration_s).
+    time_step_s : float
+        The run's time step [s].
+    frames_png : bytes
+        The frames of the chain (PNG).
+    tensions_png : bytes
+        The link tension along the chain (PNG).
+    """
+
+    comparison: dict[str, Any]
+    time_step_s: float
+    frames_png: bytes
+    tensions_png: bytes
+
+
+def link_level_view(drive: Drive, duration_s: float | None = None) -> LinkLevelView:
+    """The link-level model of ``drive`` (the analysis' study "links", a start-up from rest
+    over ``duration_s`` [s], None: the design's start-up duration) beside the whole-drive
+    model, with its figures rendered.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    duration_s : float | None
+        Simulated time [s] (bounded by :data:`chaindrive.linklevel.DURATION`).
+
+    Returns
+    -------
+    LinkLevelView
+    """
+    import chaindrive
+    from chaindrive.plotting import chain_frames, frame_times, tension_along_chain
+
+    analysis = chaindrive.analyze(drive, studies=("links",), lazy=True,
+                                  link_duration_s=duration_s)
+    result, comparison = analysis.link_level, analysis.link_level_comparison
+    if result is None or comparison is None:
+        raise DesignError("drive.power", "the link-level model needs the power and the "
+                              "driver speed")
+    times = frame_times(result)
+    return LinkLevelView(comparison.to_dict(), result.dt,
+                         figure_png(chain_frames(result, times), dpi=90),
+                         figure_png(tension_along_chain(result, times), dpi=90))
+
+
+def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLevelView:
+    """:func:`link_level_view` in a bounded run (raises its ChainDriveError, or
+    RunLimitError).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    duration_s : float | None
+        Simulated time [s].
+
+    Returns
+    -------
+    LinkLevelView
+    """
+    return run_bounded(link_level_view, drive, duration_s, seconds=FULL_SECONDS,
+                       what="the link-level model")

@@ -34,7 +34,7 @@ UNEXPECTED = "Something went wrong on the page ({}). Reload the page; if it pers
              "report it with the design file."
 #: The tabs, in order.
 TABS = ("Sprockets & spans", "Selection & strength", "Modes & Campbell", "Start-up", "AFC",
-        "Multi-contour", "Report & files")
+        "Link-level model", "Multi-contour", "Report & files")
 
 
 def _units() -> UnitSystem:
@@ -248,6 +248,72 @@ def tab_afc(screen: Screen) -> None:
     c[3].metric("allowable [k]", fmt(s["allowable_k"]))
 
 
+def _comparison_records(doc: dict[str, Any], units: UnitSystem) -> list[dict[str, str]]:
+    """The rows of the model comparison for a table, forces in ``units``."""
+    out = []
+    for r in doc["rows"]:
+        whole, link, unit = r["whole_drive"], r["link_level"], r["unit"]
+        if unit == "N":
+            (whole, unit), (link, _) = convert(whole, "force", units), convert(link, "force",
+                                                                               units)
+        out.append({"quantity": r["quantity"], "whole drive": fmt(whole),
+                    "link level": fmt(link), "unit": "" if unit == "1" else unit})
+    return out
+
+
+def tab_links(screen: Screen) -> None:
+    """The link-level model beside the whole-drive model, run on request in a bounded child
+    process (it is slower than the ring: seconds per simulated second on large contours).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
+    reason = runs.missing("links")
+    if reason is not None:
+        st.info(f"Link-level model: {reason}.")
+        return
+    drive = screen.outcome.drive
+    store = st.session_state.setdefault("links", {})
+    default = min(drive.dynamics.startup_duration, 1.0)
+    c1, c2 = st.columns([1, 2], vertical_alignment="bottom")
+    seconds = c1.number_input("Simulated time [s]", value=default, min_value=0.001,
+                              step=0.1, format="%g", key="links_duration",
+                              help="a start-up from rest; at most 10 s")
+    key = (id(screen), float(seconds))
+    if key not in store and c2.button("Run the link-level model", key="run_links"):
+        with st.status("Link-level model: simulating the chain link by link…",
+                       expanded=False) as status:
+            try:
+                store[key] = runs.bounded_link_level(drive, float(seconds))
+                status.update(label="Link-level model: done", state="complete")
+            except ChainDriveError as exc:
+                store[key] = exc
+                status.update(label=f"Link-level model: {exc}", state="error")
+            except Exception as exc:
+                store[key] = RuntimeError(UNEXPECTED.format(type(exc).__name__))
+                status.update(label="Link-level model: failed", state="error")
+    view = store.get(key)
+    if view is None:
+        st.caption("Every link a body, every roller on the real tooth gap: runs on request "
+                   "(a start-up from rest, slower than the whole-drive model).")
+        return
+    if isinstance(view, Exception):
+        st.error(str(view))
+        return
+    doc = view.comparison
+    st.write(f"Start-up from rest over {fmt(doc['duration_s'])} s (step "
+             f"{fmt(view.time_step_s * 1e6)} µs); steady quantities over the closing half, "
+             f"from t = {fmt(doc['steady_from_s'])} s.")
+    if not doc["settled"]:
+        st.warning("The driver had not reached its nominal speed by then: the link-level "
+                   "steady quantities still hold the start-up; run longer for steady ones.")
+    st.dataframe(_comparison_records(doc, _units()), hide_index=True, width="stretch")
+    st.image(view.frames_png, width="stretch")
+    st.image(view.tensions_png, width="stretch")
+
+
 def tab_contours(screen: Screen) -> None:
     """The load share of identical contours side by side [Lyashuk].
 
@@ -335,7 +401,8 @@ def tabs(screen: Screen, design: dict[str, Any]) -> None:
     """
     shows = (lambda: tab_geometry(screen), lambda: tab_strength(screen),
              lambda: tab_modes(screen), lambda: tab_startup(screen), lambda: tab_afc(screen),
-             lambda: tab_contours(screen), lambda: tab_files(screen, design))
+             lambda: tab_links(screen), lambda: tab_contours(screen),
+             lambda: tab_files(screen, design))
     for tab, show in zip(st.tabs(list(TABS), key="tabs", on_change="rerun"), shows,
                          strict=True):
         if tab.open:

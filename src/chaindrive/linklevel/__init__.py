@@ -13,8 +13,16 @@ Entry point::
 
 from __future__ import annotations
 
+from chaindrive.linklevel.compare import (
+    DURATION,
+    ModelComparison,
+    checked_duration,
+    model_comparison,
+)
 from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
 from chaindrive.linklevel.result import LinkLevelResult
 from chaindrive.linklevel.simulate import simulate
 
-__all__ = ["LinkLevelModel", "LinkLevelResult", "TorsionalAttachment", "build_model", "simulate"]
+__all__ = ["DURATION", "LinkLevelModel", "LinkLevelResult", "ModelComparison",
+           "TorsionalAttachment", "build_model", "checked_duration", "model_comparison",
+           "simulate"]

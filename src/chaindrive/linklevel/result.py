@@ -323,16 +323,33 @@ class LinkLevelResult:
         """Largest span force over the whole run [N] (the start-up peak F₁max from rest)."""
         return np.asarray(self.span_forces.max(axis=0), dtype=np.float64)
 
-    def history(self) -> tuple[list[str], NDArray[np.float64]]:
-        """CSV-ready history: column names (unit in each) and a (T, columns) array — time,
-        sprocket speeds, span forces, span transverse offsets."""
+    def history(self, links: bool = False) -> tuple[list[str], NDArray[np.float64]]:
+        """CSV-ready history: time, sprocket speeds, span forces, span transverse offsets, and
+        with ``links`` the tension of every link along the chain (link i joins rollers i and
+        i + 1; the rollers are numbered along the chain as assembled, roller 0 where the chain
+        arrives on the sprocket after the driver at t = 0).
+
+        Parameters
+        ----------
+        links : bool
+            True adds the tension of every link.
+
+        Returns
+        -------
+        columns : list of str
+            Column names, the unit in each.
+        values : ndarray
+            (T, columns) the history [units of the columns].
+        """
         cols = ["time_s"]
         cols += [f"speed_{s}_rad_s" for s in self.names]
         cols += [f"span_force_{s}_n" for s in self.span_names]
         cols += [f"span_offset_{s}_m" for s in self.span_names]
-        data = np.column_stack([self.times, self.sprocket_speeds, self.span_forces,
-                                self.span_offsets])
-        return cols, data
+        parts = [self.times, self.sprocket_speeds, self.span_forces, self.span_offsets]
+        if links:
+            cols += [f"link_{i}_tension_n" for i in range(self.link_tensions.shape[1])]
+            parts.append(self.link_tensions)
+        return cols, np.column_stack(parts)
 
     def to_dict(self, include_history: bool = False) -> dict[str, Any]:
         """JSON-ready dict (SI, unit in the key names).

@@ -13,7 +13,8 @@ and per shaft), :mod:`.dynamics` (mode shapes as the relative-amplitude bars of
 tensions, [ChainHingeDissipation]), :mod:`.multicontour` (K_m distribution, [Lyashuk]),
 :mod:`.synthesis` (Pareto front), :mod:`.response` (start-up oscillograms, AFC, steady
 dynamic loads, inertia loads and irregularity, material pairs —
-[MultimassChainDrives, Fig. 2–3, Table 1]).
+[MultimassChainDrives, Fig. 2–3, Table 1]), :mod:`.linklevel` (frames of the link-level
+model's chain, link tension along it, tooth loads).
 """
 
 from __future__ import annotations
@@ -22,6 +23,13 @@ from chaindrive.plotting.damping import absorption_vs_amplitude
 from chaindrive.plotting.dynamics import campbell_diagram, mode_shapes
 from chaindrive.plotting.kinematics import chain_speed, transmission_ratio
 from chaindrive.plotting.layout import contour_layout
+from chaindrive.plotting.linklevel import (
+    chain_frame,
+    chain_frames,
+    frame_times,
+    tension_along_chain,
+    tooth_loads,
+)
 from chaindrive.plotting.multicontour import km_distribution
 from chaindrive.plotting.response import (
     afc_curves,
@@ -38,8 +46,11 @@ __all__ = [
     "absorption_vs_amplitude",
     "afc_curves",
     "campbell_diagram",
+    "chain_frame",
+    "chain_frames",
     "chain_speed",
     "contour_layout",
+    "frame_times",
     "inertia_and_irregularity",
     "km_distribution",
     "material_comparison_chart",
@@ -50,5 +61,7 @@ __all__ = [
     "startup_oscillogram",
     "startup_speeds",
     "steady_loads",
+    "tension_along_chain",
+    "tooth_loads",
     "transmission_ratio",
 ]

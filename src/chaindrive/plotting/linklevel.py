@@ -19,7 +19,8 @@ if TYPE_CHECKING:
 
     from chaindrive.linklevel import LinkLevelResult
 
-__all__ = ["chain_frame", "chain_frames", "tooth_loads"]
+__all__ = ["chain_frame", "chain_frames", "frame_times", "tension_along_chain",
+           "tooth_loads"]
 
 
 def _sample(result: LinkLevelResult, time_s: float | None) -> int:
@@ -110,10 +111,10 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     return fig
 
 
-def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *, columns: int = 2,
-                 magnify: float = 1.0) -> Figure:
+def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
+                 columns: int | None = None, magnify: float = 1.0) -> Figure:
     """A sequence of frames (one axes per instant, :func:`chain_frame`), on one tension
-    scale.
+    scale. Each frame is sized to the contour's aspect.
 
     Parameters
     ----------
@@ -121,8 +122,9 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *, columns: 
         A link-level run.
     times_s : sequence of float
         The instants [s].
-    columns : int
-        Axes per row [-].
+    columns : int or None
+        Axes per row [-] (None: one column for a contour more than twice as wide as high,
+        else two).
     magnify : float
         Scale of the transverse deviations of the free rollers [-].
 
@@ -134,8 +136,14 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *, columns: 
     from matplotlib.figure import Figure
 
     idx = [_sample(result, t) for t in times_s]
+    extent = np.ptp(result.positions[idx[-1]], axis=0) + 2.0 * float(result.model.tip_radii.max())
+    aspect = float(extent[0] / max(extent[1], 1e-9))
+    if columns is None:
+        columns = 1 if aspect > 2.0 else 2
     rows = math.ceil(len(idx) / columns)
-    fig = Figure(figsize=(4.0 * columns, 2.6 * rows), layout="constrained")
+    width = 5.0 / columns  # of one drawing, beside the colour bar [in]
+    height = min(max(width / aspect, 0.8), 4.0) + 0.45  # the drawing, its title and ticks
+    fig = Figure(figsize=(8.0, height * rows), layout="constrained")
     axes = fig.subplots(rows, columns, squeeze=False)
     vmax = float(max(result.link_tensions[idx].max(), 1.0))
     for ax, k in zip(axes.ravel(), idx, strict=False):
@@ -179,4 +187,56 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
     ax.set_ylabel("mean tooth load [N]")
     ax.legend(fontsize="x-small", ncol=2)
     finish(ax, "Tooth load distribution")
+    return fig
+
+
+def frame_times(result: LinkLevelResult, count: int = 4) -> list[float]:
+    """``count`` recorded instants spread evenly over the run, the last one included [s].
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    count : int
+        Number of instants [-].
+
+    Returns
+    -------
+    list of float
+        The instants [s].
+    """
+    end = float(result.times[-1])
+    return [end * (k + 1) / count for k in range(count)]
+
+
+def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None = None, *,
+                        ax: Axes | None = None) -> Figure:
+    """The tension of every link along the chain [N] at recorded instants (None:
+    :func:`frame_times`), links numbered as assembled (link i joins rollers i and i + 1).
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    times_s : sequence of float or None
+        The instants [s] (None: :func:`frame_times`).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    fig, ax = figure_axes(ax, (6.4, 3.4))
+    times = frame_times(result) if times_s is None else list(times_s)
+    links = np.arange(result.link_tensions.shape[1])
+    for j, t in enumerate(times):
+        k = _sample(result, t)
+        ax.plot(links, result.link_tensions[k], color=CYCLE[j % len(CYCLE)], linewidth=1.0,
+                label=f"t = {result.times[k] * 1e3:.1f} ms")
+    ax.set_xlabel("link along the chain")
+    ax.set_ylabel("link tension [N]")
+    ax.legend(fontsize="x-small")
+    finish(ax, "Link tension along the chain")
     return fig

@@ -397,6 +397,7 @@ def register_standard_sections() -> None:
             ("response", "Dynamic response", dyn.response_section),
             ("materials", "Study: material pairs", dyn.materials_section),
             ("damping", "Study: hinge-friction damping", dyn.damping_section),
+            ("links", "Link-level model", dyn.links_section),
             ("checks", "Checks", checks_section),
             ("synthesis", "Optimal synthesis", dyn.synthesis_section),
             ("design_file", "Design file", design_file_section)):

@@ -1,0 +1,167 @@
+"""The link-level run of an analysis beside the whole-drive (ring) model: the bounded
+simulated time of a run asked for by a user, and the table of the summary quantities both
+models give (span dynamic loads, K_D, start-up peaks, first natural frequency), in SI.
+
+The definitions are the ring model's [MultimassChainDrives, §3.3, §3.6]: F₂,i the peak
+dynamic load of span i in steady motion, F_D their root mean square, K_D = 1 + F_D/F_t,
+F₁max the largest span force of the start-up from rest. The link-level run of an analysis
+is one start-up from rest (:func:`chaindrive.linklevel.simulate`): its start-up peaks are
+over the whole run, its steady quantities over the closing half of it
+(:class:`~chaindrive.linklevel.result.LinkLevelResult`), which is steady motion only once
+the drive has settled by then (the ``settled`` flag of :func:`model_comparison`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from chaindrive.errors import DesignError
+from chaindrive.io.limits import Range
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from chaindrive.linklevel.result import LinkLevelResult
+
+__all__ = ["DURATION", "SETTLED_SPEED", "ModelComparison", "checked_duration",
+           "model_comparison"]
+
+#: Simulated time of a link-level run asked for from the command line, the report or the
+#: page [s]. Below 1 ms no tooth period of a practical drive fits (f_z ≤ 1 kHz); the
+#: histories are kept in memory, 0.04 GB per simulated second on the 24-sprocket example
+#: (744 rollers recorded at 1.1 kHz, five arrays of 8 bytes per roller and sample; measured),
+#: and the run takes 3.5 s of wall time per simulated second there (docs/linklevel.md §3):
+#: 10 s bounds both, and a start-up settles within one or two seconds.
+DURATION = Range(1e-3, 10.0, "at least a tooth period; at most 10 s, as the histories are "
+                 "kept in memory (0.04 GB per simulated second on 24 sprockets)")
+#: The closing half of a run counts as steady motion when the driver's mean speed over it is
+#: within this fraction of the nominal speed.
+SETTLED_SPEED = 0.02
+
+
+def checked_duration(value: float, field: str = "link_duration_s") -> float:
+    """The simulated time ``value`` [s] of a link-level run when it lies in
+    :data:`DURATION`, else a :class:`~chaindrive.errors.DesignError` naming ``field``.
+
+    Parameters
+    ----------
+    value : float
+        Simulated time [s].
+    field : str
+        The name of the input, for the message (``"--duration"`` on the command line).
+
+    Returns
+    -------
+    float
+        ``value`` [s].
+    """
+    if not DURATION.contains(value):
+        raise DesignError(field, f"{value:g} s is outside {DURATION.low:g} s to "
+                          f"{DURATION.high:g} s ({DURATION.reason})")
+    return float(value)
+
+
+Row = tuple[str, float | None, float | None, str]
+
+
+@dataclass(frozen=True, slots=True)
+class ModelComparison:
+    """The summary quantities of the whole-drive (ring) model and of the link-level run.
+
+    Parameters
+    ----------
+    rows : tuple of Row
+        (quantity, whole drive, link level, unit) in SI, None where a model does not give
+        the quantity.
+    settled : bool
+        True when the driver's mean speed over the link-level run's closing half is within
+        :data:`SETTLED_SPEED` of the nominal (its steady quantities are then those of steady
+        motion).
+    steady_from_s : float
+        Where that closing half starts [s].
+    duration_s : float
+        The run's duration [s].
+    """
+
+    rows: tuple[Row, ...]
+    settled: bool
+    steady_from_s: float
+    duration_s: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the rows as records and the run's window (SI, unit in the keys)."""
+        return {"rows": [{"quantity": q, "whole_drive": w, "link_level": k, "unit": u}
+                         for q, w, k, u in self.rows],
+                "settled": self.settled, "steady_from_s": self.steady_from_s,
+                "duration_s": self.duration_s}
+
+
+def _values(values: NDArray[np.float64] | None, n: int) -> list[float | None]:
+    """Per-span values as floats (None for every span when absent)."""
+    return [None] * n if values is None else [float(v) for v in values]
+
+
+def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
+                     ring_span_dynamic_load: NDArray[np.float64] | None,
+                     ring_dynamic_load_rms: float | None, ring_kd: float | None,
+                     ring_startup_peak: NDArray[np.float64] | None,
+                     ring_first_frequency_hz: float | None) -> ModelComparison:
+    """Rows of the quantities both models give, the ring model's beside the link-level's.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        The link-level start-up from rest.
+    nominal_speed : float
+        The driver's nominal speed ω₁ [rad/s] (for the ``settled`` flag).
+    ring_span_dynamic_load : ndarray | None
+        F₂,i of the ring's steady response [N] per span (None without it).
+    ring_dynamic_load_rms : float | None
+        F_D = √(Σ F₂,i²/n) of the ring [N].
+    ring_kd : float | None
+        K_D = 1 + F_D/F_t of the ring [–].
+    ring_startup_peak : ndarray | None
+        F₁max,i of the ring's start-up [N] per span (None without a start-up).
+    ring_first_frequency_hz : float | None
+        The ring's first elastic natural frequency [Hz].
+
+    Returns
+    -------
+    ModelComparison
+        The link-level's first natural frequency is None: it takes an impulse run of its
+        own (docs/linklevel.md §6), which this run is not.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3, §3.6] (F₂, F_D, K_D, F₁max).
+    """
+    spans = result.span_names
+    n = len(spans)
+    link_fd = result.span_dynamic_load
+    link_peak = result.peak_span_force
+    impacts = result.impacts[:, 3]
+    rows: list[Row] = [
+        ("coefficient of dynamics K_D", ring_kd,
+         None if (kd := result.coefficient_of_dynamics) is None else float(kd), "1"),
+        ("dynamic load F_D (RMS over the spans)", ring_dynamic_load_rms,
+         float(np.sqrt(np.mean(link_fd**2))), "N")]
+    rows += [(f"steady dynamic load F₂ of span {s}", w, float(k), "N")
+             for s, w, k in zip(spans, _values(ring_span_dynamic_load, n), link_fd,
+                                strict=True)]
+    rows += [(f"start-up peak F₁max of span {s}", w, float(k), "N")
+             for s, w, k in zip(spans, _values(ring_startup_peak, n), link_peak, strict=True)]
+    rows += [("largest start-up span force F₁max",
+              None if ring_startup_peak is None else float(np.max(ring_startup_peak)),
+              float(link_peak.max()), "N"),
+             ("first natural frequency", ring_first_frequency_hz, None, "Hz"),
+             ("largest roller–tooth impact force", None,
+              float(impacts.max()) if impacts.size else None, "N")]
+    late = result.times >= result.steady_from
+    speed = float(np.mean(np.abs(result.sprocket_speeds[late, result.model.driver])))
+    settled = math.isfinite(speed) and abs(speed / nominal_speed - 1.0) <= SETTLED_SPEED
+    return ModelComparison(tuple(rows), settled, float(result.steady_from),
+                           float(result.times[-1]))

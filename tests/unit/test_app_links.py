@@ -1,0 +1,52 @@
+"""The page's tab "Link-level model" without a browser: the run it starts on request
+(chaindrive.app.runs.bounded_link_level, a child process with the page's limits) brings back
+the analysis' comparison with the whole-drive model and the two figures; a mistake comes
+back as its one-line error.
+
+Expected values: the rows are those of the same study run in this process (the analysis of
+the seed example, [MultimassChainDrives] worked example): a bounded run computes nothing
+differently; the figures are PNG files (their 8-byte signature, ISO/IEC 15948).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import chaindrive
+from chaindrive.app.runs import bounded_link_level
+from chaindrive.app.tabs import _comparison_records
+from chaindrive.errors import DesignError
+from tests.conftest import EXAMPLES
+
+pytestmark = pytest.mark.concurrency  # child processes
+
+PNG = b"\x89PNG\r\n\x1a\n"
+DURATION = 0.02
+
+
+@pytest.fixture(scope="module")
+def seed():
+    return chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
+
+
+def test_the_bounded_run_brings_back_the_comparison_and_figures(seed) -> None:
+    view = bounded_link_level(seed, DURATION)
+    here = chaindrive.analyze(seed, studies=("links",), lazy=True, link_duration_s=DURATION)
+    expected = here.link_level_comparison.to_dict()
+    assert view.comparison["rows"] == expected["rows"]
+    assert view.comparison["duration_s"] == pytest.approx(DURATION, rel=0.2)
+    assert view.time_step_s == here.link_level.dt
+    assert view.frames_png.startswith(PNG) and view.tensions_png.startswith(PNG)
+    # the table the tab shows: one record per row, forces in lbf for US units
+    # (1 lbf = 4.4482216152605 N exactly [NIST-SP811])
+    records = _comparison_records(view.comparison, "US")
+    assert len(records) == len(expected["rows"])
+    first_force = next(i for i, r in enumerate(expected["rows"]) if r["unit"] == "N")
+    assert records[first_force]["unit"] == "lbf"
+    assert float(records[first_force]["whole drive"]) == pytest.approx(
+        expected["rows"][first_force]["whole_drive"] / 4.4482216152605, rel=1e-3)
+
+
+def test_a_bad_duration_comes_back_as_its_error(seed) -> None:
+    with pytest.raises(DesignError, match="outside 0.001 s to 10 s"):
+        bounded_link_level(seed, 20.0)
