@@ -470,7 +470,25 @@ class Analysis:
     def selection_by(self, *, method: str | None = None,
                      strands: int | None = None) -> SelectionResult:
         """The ranking with another method or number of strands than the design asks (what
-        ``chaindrive select`` offers)."""
+        ``chaindrive select`` offers).
+
+        The design's power is shared equally among its contours; the chain family (standard,
+        series) is the design's request when it names none.
+
+        Parameters
+        ----------
+        method : str or None
+            ``"Kэ"`` or ``"rating"`` to rank every chain by that method
+            (:func:`chaindrive.strength.selection.rank_chains`; None: each chain's own).
+        strands : int or None
+            Only chains of this number of strands [-] (None: the design's request, or every
+            count).
+
+        Returns
+        -------
+        SelectionResult
+            The feasible chains ranked, with the shortfall when none fits.
+        """
         d = self.design
         request = d.chain.request
         if method is None and strands is None and self.selection is not None:
@@ -539,7 +557,18 @@ class Analysis:
 
     def check(self, key: str) -> Check | None:
         """The check with this :attr:`~chaindrive.checks.Check.key` (None when the design
-        has none)."""
+        has none).
+
+        Parameters
+        ----------
+        key : str
+            A check's stable key, e.g. ``"hinge_pressure"`` or ``"teeth_in_mesh[S3]"``.
+
+        Returns
+        -------
+        Check or None
+            The check of that key among :meth:`checks`, or None.
+        """
         return next((c for c in self.checks() if c.key == key), None)
 
     @cached_property

@@ -119,6 +119,16 @@ _CHECK_UNITS = {"MPa": "pressure", "kW": "power", "kN": "force_k", "m/s": "veloc
 def unit_system(name: str | None) -> UnitSystem:
     """The unit system named ``name`` ("SI", "US", case-insensitive; None → SI).
 
+    Parameters
+    ----------
+    name : str or None
+        The name as a user wrote it (``--units us``, a form field); None for the default.
+
+    Returns
+    -------
+    {"SI", "US"}
+        The unit system.
+
     Raises
     ------
     chaindrive.errors.DesignError
@@ -135,26 +145,89 @@ def unit_system(name: str | None) -> UnitSystem:
 
 
 def unit_of(kind: str, system: UnitSystem = "SI") -> str:
-    """The unit a kind of quantity (a key of :data:`QUANTITIES`) is read in."""
+    """The unit a kind of quantity (a key of :data:`QUANTITIES`) is read in.
+
+    Parameters
+    ----------
+    kind : str
+        A kind of quantity: ``"length"``, ``"force"``, ``"power"`` … (:data:`QUANTITIES`).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The unit's symbol (``"mm"``, ``"lbf"`` …).
+    """
     return QUANTITIES[kind][system].unit
 
 
 def convert(value: float | None, kind: str, system: UnitSystem = "SI"
             ) -> tuple[float | None, str]:
-    """An SI value in the unit ``system`` reads ``kind`` in: (value, unit)."""
+    """An SI value in the unit ``system`` reads ``kind`` in: (value, unit).
+
+    Parameters
+    ----------
+    value : float or None
+        The value in SI [SI unit of ``kind``: m, N, W, Pa, rad/s …]; None for a missing one.
+    kind : str
+        Its kind of quantity (a key of :data:`QUANTITIES`).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    value : float or None
+        The value in the unit read [unit returned beside it]; None when ``value`` is None.
+    unit : str
+        That unit's symbol.
+
+    References
+    ----------
+    [NIST-SP811, App. B] (the factors of the US customary units).
+    """
     shown = QUANTITIES[kind][system]
     return (None if value is None else value * shown.factor), shown.unit
 
 
 def show(value: float | None, kind: str, system: UnitSystem = "SI", digits: int = 4) -> str:
-    """An SI value as text with its unit (``"122.2 mm"``, ``"4.811 in"``)."""
+    """An SI value as text with its unit (``"122.2 mm"``, ``"4.811 in"``).
+
+    Parameters
+    ----------
+    value : float or None
+        The value in SI [SI unit of ``kind``]; None is shown as "—".
+    kind : str
+        Its kind of quantity (a key of :data:`QUANTITIES`).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+    digits : int
+        Significant digits (:func:`fmt`).
+
+    Returns
+    -------
+    str
+        The value and its unit, formatted by :func:`fmt`.
+    """
     v, unit = convert(value, kind, system)
     return fmt(v, digits) if v is None else f"{fmt(v, digits)} {unit}"
 
 
 def doc_quantity(key: str) -> tuple[str, float] | None:
     """(kind, factor to SI) of a key of the JSON document by its unit suffix (``x_mm`` →
-    ("length", 1e-3)); None for a key without a unit suffix."""
+    ("length", 1e-3)); None for a key without a unit suffix.
+
+    Parameters
+    ----------
+    key : str
+        A key of the JSON document (``tension_n``, ``x_mm``, ``speed_rpm`` …).
+
+    Returns
+    -------
+    tuple of (str, float) or None
+        The kind of quantity (a key of :data:`QUANTITIES`) and the factor from the key's unit
+        to SI [SI per key unit]; None when the key names no unit.
+    """
     for suffix, kind, to_si in _KEY_UNITS:
         if key.endswith(suffix):
             return kind, to_si
@@ -164,7 +237,24 @@ def doc_quantity(key: str) -> tuple[str, float] | None:
 def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str]:
     """A value of the JSON document (in the unit its key names) in ``system``: (value,
     unit); values of keys without a unit suffix, and non-numbers, come back unchanged with
-    an empty unit."""
+    an empty unit.
+
+    Parameters
+    ----------
+    key : str
+        The value's key in the JSON document; its suffix names the unit (``_mm``, ``_n`` …).
+    value : object
+        The value as the document holds it (a number in the key's unit, or anything else).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    value : object
+        The number in the unit read [unit returned beside it], or ``value`` unchanged.
+    unit : str
+        That unit's symbol; empty for a key without a unit suffix.
+    """
     q = doc_quantity(key)
     if q is None:
         return value, ""
@@ -176,7 +266,22 @@ def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str
 
 def header(label: str, key: str, system: UnitSystem = "SI") -> str:
     """A column header ``label, unit`` for a key of the JSON document (``label`` alone when
-    the key carries no unit)."""
+    the key carries no unit).
+
+    Parameters
+    ----------
+    label : str
+        The column's name for people.
+    key : str
+        The key of the JSON document the column shows.
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The header text.
+    """
     q = doc_quantity(key)
     return label if q is None else f"{label}, {unit_of(q[0], system)}"
 
@@ -187,7 +292,21 @@ ZERO = 1e-9
 
 def clean(value: float, digits: int = 4) -> float:
     """``value`` rounded to ``digits`` significant digits (round-off such as
-    ``700.0000000000001`` or ``-6.4e-16`` next to values of order one removed; −0 → 0)."""
+    ``700.0000000000001`` or ``-6.4e-16`` next to values of order one removed; −0 → 0).
+
+    Parameters
+    ----------
+    value : float
+        A computed value [any unit, kept].
+    digits : int
+        Significant digits kept.
+
+    Returns
+    -------
+    float
+        The rounded value [unit of ``value``]; magnitudes below :data:`ZERO` are 0, NaN and
+        ±∞ are returned as they are.
+    """
     if abs(value) < ZERO or not math.isfinite(value):
         return value if not math.isfinite(value) else 0.0
     out = float(f"{value:.{digits}g}")
@@ -202,6 +321,19 @@ def fmt(value: Any, digits: int = 4) -> str:
     −6.4e-16 mm is 0), from 10^digits up to 10^7 whole with thousands separators
     (``12,345``), beyond and below 10⁻³ in exponent form without padding (``2.154e8``,
     ``4.2e-5``); −0 is 0; ±∞ as "∞".
+
+    Parameters
+    ----------
+    value : object
+        The value to show (a number in the unit it is to be read in, a numpy scalar, a bool,
+        None, or anything with a ``str``).
+    digits : int
+        Significant digits of a float.
+
+    Returns
+    -------
+    str
+        The text, without a unit.
     """
     if value is None:
         return "—"
@@ -244,7 +376,23 @@ def exponent_parts(text: str) -> tuple[str, int] | None:
 
 
 def shown_value(value: float | None, unit: str) -> tuple[float | None, str]:
-    """A value in the unit it is read in (Pa → MPa, rad → °, rad/s → rpm; others as given)."""
+    """A value in the unit it is read in (Pa → MPa, rad → °, rad/s → rpm; others as given).
+
+    Parameters
+    ----------
+    value : float or None
+        The value in ``unit`` [``unit``].
+    unit : str
+        Its unit symbol as the computing module gives it (``"Pa"``, ``"rad"``, ``"rad/s"``
+        are converted; any other is kept).
+
+    Returns
+    -------
+    value : float or None
+        The value in the unit read [unit returned beside it].
+    unit : str
+        That unit's symbol.
+    """
     kinds = {"Pa": "pressure", "rad": "angle", "rad/s": "speed"}
     if value is None or unit not in kinds:
         return value, unit
@@ -264,7 +412,29 @@ def check_row(check: Check, system: UnitSystem = "SI"
               ) -> tuple[str, float | None, str, str, str]:
     """A check as shown: (what, value, required, result, source), value and limit in the
     unit the check is read in (``system``), and the result ``pass``, ``FAIL`` or ``CANNOT BE
-    VERIFIED``."""
+    VERIFIED``.
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    what : str
+        The rule and its subject (and note).
+    value : float or None
+        The check's value in the unit read [:func:`check_unit`]; None when it cannot be
+        computed.
+    required : str
+        The limit with its sense and unit (``"≤ 28 MPa"``), "—" without a limit.
+    result : str
+        :func:`result_word`.
+    source : str
+        Where the rule and its limit come from (a key of docs/references.md and section).
+    """
     factor, unit = _check_display(check, system)
     sym = "≤" if check.kind == "max" else "≥"
     sep = "" if unit in ("°", "%", "") else " "
@@ -276,17 +446,56 @@ def check_row(check: Check, system: UnitSystem = "SI"
 
 
 def check_unit(check: Check, system: UnitSystem = "SI") -> str:
-    """The unit a check's value and limit are shown in (``system``)."""
+    """The unit a check's value and limit are shown in (``system``).
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The unit's symbol (empty for a pure number).
+    """
     return _check_display(check, system)[1]
 
 
 def check_value(check: Check, value: float | None, system: UnitSystem = "SI") -> float | None:
-    """A value of a check (its value or limit, SI) in the unit it is shown in."""
+    """A value of a check (its value or limit, SI) in the unit it is shown in.
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    value : float or None
+        The check's value or limit in SI [SI unit of the check].
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    float or None
+        The value in the unit read [:func:`check_unit`]; None when ``value`` is None.
+    """
     return None if value is None else value * _check_display(check, system)[0]
 
 
 def result_word(check: Check) -> str:
-    """``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``."""
+    """``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``.
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+
+    Returns
+    -------
+    str
+        The result as every presenter writes it.
+    """
     if check.passed:
         return "pass"
     return "FAIL" if check.status == "fail" else "CANNOT BE VERIFIED"
@@ -294,14 +503,38 @@ def result_word(check: Check) -> str:
 
 def margin_percent(check: Check) -> float | None:
     """The check's margin (:attr:`chaindrive.checks.Check.margin_fraction`) in per cent:
-    ≥ 0 when it passes, < 0 when it fails; None when it cannot be verified or is unlimited."""
+    ≥ 0 when it passes, < 0 when it fails; None when it cannot be verified or is unlimited.
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+
+    Returns
+    -------
+    float or None
+        The margin [%] of the limit.
+    """
     m = check.margin_fraction
     return None if m is None or math.isinf(m) else 100.0 * m
 
 
 def check_line(check: Check, system: UnitSystem = "SI") -> str:
     """A check in one line, the way every presenter writes a failed one:
-    ``FAIL: hinge pressure: GOST … = 31 MPa (required ≤ 28 MPa)``."""
+    ``FAIL: hinge pressure: GOST … = 31 MPa (required ≤ 28 MPa)``.
+
+    Parameters
+    ----------
+    check : Check
+        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The line.
+    """
     label, value, required, result, _ = check_row(check, system)
     unit = check_unit(check, system)
     sep = "" if unit in ("°", "%", "") else " "
@@ -310,7 +543,20 @@ def check_line(check: Check, system: UnitSystem = "SI") -> str:
 
 
 def dimension(value: float, decimals: int = 2) -> str:
-    """A dimension of a drawing [mm] to ``decimals`` places (``122.18``; −0.00 is 0.00)."""
+    """A dimension of a drawing [mm] to ``decimals`` places (``122.18``; −0.00 is 0.00).
+
+    Parameters
+    ----------
+    value : float
+        The dimension [mm].
+    decimals : int
+        Decimal places.
+
+    Returns
+    -------
+    str
+        The dimension as written on a drawing, without its unit.
+    """
     text = f"{value:.{decimals}f}"
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
@@ -318,7 +564,26 @@ def dimension(value: float, decimals: int = 2) -> str:
 def constraint_row(report: Any) -> tuple[str, int, int, str, str]:
     """A constraint of an optimisation run as shown (:class:`chaindrive.synthesis.solve.
     ConstraintReport`): (constraint, designs rejected, designs evaluated, by how much the
-    closest rejected design missed, that design: its chain and tooth counts)."""
+    closest rejected design missed, that design: its chain and tooth counts).
+
+    Parameters
+    ----------
+    report : ConstraintReport
+        The optimiser's account of one constraint (its name, counts, least violation as a
+        fraction of the limit, the closest rejected design as a design mapping).
+
+    Returns
+    -------
+    name : str
+        The constraint.
+    rejected, evaluated : int
+        Designs it rejected and designs evaluated [-].
+    miss : str
+        By how much the closest rejected design missed [% of the limit], or why it could not
+        be built; "—" when nothing was rejected.
+    design : str
+        That design's chain and tooth counts; "—" when there is none.
+    """
     if report.least_violation is None:
         miss = "—"
     elif report.name == "buildable":

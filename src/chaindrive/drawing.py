@@ -56,7 +56,22 @@ FORMATS = (".dxf", ".svg")
 def outline_mm(profile: SprocketProfile) -> NDArray[np.float64]:
     """The toothed outline [mm] of a profile as one closed polyline, centred at 0, without
     repeated points (consecutive points closer than 1 µm are merged, and the last point is
-    not the first again: the polyline is closed by its flag)."""
+    not the first again: the polyline is closed by its flag).
+
+    Parameters
+    ----------
+    profile : SprocketProfile
+        The sprocket's tooth profile (tip, root, seating and flank arcs).
+
+    Returns
+    -------
+    ndarray
+        (K, 2) points of the outline [mm].
+
+    References
+    ----------
+    [ISO606], [GOST591] (the tooth forms).
+    """
     pts = np.asarray(profile.outline, dtype=float) * MM
     step = np.hypot(*np.diff(pts, axis=0, append=pts[:1]).T)
     out: NDArray[np.float64] = pts[step > 1e-3]
@@ -211,7 +226,18 @@ def _layout_sheet(msp: Any, analysis: Analysis, h: float) -> tuple[float, float,
 
 
 def layout_document(analysis: Analysis) -> Any:
-    """The layout drawing alone (ezdxf document, mm)."""
+    """The layout drawing alone (ezdxf document, mm).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design (geometry, sprocket profiles).
+
+    Returns
+    -------
+    ezdxf.document.Drawing
+        The DXF document, drawn 1:1 in mm.
+    """
     doc = _new_document()
     _layout_sheet(doc.modelspace(), analysis, _text_height(analysis))
     return doc
@@ -229,7 +255,22 @@ def _text_height(analysis: Analysis) -> float:
 
 def tooth_form_lines(profile: SprocketProfile) -> list[str]:
     """The tooth form as a drawing states it: each dimension by its name, symbol and value
-    [mm, °], toleranced as the standard limits it."""
+    [mm, °], toleranced as the standard limits it.
+
+    Parameters
+    ----------
+    profile : SprocketProfile
+        The sprocket's tooth profile.
+
+    Returns
+    -------
+    list of str
+        One line per dimension.
+
+    References
+    ----------
+    [ISO606], [GOST591] (the dimensions and their limits).
+    """
     d = dimension
     if profile.standard == "GOST 591":
         form = cast("Gost591ToothForm", profile.form)
@@ -378,7 +419,20 @@ def _index_of(analysis: Analysis, name: str) -> int:
 
 
 def sprocket_document(analysis: Analysis, name: str) -> Any:
-    """The manufacturing drawing of the sprocket ``name`` alone (ezdxf document, mm)."""
+    """The manufacturing drawing of the sprocket ``name`` alone (ezdxf document, mm).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design (geometry, sprocket profiles).
+    name : str
+        The sprocket's name.
+
+    Returns
+    -------
+    ezdxf.document.Drawing
+        The DXF document, drawn 1:1 in mm.
+    """
     i = _index_of(analysis, name)
     doc = _new_document()
     tip = analysis.geometry.sprockets[i].tip_diameter * MM
@@ -388,7 +442,18 @@ def sprocket_document(analysis: Analysis, name: str) -> Any:
 
 def drawing_document(analysis: Analysis) -> Any:
     """The layout and, below it, every sprocket's manufacturing drawing side by side
-    (ezdxf document, mm)."""
+    (ezdxf document, mm).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design (geometry, sprocket profiles).
+
+    Returns
+    -------
+    ezdxf.document.Drawing
+        The DXF document, drawn 1:1 in mm.
+    """
     doc = _new_document()
     msp = doc.modelspace()
     h = _text_height(analysis)
@@ -405,7 +470,27 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
                   ) -> Path:
     """Write the drawing as DXF or SVG (by the suffix of ``path``): the layout with every
     sprocket, or with ``sprocket`` the manufacturing drawing of that sprocket alone. The
-    file is written at once, after the whole drawing is made."""
+    file is written at once, after the whole drawing is made.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design (geometry, sprocket profiles).
+    path : str or Path
+        The file to write; its suffix ``.dxf`` or ``.svg`` chooses the format.
+    sprocket : str or None
+        The name of one sprocket (None: the layout with every sprocket).
+
+    Returns
+    -------
+    Path
+        The path written.
+
+    Raises
+    ------
+    DesignError
+        ``output`` with another suffix; ``--sprocket`` naming no sprocket of the drive.
+    """
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
@@ -426,7 +511,20 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
 
 def svg_string(doc: Any, page_width_mm: float = 420.0) -> str:
     """The modelspace of ``doc`` as SVG (ezdxf drawing add-on) on a white page
-    ``page_width_mm`` wide (A3 by default), scaled to fit; the DXF stays 1:1."""
+    ``page_width_mm`` wide (A3 by default), scaled to fit; the DXF stays 1:1.
+
+    Parameters
+    ----------
+    doc : ezdxf.document.Drawing
+        A DXF document.
+    page_width_mm : float
+        Width of the page [mm].
+
+    Returns
+    -------
+    str
+        The SVG text.
+    """
     from ezdxf import bbox
     from ezdxf.addons.drawing import Frontend, RenderContext, config, layout, svg
 

@@ -41,28 +41,52 @@ ROUNDINGS: tuple[str, ...] = ("round up", "round down")
 class ChainSpec:
     """One catalogue chain (all strands together), SI units.
 
-    Attributes
+    Parameters
     ----------
-    designation : str — canonical name, e.g. ``"ISO 606 16B-1"``, ``"GOST 13568 ПР-25,4-60"``
-    standard : str — ``"ISO 606"``, ``"ANSI"`` or ``"GOST 13568"``
-    series : str — ``"A"``, ``"B"`` (ISO 606) or ``"ПР"`` (GOST)
-    pitch : float — chain pitch p [m]
-    strands : int — number of strands (rows) 1…
-    roller_diameter : float — d1 max [m]
-    pin_diameter : float — d2 max [m]
-    inner_width : float — b1 min, width between inner plates [m]
-    plate_depth : float — inner plate depth h2 max [m]
-    transverse_pitch : float — pt [m] (0 for a simplex chain when not given)
-    breaking_load : float — minimum tensile strength Q of the whole chain [N]
-    mass_per_length : float — q [kg/m] of the whole chain
-    bearing_area : float | None — projected bearing area of the whole chain A = m_r·d2·B
-        (m_r = 1, 1.7, 2.5, 3.0 for 1–4 rows, GOST table 5.12; see :mod:`chaindrive.catalog`) [m²]
-    ansi : str | None — ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``)
-    material : str — chain material name (``"steel"`` for catalogue chains)
-    source : str — where the row comes from
-    allowable_load : float | None — the maker's allowable working pull of the whole chain [N]
-        (polymer chains; None when the catalogue gives none)
-    max_speed : float | None — the maker's highest chain speed [m/s] (None: not given)
+    designation : str
+        Canonical name, e.g. ``"ISO 606 16B-1"``, ``"GOST 13568 ПР-25,4-60"``.
+    standard : str
+        ``"ISO 606"``, ``"ANSI"`` or ``"GOST 13568"`` ([ISO606], [ANSI-B29.1], [GOST13568]).
+    series : str
+        ``"A"``, ``"B"`` (ISO 606) or ``"ПР"`` (GOST).
+    pitch : float
+        Chain pitch p [m].
+    strands : int
+        Number of strands (rows), 1 to 8 [-].
+    roller_diameter : float
+        Roller diameter d₁ max [m].
+    pin_diameter : float
+        Pin diameter d₂ max [m].
+    inner_width : float
+        Width between inner plates b₁ min [m].
+    plate_depth : float
+        Inner plate depth h₂ max [m].
+    transverse_pitch : float
+        Transverse pitch p_t between strands [m] (0 for a simplex chain when not given).
+    breaking_load : float
+        Minimum tensile strength Q of the whole chain [N].
+    mass_per_length : float
+        Mass per unit length q of the whole chain [kg/m].
+    bearing_area : float or None
+        Projected bearing area of the hinges of the whole chain A = m_r·d₂·B [m²]
+        (m_r = 1, 1.7, 2.5, 3.0 for 1–4 rows, [TrinhChat2006, Table 5.12]; see
+        :mod:`chaindrive.catalog`); None when the catalogue gives none.
+    ansi : str or None
+        ANSI/ASME B29.1 number (e.g. ``"80"`` or ``"80-2"``).
+    material : str
+        Chain material name (``"steel"`` for catalogue chains).
+    source : str
+        Where the catalogue row comes from.
+    allowable_load : float or None
+        The maker's allowable working pull of the whole chain [N] (polymer chains; None when
+        the catalogue gives none).
+    max_speed : float or None
+        The maker's highest chain speed [m/s] (None: not given).
+
+    Raises
+    ------
+    DesignError
+        A non-positive pitch, diameter, breaking load or mass, or a strand count outside 1–8.
     """
 
     designation: str
@@ -96,7 +120,26 @@ class ChainSpec:
 
 @dataclass(frozen=True, slots=True)
 class Material:
-    """A sprocket or chain material, SI units (density [kg/m³], E [Pa], strength [Pa])."""
+    """A sprocket or chain material, SI units.
+
+    Parameters
+    ----------
+    name : str
+        The catalogue name (``"steel 45"``, ``"polyamide PA6"`` …).
+    family : str
+        The family it belongs to (``"carbon steel"``, ``"grey cast iron"``, a plastic …);
+        decides :attr:`is_polymer`.
+    density : float
+        Density ρ [kg/m³].
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    tensile_strength : float or None
+        Ultimate tensile strength [Pa] (None: not given).
+    friction_vs_steel : float or None
+        Coefficient of sliding friction against steel [-] (None: not given).
+    source : str
+        Where the values come from (a key of docs/references.md).
+    """
 
     name: str
     family: str
@@ -116,10 +159,16 @@ class Material:
 
 @dataclass(frozen=True, slots=True)
 class ChainRequest:
-    """A design that names no chain: the family to select from (issue 3).
+    """A design that names no chain: the family to select from.
 
-    standard: "ISO 606", "ANSI" or "GOST 13568"; series: "A"/"B" or None; strands: fixed
-    number of strands or None (simplex is chosen then).
+    Parameters
+    ----------
+    standard : str
+        ``"ISO 606"``, ``"ANSI"`` or ``"GOST 13568"``.
+    series : str or None
+        ``"A"`` or ``"B"`` (ISO 606), or None for any.
+    strands : int or None
+        A fixed number of strands [-], or None (simplex is chosen then).
     """
 
     standard: str
@@ -131,17 +180,33 @@ class ChainRequest:
 class Chain:
     """The chain of a drive: a catalogue entry plus what the design fixes.
 
-    ``links`` imposes the number of links (the take-up then finds the position that fits
-    it); otherwise ``rounding`` says how the tight length is rounded to a whole (even)
-    number of links: "round up" (the default, the chain is lengthened) or "round down"
-    (the take-up shortens the layout); ``sag``: the installed sag of the slack span as a
-    fraction of its length (None: laid out tight; see
-    :mod:`chaindrive.geometry.length_options`); ``allow_odd`` permits an odd count (which
-    needs an offset link); ``contours``: the
-    number of identical chain contours side by side on sprockets keyed to common shafts
-    (seed 004; 1 for an ordinary drive). ``request`` is set
-    when the design named no chain: ``spec`` is then provisional and
-    :func:`chaindrive.analyze` replaces it with the lightest feasible chain of the family.
+    Parameters
+    ----------
+    spec : ChainSpec
+        The catalogue chain. When ``request`` is set it is provisional and
+        :func:`chaindrive.analyze` replaces it with the lightest feasible chain of the family.
+    links : int or None
+        Imposed number of links [-] (at least 4; the take-up then finds the position that
+        fits it); None: the tight length rounded by ``rounding``.
+    allow_odd : bool
+        True permits an odd number of links (which needs an offset link).
+    request : ChainRequest or None
+        Set when the design named no chain: the family to select from.
+    contours : int
+        Number of identical chain contours side by side on sprockets keyed to common shafts
+        [-], 1 for an ordinary drive, at most :data:`MAX_CONTOURS` [Lyashuk].
+    rounding : str
+        How the tight length is rounded to a whole (even) number of links: ``"round up"``
+        (the default, the chain is lengthened) or ``"round down"`` (the take-up shortens
+        the layout).
+    sag : float or None
+        Installed sag of the slack span as a fraction of its length [-], in (0, 0.1]; None:
+        laid out tight (see :mod:`chaindrive.geometry.length_options`).
+
+    Raises
+    ------
+    DesignError
+        A rounding rule, sag, contour count or number of links outside what is allowed.
     """
 
     spec: ChainSpec
@@ -191,19 +256,41 @@ MAX_TRAIN_ELEMENTS = 12
 class TrainElement:
     """One element of the open train on a sprocket's shaft, listed outward from the sprocket.
 
-    kind : "shaft" or "coupling" — a torsional spring (``stiffness`` k [N·m/rad], or a solid
-        round shaft of ``diameter`` d [m], ``length`` l [m] and ``material``: k = G π d⁴/(32 l))
-        with a damper ``damping`` c [N·m·s/rad], from the current node to a new node;
-        "gear" — a rigid gear stage (a reducer taken as a whole) of ``ratio`` i = input speed /
-        output speed in the direction the power flows (from the motor to the driver sprocket,
-        from a driven sprocket to its machine) and ``efficiency`` η, to a new node;
-        "rotor" — ``inertia`` added to the current node (a body on the same shaft);
-        "ground" — a spring ``stiffness`` (and ``damping``) from the current node to the frame
-        (a torque arm, an elastic foundation).
-    name : the new node's name (shaft, coupling, gear) or the current node's (rotor); None:
+    Parameters
+    ----------
+    kind : str
+        ``"shaft"`` or ``"coupling"``: a torsional spring with a damper from the current node
+        to a new node; ``"gear"``: a rigid gear stage (a reducer taken as a whole) to a new
+        node; ``"rotor"``: ``inertia`` added to the current node (a body on the same shaft);
+        ``"ground"``: a spring (and damper) from the current node to the frame (a torque arm,
+        an elastic foundation).
+    name : str or None
+        The new node's name (shaft, coupling, gear) or the current node's (rotor); None:
         ``<sprocket>.<k>``.
-    inertia : J [kg·m²] of the new node (shaft, coupling: the body at its far end; gear: the
-        output-side gear and what turns with it) or added to the current node (rotor).
+    inertia : float
+        Moment of inertia J [kg·m²] of the new node (shaft, coupling: the body at its far
+        end; gear: the output-side gear and what turns with it) or added to the current node
+        (rotor).
+    stiffness : float or None
+        Torsional stiffness k [N·m/rad] of a shaft, coupling or ground spring; for a shaft or
+        coupling give either this or ``diameter`` and ``length``.
+    damping : float
+        Viscous torsional damping c [N·m·s/rad] in parallel with the spring.
+    ratio : float or None
+        Gear ratio i = input speed / output speed [-] in the direction the power flows (from
+        the motor to the driver sprocket, from a driven sprocket to its machine).
+    efficiency : float
+        Efficiency η of a gear stage [-], in (0, 1].
+    diameter, length : float or None
+        Diameter d [m] and length l [m] of a solid round shaft: k = G π d⁴/(32 l), G of
+        ``material`` (:func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
+    material : str
+        Catalogue name of the shaft's material (its shear modulus G).
+
+    Raises
+    ------
+    DesignError
+        An unknown kind, or a value the kind needs missing or out of range.
     """
 
     kind: str
@@ -256,17 +343,50 @@ class TrainElement:
 class Sprocket:
     """A sprocket of the contour, listed in the order the chain runs round it.
 
-    x, y [m] centre; speed [rad/s] (driver only); inertia [kg·m²] of what turns rigidly with
-    it — without a train everything on its shaft referred to it (None: the sprocket body from
-    its geometry); ``reduced_mass`` [kg] the same as a mass at the pitch radius, m = J/R²
-    [MultimassChainDrives, §3.1] (give one of the two); ``train`` the open train on its
-    shaft, outward from it (:class:`TrainElement`); ``load`` the law of the driven machine's
-    moment ("constant", "linear", "quadratic" in speed; None: ``[dynamics] resistance``);
-    ``flywheel`` [kg·m²] an inertia added as a
-    steel flywheel on its shaft (counted in the dynamics, the mass and the cost); ``side``
-    is ``"inside"`` when the chain wraps it from the inside of the contour (it then turns the other way);
-    ``adjust_angle`` [rad] the direction of its line of adjustment (None: the default,
-    see :func:`chaindrive.geometry.contour.adjustment_direction`).
+    Parameters
+    ----------
+    name : str
+        Unique name in the drive (``"S1"`` …).
+    teeth : int
+        Number of teeth z [-], from :data:`MIN_TEETH` to :data:`MAX_TEETH`.
+    x, y : float
+        Centre [m].
+    role : {"driver", "driven", "idler"}
+        What it does; exactly one sprocket of a drive is the driver.
+    speed : float or None
+        Angular speed [rad/s], given on the driver only (the others follow from it).
+    side : {"outside", "inside"}
+        ``"inside"`` when the chain wraps it from the inside of the contour (it then turns
+        the other way).
+    adjustable : bool
+        True for the one sprocket that takes up the chain.
+    adjust_angle : float or None
+        Direction of its line of adjustment [rad] (None: the default, see
+        :func:`chaindrive.geometry.contour.adjustment_direction`).
+    inertia : float or None
+        Moment of inertia [kg·m²] of what turns rigidly with it — without a train, everything
+        on its shaft referred to it (None: the sprocket body from its geometry). Give this or
+        ``reduced_mass``, not both.
+    material : str
+        Sprocket material (catalogue name).
+    power_share : float or None
+        Share of the power taken off here [-], from 0 to 1 (driven sprockets; None: an equal
+        part of what the others leave, :func:`chaindrive.strength.loads.power_shares`).
+    flywheel : float
+        Inertia added as a steel flywheel on its shaft [kg·m²] (counted in the dynamics, the
+        mass and the cost).
+    reduced_mass : float or None
+        The inertia as a mass at the pitch radius [kg], m = J/R² [MultimassChainDrives, §3.1].
+    train : tuple of TrainElement
+        The open train on its shaft, outward from the sprocket.
+    load : str or None
+        Law of the driven machine's moment in speed: ``"constant"``, ``"linear"`` or
+        ``"quadratic"`` (None: ``[dynamics] resistance``).
+
+    Raises
+    ------
+    DesignError
+        A value out of range, naming the sprocket and the field.
     """
 
     name: str
@@ -324,7 +444,18 @@ class Sprocket:
             raise DesignError(f"{where}.power_share", f"must be from 0 to 1, got {self.power_share!r}")
 
     def moved_to(self, x: float, y: float) -> Sprocket:
-        """A copy of this sprocket at a new centre (used by the take-up)."""
+        """A copy of this sprocket at a new centre (used by the take-up).
+
+        Parameters
+        ----------
+        x, y : float
+            The new centre [m].
+
+        Returns
+        -------
+        Sprocket
+            The copy.
+        """
         return replace(self, x=x, y=y)
 
 
@@ -336,15 +467,35 @@ RESISTANCES: tuple[str, ...] = LOAD_LAWS
 class Motor:
     """The motor on the driver's train (the ``[motor]`` table of a design file).
 
-    law : "kloss" (induction motor, Kloss formula), "constant" or "ramp" torque (None: the
-        ``[dynamics] motor`` law); rated_power [W] (None: the drive's power); rated_speed
-        [rad/s] of the motor shaft (None: the driver's speed times the ratios of its train);
-        rotor_inertia [kg·m²] (None: estimated from the rated power and synchronous speed,
-        :func:`chaindrive.dynamics.motor_inertia.estimated_rotor_inertia`); breakdown_ratio
-        λ = M_k/M_r and critical_slip s_k of the Kloss law, ramp_time [s] of the ramp (None:
-        the ``[dynamics]`` values); torque [N·m] of the constant or ramp law (None: the rated
-        torque). The rotor sits on the outermost node of the driver's train (on the driver's
-        shaft when it has no train).
+    The rotor sits on the outermost node of the driver's train (on the driver's shaft when it
+    has no train).
+
+    Parameters
+    ----------
+    law : str or None
+        ``"kloss"`` (induction motor, Kloss formula), ``"constant"`` or ``"ramp"`` torque
+        (None: the ``[dynamics] motor`` law).
+    rated_power : float or None
+        Rated power [W] (None: the drive's power).
+    rated_speed : float or None
+        Rated speed of the motor shaft [rad/s] (None: the driver's speed times the ratios of
+        its train).
+    rotor_inertia : float or None
+        Rotor moment of inertia [kg·m²] (None: estimated from the rated power and
+        synchronous speed, :func:`chaindrive.dynamics.motor_inertia.estimated_rotor_inertia`).
+    breakdown_ratio : float or None
+        λ = M_k/M_r of the Kloss law [-], in (1, 5] (None: the ``[dynamics]`` value).
+    critical_slip : float or None
+        Critical slip s_k of the Kloss law [-], in (0, 1) (None: the ``[dynamics]`` value).
+    ramp_time : float or None
+        Duration of the ramp law [s] (None: the ``[dynamics]`` value).
+    torque : float or None
+        Torque of the constant or ramp law [N·m] (None: the rated torque).
+
+    Raises
+    ------
+    DesignError
+        An unknown law or a value out of range.
     """
 
     law: str | None = None
@@ -375,21 +526,55 @@ class Motor:
 class DynamicsSettings:
     """What the dynamic analyses of a drive use (the ``[dynamics]`` table of a design file).
 
-    damping_ratio ζ of the chain spans (None: by the chain/sprocket material pair,
-    :data:`chaindrive.dynamics.damping.PAIR_DAMPING_RATIOS`); hinge_friction: each span's ζ
-    = ψ/4π at its own tension instead [ChainHingeDissipation], with the relative transverse
-    amplitude hinge_amplitude ȳ₀; uncertainty u: stiffnesses and inertias known to ±u (the
-    bands of the natural frequencies, margins and K_D); require_complete_model: an incomplete
-    model (a driver without its motor, a driven sprocket with nothing on its shaft) is an
-    error instead of a warning; harmonics of the tooth frequency in the polygonal
-    excitation ([MultimassChainDrives]: 10 are practically exact); transient: run the start-up;
-    startup_duration [s]; motor: "kloss" (induction motor with the drive's power and the
-    driver speed as rated values, breakdown_ratio λ = M_k/M_r and critical_slip s_k),
-    "constant" (rated torque from t = 0) or "ramp" (soft start over ramp_time [s]);
-    resistance on the driven sprockets: "constant", "linear" or "quadratic" in speed;
-    eccentricity [m] of every sprocket, pitch_scatter σ [m] of the link pitches and
-    accumulated_error [m] of the chain length: optional internal disturbances
-    ([MultimassChainDrives, §2]).
+    Parameters
+    ----------
+    damping_ratio : float or None
+        Damping ratio ζ of the chain spans [-], from 0 to below 1 (None: by the
+        chain/sprocket material pair, :data:`chaindrive.dynamics.damping.PAIR_DAMPING_RATIOS`).
+    harmonics : int
+        Harmonics of the tooth frequency in the polygonal excitation [-]
+        ([MultimassChainDrives]: 10 are practically exact).
+    transient : bool
+        True runs the start-up.
+    startup_duration : float
+        Simulated duration of the start-up [s].
+    motor : str
+        ``"kloss"`` (induction motor with the drive's power and the driver speed as rated
+        values), ``"constant"`` (rated torque from t = 0) or ``"ramp"`` (soft start over
+        ``ramp_time``).
+    breakdown_ratio : float
+        λ = M_k/M_r of the Kloss law [-].
+    critical_slip : float
+        Critical slip s_k of the Kloss law [-].
+    ramp_time : float
+        Duration of the soft start [s].
+    resistance : str
+        Moment of resistance on the driven sprockets: ``"constant"``, ``"linear"`` or
+        ``"quadratic"`` in speed.
+    eccentricity : float
+        Eccentricity of every sprocket [m] (an internal disturbance,
+        [MultimassChainDrives, §2]).
+    pitch_scatter : float
+        Standard deviation σ of the link pitches [m] (internal disturbance).
+    accumulated_error : float
+        Accumulated error of the chain length [m] (internal disturbance).
+    hinge_friction : bool
+        True gives each span the damping ratio ζ = ψ/4π of hinge friction at its own tension
+        [ChainHingeDissipation, eq. 14] instead of ``damping_ratio``.
+    hinge_amplitude : float
+        Relative transverse amplitude ȳ₀ = y₀/a of the spans for the hinge friction [-], in
+        (0, 0.1].
+    uncertainty : float
+        Relative uncertainty u of stiffnesses and inertias [-] (±u; the bands of the natural
+        frequencies, margins and K_D), from 0 to below 0.5.
+    require_complete_model : bool
+        True makes an incomplete model (a driver without its motor, a driven sprocket with
+        nothing on its shaft) an error instead of a warning.
+
+    Raises
+    ------
+    DesignError
+        A value out of range or an unknown law.
     """
 
     damping_ratio: float | None = None
@@ -431,9 +616,35 @@ class DynamicsSettings:
 class Drive:
     """A chain drive: one closed chain contour round 2 to 24 sprockets.
 
-    power [W] transmitted from the driver (None when only geometry is wanted);
-    tooth_form: sprocket tooth form used for tip/root diameters; motor: the motor on the
-    driver's train (None: not modelled; the start-up then uses the ``[dynamics]`` law).
+    Parameters
+    ----------
+    name : str
+        The design's name.
+    chain : Chain
+        The chain and what the design fixes about it.
+    sprockets : tuple of Sprocket
+        The sprockets in the order the chain runs round them (:data:`MIN_SPROCKETS` to
+        :data:`MAX_SPROCKETS`, names unique, exactly one driver).
+    power : float or None
+        Power transmitted from the driver [W] (None when only geometry is wanted).
+    tooth_form : {"ISO 606", "GOST 591"}
+        Sprocket tooth form for tip and root diameters ([ISO606], [GOST591]).
+    service_factor : float or None
+        Service (application) factor of the drive [-] (None: 1).
+    dynamics : DynamicsSettings
+        What the dynamic analyses use.
+    notes : dict of str to str
+        Free notes carried from the design file (shown, never computed with).
+    motor : Motor or None
+        The motor on the driver's train (None: not modelled; the start-up then uses the
+        ``[dynamics]`` law).
+
+    Raises
+    ------
+    DesignError
+        A contour of the wrong size, duplicate names, no driver or several, a speed on a
+        sprocket other than the driver, a power without a driver speed, more than one
+        adjustable sprocket.
     """
 
     name: str
@@ -507,9 +718,31 @@ class Drive:
 
     def with_chain(self, spec: ChainSpec) -> Drive:
         """A copy with another catalogue chain (links and allow_odd kept; the request is
-        answered, so it is cleared)."""
+        answered, so it is cleared).
+
+        Parameters
+        ----------
+        spec : ChainSpec
+            The catalogue chain.
+
+        Returns
+        -------
+        Drive
+            The copy.
+        """
         return replace(self, chain=replace(self.chain, spec=spec, request=None))
 
     def with_sprockets(self, sprockets: tuple[Sprocket, ...]) -> Drive:
-        """A copy with other sprockets (e.g. after the take-up)."""
+        """A copy with other sprockets (e.g. after the take-up).
+
+        Parameters
+        ----------
+        sprockets : tuple of Sprocket
+            The new sprockets, in the order the chain runs round them.
+
+        Returns
+        -------
+        Drive
+            The copy (validated again).
+        """
         return replace(self, sprockets=sprockets)

@@ -25,8 +25,10 @@ REFERENCES = ROOT / "docs" / "references.md"
 #: a key: starts with a capital, then letters, digits, hyphens (ISO606, Rao2011, ANSI-B29.1)
 _CITED = re.compile(r"(?<![\w\]\[)])\[([A-Z][A-Za-z]+[A-Za-z0-9.-]*)(?:, [^\]\n]+)?\]")
 _DEFINED = re.compile(r"^- \*\*\[([^\]]+)\]\*\*", re.MULTILINE)
-#: bracketed words that are units or symbols, not references
-_NOT_KEYS = {"Pa", "MPa", "GPa", "Hz", "SI", "Nm", "N", "W", "kW", "Kind", "Status"}
+#: bracketed words that are units or symbols (or Python constants in a list: ``[None] * n``),
+#: not references
+_NOT_KEYS = {"Pa", "MPa", "GPa", "Hz", "SI", "Nm", "N", "W", "kW", "Kind", "Status", "None",
+             "True", "False"}
 _UNFOLLOWABLE = re.compile(r"seed 0\d{2}|seed-notes|\bissue \d+|shared/(data|spec|seeds)|/work/",
                            re.IGNORECASE)
 
@@ -45,9 +47,7 @@ def _done(path: Path) -> bool:
 
 
 #: package data another branch still cites informally → its owner (may only shrink)
-TO_BE_CITED: dict[str, str] = {
-    "examples": "drive-train dynamics (the example design files' comments)",
-}
+TO_BE_CITED: dict[str, str] = {}
 
 FILES = sorted(p for p in PACKAGE.rglob("*")
                if p.suffix in {".py", ".toml", ".csv"} and "__pycache__" not in p.parts

@@ -37,20 +37,16 @@ import chaindrive
 # to be documented: the modules of the other branches (the lead shrinks this set as they land)
 TO_BE_DOCUMENTED: frozenset[str] = frozenset({
     "chaindrive.__main__",     # entry point, no API
-    "chaindrive.analysis",     # lead
-    "chaindrive.model",        # lead
+    "chaindrive.dynamics.drive_model",       # drive-train dynamics
+    "chaindrive.dynamics.torsional",         # drive-train dynamics
+    "chaindrive.dynamics.torsional_build",   # drive-train dynamics
+    "chaindrive.dynamics.torsional_engine",  # drive-train dynamics
+    "chaindrive.app.main",     # a Streamlit script: importing it runs the page
+    "chaindrive.app.state",    # presentation / reliability
+    "chaindrive.app.views",    # presentation / reliability
     "chaindrive.cli",          # presentation / reliability
-    "chaindrive.app",          # presentation / reliability
     "chaindrive.report",       # presentation
-    "chaindrive.plotting",     # presentation
-    "chaindrive.drawing",      # presentation
-    "chaindrive.display",      # presentation
-    "chaindrive.io",           # reliability
-    "chaindrive.units",        # reliability
-    "chaindrive.dynamics",     # drive-train dynamics
-    "chaindrive.linklevel",    # drive-train dynamics (link-level model)
     "chaindrive.robust",       # robust design
-    "chaindrive.synthesis.studies",  # reliability (clusters)
 })
 
 _SECTION = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}\s*$", re.MULTILINE)
@@ -213,7 +209,6 @@ def test_parser_reads_numpydoc_parameters() -> None:
 
 
 def test_allowlist_names_only_existing_modules() -> None:
-    every = {"chaindrive." + i.name for i in pkgutil.iter_modules(chaindrive.__path__)}
-    every |= {"chaindrive.synthesis.studies"}
+    every = {i.name for i in pkgutil.walk_packages(chaindrive.__path__, "chaindrive.")}
     stale = {m for m in TO_BE_DOCUMENTED if m not in every and m != "chaindrive.robust"}
     assert not stale, f"remove from TO_BE_DOCUMENTED: {sorted(stale)}"

@@ -1,4 +1,4 @@
-"""The chaindrive web page: design in dialogue with the computer (issue 7; docs/app.md).
+"""The chaindrive web page: design in dialogue with the computer (docs/app.md).
 
 ``run_app()`` starts ``streamlit run`` on :mod:`chaindrive.app.main` and prints its address.
 The page is a presenter: :mod:`.state` (form ↔ design mapping ↔ analysis) and :mod:`.views`

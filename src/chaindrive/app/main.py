@@ -333,7 +333,7 @@ def _sprocket_table(base: DesignForm) -> list[dict[str, Any]]:
     edited = st.data_editor(frame, key=_table_key(), num_rows="dynamic", hide_index=True,
                             column_config=_column_config(), width="stretch",
                             placeholder="", height=min(36 * (len(frame) + 2), 330))
-    return [{k: plain(v) for k, v in row.items()} for row in edited.to_dict("records")]
+    return [{str(k): plain(v) for k, v in row.items()} for row in edited.to_dict("records")]
 
 
 def _apply_edit(index: int, keys: dict[str, str], rows: list[dict[str, Any]]) -> None:

@@ -109,7 +109,24 @@ def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = 
 def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
                  progress: Callable[[str], None] | None = None, units: str = "SI") -> bytes:
     """The design report of the analysis as PDF (``fmt`` "pdf", typeset by Typst) or HTML
-    ("html"), in the unit system ``units``."""
+    ("html"), in the unit system ``units``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design.
+    fmt : str
+        ``"pdf"`` or ``"html"``.
+    progress : callable or None
+        Called with each section's title before it is built (None: silent).
+    units : str
+        Unit system of the report, ``"SI"`` or ``"US"``.
+
+    Returns
+    -------
+    bytes
+        The report file's content.
+    """
     from chaindrive.report import build_report, render_html, render_pdf
 
     report = build_report(analysis, progress=progress, units=units)
@@ -117,7 +134,18 @@ def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
 
 
 def drawing_svg(analysis: Analysis) -> bytes:
-    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`)."""
+    """The drawing of the drive as SVG (:func:`chaindrive.drawing.svg_string`).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design.
+
+    Returns
+    -------
+    bytes
+        The SVG text, UTF-8 encoded.
+    """
     from chaindrive.drawing import drawing_document, svg_string
 
     return svg_string(drawing_document(analysis)).encode("utf-8")
@@ -300,10 +328,21 @@ def bounded_drawing(analysis: Analysis, fmt: str = "dxf") -> bytes:
 
 @dataclass(frozen=True, slots=True)
 class LinkLevelView:
-    """What the page shows of the link-level model: the analysis' comparison with the
-    whole-drive model (:meth:`chaindrive.linklevel.ModelComparison.to_dict`: rows of
-    quantity, whole_drive, link_level, unit in SI; settled; steady_from_s; duration_s), the
-    run's time step [s], and the frames of the chain and the link tension along it (PNG)."""
+    """What the page shows of the link-level model.
+
+    Parameters
+    ----------
+    comparison : dict
+        The analysis' comparison with the whole-drive model
+        (:meth:`chaindrive.linklevel.ModelComparison.to_dict`: rows of quantity, whole_drive,
+        link_level, unit in SI; settled; steady_from_s; duration_s).
+    time_step_s : float
+        The run's time step [s].
+    frames_png : bytes
+        The frames of the chain (PNG).
+    tensions_png : bytes
+        The link tension along the chain (PNG).
+    """
 
     comparison: dict[str, Any]
     time_step_s: float

@@ -42,7 +42,18 @@ def _units() -> UnitSystem:
 
 
 def file_name(suffix: str) -> str:
-    """The download name: the loaded file's stem with ``suffix``."""
+    """The download name: the loaded file's stem with ``suffix``.
+
+    Parameters
+    ----------
+    suffix : str
+        The end of the name (``".pdf"``, ``"_drawing.svg"`` …).
+
+    Returns
+    -------
+    str
+        The file name.
+    """
     return Path(st.session_state.get("source") or "design.toml").stem + suffix
 
 
@@ -61,7 +72,13 @@ def _spans(screen: Screen) -> list[str]:
 
 
 def tab_geometry(screen: Screen) -> None:
-    """Sprockets and spans; chain speed and ratio over a tooth period (small SVG charts)."""
+    """Sprockets and spans; chain speed and ratio over a tooth period (small SVG charts).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     doc, units = screen.document or {}, _units()
     st.dataframe(sprocket_records(doc, units), hide_index=True, width="stretch")
     st.dataframe(span_records(doc, units), hide_index=True, width="stretch")
@@ -83,7 +100,13 @@ def tab_geometry(screen: Screen) -> None:
 
 
 def tab_strength(screen: Screen) -> None:
-    """The chain selection and the loads and static strength, as tables with units."""
+    """The chain selection and the loads and static strength, as tables with units.
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     import pandas as pd
 
     doc, units = screen.document or {}, _units()
@@ -106,7 +129,13 @@ def tab_strength(screen: Screen) -> None:
 
 def tab_modes(screen: Screen) -> None:
     """Natural frequencies, the resonance table, the Campbell diagram and the mode shapes
-    (figures drawn when the tab is opened)."""
+    (figures drawn when the tab is opened).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     doc = screen.document or {}
     a = screen.outcome.analysis
     from chaindrive.plotting import campbell_diagram, mode_shapes
@@ -163,7 +192,13 @@ def _full(screen: Screen, label: str, button: str) -> Any:
 
 
 def tab_startup(screen: Screen) -> None:
-    """The start-up transient, on demand."""
+    """The start-up transient, on demand.
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     import pandas as pd
 
     full = _full(screen, "Start-up", "Run the start-up simulation")
@@ -186,7 +221,13 @@ def tab_startup(screen: Screen) -> None:
 
 
 def tab_afc(screen: Screen) -> None:
-    """The amplitude–frequency characteristic and the dynamic safety factors, on demand."""
+    """The amplitude–frequency characteristic and the dynamic safety factors, on demand.
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     import pandas as pd
 
     full = _full(screen, "AFC", "Run the AFC sweep")
@@ -222,7 +263,13 @@ def _comparison_records(doc: dict[str, Any], units: UnitSystem) -> list[dict[str
 
 def tab_links(screen: Screen) -> None:
     """The link-level model beside the whole-drive model, run on request in a bounded child
-    process (it is slower than the ring: seconds per simulated second on large contours)."""
+    process (it is slower than the ring: seconds per simulated second on large contours).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     reason = runs.missing("links")
     if reason is not None:
         st.info(f"Link-level model: {reason}.")
@@ -268,7 +315,13 @@ def tab_links(screen: Screen) -> None:
 
 
 def tab_contours(screen: Screen) -> None:
-    """The load share of identical contours side by side [Lyashuk]."""
+    """The load share of identical contours side by side [Lyashuk].
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    """
     a = screen.outcome.analysis
     if a.contours is None:
         st.info("Single contour. Set “Contours” above 1 (identical chains side by side on "
@@ -301,7 +354,15 @@ def _build(kind: str, screen: Screen) -> bytes:
 
 
 def tab_files(screen: Screen, design: dict[str, Any]) -> None:
-    """Downloads: the design (TOML), the report (PDF, HTML) and the drawing (SVG, DXF)."""
+    """Downloads: the design (TOML), the report (PDF, HTML) and the drawing (SVG, DXF).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    design : dict
+        The design mapping of the form (what the TOML download writes).
+    """
     a = screen.outcome.analysis
     store = st.session_state.setdefault("files", {})
     cols = st.columns(5)
@@ -329,7 +390,15 @@ def tab_files(screen: Screen, design: dict[str, Any]) -> None:
 
 
 def tabs(screen: Screen, design: dict[str, Any]) -> None:
-    """The result tabs; only the open one is drawn, an error in it is shown in it."""
+    """The result tabs; only the open one is drawn, an error in it is shown in it.
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page (its analysis and JSON document).
+    design : dict
+        The design mapping of the form (what the TOML download writes).
+    """
     shows = (lambda: tab_geometry(screen), lambda: tab_strength(screen),
              lambda: tab_modes(screen), lambda: tab_startup(screen), lambda: tab_afc(screen),
              lambda: tab_links(screen), lambda: tab_contours(screen),

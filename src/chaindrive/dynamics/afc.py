@@ -4,8 +4,8 @@ The driver speed is swept (default 10 %–150 % of nominal, 2000 points) and, at
 the steady response to the kinematic excitation (:mod:`chaindrive.dynamics.excitation`) is
 found by **modal superposition** with the eigen-decomposition computed once: with the
 stiffness-proportional damping C = βK of :mod:`chaindrive.dynamics.steady` the undamped
-mass-normalised modes Φ (Φᵀ M Φ = I, Φᵀ K Φ = Ω²) decouple the equations (Rao, Mechanical
-Vibrations, §6.13–6.15), so each frequency needs only diagonal modal responses::
+mass-normalised modes Φ (Φᵀ M Φ = I, Φᵀ K Φ = Ω²) decouple the equations ([Rao2011,
+§6.13–6.15]), so each frequency needs only diagonal modal responses::
 
     q_j = Φ_jᵀ f / (ω_j² (1 + iωβ) − ω²),   f = −(1 + iωβ) Bᵀ C_s D,
     F = (1 + iωβ) C_s (B Φ q + D).
@@ -42,11 +42,34 @@ def modal_harmonic_response(shapes: NDArray[np.float64], omegas_n: NDArray[np.fl
                             stiffness: NDArray[np.float64], beta: float,
                             angular_frequencies: ArrayLike, elongation: ArrayLike
                             ) -> NDArray[np.complex128]:
-    """Span force amplitudes [N] by modal superposition (module docstring).
+    """Span force amplitudes [N] by modal superposition (module docstring):
+    q_j = Φ_jᵀ f / (ω_j² (1 + iωβ) − ω²), f = −(1 + iωβ) Bᵀ C_s D,
+    F = (1 + iωβ) C_s (B Φ q + D).
 
-    shapes (n, n) mass-normalised modes; omegas_n (n,) natural frequencies [rad/s];
-    stiffness (n,) c_i [N/m]; beta [s]; angular_frequencies (..., K) ω > 0 [rad/s];
-    elongation (K, n) amplitudes D [m]. Returns (..., K, n).
+    Parameters
+    ----------
+    shapes : ndarray
+        (n, n) mass-normalised modes Φ [kg^-1/2].
+    omegas_n : ndarray
+        (n,) natural angular frequencies Ω [rad/s].
+    stiffness : ndarray
+        (n,) span stiffnesses c_i [N/m].
+    beta : float
+        β of the stiffness-proportional damping C = βK [s].
+    angular_frequencies : array_like
+        (..., K) excitation angular frequencies ω > 0 [rad/s].
+    elongation : array_like
+        (K, n) complex amplitudes D of the kinematic span elongations [m].
+
+    Returns
+    -------
+    ndarray
+        (..., K, n) complex span force amplitudes F [N].
+
+    References
+    ----------
+    [Rao2011, §6.13–6.15] (modal superposition with proportional damping);
+    [MultimassChainDrives, §3.3].
     """
     n = stiffness.size
     B = span_incidence(n)
@@ -62,18 +85,30 @@ def modal_harmonic_response(shapes: NDArray[np.float64], omegas_n: NDArray[np.fl
     qB += D
     qB *= stiffness
     qB *= g[..., None]
-    return qB
+    return np.asarray(qB, dtype=np.complex128)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class AfcResult:
     """Dynamic load of every span against the driver speed / tooth frequency.
 
-    driver_speeds (S,) [rad/s]; tooth_frequencies_hz (S,); span_load (S, n) peak dynamic
-    load [N]; max_span_load (n,) its largest value over the sweep (F_2max, [MultimassChainDrives, §3.6]);
-    natural_frequencies_hz (elastic, Dynamics I); markers : (mode, harmonic, f_nat [Hz],
-    tooth frequency [Hz]) of every resonance inside the sweep; peak_tooth_frequencies_hz :
-    local maxima of max_i span_load.
+    Parameters
+    ----------
+    driver_speeds : ndarray
+        (S,) driver speeds of the sweep [rad/s].
+    tooth_frequencies_hz : ndarray
+        (S,) tooth frequencies z₁ω₁/2π [Hz].
+    span_load : ndarray
+        (S, n) peak dynamic load of every span [N].
+    max_span_load : ndarray
+        (n,) its largest value over the sweep [N] (F_2max, [MultimassChainDrives, §3.6]).
+    natural_frequencies_hz : ndarray
+        The elastic natural frequencies of the model [Hz].
+    markers : tuple of tuple
+        (mode, harmonic, natural frequency [Hz], tooth frequency [Hz]) of every resonance
+        inside the sweep.
+    peak_tooth_frequencies_hz : ndarray
+        Tooth frequencies of the local maxima of max_i span_load [Hz].
     """
 
     driver_speeds: NDArray[np.float64]
@@ -126,11 +161,40 @@ def _local_maxima(y: NDArray[np.float64]) -> NDArray[np.intp]:
 def afc_sweep(model: RingModel, excitation: SpanExcitation, driver_speeds: ArrayLike,
               driver_teeth: int, *, beta: float | None = None,
               samples: int = 64) -> AfcResult:
-    """AFC of ``model`` under ``excitation`` over ``driver_speeds`` [rad/s].
+    """Amplitude–frequency characteristic of ``model`` under ``excitation`` over
+    ``driver_speeds`` (module docstring).
 
-    driver_teeth z_1 (ω_z = z_1 ω_1); beta [s] (None: :func:`~chaindrive.dynamics.steady.damping_beta`);
-    samples per tooth period for the peak load (harmonic orders must be whole numbers for
-    the trace; otherwise the peak is Σ_f |F_f|, exact for incommensurate frequencies).
+    Parameters
+    ----------
+    model : RingModel
+        The ring model of the contour.
+    excitation : SpanExcitation
+        The kinematic (polygonal) excitation of the spans: harmonic orders and elongation
+        amplitudes [m].
+    driver_speeds : array_like
+        (S,) driver speeds ω₁ [rad/s], positive.
+    driver_teeth : int
+        Teeth z₁ of the driver [-] (tooth frequency ω_z = z₁ω₁).
+    beta : float or None
+        β of the damping C = βK [s] (None: :func:`~chaindrive.dynamics.steady.damping_beta`).
+    samples : int
+        Samples per tooth period for the peak load [-] (the harmonic orders must be whole
+        numbers for the trace; otherwise the peak is Σ_f |F_f|, exact for incommensurate
+        frequencies).
+
+    Returns
+    -------
+    AfcResult
+        Span loads over the sweep with the resonance markers.
+
+    Raises
+    ------
+    DesignError
+        ``driver_speeds`` not a 1-D array of positive speeds.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3, Fig. 3].
     """
     speeds = np.asarray(driver_speeds, dtype=float)
     if speeds.ndim != 1 or speeds.size < 1 or np.any(speeds <= 0):

@@ -166,10 +166,27 @@ def span_hinge_damping_ratios(tensions: ArrayLike, lengths: ArrayLike, pin_diame
 @dataclass(frozen=True, slots=True)
 class HingeFrictionCoefficients:
     """Empirical fit F_max = k1 + k2 ȳ_0 + k3 F_0 + k4 ȳ_0² + k5 ȳ_0 F_0 + k6 F_0² of one
-    chain ([ChainHingeDissipation, eq. 11]) with the chain's hinge data.
+    chain ([ChainHingeDissipation, eq. 11]) with the chain's hinge data. Replace with the
+    coefficients of your chain.
 
-    k1 [N], k2 [N], k3 [–], k4 [N], k5 [–], k6 [1/N]; pin_diameter d_2 [m]; pitch t [m];
-    friction f in the hinges [–]. Replace with the coefficients of your chain.
+    Parameters
+    ----------
+    chain : str
+        The chain the fit belongs to.
+    k1, k2, k4 : float
+        Coefficients [N].
+    k3, k5 : float
+        Coefficients [-].
+    k6 : float
+        Coefficient [1/N].
+    pin_diameter : float
+        Pin diameter d_2 [m].
+    pitch : float
+        Chain pitch t [m].
+    friction : float
+        Coefficient of friction f in the hinges [-].
+    source : str
+        Where the fit comes from (a reference key).
     """
 
     chain: str
@@ -209,18 +226,49 @@ def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
 def hinge_rotation_sum(relative_amplitude: ArrayLike) -> NDArray[np.float64]:
     """Total rotation of the pins in their bushes per quarter period, Σφ = 4π ȳ_0 [rad].
 
-    relative_amplitude ȳ_0 = y_0 / a [–]. [ChainHingeDissipation, eq. 6].
+    Parameters
+    ----------
+    relative_amplitude : array_like
+        ȳ_0 = y_0 / a [-].
+
+    Returns
+    -------
+    ndarray
+        Σφ [rad].
+
+    References
+    ----------
+    [ChainHingeDissipation, eq. 6].
     """
     return 4.0 * math.pi * _positive("relative_amplitude", relative_amplitude)
 
 
 def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_diameter: ArrayLike,
                                 amplitude: ArrayLike, span_length: ArrayLike) -> NDArray[np.float64]:
-    """Energy W [J] dissipated by hinge friction per cycle of transverse vibration.
+    """Energy W [J] dissipated by hinge friction per cycle of transverse vibration:
+    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 y_0 / a.
 
-    W = 4 f F_0 (d_2/2) Σφ = 8π f F_0 d_2 y_0 / a ([ChainHingeDissipation, eqs. 7–8] with ȳ_0 = y_0/a).
-    friction f [–]; tension F_0 [N]; pin_diameter d_2 [m]; amplitude y_0 at mid-span [m];
-    span_length a [m].
+    Parameters
+    ----------
+    friction : array_like
+        Coefficient of friction f in the hinges [-].
+    tension : array_like
+        Static span tension F_0 [N].
+    pin_diameter : array_like
+        Pin diameter d_2 [m].
+    amplitude : array_like
+        Amplitude y_0 at mid-span [m].
+    span_length : array_like
+        Span length a [m].
+
+    Returns
+    -------
+    ndarray
+        W [J].
+
+    References
+    ----------
+    [ChainHingeDissipation, eqs. 7–8] (with ȳ_0 = y_0/a).
     """
     f = _positive("friction", friction)
     y_rel = _positive("amplitude", amplitude) / _positive("span_length", span_length)
@@ -229,9 +277,24 @@ def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_dia
 
 
 def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -> NDArray[np.float64]:
-    """Elongation Δl_max = (8/3) a ȳ_0² [m] of a span at its largest deflection.
+    """Elongation Δl_max = (8/3) a ȳ_0² [m] of a span at its largest deflection (sine-shaped
+    span).
 
-    span_length a [m]; relative_amplitude ȳ_0 [–]. [ChainHingeDissipation, eq. 10] (sin-shaped span).
+    Parameters
+    ----------
+    span_length : array_like
+        Span length a [m].
+    relative_amplitude : array_like
+        ȳ_0 [-].
+
+    Returns
+    -------
+    ndarray
+        Δl_max [m].
+
+    References
+    ----------
+    [ChainHingeDissipation, eq. 10].
     """
     y = _positive("relative_amplitude", relative_amplitude)
     return 8.0 / 3.0 * _positive("span_length", span_length) * y * y
@@ -240,9 +303,25 @@ def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -
 def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
                       coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                       ) -> NDArray[np.float64]:
-    """Largest span force F_max [N] during the vibration, [ChainHingeDissipation, eq. 11] (empirical).
+    """Largest span force F_max [N] during the vibration (empirical fit).
 
-    tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
+    Parameters
+    ----------
+    tension : array_like
+        Static span tension F_0 [N].
+    relative_amplitude : array_like
+        ȳ_0 [-].
+    coefficients : HingeFrictionCoefficients
+        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
+
+    Returns
+    -------
+    ndarray
+        F_max [N].
+
+    References
+    ----------
+    [ChainHingeDissipation, eq. 11].
     """
     F0 = _positive("tension", tension)
     y = _positive("relative_amplitude", relative_amplitude)
@@ -253,9 +332,25 @@ def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
 def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
                         coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                         ) -> NDArray[np.float64]:
-    """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [–], [ChainHingeDissipation, eq. 13].
+    """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [-].
 
-    tension F_0 [N]; relative_amplitude ȳ_0 [–]; coefficients of the chain.
+    Parameters
+    ----------
+    tension : array_like
+        Static span tension F_0 [N].
+    relative_amplitude : array_like
+        ȳ_0 [-].
+    coefficients : HingeFrictionCoefficients
+        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
+
+    Returns
+    -------
+    ndarray
+        K_aF [-].
+
+    References
+    ----------
+    [ChainHingeDissipation, eq. 13].
     """
     F0 = _positive("tension", tension)
     return (max_dynamic_force(F0, relative_amplitude, coefficients) - F0) / F0
@@ -267,7 +362,25 @@ def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
                          ) -> NDArray[np.float64]:
     """Largest potential energy of the cycle E = 0.5 F_a Δl_max = (4/3) a ȳ_0² F_0 K_aF [J].
 
-    [ChainHingeDissipation, eqs. 9, 12]. span_length a [m]; relative_amplitude ȳ_0; tension F_0 [N].
+    Parameters
+    ----------
+    span_length : array_like
+        Span length a [m].
+    relative_amplitude : array_like
+        ȳ_0 [-].
+    tension : array_like
+        Static span tension F_0 [N].
+    coefficients : HingeFrictionCoefficients
+        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
+
+    Returns
+    -------
+    ndarray
+        E [J].
+
+    References
+    ----------
+    [ChainHingeDissipation, eqs. 9, 12].
     """
     F0 = _positive("tension", tension)
     k_af = dynamic_load_factor(F0, relative_amplitude, coefficients)
@@ -278,10 +391,31 @@ def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_le
                            relative_amplitude: ArrayLike, tension: ArrayLike,
                            coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                            ) -> NDArray[np.float64]:
-    """Absorption coefficient ψ = W / E = 6π f d_2 / (ȳ_0 a K_aF) [–], [ChainHingeDissipation, eq. 14].
+    """Absorption coefficient ψ = W / E = 6π f d_2 / (ȳ_0 a K_aF) [-].
 
-    friction f; pin_diameter d_2 [m]; span_length a = t (z − 1) [m]; relative_amplitude
-    ȳ_0; tension F_0 [N]; coefficients of the chain's F_max fit.
+    Parameters
+    ----------
+    friction : array_like
+        Coefficient of friction f in the hinges [-].
+    pin_diameter : array_like
+        Pin diameter d_2 [m].
+    span_length : array_like
+        Span length a = t (z − 1) [m].
+    relative_amplitude : array_like
+        ȳ_0 [-].
+    tension : array_like
+        Static span tension F_0 [N].
+    coefficients : HingeFrictionCoefficients
+        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
+
+    Returns
+    -------
+    ndarray
+        ψ [-].
+
+    References
+    ----------
+    [ChainHingeDissipation, eq. 14].
     """
     y = _positive("relative_amplitude", relative_amplitude)
     k_af = dynamic_load_factor(tension, y, coefficients)
@@ -292,29 +426,80 @@ def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_le
 
 
 def equivalent_damping_ratio(absorption: ArrayLike) -> NDArray[np.float64]:
-    """Viscous damping ratio ζ = ψ / (4π) [–] equivalent to an absorption coefficient ψ.
+    """Viscous damping ratio ζ = ψ / (4π) [-] equivalent to an absorption coefficient ψ
+    (ψ = ΔW/W = 2δ for light damping and δ = 2πζ, the logarithmic decrement).
 
-    ψ = ΔW/W = 2δ for light damping and δ = 2πζ (logarithmic decrement) — Panovko,
-    Internal friction in vibrations of elastic systems [Panovko1960].
+    Parameters
+    ----------
+    absorption : array_like
+        Absorption coefficient ψ [-].
+
+    Returns
+    -------
+    ndarray
+        ζ [-].
+
+    References
+    ----------
+    [Panovko1960].
     """
     return np.asarray(absorption, dtype=float) / (4.0 * math.pi)
 
 
 def damped_frequencies(frequencies: ArrayLike, damping_ratio: ArrayLike) -> NDArray[np.float64]:
-    """Damped natural frequencies ω_d = ω sqrt(1 − ζ²) (any frequency unit).
+    """Damped natural frequencies ω_d = ω sqrt(1 − ζ²), mode by mode (modal damping).
 
-    Source: single-degree-of-freedom viscous damping, applied mode by mode (modal damping);
-    [MultimassChainDrives, Table 1] compares undamped and damped frequencies this way.
+    Parameters
+    ----------
+    frequencies : array_like
+        Undamped natural frequencies [any frequency unit, kept].
+    damping_ratio : array_like
+        Damping ratio ζ [-], from 0 to below 1.
+
+    Returns
+    -------
+    ndarray
+        ω_d [unit of ``frequencies``].
+
+    Raises
+    ------
+    DesignError
+        ``damping_ratio`` out of range.
+
+    References
+    ----------
+    [Rao2011, §2.6] (single-degree-of-freedom viscous damping); [MultimassChainDrives,
+    Table 1] compares undamped and damped frequencies this way.
     """
     z = np.asarray(damping_ratio, dtype=float)
     if np.any((z < 0) | (z >= 1)):
         raise DesignError("damping_ratio", f"must be from 0 to below 1, got {damping_ratio!r}")
-    return np.asarray(frequencies, dtype=float) * np.sqrt(1.0 - z * z)
+    return np.asarray(np.asarray(frequencies, dtype=float) * np.sqrt(1.0 - z * z), dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)
 class HingeFrictionResult:
-    """Hinge-friction damping of a span: W [J], E [J], K_aF, ψ, ζ at (F_0, ȳ_0, a)."""
+    """Hinge-friction damping of a span at one operating point (F_0, ȳ_0, a).
+
+    Parameters
+    ----------
+    tension : float
+        Static span tension F_0 [N].
+    relative_amplitude : float
+        ȳ_0 [-].
+    span_length : float
+        Span length a [m].
+    dissipated_energy : float
+        W per cycle [J].
+    potential_energy : float
+        Largest potential energy E of the cycle [J].
+    dynamic_load_factor : float
+        K_aF [-].
+    absorption_coefficient : float
+        ψ = W/E [-].
+    damping_ratio : float
+        ζ = ψ/4π [-].
+    """
 
     tension: float
     relative_amplitude: float
@@ -341,8 +526,25 @@ def hinge_friction_damping(tension: float, relative_amplitude: float, span_lengt
                            ) -> HingeFrictionResult:
     """[ChainHingeDissipation]'s model for one span: W, E, K_aF, ψ and ζ = ψ/4π.
 
-    tension F_0 [N]; relative_amplitude ȳ_0 [–] (seed: 0.015…0.03); span_length a [m];
-    coefficients: the chain's fit and hinge data (friction, pin diameter).
+    Parameters
+    ----------
+    tension : float
+        Static span tension F_0 [N].
+    relative_amplitude : float
+        ȳ_0 [-] (the paper: 0.015…0.03).
+    span_length : float
+        Span length a [m].
+    coefficients : HingeFrictionCoefficients
+        The chain's fit and hinge data (friction, pin diameter).
+
+    Returns
+    -------
+    HingeFrictionResult
+        The energies and coefficients.
+
+    References
+    ----------
+    [ChainHingeDissipation, eqs. 6–14]; [Panovko1960] (ζ = ψ/4π).
     """
     c = coefficients
     y0 = relative_amplitude * span_length
@@ -416,7 +618,7 @@ def series_loss_factor(loss_factors: ArrayLike, compliances: ArrayLike) -> NDArr
     stacked on the first axis, like ``loss_factors``."""
     eta = np.asarray(loss_factors, dtype=float)
     comp = np.asarray(compliances, dtype=float)
-    return np.sum(eta * comp, axis=0) / np.sum(comp, axis=0)
+    return np.asarray(np.sum(eta * comp, axis=0) / np.sum(comp, axis=0), dtype=np.float64)
 
 
 def modal_loss_factor(loss_factors: ArrayLike, stiffness: ArrayLike, shape: ArrayLike) -> float:

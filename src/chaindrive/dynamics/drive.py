@@ -62,13 +62,29 @@ __all__ = ["DynamicsResult", "RingParameters", "drive_dynamics", "drive_ring_par
 class RingParameters:
     """Masses and branch stiffnesses of a drive's ring model with their parts.
 
-    masses_kg (n,) reduced masses; inertias_kg_m2 (n,) I used; pitch_radii_m (n,);
-    stiffness_n_per_m (n,) branch stiffness (branch i joins sprocket i and i+1);
-    chain_stiffness_n_per_m (n,) chain alone; wrap_stiffness_n_per_m (n,) each sprocket's
-    wrap (tooth) stiffness; sag_factors (n,) Dischinger–Ernst factors (1: taut);
-    span_tensions_n (n,) or None; link_stiffness_n_per_m per link; loss_factors (n,) material
-    loss factor of every branch (chain and the two wraps in series,
-    :func:`chaindrive.dynamics.damping.series_loss_factor`).
+    Parameters
+    ----------
+    masses_kg : ndarray
+        (n,) reduced masses m_i = I_i/R_i² [kg].
+    inertias_kg_m2 : ndarray
+        (n,) moments of inertia I_i used [kg·m²].
+    pitch_radii_m : ndarray
+        (n,) pitch radii R_i [m].
+    stiffness_n_per_m : ndarray
+        (n,) branch stiffness [N/m] (branch i joins sprocket i and i+1; all contours).
+    chain_stiffness_n_per_m : ndarray
+        (n,) the chain of the span alone [N/m] (one contour).
+    wrap_stiffness_n_per_m : ndarray
+        (n,) each sprocket's wrap (tooth) stiffness [N/m] (one contour).
+    sag_factors : ndarray
+        (n,) Dischinger–Ernst factors [-] (1: taut; [Ernst1965]).
+    span_tensions_n : ndarray or None
+        (n,) span tensions [N] (one contour), or None.
+    link_stiffness_n_per_m : float
+        Stiffness of one link [N/m].
+    loss_factors : ndarray
+        (n,) material loss factor of every branch [-] (chain and the two wraps in series,
+        :func:`chaindrive.dynamics.damping.series_loss_factor`).
     """
 
     masses_kg: NDArray[np.float64]
@@ -100,8 +116,20 @@ class RingParameters:
 
 
 def static_span_tensions(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64] | None:
-    """Static span tensions [N] from :func:`chaindrive.strength.loads.loads_of`, or None when
-    the drive gives no power."""
+    """Static span tensions from :func:`chaindrive.strength.loads.loads_of`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+
+    Returns
+    -------
+    ndarray or None
+        (n,) span tensions [N], or None when the drive gives no power.
+    """
     if drive.power is None or drive.driver.speed is None:
         return None
     return np.asarray(loads_of(drive, geometry).span_tensions, dtype=float)
@@ -150,18 +178,38 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           ) -> RingParameters:
     """Reduced masses and branch stiffnesses of a drive (the module docstring's model).
 
-    drive, geometry : the drive and its built contour (same sprocket order);
-    span_tensions [N] : per span (None: the static tensions of
-    :func:`chaindrive.strength.loads.loads_of` when the drive has a power, else the spans
-    are taken as taut, no sag); link_stiffness [N/m] : per link, e.g. from
-    catalogue data (None: :func:`link_stiffness` from plates and pin with the chain
-    material's E); material_lookup : name → Material (default
-    ``chaindrive.catalog.find_material``). Sprocket masses: ``Sprocket.inertia`` when
-    given, else :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate
-    disc, or the polymeric rim–web–hub proportions of [MultimassChainDrives, §3.4] for a polymer sprocket).
-    With ``drive.chain.contours`` = m identical contours the branch stiffness is m times that
-    of one contour (span tensions are then those of one contour); chain_stiffness and
-    wrap_stiffness stay per contour.
+    Sprocket masses: ``Sprocket.inertia`` when given, else
+    :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia` (a steel plate disc, or the
+    polymeric rim–web–hub proportions of [MultimassChainDrives, §3.4] for a polymer
+    sprocket). With ``drive.chain.contours`` = m identical contours the branch stiffness is m
+    times that of one contour (span tensions are then those of one contour); chain_stiffness
+    and wrap_stiffness stay per contour.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its built contour (same sprocket order).
+    span_tensions : sequence of float or None
+        Tension of every span [N] (None: the static tensions of
+        :func:`chaindrive.strength.loads.loads_of` when the drive has a power, else the spans
+        are taken as taut, no sag).
+    link_stiffness : float or None
+        Stiffness of one link [N/m], e.g. from catalogue data (None:
+        :func:`~chaindrive.dynamics.stiffness.link_stiffness` from plates and pin with the
+        chain material's E).
+    material_lookup : callable or None
+        Name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    RingParameters
+        The masses and stiffnesses with their parts.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1] (reduced masses); [Naji1983] (wrap); [Ernst1965] (sag).
     """
     lookup = material_lookup or _default_lookup()
     spec = drive.chain.spec
@@ -213,10 +261,27 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
 
 
 def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
-    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given
-    ([MultimassChainDrives]: D = 0.06) plus the material part η₁/2 of the first elastic mode by the modal
-    strain energy method (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets
-    about +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains damp more).
+    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given plus
+    the material part η₁/2 of the first elastic mode by the modal strain energy method
+    (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets about
+    +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains
+    damp more).
+
+    Parameters
+    ----------
+    params : RingParameters
+        The ring's masses, stiffnesses and loss factors.
+    hinge_damping : float
+        The hinge-friction or measured damping ratio [-] ([MultimassChainDrives]: D = 0.06).
+
+    Returns
+    -------
+    float
+        ζ [-].
+
+    References
+    ----------
+    [Johnson1982] (modal strain energy).
     """
 
     modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
@@ -234,13 +299,28 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
                material_lookup: Callable[[str], Material] | None = None) -> RingModel:
     """The ring model of a drive; see :func:`drive_ring_parameters`.
 
-    damping : hinge-friction damping ratio (D = 0.06 [MultimassChainDrives]; or ζ = ψ/4π from
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+    damping : float
+        Hinge-friction damping ratio [-] (D = 0.06 [MultimassChainDrives]; or ζ = ψ/4π from
         :mod:`chaindrive.dynamics.damping`), to which the material damping of the first mode
-        is added (:func:`ring_damping_ratio`);
-    span_tensions [N] per span (None: the static tensions when the drive has a power, see
-        :func:`static_span_tensions`);
-    link_stiffness [N/m] per link from catalogue data (None: from the plates and pin);
-    material_lookup : name → Material (default :func:`chaindrive.catalog.find_material`).
+        is added (:func:`ring_damping_ratio`).
+    span_tensions : sequence of float or None
+        Tension of every span [N] (None: the static tensions when the drive has a power, see
+        :func:`static_span_tensions`).
+    link_stiffness : float or None
+        Stiffness of one link [N/m] from catalogue data (None: from the plates and pin).
+    material_lookup : callable or None
+        Name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    RingModel
+        Masses, stiffnesses, damping ratio and sprocket names.
     """
     p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
                               link_stiffness=link_stiffness, material_lookup=material_lookup)
@@ -253,11 +333,23 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
 class DynamicsResult:
     """Everything a designer reads about a drive's vibration (JSON ``dynamics``).
 
-    parameters : masses and stiffnesses with their parts
-    (:class:`~chaindrive.dynamics.drive.RingParameters`); modal : the ring's modes;
-    span_transverse_hz : (spans, modes) transverse frequencies [Hz] (empty when the span
-    tensions are unknown); resonances : the resonance table; campbell : Campbell data
-    over the speed range (or None); damping_ratio ζ.
+    Parameters
+    ----------
+    parameters : RingParameters
+        Masses and stiffnesses with their parts.
+    modal : ModalResult
+        The ring's modes.
+    span_transverse_hz : ndarray
+        (spans, modes) transverse frequencies of the spans [Hz] (empty when the span tensions
+        are unknown).
+    working : tuple of WorkingFrequency
+        The working frequencies.
+    resonances : tuple of Resonance
+        The resonance table.
+    campbell : CampbellData or None
+        Campbell data over the speed range (None: not computed).
+    damping_ratio : float
+        ζ of the ring [-].
     """
 
     parameters: RingParameters

@@ -70,7 +70,7 @@ def _harmonic(model: DriveModel, w: FloatArray, D: ComplexArray
 
 def _traces(amplitudes: ComplexArray, w: FloatArray, times: FloatArray) -> FloatArray:
     """Re Σ_f A_f e^{i w_f t} on ``times``: (T, columns)."""
-    return (np.exp(1j * np.outer(times, w)) @ amplitudes).real
+    return np.asarray((np.exp(1j * np.outer(times, w)) @ amplitudes).real, dtype=np.float64)
 
 
 def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int = 128,
@@ -246,7 +246,28 @@ def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation
 
 def frequency_band_factors(uncertainty: float) -> tuple[float, float]:
     """(low, high) factors on every natural frequency when stiffnesses and inertias are known
-    to ±u: √((1−u)/(1+u)) and √((1+u)/(1−u)) [-] (module docstring, [Horn2013, §4.2])."""
+    to ±u: √((1−u)/(1+u)) and √((1+u)/(1−u)) [-] (module docstring).
+
+    Parameters
+    ----------
+    uncertainty : float
+        Relative uncertainty u of stiffnesses and inertias [-], from 0 to below 1.
+
+    Returns
+    -------
+    tuple of float
+        The low and high factors [-].
+
+    Raises
+    ------
+    DesignError
+        ``dynamics.uncertainty`` out of range.
+
+    References
+    ----------
+    [Horn2013, §4.2] (Courant–Fischer minimax: stiffnesses scaled within 1 ± u and inertias
+    within 1 ∓ u bound every ω² by the ratio of the extreme scalings).
+    """
     u = float(uncertainty)
     if not 0.0 <= u < 1.0:
         raise DesignError("dynamics.uncertainty", f"must be from 0 to below 1, got {u!r}")
@@ -257,11 +278,19 @@ def frequency_band_factors(uncertainty: float) -> tuple[float, float]:
 class Bands:
     """Bands of the results for stiffness and inertia known to ±u.
 
-    uncertainty u [-]; natural_frequencies_hz (E, 2) low/high of every elastic frequency;
-    margins: per resonance row (label, working [Hz], natural [Hz], margin [%], lowest and
-    highest |margin| [%], inside: the working frequency lies in the mode's band);
-    coefficient_of_dynamics (nominal, low, high) or None; worst_speed_factor: the ω√(b/a)
-    factor at which K_D is largest.
+    Parameters
+    ----------
+    uncertainty : float
+        Relative uncertainty u [-].
+    natural_frequencies_hz : ndarray
+        (E, 2) low and high of every elastic natural frequency [Hz].
+    margins : tuple of tuple
+        Per resonance row: (label, working frequency [Hz], natural frequency [Hz], margin [%],
+        lowest and highest |margin| [%], inside: the working frequency lies in the mode's band).
+    coefficient_of_dynamics : tuple of float or None
+        (nominal, low, high) coefficient of dynamics K_D [-], or None when it is not computed.
+    worst_speed_factor : float or None
+        The factor ω√(b/a) [-] at which K_D is largest.
     """
 
     uncertainty: float

@@ -28,7 +28,7 @@ chain, so with ψ = 0 meaning "a hinge at the tangent point" (the convention of
     ψ(s, t) = ω_z t − 2π s,     ω_z = z_1 ω_1 (the common tooth frequency).
 
 The phase between the two ends of a span is therefore −2π·(L/p) (only its fractional part
-matters), the seed's "difference of phases between nearby sprockets".
+matters), [MultimassChainDrives]'s "difference of phases between nearby sprockets".
 
 Polygonal effect
 ----------------
@@ -88,10 +88,17 @@ TWO_PI = 2.0 * math.pi
 class SpanExcitation:
     """Prescribed span elongations d_i(t) = Re Σ_f D[f, i] e^{i ω_f t}.
 
-    angular_frequencies : (F,) ω_f [rad/s] at the speed it was built for;
-    elongation : (F, n) complex amplitudes D [m]; orders : (F,) ω_f / ω_z (the order with
-    respect to the tooth frequency, so the same excitation can be rescaled to another
-    speed); source : "polygonal", "eccentricity" or "chain_error".
+    Parameters
+    ----------
+    angular_frequencies : ndarray
+        (F,) ω_f [rad/s] at the speed it was built for.
+    elongation : ndarray
+        (F, n) complex amplitudes D [m].
+    orders : ndarray
+        (F,) ω_f / ω_z [-], the order with respect to the tooth frequency (so the same
+        excitation can be rescaled to another speed).
+    source : str
+        ``"polygonal"``, ``"eccentricity"``, ``"chain_error"`` or several joined by ``+``.
     """
 
     angular_frequencies: NDArray[np.float64]
@@ -100,11 +107,33 @@ class SpanExcitation:
     source: str
 
     def at_tooth_frequency(self, omega_z: float) -> SpanExcitation:
-        """The same excitation at the tooth frequency ω_z [rad/s] (amplitudes unchanged)."""
+        """The same excitation at another tooth frequency (amplitudes unchanged).
+
+        Parameters
+        ----------
+        omega_z : float
+            Tooth frequency ω_z [rad/s].
+
+        Returns
+        -------
+        SpanExcitation
+            The rescaled excitation.
+        """
         return SpanExcitation(self.orders * omega_z, self.elongation, self.orders, self.source)
 
     def trace(self, times: ArrayLike) -> NDArray[np.float64]:
-        """d_i(t) [m] at ``times`` [s], shape (T, n)."""
+        """d_i(t) at ``times``.
+
+        Parameters
+        ----------
+        times : array_like
+            (T,) times [s].
+
+        Returns
+        -------
+        ndarray
+            (T, n) span elongations [m].
+        """
         t = np.asarray(times, dtype=float)
         phase = np.exp(1j * np.outer(t, self.angular_frequencies))
         return (phase @ self.elongation).real
@@ -118,10 +147,24 @@ class SpanExcitation:
 
 
 def path_positions(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Positions s_start, s_end [pitches] of the tangent points of every span along the chain.
-
+    """Positions s_start, s_end [pitches] of the tangent points of every span along the chain:
     s_start,0 = 0; s_end,i = s_start,i + L_i/p; s_start,i+1 = s_end,i + z_{i+1}θ_{i+1}/2π
-    (module docstring). Returns two (n,) arrays.
+    (module docstring).
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour's geometry (spans in ring order, wraps, pitch).
+
+    Returns
+    -------
+    s_start, s_end : ndarray
+        (n,) path positions [pitches].
+
+    Raises
+    ------
+    DesignError
+        ``geometry.spans`` not in ring order.
     """
     spans = geometry.spans
     n = len(spans)
@@ -139,11 +182,29 @@ def polygonal_span_elongation(pitch: float, teeth_start: ArrayLike, teeth_end: A
                               harmonics: int = 10) -> NDArray[np.complex128]:
     """Complex amplitudes D[k−1, i] [m] of the polygonal elongation of every span.
 
-    pitch p [m]; teeth_start / teeth_end : (n,) teeth of the sprocket at the start / end of
-    each span; s_start / s_end : (n,) path positions [pitches] of the tangent points;
-    harmonics N of the tooth frequency ([MultimassChainDrives]: 10). d_i = δ_end − δ_start with
-    δ(ψ) = Σ A_k sin kψ + B_k cos kψ (phase ψ0 = −2π s), so
-    D_k = (B_k − i A_k)_end − (B_k − i A_k)_start. Shape (N, n).
+    d_i = δ_end − δ_start with δ(ψ) = Σ A_k sin kψ + B_k cos kψ (phase ψ0 = −2π s), so
+    D_k = (B_k − i A_k)_end − (B_k − i A_k)_start.
+
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m].
+    teeth_start, teeth_end : array_like
+        (n,) teeth of the sprocket at the start and at the end of each span [-].
+    s_start, s_end : array_like
+        (n,) path positions of the tangent points [pitches] (:func:`path_positions`).
+    harmonics : int
+        Harmonics N of the tooth frequency [-] ([MultimassChainDrives]: 10).
+
+    Returns
+    -------
+    ndarray
+        (N, n) complex amplitudes D [m].
+
+    References
+    ----------
+    [ChainNonUniformity] (the hinge displacement of the polygonal effect);
+    [MultimassChainDrives, §3.1–3.3].
     """
     a_s, b_s = hinge_displacement_coefficients(pitch, teeth_start, harmonics,
                                                -TWO_PI * np.asarray(s_start, float))
@@ -161,10 +222,28 @@ def _teeth_by_span(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArr
 
 def polygonal_excitation(geometry: GeometryResult, tooth_angular_frequency: float,
                          harmonics: int = 10) -> SpanExcitation:
-    """Polygonal excitation of every span of a contour at ω_z = z_1 ω_1 [rad/s].
+    """Polygonal excitation of every span of a contour at the tooth frequency ω_z = z₁ω₁.
 
-    Harmonics k = 1…N (default 10, [MultimassChainDrives]) of the tooth frequency; the phases follow
-    from the span lengths and wraps in pitches (:func:`path_positions`).
+    Harmonics k = 1…N of the tooth frequency; the phases follow from the span lengths and
+    wraps in pitches (:func:`path_positions`).
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour's geometry (spans in ring order, wraps, pitch).
+    tooth_angular_frequency : float
+        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    harmonics : int
+        Harmonics N kept [-] (default 10, practically exact by [MultimassChainDrives]).
+
+    Returns
+    -------
+    SpanExcitation
+        Orders 1…N, source ``"polygonal"``.
+
+    References
+    ----------
+    [ChainNonUniformity]; [MultimassChainDrives, §3.1–3.3].
     """
     s_start, s_end = path_positions(geometry)
     z_s, z_e = _teeth_by_span(geometry)
@@ -178,9 +257,33 @@ def eccentricity_excitation(geometry: GeometryResult, tooth_angular_frequency: f
                             ) -> SpanExcitation:
     """Once-per-revolution excitation of sprocket eccentricities (module docstring).
 
-    eccentricity : (n,) ε_j [m] of every sprocket (0: none); phase : (n,) γ_j [rad] from the
-    radius to the leaving point (default 0); ω_j = ω_z/z_j. Sprockets of equal teeth turn at
-    the same speed and are summed into one harmonic.
+    Sprocket j turns at ω_j = ω_z/z_j; sprockets of equal teeth turn at the same speed and are
+    summed into one harmonic.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour's geometry (spans in ring order, wraps, pitch).
+    tooth_angular_frequency : float
+        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    eccentricity : array_like
+        (n,) eccentricity ε_j of every sprocket [m] (0: none).
+    phase : array_like or None
+        (n,) angle γ_j from the radius to the leaving point [rad] (None: 0).
+
+    Returns
+    -------
+    SpanExcitation
+        Orders 1/z_j, source ``"eccentricity"``.
+
+    Raises
+    ------
+    DesignError
+        A negative or non-finite eccentricity.
+
+    References
+    ----------
+    [MultimassChainDrives, §2] (the internal disturbances).
     """
     n = len(geometry.sprockets)
     eps = np.broadcast_to(np.asarray(eccentricity, dtype=float), (n,))
@@ -220,12 +323,34 @@ def chain_error_excitation(geometry: GeometryResult, tooth_angular_frequency: fl
                            pitch_errors: ArrayLike | None = None, pitch_scatter: float = 0.0,
                            accumulated_error: float = 0.0, harmonics: int = 20,
                            seed: int = 0) -> SpanExcitation:
-    """Excitation by the pitch scatter and the accumulated length error of the chain.
+    """Excitation by the pitch scatter and the accumulated length error of the chain
+    (derivation in the module docstring).
 
-    pitch_errors : (links,) error of every pitch [m], or ``pitch_scatter`` σ [m] to draw them
-    as Normal(0, σ²) with ``seed`` (reproducible); accumulated_error Δ [m] (first harmonic
-    along the chain); harmonics : chain-passage harmonics m = 1…M kept (frequency
-    m ω_z/N). Derivation in the module docstring.
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour's geometry (spans in ring order, wraps, pitch).
+    tooth_angular_frequency : float
+        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    pitch_errors : array_like or None
+        (links,) error of every pitch [m] (None: drawn from ``pitch_scatter``, or 0).
+    pitch_scatter : float
+        Standard deviation σ of the pitch errors drawn as Normal(0, σ²) [m].
+    accumulated_error : float
+        Accumulated length error Δ of the chain [m] (first harmonic along the chain).
+    harmonics : int
+        Chain-passage harmonics m = 1…M kept [-] (frequency m ω_z/N).
+    seed : int
+        Seed of the random draw (reproducible).
+
+    Returns
+    -------
+    SpanExcitation
+        Orders m/N, source ``"chain_error"``.
+
+    References
+    ----------
+    [MultimassChainDrives, §2] (the internal disturbances).
     """
     links = int(geometry.links)
     if pitch_errors is None and pitch_scatter > 0:
@@ -243,7 +368,18 @@ def chain_error_excitation(geometry: GeometryResult, tooth_angular_frequency: fl
 
 
 def combine_excitations(*parts: SpanExcitation) -> SpanExcitation:
-    """All harmonics of several excitations in one (frequencies concatenated)."""
+    """All harmonics of several excitations in one (frequencies concatenated).
+
+    Parameters
+    ----------
+    *parts : SpanExcitation
+        The excitations, at least one.
+
+    Returns
+    -------
+    SpanExcitation
+        Their harmonics together, the sources joined by ``+``.
+    """
     if not parts:
         raise DesignError("excitation", "need at least one excitation")
     return SpanExcitation(np.concatenate([p.angular_frequencies for p in parts]),

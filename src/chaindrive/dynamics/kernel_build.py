@@ -21,11 +21,12 @@ platform compiler). Without one the build reports why and the package works as b
 from __future__ import annotations
 
 import hashlib
+import importlib
 import sys
 import warnings
 from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 __all__ = ["MODULE", "build", "compiled_kernel", "source_digest"]
 
@@ -35,7 +36,14 @@ _SOURCES = ("startup_kernel.py", "kernel_codes.py")
 
 
 def source_digest() -> int:
-    """First 7 bytes of the SHA-256 of the kernel's source files, as a non-negative int64."""
+    """The fingerprint of the kernel's sources: first 7 bytes of the SHA-256 of the source
+    files, as a non-negative int64.
+
+    Returns
+    -------
+    int
+        The digest; a compiled module built from other sources carries another one.
+    """
     h = hashlib.sha256()
     for name in _SOURCES:
         h.update((_HERE / name).read_bytes())
@@ -47,7 +55,8 @@ def compiled_kernel() -> Any:
     """``run_kernel_flat`` of the ahead-of-time module, or None when it is not built or was
     built from other sources (decided once per process)."""
     try:
-        from chaindrive.dynamics import _startup_aot  # type: ignore[attr-defined]
+        # imported by name: the extension module exists only once built
+        _startup_aot = importlib.import_module("chaindrive.dynamics._startup_aot")
     except ImportError:
         return None
     if _startup_aot.source_digest() != source_digest():
@@ -56,8 +65,18 @@ def compiled_kernel() -> Any:
 
 
 def build(output_dir: Path | None = None) -> Path:
-    """Compile the kernel into ``output_dir`` (default: this package's folder); returns the
-    path of the extension module."""
+    """Compile the kernel ahead of time (numba.pycc) into an extension module.
+
+    Parameters
+    ----------
+    output_dir : Path or None
+        Where to write the module (None: this package's folder).
+
+    Returns
+    -------
+    Path
+        The path of the extension module written.
+    """
     from numba.core.errors import NumbaPendingDeprecationWarning
 
     with warnings.catch_warnings():  # numba.pycc is "pending deprecation" since numba 0.57
@@ -75,7 +94,8 @@ def build(output_dir: Path | None = None) -> Path:
     def _digest() -> int:
         return digest
 
-    cc.export("run_kernel_flat", FLAT_SIGNATURE)(run_kernel_flat.py_func)
+    # the numba dispatcher behind the typed decorator keeps the Python function as .py_func
+    cc.export("run_kernel_flat", FLAT_SIGNATURE)(cast(Any, run_kernel_flat).py_func)
     cc.compile()
     built = sorted(Path(cc.output_dir).glob(MODULE + ".*"), key=lambda p: p.stat().st_mtime)
     return built[-1]

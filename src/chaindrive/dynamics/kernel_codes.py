@@ -30,6 +30,19 @@ def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
     ConstantTorque → (0, [M]); RampTorque → (1, [M, t_ramp]); KlossMotor →
     (2, [2λM_r, s_k, ω_s]) (the Kloss formula 2λM_r·s·s_k/(s² + s_k²), s = 1 − ω/ω_s,
     evaluated in the same order as ``KlossMotor.__call__``).
+
+    Parameters
+    ----------
+    motor : callable
+        A motor law of :mod:`chaindrive.dynamics.motors` (torque [N·m] of time [s] and speed
+        [rad/s]) or any other callable.
+
+    Returns
+    -------
+    tuple of (int, ndarray) or None
+        The kernel's code of the law and its three parameters (torques [N·m], ramp time [s],
+        slip [-], synchronous speed [rad/s] as listed above); None for a law the kernel does
+        not know.
     """
     if type(motor) is ConstantTorque:
         return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
@@ -44,8 +57,22 @@ def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
 def resistance_code(law: Any, n: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64],
                                                  float] | None:
     """(kind, torques M_i [N·m], nominal speeds ω_n,i [rad/s], breakaway) of a
-    :class:`~chaindrive.dynamics.startup.ResistanceLaw` (None law: kind 0); None if the kind
-    is unknown."""
+    :class:`~chaindrive.dynamics.motors.ResistanceLaw` (None law: kind 0); None if the kind
+    is unknown.
+
+    Parameters
+    ----------
+    law : ResistanceLaw or None
+        The moments of resistance of the sprockets.
+    n : int
+        Number of sprockets [-] (the torques and speeds are broadcast to it).
+
+    Returns
+    -------
+    tuple or None
+        The kernel's code of the law, the torques (n,) [N·m], the nominal speeds (n,)
+        [rad/s] and the breakaway fraction of the nominal speed [-]; None for an unknown kind.
+    """
     if law is None:
         return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
     kind = RESISTANCE_KINDS.get(law.kind)

@@ -2,8 +2,8 @@ r"""Closed-form start-up of a linear ring (no slack, forces known in advance).
 
 :func:`linear_transient` is the closed-form modal solution for a linear ring under forces
 known in advance (no slack, no speed-dependent law): mode j is a damped oscillator with
-ζ_j = βω_j/2 (classical damping, Rao §6.13); a constant force (step) or a soft-start ramp
-gives closed-form modal step / ramp responses (Rao §4.5) evaluated on the whole time grid at
+ζ_j = βω_j/2 (classical damping, [Rao2011, §6.13]); a constant force (step) or a soft-start ramp
+gives closed-form modal step / ramp responses ([Rao2011, §4.5]) evaluated on the whole time grid at
 once (modes × times, "don't integrate what has a closed form"); sampled forces held over
 each step are propagated by the exact zero-order-hold recursion of each mode in its
 eigen-coordinates (a first-order complex scan per mode).
@@ -29,7 +29,7 @@ def _exp_steps(s: NDArray[np.complex128], dt: float, count: int) -> NDArray[np.c
     U = -(-count // C)
     coarse = np.exp(np.multiply.outer((C * dt) * np.arange(U), s))[:, None, :]
     fine = np.exp(np.multiply.outer(dt * np.arange(C), s))[None, :, :]
-    return (coarse * fine).reshape(U * C, s.size)[:count]
+    return np.asarray((coarse * fine).reshape(U * C, s.size)[:count], dtype=np.complex128)
 
 
 def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
@@ -37,10 +37,9 @@ def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
                      ) -> NDArray[np.float64]:
     """y_r(t_k) = Re Σ_j coef[r, j]·e^{s_j t_k} + Σ_p poly[r, p]·t_k^p on t_k = t₀ + kΔt.
 
-    exponents s (J,) complex; coef (R, J) complex; poly (R, P) real (P may be 0); returns
-    (count, R). Linear responses from rest are sums of this form (modal step and ramp
-    responses, Rao §4.5), and on an equally spaced grid they separate: with t = t_a + τ_b,
-    t_a = t₀ + aBΔt, τ_b = bΔt (b < B),
+    Linear responses from rest are sums of this form (modal step and ramp responses), and on
+    an equally spaced grid they separate: with t = t_a + τ_b, t_a = t₀ + aBΔt, τ_b = bΔt
+    (b < B),
 
         e^{s t} = e^{s t_a}·e^{s τ_b},   t^p = Σ_q C(p, q) t_a^{p−q} τ_b^q,
 
@@ -50,6 +49,32 @@ def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
     as one stacked product: no (J, count) temporaries, J·count/B exponentials instead of
     J·count. Each factor is exact to round-off (e^{s t_a} and e^{s τ} are evaluated
     directly, never as powers), so is the result.
+
+    Parameters
+    ----------
+    t0 : float
+        First time t₀ [s].
+    dt : float
+        Step Δt [s].
+    count : int
+        Number of samples [-].
+    exponents : array_like
+        (J,) complex exponents s_j [1/s].
+    coef : array_like
+        (R, J) complex coefficients [unit of y].
+    poly : array_like
+        (R, P) real polynomial coefficients [unit of y / s^p] (P may be 0).
+    block : int
+        Samples per block B at most [-].
+
+    Returns
+    -------
+    ndarray
+        (count, R) y [unit of y].
+
+    References
+    ----------
+    [Rao2011, §4.5] (modal step and ramp responses).
     """
     s = np.asarray(exponents, dtype=complex)
     a_coef = np.asarray(coef, dtype=complex)
@@ -75,13 +100,30 @@ def exp_poly_on_grid(t0: float, dt: float, count: int, exponents: ArrayLike,
                           0.0) * binom  # (nb, p, q)
         M[:, 2 * J:, :] = np.matmul(powers.transpose(0, 2, 1), p_coef.T)
     out = np.matmul(W, M)  # (nb, B, R)
-    return out.reshape(nb * B, R)[:count]
+    return np.asarray(out.reshape(nb * B, R)[:count], dtype=np.float64)
 
 
 def exp_poly_at(times: ArrayLike, exponents: ArrayLike, coef: ArrayLike, poly: ArrayLike
                 ) -> NDArray[np.float64]:
-    """:func:`exp_poly_on_grid` at any times (T,): the block products on an equally spaced
-    grid, else the direct sum (T exponentials per exponent)."""
+    """:func:`exp_poly_on_grid` at any times: the block products on an equally spaced grid,
+    else the direct sum (T exponentials per exponent).
+
+    Parameters
+    ----------
+    times : array_like
+        (T,) times t [s].
+    exponents : array_like
+        (J,) complex exponents s_j [1/s].
+    coef : array_like
+        (R, J) complex coefficients [unit of y].
+    poly : array_like
+        (R, P) real polynomial coefficients [unit of y / s^p].
+
+    Returns
+    -------
+    ndarray
+        (T, R) y [unit of y].
+    """
     t = np.asarray(times, dtype=float)
     T = t.size
     if T >= 16:
@@ -93,14 +135,25 @@ def exp_poly_at(times: ArrayLike, exponents: ArrayLike, coef: ArrayLike, poly: A
     out = (np.exp(np.multiply.outer(t, s)) @ np.asarray(coef, dtype=complex).T).real
     if p_coef.shape[1]:
         out += (t[:, None] ** np.arange(p_coef.shape[1])) @ p_coef.T
-    return out
+    return np.asarray(out, dtype=np.float64)
 
 
 @dataclass(frozen=True, eq=False)
 class LinearTransient:
-    """Response of a linear ring: times (N,) [s], velocities (N, n) [m/s], span_forces
-    (N, n) [N] (elastic + damping, no slack rule) — what a start-up check reads, computed
-    at once — and displacements (N, n) [m], evaluated on first access."""
+    """Response of a linear ring: what a start-up check reads, computed at once, and the
+    displacements, evaluated on first access.
+
+    Parameters
+    ----------
+    times : ndarray
+        (N,) times [s].
+    velocities : ndarray
+        (N, n) velocities of the masses [m/s].
+    span_forces : ndarray
+        (N, n) span forces [N] (elastic + damping, no slack rule).
+    displacements_source : callable
+        Returns the (N, n) displacements [m] when :attr:`displacements` is first read.
+    """
 
     times: NDArray[np.float64]
     velocities: NDArray[np.float64]
@@ -225,11 +278,37 @@ def linear_transient(masses: ArrayLike, stiffness: ArrayLike, beta: float, times
                      ramp_time: float = 0.0) -> LinearTransient:
     """Response from rest of the linear ring to nodal forces (module docstring).
 
-    masses (n,) [kg]; stiffness (n,) [N/m]; beta [s]; times (N,) equally spaced from 0 [s];
-    forces : (n,) constant — a step at t = 0 (or, with ``ramp_time`` t_r > 0 [s], a ramp
-    f·min(t/t_r, 1), the soft start) in closed form: modal step/ramp responses on the whole
-    grid at once — or (N, n) sampled, held constant over each step (exact zero-order-hold
-    modal recursion, :func:`_zoh_modal`) [N].
+    A constant force vector is a step at t = 0 (or, with ``ramp_time`` t_r > 0, a ramp
+    f·min(t/t_r, 1), the soft start) solved in closed form: modal step/ramp responses on the
+    whole grid at once. Sampled forces (N, n) are held constant over each step (exact
+    zero-order-hold modal recursion).
+
+    Parameters
+    ----------
+    masses : array_like
+        (n,) reduced masses [kg].
+    stiffness : array_like
+        (n,) branch stiffnesses [N/m].
+    beta : float
+        β of the stiffness-proportional damping C = βK [s].
+    times : array_like
+        (N,) equally spaced times from 0 [s].
+    forces : array_like
+        (n,) constant or (N, n) sampled nodal forces [N].
+    closed : bool
+        False for an open chain (the last branch is ignored).
+    ramp_time : float
+        Duration t_r of the ramp of constant forces [s] (0: a step).
+
+    Returns
+    -------
+    LinearTransient
+        Times, velocities, span forces and (lazily) displacements.
+
+    References
+    ----------
+    [Rao2011, §6.13] (classical damping, decoupled modes), [Rao2011, §4.5] (step and ramp
+    responses); [VanLoan1978] (the exact zero-order hold).
     """
     from chaindrive.dynamics.ring import modal_analysis
 

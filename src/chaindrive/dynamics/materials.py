@@ -42,9 +42,27 @@ TWO_PI = 2.0 * math.pi
 
 @dataclass(frozen=True, slots=True)
 class MaterialCase:
-    """One pair: chain and sprocket materials, start-up peak [N], first natural frequency
-    [Hz] and its damped value [Hz], resonance tooth frequency [Hz] and resonance amplitude [N]
-    (largest span load at the AFC peak)."""
+    """One chain/sprocket material pair of the comparison and what it does to the drive.
+
+    Parameters
+    ----------
+    chain_material, sprocket_material : str
+        The materials of the pair (catalogue names).
+    startup_peak_n : float
+        Largest span force during the start-up [N].
+    first_natural_frequency_hz : float
+        First elastic natural frequency [Hz].
+    resonance_tooth_frequency_hz : float
+        Tooth frequency at the largest peak of the amplitude–frequency characteristic [Hz].
+    resonance_amplitude_n : float
+        Largest span load at that peak [N].
+    first_damped_frequency_hz : float
+        Damped first natural frequency [Hz] (NaN when not computed).
+
+    References
+    ----------
+    [MultimassChainDrives, Table 1] (the same comparison for steel and polymer pairs).
+    """
 
     chain_material: str
     sprocket_material: str

@@ -37,8 +37,15 @@ ComplexArray = NDArray[np.complex128]
 class StateModes:
     """Complex modes of the elastic part of a damped model (module docstring).
 
-    eigenvalues (2E,) λ [rad/s]; right (2E, 2E) and left (2E, 2E) eigenvectors (V, V⁻¹)
-    of A in the modal coordinates (y, ẏ); basis (N, E) Φ: q = Φ y.
+    Parameters
+    ----------
+    eigenvalues : ndarray
+        (2E,) complex eigenvalues λ of the state matrix A [rad/s].
+    right, left : ndarray
+        (2E, 2E) right eigenvectors V and left ones V⁻¹ of A in the modal coordinates
+        (y, ẏ) [-].
+    basis : ndarray
+        (N, E) elastic mass-normalised modes Φ with q = Φ y [coordinate units · kg^-1/2].
     """
 
     eigenvalues: ComplexArray
@@ -47,10 +54,26 @@ class StateModes:
     basis: FloatArray
 
     def damped(self, natural_rad_s: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """(damped frequencies [Hz], damping ratios [-]) of the E elastic modes in the order
-        of their undamped frequencies ``natural_rad_s`` (E,) [rad/s]: each mode takes the
-        oscillating eigenvalue (Im λ > 0) of nearest |λ|; an overdamped mode (none left)
-        gets a damped frequency 0 and ζ = 1."""
+        """(damped frequencies [Hz], damping ratios [-]) of the E elastic modes in the order of
+        their undamped frequencies: each mode takes the oscillating eigenvalue (Im λ > 0) of
+        nearest |λ|; an overdamped mode (none left) gets a damped frequency 0 and ζ = 1.
+
+        Parameters
+        ----------
+        natural_rad_s : ndarray
+            (E,) undamped natural frequencies [rad/s].
+
+        Returns
+        -------
+        damped_hz : ndarray
+            (E,) damped natural frequencies Im λ / 2π [Hz].
+        ratios : ndarray
+            (E,) damping ratios ζ = −Re λ / |λ| [-].
+
+        References
+        ----------
+        [Rao2011, §6.14].
+        """
         lam = self.eigenvalues
         pool = [complex(x) for x in lam if x.imag > 1e-12 * max(1.0, abs(x))]
         fd = np.zeros(natural_rad_s.size)
@@ -75,11 +98,12 @@ def state_modes(basis: FloatArray, omega: FloatArray, damping: FloatArray) -> St
     omega : ndarray
         (E,) their undamped natural frequencies Ω [rad/s].
     damping : ndarray
-        (N, N) damping matrix C of the coordinates.
+        (N, N) damping matrix C of the coordinates [N·s/m or N·m·s/rad, as the coordinates].
 
     Returns
     -------
     StateModes
+        The eigenvalues and eigenvectors of the first-order form.
 
     References
     ----------
@@ -99,13 +123,31 @@ def state_modes(basis: FloatArray, omega: FloatArray, damping: FloatArray) -> St
 class DriveModes:
     """Modes of a whole-drive model as a designer reads them (at the sprockets).
 
-    frequencies_hz (M,) undamped, ascending, rigid-body zeros first; rigid_body (M,);
-    damped_frequencies_hz (M,), modal_damping_ratios (M,) (0 for rigid-body modes);
-    shapes (n, M): chain displacement R̄_i φ_i at sprocket i in each mode (mass-normalised)
-    [m·kg^-1/2]; governing (M,) the element holding most of each mode's strain energy;
-    chain_share (M,) the share of the chain (spans and wraps) in it; masses_kg (n,) the
-    sprockets' own reduced masses J/R² [kg]; stiffness_n_per_m (n,) span stiffness (one
-    contour) [N/m]; damping_ratio ζ of the reference mode [-]; torsional: the full modes.
+    Parameters
+    ----------
+    frequencies_hz : ndarray
+        (M,) undamped natural frequencies [Hz], ascending, rigid-body zeros first.
+    rigid_body : ndarray of bool
+        (M,) True for a rigid-body mode.
+    damped_frequencies_hz : ndarray
+        (M,) damped natural frequencies [Hz].
+    modal_damping_ratios : ndarray
+        (M,) damping ratio of each mode [-] (0 for rigid-body modes).
+    shapes : ndarray
+        (n, M) chain displacement R̄_i φ_i at sprocket i in each mode, mass-normalised
+        [m·kg^-1/2].
+    governing : tuple of str
+        (M,) the element holding most of each mode's strain energy.
+    chain_share : ndarray
+        (M,) the share of the chain (spans and wraps) in each mode's strain energy [-].
+    masses_kg : ndarray
+        (n,) the sprockets' own reduced masses J/R² [kg] ([MultimassChainDrives, §3.1]).
+    stiffness_n_per_m : ndarray
+        (n,) span stiffness of one contour [N/m].
+    damping_ratio : float
+        Damping ratio ζ of the reference mode [-].
+    torsional : TorsionalModes
+        The full modes of the torsional model (every node).
     """
 
     frequencies_hz: FloatArray
@@ -142,7 +184,8 @@ class DriveModes:
         [MultimassChainDrives, eq. 2] (a mode that leaves every sprocket still: zeros)."""
         a = np.abs(self.shapes)
         total = a.sum(axis=0)
-        return np.divide(a, total, out=np.zeros_like(a), where=total > 0)
+        return np.asarray(np.divide(a, total, out=np.zeros_like(a), where=total > 0),
+                          dtype=np.float64)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict; ``mode_shapes[j]`` lists the sprockets' amplitudes in mode j."""

@@ -94,7 +94,19 @@ SPEED_RANGE_RAD_S = (2.0 * math.pi * 50.0 / 4.0, 2.0 * math.pi * 60.0)
 
 def catalogue_points() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(T, J): rated torque at synchronous speed P/ω_s [N·m] and J [kg·m²] of the catalogue
-    motors used in the fit (ω_s = 2π·50 / pole pairs [rad/s])."""
+    motors used in the fit (ω_s = 2π·50 / pole pairs [rad/s]).
+
+    Returns
+    -------
+    torque : ndarray
+        T of every motor [N·m].
+    inertia : ndarray
+        Its rotor inertia J [kg·m²].
+
+    References
+    ----------
+    [MotiveDelphi] (the catalogue).
+    """
     torque, inertia = [], []
     for motor, power_kw, _speed, j in CATALOGUE:
         if motor in EXCLUDED:
@@ -106,7 +118,17 @@ def catalogue_points() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
 
 def fit_coefficients() -> tuple[float, float, float]:
-    """Least-squares (a0, a1, a2) of ln J = a0 + a1 ln T + a2 (ln T)² over the catalogue."""
+    """Least-squares (a0, a1, a2) of ln J = a0 + a1 ln T + a2 (ln T)² over the catalogue.
+
+    Returns
+    -------
+    tuple of float
+        a0, a1, a2 [-] (J in kg·m², T in N·m).
+
+    References
+    ----------
+    [MotiveDelphi] (the data), [Press2007, §15.4] (linear least squares).
+    """
     torque, inertia = catalogue_points()
     x = np.log(torque)
     A = np.column_stack([np.ones_like(x), x, x * x])
@@ -118,9 +140,21 @@ def fit_coefficients() -> tuple[float, float, float]:
 class RotorInertiaEstimate:
     """An estimated rotor inertia (not a catalogue value of the motor in the design).
 
-    inertia_kg_m2 : the fit's J [kg·m²]; low_kg_m2, high_kg_m2 : J ÷ and × the largest
-    catalogue scatter factor (every catalogue motor lies in this band); rated_torque_n_m :
-    T = P/ω_s [N·m]; source : reference key.
+    Parameters
+    ----------
+    inertia_kg_m2 : float
+        The fit's rotor inertia J [kg·m²].
+    low_kg_m2, high_kg_m2 : float
+        J divided and multiplied by the largest catalogue scatter factor [kg·m²] (every
+        catalogue motor lies in this band).
+    rated_torque_n_m : float
+        Rated torque at synchronous speed T = P/ω_s [N·m].
+    rms_scatter_factor : float
+        Root-mean-square scatter factor of the catalogue about the fit [-].
+    is_estimate : bool
+        True: an estimate, not the motor's own value.
+    source : str
+        Reference key of the catalogue.
     """
 
     inertia_kg_m2: float

@@ -23,7 +23,13 @@ ResistanceKind = Literal["constant", "linear", "quadratic"]
 
 @dataclass(frozen=True, slots=True)
 class ConstantTorque:
-    """Motor torque M_D = const [N·m] from t = 0 (step)."""
+    """Motor torque M_D = const [N·m] from t = 0 (step).
+
+    Parameters
+    ----------
+    torque : float
+        The torque M_D [N·m].
+    """
 
     torque: float
 
@@ -34,7 +40,15 @@ class ConstantTorque:
 
 @dataclass(frozen=True, slots=True)
 class RampTorque:
-    """Soft start: M_D = M·min(1, t/t_ramp) [N·m]; ramp_time t_ramp [s]."""
+    """Soft start: M_D = M·min(1, t/t_ramp) [N·m].
+
+    Parameters
+    ----------
+    torque : float
+        The torque M reached at the end of the ramp [N·m].
+    ramp_time : float
+        Duration t_ramp of the ramp [s] (0: a step).
+    """
 
     torque: float
     ramp_time: float
@@ -46,12 +60,30 @@ class RampTorque:
 
 @dataclass(frozen=True, slots=True)
 class KlossMotor:
-    """Induction motor by the Kloss formula M = 2 M_k / (s/s_k + s_k/s) (e.g. Fischer,
-    Elektrische Maschinen; Чиликин, Общий курс электропривода).
+    """Induction motor by the Kloss formula M = 2 M_k / (s/s_k + s_k/s).
 
-    rated_power P_r [W]; rated_speed ω_r [rad/s] (of the driver shaft); breakdown_ratio
-    λ = M_k/M_r; critical_slip s_k. The rated slip follows from M(s_r) = M_r:
-    s_r = s_k (λ − sqrt(λ² − 1)); synchronous speed ω_s = ω_r/(1 − s_r).
+    The rated slip follows from M(s_r) = M_r: s_r = s_k (λ − sqrt(λ² − 1)); the synchronous
+    speed ω_s = ω_r/(1 − s_r).
+
+    Parameters
+    ----------
+    rated_power : float
+        Rated power P_r [W].
+    rated_speed : float
+        Rated speed ω_r [rad/s] (of the driver shaft).
+    breakdown_ratio : float
+        λ = M_k/M_r, breakdown over rated torque [-], above 1.
+    critical_slip : float
+        Critical (breakdown) slip s_k [-], in (0, 1).
+
+    Raises
+    ------
+    DesignError
+        ``motor``: a rated value that is not positive, or λ, s_k out of range.
+
+    References
+    ----------
+    [Chilikin1981] (the Kloss formula); [IEC60034-12] (breakdown torques of cage motors).
     """
 
     rated_power: float
@@ -92,9 +124,18 @@ class KlossMotor:
 class ResistanceLaw:
     """Moments of resistance of the sprockets: M_R,i = M_i · φ(ω_i/ω_n,i) [N·m].
 
-    kind : "constant" (φ = 1 once moving; below ``breakaway``·ω_n the torque rises
-    linearly from 0, a regularised dry friction), "linear" (φ = ω/ω_n) or "quadratic"
-    (φ = (ω/ω_n)|ω/ω_n|); torques (n,) M_i [N·m] at the nominal speeds (n,) ω_n,i [rad/s].
+    Parameters
+    ----------
+    kind : {"constant", "linear", "quadratic"}
+        φ = 1 once moving for "constant" (below ``breakaway``·ω_n the torque rises linearly
+        from 0, a regularised dry friction), φ = ω/ω_n for "linear", φ = (ω/ω_n)|ω/ω_n| for
+        "quadratic".
+    torques : ndarray
+        (n,) moments M_i at the nominal speeds [N·m].
+    nominal_speeds : ndarray
+        (n,) nominal speeds ω_n,i [rad/s].
+    breakaway : float
+        Fraction of the nominal speed below which a constant moment is regularised [-].
     """
 
     kind: ResistanceKind

@@ -20,7 +20,17 @@ __all__ = ["PUBLISHED", "PublishedFigure", "published_comparison"]
 
 @dataclass(frozen=True, slots=True)
 class PublishedFigure:
-    """One printed figure: what it is, its value in SI units and its unit for display."""
+    """One printed figure: what it is, its value in SI units and its unit for display.
+
+    Parameters
+    ----------
+    quantity : str
+        What the figure is (``"first natural frequency"`` …).
+    value : float
+        The printed value converted to SI [SI unit of the quantity: Hz, N, …].
+    unit : str
+        The unit it is shown in beside ours.
+    """
 
     quantity: str
     value: float

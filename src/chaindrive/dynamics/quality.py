@@ -13,10 +13,27 @@ __all__ = ["coefficient_of_dynamics", "nominal_peripheral_force"]
 
 
 def nominal_peripheral_force(power: float, pitch_diameter: float, speed: float) -> float:
-    """Nominal peripheral force F_t = P / v = 2P / (D ω) [N].
+    """Nominal peripheral force F_t = P / v = 2P / (D ω) [N] (F_t = 60 P / (π D n) with n in
+    rpm).
 
-    power P [W]; pitch_diameter D of the driver [m]; speed ω of the driver [rad/s]
-    (F_t = 60 P / (π D n) with n in rpm).
+    Parameters
+    ----------
+    power : float
+        Transmitted power P [W].
+    pitch_diameter : float
+        Pitch diameter D of the driver [m].
+    speed : float
+        Angular speed ω of the driver [rad/s].
+
+    Returns
+    -------
+    float
+        F_t [N].
+
+    Raises
+    ------
+    DesignError
+        When a value is not positive.
     """
     if not (power > 0 and pitch_diameter > 0 and speed > 0):
         raise DesignError("power", "power, pitch diameter and speed must be positive")
@@ -24,12 +41,32 @@ def nominal_peripheral_force(power: float, pitch_diameter: float, speed: float) 
 
 
 def coefficient_of_dynamics(dynamic_loads: ArrayLike, nominal_force: float) -> float:
-    """Coefficient of dynamics K_D = 1 + F_D / F_t [–].
+    """Coefficient of dynamics K_D = 1 + F_D / F_t [-], F_D the root mean square of the
+    largest dynamic loads of the branches.
 
-    dynamic_loads : the largest dynamic load [N] of every branch (sign ignored);
-    nominal_force F_t [N]. F_D is the root mean square of the branch loads. Reading of
-    [MultimassChainDrives]'s lost formula used by the project (its 3-sprocket example:
-    44.75 N at F_t ≈ 262 N gives 1.17 against the printed 1.18).
+    Reading of [MultimassChainDrives]'s lost formula used by the project (its 3-sprocket
+    example: 44.75 N at F_t ≈ 262 N gives 1.17 against the printed 1.18).
+
+    Parameters
+    ----------
+    dynamic_loads : array_like
+        The largest dynamic load of every branch [N] (sign ignored).
+    nominal_force : float
+        Nominal peripheral force F_t [N].
+
+    Returns
+    -------
+    float
+        K_D [-].
+
+    Raises
+    ------
+    DesignError
+        No finite branch load, or a nominal force that is not positive.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3].
     """
     loads = np.abs(np.asarray(dynamic_loads, dtype=float)).ravel()
     if loads.size == 0 or not np.all(np.isfinite(loads)):

@@ -52,22 +52,43 @@ TWO_PI = 2.0 * math.pi
 
 def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
                       teeth: Sequence[int]) -> NDArray[np.float64]:
-    """Rotation frequencies f_i = ω_1 z_1 / (2π z_i) [Hz] of every shaft.
+    """Rotation frequencies f_i = ω_1 z_1 / (2π z_i) [Hz] of every shaft (the same chain speed
+    on every sprocket: ω_i = z_1 ω_1 / z_i).
 
-    driver_speed ω_1 [rad/s] (scalar or array of S speeds); driver_teeth z_1; teeth z_i.
-    Returns shape (..., n). Source: ω_i = z_1 ω_1 / z_i (same chain speed on every
-    sprocket).
+    Parameters
+    ----------
+    driver_speed : array_like
+        Driver speed ω_1 [rad/s] (a scalar or an array of S speeds).
+    driver_teeth : int
+        Teeth z_1 of the driver [-].
+    teeth : sequence of int
+        Teeth z_i of every sprocket [-].
+
+    Returns
+    -------
+    ndarray
+        (..., n) f_i [Hz].
     """
     w = np.asarray(driver_speed, dtype=float)
     z = np.asarray(teeth, dtype=float)
-    return (w[..., None] * driver_teeth / z) / TWO_PI
+    return np.asarray((w[..., None] * driver_teeth / z) / TWO_PI, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)
 class WorkingFrequency:
-    """One disturbing frequency: ``kind`` is ``"shaft"``, ``"tooth"`` or ``"parametric"``;
-    ``label`` names it (sprocket, harmonic, span); frequency [Hz]; harmonic k (1 for
-    shafts)."""
+    """One disturbing frequency of the drive.
+
+    Parameters
+    ----------
+    kind : str
+        ``"shaft"``, ``"tooth"`` or ``"parametric"``.
+    label : str
+        What it is (sprocket, harmonic, span).
+    frequency : float
+        The frequency [Hz].
+    harmonic : int
+        Harmonic k of the tooth frequency [-] (1 for shafts).
+    """
 
     kind: str
     label: str
@@ -85,8 +106,32 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
                         harmonics: int = 3) -> tuple[WorkingFrequency, ...]:
     """The shaft frequencies and the tooth frequency with harmonics k = 1…``harmonics``.
 
-    driver_speed ω_1 [rad/s]; driver_teeth z_1; teeth z_i of all sprockets; names of the
-    sprockets (default S1, S2, …). Source: [MultimassChainDrives, §3.3].
+    Parameters
+    ----------
+    driver_speed : float
+        Driver speed ω_1 [rad/s].
+    driver_teeth : int
+        Teeth z_1 of the driver [-].
+    teeth : sequence of int
+        Teeth z_i of all sprockets [-].
+    names : sequence of str or None
+        Names of the sprockets (None: S1, S2, …).
+    harmonics : int
+        Harmonics of the tooth frequency [-], at least 1.
+
+    Returns
+    -------
+    tuple of WorkingFrequency
+        The shaft frequencies, then the tooth harmonics.
+
+    Raises
+    ------
+    DesignError
+        ``harmonics`` below 1.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3].
     """
     if harmonics < 1:
         raise DesignError("harmonics", f"must be at least 1, got {harmonics!r}")
@@ -101,9 +146,20 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
 
 @dataclass(frozen=True, slots=True)
 class Resonance:
-    """A row of the resonance table: a working frequency, the nearest natural frequency
-    [Hz] (``mode`` its index in the modal result, or the span index for ``parametric``)
-    and margin_percent = (f_working − f_natural)/f_natural·100."""
+    """A row of the resonance table.
+
+    Parameters
+    ----------
+    working : WorkingFrequency
+        The working frequency.
+    natural_frequency : float
+        The nearest elastic natural frequency [Hz] (for a ``parametric`` row: 2 f_1 of the
+        span).
+    mode : int
+        Its index in the modal result, or the span index for ``parametric`` [-].
+    margin_percent : float
+        (f_working − f_natural)/f_natural·100 [%], signed (negative below).
+    """
 
     working: WorkingFrequency
     natural_frequency: float
@@ -126,14 +182,32 @@ def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
                     span_transverse_hz: ArrayLike | None = None,
                     tooth_hz: float | None = None,
                     span_names: Sequence[str] = ()) -> tuple[Resonance, ...]:
-    """Nearest elastic natural frequency and the margin for each working frequency.
-
-    modal : the ring's modes (rigid-body modes are skipped); working : the disturbing
-    frequencies; span_transverse_hz : (spans,) first transverse frequency of every span
-    [Hz] and tooth_hz the tooth frequency [Hz] — for each span with f_1 > 0 one
-    ``parametric`` row compares the tooth frequency with the principal parametric
-    resonance 2 f_1 (Bolotin 1964), labelled with ``span_names`` when given. Sorted by
+    """Nearest elastic natural frequency and the margin for each working frequency, sorted by
     |margin| (most critical first).
+
+    Parameters
+    ----------
+    modal : Modes
+        The modes (rigid-body modes are skipped).
+    working : sequence of WorkingFrequency
+        The disturbing frequencies.
+    span_transverse_hz : array_like or None
+        (spans,) first transverse frequency of every span [Hz]; with ``tooth_hz``, each span
+        with f_1 > 0 adds one ``parametric`` row comparing the tooth frequency with the
+        principal parametric resonance 2 f_1.
+    tooth_hz : float or None
+        The tooth frequency [Hz].
+    span_names : sequence of str
+        Labels of the spans for the parametric rows.
+
+    Returns
+    -------
+    tuple of Resonance
+        The rows.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2–3.3]; [Bolotin1964, ch. 1] (the parametric zone).
     """
     elastic_idx = np.flatnonzero(~modal.rigid_body)
     natural = modal.frequencies_hz[elastic_idx]
@@ -156,13 +230,20 @@ def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
 class CampbellData:
     """Data of a Campbell diagram over the driver speed.
 
-    speeds_rpm (S,) driver speeds; natural_frequencies_hz (S, modes) elastic ring
-    frequencies (independent of speed in the linear model); span_transverse_hz
-    (S, spans) first transverse frequency of every span (depends on the chain speed);
-    excitation_hz: name → (S,) excitation lines (shafts, tooth harmonics, and
-    "2·f1 span i" for the parametric zones are in span_transverse_hz·2);
-    crossings: (excitation, natural mode index, speed_rpm) where a line crosses a
-    natural frequency (linear interpolation between grid speeds).
+    Parameters
+    ----------
+    speeds_rpm : ndarray
+        (S,) driver speeds [rpm].
+    natural_frequencies_hz : ndarray
+        (S, modes) elastic frequencies [Hz] (independent of speed in the linear model).
+    span_transverse_hz : ndarray
+        (S, spans) first transverse frequency of every span [Hz] (depends on the chain speed);
+        the parametric zones lie at twice these.
+    excitation_hz : dict of str to ndarray
+        Name → (S,) excitation line [Hz] (shafts, tooth harmonics).
+    crossings : tuple of tuple
+        (excitation, natural mode index, speed [rpm]) where a line crosses a natural
+        frequency (linear interpolation between grid speeds); mode −1 for a parametric zone.
     """
 
     speeds_rpm: NDArray[np.float64]
@@ -204,11 +285,41 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                   ) -> CampbellData:
     """Natural frequencies and excitation lines over a range of driver speeds.
 
-    driver_speeds ω_1 [rad/s] (S,); driver_teeth z_1; teeth z_i; names of sprockets;
-    harmonics of the tooth frequency. With span_lengths [m], span_tensions [N],
-    mass_per_length q [kg/m] and pitch p [m] the spans' first transverse frequencies at
-    the chain speed v = z_1 p ω_1 / 2π are added (Mote 1965), compared with the tooth
-    frequency for parametric crossings (f_z = 2 f_1).
+    With the span data the spans' first transverse frequencies at the chain speed
+    v = z_1 p ω_1 / 2π are added and compared with the tooth frequency for parametric
+    crossings (f_z = 2 f_1).
+
+    Parameters
+    ----------
+    modal : Modes
+        The modes.
+    driver_speeds : array_like
+        (S,) driver speeds ω_1 [rad/s].
+    driver_teeth : int
+        Teeth z_1 of the driver [-].
+    teeth : sequence of int
+        Teeth z_i of every sprocket [-].
+    names : sequence of str or None
+        Names of the sprockets (None: S1, S2, …).
+    harmonics : int
+        Harmonics of the tooth frequency [-].
+    span_lengths : array_like or None
+        (spans,) span lengths [m].
+    span_tensions : array_like or None
+        (spans,) span tensions [N].
+    mass_per_length : float or None
+        Chain mass per unit length q [kg/m].
+    pitch : float or None
+        Chain pitch p [m].
+
+    Returns
+    -------
+    CampbellData
+        The lines and their crossings.
+
+    References
+    ----------
+    [Mote1965] (the travelling span); [Bolotin1964, ch. 1] (the parametric zone).
     """
     from chaindrive.dynamics.transverse import span_transverse_frequencies
 

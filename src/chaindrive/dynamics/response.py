@@ -62,7 +62,22 @@ TWO_PI = 2.0 * math.pi
 
 
 def mean_radii(drive: Drive) -> NDArray[np.float64]:
-    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i [ChainNonUniformity]."""
+    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (teeth and pitch).
+
+    Returns
+    -------
+    ndarray
+        (n,) R̄_i [m].
+
+    References
+    ----------
+    [ChainNonUniformity] (the mean chain speed z p ω/2π).
+    """
     return np.array([s.teeth for s in drive.sprockets], float) * drive.chain.pitch / TWO_PI
 
 
@@ -136,7 +151,22 @@ def _shares(drive: Drive) -> NDArray[np.float64]:
 
 
 def polygonal_law(geometry: GeometryResult) -> PolygonalLaw:
-    """Exact polygonal hinge law of every span of a contour (for the start-up)."""
+    """Exact polygonal hinge law of every span of a contour (for the start-up).
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour (teeth, tangent-point path positions).
+
+    Returns
+    -------
+    PolygonalLaw
+        The pitch, and the teeth and path positions of both ends of every span.
+
+    References
+    ----------
+    [ChainNonUniformity].
+    """
     s0, s1 = path_positions(geometry)
     z = np.array([g.teeth for g in geometry.sprockets], float)
     starts = np.array([sp.start for sp in geometry.spans])
@@ -149,10 +179,40 @@ def drive_startup(drive: Drive, geometry: GeometryResult, model: RingModel, *,
                   resistance: ResistanceKind = "linear", duration: float = 1.0,
                   dt: float | None = None, pretension: float | None = None,
                   polygonal: bool = True) -> StartupResult:
-    """Start-up transient of ``drive`` (module defaults; see
-    :func:`chaindrive.dynamics.startup.simulate_startup`). motor(t, ω) [N·m] (None: Kloss
-    from drive.power and the driver speed); resistance law kind; duration, dt [s];
-    pretension T_0 [N] (None: sag tension); polygonal excitation on/off."""
+    """Start-up transient of ``drive`` (see :func:`chaindrive.dynamics.startup.simulate_startup`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`chaindrive.dynamics.drive.ring_model`).
+    motor : callable or None
+        Motor torque law motor(t, ω) [N·m] of time [s] and driver speed [rad/s] (None: Kloss
+        from ``drive.power`` and the driver speed).
+    resistance : {"constant", "linear", "quadratic"}
+        Law of the moments of resistance of the driven sprockets.
+    duration : float
+        Simulated time [s].
+    dt : float or None
+        Time step [s] (None: the solver's own from the highest natural frequency).
+    pretension : float or None
+        Pre-tension T_0 of the spans at rest [N] (None: the sag tension,
+        :func:`startup_pretension`).
+    polygonal : bool
+        True includes the polygonal excitation.
+
+    Returns
+    -------
+    StartupResult
+        Span forces and speeds over time, the peaks and k₁.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2–3.3, Fig. 2].
+    """
     w_d, w = _speeds(drive)
     if drive.power is None and motor is None:
         raise DesignError("drive.power", "a start-up needs the power (or an explicit motor)")
@@ -174,7 +234,25 @@ def drive_startup(drive: Drive, geometry: GeometryResult, model: RingModel, *,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class DynamicResponse:
-    """Start-up, steady state (polygonal), AFC, disturbance loads and the two-stage check."""
+    """Start-up, steady state (polygonal), AFC, disturbance loads and the two-stage check.
+
+    Parameters
+    ----------
+    startup : StartupResult or None
+        The start-up (None: not run).
+    steady : SteadyStateResult
+        Steady response to the polygonal excitation at the nominal speed.
+    afc : AfcResult
+        The speed sweep.
+    disturbances : dict of str to SteadyStateResult
+        Steady loads of the optional internal disturbances, by name.
+    span_tensions : ndarray
+        (n,) operating span tensions F_R [N].
+    breaking_load : float
+        Breaking load Q of the chain [N].
+    allowable_k : float
+        Allowable dynamic safety factor [k] [-].
+    """
 
     startup: StartupResult | None
     steady: SteadyStateResult
@@ -212,8 +290,23 @@ class DynamicResponse:
 def motor_of(settings: DynamicsSettings, power: float, speed: float
              ) -> Callable[[float, float], float]:
     """The motor law a design's ``[dynamics]`` table names: Kloss induction motor rated at the
-    drive's power P [W] and driver speed ω [rad/s], constant rated torque P/ω, or a
-    soft-start ramp to it."""
+    drive's power and driver speed, constant rated torque P/ω, or a soft-start ramp to it.
+
+    Parameters
+    ----------
+    settings : DynamicsSettings
+        The ``[dynamics]`` table (law, λ, s_k, ramp time).
+    power : float
+        Rated power P [W].
+    speed : float
+        Rated speed ω of the driver [rad/s].
+
+    Returns
+    -------
+    callable
+        Torque [N·m] of time [s] and speed [rad/s]
+        (:mod:`chaindrive.dynamics.motors`).
+    """
     if settings.motor == "kloss":
         return KlossMotor(power, speed, settings.breakdown_ratio, settings.critical_slip)
     if settings.motor == "ramp":
@@ -226,10 +319,31 @@ def polygonal_steady(drive: Drive, geometry: GeometryResult, model: RingModel, *
                      resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
     """Steady response to the polygonal excitation at the nominal speed, with K_D and the
     dynamic safety factors k₂ and (given the resonance loads F₂max of the run-up) k₂min.
+    K_D = 1 + F_D/F_t with F_t the nominal peripheral force P/v.
 
-    span_tensions F_R [N] (the operating loads); harmonics of the tooth frequency;
-    resonance_loads F₂max (n,) [N] per span (None: no k₂min). K_D = 1 + F_D/F_t with F_t the
-    nominal peripheral force P/v [MultimassChainDrives, §3.6].
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`chaindrive.dynamics.drive.ring_model`).
+    span_tensions : array_like
+        (n,) operating span tensions F_R [N].
+    harmonics : int
+        Harmonics of the tooth frequency [-].
+    resonance_loads : array_like or None
+        (n,) resonance loads F₂max per span [N] (None: no k₂min).
+
+    Returns
+    -------
+    SteadyStateResult
+        The steady response with K_D, k₂ and k₂min.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3, §3.6].
     """
     w_d, _ = _speeds(drive)
     ex = polygonal_excitation(geometry, drive.driver.teeth * w_d, harmonics)
@@ -247,8 +361,33 @@ def speed_sweep(drive: Drive, geometry: GeometryResult, model: RingModel, *,
                 harmonics: int = 10, speed_range: tuple[float, float] = (0.1, 1.5),
                 points: int = 2000) -> AfcResult:
     """Amplitude–frequency characteristic: the steady polygonal response over driver speeds
-    from speed_range[0] to speed_range[1] times the nominal one (``points`` speeds); its
-    per-span maxima are the resonance loads F₂max of a run-up through that range."""
+    from speed_range[0] to speed_range[1] times the nominal one; its per-span maxima are the
+    resonance loads F₂max of a run-up through that range.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`chaindrive.dynamics.drive.ring_model`).
+    harmonics : int
+        Harmonics of the tooth frequency [-].
+    speed_range : tuple of float
+        Lowest and highest driver speed as fractions of the nominal one [-].
+    points : int
+        Number of speeds [-].
+
+    Returns
+    -------
+    AfcResult
+        The sweep.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3, Fig. 3].
+    """
     w_d, _ = _speeds(drive)
     ex = polygonal_excitation(geometry, drive.driver.teeth * w_d, harmonics)
     return afc_sweep(model, ex, np.linspace(*speed_range, points) * w_d, drive.driver.teeth)
@@ -258,9 +397,33 @@ def disturbance_responses(drive: Drive, geometry: GeometryResult, model: RingMod
                           eccentricity: Sequence[float] | None = None,
                           pitch_scatter: float = 0.0, accumulated_error: float = 0.0
                           ) -> dict[str, SteadyStateResult]:
-    """Steady loads of the optional internal disturbances, each on its own: sprocket
-    eccentricity (n,) [m] (once per revolution), link pitch scatter σ [m] and an accumulated
-    chain error Δ [m] (see :mod:`chaindrive.dynamics.excitation`)."""
+    """Steady loads of the optional internal disturbances, each on its own (see
+    :mod:`chaindrive.dynamics.excitation`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`chaindrive.dynamics.drive.ring_model`).
+    eccentricity : sequence of float or None
+        Eccentricity ε of every sprocket [m] (once per revolution; None: none).
+    pitch_scatter : float
+        Standard deviation σ of the link pitches [m].
+    accumulated_error : float
+        Accumulated chain length error Δ [m] (once per chain revolution).
+
+    Returns
+    -------
+    dict of str to SteadyStateResult
+        ``"eccentricity"`` and/or ``"chain_error"`` → its steady response.
+
+    References
+    ----------
+    [MultimassChainDrives, §2].
+    """
     extra = disturbance_excitations(drive, geometry, eccentricity=eccentricity,
                                     pitch_scatter=pitch_scatter,
                                     accumulated_error=accumulated_error)
@@ -282,8 +445,47 @@ def dynamics_response(drive: Drive, geometry: GeometryResult, model: RingModel, 
     computes stage by stage): the speed sweep (F₂max), the polygonal steady state with K_D,
     k₂, k₂min, the disturbances and the start-up.
 
-    model : its ring model (:func:`chaindrive.dynamics.drive.ring_model`); span_tensions F_R
-    [N] (None: :func:`chaindrive.strength.loads.loads_of`); allowable [k] = 2.5.
+    Parameters
+    ----------
+    drive : Drive
+        The drive (one contour's share of the power).
+    geometry : GeometryResult
+        Its contour.
+    model : RingModel
+        Its ring model (:func:`chaindrive.dynamics.drive.ring_model`).
+    span_tensions : sequence of float or None
+        (n,) operating span tensions F_R [N] (None: :func:`chaindrive.strength.loads.loads_of`).
+    harmonics : int
+        Harmonics of the tooth frequency [-].
+    startup : bool
+        True runs the start-up.
+    startup_duration : float
+        Simulated start-up time [s].
+    motor : callable or None
+        Motor torque law [N·m] of time [s] and speed [rad/s] (None: :func:`motor_of`).
+    resistance : {"constant", "linear", "quadratic"}
+        Law of the moments of resistance.
+    speed_range : tuple of float
+        Speed sweep range as fractions of the nominal driver speed [-].
+    afc_points : int
+        Speeds of the sweep [-].
+    eccentricity : sequence of float or None
+        Eccentricity ε of every sprocket [m] (once per revolution; None: none).
+    pitch_scatter : float
+        Standard deviation σ of the link pitches [m].
+    accumulated_error : float
+        Accumulated chain length error Δ [m] (once per chain revolution).
+    allowable : float
+        Allowable dynamic safety factor [k] [-] (default 2.5, [MultimassChainDrives, §3.6]).
+
+    Returns
+    -------
+    DynamicResponse
+        All stages and the two-stage check.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2–3.6].
     """
     if span_tensions is not None:
         T = np.asarray(span_tensions, float)

@@ -12,7 +12,7 @@ The natural frequencies are the roots of det(K − ω² M) = 0 ([MultimassChainD
 the symmetric eigenproblem of M^{-1/2} K M^{-1/2} (M is diagonal) with LAPACK ``syevd``.
 A branch of stiffness 0 (a slack span) drops out: the ring becomes an open chain. Each
 connected group of masses has one rigid-body mode; its frequency is set to exactly 0 and its
-shape to the uniform vector of the group (not the seed's 0.08 Hz of Table 2).
+shape to the uniform vector of the group (not the 0.08 Hz of [MultimassChainDrives], Table 2).
 """
 
 from __future__ import annotations
@@ -42,10 +42,24 @@ _ALL.flags.writeable = False
 def ring_stiffness_matrix(stiffness: ArrayLike, closed: bool = True) -> NDArray[np.float64]:
     """Stiffness matrix K [N/m] of masses on a ring joined by branches ``stiffness`` [N/m].
 
-    Branch i joins mass i and i+1; with ``closed`` the last branch joins mass n and 1,
-    otherwise the last entry is ignored (open chain of n masses and n−1 branches).
-    K is the weighted graph Laplacian: symmetric, positive semi-definite,
-    rows summing to 0.
+    K is the weighted graph Laplacian: symmetric, positive semi-definite, rows summing to 0.
+
+    Parameters
+    ----------
+    stiffness : array_like
+        (n,) branch stiffnesses c_i [N/m]; branch i joins mass i and i+1.
+    closed : bool
+        True: the last branch joins mass n and 1; False: it is ignored (an open chain of n
+        masses and n−1 branches).
+
+    Returns
+    -------
+    ndarray
+        (n, n) K [N/m].
+
+    References
+    ----------
+    [MultimassChainDrives, eq. 2].
     """
     c = np.asarray(stiffness, dtype=float).copy()
     n = c.size
@@ -80,20 +94,25 @@ def _components(cuts: list[int], n: int) -> list[NDArray[np.intp]] | list[slice]
 class ModalResult:
     """Natural frequencies and mode shapes of a :class:`RingModel`.
 
-    Attributes
+    Parameters
     ----------
-    frequencies_hz : (n,) natural frequencies f_j [Hz], ascending; rigid-body modes are
-        exactly 0 and come first
-    angular_frequencies_rad_s : (n,) ω_j = 2π f_j [rad/s]
-    shapes : (n, n) mode shapes X^(j) as columns, mass-normalised (Xᵀ M X = I) [kg^-1/2]
-    normalized_amplitudes : (n, n) [MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns
-        per mode (each column sums to 1)
-    partial_frequencies_hz : (n,) partial frequency of each mass with its neighbours held,
-        sqrt(K_kk / m_k) / 2π [Hz] (the diagonal terms of [MultimassChainDrives, eq. 2])
-    rigid_body : (n,) True for rigid-body modes
-    damping_ratio : ζ used for the damped frequencies ([MultimassChainDrives]: D = 0.06)
-    damped_frequencies_hz : (n,) f_d = f·sqrt(1 − ζ²) [Hz]
-    masses_kg, stiffness_n_per_m : the model's reduced masses and branch stiffnesses
+    frequencies_hz : ndarray
+        (n,) natural frequencies f_j [Hz], ascending; rigid-body modes are exactly 0 and come
+        first.
+    shapes : ndarray
+        (n, n) mode shapes X^(j) as columns, mass-normalised (Xᵀ M X = I) [kg^-1/2].
+    rigid_body : ndarray of bool
+        (n,) True for rigid-body modes.
+    damping_ratio : float
+        ζ used for the damped frequencies f_d = f·sqrt(1 − ζ²) [-] ([MultimassChainDrives]:
+        D = 0.06).
+    masses_kg : ndarray
+        (n,) the model's reduced masses [kg].
+    stiffness_n_per_m : ndarray
+        (n,) its branch stiffnesses [N/m].
+    scaled_diagonal : ndarray
+        (n,) K_kk / m_k [rad²/s²], the squares of the partial angular frequencies (each mass
+        with its neighbours held; the diagonal terms of [MultimassChainDrives, eq. 2]).
     """
 
     frequencies_hz: NDArray[np.float64]
@@ -114,7 +133,7 @@ class ModalResult:
     def normalized_amplitudes(self) -> NDArray[np.float64]:
         """[MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
         absx = np.abs(self.shapes)
-        return absx / absx.sum(axis=0)
+        return np.asarray(absx / absx.sum(axis=0), dtype=np.float64)
 
     @property
     def partial_frequencies_hz(self) -> NDArray[np.float64]:
@@ -164,20 +183,33 @@ def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
                    damping_ratio: float = 0.0) -> ModalResult:
     """Undamped modal analysis of masses on a ring ([MultimassChainDrives, eq. 2]).
 
-    Parameters
-    ----------
-    masses : (n,) reduced masses m_i [kg], all > 0
-    stiffness : (n,) branch stiffnesses c_i [N/m] ≥ 0; branch i joins mass i and i+1
-    closed : False for an open chain (the last branch is ignored)
-    damping_ratio : ζ for the damped frequencies f·sqrt(1 − ζ²) (modal, light damping)
-
     Solves K X = ω² M X through the symmetric standard form A = M^{-1/2} K M^{-1/2}
     (one LAPACK call: ``dsyevd``, or ``dstevd`` for a ring opened by a slack branch, which
-    is tridiagonal when numbered from the cut, when SciPy is loaded; measured faster than the generalised
-    ``scipy.linalg.eigh``, see ``benchmarks/bench_modal.py``). Rigid-body eigenvalues
-    (one per connected group of masses) are set to exactly 0 with uniform shapes over
-    their group; every other eigenvalue is a genuine mode, however small (only a negative
-    round-off value is clamped to 0).
+    is tridiagonal when numbered from the cut, when SciPy is loaded; measured faster than the
+    generalised ``scipy.linalg.eigh``, see ``benchmarks/bench_modal.py``). Rigid-body
+    eigenvalues (one per connected group of masses) are set to exactly 0 with uniform shapes
+    over their group; every other eigenvalue is a genuine mode, however small (only a
+    negative round-off value is clamped to 0).
+
+    Parameters
+    ----------
+    masses : array_like
+        (n,) reduced masses m_i [kg], all > 0.
+    stiffness : array_like
+        (n,) branch stiffnesses c_i [N/m] ≥ 0; branch i joins mass i and i+1.
+    closed : bool
+        False for an open chain (the last branch is ignored).
+    damping_ratio : float
+        ζ for the damped frequencies f·sqrt(1 − ζ²) [-] (modal, light damping).
+
+    Returns
+    -------
+    ModalResult
+        Frequencies, mass-normalised shapes and the damped frequencies.
+
+    References
+    ----------
+    [MultimassChainDrives, eq. 2]; [Rao2011, ch. 6] (mass-normalised modes).
     """
     m = np.array(masses, dtype=float)
     c = np.array(stiffness, dtype=float)
@@ -309,16 +341,27 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
                            closed: bool = True) -> NDArray[np.float64]:
     """Natural frequencies [Hz] of many ring models at once (frequencies only).
 
+    Builds the stacked symmetric matrices M^{-1/2} K M^{-1/2} with vectorised indexing and
+    calls :func:`numpy.linalg.eigvalsh` once (same eigenproblem as :func:`modal_analysis`).
+
     Parameters
     ----------
-    masses : (B, n) reduced masses [kg] of B designs
-    stiffness : (B, n) branch stiffnesses [N/m]; branch i joins mass i and i+1
-    closed : False for open chains (the last branch of every design is ignored)
+    masses : array_like
+        (B, n) reduced masses [kg] of B designs.
+    stiffness : array_like
+        (B, n) branch stiffnesses [N/m]; branch i joins mass i and i+1.
+    closed : bool
+        False for open chains (the last branch of every design is ignored).
 
-    Returns (B, n) ascending frequencies [Hz]; the rigid-body modes (one per connected group
-    of masses) come out as exactly 0. Builds the stacked symmetric matrices
-    M^{-1/2} K M^{-1/2} with vectorised indexing and calls :func:`numpy.linalg.eigvalsh`
-    once (same eigenproblem as :func:`modal_analysis`, [MultimassChainDrives, eq. 2]).
+    Returns
+    -------
+    ndarray
+        (B, n) ascending frequencies [Hz]; the rigid-body modes (one per connected group of
+        masses) come out as exactly 0.
+
+    References
+    ----------
+    [MultimassChainDrives, eq. 2].
     """
     m = np.atleast_2d(np.asarray(masses, dtype=float))
     c = np.array(np.atleast_2d(np.asarray(stiffness, dtype=float)))
@@ -350,17 +393,33 @@ def ring_frequencies_batch(masses: ArrayLike, stiffness: ArrayLike,
     # those are set to 0, a small genuine eigenvalue is kept
     n_rigid = np.maximum((c <= 0.0).sum(axis=1), 1)
     lam[np.arange(n)[None, :] < n_rigid[:, None]] = 0.0
-    return np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
+    return np.asarray(np.sqrt(np.maximum(lam, 0.0)) / TWO_PI, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class RingModel:
-    """Reduced masses on a closed chain contour ([MultimassChainDrives]).
+    """Reduced masses on a closed chain contour ([MultimassChainDrives, §3.1]).
 
-    ``RingModel(masses_kg=[...], stiffness_n_per_m=[...], closed=True)``: branch i joins
-    mass i and i+1 and, when ``closed``, the last joins mass n and mass 1. ``closed=False``
-    or a stiffness of 0 (a slack span) gives an open chain. ``damping_ratio`` ζ is used for
-    the damped frequencies ([MultimassChainDrives]: D = 0.06); ``names`` label the masses.
+    A stiffness of 0 (a slack span) opens the ring.
+
+    Parameters
+    ----------
+    masses_kg : ndarray
+        (n,) reduced masses m_i = J_i / R_i² [kg], all > 0.
+    stiffness_n_per_m : ndarray
+        (n,) branch stiffnesses c_i [N/m] ≥ 0; branch i joins mass i and i+1.
+    closed : bool
+        True: the last branch joins mass n and mass 1; False: an open chain.
+    damping_ratio : float
+        ζ for the damped frequencies [-] ([MultimassChainDrives]: D = 0.06).
+    names : tuple of str
+        Labels of the masses (empty, or one per mass).
+
+    Raises
+    ------
+    DesignError
+        A mass that is not positive, a negative stiffness, ζ out of range or a wrong number of
+        names.
     """
 
     masses_kg: NDArray[np.float64]

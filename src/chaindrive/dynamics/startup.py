@@ -80,13 +80,36 @@ Backend = Literal["auto", "numba", "jit", "numpy"]
 class StartupResult:
     """Time histories of a start-up [MultimassChainDrives, Fig. 2].
 
-    times (R,) [s]; span_forces (R, S) [N] (one contour); speeds (R, n) sprocket speeds
-    [rad/s]; max_span_force (S,) F₁max per span [N] (every step); settling_time [s]
-    (:func:`settling_time`: run-up and decay together); k1 = Q/max F₁max (None without Q;
-    [MultimassChainDrives, §3.6]); steps taken; slack_steps: recorded samples with a slack
-    span; runup_time [s] (:func:`runup_time`); decay_time [s]: settling after the run-up;
-    rotor_names, rotor_speeds (R, r) [rad/s]: the rotors of the trains; states (R, 2N) the
-    coordinates and their rates, or None.
+    Parameters
+    ----------
+    times : ndarray
+        (R,) recorded times [s].
+    span_forces : ndarray
+        (R, S) span forces of one contour [N].
+    speeds : ndarray
+        (R, n) sprocket speeds [rad/s].
+    max_span_force : ndarray
+        (S,) F₁max per span over every step [N].
+    settling_time : float
+        Run-up and decay together [s] (:func:`settling_time`).
+    k1 : float or None
+        k₁ = Q / max F₁max [-] ([MultimassChainDrives, §3.6]; None without Q).
+    steps : int
+        Steps taken [-].
+    slack_steps : int
+        Recorded samples with a slack span [-].
+    runup_time : float
+        Time to reach the working speed [s] (:func:`runup_time`).
+    decay_time : float
+        Settling after the run-up [s].
+    rotor_names : tuple of str
+        The rotors of the trains.
+    rotor_speeds : ndarray
+        (R, r) their speeds [rad/s].
+    states : ndarray or None
+        (R, 2N) the coordinates and their rates [m, rad; m/s, rad/s], or None.
+    time_step : float
+        The integration step [s].
     """
 
     times: FloatArray
@@ -105,7 +128,18 @@ class StartupResult:
     time_step: float = math.nan
 
     def to_dict(self, include_history: bool = False) -> dict[str, Any]:
-        """JSON-ready dict; histories only with ``include_history``."""
+        """JSON-ready dict.
+
+        Parameters
+        ----------
+        include_history : bool
+            True adds the time histories (times, span forces, speeds).
+
+        Returns
+        -------
+        dict
+            Peaks, k₁ and times in SI (with the unit in the key).
+        """
         out: dict[str, Any] = {
             "max_span_force_n": self.max_span_force.tolist(),
             "max_force_n": float(self.max_span_force.max()),
@@ -134,7 +168,23 @@ def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05
 
     The final state is the last ``tail`` fraction of the record: its mean F̄_i and
     half-range r_i (a steady ripple, e.g. polygonal). Band: |F_i − F̄_i| ≤ r_i +
-    tolerance·max_j |F̄_j|. Returns the first time after the last excursion (0 if none).
+    tolerance·max_j |F̄_j|.
+
+    Parameters
+    ----------
+    times : ndarray
+        (R,) times [s].
+    forces : ndarray
+        (R, S) span forces [N].
+    tolerance : float
+        Band beyond the ripple as a fraction of the largest mean force [-].
+    tail : float
+        Fraction of the record taken as the final state [-].
+
+    Returns
+    -------
+    float
+        The first time after the last excursion [s] (0 if none).
     """
     k0 = int(len(times) * (1.0 - tail))
     end = forces[k0:]
@@ -177,7 +227,18 @@ def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
 class PolygonalLaw:
     """Data of the exact polygonal hinge law at both ends of every span (module docstring).
 
-    pitch p [m]; teeth_start, teeth_end (S,); s_start, s_end (S,) path positions [pitches].
+    Parameters
+    ----------
+    pitch : float
+        Chain pitch p [m].
+    teeth_start, teeth_end : ndarray
+        (S,) teeth of the sprocket at the start and at the end of each span [-].
+    s_start, s_end : ndarray
+        (S,) path positions of the span's tangent points [pitches].
+
+    References
+    ----------
+    [ChainNonUniformity].
     """
 
     pitch: float
@@ -189,16 +250,59 @@ class PolygonalLaw:
 
 @dataclass(frozen=True, slots=True, eq=False)
 class StartupProblem:
-    """Checked inputs of :func:`solve_startup` (SI units; module docstring).
+    """Checked inputs of :func:`solve_startup` (SI units; module docstring). The coordinates q
+    are chain travels [m] or rotations [rad]; matrices are in the matching units.
 
-    mass, stiffness_linear, damping_linear (N, N); span_incidence (S, N); span_stiffness,
-    span_damping (S,); span_tension_only (S,); pretension T₀ (S,) [N]; motor: (coordinate,
-    gain, efficiency, law(t, ω) [N·m]) or None; load_coordinate, load_gain, load_efficiency,
-    load_torque [N·m], load_speed ω_n [rad/s] (L,), load_kind (L,) "constant", "linear" or
-    "quadratic"; breakaway: the constant law's ramp below ω_n·breakaway; polygonal law with
-    the chain travel of each sprocket x_i = travel_gain_i · q[travel_coordinate_i] (span i
-    leaves sprocket i and runs onto i+1); dt [s]; steps; record_every; scale: the span
-    forces reported are F/scale (m contours: scale m).
+    Parameters
+    ----------
+    mass : ndarray
+        (N, N) mass matrix [kg or kg·m²].
+    stiffness_linear : ndarray
+        (N, N) stiffness of the elements that never go slack [N/m or N·m/rad].
+    damping_linear : ndarray
+        (N, N) their damping [N·s/m or N·m·s/rad].
+    span_incidence : ndarray
+        (S, N) elongation of every span from the coordinates [m per coordinate unit].
+    span_stiffness : ndarray
+        (S,) span stiffnesses [N/m].
+    span_damping : ndarray
+        (S,) span dampers [N·s/m].
+    span_tension_only : ndarray of bool
+        (S,) True for a span that carries tension only (goes slack).
+    pretension : ndarray
+        (S,) pre-tension T₀ at rest [N].
+    motor : tuple or None
+        (coordinate, gain, efficiency, law(t, ω) [N·m]) of the motor, or None.
+    load_coordinate : ndarray of int
+        (L,) indices of the coordinates the moments of resistance act on [-].
+    load_gain : ndarray
+        (L,) factor from a coordinate's rate to its machine's speed [rad/s per coordinate
+        rate] (1/R for a chain travel).
+    load_efficiency : ndarray
+        (L,) efficiency of the path to each machine [-].
+    load_torque : ndarray
+        (L,) moments of resistance at the nominal speeds [N·m].
+    load_speed : ndarray
+        (L,) nominal speeds ω_n [rad/s].
+    load_kind : tuple of str
+        (L,) ``"constant"``, ``"linear"`` or ``"quadratic"``.
+    breakaway : float
+        Fraction of ω_n below which a constant moment is ramped from 0 [-].
+    polygonal : PolygonalLaw or None
+        The polygonal excitation (None: none).
+    travel_coordinate : ndarray of int
+        (n,) index of the coordinate of each sprocket's chain travel [-].
+    travel_gain : ndarray
+        (n,) x_i = travel_gain_i · q[travel_coordinate_i] [m per coordinate unit] (span i
+        leaves sprocket i and runs onto i+1).
+    dt : float
+        Time step [s].
+    steps : int
+        Number of steps [-].
+    record_every : int
+        Steps between recorded samples [-].
+    scale : float
+        The span forces reported are F/scale [-] (m contours: scale m).
     """
 
     mass: FloatArray
@@ -232,8 +336,27 @@ class StartupProblem:
 
 
 def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
-    """Floating-point operations of a start-up [-]: two (2N)×(2N)/(2N)×N products per step
-    and a (3N)³ matrix exponential (about 20 products) per slack pattern."""
+    """Floating-point operations of a start-up [-]: two (2N)×(2N)/(2N)×N products per step and a
+    (3N)³ matrix exponential (about 20 products) per slack pattern.
+
+    Parameters
+    ----------
+    size : int
+        Number of coordinates N [-].
+    steps : int
+        Number of time steps [-].
+    patterns : int
+        Slack patterns expected [-].
+
+    Returns
+    -------
+    float
+        The operation count [-].
+
+    References
+    ----------
+    [Higham2005] (cost of the scaling-and-squaring exponential).
+    """
     return 2.0 * steps * (2 * size) ** 2 * 1.5 + patterns * 20.0 * (3 * size) ** 3
 
 

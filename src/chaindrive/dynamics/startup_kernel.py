@@ -28,7 +28,8 @@ that :mod:`chaindrive.dynamics.kernel_build` compiles ahead of time.
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
 
 import numpy as np
 
@@ -51,8 +52,12 @@ except ImportError:  # pragma: no cover - exercised only without numba
 __all__ = ["FLAT_SIGNATURE", "HAVE_NUMBA", "run_kernel_flat"]
 
 
-def _njit(fn: Any) -> Any:
-    return numba.njit(cache=True, fastmath=False)(fn) if HAVE_NUMBA else fn
+_Kernel = TypeVar("_Kernel", bound=Callable[..., Any])
+
+
+def _njit(fn: _Kernel) -> _Kernel:
+    # numba's decorator is untyped; the compiled function keeps the Python signature
+    return cast(_Kernel, numba.njit(cache=True, fastmath=False)(fn)) if HAVE_NUMBA else fn
 
 
 @_njit

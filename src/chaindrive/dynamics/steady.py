@@ -56,7 +56,20 @@ TWO_PI = 2.0 * math.pi
 
 
 def span_incidence(n: int, closed: bool = True) -> NDArray[np.float64]:
-    """B (n×n): e = B x, e_i = x_{i+1} − x_i (last row 0 for an open chain)."""
+    """Span incidence B (n×n): e = B x, e_i = x_{i+1} − x_i.
+
+    Parameters
+    ----------
+    n : int
+        Number of masses and spans [-].
+    closed : bool
+        False for an open chain (the last row is 0).
+
+    Returns
+    -------
+    ndarray
+        (n, n) B [-].
+    """
     B = np.zeros((n, n))
     i = np.arange(n)
     B[i, i] -= 1.0
@@ -69,8 +82,21 @@ def span_incidence(n: int, closed: bool = True) -> NDArray[np.float64]:
 def damping_beta(model: RingModel, reference_angular_frequency: float | None = None) -> float:
     """β = 2ζ/ω_ref [s] of the stiffness-proportional damping C = βK (module docstring).
 
-    ω_ref [rad/s]: default the first elastic natural frequency of ``model``; 0 when the
-    model has no elastic mode or ζ = 0.
+    Parameters
+    ----------
+    model : RingModel
+        The ring model (its damping ratio ζ).
+    reference_angular_frequency : float or None
+        ω_ref [rad/s] (None: the first elastic natural frequency of ``model``).
+
+    Returns
+    -------
+    float
+        β [s]; 0 when the model has no elastic mode or ζ = 0.
+
+    References
+    ----------
+    [Rao2011, §6.13] (proportional damping).
     """
     w = reference_angular_frequency
     if w is None:
@@ -90,11 +116,39 @@ def _stiffness(model: RingModel) -> NDArray[np.float64]:
 def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
                       angular_frequencies: ArrayLike, elongation: ArrayLike
                       ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Complex amplitudes of the displacements X (F, n) [m] and span forces (F, n) [N].
+    """Complex amplitudes of the displacements X and span forces F for prescribed span
+    elongations: one stacked :func:`numpy.linalg.solve` of
+    [(1 + iωβ) K − ω² M] X = −(1 + iωβ) Bᵀ C_s D (module docstring).
 
-    masses (n,) [kg]; stiffness (n,) span stiffness c_i [N/m] (0: slack or open); beta [s];
-    angular_frequencies (F,) ω > 0 [rad/s]; elongation (F, n) prescribed span elongation
-    amplitudes D [m]. One stacked :func:`numpy.linalg.solve` (module docstring).
+    Parameters
+    ----------
+    masses : array_like
+        (n,) reduced masses [kg].
+    stiffness : array_like
+        (n,) span stiffnesses c_i [N/m] (0: slack or open).
+    beta : float
+        β of the damping C = βK [s].
+    angular_frequencies : array_like
+        (F,) excitation angular frequencies ω > 0 [rad/s].
+    elongation : array_like
+        (F, n) complex amplitudes D of the prescribed span elongations [m].
+
+    Returns
+    -------
+    displacement : ndarray
+        (F, n) complex amplitudes X [m].
+    span_force : ndarray
+        (F, n) complex span force amplitudes [N].
+
+    Raises
+    ------
+    DesignError
+        A wrong shape of ``elongation`` or a frequency that is not positive.
+
+    References
+    ----------
+    [Rao2011, §6.15] (harmonic response of a damped multi-degree-of-freedom system);
+    [MultimassChainDrives, §3.2–3.3].
     """
     m = np.asarray(masses, dtype=float)
     c = np.asarray(stiffness, dtype=float)
@@ -119,19 +173,47 @@ def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
 class SteadyStateResult:
     """Steady response of the ring to a kinematic excitation ([MultimassChainDrives, §3.3]).
 
-    tooth_angular_frequency ω_z [rad/s]; angular_frequencies (F,) of the harmonics [rad/s];
-    displacement, span_force (F, n) complex amplitudes [m], [N]; times (T,) one period [s];
-    span_force_trace (T, n) [N] and displacement_trace (T, n) [m] over it;
-    span_dynamic_load (n,) max |F_i(t)| [N]; span_load_amplitude (n,) (max − min)/2 [N];
-    inertia_load (n,) max |m_i ẍ_i| [N]; displacement_amplitude (n,) x_A [m];
-    irregularity_percent (n,) Δ = (ω_max − ω_min)/ω_mean·100 of every sprocket from its speed
-    history (2 x_A z/R·100 for one harmonic [MultimassChainDrives, §3.3]); rotor_names and
-    rotor_irregularity_percent the same for the rotors of the trains (whole-drive model);
-    dynamic_load_rms F_D [N] (RMS of
-    span_dynamic_load); coefficient_of_dynamics K_D (None without F_t); k2, k2_min (None
-    without Q and F_R); periodic : False when the frequencies are not all harmonics of ω_z
-    (then the peaks are the sums of harmonic amplitudes: exact for incommensurate
-    frequencies, an upper bound otherwise).
+    Parameters
+    ----------
+    tooth_angular_frequency : float
+        ω_z [rad/s].
+    angular_frequencies : ndarray
+        (F,) angular frequencies of the harmonics [rad/s].
+    displacement : ndarray
+        (F, n) complex displacement amplitudes [m].
+    span_force : ndarray
+        (F, n) complex span force amplitudes [N].
+    times : ndarray
+        (T,) one tooth period [s].
+    span_force_trace : ndarray
+        (T, n) span forces over it [N].
+    displacement_trace : ndarray
+        (T, n) displacements over it [m].
+    span_dynamic_load : ndarray
+        (n,) max |F_i(t)| [N].
+    span_load_amplitude : ndarray
+        (n,) (max − min)/2 of F_i [N].
+    inertia_load : ndarray
+        (n,) max |m_i ẍ_i| [N].
+    displacement_amplitude : ndarray
+        (n,) x_A [m].
+    irregularity_percent : ndarray
+        (n,) Δ = (ω_max − ω_min)/ω_mean·100 of every sprocket from its speed history [%]
+        (2 x_A z/R·100 for one harmonic, [MultimassChainDrives, §3.3]); NaN without radii.
+    dynamic_load_rms : float
+        F_D, the root mean square of ``span_dynamic_load`` [N].
+    coefficient_of_dynamics : float or None
+        K_D = 1 + F_D/F_t [-] (None without F_t).
+    k2, k2_min : float or None
+        Dynamic safety factors [-] ([MultimassChainDrives, §3.6]; None without Q and F_R).
+    periodic : bool
+        False when the frequencies are not all harmonics of ω_z (then the peaks are the sums
+        of harmonic amplitudes: exact for incommensurate frequencies, an upper bound
+        otherwise).
+    rotor_names : tuple of str
+        The rotors of the trains (whole-drive model).
+    rotor_irregularity_percent : ndarray
+        Their irregularity of rotation Δ [%].
     """
 
     tooth_angular_frequency: float
@@ -196,13 +278,39 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
                  resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
     """Steady response of ``model`` to ``excitation`` in the frequency domain.
 
-    radii (n,) pitch radii R_i [m] and teeth (n,) z_i for the irregularity of rotation
-    Δ = (ω_max − ω_min)/ω_mean·100 from the speed history, ω_mean = ω_z/z_i (2 x_A z/R·100 for
-    one harmonic [MultimassChainDrives, §3.3]; None: Δ is nan); beta [s] (None:
-    :func:`damping_beta`); samples per tooth period of the traces;
-    nominal_force F_t [N] → K_D = 1 + F_D/F_t; breaking_load Q [N] with
-    operating_forces F_R (n,) [N] (static span tensions) → k2 = min_i Q/(F_R,i + F_2,i)
-    and, with resonance_loads F_2max (n,) [N], k2_min ([MultimassChainDrives, §3.6]).
+    Parameters
+    ----------
+    model : RingModel
+        The ring model.
+    excitation : SpanExcitation
+        The prescribed span elongations.
+    radii : array_like or None
+        (n,) pitch radii R_i [m], with ``teeth`` for the irregularity of rotation
+        Δ = (ω_max − ω_min)/ω_mean·100, ω_mean = ω_z/z_i (None: Δ is NaN).
+    beta : float or None
+        β of the damping C = βK [s] (None: :func:`damping_beta`).
+    samples : int
+        Samples per tooth period of the traces [-].
+    nominal_force : float or None
+        Nominal peripheral force F_t [N] → K_D = 1 + F_D/F_t.
+    teeth : array_like or None
+        (n,) teeth z_i [-].
+    breaking_load : float or None
+        Breaking load Q of the chain [N], with ``operating_forces`` → k2.
+    operating_forces : array_like or None
+        (n,) static span tensions F_R [N]; k2 = min_i Q/(F_R,i + F_2,i).
+    resonance_loads : array_like or None
+        (n,) F_2max at resonance [N] → k2_min.
+
+    Returns
+    -------
+    SteadyStateResult
+        Amplitudes, one period of traces, loads and the quality indices.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.3] (dynamic loads, irregularity, K_D);
+    [MultimassChainDrives, §3.6] (k2, k2_min).
     """
     m = model.masses_kg
     c = _stiffness(model)

@@ -50,11 +50,25 @@ TOOTH_WIDTH_FACTOR = 0.93
 def reduced_mass(inertia: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     """Reduced mass m = I / R² [kg] of a rotating mass brought to the hinge radius.
 
-    inertia : I [kg·m²]; radius : R, pitch radius of the hinge centres [m].
-    Source: [MultimassChainDrives, §3.1] ("bringing the revolved masses over to the radii of the end
+    Parameters
+    ----------
+    inertia : array_like
+        Moment of inertia I [kg·m²].
+    radius : array_like
+        Pitch radius R of the hinge centres [m].
+
+    Returns
+    -------
+    ndarray
+        m [kg].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1] ("bringing the revolved masses over to the radii of the end
     hinges").
     """
-    return np.asarray(inertia, dtype=float) / np.asarray(radius, dtype=float) ** 2
+    return np.asarray(np.asarray(inertia, dtype=float) / np.asarray(radius, dtype=float) ** 2,
+                      dtype=np.float64)
 
 
 def plate_thickness(spec: ChainSpec) -> float:
@@ -64,6 +78,20 @@ def plate_thickness(spec: ChainSpec) -> float:
     s = (p_t − b1)/4 (checks: 08A gives 1.63 mm vs 1.5 mm catalogue, 12A 2.55 vs 2.4 mm);
     without it s = p/8 (ANSI plates: 0.12–0.126 p). Our estimate, documented in
     docs/dynamics.md.
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The catalogue chain (transverse pitch p_t, inner width b1, pitch p).
+
+    Returns
+    -------
+    float
+        s [m].
+
+    References
+    ----------
+    [ISO606] and [ANSI-B29.1] (the dimensions the estimate is checked against).
     """
     if spec.transverse_pitch and spec.transverse_pitch > spec.inner_width:
         return (spec.transverse_pitch - spec.inner_width) / 4.0
@@ -76,9 +104,29 @@ def link_stiffness(spec: ChainSpec, youngs_modulus: float) -> float:
     Model (ours, docs/dynamics.md): the two plates of a link in parallel — net section
     (h − d2)·s over a length d2 at the hole, gross section h·s over p − d2 — in series with
     the bending of the pin as a clamped–clamped beam under a uniform load over its span
-    l = b1 + 3s (compliance l³/(384 E I), I = π d2⁴/64; Roark, Table 8.1 case 2e); all
-    strands in parallel. spec: catalogue chain (pitch p, plate depth h = h2, pin diameter
-    d2, inner width b1); youngs_modulus E of the chain material [Pa].
+    l = b1 + 3s (compliance l³/(384 E I), I = π d2⁴/64); all strands in parallel.
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The catalogue chain (pitch p, plate depth h = h2, pin diameter d2, inner width b1,
+        strands).
+    youngs_modulus : float
+        Young's modulus E of the chain material [Pa].
+
+    Returns
+    -------
+    float
+        k_link [N/m].
+
+    Raises
+    ------
+    DesignError
+        ``chain.plate_depth`` not above the pin diameter.
+
+    References
+    ----------
+    [Roark2012, Table 8.1 case 2e] (the clamped–clamped pin).
     """
     p, h, d2, b1 = spec.pitch, spec.plate_depth, spec.pin_diameter, spec.inner_width
     if not (h > d2 > 0 and b1 > 0):
@@ -94,12 +142,25 @@ def link_stiffness(spec: ChainSpec, youngs_modulus: float) -> float:
 
 def chain_span_stiffness(link_k: ArrayLike, span_length: ArrayLike,
                          pitch: float) -> NDArray[np.float64]:
-    """Stiffness c = k_link · p / L [N/m] of a span of length L [m] (L/p links in series).
+    """Stiffness c = k_link · p / L [N/m] of a span of length L (L/p links in series);
+    equivalently c = EA_eff / L with EA_eff = k_link · p.
 
-    link_k : stiffness of one link [N/m]; pitch p [m]. Equivalently c = EA_eff / L with
-    EA_eff = k_link · p.
+    Parameters
+    ----------
+    link_k : array_like
+        Stiffness of one link k_link [N/m].
+    span_length : array_like
+        Span length L [m].
+    pitch : float
+        Chain pitch p [m].
+
+    Returns
+    -------
+    ndarray
+        c [N/m].
     """
-    return np.asarray(link_k, dtype=float) * pitch / np.asarray(span_length, dtype=float)
+    return np.asarray(np.asarray(link_k, dtype=float) * pitch
+                      / np.asarray(span_length, dtype=float), dtype=np.float64)
 
 
 def tooth_stiffness(width: float, e_sprocket: float, e_roller: float,
@@ -108,9 +169,27 @@ def tooth_stiffness(width: float, e_sprocket: float, e_roller: float,
 
     k_t = c' · b · E_red / E_steel with E_red = 2 E1 E2 / (E1 + E2): the single tooth-pair
     stiffness c' of ISO 6336-1 (≈ 14 N/(mm·µm) for steel) scaled, as ISO 6336-1 does for
-    other material pairs, by the reduced modulus of the pair (sprocket and roller).
-    width b [m] (tooth width); e_sprocket, e_roller [Pa]. A roller seated at the tooth root
-    loads the tooth less in bending than a gear tooth: this is a conservative (soft) value.
+    other material pairs, by the reduced modulus of the pair (sprocket and roller). A roller
+    seated at the tooth root loads the tooth less in bending than a gear tooth: this is a
+    conservative (soft) value.
+
+    Parameters
+    ----------
+    width : float
+        Tooth width b [m].
+    e_sprocket, e_roller : float
+        Young's moduli of the sprocket and of the roller [Pa].
+    per_width : float
+        Single tooth-pair stiffness per unit width c' [N/m²] (:data:`TOOTH_STIFFNESS_PER_WIDTH`).
+
+    Returns
+    -------
+    float
+        k_t [N/m].
+
+    References
+    ----------
+    [ISO6336-1] (c' and its scaling by the moduli).
     """
     e_red = 2.0 * e_sprocket * e_roller / (e_sprocket + e_roller)
     return per_width * width * e_red / E_STEEL
@@ -121,10 +200,27 @@ def wrap_stiffness(tooth_k: float, link_k: float, teeth_in_mesh: float) -> float
 
     Ladder model of the load sharing among the N = max(1, ⌊teeth in mesh⌋) teeth: each
     engaged roller is held by a tooth spring k_t, consecutive rollers are joined by a link
-    k_link (spring model of sprocket load distribution, Naji & Marshek, Mech. Mach. Theory
-    18(5), 1983). Input stiffness from the span side, by the recursion (ours)
+    k_link. Input stiffness from the span side, by the recursion (ours)
     K_N = k_t, K_j = k_t + k_link K_{j+1} / (k_link + K_{j+1}); for N → ∞ it tends to
     k_t/2 + sqrt(k_t²/4 + k_t k_link).
+
+    Parameters
+    ----------
+    tooth_k : float
+        Stiffness of one tooth under a roller k_t [N/m].
+    link_k : float
+        Stiffness of one link k_link [N/m].
+    teeth_in_mesh : float
+        Teeth in mesh on the sprocket [-] (its whole part is used, at least 1).
+
+    Returns
+    -------
+    float
+        K_1 [N/m].
+
+    References
+    ----------
+    [Naji1983] (spring model of sprocket load distribution).
     """
     n = max(1, math.floor(teeth_in_mesh))
     k = tooth_k
@@ -134,7 +230,18 @@ def wrap_stiffness(tooth_k: float, link_k: float, teeth_in_mesh: float) -> float
 
 
 def series_stiffness(*stiffnesses: ArrayLike) -> NDArray[np.float64]:
-    """Springs in series: 1/c = Σ 1/c_i [N/m] (a zero member gives 0)."""
+    """Springs in series: 1/c = Σ 1/c_i [N/m] (a zero member gives 0).
+
+    Parameters
+    ----------
+    *stiffnesses : array_like
+        The members' stiffnesses c_i [N/m], broadcast together.
+
+    Returns
+    -------
+    ndarray
+        c [N/m].
+    """
     arrays = np.broadcast_arrays(*[np.asarray(s, dtype=float) for s in stiffnesses])
     with np.errstate(divide="ignore"):
         compliance = sum(1.0 / a for a in arrays)
@@ -145,11 +252,28 @@ def sag_stiffness_factor(axial_rigidity: ArrayLike, weight_per_length: ArrayLike
                          horizontal_length: ArrayLike, tension: ArrayLike) -> NDArray[np.float64]:
     """Factor s = 1 / (1 + (w l)² EA / (12 T³)) on the axial stiffness of a sagging span.
 
-    Dischinger–Ernst equivalent modulus of a sagging cable, E_eq = E / (1 + (γ l)² E / (12
-    σ³)) (H.-J. Ernst, Der E-Modul von Seilen unter Berücksichtigung des Durchhanges, Der
-    Bauingenieur 40(2), 1965), written with forces: axial_rigidity EA = k_link·p [N];
-    weight_per_length w = q g [N/m]; horizontal_length l = L cos(inclination) [m];
-    tension T [N] (≤ 0: the span is slack, factor 0).
+    The Dischinger–Ernst equivalent modulus of a sagging cable, E_eq = E / (1 + (γ l)² E /
+    (12 σ³)), written with forces; a slack span (T ≤ 0) gets the factor 0.
+
+    Parameters
+    ----------
+    axial_rigidity : array_like
+        EA = k_link·p [N].
+    weight_per_length : array_like
+        w = q g [N/m].
+    horizontal_length : array_like
+        l = L cos(inclination) [m].
+    tension : array_like
+        Span tension T [N].
+
+    Returns
+    -------
+    ndarray
+        s [-], in [0, 1].
+
+    References
+    ----------
+    [Ernst1965].
     """
     ea = np.asarray(axial_rigidity, dtype=float)
     w = np.asarray(weight_per_length, dtype=float)

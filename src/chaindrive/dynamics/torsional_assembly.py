@@ -36,7 +36,18 @@ class WeightedUnion:
         self.joined = False  # True once a relation joined two elements
 
     def find(self, i: int) -> tuple[int, float]:
-        """(root, w) with x_i = w·x_root (path halving)."""
+        """The root of a coordinate's tree and its factor (path halving).
+
+        Parameters
+        ----------
+        i : int
+            The coordinate's index.
+
+        Returns
+        -------
+        tuple of int and float
+            (root, w) with x_i = w·x_root [-].
+        """
         parent, weight = self.parent, self.weight
         w = 1.0
         while parent[i] != i:
@@ -49,7 +60,20 @@ class WeightedUnion:
         return i, w
 
     def relate(self, a: int, b: int, w_ab: float) -> bool:
-        """Impose x_b = w_ab·x_a; False if it contradicts the relations already there."""
+        """Impose x_b = w_ab·x_a.
+
+        Parameters
+        ----------
+        a, b : int
+            The two coordinates' indices.
+        w_ab : float
+            The factor [-] (a gear ratio with its sense).
+
+        Returns
+        -------
+        bool
+            False if it contradicts the relations already there.
+        """
         ra, fa = self.find(a)
         rb, fb = self.find(b)
         if ra == rb:

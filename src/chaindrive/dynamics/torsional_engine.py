@@ -351,7 +351,7 @@ class TorsionalModes:
         total = energy.sum(axis=0)
         shares = np.divide(energy, total, out=np.zeros_like(energy), where=total > 0.0)
         shares[:, self.rigid_body] = 0.0
-        return shares
+        return np.asarray(shares, dtype=np.float64)
 
     @property
     def angular_frequencies_rad_s(self) -> FloatArray:

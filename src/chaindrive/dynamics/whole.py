@@ -36,12 +36,25 @@ __all__ = ["DriveDynamics", "model_dynamics"]
 class DriveDynamics:
     """Everything a designer reads about a drive's vibration (JSON ``dynamics``).
 
-    model : the whole-drive model (:class:`~chaindrive.dynamics.drive_model.DriveModel`);
-    modal : its modes at the sprockets (:class:`~chaindrive.dynamics.modes.DriveModes`);
-    state : its complex elastic modes; span_transverse_hz (spans, modes) [Hz] (empty
-    without span tensions); working frequencies; resonances : the resonance table;
-    campbell : Campbell data over the speed range (or None); damping_ratio ζ of the chain's
-    reference mode [-].
+    Parameters
+    ----------
+    model : DriveModel
+        The whole-drive model (:class:`~chaindrive.dynamics.drive_model.DriveModel`).
+    modal : DriveModes
+        Its modes at the sprockets (:class:`~chaindrive.dynamics.modes.DriveModes`).
+    state : StateModes
+        Its complex elastic modes (with damping).
+    span_transverse_hz : ndarray
+        (spans, modes) transverse natural frequencies of the spans [Hz] (empty without span
+        tensions).
+    working : tuple of WorkingFrequency
+        The working frequencies (tooth frequencies and their harmonics, shaft speeds).
+    resonances : tuple of Resonance
+        The resonance table: every working frequency against the nearest natural one.
+    campbell : CampbellData or None
+        Campbell data over the speed range (None: not computed).
+    damping_ratio : float
+        Damping ratio ζ of the chain's reference mode [-].
     """
 
     model: DriveModel

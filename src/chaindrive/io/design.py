@@ -79,6 +79,9 @@ class Field:
         True when ``minimum`` itself is not allowed.
     reason : str
         Where the bounds come from (printed by ``chaindrive schema``).
+    example : str
+        A value that fits the field, as written in a design file (e.g. ``"25.4 mm"``);
+        empty: the example of its dimension (:meth:`example_text`).
     """
 
     name: str
@@ -699,7 +702,28 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
 
 
 def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
-    """The elements of a sprocket's train (a list of tables, outward from the sprocket)."""
+    """The elements of a sprocket's train (a list of tables, outward from the sprocket).
+
+    Parameters
+    ----------
+    data : object
+        The value read from the design file under ``[[sprockets.train]]``: a list of tables,
+        each with the fields of :data:`TRAIN_FIELDS` (quantities as strings with units).
+    path : str
+        Where the list sits in the file (e.g. ``"sprockets[1].train"``), used to name the
+        field in a :class:`~chaindrive.errors.DesignError`.
+
+    Returns
+    -------
+    tuple of TrainElement
+        The train's elements in SI units, outward from the sprocket.
+
+    Raises
+    ------
+    DesignError
+        When ``data`` is not a list, has more than :data:`MAX_TRAIN_ELEMENTS` entries, or an
+        element is invalid (the error names the element by its place in the file).
+    """
     if not isinstance(data, list):
         raise DesignError(path, "must be a list of [[sprockets.train]] tables")
     if len(data) > MAX_TRAIN_ELEMENTS:

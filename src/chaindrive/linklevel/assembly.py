@@ -62,8 +62,21 @@ class _Path:
 
 
 def contour_path(geometry: GeometryResult, first: int = 0) -> _Path:
-    """The closed path of the chain's pitch line: arc on sprocket ``first``, the span
-    leaving it, the arc on the next sprocket, …, the span arriving at ``first``."""
+    """The closed path of the chain's pitch line: arc on sprocket ``first``, the span leaving
+    it, the arc on the next sprocket, …, the span arriving at ``first``.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    first : int
+        Index of the sprocket the path starts on [-].
+
+    Returns
+    -------
+    _Path
+        The segments of the path with their lengths [m].
+    """
     kinds, owners, lengths, data = [], [], [], []
     n = len(geometry.sprockets)
     for i in [(first + k) % n for k in range(n)]:
@@ -85,11 +98,27 @@ def contour_path(geometry: GeometryResult, first: int = 0) -> _Path:
 
 @dataclass(frozen=True, slots=True, eq=False)
 class Assembly:
-    """The assembled chain: positions (N, 2) [m] of the roller centres, path parameters s
-    (N,) [m], sprocket angles (n,) [rad] (a gap centre at angle θ_i + 2πj/z_i),
-    closing_misfit [m] (the last span's length minus its links' pitches), last_span
-    (index of the span evened out), path length [m]; sprocket_of (N,) the sprocket whose
-    arc holds each roller (−1 on a span), span_of (N,) its span (−1 on an arc)."""
+    """The assembled chain.
+
+    Parameters
+    ----------
+    positions : ndarray
+        (N, 2) roller centres [m].
+    parameters : ndarray
+        (N,) path parameters s [m].
+    angles : ndarray
+        (n,) sprocket angles [rad] (a gap centre at angle θ_i + 2πj/z_i).
+    closing_misfit : float
+        The last span's length minus its links' pitches [m].
+    last_span : int
+        Index of the span evened out [-].
+    path_length : float
+        Length of the pitch-line path [m].
+    sprocket_of : ndarray
+        (N,) the sprocket whose arc holds each roller (−1 on a span) [-].
+    span_of : ndarray
+        (N,) the span of each roller (−1 on an arc) [-].
+    """
 
     positions: NDArray[np.float64]
     parameters: NDArray[np.float64]
@@ -117,11 +146,30 @@ def _next_parameter(path: _Path, s0: float, pitch: float) -> float:
 
 def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
     """Place the N rollers on the contour and turn the sprockets under them (module
-    docstring); the walk ends in span ``slack_span`` (default the last), whose rollers are
-    spaced evenly on its line when the contour is taut (a take-up sprocket, or no slack:
-    the links of that span then differ from p by misfit/count, a few µm, which their rest
-    lengths absorb) or else hung on a circular arc of equal chords p sagging along −y (the
-    slack the contour leaves). Raises GeometryError beyond one pitch."""
+    docstring).
+
+    The walk ends in span ``slack_span``, whose rollers are spaced evenly on its line when
+    the contour is taut (a take-up sprocket, or no slack: the links of that span then differ
+    from p by misfit/count, a few µm, which their rest lengths absorb) or else hung on a
+    circular arc of equal chords p sagging along −y (the slack the contour leaves).
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    slack_span : int
+        Index of the span the walk ends in [-] (−1: the last).
+
+    Returns
+    -------
+    Assembly
+        Roller positions, sprocket angles and the misfit.
+
+    Raises
+    ------
+    GeometryError
+        A misfit beyond one pitch.
+    """
     n = len(geometry.spans)
     last = slack_span % n
     path = contour_path(geometry, (last + 1) % n)

@@ -72,10 +72,19 @@ Row = tuple[str, float | None, float | None, str]
 class ModelComparison:
     """The summary quantities of the whole-drive (ring) model and of the link-level run.
 
-    rows : (quantity, whole drive, link level, unit), SI, None where a model does not give
-    the quantity; settled : the driver's mean speed over the link-level run's closing half
-    is within :data:`SETTLED_SPEED` of the nominal (its steady quantities are those of
-    steady motion); steady_from_s [s] : where that closing half starts; duration_s [s].
+    Parameters
+    ----------
+    rows : tuple of Row
+        (quantity, whole drive, link level, unit) in SI, None where a model does not give
+        the quantity.
+    settled : bool
+        True when the driver's mean speed over the link-level run's closing half is within
+        :data:`SETTLED_SPEED` of the nominal (its steady quantities are then those of steady
+        motion).
+    steady_from_s : float
+        Where that closing half starts [s].
+    duration_s : float
+        The run's duration [s].
     """
 
     rows: tuple[Row, ...]

@@ -53,11 +53,11 @@ def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
     :mod:`chaindrive.dynamics.startup`: constant, ramp, Kloss)."""
     if kind == MOTOR_CONSTANT:
-        return mp[0]
+        return float(mp[0])
     if kind == MOTOR_RAMP:
-        return mp[0] * min(1.0, t / mp[1]) if mp[1] > 0 else mp[0]
+        return float(mp[0] * min(1.0, t / mp[1]) if mp[1] > 0 else mp[0])
     s = 1.0 - w / mp[2]
-    return mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
+    return float(mp[0] * s * mp[1] / (s * s + mp[1] * mp[1]))
 
 
 @numba.njit(cache=True)

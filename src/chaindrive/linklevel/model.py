@@ -77,14 +77,23 @@ class TorsionalAttachment:
     """A linear torsional system coupled to the sprockets (e.g. the trains of
     :mod:`chaindrive.dynamics.torsional`): rotational coordinates θ = (sprockets…, extra…).
 
-    extra_inertias (e,) [kg·m²] of the extra coordinates, each turning in the plane,
-    counter-clockwise positive like the sprockets (a coordinate geared to run the other way
-    is entered with its sign flipped in K and C); stiffness, damping (n+e, n+e)
-    [N·m/rad], [N·m·s/rad] acting on the turns of all n+e coordinates since the start
-    (symmetric, positive semi-definite: shafts, couplings, gear meshes reduced to one speed
-    per coordinate); motor_dof: the coordinate the motor drives (None: the driver
-    sprocket); load_dofs (n,): the coordinate that carries sprocket i's moment of
-    resistance (None: each sprocket its own).
+    Parameters
+    ----------
+    extra_inertias : ndarray
+        (e,) moments of inertia of the extra coordinates [kg·m²], each turning in the plane,
+        counter-clockwise positive like the sprockets (a coordinate geared to run the other
+        way is entered with its sign flipped in K and C).
+    stiffness : ndarray
+        (n+e, n+e) stiffness on the turns of all coordinates since the start [N·m/rad]
+        (symmetric, positive semi-definite: shafts, couplings, gear meshes reduced to one
+        speed per coordinate).
+    damping : ndarray
+        (n+e, n+e) damping on their speeds [N·m·s/rad].
+    motor_dof : int or None
+        The coordinate the motor drives (None: the driver sprocket).
+    load_dofs : tuple of int or None
+        (n,) the coordinate that carries sprocket i's moment of resistance (None: each
+        sprocket its own).
     """
 
     extra_inertias: NDArray[np.float64]
@@ -98,11 +107,58 @@ class TorsionalAttachment:
 class LinkLevelModel:
     """Everything the link-level kernel needs, in SI units (module docstring for sources).
 
-    Chain: links N, pitch p [m], roller_mass m [kg], roller_radius d₁/2 [m], link_stiffness
-    [N/m], link_damping [N·s/m], clearance Δ [m], hinge_friction f [–], pin_radius d₂/2 [m],
-    pretension T₀ [N], gravity (2,) [m/s²]. Sprockets (n,): centres (n, 2) [m], teeth,
-    pitch_radii, seating_radii, seating_half_angles [rad], tip_radii [m], contact_stiffness
-    [N/m], contact_damping [N·s/m], turn (+1 counter-clockwise), inertias [kg·m²].
+    Parameters
+    ----------
+    names : tuple of str
+        Sprocket names.
+    links : int
+        Number of links N [-].
+    pitch : float
+        Chain pitch p [m].
+    roller_mass : float
+        Mass of one roller with its share of the links m [kg].
+    roller_radius : float
+        Roller radius d₁/2 [m].
+    link_stiffness : float
+        Axial stiffness of one link [N/m].
+    link_damping : float
+        Axial damping of one link [N·s/m].
+    clearance : float
+        Clearance Δ of the pin–bush joint [m].
+    hinge_friction : float
+        Coefficient of friction f in the hinges [-].
+    pin_radius : float
+        Pin radius d₂/2 [m].
+    pretension : float
+        Pre-tension T₀ [N].
+    gravity : ndarray
+        (2,) acceleration of gravity [m/s²].
+    centres : ndarray
+        (n, 2) sprocket centres [m].
+    teeth : ndarray
+        (n,) teeth [-].
+    pitch_radii : ndarray
+        (n,) pitch radii [m].
+    seating_radii : ndarray
+        (n,) seating (roller seat) radii r_i [m].
+    seating_half_angles : ndarray
+        (n,) seating half-angles α [rad].
+    tip_radii : ndarray
+        (n,) tip radii [m].
+    contact_stiffness : ndarray
+        (n,) roller–tooth contact stiffness k_c [N/m].
+    contact_damping : ndarray
+        (n,) roller–tooth contact damping c_c [N·s/m].
+    turn : ndarray
+        (n,) sense of rotation [-] (+1 counter-clockwise).
+    inertias : ndarray
+        (n,) sprocket moments of inertia [kg·m²].
+    driver : int
+        Index of the driver [-].
+    ring_first_frequency_hz : float
+        First elastic natural frequency of the drive's ring model [Hz] (sets the record rate).
+    torsional : TorsionalAttachment or None
+        An attached torsional system (None: none).
     """
 
     names: tuple[str, ...]
@@ -164,6 +220,30 @@ def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter:
     ISO 606: the means of the limits, r_i = (r_i,min + r_i,max)/2 and α = (α_min + α_max)/4
     (the standard gives the full seating angle); GOST 591-69: r = 0.5025·d₁ + 0.05 mm and
     α = 55° − 60°/z (its half-space angle).
+
+    Parameters
+    ----------
+    form : str
+        ``"ISO 606"`` or ``"GOST 591"``.
+    pitch : float
+        Chain pitch p [m].
+    teeth : array_like
+        (n,) teeth z [-].
+    roller_diameter : float
+        Roller diameter d₁ [m].
+    inner_width : float
+        Inner width b₁ of the chain [m].
+
+    Returns
+    -------
+    seating_radii : ndarray
+        (n,) r_i [m].
+    half_angles : ndarray
+        (n,) α [rad].
+
+    References
+    ----------
+    [ISO606], [GOST591].
     """
     z = np.atleast_1d(np.asarray(teeth, dtype=int))
     if form == "GOST 591":
@@ -198,11 +278,41 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                 damping_ratio: float | None = None,
                 torsional: TorsionalAttachment | None = None,
                 material_lookup: Callable[[str], Material] | None = None) -> LinkLevelModel:
-    """Link-level parameters of ``drive`` on its built contour ``geometry`` (module
-    docstring). hinge_friction f [–] (0: frictionless hinges); clearance Δ [m] of the
-    pin–bush joint; contact_damping_ratio ζ_c [–]; pretension T₀ [N] (None: sag tension);
-    gravity g [m/s²] (acting along −y); damping_ratio ζ of the first mode (None: the drive's
-    ``[dynamics] damping_ratio``); torsional: optional attached torsional system."""
+    """Link-level parameters of ``drive`` on its built contour ``geometry`` (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+    hinge_friction : float
+        Coefficient of friction f in the hinges [-] (0: frictionless hinges).
+    clearance : float
+        Clearance Δ of the pin–bush joint [m].
+    contact_damping_ratio : float
+        Damping ratio ζ_c of the roller–tooth contact [-].
+    pretension : float or None
+        Pre-tension T₀ [N] (None: the sag tension).
+    gravity : float
+        Acceleration of gravity g [m/s²] (acting along −y).
+    damping_ratio : float or None
+        Damping ratio ζ of the first mode [-] (None: the drive's ``[dynamics]
+        damping_ratio``).
+    torsional : TorsionalAttachment or None
+        An attached torsional system.
+    material_lookup : callable or None
+        Name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    LinkLevelModel
+        The parameters.
+
+    References
+    ----------
+    [Pedersen2004], [Pedersen2005] (the model); [ChainHingeDissipation] (hinge friction).
+    """
     if not (hinge_friction >= 0 and clearance >= 0 and 0 <= contact_damping_ratio < 1):
         raise DesignError("linklevel", "need hinge_friction ≥ 0, clearance ≥ 0 and "
                           f"0 ≤ contact_damping_ratio < 1, got {hinge_friction!r}, "

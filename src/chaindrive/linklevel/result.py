@@ -44,8 +44,40 @@ def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.fl
                  th: NDArray[np.float64], w: NDArray[np.float64], L0: NDArray[np.float64],
                  spr: NDArray[np.float64], J: NDArray[np.float64],
                  K: NDArray[np.float64], th0: NDArray[np.float64]) -> dict[str, float]:
-    """Kinetic, elastic (links, contacts, torsional system on the turns θ − θ₀ since the
-    start) and gravity energy [J] of a state (x, v rollers; th, w rotational coordinates)."""
+    """Kinetic, elastic (links, contacts, torsional system on the turns θ − θ₀ since the start)
+    and gravity energy [J] of a state.
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The parameters.
+    x : ndarray
+        (N, 2) roller positions [m].
+    v : ndarray
+        (N, 2) roller velocities [m/s].
+    th : ndarray
+        (D,) rotational coordinates [rad].
+    w : ndarray
+        (D,) their speeds [rad/s].
+    L0 : ndarray
+        (N,) link rest lengths [m].
+    spr : ndarray
+        (12, n) the kernel's table of sprocket data (centre [m], teeth, pitch, roller,
+        seating and tip radii [m], seating half-angle [rad], contact stiffness [N/m] and
+        damping [N·s/m], gap angle [rad], half-chord [m]).
+    J : ndarray
+        (D,) moments of inertia of the rotational coordinates [kg·m²].
+    K : ndarray
+        (D, D) torsional stiffness [N·m/rad] (empty without an attached system).
+    th0 : ndarray
+        (D,) rotational coordinates at the start [rad].
+
+    Returns
+    -------
+    dict of str to float
+        ``kinetic_j``, ``link_elastic_j``, ``contact_elastic_j``, ``torsional_elastic_j``,
+        ``gravity_j`` [J].
+    """
     m = model.roller_mass
     d = np.roll(x, -1, axis=0) - x
     e = np.hypot(d[:, 0], d[:, 1]) - L0
@@ -111,14 +143,53 @@ def _tooth_loads(model: LinkLevelModel, geometry: GeometryResult, positions: NDA
 class LinkLevelResult:
     """Histories and summaries of a link-level run (module docstring).
 
-    times (T,) [s]; positions (T, N, 2) [m] roller centres; angles, speeds (T, D) [rad],
-    [rad/s] rotational coordinates (sprockets first, counter-clockwise positive);
-    link_tensions (T, N) [N] (link i joins roller i and i+1); contact_forces (T, N) [N],
-    contact_sprocket (T, N) (−1: free) of every roller; span_forces, span_offsets (T, n) [N],
-    [m]; sprocket_speeds (T, n) [rad/s] in the running sense; tooth_loads: per sprocket the
-    mean load per place on the wrap over the steady window [N]; impacts (E, 4): time of the
-    first contact [s], sprocket, roller, peak contact force [N] of every engagement; energy
-    balance terms [J]; dt [s], steps; closing_misfit [m] of the assembly.
+    Parameters
+    ----------
+    names : tuple of str
+        Sprocket names.
+    span_names : tuple of str
+        Span names.
+    times : ndarray
+        (T,) recorded times [s].
+    positions : ndarray
+        (T, N, 2) roller centres [m].
+    angles : ndarray
+        (T, D) rotational coordinates [rad] (sprockets first, counter-clockwise positive).
+    speeds : ndarray
+        (T, D) their speeds [rad/s].
+    link_tensions : ndarray
+        (T, N) link tensions [N] (link i joins roller i and i+1).
+    contact_forces : ndarray
+        (T, N) roller–tooth contact force of every roller [N].
+    contact_sprocket : ndarray
+        (T, N) the sprocket each roller touches (−1: free) [-].
+    span_forces : ndarray
+        (T, n) span forces [N].
+    span_offsets : ndarray
+        (T, n) transverse offsets of the span middles [m].
+    sprocket_speeds : ndarray
+        (T, n) sprocket speeds in the running sense [rad/s].
+    tooth_loads : tuple of ndarray
+        Per sprocket, the mean load per place on the wrap over the steady window [N].
+    impacts : ndarray
+        (E, 4) time of the first contact [s], sprocket, roller, peak contact force [N] of
+        every engagement.
+    energy : dict of str to float
+        Energy balance terms [J].
+    dt : float
+        Time step [s].
+    steps : int
+        Steps taken [-].
+    closing_misfit : float
+        Closing misfit of the assembly [m].
+    steady_from : float
+        Start of the steady window [s].
+    nominal_force : float or None
+        Nominal peripheral force F_t [N] (None without power).
+    model : LinkLevelModel
+        The parameters of the run.
+    geometry : GeometryResult
+        The contour.
     """
 
     names: tuple[str, ...]
@@ -150,7 +221,43 @@ class LinkLevelResult:
               steps: int, energy_terms: NDArray[np.float64], energy_start: dict[str, float],
               energy_end: dict[str, float], events: NDArray[np.float64], closing_misfit: float,
               steady_window: float) -> LinkLevelResult:
-        """Assemble the result from the kernel's records (see :mod:`.simulate`)."""
+        """Assemble the result from the kernel's records (see :mod:`.simulate`).
+
+        Parameters
+        ----------
+        drive : Drive
+            The drive.
+        geometry : GeometryResult
+            Its contour.
+        model : LinkLevelModel
+            The parameters of the run.
+        times : ndarray
+            (T,) recorded times [s].
+        records : tuple of ndarray
+            The kernel's records: positions (T, N, 2) [m], angles (T, D) [rad], speeds (T, D)
+            [rad/s], link tensions (T, N) [N], contact forces (T, N) [N], contact sprocket and gap
+            (T, N) indices.
+        dt : float
+            Time step [s].
+        steps : int
+            Steps taken [-].
+        energy_terms : ndarray
+            (6,) accumulated work of the motor and the loads and the dissipation in link
+            dampers, contacts, hinges and torsional dampers [J].
+        energy_start, energy_end : dict of str to float
+            :func:`state_energy` at the start and at the end [J].
+        events : ndarray
+            (E, 4) engagements (time [s], sprocket, roller, peak force [N]).
+        closing_misfit : float
+            Closing misfit of the assembly [m].
+        steady_window : float
+            Closing fraction of the run taken as steady [-].
+
+        Returns
+        -------
+        LinkLevelResult
+            The result.
+        """
         pos, ang, spd, ten, fc, sc, _gap = records
         n = model.centres.shape[0]
         span_f, span_y = _span_probe(geometry, pos, ten)
@@ -196,12 +303,13 @@ class LinkLevelResult:
     def span_dynamic_load(self) -> NDArray[np.float64]:
         """F_D,i = max |F_i − F̄_i| over the steady window [N] (module docstring)."""
         f = self.span_forces[self.times >= self.steady_from]
-        return np.abs(f - f.mean(axis=0)).max(axis=0)
+        return np.asarray(np.abs(f - f.mean(axis=0)).max(axis=0), dtype=np.float64)
 
     @property
     def span_mean_force(self) -> NDArray[np.float64]:
         """F̄_i over the steady window [N]."""
-        return self.span_forces[self.times >= self.steady_from].mean(axis=0)
+        return np.asarray(self.span_forces[self.times >= self.steady_from].mean(axis=0),
+                          dtype=np.float64)
 
     @property
     def coefficient_of_dynamics(self) -> float | None:
@@ -213,14 +321,26 @@ class LinkLevelResult:
     @property
     def peak_span_force(self) -> NDArray[np.float64]:
         """Largest span force over the whole run [N] (the start-up peak F₁max from rest)."""
-        return self.span_forces.max(axis=0)
+        return np.asarray(self.span_forces.max(axis=0), dtype=np.float64)
 
     def history(self, links: bool = False) -> tuple[list[str], NDArray[np.float64]]:
-        """CSV-ready history: column names (unit in each) and a (T, columns) array — time,
-        sprocket speeds, span forces, span transverse offsets, and with ``links`` the
-        tension of every link along the chain (link i joins rollers i and i + 1; the rollers
-        are numbered along the chain as assembled, roller 0 where the chain arrives on the
-        sprocket after the driver at t = 0)."""
+        """CSV-ready history: time, sprocket speeds, span forces, span transverse offsets, and
+        with ``links`` the tension of every link along the chain (link i joins rollers i and
+        i + 1; the rollers are numbered along the chain as assembled, roller 0 where the chain
+        arrives on the sprocket after the driver at t = 0).
+
+        Parameters
+        ----------
+        links : bool
+            True adds the tension of every link.
+
+        Returns
+        -------
+        columns : list of str
+            Column names, the unit in each.
+        values : ndarray
+            (T, columns) the history [units of the columns].
+        """
         cols = ["time_s"]
         cols += [f"speed_{s}_rad_s" for s in self.names]
         cols += [f"span_force_{s}_n" for s in self.span_names]
@@ -232,8 +352,18 @@ class LinkLevelResult:
         return cols, np.column_stack(parts)
 
     def to_dict(self, include_history: bool = False) -> dict[str, Any]:
-        """JSON-ready dict (SI, unit in the key names); histories only with
-        ``include_history``."""
+        """JSON-ready dict (SI, unit in the key names).
+
+        Parameters
+        ----------
+        include_history : bool
+            True adds the histories.
+
+        Returns
+        -------
+        dict
+            The summaries (and histories).
+        """
         kd = self.coefficient_of_dynamics
         out: dict[str, Any] = {
             "model": "link-level",

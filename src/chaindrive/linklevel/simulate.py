@@ -30,7 +30,12 @@ from chaindrive.linklevel.kernel import (
     RESISTANCE_QUADRATIC,
     run_kernel,
 )
-from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
+from chaindrive.linklevel.model import (
+    HINGE_FRICTION,
+    LinkLevelModel,
+    TorsionalAttachment,
+    build_model,
+)
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
 
 if TYPE_CHECKING:
@@ -126,19 +131,59 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
              span_kick_m_s: tuple[int, float] | None = None) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
-    geometry : its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`);
-    model : link-level parameters (None: :func:`chaindrive.linklevel.model.build_model`
-    with ``hinge_friction`` (None: f = 0.1), ``clearance_m`` [m] and ``torsional``);
-    start : "rest" (a start-up) or "steady" (every body moving at its mean speed);
-    motor(t, ω) [N·m] on the driver: a ConstantTorque, RampTorque or KlossMotor (None: the
-    drive's ``[dynamics]`` motor rated at its power and driver speed); resistance : the law
-    of the driven sprockets' moments ("linear", "quadratic", "constant", None: none) with
-    their power shares at the nominal speeds; dt_s [s] (None: :data:`COURANT`·2/ω_max);
-    sample_rate_hz [Hz] of the recorded history (None: about 10× the ring model's first
-    natural frequency); steady_window : the closing fraction of the run over which the steady
-    span loads are taken. Impulses at t = 0 (for natural frequencies): kick_rad_s (n,) speeds
-    added to the sprockets [rad/s]; span_kick_m_s (span k, u [m/s]) a transverse velocity
-    u·sin(πξ) on the rollers of span k (ξ ∈ (0, 1) along it, to the left of the travel).
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    duration_s : float
+        Simulated time [s].
+    geometry : GeometryResult or None
+        Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
+    model : LinkLevelModel or None
+        Link-level parameters (None: :func:`chaindrive.linklevel.model.build_model` with
+        ``hinge_friction``, ``clearance_m`` and ``torsional``).
+    start : {"rest", "steady"}
+        ``"rest"`` (a start-up) or ``"steady"`` (every body moving at its mean speed).
+    motor : callable or None
+        Motor torque motor(t, ω) [N·m] on the driver: a ConstantTorque, RampTorque or
+        KlossMotor (None: the drive's ``[dynamics]`` motor rated at its power and driver
+        speed).
+    resistance : str or None
+        Law of the driven sprockets' moments (``"linear"``, ``"quadratic"``,
+        ``"constant"``; None: none) with their power shares at the nominal speeds.
+    dt_s : float or None
+        Time step [s] (None: :data:`COURANT`·2/ω_max).
+    sample_rate_hz : float or None
+        Rate of the recorded history [Hz] (None: about 10× the ring model's first natural
+        frequency).
+    hinge_friction : float or None
+        Coefficient of friction in the hinges [-] (None: 0.1).
+    clearance_m : float
+        Clearance of the pin–bush joints [m].
+    torsional : TorsionalAttachment or None
+        An attached torsional system.
+    steady_window : float
+        Closing fraction of the run over which the steady span loads are taken [-].
+    kick_rad_s : sequence of float or None
+        (n,) speeds added to the sprockets at t = 0 [rad/s] (an impulse, for natural
+        frequencies).
+    span_kick_m_s : tuple of (int, float) or None
+        (span k, u [m/s]): a transverse velocity u·sin(πξ) on the rollers of span k at
+        t = 0 (ξ ∈ (0, 1) along it, to the left of the travel).
+
+    Returns
+    -------
+    LinkLevelResult
+        Histories, summaries and the energy balance.
+
+    Raises
+    ------
+    DesignError
+        A duration or steady window out of range, or no power and no motor.
+
+    References
+    ----------
+    [Pedersen2004], [Pedersen2005]; [Hairer2006, §I.1] (the integrator).
     """
     from chaindrive.dynamics.response import motor_of
     from chaindrive.geometry.contour import contour_geometry
@@ -148,8 +193,9 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
                           f"{duration_s!r}, {steady_window!r}")
     geometry = geometry or contour_geometry(drive)
     if model is None:
-        kw = {} if hinge_friction is None else {"hinge_friction": hinge_friction}
-        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional, **kw)
+        model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional,
+                            hinge_friction=HINGE_FRICTION if hinge_friction is None
+                            else hinge_friction)
     omega = _nominal_speeds(drive)
     if motor is None:
         if not drive.power:
@@ -214,9 +260,21 @@ def _apply_kicks(state: State, model: LinkLevelModel, geometry: GeometryResult,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class InitialState:
-    """The state a run starts from (what a peer engine needs to start from the same one):
-    roller positions x and velocities v (N, 2) [m], [m/s]; rotational coordinates θ and
-    speeds ω (D,) [rad], [rad/s]; link rest lengths ℓ₀ (N,) [m]."""
+    """The state a run starts from (what a peer engine needs to start from the same one).
+
+    Parameters
+    ----------
+    positions : ndarray
+        (N, 2) roller positions x [m].
+    velocities : ndarray
+        (N, 2) roller velocities v [m/s].
+    angles : ndarray
+        (D,) rotational coordinates θ [rad].
+    speeds : ndarray
+        (D,) their speeds ω [rad/s].
+    rest_lengths : ndarray
+        (N,) link rest lengths ℓ₀ [m].
+    """
 
     positions: NDArray[np.float64]
     velocities: NDArray[np.float64]
@@ -227,7 +285,24 @@ class InitialState:
 
 def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
                   start: Start = "rest") -> InitialState:
-    """The assembled chain and its start state, as :func:`simulate` builds them."""
+    """The assembled chain and its start state, as :func:`simulate` builds them.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+    model : LinkLevelModel
+        The parameters.
+    start : {"rest", "steady"}
+        ``"rest"`` (a start-up) or ``"steady"`` (every body moving at its mean speed).
+
+    Returns
+    -------
+    InitialState
+        Positions, velocities and rest lengths.
+    """
     asm = assemble_chain(geometry, drive.driver_index)
     x, v, th, w = _initial_state(model, asm, geometry, _nominal_speeds(drive), start)
     return InitialState(x, v, th, w, _rest_lengths(model, x))
@@ -323,7 +398,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
                model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
                SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
                rsign, *rec, energy, cand, eng, events, count)
-    times = np.arange(rows) * every * dt
+    times = np.arange(rows, dtype=np.float64) * every * dt
     kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
     e_end = state_energy(model, x, v, th, w, *kernel_args)

@@ -6,14 +6,15 @@ figure is made, through :class:`matplotlib.figure.Figure` (not ``pyplot``): impo
 package changes no global state, selects no backend and never opens a window. Save with
 ``fig.savefig("name.png")`` (rendered by Agg) or ``.svg`` / ``.pdf``.
 
-Families (one module each): :mod:`.layout` (contour to scale), :mod:`.kinematics` (speed
-and ratio over a tooth period, seed 003), :mod:`.strength` (static loads per span and per
-shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Campbell
-diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
-:mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front),
-:mod:`.response` (start-up oscillograms, AFC, steady dynamic loads, inertia loads and
-irregularity, material pairs — seed 000 Fig. 2–3, Table 1), :mod:`.linklevel` (frames of
-the link-level model's chain, link tension along it, tooth loads).
+Families (one module each): :mod:`.layout` (contour to scale), :mod:`.kinematics` (speed and
+ratio over a tooth period, [ChainNonUniformity]), :mod:`.strength` (static loads per span
+and per shaft), :mod:`.dynamics` (mode shapes as the relative-amplitude bars of
+[MultimassChainDrives], Campbell diagram), :mod:`.damping` (ψ against ȳ₀ for several
+tensions, [ChainHingeDissipation]), :mod:`.multicontour` (K_m distribution, [Lyashuk]),
+:mod:`.synthesis` (Pareto front), :mod:`.response` (start-up oscillograms, AFC, steady
+dynamic loads, inertia loads and irregularity, material pairs —
+[MultimassChainDrives, Fig. 2–3, Table 1]), :mod:`.linklevel` (frames of the link-level
+model's chain, link tension along it, tooth loads).
 """
 
 from __future__ import annotations

@@ -19,7 +19,22 @@ CYCLE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000
 def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
                 ) -> tuple[Figure, Axes]:
     """The figure and axes to draw into: ``ax`` and its figure, or a new Figure (no pyplot,
-    so nothing global changes) with one axes. figsize [in]."""
+    so nothing global changes) with one axes. figsize [in].
+
+    Parameters
+    ----------
+    ax : Axes or None
+        The axes to draw into, or None for a new figure.
+    figsize : tuple of float
+        Size of a new figure (width, height) [in].
+
+    Returns
+    -------
+    fig : Figure
+        The figure.
+    ax : Axes
+        The axes.
+    """
     if ax is not None:
         return ax.figure, ax  # type: ignore[return-value]
     from matplotlib.figure import Figure
@@ -29,7 +44,17 @@ def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
 
 
 def finish(ax: Axes, title: str | None = None, *, grid: bool = True) -> None:
-    """Common finishing: title, light grid."""
+    """Common finishing: title, light grid.
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes.
+    title : str or None
+        Its title (None: none).
+    grid : bool
+        True draws the light grid.
+    """
     if title:
         ax.set_title(title, fontsize="medium")
     if grid:
@@ -37,5 +62,16 @@ def finish(ax: Axes, title: str | None = None, *, grid: bool = True) -> None:
 
 
 def labels_of(items: Any) -> list[str]:
-    """Names of result items (objects with a ``name``)."""
+    """Names of result items (objects with a ``name``).
+
+    Parameters
+    ----------
+    items : iterable
+        Objects with a ``name``.
+
+    Returns
+    -------
+    list of str
+        Their names.
+    """
     return [str(getattr(i, "name", i)) for i in items]

@@ -1,5 +1,5 @@
 """Hinge-friction damping: absorption coefficient ψ against the relative amplitude ȳ₀ for
-several initial tensions F₀ (seed 001, its Fig. 2)."""
+several initial tensions F₀ ([ChainHingeDissipation, Fig. 2])."""
 
 from __future__ import annotations
 
@@ -19,11 +19,24 @@ if TYPE_CHECKING:
 
 def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                             ax: Axes | None = None) -> Figure:
-    """ψ = 6πfd₂/(ȳ₀aK_aF) (seed 001 eq. 14) against ȳ₀, one curve per tension F₀ [N].
+    """ψ = 6πfd₂/(ȳ₀aK_aF) ([ChainHingeDissipation, eq. 14]) against ȳ₀, one curve per tension F₀ [N].
 
     results : :class:`chaindrive.dynamics.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
     e.g. from :func:`chaindrive.dynamics.damping.hinge_friction_damping`; grouped by tension.
-    The right axis reads the equivalent viscous ratio ζ = ψ/4π."""
+    The right axis reads the equivalent viscous ratio ζ = ψ/4π.
+
+    Parameters
+    ----------
+    results : sequence of HingeFrictionResult
+        Results over a grid of (F₀, ȳ₀).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.8))
     tensions = sorted({r.tension for r in results})
     for k, f0 in enumerate(tensions):
@@ -33,9 +46,9 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
         ax.plot(y, psi, "o-", ms=3, color=CYCLE[k % len(CYCLE)], label=f"F₀ = {f0:g} N")
     ax.set_xlabel("relative amplitude ȳ₀ = y₀/a")
     ax.set_ylabel("absorption coefficient ψ")
-    right = ax.secondary_yaxis("right", functions=(lambda p: p / (4 * np.pi),
-                                                   lambda z: z * 4 * np.pi))
+    right = ax.secondary_yaxis("right", functions=(lambda p: np.asarray(p) / (4 * np.pi),
+                                                   lambda z: np.asarray(z) * (4 * np.pi)))
     right.set_ylabel("ζ = ψ/4π")
     ax.legend(fontsize="x-small")
-    finish(ax, "Hinge-friction damping (seed 001)")
+    finish(ax, "Hinge-friction damping [ChainHingeDissipation]")
     return fig

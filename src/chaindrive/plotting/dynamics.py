@@ -25,7 +25,24 @@ def mode_shapes(modal: ModalResult, *, ax: Axes | None = None,
     close the ring; each shape scaled to a largest |X| of 1 with its largest component
     positive ([MultimassChainDrives, eq. 2]). A line that crosses zero between two masses
     has a node there; masses on opposite sides of zero move in opposite directions.
-    names label the masses (default M1, M2, …)."""
+    names label the masses (default M1, M2, …).
+
+    Parameters
+    ----------
+    modal : ModalResult
+        The ring's modes.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the masses (None: M1, M2, …).
+    modes : int
+        Elastic modes drawn [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     elastic = np.flatnonzero(~np.asarray(modal.rigid_body))[:modes]
     shapes = np.asarray(modal.shapes, dtype=float)
@@ -60,6 +77,22 @@ def campbell_window(campbell: CampbellData, operating_rpm: float | None,
     frequency axis reaches 1.3 × the highest such crossing, or 1.3 × the lowest natural
     frequency when there is none (so the first mode and the lines below it show). Returns
     ([(excitation, mode, speed [rpm], frequency [Hz])], top [Hz]).
+
+    Parameters
+    ----------
+    campbell : CampbellData
+        The Campbell data.
+    operating_rpm : float or None
+        Operating driver speed [rpm] (None: no crossing matters).
+    window : float
+        Half-width of the window round the operating speed, as a fraction of it [-].
+
+    Returns
+    -------
+    crossings : list of tuple
+        (excitation, mode, speed [rpm], frequency [Hz]) of the crossings that matter.
+    top : float
+        Top of the frequency axis [Hz].
     """
     rpm = np.asarray(campbell.speeds_rpm)
     nat = np.asarray(campbell.natural_frequencies_hz)
@@ -91,7 +124,31 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
     ``max_labels`` nearest to it labelled ([MultimassChainDrives, §3.3]). Tooth-frequency
     harmonics are drawn before the shaft lines. The frequency axis is cut at 1.3 × the highest of
     those crossings (:func:`campbell_window`): a low crossing near the working speed is
-    never lost under a scale set by the highest mode."""
+    never lost under a scale set by the highest mode.
+
+    Parameters
+    ----------
+    campbell : CampbellData
+        The Campbell data.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    operating_rpm : float or None
+        Operating driver speed [rpm] (None: not drawn).
+    max_lines : int
+        Excitation lines drawn at most [-].
+    band_percent : float or None
+        Half-width of the shaded band round the operating speed [%] (None: none).
+    window : float
+        Half-width of the window of crossings that matter, a fraction of the operating
+        speed [-].
+    max_labels : int
+        Crossings labelled at most [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 5.0))
     rpm = np.asarray(campbell.speeds_rpm)
     nat = np.asarray(campbell.natural_frequencies_hz)

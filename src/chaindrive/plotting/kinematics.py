@@ -1,4 +1,4 @@
-"""Chain speed and transmission ratio over one tooth period (seed 003)."""
+"""Chain speed and transmission ratio over one tooth period ([ChainNonUniformity])."""
 
 from __future__ import annotations
 
@@ -18,7 +18,20 @@ if TYPE_CHECKING:
 
 def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figure:
     """Instantaneous chain speed v = R₁ω₁cos β [m/s] over one tooth period of the driver
-    (seed 003 eq. 6), with the mean speed v̄ = z₁pω₁/2π dashed. x: driver rotation β [°]."""
+    ([ChainNonUniformity, eq. 6]), with the mean speed v̄ = z₁pω₁/2π dashed. x: driver rotation β [°].
+
+    Parameters
+    ----------
+    kinematics : KinematicsResult
+        The drive's kinematics (speed traces of the tight span).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     beta = np.degrees(kinematics.phase)
     ax.plot(beta, kinematics.chain_speed_trace, color=CHAIN, lw=1.6, label="v(β)")
@@ -33,8 +46,21 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figu
 
 def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Instantaneous ratio i = ω₁/ω₂ over one tooth period for the sprocket at the far end
-    of the tight span (seed 003: i = R₂cos γ / (R₁cos β)), as computed by
-    :func:`chaindrive.kinematics.drive_kinematics` (``ratio_traces``)."""
+    of the tight span ([ChainNonUniformity]: i = R₂cos γ / (R₁cos β)), as computed by
+    :func:`chaindrive.kinematics.drive_kinematics` (``ratio_traces``).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis (its kinematics and geometry).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     drive, geometry = analysis.drive, analysis.geometry
     z1 = drive.driver.teeth

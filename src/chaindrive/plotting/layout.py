@@ -22,7 +22,20 @@ MM = 1e3  # metres → millimetres
 
 def wrap_arc_points(s: SprocketGeometry, samples: int = 60) -> np.ndarray:
     """Points [m] of the chain's wrap on the pitch circle, from the arrive point to the leave
-    point in the sprocket's direction of turning (``turn``), shape (samples, 2)."""
+    point in the sprocket's direction of turning (``turn``), shape (samples, 2).
+
+    Parameters
+    ----------
+    s : SprocketGeometry
+        The sprocket (centre, pitch radius, arrive and leave points, turn).
+    samples : int
+        Points on the arc [-].
+
+    Returns
+    -------
+    ndarray
+        (samples, 2) points [m].
+    """
     a0 = math.atan2(s.arrive[1] - s.y, s.arrive[0] - s.x)
     angles = a0 + s.turn * np.linspace(0.0, s.wrap_angle, samples)
     return np.column_stack([s.x + s.pitch_radius * np.cos(angles),
@@ -68,7 +81,22 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
                    labels: bool = True) -> Figure:
     """The contour of a drive to scale [mm]: tip circles (grey discs), pitch circles
     (dash-dot), centre marks, the chain (blue, the tight span red) with an arrow per span in
-    the direction of travel, and sprocket names with tooth counts."""
+    the direction of travel, and sprocket names with tooth counts.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    labels : bool
+        True writes the sprocket names and tooth counts.
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, _figsize(geometry))
     for s in geometry.sprockets:
         _sprocket(ax, s, labels)

@@ -15,6 +15,7 @@ from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.patches import Circle
 
     from chaindrive.linklevel import LinkLevelResult
 
@@ -56,7 +57,7 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
                 ".", color=GREY, markersize=2)
         ax.annotate(g.name, (g.x, g.y), ha="center", va="center", fontsize="small")
     segments = np.stack([pos, np.roll(pos, -1, axis=0)], axis=1)
-    lines = LineCollection(segments, cmap="viridis", linewidths=1.5)
+    lines = LineCollection(list(segments), cmap="viridis", linewidths=1.5)
     lines.set_array(result.link_tensions[k])
     lines.set_clim(0.0, vmax)
     ax.add_collection(lines)
@@ -70,7 +71,7 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
 
 
 def _circle(centre: tuple[float, float], radius: float, color: str, alpha: float,
-            dashed: bool = False) -> object:
+            dashed: bool = False) -> Circle:
     from matplotlib.patches import Circle
 
     return Circle(centre, radius, fill=False, color=color, alpha=alpha,
@@ -82,7 +83,24 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     """The chain at the recorded instant nearest ``time_s`` [s] (None: the last): sprockets
     (tip and pitch circles, gap centres), links coloured by tension [N], rollers in contact
     filled; ``magnify`` scales the transverse deviations of the free rollers within two
-    pitches of a span's line (taut spans) to make them visible."""
+    pitches of a span's line (taut spans) to make them visible.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    time_s : float or None
+        The instant [s] (None: the last recorded one).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    magnify : float
+        Scale of the transverse deviations of the free rollers [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (7.0, 4.0))
     k = _sample(result, time_s)
     vmax = float(max(result.link_tensions[k].max(), 1.0))
@@ -96,8 +114,25 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
 def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
                  columns: int | None = None, magnify: float = 1.0) -> Figure:
     """A sequence of frames (one axes per instant, :func:`chain_frame`), on one tension
-    scale; ``columns`` None: one column for a contour more than twice as wide as high,
-    else two. Each frame is sized to the contour's aspect."""
+    scale. Each frame is sized to the contour's aspect.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    times_s : sequence of float
+        The instants [s].
+    columns : int or None
+        Axes per row [-] (None: one column for a contour more than twice as wide as high,
+        else two).
+    magnify : float
+        Scale of the transverse deviations of the free rollers [-].
+
+    Returns
+    -------
+    Figure
+        A new figure with one axes per instant.
+    """
     from matplotlib.figure import Figure
 
     idx = [_sample(result, t) for t in times_s]
@@ -130,7 +165,20 @@ def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None
 
 def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
     """Mean contact force on the rollers at each place of every sprocket's wrap (place 0
-    where the chain arrives) over the steady window, one line per sprocket."""
+    where the chain arrives) over the steady window, one line per sprocket.
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     for i, (name, loads) in enumerate(zip(result.names, result.tooth_loads, strict=True)):
         ax.plot(np.arange(loads.size), loads, "o-", color=CYCLE[i % len(CYCLE)], label=name,
@@ -143,7 +191,20 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
 
 
 def frame_times(result: LinkLevelResult, count: int = 4) -> list[float]:
-    """``count`` recorded instants spread evenly over the run, the last one included [s]."""
+    """``count`` recorded instants spread evenly over the run, the last one included [s].
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    count : int
+        Number of instants [-].
+
+    Returns
+    -------
+    list of float
+        The instants [s].
+    """
     end = float(result.times[-1])
     return [end * (k + 1) / count for k in range(count)]
 
@@ -151,7 +212,22 @@ def frame_times(result: LinkLevelResult, count: int = 4) -> list[float]:
 def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None = None, *,
                         ax: Axes | None = None) -> Figure:
     """The tension of every link along the chain [N] at recorded instants (None:
-    :func:`frame_times`), links numbered as assembled (link i joins rollers i and i + 1)."""
+    :func:`frame_times`), links numbered as assembled (link i joins rollers i and i + 1).
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        A link-level run.
+    times_s : sequence of float or None
+        The instants [s] (None: :func:`frame_times`).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.4))
     times = frame_times(result) if times_s is None else list(times_s)
     links = np.arange(result.link_tensions.shape[1])

@@ -1,4 +1,4 @@
-"""Multi-contour drives: the distribution of the contour factor K_m (seed 004)."""
+"""Multi-contour drives: the distribution of the contour factor K_m ([Lyashuk])."""
 
 from __future__ import annotations
 
@@ -16,11 +16,28 @@ if TYPE_CHECKING:
 
 def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05,
                     bins: int = 40) -> Figure:
-    """Histogram (density) of Monte-Carlo samples of the contour factor K_m (seed 004
+    """Histogram (density) of Monte-Carlo samples of the contour factor K_m ([Lyashuk]
     eq. 16: K_m = 1 + 2Δ_y/(|ΔL₃| + 2Δ_y), e.g. from
     :func:`chaindrive.multicontour.simulate_length_difference` and
     :func:`chaindrive.multicontour.contour_factor_km`), with its mean and the value not
-    reached with probability ``risk`` (K_m at risk, eq. 17–18)."""
+    reached with probability ``risk`` (K_m at risk, eq. 17–18).
+
+    Parameters
+    ----------
+    km : array_like
+        Samples of K_m [-].
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    risk : float
+        Probability that K_m at risk is exceeded [-].
+    bins : int
+        Histogram bins [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     values = np.asarray(km, dtype=float).ravel()
     fig, ax = figure_axes(ax, (6.0, 3.4))
     ax.hist(values, bins=bins, density=True, color=CHAIN, alpha=0.75)

@@ -1,4 +1,4 @@
-"""Dynamic response of a drive (seed 000 §3.2–3.6): start-up oscillograms of the span forces
+"""Dynamic response of a drive ([MultimassChainDrives, §3.2–3.6]): start-up oscillograms of the span forces
 and of the sprocket speeds (its Fig. 2), amplitude–frequency curves per span with the
 resonance marks (its Fig. 3), steady dynamic loads per span, inertia loads and irregularity
 per mass, and the four material pairs side by side (its Fig. 2–3 and Table 1).
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -77,11 +77,28 @@ def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
 
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
-    """Span forces F_i(t) [N] during the start-up against time [ms] (seed 000 Fig. 2), the
+    """Span forces F_i(t) [N] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), the
     largest one F₁max marked and labelled, the settling time as a dashed vertical line
     (:func:`chaindrive.dynamics.startup.settling_time`). names label the spans. When the
     start-up settles within a fifth of the record the time axis ends at 4× the settling
-    time (the title says so)."""
+    time (the title says so).
+
+    Parameters
+    ----------
+    startup : StartupResult
+        The start-up.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+    max_lines : int
+        Spans drawn at most (those of the largest peaks) [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
     F = np.asarray(startup.span_forces)
@@ -109,8 +126,25 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
 
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
                    names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
-    """Sprocket speeds [rpm] during the start-up against time [ms] (seed 000 Fig. 2), over
-    the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses)."""
+    """Sprocket speeds [rpm] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), over
+    the same time axis as :func:`startup_oscillogram`. names label the sprockets (masses).
+
+    Parameters
+    ----------
+    startup : StartupResult
+        The start-up.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the sprockets (None: M1, M2, …).
+    max_lines : int
+        Sprockets drawn at most [-].
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
     w = np.asarray(startup.speeds) * RAD_S_TO_RPM
@@ -141,7 +175,8 @@ def _chosen_markers(afc: AfcResult, max_markers: int) -> list[tuple[int, int, fl
     return sorted(chosen, key=lambda m: m[3])
 
 
-def _legend(ax: Axes, curves: int, inside: str = "upper right") -> None:
+def _legend(ax: Axes, curves: int,
+            inside: Literal["upper right", "lower right", "upper left"] = "upper right") -> None:
     """Legend inside (at ``inside``) for a few curves, outside on the right for many."""
     if curves > 4:
         ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
@@ -154,11 +189,32 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
                max_lines: int = 6, max_markers: int = 8,
                operating_hz: float | None = None) -> Figure:
     """Amplitude–frequency characteristics: peak dynamic load of each span [N] against the
-    tooth frequency [Hz] (seed 000 Fig. 3), every resonance (harmonic k of the tooth
+    tooth frequency [Hz] ([MultimassChainDrives, Fig. 3]), every resonance (harmonic k of the tooth
     frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
     "mode j × k" (the ``max_markers`` with the highest load), and the operating tooth
     frequency ``operating_hz`` as a solid line. Logarithmic load axis: the resonance peaks
-    stand orders of magnitude above the rest of the curves."""
+    stand orders of magnitude above the rest of the curves.
+
+    Parameters
+    ----------
+    afc : AfcResult
+        The speed sweep.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+    max_lines : int
+        Spans drawn at most (those of the largest peaks) [-].
+    max_markers : int
+        Resonance lines labelled at most [-].
+    operating_hz : float or None
+        Operating tooth frequency [Hz] (None: not drawn).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.4, 3.8))
     fz = np.asarray(afc.tooth_frequencies_hz)
     F = np.asarray(afc.span_load)
@@ -186,8 +242,23 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
 
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None) -> Figure:
-    """Steady dynamic load of each span under the polygonal effect (seed 000 §3.3): peak
-    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars."""
+    """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
+    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars.
+
+    Parameters
+    ----------
+    steady : SteadyStateResult
+        The steady state.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+    names : sequence of str or None
+        Labels of the spans (None: numbered).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     peak = np.asarray(steady.span_dynamic_load)
     amp = np.asarray(steady.span_load_amplitude)
@@ -204,9 +275,22 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
 
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None) -> Figure:
-    """Two bar charts per mass (seed 000 §3.3): the inertia load max |m_i ẍ_i| [N] and the
-    irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars when the radii were not
-    given to the steady state)."""
+    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load
+    max |m_i ẍ_i| [N] and the irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars
+    when the radii were not given to the steady state).
+
+    Parameters
+    ----------
+    steady : SteadyStateResult
+        The steady state.
+    names : sequence of str or None
+        Labels of the masses (None: M1, M2, …).
+
+    Returns
+    -------
+    Figure
+        A new figure with the two charts.
+    """
     from matplotlib.figure import Figure
 
     inertia = np.asarray(steady.inertia_load)
@@ -214,7 +298,8 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
     labels = _labels(inertia.size, names, "M")
     wide = inertia.size > 8
     fig = Figure(figsize=(6.4, 5.6) if wide else (7.6, 3.2), layout="constrained")
-    ax1, ax2 = fig.subplots(2 if wide else 1, 1 if wide else 2)
+    rows, columns = (2, 1) if wide else (1, 2)
+    ax1, ax2 = fig.add_subplot(rows, columns, 1), fig.add_subplot(rows, columns, 2)
     ax1.bar(range(inertia.size), inertia, color=CHAIN)
     ax1.set_ylabel("inertia load m·ẍ, N")
     _bar_ticks(ax1, labels)
@@ -231,10 +316,21 @@ def _pair_label(case: MaterialCase) -> str:
 
 
 def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
-    """The material pairs side by side (seed 000 Fig. 2–3, Table 1): start-up peak span force
+    """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
     [N] and the amplitude of the first resonance [N] (its tooth frequency [Hz] printed on the
     bar) per pair of chain and sprocket materials
-    (:func:`chaindrive.dynamics.materials.material_comparison`)."""
+    (:func:`chaindrive.dynamics.materials.material_comparison`).
+
+    Parameters
+    ----------
+    cases : sequence of MaterialCase
+        One per material pair.
+
+    Returns
+    -------
+    Figure
+        A new figure.
+    """
     from matplotlib.figure import Figure
 
     labels = [_pair_label(c) for c in cases]

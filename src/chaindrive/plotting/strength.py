@@ -24,7 +24,20 @@ def _strength(analysis: Analysis) -> StrengthResult:
 def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Static tension of each span [N] (tight span red): F_t + F_0 + F_v on the tight span,
     F_0 + F_v on the slack one, stepping at each driven sprocket
-    (:mod:`chaindrive.strength.loads`)."""
+    (:mod:`chaindrive.strength.loads`).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis (its loads).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     loads = _strength(analysis).loads
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
     colours = [TIGHT if s.tight else CHAIN for s in analysis.geometry.spans]
@@ -45,7 +58,20 @@ def _bars(ax: Axes | None, names: list[str], values: Any, colours: Any, ylabel: 
 
 def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Magnitude of the load on each shaft [N] (vector sum of the two span tensions
-    meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`)."""
+    meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis (its loads).
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
     loads = _strength(analysis).loads
     names = [s.name for s in analysis.drive.sprockets]
     return _bars(ax, names, loads.shaft_load_magnitudes, CHAIN, "shaft load, N", "Load per shaft")

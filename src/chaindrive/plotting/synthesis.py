@@ -1,4 +1,4 @@
-"""The Pareto front of an optimal synthesis (chaindrive.synthesis, seed 000 §3.6)."""
+"""The Pareto front of an optimal synthesis (chaindrive.synthesis, [MultimassChainDrives, §3.6])."""
 
 from __future__ import annotations
 
@@ -14,7 +14,24 @@ if TYPE_CHECKING:
 def pareto_front(result: Any, *, ax: Axes | None = None) -> Figure:
     """Scatter of the Pareto set of a :class:`chaindrive.synthesis.solve.SynthesisResult`:
     the first two objectives on the axes, the third (if any) as colour, the start design
-    as a star."""
+    as a star.
+
+    Parameters
+    ----------
+    result : SynthesisResult
+        An optimisation run.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+
+    References
+    ----------
+    [MultimassChainDrives, §3.6] (the multi-criteria synthesis).
+    """
     fig, ax = figure_axes(ax)
     names = list(result.objectives)
     if result.pareto and len(names) >= 2:

@@ -49,7 +49,18 @@ _CITATION = re.compile(r"\[([A-Za-z][\w.-]*)(?:,[^\]]*)?\]")
 
 def cited_keys(text: str) -> list[str]:
     """The keys of :data:`REFERENCES` cited in ``text`` (``[Key]`` or ``[Key, §3.6]``), in
-    order of first citation."""
+    order of first citation.
+
+    Parameters
+    ----------
+    text : str
+        Any text (a section of the report, a check's source).
+
+    Returns
+    -------
+    list of str
+        The keys, each once.
+    """
     seen: dict[str, None] = {}
     for m in _CITATION.finditer(text):
         if m.group(1) in REFERENCES:

@@ -221,5 +221,16 @@ SYMBOLS: dict[str, Symbol] = {s.key: s for s in _ALL}
 
 
 def symbol(key: str) -> Symbol:
-    """The symbol ``key`` (KeyError when the report has no such symbol)."""
+    """The symbol ``key`` (KeyError when the report has no such symbol).
+
+    Parameters
+    ----------
+    key : str
+        The symbol's identifier (``"k1"``).
+
+    Returns
+    -------
+    Symbol
+        Its text, Typst math, meaning, formula, unit and source.
+    """
     return SYMBOLS[key]
