@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import html
 import json
+import os
+import time
 import zlib
 from pathlib import Path
 from typing import Any
@@ -530,6 +532,28 @@ def _marker(element_id: str, attrs: dict[str, str], text: str) -> None:
 
 # --- page ----------------------------------------------------------------------------------------
 
+#: File the page appends the time of each phase of its runs to (one JSON line per run) when
+#: set (``CHAINDRIVE_APP_TIMING``); ``benchmarks/bench_app_browser.py`` reports them.
+TIMING = os.environ.get("CHAINDRIVE_APP_TIMING")
+
+
+class _Phases:
+    """Times of the phases of one run of the page [s from the start of the run]."""
+
+    def __init__(self) -> None:
+        self.start = time.perf_counter()
+        self.marks: dict[str, float] = {}
+
+    def __call__(self, name: str) -> None:
+        self.marks[name] = round(time.perf_counter() - self.start, 4)
+
+    def write(self) -> None:
+        if TIMING:
+            with open(TIMING, "a", encoding="utf-8") as out:
+                out.write(json.dumps({"design": st.session_state.get("design_tag", ""),
+                                      **self.marks}) + "\n")
+
+
 def _ready(state: str, screen: Screen | None = None) -> None:
     """The page's own ready marker, written last in every completed run: a status line for
     screen readers that says whether the results are up to date, with the design version,
@@ -556,6 +580,7 @@ def page() -> None:
     right, then the rest."""
     st.set_page_config(page_title="chaindrive — chain drive design", layout="wide",
                        page_icon="⛓️")
+    phase = _Phases()
     st.html(CSS)
     _init()
     base: DesignForm = st.session_state["form"]
@@ -575,16 +600,20 @@ def page() -> None:
         _sprocket_editor(rows)
     design = design_from_form(DesignForm(drive, chain, rows, base.other))
     _sidebar(design)
+    phase("form")
     key = json.dumps(design, sort_keys=True, default=str)
     st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
     catalogs = json.dumps(_catalogs(), sort_keys=True)
     screen = _quick(key, catalogs)
+    phase("quick_run")
     _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
         with right:
             _quick_results(screen)
             warnings = st.container()
+        phase("shown")
         screen = _complete(key, catalogs)
+        phase("complete_run")
         if not screen.outcome.ok:  # the document failed: say so where the fields are
             _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
@@ -593,6 +622,8 @@ def page() -> None:
             _warnings(screen)
         _results(screen, design)
         _ready("ok", screen)
+        phase("done")
+        phase.write()
         return
     last = st.session_state.get("last_good")
     with right:
@@ -628,4 +659,8 @@ def _safe_page() -> None:
         _ready("unexpected")
 
 
-_safe_page()
+# Streamlit runs this file as ``__main__``. Every bounded run (:mod:`chaindrive.app.worker`)
+# imports the parent's main module again in its child, as ``__mp_main__``: there it must
+# only define the functions, never draw the page (which took seconds a run).
+if __name__ == "__main__":
+    _safe_page()

@@ -47,8 +47,16 @@ MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024
 #: Runs at once (each may use up to MEMORY_BYTES).
 MAX_RUNS = 4
 #: Modules the fork server imports once, so that a run starts without importing them.
-PRELOAD = ["chaindrive.app.worker", "chaindrive.app.preload", "chaindrive.report",
+#: Streamlit is among them because every run imports the page's script again (the parent's
+#: main module, as multiprocessing does); the script only defines functions then, but its
+#: ``import streamlit`` alone took over a second a run.
+PRELOAD = ["streamlit", "chaindrive.app.worker", "chaindrive.app.preload", "chaindrive.report",
            "chaindrive.drawing"]
+#: Threads of the linear algebra (OpenBLAS, MKL, OpenMP) in a run: one. The page's
+#: eigenproblems are small (a few hundred unknowns), where a second thread only waits on
+#: the first (numpy's ``eig`` of a 160×160 matrix took 62 ms with two threads, 22 ms with
+#: one, on the loaded 2-core machine), and several runs share the cores anyway.
+THREADS = {"OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
 
 _slots = threading.BoundedSemaphore(MAX_RUNS)
 _context_lock = threading.Lock()
@@ -64,6 +72,8 @@ def _mp() -> Any:
     global _context
     with _context_lock:
         if _context is None:
+            for name, value in THREADS.items():  # read by the fork server when it starts
+                os.environ.setdefault(name, value)
             ctx = multiprocessing.get_context("forkserver")
             ctx.set_forkserver_preload(PRELOAD)
             _context = ctx
