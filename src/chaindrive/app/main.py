@@ -17,8 +17,11 @@ from __future__ import annotations
 import html
 import json
 import os
+import threading
 import time
 import zlib
+from collections import OrderedDict
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -405,20 +408,36 @@ def _sprocket_editor(rows: list[dict[str, Any]]) -> None:
 
 # --- results -------------------------------------------------------------------------------------
 
-@st.cache_resource(max_entries=32, show_spinner=False)
-def _quick(design_json: str, catalogs_json: str = "{}") -> Screen:
-    """The quick part of the screen of a design (contour, headline, checks), computed in a
-    bounded run (:func:`chaindrive.app.runs.bounded_quick_screen`) and kept for 32 designs."""
-    catalogs = {k: Path(v) for k, v in json.loads(catalogs_json).items()}
-    return runs.bounded_quick_screen(json.loads(design_json), catalogs)
+#: Designs whose screens the page keeps (shared by the sessions).
+KEPT = 32
 
 
-@st.cache_resource(max_entries=32, show_spinner=False)
-def _complete(design_json: str, catalogs_json: str = "{}") -> Screen:
-    """The whole screen of a design with its document (the chain selection), computed in a
-    bounded run (:func:`chaindrive.app.runs.bounded_screen`)."""
+@st.cache_resource(show_spinner=False)
+def _finished() -> tuple[OrderedDict[tuple[str, str], Screen], threading.Lock]:
+    """The last :data:`KEPT` finished screens (the complete one, or the failure), by design
+    and catalogues, and the lock that guards them."""
+    return OrderedDict(), threading.Lock()
+
+
+def _screens(design_json: str, catalogs_json: str = "{}") -> Iterator[Screen]:
+    """The screens of a design: the kept one, or those of one bounded run
+    (:func:`chaindrive.app.runs.bounded_screens`: the quick part as soon as it is ready,
+    then the complete screen)."""
+    kept, lock = _finished()
+    key = (design_json, catalogs_json)
+    with lock:
+        done = kept.get(key)
+    if done is not None:
+        yield done
+        return
     catalogs = {k: Path(v) for k, v in json.loads(catalogs_json).items()}
-    return runs.bounded_screen(json.loads(design_json), catalogs)
+    for screen in runs.bounded_screens(json.loads(design_json), catalogs):
+        if screen.document is not None or not screen.outcome.ok:
+            with lock:
+                kept[key] = screen
+                while len(kept) > KEPT:
+                    kept.popitem(last=False)
+        yield screen
 
 
 def _show_error(screen: Screen, slots: dict[tuple[str, str], Any], table_slot: Any,
@@ -604,7 +623,8 @@ def page() -> None:
     key = json.dumps(design, sort_keys=True, default=str)
     st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
     catalogs = json.dumps(_catalogs(), sort_keys=True)
-    screen = _quick(key, catalogs)
+    steps = _screens(key, catalogs)
+    screen = next(steps)
     phase("quick_run")
     _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
@@ -612,7 +632,7 @@ def page() -> None:
             _quick_results(screen)
             warnings = st.container()
         phase("shown")
-        screen = _complete(key, catalogs)
+        screen = next(steps, screen)
         phase("complete_run")
         if not screen.outcome.ok:  # the document failed: say so where the fields are
             _show_error(screen, slots, table_slot, general, rows)
