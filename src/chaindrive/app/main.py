@@ -16,7 +16,12 @@ from __future__ import annotations
 
 import html
 import json
+import os
+import threading
+import time
 import zlib
+from collections import OrderedDict
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -403,20 +408,36 @@ def _sprocket_editor(rows: list[dict[str, Any]]) -> None:
 
 # --- results -------------------------------------------------------------------------------------
 
-@st.cache_resource(max_entries=32, show_spinner=False)
-def _quick(design_json: str, catalogs_json: str = "{}") -> Screen:
-    """The quick part of the screen of a design (contour, headline, checks), computed in a
-    bounded run (:func:`chaindrive.app.runs.bounded_quick_screen`) and kept for 32 designs."""
-    catalogs = {k: Path(v) for k, v in json.loads(catalogs_json).items()}
-    return runs.bounded_quick_screen(json.loads(design_json), catalogs)
+#: Designs whose screens the page keeps (shared by the sessions).
+KEPT = 32
 
 
-@st.cache_resource(max_entries=32, show_spinner=False)
-def _complete(design_json: str, catalogs_json: str = "{}") -> Screen:
-    """The whole screen of a design with its document (the chain selection), computed in a
-    bounded run (:func:`chaindrive.app.runs.bounded_screen`)."""
+@st.cache_resource(show_spinner=False)
+def _finished() -> tuple[OrderedDict[tuple[str, str], Screen], threading.Lock]:
+    """The last :data:`KEPT` finished screens (the complete one, or the failure), by design
+    and catalogues, and the lock that guards them."""
+    return OrderedDict(), threading.Lock()
+
+
+def _screens(design_json: str, catalogs_json: str = "{}") -> Iterator[Screen]:
+    """The screens of a design: the kept one, or those of one bounded run
+    (:func:`chaindrive.app.runs.bounded_screens`: the quick part as soon as it is ready,
+    then the complete screen)."""
+    kept, lock = _finished()
+    key = (design_json, catalogs_json)
+    with lock:
+        done = kept.get(key)
+    if done is not None:
+        yield done
+        return
     catalogs = {k: Path(v) for k, v in json.loads(catalogs_json).items()}
-    return runs.bounded_screen(json.loads(design_json), catalogs)
+    for screen in runs.bounded_screens(json.loads(design_json), catalogs):
+        if screen.document is not None or not screen.outcome.ok:
+            with lock:
+                kept[key] = screen
+                while len(kept) > KEPT:
+                    kept.popitem(last=False)
+        yield screen
 
 
 def _show_error(screen: Screen, slots: dict[tuple[str, str], Any], table_slot: Any,
@@ -530,6 +551,28 @@ def _marker(element_id: str, attrs: dict[str, str], text: str) -> None:
 
 # --- page ----------------------------------------------------------------------------------------
 
+#: File the page appends the time of each phase of its runs to (one JSON line per run) when
+#: set (``CHAINDRIVE_APP_TIMING``); ``benchmarks/bench_app_browser.py`` reports them.
+TIMING = os.environ.get("CHAINDRIVE_APP_TIMING")
+
+
+class _Phases:
+    """Times of the phases of one run of the page [s from the start of the run]."""
+
+    def __init__(self) -> None:
+        self.start = time.perf_counter()
+        self.marks: dict[str, float] = {}
+
+    def __call__(self, name: str) -> None:
+        self.marks[name] = round(time.perf_counter() - self.start, 4)
+
+    def write(self) -> None:
+        if TIMING:
+            with open(TIMING, "a", encoding="utf-8") as out:
+                out.write(json.dumps({"design": st.session_state.get("design_tag", ""),
+                                      **self.marks}) + "\n")
+
+
 def _ready(state: str, screen: Screen | None = None) -> None:
     """The page's own ready marker, written last in every completed run: a status line for
     screen readers that says whether the results are up to date, with the design version,
@@ -556,6 +599,7 @@ def page() -> None:
     right, then the rest."""
     st.set_page_config(page_title="chaindrive — chain drive design", layout="wide",
                        page_icon="⛓️")
+    phase = _Phases()
     st.html(CSS)
     _init()
     base: DesignForm = st.session_state["form"]
@@ -575,16 +619,21 @@ def page() -> None:
         _sprocket_editor(rows)
     design = design_from_form(DesignForm(drive, chain, rows, base.other))
     _sidebar(design)
+    phase("form")
     key = json.dumps(design, sort_keys=True, default=str)
     st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
     catalogs = json.dumps(_catalogs(), sort_keys=True)
-    screen = _quick(key, catalogs)
+    steps = _screens(key, catalogs)
+    screen = next(steps)
+    phase("quick_run")
     _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
         with right:
             _quick_results(screen)
             warnings = st.container()
-        screen = _complete(key, catalogs)
+        phase("shown")
+        screen = next(steps, screen)
+        phase("complete_run")
         if not screen.outcome.ok:  # the document failed: say so where the fields are
             _show_error(screen, slots, table_slot, general, rows)
     if screen.outcome.ok:
@@ -593,6 +642,8 @@ def page() -> None:
             _warnings(screen)
         _results(screen, design)
         _ready("ok", screen)
+        phase("done")
+        phase.write()
         return
     last = st.session_state.get("last_good")
     with right:
@@ -628,4 +679,8 @@ def _safe_page() -> None:
         _ready("unexpected")
 
 
-_safe_page()
+# Streamlit runs this file as ``__main__``. Every bounded run (:mod:`chaindrive.app.worker`)
+# imports the parent's main module again in its child, as ``__mp_main__``: there it must
+# only define the functions, never draw the page (which took seconds a run).
+if __name__ == "__main__":
+    _safe_page()

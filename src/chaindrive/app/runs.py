@@ -12,11 +12,16 @@ from __future__ import annotations
 
 import importlib.util
 import io
-from collections.abc import Callable
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from chaindrive.app.worker import FULL_SECONDS, INTERACTIVE_SECONDS, run_bounded
+from chaindrive.app.worker import (
+    FULL_SECONDS,
+    INTERACTIVE_SECONDS,
+    run_bounded,
+    run_bounded_steps,
+)
 from chaindrive.errors import ChainDriveError, DesignError
 
 if TYPE_CHECKING:
@@ -233,10 +238,11 @@ def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = No
     return _bounded(recompute, design, catalogs)
 
 
-def bounded_quick_screen(design: dict[str, Any],
-                         catalogs: dict[str, Path] | None = None) -> Screen:
-    """:func:`chaindrive.app.views.quick_screen` in a bounded run, as
-    :func:`bounded_screen` (never raises).
+def bounded_screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
+                    ) -> Generator[Screen, None, None]:
+    """:func:`chaindrive.app.views.screens` in one bounded run: the quick screen as soon as
+    the child has it, then the complete one; a failure, or a run past its limit, is the
+    last screen, as the design's message (never raises).
 
     Parameters
     ----------
@@ -247,26 +253,39 @@ def bounded_quick_screen(design: dict[str, Any],
 
     Returns
     -------
-    Screen
+    Iterator of Screen
     """
-    from chaindrive.app.views import quick_screen
+    from chaindrive.app.views import screens
 
-    return _bounded(quick_screen, design, catalogs)
+    steps = run_bounded_steps(screens, design, catalogs, seconds=INTERACTIVE_SECONDS,
+                              what="the analysis")
+    try:
+        yield from steps
+    except Exception as exc:  # shown as the design's message
+        yield _failed(exc)
+    finally:
+        steps.close()
 
 
 def _bounded(func: Callable[..., Screen], design: dict[str, Any],
              catalogs: dict[str, Path] | None) -> Screen:
-    from chaindrive.app.state import Location, Outcome
-    from chaindrive.app.views import Screen
-
     try:
         return run_bounded(func, design, catalogs, seconds=INTERACTIVE_SECONDS,
                            what="the analysis")
-    except ChainDriveError as exc:
+    except Exception as exc:  # shown as the design's message
+        return _failed(exc)
+
+
+def _failed(exc: Exception) -> Screen:
+    """The screen of a run that failed: its ChainDriveError's line (a limit, a mistake), or
+    a short note — the page must never show a traceback."""
+    from chaindrive.app.state import Location, Outcome
+    from chaindrive.app.views import Screen
+
+    if isinstance(exc, ChainDriveError):
         return Screen(Outcome(message=str(exc), location=Location("design")))
-    except Exception as exc:  # the page must never show a traceback
-        return Screen(Outcome(unexpected=True, location=Location("design"),
-                              message=f"the analysis failed unexpectedly ({exc})"[:300]))
+    return Screen(Outcome(unexpected=True, location=Location("design"),
+                          message=f"the analysis failed unexpectedly ({exc})"[:300]))
 
 
 def bounded_full_analysis(drive: Drive) -> Analysis:

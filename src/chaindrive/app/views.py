@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import html
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -394,3 +395,15 @@ def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -
     timed by ``benchmarks/bench_app_recompute.py``); ``catalogs`` as for
     :func:`quick_screen`."""
     return complete(quick_screen(design, catalogs))
+
+
+def screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
+            ) -> Iterator[Screen]:
+    """The screens of :func:`recompute` one after the other, each as soon as it is ready:
+    :func:`quick_screen` (what the page draws first), then, when the design was analysed,
+    that analysis with its document (:func:`complete`: the quick part is not computed
+    twice)."""
+    quick = quick_screen(design, catalogs)
+    yield quick
+    if quick.outcome.ok:
+        yield complete(quick)

@@ -23,7 +23,7 @@ import os
 import threading
 import time
 import traceback
-from collections.abc import Callable
+from collections.abc import Callable, Generator, Iterator
 from contextlib import suppress
 from multiprocessing.connection import Connection
 from typing import Any, TypeVar
@@ -31,7 +31,7 @@ from typing import Any, TypeVar
 from chaindrive.errors import ChainDriveError
 
 __all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_RUNS", "MEMORY_BYTES", "PRELOAD",
-           "RunLimitError", "run_bounded"]
+           "RunLimitError", "run_bounded", "run_bounded_steps"]
 
 T = TypeVar("T")
 
@@ -47,8 +47,16 @@ MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024
 #: Runs at once (each may use up to MEMORY_BYTES).
 MAX_RUNS = 4
 #: Modules the fork server imports once, so that a run starts without importing them.
-PRELOAD = ["chaindrive.app.worker", "chaindrive.app.preload", "chaindrive.report",
+#: Streamlit is among them because every run imports the page's script again (the parent's
+#: main module, as multiprocessing does); the script only defines functions then, but its
+#: ``import streamlit`` alone took over a second a run.
+PRELOAD = ["streamlit", "chaindrive.app.worker", "chaindrive.app.preload", "chaindrive.report",
            "chaindrive.drawing"]
+#: Threads of the linear algebra (OpenBLAS, MKL, OpenMP) in a run: one. The page's
+#: eigenproblems are small (a few hundred unknowns), where a second thread only waits on
+#: the first (numpy's ``eig`` of a 160×160 matrix took 62 ms with two threads, 22 ms with
+#: one, on the loaded 2-core machine), and several runs share the cores anyway.
+THREADS = {"OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
 
 _slots = threading.BoundedSemaphore(MAX_RUNS)
 _context_lock = threading.Lock()
@@ -64,33 +72,52 @@ def _mp() -> Any:
     global _context
     with _context_lock:
         if _context is None:
+            for name, value in THREADS.items():  # read by the fork server when it starts
+                os.environ.setdefault(name, value)
             ctx = multiprocessing.get_context("forkserver")
             ctx.set_forkserver_preload(PRELOAD)
             _context = ctx
         return _context
 
 
-def _child(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...],
-           memory: int) -> None:
-    """In the child: limit the memory, run, send ("ok", result) or ("error", …)."""
+def _outcomes(func: Callable[..., Any], args: tuple[Any, ...], steps: bool
+              ) -> Iterator[tuple[Any, ...]]:
+    """What the child sends: ("ok", item) for each result — the one result of ``func``, or
+    with ``steps`` each item its generator yields — then ("end",); or, where it fails,
+    ("error", the ChainDriveError), ("memory",) or ("crash", message, traceback)."""
+    try:
+        if steps:
+            for item in func(*args):
+                yield ("ok", item)
+        else:
+            yield ("ok", func(*args))
+        yield ("end",)
+    except ChainDriveError as exc:
+        yield ("error", exc)
+    except MemoryError:
+        yield ("memory",)
+    except BaseException as exc:
+        yield ("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc())
+
+
+def _child(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...], memory: int,
+           steps: bool = False) -> None:
+    """In the child: limit the memory, run, send each of :func:`_outcomes` as it comes."""
     import resource
 
     with suppress(ValueError, OSError):  # a hard limit below ours: keep it
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
     try:
-        result: tuple[Any, ...] = ("ok", func(*args))
-    except ChainDriveError as exc:
-        result = ("error", exc)
-    except MemoryError:
-        result = ("memory", None)
-    except BaseException as exc:
-        result = ("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc())
-    try:
-        conn.send(result)
-    except MemoryError:
-        conn.send(("memory", None))
-    except Exception as exc:  # the result could not be pickled
-        conn.send(("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc()))
+        for outcome in _outcomes(func, args, steps):
+            try:
+                conn.send(outcome)
+            except MemoryError:
+                conn.send(("memory",))
+                break
+            except Exception as exc:  # the result could not be pickled
+                conn.send(("crash", f"{type(exc).__name__}: {exc}"[:300],
+                           traceback.format_exc()))
+                break
     finally:
         conn.close()
 
@@ -132,6 +159,45 @@ def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE
     RuntimeError
         When the function failed unexpectedly (its message; the page shows a short note).
     """
+    results = _run(func, args, seconds, memory, what, steps=False)
+    try:
+        return next(results)  # type: ignore[no-any-return]
+    finally:
+        results.close()
+
+
+def run_bounded_steps(func: Callable[..., Iterator[T]], *args: Any,
+                      seconds: float = INTERACTIVE_SECONDS, memory: int = MEMORY_BYTES,
+                      what: str = "the analysis") -> Generator[T, None, None]:
+    """The items the generator ``func(*args)`` yields, each as soon as the child process
+    sends it: one run, one process, under one time and memory limit, as
+    :func:`run_bounded` (the same errors, raised where the items stop). Closing the
+    iterator before its end kills the run.
+
+    Parameters
+    ----------
+    func : callable
+        A module-level generator function; its arguments and items must pickle.
+    *args : object
+        Its arguments.
+    seconds : float
+        Time limit of the whole run [s], counted from the request.
+    memory : int
+        Address-space limit of the child [bytes].
+    what : str
+        What the run is, for the message.
+
+    Returns
+    -------
+    Iterator
+        The items.
+    """
+    return _run(func, args, seconds, memory, what, steps=True)
+
+
+def _run(func: Callable[..., Any], args: tuple[Any, ...], seconds: float, memory: int,
+         what: str, steps: bool) -> Generator[Any, None, None]:
+    """Start the child (after a free slot), yield its results, stop it."""
     start = time.monotonic()
     if not _slots.acquire(timeout=seconds):
         raise RunLimitError("run", f"{what} waited {seconds:g} s for a free slot (the server "
@@ -139,30 +205,46 @@ def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE
     try:
         ctx = _mp()
         receive, send = ctx.Pipe(duplex=False)
-        process = ctx.Process(target=_child, args=(send, func, args, memory), daemon=True)
+        process = ctx.Process(target=_child, args=(send, func, args, memory, steps),
+                              daemon=True)
         process.start()
         send.close()
         try:
-            left = max(seconds - (time.monotonic() - start), 0.0)
-            if not receive.poll(left):
-                raise RunLimitError("run", f"{what} took longer than {seconds:g} s, the limit "
-                                    "of one run on this page; simplify the design or run "
-                                    "`chaindrive analyze` on your own machine")
-            try:
-                outcome = receive.recv()
-            except (EOFError, OSError):
-                process.join(5.0)
-                raise RunLimitError("run", f"{what} stopped (its process ended with status "
-                                    f"{process.exitcode}); it may have needed more than "
-                                    f"{memory / 1024**3:.3g} GB of memory") from None
+            while True:
+                outcome = _receive(receive, process, seconds - (time.monotonic() - start),
+                                   seconds, memory, what)
+                if outcome[0] != "ok":
+                    break
+                yield outcome[1]
         finally:
             receive.close()
             _stop(process)
     finally:
         _slots.release()
+    _raise(outcome, memory, what)
+
+
+def _receive(receive: Connection, process: Any, left: float, seconds: float, memory: int,
+             what: str) -> tuple[Any, ...]:
+    """The child's next message, within ``left`` seconds."""
+    if not receive.poll(max(left, 0.0)):
+        raise RunLimitError("run", f"{what} took longer than {seconds:g} s, the limit "
+                            "of one run on this page; simplify the design or run "
+                            "`chaindrive analyze` on your own machine")
+    try:
+        return receive.recv()  # type: ignore[no-any-return]
+    except (EOFError, OSError):
+        process.join(5.0)
+        raise RunLimitError("run", f"{what} stopped (its process ended with status "
+                            f"{process.exitcode}); it may have needed more than "
+                            f"{memory / 1024**3:.3g} GB of memory") from None
+
+
+def _raise(outcome: tuple[Any, ...], memory: int, what: str) -> None:
+    """Raise what the child's last message says went wrong (nothing after ("end",))."""
     kind = outcome[0]
-    if kind == "ok":
-        return outcome[1]  # type: ignore[no-any-return]
+    if kind == "end":
+        return
     if kind == "error":
         raise outcome[1]
     if kind == "memory":
