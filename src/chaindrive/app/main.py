@@ -592,6 +592,52 @@ def _tab_contours(screen: Screen) -> None:
         _png(f"{id(a)}-km", lambda: km_distribution(km))
 
 
+def _tab_robust(screen: Screen) -> None:
+    """Life and reliability: the robust study on demand (chaindrive.robust)."""
+    reason = runs.missing("robust")
+    if reason is not None:
+        st.info(f"Life and reliability: {reason}.")
+        return
+    store = st.session_state.setdefault("robust", {})
+    key = id(screen)
+    if key not in store and st.button("Run the life and reliability study", key="run_robust"):
+        with st.status("Life and reliability: wearing the chain and sampling the tolerances…",
+                       expanded=False) as status:
+            try:
+                store[key] = runs.robust_study(screen.outcome.drive)
+                status.update(label="Life and reliability: done", state="complete")
+            except ChainDriveError as exc:
+                store[key] = exc
+                status.update(label=f"Life and reliability: {exc}", state="error")
+    result = store.get(key)
+    if isinstance(result, Exception):
+        st.error(str(result))
+        return
+    if result is None:
+        st.caption("Runs on demand (half a minute or so): the drive as its chain wears to the "
+                   "replacement elongation, the probability of failing each check over the "
+                   "tolerances of the standards, and which tolerance matters (docs/robust.md).")
+        return
+    from chaindrive.plotting.robust import (
+        life_curve_figure,
+        probability_figure,
+        sensitivity_figure,
+    )
+
+    life = result.life.to_dict()
+    c = st.columns(3)
+    c[0].metric("replacement elongation", f"{life['allowable_elongation']:.2%}")
+    first = life["first_failure_elongation"]
+    c[1].metric("first failure", "—" if first is None else f"{first:.3%}",
+                help=life["first_failure"])
+    c[2].metric("life [h]", "—" if life["life_hours"] is None else f"{life['life_hours']:,.0f}")
+    _png(f"{key}-life", lambda: life_curve_figure(result.life))
+    st.dataframe([c.to_dict() for c in result.reliability.checks], hide_index=True)
+    _png(f"{key}-probability", lambda: probability_figure(result.reliability))
+    if result.sensitivity is not None:
+        _png(f"{key}-sensitivity", lambda: sensitivity_figure(result.sensitivity))
+
+
 def _tab_files(screen: Screen, design: dict[str, Any]) -> None:
     a = screen.outcome.analysis
     store = st.session_state.setdefault("files", {})
@@ -651,12 +697,13 @@ def _results(screen: Screen, design: dict[str, Any]) -> None:
         _headline(screen)
         _checks_and_warnings(screen)
     tabs = st.tabs(["Sprockets & spans", "Selection & strength", "Modes & Campbell",
-                    "Start-up", "AFC", "Multi-contour", "Report & files"],
+                    "Start-up", "AFC", "Multi-contour", "Life & reliability", "Report & files"],
                    key="tabs", on_change="rerun")
     shows = (lambda: _tab_geometry(screen), lambda: _tab_strength(screen),
              lambda: _tab_modes(screen),
              lambda: _tab_startup(screen), lambda: _tab_afc(screen),
-             lambda: _tab_contours(screen), lambda: _tab_files(screen, design))
+             lambda: _tab_contours(screen), lambda: _tab_robust(screen),
+             lambda: _tab_files(screen, design))
     for tab, show in zip(tabs, shows, strict=True):
         if tab.open:
             with tab:

@@ -22,6 +22,7 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "response": ("chaindrive.dynamics.response",),
     "report": ("chaindrive.report", "matplotlib"),
     "drawing": ("chaindrive.drawing", "ezdxf"),
+    "robust": ("chaindrive.robust", "SALib"),
 }
 
 
@@ -46,6 +47,18 @@ def full_analysis(drive: Drive) -> Analysis:
     import chaindrive
 
     return chaindrive.analyze(drive)
+
+
+def robust_study(drive: Drive, *, samples: int = 64) -> Any:
+    """The robust study of the drive on the page (:func:`chaindrive.robust.study.robust_study`):
+    life curve, probabilities over ``samples`` states and the sensitivity indices with the
+    ``[uncertainty]`` defaults (the page has no such table)."""
+    from chaindrive.robust.study import nominal_analysis
+    from chaindrive.robust.study import robust_study as study
+    from chaindrive.robust.uncertainty import UncertaintySettings
+
+    return study(nominal_analysis(drive), UncertaintySettings(samples=samples, replicates=8,
+                                                              sensitivity_samples=8))
 
 
 def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = None) -> bytes:

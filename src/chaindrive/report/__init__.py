@@ -45,19 +45,21 @@ FORMATS = (".html", ".htm", ".pdf")
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
-                 synthesis: object = None) -> Report:
+                 synthesis: object = None, robust: object = None) -> Report:
     """Build every registered section of the report of ``analysis``.
 
     source : the design file (echoed, and its SHA-256 printed); dpi of the figures;
     progress : called
     with each section's title before it is built (e.g. to advance a progress bar);
-    synthesis : the optimisation that chose this design (its Pareto set and front).
+    synthesis : the optimisation that chose this design (its Pareto set and front);
+    robust : its robust study (:class:`chaindrive.robust.study.RobustResult`: life curve,
+    probabilities of failure, sensitivity).
     """
     import chaindrive
 
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      synthesis=synthesis)
+                      synthesis=synthesis, robust=robust)
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:
@@ -82,14 +84,14 @@ def render_html(report: Report) -> str:
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
-                 synthesis: object = None) -> Path:
+                 synthesis: object = None, robust: object = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``)."""
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
-                          synthesis=synthesis)
+                          synthesis=synthesis, robust=robust)
     out.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".pdf":
         from chaindrive.report.pdf import write_pdf

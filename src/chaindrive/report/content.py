@@ -99,11 +99,12 @@ class ReportInput:
     figure resolution, and derived parts computed once."""
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 synthesis: Any = None) -> None:
+                 synthesis: Any = None, robust: Any = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
         self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
+        self.robust = robust  # a chaindrive.robust RobustResult, or None
         self.notes: list[str] = []
 
     @cached_property

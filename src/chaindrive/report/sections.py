@@ -16,6 +16,7 @@ from chaindrive.report.content import (
     plot_block,
     register_section,
 )
+from chaindrive.report.robust import robust_section
 
 
 def _rows(rows: Sequence[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:
@@ -394,5 +395,6 @@ def register_standard_sections() -> None:
             ("dynamics", "Dynamics", dynamics_section),
             ("response", "Dynamic response", response_section),
             ("damping", "Damping", damping_section),
-            ("synthesis", "Optimal synthesis", synthesis_section)):
+            ("synthesis", "Optimal synthesis", synthesis_section),
+            ("robust", "Life and reliability", robust_section)):
         register_section(key, title, build)

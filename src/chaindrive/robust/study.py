@@ -1,0 +1,195 @@
+"""The robust study of a drive: its uncertainty model, its life curve, its probabilities of
+failure and the sensitivity indices, in one result — in this process or on Dask with the
+study store (:mod:`chaindrive.synthesis.studies`: every state is stored once under the hash
+of its inputs, so a study that stops resumes where it stopped).
+
+References
+----------
+See :mod:`chaindrive.robust.uncertainty`, :mod:`.life`, :mod:`.sampling`, :mod:`.sensitivity`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.analysis import Analysis
+from chaindrive.io.design import drive_from_mapping, drive_to_mapping, load_drive, read_toml
+from chaindrive.model import Drive
+from chaindrive.robust.analysis import PerturbedAnalysis
+from chaindrive.robust.life import LifeCurve, life_curve
+from chaindrive.robust.sampling import (
+    METRICS,
+    ReliabilityResult,
+    StateEvaluator,
+    StateOutcome,
+    reliability,
+    state_outcome,
+)
+from chaindrive.robust.sensitivity import SensitivityResult, sensitivity
+from chaindrive.robust.uncertainty import (
+    UncertaintyModel,
+    UncertaintySettings,
+    uncertainty_model,
+    uncertainty_settings,
+)
+from chaindrive.synthesis.studies import DEFAULT_DB, StudyStore, run_study
+
+__all__ = ["DaskOptions", "RobustResult", "dask_states", "load_robust", "nominal_analysis",
+           "robust_state", "robust_study"]
+
+
+def nominal_analysis(drive: Drive) -> Analysis:
+    """The analysis of a drive as drawn that the robust study perturbs (lazy, no start-up:
+    k₁ is not among the robust checks)."""
+    return Analysis(drive, startup=False)
+
+
+def load_robust(path: str | Path) -> tuple[Analysis, UncertaintySettings]:
+    """The nominal analysis of a design file and its ``[uncertainty]`` table."""
+    return nominal_analysis(load_drive(path)), uncertainty_settings(
+        read_toml(path).get("uncertainty"))
+
+
+def _design_of(nominal: Analysis) -> Drive:
+    """The design with the chain it was analysed with (a selected chain written by name)."""
+    d = nominal.design
+    return d.with_chain(nominal.drive.chain.spec) if d.chain.request is not None else d
+
+
+@lru_cache(maxsize=8)
+def _rebuilt(design: str, settings: str) -> tuple[Analysis, UncertaintyModel]:
+    """A worker's nominal analysis and model, built once per process and design."""
+    nominal = nominal_analysis(drive_from_mapping(json.loads(design)))
+    return nominal, uncertainty_model(nominal, UncertaintySettings(**json.loads(settings)))
+
+
+def robust_state(inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker function of a robust study: ``{"design": JSON of the design mapping,
+    "settings": JSON of the UncertaintySettings, "x": variable values, "response": bool}``
+    → the state's :class:`~chaindrive.robust.sampling.StateOutcome` as a dict."""
+    nominal, model = _rebuilt(inputs["design"], inputs["settings"])
+    state = PerturbedAnalysis(nominal, model.perturbation(np.asarray(inputs["x"], dtype=float)),
+                              allowable_elongation=model.allowable_elongation,
+                              response=bool(inputs["response"]))
+    return state_outcome(state).to_dict()
+
+
+@dataclass(frozen=True, slots=True)
+class DaskOptions:
+    """Where a robust study runs and is stored.
+
+    Parameters
+    ----------
+    db : str | StudyStore
+        Study store URL or an open store.
+    study : str | None
+        Study name (None: ``robust-<hash of design and settings>``).
+    scheduler : str | None
+        Address of a Dask scheduler (None: a local cluster).
+    client : Any
+        An existing ``distributed.Client`` (takes precedence).
+    n_workers : int | None
+        Workers of the local cluster (None: Dask's default).
+    progress : bool | None
+        Progress bar (None: on a terminal only).
+    """
+
+    db: str | StudyStore = DEFAULT_DB
+    study: str | None = None
+    scheduler: str | None = None
+    client: Any = None
+    n_workers: int | None = None
+    progress: bool | None = None
+
+
+def dask_states(options: DaskOptions) -> StateEvaluator:
+    """A state evaluator that runs on Dask and stores every state (resumable)."""
+
+    def evaluate(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.float64],
+                 response: bool) -> list[StateOutcome]:
+        design = json.dumps(drive_to_mapping(_design_of(nominal)), sort_keys=True)
+        settings = json.dumps(asdict(model.settings), sort_keys=True)
+        name = options.study or "robust-" + hashlib.sha256(
+            (design + settings).encode()).hexdigest()[:16]
+        inputs = [{"design": design, "settings": settings, "x": [float(v) for v in row],
+                   "response": response} for row in x]
+        result = run_study(robust_state, inputs, study=name, db=options.db,
+                           scheduler=options.scheduler, client=options.client,
+                           n_workers=options.n_workers, progress=options.progress)
+        return [StateOutcome.from_dict(r) if "status" in r
+                else StateOutcome({}, {}, dict.fromkeys(METRICS, math.nan), str(r.get("error")))
+                for r in result.results]
+
+    return evaluate
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class RobustResult:
+    """The robust study of a drive.
+
+    Parameters
+    ----------
+    name : str
+        The drive's name.
+    model : UncertaintyModel
+        Its uncertainty model.
+    life : LifeCurve
+        From new to past the replacement elongation.
+    reliability : ReliabilityResult
+        Probabilities of failure (full path).
+    sensitivity : SensitivityResult | None
+        Sobol indices (None when not asked for or fewer than two groups).
+    """
+
+    name: str
+    model: UncertaintyModel
+    life: LifeCurve
+    reliability: ReliabilityResult
+    sensitivity: SensitivityResult | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON document of ``chaindrive robust --json``."""
+        return {"drive": self.name, "uncertainty": self.model.to_dict(),
+                "life": self.life.to_dict(), "reliability": self.reliability.to_dict(),
+                "sensitivity": None if self.sensitivity is None else self.sensitivity.to_dict()}
+
+
+def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None, *,
+                 with_sensitivity: bool = True, life_points: int = 13, path: str = "full",
+                 evaluator: StateEvaluator | None = None) -> RobustResult:
+    """Life curve, probabilities of failure and sensitivity indices of a drive.
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn (:func:`nominal_analysis`).
+    settings : UncertaintySettings | None
+        Its ``[uncertainty]`` table (None: defaults).
+    with_sensitivity : bool
+        Compute the Sobol indices too.
+    life_points : int
+        Points of the life curve.
+    path : str
+        "full" or "modal" for the probabilities (:func:`chaindrive.robust.sampling.reliability`).
+    evaluator : StateEvaluator | None
+        Where the states run (None: this process; :func:`dask_states` for Dask).
+
+    Returns
+    -------
+    RobustResult
+    """
+    model = uncertainty_model(nominal, settings)
+    return RobustResult(
+        nominal.drive.name, model, life_curve(nominal, model, points=life_points),
+        reliability(nominal, model, path=path, evaluator=evaluator),
+        sensitivity(nominal, model, evaluator=evaluator) if with_sensitivity else None)
