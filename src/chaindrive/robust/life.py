@@ -223,6 +223,9 @@ def life_curve(nominal: Analysis, model: UncertaintyModel, *, points: int = 13,
         new = [k for k in hi_state.failed if k not in when_new and k != "take_up"]
         if not new:
             continue
+        if new == ["chain_elongation"]:  # the replacement rule itself: exactly its limit
+            first, key = allow, new[0]
+            break
         lo, hi = lo_state.elongation, hi_state.elongation
         for _ in range(BISECTIONS):
             mid = 0.5 * (lo + hi)
@@ -232,8 +235,6 @@ def life_curve(nominal: Analysis, model: UncertaintyModel, *, points: int = 13,
             else:
                 lo = mid
         first, key = hi, new[0]
-        if new == ["chain_elongation"]:  # the replacement rule itself: exactly its limit
-            first = allow
         break
     capacity = model.take_up_capacity
     runs_out = (None if capacity is None

@@ -14,14 +14,14 @@ objectives``. The uncertainty model is the design file's ``[uncertainty]`` table
 A chance constraint P(check fails) ≤ α is imposed on the α-quantile of the check's margin
 fraction m (m ≥ 0 passes): g = −q_α(m) ≤ 0, which holds exactly when at most a fraction α of
 the design's states fail — a continuous value for the search where the count of failures is
-a step [Nemirovski2006]. With S states per design the quantile resolves probabilities down
+a step [Rockafellar2000]. With S states per design the quantile resolves probabilities down
 to about 1/S; verify the design found with ``chaindrive robust`` at many samples. The path
 "auto" takes the batched modal path when the constraints and objectives need only the
 resonance margin and f₁, and the full path otherwise.
 
 References
 ----------
-[Nemirovski2006], [MultimassChainDrives]
+[Rockafellar2000], [MultimassChainDrives]
 """
 
 from __future__ import annotations
