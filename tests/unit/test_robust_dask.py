@@ -22,7 +22,7 @@ pytestmark = pytest.mark.concurrency  # Dask clusters
 distributed = pytest.importorskip("distributed")
 
 
-def test_dask_states_match_serial_and_resume(tmp_path) -> None:  # noqa: ANN001
+def test_dask_states_match_serial_and_resume(tmp_path) -> None:
     nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
     model = uncertainty_model(nominal, UncertaintySettings(samples=8, replicates=2, seed=2))
     serial = reliability(nominal, model)

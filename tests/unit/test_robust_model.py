@@ -70,7 +70,7 @@ def test_tolerances_from_the_tables() -> None:
     assert modulus_factor(find_material("steel"), 100.0) == 1.0
 
 
-def test_model_of_a_drive_with_a_take_up(eight) -> None:  # noqa: ANN001
+def test_model_of_a_drive_with_a_take_up(eight) -> None:
     model = uncertainty_model(eight)
     assert model.allowable_elongation == 0.03 and not model.fixed_centres
     assert model.take_up_capacity == pytest.approx(2 * eight.drive.chain.pitch)
@@ -85,7 +85,7 @@ def test_model_of_a_drive_with_a_take_up(eight) -> None:  # noqa: ANN001
     assert model.perturbation(x).elongation == pytest.approx(eps0 + 0.5 * (0.03 - eps0))
 
 
-def test_nominal_state_is_the_analysis(eight) -> None:  # noqa: ANN001
+def test_nominal_state_is_the_analysis(eight) -> None:
     state = PerturbedAnalysis(eight, Perturbation())
     assert [(c.key, c.status) for c in state.checks()] == [
         (c.key, c.status) for c in eight.checks()]
@@ -109,7 +109,7 @@ def test_life_curve_of_a_fixed_centre_drive() -> None:
     assert life.hours_per_elongation is None       # a GOST chain has no ACA rating
 
 
-def test_life_curve_with_a_take_up(eight) -> None:  # noqa: ANN001
+def test_life_curve_with_a_take_up(eight) -> None:
     model = uncertainty_model(eight)
     life = life_curve(eight, model, points=5)
     travel = [s.take_up_travel_mm for s in life.states]

@@ -20,13 +20,13 @@ from tests.conftest import EXAMPLES
 
 
 @pytest.fixture(scope="module")
-def result():  # noqa: ANN201
+def result():
     nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
     return robust_study(nominal, UncertaintySettings(samples=8, replicates=2,
                                                      sensitivity_samples=4), life_points=5)
 
 
-def test_document_is_json_and_complete(result) -> None:  # noqa: ANN001
+def test_document_is_json_and_complete(result) -> None:
     doc = json.loads(json.dumps(result.to_dict(), allow_nan=False))
     assert set(doc) == {"drive", "uncertainty", "life", "reliability", "sensitivity"}
     assert len(doc["life"]["states"]) == 5
@@ -40,7 +40,7 @@ def test_document_is_json_and_complete(result) -> None:  # noqa: ANN001
     assert all(v["source"] for v in doc["uncertainty"]["variables"])
 
 
-def test_figures_show_the_result(result) -> None:  # noqa: ANN001
+def test_figures_show_the_result(result) -> None:
     fig = life_curve_figure(result.life)
     assert len(fig.axes) == 5                      # three panels, two with a second y axis
     assert fig.axes[2].get_ylabel().startswith("slack-span sag")   # no take-up here
@@ -55,7 +55,7 @@ def test_figures_show_the_result(result) -> None:  # noqa: ANN001
     assert all(math.isfinite(b.get_height()) for b in fig.axes[0].patches)
 
 
-def test_report_section(result) -> None:  # noqa: ANN001
+def test_report_section(result) -> None:
     analysis = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"),
                                   response=False)
     plain = build_report(analysis)

@@ -61,7 +61,7 @@ def test_clopper_pearson_bound_of_no_failure() -> None:
     assert (p, hi) == (1.0, 1.0) and lo == pytest.approx(0.025 ** (1 / 64))
 
 
-def test_no_uncertainty_gives_zero_or_one_exactly(seed) -> None:  # noqa: ANN001
+def test_no_uncertainty_gives_zero_or_one_exactly(seed) -> None:
     model = uncertainty_model(seed, UncertaintySettings(**NONE))
     assert model.dimension == 0
     r = reliability(seed, model)
@@ -76,7 +76,7 @@ def test_no_uncertainty_gives_zero_or_one_exactly(seed) -> None:  # noqa: ANN001
         assert by_key[key].probability == (0.0 if status == "pass" else 1.0)
 
 
-def test_full_path_converges(seed) -> None:  # noqa: ANN001
+def test_full_path_converges(seed) -> None:
     settings = UncertaintySettings(samples=32, replicates=4, seed=11)
     r1 = reliability(seed, uncertainty_model(seed, settings))
     r2 = reliability(seed, uncertainty_model(seed, replace(settings, samples=64)))
@@ -88,7 +88,7 @@ def test_full_path_converges(seed) -> None:  # noqa: ANN001
     assert res is not None and 0.0 < res.probability < 1.0   # the test exercises a real spread
 
 
-def test_modal_path_converges(seed) -> None:  # noqa: ANN001
+def test_modal_path_converges(seed) -> None:
     settings = UncertaintySettings(samples=64, replicates=8, seed=5, wear="life",
                                    inertia_scatter=0.25)
     model = uncertainty_model(seed, settings)

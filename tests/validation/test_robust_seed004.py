@@ -41,7 +41,7 @@ def two_contours() -> tuple[object, object]:
     return nominal, model
 
 
-def _length_differences(nominal, model) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
+def _length_differences(nominal, model) -> tuple[np.ndarray, np.ndarray]:
     u = sobol_points(model.dimension, model.settings.samples, model.settings.replicates,
                      model.settings.seed).reshape(-1, model.dimension)
     x = model.values(u)
@@ -51,7 +51,7 @@ def _length_differences(nominal, model) -> tuple[np.ndarray, np.ndarray]:  # noq
     return c4 * ((z[:, 2] + z[:, 3]) - (z[:, 0] + z[:, 1])), z
 
 
-def test_clearances_are_the_seeds_normal(two_contours) -> None:  # noqa: ANN001
+def test_clearances_are_the_seeds_normal(two_contours) -> None:
     nominal, model = two_contours
     _, z = _length_differences(nominal, model)
     z_max = nominal.contours.joint.max_clearance
@@ -59,7 +59,7 @@ def test_clearances_are_the_seeds_normal(two_contours) -> None:  # noqa: ANN001
     assert z.std() == pytest.approx(z_max / 6, rel=1e-2)           # σ_z = z_max/6
 
 
-def test_sampler_reproduces_the_half_normal_of_eq14(two_contours) -> None:  # noqa: ANN001
+def test_sampler_reproduces_the_half_normal_of_eq14(two_contours) -> None:
     nominal, model = two_contours
     d, _ = _length_differences(nominal, model)
     stats = length_difference_stats(nominal.contours.c4, nominal.contours.joint.max_clearance)
@@ -74,7 +74,7 @@ def test_sampler_reproduces_the_half_normal_of_eq14(two_contours) -> None:  # no
     assert np.quantile(np.abs(d), 0.95) == pytest.approx(stats.quantile_95_abs, rel=1e-2)
 
 
-def test_sampler_reproduces_km_at_the_5_percent_risk(two_contours) -> None:  # noqa: ANN001
+def test_sampler_reproduces_km_at_the_5_percent_risk(two_contours) -> None:
     nominal, model = two_contours
     d, _ = _length_differences(nominal, model)
     c = nominal.contours
@@ -85,7 +85,7 @@ def test_sampler_reproduces_km_at_the_5_percent_risk(two_contours) -> None:  # n
     assert np.mean(km_samples < km_analytic) == pytest.approx(0.05, abs=0.005)
 
 
-def test_a_state_takes_its_clearances_into_the_load_sharing(two_contours) -> None:  # noqa: ANN001
+def test_a_state_takes_its_clearances_into_the_load_sharing(two_contours) -> None:
     nominal, model = two_contours
     x = model.values(np.full((1, model.dimension), 0.5))[0]
     cols = [k for k, v in enumerate(model.variables) if v.group == "key clearances"]
