@@ -7,13 +7,12 @@ import pytest
 
 import chaindrive
 from chaindrive.robust import (
-    DaskOptions,
     UncertaintySettings,
-    dask_states,
     nominal_analysis,
     reliability,
     uncertainty_model,
 )
+from chaindrive.robust.study import DaskOptions, dask_states
 from chaindrive.synthesis.studies import StudyStore
 from tests.conftest import EXAMPLES
 

@@ -15,7 +15,8 @@ from chaindrive.plotting.robust import (
     sensitivity_figure,
 )
 from chaindrive.report import build_report, render_html
-from chaindrive.robust import UncertaintySettings, nominal_analysis, robust_study
+from chaindrive.robust import UncertaintySettings, nominal_analysis
+from chaindrive.robust.study import robust_study
 from tests.conftest import EXAMPLES
 
 

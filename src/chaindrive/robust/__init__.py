@@ -7,10 +7,11 @@ Modules: :mod:`.wear` (allowable elongation, the worn chain on the sprockets, ca
 :mod:`.analysis` (:class:`PerturbedAnalysis`: the analysis of a state), :mod:`.uncertainty`
 (the ``[uncertainty]`` table and its random variables), :mod:`.life` (the life curve),
 :mod:`.sampling` (quasi-Monte Carlo probabilities, the batched modal path), :mod:`.sensitivity`
-(Sobol indices, SALib), :mod:`.study` (all of it, in process or on Dask), :mod:`.synthesis`
-(``[optimize.robust]``: chance constraints and robust objectives)::
+(Sobol indices, SALib), :mod:`.study` (all of it, in process or on Dask; it imports the
+synthesis package, so it is not imported here), :mod:`.synthesis` (``[optimize.robust]``:
+chance constraints and robust objectives)::
 
-    from chaindrive.robust import load_robust, robust_study
+    from chaindrive.robust.study import load_robust, robust_study
     nominal, settings = load_robust("examples/eight_sprocket.toml")
     result = robust_study(nominal, settings)
     result.life.life_elongation, result.reliability.probability("resonance_margin")
@@ -18,19 +19,11 @@ Modules: :mod:`.wear` (allowable elongation, the worn chain on the sprockets, ca
 
 from __future__ import annotations
 
-from chaindrive.robust.analysis import PerturbedAnalysis
+from chaindrive.robust.analysis import PerturbedAnalysis, nominal_analysis
 from chaindrive.robust.life import LifeCurve, WearState, life_curve
 from chaindrive.robust.perturbation import Perturbation
 from chaindrive.robust.sampling import CheckProbability, ReliabilityResult, reliability
 from chaindrive.robust.sensitivity import SensitivityResult, sensitivity
-from chaindrive.robust.study import (
-    DaskOptions,
-    RobustResult,
-    dask_states,
-    load_robust,
-    nominal_analysis,
-    robust_study,
-)
 from chaindrive.robust.uncertainty import (
     UncertaintyModel,
     UncertaintySettings,
@@ -41,23 +34,18 @@ from chaindrive.robust.wear import allowable_elongation
 
 __all__ = [
     "CheckProbability",
-    "DaskOptions",
     "LifeCurve",
     "Perturbation",
     "PerturbedAnalysis",
     "ReliabilityResult",
-    "RobustResult",
     "SensitivityResult",
     "UncertaintyModel",
     "UncertaintySettings",
     "WearState",
     "allowable_elongation",
-    "dask_states",
     "life_curve",
-    "load_robust",
     "nominal_analysis",
     "reliability",
-    "robust_study",
     "sensitivity",
     "uncertainty_model",
     "uncertainty_settings",

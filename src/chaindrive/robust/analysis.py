@@ -51,10 +51,16 @@ from chaindrive.strength.drive_checks import checks_for, geometry_checks, settin
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 from chaindrive.strength.safety import steady_safety_factor
 
-__all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "perturbed_design"]
+__all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "nominal_analysis", "perturbed_design"]
 
 #: Sag ratio taken when the slack span has no slack left (the chain is pulled taut) [–].
 MIN_SAG_RATIO = 1e-3
+
+
+def nominal_analysis(drive: Drive) -> Analysis:
+    """The analysis of a drive as drawn that the robust study perturbs (lazy, no start-up:
+    k₁ is not among the robust checks)."""
+    return Analysis(drive, startup=False)
 
 
 def perturbed_design(nominal: Analysis, perturbation: Perturbation) -> Drive:

@@ -11,11 +11,13 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError
 from chaindrive.model import Material
 
-__all__ = ["MODULUS_TEMPERATURES_C", "REFERENCE_TEMPERATURE_C", "Perturbation", "modulus_factor"]
+__all__ = ["MODULUS_TEMPERATURES_C", "REFERENCE_TEMPERATURE_C", "Perturbation", "modulus_factor",
+           "modulus_factors"]
 
 #: Temperature at which the catalogue moduli are given [°C] (ISO 527 / ASTM D638 tests).
 REFERENCE_TEMPERATURE_C = 23.0
@@ -55,6 +57,21 @@ def modulus_factor(material: Material, temperature_c: float) -> float:
     t, e = zip(*MODULUS_TEMPERATURES_C, strict=True)
     reference = float(np.interp(REFERENCE_TEMPERATURE_C, t, e))
     return float(np.interp(temperature_c, t, e)) / reference
+
+
+def modulus_factors(material: Material, temperature_c: ArrayLike) -> NDArray[np.float64]:
+    """:func:`modulus_factor` at many temperatures [°C] at once [–].
+
+    References
+    ----------
+    [Delrin500P]
+    """
+    t = np.asarray(temperature_c, dtype=float)
+    if not material.is_polymer:
+        return np.ones_like(t)
+    temps, moduli = zip(*MODULUS_TEMPERATURES_C, strict=True)
+    return np.interp(t, temps, moduli) / float(np.interp(REFERENCE_TEMPERATURE_C, temps,
+                                                         moduli))
 
 
 @dataclass(frozen=True, slots=True)

@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -42,12 +43,17 @@ from scipy.stats import t as t_dist
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check
+from chaindrive.dynamics.drive import DynamicsResult, drive_dynamics
 from chaindrive.dynamics.ring import ring_frequencies_batch
 from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
 from chaindrive.errors import ChainDriveError
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
-from chaindrive.robust.perturbation import REFERENCE_TEMPERATURE_C, Perturbation, modulus_factor
+from chaindrive.robust.perturbation import (
+    REFERENCE_TEMPERATURE_C,
+    Perturbation,
+    modulus_factors,
+)
 from chaindrive.robust.uncertainty import UncertaintyModel
 
 __all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ReliabilityResult",
@@ -87,6 +93,13 @@ def sobol_points(dimension: int, samples: int, replicates: int, seed: int) -> ND
     [Owen1997]
     """
     m = max(1, math.ceil(math.log2(max(samples, replicates) / replicates)))
+    return _sobol(dimension, m, replicates, seed).copy()
+
+
+@lru_cache(maxsize=32)
+def _sobol(dimension: int, m: int, replicates: int, seed: int) -> NDArray[np.float64]:
+    """The point sets of :func:`sobol_points`, made once per arguments (an optimiser asks
+    for the same ones for every design: common random numbers)."""
     streams = np.random.SeedSequence(seed).spawn(replicates)
     return np.stack([qmc.Sobol(dimension, scramble=True, seed=np.random.default_rng(s))
                      .random_base2(m) for s in streams])
@@ -382,7 +395,8 @@ def serial_states(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.floa
 
 
 def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full",
-                evaluator: StateEvaluator | None = None) -> ReliabilityResult:
+                evaluator: StateEvaluator | None = None,
+                response: bool = True) -> ReliabilityResult:
     """Probabilities of failure of every check of the drive over ``model``.
 
     Parameters
@@ -397,6 +411,9 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
     evaluator : StateEvaluator | None
         Evaluates the full path's states (default :func:`serial_states`; see
         :func:`chaindrive.robust.study.dask_states` for Dask).
+    response : bool
+        Compute the states' dynamic response (K_D, k₂, k₂min); False stops after the modes
+        (the layout, chain and resonance checks only).
 
     Returns
     -------
@@ -412,10 +429,11 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
         u = sobol_points(model.dimension, s.samples, s.replicates, s.seed)
         shaped = model.values(u.reshape(-1, model.dimension)).reshape(*u.shape)
     r, n = shaped.shape[:2]
-    flat = (evaluator or serial_states)(nominal, model, shaped.reshape(r * n, -1), True)
+    flat = (evaluator or serial_states)(nominal, model, shaped.reshape(r * n, -1), response)
     rows = [flat[i * n:(i + 1) * n] for i in range(r)]
     info = _check_info([PerturbedAnalysis(nominal, model.perturbation(shaped[0, 0]),
-                                          allowable_elongation=model.allowable_elongation)])
+                                          allowable_elongation=model.allowable_elongation,
+                                          response=response)])
     for o in flat:
         for key in o.status:
             info.setdefault(key, (key, ""))
@@ -430,18 +448,18 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
 def _tooth_stiffness(state: Analysis, temperature: NDArray[np.float64]
                      ) -> NDArray[np.float64]:
     """Tooth stiffness k_t (S, n) of every sprocket at the temperatures (S,) [N/m]
-    (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`)."""
+    (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`, vectorised)."""
     d = state.drive
     spec = d.chain.spec
     width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
     chain = find_material(spec.material)
+    e_chain = chain.youngs_modulus * modulus_factors(chain, temperature)
     out = np.empty((temperature.size, len(d.sprockets)))
-    for k, t in enumerate(temperature):
-        e_chain = chain.youngs_modulus * modulus_factor(chain, float(t))
-        for i, sp in enumerate(d.sprockets):
-            m = find_material(sp.material)
-            out[k, i] = tooth_stiffness(width, m.youngs_modulus * modulus_factor(m, float(t)),
-                                        e_chain)
+    materials = {name: find_material(name) for name in {sp.material for sp in d.sprockets}}
+    for i, sp in enumerate(d.sprockets):
+        m = materials[sp.material]
+        e_sprocket = m.youngs_modulus * modulus_factors(m, temperature)
+        out[:, i] = tooth_stiffness(width, e_sprocket, e_chain)  # type: ignore[arg-type]
     return out
 
 
@@ -520,13 +538,14 @@ def modal_margins(state: Analysis, masses: NDArray[np.float64],
     f = ring_frequencies_batch(masses, stiffness)
     elastic = np.where(f > 0, f, np.inf)
     f1 = elastic.min(axis=1)
-    working = np.array([w.frequency for w in state.dynamics.working])
+    stage = _modal_stage(state)
+    working = np.array([w.frequency for w in stage.working])
     margin = np.full(f.shape[0], np.inf)
     if working.size:
         gap = np.abs(elastic[:, None, :] - working[None, :, None])
         nearest = np.take_along_axis(elastic, gap.argmin(axis=2), axis=1)
         margin = np.min(np.abs(working[None, :] - nearest) / nearest * 100.0, axis=1)
-    transverse = state.dynamics.span_transverse_hz
+    transverse = stage.span_transverse_hz
     d = state.drive
     if transverse.size and d.driver.speed is not None:
         fz = float(tooth_frequency(d.driver.teeth, d.driver.speed))
@@ -555,18 +574,29 @@ def _modal_factors(model: UncertaintyModel, values: NDArray[np.float64], n: int
     return inertia, link, temperature
 
 
-def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, PerturbedAnalysis]:
+def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analysis]:
     """The geometric states of the modal path, nominal tolerances, factors 1: new, worn to
     the allowable elongation, or over the life the K midpoints λ_k = (k + ½)/K of the life
-    fraction (``wear_states`` = K; ε = λ·ε_allow)."""
+    fraction (``wear_states`` = K; ε = λ·ε_allow). The new state is the nominal analysis
+    itself (the same numbers, :class:`PerturbedAnalysis` at ε = 0)."""
     s = model.settings
     if s.wear == "life":
         life = [(k + 0.5) / s.wear_states for k in range(s.wear_states)]
     else:
         life = [0.0 if s.wear == "new" else 1.0]
-    return {f"life {lam:.3g}": PerturbedAnalysis(
+    return {f"life {lam:.3g}": nominal if lam == 0.0 else PerturbedAnalysis(
         nominal, Perturbation(elongation=lam * model.allowable_elongation), response=False)
         for lam in life}
+
+
+def _modal_stage(state: Analysis) -> DynamicsResult:
+    """The state's modal stage without the Campbell data (the working and span transverse
+    frequencies are what the margins need): :func:`chaindrive.dynamics.drive.drive_dynamics`
+    as the analysis calls it, without its speed range."""
+    if "dynamics" in state.__dict__:
+        return state.dynamics
+    return drive_dynamics(state._contour_drive, state.geometry, state.ring,
+                          state.ring_parameters)
 
 
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
@@ -585,8 +615,8 @@ def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> Reliability
     for state in states.values():
         inertia, link, temperature = _modal_factors(modal, shaped.reshape(r * n, -1),
                                                     len(state.drive.sprockets))
-        chain = find_material(state.drive.chain.spec.material)
-        link = link * np.array([modulus_factor(chain, float(t)) for t in temperature])
+        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
+                                      temperature)
         f1, margin = modal_margins(state, *batch_ring(state, inertia, link, temperature))
         per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
         f1_all.append(f1)

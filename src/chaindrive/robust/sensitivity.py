@@ -6,7 +6,8 @@ The Saltelli design of N·(G + 2) points (first-order and total indices, no seco
 :class:`~chaindrive.robust.uncertainty.UncertaintyModel` (eccentricity, shaft positions,
 inertias, … each one group), mapped through the variables' inverse CDFs and evaluated
 through the full path (:class:`~chaindrive.robust.analysis.PerturbedAnalysis`). For every
-metric (resonance margin, K_D, k₂, k₂ with the eccentricity loads, f₁) SALib estimates S1
+metric (resonance margin, K_D, k₂, k₂ with the eccentricity loads, f₁, and the margin of the
+checks asked for) SALib estimates S1
 (the share of the variance a group explains alone) and ST (with all its interactions) with
 bootstrap intervals [Herman2017].
 A state that cannot be built takes the mean of the others (said in the result).
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -81,7 +83,7 @@ class SensitivityResult:
 
         return {"groups": list(self.groups), "base_samples": self.base_samples,
                 "evaluations": self.evaluations, "unbuilt": self.unbuilt,
-                "metrics": {m: {"unit": SENSITIVITY_METRICS[m],
+                "metrics": {m: {"unit": SENSITIVITY_METRICS.get(m, "-"),
                                 "first_order": clean(self.first_order[m]),
                                 "first_order_conf": clean(self.first_order_conf[m]),
                                 "total": clean(self.total[m]),
@@ -90,7 +92,8 @@ class SensitivityResult:
 
 
 def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
-                evaluator: StateEvaluator | None = None) -> SensitivityResult | None:
+                evaluator: StateEvaluator | None = None,
+                checks: Sequence[str] = ()) -> SensitivityResult | None:
     """Sobol indices of the drive's metrics over the groups of ``model``.
 
     Parameters
@@ -101,6 +104,8 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
         Its model (``sensitivity_samples`` and ``seed`` from its settings).
     evaluator : StateEvaluator | None
         Evaluates the states (default :func:`chaindrive.robust.sampling.serial_states`).
+    checks : sequence of str
+        Check keys whose margin fraction is apportioned too (as ``margin[<key>]``).
 
     Returns
     -------
@@ -127,8 +132,12 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
     first_conf: dict[str, tuple[float, ...]] = {}
     total_conf: dict[str, tuple[float, ...]] = {}
     nan = (math.nan,) * len(groups)
-    for metric in SENSITIVITY_METRICS:
-        y = np.array([o.metrics.get(metric, math.nan) for o in outcomes])
+    outputs = {m: np.array([o.metrics.get(m, math.nan) for o in outcomes])
+               for m in SENSITIVITY_METRICS}
+    outputs.update({f"margin[{k}]": np.array([math.nan if o.margin.get(k) is None
+                                              else float(o.margin[k] or 0.0)
+                                              for o in outcomes]) for k in checks})
+    for metric, y in outputs.items():
         finite = np.isfinite(y)
         if finite.sum() < 2 or float(np.var(y[finite])) <= 1e-24 * max(1.0, float(
                 np.mean(y[finite]) ** 2)):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import tomllib
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from functools import lru_cache
@@ -23,9 +24,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.analysis import Analysis
+from chaindrive.errors import ChainDriveError
 from chaindrive.io.design import drive_from_mapping, drive_to_mapping, load_drive, read_toml
 from chaindrive.model import Drive
-from chaindrive.robust.analysis import PerturbedAnalysis
+from chaindrive.robust.analysis import PerturbedAnalysis, nominal_analysis
 from chaindrive.robust.life import LifeCurve, life_curve
 from chaindrive.robust.sampling import (
     METRICS,
@@ -42,16 +44,11 @@ from chaindrive.robust.uncertainty import (
     uncertainty_model,
     uncertainty_settings,
 )
+from chaindrive.synthesis.problem import Problem, problem_from_mapping
 from chaindrive.synthesis.studies import DEFAULT_DB, StudyStore, run_study
 
 __all__ = ["DaskOptions", "RobustResult", "dask_states", "load_robust", "nominal_analysis",
-           "robust_state", "robust_study"]
-
-
-def nominal_analysis(drive: Drive) -> Analysis:
-    """The analysis of a drive as drawn that the robust study perturbs (lazy, no start-up:
-    k₁ is not among the robust checks)."""
-    return Analysis(drive, startup=False)
+           "robust_batch", "robust_state", "robust_study"]
 
 
 def load_robust(path: str | Path) -> tuple[Analysis, UncertaintySettings]:
@@ -176,7 +173,8 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
     settings : UncertaintySettings | None
         Its ``[uncertainty]`` table (None: defaults).
     with_sensitivity : bool
-        Compute the Sobol indices too.
+        Compute the Sobol indices too (of the metrics, and of the margins of up to three
+        checks whose probability of failure lies strictly between 0 and 1).
     life_points : int
         Points of the life curve.
     path : str
@@ -189,7 +187,46 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
     RobustResult
     """
     model = uncertainty_model(nominal, settings)
+    rel = reliability(nominal, model, path=path, evaluator=evaluator)
+    uncertain = [c.key for c in rel.checks
+                 if 0.0 < c.probability < 1.0 and c.key not in ("any", "buildable")][:3]
     return RobustResult(
-        nominal.drive.name, model, life_curve(nominal, model, points=life_points),
-        reliability(nominal, model, path=path, evaluator=evaluator),
-        sensitivity(nominal, model, evaluator=evaluator) if with_sensitivity else None)
+        nominal.drive.name, model, life_curve(nominal, model, points=life_points), rel,
+        sensitivity(nominal, model, evaluator=evaluator, checks=uncertain)
+        if with_sensitivity else None)
+
+
+@lru_cache(maxsize=4)
+def _problem(text: str) -> Problem:
+    """An optimisation problem read once per process and text."""
+    return problem_from_mapping(tomllib.loads(text))
+
+
+def robust_batch(inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker function of a robust study of many designs by the batched modal path:
+    ``{"problem": TOML text of a design file with [optimize] (and [uncertainty]),
+    "vectors": search vectors}`` → ``{"designs": [...]}``, per vector the probability of the
+    resonance check with its interval, the 5 % quantiles of f₁ [Hz] and of the resonance
+    margin [%] (or the reason the design cannot be built).
+
+    The designs are the problem's (:meth:`chaindrive.synthesis.problem.Problem.decode`), the
+    uncertainty model its ``[uncertainty]`` table (``[optimize.robust]`` samples when given).
+    """
+    problem = _problem(inputs["problem"])
+    settings = (problem.robust.uncertainty if problem.robust is not None
+                else uncertainty_settings(tomllib.loads(inputs["problem"]).get("uncertainty")))
+    out: list[dict[str, Any]] = []
+    for x in inputs["vectors"]:
+        try:
+            nominal = nominal_analysis(problem.decode(x))
+            r = reliability(nominal, uncertainty_model(nominal, settings), path="modal")
+        except ChainDriveError as exc:
+            out.append({"error": str(exc)})
+            continue
+        c = r.checks[0]
+        out.append({"resonance_probability": c.probability, "ci_low": c.low,
+                    "ci_high": c.high, "samples": c.samples,
+                    "f1_p05_hz": r.quantile("f1_hz", 0.05),
+                    "resonance_margin_p05_percent": r.quantile("resonance_margin_percent",
+                                                               0.05)})
+    return {"designs": out}

@@ -43,7 +43,7 @@ from chaindrive.robust.uncertainty import (
     uncertainty_settings,
 )
 
-__all__ = ["MODAL_KEYS", "ROBUST_FIELDS", "ROBUST_OBJECTIVES", "RobustAnalysis",
+__all__ = ["MODAL_KEYS", "RESPONSE_KEYS", "ROBUST_FIELDS", "ROBUST_OBJECTIVES", "RobustAnalysis",
            "RobustSettings", "robust_constraints", "robust_settings", "robust_statistic"]
 
 ROBUST_FIELDS: tuple[Field, ...] = (
@@ -64,6 +64,8 @@ ROBUST_OBJECTIVES: dict[str, tuple[str, float, int, str, str]] = {
 }
 #: Check keys and metrics the batched modal path gives.
 MODAL_KEYS = frozenset({"resonance_margin", "resonance_margin_percent", "f1_hz"})
+#: Check keys and metrics that need the states' dynamic response.
+RESPONSE_KEYS = frozenset({"k2", "k2min", "k2_with_errors", "coefficient_of_dynamics"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -80,12 +82,15 @@ class RobustSettings:
         "modal" or "full" (resolved from "auto").
     objectives : tuple of str
         The robust objectives the problem asks for.
+    response : bool
+        The states need the dynamic response (K_D, k₂, k₂min are asked for).
     """
 
     uncertainty: UncertaintySettings
     chance: tuple[tuple[str, float], ...]
     path: str
     objectives: tuple[str, ...] = ()
+    response: bool = True
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -146,7 +151,7 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
                           f"margin and f1; {', '.join(sorted(needs - MODAL_KEYS))} need "
                           'path = "full"')
     settings = replace(uncertainty_settings(uncertainty), samples=values["samples"])
-    return RobustSettings(settings, chance, path, robust)
+    return RobustSettings(settings, chance, path, robust, bool(needs & RESPONSE_KEYS))
 
 
 class RobustAnalysis(Analysis):
@@ -171,7 +176,8 @@ class RobustAnalysis(Analysis):
     def robust(self) -> ReliabilityResult:
         """The design's probabilities of failure and metric statistics over its states."""
         s = self.robust_settings
-        return reliability(self, uncertainty_model(self, s.uncertainty), path=s.path)
+        return reliability(self, uncertainty_model(self, s.uncertainty), path=s.path,
+                           response=s.response)
 
 
 def robust_statistic(analysis: Analysis, name: str) -> float:
