@@ -43,9 +43,10 @@ from scipy.stats import t as t_dist
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check
-from chaindrive.dynamics.drive import DynamicsResult, drive_dynamics
+from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
 from chaindrive.dynamics.ring import ring_frequencies_batch
 from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
+from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveError
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
@@ -538,21 +539,16 @@ def modal_margins(state: Analysis, masses: NDArray[np.float64],
     f = ring_frequencies_batch(masses, stiffness)
     elastic = np.where(f > 0, f, np.inf)
     f1 = elastic.min(axis=1)
-    stage = _modal_stage(state)
-    working = np.array([w.frequency for w in stage.working])
+    working, transverse, fz = _excitation(state)
     margin = np.full(f.shape[0], np.inf)
     if working.size:
         gap = np.abs(elastic[:, None, :] - working[None, :, None])
         nearest = np.take_along_axis(elastic, gap.argmin(axis=2), axis=1)
         margin = np.min(np.abs(working[None, :] - nearest) / nearest * 100.0, axis=1)
-    transverse = stage.span_transverse_hz
-    d = state.drive
-    if transverse.size and d.driver.speed is not None:
-        fz = float(tooth_frequency(d.driver.teeth, d.driver.speed))
-        f_span = transverse[:, 0][transverse[:, 0] > 0]
-        if f_span.size:
-            margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
-                                * 100.0)
+    f_span = transverse[transverse > 0]
+    if f_span.size:
+        margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
+                            * 100.0)
     return f1, margin
 
 
@@ -589,14 +585,31 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
         for lam in life}
 
 
-def _modal_stage(state: Analysis) -> DynamicsResult:
-    """The state's modal stage without the Campbell data (the working and span transverse
-    frequencies are what the margins need): :func:`chaindrive.dynamics.drive.drive_dynamics`
-    as the analysis calls it, without its speed range."""
-    if "dynamics" in state.__dict__:
-        return state.dynamics
-    return drive_dynamics(state._contour_drive, state.geometry, state.ring,
-                          state.ring_parameters)
+#: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
+#: default of :func:`chaindrive.dynamics.drive.drive_dynamics`, which the analysis calls).
+WORKING_HARMONICS = 3
+
+
+def _excitation(state: Analysis) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz] and
+    the tooth frequency [Hz] of a state: what its modal stage compares the natural
+    frequencies with (:func:`chaindrive.dynamics.drive.drive_dynamics`), from the same
+    functions, without the stage's own modes and Campbell data."""
+    d = state.drive
+    w = d.driver.speed
+    if w is None:
+        return np.array([]), np.array([]), math.nan
+    spec = d.chain.spec
+    working = working_frequencies(w, d.driver.teeth, [s.teeth for s in d.sprockets],
+                                  [s.name for s in d.sprockets], WORKING_HARMONICS)
+    tensions = state.ring_parameters.span_tensions_n
+    first = np.array([])
+    if tensions is not None:
+        v = d.driver.teeth * spec.pitch * w / TWO_PI
+        first = span_transverse_frequencies([sp.length for sp in state.geometry.spans],
+                                            tensions, spec.mass_per_length, v, modes=1)[:, 0]
+    return (np.array([x.frequency for x in working]), first,
+            float(tooth_frequency(d.driver.teeth, w)))
 
 
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
