@@ -14,7 +14,8 @@ one batch of S modal analyses (inertias ±10 %, chain stiffness ±10 %: S = 4 re
    designs per stored evaluation). Target: under 2 minutes on the 2-core project machine.
 2. The speed-up from one to two Dask workers on the same workload (the first ``--speedup``
    designs), the contenders in alternation, two rounds each.
-3. For reference, designs per second in one process (no Dask).
+3. For reference, designs per second in one process (no Dask), and the CPU time per design
+   (what two free cores would take: it does not depend on the load as the wall time does).
 
 The machine is shared: the load average before and after each part is printed beside the
 times; repeat the run to see the spread.
@@ -104,12 +105,15 @@ def main() -> None:
     xs = vectors(text, designs)
     states = robust_batch({"problem": text, "vectors": xs[:1]})["designs"][0]["samples"]
 
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     serial = robust_batch({"problem": text, "vectors": xs[:100]})
     rate = 100 / (time.perf_counter() - t0)
+    cpu = (time.process_time() - c0) / 100
     p = [d["resonance_probability"] for d in serial["designs"]]
     print(f"in one process: {rate:.0f} designs/s ({states} states each: "
           f"{rate * states:,.0f} modal analyses/s), {load()}")
+    print(f"   CPU time per design {cpu * 1e3:.1f} ms: {designs} designs on two free cores "
+          f"≈ {designs * cpu / 2:.0f} s of evaluation")
     print(f"   P(resonance margin < 10 %) over the first 100 designs: {min(p):.3f} … "
           f"{max(p):.3f}")
 
