@@ -25,7 +25,9 @@ def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
 def test_robust_json_and_report(tmp_path: Path) -> None:
     design = tmp_path / "seed.toml"
     design.write_text(SEED + "\n[uncertainty]\nsamples = 8\nreplicates = 2\n"
-                      "sensitivity_samples = 4\n", encoding="utf-8")
+                      "sensitivity_samples = 4\n"
+                      '\n[dynamics]\nstartup_duration = "0.05 s"\n',  # a short report
+                      encoding="utf-8")
     report = tmp_path / "seed.html"
     proc = run_cli("robust", str(design), "--json", "--report", str(report))
     assert proc.returncode == 0, proc.stderr

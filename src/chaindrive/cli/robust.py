@@ -37,8 +37,17 @@ def _life_summary(life: dict[str, Any]) -> str:
 
 
 def print_robust(con: Console, doc: dict[str, Any], make: TableMaker) -> None:
-    """Print the robust study ``doc`` (``RobustResult.to_dict()``) as tables; ``table``
-    builds a rich table (title, columns, rows)."""
+    """Print the robust study as tables.
+
+    Parameters
+    ----------
+    con : Console
+        Where to print.
+    doc : dict
+        ``RobustResult.to_dict()``.
+    make : callable
+        Builds a rich table from (title, columns, rows).
+    """
     unc, life, rel = doc["uncertainty"], doc["life"], doc["reliability"]
     con.print(f"[bold]{doc['drive']}[/bold] — robust study")
     con.print(make("Uncertainty model", ["name", "group", "distribution", "a", "b", "unit",

@@ -60,7 +60,19 @@ def modulus_factor(material: Material, temperature_c: float) -> float:
 
 
 def modulus_factors(material: Material, temperature_c: ArrayLike) -> NDArray[np.float64]:
-    """:func:`modulus_factor` at many temperatures [°C] at once [–].
+    """:func:`modulus_factor` at many temperatures at once [–].
+
+    Parameters
+    ----------
+    material : Material
+        The part's material.
+    temperature_c : array_like
+        Operating temperatures [°C].
+
+    Returns
+    -------
+    ndarray
+        E(T)/E(23 °C) [–], the shape of ``temperature_c``.
 
     References
     ----------

@@ -327,14 +327,30 @@ class ReliabilityResult:
         return next((c for c in self.checks if c.key == key), None)
 
     def quantile(self, metric: str, q: float) -> float:
-        """The q-quantile of a metric over the states (nan when absent)."""
+        """The q-quantile of a metric over the states [its unit] (nan when absent).
+
+        Parameters
+        ----------
+        metric : str
+            A name of :data:`METRICS`.
+        q : float
+            Probability [–].
+        """
         v = self.values.get(metric, np.array([]))
         v = v[np.isfinite(v)]
         return float(np.quantile(v, q)) if v.size else math.nan
 
     def margin_quantile(self, key: str, q: float) -> float:
         """The q-quantile of a check's margin fraction (a state that cannot be verified or
-        built counts as −1) [–]."""
+        built counts as −1) [–].
+
+        Parameters
+        ----------
+        key : str
+            The check's key.
+        q : float
+            Probability [–].
+        """
         v = self.margins.get(key)
         if v is None or not v.size:
             return math.nan
@@ -389,7 +405,24 @@ StateEvaluator = Callable[[Analysis, UncertaintyModel, NDArray[np.float64], bool
 
 def serial_states(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.float64],
                   response: bool) -> list[StateOutcome]:
-    """Evaluate the states of the variable rows ``x`` (S, d) in this process."""
+    """Evaluate the states of the variable rows in this process.
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn.
+    model : UncertaintyModel
+        Its uncertainty model.
+    x : ndarray
+        (S, d) variable values [SI].
+    response : bool
+        Compute the states' dynamic response.
+
+    Returns
+    -------
+    list of StateOutcome
+        In the order of the rows.
+    """
     return [state_outcome(PerturbedAnalysis(
         nominal, model.perturbation(row), allowable_elongation=model.allowable_elongation,
         response=response)) for row in x]
@@ -574,7 +607,20 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
     """The geometric states of the modal path, nominal tolerances, factors 1: new, worn to
     the allowable elongation, or over the life the K midpoints λ_k = (k + ½)/K of the life
     fraction (``wear_states`` = K; ε = λ·ε_allow). The new state is the nominal analysis
-    itself (the same numbers, :class:`PerturbedAnalysis` at ε = 0)."""
+    itself (the same numbers, :class:`PerturbedAnalysis` at ε = 0).
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn.
+    model : UncertaintyModel
+        Its model (wear setting, allowable elongation).
+
+    Returns
+    -------
+    dict
+        Name → the analysis of that state.
+    """
     s = model.settings
     if s.wear == "life":
         life = [(k + 0.5) / s.wear_states for k in range(s.wear_states)]
@@ -613,7 +659,20 @@ def _excitation(state: Analysis) -> tuple[NDArray[np.float64], NDArray[np.float6
 
 
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
-    """The resonance check and f₁ by the batched modal path (module docstring)."""
+    """The resonance check and f₁ by the batched modal path (module docstring).
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn.
+    model : UncertaintyModel
+        Its uncertainty model (its modal variables are sampled).
+
+    Returns
+    -------
+    ReliabilityResult
+        With the one check ``resonance_margin``.
+    """
     s = model.settings
     modal = model.modal_only()
     states = modal_states(nominal, modal)

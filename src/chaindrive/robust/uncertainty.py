@@ -298,9 +298,20 @@ class UncertaintyModel:
                                ) if self.dimension else np.zeros((q.shape[0], 0))
 
     def perturbation(self, x: ArrayLike, *, elongation: float | None = None) -> Perturbation:
-        """The drive's state for one row of variable values x (d,) [SI]: the chain's
-        elongation ε = ε₀ + λ(ε_allow − ε₀) from its length tolerance ε₀ and the life
-        fraction λ; ``elongation`` replaces ε (for the life curve)."""
+        """The drive's state for one row of variable values: the chain's elongation
+        ε = ε₀ + λ(ε_allow − ε₀) from its length tolerance ε₀ and the life fraction λ.
+
+        Parameters
+        ----------
+        x : array_like
+            (d,) variable values [SI].
+        elongation : float | None
+            ε replacing the sampled one [–] (for the life curve).
+
+        Returns
+        -------
+        Perturbation
+        """
         row = np.asarray(x, dtype=float)
         by_group: dict[str, list[float]] = {}
         for v, value in zip(self.variables, row, strict=True):
