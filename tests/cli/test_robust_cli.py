@@ -49,3 +49,43 @@ def test_robust_mistake_is_one_line(tmp_path: Path) -> None:
     assert proc.stdout == ""
     assert proc.stderr.strip().startswith("error: uncertainty.wear: must be one of")
     assert len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_robust_optimisation_runs_on_dask_and_resumes(tmp_path: Path) -> None:
+    from chaindrive.synthesis.studies import EVALUATIONS, StudyStore
+
+    design = tmp_path / "robust.toml"
+    design.write_text(SEED + """
+[uncertainty]
+replicates = 2
+wear_states = 2
+
+[optimize]
+objectives = ["cost", "mass"]
+[optimize.teeth]
+S3 = [11, 25]
+[optimize.position.S3]
+y = ["60 mm", "260 mm"]
+[optimize.solver]
+population = 4
+generations = 1
+seed = 2
+[optimize.robust]
+samples = 4
+chance = { resonance_margin = 0.05 }
+""", encoding="utf-8")
+    url = f"sqlite:///{tmp_path / 'study.db'}"
+    first = run_cli("optimize", str(design), "--json", "--db", url)
+    assert first.returncode == 0, first.stderr
+    doc = json.loads(first.stdout)
+    assert "P(resonance_margin)" in doc["start"]["constraints"]
+    assert all(p["constraints"]["P(resonance_margin)"] <= 0 for p in doc["pareto"])
+    store = StudyStore(url)
+    with store.engine.connect() as con:
+        stored = len(con.execute(EVALUATIONS.select()).fetchall())
+    assert stored == doc["evaluations"] == 4
+    again = run_cli("optimize", str(design), "--json", "--db", url)
+    assert again.returncode == 0, again.stderr
+    assert json.loads(again.stdout)["pareto"] == doc["pareto"]
+    with store.engine.connect() as con:
+        assert len(con.execute(EVALUATIONS.select()).fetchall()) == stored  # resumed

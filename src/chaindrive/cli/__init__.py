@@ -382,7 +382,8 @@ def optimize(
                                              "(one TOML each) and the plot of the front")] = None,
     scheduler: Annotated[str | None, typer.Option(
         "--scheduler", help="address of a Dask scheduler (tcp://host:8786); default: this "
-        "process (or a local cluster when --db is given)")] = None,
+        "process (or a local cluster when --db is given or the problem has "
+        "[optimize.robust])")] = None,
     db: Annotated[str | None, typer.Option(
         "--db", help="study database URL (sqlite:///study.db or postgresql+psycopg://…); "
         "a rerun with the same seed resumes from it")] = None,
@@ -398,7 +399,8 @@ def optimize(
     with user_errors():
         problem = load_problem(file)
         evaluator = None
-        if scheduler is not None or db is not None:
+        # a robust problem ([optimize.robust]) runs on Dask by default (chaindrive.robust)
+        if scheduler is not None or db is not None or problem.robust is not None:
             from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
 
             evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
