@@ -5,8 +5,9 @@
 
 point ``midwrite``: the signal arrives while the temporary file is being written (after part
 of the text or bytes, after the first page of a PDF drawn by matplotlib, after the DXF is
-written but before its file is closed); ``written``: after the temporary file is complete, just before it is renamed. The
-process's own signal handling (the safety net) does the rest, as with a signal from outside.
+written but before its file is closed); ``written``: after the temporary file is complete,
+just before it is renamed. The process's own signal handling (the safety net) does the rest,
+as with a signal from outside.
 """
 
 from __future__ import annotations

@@ -36,6 +36,7 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "drawing": ("chaindrive.drawing", "ezdxf"),
     "drawing_svg": ("chaindrive.drawing", "ezdxf"),
     "drawing_dxf": ("chaindrive.drawing", "ezdxf"),
+    "robust": ("chaindrive.robust", "SALib"),
 }
 
 
@@ -81,6 +82,18 @@ def full_analysis(drive: Drive) -> Analysis:
     import chaindrive
 
     return chaindrive.analyze(drive)
+
+
+def robust_study(drive: Drive, *, samples: int = 64) -> Any:
+    """The robust study of the drive on the page (:func:`chaindrive.robust.study.robust_study`):
+    life curve, probabilities over ``samples`` states and the sensitivity indices with the
+    ``[uncertainty]`` defaults (the page has no such table)."""
+    from chaindrive.robust.study import nominal_analysis
+    from chaindrive.robust.study import robust_study as study
+    from chaindrive.robust.uncertainty import UncertaintySettings
+
+    return study(nominal_analysis(drive), UncertaintySettings(samples=samples, replicates=8,
+                                                              sensitivity_samples=8))
 
 
 def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = None) -> bytes:
@@ -294,3 +307,20 @@ def bounded_drawing(analysis: Analysis, fmt: str = "dxf") -> bytes:
     """
     return run_bounded(drawing_svg if fmt == "svg" else drawing_dxf, analysis,
                        seconds=FULL_SECONDS, what="the drawing")
+
+
+def bounded_robust_study(drive: Drive) -> Any:
+    """:func:`robust_study` in a bounded run.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    RobustResult
+        The life curve, probabilities of failure and sensitivity indices.
+    """
+    return run_bounded(robust_study, drive, seconds=FULL_SECONDS,
+                       what="the life and reliability study")

@@ -12,7 +12,8 @@ shaft), :mod:`.dynamics` (mode shapes as seed 000's relative-amplitude bars, Cam
 diagram), :mod:`.damping` (ψ against ȳ₀ for several tensions, seed 001),
 :mod:`.multicontour` (K_m distribution, seed 004), :mod:`.synthesis` (Pareto front),
 :mod:`.response` (start-up oscillograms, AFC, steady dynamic loads, inertia loads and
-irregularity, material pairs — seed 000 Fig. 2–3, Table 1).
+irregularity, material pairs — seed 000 Fig. 2–3, Table 1), :mod:`.robust` (life curve,
+probabilities of failure, sensitivity indices).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from chaindrive.plotting.response import (
     startup_speeds,
     steady_loads,
 )
+from chaindrive.plotting.robust import life_curve_figure, probability_figure, sensitivity_figure
 from chaindrive.plotting.strength import shaft_loads, span_tensions
 from chaindrive.plotting.synthesis import pareto_front
 
@@ -41,9 +43,12 @@ __all__ = [
     "contour_layout",
     "inertia_and_irregularity",
     "km_distribution",
+    "life_curve_figure",
     "material_comparison_chart",
     "mode_shapes",
     "pareto_front",
+    "probability_figure",
+    "sensitivity_figure",
     "shaft_loads",
     "span_tensions",
     "startup_oscillogram",

@@ -1,0 +1,128 @@
+"""Probabilities of failure over the uncertainty model (chaindrive.robust.sampling).
+
+* Convergence: the estimate with twice the samples lies inside the interval of the first
+  (randomised quasi-Monte Carlo, [Owen1997]).
+* A drive with no uncertainty is evaluated once: each probability is exactly 0 or 1.
+* The interval of an estimate of 0 is the Clopper–Pearson bound 1 − (α/2)^(1/N)
+  [ClopperPearson1934] (closed form).
+* The batched modal path equals the full path state by state (the same stiffness formulas
+  in closed form, [Naji1983], [Ernst1965]).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import chaindrive
+from chaindrive.robust import (
+    Perturbation,
+    PerturbedAnalysis,
+    UncertaintySettings,
+    nominal_analysis,
+    reliability,
+    uncertainty_model,
+)
+from chaindrive.robust.sampling import (
+    batch_ring,
+    estimate_probability,
+    modal_margins,
+    sobol_points,
+)
+from tests.conftest import EXAMPLES
+
+NONE = dict(chain_length_tolerance=0.0, eccentricity=0.0, centre_distance_tolerance=0.0,
+            inertia_scatter=0.0, stiffness_scatter=0.0, wear="new")
+
+
+@pytest.fixture(scope="module")
+def seed() -> chaindrive.analysis.Analysis:
+    return nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
+
+
+def test_sobol_points_are_reproducible_scrambled_sets() -> None:
+    u = sobol_points(5, 100, 4, seed=3)
+    assert u.shape == (4, 32, 5)                      # 100/4 rounded up to 2^5 per replicate
+    assert np.all((u > 0) & (u < 1))
+    assert np.array_equal(u, sobol_points(5, 100, 4, seed=3))
+    assert not np.array_equal(u[0], u[1])             # independent scramblings
+    # each replicate is a (0, m, 5)-net: every coordinate stratified over 32 cells
+    cells = np.floor(u[0] * 32).astype(int)
+    assert all(np.array_equal(np.sort(cells[:, k]), np.arange(32)) for k in range(5))
+
+
+def test_clopper_pearson_bound_of_no_failure() -> None:
+    p, lo, hi = estimate_probability(np.zeros((4, 16), bool), 0.95)
+    assert (p, lo) == (0.0, 0.0)
+    assert hi == pytest.approx(1 - 0.025 ** (1 / 64))  # closed form for k = 0
+    p, lo, hi = estimate_probability(np.ones((4, 16), bool), 0.95)
+    assert (p, hi) == (1.0, 1.0) and lo == pytest.approx(0.025 ** (1 / 64))
+
+
+def test_no_uncertainty_gives_zero_or_one_exactly(seed) -> None:
+    model = uncertainty_model(seed, UncertaintySettings(**NONE))
+    assert model.dimension == 0
+    r = reliability(seed, model)
+    assert r.samples == 1
+    by_key = {c.key: c for c in r.checks}
+    # the nominal seed contour fails teeth in mesh on its idler S3 and passes the rest
+    assert (by_key["teeth_in_mesh[S3]"].probability, by_key["teeth_in_mesh[S3]"].low) == (1.0, 1.0)
+    for key in ("hinge_pressure", "resonance_margin", "k2", "k2min", "static_safety"):
+        assert (by_key[key].probability, by_key[key].low, by_key[key].high) == (0.0, 0.0, 0.0)
+    nominal_checks = {c.key: c.status for c in seed.checks()}
+    for key, status in nominal_checks.items():
+        assert by_key[key].probability == (0.0 if status == "pass" else 1.0)
+
+
+def test_full_path_converges(seed) -> None:
+    settings = UncertaintySettings(samples=32, replicates=4, seed=11)
+    r1 = reliability(seed, uncertainty_model(seed, settings))
+    r2 = reliability(seed, uncertainty_model(seed, replace(settings, samples=64)))
+    assert r2.samples == 2 * r1.samples
+    for c1 in r1.checks:
+        c2 = r2.probability(c1.key)
+        assert c2 is not None and c1.low <= c2.probability <= c1.high, c1.key
+    res = r1.probability("resonance_margin")
+    assert res is not None and 0.0 < res.probability < 1.0   # the test exercises a real spread
+
+
+def test_modal_path_converges(seed) -> None:
+    settings = UncertaintySettings(samples=64, replicates=8, seed=5, wear="life",
+                                   inertia_scatter=0.25)
+    model = uncertainty_model(seed, settings)
+    small = reliability(seed, model, path="modal").checks[0]
+    large = reliability(seed, uncertainty_model(seed, replace(settings, samples=128)),
+                        path="modal").checks[0]
+    assert 0.0 < small.probability < 1.0
+    assert small.low <= large.probability <= small.high
+
+
+@pytest.mark.parametrize("elongation", [0.0, 0.01])
+def test_batched_modal_path_equals_the_full_path(elongation: float) -> None:
+    drive = chaindrive.load(EXAMPLES / "eight_sprocket.toml")
+    polymer = drive.with_sprockets(tuple(replace(s, material="PA66") if s.role == "idler"
+                                         else s for s in drive.sprockets))
+    nominal = nominal_analysis(polymer)
+    state = PerturbedAnalysis(nominal, Perturbation(elongation=elongation), response=False)
+    rng = np.random.default_rng(2)
+    n = len(polymer.sprockets)
+    inertia = rng.uniform(0.9, 1.1, (3, n))
+    link = rng.uniform(0.9, 1.1, 3)
+    temperature = np.array([0.0, 23.0, 70.0])
+    masses, stiffness = batch_ring(state, inertia, link, temperature)
+    f1, margin = modal_margins(state, masses, stiffness)
+    for k in range(3):
+        full = PerturbedAnalysis(nominal, Perturbation(
+            elongation=elongation, inertia_factors=tuple(inertia[k]),
+            chain_stiffness_factor=float(link[k]), temperature_c=float(temperature[k])),
+            response=False)
+        p = full.ring_parameters
+        assert np.allclose(stiffness[k], p.stiffness_n_per_m, rtol=1e-12)
+        assert np.allclose(masses[k], p.masses_kg, rtol=1e-12)
+        assert f1[k] == pytest.approx(full.dynamics.modal.elastic_frequencies_hz[0], rel=1e-9)
+        assert margin[k] == pytest.approx(full.check("resonance_margin").value, rel=1e-9)
+    # the polymer idlers soften with temperature: higher T, lower stiffness of their spans
+    cold, warm = batch_ring(state, np.ones((2, n)), np.ones(2), np.array([0.0, 70.0]))[1]
+    assert np.all(warm <= cold) and np.any(warm < cold)
