@@ -10,10 +10,10 @@ analysis, and a batched modal path.
 * **Modal path** (where it suffices: the resonance margin and the natural frequencies). The
   geometric variables are held at nominal tolerances and at the wear states the setting
   names (new, worn to the allowable elongation, or K midpoints of the life); at each the
-  analysis gives the ring's parameters and working frequencies once, and the modal
-  variables (inertias, chain stiffness, polymer temperature) scale them for every sample at
-  once: the wrap (ladder) and sag stiffness factors are recomputed in closed form and the
-  frequencies come from :func:`chaindrive.dynamics.ring.ring_frequencies_batch`. Over the
+  analysis builds its whole-drive model and working frequencies once, and the modal
+  variables (inertias, chain stiffness, polymer temperature) change its values for every
+  sample at once: the wrap (ladder) and sag stiffnesses in closed form, the frequencies of
+  the stacked eigenvalue problems (:mod:`chaindrive.robust.modal`). Over the
   life the probability is the mean over the K states (the midpoint rule in the life
   fraction, which is uniform).
 * **Estimate and interval.** p̂ is the mean of the R replicate means; the interval is the
@@ -43,13 +43,13 @@ from scipy.stats import t as t_dist
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check
-from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
-from chaindrive.dynamics.ring import ring_frequencies_batch
-from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
-from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveError
-from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
+from chaindrive.robust.modal import (
+    batch_elastic_frequencies,
+    batch_system_values,
+    modal_margins,
+)
 from chaindrive.robust.perturbation import (
     REFERENCE_TEMPERATURE_C,
     Perturbation,
@@ -58,7 +58,7 @@ from chaindrive.robust.perturbation import (
 from chaindrive.robust.uncertainty import UncertaintyModel
 
 __all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ReliabilityResult",
-           "StateOutcome", "estimate_probability", "modal_margins", "reliability",
+           "StateOutcome", "estimate_probability", "reliability",
            "sobol_points", "state_outcome"]
 
 #: The pseudo-check of a state that cannot be built (e.g. the chain does not fit).
@@ -479,112 +479,6 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
 
 
 # ---------------------------------------------------------------------- the modal path
-def _tooth_stiffness(state: Analysis, temperature: NDArray[np.float64]
-                     ) -> NDArray[np.float64]:
-    """Tooth stiffness k_t (S, n) of every sprocket at the temperatures (S,) [N/m]
-    (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`, vectorised)."""
-    d = state.drive
-    spec = d.chain.spec
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
-    chain = find_material(spec.material)
-    e_chain = chain.youngs_modulus * modulus_factors(chain, temperature)
-    out = np.empty((temperature.size, len(d.sprockets)))
-    materials = {name: find_material(name) for name in {sp.material for sp in d.sprockets}}
-    for i, sp in enumerate(d.sprockets):
-        m = materials[sp.material]
-        e_sprocket = m.youngs_modulus * modulus_factors(m, temperature)
-        out[:, i] = tooth_stiffness(width, e_sprocket, e_chain)  # type: ignore[arg-type]
-    return out
-
-
-def batch_ring(state: Analysis, inertia: NDArray[np.float64], link: NDArray[np.float64],
-               temperature: NDArray[np.float64]) -> tuple[NDArray[np.float64],
-                                                          NDArray[np.float64]]:
-    """Masses and branch stiffnesses (S, n) of a state's ring under S sets of modal factors.
-
-    The same model as :func:`chaindrive.dynamics.drive.drive_ring_parameters`: chain
-    c = k_link·p/L, wrap by the ladder recursion K ← k_t + k_link·K/(k_link + K) over the
-    teeth in mesh [Naji1983], the three in series, times the Dischinger–Ernst sag factor
-    s = 1/(1 + (1/s₀ − 1)·f) for EA scaled by f [Ernst1965], times the contours.
-
-    Parameters
-    ----------
-    state : Analysis
-        The analysis of one geometric state (at the reference temperature, factors 1).
-    inertia : ndarray
-        (S, n) inertia factors [–].
-    link : ndarray
-        (S,) factors on the link stiffness [–] (scatter × chain modulus at temperature).
-    temperature : ndarray
-        (S,) temperatures of the polymer parts [°C].
-
-    Returns
-    -------
-    tuple of ndarray
-        masses [kg], stiffness [N/m].
-
-    References
-    ----------
-    [MultimassChainDrives], [Naji1983], [Ernst1965]
-    """
-    p = state.ring_parameters
-    n = p.masses_kg.size
-    k_link = p.link_stiffness_n_per_m * link[:, None]
-    k_t = _tooth_stiffness(state, temperature)
-    mesh = np.array([max(1, math.floor(g.teeth_in_mesh)) for g in state.geometry.sprockets])
-    wrap = k_t.copy()
-    for j in range(int(mesh.max()) - 1):
-        step = k_t + k_link * wrap / (k_link + wrap)
-        wrap = np.where(j < mesh - 1, step, wrap)
-    starts = np.arange(n)
-    ends = (starts + 1) % n
-    chain = p.chain_stiffness_n_per_m[None, :] * link[:, None]
-    with np.errstate(divide="ignore"):
-        sag = np.where(p.sag_factors > 0, 1.0 / (1.0 + (1.0 / p.sag_factors - 1.0)
-                                                 * link[:, None]), 0.0)
-    series = 1.0 / (1.0 / chain + 1.0 / wrap[:, starts] + 1.0 / wrap[:, ends])
-    return p.masses_kg[None, :] * inertia, series * sag * state.drive.chain.contours
-
-
-def modal_margins(state: Analysis, masses: NDArray[np.float64],
-                  stiffness: NDArray[np.float64]) -> tuple[NDArray[np.float64],
-                                                           NDArray[np.float64]]:
-    """First elastic frequency f₁ [Hz] and resonance margin [%] of S rings (S, n), against
-    the state's working frequencies and its spans' parametric resonance (the rule of
-    :func:`chaindrive.dynamics.checks.resonance_check`).
-
-    Parameters
-    ----------
-    state : Analysis
-        The geometric state (working frequencies, span transverse frequencies).
-    masses, stiffness : ndarray
-        (S, n) rings [kg], [N/m].
-
-    Returns
-    -------
-    tuple of ndarray
-        f₁ (S,) [Hz], margin (S,) [%] (inf without working frequencies).
-
-    References
-    ----------
-    [MultimassChainDrives, §3.2], [API684], [Bolotin1964]
-    """
-    f = ring_frequencies_batch(masses, stiffness)
-    elastic = np.where(f > 0, f, np.inf)
-    f1 = elastic.min(axis=1)
-    working, transverse, fz = _excitation(state)
-    margin = np.full(f.shape[0], np.inf)
-    if working.size:
-        gap = np.abs(elastic[:, None, :] - working[None, :, None])
-        nearest = np.take_along_axis(elastic, gap.argmin(axis=2), axis=1)
-        margin = np.min(np.abs(working[None, :] - nearest) / nearest * 100.0, axis=1)
-    f_span = transverse[transverse > 0]
-    if f_span.size:
-        margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
-                            * 100.0)
-    return f1, margin
-
-
 def _modal_factors(model: UncertaintyModel, values: NDArray[np.float64], n: int
                    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """(inertia (S, n), link (S,), temperature (S,)) factors of modal variable rows."""
@@ -631,33 +525,6 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
         for lam in life}
 
 
-#: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
-#: default of :func:`chaindrive.dynamics.drive.drive_dynamics`, which the analysis calls).
-WORKING_HARMONICS = 3
-
-
-def _excitation(state: Analysis) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
-    """Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz] and
-    the tooth frequency [Hz] of a state: what its modal stage compares the natural
-    frequencies with (:func:`chaindrive.dynamics.drive.drive_dynamics`), from the same
-    functions, without the stage's own modes and Campbell data."""
-    d = state.drive
-    w = d.driver.speed
-    if w is None:
-        return np.array([]), np.array([]), math.nan
-    spec = d.chain.spec
-    working = working_frequencies(w, d.driver.teeth, [s.teeth for s in d.sprockets],
-                                  [s.name for s in d.sprockets], WORKING_HARMONICS)
-    tensions = state.ring_parameters.span_tensions_n
-    first = np.array([])
-    if tensions is not None:
-        v = d.driver.teeth * spec.pitch * w / TWO_PI
-        first = span_transverse_frequencies([sp.length for sp in state.geometry.spans],
-                                            tensions, spec.mass_per_length, v, modes=1)[:, 0]
-    return (np.array([x.frequency for x in working]), first,
-            float(tooth_frequency(d.driver.teeth, w)))
-
-
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
     """The resonance check and f₁ by the batched modal path (module docstring).
 
@@ -689,7 +556,9 @@ def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> Reliability
                                                     len(state.drive.sprockets))
         link = link * modulus_factors(find_material(state.drive.chain.spec.material),
                                       temperature)
-        f1, margin = modal_margins(state, *batch_ring(state, inertia, link, temperature))
+        J, k = batch_system_values(state, inertia, link, temperature)
+        f1, margin = modal_margins(
+            state, batch_elastic_frequencies(state.drive_model.system, J, k))
         per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
         f1_all.append(f1)
         margin_all.append(margin)
