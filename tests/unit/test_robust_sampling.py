@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 import chaindrive
+from chaindrive.model import TrainElement
 from chaindrive.robust import (
     Perturbation,
     PerturbedAnalysis,
@@ -139,3 +140,27 @@ def test_batched_modal_path_equals_the_full_path(elongation: float) -> None:
     cold, warm = batch_system_values(state, np.ones((2, n)), np.ones(2),
                                      np.array([0.0, 70.0]))[1]
     assert np.all(warm <= cold) and np.any(warm < cold)
+
+
+def test_batched_frequencies_equal_the_engine_with_trains_and_a_massless_node() -> None:
+    """The stacked eigenvalue problems equal the torsional engine's own
+    (:meth:`TorsionalSystem.updated` then ``frequencies_hz``, a deflated eigenproblem) for a
+    drive with trains, a motor and a massless train node, which both condense statically
+    [Guyan1965]; the rigid-body mode is the one the model's graph gives."""
+    drive = chaindrive.load(EXAMPLES / "conveyor_five_sprocket.toml")
+    d1 = next(i for i, s in enumerate(drive.sprockets) if s.name == "D1")
+    sprocket = drive.sprockets[d1]
+    train = (TrainElement("shaft", name="mid", stiffness=3e4), *sprocket.train)
+    drive = drive.with_sprockets(tuple(replace(s, train=train) if i == d1 else s
+                                       for i, s in enumerate(drive.sprockets)))
+    state = nominal_analysis(drive)
+    system = state.drive_model.system
+    assert np.any(system.mass <= 0) and system.rigid_motions.shape[1] == 1
+    n = len(drive.sprockets)
+    rng = np.random.default_rng(4)
+    J, k = batch_system_values(state, rng.uniform(0.8, 1.2, (4, n)), rng.uniform(0.9, 1.1, 4),
+                               np.full(4, 23.0))
+    elastic = batch_elastic_frequencies(system, J, k)
+    for s in range(4):
+        engine = system.updated(node_inertia_kg_m2=J[s], element_stiffness=k[s]).frequencies_hz()
+        assert np.allclose(elastic[s], engine[1:], rtol=1e-9, atol=0.0)
