@@ -5,9 +5,10 @@ modal path (frequencies and margins).
 Designs: search vectors of an optimisation problem on examples/twenty_four_sprocket.toml
 (a flywheel of 0 to 0.05 kg·m² on each of the twelve driven shafts, and the wear state new:
 one geometric state per design), drawn at random (seeded). Per design: its analysis up to
-the ring (geometry, static tensions, masses and stiffnesses), its working frequencies, and
-one batch of S modal analyses (inertias ±10 %, chain stiffness ±10 %: S = 4 replicates ×
-2^m ≥ the samples asked) through ``ring_frequencies_batch``.
+the whole-drive model (geometry, static tensions, the torsional system), its working
+frequencies, and one batch of S modal analyses of that model (inertias ±10 %, chain
+stiffness ±10 %: S = 4 replicates × 2^m ≥ the samples asked) through
+``chaindrive.robust.modal.batch_elastic_frequencies``.
 
 1. The target: ``--designs`` (10 000) × ``--samples`` (100, i.e. 128 states) on a Dask
    LocalCluster of two worker processes, stored in a throw-away SQLite study (batches of 100
