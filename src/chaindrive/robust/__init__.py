@@ -7,8 +7,9 @@ Modules: :mod:`.wear` (allowable elongation, the worn chain on the sprockets, ca
 :mod:`.analysis` (:class:`PerturbedAnalysis`: the analysis of a state), :mod:`.uncertainty`
 (the ``[uncertainty]`` table and its random variables), :mod:`.life` (the life curve),
 :mod:`.sampling` (quasi-Monte Carlo probabilities), :mod:`.modal` (the batched modal path on
-the whole-drive model), :mod:`.sensitivity` (Sobol indices, SALib), :mod:`.study` (all of it, in process or on Dask; it imports the
-synthesis package, so it is not imported here), :mod:`.synthesis` (``[optimize.robust]``:
+the whole-drive model), :mod:`.sensitivity` (Sobol indices, SALib), :mod:`.study` (all of it,
+in process or on Dask; it imports the synthesis package, so it is not imported here),
+:mod:`.synthesis` (``[optimize.robust]``:
 chance constraints and robust objectives)::
 
     from chaindrive.robust.study import load_robust, robust_study
