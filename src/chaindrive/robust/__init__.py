@@ -9,8 +9,7 @@ Modules: :mod:`.wear` (allowable elongation, the worn chain on the sprockets, ca
 :mod:`.sampling` (quasi-Monte Carlo probabilities), :mod:`.modal` (the batched modal path on
 the whole-drive model), :mod:`.sensitivity` (Sobol indices, SALib), :mod:`.study` (all of it,
 in process or on Dask; it imports the synthesis package, so it is not imported here),
-:mod:`.synthesis` (``[optimize.robust]``:
-chance constraints and robust objectives)::
+:mod:`.synthesis` (``[optimize.robust]``: chance constraints and robust objectives)::
 
     from chaindrive.robust.study import load_robust, robust_study
     nominal, settings = load_robust("examples/eight_sprocket.toml")
