@@ -6,11 +6,11 @@ The problem is the seed's three-sprocket contour (examples/seed_three_sprocket.t
 centres, so the wear collects in the slack span) with the tooth counts, the idler's position
 and the chain free, objectives cost and mass. The robust run adds ``[uncertainty]`` (the
 defaults of the standards, the life from new to worn) and ``[optimize.robust]``: P(resonance
-margin below 10 %) ≤ 1 % and P(fewer than 3 teeth in mesh on the idler) ≤ 1 %, 16 states per
-design (full path, no dynamic response needed). Each final design is then analysed by the
+margin below 10 %) ≤ 1 % and P(fewer than 3 teeth in mesh on the idler) ≤ 1 %, ``--states``
+states per design (default 16; full path, no dynamic response needed). Each final design is then analysed by the
 full path over 256 states — the probabilities the table prints.
 
-Run: .venv/bin/python benchmarks/robust_demo.py [--figures DIR] [--quick]
+Run: .venv/bin/python benchmarks/robust_demo.py [--figures DIR] [--quick] [--states S]
 """
 
 from __future__ import annotations
@@ -70,6 +70,7 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--figures", type=Path, default=None)
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--states", type=int, default=16, help="states per design, robust run")
     args = parser.parse_args()
     pop, gens, samples = (8, 3, 64) if args.quick else (24, 20, 256)
     data = problem_data(pop, gens)
@@ -78,7 +79,7 @@ def main() -> None:
     t1 = time.perf_counter()
     robust_data = copy.deepcopy(data)
     robust_data["uncertainty"] = {"replicates": 8}
-    robust_data["optimize"]["robust"] = {"samples": 16, "chance": {
+    robust_data["optimize"]["robust"] = {"samples": args.states, "chance": {
         "resonance_margin": 0.01, "teeth_in_mesh[S3]": 0.01}}
     robust = solve(problem_from_mapping(robust_data))
     t2 = time.perf_counter()
