@@ -29,6 +29,7 @@ from chaindrive.robust import (
     uncertainty_model,
 )
 from chaindrive.robust.modal import (
+    _inverse_cholesky,
     batch_elastic_frequencies,
     batch_system_values,
     modal_margins,
@@ -164,3 +165,18 @@ def test_batched_frequencies_equal_the_engine_with_trains_and_a_massless_node() 
     for s in range(4):
         engine = system.updated(node_inertia_kg_m2=J[s], element_stiffness=k[s]).frequencies_hz()
         assert np.allclose(elastic[s], engine[1:], rtol=1e-9, atol=0.0)
+
+
+def test_inverse_cholesky_factor_of_stacked_mass_matrices() -> None:
+    """L⁻¹ M L⁻ᵀ = I (the definition of the Cholesky factor M = L Lᵀ) on both branches: the
+    varying masses uncoupled (block-diagonal, one factor for the common rest) and coupled
+    (one factor per sample)."""
+    rng = np.random.default_rng(0)
+    base = np.diag([2.0, 3.0, 1.0, 1.5])
+    base[2, 3] = base[3, 2] = 0.4               # a consistent mass couples coordinates 2 and 3
+    for varying in (0, 2):
+        M = np.repeat(base[None], 5, axis=0)
+        M[:, varying, varying] *= rng.uniform(0.8, 1.2, 5)
+        W = _inverse_cholesky(M)
+        assert np.allclose(W @ M @ np.swapaxes(W, 1, 2), np.eye(4), atol=1e-12)
+        assert np.allclose(np.triu(W, 1), 0.0)

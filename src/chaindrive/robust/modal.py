@@ -207,12 +207,33 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
         K0m = K[:, free][:, :, massed]
         K = K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m)
         M = M[:, massed][:, :, massed]
-    L = np.linalg.cholesky(M)
-    Y = np.linalg.solve(L, K)
-    A = np.linalg.solve(L, np.swapaxes(Y, 1, 2))
+    W = _inverse_cholesky(M)
+    A = W @ K @ np.swapaxes(W, 1, 2)
     lam = np.linalg.eigvalsh(0.5 * (A + np.swapaxes(A, 1, 2)))
     r = int(system.rigid_motions.shape[1])
     return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(S, -1) / TWO_PI
+
+
+def _inverse_cholesky(M: FloatArray) -> FloatArray:
+    """L⁻¹ (S, N, N) of stacked mass matrices M = L Lᵀ (S, N, N).
+
+    When the coordinates whose mass differs between the samples carry no mass coupling (the
+    sprockets' inertias vary; the chain's consistent span masses couple only chain nodes,
+    which do not), M is block-diagonal in them: L⁻¹ is 1/√m on those and the inverse
+    Cholesky factor of the common rest, factorised once. Otherwise one factor per sample.
+    """
+    diag = np.diagonal(M, axis1=1, axis2=2)
+    varying = np.any(diag != diag[:1], axis=0)
+    coupled = np.any(M[0] - np.diag(diag[0]) != 0.0, axis=1)
+    if np.any(varying & coupled):
+        return np.asarray(np.linalg.inv(np.linalg.cholesky(M)), dtype=np.float64)
+    fixed = ~varying
+    W = np.zeros_like(M)
+    rest = np.linalg.inv(np.linalg.cholesky(M[0][np.ix_(fixed, fixed)]))
+    W[:, fixed[:, None] & fixed[None, :]] = rest.ravel()
+    idx = np.flatnonzero(varying)
+    W[:, idx, idx] = 1.0 / np.sqrt(diag[:, idx])
+    return W
 
 
 def _excitation(state: Analysis) -> tuple[FloatArray, FloatArray, float]:
