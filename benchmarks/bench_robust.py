@@ -28,17 +28,24 @@ from __future__ import annotations
 
 import argparse
 import os
-import tempfile
-import time
-import tomllib
-from pathlib import Path
 
-import numpy as np
-import tomli_w
+# one BLAS thread per process: the parallelism is the Dask workers' (two BLAS threads in each
+# of two workers on two cores oversubscribe them; set before NumPy is imported, inherited by
+# the workers)
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-from chaindrive.robust.study import robust_batch
-from chaindrive.synthesis.problem import problem_from_mapping
-from chaindrive.synthesis.studies import run_study
+import tempfile  # noqa: E402
+import time  # noqa: E402
+import tomllib  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+import tomli_w  # noqa: E402
+
+from chaindrive.robust.study import robust_batch  # noqa: E402
+from chaindrive.synthesis.problem import problem_from_mapping  # noqa: E402
+from chaindrive.synthesis.studies import run_study  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 BATCH = 100
