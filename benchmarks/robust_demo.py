@@ -7,8 +7,8 @@ centres, so the wear collects in the slack span) with the tooth counts, the idle
 and the chain free, objectives cost and mass. The robust run adds ``[uncertainty]`` (the
 defaults of the standards, the life from new to worn) and ``[optimize.robust]``: P(resonance
 margin below 10 %) ≤ 1 % and P(fewer than 3 teeth in mesh on the idler) ≤ 1 %, ``--states``
-states per design (default 16; full path, no dynamic response needed). Each final design is then analysed by the
-full path over 256 states — the probabilities the table prints.
+states per design (default 16; full path, no dynamic response needed). Each final design is
+then analysed by the full path over 256 states — the probabilities the table prints.
 
 Run: .venv/bin/python benchmarks/robust_demo.py [--figures DIR] [--quick] [--states S]
 """
