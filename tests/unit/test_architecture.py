@@ -55,6 +55,9 @@ PRESENTER_MAY_IMPORT = (
     "chaindrive.synthesis.solve",
     "chaindrive.synthesis.studies",
     "chaindrive.synthesis.workflow",
+    "chaindrive.robust",                # entry points of the robust study: study, uncertainty
+    "chaindrive.robust.study",
+    "chaindrive.robust.uncertainty",
     "chaindrive.cost",                  # loading a price file
     "chaindrive.linklevel",             # its entry point simulate
     "chaindrive.linklevel.simulate",

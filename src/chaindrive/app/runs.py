@@ -43,6 +43,7 @@ NEEDS: dict[str, tuple[str, ...]] = {
     "drawing_svg": ("chaindrive.drawing", "ezdxf"),
     "drawing_dxf": ("chaindrive.drawing", "ezdxf"),
     "links": ("chaindrive.linklevel", "numba", "matplotlib"),
+    "robust": ("chaindrive.robust", "SALib"),
 }
 
 
@@ -88,6 +89,31 @@ def full_analysis(drive: Drive) -> Analysis:
     import chaindrive
 
     return chaindrive.analyze(drive)
+
+
+def robust_study(drive: Drive, *, samples: int = 64) -> Any:
+    """The robust study of the drive on the page (:func:`chaindrive.robust.study.robust_study`):
+    life curve, probabilities over ``samples`` states and the sensitivity indices with the
+    ``[uncertainty]`` defaults (the page has no such table).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    samples : int
+        Quasi-Monte Carlo states of the probabilities [-].
+
+    Returns
+    -------
+    RobustResult
+        The life curve, probabilities of failure and sensitivity indices.
+    """
+    from chaindrive.robust.study import nominal_analysis
+    from chaindrive.robust.study import robust_study as study
+    from chaindrive.robust.uncertainty import UncertaintySettings
+
+    return study(nominal_analysis(drive), UncertaintySettings(samples=samples, replicates=8,
+                                                              sensitivity_samples=8))
 
 
 def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = None) -> bytes:
@@ -417,3 +443,20 @@ def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLev
     """
     return run_bounded(link_level_view, drive, duration_s, seconds=FULL_SECONDS,
                        what="the link-level model")
+
+
+def bounded_robust_study(drive: Drive) -> Any:
+    """:func:`robust_study` in a bounded run.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    RobustResult
+        The life curve, probabilities of failure and sensitivity indices.
+    """
+    return run_bounded(robust_study, drive, seconds=FULL_SECONDS,
+                       what="the life and reliability study")

@@ -34,7 +34,7 @@ UNEXPECTED = "Something went wrong on the page ({}). Reload the page; if it pers
              "report it with the design file."
 #: The tabs, in order.
 TABS = ("Sprockets & spans", "Selection & strength", "Modes & Campbell", "Start-up", "AFC",
-        "Link-level model", "Multi-contour", "Report & files")
+        "Link-level model", "Multi-contour", "Life & reliability", "Report & files")
 
 
 def _units() -> UnitSystem:
@@ -344,6 +344,59 @@ DOWNLOADS = {"report_pdf": ("report (PDF)", ".pdf", "application/pdf"),
              "drawing_dxf": ("drawing (DXF)", ".dxf", "application/dxf")}
 
 
+def tab_robust(screen: Screen) -> None:
+    """Life and reliability: the robust study on demand (:mod:`chaindrive.robust`), in a
+    bounded run (:func:`chaindrive.app.runs.bounded_robust_study`).
+
+    Parameters
+    ----------
+    screen : Screen
+        The quick screen of the design on the page.
+    """
+    reason = runs.missing("robust")
+    if reason is not None:
+        st.info(f"Life and reliability: {reason}.")
+        return
+    store = st.session_state.setdefault("robust", {})
+    key = id(screen)
+    if key not in store and st.button("Run the life and reliability study", key="run_robust"):
+        with st.status("Life and reliability: wearing the chain and sampling the tolerances…",
+                       expanded=False) as status:
+            try:
+                store[key] = runs.bounded_robust_study(screen.outcome.drive)
+                status.update(label="Life and reliability: done", state="complete")
+            except ChainDriveError as exc:
+                store[key] = exc
+                status.update(label=f"Life and reliability: {exc}", state="error")
+    result = store.get(key)
+    if isinstance(result, Exception):
+        st.error(str(result))
+        return
+    if result is None:
+        st.caption("Runs on demand (half a minute or so): the drive as its chain wears to the "
+                   "replacement elongation, the probability of failing each check over the "
+                   "tolerances of the standards, and which tolerance matters (docs/robust.md).")
+        return
+    from chaindrive.plotting.robust import (
+        life_curve_figure,
+        probability_figure,
+        sensitivity_figure,
+    )
+
+    life = result.life.to_dict()
+    c = st.columns(3)
+    c[0].metric("replacement elongation", f"{life['allowable_elongation']:.2%}")
+    first = life["first_failure_elongation"]
+    c[1].metric("first failure", "—" if first is None else f"{first:.3%}",
+                help=life["first_failure"])
+    c[2].metric("life [h]", "—" if life["life_hours"] is None else f"{life['life_hours']:,.0f}")
+    _png(f"{key}-life", lambda: life_curve_figure(result.life))
+    st.dataframe([c.to_dict() for c in result.reliability.checks], hide_index=True)
+    _png(f"{key}-probability", lambda: probability_figure(result.reliability))
+    if result.sensitivity is not None:
+        _png(f"{key}-sensitivity", lambda: sensitivity_figure(result.sensitivity))
+
+
 def _build(kind: str, screen: Screen) -> bytes:
     """The bytes of a download, each built in a bounded run (:mod:`chaindrive.app.runs`):
     the drawing of the design, or the report of its full analysis."""
@@ -402,6 +455,7 @@ def tabs(screen: Screen, design: dict[str, Any]) -> None:
     shows = (lambda: tab_geometry(screen), lambda: tab_strength(screen),
              lambda: tab_modes(screen), lambda: tab_startup(screen), lambda: tab_afc(screen),
              lambda: tab_links(screen), lambda: tab_contours(screen),
+             lambda: tab_robust(screen),
              lambda: tab_files(screen, design))
     for tab, show in zip(st.tabs(list(TABS), key="tabs", on_change="rerun"), shows,
                          strict=True):

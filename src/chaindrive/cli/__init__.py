@@ -327,7 +327,8 @@ def optimize(
                                              "(one TOML each) and the plot of the front")] = None,
     scheduler: Annotated[str | None, typer.Option(
         "--scheduler", help="address of a Dask scheduler (tcp://host:8786); default: this "
-        "process (or a local cluster when --db is given)")] = None,
+        "process (or a local cluster when --db is given or the problem has "
+        "[optimize.robust])")] = None,
     db: Annotated[str | None, typer.Option(
         "--db", help="study database URL (sqlite:///study.db or postgresql+psycopg://…); "
         "a rerun with the same seed resumes from it")] = None,
@@ -342,7 +343,8 @@ def optimize(
     with user_errors():
         problem = load_problem(file)
         evaluator = None
-        if scheduler is not None or db is not None:
+        # a robust problem ([optimize.robust]) runs on Dask by default (chaindrive.robust)
+        if scheduler is not None or db is not None or problem.robust is not None:
             from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
 
             evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
@@ -385,6 +387,70 @@ def _write_pareto(result: Any, file: Path, out: Path) -> tuple[list[str], Path |
                                   source=tmp / files[0].name, synthesis=result)
             names.append(report.name)
     return [str(out / n) for n in names], None if plot_name is None else out / plot_name
+
+
+@app.command()
+def robust(
+    file: Annotated[Path, typer.Argument(help="design file (TOML), its [uncertainty] table")],
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    samples: Annotated[int | None, typer.Option(
+        "--samples", help="states of the probabilities (default: [uncertainty] samples)")] = None,
+    seed: Annotated[int | None, typer.Option("--seed", help="seed of the Sobol scrambling")]
+    = None,
+    wear: Annotated[str | None, typer.Option(
+        "--wear", help="wear state: new, worn or life (default: [uncertainty] wear)")] = None,
+    modal: Annotated[bool, typer.Option(
+        "--modal", help="resonance and f1 only, by the batched modal path (fast)")] = False,
+    sensitivity: Annotated[bool, typer.Option(
+        "--sensitivity/--no-sensitivity", help="Sobol indices of the tolerance groups")] = True,
+    report_file: Annotated[Path | None, typer.Option(
+        "--report", help="also write the design report with its life and reliability "
+        "section (.html or .pdf)")] = None,
+    scheduler: Annotated[str | None, typer.Option(
+        "--scheduler", help="address of a Dask scheduler (tcp://host:8786)")] = None,
+    db: Annotated[str | None, typer.Option(
+        "--db", help="study database URL; the states run on Dask (a local cluster unless "
+        "--scheduler) and a rerun resumes from it")] = None,
+    workers: Annotated[int | None, typer.Option(
+        "--workers", help="workers of the local Dask cluster (implies Dask)")] = None,
+) -> None:
+    """Robust design over the chain's life: the life curve as the chain wears, the
+    probability of failing each check over the tolerances, and which tolerance matters
+    (docs/robust.md)."""
+    from dataclasses import replace as dc_replace
+
+    from chaindrive.cli.robust import print_robust
+    from chaindrive.robust.study import DaskOptions, dask_states, load_robust, robust_study
+
+    with user_errors():
+        nominal, settings = load_robust(file)
+        changes: dict[str, Any] = {k: v for k, v in (("samples", samples), ("seed", seed),
+                                                      ("wear", wear)) if v is not None}
+        settings = dc_replace(settings, **changes)
+        evaluator = None
+        if scheduler is not None or db is not None or workers is not None:
+            from chaindrive.synthesis.studies import DEFAULT_DB
+
+            evaluator = dask_states(DaskOptions(db=db or DEFAULT_DB, scheduler=scheduler,
+                                                n_workers=workers,
+                                                progress=None if not as_json else False))
+        result = robust_study(nominal, settings, with_sensitivity=sensitivity and not modal,
+                              path="modal" if modal else "full", evaluator=evaluator)
+        written = None
+        if report_file is not None:
+            import chaindrive
+            from chaindrive.report import write_report
+
+            written = write_report(chaindrive.analyze(nominal.design), report_file,
+                                   source=file, robust=result)
+    doc = result.to_dict()
+    if as_json:
+        _write_json({**doc, "report": None if written is None else str(written.resolve())})
+        return
+    con = tables.console()
+    print_robust(con, doc, tables.table)
+    if written is not None:
+        con.print(f"report written to {written}")
 
 
 @app.command(name="app")

@@ -40,7 +40,8 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
                           "subject", "required", "result", "unit", "direction", "side",
                           "source", "allowed", "description", "example", "working",
                           "position", "span", "constraint", "closest design", "closest miss",
-                          "designation", "what", "design"})
+                          "designation", "what", "design", "group", "distribution",
+                          "failed", "failures"})
 
 
 def escape(text: object) -> str:

@@ -479,7 +479,8 @@ def _sprocket_senses(geometry: GeometryResult) -> FloatArray:
 
 def drive_model(drive: Drive, geometry: GeometryResult, *,
                 span_tensions: Sequence[float] | None = None,
-                material_lookup: Callable[[str], Material] | None = None) -> DriveModel:
+                material_lookup: Callable[[str], Material] | None = None,
+                ring: RingParameters | None = None) -> DriveModel:
     """The whole-drive model of ``drive`` (module docstring).
 
     Parameters
@@ -493,6 +494,10 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
         friction (None: from the drive's loads when it has a power, else taut spans).
     material_lookup : callable | None
         name → Material (None: :func:`chaindrive.catalog.find_material`).
+    ring : RingParameters | None
+        The ring reduction to build on (sprocket inertias, span stiffnesses and tensions);
+        None: :func:`chaindrive.dynamics.drive.drive_ring_parameters` of the drive. A
+        perturbed state of the drive (worn chain, scattered inertias) passes its own.
 
     Returns
     -------
@@ -504,8 +509,9 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
     (torsional systems), [Guyan1965] (condensation).
     """
     lookup = _memoized(material_lookup or find_material)
-    ring = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
-                                 material_lookup=lookup)
+    if ring is None:
+        ring = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                                     material_lookup=lookup)
     model = _build(drive, geometry, ring, lookup)
     modes = model.torsional.modal()
     w_ref = _reference_angular_frequency(modes)

@@ -331,6 +331,67 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
           minimum=0.0, maximum=1.0, reason="at most 1 m: a chain is replaced at 3 % "
           "elongation, 1 m on the longest drive chains", example="0.5 mm"),
 )
+#: ``[uncertainty]``: what scatters in a built drive and how far its chain wears, read by
+#: :mod:`chaindrive.robust` (defaults from the standards, sources in docs/robust.md).
+UNCERTAINTY_FIELDS: tuple[Field, ...] = (
+    Field("samples", "int", "quasi-Monte Carlo samples of the probabilities (Sobol points, a "
+          "power of two per replicate)", default=256, minimum=8, maximum=1 << 20,
+          reason="8 resolves a probability of 1/8; 2^20 states bound the work of a study"),
+    Field("replicates", "int", "independent scramblings of the Sobol points (the spread gives "
+          "the confidence interval)", default=8, minimum=2, maximum=64,
+          reason="two replicates give a spread [Owen1997]; 64 more add nothing to the "
+          "interval's width that the samples would not"),
+    Field("seed", "int", "random seed of the scrambling (same seed, same samples)", default=0,
+          minimum=0, maximum=2**31 - 1, reason="a non-negative 32-bit integer"),
+    Field("confidence", "float", "confidence level of the intervals", default=0.95,
+          minimum=0.5, maximum=0.999, reason="an interval of at least even odds; 0.999 "
+          "needs more replicates than a study runs"),
+    Field("wear", "choice", "wear state of the chain: new, worn to the allowable elongation, "
+          "or life (uniform from new to worn)", default="life", choices=("new", "worn", "life")),
+    Field("smooth_running", "bool", "the drive must run smoothly: allowable elongation 1.5 % "
+          "([DiamondChainWear])", default=False),
+    Field("allowable_elongation", "float", "wear elongation at which the chain is replaced "
+          "(default: 3 %, 200/z % for a large sprocket, 1.5 % for fixed centres or parallel "
+          "chains)", minimum=0.0, maximum=0.1, exclusive_minimum=True,
+          reason="[DiamondChainWear]: 1.5 to 3 %; 10 % is far past any replacement rule",
+          example="0.03"),
+    Field("chain_length_tolerance", "float", "length tolerance of a new chain, 0 to this "
+          "fraction (ISO 606: +0.15 %)", default=0.0015, minimum=0.0, maximum=0.05,
+          reason="[TsubakiLength]: +0.15 %; 5 % is longer than a worn-out chain"),
+    Field("eccentricity", "length", "largest eccentricity of every sprocket (default: half the "
+          "ASME B29.1 commercial runout by root diameter)", minimum=0.0, maximum=0.01,
+          reason=_RUNOUT, example="0.1 mm"),
+    Field("centre_distance_tolerance", "length", "± position tolerance of every shaft "
+          "(default: ±1 mm up to 1 m from the driver, ±a/1000 beyond)", minimum=0.0,
+          maximum=0.1, reason="[TsubakiGuide]: ±10 mm beyond 10 m; 100 mm is ten times that",
+          example="1 mm"),
+    Field("key_fit", "choice", "keyway fit of the keyed sprockets of parallel contours "
+          "([Lyashuk])", default="normal", choices=("tight", "normal", "free")),
+    Field("inertia_scatter", "float", "± relative scatter of every reduced inertia (uniform)",
+          default=0.10, minimum=0.0, maximum=0.5,
+          reason="below a half: an inertia stays positive"),
+    Field("stiffness_scatter", "float", "± relative scatter of the chain stiffness (uniform)",
+          default=0.10, minimum=0.0, maximum=0.5,
+          reason="below a half: a stiffness stays positive"),
+    Field("temperature_min", "float", "lowest operating temperature of polymer parts, °C",
+          default=23.0, minimum=-60.0, maximum=150.0,
+          reason="[Delrin500P]: the modulus is tabulated from −40 to 100 °C; acetal and "
+          "polyamide parts are not used beyond −60 to 150 °C"),
+    Field("temperature_max", "float", "highest operating temperature of polymer parts, °C",
+          default=23.0, minimum=-60.0, maximum=150.0,
+          reason="[Delrin500P]: the modulus is tabulated from −40 to 100 °C; acetal and "
+          "polyamide parts are not used beyond −60 to 150 °C"),
+    Field("take_up_capacity", "length", "chain length the take-up can absorb (default: two "
+          "pitches, [DiamondChainTension])", minimum=0.0, maximum=1.0,
+          exclusive_minimum=True, reason="1 m: a take-up longer than the longest drive "
+          "chain's replacement elongation", example="50.8 mm"),
+    Field("wear_states", "int", "wear states of the batched modal path over the life "
+          "(midpoint rule in the life fraction)", default=8, minimum=1, maximum=64,
+          reason="64 midpoints resolve the life fraction to 1.6 %"),
+    Field("sensitivity_samples", "int", "base samples N of the Sobol sensitivity indices "
+          "(N·(groups + 2) evaluations)", default=32, minimum=4, maximum=1 << 16,
+          reason="[Saltelli2010]: N of some tens to thousands; 2^16 bounds the work"),
+)
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,
     "chain": CHAIN_FIELDS,
@@ -338,6 +399,7 @@ SECTIONS: dict[str, tuple[Field, ...]] = {
     "sprockets.train": TRAIN_FIELDS,
     "motor": MOTOR_FIELDS,
     "dynamics": DYNAMICS_FIELDS,
+    "uncertainty": UNCERTAINTY_FIELDS,
 }
 #: Sections of :data:`SECTIONS` that are nested in another table, not top-level tables.
 NESTED_SECTIONS: tuple[str, ...] = ("sprockets.train",)
@@ -638,6 +700,7 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                               + did_you_mean(str(key)[:MAX_NAME], known)
                               + f" (known: {', '.join(known)})")
     drive_values = parse_section(data.get("drive", {}), DRIVE_FIELDS, "drive")
+    parse_section(data.get("uncertainty", {}), UNCERTAINTY_FIELDS, "uncertainty")  # read by robust
     dynamics = DynamicsSettings(**parse_section(data.get("dynamics", {}), DYNAMICS_FIELDS,
                                                 "dynamics"))
     motor = (Motor(**parse_section(data["motor"], MOTOR_FIELDS, "motor"))

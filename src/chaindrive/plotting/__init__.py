@@ -14,7 +14,8 @@ tensions, [ChainHingeDissipation]), :mod:`.multicontour` (K_m distribution, [Lya
 :mod:`.synthesis` (Pareto front), :mod:`.response` (start-up oscillograms, AFC, steady
 dynamic loads, inertia loads and irregularity, material pairs —
 [MultimassChainDrives, Fig. 2–3, Table 1]), :mod:`.linklevel` (frames of the link-level
-model's chain, link tension along it, tooth loads).
+model's chain, link tension along it, tooth loads), :mod:`.robust` (life curve,
+probabilities of failure, sensitivity indices).
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ from chaindrive.plotting.response import (
     startup_speeds,
     steady_loads,
 )
+from chaindrive.plotting.robust import life_curve_figure, probability_figure, sensitivity_figure
 from chaindrive.plotting.strength import shaft_loads, span_tensions
 from chaindrive.plotting.synthesis import pareto_front
 
@@ -53,9 +55,12 @@ __all__ = [
     "frame_times",
     "inertia_and_irregularity",
     "km_distribution",
+    "life_curve_figure",
     "material_comparison_chart",
     "mode_shapes",
     "pareto_front",
+    "probability_figure",
+    "sensitivity_figure",
     "shaft_loads",
     "span_tensions",
     "startup_oscillogram",

@@ -53,7 +53,8 @@ FORMATS = (".html", ".htm", ".pdf")
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
-                 synthesis: object = None, units: str = "SI") -> Report:
+                 synthesis: object = None, units: str = "SI",
+                 robust: object = None) -> Report:
     """Build every registered section of the report of ``analysis``, then the references.
 
     Parameters
@@ -70,6 +71,9 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
         The optimisation that chose this design (its Pareto set and front).
     units : str
         Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
+    robust : RobustResult | None
+        Its robust study (:class:`chaindrive.robust.study.RobustResult`: life curve,
+        probabilities of failure, sensitivity).
 
     Returns
     -------
@@ -80,7 +84,7 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     system: UnitSystem = unit_system(units)
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      synthesis=synthesis, units=system)
+                      synthesis=synthesis, units=system, robust=robust)
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:
@@ -140,7 +144,8 @@ def render_pdf(report: Report) -> bytes:
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
-                 synthesis: object = None, units: str = "SI") -> Path:
+                 synthesis: object = None, units: str = "SI",
+                 robust: object = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
     is written at once, after the whole report is built."""
     out = Path(path)
@@ -148,7 +153,7 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
-                          synthesis=synthesis, units=units)
+                          synthesis=synthesis, units=units, robust=robust)
     data = render_pdf(report) if suffix == ".pdf" else render_html(report).encode("utf-8")
     write_bytes(out, data)  # complete or absent, never half-written
     return out

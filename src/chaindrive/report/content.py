@@ -122,12 +122,13 @@ class ReportInput:
     figure resolution, and derived parts computed once."""
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 synthesis: Any = None, units: UnitSystem = "SI") -> None:
+                 synthesis: Any = None, units: UnitSystem = "SI", robust: Any = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
         self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
         self.units: UnitSystem = units
+        self.robust = robust  # a chaindrive.robust RobustResult, or None
         self.notes: list[str] = []
         self.defined: set[str] = set()
 

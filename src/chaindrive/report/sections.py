@@ -25,6 +25,7 @@ from chaindrive.report.content import (
     register_section,
     rows,
 )
+from chaindrive.report.robust import robust_section
 
 if TYPE_CHECKING:
     from chaindrive.checks import Check
@@ -400,5 +401,6 @@ def register_standard_sections() -> None:
             ("links", "Link-level model", dyn.links_section),
             ("checks", "Checks", checks_section),
             ("synthesis", "Optimal synthesis", dyn.synthesis_section),
+            ("robust", "Life and reliability", robust_section),
             ("design_file", "Design file", design_file_section)):
         register_section(key, title, build)

@@ -22,6 +22,7 @@ from chaindrive.cost import CostModel
 from chaindrive.errors import ChainDriveError
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
+from chaindrive.robust.synthesis import RobustAnalysis, RobustSettings, robust_constraints
 from chaindrive.synthesis.objectives import OBJECTIVES
 from chaindrive.synthesis.problem import Constraints, Problem
 
@@ -97,7 +98,8 @@ def constraint_names(analysis: Analysis, settings: Constraints) -> tuple[str, ..
 
 
 def analysis_of(drive: Drive, settings: Constraints,
-                cost_model: CostModel | None = None) -> Analysis:
+                cost_model: CostModel | None = None,
+                robust: RobustSettings | None = None) -> Analysis:
     """The lazy analysis of a design with the limits the problem sets.
 
     Parameters
@@ -108,12 +110,18 @@ def analysis_of(drive: Drive, settings: Constraints,
         The problem's constraints (k₁, a start-up per design, only when they ask for it).
     cost_model : CostModel or None
         Prices (None: the packaged estimates).
+    robust : RobustSettings or None
+        Robust settings: the analysis is a
+        :class:`~chaindrive.robust.synthesis.RobustAnalysis` (its uncertainty model too).
 
     Returns
     -------
     Analysis
         Lazy: each stage is computed when read.
     """
+    if robust is not None:
+        return RobustAnalysis(drive, robust=robust, limits=check_limits(settings),
+                              cost_model=cost_model, startup=settings.startup_safety)
     return Analysis(drive, limits=check_limits(settings), cost_model=cost_model,
                     startup=settings.startup_safety)
 
@@ -200,7 +208,8 @@ def _wishes(a: Analysis, settings: Constraints, ratios: Sequence[float] | None,
 
 def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraints, *,
                    base_ratios: Sequence[float] | None = None, ratio_tolerance: float = 0.03,
-                   cost_model: CostModel | None = None) -> Evaluation:
+                   cost_model: CostModel | None = None,
+                   robust: RobustSettings | None = None) -> Evaluation:
     """Objectives and constraints of one design, from its lazy :class:`Analysis`; a design
     that cannot be built (the geometry or strength raises: span interference, impossible
     take-up …) gets objectives :data:`FAILED` and the constraint ``buildable`` = 1.
@@ -219,13 +228,16 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
         Allowed relative deviation of a driven ratio [-].
     cost_model : CostModel or None
         Prices.
+    robust : RobustSettings or None
+        With robust settings the chance constraints ``P(<check>)`` are added
+        (:func:`chaindrive.robust.synthesis.robust_constraints`).
 
     Returns
     -------
     Evaluation
         Objectives and constraint values.
     """
-    a = analysis_of(drive, settings, cost_model)
+    a = analysis_of(drive, settings, cost_model, robust)
     try:
         obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}
         cons: dict[str, float] = {"buildable": 0.0}
@@ -233,6 +245,8 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
             if constrained(check, settings):
                 cons[check.key] = check.violation
         cons.update(_wishes(a, settings, base_ratios, ratio_tolerance))
+        if isinstance(a, RobustAnalysis):
+            cons.update(robust_constraints(a))
     except ChainDriveError as exc:
         return _failed(objectives, str(exc))
     if not all(math.isfinite(v) for v in [*obj.values(), *cons.values()]):
@@ -280,4 +294,5 @@ def evaluate_vector(problem: Problem, x: Sequence[float],
         return _failed(problem.objectives, str(exc)), None
     return evaluate_drive(drive, problem.objectives, problem.constraints,
                           base_ratios=base_ratios(problem.base),
-                          ratio_tolerance=problem.ratio_tolerance, cost_model=cost_model), drive
+                          ratio_tolerance=problem.ratio_tolerance, cost_model=cost_model,
+                          robust=problem.robust), drive

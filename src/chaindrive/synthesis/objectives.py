@@ -17,8 +17,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 from chaindrive.analysis import Analysis
+from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, robust_statistic
 from chaindrive.synthesis.detuning import BAND, detuning_metric_value, normalised_amplitude_at
 
 __all__ = ["OBJECTIVES", "Metric", "available_objectives", "register_objective"]
@@ -114,3 +116,8 @@ for _m in (
            "frequencies (0 = clear)"),
 ):
     register_objective(_m)
+
+# robust objectives: statistics of the design's states over its [uncertainty] model
+# (they need [optimize.robust]; chaindrive.robust.synthesis)
+for _name, (_metric, _q, _sense, _unit, _text) in ROBUST_OBJECTIVES.items():
+    register_objective(Metric(_name, _unit, _sense, partial(robust_statistic, name=_name), _text))

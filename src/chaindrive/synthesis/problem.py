@@ -23,6 +23,8 @@ minimum cost, material, occupied volume and weight, maximum dynamic quality". Th
     min_driver_wrap = "120 deg"
     [optimize.solver]
     method = "nsga2"; population = 16; generations = 10; seed = 1
+    [optimize.robust]                 # chance constraints over [uncertainty] (chaindrive.robust)
+    chance = { resonance_margin = 0.01 }
 
 Every mistake is one :class:`~chaindrive.errors.DesignError` line naming the field path, the
 value and what is allowed (the style of :mod:`chaindrive.io.design`).
@@ -47,6 +49,7 @@ from chaindrive.io.design import (
     read_toml,
 )
 from chaindrive.model import MAX_TEETH, MIN_TEETH, ChainSpec, Drive
+from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, RobustSettings, robust_settings
 from chaindrive.synthesis.objectives import available_objectives
 
 __all__ = [
@@ -95,7 +98,7 @@ SOLVER_FIELDS: tuple[Field, ...] = (
           maximum=2**31 - 1),
 )
 SECTIONS = ("objectives", "ratio_tolerance", "teeth", "position", "chain", "material", "inertia",
-            "constraints", "solver")
+            "constraints", "solver", "robust")
 
 
 @dataclass(frozen=True, slots=True)
@@ -209,6 +212,8 @@ class Problem:
         The constraint settings.
     solver : SolverSettings
         The search settings.
+    robust : RobustSettings | None
+        ``[optimize.robust]`` with ``[uncertainty]`` (None: a deterministic problem).
     """
 
     base: Drive
@@ -218,6 +223,7 @@ class Problem:
     objectives: tuple[str, ...]
     constraints: Constraints = field(default_factory=Constraints)
     solver: SolverSettings = field(default_factory=SolverSettings)
+    robust: RobustSettings | None = None
 
     @property
     def bounds(self) -> tuple[list[float], list[float]]:
@@ -471,9 +477,15 @@ def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) 
     solver = parse_section(_table(opt, "solver"), SOLVER_FIELDS, "optimize.solver")
     if drive.power is None:
         raise DesignError("drive.power", "is required for optimisation (strength constraints)")
+    objectives = _objectives(opt)
+    robust = (robust_settings(_table(opt, "robust"), data.get("uncertainty"), objectives)
+              if "robust" in opt else None)
+    if robust is None and any(o in ROBUST_OBJECTIVES for o in objectives):
+        raise DesignError("optimize.robust", "is required by the robust objectives "
+                          f"({', '.join(o for o in objectives if o in ROBUST_OBJECTIVES)})")
     return Problem(base=drive, base_mapping=base_mapping, genes=tuple(genes), ratio_tolerance=tol,
-                   objectives=_objectives(opt), constraints=Constraints(**cons),
-                   solver=SolverSettings(**solver))
+                   objectives=objectives, constraints=Constraints(**cons),
+                   solver=SolverSettings(**solver), robust=robust)
 
 
 def load_problem(path: str | Path) -> Problem:

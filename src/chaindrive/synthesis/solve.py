@@ -397,7 +397,7 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
     # whatever the search space; its nearest search vector seeds the first generation
     start = evaluate_drive(problem.base, problem.objectives, problem.constraints,
                            base_ratios=base_ratios(problem.base),
-                           ratio_tolerance=problem.ratio_tolerance)
+                           ratio_tolerance=problem.ratio_tolerance, robust=problem.robust)
     if method == "nsga2":
         _solve_pymoo(problem, archive, pop, gens, seed)
     elif method == "optuna":

@@ -702,9 +702,11 @@ def _evaluate_vector(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
 def problem_fingerprint(problem: Any) -> str:
     """A stable hash of a problem's definition (start design, genes, objectives, settings)."""
-    return hashlib.sha256(_json([problem.base_mapping, repr(problem.genes),
-                                 list(problem.objectives), repr(problem.constraints),
-                                 problem.ratio_tolerance]).encode()).hexdigest()[:16]
+    parts = [problem.base_mapping, repr(problem.genes), list(problem.objectives),
+             repr(problem.constraints), problem.ratio_tolerance]
+    if getattr(problem, "robust", None) is not None:  # [optimize.robust] (chaindrive.robust)
+        parts.append(repr(problem.robust))
+    return hashlib.sha256(_json(parts).encode()).hexdigest()[:16]
 
 
 class DaskEvaluator:

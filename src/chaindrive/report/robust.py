@@ -1,0 +1,75 @@
+"""The report's life and reliability section: the robust study of a drive
+(:class:`chaindrive.robust.study.RobustResult`), when the report is built with one."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from chaindrive.report.content import Block, ReportInput, Table, Text, plot_block
+
+__all__ = ["robust_section"]
+
+
+def _rows(rows: list[list[Any]]) -> tuple[tuple[Any, ...], ...]:
+    return tuple(tuple(r) for r in rows)
+
+
+def _summary(life: dict[str, Any]) -> str:
+    first = life["first_failure_elongation"]
+    text = (f"The chain is replaced at {life['allowable_elongation']:.2%} elongation "
+            "[DiamondChainWear]; "
+            + ("no check fails before it." if first is None else
+               f"the first check to fail as it wears is {life['first_failure']}, at "
+               f"{first:.3%}."))
+    if life["life_hours"] is not None:
+        text += (f" Life to that point: {life['life_hours']:,.0f} h by the ACA wear relation "
+                 "[Shigley2015, Eq. 17-40].")
+    if life["take_up_runs_out_elongation"] is not None:
+        text += (f" The take-up has absorbed its capacity at "
+                 f"{life['take_up_runs_out_elongation']:.2%} (then shorten the chain by two "
+                 "links) [DiamondChainTension].")
+    if life["failing_when_new"]:
+        text += f" Failing already when new: {', '.join(life['failing_when_new'])}."
+    return text
+
+
+def robust_section(inp: ReportInput) -> list[Block] | None:
+    """Life curve, probabilities of failure and sensitivity indices (None without a robust
+    study)."""
+    from chaindrive.plotting.robust import (
+        life_curve_figure,
+        probability_figure,
+        sensitivity_figure,
+    )
+
+    result = inp.robust
+    if result is None:
+        return None
+    doc = result.to_dict()
+    life, rel = doc["life"], doc["reliability"]
+    blocks: list[Block] = [Text(_summary(life))]
+    blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "resonance margin, %", "K_D",
+                                       "k2", "take-up, mm", "sag, %", "failed checks"),
+                        _rows([[s["elongation"] * 100, s["f1_hz"],
+                                s["resonance_margin_percent"], s["coefficient_of_dynamics"],
+                                s["k2"], s["take_up_travel_mm"], s["sag_ratio"] * 100,
+                                ", ".join(s["failed"])] for s in life["states"]])))
+    blocks.append(plot_block(life_curve_figure(result.life), "The drive as its chain wears",
+                             inp.dpi, "robust_life"))
+    blocks.append(Table(f"Probability of failure over the tolerances ({rel['samples']} states, "
+                        f"{rel['confidence']:.0%} interval)",
+                        ("check", "probability", "low", "high", "source"),
+                        _rows([[c["key"], c["probability"], c["ci_low"], c["ci_high"],
+                                c["source"]] for c in rel["checks"]])))
+    blocks.append(plot_block(probability_figure(result.reliability),
+                             "Probability of failing each check", inp.dpi, "robust_probability"))
+    if result.sensitivity is not None:
+        sens = doc["sensitivity"]
+        metrics = list(sens["metrics"])
+        blocks.append(Table("Total Sobol indices S_T by tolerance group", ("group", *metrics),
+                            _rows([[g, *[sens["metrics"][m]["total"][k] for m in metrics]]
+                                   for k, g in enumerate(sens["groups"])])))
+        blocks.append(plot_block(sensitivity_figure(result.sensitivity),
+                                 "Which tolerance matters", inp.dpi, "robust_sensitivity"))
+    blocks += [Text(note, "note") for note in doc["uncertainty"]["notes"]]
+    return blocks

@@ -1,0 +1,295 @@
+"""The batched modal path of the robust study: the whole-drive model of one geometric state
+under S sets of modal factors (sprocket inertias, chain stiffness, polymer temperature), its
+natural frequencies and resonance margins, every sample at once.
+
+The model is the analysis's own (:attr:`chaindrive.analysis.Analysis.drive_model`, the
+:class:`~chaindrive.dynamics.torsional_engine.TorsionalSystem` of
+:mod:`chaindrive.dynamics.drive_model`); a sample changes only values, never the topology:
+
+* **inertias** — the node of sprocket i carries J_node + J_i (f_i − 1): its own inertia J_i
+  times the factor, what else sits on the node (the motor's rotor) unchanged — as
+  :class:`~chaindrive.robust.analysis.PerturbedAnalysis` scales the ring's inertias;
+* **chain** — per contour, the span stiffness c·s with c = k_link·p/L times the link factor
+  and the Dischinger–Ernst sag factor s = 1/(1 + (1/s₀ − 1)·f) for EA scaled by f
+  [Ernst1965], and the wrap stiffness by the ladder recursion K ← k_t + k_link·K/(k_link + K)
+  over the teeth in mesh [Naji1983] with the tooth stiffness k_t at the sample's
+  temperature; the m contours act in parallel (× m), as the model builds them;
+* **frequencies** — the stiffness matrices K_s = Bᵀ diag(k_s) B and the mass matrices of the
+  S samples are stacked; the massless coordinates are condensed statically [Guyan1965]
+  (exact for the undamped modes); with M_s = L Lᵀ the stacked symmetric problems
+  L⁻¹ K_s L⁻ᵀ go to one :func:`numpy.linalg.eigvalsh` call; the lowest r eigenvalues, r the
+  rigid-body motions of the model's graph, are the rigid-body modes [Rao2011, ch. 6].
+
+What the path leaves out: train elements (shafts, couplings) keep their stiffness at the
+reference temperature (a polymer shaft does not soften with the sample's temperature), and
+the geometric variables are those of the state (see :mod:`chaindrive.robust.sampling`).
+
+References
+----------
+[MultimassChainDrives], [Naji1983], [Ernst1965], [Guyan1965], [Rao2011]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.analysis import Analysis
+from chaindrive.catalog import find_material
+from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
+from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
+from chaindrive.dynamics.torsional_engine import TorsionalSystem
+from chaindrive.dynamics.transverse import span_transverse_frequencies
+from chaindrive.kinematics import tooth_frequency
+from chaindrive.robust.perturbation import modulus_factors
+
+__all__ = ["WORKING_HARMONICS", "batch_chain_stiffness", "batch_elastic_frequencies",
+           "batch_system_values", "modal_margins"]
+
+FloatArray = NDArray[np.float64]
+#: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
+#: default of :func:`chaindrive.dynamics.whole.model_dynamics`, which the analysis calls).
+WORKING_HARMONICS = 3
+
+
+def _tooth_stiffness(state: Analysis, temperature: FloatArray) -> FloatArray:
+    """Tooth stiffness k_t (S, n) of every sprocket at the temperatures (S,) [N/m]
+    (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`, vectorised)."""
+    d = state.drive
+    spec = d.chain.spec
+    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    chain = find_material(spec.material)
+    e_chain = chain.youngs_modulus * modulus_factors(chain, temperature)
+    out = np.empty((temperature.size, len(d.sprockets)))
+    materials = {name: find_material(name) for name in {sp.material for sp in d.sprockets}}
+    for i, sp in enumerate(d.sprockets):
+        m = materials[sp.material]
+        e_sprocket = m.youngs_modulus * modulus_factors(m, temperature)
+        out[:, i] = tooth_stiffness(width, e_sprocket, e_chain)  # type: ignore[arg-type]
+    return out
+
+
+def batch_chain_stiffness(state: Analysis, link: FloatArray, temperature: FloatArray
+                          ) -> tuple[FloatArray, FloatArray]:
+    """Span and wrap stiffnesses (S, n) of one contour of a state under S modal factors.
+
+    The model of :func:`chaindrive.dynamics.drive.drive_ring_parameters`: the span
+    c·s, c = k_link·p/L scaled by the link factor f, s = 1/(1 + (1/s₀ − 1)·f) the
+    Dischinger–Ernst sag factor for EA scaled by f [Ernst1965]; the wrap by the ladder
+    recursion K ← k_t + k_link·K/(k_link + K) over the teeth in mesh [Naji1983].
+
+    Parameters
+    ----------
+    state : Analysis
+        The analysis of one geometric state (at the reference temperature, factors 1).
+    link : ndarray
+        (S,) factors on the link stiffness [–] (scatter × chain modulus at temperature).
+    temperature : ndarray
+        (S,) temperatures of the polymer parts [°C].
+
+    Returns
+    -------
+    tuple of ndarray
+        span stiffness c·s [N/m] (span i from sprocket i), wrap stiffness [N/m] (sprocket i).
+
+    References
+    ----------
+    [MultimassChainDrives], [Naji1983], [Ernst1965]
+    """
+    p = state.ring_parameters
+    k_link = p.link_stiffness_n_per_m * link[:, None]
+    k_t = _tooth_stiffness(state, temperature)
+    mesh = np.array([max(1, math.floor(g.teeth_in_mesh)) for g in state.geometry.sprockets])
+    wrap = k_t.copy()
+    for j in range(int(mesh.max()) - 1):
+        step = k_t + k_link * wrap / (k_link + wrap)
+        wrap = np.where(j < mesh - 1, step, wrap)
+    chain = p.chain_stiffness_n_per_m[None, :] * link[:, None]
+    with np.errstate(divide="ignore"):
+        sag = np.where(p.sag_factors > 0, 1.0 / (1.0 + (1.0 / p.sag_factors - 1.0)
+                                                 * link[:, None]), 0.0)
+    return chain * sag, wrap
+
+
+def _chain_elements(system: TorsionalSystem, n: int) -> tuple[NDArray[np.intp],
+                                                              NDArray[np.intp]]:
+    """Indices of the span elements (span i) and wrap elements (sprocket i) of a drive model,
+    in the order :func:`chaindrive.dynamics.drive_model.drive_model` adds them."""
+    kinds = np.array(system.element_kinds)
+    spans, wraps = np.flatnonzero(kinds == "span"), np.flatnonzero(kinds == "wrap")
+    if spans.size != n or wraps.size != n:
+        raise ValueError(f"a drive model of {n} sprockets has {spans.size} spans and "
+                         f"{wraps.size} wraps")
+    return spans, wraps
+
+
+def batch_system_values(state: Analysis, inertia: FloatArray, link: FloatArray,
+                        temperature: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Node inertias and element stiffnesses of a state's whole-drive model under S sets of
+    modal factors (module docstring): the values
+    :meth:`~chaindrive.dynamics.torsional_engine.TorsionalSystem.updated` takes.
+
+    Parameters
+    ----------
+    state : Analysis
+        The analysis of one geometric state (factors 1, reference temperature).
+    inertia : ndarray
+        (S, n) factors on the sprockets' inertias [–].
+    link : ndarray
+        (S,) factors on the link stiffness [–].
+    temperature : ndarray
+        (S,) temperatures of the polymer parts [°C].
+
+    Returns
+    -------
+    tuple of ndarray
+        J (S, nodes) [kg·m²], k (S, elements) [N·m/rad or N/m].
+
+    References
+    ----------
+    [MultimassChainDrives], [Naji1983], [Ernst1965]
+    """
+    model = state.drive_model
+    system = model.system
+    n = len(model.sprocket_names)
+    nodes = np.array([system.node_names.index(x) for x in model.sprocket_names])
+    J = np.repeat(system.node_inertia_kg_m2[None, :], inertia.shape[0], axis=0)
+    J[:, nodes] += model.ring.inertias_kg_m2[None, :] * (inertia - 1.0)
+    span, wrap = batch_chain_stiffness(state, link, temperature)
+    spans, wraps = _chain_elements(system, n)
+    k = np.repeat(system.element_stiffness[None, :], inertia.shape[0], axis=0)
+    k[:, spans] = span * model.contours
+    k[:, wraps] = wrap * model.contours
+    return J, k
+
+
+def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
+                              element_stiffness: FloatArray) -> FloatArray:
+    """Elastic natural frequencies (S, E) [Hz], ascending, of S variants of one torsional
+    system (same topology, the values of :meth:`TorsionalSystem.updated`).
+
+    Stacked matrices, static condensation of the massless coordinates [Guyan1965], Cholesky
+    M = L Lᵀ and one :func:`numpy.linalg.eigvalsh` of L⁻¹ K L⁻ᵀ; the r lowest eigenvalues (r
+    rigid-body motions of the graph) are dropped [Rao2011, ch. 6].
+
+    Parameters
+    ----------
+    system : TorsionalSystem
+        The system the variants share.
+    node_inertia : ndarray
+        (S, nodes) J of every node [kg·m²]; a node of the system with J = 0 must keep it.
+    element_stiffness : ndarray
+        (S, elements) k of every element [N·m/rad or N/m].
+
+    Returns
+    -------
+    ndarray
+        (S, E) [Hz], E = massed coordinates − rigid-body motions.
+
+    References
+    ----------
+    [Guyan1965], [Rao2011, ch. 6]
+    """
+    S = node_inertia.shape[0]
+    f2 = system.node_factor**2
+    onto = np.zeros((len(system.node_names), system.size))
+    onto[np.arange(onto.shape[0]), system.node_dof] = f2
+    mass = system.mass[None, :] + (node_inertia - system.node_inertia_kg_m2[None, :]) @ onto
+    B = system.element_incidence
+    K = np.einsum("ei,se,ej->sij", B, element_stiffness, B, optimize=True)
+    massed = system.mass > 0.0
+    M = system.mass_coupling[None, :, :] + mass[:, :, None] * np.eye(system.size)[None]
+    if not massed.all():
+        free = ~massed
+        K00 = K[:, free][:, :, free]
+        K0m = K[:, free][:, :, massed]
+        K = K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m)
+        M = M[:, massed][:, :, massed]
+    W = _inverse_cholesky(M)
+    A = W @ K @ np.swapaxes(W, 1, 2)
+    lam = np.linalg.eigvalsh(0.5 * (A + np.swapaxes(A, 1, 2)))
+    r = int(system.rigid_motions.shape[1])
+    return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(S, -1) / TWO_PI
+
+
+def _inverse_cholesky(M: FloatArray) -> FloatArray:
+    """L⁻¹ (S, N, N) of stacked mass matrices M = L Lᵀ (S, N, N).
+
+    When the coordinates whose mass differs between the samples carry no mass coupling (the
+    sprockets' inertias vary; the chain's consistent span masses couple only chain nodes,
+    which do not), M is block-diagonal in them: L⁻¹ is 1/√m on those and the inverse
+    Cholesky factor of the common rest, factorised once. Otherwise one factor per sample.
+    """
+    diag = np.diagonal(M, axis1=1, axis2=2)
+    varying = np.any(diag != diag[:1], axis=0)
+    coupled = np.any(M[0] - np.diag(diag[0]) != 0.0, axis=1)
+    if np.any(varying & coupled):
+        return np.asarray(np.linalg.inv(np.linalg.cholesky(M)), dtype=np.float64)
+    fixed = ~varying
+    W = np.zeros_like(M)
+    rest = np.linalg.inv(np.linalg.cholesky(M[0][np.ix_(fixed, fixed)]))
+    W[:, fixed[:, None] & fixed[None, :]] = rest.ravel()
+    idx = np.flatnonzero(varying)
+    W[:, idx, idx] = 1.0 / np.sqrt(diag[:, idx])
+    return W
+
+
+def _excitation(state: Analysis) -> tuple[FloatArray, FloatArray, float]:
+    """Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz] and
+    the tooth frequency [Hz] of a state: what its modal stage compares the natural
+    frequencies with (:func:`chaindrive.dynamics.whole.model_dynamics`), from the same
+    functions, without the stage's own modes and Campbell data."""
+    d = state.drive
+    w = d.driver.speed
+    if w is None:
+        return np.array([]), np.array([]), math.nan
+    spec = d.chain.spec
+    working = working_frequencies(w, d.driver.teeth, [s.teeth for s in d.sprockets],
+                                  [s.name for s in d.sprockets], WORKING_HARMONICS)
+    tensions = state.ring_parameters.span_tensions_n
+    first = np.array([])
+    if tensions is not None:
+        v = d.driver.teeth * spec.pitch * w / TWO_PI
+        first = span_transverse_frequencies([sp.length for sp in state.geometry.spans],
+                                            tensions, spec.mass_per_length, v, modes=1)[:, 0]
+    return (np.array([x.frequency for x in working]), first,
+            float(tooth_frequency(d.driver.teeth, w)))
+
+
+def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """First elastic frequency f₁ [Hz] and resonance margin [%] of S variants of a state's
+    model, against its working frequencies and its spans' parametric resonance (the rule of
+    :func:`chaindrive.dynamics.checks.resonance_check`).
+
+    Parameters
+    ----------
+    state : Analysis
+        The geometric state (working frequencies, span transverse frequencies).
+    elastic : ndarray
+        (S, E) elastic natural frequencies [Hz] (:func:`batch_elastic_frequencies`).
+
+    Returns
+    -------
+    tuple of ndarray
+        f₁ (S,) [Hz] (nan without an elastic mode), margin (S,) [%] (inf without working
+        frequencies).
+
+    References
+    ----------
+    [MultimassChainDrives, §3.2], [API684], [Bolotin1964]
+    """
+    S = elastic.shape[0]
+    f1 = elastic[:, 0] if elastic.shape[1] else np.full(S, math.nan)
+    working, transverse, fz = _excitation(state)
+    margin = np.full(S, np.inf)
+    if working.size and elastic.shape[1]:
+        gap = np.abs(elastic[:, None, :] - working[None, :, None])
+        nearest = np.take_along_axis(elastic, gap.argmin(axis=2), axis=1)
+        margin = np.min(np.abs(working[None, :] - nearest) / nearest * 100.0, axis=1)
+    f_span = transverse[transverse > 0]
+    if f_span.size:
+        margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
+                            * 100.0)
+    return f1, margin

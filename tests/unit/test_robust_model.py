@@ -1,0 +1,141 @@
+"""The uncertainty model and the states of a drive (chaindrive.robust.uncertainty,
+.perturbation, .analysis, .life).
+
+Numbers: the commercial sprocket eccentricity table [RyleTolerances] (ASME B29.1), the
+installation tolerance of shaft distances [TsubakiGuide, §7.1.2.2], the acetal modulus
+points [Delrin500P], the take-up's two pitches [DiamondChainTension] and the ACA wear-life
+relation h ∝ ε [Shigley2015, Eq. 17-40].
+"""
+
+from __future__ import annotations
+
+import tomllib
+
+import numpy as np
+import pytest
+
+import chaindrive
+from chaindrive.catalog import find_material
+from chaindrive.errors import DesignError
+from chaindrive.io.design import drive_from_mapping
+from chaindrive.robust import (
+    Perturbation,
+    PerturbedAnalysis,
+    UncertaintySettings,
+    life_curve,
+    nominal_analysis,
+    uncertainty_model,
+    uncertainty_settings,
+)
+from chaindrive.robust.life import wear_state
+from chaindrive.robust.perturbation import modulus_factor
+from chaindrive.robust.uncertainty import eccentricity_limit, position_tolerance
+from chaindrive.strength.wear import wear_life_hours
+from tests.conftest import EXAMPLES
+
+
+@pytest.fixture(scope="module")
+def eight() -> chaindrive.analysis.Analysis:
+    return nominal_analysis(chaindrive.load(EXAMPLES / "eight_sprocket.toml"))
+
+
+def test_settings_defaults_and_mistakes() -> None:
+    s = uncertainty_settings(None)
+    assert (s.samples, s.wear, s.chain_length_tolerance) == (256, "life", 0.0015)
+    assert uncertainty_settings({"eccentricity": "0.05 mm"}).eccentricity == pytest.approx(5e-5)
+    with pytest.raises(DesignError, match=r"uncertainty\.wear"):
+        uncertainty_settings({"wear": "old"})
+    with pytest.raises(DesignError, match=r"uncertainty\.temperature_max"):
+        uncertainty_settings({"temperature_min": 40.0, "temperature_max": 20.0})
+    with pytest.raises(DesignError, match=r"uncertainty\.sample.*samples"):
+        uncertainty_settings({"sample": 10})
+    data = tomllib.loads((EXAMPLES / "seed_three_sprocket.toml").read_text(encoding="utf-8"))
+    data["uncertainty"] = {"inertia_scatter": 2.0}
+    with pytest.raises(DesignError, match=r"uncertainty\.inertia_scatter"):
+        drive_from_mapping(data)          # the design file is checked when it loads
+
+
+def test_tolerances_from_the_tables() -> None:
+    # ASME B29.1 commercial sprockets: TIR 0.006 in up to 4 in, 0.020 in for 15–20 in
+    assert eccentricity_limit(3.9 * 0.0254) == pytest.approx(0.003 * 0.0254)
+    assert eccentricity_limit(16 * 0.0254) == pytest.approx(0.010 * 0.0254)
+    assert eccentricity_limit(150 * 0.0254) == pytest.approx(0.024 * 0.0254)  # last row
+    # shafts: ±1 mm up to 1 m, ±a/1000 to 10 m, ±10 mm beyond
+    assert position_tolerance(0.6) == 1e-3
+    assert position_tolerance(4.0) == pytest.approx(4e-3)
+    assert position_tolerance(25.0) == 10e-3
+    pom = find_material("POM")
+    assert modulus_factor(pom, 100.0) == pytest.approx(700 / 3250)
+    assert modulus_factor(pom, -40.0) == pytest.approx(3450 / 3250)
+    assert modulus_factor(find_material("steel"), 100.0) == 1.0
+
+
+def test_model_of_a_drive_with_a_take_up(eight) -> None:
+    model = uncertainty_model(eight)
+    assert model.allowable_elongation == 0.03 and not model.fixed_centres
+    assert model.take_up_capacity == pytest.approx(2 * eight.drive.chain.pitch)
+    assert set(model.groups) == {"chain length", "wear", "eccentricity", "shaft positions",
+                                 "inertias", "chain stiffness"}
+    # no position variable for the driver or for the take-up that moves anyway
+    moved = {v.name for v in model.variables if v.group == "shaft positions"}
+    assert "x[0]" not in moved and f"x[{eight.geometry.adjusted}]" not in moved
+    # a state's elongation: length tolerance + the life fraction of the rest
+    x = model.values(np.full((1, model.dimension), 0.5))[0]
+    eps0 = 0.5 * 0.0015
+    assert model.perturbation(x).elongation == pytest.approx(eps0 + 0.5 * (0.03 - eps0))
+
+
+def test_nominal_state_is_the_analysis(eight) -> None:
+    state = PerturbedAnalysis(eight, Perturbation())
+    assert [(c.key, c.status) for c in state.checks()] == [
+        (c.key, c.status) for c in eight.checks()]
+    for a, b in zip(state.checks(), eight.checks(), strict=True):
+        assert a.value == pytest.approx(b.value, rel=1e-9)
+
+
+def test_life_curve_of_a_fixed_centre_drive() -> None:
+    """The seed contour as drawn fails the checks its analysis fails (teeth in mesh on the
+    idler S3, and the resonance margin: the whole-drive model's f₁ = 73.06 Hz lies 2.7 %
+    below the 75 Hz tooth frequency, docs/dynamics.md §7); those are left out of the first
+    failure, so the chain's life ends at the replacement rule of a fixed-centre drive, 1.5 %
+    [DiamondChainWear]."""
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
+    model = uncertainty_model(nominal, UncertaintySettings())
+    life = life_curve(nominal, model, points=7)
+    assert model.fixed_centres and life.allowable_elongation == 0.015
+    assert life.failing_when_new == tuple(c.key for c in nominal.checks() if not c.passed)
+    assert set(life.failing_when_new) == {"teeth_in_mesh[S3]", "resonance_margin"}
+    assert life.first_failure == "chain_elongation"
+    assert life.first_failure_elongation == life.life_elongation == 0.015
+    sag = [s.sag_ratio for s in life.states]
+    assert sag == sorted(sag)
+    assert life.hours_per_elongation is None       # a GOST chain has no ACA rating
+
+
+def test_life_curve_bisects_the_first_failure() -> None:
+    """The conveyor example passes every check when new; the wear lowers its first natural
+    frequency into the resonance band (the analysis's rule [MultimassChainDrives, §3.2]) before
+    the replacement rule: the bisection brackets the flip of the check."""
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "conveyor_five_sprocket.toml"))
+    model = uncertainty_model(nominal, UncertaintySettings())
+    life = life_curve(nominal, model, points=5)
+    assert life.failing_when_new == ()
+    eps = life.first_failure_elongation
+    assert eps is not None and life.first_failure == "resonance_margin"
+    assert 0 < eps < life.allowable_elongation and life.life_elongation == eps
+    assert "resonance_margin" in wear_state(nominal, model, eps).failed
+    assert "resonance_margin" not in wear_state(nominal, model, eps * 0.98).failed
+
+
+def test_life_curve_with_a_take_up(eight) -> None:
+    model = uncertainty_model(eight)
+    life = life_curve(eight, model, points=5)
+    travel = [s.take_up_travel_mm for s in life.states]
+    assert travel[0] == 0 and travel == sorted(travel)
+    assert life.take_up_runs_out == pytest.approx(2 * eight.drive.chain.pitch
+                                                  / eight.geometry.chain_length)
+    rated = eight.strength.rated_power
+    hours = wear_life_hours(rated, eight.drive.power * (eight.drive.service_factor or 1.0),
+                            eight.geometry.links, 0.03)
+    assert life.hours(0.03) == pytest.approx(hours)        # ACA: h ∝ ε
+    assert life.life_elongation <= 0.03
