@@ -48,8 +48,11 @@ lint: $(VENV)/.installed-test $(VENV)/.kernel bytecode
 typecheck: $(VENV)/.installed-test
 	$(BIN)/python -m mypy
 
+# The suite on WORKERS processes (pytest-xdist; the project machine and CI have 2 cores; a
+# test file stays on one worker, so its module fixtures start once). WORKERS=0: one process.
+WORKERS ?= 2
 test: lint typecheck
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(WORKERS) --dist loadfile
 
 # The tests of time, threads, processes, Dask, the web server and the browser (marker
 # `concurrency`), each repeated N times in a row, with LOAD busy processes meanwhile
@@ -57,7 +60,7 @@ test: lint typecheck
 N ?= 30
 LOAD ?= 0
 flaky: $(VENV)/.installed-test $(VENV)/.kernel bytecode
-	$(BIN)/python -m tests.flaky --count $(N) --load $(LOAD)
+	$(BIN)/python -m tests.flaky --count $(N) --load $(LOAD) --workers $(WORKERS)
 
 # The long fuzzing run of docs/reliability.md: FUZZ new random mutated designs (make test
 # runs a short derandomised profile of the same test).

@@ -1,12 +1,14 @@
 """Repeat the tests that involve time, threads, processes, Dask, the web server or the browser
 (marker ``concurrency``) and report how often each failed: ``make flaky`` runs it.
 
-    python -m tests.flaky [--count N] [--load K] [-k EXPR] [pytest args…]
+    python -m tests.flaky [--count N] [--load K] [--workers W] [-k EXPR] [pytest args…]
 
 ``--count`` repeats every selected test N times in a row (pytest-repeat, default 30);
 ``--load`` keeps K busy processes running meanwhile (``--load 2`` keeps both cores of the
 project machine busy), so a test that only passes on an idle machine shows up here and not
-in CI. The exit status is 0 only when no repetition failed.
+in CI; ``--workers`` runs the repetitions on W processes at once (pytest-xdist, each test
+then runs beside another one, as in ``make test``; 0: one process). The exit status is 0
+only when no repetition failed.
 """
 
 from __future__ import annotations
@@ -65,6 +67,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=30, help="repetitions of each test")
     parser.add_argument("--load", type=int, default=0, help="busy processes meanwhile")
+    parser.add_argument("--workers", type=int, default=0, help="test processes (pytest-xdist)")
     args, rest = parser.parse_known_args(argv)
     stop = multiprocessing.Event()
     load = [multiprocessing.Process(target=_busy, args=(stop,), daemon=True)
@@ -73,14 +76,15 @@ def main(argv: list[str] | None = None) -> int:
         p.start()
     tally = Tally()
     start = time.monotonic()
+    workers = ["-n", str(args.workers), "--dist", "load"] if args.workers > 0 else []
     try:
         code = pytest.main(["-q", "-m", "concurrency", "--count", str(args.count),
-                            "-p", "no:cacheprovider", *rest], plugins=[tally])
+                            "-p", "no:cacheprovider", *workers, *rest], plugins=[tally])
     finally:
         stop.set()
         for p in load:
             p.join(5)
-    print(f"\n{args.count} repetitions, {args.load} busy processes, "
+    print(f"\n{args.count} repetitions, {args.load} busy processes, {args.workers} workers, "
           f"{time.monotonic() - start:.0f} s")
     print(tally.table())
     failed = sum(tally.failures.values())
