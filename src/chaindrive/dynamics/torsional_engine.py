@@ -706,8 +706,8 @@ class TorsionalEngine:
         a, b : str
             The nodes it joins (created massless when new).
         stiffness : float
-            Torsional stiffness k [N·m/rad] (e.g. :func:`chaindrive.dynamics.drive_model.
-            shaft_stiffness`).
+            Torsional stiffness k [N·m/rad] (of a round shaft:
+            :func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
         damping : float
             Torsional damping c [N·m·s/rad].
         name : str | None
@@ -717,6 +717,10 @@ class TorsionalEngine:
         -------
         TorsionalEngine
             The model itself (calls chain).
+
+        References
+        ----------
+        [Rao2011, ch. 6] (torsional spring and damper elements).
         """
         name = self._element_name(name, f"shaft:{a}-{b}")
         ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
@@ -893,6 +897,10 @@ class TorsionalEngine:
         -------
         TorsionalEngine
             The model itself (calls chain).
+
+        References
+        ----------
+        [Rao2011, ch. 6] (spring and damper elements).
         """
         name = self._element_name(name, f"{kind}:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
@@ -1029,6 +1037,10 @@ class TorsionalEngine:
         -------
         float
             T_to [N·m].
+
+        References
+        ----------
+        [Shigley2015, ch. 13] (power and torque through a gear train).
         """
         ia, it = self._node(at, False, "at"), self._node(to, False, "to")
         (ra, ga), (rt, gt) = self._gears.find(ia), self._gears.find(it)

@@ -315,8 +315,8 @@ def page_map(report: Report) -> dict[str, int]:
 
 
 def write_pdf(report: Report, path: Path) -> None:
-    """Write the report as a PDF file at ``path`` (a plain write; :func:`chaindrive.report.
-    write_report` is the atomic one).
+    """Write the report as a PDF file at ``path`` (a plain write; the atomic one is
+    :func:`chaindrive.report.write_report`).
 
     Parameters
     ----------
