@@ -56,7 +56,7 @@ class Verdict:
     headline : str
         E.g. ``The design passes all 15 checks``.
     detail : str
-        A line of detail (what governs, what cannot be verified).
+        A line of detail (the worst failed check, or where the checks are listed).
     """
 
     passed: bool
