@@ -324,7 +324,8 @@ class DriveModel:
     span_damping_ratios : ndarray
         (S,) damping ratios ζ of the chain spans [-].
     damping_source : str
-        Where ζ comes from (a key of docs/references.md or the design's field).
+        Where ζ comes from: the design's ``[dynamics] damping_ratio``, hinge friction
+        [ChainHingeDissipation] or the material pair [MultimassChainDrives, Table 1].
     reference_frequency_hz : float
         f_ref = ω_ref/2π of the chain's dampers d = 2ζk/ω_ref [Hz].
     contours : int
