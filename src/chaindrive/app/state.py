@@ -33,9 +33,26 @@ RPM_PER_RAD_S = 30.0 / math.pi
 
 @dataclass(frozen=True, slots=True)
 class Column:
-    """One column of the sprocket table: its key in a row, the design-file field it
-    writes, the unit its numbers are in (``""`` for plain values), and the factor that turns
-    the SI value of the field into the column's number."""
+    """One column of the sprocket table.
+
+    Parameters
+    ----------
+    key : str
+        Its key in a row (``x_mm``).
+    field : str
+        The design-file field it writes (``x``).
+    label : str
+        Its header on the page, with the unit (``x [mm]``).
+    unit : str
+        The unit its numbers are in, as the design file writes it (``""`` for plain
+        values).
+    dimension : str
+        The field's kind of quantity for the unit parser (``"length"``; ``""``: a plain
+        value).
+    from_si : float
+        The factor that turns the field's SI value into the column's number [unit/SI]
+        (1e3 for m → mm).
+    """
 
     key: str
     field: str
@@ -74,10 +91,19 @@ FORM_KEY_OF_FIELD: dict[str, str] = {"power": "power_kw"}
 class DesignForm:
     """What the page edits: the [drive] and [chain] values and the sprocket rows.
 
-    drive : name, power_kw, service_factor, tooth_form (None: default);
-    chain : designation, standard, series, strands, links, allow_odd, contours, catalog;
-    sprockets : one dict per row with the keys of :data:`SPROCKET_COLUMNS`;
-    other : every other table of the design file (``[dynamics]``, …), kept as it was read.
+    Parameters
+    ----------
+    drive : dict
+        name, power_kw [kW], service_factor, tooth_form (None: default), and any other
+        ``[drive]`` field as read.
+    chain : dict
+        designation, standard, series, strands, links, allow_odd, contours, catalog,
+        pitch_mm [mm], and any other ``[chain]`` field as read.
+    sprockets : list of dict
+        One dict per row with the keys of :data:`SPROCKET_COLUMNS` (numbers in the
+        columns' units).
+    other : dict
+        Every other table of the design file (``[dynamics]``, …), kept as it was read.
     """
 
     drive: dict[str, Any] = field(default_factory=dict)
@@ -88,9 +114,17 @@ class DesignForm:
 
 @dataclass(frozen=True, slots=True)
 class Location:
-    """Where a field path such as ``sprockets[2].teeth`` lives in the form: section
-    (``drive``, ``chain``, ``sprockets`` or ``design``), row (sprockets only, None for the
-    table as a whole) and key (form key of the field, None for the whole section/row)."""
+    """Where a field path such as ``sprockets[2].teeth`` lives in the form.
+
+    Parameters
+    ----------
+    section : str
+        ``drive``, ``chain``, ``sprockets`` or ``design`` (the design as a whole).
+    row : int | None
+        The sprocket row, 0-based (sprockets only; None for the table as a whole).
+    key : str | None
+        The form key of the field (None for the whole section or row).
+    """
 
     section: str
     row: int | None = None
@@ -101,9 +135,20 @@ class Location:
 class Outcome:
     """The result of :func:`evaluate`: the analysis, or the message of what is wrong.
 
-    message : the one line the command line prints after ``error:`` (None when fine);
-    location : where the page shows it; unexpected : True when the failure is not a
-    user's mistake (the page then shows a short note, never a traceback).
+    Parameters
+    ----------
+    analysis : Analysis | None
+        The analysis (None when the design could not be analysed).
+    drive : Drive | None
+        The validated design, as designed (before the take-up moved a sprocket; None when
+        it is invalid).
+    message : str | None
+        The one line the command line prints after ``error:`` (None when fine).
+    location : Location | None
+        Where the page shows the message.
+    unexpected : bool
+        True when the failure is not a user's mistake (the page then shows a short note,
+        never a traceback).
     """
 
     analysis: Analysis | None = None
@@ -121,17 +166,47 @@ class Outcome:
 # --- examples and files ---------------------------------------------------------------------
 
 def list_examples() -> tuple[str, ...]:
-    """The bundled examples (package data, :mod:`chaindrive.examples`), sorted by name."""
+    """The bundled examples (package data, :mod:`chaindrive.examples`), sorted by name.
+
+    Returns
+    -------
+    tuple of str
+        Their names (without ``.toml``).
+    """
     return examples.names()
 
 
 def example_text(name: str) -> str:
-    """The TOML text of a bundled example."""
+    """The TOML text of a bundled example.
+
+    Parameters
+    ----------
+    name : str
+        A name of :func:`list_examples`.
+
+    Returns
+    -------
+    str
+        The design file's text.
+    """
     return examples.text(name)
 
 
 def read_design_text(text: str, name: str = "design") -> dict[str, Any]:
-    """Parse the text of a TOML design file (errors as :func:`chaindrive.load` gives them)."""
+    """Parse the text of a TOML design file (errors as :func:`chaindrive.load` gives them).
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    name : str
+        What the error messages call the file.
+
+    Returns
+    -------
+    dict
+        The design mapping.
+    """
     from chaindrive.io.design import parse_toml
 
     return parse_toml(text, name)
@@ -158,6 +233,16 @@ def form_from_design(data: Mapping[str, Any]) -> DesignForm:
     Quantities are converted to the units of the form (mm, rpm, kW, kg·m², °); a value that
     cannot be read raises the :class:`DesignError` the command line would print. Unknown
     fields are not dropped silently: they are kept so that :func:`evaluate` names them.
+
+    Parameters
+    ----------
+    data : mapping
+        The design mapping.
+
+    Returns
+    -------
+    DesignForm
+        The form's values.
     """
     drive_in = dict(data.get("drive") or {})
     power = drive_in.pop("power", None)
@@ -191,7 +276,18 @@ def form_from_design(data: Mapping[str, Any]) -> DesignForm:
 # --- form → design mapping ------------------------------------------------------------------
 
 def is_empty(value: Any) -> bool:
-    """True for an empty cell: None, NaN (pandas' missing value) or blank text."""
+    """True for an empty cell: None, NaN (pandas' missing value) or blank text.
+
+    Parameters
+    ----------
+    value : object
+        A cell of the form.
+
+    Returns
+    -------
+    bool
+        Whether the cell is empty.
+    """
     if value is None:
         return True
     if isinstance(value, float) and math.isnan(value):
@@ -208,7 +304,18 @@ def is_empty(value: Any) -> bool:
 
 def plain(value: Any) -> Any:
     """A cell as plain Python: numpy/pandas scalars unwrapped, whole floats of int columns
-    left as floats (the caller decides)."""
+    left as floats (the caller decides).
+
+    Parameters
+    ----------
+    value : object
+        A cell of the form.
+
+    Returns
+    -------
+    object
+        The Python value.
+    """
     item = getattr(value, "item", None)
     return item() if callable(item) and not isinstance(value, str | bytes) else value
 
@@ -271,7 +378,18 @@ CHAIN_NUMBERS: dict[str, tuple[str, str, float]] = {"pitch_mm": ("pitch", "mm", 
 
 
 def design_from_form(form: DesignForm) -> dict[str, Any]:
-    """The design mapping (what a TOML design file loads to) of the edited form."""
+    """The design mapping (what a TOML design file loads to) of the edited form.
+
+    Parameters
+    ----------
+    form : DesignForm
+        The edited form.
+
+    Returns
+    -------
+    dict
+        The design mapping, numbers written with their units (``"120 mm"``).
+    """
     chain = _section_to_design(form.chain, CHAIN_NUMBERS, ("strands", "links", "contours"))
     if chain.get("allow_odd") is False:
         del chain["allow_odd"]
@@ -337,6 +455,18 @@ def locate(path: str, names: Sequence[str] = ()) -> Location:
     ``sprockets[2].teeth`` → (sprockets, 2, "teeth"); ``sprockets[S3].speed`` (a name in the
     brackets, as the model writes it) → its row; ``sprockets.role`` → (sprockets, None,
     "role"); ``drive.power`` → (drive, None, "power_kw"); anything else → ("design").
+
+    Parameters
+    ----------
+    path : str
+        The field of a :class:`~chaindrive.errors.DesignError`.
+    names : sequence of str
+        The sprocket names, in row order (to find ``sprockets[S3]``).
+
+    Returns
+    -------
+    Location
+        Where the page shows the error.
     """
     head, _, rest = path.partition(".")
     section, _, bracket = head.partition("[")
@@ -355,7 +485,18 @@ def locate(path: str, names: Sequence[str] = ()) -> Location:
 def interactive_analysis(drive: Drive) -> Analysis:
     """The analysis the page redraws after every edit: everything :func:`chaindrive.analyze`
     computes except the time-consuming dynamic response (start-up transient and AFC sweep,
-    which the page runs on demand): ``analyze(drive, response=False)``."""
+    which the page runs on demand): ``analyze(drive, response=False)``.
+
+    Parameters
+    ----------
+    drive : Drive
+        The validated design.
+
+    Returns
+    -------
+    Analysis
+        Its lazy analysis without the dynamic response.
+    """
     from chaindrive.analysis import analyze
 
     return analyze(drive, response=False)
@@ -417,7 +558,20 @@ EDIT_FIELDS: tuple[str, ...] = ("name", "teeth", "x_mm", "y_mm", "role", "side",
 
 
 def sprocket_label(index: int, row: Mapping[str, Any]) -> str:
-    """How the form's sprocket chooser names row ``index`` (0-based): ``row 3: S3``."""
+    """How the form's sprocket chooser names a row: ``row 3: S3``.
+
+    Parameters
+    ----------
+    index : int
+        The row, 0-based.
+    row : mapping
+        The row's cells.
+
+    Returns
+    -------
+    str
+        The label.
+    """
     name = row.get("name")
     return f"row {index + 1}: {'unnamed' if is_empty(name) else name}"
 
@@ -425,7 +579,18 @@ def sprocket_label(index: int, row: Mapping[str, Any]) -> str:
 def edit_values(row: Mapping[str, Any]) -> dict[str, Any]:
     """The values the form shows for a sprocket row: empty cells as None, a whole tooth count
     as an int (a fractional one as None, so the form does not invent a count), numbers as
-    float [mm, rpm, –], text as str."""
+    float [mm, rpm, –], text as str.
+
+    Parameters
+    ----------
+    row : mapping
+        A row of the sprocket table.
+
+    Returns
+    -------
+    dict
+        :data:`EDIT_FIELDS` → the value the form shows.
+    """
     out: dict[str, Any] = {}
     for key in EDIT_FIELDS:
         value = plain(row.get(key))
@@ -446,6 +611,20 @@ def apply_sprocket_edit(rows: Sequence[Mapping[str, Any]], index: int,
     """The sprocket rows with row ``index`` (0-based) given ``values`` (keys of
     :data:`EDIT_FIELDS`; None empties the cell so the default applies). The other rows and
     the row's other columns are copied unchanged; an index outside the table changes nothing.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The sprocket table.
+    index : int
+        The row edited, 0-based.
+    values : mapping
+        :data:`EDIT_FIELDS` → new value (None empties the cell).
+
+    Returns
+    -------
+    list of dict
+        The new table (copies; ``rows`` is not changed).
     """
     out = [dict(r) for r in rows]
     if 0 <= index < len(out):

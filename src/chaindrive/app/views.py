@@ -41,9 +41,26 @@ TIGHT, CHAIN, PITCH, GREY = "#D55E00", "#0072B2", "#009E73", "#7f7f7f"
 
 @dataclass(frozen=True, slots=True)
 class Check:
-    """One check as the page shows it: what, its value (in the unit it is read in), the
-    requirement, the result (``pass``, ``FAIL``, ``CANNOT BE VERIFIED``), its source and its
-    margin [%] (≥ 0 passes) and the line the page writes for it when it fails."""
+    """One check as the page shows it (:func:`chaindrive.display.check_row`).
+
+    Parameters
+    ----------
+    name : str
+        What is checked, with its subject.
+    value : float | None
+        The design's value in the unit it is read in [the check's display unit, e.g. MPa]
+        (None: not computed).
+    required : str
+        The requirement as text (``≤ 35 MPa``).
+    result : str
+        ``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``.
+    source : str
+        The rule's source, a key of docs/references.md.
+    margin : float | None
+        The margin [%] (≥ 0 passes; :attr:`chaindrive.checks.Check.margin_fraction`).
+    line : str
+        The line the page writes for it when it fails.
+    """
 
     name: str
     value: float | None
@@ -92,7 +109,22 @@ def layout_svg(geometry: GeometryResult, *, highlight: str | None = None,
     """The contour to scale as an SVG document [mm]: tip circles (grey discs), pitch circles
     (dash-dot), centre marks, the chain (blue; the tight span red) with an arrow per span in
     the direction of travel, names with tooth counts; the sprocket named ``highlight`` is
-    outlined in red."""
+    outlined in red.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    highlight : str | None
+        Name of the sprocket to outline (None: none).
+    max_height_px : int
+        Largest height of the drawing on the page [px].
+
+    Returns
+    -------
+    str
+        The SVG document (user units: mm, y down).
+    """
     tips = np.array([s.tip_diameter / 2 for s in geometry.sprockets]) * MM
     xs = np.array([s.x for s in geometry.sprockets]) * MM
     ys = np.array([s.y for s in geometry.sprockets]) * MM
@@ -156,7 +188,24 @@ def line_chart_svg(x: Any, series: dict[str, Any], *, x_label: str, y_label: str
                    width: int = 460, height: int = 220) -> str:
     """A small line chart as an SVG document (drawn in a millisecond, where a plotting
     library takes a good part of a second): the ``series`` (label → y values) against
-    ``x``, with ticks, axis labels and a legend."""
+    ``x``, with ticks, axis labels and a legend.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae [the unit ``x_label`` names].
+    series : dict of str to array_like
+        Label → ordinates, one per abscissa [the unit ``y_label`` names].
+    x_label, y_label : str
+        Axis labels, with their units.
+    width, height : int
+        Size of the chart [px].
+
+    Returns
+    -------
+    str
+        The SVG document.
+    """
     xs = np.asarray(x, dtype=float)
     ys = [np.asarray(v, dtype=float) for v in series.values()]
     y_lo = min(float(v.min()) for v in ys)
@@ -203,7 +252,19 @@ def line_chart_svg(x: Any, series: dict[str, Any], *, x_label: str, y_label: str
 
 def headline(analysis: Analysis) -> dict[str, Any]:
     """The numbers always on screen (SI, from the analysis): chain, links, chain length,
-    slack, take-up, chain speed, tooth frequency."""
+    slack, take-up, chain speed, tooth frequency.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The design's analysis.
+
+    Returns
+    -------
+    dict
+        ``chain``, ``links``, ``chain_length_m``, ``slack_m``, ``adjusted_sprocket``,
+        ``adjustment_m``, ``chain_speed_m_s``, ``tooth_frequency_hz`` (units in the keys).
+    """
     g, k = analysis.geometry, analysis.kinematics
     return {
         "chain": analysis.drive.chain.spec.designation,
@@ -219,13 +280,37 @@ def headline(analysis: Analysis) -> dict[str, Any]:
 
 def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
     """The checks of the analysis (:meth:`chaindrive.analysis.Analysis.checks`), as shown,
-    with the margin of :mod:`chaindrive.checks` in per cent (≥ 0 passes)."""
+    with the margin of :mod:`chaindrive.checks` in per cent (≥ 0 passes).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The design's analysis.
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of Check
+        One per check, in the analysis's order.
+    """
     return [Check(*check_row(c, units), margin_percent(c), check_line(c, units))
             for c in analysis.checks()]
 
 
 def check_records(items: list[Check]) -> list[dict[str, Any]]:
-    """Rows of the checks table (failed first), numbers by the presenters' one rule."""
+    """Rows of the checks table (failed first), numbers by the presenters' one rule.
+
+    Parameters
+    ----------
+    items : list of Check
+        The checks as shown (:func:`checks`).
+
+    Returns
+    -------
+    list of dict
+        One dict per row: column header (with its unit) → cell.
+    """
     ordered = sorted(items, key=lambda c: c.passed)
     return [{"check": c.name, "value": None if c.value is None else clean(c.value),
              "required": c.required,
@@ -246,7 +331,20 @@ def _row(item: dict[str, Any], cols: tuple[tuple[str, str], ...], units: UnitSys
 
 def sprocket_records(document: dict[str, Any], units: UnitSystem = "SI"
                      ) -> list[dict[str, Any]]:
-    """Rows of the geometry-and-speed table of the sprockets."""
+    """Rows of the geometry-and-speed table of the sprockets.
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per row: column header (with its unit) → cell.
+    """
     speeds = {s["name"]: s for s in document["kinematics"]["sprockets"]}
     cols = (("name", "name"), ("teeth", "teeth"), ("x", "x_mm"), ("y", "y_mm"),
             ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
@@ -258,7 +356,20 @@ def sprocket_records(document: dict[str, Any], units: UnitSystem = "SI"
 
 
 def span_records(document: dict[str, Any], units: UnitSystem = "SI") -> list[dict[str, Any]]:
-    """Rows of the span table (with the static tensions when the strength part exists)."""
+    """Rows of the span table (with the static tensions when the strength part exists).
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per row: column header (with its unit) → cell.
+    """
     st = document.get("strength") or {}
     tensions = st.get("span_tensions_n") or [None] * len(document["geometry"]["spans"])
     cols = (("length", "length_mm"), ("pitches", "length_pitches"),
@@ -272,7 +383,20 @@ def resonance_records(document: dict[str, Any], spans: list[str] | None = None
     """Rows of the resonance table: working frequency, the nearest natural one (a ring mode,
     or for a parametric row twice the transverse frequency of a span, named by the span),
     the detuning |f_w − f_n|/f_n ≥ 0 and whether the working frequency lies below or
-    above."""
+    above.
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    spans : list of str | None
+        Span names in the geometry's order (None: spans named by number).
+
+    Returns
+    -------
+    list of dict
+        One dict per row: column header (with its unit) → cell.
+    """
     out = []
     for r in document["dynamics"].get("resonances") or []:
         span = r["kind"] == "parametric"
@@ -287,7 +411,18 @@ def resonance_records(document: dict[str, Any], spans: list[str] | None = None
 
 def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
     """Rows of the natural-frequency table (elastic modes; ``rigid_body_modes`` is one flag
-    per mode)."""
+    per mode).
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+
+    Returns
+    -------
+    list of dict
+        One dict per elastic mode: ``mode``, ``natural, Hz``, ``damped, Hz``.
+    """
     dyn = document["dynamics"]
     rigid = dyn["rigid_body_modes"]
     return [{"mode": j, "natural, Hz": clean(f), "damped, Hz": clean(fd)}
@@ -298,7 +433,20 @@ def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
 
 def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
                      ) -> list[dict[str, Any]]:
-    """Rows (quantity, value, unit) of the loads and static strength."""
+    """Rows (quantity, value, unit) of the loads and static strength.
+
+    Parameters
+    ----------
+    strength : dict
+        The ``strength`` part of the analysis's JSON document.
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per quantity: ``quantity``, ``value`` (formatted), ``unit``.
+    """
     rows = (("chain speed v", "chain_speed_m_s"), ("peripheral force F_t", "peripheral_force_n"),
             ("sag tension F₀", "sag_tension_n"), ("centrifugal tension F_v",
                                                   "centrifugal_tension_n"),
@@ -317,7 +465,22 @@ def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
 
 def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: int = 12
                       ) -> list[dict[str, Any]]:
-    """Rows of the ranked candidates of the chain selection."""
+    """Rows of the ranked candidates of the chain selection.
+
+    Parameters
+    ----------
+    selection : dict
+        The ``selection`` part of the analysis's JSON document.
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    top : int
+        How many candidates to show, the best first.
+
+    Returns
+    -------
+    list of dict
+        One dict per row: column header (with its unit) → cell.
+    """
     mass = header("mass", "mass_kg_m", units)
     return [{"chain": c["chain"], "method": c["method"], "strands": c["strands"],
              mass: clean(doc_value("mass_kg_m", c["mass_kg_m"], units)[0]),
@@ -329,9 +492,22 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class Screen:
-    """Everything the page redraws after an edit: the outcome of the evaluation and, when
-    the design was analysed, its headline numbers, checks and layout SVG (the quick part),
-    and its JSON document (the rest, with the chain selection)."""
+    """Everything the page redraws after an edit.
+
+    Parameters
+    ----------
+    outcome : Outcome
+        The outcome of the evaluation (:class:`chaindrive.app.state.Outcome`).
+    document : dict | None
+        The analysis's JSON document, with the chain selection (None until
+        :func:`complete`).
+    numbers : dict | None
+        The headline numbers (:func:`headline`; None for a bad design).
+    checks : tuple of Check
+        The checks as shown.
+    svg : str | None
+        The contour layout (:func:`layout_svg`; None for a bad design).
+    """
 
     outcome: Any
     document: dict[str, Any] | None = None
@@ -358,7 +534,21 @@ def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None
     stages of one lazy :class:`~chaindrive.analysis.Analysis`, without the chain selection
     that :func:`complete` adds. ``catalogs``: the catalogues uploaded in the session, the
     only files ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
-    Never raises for a bad design."""
+    Never raises for a bad design.
+
+    Parameters
+    ----------
+    design : dict
+        The design mapping (what a TOML design file loads to).
+    catalogs : dict of str to Path | None
+        The catalogues uploaded in the session (name → file), the only files
+        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+
+    Returns
+    -------
+    Screen
+        The quick part, or the screen of a bad design (the command line's message).
+    """
     from chaindrive.analysis import Analysis
     from chaindrive.app.state import Outcome
     from chaindrive.io.design import drive_from_mapping
@@ -378,7 +568,18 @@ def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None
 
 def complete(screen: Screen) -> Screen:
     """The screen with the JSON document of its analysis (chain selection, warnings,
-    dynamics tables); a failure there becomes the screen of a bad design."""
+    dynamics tables); a failure there becomes the screen of a bad design.
+
+    Parameters
+    ----------
+    screen : Screen
+        A screen of :func:`quick_screen`.
+
+    Returns
+    -------
+    Screen
+        The same screen with its document (unchanged when it has one or holds no analysis).
+    """
     analysis = screen.outcome.analysis
     if analysis is None or screen.document is not None:
         return screen
@@ -393,7 +594,21 @@ def complete(screen: Screen) -> Screen:
 def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
     """Everything the page shows after an edit (:func:`quick_screen` then :func:`complete`;
     timed by ``benchmarks/bench_app_recompute.py``); ``catalogs`` as for
-    :func:`quick_screen`."""
+    :func:`quick_screen`.
+
+    Parameters
+    ----------
+    design : dict
+        The design mapping (what a TOML design file loads to).
+    catalogs : dict of str to Path | None
+        The catalogues uploaded in the session (name → file), the only files
+        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+
+    Returns
+    -------
+    Screen
+        The complete screen.
+    """
     return complete(quick_screen(design, catalogs))
 
 
@@ -402,7 +617,21 @@ def screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
     """The screens of :func:`recompute` one after the other, each as soon as it is ready:
     :func:`quick_screen` (what the page draws first), then, when the design was analysed,
     that analysis with its document (:func:`complete`: the quick part is not computed
-    twice)."""
+    twice).
+
+    Parameters
+    ----------
+    design : dict
+        The design mapping (what a TOML design file loads to).
+    catalogs : dict of str to Path | None
+        The catalogues uploaded in the session (name → file), the only files
+        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+
+    Yields
+    ------
+    Screen
+        The quick screen, then the complete one.
+    """
     quick = quick_screen(design, catalogs)
     yield quick
     if quick.outcome.ok:

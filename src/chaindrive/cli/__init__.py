@@ -41,7 +41,15 @@ UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
 
 @contextmanager
 def user_errors() -> Iterator[None]:
-    """Turn a ChainDriveError into one line on stderr and exit status 2."""
+    """Turn a ChainDriveError into one line on stderr and exit status 2.
+
+    Yields
+    ------
+    None
+        The block runs; a :class:`~chaindrive.errors.ChainDriveError` it raises becomes
+        ``error: <message>`` on stderr and :class:`typer.Exit` with
+        :data:`~chaindrive.cli.safety.EXIT_USER_ERROR`.
+    """
     try:
         yield
     except ChainDriveError as exc:

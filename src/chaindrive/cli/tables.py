@@ -45,21 +45,54 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
 
 
 def escape(text: object) -> str:
-    """``text`` with rich markup escaped (a name like ``[chain]`` prints as written)."""
+    """``text`` with rich markup escaped (a name like ``[chain]`` prints as written).
+
+    Parameters
+    ----------
+    text : object
+        Anything printed (its ``str``).
+
+    Returns
+    -------
+    str
+        The text, rich markup escaped.
+    """
     from rich.markup import escape as rich_escape
 
     return rich_escape(str(text))
 
 
 def console() -> Console:
-    """The console of the tables (no highlighting, 120 columns, no soft wrap)."""
+    """The console of the tables (no highlighting, 120 columns, no soft wrap).
+
+    Returns
+    -------
+    Console
+        A rich console on stdout.
+    """
     from rich.console import Console  # only the table output needs rich (not --json)
 
     return Console(highlight=False, soft_wrap=False, width=120)
 
 
 def table(title: str, columns: Sequence[str], rows: Sequence[Sequence[Any]]) -> Table:
-    """A rich table: every cell formatted by :func:`chaindrive.display.fmt` and escaped."""
+    """A rich table: every cell formatted by :func:`chaindrive.display.fmt` and escaped.
+
+    Parameters
+    ----------
+    title : str
+        The title above it.
+    columns : sequence of str
+        Column headers (with their units); the ones in :data:`TEXT_COLUMNS` are
+        left-aligned, the others (numbers) right-aligned.
+    rows : sequence of sequences
+        The cells, SI or already converted to the headers' units.
+
+    Returns
+    -------
+    Table
+        The rich table.
+    """
     from rich.table import Table
 
     t = Table(title=escape(title), title_justify="left", header_style="bold")
@@ -84,7 +117,17 @@ def _q(doc: dict[str, Any], key: str, units: UnitSystem, digits: int = 4) -> str
 
 def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSystem = "SI"
                    ) -> None:
-    """Readable tables of an analysis document (values in ``units``)."""
+    """Readable tables of an analysis document (values in ``units``) on stdout.
+
+    Parameters
+    ----------
+    doc : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    checks : sequence of Check
+        Its checks (:meth:`chaindrive.analysis.Analysis.checks`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    """
     con = console()
     d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
     con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])} (pitch "
@@ -136,7 +179,17 @@ def _doc_table(title: str, cols: Sequence[tuple[str, str]], items: Sequence[dict
 
 def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI") -> None:
     """The verdict and the table of checks, failed and unverifiable ones first; the margin
-    is :attr:`chaindrive.checks.Check.margin_fraction` in per cent (≥ 0 passes)."""
+    is :attr:`chaindrive.checks.Check.margin_fraction` in per cent (≥ 0 passes).
+
+    Parameters
+    ----------
+    con : Console
+        Where to print (rich).
+    checks : sequence of Check
+        The checks of the analysis.
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    """
     failed = [c for c in checks if not c.passed]
     if failed:
         con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]")
@@ -198,7 +251,13 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
 
 def print_schema(doc: dict[str, list[dict[str, Any]]]) -> None:
     """Every field of a design file, one table per section with the section's TOML header
-    (``[drive]``, ``[[sprockets]]`` …) as its title."""
+    (``[drive]``, ``[[sprockets]]`` …) as its title, on stdout.
+
+    Parameters
+    ----------
+    doc : dict
+        Section → its fields (:func:`chaindrive.io.design.schema`).
+    """
     con = console()
     for section, fields in doc.items():
         title = f"[[{section}]]" if section.startswith("sprockets") else f"[{section}]"
@@ -219,7 +278,15 @@ def _default(field: dict[str, Any]) -> Any:
 
 
 def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
-    """The chain selected and the ranked candidates."""
+    """The chain selected and the ranked candidates, on stdout.
+
+    Parameters
+    ----------
+    doc : dict
+        The selection's JSON document (:meth:`chaindrive.strength.selection.SelectionResult.to_dict`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    """
     con = console()
     if doc["chain"] is not None:
         con.print(f"selected: [bold]{escape(doc['chain'])}[/bold] ({escape(doc['method'])})")
@@ -238,7 +305,19 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
 def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],
                        con: Console | None = None) -> None:
     """The optimiser's start design, Pareto set and, when the set is empty or poor, each
-    constraint with the designs it rejected and how far the best of them missed."""
+    constraint with the designs it rejected and how far the best of them missed.
+
+    Parameters
+    ----------
+    name : str
+        The drive's name.
+    result : SynthesisResult
+        The optimiser's result.
+    written : sequence of str
+        The files written (Pareto designs, plot, report), listed at the end.
+    con : Console | None
+        Where to print (None: :func:`console`).
+    """
     names = list(result.objectives)
     con = con or console()
     con.print(f"[bold]{escape(name)}[/bold] — {result.evaluations} designs evaluated by "

@@ -114,11 +114,29 @@ def shaft_stiffness(diameter: float, length: float, youngs_modulus: float,
 class LinearModel:
     """M q̈ + C q̇ + K q = Q of a drive in its coordinates q (condensed).
 
-    mass (N, N) M [kg·m²]; stiffness_linear, damping_linear (N, N): every element but the
-    chain spans [N·m/rad, N·m·s/rad]; span_incidence (S, N): span elongations e = B q [m per
-    coordinate]; span_stiffness (S,) c [N/m]; span_damping (S,) d [N·s/m]; span_tension_only
-    (S,): a span that goes slack drops out. K = K_lin + Bᵀ diag(c·a) B, C likewise, a the
-    spans that carry (all, unless told).
+    K = K_lin + Bᵀ diag(c·a) B and C = C_lin + Bᵀ diag(d·a) B, a the spans that carry (all,
+    unless told) [Rao2011, ch. 6].
+
+    Parameters
+    ----------
+    mass : ndarray
+        (N, N) mass matrix M [kg·m²] (a chain coordinate of unit radius: [kg]).
+    stiffness_linear : ndarray
+        (N, N) stiffness K_lin of every element but the chain spans [N·m/rad].
+    damping_linear : ndarray
+        (N, N) damping C_lin of every element but the chain spans [N·m·s/rad].
+    span_incidence : ndarray
+        (S, N) B: span elongations e = B q [m per unit of coordinate].
+    span_stiffness : ndarray
+        (S,) span stiffnesses c [N/m].
+    span_damping : ndarray
+        (S,) span dampers d [N·s/m].
+    span_tension_only : ndarray of bool
+        (S,) True for a span that drops out when it goes slack.
+
+    References
+    ----------
+    [Rao2011, ch. 6] (equations of motion of a multi-degree-of-freedom system).
     """
 
     mass: FloatArray
@@ -135,20 +153,56 @@ class LinearModel:
         return int(self.mass.shape[0])
 
     def stiffness(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
-        """K [N·m/rad] with the spans ``active`` (default all)."""
+        """K [N·m/rad] with the spans ``active`` carrying.
+
+        Parameters
+        ----------
+        active : ndarray of bool | None
+            (S,) the spans that carry (None: all).
+
+        Returns
+        -------
+        ndarray
+            (N, N) K = K_lin + Bᵀ diag(c·a) B [N·m/rad].
+        """
         c = self.span_stiffness if active is None else self.span_stiffness * active
         B = self.span_incidence
         return self.stiffness_linear + (B.T * c) @ B
 
     def damping(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
-        """C [N·m·s/rad] with the spans ``active`` (default all)."""
+        """C [N·m·s/rad] with the spans ``active`` carrying.
+
+        Parameters
+        ----------
+        active : ndarray of bool | None
+            (S,) the spans that carry (None: all).
+
+        Returns
+        -------
+        ndarray
+            (N, N) C = C_lin + Bᵀ diag(d·a) B [N·m·s/rad].
+        """
         d = self.span_damping if active is None else self.span_damping * active
         B = self.span_incidence
         return self.damping_linear + (B.T * d) @ B
 
     def scaled(self, stiffness: float = 1.0, inertia: float = 1.0) -> LinearModel:
-        """The same model with every stiffness times ``stiffness`` and every inertia times
-        ``inertia`` [-], dampers times √(stiffness·inertia) (damping ratios kept)."""
+        """The same model with every stiffness and every inertia scaled, the dampers by
+        √(stiffness·inertia) so that the damping ratios ζ = d/(2√(k m)) are kept
+        [Rao2011, ch. 2].
+
+        Parameters
+        ----------
+        stiffness : float
+            Factor on every stiffness [-].
+        inertia : float
+            Factor on every inertia [-].
+
+        Returns
+        -------
+        LinearModel
+            The scaled model.
+        """
         d = math.sqrt(stiffness * inertia)
         return LinearModel(self.mass * inertia, self.stiffness_linear * stiffness,
                            self.damping_linear * d, self.span_incidence,
@@ -160,10 +214,26 @@ class LinearModel:
 class MotorPlacement:
     """The motor of a drive model: the node its rotor is on and its law.
 
-    node, coordinate; gain g [-]: forward speed of the node ω = g q̇ [rad/s] (g > 0 turning as
-    in running); efficiency η [-] of the gear stages to the sprocket (the torque on q is
-    g·η·T); law(t, ω) [N·m]; nominal_speed [rad/s] of the node; rotor_inertia [kg·m²] (0:
-    not modelled); estimated: the rotor inertia is an estimate.
+    Parameters
+    ----------
+    node : str
+        The node of the rotor.
+    coordinate : int
+        Its coordinate k in q.
+    gain : float
+        g [-]: the forward speed of the node is ω = g q̇_k (g > 0 turning as in running).
+    efficiency : float
+        η [-] of the gear stages from the motor to the sprocket (the torque on q_k is
+        g·η·T).
+    law : callable
+        Torque T(t, ω) [N·m] at time t [s] and speed ω [rad/s].
+    nominal_speed : float
+        Nominal speed of the node [rad/s].
+    rotor_inertia : float
+        Moment of inertia of the rotor [kg·m²] (0: not modelled).
+    estimated : bool
+        True when the rotor inertia is an estimate
+        (:func:`chaindrive.dynamics.motor_inertia.estimated_rotor_inertia`).
     """
 
     node: str
@@ -180,10 +250,26 @@ class MotorPlacement:
 class LoadPlacement:
     """A driven machine: its node, the law of its moment and the torque at the nominal speed.
 
-    sprocket, node, coordinate; gain g [-] (forward speed ω = g q̇); efficiency η [-] of the
-    gear stages from the sprocket (the moment on q is −g·M·φ(ω/ω_n)/η); kind "constant",
-    "linear" or "quadratic"; torque M [N·m] at the nominal speed ω_n [rad/s] (its power share
-    P_i = M ω_n).
+    The moment on q_k is −g·M·φ(ω/ω_n)/η, φ the law (1, ω/ω_n or (ω/ω_n)²).
+
+    Parameters
+    ----------
+    sprocket : str
+        The driven sprocket whose train ends at the machine.
+    node : str
+        The machine's node (the outermost node of the train).
+    coordinate : int
+        Its coordinate k in q.
+    gain : float
+        g [-]: the forward speed of the node is ω = g q̇_k.
+    efficiency : float
+        η [-] of the gear stages from the sprocket to the machine.
+    kind : str
+        The law of the moment: "constant", "linear" or "quadratic" in the speed.
+    torque : float
+        M [N·m] at the nominal speed (its power share P_i = M ω_n).
+    nominal_speed : float
+        ω_n [rad/s] of the node.
     """
 
     sprocket: str
@@ -201,18 +287,62 @@ class DriveModel:
     """The whole-drive model (module docstring) in the coordinates q of its
     :class:`LinearModel`.
 
-    torsional : the :class:`TorsionalEngine` (nodes, elements; the modal analysis);
-    linear : its matrices in q (massless nodes condensed); condensation (size, N): the
-    reduced coordinates of :attr:`system` as T q; sprocket_names; sprocket_coordinate (n,),
-    sprocket_gain (n,) [-]: the forward angular speed of sprocket i is g_i q̇[k_i];
-    pitch_radii (n,) R [m]; mean_radii (n,) R̄ = z p/2π [m] (chain travel per radian);
-    nominal_speeds (n,) [rad/s]; rotor_names, rotor_coordinate, rotor_gain, rotor_nominal_speed:
-    every node of the trains with an inertia (motor and machines among them); motor; loads;
-    span_damping_ratios (S,) ζ of the chain spans [-] and their source; reference_frequency_hz
-    of the damping; contours m (the spans carry m contours: forces per contour are F/m);
-    ring: the ring reduction (reduced masses, series branch stiffnesses) for the ring-model
-    tools; driver_index;
-    missing: what makes the model incomplete (empty: complete); notes: what it rests on.
+    Parameters
+    ----------
+    torsional : TorsionalEngine
+        The torsional model (nodes, elements; the modal analysis).
+    system : TorsionalSystem
+        Its assembled matrices in reduced coordinates.
+    linear : LinearModel
+        Its matrices in q (massless nodes condensed [Guyan1965]).
+    condensation : ndarray
+        (size, N) T: the reduced coordinates of ``system`` are T q [-].
+    sprocket_names : tuple of str
+        The sprockets, in the order of the design.
+    sprocket_coordinate : ndarray of int
+        (n,) index k_i [-] of each sprocket's coordinate in q.
+    sprocket_gain : ndarray
+        (n,) g_i [-]: the forward angular speed of sprocket i is g_i q̇[k_i].
+    pitch_radii : ndarray
+        (n,) pitch radii R [m].
+    mean_radii : ndarray
+        (n,) mean radii R̄ = z p/2π [m] (chain travel per radian).
+    nominal_speeds : ndarray
+        (n,) nominal angular speeds of the sprockets [rad/s].
+    rotor_names : tuple of str
+        Every node of the trains with an inertia (motor and machines among them).
+    rotor_coordinate : ndarray of int
+        Index [-] of each rotor's coordinate in q.
+    rotor_gain : ndarray
+        Gain g [-] of each rotor (forward speed g q̇).
+    rotor_nominal_speed : ndarray
+        Nominal angular speed of each rotor [rad/s].
+    motor : MotorPlacement | None
+        The motor (None: the design gives none).
+    loads : tuple of LoadPlacement
+        The driven machines.
+    span_damping_ratios : ndarray
+        (S,) damping ratios ζ of the chain spans [-].
+    damping_source : str
+        Where ζ comes from: the design's ``[dynamics] damping_ratio``, hinge friction
+        [ChainHingeDissipation] or the material pair [MultimassChainDrives, Table 1].
+    reference_frequency_hz : float
+        f_ref = ω_ref/2π of the chain's dampers d = 2ζk/ω_ref [Hz].
+    contours : int
+        m: the spans carry m parallel contours (forces per contour are F/m).
+    ring : RingParameters
+        The ring reduction (reduced masses, series branch stiffnesses) for the ring-model
+        tools.
+    driver_index : int
+        Index of the driving sprocket.
+    missing : tuple of str
+        What makes the model incomplete (empty: complete).
+    notes : tuple of str
+        What the model rests on (estimates, approximations).
+    trains : dict
+        Sprocket name → its train as plain data (for the JSON document).
+    modes : TorsionalModes | None
+        The modal analysis done while building (None: computed on demand).
     """
 
     torsional: TorsionalEngine
@@ -249,11 +379,23 @@ class DriveModel:
 
     def modal(self) -> TorsionalModes:
         """Undamped natural frequencies and shapes (:meth:`TorsionalEngine.modal`, computed
-        when the model was built)."""
+        when the model was built).
+
+        Returns
+        -------
+        TorsionalModes
+            Frequencies [Hz], shapes [rad] and strain-energy shares [-].
+        """
         return self.modes if self.modes is not None else self.torsional.modal()
 
     def warnings(self) -> tuple[ChainDriveWarning, ...]:
-        """One ``dynamics.model-incomplete`` warning when the model is incomplete."""
+        """One ``dynamics.model-incomplete`` warning when the model is incomplete.
+
+        Returns
+        -------
+        tuple of ChainDriveWarning
+            Empty when the model is complete.
+        """
         if self.complete:
             return ()
         return (ChainDriveWarning(
@@ -264,7 +406,13 @@ class DriveModel:
             "reduced_mass)"),)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready description: completeness, trains, motor, loads, damping."""
+        """JSON-ready description: completeness, trains, motor, loads, damping.
+
+        Returns
+        -------
+        dict
+            Keys carry their unit (``torque_n_m``, ``nominal_speed_rpm`` …).
+        """
         m = self.motor
         return {
             "complete": self.complete,

@@ -75,15 +75,23 @@ def reducer_input_torque(output_torque: float, ratio: float, efficiency: float =
 
     Parameters
     ----------
-    output_torque : T_out [N·m]
-    ratio : i = ω_in / ω_out (> 0)
-    efficiency : η ∈ (0, 1]
-    driving : True when power flows from the input to the output
+    output_torque : float
+        T_out [N·m].
+    ratio : float
+        i = ω_in / ω_out [-] (> 0).
+    efficiency : float
+        η ∈ (0, 1] [-].
+    driving : bool
+        True when power flows from the input to the output.
 
     Returns
     -------
     float
         T_in [N·m].
+
+    References
+    ----------
+    [Shigley2015, ch. 13] (power and torque through a gear train).
     """
     _check_ratio("ratio", ratio)
     _check_efficiency("efficiency", efficiency)
@@ -117,14 +125,64 @@ class TorsionalSystem:
     Node n turns by φ_n = node_factor[n]·q[node_dof[n]] (gear meshes eliminated). Equations of
     motion M q̈ + C q̇ + K q = Σ_n factor_n·T_n (:meth:`generalized_force`) with
     K = stiffness_linear + Bᵀ diag(c_span·active) B and C likewise, span elongations e = B q
-    (``span_incidence``) [m]. ``mass`` [kg·m²] is the diagonal of M; a 0 marks a massless
-    coordinate (see :meth:`condensed`); ``mass_coupling`` (size, size) the off-diagonal part
-    of M (a span's consistent chain mass couples its two ends; zero diagonal, all zeros when
-    every chain mass is lumped). ``rigid_motions`` (size, r): one exact strain-free
-    motion per free group (no ground spring, no loop of mismatched ratios), from the graph.
-    ``element_columns``, ``element_coefficients`` (elements, 2): the (at most two) nonzero
-    entries of every row of ``element_incidence``, for assembling K and C by scatter;
-    ``span_mask`` (elements,): the spans among the elements.
+    [Rao2011, ch. 6]. Units per coordinate: a rotating node's coordinate is an angle [rad],
+    a chain node's (unit radius) a displacement [m]; below, [N·m/rad] and [kg·m²] read
+    [N/m] and [kg] for the latter.
+
+    Parameters
+    ----------
+    node_names : tuple of str
+        The nodes, in the order they were created.
+    node_dof : ndarray of int
+        (nodes,) index [-] of the reduced coordinate each node turns with.
+    node_factor : ndarray
+        (nodes,) factor g_n [-]: φ_n = g_n·q[node_dof[n]] (signed product of gear ratios).
+    node_inertia_kg_m2 : ndarray
+        (nodes,) moment of inertia J of each node, chain inertia included [kg·m²].
+    mass : ndarray
+        (size,) diagonal of M [kg·m²]; 0 marks a massless coordinate (:meth:`condensed`).
+    mass_coupling : ndarray
+        (size, size) off-diagonal part of M [kg·m²]: a span's consistent chain mass couples
+        its two ends (zero diagonal; all zeros when every chain mass is lumped).
+    stiffness_linear : ndarray
+        (size, size) stiffness of every element but the spans [N·m/rad].
+    damping_linear : ndarray
+        (size, size) damping of every element but the spans [N·m·s/rad].
+    span_names : tuple of str
+        The chain spans.
+    span_incidence : ndarray
+        (spans, size) B: span elongations e = B q [m per unit of coordinate].
+    span_stiffness_n_per_m : ndarray
+        (spans,) span stiffnesses c [N/m].
+    span_damping_n_s_per_m : ndarray
+        (spans,) span dampers d [N·s/m].
+    span_tension_only : ndarray of bool
+        (spans,) True for a span that drops out when slack.
+    element_names : tuple of str
+        Every element (shafts, ground springs, links, spans).
+    element_kinds : tuple of str
+        Kind of each element ("shaft", "ground", "span", "link", "wrap" …).
+    element_incidence : ndarray
+        (elements, size) strain of each element per unit of coordinate [rad or m].
+    element_stiffness : ndarray
+        (elements,) k of every element [N·m/rad for shafts and ground springs, N/m for
+        spans and links].
+    element_damping : ndarray
+        (elements,) c of every element [N·m·s/rad or N·s/m].
+    rigid_motions : ndarray
+        (size, r) one exact strain-free motion per free group (no ground spring, no loop of
+        mismatched ratios), from the graph [-].
+    element_columns : ndarray of int
+        (elements, 2) the columns [-] of the (at most two) nonzero entries of every row of
+        ``element_incidence``, for assembling K and C by scatter.
+    element_coefficients : ndarray
+        (elements, 2) those entries [rad or m per unit of coordinate].
+    span_mask : ndarray of bool
+        (elements,) True for the spans among the elements.
+
+    References
+    ----------
+    [Rao2011, ch. 6] (multi-degree-of-freedom equations of motion).
     """
 
     node_names: tuple[str, ...]
@@ -169,11 +227,12 @@ class TorsionalSystem:
             (elements,) k of every element [N·m/rad or N/m] (None: unchanged); an element
             must keep k > 0 or k = 0 (its strain-free relation is part of the topology).
         element_damping : array_like | None
-            (elements,) c of every element (None: unchanged).
+            (elements,) c of every element [N·m·s/rad or N·s/m] (None: unchanged).
 
         Returns
         -------
         TorsionalSystem
+            The system with the new values.
         """
         J = self.node_inertia_kg_m2 if node_inertia_kg_m2 is None else \
             np.asarray(node_inertia_kg_m2, dtype=float)
@@ -209,16 +268,43 @@ class TorsionalSystem:
 
     def modal(self) -> TorsionalModes:
         """Undamped natural frequencies, shapes and strain-energy shares (as
-        :meth:`TorsionalEngine.modal`)."""
+        :meth:`TorsionalEngine.modal`).
+
+        Returns
+        -------
+        TorsionalModes
+            Frequencies [Hz], mass-normalised shapes and strain-energy shares [-].
+
+        References
+        ----------
+        [Rao2011, ch. 6]; massless coordinates condensed [Guyan1965].
+        """
         return _modal(self)
 
     def frequencies_hz(self) -> FloatArray:
         """The natural frequencies [Hz] without the shapes (as
-        :meth:`TorsionalEngine.frequencies_hz`)."""
+        :meth:`TorsionalEngine.frequencies_hz`).
+
+        Returns
+        -------
+        ndarray
+            Natural frequencies [Hz], ascending, the rigid-body zeros first.
+        """
         return _frequencies(self)
 
     def dof_of(self, node: str) -> tuple[int, float]:
-        """(reduced coordinate, factor) of a node: φ_node = factor·q[coordinate]."""
+        """(reduced coordinate, factor) of a node: φ_node = factor·q[coordinate].
+
+        Parameters
+        ----------
+        node : str
+            The node's name.
+
+        Returns
+        -------
+        tuple of (int, float)
+            The index of its coordinate [-] and the factor g [-].
+        """
         try:
             i = self.node_names.index(node)
         except ValueError:
@@ -227,7 +313,13 @@ class TorsionalSystem:
         return int(self.node_dof[i]), float(self.node_factor[i])
 
     def mass_matrix(self) -> FloatArray:
-        """M [kg·m²]: the diagonal ``mass`` plus the ``mass_coupling`` of consistent spans."""
+        """M [kg·m²]: the diagonal ``mass`` plus the ``mass_coupling`` of consistent spans.
+
+        Returns
+        -------
+        ndarray
+            (size, size) M [kg·m²].
+        """
         return np.diag(self.mass) + self.mass_coupling
 
     @property
@@ -236,13 +328,35 @@ class TorsionalSystem:
         return bool(self.mass_coupling.any())
 
     def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
-        """K with the spans flagged in ``span_active`` (default: all) [N·m/rad]."""
+        """K with the spans flagged in ``span_active`` carrying [N·m/rad].
+
+        Parameters
+        ----------
+        span_active : array_like | None
+            (spans,) 1 for a span that carries, 0 for a slack one [-] (None: all carry).
+
+        Returns
+        -------
+        ndarray
+            (size, size) K = K_lin + Bᵀ diag(c·a) B [N·m/rad].
+        """
         c = self.span_stiffness_n_per_m if span_active is None else \
             self.span_stiffness_n_per_m * np.asarray(span_active, dtype=float)
         return self.stiffness_linear + self._span_gram(c)
 
     def damping_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
-        """C with the spans flagged in ``span_active`` (default: all) [N·m·s/rad]."""
+        """C with the spans flagged in ``span_active`` carrying [N·m·s/rad].
+
+        Parameters
+        ----------
+        span_active : array_like | None
+            (spans,) 1 for a span that carries, 0 for a slack one [-] (None: all carry).
+
+        Returns
+        -------
+        ndarray
+            (size, size) C = C_lin + Bᵀ diag(d·a) B [N·m·s/rad].
+        """
         d = self.span_damping_n_s_per_m if span_active is None else \
             self.span_damping_n_s_per_m * np.asarray(span_active, dtype=float)
         return self.damping_linear + self._span_gram(d)
@@ -254,8 +368,19 @@ class TorsionalSystem:
                      self.size)
 
     def generalized_force(self, torques: Mapping[str, float]) -> FloatArray:
-        """Q = Σ factor_n·T_n [N·m] of external torques T_n [N·m] on named nodes (ideal meshes;
-        mesh losses: :meth:`TorsionalEngine.referred_torque`)."""
+        """Q = Σ factor_n·T_n [N·m] of external torques T_n on named nodes (ideal meshes;
+        mesh losses: :meth:`TorsionalEngine.referred_torque`).
+
+        Parameters
+        ----------
+        torques : mapping of str to float
+            Node name → torque T_n on it [N·m] (a force [N] on a chain node).
+
+        Returns
+        -------
+        ndarray
+            (size,) generalised force Q [N·m].
+        """
         Q = np.zeros(self.size)
         for node, torque in torques.items():
             k, g = self.dof_of(node)
@@ -263,16 +388,37 @@ class TorsionalSystem:
         return Q
 
     def node_angles(self, q: ArrayLike) -> dict[str, float]:
-        """Angles φ_n [rad] of all nodes for reduced coordinates q."""
+        """Angles φ_n [rad] of all nodes for reduced coordinates q.
+
+        Parameters
+        ----------
+        q : array_like
+            (size,) reduced coordinates [rad].
+
+        Returns
+        -------
+        dict of str to float
+            Node name → φ_n = g_n·q[node_dof[n]] [rad] (a chain node's displacement [m]).
+        """
         phi = self.node_factor * np.asarray(q, dtype=float)[self.node_dof]
         return dict(zip(self.node_names, phi.tolist(), strict=True))
 
     def condensed(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """(T, M_c, K_c, C_c): static condensation of the massless coordinates, q = T q_m.
 
-        Exact for undamped motion [Guyan1965]. A damper on a massless coordinate makes it a
-        first-order state, which no condensation reproduces: DesignError then (keep the node
-        as a state C_00 q̇_0 = −K_00 q_0 − … instead).
+        Exact for undamped motion: K_c = K_mm − K_m0 K_00⁻¹ K_0m. A damper on a massless
+        coordinate makes it a first-order state, which no condensation reproduces:
+        DesignError then (keep the node as a state C_00 q̇_0 = −K_00 q_0 − … instead).
+
+        Returns
+        -------
+        tuple of ndarray
+            T (size, m) [-]; the condensed M_c [kg·m²], K_c [N·m/rad] and C_c [N·m·s/rad],
+            each (m, m).
+
+        References
+        ----------
+        [Guyan1965].
         """
         massless = self.mass <= 0.0
         K, C = self.stiffness_matrix(), self.damping_matrix()
@@ -306,19 +452,26 @@ def _condensation(K: FloatArray, massless: NDArray[np.bool_], names: Sequence[st
 class TorsionalModes:
     """Undamped natural frequencies and mode shapes of a :class:`TorsionalEngine`.
 
-    Attributes
+    Parameters
     ----------
-    frequencies_hz : (n,) natural frequencies f_j [Hz], ascending; rigid-body modes exactly 0,
-        first
-    rigid_body : (n,) True for rigid-body modes
-    system : the assembled :class:`TorsionalSystem`
-    modal_coordinates : (size, n) reduced coordinates q of each mode, mass-normalised
-        (qᵀ M q = 1; massless coordinates recovered statically)
+    frequencies_hz : ndarray
+        (n,) natural frequencies f_j [Hz], ascending; rigid-body modes exactly 0, first.
+    rigid_body : ndarray of bool
+        (n,) True for rigid-body modes.
+    system : TorsionalSystem
+        The assembled system.
+    modal_coordinates : ndarray
+        (size, n) reduced coordinates q of each mode, mass-normalised (qᵀ M q = 1 [kg·m²];
+        massless coordinates recovered statically) [rad].
 
     Derived on access (so that a modal analysis costs little more than LAPACK):
     ``shape_matrix`` (nodes, n) angles φ [rad] of every node, ``shapes`` by node name,
     ``strain_energy_shares`` (elements, n) share of each element in the strain energy of each
     mode (columns sum to 1; 0 for rigid-body modes), ``participation`` by element name.
+
+    References
+    ----------
+    [Rao2011, ch. 6] (modal analysis, mass-normalised modes).
     """
 
     frequencies_hz: FloatArray
@@ -382,13 +535,32 @@ class TorsionalModes:
         return float(f[0]) if f.size else math.nan
 
     def governing_element(self, mode: int) -> str:
-        """Name of the element with the largest strain-energy share in ``mode``."""
+        """Name of the element with the largest strain-energy share in ``mode``.
+
+        Parameters
+        ----------
+        mode : int
+            Index of the mode (0 the lowest).
+
+        Returns
+        -------
+        str
+            The element's name ("" for a rigid-body mode or a model without elements).
+        """
         if self.rigid_body[mode] or not self.system.element_names:
             return ""
         return self.system.element_names[int(np.argmax(self.strain_energy_shares[:, mode]))]
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict; ``mode_shapes[node][j]`` is the node's angle in mode j."""
+        """JSON-ready dict; ``mode_shapes[node][j]`` is the node's angle in mode j.
+
+        Returns
+        -------
+        dict
+            Frequencies (``natural_frequencies_hz``, ``natural_frequencies_rad_s``), the
+            rigid-body flags, the shapes [rad], the strain-energy shares [-] and the
+            governing element of each mode.
+        """
         shares = self.strain_energy_shares
         governing = ["" if r or not self.system.element_names else
                      self.system.element_names[int(np.argmax(shares[:, j]))]
@@ -458,7 +630,21 @@ class TorsionalEngine:
         return name
 
     def add_inertia(self, name: str, inertia: float) -> TorsionalEngine:
-        """Node ``name`` with moment of inertia J [kg·m²] ≥ 0 (0: massless)."""
+        """Node ``name`` with moment of inertia J ≥ 0 (0: massless), or the inertia of a node
+        an element created massless.
+
+        Parameters
+        ----------
+        name : str
+            The node's name.
+        inertia : float
+            J [kg·m²] (a chain node of unit radius: its mass [kg]).
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         i = self._node(name, True, name)
         if self._given[i]:
             raise DesignError(name, "the node already has an inertia")
@@ -468,7 +654,20 @@ class TorsionalEngine:
         return self
 
     def add_inertia_to(self, name: str, inertia: float) -> TorsionalEngine:
-        """Add J [kg·m²] ≥ 0 to the inertia of an existing node (a body on the same shaft)."""
+        """Add J ≥ 0 to the inertia of an existing node (a body on the same shaft).
+
+        Parameters
+        ----------
+        name : str
+            The node's name.
+        inertia : float
+            J added [kg·m²].
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         i = self._node(name, False, name)
         self._inertia[i] += _nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
@@ -476,7 +675,20 @@ class TorsionalEngine:
         return self
 
     def rename_node(self, old: str, new: str) -> TorsionalEngine:
-        """Give node ``old`` the name ``new`` (not yet used)."""
+        """Give node ``old`` the name ``new`` (not yet used).
+
+        Parameters
+        ----------
+        old : str
+            The node's present name.
+        new : str
+            Its new name.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         if new in self._index:
             raise DesignError(new, "a node of that name exists already")
         i = self._node(old, False, old)
@@ -487,8 +699,29 @@ class TorsionalEngine:
 
     def add_shaft(self, a: str, b: str, stiffness: float, damping: float = 0.0,
                   name: str | None = None) -> TorsionalEngine:
-        """Shaft or coupling of torsional stiffness k [N·m/rad] and damping c [N·m·s/rad]
-        between nodes a and b (twist φ_b − φ_a)."""
+        """Shaft or coupling between nodes a and b: twist e = φ_b − φ_a, torque k·e + c·ė.
+
+        Parameters
+        ----------
+        a, b : str
+            The nodes it joins (created massless when new).
+        stiffness : float
+            Torsional stiffness k [N·m/rad] (of a round shaft:
+            :func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
+        damping : float
+            Torsional damping c [N·m·s/rad].
+        name : str | None
+            The element's name (None: "shaft:<a>-<b>"); names are unique.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+
+        References
+        ----------
+        [Rao2011, ch. 6] (torsional spring and damper elements).
+        """
         name = self._element_name(name, f"shaft:{a}-{b}")
         ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
         if ia is None or ib is None or a == b:
@@ -506,7 +739,24 @@ class TorsionalEngine:
 
     def add_ground_spring(self, node: str, stiffness: float, damping: float = 0.0,
                           name: str | None = None) -> TorsionalEngine:
-        """Spring k [N·m/rad] (and damper c [N·m·s/rad]) from an existing node to the frame."""
+        """Spring (and damper) from an existing node to the fixed frame: torque k·φ + c·φ̇.
+
+        Parameters
+        ----------
+        node : str
+            The node.
+        stiffness : float
+            k [N·m/rad].
+        damping : float
+            c [N·m·s/rad].
+        name : str | None
+            The element's name (None: "ground:<node>"); names are unique.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
         k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
@@ -517,9 +767,29 @@ class TorsionalEngine:
 
     def add_gear_mesh(self, driver: str, driven: str, ratio: float, efficiency: float = 1.0,
                       same_sense: bool = False, name: str | None = None) -> TorsionalEngine:
-        """Rigid mesh: φ_driven = s·φ_driver / i, i = ω_driver/ω_driven > 0 (driven turns i×
-        slower), s = −1 (external pair) or +1 (``same_sense``). ``efficiency`` η ∈ (0, 1] is
-        kept for torques (:meth:`referred_torque`); the modes do not use it."""
+        """Rigid mesh: φ_driven = s·φ_driver / i (the driven node turns i× slower), s = −1 for
+        an external pair, +1 for a same-sense stage [Shigley2015, ch. 13].
+
+        Parameters
+        ----------
+        driver, driven : str
+            The nodes it joins (created massless when new).
+        ratio : float
+            i = ω_driver/ω_driven [-] (> 0).
+        efficiency : float
+            η ∈ (0, 1] [-], kept for torques (:meth:`referred_torque`); the modes do not use
+            it.
+        same_sense : bool
+            True for a stage that keeps the sense of rotation (internal gear, idler, a
+            reducer taken as a whole).
+        name : str | None
+            The element's name (None: "mesh:<a>-<b>"); names are unique.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         name = self._element_name(name, f"mesh:{driver}-{driven}")
         _check_ratio(name, ratio)
         _check_efficiency(name, efficiency)
@@ -536,13 +806,38 @@ class TorsionalEngine:
     def add_span(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
                  damping: float = 0.0, tension_only: bool = True, mass: float = 0.0,
                  name: str | None = None, consistent_mass: bool = False) -> TorsionalEngine:
-        """Chain span from sprocket a to b: elongation e = r_b φ_b − r_a φ_a [m] with signed
-        pitch radii r [m], stiffness c [N/m], damping d [N·s/m].
+        """Chain span from sprocket a to b: elongation e = r_b φ_b − r_a φ_a, force c·e + d·ė
+        along the span [MultimassChainDrives, §3.1].
 
-        ``mass`` [kg] (q·L of the span) is split to its ends, m/2·r² on each sprocket, or with
+        The span's mass m = q·L is split to its ends, m/2·r² on each sprocket, or with
         ``consistent_mass`` distributed as the consistent mass of a linear velocity profile
         along the span: m/3·r² on each end and m/6·r_a·r_b between them (kinetic energy
         m/6·(v_a² + v_a v_b + v_b²) [Rao2011, ch. 2]; docs/torsional.md §5 measures both).
+
+        Parameters
+        ----------
+        a, b : str
+            The sprockets (nodes) it joins (created massless when new).
+        stiffness : float
+            Span stiffness c [N/m].
+        radius_a, radius_b : float
+            Signed pitch radii r [m] (negative for a sprocket wrapped from the inside).
+        damping : float
+            Span damper d [N·s/m].
+        tension_only : bool
+            True: the span carries no compression (an integrator may switch it off when
+            slack).
+        mass : float
+            Mass of the span's chain q·L [kg].
+        name : str | None
+            The element's name (None: "span:<a>-<b>"); names are unique.
+        consistent_mass : bool
+            True: consistent mass of a linear velocity profile; False: lumped in halves.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
         """
         name = self._element_name(name, f"span:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
@@ -578,10 +873,35 @@ class TorsionalEngine:
     def add_link(self, a: str, b: str, stiffness: float, radius_a: float, radius_b: float,
                  damping: float = 0.0, name: str | None = None,
                  kind: str = "link") -> TorsionalEngine:
-        """Linear spring between two nodes at radii r_a, r_b [m]: strain e = r_b φ_b − r_a φ_a
-        [m], force k·e + c·ė [N] (k [N/m], c [N·s/m]); pushes and pulls (e.g. the tooth contact
-        of a sprocket with the chain wrapped on it, kind "wrap"). A node of radius 1 m is a
-        translational body whose "angle" is its displacement [m] and "inertia" its mass [kg]."""
+        """Linear spring between two nodes at radii r_a, r_b: strain e = r_b φ_b − r_a φ_a [m],
+        force k·e + c·ė [N]; pushes and pulls (e.g. the tooth contact of a sprocket with the
+        chain wrapped on it, kind "wrap"). A node of radius 1 m is a translational body whose
+        "angle" is its displacement [m] and "inertia" its mass [kg].
+
+        Parameters
+        ----------
+        a, b : str
+            The nodes it joins (created massless when new).
+        stiffness : float
+            k [N/m].
+        radius_a, radius_b : float
+            Signed radii r_a, r_b [m] (≠ 0).
+        damping : float
+            c [N·s/m].
+        name : str | None
+            The element's name (None: "<kind>:<a>-<b>"); names are unique.
+        kind : str
+            The element's kind, as :attr:`TorsionalSystem.element_kinds` reports it.
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+
+        References
+        ----------
+        [Rao2011, ch. 6] (spring and damper elements).
+        """
         name = self._element_name(name, f"{kind}:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
@@ -594,7 +914,21 @@ class TorsionalEngine:
         return self
 
     def set_damping(self, element: str, damping: float) -> TorsionalEngine:
-        """Replace the damping coefficient of an existing element [N·s/m or N·m·s/rad]."""
+        """Replace the damping coefficient of an existing element.
+
+        Parameters
+        ----------
+        element : str
+            The element's name.
+        damping : float
+            The new coefficient [N·s/m for spans and links, N·m·s/rad for shafts and ground
+            springs].
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         for k, e in enumerate(self._elements):
             if e[0] == element:
                 self._elements[k] = (*e[:7], _nonneg(element, damping, "damping"), e[8])
@@ -603,7 +937,22 @@ class TorsionalEngine:
         raise DesignError(element, "no element of that name")
 
     def add_chain_wrap(self, node: str, mass: float, radius: float) -> TorsionalEngine:
-        """Links wrapped on a sprocket turn with it: adds m_wrap·r² [kg·m²] to its inertia."""
+        """Links wrapped on a sprocket turn with it: adds m_wrap·r² [kg·m²] to its inertia.
+
+        Parameters
+        ----------
+        node : str
+            The sprocket's node.
+        mass : float
+            m_wrap, the mass of the wrapped links [kg].
+        radius : float
+            r, the pitch radius [m].
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself (calls chain).
+        """
         i = self._node(node, False, f"wrap:{node}")
         m = _nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
         self._chain[i] += m * float(radius) ** 2
@@ -629,18 +978,40 @@ class TorsionalEngine:
 
     # -- results ------------------------------------------------------------------------
     def system(self) -> TorsionalSystem:
-        """The assembled :class:`TorsionalSystem` (cached until the model changes)."""
+        """The assembled :class:`TorsionalSystem` (cached until the model changes).
+
+        Returns
+        -------
+        TorsionalSystem
+            The matrices in reduced coordinates (module docstring).
+        """
         if self._system is None:
             self._system = _assemble(self)
         return self._system
 
     def modal(self) -> TorsionalModes:
-        """Undamped natural frequencies, shapes and strain-energy shares."""
+        """Undamped natural frequencies, shapes and strain-energy shares.
+
+        Returns
+        -------
+        TorsionalModes
+            Frequencies [Hz], mass-normalised shapes and strain-energy shares [-].
+
+        References
+        ----------
+        [Rao2011, ch. 6]; massless coordinates condensed [Guyan1965].
+        """
         return _modal(self.system())
 
     def frequencies_hz(self) -> FloatArray:
         """The natural frequencies of :meth:`modal` [Hz] without the shapes (LAPACK computes
-        no eigenvectors: 2–3× faster, see benchmarks/bench_torsional.py)."""
+        no eigenvectors: 2–3× faster, see benchmarks/bench_torsional.py).
+
+        Returns
+        -------
+        ndarray
+            Natural frequencies [Hz], ascending, the rigid-body zeros first.
+        """
         return _frequencies(self.system())
 
     def referred_torque(self, torque: float, at: str, to: str, driving: bool = True) -> float:
@@ -650,6 +1021,26 @@ class TorsionalEngine:
         Power flowing from ``to`` to ``at`` (``driving``): T_to = T_at·(g_at/g_to) / Πη; the
         other way: T_to = T_at·(g_at/g_to)·Πη, g the nodes' factors (signed ratios; for one
         reducer |g_at/g_to| = 1/i, see :func:`reducer_input_torque`).
+
+        Parameters
+        ----------
+        torque : float
+            T_at [N·m].
+        at : str
+            The node the torque acts on.
+        to : str
+            The node it is referred to (joined to ``at`` by gear meshes).
+        driving : bool
+            True when power flows from ``to`` to ``at``.
+
+        Returns
+        -------
+        float
+            T_to [N·m].
+
+        References
+        ----------
+        [Shigley2015, ch. 13] (power and torque through a gear train).
         """
         ia, it = self._node(at, False, "at"), self._node(to, False, "to")
         (ra, ga), (rt, gt) = self._gears.find(ia), self._gears.find(it)
@@ -681,7 +1072,14 @@ class TorsionalEngine:
         return path
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready description of the model."""
+        """JSON-ready description of the model.
+
+        Returns
+        -------
+        dict
+            ``nodes`` (inertias [kg·m²]), ``elements`` (stiffness, damping, incidence
+            coefficients) and ``gear_meshes`` (ratio, efficiency, sense).
+        """
         names = list(self._index)
         return {
             "nodes": {n: {"inertia_kg_m2": self._inertia[i], "chain_inertia_kg_m2": self._chain[i]}

@@ -108,7 +108,18 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
 
 def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
     """All the words of the report's sections (texts, captions, cells, symbol definitions):
-    what the references are collected from and what a test reads."""
+    what the references are collected from and what a test reads.
+
+    Parameters
+    ----------
+    sections : list or tuple of Section
+        The built sections.
+
+    Returns
+    -------
+    str
+        Their words, one part a line.
+    """
     parts: list[str] = []
     for s in sections:
         parts.append(s.title)
@@ -129,14 +140,36 @@ def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
 
 
 def render_html(report: Report) -> str:
-    """The report as one self-contained HTML document."""
+    """The report as one self-contained HTML document (:mod:`chaindrive.report.html`).
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    str
+        The HTML document, figures embedded.
+    """
     from chaindrive.report.html import render_html as _render
 
     return _render(report)
 
 
 def render_pdf(report: Report) -> bytes:
-    """The report as a PDF typeset by Typst (:mod:`chaindrive.report.pdf`)."""
+    """The report as a PDF typeset by Typst (:mod:`chaindrive.report.pdf`).
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    bytes
+        The PDF file's bytes.
+    """
     from chaindrive.report.pdf import render_pdf as _render
 
     return _render(report)
@@ -147,7 +180,32 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
                  synthesis: object = None, units: str = "SI",
                  robust: object = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
-    is written at once, after the whole report is built."""
+    is written at once, after the whole report is built (complete or absent).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysed design (the report reads it and computes nothing).
+    path : str | Path
+        The file to write: ``.html``/``.htm`` or ``.pdf``.
+    source : str | Path | None
+        The design file (echoed at the end, its SHA-256 in the header).
+    dpi : int
+        Resolution of the figures [1/in].
+    progress : callable | None
+        Called with each section's title before it is built (e.g. a progress bar).
+    synthesis : SynthesisResult | None
+        The optimisation that chose this design (its Pareto set and front).
+    units : str
+        Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
+    robust : RobustResult | None
+        Its robust study (:class:`chaindrive.robust.study.RobustResult`).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:

@@ -30,8 +30,16 @@ TextKind = Literal["text", "warning", "fail", "ok", "code", "note", "item"]
 
 @dataclass(frozen=True, slots=True)
 class Text:
-    """A paragraph; kind "warning"/"fail" is highlighted, "code" is monospaced, "item" is a
-    bullet point."""
+    """A paragraph.
+
+    Parameters
+    ----------
+    text : str
+        The words (plain text, escaped by the renderers).
+    kind : str
+        "text", "note", "ok"; "warning" and "fail" are highlighted, "code" is monospaced,
+        "item" is a bullet point.
+    """
 
     text: str
     kind: TextKind = "text"
@@ -39,8 +47,17 @@ class Text:
 
 @dataclass(frozen=True, slots=True)
 class Verdict:
-    """The verdict of the checks, the first thing of the report: passed, a headline
-    (``The design passes all 15 checks``) and a line of detail."""
+    """The verdict of the checks, the first thing of the report.
+
+    Parameters
+    ----------
+    passed : bool
+        True when every check passes.
+    headline : str
+        E.g. ``The design passes all 15 checks``.
+    detail : str
+        A line of detail (the worst failed check, or where the checks are listed).
+    """
 
     passed: bool
     headline: str
@@ -49,9 +66,16 @@ class Verdict:
 
 @dataclass(frozen=True, slots=True)
 class Definitions:
-    """The symbols a section introduces (keys of :data:`chaindrive.report.symbols.SYMBOLS`),
-    shown as a table of meaning, formula, unit and source; ``units`` is the report's unit
-    system."""
+    """The symbols a section introduces, shown as a table of meaning, formula, unit and
+    source.
+
+    Parameters
+    ----------
+    keys : tuple of str
+        Keys of :data:`chaindrive.report.symbols.SYMBOLS`.
+    units : str
+        The report's unit system, "SI" or "US".
+    """
 
     keys: tuple[str, ...]
     units: str = "SI"
@@ -59,8 +83,19 @@ class Definitions:
 
 @dataclass(frozen=True, slots=True)
 class Table:
-    """A table: column headers (units in the header), rows of plain values; rows listed in
-    ``highlight`` are marked as failed checks."""
+    """A table of plain values.
+
+    Parameters
+    ----------
+    caption : str
+        The caption above it.
+    columns : tuple of str
+        Column headers, each with its unit (``tension, N``).
+    rows : tuple of tuple
+        The rows of values (numbers formatted by the renderers).
+    highlight : tuple of int
+        Indices of rows marked as failed checks.
+    """
 
     caption: str
     columns: tuple[str, ...]
@@ -70,7 +105,19 @@ class Table:
 
 @dataclass(frozen=True, slots=True)
 class Plot:
-    """A figure rendered to PNG bytes (width/height in pixels) with its caption."""
+    """A figure rendered to PNG with its caption.
+
+    Parameters
+    ----------
+    caption : str
+        The caption below it.
+    png : bytes
+        The PNG image.
+    width, height : int
+        Its size [px].
+    key : str
+        A name that identifies the figure (listed in :attr:`Report.plots`).
+    """
 
     caption: str
     png: bytes
@@ -84,7 +131,17 @@ Block = Text | Table | Plot | Verdict | Definitions
 
 @dataclass(frozen=True, slots=True)
 class Section:
-    """A titled part of the report."""
+    """A titled part of the report.
+
+    Parameters
+    ----------
+    key : str
+        The key of its builder (:func:`register_section`).
+    title : str
+        Its heading.
+    blocks : tuple of Block
+        Its content, in order.
+    """
 
     key: str
     title: str
@@ -93,7 +150,17 @@ class Section:
 
 @dataclass(frozen=True, slots=True)
 class SectionSpec:
-    """A registered section: key, title and builder."""
+    """A registered section.
+
+    Parameters
+    ----------
+    key : str
+        Its unique key.
+    title : str
+        Its heading.
+    build : callable
+        ``build(ReportInput)`` → its blocks, or None when the analysis lacks its parts.
+    """
 
     key: str
     title: str
@@ -106,8 +173,19 @@ SECTIONS: list[SectionSpec] = []
 def register_section(key: str, title: str,
                      build: Callable[[ReportInput], Sequence[Block] | None], *,
                      before: str | None = None) -> None:
-    """Add (or replace) a section builder; ``before`` names the section it goes in front of
-    (default: at the end)."""
+    """Add (or replace, by key) a section builder to :data:`SECTIONS`.
+
+    Parameters
+    ----------
+    key : str
+        The section's unique key.
+    title : str
+        Its heading.
+    build : callable
+        ``build(ReportInput)`` → its blocks, or None when the analysis lacks its parts.
+    before : str | None
+        Key of the section it goes in front of (None or unknown: at the end).
+    """
     spec = SectionSpec(key, title, build)
     for i, old in enumerate(SECTIONS):
         if old.key == key:
@@ -119,7 +197,23 @@ def register_section(key: str, title: str,
 
 class ReportInput:
     """What the section builders read: the analysis, the design file it came from, the
-    figure resolution, and derived parts computed once."""
+    figure resolution, and derived parts computed once.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysed design.
+    source : Path | None
+        The design file it came from (None: built from an object).
+    dpi : int
+        Resolution of the figures [1/in].
+    synthesis : SynthesisResult | None
+        The optimisation that chose the design.
+    units : str
+        The report's unit system, "SI" or "US".
+    robust : RobustResult | None
+        The design's robust study.
+    """
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
                  synthesis: Any = None, units: UnitSystem = "SI", robust: Any = None) -> None:
@@ -134,21 +228,69 @@ class ReportInput:
 
     def define(self, *keys: str) -> list[Block]:
         """A :class:`Definitions` block of the symbols ``keys`` not defined by an earlier
-        section (none when all are), and mark them defined."""
+        section, and mark them defined.
+
+        Parameters
+        ----------
+        *keys : str
+            Keys of :data:`chaindrive.report.symbols.SYMBOLS`.
+
+        Returns
+        -------
+        list of Block
+            One Definitions block, or none when every symbol was defined before.
+        """
         new = tuple(dict.fromkeys(k for k in keys if k not in self.defined))
         self.defined.update(new)
         return [Definitions(new, self.units)] if new else []
 
     def col(self, label: str, kind: str) -> str:
-        """A column header ``label, unit`` in the report's unit system."""
+        """A column header ``label, unit`` in the report's unit system.
+
+        Parameters
+        ----------
+        label : str
+            What the column holds.
+        kind : str
+            Kind of quantity (a key of :data:`chaindrive.display.QUANTITIES`).
+
+        Returns
+        -------
+        str
+            ``"<label>, <unit>"``.
+        """
         return f"{label}, {unit_of(kind, self.units)}"
 
     def unit(self, kind: str) -> str:
-        """The unit of a kind of quantity in the report's unit system."""
+        """The unit of a kind of quantity in the report's unit system.
+
+        Parameters
+        ----------
+        kind : str
+            Kind of quantity (a key of :data:`chaindrive.display.QUANTITIES`).
+
+        Returns
+        -------
+        str
+            Its unit (e.g. "N" or "lbf").
+        """
         return unit_of(kind, self.units)
 
     def val(self, value: float | None, kind: str) -> float | None:
-        """An SI value in the report's unit system."""
+        """An SI value in the report's unit system.
+
+        Parameters
+        ----------
+        value : float | None
+            The value [SI unit of ``kind``].
+        kind : str
+            Kind of quantity (a key of :data:`chaindrive.display.QUANTITIES`).
+
+        Returns
+        -------
+        float | None
+            The value in the report's unit [:meth:`unit`] (None stays None).
+        """
         return convert(value, kind, self.units)[0]
 
     @cached_property
@@ -174,7 +316,24 @@ class ReportInput:
 
 
 def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
-    """Render a figure to PNG at ``dpi`` into a :class:`Plot` block."""
+    """Render a figure to PNG into a :class:`Plot` block.
+
+    Parameters
+    ----------
+    fig : Figure
+        The matplotlib figure.
+    caption : str
+        Its caption.
+    dpi : int
+        Resolution [1/in].
+    key : str
+        The figure's name (:attr:`Plot.key`).
+
+    Returns
+    -------
+    Plot
+        The block, its size in pixels from the figure's size in inches times ``dpi``.
+    """
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     w, h = fig.get_size_inches()
@@ -183,9 +342,27 @@ def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
 
 @dataclass(frozen=True, slots=True)
 class Report:
-    """A built report: title, metadata lines (label, value), sections, the keys of its
-    figures, and the page furniture: the drive's name, the chaindrive version, the date and
-    the unit system."""
+    """A built report (:func:`chaindrive.report.build_report`).
+
+    Parameters
+    ----------
+    title : str
+        The report's title.
+    meta : tuple of (str, str)
+        Metadata lines (label, value): version, design file and its SHA-256, date, units.
+    sections : tuple of Section
+        The sections, the references last.
+    plots : tuple of str
+        The keys of its figures, in order.
+    drive : str
+        The drive's name (page header).
+    version : str
+        The chaindrive version (page footer).
+    date : str
+        When it was built (UTC).
+    units : str
+        The unit system, "SI" or "US".
+    """
 
     title: str
     meta: tuple[tuple[str, str], ...]

@@ -48,7 +48,18 @@ def _italic(m: re.Match[str]) -> str:
 
 def number_html(value: object) -> str:
     """A value as HTML by :func:`chaindrive.display.fmt`, an exponent as a power of ten
-    (``2.154·10<sup>8</sup>``)."""
+    (``2.154·10<sup>8</sup>``).
+
+    Parameters
+    ----------
+    value : object
+        A number (in the report's unit, as the table holds it), a text or None.
+
+    Returns
+    -------
+    str
+        HTML, escaped.
+    """
     text = fmt(value)
     parts = exponent_parts(text)
     if parts is None:
@@ -62,7 +73,18 @@ def _cell(value: object) -> str:
 
 
 def table_html(t: Table) -> str:
-    """A table as HTML (numbers right-aligned, failed rows highlighted)."""
+    """A table as HTML (numbers right-aligned, failed rows highlighted).
+
+    Parameters
+    ----------
+    t : Table
+        The table block.
+
+    Returns
+    -------
+    str
+        A ``<table>`` element with its caption.
+    """
     head = "".join(f"<th>{escape(c)}</th>" for c in t.columns)
     body = "".join(
         f'<tr{" class=fail" if i in t.highlight else ""}>{"".join(_cell(v) for v in row)}</tr>'
@@ -72,7 +94,20 @@ def table_html(t: Table) -> str:
 
 
 def symbol_unit(sym: Symbol, units: str) -> str:
-    """The unit shown for a symbol: its kind's unit in ``units``, or its fixed unit."""
+    """The unit shown for a symbol: its kind's unit in ``units``, or its fixed unit.
+
+    Parameters
+    ----------
+    sym : Symbol
+        The symbol (:data:`chaindrive.report.symbols.SYMBOLS`).
+    units : str
+        The report's unit system, "SI" or "US".
+
+    Returns
+    -------
+    str
+        The unit ("" for a pure number).
+    """
     if sym.unit in ("", "1"):
         return "—"
     try:
@@ -82,7 +117,18 @@ def symbol_unit(sym: Symbol, units: str) -> str:
 
 
 def definitions_html(d: Definitions) -> str:
-    """The symbols a section introduces: symbol, meaning, formula, unit, source."""
+    """The symbols a section introduces: symbol, meaning, formula, unit, source.
+
+    Parameters
+    ----------
+    d : Definitions
+        The block.
+
+    Returns
+    -------
+    str
+        A ``<table>`` element of the definitions.
+    """
     body = "".join(
         f"<tr><td>{escape(s.text)}</td><td>{escape(s.meaning)}</td>"
         f"<td>{escape(s.formula or '—')}</td><td>{escape(symbol_unit(s, d.units))}</td>"
@@ -93,7 +139,18 @@ def definitions_html(d: Definitions) -> str:
 
 
 def plot_html(p: Plot) -> str:
-    """A figure as an <img> with the PNG embedded (base64)."""
+    """A figure as an <img> with the PNG embedded (base64).
+
+    Parameters
+    ----------
+    p : Plot
+        The figure block.
+
+    Returns
+    -------
+    str
+        A ``<figure>`` element with the image and its caption.
+    """
     data = base64.b64encode(p.png).decode("ascii")
     return (f'<figure data-plot="{escape(p.key)}"><img alt="{escape(p.caption)}" '
             f'width="{p.width}" height="{p.height}" src="data:image/png;base64,{data}">'
@@ -101,7 +158,18 @@ def plot_html(p: Plot) -> str:
 
 
 def block_html(b: Block) -> str:
-    """One block as HTML."""
+    """One block as HTML.
+
+    Parameters
+    ----------
+    b : Block
+        A Text, Table, Plot, Verdict or Definitions block.
+
+    Returns
+    -------
+    str
+        Its HTML.
+    """
     if isinstance(b, Table):
         return table_html(b)
     if isinstance(b, Plot):
@@ -146,7 +214,18 @@ def _blocks_html(blocks: tuple[Block, ...]) -> str:
 
 
 def render_html(report: Report) -> str:
-    """The whole report as one HTML document (str)."""
+    """The whole report as one HTML document.
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    str
+        The document: inline CSS, figures as base64 PNG.
+    """
     meta = "".join(f"<tr><td>{escape(k)}</td><td>{escape(v)}</td></tr>" for k, v in report.meta)
     nav = "".join(f'<a href="#{s.key}">{escape(s.title)}</a>' for s in report.sections)
     body = "\n".join(f'<section id="{s.key}"><h2>{escape(s.title)}</h2>\n'

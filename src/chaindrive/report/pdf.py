@@ -206,7 +206,18 @@ def _section_typst(blocks: Sequence[Block], figures: dict[str, bytes]) -> list[s
 
 
 def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
-    """The Typst source of the report and its figures (file name → PNG bytes)."""
+    """The Typst source of the report and its figures.
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    tuple of (str, dict of str to bytes)
+        The Typst markup and its figures (file name → PNG bytes).
+    """
     figures: dict[str, bytes] = {}
     out = [PREAMBLE.format(title=_s(report.title), version=report.version,
                            drive=f"#{_s(report.drive)}", date=report.date,
@@ -244,20 +255,55 @@ def _compile(report: Report, fmt_: Literal["pdf", "png"], ppi: float | None = No
 
 
 def render_pdf(report: Report) -> bytes:
-    """The report as PDF bytes."""
+    """The report as PDF, typeset by Typst.
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    bytes
+        The PDF file's bytes.
+    """
     data = _compile(report, "pdf")
     assert isinstance(data, bytes)
     return data
 
 
 def render_png_pages(report: Report, ppi: float = 60.0) -> list[bytes]:
-    """Every page of the report as a PNG (what the PDF shows, page by page)."""
+    """Every page of the report as a PNG (what the PDF shows, page by page).
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+    ppi : float
+        Resolution of the images [px/in].
+
+    Returns
+    -------
+    list of bytes
+        One PNG image per page.
+    """
     pages = _compile(report, "png", ppi)
     return list(pages) if isinstance(pages, list) else [pages]
 
 
 def page_map(report: Report) -> dict[str, int]:
-    """The page each section (by key) and the verdict (``"verdict"``) land on."""
+    """The page each section (by key) and the verdict (``"verdict"``) land on.
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+
+    Returns
+    -------
+    dict of str to int
+        Section key → its page number (1 the first).
+    """
     import json
 
     import typst
@@ -269,7 +315,16 @@ def page_map(report: Report) -> dict[str, int]:
 
 
 def write_pdf(report: Report, path: Path) -> None:
-    """Write the report as a PDF file at ``path``."""
+    """Write the report as a PDF file at ``path`` (a plain write; the atomic one is
+    :func:`chaindrive.report.write_report`).
+
+    Parameters
+    ----------
+    report : Report
+        The built report.
+    path : Path
+        The file to write.
+    """
     Path(path).write_bytes(render_pdf(report))
 
 

@@ -35,7 +35,18 @@ def _summary(life: dict[str, Any]) -> str:
 
 def robust_section(inp: ReportInput) -> list[Block] | None:
     """Life curve, probabilities of failure and sensitivity indices (None without a robust
-    study)."""
+    study).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting.robust import (
         life_curve_figure,
         probability_figure,

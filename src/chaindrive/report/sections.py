@@ -50,7 +50,18 @@ def _check_cells(c: Check, inp: ReportInput) -> tuple[Any, ...]:
 
 def governing_checks(checks: Sequence[Check]) -> list[Check]:
     """The checks page 1 shows: every one that does not pass, then the passing ones with the
-    smallest margins (:func:`chaindrive.checks.worst` order), at most :data:`GOVERNING`."""
+    smallest margins (:func:`chaindrive.checks.worst` order), at most :data:`GOVERNING`.
+
+    Parameters
+    ----------
+    checks : sequence of Check
+        Every check of the analysis.
+
+    Returns
+    -------
+    list of Check
+        The failed checks, then the passing ones with the smallest margins.
+    """
     failed = [c for c in checks if not c.passed]
     passed = sorted((c for c in checks if c.passed),
                     key=lambda c: (c.margin_fraction if c.margin_fraction is not None
@@ -81,7 +92,18 @@ def _estimates(inp: ReportInput) -> list[str]:
 
 def summary_section(inp: ReportInput) -> list[Block]:
     """Page 1: the verdict of every check, the governing checks, the warnings, what the
-    results rest on, and the design at a glance."""
+    results rest on, and the design at a glance.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block
+        The section's blocks.
+    """
     a = inp.analysis
     checks = a.checks()
     failed = [c for c in checks if not c.passed]
@@ -146,7 +168,18 @@ def _glance(inp: ReportInput) -> Table:
 # --- inputs ----------------------------------------------------------------------------------
 
 def inputs_section(inp: ReportInput) -> list[Block]:
-    """The design as read, in the report's units."""
+    """The design as read, in the report's units.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block
+        The section's blocks.
+    """
     d = inp.analysis.drive
     spec = d.chain.spec
     blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
@@ -188,7 +221,18 @@ def inputs_section(inp: ReportInput) -> list[Block]:
 # --- geometry and kinematics -----------------------------------------------------------------
 
 def geometry_section(inp: ReportInput) -> list[Block]:
-    """Contour summary, sprockets, spans and the layout to scale."""
+    """Contour summary, sprockets, spans and the layout to scale.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block
+        The section's blocks.
+    """
     from chaindrive.plotting import contour_layout
 
     a = inp.analysis
@@ -232,7 +276,18 @@ def geometry_section(inp: ReportInput) -> list[Block]:
 
 
 def kinematics_section(inp: ReportInput) -> list[Block]:
-    """Speeds and the polygonal non-uniformity [ChainNonUniformity]."""
+    """Speeds and the polygonal non-uniformity [ChainNonUniformity].
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block
+        The section's blocks.
+    """
     from chaindrive.plotting import chain_speed, transmission_ratio
 
     k = inp.analysis.kinematics
@@ -262,7 +317,18 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
 # --- selection and strength -------------------------------------------------------------------
 
 def selection_section(inp: ReportInput) -> list[Block] | None:
-    """The chain a method of the family selects, with the ranked candidates."""
+    """The chain a method of the family selects, with the ranked candidates.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     sel = inp.analysis.selection
     if sel is None:
         return None
@@ -284,7 +350,18 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
 
 
 def strength_section(inp: ReportInput) -> list[Block] | None:
-    """Loads round the contour and static strength."""
+    """Loads round the contour and static strength.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import shaft_loads, span_tensions
 
     st = inp.analysis.strength
@@ -329,7 +406,18 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
 
 
 def contours_section(inp: ReportInput) -> list[Block] | None:
-    """Multi-contour drives: the load share of the most loaded contour [Lyashuk]."""
+    """Multi-contour drives: the load share of the most loaded contour [Lyashuk].
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     part = inp.analysis.contours
     if part is None:
         return None
@@ -345,7 +433,18 @@ def contours_section(inp: ReportInput) -> list[Block] | None:
 
 def checks_section(inp: ReportInput) -> list[Block]:
     """Every check of the analysis with its value, limit, margin (≥ 0 passes) and source;
-    failed rows highlighted."""
+    failed rows highlighted.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block
+        The section's blocks.
+    """
     checks = sorted(inp.analysis.checks(), key=lambda c: c.passed)
     blocks = inp.define("margin")
     blocks.append(Text("Every rule the design is held to. The margin has one sign for every "
@@ -368,7 +467,18 @@ def checks_section(inp: ReportInput) -> list[Block]:
 
 def design_file_section(inp: ReportInput) -> list[Block] | None:
     """The design file as given, with its SHA-256 (absent when the report is built from an
-    object)."""
+    object).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     if inp.source_bytes is None:
         return None
     return [Text(f"{inp.source.name if inp.source else ''}, SHA-256 {inp.source_hash}",
@@ -377,7 +487,21 @@ def design_file_section(inp: ReportInput) -> list[Block] | None:
 
 
 def references_section(inp: ReportInput, cited: str) -> list[Block]:
-    """The bibliography: every source the report cites (``cited`` is the report's text)."""
+    """The bibliography: every source the report cites (``cited`` is the report's text).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    cited : str
+        The report's text (:func:`chaindrive.report.report_text`), searched for keys of
+        docs/references.md in square brackets.
+
+    Returns
+    -------
+    list of Block
+        One item per source cited, sorted by key.
+    """
     return [Text(f"[{key}] {REFERENCES[key][1]}", "item")
             for key in sorted(cited_keys(cited), key=str.lower)]
 

@@ -27,7 +27,21 @@ def _span_names(inp: ReportInput) -> list[str]:
 def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], tuple[int, ...]]:
     """Rows of the resonance table of the ring modes (``kind`` "ring") or of the spans'
     parametric resonances ("span"): working frequency, f_w, natural frequency, mode or span,
-    detuning Δ ≥ 0, below/above; and the rows inside the band (highlighted)."""
+    detuning Δ ≥ 0, below/above; and the rows inside the band (highlighted).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    kind : str
+        "ring" (the ring modes) or "span" (the spans' parametric resonances).
+
+    Returns
+    -------
+    tuple of (list of tuple, tuple of int)
+        The rows (frequencies in Hz, detuning in %) and the indices of the rows inside the
+        band.
+    """
     dyn = inp.analysis.dynamics
     band = inp.analysis.limits.resonance_band_percent
     spans = _span_names(inp)
@@ -50,7 +64,18 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
 def dynamics_section(inp: ReportInput) -> list[Block] | None:
     """The ring model [MultimassChainDrives, §3.1–3.3]: masses and branches, natural
     frequencies, signed mode shapes along the contour, the resonance tables of the ring and
-    of the spans, and the Campbell diagram zoomed to the crossings near the working speed."""
+    of the spans, and the Campbell diagram zoomed to the crossings near the working speed.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import campbell_diagram, mode_shapes
 
     a = inp.analysis
@@ -131,7 +156,18 @@ def _k_rows(inp: ReportInput) -> list[tuple[str, str, Any, str, Any, str]]:
 
 def response_section(inp: ReportInput) -> list[Block] | None:
     """The dynamic response [MultimassChainDrives, §3.3, §3.6]: the two-stage check, K_D,
-    the loads per span and per mass, the start-up, the AFC."""
+    the loads per span and per mass, the start-up, the AFC.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import (
         afc_curves,
         inertia_and_irregularity,
@@ -225,7 +261,18 @@ def _span_table(inp: ReportInput, spans: list[str]) -> Table:
 
 def materials_section(inp: ReportInput) -> list[Block] | None:
     """The four chain/sprocket material pairs on this layout ([MultimassChainDrives], Fig.
-    2–3, Table 1), only when the analysis ran that study."""
+    2–3, Table 1), only when the analysis ran that study.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import material_comparison_chart
 
     cases = inp.analysis.material_pairs
@@ -249,7 +296,18 @@ def materials_section(inp: ReportInput) -> list[Block] | None:
 
 def damping_section(inp: ReportInput) -> list[Block] | None:
     """The hinge-friction damping model [ChainHingeDissipation] for its reference chain,
-    only when the analysis ran that study."""
+    only when the analysis ran that study.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import absorption_vs_amplitude
 
     results = inp.analysis.hinge_friction
@@ -285,7 +343,18 @@ def _comparison_rows(inp: ReportInput) -> list[tuple[Any, ...]]:
 def links_section(inp: ReportInput) -> list[Block] | None:
     """The link-level model of the drive beside the whole-drive model ([Pedersen2004],
     [Pedersen2005]), only when the analysis ran that study: the table of the quantities
-    both give, frames of the chain, link tension along it and the tooth loads."""
+    both give, frames of the chain, link tension along it and the tooth loads.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import chain_frames, frame_times, tension_along_chain, tooth_loads
 
     a = inp.analysis
@@ -332,7 +401,18 @@ def links_section(inp: ReportInput) -> list[Block] | None:
 
 def synthesis_section(inp: ReportInput) -> list[Block] | None:
     """The optimisation that chose this design: the Pareto set and its front, and why
-    designs were rejected."""
+    designs were rejected.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    list of Block | None
+        The section's blocks (None: the section does not apply).
+    """
     from chaindrive.plotting import pareto_front
 
     result = inp.synthesis

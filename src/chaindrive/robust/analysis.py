@@ -61,7 +61,18 @@ MIN_SAG_RATIO = 1e-3
 
 def nominal_analysis(drive: Drive) -> Analysis:
     """The analysis of a drive as drawn that the robust study perturbs (lazy, no start-up:
-    k₁ is not among the robust checks)."""
+    k₁ is not among the robust checks).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design as drawn.
+
+    Returns
+    -------
+    Analysis
+        Its lazy analysis without the start-up transient.
+    """
     return Analysis(drive, startup=False)
 
 

@@ -159,7 +159,18 @@ class LifeCurve:
     take_up_runs_out: float | None
 
     def hours(self, elongation: float) -> float | None:
-        """Wear hours to reach ``elongation`` [h] (None without a rating)."""
+        """Wear hours to reach ``elongation`` (linear in the elongation).
+
+        Parameters
+        ----------
+        elongation : float
+            Chain elongation ε [-] (0.01 = 1 %).
+
+        Returns
+        -------
+        float | None
+            The hours [h] (None when the chain has no rating for the wear relation).
+        """
         return None if self.hours_per_elongation is None else self.hours_per_elongation * elongation
 
     def to_dict(self) -> dict[str, Any]:

@@ -129,7 +129,18 @@ class StateOutcome:
     error: str | None = None
 
     def failed(self, key: str) -> bool:
-        """Whether check ``key`` failed (a state that cannot be built fails every check)."""
+        """Whether check ``key`` failed (a state that cannot be built fails every check).
+
+        Parameters
+        ----------
+        key : str
+            The check's key (:attr:`chaindrive.checks.Check.key`).
+
+        Returns
+        -------
+        bool
+            True when it failed or could not be verified in this state.
+        """
         return self.error is not None or self.status.get(key, "pass") != "pass"
 
     def to_dict(self) -> dict[str, Any]:
@@ -140,7 +151,18 @@ class StateOutcome:
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> StateOutcome:
-        """The outcome :meth:`to_dict` wrote."""
+        """The outcome :meth:`to_dict` wrote.
+
+        Parameters
+        ----------
+        data : dict
+            ``{"status", "margin", "metrics", "error"}`` as :meth:`to_dict` writes them.
+
+        Returns
+        -------
+        StateOutcome
+            The outcome (a metric written as None reads as nan).
+        """
         return cls(dict(data["status"]), dict(data["margin"]),
                    {k: math.nan if v is None else float(v) for k, v in data["metrics"].items()},
                    data.get("error"))
@@ -261,7 +283,19 @@ def estimate_probability(failed: NDArray[np.bool_], confidence: float = 0.95
 @dataclass(frozen=True, slots=True)
 class MetricSummary:
     """Mean, standard deviation and the 5, 50 and 95 % quantiles of a metric over the states
-    (nan states left out)."""
+    (nan states left out).
+
+    Parameters
+    ----------
+    name : str
+        The metric (a name of :data:`METRICS`).
+    unit : str
+        Its unit ("" for a pure number).
+    mean, std : float
+        Mean and standard deviation over the states [``unit``].
+    p05, p50, p95 : float
+        The 5, 50 and 95 % quantiles [``unit``].
+    """
 
     name: str
     unit: str
@@ -299,7 +333,7 @@ class ReliabilityResult:
     samples, replicates : int
         States evaluated per wear state and independent scramblings.
     confidence : float
-        Level of the intervals.
+        Level of the intervals [-] (0.95: 95 %).
     checks : tuple of CheckProbability
         One per check (most probable failure first), then ``any check``.
     metrics : tuple of MetricSummary
@@ -323,7 +357,18 @@ class ReliabilityResult:
     states: tuple[str, ...] = ()
 
     def probability(self, key: str) -> CheckProbability | None:
-        """The entry of check ``key`` (None when no state had it)."""
+        """The entry of check ``key``.
+
+        Parameters
+        ----------
+        key : str
+            The check's key (:attr:`chaindrive.checks.Check.key`).
+
+        Returns
+        -------
+        CheckProbability | None
+            Its probability of failure with the interval (None when no state had it).
+        """
         return next((c for c in self.checks if c.key == key), None)
 
     def quantile(self, metric: str, q: float) -> float:

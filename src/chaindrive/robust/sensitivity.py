@@ -71,7 +71,19 @@ class SensitivityResult:
     unbuilt: int
 
     def ranking(self, metric: str) -> list[tuple[str, float]]:
-        """Groups by decreasing total index of ``metric``."""
+        """Groups by decreasing total index of ``metric``.
+
+        Parameters
+        ----------
+        metric : str
+            A name of :data:`SENSITIVITY_METRICS`.
+
+        Returns
+        -------
+        list of (str, float)
+            (group, total Sobol index S_T [-]), the largest first; groups without a finite
+            index are left out.
+        """
         st = self.total.get(metric, ())
         pairs = [(g, v) for g, v in zip(self.groups, st, strict=True) if math.isfinite(v)]
         return sorted(pairs, key=lambda p: -p[1])

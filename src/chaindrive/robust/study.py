@@ -52,7 +52,19 @@ __all__ = ["DaskOptions", "RobustResult", "dask_states", "load_robust", "nominal
 
 
 def load_robust(path: str | Path) -> tuple[Analysis, UncertaintySettings]:
-    """The nominal analysis of a design file and its ``[uncertainty]`` table."""
+    """The nominal analysis of a design file and its ``[uncertainty]`` table.
+
+    Parameters
+    ----------
+    path : str | Path
+        The design file (TOML).
+
+    Returns
+    -------
+    tuple of (Analysis, UncertaintySettings)
+        The nominal analysis (:func:`~chaindrive.robust.analysis.nominal_analysis`) and the
+        settings (defaults when the file has no ``[uncertainty]`` table).
+    """
     return nominal_analysis(load_drive(path)), uncertainty_settings(
         read_toml(path).get("uncertainty"))
 
@@ -71,9 +83,19 @@ def _rebuilt(design: str, settings: str) -> tuple[Analysis, UncertaintyModel]:
 
 
 def robust_state(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker function of a robust study: ``{"design": JSON of the design mapping,
-    "settings": JSON of the UncertaintySettings, "x": variable values, "response": bool}``
-    → the state's :class:`~chaindrive.robust.sampling.StateOutcome` as a dict."""
+    """Worker function of a robust study: one perturbed state of a design.
+
+    Parameters
+    ----------
+    inputs : mapping
+        ``{"design": JSON of the design mapping, "settings": JSON of the
+        UncertaintySettings, "x": variable values [SI], "response": bool}``.
+
+    Returns
+    -------
+    dict
+        The state's :class:`~chaindrive.robust.sampling.StateOutcome` as a dict.
+    """
     nominal, model = _rebuilt(inputs["design"], inputs["settings"])
     state = PerturbedAnalysis(nominal, model.perturbation(np.asarray(inputs["x"], dtype=float)),
                               allowable_elongation=model.allowable_elongation,
@@ -110,7 +132,18 @@ class DaskOptions:
 
 
 def dask_states(options: DaskOptions) -> StateEvaluator:
-    """A state evaluator that runs on Dask and stores every state (resumable)."""
+    """A state evaluator that runs on Dask and stores every state (resumable).
+
+    Parameters
+    ----------
+    options : DaskOptions
+        Where the states run and are stored.
+
+    Returns
+    -------
+    StateEvaluator
+        ``evaluate(nominal, model, x, response)`` → one outcome per row of ``x``.
+    """
 
     def evaluate(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.float64],
                  response: bool) -> list[StateOutcome]:
@@ -211,6 +244,18 @@ def robust_batch(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
     The designs are the problem's (:meth:`chaindrive.synthesis.problem.Problem.decode`), the
     uncertainty model its ``[uncertainty]`` table (``[optimize.robust]`` samples when given).
+
+    Parameters
+    ----------
+    inputs : mapping
+        ``{"problem": TOML text, "vectors": list of search vectors}``.
+
+    Returns
+    -------
+    dict
+        ``{"designs": [...]}``, one entry per vector: ``resonance_probability``,
+        ``ci_low``, ``ci_high`` [-], ``samples``, ``f1_p05_hz`` [Hz],
+        ``resonance_margin_p05_percent`` [%]; or ``{"error": message}``.
     """
     problem = _problem(inputs["problem"])
     settings = (problem.robust.uncertainty if problem.robust is not None

@@ -77,7 +77,7 @@ class RobustSettings:
     uncertainty : UncertaintySettings
         The uncertainty model's settings (``samples`` replaced by the table's).
     chance : tuple of (str, float)
-        (check key, largest probability of failing it).
+        (check key, largest probability of failing it [-]).
     path : str
         "modal" or "full" (resolved from "auto").
     objectives : tuple of str
@@ -164,7 +164,7 @@ class RobustAnalysis(Analysis):
         The design.
     robust : RobustSettings
         ``[optimize.robust]`` and ``[uncertainty]``.
-    **kwargs
+    **kwargs : dict
         As :class:`~chaindrive.analysis.Analysis`.
     """
 
@@ -205,7 +205,19 @@ def robust_statistic(analysis: Analysis, name: str) -> float:
 
 def robust_constraints(analysis: RobustAnalysis) -> dict[str, float]:
     """Chance constraints g = −q_α(margin) ≤ 0 of a design (module docstring), named
-    ``P(<key>)``."""
+    ``P(<key>)``: the α-quantile of a check's margin over the states is ≥ 0 exactly when
+    the check fails in at most a fraction α of them [Rockafellar2000].
+
+    Parameters
+    ----------
+    analysis : RobustAnalysis
+        The design's analysis with its ``[optimize.robust]`` chance table.
+
+    Returns
+    -------
+    dict of str to float
+        ``P(<key>)`` → g [-] (−q_α of the margin fraction; ≤ 0 is feasible).
+    """
     out = {}
     for key, alpha in analysis.robust_settings.chance:
         q = analysis.robust.margin_quantile(key, alpha)

@@ -157,18 +157,55 @@ class UncertaintySettings:
 
 def uncertainty_settings(table: Mapping[str, Any] | None) -> UncertaintySettings:
     """The settings of an ``[uncertainty]`` table (missing fields: defaults); a mistake is
-    one :class:`~chaindrive.errors.DesignError` naming the field."""
+    one :class:`~chaindrive.errors.DesignError` naming the field.
+
+    Parameters
+    ----------
+    table : mapping | None
+        The table as read from TOML (None: no table).
+
+    Returns
+    -------
+    UncertaintySettings
+        The validated settings.
+    """
     return UncertaintySettings(**parse_section(table or {}, UNCERTAINTY_FIELDS, "uncertainty"))
 
 
 def load_uncertainty(path: str | Path) -> UncertaintySettings:
-    """The ``[uncertainty]`` table of a design file (defaults when it has none)."""
+    """The ``[uncertainty]`` table of a design file (defaults when it has none).
+
+    Parameters
+    ----------
+    path : str | Path
+        The design file (TOML).
+
+    Returns
+    -------
+    UncertaintySettings
+        The validated settings.
+    """
     return uncertainty_settings(read_toml(path).get("uncertainty"))
 
 
 def eccentricity_limit(root_diameter: float) -> float:
-    """Largest eccentricity e_max = TIR/2 [m] of a commercial sprocket of root (bottom)
-    diameter d_f [m] ([RyleTolerances]; beyond the table its last row)."""
+    """Largest eccentricity e_max = TIR/2 of a commercial sprocket (beyond the table: its
+    last row).
+
+    Parameters
+    ----------
+    root_diameter : float
+        Root (bottom) diameter d_f [m].
+
+    Returns
+    -------
+    float
+        e_max [m], half the total indicated runout allowed for d_f.
+
+    References
+    ----------
+    [RyleTolerances]
+    """
     d_in = root_diameter / _IN
     tir = next((t for up_to, t in ECCENTRICITY_TIR_IN if d_in <= up_to),
                ECCENTRICITY_TIR_IN[-1][1])
@@ -176,8 +213,23 @@ def eccentricity_limit(root_diameter: float) -> float:
 
 
 def position_tolerance(distance: float) -> float:
-    """± tolerance [m] of a shaft at ``distance`` [m] from the driver: 1 mm up to 1 m,
-    distance/1000 up to 10 m, 10 mm beyond [TsubakiGuide, §7.1.2.2]."""
+    """± position tolerance of a shaft: 1 mm up to 1 m from the driver, distance/1000 up to
+    10 m, 10 mm beyond.
+
+    Parameters
+    ----------
+    distance : float
+        Distance of the shaft from the driver's [m].
+
+    Returns
+    -------
+    float
+        The tolerance ± [m].
+
+    References
+    ----------
+    [TsubakiGuide, §7.1.2.2]
+    """
     small, per_metre, large = POSITION_TOLERANCE
     if distance <= 1.0:
         return small
@@ -198,11 +250,11 @@ class Variable:
         "uniform" on [a, b], "normal" (mean a, standard deviation b) or "rayleigh"
         (scale b).
     a, b : float
-        Parameters in SI.
+        Parameters of the distribution [SI unit of the variable, e.g. m].
     unit : str
         Unit shown; ``scale`` converts SI to it.
     scale : float
-        SI → ``unit`` factor.
+        SI → ``unit`` factor [unit/SI].
     source : str
         Where the distribution comes from (a key of docs/references.md or "estimate").
     """
@@ -217,7 +269,18 @@ class Variable:
     source: str = ""
 
     def ppf(self, u: ArrayLike) -> NDArray[np.float64]:
-        """The values at the probabilities ``u`` ∈ (0, 1) (inverse CDF) [SI]."""
+        """The values at the probabilities ``u`` (inverse CDF).
+
+        Parameters
+        ----------
+        u : array_like
+            Probabilities ∈ (0, 1) [-] (clipped 1e-12 from the ends).
+
+        Returns
+        -------
+        ndarray
+            The variable's values [SI], the shape of ``u``.
+        """
         q = np.clip(np.asarray(u, dtype=float), 1e-12, 1.0 - 1e-12)
         if self.distribution == "uniform":
             out: NDArray[np.float64] = self.a + (self.b - self.a) * q
@@ -284,7 +347,19 @@ class UncertaintyModel:
         return tuple(dict.fromkeys(v.group for v in self.variables))
 
     def modal_only(self, names: tuple[str, ...] = MODAL_GROUPS) -> UncertaintyModel:
-        """The model restricted to the groups ``names`` (default the modal ones)."""
+        """The model restricted to some groups.
+
+        Parameters
+        ----------
+        names : tuple of str
+            The groups kept (default :data:`MODAL_GROUPS`, the groups that only scale the
+            ring's masses and stiffnesses).
+
+        Returns
+        -------
+        UncertaintyModel
+            The same model with only those groups' variables.
+        """
         return UncertaintyModel(self.settings, tuple(v for v in self.variables
                                                      if v.group in names),
                                 self.allowable_elongation, self.take_up_capacity,
@@ -292,7 +367,18 @@ class UncertaintyModel:
                                 self.contours, self.notes)
 
     def values(self, u: ArrayLike) -> NDArray[np.float64]:
-        """Variable values (S, d) [SI] at the probabilities u (S, d) ∈ (0, 1)."""
+        """Variable values at the probabilities u (each variable's inverse CDF).
+
+        Parameters
+        ----------
+        u : array_like
+            (S, d) probabilities ∈ (0, 1) [-], one column per variable.
+
+        Returns
+        -------
+        ndarray
+            (S, d) variable values [SI].
+        """
         q = np.atleast_2d(np.asarray(u, dtype=float))
         if q.shape[1] != self.dimension:
             raise DesignError("samples", f"need {self.dimension} columns, got {q.shape[1]}")
