@@ -50,7 +50,8 @@ from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_r
 from chaindrive.dynamics.drive import RingParameters, drive_ring_parameters
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
-from chaindrive.dynamics.torsional_engine import TorsionalEngine, TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional_engine import TorsionalEngine
+from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.strength.loads import power_shares
 

@@ -25,11 +25,10 @@ from chaindrive.dynamics.torsional_build import build_contour
 from chaindrive.dynamics.torsional_engine import (
     FloatArray,
     TorsionalEngine,
-    TorsionalModes,
-    TorsionalSystem,
     TrainElement,
     reducer_input_torque,
 )
+from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive

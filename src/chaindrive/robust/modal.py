@@ -3,7 +3,7 @@ under S sets of modal factors (sprocket inertias, chain stiffness, polymer tempe
 natural frequencies and resonance margins, every sample at once.
 
 The model is the analysis's own (:attr:`chaindrive.analysis.Analysis.drive_model`, the
-:class:`~chaindrive.dynamics.torsional_engine.TorsionalSystem` of
+:class:`~chaindrive.dynamics.torsional_system.TorsionalSystem` of
 :mod:`chaindrive.dynamics.drive_model`); a sample changes only values, never the topology:
 
 * **inertias** — the node of sprocket i carries J_node + J_i (f_i − 1): its own inertia J_i
@@ -40,7 +40,7 @@ from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
 from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
-from chaindrive.dynamics.torsional_engine import TorsionalSystem
+from chaindrive.dynamics.torsional_system import TorsionalSystem
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.perturbation import modulus_factors
@@ -129,7 +129,7 @@ def batch_system_values(state: Analysis, inertia: FloatArray, link: FloatArray,
                         temperature: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Node inertias and element stiffnesses of a state's whole-drive model under S sets of
     modal factors (module docstring): the values
-    :meth:`~chaindrive.dynamics.torsional_engine.TorsionalSystem.updated` takes.
+    :meth:`~chaindrive.dynamics.torsional_system.TorsionalSystem.updated` takes.
 
     Parameters
     ----------
