@@ -89,7 +89,8 @@ def main() -> None:
     for _ in range(args.runs):
         for key, values in run_once().items():
             merged.setdefault(key, []).extend(values)
-    print(f"24-sprocket example at 1400x900, {args.runs} run(s), load average {load:.1f}")
+    print(f"24-sprocket example at 1400x900, {args.runs} run(s), load average {load:.1f} "
+          f"at the start, {os.getloadavg()[0]:.1f} at the end")
     print(f"{'edit':32s} {'median s':>9s} {'max s':>7s}")
     for way in ("table", "form"):
         for what in ("shown", "complete"):
