@@ -21,13 +21,22 @@ import threading
 import time
 import zlib
 from collections import OrderedDict
-from collections.abc import Iterator
+from collections.abc import Generator, Iterator
 from pathlib import Path
 from typing import Any
 
 import streamlit as st
 
 from chaindrive.app import runs, tabs
+from chaindrive.app.early import (
+    CHAIN_PREFIX,
+    FORMS,
+    chain_values,
+    design_from_state,
+    drive_values,
+    sprocket_frame,
+    table_rows,
+)
 from chaindrive.app.state import (
     SPROCKET_COLUMNS,
     DesignForm,
@@ -39,7 +48,6 @@ from chaindrive.app.state import (
     form_from_design,
     is_empty,
     list_examples,
-    plain,
     read_design_text,
     sprocket_label,
 )
@@ -49,8 +57,7 @@ from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt
 from chaindrive.errors import ChainDriveError
 
 DEFAULT_EXAMPLE = "seed_three_sprocket"
-AUTO_FORM = "(by chain standard)"
-AUTO_CHAIN = "(select for the power: {})"
+AUTO_CHAIN = CHAIN_PREFIX + "{})"
 STANDARDS = ("ISO 606", "GOST 13568", "ANSI")
 #: Pixel widths of the sprocket-table columns: every column shows whole at 1400 px wide.
 WIDTHS = {"name": 62, "teeth": 54, "x_mm": 78, "y_mm": 78, "role": 70, "side": 70,
@@ -234,7 +241,7 @@ def _drive_fields(base: DesignForm, slots: dict[tuple[str, str], Any]
         name = _field(slots, ("drive", "name"), lambda: st.text_input(
             "Drive name", value=d.get("name") or "", key=_key("drive.name")))
     with c2:
-        forms: list[str] = [AUTO_FORM, "ISO 606", "GOST 591"]
+        forms: list[str] = list(FORMS)
         given = d.get("tooth_form")
         current = forms.index(given) if given in forms else 0
         tooth_form = _field(slots, ("drive", "tooth_form"), lambda: st.selectbox(
@@ -248,10 +255,7 @@ def _drive_fields(base: DesignForm, slots: dict[tuple[str, str], Any]
         sf = _field(slots, ("drive", "service_factor"), lambda: _number(
             "Service factor", d.get("service_factor"), "drive.sf", step=0.1, fmt="%g",
             help_text="application factor, 1 to 5"))
-    extra = {k: v for k, v in d.items()
-             if k not in ("name", "power_kw", "service_factor", "tooth_form")}
-    return {"name": name, "power_kw": power, "service_factor": sf,
-            "tooth_form": None if tooth_form == AUTO_FORM else tooth_form, **extra}, [c5]
+    return drive_values(d, name, tooth_form, power, sf), [c5]
 
 
 def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: list[Any]
@@ -283,12 +287,7 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
         key=_key("chain.allow_odd")))
     for key in ("standard", "pitch_mm", "series", "catalog"):
         slots[("chain", key)] = slots[("chain", "designation")]
-    if choice.startswith("(select"):
-        ch.update(designation=None, standard=choice[len("(select for the power: "):-1])
-    else:
-        ch.update(designation=choice, standard=None, series=None, pitch_mm=None)
-    ch.update(strands=strands, links=links, contours=contours, allow_odd=allow_odd)
-    return ch
+    return chain_values(ch, strands, choice, links, contours, allow_odd)
 
 
 def _column_config() -> dict[str, Any]:
@@ -325,20 +324,11 @@ def _column_config() -> dict[str, Any]:
 
 
 def _sprocket_table(base: DesignForm) -> list[dict[str, Any]]:
-    import pandas as pd
-
-    keys = [c.key for c in SPROCKET_COLUMNS]
-    extra = sorted({k for r in base.sprockets for k in r} - set(keys))
-    frame = pd.DataFrame([{k: r.get(k) for k in keys + extra} for r in base.sprockets],
-                         columns=keys + extra)
-    for key in ("teeth", "x_mm", "y_mm", "speed_rpm", "power_share", "inertia_kg_m2",
-                "adjust_angle_deg"):
-        frame[key] = pd.to_numeric(frame[key], errors="coerce").astype("Float64")
-    frame["adjustable"] = frame["adjustable"].fillna(False).astype(bool)
+    frame = sprocket_frame(base)
     edited = st.data_editor(frame, key=_table_key(), num_rows="dynamic", hide_index=True,
                             column_config=_column_config(), width="stretch",
                             placeholder="", height=min(36 * (len(frame) + 2), 330))
-    return [{str(k): plain(v) for k, v in row.items()} for row in edited.to_dict("records")]
+    return table_rows(edited)
 
 
 def _apply_edit(index: int, keys: dict[str, str], rows: list[dict[str, Any]]) -> None:
@@ -419,7 +409,7 @@ def _finished() -> tuple[OrderedDict[tuple[str, str], Screen], threading.Lock]:
     return OrderedDict(), threading.Lock()
 
 
-def _screens(design_json: str, catalogs_json: str = "{}") -> Iterator[Screen]:
+def _screens(design_json: str, catalogs_json: str = "{}") -> Generator[Screen, None, None]:
     """The screens of a design: the kept one, or those of one bounded run
     (:func:`chaindrive.app.runs.bounded_screens`: the quick part as soon as it is ready,
     then the complete screen)."""
@@ -593,10 +583,43 @@ def _ready(state: str, screen: Screen | None = None) -> None:
             text)
 
 
+def _early(base: DesignForm, catalogs: str, shown: Any) -> tuple[str, Iterator[Screen]] | None:
+    """The design read from the session state before the widgets
+    (:func:`chaindrive.app.early.design_from_state`), analysed, and its quick results drawn
+    in ``shown``: returns its key and the rest of its screens; None when the design could
+    not be read there, or was not analysed (the page then goes the usual way)."""
+    if st.session_state.pop("early_off", False):
+        return None
+    try:
+        design = design_from_state(base, st.session_state, _key, _table_key(),
+                                   _chain_choice(base.chain),
+                                   _chain_options(base.chain.get("designation")))
+    except Exception:  # whatever the state holds: the widgets will say
+        design = None
+    if design is None:
+        return None
+    key = json.dumps(design, sort_keys=True, default=str)
+    st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
+    steps = _screens(key, catalogs)
+    screen = next(steps)
+    if not screen.outcome.ok:  # the widgets show where the mistake is: the usual way
+        steps.close()
+        return None
+    with shown:
+        _quick_results(screen)
+    return key, _chain((screen,), steps)
+
+
+def _chain(first: tuple[Screen, ...], rest: Iterator[Screen]) -> Iterator[Screen]:
+    yield from first
+    yield from rest
+
+
 def page() -> None:
-    """The whole page, top to bottom (Streamlit reruns it on every edit): the form and the
-    table first (the results depend on them), then the contour and verdict at the top
-    right, then the rest."""
+    """The whole page (Streamlit reruns it on every edit): the quick results of the design
+    read from the session state first (:func:`_early`, top right), then the form and the
+    table, then the rest; when the form's design is not the one read first, the page runs
+    again with it."""
     st.set_page_config(page_title="chaindrive — chain drive design", layout="wide",
                        page_icon="⛓️")
     phase = _Phases()
@@ -604,7 +627,14 @@ def page() -> None:
     _init()
     base: DesignForm = st.session_state["form"]
     left, right = st.columns([1.08, 1], gap="medium")
+    with right:
+        shown = st.container()
+        warnings = st.container()
     table_box = st.container()
+    catalogs = json.dumps(_catalogs(), sort_keys=True)
+    previous = st.session_state.get("previous_numbers")
+    early = _early(base, catalogs, shown)
+    phase("early")
     with left:
         st.title("Chain drive design")
         general = st.empty()
@@ -621,16 +651,26 @@ def page() -> None:
     _sidebar(design)
     phase("form")
     key = json.dumps(design, sort_keys=True, default=str)
-    st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
-    catalogs = json.dumps(_catalogs(), sort_keys=True)
-    steps = _screens(key, catalogs)
-    screen = next(steps)
-    phase("quick_run")
-    _show_error(screen, slots, table_slot, general, rows)
+    catalogs_now = json.dumps(_catalogs(), sort_keys=True)
+    if early is not None and (early[0], catalogs) != (key, catalogs_now):
+        # the results drawn first are of another design: run again with the form's
+        st.session_state["previous_numbers"] = previous
+        st.session_state["early_off"] = True
+        st.rerun()
+    if early is not None:
+        steps = early[1]
+        screen = next(steps)
+        phase("quick_run")
+    else:
+        st.session_state["design_tag"] = f"{zlib.crc32(key.encode()):08x}"
+        steps = _screens(key, catalogs_now)
+        screen = next(steps)
+        phase("quick_run")
+        _show_error(screen, slots, table_slot, general, rows)
+        if screen.outcome.ok:
+            with shown:
+                _quick_results(screen)
     if screen.outcome.ok:
-        with right:
-            _quick_results(screen)
-            warnings = st.container()
         phase("shown")
         screen = next(steps, screen)
         phase("complete_run")

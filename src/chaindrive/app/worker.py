@@ -5,10 +5,18 @@ Streamlit runs each session's script in a thread of the server process, next to 
 loop that answers every browser (and the health check). A computation that holds the
 interpreter — a start-up of a stiff ring, a large sweep — would stall them all. So the page
 hands each analysis, start-up, report and drawing to :func:`run_bounded`: it runs in a
-child process forked from a server of preloaded modules (``forkserver``: a start costs a
-few milliseconds, not the seconds of importing numpy, scipy and numba again), under an
-address-space limit (``RLIMIT_AS``), and is killed when it runs past its time. The
-session's thread only waits on a pipe, which holds no lock: other sessions stay responsive.
+child process under an address-space limit (``RLIMIT_AS``), and that process is killed when
+the run goes past its time. The session's thread only waits on a pipe, which holds no lock:
+other sessions stay responsive.
+
+The child processes are kept warm: a run goes to an idle worker process when there is one
+(forked from a server of preloaded modules, ``forkserver``), which runs one request after
+another under its limit. A run that is stopped — past its time, or its results closed
+before their end — kills its worker; a worker that ran out of memory exits; and a worker is
+retired after :data:`RUNS_PER_WORKER` runs, so that what a run leaves behind in a process
+cannot pile up. A fresh fork per run cost the page about 0.1–0.2 s of every edit (the
+fork, re-importing the page's script, the first touch of every copied page, the analysis'
+caches cold); a warm worker answers at once.
 
 A limit that is hit becomes a :class:`RunLimitError` — a
 :class:`~chaindrive.errors.ChainDriveError`, so the page shows it as one line like any
@@ -30,8 +38,8 @@ from typing import Any, TypeVar
 
 from chaindrive.errors import ChainDriveError
 
-__all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_RUNS", "MEMORY_BYTES", "PRELOAD",
-           "RunLimitError", "run_bounded", "run_bounded_steps"]
+__all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_IDLE", "MAX_RUNS", "MEMORY_BYTES",
+           "PRELOAD", "RUNS_PER_WORKER", "RunLimitError", "run_bounded", "run_bounded_steps"]
 
 T = TypeVar("T")
 
@@ -46,6 +54,10 @@ FULL_SECONDS = float(os.environ.get("CHAINDRIVE_APP_FULL_SECONDS", "60"))
 MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024**3)
 #: Runs at once (each may use up to MEMORY_BYTES).
 MAX_RUNS = 4
+#: Runs a worker process serves before it is retired (a new one is forked for the next).
+RUNS_PER_WORKER = 64
+#: Idle workers kept warm at most (each holds its imported modules, about 0.2 GB resident).
+MAX_IDLE = 2
 #: Modules the fork server imports once, so that a run starts without importing them.
 #: Streamlit is among them because every run imports the page's script again (the parent's
 #: main module, as multiprocessing does); the script only defines functions then, but its
@@ -61,6 +73,8 @@ THREADS = {"OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OMP_NUM_THREADS
 _slots = threading.BoundedSemaphore(MAX_RUNS)
 _context_lock = threading.Lock()
 _context: Any = None
+#: Idle workers by their memory limit (at most MAX_IDLE in all), guarded by _context_lock.
+_idle: dict[int, list[_Worker]] = {}
 
 
 class RunLimitError(ChainDriveError):
@@ -100,33 +114,85 @@ def _outcomes(func: Callable[..., Any], args: tuple[Any, ...], steps: bool
         yield ("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc())
 
 
-def _child(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...], memory: int,
-           steps: bool = False) -> None:
-    """In the child: limit the memory, run, send each of :func:`_outcomes` as it comes."""
+def _answer(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...],
+            steps: bool) -> bool:
+    """In the worker: run one request, send each of :func:`_outcomes` as it comes; False
+    when the worker must exit (out of memory)."""
+    for outcome in _outcomes(func, args, steps):
+        try:
+            conn.send(outcome)
+        except MemoryError:
+            conn.send(("memory",))
+            return False
+        except Exception as exc:  # the result could not be pickled
+            conn.send(("crash", f"{type(exc).__name__}: {exc}"[:300], traceback.format_exc()))
+            return True
+        if outcome[0] == "memory":
+            return False
+    return True
+
+
+def _serve(conn: Connection, memory: int) -> None:
+    """The worker process: limit its memory, then answer one request (function, arguments,
+    whether it yields steps) after another until the server closes the pipe."""
     import resource
 
     with suppress(ValueError, OSError):  # a hard limit below ours: keep it
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
     try:
-        for outcome in _outcomes(func, args, steps):
+        while True:
             try:
-                conn.send(outcome)
-            except MemoryError:
-                conn.send(("memory",))
-                break
-            except Exception as exc:  # the result could not be pickled
-                conn.send(("crash", f"{type(exc).__name__}: {exc}"[:300],
-                           traceback.format_exc()))
-                break
+                func, args, steps = conn.recv()
+            except (EOFError, OSError):
+                return
+            if not _answer(conn, func, args, steps):
+                return
     finally:
         conn.close()
 
 
-def _stop(process: Any) -> None:
-    """Kill a run and reap its process."""
-    if process.is_alive():
-        process.kill()
-    process.join(5.0)
+class _Worker:
+    """A warm worker process and the server's end of its pipe."""
+
+    def __init__(self, memory: int) -> None:
+        ctx = _mp()
+        self.memory = memory
+        self.runs = 0
+        self.conn, child = ctx.Pipe(duplex=True)
+        self.process = ctx.Process(target=_serve, args=(child, memory), daemon=True)
+        self.process.start()
+        child.close()
+
+    def stop(self) -> None:
+        """Kill the worker and reap its process."""
+        with suppress(OSError):
+            self.conn.close()
+        if self.process.is_alive():
+            self.process.kill()
+        self.process.join(5.0)
+
+
+def _worker(memory: int) -> _Worker:
+    """An idle worker with this memory limit, or a new one."""
+    with _context_lock:
+        idle = _idle.get(memory, [])
+        while idle:
+            worker = idle.pop()
+            if worker.process.is_alive():
+                return worker
+            worker.stop()
+    return _Worker(memory)
+
+
+def _release(worker: _Worker) -> None:
+    """Keep a worker that finished its request for the next run (or retire it)."""
+    worker.runs += 1
+    with _context_lock:
+        if (worker.runs < RUNS_PER_WORKER and worker.process.is_alive()
+                and sum(len(v) for v in _idle.values()) < MAX_IDLE):
+            _idle.setdefault(worker.memory, []).append(worker)
+            return
+    worker.stop()
 
 
 def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE_SECONDS,
@@ -197,46 +263,63 @@ def run_bounded_steps(func: Callable[..., Iterator[T]], *args: Any,
 
 def _run(func: Callable[..., Any], args: tuple[Any, ...], seconds: float, memory: int,
          what: str, steps: bool) -> Generator[Any, None, None]:
-    """Start the child (after a free slot), yield its results, stop it."""
+    """Send the request to a worker (after a free slot), yield its results; the worker is
+    free again as soon as its last message is in (the end of a run comes right after its
+    last item, so the worker is released before that item is used)."""
     start = time.monotonic()
     if not _slots.acquire(timeout=seconds):
         raise RunLimitError("run", f"{what} waited {seconds:g} s for a free slot (the server "
                             f"runs at most {MAX_RUNS} computations at once); try again")
+    worker: _Worker | None = None
     try:
-        ctx = _mp()
-        receive, send = ctx.Pipe(duplex=False)
-        process = ctx.Process(target=_child, args=(send, func, args, memory, steps),
-                              daemon=True)
-        process.start()
-        send.close()
-        try:
-            while True:
-                outcome = _receive(receive, process, seconds - (time.monotonic() - start),
-                                   seconds, memory, what)
+        worker = _worker(memory)
+        worker.conn.send((func, args, steps))
+        outcome: tuple[Any, ...] | None = _receive(worker, start, seconds, memory, what)
+        while outcome is not None and outcome[0] == "ok":
+            item, outcome = outcome[1], None
+            if not steps or worker.conn.poll(0):  # one result: its end comes next
+                outcome = _receive(worker, start, seconds, memory, what)
                 if outcome[0] != "ok":
+                    _done(worker, outcome)
+                    worker = None
+                    yield item
                     break
-                yield outcome[1]
-        finally:
-            receive.close()
-            _stop(process)
+            yield item
+            if outcome is None:
+                outcome = _receive(worker, start, seconds, memory, what)
+        if worker is not None and outcome is not None:
+            _done(worker, outcome)
+            worker = None
     finally:
+        if worker is not None:  # past its time, lost, or its results closed early
+            worker.stop()
         _slots.release()
+    assert outcome is not None
     _raise(outcome, memory, what)
 
 
-def _receive(receive: Connection, process: Any, left: float, seconds: float, memory: int,
-             what: str) -> tuple[Any, ...]:
-    """The child's next message, within ``left`` seconds."""
-    if not receive.poll(max(left, 0.0)):
+def _done(worker: _Worker, outcome: tuple[Any, ...]) -> None:
+    """A worker whose run ended with ``outcome``: kept for the next run when the run ended
+    in order (its end, or an error it caught), else stopped."""
+    if outcome[0] in ("end", "error", "crash"):
+        _release(worker)
+    else:
+        worker.stop()
+
+
+def _receive(worker: _Worker, start: float, seconds: float, memory: int, what: str
+             ) -> tuple[Any, ...]:
+    """The worker's next message, within what is left of the run's ``seconds``."""
+    if not worker.conn.poll(max(seconds - (time.monotonic() - start), 0.0)):
         raise RunLimitError("run", f"{what} took longer than {seconds:g} s, the limit "
                             "of one run on this page; simplify the design or run "
                             "`chaindrive analyze` on your own machine")
     try:
-        return receive.recv()  # type: ignore[no-any-return]
+        return worker.conn.recv()  # type: ignore[no-any-return]
     except (EOFError, OSError):
-        process.join(5.0)
+        worker.process.join(5.0)
         raise RunLimitError("run", f"{what} stopped (its process ended with status "
-                            f"{process.exitcode}); it may have needed more than "
+                            f"{worker.process.exitcode}); it may have needed more than "
                             f"{memory / 1024**3:.3g} GB of memory") from None
 
 
@@ -254,5 +337,5 @@ def _raise(outcome: tuple[Any, ...], memory: int, what: str) -> None:
 
 
 def child_pid() -> int:
-    """The process id of the process that runs it (a run's own, in :func:`run_bounded`)."""
+    """The process id of the process that runs it (a run's worker, in :func:`run_bounded`)."""
     return os.getpid()
