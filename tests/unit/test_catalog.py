@@ -63,7 +63,7 @@ def test_packaged_catalogue_has_both_standards_and_all_strand_counts():
     assert {s.strands for s in iso} == {1, 2, 3, 4}
     assert {s.strands for s in gost} == {1, 2, 3, 4}
     assert {s.series for s in heavy} == {"H"} and {s.strands for s in heavy} == {1, 2, 3, 4}
-    assert {s.material for s in polymer} == {"POM", "PA66"}
+    assert {s.material for s in polymer} == {"POM", "PA66", "PA66-GF30"}
     assert all(s.allowable_load is not None and s.allowable_load < s.breaking_load
                for s in polymer)
     assert len(iso) + len(gost) + len(heavy) + len(polymer) == len(specs)
