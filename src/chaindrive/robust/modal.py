@@ -207,7 +207,7 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
         K0m = K[:, free][:, :, massed]
         K = K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m)
         mass, coupling = mass[:, massed], coupling[np.ix_(massed, massed)]
-    lam: FloatArray = np.linalg.eigvalsh(_mass_normalised(K, mass, coupling))
+    lam = np.asarray(np.linalg.eigvalsh(_mass_normalised(K, mass, coupling)), dtype=np.float64)
     r = int(system.rigid_motions.shape[1])
     return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(S, -1) / TWO_PI
 
