@@ -18,7 +18,7 @@ import pytest
 
 from chaindrive import examples
 from chaindrive.errors import DesignError
-from chaindrive.robust.chance import minimum_samples, upper_bound
+from chaindrive.robust.chance import allowed_failures, minimum_samples, upper_bound
 from chaindrive.robust.sampling import sample_count
 from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, RobustAnalysis
 from chaindrive.synthesis.evaluation import analysis_of, evaluate_drive
@@ -73,9 +73,30 @@ def test_chance_constraint_is_the_upper_confidence_bound() -> None:
     entry = a.robust.probability("resonance_margin")
     # the modal path pools the wear states: a sampled point counts as its failing fraction
     failures = entry.failures / entry.samples * a.robust.samples
-    # g ≤ 0 ⇔ the one-sided 95 % Clopper–Pearson bound of the counted failures is ≤ 25 %
-    assert (g <= 0) == (upper_bound(failures, a.robust.samples, 0.95) <= 0.25)
+    # g ≤ 0 ⇒ the one-sided 95 % Clopper–Pearson bound of the counted failures is ≤ 25 %, and
+    # g > 0 ⇒ the failures exceed the most whole failures the bound allows
+    bound = upper_bound(failures, a.robust.samples, 0.95)
+    if g <= 0:
+        assert bound <= 0.25
+    else:
+        assert failures > allowed_failures(0.25, a.robust.samples, 0.95)
     assert ev.feasible is False                 # the start fails its resonance margin anyway
+
+
+def test_clopper_pearson_bound_and_minimum_samples() -> None:
+    """Closed forms of the one-sided Clopper–Pearson bound [ClopperPearson1934]: with no
+    failure p_up = 1 − (1 − c)^(1/S) (≈ 3/S, [Hanley1983]); S_min = ⌈ln(1 − c)/ln(1 − α)⌉;
+    and k* is the last count whose bound is ≤ α."""
+    for n in (16, 64, 299, 1000):
+        assert upper_bound(0, n, 0.95) == pytest.approx(1.0 - 0.05 ** (1.0 / n), rel=1e-10)
+    assert upper_bound(0, 16, 0.95) > 0.17         # 16 states cannot certify 17 %
+    for alpha in (0.25, 0.05, 0.01, 0.001):
+        need = math.ceil(math.log(0.05) / math.log(1.0 - alpha))
+        assert minimum_samples(alpha, 0.95) == need
+        assert allowed_failures(alpha, need - 1, 0.95) == -1
+        assert allowed_failures(alpha, need, 0.95) == 0
+    k = allowed_failures(0.05, 1024, 0.95)
+    assert upper_bound(k, 1024, 0.95) <= 0.05 < upper_bound(k + 1, 1024, 0.95)
 
 
 def test_robust_search_keeps_its_chance_constraint() -> None:

@@ -269,7 +269,8 @@ def chance_statement(result: ReliabilityResult, key: str, alpha: float, confiden
     -------
     tuple
         (failures k [–], states S [–], upper bound p_up(k, S, c) [–], constraint value
-        g = −m₍ₖ*₊₁₎ [–], ≤ 0 exactly when p_up ≤ α). A model with no random variable
+        g = −m₍ₖ*₊₁₎ [–], ≤ 0 exactly when p_up ≤ α for a whole count; for the modal path's
+        fractional counts g ≤ 0 implies p_up ≤ α). A model with no random variable
         (S = 1) is exact: p_up = p and g is the margin of the α-quantile.
 
     References
