@@ -16,7 +16,10 @@ stiffness ±10 %: S = 4 replicates × 2^m ≥ the samples asked) through
 2. The speed-up from one to two Dask workers on the same workload (the first ``--speedup``
    designs), the contenders in alternation, two rounds each.
 3. For reference, designs per second in one process (no Dask), and the CPU time per design
-   (what two free cores would take: it does not depend on the load as the wall time does).
+   (what two free cores would take: it depends less on the load than the wall time does).
+4. The peer of the batched frequencies: the same S states of a design one by one through the
+   torsional engine (``TorsionalSystem.updated(...).frequencies_hz()``, the full per-state
+   path's solver), CPU time per design side by side, and the ratio.
 
 The machine is shared: the load average before and after each part is printed beside the
 times; repeat the run to see the spread.
@@ -43,7 +46,13 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 import tomli_w  # noqa: E402
 
+from chaindrive.catalog import find_material  # noqa: E402
+from chaindrive.robust.analysis import nominal_analysis  # noqa: E402
+from chaindrive.robust.modal import batch_elastic_frequencies, batch_system_values  # noqa: E402
+from chaindrive.robust.perturbation import modulus_factors  # noqa: E402
+from chaindrive.robust.sampling import _modal_factors, sobol_points  # noqa: E402
 from chaindrive.robust.study import robust_batch  # noqa: E402
+from chaindrive.robust.uncertainty import uncertainty_model, uncertainty_settings  # noqa: E402
 from chaindrive.synthesis.problem import problem_from_mapping  # noqa: E402
 from chaindrive.synthesis.studies import run_study  # noqa: E402
 
@@ -100,6 +109,32 @@ def on_dask(inputs: list[dict], workers: int) -> float:
     return seconds
 
 
+def frequencies_side_by_side(text: str, xs: list[list[float]]) -> tuple[float, float]:
+    """CPU time [s] per design of the S states' frequencies: stacked, and one by one."""
+    problem = problem_from_mapping(tomllib.loads(text))
+    settings = uncertainty_settings(tomllib.loads(text)["uncertainty"])
+    stacked = single = 0.0
+    for x in xs:
+        state = nominal_analysis(problem.decode(x))
+        modal = uncertainty_model(state, settings).modal_only()
+        u = sobol_points(modal.dimension, settings.samples, settings.replicates, settings.seed)
+        inertia, link, temperature = _modal_factors(
+            modal, modal.values(u.reshape(-1, modal.dimension)), len(state.drive.sprockets))
+        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
+                                      temperature)
+        J, k = batch_system_values(state, inertia, link, temperature)
+        system = state.drive_model.system
+        c0 = time.process_time()
+        batch = batch_elastic_frequencies(system, J, k)
+        c1 = time.process_time()
+        one = np.array([system.updated(node_inertia_kg_m2=J[i], element_stiffness=k[i])
+                        .frequencies_hz()[1:] for i in range(J.shape[0])])
+        c2 = time.process_time()
+        assert np.allclose(batch, one, rtol=1e-9, atol=0.0)
+        stacked, single = stacked + c1 - c0, single + c2 - c1
+    return stacked / len(xs), single / len(xs)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true", help="1000 designs, 200 for the speed-up")
@@ -124,6 +159,11 @@ def main() -> None:
           f"≈ {designs * cpu / 2:.0f} s of evaluation")
     print(f"   P(resonance margin < 10 %) over the first 100 designs: {min(p):.3f} … "
           f"{max(p):.3f}")
+
+    stacked, single = frequencies_side_by_side(text, xs[:10])
+    print(f"   frequencies of the {states} states, CPU per design: stacked {stacked * 1e3:.1f} ms, "
+          f"one by one through the torsional engine {single * 1e3:.1f} ms = "
+          f"{single / stacked:.1f}×; {load()}")
 
     before = load()
     seconds = on_dask(inputs_of(text, xs), 2)

@@ -71,7 +71,7 @@ population = 4
 generations = 1
 seed = 2
 [optimize.robust]
-samples = 4
+samples = 64
 chance = { resonance_margin = 0.05 }
 """, encoding="utf-8")
     url = f"sqlite:///{tmp_path / 'study.db'}"

@@ -17,6 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+import scipy.linalg
 
 import chaindrive
 from chaindrive.model import TrainElement
@@ -29,7 +30,7 @@ from chaindrive.robust import (
     uncertainty_model,
 )
 from chaindrive.robust.modal import (
-    _inverse_cholesky,
+    _mass_normalised,
     batch_elastic_frequencies,
     batch_system_values,
     modal_margins,
@@ -167,16 +168,21 @@ def test_batched_frequencies_equal_the_engine_with_trains_and_a_massless_node() 
         assert np.allclose(elastic[s], engine[1:], rtol=1e-9, atol=0.0)
 
 
-def test_inverse_cholesky_factor_of_stacked_mass_matrices() -> None:
-    """L⁻¹ M L⁻ᵀ = I (the definition of the Cholesky factor M = L Lᵀ) on both branches: the
-    varying masses uncoupled (block-diagonal, one factor for the common rest) and coupled
+def test_mass_normalised_stack_has_the_generalised_eigenvalues() -> None:
+    """eigvalsh of the stacked L⁻¹ K L⁻ᵀ (lower triangle, coordinates reordered) = the
+    eigenvalues of K x = λ M x (the definition, scipy.linalg.eigh's generalised problem) on
+    both branches: the varying masses uncoupled (one factor for the common rest) and coupled
     (one factor per sample)."""
     rng = np.random.default_rng(0)
-    base = np.diag([2.0, 3.0, 1.0, 1.5])
-    base[2, 3] = base[3, 2] = 0.4               # a consistent mass couples coordinates 2 and 3
+    coupling = np.zeros((4, 4))
+    coupling[2, 3] = coupling[3, 2] = 0.4       # a consistent mass couples coordinates 2 and 3
+    B = rng.standard_normal((5, 4))
     for varying in (0, 2):
-        M = np.repeat(base[None], 5, axis=0)
-        M[:, varying, varying] *= rng.uniform(0.8, 1.2, 5)
-        W = _inverse_cholesky(M)
-        assert np.allclose(W @ M @ np.swapaxes(W, 1, 2), np.eye(4), atol=1e-12)
-        assert np.allclose(np.triu(W, 1), 0.0)
+        mass = np.repeat(np.array([[2.0, 3.0, 1.0, 1.5]]), 5, axis=0)
+        mass[:, varying] *= rng.uniform(0.8, 1.2, 5)
+        k = rng.uniform(1.0, 3.0, (5, 5))
+        K = np.einsum("ei,se,ej->sij", B, k, B)
+        lam = np.linalg.eigvalsh(_mass_normalised(K, mass, coupling))
+        for s in range(5):
+            expected = scipy.linalg.eigh(K[s], coupling + np.diag(mass[s]), eigvals_only=True)
+            assert np.allclose(lam[s], expected, rtol=1e-12, atol=1e-12)

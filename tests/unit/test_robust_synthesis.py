@@ -1,9 +1,11 @@
 """Robust synthesis: ``[optimize.robust]`` chance constraints and robust objectives in the
 optimiser (chaindrive.robust.synthesis and its hooks in chaindrive.synthesis).
 
-A chance constraint P(check fails) ≤ α is the α-quantile of the check's margin ≥ 0
-(the value-at-risk form, [Rockafellar2000]): a design satisfies it exactly when at most a
-fraction α of its states fail — checked here against the counted probability.
+A chance constraint P(check fails) ≤ α is a confidence statement: a design satisfies it
+when the one-sided Clopper–Pearson upper bound of the failure probability of its S states is
+≤ α [ClopperPearson1934], imposed as an order statistic of the check's margin (the
+value-at-risk form, [Rockafellar2000]) — checked here against the counted failures; and the
+designs a search returns are verified with an independent, larger sample.
 """
 
 from __future__ import annotations
@@ -16,6 +18,8 @@ import pytest
 
 from chaindrive import examples
 from chaindrive.errors import DesignError
+from chaindrive.robust.chance import allowed_failures, minimum_samples, upper_bound
+from chaindrive.robust.sampling import sample_count
 from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, RobustAnalysis
 from chaindrive.synthesis.evaluation import analysis_of, evaluate_drive
 from chaindrive.synthesis.objectives import OBJECTIVES
@@ -37,10 +41,14 @@ def test_robust_table_is_read_and_checked() -> None:
     data["optimize"]["robust"] = {"chance": {"resonance_margin": 0.01}}
     p = problem_from_mapping(data)
     assert p.robust is not None and p.robust.path == "modal"   # resonance only: batched
-    assert p.robust.uncertainty.samples == 32                  # [optimize.robust] default
-    data["optimize"]["robust"] = {"chance": {"k2": 0.001}, "samples": 8}
+    # left out, samples is the least that certifies 1 % at 95 %: ⌈ln 0.05 / ln 0.99⌉ = 299
+    assert p.robust.uncertainty.samples == 299 == minimum_samples(0.01, 0.95)
+    assert p.robust.verification == 4 * sample_count(299, 4)
+    data["optimize"]["robust"] = {"chance": {"k2": 0.001}}
     assert problem_from_mapping(data).robust.path == "full"
     for bad, field in (({"chance": {"k2": 0.7}}, "optimize.robust.chance.k2"),
+                       ({"chance": {"resonance_margin": 0.01}, "samples": 16},
+                        "optimize.robust.samples"),
                        ({"samples": 8}, "optimize.robust"),
                        ({"chance": {"k2": 0.01}, "path": "modal"}, "optimize.robust.path"),
                        ({"chanse": {}}, "optimize.robust.chanse")):
@@ -54,7 +62,7 @@ def test_robust_table_is_read_and_checked() -> None:
     assert set(ROBUST_OBJECTIVES) <= set(OBJECTIVES)
 
 
-def test_chance_constraint_is_the_quantile_of_the_margin() -> None:
+def test_chance_constraint_is_the_upper_confidence_bound() -> None:
     data = _data()
     data["optimize"]["robust"] = {"chance": {"resonance_margin": 0.25}, "samples": 16}
     p = problem_from_mapping(data)
@@ -62,20 +70,45 @@ def test_chance_constraint_is_the_quantile_of_the_margin() -> None:
     assert isinstance(a, RobustAnalysis)
     ev = evaluate_drive(p.base, p.objectives, p.constraints, robust=p.robust)
     g = ev.constraints["P(resonance_margin)"]
-    counted = a.robust.probability("resonance_margin").probability
-    # g ≤ 0 ⇔ at most 25 % of the states fail the resonance check
-    assert (g <= 0) == (counted <= 0.25)
+    entry = a.robust.probability("resonance_margin")
+    # the modal path pools the wear states: a sampled point counts as its failing fraction
+    failures = entry.failures / entry.samples * a.robust.samples
+    # g ≤ 0 ⇒ the one-sided 95 % Clopper–Pearson bound of the counted failures is ≤ 25 %, and
+    # g > 0 ⇒ the failures exceed the most whole failures the bound allows
+    bound = upper_bound(failures, a.robust.samples, 0.95)
+    if g <= 0:
+        assert bound <= 0.25
+    else:
+        assert failures > allowed_failures(0.25, a.robust.samples, 0.95)
     assert ev.feasible is False                 # the start fails its resonance margin anyway
+
+
+def test_clopper_pearson_bound_and_minimum_samples() -> None:
+    """Closed forms of the one-sided Clopper–Pearson bound [ClopperPearson1934]: with no
+    failure p_up = 1 − (1 − c)^(1/S) (≈ 3/S, [Hanley1983]); S_min = ⌈ln(1 − c)/ln(1 − α)⌉;
+    and k* is the last count whose bound is ≤ α."""
+    for n in (16, 64, 299, 1000):
+        assert upper_bound(0, n, 0.95) == pytest.approx(1.0 - 0.05 ** (1.0 / n), rel=1e-10)
+    assert upper_bound(0, 16, 0.95) > 0.17         # 16 states cannot certify 17 %
+    for alpha in (0.25, 0.05, 0.01, 0.001):
+        need = math.ceil(math.log(0.05) / math.log(1.0 - alpha))
+        assert minimum_samples(alpha, 0.95) == need
+        assert allowed_failures(alpha, need - 1, 0.95) == -1
+        assert allowed_failures(alpha, need, 0.95) == 0
+    k = allowed_failures(0.05, 1024, 0.95)
+    assert upper_bound(k, 1024, 0.95) <= 0.05 < upper_bound(k + 1, 1024, 0.95)
 
 
 def test_robust_search_keeps_its_chance_constraint() -> None:
     data = _data()
-    data["optimize"]["robust"] = {"chance": {"resonance_margin": 0.05}, "samples": 16}
+    data["optimize"]["robust"] = {"chance": {"resonance_margin": 0.05}, "samples": 64}
     result = solve(problem_from_mapping(data))
     assert result.evaluations == 8
     assert "P(resonance_margin)" in result.start.constraints
     for design in result.pareto:
         assert design.constraints["P(resonance_margin)"] <= 0.0
+        (v,) = design.verification
+        assert v["search"]["upper"] <= 0.05 and v["samples"] == 4 * 64 and v["seed"] == 1
 
 
 def test_robust_objective_kd_p95() -> None:
@@ -94,3 +127,23 @@ def test_robust_objective_kd_p95() -> None:
     plain = copy.deepcopy(p)
     with pytest.raises(DesignError, match="kd_p95"):
         OBJECTIVES["kd_p95"].value(analysis_of(plain.base, plain.constraints))
+
+
+def test_robust_optimum_holds_on_an_independent_larger_sample() -> None:
+    """The promise of a chance constraint: the Pareto designs of a search that asked for
+    P(resonance) ≤ 5 % at 95 % (64 states each, the least Sobol count above
+    ⌈ln 0.05 / ln 0.95⌉ = 59), re-estimated with 1024 independent states (another seed),
+    lie within that statement: the estimate is ≤ α and its one-sided 95 % Clopper–Pearson
+    bound too [ClopperPearson1934]. Fixed seeds; not a timing test."""
+    data = _data()
+    data["optimize"]["solver"].update(population=8, generations=3)
+    data["optimize"]["robust"] = {"chance": {"resonance_margin": 0.05}, "verification": 1024}
+    problem = problem_from_mapping(data)
+    assert sample_count(problem.robust.uncertainty.samples, 4) == 64
+    result = solve(problem)
+    assert result.pareto
+    for design in result.pareto:
+        (v,) = design.verification
+        assert v["samples"] == 1024 and v["seed"] != problem.robust.uncertainty.seed
+        assert v["search"]["upper"] <= 0.05         # what the search claimed
+        assert v["probability"] <= 0.05 and v["upper"] <= 0.05 and v["certified"]

@@ -333,6 +333,17 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
                      *[p.objectives[n] for n in names], p.constraints_ok])
     con.print(table(f"Pareto set ({len(rows)} designs)",
                     ["design", "chain", "teeth", *names, "constraints ok"], rows))
+    checked = [[str(k), f"P({v['key']}) ≤ {fmt(100 * v['alpha'], 3)} %",
+                f"{fmt(v['search']['failures'], 3)} / {v['search']['samples']}",
+                f"{fmt(v['failures'], 3)} / {v['samples']}",
+                f"{fmt(100 * v['probability'], 3)} [{fmt(100 * v['ci_low'], 3)}, "
+                f"{fmt(100 * v['ci_high'], 3)}]", fmt(100 * v['upper'], 3), v["certified"]]
+               for k, p in enumerate(result.pareto, start=1) for v in p.verification]
+    if checked:  # a robust search: what its independent sample says, not the search's
+        con.print(table("Chance constraints verified on an independent sample (95 % one-sided "
+                        "Clopper–Pearson bound)",
+                        ["design", "constraint", "search failures", "failures", "P, %",
+                         "bound, %", "certified"], checked))
     diagnostics = [c for c in result.constraint_report if c.rejected]
     if diagnostics and len(rows) < POOR_PARETO:
         con.print(table("Why designs were rejected: each constraint, the designs it rejected "

@@ -35,6 +35,7 @@ import math
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import csr_matrix
 
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
@@ -197,43 +198,67 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
     onto = np.zeros((len(system.node_names), system.size))
     onto[np.arange(onto.shape[0]), system.node_dof] = f2
     mass = system.mass[None, :] + (node_inertia - system.node_inertia_kg_m2[None, :]) @ onto
-    B = system.element_incidence
-    K = np.einsum("ei,se,ej->sij", B, element_stiffness, B, optimize=True)
+    K = _stacked_stiffness(system.element_incidence, element_stiffness)
     massed = system.mass > 0.0
-    M = system.mass_coupling[None, :, :] + mass[:, :, None] * np.eye(system.size)[None]
+    coupling = system.mass_coupling
     if not massed.all():
         free = ~massed
         K00 = K[:, free][:, :, free]
         K0m = K[:, free][:, :, massed]
         K = K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m)
-        M = M[:, massed][:, :, massed]
-    W = _inverse_cholesky(M)
-    A = W @ K @ np.swapaxes(W, 1, 2)
-    lam = np.linalg.eigvalsh(0.5 * (A + np.swapaxes(A, 1, 2)))
+        mass, coupling = mass[:, massed], coupling[np.ix_(massed, massed)]
+    lam = np.asarray(np.linalg.eigvalsh(_mass_normalised(K, mass, coupling)), dtype=np.float64)
     r = int(system.rigid_motions.shape[1])
     return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(S, -1) / TWO_PI
 
 
-def _inverse_cholesky(M: FloatArray) -> FloatArray:
-    """L⁻¹ (S, N, N) of stacked mass matrices M = L Lᵀ (S, N, N).
+def _stacked_stiffness(B: FloatArray, k: FloatArray) -> FloatArray:
+    """K_s = Bᵀ diag(k_s) B (S, N, N) of the incidence B (E, N) and the stiffnesses k (S, E):
+    K_s = Σ_e k_se b_e b_eᵀ, one sparse product (an element touches two coordinates, so
+    b_e b_eᵀ has four entries) instead of a dense one per sample."""
+    e, i = np.nonzero(B)
+    pairs = e[:, None] == e[None, :]  # entries (i, j) of one element
+    a, b = np.nonzero(pairs)
+    n = B.shape[1]
+    T = csr_matrix((B[e[a], i[a]] * B[e[b], i[b]], (i[a] * n + i[b], e[a])),
+                   shape=(n * n, B.shape[0]))
+    return np.asarray((T @ k.T).T, dtype=np.float64).reshape(k.shape[0], n, n)
 
-    When the coordinates whose mass differs between the samples carry no mass coupling (the
-    sprockets' inertias vary; the chain's consistent span masses couple only chain nodes,
-    which do not), M is block-diagonal in them: L⁻¹ is 1/√m on those and the inverse
-    Cholesky factor of the common rest, factorised once. Otherwise one factor per sample.
+
+def _mass_normalised(K: FloatArray, mass: FloatArray, coupling: FloatArray) -> FloatArray:
+    """The stacked symmetric problems A = L⁻¹ K L⁻ᵀ (S, N, N) of K (S, N, N) and the mass
+    matrices M = coupling + diag(mass) = L Lᵀ, its lower triangle filled (what
+    :func:`numpy.linalg.eigvalsh` reads), the coordinates reordered.
+
+    When the coordinates whose mass differs between the samples (v: the sprockets' inertias)
+    carry no mass coupling (the chain's consistent span masses couple only chain nodes, f),
+    M = blockdiag(M_ff, diag(m_v)) and, with R = L_ff⁻¹ factorised once and D = diag(m_v)^(−½),
+
+        A = [[R K_ff Rᵀ, ·], [D K_vf Rᵀ, D K_vv D]]
+
+    in the order (f, v) — a similarity, the eigenvalues unchanged — as matrix products over
+    the whole stack and scalings, instead of two N×N products per sample. Otherwise one
+    Cholesky factor per sample.
     """
-    diag = np.diagonal(M, axis1=1, axis2=2)
-    varying = np.any(diag != diag[:1], axis=0)
-    coupled = np.any(M[0] - np.diag(diag[0]) != 0.0, axis=1)
+    S = K.shape[0]
+    varying = np.any(mass != mass[:1], axis=0)
+    coupled = np.any(coupling - np.diag(np.diag(coupling)) != 0.0, axis=1)
     if np.any(varying & coupled):
-        return np.asarray(np.linalg.inv(np.linalg.cholesky(M)), dtype=np.float64)
-    fixed = ~varying
-    W = np.zeros_like(M)
-    rest = np.linalg.inv(np.linalg.cholesky(M[0][np.ix_(fixed, fixed)]))
-    W[:, fixed[:, None] & fixed[None, :]] = rest.ravel()
-    idx = np.flatnonzero(varying)
-    W[:, idx, idx] = 1.0 / np.sqrt(diag[:, idx])
-    return W
+        M = coupling[None, :, :] + mass[:, :, None] * np.eye(mass.shape[1])[None]
+        W = np.linalg.inv(np.linalg.cholesky(M))
+        return np.asarray(W @ K @ np.swapaxes(W, 1, 2), dtype=np.float64)
+    f, v = np.flatnonzero(~varying), np.flatnonzero(varying)
+    F = f.size
+    R = np.linalg.inv(np.linalg.cholesky(coupling[np.ix_(f, f)] + np.diag(mass[0, f])))
+    d = 1.0 / np.sqrt(mass[:, v] + np.diag(coupling)[v])
+    A = np.zeros_like(K)  # the upper triangle is not read
+    # X_s = K_ff,s Rᵀ, then R K_ff,s Rᵀ = X_sᵀ Rᵀ (K_ff symmetric): two products of the stack
+    X = (K[:, f[:, None], f].reshape(S * F, F) @ R.T).reshape(S, F, F)
+    A[:, :F, :F] = (np.swapaxes(X, 1, 2).reshape(S * F, F) @ R.T).reshape(S, F, F)
+    A[:, F:, :F] = (K[:, v[:, None], f].reshape(S * v.size, F) @ R.T).reshape(
+        S, v.size, F) * d[:, :, None]
+    A[:, F:, F:] = K[:, v[:, None], v] * d[:, :, None] * d[:, None, :]
+    return A
 
 
 def _excitation(state: Analysis) -> tuple[FloatArray, FloatArray, float]:
@@ -256,6 +281,23 @@ def _excitation(state: Analysis) -> tuple[FloatArray, FloatArray, float]:
                                             tensions, spec.mass_per_length, v, modes=1)[:, 0]
     return (np.array([x.frequency for x in working]), first,
             float(tooth_frequency(d.driver.teeth, w)))
+
+
+def _nearest(elastic: FloatArray, working: FloatArray) -> FloatArray:
+    """The natural frequency (S, W) [Hz] of each row of ``elastic`` (S, E), ascending, nearest
+    to each working frequency (W,) [Hz] (the lower one on a tie): one sorted search over
+    the rows laid end to end (row s shifted by s·span, the rows kept apart), not an S×W×E
+    table of distances."""
+    S, E = elastic.shape
+    span = 2.0 * (max(float(elastic.max()), float(working.max())) + 1.0)
+    offset = np.arange(S)[:, None] * span
+    above = np.searchsorted((elastic + offset).ravel(), (working[None, :] + offset).ravel()
+                            ).reshape(S, -1) - np.arange(S)[:, None] * E
+    hi = np.minimum(above, E - 1)
+    lo = np.maximum(above - 1, 0)
+    f_hi = np.take_along_axis(elastic, hi, axis=1)
+    f_lo = np.take_along_axis(elastic, lo, axis=1)
+    return np.where(np.abs(working - f_hi) < np.abs(working - f_lo), f_hi, f_lo)
 
 
 def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -285,8 +327,7 @@ def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, Flo
     working, transverse, fz = _excitation(state)
     margin = np.full(S, np.inf)
     if working.size and elastic.shape[1]:
-        gap = np.abs(elastic[:, None, :] - working[None, :, None])
-        nearest = np.take_along_axis(elastic, gap.argmin(axis=2), axis=1)
+        nearest = _nearest(elastic, working)
         margin = np.min(np.abs(working[None, :] - nearest) / nearest * 100.0, axis=1)
     f_span = transverse[transverse > 0]
     if f_span.size:

@@ -59,7 +59,7 @@ from chaindrive.robust.uncertainty import UncertaintyModel
 
 __all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ReliabilityResult",
            "StateOutcome", "estimate_probability", "reliability",
-           "sobol_points", "state_outcome"]
+           "sample_count", "sobol_points", "state_outcome"]
 
 #: The pseudo-check of a state that cannot be built (e.g. the chain does not fit).
 BUILD_FAILURE = "buildable"
@@ -93,8 +93,24 @@ def sobol_points(dimension: int, samples: int, replicates: int, seed: int) -> ND
     ----------
     [Owen1997]
     """
-    m = max(1, math.ceil(math.log2(max(samples, replicates) / replicates)))
+    m = round(math.log2(sample_count(samples, replicates) // replicates))
     return _sobol(dimension, m, replicates, seed).copy()
+
+
+def sample_count(samples: int, replicates: int) -> int:
+    """The states :func:`sobol_points` gives for ``samples`` asked: R·2^m, m = ⌈log₂(S/R)⌉ ≥ 1
+    (a scrambled Sobol set keeps its balance in powers of two) [Owen1997] [–].
+
+    Parameters
+    ----------
+    samples, replicates : int
+        S asked and R [–].
+
+    Returns
+    -------
+    int
+    """
+    return replicates << max(1, math.ceil(math.log2(max(samples, replicates) / replicates)))
 
 
 @lru_cache(maxsize=32)

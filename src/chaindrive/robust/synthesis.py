@@ -2,8 +2,10 @@
 (:mod:`chaindrive.synthesis`), read from ``[optimize.robust]``::
 
     [optimize.robust]
-    samples = 32                 # states per design (Sobol points)
+    samples = 320                # states per design (Sobol points; left out: the least
+                                 # that certifies every chance constraint)
     path = "auto"                # auto | modal | full
+    verification = 0             # states of the independent check (0: 4 × samples)
     [optimize.robust.chance]     # check key → largest probability of failing it
     resonance_margin = 0.01      # P(a working frequency within the band) ≤ 1 %
     k2 = 0.001                   # P(k₂ < [k]) ≤ 0.1 %
@@ -11,17 +13,25 @@
 and objectives such as ``"kd_p95"`` (the 95th percentile of K_D) in ``[optimize]
 objectives``. The uncertainty model is the design file's ``[uncertainty]`` table.
 
-A chance constraint P(check fails) ≤ α is imposed on the α-quantile of the check's margin
-fraction m (m ≥ 0 passes): g = −q_α(m) ≤ 0, which holds exactly when at most a fraction α of
-the design's states fail — a continuous value for the search where the count of failures is
-a step [Rockafellar2000]. With S states per design the quantile resolves probabilities down
-to about 1/S; verify the design found with ``chaindrive robust`` at many samples. The path
-"auto" takes the batched modal path when the constraints and objectives need only the
-resonance margin and f₁, and the full path otherwise.
+A chance constraint P(check fails) ≤ α holds only as a confidence statement: with k of S
+states failing, the design passes when the one-sided Clopper–Pearson upper bound at the
+``[uncertainty]`` confidence c is ≤ α (:mod:`chaindrive.robust.chance`), i.e. when at most
+k* = max{k : p_up(k, S, c) ≤ α} states fail. The search gets this as a continuous value: the
+(k* + 1)-th smallest margin fraction m of the states (m ≥ 0 passes), g = −m₍ₖ*₊₁₎ ≤ 0 —
+the value-at-risk form of a chance constraint [Rockafellar2000] at the certified level
+instead of the point estimate. S below S_min = ⌈ln(1 − c)/ln(1 − α)⌉ (299 for 1 % at 95 %)
+cannot certify α at all and is refused; left out, ``samples`` is the least Sobol count that
+certifies every chance constraint. Every design of a search sees the same points (common
+random numbers), so the Pareto designs found are verified with an independent sample
+(another seed, ``verification`` states, by default four times the search's) and that
+verification (:class:`ChanceVerification`) is what the result reports. The path "auto"
+takes the batched modal path when the constraints and objectives need only the resonance
+margin and f₁, and the full path otherwise; the modal path evaluates each sampled point at
+its wear states, so there a point counts as the fraction of its wear states that fail.
 
 References
 ----------
-[Rockafellar2000], [MultimassChainDrives]
+[Rockafellar2000], [ClopperPearson1934], [MultimassChainDrives]
 """
 
 from __future__ import annotations
@@ -32,23 +42,34 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
+import numpy as np
+
 from chaindrive.analysis import Analysis
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.design import Field, parse_section
 from chaindrive.model import Drive
-from chaindrive.robust.sampling import ReliabilityResult, reliability
+from chaindrive.robust.chance import allowed_failures, minimum_samples, upper_bound
+from chaindrive.robust.sampling import ReliabilityResult, reliability, sample_count
 from chaindrive.robust.uncertainty import (
     UncertaintySettings,
     uncertainty_model,
     uncertainty_settings,
 )
 
-__all__ = ["MODAL_KEYS", "RESPONSE_KEYS", "ROBUST_FIELDS", "ROBUST_OBJECTIVES", "RobustAnalysis",
-           "RobustSettings", "robust_constraints", "robust_settings", "robust_statistic"]
+__all__ = ["MODAL_KEYS", "RESPONSE_KEYS", "ROBUST_FIELDS", "ROBUST_OBJECTIVES", "ChanceVerification",
+           "RobustAnalysis", "RobustSettings", "chance_statement", "robust_constraints",
+           "robust_settings", "robust_statistic", "verify_design"]
 
 ROBUST_FIELDS: tuple[Field, ...] = (
-    Field("samples", "int", "states of the uncertainty model per design (Sobol points)",
-          default=32, minimum=4, maximum=1 << 16),
+    Field("samples", "int", "states of the uncertainty model per design (Sobol points); left "
+          "out: the least that certifies every chance constraint (32 without one)",
+          default=None, minimum=4, maximum=1 << 16,
+          reason="a chance constraint P <= a needs at least ln(1 - c)/ln(1 - a) states "
+          "(Clopper-Pearson with no failure)", example="320"),
+    Field("verification", "int", "states of the independent sample each Pareto design is "
+          "verified with (0: four times the search's)", default=0, minimum=0,
+          maximum=1 << 18, reason="a larger sample than the search's, another seed",
+          example="2048"),
     Field("path", "choice", "auto: the batched modal path when only the resonance margin and "
           "f1 are needed; modal; full", default="auto", choices=("auto", "modal", "full")),
 )
@@ -84,6 +105,8 @@ class RobustSettings:
         The robust objectives the problem asks for.
     response : bool
         The states need the dynamic response (K_D, k₂, k₂min are asked for).
+    verification : int
+        States of the independent verification of the designs found [–].
     """
 
     uncertainty: UncertaintySettings
@@ -91,11 +114,13 @@ class RobustSettings:
     path: str
     objectives: tuple[str, ...] = ()
     response: bool = True
+    verification: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
         return {"uncertainty": self.uncertainty.to_dict(), "chance": dict(self.chance),
-                "path": self.path, "objectives": list(self.objectives)}
+                "path": self.path, "objectives": list(self.objectives),
+                "verification": self.verification}
 
 
 def _chance(table: Any) -> tuple[tuple[str, float], ...]:
@@ -150,8 +175,29 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
         raise DesignError("optimize.robust.path", "the modal path gives only the resonance "
                           f"margin and f1; {', '.join(sorted(needs - MODAL_KEYS))} need "
                           'path = "full"')
-    settings = replace(uncertainty_settings(uncertainty), samples=values["samples"])
-    return RobustSettings(settings, chance, path, robust, bool(needs & RESPONSE_KEYS))
+    base = uncertainty_settings(uncertainty)
+    samples = values["samples"]
+    if samples is None:
+        samples = max([32, *(minimum_samples(a, base.confidence) for _, a in chance)])
+    settings = replace(base, samples=samples)
+    _check_certifiable(settings, chance)
+    states = sample_count(settings.samples, settings.replicates)
+    return RobustSettings(settings, chance, path, robust, bool(needs & RESPONSE_KEYS),
+                          values["verification"] or 4 * states)
+
+
+def _check_certifiable(settings: UncertaintySettings, chance: Sequence[tuple[str, float]]
+                       ) -> None:
+    """Refuse a sample count that cannot certify a chance constraint (module docstring)."""
+    states = sample_count(settings.samples, settings.replicates)
+    c = settings.confidence
+    for key, alpha in chance:
+        need = minimum_samples(alpha, c)
+        if states < need:
+            raise DesignError("optimize.robust.samples", f"{states} states per design cannot "
+                              f"certify P({key}) ≤ {alpha:g} at {c:.0%} confidence: at least "
+                              f"{need} are needed (ln(1 − c)/ln(1 − α), Clopper–Pearson with "
+                              "no failure); raise samples or leave it out")
 
 
 class RobustAnalysis(Analysis):
@@ -203,10 +249,55 @@ def robust_statistic(analysis: Analysis, name: str) -> float:
     return value
 
 
+def chance_statement(result: ReliabilityResult, key: str, alpha: float, confidence: float
+                     ) -> tuple[float, int, float, float]:
+    """What S states say about P(check ``key`` fails) ≤ α (module docstring).
+
+    Parameters
+    ----------
+    result : ReliabilityResult
+        The states (its ``samples`` independent points; the modal path evaluates each at its
+        wear states, a point then counting as the fraction of them that fail).
+    key : str
+        The check's key.
+    alpha : float
+        α [–].
+    confidence : float
+        c, one-sided [–].
+
+    Returns
+    -------
+    tuple
+        (failures k [–], states S [–], upper bound p_up(k, S, c) [–], constraint value
+        g = −m₍ₖ*₊₁₎ [–], ≤ 0 exactly when p_up ≤ α for a whole count; for the modal path's
+        fractional counts g ≤ 0 implies p_up ≤ α). A model with no random variable
+        (S = 1) is exact: p_up = p and g is the margin of the α-quantile.
+
+    References
+    ----------
+    [ClopperPearson1934], [Rockafellar2000]
+    """
+    v = result.margins.get(key)
+    if v is None or not v.size:
+        raise DesignError(f"optimize.robust.chance.{key}", "is not a check of this design "
+                          f"(known: {', '.join(result.margins)})")
+    m = np.sort(np.where(np.isfinite(v), v, -1.0))
+    n = result.samples
+    fraction = float(np.mean(m < 0.0))
+    if n == 1:  # no random variable: the fraction is exact
+        return fraction, 1, fraction, -float(m[min(m.size - 1, math.floor(alpha * m.size))])
+    k_star = allowed_failures(alpha, n, confidence)
+    failures = fraction * n
+    p_up = upper_bound(min(failures, n), n, confidence)
+    if k_star < 0:
+        return failures, n, p_up, 1.0  # cannot certify α (refused by robust_settings)
+    return failures, n, p_up, -float(m[min(m.size - 1, k_star * m.size // n)])
+
+
 def robust_constraints(analysis: RobustAnalysis) -> dict[str, float]:
-    """Chance constraints g = −q_α(margin) ≤ 0 of a design (module docstring), named
-    ``P(<key>)``: the α-quantile of a check's margin over the states is ≥ 0 exactly when
-    the check fails in at most a fraction α of them [Rockafellar2000].
+    """Chance constraints g = −m₍ₖ*₊₁₎ ≤ 0 of a design (module docstring), named
+    ``P(<key>)``: g ≤ 0 when the one-sided upper confidence bound of P(check fails) over the
+    design's states is at most the α asked for.
 
     Parameters
     ----------
@@ -216,13 +307,106 @@ def robust_constraints(analysis: RobustAnalysis) -> dict[str, float]:
     Returns
     -------
     dict of str to float
-        ``P(<key>)`` → g [-] (−q_α of the margin fraction; ≤ 0 is feasible).
+        ``P(<key>)`` → g [-] (minus the (k*+1)-th smallest margin fraction; ≤ 0 is feasible).
+
+    References
+    ----------
+    [ClopperPearson1934], [Rockafellar2000]
     """
-    out = {}
-    for key, alpha in analysis.robust_settings.chance:
-        q = analysis.robust.margin_quantile(key, alpha)
-        if not math.isfinite(q):
-            raise DesignError(f"optimize.robust.chance.{key}", "is not a check of this design "
-                              f"(known: {', '.join(analysis.robust.margins)})")
-        out[f"P({key})"] = -q
-    return out
+    c = analysis.robust_settings.uncertainty.confidence
+    return {f"P({key})": chance_statement(analysis.robust, key, alpha, c)[3]
+            for key, alpha in analysis.robust_settings.chance}
+
+
+@dataclass(frozen=True, slots=True)
+class ChanceVerification:
+    """A chance constraint of a design found by the search, re-estimated with an independent
+    sample (:func:`verify_design`).
+
+    Parameters
+    ----------
+    key : str
+        The check's key.
+    alpha : float
+        The largest probability asked for [–].
+    confidence : float
+        One-sided confidence level of the bounds [–].
+    search_failures, search_upper : float
+        Failed states and the upper bound p_up of the search's own sample [–].
+    search_samples : int
+        The search's states per design [–].
+    probability, low, high : float
+        The independent estimate p̂ and its two-sided interval at the same level
+        (:func:`chaindrive.robust.sampling.estimate_probability`) [–].
+    upper : float
+        Its one-sided upper bound p_up [–].
+    failures : float
+        Failed states of the independent sample [–].
+    samples : int
+        Its states [–].
+    seed : int
+        Its seed (the search's + 1).
+    """
+
+    key: str
+    alpha: float
+    confidence: float
+    search_failures: float
+    search_samples: int
+    search_upper: float
+    probability: float
+    low: float
+    high: float
+    upper: float
+    failures: float
+    samples: int
+    seed: int
+
+    @property
+    def certified(self) -> bool:
+        """The independent sample certifies P ≤ α (p_up ≤ α)."""
+        return self.upper <= self.alpha
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"key": self.key, "alpha": self.alpha, "confidence": self.confidence,
+                "search": {"failures": self.search_failures, "samples": self.search_samples,
+                           "upper": self.search_upper},
+                "probability": self.probability, "ci_low": self.low, "ci_high": self.high,
+                "upper": self.upper, "failures": self.failures, "samples": self.samples,
+                "seed": self.seed, "certified": self.certified}
+
+
+def verify_design(analysis: RobustAnalysis) -> tuple[ChanceVerification, ...]:
+    """Every chance constraint of a design re-estimated with an independent sample: the
+    settings' ``verification`` states, another seed, the same path (module docstring).
+
+    Parameters
+    ----------
+    analysis : RobustAnalysis
+        The design as the search analysed it.
+
+    Returns
+    -------
+    tuple of ChanceVerification
+        One per chance constraint.
+
+    References
+    ----------
+    [ClopperPearson1934]
+    """
+    s = analysis.robust_settings
+    u = s.uncertainty
+    other = replace(u, samples=s.verification, seed=u.seed + 1)
+    fresh = RobustAnalysis(analysis.design, robust=replace(s, uncertainty=other),
+                           limits=analysis.limits, startup=analysis.with_startup)
+    out = []
+    for key, alpha in s.chance:
+        k0, n0, up0, _ = chance_statement(analysis.robust, key, alpha, u.confidence)
+        k, n, up, _ = chance_statement(fresh.robust, key, alpha, u.confidence)
+        entry = fresh.robust.probability(key)
+        p, lo, hi = ((entry.probability, entry.low, entry.high) if entry is not None
+                     else (k / n, math.nan, math.nan))
+        out.append(ChanceVerification(key, alpha, u.confidence, k0, n0, up0, p, lo, hi, up,
+                                      k, n, other.seed))
+    return tuple(out)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -26,8 +26,10 @@ from numpy.typing import NDArray
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_to_mapping
 from chaindrive.model import Drive
+from chaindrive.robust.synthesis import RobustAnalysis, verify_design
 from chaindrive.synthesis.evaluation import (
     Evaluation,
+    analysis_of,
     base_ratios,
     evaluate_drive,
     evaluate_vector,
@@ -98,6 +100,9 @@ class ParetoDesign:
         The TOML mapping of the design.
     vector : tuple of float
         Its search vector [the unit of each gene].
+    verification : tuple of dict
+        A robust problem's chance constraints re-estimated with an independent sample
+        (:func:`chaindrive.robust.synthesis.verify_design`); empty otherwise.
     """
 
     objectives: dict[str, float]
@@ -105,11 +110,15 @@ class ParetoDesign:
     constraints_ok: bool
     design: dict[str, Any]
     vector: tuple[float, ...]
+    verification: tuple[dict[str, Any], ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (the ``pareto[]`` items of ``chaindrive optimize --json``)."""
-        return {"objectives": dict(self.objectives), "constraints_ok": self.constraints_ok,
-                "constraints": dict(self.constraints), "design": self.design}
+        out = {"objectives": dict(self.objectives), "constraints_ok": self.constraints_ok,
+               "constraints": dict(self.constraints), "design": self.design}
+        if self.verification:
+            out["verification"] = list(self.verification)
+        return out
 
 
 @dataclass(frozen=True, slots=True)
@@ -362,6 +371,16 @@ def _solve_optuna(problem: Problem, archive: _Archive, pop: int, gens: int, seed
                 study.tell(t, ev.minimised(problem.objectives))
 
 
+def _verified(problem: Problem, design: ParetoDesign) -> ParetoDesign:
+    """A Pareto design of a robust problem with its chance constraints re-estimated on an
+    independent sample (:func:`chaindrive.robust.synthesis.verify_design`)."""
+    a = analysis_of(problem.decode(design.vector), problem.constraints,
+                    robust=problem.robust)
+    if not isinstance(a, RobustAnalysis):
+        return design
+    return replace(design, verification=tuple(v.to_dict() for v in verify_design(a)))
+
+
 def solve(problem: Problem, *, method: str | None = None, population: int | None = None,
           generations: int | None = None, seed: int | None = None,
           evaluator: BatchEvaluator | None = None) -> SynthesisResult:
@@ -404,6 +423,9 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
         _solve_optuna(problem, archive, pop, gens, seed)
     else:
         raise DesignError("optimize.solver.method", f'must be "nsga2" or "optuna", got {method!r}')
-    return SynthesisResult(problem.objectives, start, archive.pareto(), len(archive.rows),
+    pareto = archive.pareto()
+    if problem.robust is not None:  # what a robust search reports is its independent check
+        pareto = tuple(_verified(problem, p) for p in pareto)
+    return SynthesisResult(problem.objectives, start, pareto, len(archive.rows),
                            method, seed, time.perf_counter() - t0,
                            constraint_reports([(ev, d) for _, ev, d in archive.rows]))
