@@ -64,6 +64,7 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_frequency
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
+from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.selection import rank_chains, rank_key
@@ -127,6 +128,8 @@ class Analysis:
             raise DesignError("studies", f"unknown {', '.join(unknown)} (known: "
                               f"{', '.join(STUDIES)})")
         if link_duration_s is not None:
+            # lazy: the link-level package imports numba (≈0.75 s, -X importtime); only its studies
+            # need it
             from chaindrive.linklevel import checked_duration
 
             link_duration_s = checked_duration(link_duration_s)
@@ -251,7 +254,6 @@ class Analysis:
             return None
         # imported here: it imports scipy.special, 0.46 s of every command's start-up
         # (python -X importtime), which only drives of several contours need
-        from chaindrive.multicontour.drive import contour_check
 
         return contour_check(m, d.power / d.driver.speed,
                              self.geometry.sprockets[d.driver_index].pitch_radius,
@@ -441,6 +443,8 @@ class Analysis:
         result = self.link_level
         if result is None:
             return None
+        # lazy: the link-level package imports numba (≈0.75 s, -X importtime); only its studies need
+        # it
         from chaindrive.linklevel import model_comparison
 
         steady, startup = self.steady, self.startup

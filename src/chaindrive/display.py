@@ -25,6 +25,7 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
+from chaindrive.errors import DesignError
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -138,7 +139,6 @@ def unit_system(name: str | None) -> UnitSystem:
         return "SI"
     key = name.strip().upper()
     if key not in UNIT_SYSTEMS:
-        from chaindrive.errors import DesignError
 
         raise DesignError("units", f"must be SI or US, got {name!r}")
     return key  # type: ignore[return-value]

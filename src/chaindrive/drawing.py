@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import NDArray
 
+import chaindrive
 from chaindrive.display import dimension
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
@@ -134,7 +135,6 @@ def _title_block(msp: Any, corner: tuple[float, float], h: float,
 
 def _stamp(analysis: Analysis) -> list[tuple[str, str]]:
     """The rows every title block starts with."""
-    import chaindrive
 
     return [("drive", analysis.drive.name),
             ("date", _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d")),

@@ -296,7 +296,7 @@ def test_an_unexpected_failure_is_a_short_message(monkeypatch: pytest.MonkeyPatc
     def broken(*_: Any, **__: Any) -> None:
         raise ZeroDivisionError("deep inside")
 
-    monkeypatch.setattr("chaindrive.analysis.analyze", broken)
+    monkeypatch.setattr("chaindrive.app.state.analyze", broken)  # where the page looks it up
     outcome = evaluate(design_from_form(seed_form()))
     assert outcome.unexpected and not outcome.ok
     assert outcome.message is not None

@@ -262,3 +262,44 @@ def test_known_presenter_imports_still_exist() -> None:
     stale = [pair for pair in KNOWN_PRESENTER_IMPORTS
              if pair[0] not in MODULES or pair[1] not in imported_modules(pair[0])]
     assert not stale, f"remove from KNOWN_PRESENTER_IMPORTS: {stale}"
+
+
+def _local_package_imports(path: Path) -> Iterator[tuple[int, str]]:
+    """(line, function) of every import of a chaindrive module inside a function body (not
+    under ``if TYPE_CHECKING``)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for fn in ast.walk(tree):
+        if isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for node in _runtime_import_nodes(fn):
+                mod = node.module if isinstance(node, ast.ImportFrom) else node.names[0].name
+                if mod and mod.split(".")[0] == "chaindrive":
+                    yield node.lineno, fn.name
+
+
+def _has_reason(lines: list[str], lineno: int) -> bool:
+    """A comment on the import's line, or above the run of import lines it belongs to (a
+    blank line or an ``if``/``else`` line may sit between the comment and the run)."""
+    if "#" in lines[lineno - 1]:
+        return True
+    j = lineno - 2
+    while j >= 0:
+        text = lines[j].strip()
+        if text.startswith("#"):
+            return True
+        if (text.startswith(("from ", "import ", ")", "if ", "else")) or text.endswith(",")
+                or text == ""):
+            j -= 1
+            continue
+        return False
+    return False
+
+
+def test_a_function_level_import_says_why() -> None:
+    """Package imports sit at the top of the file; one inside a function carries its reason
+    beside it (the import time it saves, measured, or the process it runs in)."""
+    missing = []
+    for path in sorted(SRC.rglob("*.py")):
+        lines = path.read_text(encoding="utf-8").split("\n")
+        missing += [f"{module_name(path)}:{n} ({fn})"
+                    for n, fn in _local_package_imports(path) if not _has_reason(lines, n)]
+    assert not missing, "function-level imports without a reason: " + ", ".join(missing)

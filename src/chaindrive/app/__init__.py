@@ -14,6 +14,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+from chaindrive.app.uploads import MAX_UPLOAD_MB
+from chaindrive.io.atomic import signals_held
+
 __all__ = ["PAGE", "run_app", "streamlit_command"]
 
 #: The Streamlit script of the page.
@@ -38,7 +41,6 @@ def streamlit_command(host: str = "127.0.0.1", port: int = 8501) -> list[str]:
     list of str
         The command line.
     """
-    from chaindrive.app.uploads import MAX_UPLOAD_MB
 
     return [sys.executable, "-m", "streamlit", "run", str(PAGE),
             "--server.address", host, "--server.port", str(port),
@@ -63,7 +65,6 @@ def _die_with_parent() -> None:
 
 def _stop(proc: subprocess.Popen[bytes]) -> None:
     """Stop the server: SIGTERM (Streamlit shuts down cleanly), SIGKILL after 10 s."""
-    from chaindrive.io.atomic import signals_held
 
     with signals_held():
         if proc.poll() is None:

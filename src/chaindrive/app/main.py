@@ -27,6 +27,7 @@ from typing import Any
 
 import streamlit as st
 
+from chaindrive import catalog
 from chaindrive.app import runs, tabs
 from chaindrive.app.early import (
     CHAIN_PREFIX,
@@ -55,6 +56,7 @@ from chaindrive.app.uploads import Uploads, design_text
 from chaindrive.app.views import Screen, check_records
 from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt
 from chaindrive.errors import ChainDriveError
+from chaindrive.model import ROLES, SIDES
 
 DEFAULT_EXAMPLE = "seed_three_sprocket"
 AUTO_CHAIN = CHAIN_PREFIX + "{})"
@@ -193,7 +195,6 @@ def _catalogs() -> dict[str, str]:
 # --- the form ------------------------------------------------------------------------------------
 
 def _chain_options(current: str | None) -> list[str]:
-    from chaindrive import catalog
 
     names = [c.designation for c in catalog.chains()]
     if current and current not in names:
@@ -207,7 +208,6 @@ def _chain_options(current: str | None) -> list[str]:
 
 
 def _chain_choice(chain: dict[str, Any]) -> str:
-    from chaindrive import catalog
 
     designation = chain.get("designation")
     if designation:
@@ -291,8 +291,6 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
 
 
 def _column_config() -> dict[str, Any]:
-    from chaindrive import catalog
-    from chaindrive.model import ROLES, SIDES
 
     cc = st.column_config
     labels = {c.key: c.label for c in SPROCKET_COLUMNS} | SHORT_LABELS
@@ -348,7 +346,6 @@ def _sprocket_editor(rows: list[dict[str, Any]]) -> None:
     """The keyboard-friendly form that edits one sprocket (the table is drawn on a canvas,
     hard to reach with the keyboard or a screen reader); Apply (or Enter in a field) runs
     :func:`_apply_edit`."""
-    from chaindrive.model import ROLES, SIDES
 
     if not rows:
         return

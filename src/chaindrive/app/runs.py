@@ -16,6 +16,9 @@ from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import chaindrive
+from chaindrive.app.state import Location, Outcome
+from chaindrive.app.views import Screen, recompute, screens
 from chaindrive.app.worker import (
     FULL_SECONDS,
     INTERACTIVE_SECONDS,
@@ -28,7 +31,6 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from chaindrive.analysis import Analysis
-    from chaindrive.app.views import Screen
     from chaindrive.model import Drive
 
 #: What each on-demand feature needs: feature → modules that must be importable.
@@ -86,7 +88,6 @@ def full_analysis(drive: Drive) -> Analysis:
     -------
     Analysis
     """
-    import chaindrive
 
     return chaindrive.analyze(drive)
 
@@ -108,6 +109,8 @@ def robust_study(drive: Drive, *, samples: int = 64) -> Any:
     RobustResult
         The life curve, probabilities of failure and sensitivity indices.
     """
+    # lazy: runs in the bounded worker only; the robust stack imports Dask and SALib (≈2.7 s, -X
+    # importtime)
     from chaindrive.robust.study import nominal_analysis
     from chaindrive.robust.study import robust_study as study
     from chaindrive.robust.uncertainty import UncertaintySettings
@@ -132,6 +135,8 @@ def report_html(analysis: Analysis, *, progress: Callable[[str], None] | None = 
     bytes
         The HTML document (UTF-8).
     """
+    # lazy: runs in the bounded worker only; the report stack imports matplotlib and Typst (≈0.5 s,
+    # -X importtime)
     from chaindrive.report import build_report, render_html
 
     return render_html(build_report(analysis, progress=progress)).encode("utf-8")
@@ -158,6 +163,8 @@ def report_bytes(analysis: Analysis, fmt: str = "pdf", *,
     bytes
         The report file's content.
     """
+    # lazy: runs in the bounded worker only; the report stack imports matplotlib and Typst (≈0.5 s,
+    # -X importtime)
     from chaindrive.report import build_report, render_html, render_pdf
 
     report = build_report(analysis, progress=progress, units=units)
@@ -177,6 +184,7 @@ def drawing_svg(analysis: Analysis) -> bytes:
     bytes
         The SVG text, UTF-8 encoded.
     """
+    # lazy: runs in the bounded worker only; the drawing imports ezdxf (≈0.1 s, -X importtime)
     from chaindrive.drawing import drawing_document, svg_string
 
     return svg_string(drawing_document(analysis)).encode("utf-8")
@@ -195,6 +203,7 @@ def drawing_dxf(analysis: Analysis) -> bytes:
     bytes
         The DXF file.
     """
+    # lazy: runs in the bounded worker only; the drawing imports ezdxf (≈0.1 s, -X importtime)
     from chaindrive.drawing import drawing_document
 
     doc = drawing_document(analysis)
@@ -259,7 +268,6 @@ def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = No
     -------
     Screen
     """
-    from chaindrive.app.views import recompute
 
     return _bounded(recompute, design, catalogs)
 
@@ -281,7 +289,6 @@ def bounded_screens(design: dict[str, Any], catalogs: dict[str, Path] | None = N
     -------
     Iterator of Screen
     """
-    from chaindrive.app.views import screens
 
     steps = run_bounded_steps(screens, design, catalogs, seconds=INTERACTIVE_SECONDS,
                               what="the analysis")
@@ -305,8 +312,6 @@ def _bounded(func: Callable[..., Screen], design: dict[str, Any],
 def _failed(exc: Exception) -> Screen:
     """The screen of a run that failed: its ChainDriveError's line (a limit, a mistake), or
     a short note — the page must never show a traceback."""
-    from chaindrive.app.state import Location, Outcome
-    from chaindrive.app.views import Screen
 
     if isinstance(exc, ChainDriveError):
         return Screen(Outcome(message=str(exc), location=Location("design")))
@@ -411,7 +416,7 @@ def link_level_view(drive: Drive, duration_s: float | None = None) -> LinkLevelV
     -------
     LinkLevelView
     """
-    import chaindrive
+    # lazy: runs in the bounded worker only; plotting imports matplotlib (≈0.12 s, -X importtime)
     from chaindrive.plotting import chain_frames, frame_times, tension_along_chain
 
     analysis = chaindrive.analyze(drive, studies=("links",), lazy=True,

@@ -21,8 +21,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import chaindrive
 from chaindrive import examples
+from chaindrive.analysis import analyze
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.io.design import drive_from_mapping, parse_toml
+from chaindrive.units import parse_quantity
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -207,7 +211,6 @@ def read_design_text(text: str, name: str = "design") -> dict[str, Any]:
     dict
         The design mapping.
     """
-    from chaindrive.io.design import parse_toml
 
     return parse_toml(text, name)
 
@@ -215,7 +218,6 @@ def read_design_text(text: str, name: str = "design") -> dict[str, Any]:
 # --- design mapping → form ------------------------------------------------------------------
 
 def _si(value: Any, dimension: str, path: str) -> float:
-    from chaindrive.units import parse_quantity
 
     return parse_quantity(value, dimension, path)
 
@@ -497,7 +499,6 @@ def interactive_analysis(drive: Drive) -> Analysis:
     Analysis
         Its lazy analysis without the dynamic response.
     """
-    from chaindrive.analysis import analyze
 
     return analyze(drive, response=False)
 
@@ -527,8 +528,6 @@ def evaluate(design: Mapping[str, Any], *, base_dir: Path | None = None,
     -------
     Outcome
     """
-    import chaindrive
-    from chaindrive.io.design import drive_from_mapping
 
     uploaded = dict(catalogs or {})
     names = [str(r.get("name")) for r in design.get("sprockets") or [] if isinstance(r, Mapping)]

@@ -29,6 +29,12 @@ from chaindrive.app.views import (
 )
 from chaindrive.display import UnitSystem, convert, fmt, header
 from chaindrive.errors import ChainDriveError
+from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
+from chaindrive.plotting.robust import (
+    life_curve_figure,
+    probability_figure,
+    sensitivity_figure,
+)
 
 UNEXPECTED = "Something went wrong on the page ({}). Reload the page; if it persists, please "\
              "report it with the design file."
@@ -138,7 +144,6 @@ def tab_modes(screen: Screen) -> None:
     """
     doc = screen.document or {}
     a = screen.outcome.analysis
-    from chaindrive.plotting import campbell_diagram, mode_shapes
 
     c1, c2 = st.columns([1, 2])
     with c1:
@@ -332,7 +337,6 @@ def tab_contours(screen: Screen) -> None:
     st.dataframe(rows, hide_index=True, width="stretch")
     km = getattr(a.contours, "samples", None)
     if km is not None:
-        from chaindrive.plotting import km_distribution
 
         _png(f"{id(a)}-km", lambda: km_distribution(km))
 
@@ -377,11 +381,6 @@ def tab_robust(screen: Screen) -> None:
                    "replacement elongation, the probability of failing each check over the "
                    "tolerances of the standards, and which tolerance matters (docs/robust.md).")
         return
-    from chaindrive.plotting.robust import (
-        life_curve_figure,
-        probability_figure,
-        sensitivity_figure,
-    )
 
     life = result.life.to_dict()
     c = st.columns(3)

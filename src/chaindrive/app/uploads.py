@@ -19,6 +19,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from chaindrive import catalog
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
 from chaindrive.io.limits import shown_key
@@ -119,7 +120,6 @@ class Uploads:
         str
             The name designs use in ``chain.catalog``.
         """
-        from chaindrive import catalog
 
         shown = _checked(name, data, CATALOG_SUFFIXES)
         key = Path(name).name

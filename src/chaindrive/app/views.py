@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive.analysis import Analysis
+from chaindrive.app.state import Location, Outcome, locate
 from chaindrive.display import (
     UnitSystem,
     check_line,
@@ -28,6 +30,7 @@ from chaindrive.display import (
     margin_percent,
 )
 from chaindrive.errors import ChainDriveError
+from chaindrive.io.design import drive_from_mapping
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -518,7 +521,6 @@ class Screen:
 
 def _failure(drive: Any, exc: Exception, names: list[str]) -> Screen:
     """The screen of a design that could not be analysed (the command line's message)."""
-    from chaindrive.app.state import Location, Outcome, locate
 
     if isinstance(exc, ChainDriveError):
         where = getattr(exc, "field", "")
@@ -549,9 +551,6 @@ def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None
     Screen
         The quick part, or the screen of a bad design (the command line's message).
     """
-    from chaindrive.analysis import Analysis
-    from chaindrive.app.state import Outcome
-    from chaindrive.io.design import drive_from_mapping
 
     names = [str(r.get("name")) for r in design.get("sprockets") or []
              if isinstance(r, dict)]

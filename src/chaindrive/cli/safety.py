@@ -31,6 +31,7 @@ from types import FrameType
 
 import click
 
+import chaindrive
 from chaindrive.errors import ChainDriveError
 
 __all__ = ["EXIT_INTERNAL", "EXIT_USER_ERROR", "LOG_DIR_ENV", "Interrupted", "exit_on_signal",
@@ -154,7 +155,6 @@ def log_dir() -> Path:
 def _write_log(argv: Sequence[str], exc: BaseException,
                caught: Sequence[warnings.WarningMessage]) -> Path:
     """Write the traceback of ``exc`` (and the warnings met) to a new log file; its path."""
-    import chaindrive
 
     stamp = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
     text = [f"chaindrive {chaindrive.__version__}, Python {sys.version.split()[0]}, "

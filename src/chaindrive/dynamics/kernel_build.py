@@ -83,6 +83,7 @@ def build(output_dir: Path | None = None) -> Path:
         warnings.simplefilter("ignore", NumbaPendingDeprecationWarning)
         from numba.pycc import CC
 
+    # lazy: the kernel module imports numba (≈0.25 s); only a build needs it
     from chaindrive.dynamics.startup_kernel import FLAT_SIGNATURE, run_kernel_flat
 
     digest = source_digest()

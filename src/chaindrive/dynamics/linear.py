@@ -19,6 +19,8 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.ring import modal_analysis
+
 __all__ = ["LinearTransient", "exp_poly_at", "exp_poly_on_grid", "linear_transient"]
 
 
@@ -310,7 +312,6 @@ def linear_transient(masses: ArrayLike, stiffness: ArrayLike, beta: float, times
     [Rao2011, §6.13] (classical damping, decoupled modes), [Rao2011, §4.5] (step and ramp
     responses); [VanLoan1978] (the exact zero-order hold).
     """
-    from chaindrive.dynamics.ring import modal_analysis
 
     m = np.asarray(masses, dtype=float)
     c = np.array(stiffness, dtype=float)

@@ -20,6 +20,7 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import tooth_frequency
 
@@ -321,7 +322,6 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
     ----------
     [Mote1965] (the travelling span); [Bolotin1964, ch. 1] (the parametric zone).
     """
-    from chaindrive.dynamics.transverse import span_transverse_frequencies
 
     w = np.atleast_1d(np.asarray(driver_speeds, dtype=float))
     names = list(names) if names is not None else [f"S{i + 1}" for i in range(len(teeth))]

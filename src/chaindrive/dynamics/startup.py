@@ -525,6 +525,7 @@ def _compiled_runner(backend: Backend) -> Any:
         runner = compiled_kernel()
         if runner is not None:
             return runner
+    # lazy: the just-in-time kernel imports numba (0.25 s), only when no compiled one exists
     from chaindrive.dynamics.startup_kernel import HAVE_NUMBA, run_kernel_flat
 
     return run_kernel_flat if HAVE_NUMBA else None

@@ -18,6 +18,7 @@ from typing import Any
 
 import tomli_w
 
+from chaindrive import catalog
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
 from chaindrive.io.plausible import check_inertias
@@ -622,7 +623,6 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None,
     -------
     tuple of (ChainSpec, ChainRequest | None)
     """
-    from chaindrive import catalog
 
     extra: tuple[Path, ...] = ()
     if values["catalog"]:
@@ -661,7 +661,6 @@ def resolve_chain(values: dict[str, Any], base_dir: Path | None,
 
 def _with_strands(spec: ChainSpec, strands: int, extra: tuple[Path, ...]) -> ChainSpec:
     """The same chain with another number of strands, from the catalogue."""
-    from chaindrive import catalog
 
     same = [c for c in catalog.chains(extra) if c.pitch == spec.pitch and c.series == spec.series
             and c.standard == spec.standard and c.strands == strands

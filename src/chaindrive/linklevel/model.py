@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
 from chaindrive.dynamics.drive_model import chain_damping_ratio
@@ -60,6 +61,7 @@ from chaindrive.geometry.sprocket import (
     iso606_seating_radius_range,
     tip_diameter,
 )
+from chaindrive.strength.loads import sag_tension
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -258,14 +260,12 @@ def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter:
 
 
 def _default_lookup() -> Callable[[str], Material]:
-    from chaindrive.catalog import find_material
 
     return find_material
 
 
 def _pretension(drive: Drive, geometry: GeometryResult) -> float:
     """Sag tension of the span leaving the driver [N] (as the ring model's start-up)."""
-    from chaindrive.strength.loads import sag_tension
 
     span = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
     return float(sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination))

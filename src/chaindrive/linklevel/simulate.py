@@ -18,7 +18,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.dynamics.response import motor_of
 from chaindrive.errors import DesignError
+from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.assembly import Assembly, assemble_chain
 from chaindrive.linklevel.kernel import (
     MOTOR_CONSTANT,
@@ -37,6 +39,7 @@ from chaindrive.linklevel.model import (
     build_model,
 )
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
+from chaindrive.strength.loads import power_shares
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -81,7 +84,6 @@ def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
         return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
     if kind not in _RESISTANCE:
         raise DesignError("resistance", f"must be one of {sorted(_RESISTANCE)}, got {kind!r}")
-    from chaindrive.strength.loads import power_shares
 
     torques = np.asarray(power_shares(drive), dtype=float) * drive.power / speeds
     torques[drive.driver_index] = 0.0
@@ -185,8 +187,6 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     ----------
     [Pedersen2004], [Pedersen2005]; [Hairer2006, §I.1] (the integrator).
     """
-    from chaindrive.dynamics.response import motor_of
-    from chaindrive.geometry.contour import contour_geometry
 
     if not (duration_s > 0 and 0 < steady_window <= 1):
         raise DesignError("duration_s", f"need duration_s > 0 and 0 < steady_window ≤ 1, got "

@@ -18,6 +18,7 @@ import datetime as _dt
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import chaindrive
 from chaindrive.display import UnitSystem, unit_system
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
@@ -34,6 +35,8 @@ from chaindrive.report.content import (
     Verdict,
     register_section,
 )
+from chaindrive.report.html import render_html as _render_html
+from chaindrive.report.pdf import render_pdf as _render_pdf
 from chaindrive.report.sections import references_section, register_standard_sections
 from chaindrive.report.symbols import SYMBOLS
 
@@ -79,8 +82,6 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     -------
     Report
     """
-    import chaindrive
-
     system: UnitSystem = unit_system(units)
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
@@ -152,9 +153,8 @@ def render_html(report: Report) -> str:
     str
         The HTML document, figures embedded.
     """
-    from chaindrive.report.html import render_html as _render
 
-    return _render(report)
+    return _render_html(report)
 
 
 def render_pdf(report: Report) -> bytes:
@@ -170,9 +170,8 @@ def render_pdf(report: Report) -> bytes:
     bytes
         The PDF file's bytes.
     """
-    from chaindrive.report.pdf import render_pdf as _render
 
-    return _render(report)
+    return _render_pdf(report)
 
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,

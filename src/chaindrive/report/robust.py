@@ -5,6 +5,11 @@ from __future__ import annotations
 
 from typing import Any
 
+from chaindrive.plotting.robust import (
+    life_curve_figure,
+    probability_figure,
+    sensitivity_figure,
+)
 from chaindrive.report.content import Block, ReportInput, Table, Text, plot_block
 
 __all__ = ["robust_section"]
@@ -47,11 +52,6 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting.robust import (
-        life_curve_figure,
-        probability_figure,
-        sensitivity_figure,
-    )
 
     result = inp.robust
     if result is None:

@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
 from chaindrive.display import check_row, check_unit, fmt, margin_percent
+from chaindrive.plotting import chain_speed, contour_layout, shaft_loads, span_tensions, transmission_ratio
+from chaindrive.report import sections_dynamics as dyn
 from chaindrive.report.bibliography import REFERENCES, cited_keys
 from chaindrive.report.content import (
     Block,
@@ -233,7 +235,6 @@ def geometry_section(inp: ReportInput) -> list[Block]:
     list of Block
         The section's blocks.
     """
-    from chaindrive.plotting import contour_layout
 
     a = inp.analysis
     g = a.geometry
@@ -288,7 +289,6 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
     list of Block
         The section's blocks.
     """
-    from chaindrive.plotting import chain_speed, transmission_ratio
 
     k = inp.analysis.kinematics
     doc = k.to_dict()
@@ -362,7 +362,6 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import shaft_loads, span_tensions
 
     st = inp.analysis.strength
     if st is None:
@@ -508,7 +507,6 @@ def references_section(inp: ReportInput, cited: str) -> list[Block]:
 
 def register_standard_sections() -> None:
     """Register the standard sections in report order (idempotent)."""
-    from chaindrive.report import sections_dynamics as dyn
 
     for key, title, build in (
             ("summary", "Verdict", summary_section),

@@ -10,6 +10,22 @@ from collections.abc import Sequence
 from typing import Any
 
 from chaindrive.display import constraint_row
+from chaindrive.plotting import (
+    absorption_vs_amplitude,
+    afc_curves,
+    campbell_diagram,
+    chain_frames,
+    frame_times,
+    inertia_and_irregularity,
+    material_comparison_chart,
+    mode_shapes,
+    pareto_front,
+    startup_oscillogram,
+    startup_speeds,
+    steady_loads,
+    tension_along_chain,
+    tooth_loads,
+)
 from chaindrive.report.content import (
     Block,
     ReportInput,
@@ -76,7 +92,6 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import campbell_diagram, mode_shapes
 
     a = inp.analysis
     dyn = a.dynamics
@@ -168,13 +183,6 @@ def response_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import (
-        afc_curves,
-        inertia_and_irregularity,
-        startup_oscillogram,
-        startup_speeds,
-        steady_loads,
-    )
 
     a = inp.analysis
     response = a.response
@@ -273,7 +281,6 @@ def materials_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import material_comparison_chart
 
     cases = inp.analysis.material_pairs
     if not cases:
@@ -308,7 +315,6 @@ def damping_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import absorption_vs_amplitude
 
     results = inp.analysis.hinge_friction
     if not results:
@@ -355,7 +361,6 @@ def links_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import chain_frames, frame_times, tension_along_chain, tooth_loads
 
     a = inp.analysis
     result, comparison = a.link_level, a.link_level_comparison
@@ -413,7 +418,6 @@ def synthesis_section(inp: ReportInput) -> list[Block] | None:
     list of Block | None
         The section's blocks (None: the section does not apply).
     """
-    from chaindrive.plotting import pareto_front
 
     result = inp.synthesis
     if result is None:

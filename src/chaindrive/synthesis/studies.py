@@ -59,6 +59,11 @@ from sqlalchemy import (
 from sqlalchemy.exc import IntegrityError
 
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.io.design import drive_from_mapping
+from chaindrive.synthesis.evaluation import Evaluation, evaluate_drive, evaluate_vector
+from chaindrive.synthesis.problem import Constraints
+from chaindrive.synthesis.solve import design_mapping
+from chaindrive.units import registry
 
 __all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
            "input_key",
@@ -649,7 +654,6 @@ def monte_carlo_inputs(base: Mapping[str, Any], tolerances: Mapping[str, Any], s
     -------
     list of dict
     """
-    from chaindrive.units import registry
 
     ureg = registry()
     rng = np.random.default_rng(seed)
@@ -683,9 +687,6 @@ def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
     dict
         The evaluation (objectives, constraints, constraints_ok) of that design.
     """
-    from chaindrive.io.design import drive_from_mapping
-    from chaindrive.synthesis.evaluation import evaluate_drive
-    from chaindrive.synthesis.problem import Constraints
 
     drive = drive_from_mapping(inputs["design"])
     return evaluate_drive(drive, inputs.get("objectives", ["cost", "mass", "volume"]),
@@ -693,8 +694,6 @@ def evaluate_design(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def _evaluate_vector(inputs: Mapping[str, Any]) -> dict[str, Any]:
-    from chaindrive.synthesis.evaluation import evaluate_vector
-    from chaindrive.synthesis.solve import design_mapping
 
     ev, drive = evaluate_vector(inputs["problem"], inputs["vector"])
     return {"evaluation": ev.to_dict(), "design": None if drive is None else design_mapping(drive)}
@@ -759,7 +758,6 @@ class DaskEvaluator:
         return self._client
 
     def __call__(self, problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
-        from chaindrive.synthesis.evaluation import Evaluation
 
         fp = problem_fingerprint(problem)
         name = self.study or f"optimize-{fp}"
