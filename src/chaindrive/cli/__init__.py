@@ -37,13 +37,11 @@ app = typer.Typer(
 #: the eye resolves at reading distance (a 600 dpi figure is 5 000 px wide, 60 MB in memory).
 DPI_RANGE = (50, 600)
 UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
-#: Why the commands import inside their bodies: each imports only what it runs, so that
-#: ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
-#: ``python -X importtime``, cumulative: chaindrive.analysis ≈0.15 s, chaindrive.report ≈0.5 s
-#: with matplotlib, chaindrive.synthesis and chaindrive.robust ≈2.7 s each with Optuna, pymoo,
-#: Dask and SALib; this module itself ≈0.2 s).
-LAZY_IMPORTS = ("chaindrive.analysis", "chaindrive.report", "chaindrive.drawing",
-                "chaindrive.synthesis", "chaindrive.robust", "chaindrive.app")
+# Lazy imports: the commands import inside their bodies only what each runs, so that
+# ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
+# ``python -X importtime``, cumulative: chaindrive.analysis ≈0.15 s, chaindrive.report ≈0.5 s
+# with matplotlib, chaindrive.synthesis and chaindrive.robust ≈2.7 s each with Optuna, pymoo,
+# Dask and SALib; this module itself ≈0.2 s).
 
 
 @contextmanager
@@ -100,7 +98,7 @@ def analyze(
 
     The dynamic response is the start-up, the steady state and the amplitude–frequency sweep.
     """
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import spinner
 
@@ -127,7 +125,7 @@ def select(
     units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
     """Rank the family's chains by every check; the first is the one selected."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
 
     with user_errors():
@@ -155,7 +153,7 @@ def simulate(
 ) -> None:
     """Start-up transient: write the time histories of every span force and sprocket speed
     (with --model links also the span transverse motion and every link's tension)."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import spinner
 
@@ -191,7 +189,7 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     """``simulate --model links``: the link-level start-up of the analysis (study "links")
     written as CSV (time, sprocket speeds, span forces and transverse offsets, every link's
     tension); its summary with --json."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import spinner
     from chaindrive.linklevel import checked_duration
@@ -225,7 +223,7 @@ def afc(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Amplitude–frequency characteristic: dynamic load of every span against the speed."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import spinner
 
@@ -276,7 +274,7 @@ def schema(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Print every field of a design file with its unit, default and allowed values."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.io.design import schema as design_schema
 
     doc = design_schema()
@@ -301,7 +299,7 @@ def report(
     units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import progress_bar
     from chaindrive.report import SECTIONS, write_report
@@ -329,7 +327,7 @@ def draw(
 ) -> None:
     """Write the drawing: the dimensioned layout and each sprocket's manufacturing drawing,
     or one sprocket alone (DXF or SVG, mm)."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.drawing import write_drawing
 
@@ -360,7 +358,7 @@ def optimize(
 ) -> None:
     """Search the Pareto set of a design ([MultimassChainDrives] optimal synthesis;
     docs/synthesis.md)."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.synthesis import load_problem
     from chaindrive.synthesis.solve import solve
 
@@ -395,7 +393,7 @@ def optimize(
 def _write_pareto(result: Any, file: Path, out: Path) -> tuple[list[str], Path | None]:
     """Write the Pareto designs (one TOML each), the plot of the front and the report of the
     first into ``out`` — all or nothing (:func:`chaindrive.io.atomic.atomic_directory`)."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
 
     files = pareto_design_files(result, file.stem, file.parent)
@@ -450,7 +448,7 @@ def robust(
     (docs/robust.md)."""
     from dataclasses import replace as dc_replace
 
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.cli.robust import print_robust
     from chaindrive.robust.study import DaskOptions, dask_states, load_robust, robust_study
 
@@ -497,7 +495,7 @@ def app_command(
     port: Annotated[int, typer.Option(help="port to serve on")] = 8501,
 ) -> None:
     """Start the interactive web page (Streamlit) and print its address."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.app import run_app
 
     status = run_app(host=host, port=port)
@@ -516,7 +514,7 @@ def catalog(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """List the chain and material catalogue, or show one entry."""
-    # lazy: only what this command runs (LAZY_IMPORTS above)
+    # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive import catalog as cat
 
     extra = tuple(file or ())
