@@ -89,8 +89,9 @@ def verify(design: dict, samples: int) -> dict[str, float]:
         out[key] = (c.probability, c.low, c.high) if c else None
     mesh = nominal.check("teeth_in_mesh[S3]")
     s3 = next(s for s in nominal.geometry.sprockets if s.name == "S3")
-    out["drawn"] = (f"S3 at ({s3.x * 1e3:.1f}, {s3.y * 1e3:.1f}) mm after the installation "
-                    f"take-up, {nominal.geometry.links} links, teeth in mesh on S3 "
+    moved = " after the installation take-up" if nominal.geometry.adjusted is not None else ""
+    out["drawn"] = (f"S3 at ({s3.x * 1e3:.1f}, {s3.y * 1e3:.1f}) mm{moved}, "
+                    f"{nominal.geometry.links} links, teeth in mesh on S3 "
                     f"{mesh.value if mesh else float('nan'):.2f}")
     res = nominal.check("resonance_margin")
     out["nominal_resonance_margin"] = res.value
