@@ -12,12 +12,17 @@ allowable elongation is then 3 % instead of the fixed centres' 1.5 %. The robust
 ``[optimize.robust]``:
 P(resonance margin below 10 %) ≤ ``--alpha`` (1 %) certified at 95 % (the one-sided
 Clopper–Pearson bound; ``samples`` left out: the least Sobol count that can certify it, 512
-states per design for 1 %; the batched modal path over 8 wear states). The optimiser verifies
-each Pareto design with an independent sample four times larger (printed); each least-cost
-design is then analysed by the full path over ``--verify`` (1024) states of another seed —
-every check, the probabilities the table prints.
+states per design for 1 %; the batched modal path over 8 wear states). ``--also CHECK``
+constrains another check to the same α (e.g. ``teeth_in_mesh[S3]``; it needs the full path,
+≈ 35× slower per design). The optimiser verifies each Pareto design with an independent
+sample four times larger (printed); each least-cost design is then analysed by the full path
+over ``--verify`` (1024) states of another seed — every check, the probabilities the table
+prints — with its resonance line new, half and fully worn and its life curve.
 
-Run: .venv/bin/python benchmarks/robust_demo.py [--figures DIR] [--quick] [--alpha A] [--take-up]
+Run: .venv/bin/python benchmarks/robust_demo.py [--figures DIR] [--quick] [--alpha A]
+     [--take-up] [--also CHECK] [--population N] [--generations N]
+The runs of docs/robust.md: no options; ``--take-up``; ``--take-up --also "teeth_in_mesh[S3]"
+--population 12 --generations 8``.
 """
 
 from __future__ import annotations
