@@ -14,7 +14,7 @@ P(resonance margin below 10 %) ≤ ``--alpha`` (1 %) certified at 95 % (the one-
 Clopper–Pearson bound; ``samples`` left out: the least Sobol count that can certify it, 512
 states per design for 1 %; the batched modal path over 8 wear states). ``--also CHECK``
 constrains another check to the same α (e.g. ``teeth_in_mesh[S3]``; it needs the full path,
-≈ 35× slower per design). The optimiser verifies each Pareto design with an independent
+tens of times slower per design). The optimiser verifies each Pareto design with an independent
 sample four times larger (printed); each least-cost design is then analysed by the full path
 over ``--verify`` (1024) states of another seed — every check, the probabilities the table
 prints — with its resonance line new, half and fully worn and its life curve.
