@@ -30,6 +30,7 @@ from chaindrive.robust import (
 from chaindrive.robust.life import wear_state
 from chaindrive.robust.perturbation import modulus_factor
 from chaindrive.robust.uncertainty import eccentricity_limit, position_tolerance
+from chaindrive.robust.wear import links_removed
 from chaindrive.strength.wear import wear_life_hours
 from tests.conftest import EXAMPLES
 
@@ -131,9 +132,19 @@ def test_life_curve_with_a_take_up(eight) -> None:
     model = uncertainty_model(eight)
     life = life_curve(eight, model, points=5)
     travel = [s.take_up_travel_mm for s in life.states]
-    assert travel[0] == 0 and travel == sorted(travel)
-    assert life.take_up_runs_out == pytest.approx(2 * eight.drive.chain.pitch
-                                                  / eight.geometry.chain_length)
+    runs_out = life.take_up_runs_out
+    assert runs_out == pytest.approx(2 * eight.drive.chain.pitch / eight.geometry.chain_length)
+    # the take-up follows the chain until it has absorbed two pitches, then two links come out
+    # [DiamondChainTension]: it never travels further than it did up to that point
+    before = [t for t, s in zip(travel, life.states, strict=True) if s.elongation <= runs_out]
+    after = [t for t, s in zip(travel, life.states, strict=True) if s.elongation > runs_out]
+    assert travel[0] == 0 and before == sorted(before) and after
+    at_capacity = wear_state(eight, model, runs_out).take_up_travel_mm
+    assert max(travel) <= at_capacity + 1e-6
+    assert [s.links_removed for s in life.states] == [
+        links_removed(eight.geometry.links, eight.drive.chain.pitch, s.elongation,
+                      model.take_up_capacity) for s in life.states]
+    assert all(s.links_removed >= 2 for s in life.states if s.elongation > runs_out)
     rated = eight.strength.rated_power
     hours = wear_life_hours(rated, eight.drive.power * (eight.drive.service_factor or 1.0),
                             eight.geometry.links, 0.03)

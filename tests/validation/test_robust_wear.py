@@ -11,6 +11,11 @@
 * The sag of a span carrying extra chain length against the catenary
   ℓ + ΔL = 2a·sinh(ℓ/2a), f = a(cosh(ℓ/2a) − 1) [Irvine1981, ch. 1], and its shallow limit
   the parabola ΔL = 8f²/(3ℓ) of chaindrive.geometry.sag.
+* A take-up allows the removal of two pitches of chain [DiamondChainTension]: a worn chain of
+  N links is shortened by two links each time its take-up has absorbed its capacity c, so a
+  state has N − 2k links with the least k for which (N − 2k)·p(1 + ε) − N·p ≤ c; on two
+  sprockets its centre distance is then the exact two-sprocket closed form
+  L_p = 2a·cos γ/p + (z₁ + z₂)/2 + (z₂ − z₁)·γ/π for N − 2k links of the worn pitch.
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import chaindrive
+from chaindrive.geometry.contour import two_sprocket_center_distance_exact
 from chaindrive.geometry.sag import slack_for_sag
 from chaindrive.robust import Perturbation, PerturbedAnalysis, nominal_analysis
 from chaindrive.robust.wear import (
@@ -32,6 +38,7 @@ from chaindrive.robust.wear import (
     elongated_pitch_radius,
     equivalent_sag_ratio,
     iso606_tip_height,
+    links_removed,
     roller_lift,
 )
 from tests.conftest import EXAMPLES
@@ -126,3 +133,27 @@ def test_fixed_centre_wear_grows_the_sag_and_drops_the_slack_tension() -> None:
         assert s.geometry.slack - nominal.geometry.slack == pytest.approx(grown, rel=1e-9)
     # F0 = k_f·q·g·a with k_f from the catenary's pull: ∝ 1/s for a shallow horizontal span
     assert_allclose(f0[1:] / f0[0], (sag[0] / sag[1:]), rtol=0.05)
+
+
+@pytest.mark.parametrize("eps", [0.0, 0.0076, 0.015, 0.02, 0.03, 0.045])
+def test_take_up_state_shortens_the_chain_by_two_links_per_capacity(eps: float) -> None:
+    """[DiamondChainTension]: the take-up absorbs two pitches, then two links come out; the
+    state's centre distance is the exact two-sprocket closed form of its N − 2k worn links."""
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "two_sprocket_jindal.toml"))
+    g0, p = nominal.geometry, nominal.drive.chain.pitch
+    n, capacity = g0.links, 2.0 * p
+    state = PerturbedAnalysis(nominal, Perturbation(elongation=eps), take_up_capacity=capacity,
+                              response=False)
+    removed = state.links_removed
+    assert removed == links_removed(n, p, eps, capacity) and removed % 2 == 0
+    absorbed = (n - removed) * p * (1 + eps) - n * p
+    assert absorbed <= capacity + 1e-12                   # within the take-up's capacity
+    assert removed == 0 or absorbed > capacity - 2 * p * (1 + eps)   # the least k
+    assert removed == 2 * max(0, math.ceil((n * eps - 2.0) / (2 * (1 + eps)) - 1e-12))
+    assert state.geometry.links == n - removed
+    z1, z2 = (s.teeth for s in nominal.drive.sprockets)
+    a = two_sprocket_center_distance_exact(n - removed, p * (1 + eps), z1, z2)
+    assert state.geometry.center_distance == pytest.approx(a, rel=1e-9)
+    a0 = two_sprocket_center_distance_exact(n, p, z1, z2)
+    assert state.take_up_travel() == pytest.approx(a - a0, abs=1e-9)
+    assert "take_up" not in {c.key for c in state.all_checks()}

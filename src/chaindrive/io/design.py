@@ -382,8 +382,9 @@ UNCERTAINTY_FIELDS: tuple[Field, ...] = (
           default=23.0, minimum=-60.0, maximum=150.0,
           reason="[Delrin500P]: the modulus is tabulated from −40 to 100 °C; acetal and "
           "polyamide parts are not used beyond −60 to 150 °C"),
-    Field("take_up_capacity", "length", "chain length the take-up can absorb (default: two "
-          "pitches, [DiamondChainTension])", minimum=0.0, maximum=1.0,
+    Field("take_up_capacity", "length", "chain length the take-up can absorb before the "
+          "chain is shortened by two links (default: two pitches, [DiamondChainTension])",
+          minimum=0.0, maximum=1.0,
           exclusive_minimum=True, reason="1 m: a take-up longer than the longest drive "
           "chain's replacement elongation", example="50.8 mm"),
     Field("wear_states", "int", "wear states of the batched modal path over the life "

@@ -6,7 +6,10 @@ It goes through the analysis's own stages; what a state changes enters where the
 
 * the chain is the design's (selected) chain with the worn pitch p(1 + ε) and the design's
   number of links, so the geometry seats it higher on every sprocket (R' = p(1 + ε)/(2 sin π/z),
-  [ISO606]) and the take-up (if any) moves to fit it, or the slack grows;
+  [ISO606]) and the take-up (if any) moves to fit it, or the slack grows; a take-up of known
+  capacity has the chain shortened by two links each time it has absorbed that capacity
+  [DiamondChainTension] (:func:`chaindrive.robust.wear.links_removed`), so the state has
+  N − 2k links and the take-up stays within its travel;
 * the slack that no take-up follows hangs in the slack span as a catenary [Irvine1981]: the
   static tensions take the sag ratio of :func:`chaindrive.robust.wear.equivalent_sag_ratio`
   (the static model's 2 % sag [ChainDesignRU] when new), so F₀, the span tensions, the sag
@@ -47,13 +50,14 @@ from chaindrive.dynamics.stiffness import link_stiffness
 from chaindrive.model import Drive, Material
 from chaindrive.multicontour.drive import ContourCheck, most_loaded_share
 from chaindrive.robust.perturbation import Perturbation, modulus_factor
-from chaindrive.robust.wear import catenary_excess_length, equivalent_sag_ratio
+from chaindrive.robust.wear import catenary_excess_length, equivalent_sag_ratio, links_removed
 from chaindrive.strength import StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 from chaindrive.strength.safety import steady_safety_factor
 
-__all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "nominal_analysis", "perturbed_design"]
+__all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "nominal_analysis", "perturbed_design",
+           "removed_links"]
 
 #: Sag ratio taken when the slack span has no slack left (the chain is pulled taut) [–].
 MIN_SAG_RATIO = 1e-3
@@ -76,10 +80,35 @@ def nominal_analysis(drive: Drive) -> Analysis:
     return Analysis(drive, startup=False)
 
 
-def perturbed_design(nominal: Analysis, perturbation: Perturbation) -> Drive:
+def removed_links(nominal: Analysis, elongation: float, take_up_capacity: float | None) -> int:
+    """Links the chain of ``nominal`` has lost by the elongation ε: two each time its take-up
+    has absorbed ``take_up_capacity`` [DiamondChainTension]; 0 without a take-up or without a
+    capacity.
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn (its links, pitch, take-up).
+    elongation : float
+        ε [–].
+    take_up_capacity : float | None
+        Chain length the take-up absorbs [m] (None: it follows the chain without limit).
+
+    Returns
+    -------
+    int
+        2k [–] (:func:`chaindrive.robust.wear.links_removed`).
+    """
+    g = nominal.geometry
+    if g.adjusted is None or take_up_capacity is None or take_up_capacity <= 0:
+        return 0
+    return links_removed(g.links, nominal.drive.chain.spec.pitch, elongation, take_up_capacity)
+
+
+def perturbed_design(nominal: Analysis, perturbation: Perturbation, removed: int = 0) -> Drive:
     """The design of ``nominal`` in the state ``perturbation``: its chain (selected if it
-    asked for one) with the pitch p(1 + ε) and the nominal number of links, the sprocket
-    centres offset, every sprocket's own inertia fixed at the drawing's value.
+    asked for one) with the pitch p(1 + ε) and the nominal number of links less ``removed``,
+    the sprocket centres offset, every sprocket's own inertia fixed at the drawing's value.
 
     Parameters
     ----------
@@ -87,6 +116,8 @@ def perturbed_design(nominal: Analysis, perturbation: Perturbation) -> Drive:
         The analysis of the drive as drawn.
     perturbation : Perturbation
         The state.
+    removed : int
+        Links taken out of the chain at the take-up [–] (:func:`removed_links`).
 
     Returns
     -------
@@ -95,7 +126,7 @@ def perturbed_design(nominal: Analysis, perturbation: Perturbation) -> Drive:
     d = nominal.design
     spec = nominal.drive.chain.spec
     worn = replace(spec, pitch=spec.pitch * (1.0 + perturbation.elongation))
-    chain = replace(d.chain, spec=worn, request=None, links=nominal.geometry.links,
+    chain = replace(d.chain, spec=worn, request=None, links=nominal.geometry.links - removed,
                     rounding="round up")
     inertia = nominal.ring_parameters.inertias_kg_m2
     offsets = perturbation.offsets or ((0.0, 0.0),) * len(d.sprockets)
@@ -118,7 +149,8 @@ class PerturbedAnalysis(Analysis):
     allowable_elongation : float | None
         ε at which the chain is replaced [–] (the check ``chain_elongation``; None: none).
     take_up_capacity : float | None
-        Chain length the take-up can absorb [m] (the check ``take_up``; None: none).
+        Chain length the take-up absorbs before the chain is shortened by two links [m]
+        (None: it follows the chain without limit).
     response : bool
         Compute the dynamic response (K_D, k₂, k₂min); False stops after the modes.
     """
@@ -126,10 +158,12 @@ class PerturbedAnalysis(Analysis):
     def __init__(self, nominal: Analysis, perturbation: Perturbation, *,
                  allowable_elongation: float | None = None,
                  take_up_capacity: float | None = None, response: bool = True) -> None:
-        super().__init__(perturbed_design(nominal, perturbation), response=response,
+        removed = removed_links(nominal, perturbation.elongation, take_up_capacity)
+        super().__init__(perturbed_design(nominal, perturbation, removed), response=response,
                          limits=nominal.limits, startup=False)
         self.nominal = nominal
         self.perturbation = perturbation
+        self.links_removed = removed
         self.allowable_elongation = allowable_elongation
         self.take_up_capacity = take_up_capacity
 
@@ -234,7 +268,8 @@ class PerturbedAnalysis(Analysis):
 
     # ------------------------------------------------------------------ the state's own checks
     def take_up_travel(self) -> float:
-        """How far the take-up moved beyond its position when new [m] (0 without one)."""
+        """How far the take-up moved beyond its position when new [m] (0 without one; after
+        the chain was shortened, from its position when new)."""
         g, g0 = self.geometry, self.nominal.geometry
         return 0.0 if g.adjusted is None else g.adjustment - g0.adjustment
 
@@ -252,9 +287,10 @@ class PerturbedAnalysis(Analysis):
 
     def state_checks(self) -> tuple[Check, ...]:
         """The checks of the worn and built state beyond :meth:`checks`: the chain's
-        elongation against the replacement rule [DiamondChainWear], the chain length the
-        take-up absorbed against its capacity [DiamondChainTension], the slack left in a
-        fixed-centre drive, and k₂ with the eccentricity loads."""
+        elongation against the replacement rule [DiamondChainWear], the slack left in a
+        fixed-centre drive, and k₂ with the eccentricity loads. (A take-up does not fail:
+        the chain is shortened by two links when it has absorbed its capacity,
+        [DiamondChainTension]; :attr:`links_removed` counts them.)"""
         chain = self.drive.chain.spec.designation
         eps = self.perturbation.elongation
         out: list[Check] = []
@@ -262,13 +298,7 @@ class PerturbedAnalysis(Analysis):
             out.append(judged("chain elongation", chain, eps, self.allowable_elongation, "max",
                               "[DiamondChainWear]", "%", 100.0, part="wear",
                               note="length tolerance of the new chain plus wear"))
-        if self.nominal.geometry.adjusted is not None and self.take_up_capacity is not None:
-            absorbed = eps * self.nominal.geometry.chain_length
-            out.append(judged("take-up", chain, absorbed, self.take_up_capacity, "max",
-                              "[DiamondChainTension]", "mm", 1e3, part="wear",
-                              note=f"take-up moved {self.take_up_travel() * 1e3:.1f} mm; "
-                                   "shorten the chain by two links when it runs out"))
-        elif self.geometry.adjusted is None:
+        if self.geometry.adjusted is None:
             out.append(judged("installed slack", "slack span", self.extra_slack, 0.0, "min",
                               "[Irvine1981]", "mm", 1e3, part="wear",
                               note=f"sag {self.sag_ratio:.1%} of the slack span"))

@@ -56,6 +56,9 @@ class WearState:
         k₂ [–] (nan without a response).
     take_up_travel_mm : float
         Take-up travel beyond new [mm] (0 without a take-up).
+    links_removed : int
+        Links taken out at the take-up by this elongation [–] (two each time it absorbed
+        its capacity, [DiamondChainTension]).
     sag_ratio : float
         Sag of the slack span as a fraction of its length [–].
     roller_lift_mm : float
@@ -70,6 +73,7 @@ class WearState:
     coefficient_of_dynamics: float
     k2: float
     take_up_travel_mm: float
+    links_removed: int
     sag_ratio: float
     roller_lift_mm: float
     failed: tuple[str, ...]
@@ -82,6 +86,7 @@ class WearState:
                      "roller_lift_mm"):
             v = getattr(self, name)
             out[name] = v if math.isfinite(v) else None
+        out["links_removed"] = self.links_removed
         out["failed"] = list(self.failed)
         return out
 
@@ -119,7 +124,8 @@ def wear_state(nominal: Analysis, model: UncertaintyModel, elongation: float) ->
         coefficient_of_dynamics=_value(None if steady is None
                                        else steady.coefficient_of_dynamics),
         k2=_value(None if steady is None else steady.k2),
-        take_up_travel_mm=a.take_up_travel() * 1e3, sag_ratio=a.sag_ratio,
+        take_up_travel_mm=a.take_up_travel() * 1e3, links_removed=a.links_removed,
+        sag_ratio=a.sag_ratio,
         roller_lift_mm=float(roller_lift(d.chain.spec.pitch, z, elongation)) * 1e3,
         failed=tuple(c.key for c in a.all_checks() if not c.passed))
 
@@ -227,11 +233,11 @@ def life_curve(nominal: Analysis, model: UncertaintyModel, *, points: int = 13,
     allow = model.allowable_elongation
     grid = np.linspace(0.0, extent * allow, max(points, 2))
     states = [wear_state(nominal, model, float(e)) for e in grid]
-    when_new = tuple(k for k in states[0].failed if k != "take_up")
+    when_new = states[0].failed
     first: float | None = None
     key: str | None = None
     for lo_state, hi_state in pairwise(states):
-        new = [k for k in hi_state.failed if k not in when_new and k != "take_up"]
+        new = [k for k in hi_state.failed if k not in when_new]
         if not new:
             continue
         if new == ["chain_elongation"]:  # the replacement rule itself: exactly its limit
@@ -240,7 +246,7 @@ def life_curve(nominal: Analysis, model: UncertaintyModel, *, points: int = 13,
         lo, hi = lo_state.elongation, hi_state.elongation
         for _ in range(BISECTIONS):
             mid = 0.5 * (lo + hi)
-            fails = _failing(nominal, model, mid, (*when_new, "take_up"))
+            fails = _failing(nominal, model, mid, when_new)
             if fails:
                 hi, new = mid, fails
             else:

@@ -486,7 +486,7 @@ def serial_states(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.floa
     """
     return [state_outcome(PerturbedAnalysis(
         nominal, model.perturbation(row), allowable_elongation=model.allowable_elongation,
-        response=response)) for row in x]
+        take_up_capacity=model.take_up_capacity, response=response)) for row in x]
 
 
 def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full",
@@ -528,6 +528,7 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
     rows = [flat[i * n:(i + 1) * n] for i in range(r)]
     info = _check_info([PerturbedAnalysis(nominal, model.perturbation(shaped[0, 0]),
                                           allowable_elongation=model.allowable_elongation,
+                                          take_up_capacity=model.take_up_capacity,
                                           response=response)])
     for o in flat:
         for key in o.status:
@@ -582,8 +583,8 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
     else:
         life = [0.0 if s.wear == "new" else 1.0]
     return {f"life {lam:.3g}": nominal if lam == 0.0 else PerturbedAnalysis(
-        nominal, Perturbation(elongation=lam * model.allowable_elongation), response=False)
-        for lam in life}
+        nominal, Perturbation(elongation=lam * model.allowable_elongation),
+        take_up_capacity=model.take_up_capacity, response=False) for lam in life}
 
 
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:

@@ -99,6 +99,7 @@ def robust_state(inputs: Mapping[str, Any]) -> dict[str, Any]:
     nominal, model = _rebuilt(inputs["design"], inputs["settings"])
     state = PerturbedAnalysis(nominal, model.perturbation(np.asarray(inputs["x"], dtype=float)),
                               allowable_elongation=model.allowable_elongation,
+                              take_up_capacity=model.take_up_capacity,
                               response=bool(inputs["response"]))
     return state_outcome(state).to_dict()
 

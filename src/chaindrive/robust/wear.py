@@ -23,9 +23,19 @@ horizontal chord ℓ and arc length ℓ + ΔL hangs as a catenary y = a(cosh(x/a
 [Irvine1981, ch. 1] (w weight per length, H the horizontal pull); for f ≪ ℓ it tends to the
 shallow parabola of :mod:`chaindrive.geometry.sag`, ΔL = 8f²/(3ℓ), H = wℓ²/(8f).
 
+Where a take-up follows the chain, it absorbs the growth N·p·ε of a chain of N links until
+it has taken up its capacity c; then the chain is shortened by two links, as a take-up must
+allow [DiamondChainTension], and the take-up goes back. After k such shortenings the chain
+has N − 2k links of the worn pitch and the take-up holds
+
+    ΔL_k = (N − 2k)·p(1 + ε) − N·p ≤ c,   k = max(0, ⌈(N·ε − c/p) / (2(1 + ε))⌉)     (3)
+
+(the least k that keeps ΔL_k within the capacity).
+
 References
 ----------
-[ISO606], [GOST591], [DiamondChainWear], [RegalChainWear], [Irvine1981]
+[ISO606], [GOST591], [DiamondChainWear], [RegalChainWear], [Irvine1981],
+[DiamondChainTension]
 """
 
 from __future__ import annotations
@@ -50,6 +60,7 @@ __all__ = [
     "elongated_pitch_radius",
     "equivalent_sag_ratio",
     "iso606_tip_height",
+    "links_removed",
     "roller_lift",
 ]
 
@@ -296,3 +307,34 @@ def equivalent_sag_ratio(span: float, extra_length: float) -> float:
     [Irvine1981, ch. 1]
     """
     return span / (8.0 * catenary_parameter(span, extra_length))
+
+
+def links_removed(links: int, pitch: float, elongation: float, capacity: float) -> int:
+    """How many links a chain with a take-up has lost to shortening by ε (eq. 3): two each
+    time the take-up has absorbed its capacity [DiamondChainTension].
+
+    k = max(0, ⌈(N·ε − c/p) / (2(1 + ε))⌉) [–], the least k with
+    (N − 2k)·p(1 + ε) − N·p ≤ c.
+
+    Parameters
+    ----------
+    links : int
+        Links N of the chain as installed new [–].
+    pitch : float
+        Pitch p of the new chain [m].
+    elongation : float
+        Elongation ε of the chain [–].
+    capacity : float
+        Chain length c the take-up absorbs before the chain is shortened [m] (> 0).
+
+    Returns
+    -------
+    int
+        Links removed 2k [–].
+
+    References
+    ----------
+    [DiamondChainTension]
+    """
+    excess = (links * elongation - capacity / pitch) / (2.0 * (1.0 + elongation))
+    return 2 * max(0, math.ceil(excess - 1e-12))
