@@ -6,6 +6,7 @@ module (≥ 3 teeth in mesh [Renold-DG], wrap ≥ 120° [Mott2014], span ≤ 80 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -80,10 +81,18 @@ def test_rated_chain_at_30000_rpm_fails_instead_of_passing():
 
 
 def test_polymer_chain_checks_allowable_load_and_says_what_it_cannot_verify():
-    d = Drive("poly", Chain(find_chain("POM 08B")),
+    """The packaged polymer rows carry a speed limit (50 m/min, [TsubakiGuide] Table 4.1, an
+    estimate): checked against v = z·p·n/60. A catalogue row without one (a user's file) is
+    reported as "cannot be verified"."""
+    spec = find_chain("POM 08B")
+    d = Drive("poly", Chain(spec),
               (Sprocket("A", 19, 0, 0, "driver", speed=100 * RPM),
                Sprocket("B", 38, 0.5, 0, "driven")), power=20.0)
     checks = {c.name: c for c in checks_for(d, contour_geometry(d))}
-    assert checks["allowable load"].limit == pytest.approx(find_chain("POM 08B").allowable_load)
-    assert checks["speed limit"].status == "cannot be verified"
+    assert checks["allowable load"].limit == pytest.approx(spec.allowable_load)
+    assert checks["speed limit"].status == "pass"
+    assert checks["speed limit"].limit == pytest.approx(50.0 / 60.0, abs=5e-4)
     assert "power rating" not in checks and "hinge pressure" not in checks
+    bare = replace(d, chain=Chain(replace(spec, max_speed=None)))
+    unlimited = {c.name: c for c in checks_for(bare, contour_geometry(bare))}
+    assert unlimited["speed limit"].status == "cannot be verified"
