@@ -4,11 +4,14 @@ system error is one DesignError line naming the output and the reason."""
 
 from __future__ import annotations
 
+import os
+import signal
 from pathlib import Path
 
 import pytest
 
 from chaindrive.errors import DesignError
+from chaindrive.io import atomic
 from chaindrive.io.atomic import TMP_MARK, atomic_directory, atomic_path, write_text
 
 
@@ -89,3 +92,46 @@ def test_a_directory_over_a_file_is_one_line(tmp_path: Path) -> None:
             atomic_directory(tmp_path / "x", field="--out"):
         pass
     assert _files(tmp_path) == ["x"]
+
+
+class _SignalledError(Exception):
+    """What the test's SIGTERM handler raises (as the CLI's safety net raises Interrupted)."""
+
+
+@pytest.mark.parametrize("kind", ["file", "directory"])
+def test_a_signal_the_instant_the_temporary_appears_leaves_nothing(
+        kind: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """SIGTERM sent by the process to itself right after the temporary file or directory is
+    created (what a signal from outside does when it lands in that instant; the CLI test
+    sends it as soon as the temporary shows): the handler's exception must still find the
+    temporary removed, never left behind (a window that once let a loaded machine keep
+    one)."""
+    def _raise(signum: int, frame: object) -> None:
+        raise _SignalledError(signum)
+
+    if kind == "file":
+        real_open = os.open
+
+        def creating(path: object, *args: object, **kwargs: object) -> int:
+            fd = real_open(path, *args, **kwargs)  # type: ignore[arg-type]
+            if TMP_MARK in str(path):
+                os.kill(os.getpid(), signal.SIGTERM)
+            return fd
+        monkeypatch.setattr(atomic.os, "open", creating)
+        context = atomic_path(tmp_path / "a.html")
+    else:
+        real_mkdir = Path.mkdir
+
+        def mkdir(self: Path, *args: object, **kwargs: object) -> None:
+            real_mkdir(self, *args, **kwargs)  # type: ignore[arg-type]
+            if TMP_MARK in self.name:
+                os.kill(os.getpid(), signal.SIGTERM)
+        monkeypatch.setattr(Path, "mkdir", mkdir)
+        context = atomic_directory(tmp_path / "pareto")
+    previous = signal.signal(signal.SIGTERM, _raise)
+    try:
+        with pytest.raises(_SignalledError), context as tmp:
+            (tmp / "x.txt" if kind == "directory" else tmp).write_text("x", encoding="utf-8")
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert _files(tmp_path) == []

@@ -124,13 +124,16 @@ def atomic_path(target: str | Path, *, field: str = "output") -> Iterator[Path]:
     final = Path(target)
     _prepare(final, field)
     tmp = final.with_name(_temporary_name(final))
+    created = done = False
     try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-        os.close(fd)
-    except OSError as exc:
-        raise _failed(final, exc, field) from None
-    done = False
-    try:
+        # created under held signals and inside the block whose `finally` removes it: a
+        # signal that arrives as the file appears is delivered after `created` is set
+        with signals_held():
+            try:
+                os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            except OSError as exc:
+                raise _failed(final, exc, field) from None
+            created = True
         yield tmp
         _sync(tmp)
         with signals_held():
@@ -142,7 +145,7 @@ def atomic_path(target: str | Path, *, field: str = "output") -> Iterator[Path]:
             raise
         raise _failed(final, cause, field) from None
     finally:
-        if not done:
+        if created and not done:
             with signals_held():
                 tmp.unlink(missing_ok=True)
 
@@ -229,12 +232,19 @@ def atomic_directory(target: str | Path, *, field: str = "output") -> Iterator[P
         final.parent.mkdir(parents=True, exist_ok=True)
         if final.exists() and not final.is_dir():
             raise NotADirectoryError(20, "Not a directory")
-        tmp = final.with_name(_temporary_name(final))
-        tmp.mkdir()
     except OSError as exc:
         raise _failed(final, exc, field) from None
-    done = False
+    tmp = final.with_name(_temporary_name(final))
+    created = done = False
     try:
+        # as in atomic_path: a signal that arrives as the directory appears is delivered
+        # inside the block that removes it
+        with signals_held():
+            try:
+                tmp.mkdir()
+            except OSError as exc:
+                raise _failed(final, exc, field) from None
+            created = True
         yield tmp
         for entry in tmp.iterdir():
             if entry.is_file():
@@ -248,6 +258,6 @@ def atomic_directory(target: str | Path, *, field: str = "output") -> Iterator[P
     except OSError as exc:
         raise _failed(final, exc, field) from None
     finally:
-        if not done:
+        if created and not done:
             with signals_held():
                 shutil.rmtree(tmp, ignore_errors=True)
