@@ -314,7 +314,7 @@ def clean(value: float, digits: int = 4) -> float:
     return 0.0 if out == 0 else out
 
 
-def fmt(value: Any, digits: int = 4) -> str:
+def fmt(value: object, digits: int = 4) -> str:
     """A value as text, by the one rule of every presenter.
 
     None and NaN → "—"; bools yes/no; ints as they are; floats with ``digits`` significant
