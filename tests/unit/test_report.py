@@ -81,7 +81,7 @@ def test_verdict_governing_checks_and_warnings_come_first(seed_analysis, seed_ht
     assert 'class="verdict fail"' in summary
     assert f"FAILS 2 of {len(seed_analysis.checks())} checks" in summary
     assert "<tr class=fail><td>teeth in mesh (idler)</td><td>S3</td>" in summary
-    assert "<tr class=fail><td>resonance margin (detuning Δ of 75 Hz above the natural" in summary
+    assert "<tr class=fail><td>resonance margin (75 Hz above the natural frequency" in summary
     for w in seed_analysis.warnings:
         assert w.message.split(":")[0] in summary
 

@@ -45,7 +45,7 @@ def test_warning_gives_the_detuning_with_its_side_not_a_signed_margin() -> None:
     assert "tooth x1 at 90.0 Hz is 10.0 % below the natural frequency 100.0 Hz" in below.message
     assert "tooth x2 at 110.0 Hz is 10.0 % above the natural frequency 100.0 Hz" in above.message
     for w in (below, above):
-        assert "required detuning Δ ≥ 15 %" in w.message
+        assert "required detuning ≥ 15 %" in w.message
         assert not re.search(r"[+\-−±]\s?\d", w.message), w.message
         assert "margin" not in w.message
     assert resonance_warnings(rows, band_percent=10.0) == []  # Δ = 10 % is outside a 10 % band
@@ -53,7 +53,7 @@ def test_warning_gives_the_detuning_with_its_side_not_a_signed_margin() -> None:
 
 def test_seed_check_value_is_the_detuning_and_its_margin_is_relative_to_the_band(seed) -> None:
     """The resonance check's value is the least Δ of the table (closed form from the rows'
-    frequencies), its margin Δ/band − 1; its row names the value "detuning Δ"."""
+    frequencies), its margin Δ/band − 1; its row names the value the detuning."""
     band = seed.limits.resonance_band_percent
     rows = seed.dynamics.resonances
     least = min(_detuning(r.working.frequency, r.natural_frequency) for r in rows)
@@ -63,7 +63,7 @@ def test_seed_check_value_is_the_detuning_and_its_margin_is_relative_to_the_band
     assert least == pytest.approx(2.66, abs=0.01)                    # docs/dynamics.md §7
     assert margin_percent(check) == pytest.approx(-73.4, abs=0.1)
     label = check_row(check)[0]
-    assert "detuning Δ of 75 Hz above the natural frequency 73.06 Hz" in label
+    assert "75 Hz above the natural frequency 73.06 Hz; the value is their detuning" in label
 
 
 def test_seed_warning_table_and_json_agree_on_the_detuning(seed) -> None:

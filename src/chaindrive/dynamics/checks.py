@@ -46,7 +46,8 @@ def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | N
     [MultimassChainDrives, §3.2], [API684]; None when there is no working frequency.
 
     The check's value is Δ; its margin is Δ/band − 1 (≥ 0 passes), a different number that
-    the note keeps apart by naming the value the detuning.
+    the note keeps apart by naming the value the detuning (in words: the summary of the
+    report shows the note before the symbol Δ is defined).
 
     Parameters
     ----------
@@ -66,8 +67,9 @@ def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | N
             else "natural frequency")
     return judged("resonance margin", closest.working.label, closest.detuning_percent,
                   band_percent, "min", "[MultimassChainDrives, §3.2], [API684]", "%",
-                  note=f"detuning Δ of {closest.working.frequency:.4g} Hz {closest.side} the "
-                       f"{what} {closest.natural_frequency:.4g} Hz", part="dynamics")
+                  note=f"{closest.working.frequency:.4g} Hz {closest.side} the {what} "
+                       f"{closest.natural_frequency:.4g} Hz; the value is their detuning",
+                  part="dynamics")
 
 
 def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal: ArrayLike,

@@ -383,5 +383,5 @@ def resonance_warnings(rows: Sequence[Resonance],
                 "dynamics",
                 f"{'parametric resonance' if parametric else 'resonance'}: {r.working.label} at "
                 f"{r.working.frequency:.1f} Hz is {r.detuning_percent:.1f} % {r.side} "
-                f"{natural} {r.natural_frequency:.1f} Hz (required detuning Δ ≥ {band_percent:g} %)"))
+                f"{natural} {r.natural_frequency:.1f} Hz (required detuning ≥ {band_percent:g} %)"))
     return out
