@@ -73,6 +73,9 @@ __all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "eval
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
+#: A compute function of a study: one JSON-ready input mapping → a JSON-ready mapping (the
+#: values are JSON's, hence Any).
+StudyFunction = Callable[[Mapping[str, Any]], Mapping[str, Any]]
 #: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
 RESUBMITS = 3
 _META = MetaData()
@@ -467,7 +470,7 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
     return computed
 
 
-def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
+def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Client | None = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None) -> StudyResult:
