@@ -370,7 +370,7 @@ class Analysis:
 
     @cached_property
     def bands(self) -> Bands:
-        """Bands of the natural frequencies, resonance margins and K_D for stiffness and
+        """Bands of the natural frequencies, resonance detunings and K_D for stiffness and
         inertia known to ± ``[dynamics] uncertainty``."""
         u = self.drive.dynamics.uncertainty
         dyn = self.dynamics

@@ -30,6 +30,7 @@ from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
     from chaindrive.checks import Check
+    from chaindrive.synthesis.solve import ConstraintReport
 
 __all__ = [
     "QUANTITIES",
@@ -313,7 +314,7 @@ def clean(value: float, digits: int = 4) -> float:
     return 0.0 if out == 0 else out
 
 
-def fmt(value: Any, digits: int = 4) -> str:
+def fmt(value: object, digits: int = 4) -> str:
     """A value as text, by the one rule of every presenter.
 
     None and NaN → "—"; bools yes/no; ints as they are; floats with ``digits`` significant
@@ -561,7 +562,7 @@ def dimension(value: float, decimals: int = 2) -> str:
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
-def constraint_row(report: Any) -> tuple[str, int, int, str, str]:
+def constraint_row(report: ConstraintReport) -> tuple[str, int, int, str, str]:
     """A constraint of an optimisation run as shown (:class:`chaindrive.synthesis.solve.
     ConstraintReport`): (constraint, designs rejected, designs evaluated, by how much the
     closest rejected design missed, that design: its chain and tooth counts).

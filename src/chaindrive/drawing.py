@@ -38,7 +38,10 @@ from chaindrive.display import dimension
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # ezdxf is imported where a drawing is made
+    from ezdxf.document import Drawing
+    from ezdxf.layouts import Modelspace
+
     from chaindrive.analysis import Analysis
     from chaindrive.geometry.profile import SprocketProfile
     from chaindrive.geometry.results import SprocketGeometry
@@ -81,7 +84,7 @@ def outline_mm(profile: SprocketProfile) -> NDArray[np.float64]:
 
 # --- DXF helpers ---------------------------------------------------------------------------
 
-def _new_document() -> Any:
+def _new_document() -> Drawing:
     import ezdxf
 
     doc = ezdxf.new("R2010", setup=True, units=4)
@@ -93,7 +96,7 @@ def _new_document() -> Any:
     return doc
 
 
-def _text(msp: Any, text: str, at: tuple[float, float], height: float,
+def _text(msp: Modelspace, text: str, at: tuple[float, float], height: float,
           align: str = "MIDDLE_LEFT", layer: str = "TEXT") -> None:
     from ezdxf.enums import TextEntityAlignment
 
@@ -101,7 +104,7 @@ def _text(msp: Any, text: str, at: tuple[float, float], height: float,
         at, align=TextEntityAlignment[align])
 
 
-def _centre_mark(msp: Any, c: tuple[float, float], size: float) -> None:
+def _centre_mark(msp: Modelspace, c: tuple[float, float], size: float) -> None:
     msp.add_line((c[0] - size, c[1]), (c[0] + size, c[1]), dxfattribs={"layer": "CENTER"})
     msp.add_line((c[0], c[1] - size), (c[0], c[1] + size), dxfattribs={"layer": "CENTER"})
 
@@ -111,7 +114,7 @@ def _dim_override(h: float, decimals: int = 2) -> dict[str, Any]:
             "dimtad": 1, "dimgap": 0.3 * h}
 
 
-def _title_block(msp: Any, corner: tuple[float, float], h: float,
+def _title_block(msp: Modelspace, corner: tuple[float, float], h: float,
                  rows: list[tuple[str, str]]) -> tuple[float, float]:
     """A title block whose lower right corner is ``corner`` [mm]: a framed table of
     (label, value) rows; returns its (width, height) [mm]."""
@@ -144,7 +147,7 @@ def _stamp(analysis: Analysis) -> list[tuple[str, str]]:
 
 # --- the layout ------------------------------------------------------------------------------
 
-def _layout_entities(msp: Any, analysis: Analysis, h: float) -> None:
+def _layout_entities(msp: Modelspace, analysis: Analysis, h: float) -> None:
     """Pitch and tip circles, centre marks, the chain, names at the sprockets [mm]."""
     for s in analysis.geometry.sprockets:
         c = (s.x * MM, s.y * MM)
@@ -169,7 +172,7 @@ def _tangent_angles(s: SprocketGeometry) -> tuple[float, float]:
     return a0, a1
 
 
-def _layout_dimensions(msp: Any, analysis: Analysis, h: float) -> None:
+def _layout_dimensions(msp: Modelspace, analysis: Analysis, h: float) -> None:
     """The centre distance between consecutive sprockets (aligned, offset outwards) and the
     wrap angle of each sprocket (angular, on a circle outside its tip)."""
     g = analysis.geometry
@@ -195,7 +198,7 @@ def _layout_dimensions(msp: Any, analysis: Analysis, h: float) -> None:
                                 dxfattribs={"layer": "DIM"}).render()
 
 
-def _centre_table(msp: Any, analysis: Analysis, origin: tuple[float, float],
+def _centre_table(msp: Modelspace, analysis: Analysis, origin: tuple[float, float],
                   h: float) -> None:
     """The sprockets' centres and pitch diameters as text lines below ``origin`` [mm]."""
     lines = ["Sprocket centres (mm): name, teeth, x, y, pitch diameter"]
@@ -205,7 +208,7 @@ def _centre_table(msp: Any, analysis: Analysis, origin: tuple[float, float],
         _text(msp, line, (origin[0], origin[1] - 1.6 * h * i), h * (0.9 if i else 1.0))
 
 
-def _layout_sheet(msp: Any, analysis: Analysis, h: float) -> tuple[float, float, float]:
+def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float) -> tuple[float, float, float]:
     """The layout with its dimensions, centre table and title block; returns the left edge,
     the bottom and the right edge used [mm]."""
     g = analysis.geometry
@@ -225,7 +228,7 @@ def _layout_sheet(msp: Any, analysis: Analysis, h: float) -> tuple[float, float,
     return left, table_bottom - 2 * h, right
 
 
-def layout_document(analysis: Analysis) -> Any:
+def layout_document(analysis: Analysis) -> Drawing:
     """The layout drawing alone (ezdxf document, mm).
 
     Parameters
@@ -311,7 +314,7 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
             "maximum form (ri max, re min, α min)."]
 
 
-def _sprocket_sheet(msp: Any, analysis: Analysis, index: int,
+def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int,
                     origin: tuple[float, float], h: float) -> float:
     """The drawing of sprocket ``index`` with its centre at ``origin`` [mm]; returns the
     width it takes [mm]."""
@@ -371,7 +374,7 @@ def _limits_text(profile: SprocketProfile) -> tuple[str, str]:
             f"{dimension(iso.root_diameter_max * MM, 2)}")
 
 
-def _polymer_body(msp: Any, profile: SprocketProfile, p: PolymericProportions,
+def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProportions,
                   centre: tuple[float, float], ra: float, h: float) -> list[str]:
     """Face-view circles and the axial half-section of a polymeric body
     [MultimassChainDrives, §3.4]; returns the text lines (mass, inertia, proportions)."""
@@ -418,7 +421,7 @@ def _index_of(analysis: Analysis, name: str) -> int:
     return names.index(name)
 
 
-def sprocket_document(analysis: Analysis, name: str) -> Any:
+def sprocket_document(analysis: Analysis, name: str) -> Drawing:
     """The manufacturing drawing of the sprocket ``name`` alone (ezdxf document, mm).
 
     Parameters
@@ -440,7 +443,7 @@ def sprocket_document(analysis: Analysis, name: str) -> Any:
     return doc
 
 
-def drawing_document(analysis: Analysis) -> Any:
+def drawing_document(analysis: Analysis) -> Drawing:
     """The layout and, below it, every sprocket's manufacturing drawing side by side
     (ezdxf document, mm).
 
@@ -509,7 +512,7 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
     return out
 
 
-def svg_string(doc: Any, page_width_mm: float = 420.0) -> str:
+def svg_string(doc: Drawing, page_width_mm: float = 420.0) -> str:
     """The modelspace of ``doc`` as SVG (ezdxf drawing add-on) on a white page
     ``page_width_mm`` wide (A3 by default), scaled to fit; the DXF stays 1:1.
 

@@ -33,9 +33,13 @@ import math
 import re
 import sys
 from functools import lru_cache
-from typing import Any
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:  # pint is imported on first use (see _import_pint)
+    from pint import UnitRegistry
 
 #: rad/s → rpm (revolutions per minute): ω·60/(2π); divide by it for rpm → rad/s.
 RAD_S_TO_RPM = 30.0 / math.pi
@@ -103,7 +107,7 @@ _WORD = re.compile(r"[^\W\d_]+")
 _LONG_DIGITS = re.compile(r"\d{3,}")
 
 
-def _import_pint() -> Any:
+def _import_pint() -> ModuleType:
     """``import pint`` without its optional dask support.
 
     pint imports dask, when installed, to wrap dask arrays (``pint.compat``); dask is
@@ -127,14 +131,16 @@ def _import_pint() -> Any:
 
 
 @lru_cache(maxsize=1)
-def registry() -> Any:
+def registry() -> UnitRegistry:
     """The shared pint UnitRegistry (built lazily: importing chaindrive stays cheap)."""
     pint = _import_pint()
 
+    units: UnitRegistry
     try:  # pint's own cache of the parsed definitions halves the start-up time
-        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+        units = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
     except OSError:  # no writable cache folder: build it from the definitions each time
-        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+        units = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    return units
 
 
 def shown(text: str) -> str:

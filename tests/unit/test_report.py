@@ -81,7 +81,7 @@ def test_verdict_governing_checks_and_warnings_come_first(seed_analysis, seed_ht
     assert 'class="verdict fail"' in summary
     assert f"FAILS 2 of {len(seed_analysis.checks())} checks" in summary
     assert "<tr class=fail><td>teeth in mesh (idler)</td><td>S3</td>" in summary
-    assert "<tr class=fail><td>resonance margin (75 Hz against" in summary
+    assert "<tr class=fail><td>resonance margin (75 Hz above the natural frequency" in summary
     for w in seed_analysis.warnings:
         assert w.message.split(":")[0] in summary
 
@@ -168,7 +168,7 @@ def test_ring_and_span_resonances_apart(seed_analysis, seed_html: str) -> None:
     ring = section[section.index("Resonances of the ring"):section.index("Parametric")]
     spans = section[section.index("Parametric resonances of the spans"):]
     for r in seed_analysis.dynamics.resonances:
-        row = f"<td class=\"num\">{fmt(abs(r.margin_percent))}</td>"
+        row = f"<td class=\"num\">{fmt(r.detuning_percent)}</td>"
         if r.working.kind == "parametric":
             span = seed_analysis.geometry.spans[r.mode]
             assert f"<td>{span.start_name}→{span.end_name}</td>" in spans and row in spans

@@ -30,8 +30,11 @@ from chaindrive.errors import ChainDriveError, DesignError
 if TYPE_CHECKING:
     from pathlib import Path
 
+    from matplotlib.figure import Figure
+
     from chaindrive.analysis import Analysis
     from chaindrive.model import Drive
+    from chaindrive.robust.study import RobustResult
 
 #: What each on-demand feature needs: feature → modules that must be importable.
 NEEDS: dict[str, tuple[str, ...]] = {
@@ -92,7 +95,7 @@ def full_analysis(drive: Drive) -> Analysis:
     return chaindrive.analyze(drive)
 
 
-def robust_study(drive: Drive, *, samples: int = 64) -> Any:
+def robust_study(drive: Drive, *, samples: int = 64) -> RobustResult:
     """The robust study of the drive on the page (:func:`chaindrive.robust.study.robust_study`):
     life curve, probabilities over ``samples`` states and the sensitivity indices with the
     ``[uncertainty]`` defaults (the page has no such table).
@@ -212,7 +215,7 @@ def drawing_dxf(analysis: Analysis) -> bytes:
     return stream.getvalue().encode(doc.output_encoding or "utf-8")
 
 
-def figure_png(fig: Any, dpi: int = 100) -> bytes:
+def figure_png(fig: Figure, dpi: int = 100) -> bytes:
     """A matplotlib Figure rendered to PNG bytes (Agg, no pyplot).
 
     Parameters
@@ -450,7 +453,7 @@ def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLev
                        what="the link-level model")
 
 
-def bounded_robust_study(drive: Drive) -> Any:
+def bounded_robust_study(drive: Drive) -> RobustResult:
     """:func:`robust_study` in a bounded run.
 
     Parameters

@@ -407,8 +407,8 @@ def resonance_records(document: dict[str, Any], spans: list[str] | None = None
                  else f"span {r['mode'] + 1}" if span else f"mode {r['mode']}")
         out.append({"working": r["label"], "f working, Hz": clean(r["frequency_hz"]),
                     "nearest": where, "f natural, Hz": clean(r["natural_frequency_hz"]),
-                    "detuning, %": clean(abs(r["margin_percent"]), 3),
-                    "f working is": "below" if r["margin_percent"] < 0 else "above"})
+                    "detuning, %": clean(r["detuning_percent"], 3),
+                    "f working is": r["working_frequency_is"]})
     return out
 
 

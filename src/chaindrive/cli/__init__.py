@@ -14,7 +14,7 @@ import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 import typer
@@ -24,6 +24,12 @@ from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_
 from chaindrive.display import RAD_S_TO_RPM, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.atomic import atomic_directory, write_text
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from chaindrive.analysis import Analysis
+    from chaindrive.synthesis.solve import SynthesisResult
 
 app = typer.Typer(
     name="chaindrive",
@@ -250,7 +256,7 @@ def afc(
 
 
 
-def _span_names(result: Any) -> list[str]:
+def _span_names(result: Analysis) -> list[str]:
     return [f"{s.start_name}-{s.end_name}" for s in result.geometry.spans]
 
 
@@ -259,7 +265,7 @@ def _csv_suffix(path: Path) -> None:
         raise DesignError("output", f"must end in .csv, got {str(path)!r}")
 
 
-def _write_csv(path: Path, header: list[str], rows: Any) -> None:
+def _write_csv(path: Path, header: list[str], rows: NDArray[np.float64]) -> None:
     """Write a table atomically (:func:`chaindrive.io.atomic.write_text`)."""
     import io
 
@@ -390,7 +396,7 @@ def optimize(
                               [*written, *([] if plot is None else [str(plot)])])
 
 
-def _write_pareto(result: Any, file: Path, out: Path) -> tuple[list[str], Path | None]:
+def _write_pareto(result: SynthesisResult, file: Path, out: Path) -> tuple[list[str], Path | None]:
     """Write the Pareto designs (one TOML each), the plot of the front and the report of the
     first into ``out`` — all or nothing (:func:`chaindrive.io.atomic.atomic_directory`)."""
     # lazy: only what this command runs (see "Lazy imports" above)

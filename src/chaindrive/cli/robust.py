@@ -56,7 +56,7 @@ def print_robust(con: Console, doc: dict[str, Any], make: TableMaker) -> None:
                      v["source"]] for v in unc["variables"]]))
     for note in unc["notes"]:
         con.print(f"note: {note}")
-    con.print(make("Life curve", ["elongation %", "f1 Hz", "resonance margin %", "K_D", "k2",
+    con.print(make("Life curve", ["elongation %", "f1 Hz", "detuning Δ %", "K_D", "k2",
                                   "take-up mm", "sag %", "failed"],
                    [[s["elongation"] * 100, s["f1_hz"], s["resonance_margin_percent"],
                      s["coefficient_of_dynamics"], s["k2"], s["take_up_travel_mm"],

@@ -213,7 +213,7 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
               f"{', '.join(fmt(f) for f in freqs[:8])}{more} (damping ratio "
               f"{fmt(dyn['damping_ratio'])})")
     rows = [[r["label"], r["frequency_hz"], r["natural_frequency_hz"],
-             abs(r["margin_percent"]), "below" if r["margin_percent"] < 0 else "above"]
+             r["detuning_percent"], r["working_frequency_is"]]
             for r in dyn["resonances"][:5]]
     con.print(table("Closest resonances", ["working", "working, Hz", "natural, Hz",
                                            "detuning, %", "position"], rows))

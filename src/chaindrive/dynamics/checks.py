@@ -41,9 +41,13 @@ def dynamic_safety_check(name: str, value: float | None, allowable: float, note:
 
 
 def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | None:
-    """The least distance |f_w − f_n|/f_n [%] of a working frequency from its nearest natural
-    frequency (ring modes, and the spans' principal parametric resonance) ≥ the band
+    """The least detuning Δ = |f_w − f_n|/f_n [%] of a working frequency from its nearest
+    natural frequency (ring modes, and the spans' principal parametric resonance) ≥ the band
     [MultimassChainDrives, §3.2], [API684]; None when there is no working frequency.
+
+    The check's value is Δ; its margin is Δ/band − 1 (≥ 0 passes), a different number that
+    the note keeps apart by naming the value the detuning (in words: the summary of the
+    report shows the note before the symbol Δ is defined).
 
     Parameters
     ----------
@@ -58,13 +62,14 @@ def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | N
     """
     if not rows:
         return None
-    closest = min(rows, key=lambda r: abs(r.margin_percent))
+    closest = min(rows, key=lambda r: r.detuning_percent)
     what = ("parametric resonance of a span" if closest.working.kind == "parametric"
             else "natural frequency")
-    return judged("resonance margin", closest.working.label, abs(closest.margin_percent),
+    return judged("resonance margin", closest.working.label, closest.detuning_percent,
                   band_percent, "min", "[MultimassChainDrives, §3.2], [API684]", "%",
-                  note=f"{closest.working.frequency:.4g} Hz against the {what} "
-                       f"{closest.natural_frequency:.4g} Hz", part="dynamics")
+                  note=f"{closest.working.frequency:.4g} Hz {closest.side} the {what} "
+                       f"{closest.natural_frequency:.4g} Hz; the value is their detuning",
+                  part="dynamics")
 
 
 def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal: ArrayLike,

@@ -1,5 +1,5 @@
 r"""Steady responses of the whole-drive model: steady state at a speed, speed sweep (AFC) and
-the bands of the natural frequencies, margins and K_D for uncertain stiffness and inertia
+the bands of the natural frequencies, resonance detunings and K_D for uncertain stiffness and inertia
 (docs/dynamics.md §4–6).
 
 The kinematic excitation is a prescribed elongation d of the chain spans
@@ -284,9 +284,10 @@ class Bands:
         Relative uncertainty u [-].
     natural_frequencies_hz : ndarray
         (E, 2) low and high of every elastic natural frequency [Hz].
-    margins : tuple of tuple
-        Per resonance row: (label, working frequency [Hz], natural frequency [Hz], margin [%],
-        lowest and highest |margin| [%], inside: the working frequency lies in the mode's band).
+    detunings : tuple of tuple
+        Per resonance row: (label, working frequency [Hz], natural frequency [Hz], signed
+        offset (f_w − f_n)/f_n [%], lowest and highest detuning Δ ≥ 0 over the band [%],
+        inside: the working frequency lies in the mode's band).
     coefficient_of_dynamics : tuple of float or None
         (nominal, low, high) coefficient of dynamics K_D [-], or None when it is not computed.
     worst_speed_factor : float or None
@@ -295,25 +296,28 @@ class Bands:
 
     uncertainty: float
     natural_frequencies_hz: FloatArray
-    margins: tuple[tuple[str, float, float, float, float, float, bool], ...]
+    detunings: tuple[tuple[str, float, float, float, float, float, bool], ...]
     coefficient_of_dynamics: tuple[float, float, float] | None
     worst_speed_factor: float | None
 
     @property
     def resonances_inside(self) -> tuple[str, ...]:
         """Labels of the working frequencies inside the band of a natural frequency."""
-        return tuple(m[0] for m in self.margins if m[6])
+        return tuple(m[0] for m in self.detunings if m[6])
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
+        """JSON-ready dict (a detuning Δ ≥ 0 with the side of the working frequency, as
+        :meth:`chaindrive.dynamics.resonance.Resonance.to_dict`)."""
         kd = self.coefficient_of_dynamics
         return {
             "uncertainty": self.uncertainty,
             "natural_frequencies_hz": self.natural_frequencies_hz.tolist(),
-            "resonance_margins": [
+            "resonance_detunings": [
                 {"label": m[0], "working_frequency_hz": m[1], "natural_frequency_hz": m[2],
-                 "margin_percent": m[3], "margin_low_percent": m[4],
-                 "margin_high_percent": m[5], "inside_band": m[6]} for m in self.margins],
+                 "detuning_percent": abs(m[3]),
+                 "working_frequency_is": "below" if m[3] < 0 else "above",
+                 "detuning_low_percent": m[4], "detuning_high_percent": m[5],
+                 "inside_band": m[6]} for m in self.detunings],
             "coefficient_of_dynamics": None if kd is None else
             {"nominal": kd[0], "low": kd[1], "high": kd[2]},
             "worst_speed_factor": self.worst_speed_factor,
@@ -325,7 +329,7 @@ def uncertainty_bands(uncertainty: float, elastic_hz: ArrayLike,
                       sweep: tuple[FloatArray, FloatArray] | None = None,
                       nominal_force: float | None = None,
                       nominal_kd: float | None = None) -> Bands:
-    """Bands of the natural frequencies, resonance margins and K_D (module docstring).
+    """Bands of the natural frequencies, resonance detunings and K_D (module docstring).
 
     Parameters
     ----------
@@ -349,13 +353,13 @@ def uncertainty_bands(uncertainty: float, elastic_hz: ArrayLike,
     """
     lo, hi = frequency_band_factors(uncertainty)
     f = np.asarray(elastic_hz, dtype=float)
-    margins = []
+    detunings = []
     for r in resonances:
         fn, fw = r.natural_frequency, r.working.frequency
         inside = fn * lo <= fw <= fn * hi
         edges = (abs(fw / (fn * lo) - 1), abs(fw / (fn * hi) - 1))
         low = 0.0 if inside else 100.0 * min(edges)
-        margins.append((r.working.label, fw, fn, r.margin_percent, low, 100.0 * max(edges),
+        detunings.append((r.working.label, fw, fn, r.offset_percent, low, 100.0 * max(edges),
                         bool(inside)))
     kd = None
     worst = None
@@ -370,5 +374,5 @@ def uncertainty_bands(uncertainty: float, elastic_hz: ArrayLike,
         kd = (nominal_kd, float(min(k_lo[ok].min(), nominal_kd)),
               float(max(k_hi[ok].max(), nominal_kd)))
         worst = float(s[ok][np.argmax(k_hi[ok])])
-    return Bands(float(uncertainty), np.column_stack([f * lo, f * hi]), tuple(margins), kd,
+    return Bands(float(uncertainty), np.column_stack([f * lo, f * hi]), tuple(detunings), kd,
                  worst)

@@ -51,7 +51,7 @@ def source_digest() -> int:
 
 
 @cache
-def compiled_kernel() -> Any:
+def compiled_kernel() -> Any:  # a function of a generated extension module: no stubs
     """``run_kernel_flat`` of the ahead-of-time module, or None when it is not built or was
     built from other sources (decided once per process)."""
     try:

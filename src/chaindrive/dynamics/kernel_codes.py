@@ -6,13 +6,15 @@ does not import numba.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
+from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from numpy.typing import NDArray
 
 __all__ = ["RESISTANCE_KINDS", "motor_code", "resistance_code"]
@@ -24,7 +26,7 @@ RESISTANCE_KINDS = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR
                     "quadratic": RESISTANCE_QUADRATIC}
 
 
-def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
+def motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]] | None:
     """(kind, parameters) of a motor law the kernel knows, None for any other callable.
 
     ConstantTorque → (0, [M]); RampTorque → (1, [M, t_ramp]); KlossMotor →
@@ -54,7 +56,7 @@ def motor_code(motor: Any) -> tuple[int, NDArray[np.float64]] | None:
     return None
 
 
-def resistance_code(law: Any, n: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64],
+def resistance_code(law: ResistanceLaw | None, n: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64],
                                                  float] | None:
     """(kind, torques M_i [N·m], nominal speeds ω_n,i [rad/s], breakaway) of a
     :class:`~chaindrive.dynamics.motors.ResistanceLaw` (None law: kind 0); None if the kind

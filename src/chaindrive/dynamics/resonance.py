@@ -6,8 +6,13 @@ its harmonics k ω_z; the natural frequencies must be kept away from them. The p
 resonance of a span (tension pulsating at the tooth frequency, principal zone
 f_z ≈ 2 f_transverse, :mod:`chaindrive.dynamics.transverse`) is checked too.
 
-margin_percent = (f_working − f_natural) / f_natural · 100 (signed: negative when the
-working frequency lies below the natural one); its absolute value is the detuning.
+The offset of a working frequency from its nearest natural frequency is
+(f_working − f_natural)/f_natural · 100 % (signed: negative when the working frequency lies
+below the natural one); its absolute value is the detuning Δ ≥ 0, and every presenter (the
+resonance tables, the warnings, the JSON document) shows Δ with the side, "below" or
+"above". Δ is the value of the resonance check, not its margin: the check's margin
+m = Δ/Δ_required − 1 (:attr:`chaindrive.checks.Check.margin_fraction`) is ≥ 0 when it
+passes, like every margin of the package.
 """
 
 from __future__ import annotations
@@ -158,33 +163,44 @@ class Resonance:
         span).
     mode : int
         Its index in the modal result, or the span index for ``parametric`` [-].
-    margin_percent : float
+    offset_percent : float
         (f_working − f_natural)/f_natural·100 [%], signed (negative below).
     """
 
     working: WorkingFrequency
     natural_frequency: float
     mode: int
-    margin_percent: float
+    offset_percent: float
+
+    @property
+    def detuning_percent(self) -> float:
+        """Δ = |f_working − f_natural|/f_natural·100 [%] ≥ 0."""
+        return abs(self.offset_percent)
+
+    @property
+    def side(self) -> str:
+        """Where the working frequency lies: "below" or "above" the natural one."""
+        return "below" if self.offset_percent < 0 else "above"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
+        """JSON-ready dict: the detuning Δ ≥ 0 [%] and the side of the working frequency."""
         return {**self.working.to_dict(), "natural_frequency_hz": self.natural_frequency,
-                "mode": self.mode, "margin_percent": self.margin_percent}
+                "mode": self.mode, "detuning_percent": self.detuning_percent,
+                "working_frequency_is": self.side}
 
 
 def _nearest(f: float, natural: NDArray[np.float64]) -> tuple[int, float, float]:
     k = int(np.argmin(np.abs(natural - f)))
     fn = float(natural[k])
-    return k, fn, (f - fn) / fn * 100.0
+    return k, fn, (f - fn) / fn * 100.0  # offset [%], signed
 
 
 def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
                     span_transverse_hz: ArrayLike | None = None,
                     tooth_hz: float | None = None,
                     span_names: Sequence[str] = ()) -> tuple[Resonance, ...]:
-    """Nearest elastic natural frequency and the margin for each working frequency, sorted by
-    |margin| (most critical first).
+    """Nearest elastic natural frequency and the detuning from it of each working frequency,
+    sorted by the detuning (most critical first).
 
     Parameters
     ----------
@@ -215,8 +231,8 @@ def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
     rows: list[Resonance] = []
     if natural.size:
         for w in working:
-            k, fn, margin = _nearest(w.frequency, natural)
-            rows.append(Resonance(w, fn, int(elastic_idx[k]), margin))
+            k, fn, offset = _nearest(w.frequency, natural)
+            rows.append(Resonance(w, fn, int(elastic_idx[k]), offset))
     if span_transverse_hz is not None and tooth_hz is not None:
         for i, f1 in enumerate(np.asarray(span_transverse_hz, dtype=float).ravel()):
             if f1 > 0:
@@ -224,7 +240,7 @@ def resonance_table(modal: Modes, working: Sequence[WorkingFrequency],
                 w = WorkingFrequency("parametric", f"tooth vs 2·f1 of span {span}",
                                      float(tooth_hz))
                 rows.append(Resonance(w, 2.0 * f1, i, (tooth_hz - 2.0 * f1) / (2.0 * f1) * 100))
-    return tuple(sorted(rows, key=lambda r: abs(r.margin_percent)))
+    return tuple(sorted(rows, key=lambda r: r.detuning_percent))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -354,15 +370,18 @@ RESONANCE_BAND_PERCENT = 10.0
 
 def resonance_warnings(rows: Sequence[Resonance],
                        band_percent: float = RESONANCE_BAND_PERCENT) -> list[ChainDriveWarning]:
-    """One warning per working frequency within ±band of its nearest natural frequency."""
+    """One warning per working frequency within ±band of its nearest natural frequency,
+    worded as the resonance table: the detuning Δ ≥ 0 and the side (module docstring)."""
     out = []
     for r in rows:
         parametric = r.working.kind == "parametric"
-        if abs(r.margin_percent) < band_percent:
+        if r.detuning_percent < band_percent:
+            natural = "twice the span's transverse frequency" if parametric else \
+                "the natural frequency"
             out.append(ChainDriveWarning(
                 "dynamics.parametric-resonance" if parametric else "dynamics.resonance",
                 "dynamics",
                 f"{'parametric resonance' if parametric else 'resonance'}: {r.working.label} at "
-                f"{r.working.frequency:.1f} Hz is {r.margin_percent:+.1f} % from "
-                f"{r.natural_frequency:.1f} Hz (keep at least ±{band_percent:g} %)"))
+                f"{r.working.frequency:.1f} Hz is {r.detuning_percent:.1f} % {r.side} "
+                f"{natural} {r.natural_frequency:.1f} Hz (required detuning ≥ {band_percent:g} %)"))
     return out

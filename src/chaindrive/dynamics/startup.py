@@ -514,7 +514,7 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
     return forces, states, fmax, slack
 
 
-def _compiled_runner(backend: Backend) -> Any:
+def _compiled_runner(backend: Backend) -> Any:  # a numba Dispatcher or an AOT function
     """The compiled step loop: the ahead-of-time module when built from the current source
     (:mod:`chaindrive.dynamics.kernel_build`; loads without numba), else numba's
     just-in-time ``run_kernel_flat`` (backend "jit" forces it), else None."""

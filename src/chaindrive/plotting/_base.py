@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -61,7 +63,7 @@ def finish(ax: Axes, title: str | None = None, *, grid: bool = True) -> None:
         ax.grid(True, alpha=0.3, linewidth=0.6)
 
 
-def labels_of(items: Any) -> list[str]:
+def labels_of(items: Iterable[object]) -> list[str]:
     """Names of result items (objects with a ``name``).
 
     Parameters

@@ -30,7 +30,7 @@ def _limits(ax: Axes, life: LifeCurve) -> None:
 
 
 def life_curve_figure(life: LifeCurve) -> Figure:
-    """f₁ and the resonance margin, K_D and k₂, and the take-up travel or the sag against the
+    """f₁ and the detuning Δ, K_D and k₂, and the take-up travel or the sag against the
     chain's elongation, with the replacement elongation and the first failure marked.
 
     Parameters
@@ -52,8 +52,8 @@ def life_curve_figure(life: LifeCurve) -> Figure:
     ax.set_ylabel("f₁ [Hz]")
     twin = ax.twinx()
     twin.plot(eps, [s.resonance_margin_percent for s in life.states], color=TIGHT, marker="s",
-              ms=3, label="resonance margin")
-    twin.set_ylabel("resonance margin [%]", color=TIGHT)
+              ms=3, label="detuning Δ")
+    twin.set_ylabel("detuning Δ [%]", color=TIGHT)
     _limits(ax, life)
     ax.legend(loc="upper right", fontsize="small")
     finish(ax, "The drive as its chain wears")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish
 
@@ -10,8 +10,10 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
+    from chaindrive.synthesis.solve import SynthesisResult
 
-def pareto_front(result: Any, *, ax: Axes | None = None) -> Figure:
+
+def pareto_front(result: SynthesisResult, *, ax: Axes | None = None) -> Figure:
     """Scatter of the Pareto set of a :class:`chaindrive.synthesis.solve.SynthesisResult`:
     the first two objectives on the axes, the third (if any) as colour, the start design
     as a star.

@@ -46,6 +46,8 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from chaindrive.analysis import Analysis
+    from chaindrive.robust.study import RobustResult
+    from chaindrive.synthesis.solve import SynthesisResult
 
 __all__ = ["SECTIONS", "Block", "Definitions", "Plot", "Report", "ReportInput", "Section",
            "Table", "Text", "Verdict", "build_report", "register_section", "render_html",
@@ -56,8 +58,8 @@ FORMATS = (".html", ".htm", ".pdf")
 
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
-                 synthesis: object = None, units: str = "SI",
-                 robust: object = None) -> Report:
+                 synthesis: SynthesisResult | None = None, units: str = "SI",
+                 robust: RobustResult | None = None) -> Report:
     """Build every registered section of the report of ``analysis``, then the references.
 
     Parameters
@@ -176,8 +178,8 @@ def render_pdf(report: Report) -> bytes:
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
-                 synthesis: object = None, units: str = "SI",
-                 robust: object = None) -> Path:
+                 synthesis: SynthesisResult | None = None, units: str = "SI",
+                 robust: RobustResult | None = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
     is written at once, after the whole report is built (complete or absent).
 

@@ -24,6 +24,9 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from chaindrive.analysis import Analysis
+    from chaindrive.dynamics.whole import DriveDynamics
+    from chaindrive.robust.study import RobustResult
+    from chaindrive.synthesis.solve import SynthesisResult
 
 TextKind = Literal["text", "warning", "fail", "ok", "code", "note", "item"]
 
@@ -216,13 +219,14 @@ class ReportInput:
     """
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
-                 synthesis: Any = None, units: UnitSystem = "SI", robust: Any = None) -> None:
+                 synthesis: SynthesisResult | None = None, units: UnitSystem = "SI",
+                 robust: RobustResult | None = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
-        self.synthesis = synthesis  # a chaindrive.synthesis SynthesisResult, or None
+        self.synthesis = synthesis
         self.units: UnitSystem = units
-        self.robust = robust  # a chaindrive.robust RobustResult, or None
+        self.robust = robust
         self.notes: list[str] = []
         self.defined: set[str] = set()
 
@@ -310,8 +314,8 @@ class ReportInput:
         return self.analysis.to_dict()
 
     @property
-    def dynamics(self) -> Any:
-        """The analysis's dynamics part (:class:`~chaindrive.dynamics.DynamicsResult`)."""
+    def dynamics(self) -> DriveDynamics:
+        """The analysis's dynamics part (:class:`~chaindrive.dynamics.whole.DriveDynamics`)."""
         return self.analysis.dynamics
 
 

@@ -59,7 +59,7 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
     doc = result.to_dict()
     life, rel = doc["life"], doc["reliability"]
     blocks: list[Block] = [Text(_summary(life))]
-    blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "resonance margin, %", "K_D",
+    blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "detuning Δ, %", "K_D",
                                        "k2", "take-up, mm", "sag, %", "failed checks"),
                         _rows([[s["elongation"] * 100, s["f1_hz"],
                                 s["resonance_margin_percent"], s["coefficient_of_dynamics"],

@@ -70,10 +70,10 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
         where = (spans[r.mode] if parametric and r.mode < len(spans)
                  else f"mode {r.mode}")
         label = (f"f_z vs 2·f_ℓ of span {where}" if parametric else r.working.label)
-        if abs(r.margin_percent) < band:
+        if r.detuning_percent < band:
             inside.append(len(out))
         out.append((label, r.working.frequency, r.natural_frequency, where,
-                    abs(r.margin_percent), "below" if r.margin_percent < 0 else "above"))
+                    r.detuning_percent, r.side))
     return out, tuple(inside)
 
 

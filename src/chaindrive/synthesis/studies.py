@@ -41,7 +41,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from contextlib import suppress
 from dataclasses import dataclass
 from datetime import UTC, datetime
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from sqlalchemy import (
@@ -61,15 +61,21 @@ from sqlalchemy.exc import IntegrityError
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping
 from chaindrive.synthesis.evaluation import Evaluation, evaluate_drive, evaluate_vector
-from chaindrive.synthesis.problem import Constraints
+from chaindrive.synthesis.problem import Constraints, Problem
 from chaindrive.synthesis.solve import design_mapping
 from chaindrive.units import registry
+
+if TYPE_CHECKING:  # distributed is imported where a study runs: `-X importtime` 1.2–1.4 s
+    from distributed import Client, Future, LocalCluster
 
 __all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
            "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
+#: A compute function of a study: one JSON-ready input mapping → a JSON-ready mapping (the
+#: values are JSON's, hence Any).
+StudyFunction = Callable[[Mapping[str, Any]], Mapping[str, Any]]
 #: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
 RESUBMITS = 3
 _META = MetaData()
@@ -329,7 +335,8 @@ def _chunk_size(count: int, workers: int) -> int:
     return max(1, min(32, count // (4 * max(workers, 1))))
 
 
-def _client(scheduler: str | None, n_workers: int | None) -> tuple[Any, Any]:
+def _client(scheduler: str | None, n_workers: int | None
+            ) -> tuple[Client, LocalCluster | None]:
     """A client of the scheduler at ``scheduler``, or of a new LocalCluster (one try more
     when a worker is lost while the cluster starts)."""
     from distributed import Client, LocalCluster
@@ -363,7 +370,7 @@ class _Watchdog:
     (seen once, gone now); workers still starting are left alone.
     """
 
-    def __init__(self, cluster: Any, period: float = 1.0) -> None:
+    def __init__(self, cluster: LocalCluster, period: float = 1.0) -> None:
         self.cluster = cluster
         self.size = len(cluster.worker_spec)
         self.period = period
@@ -416,12 +423,12 @@ def _lost(exc: BaseException) -> bool:
     return isinstance(exc, KilledWorker)
 
 
-def _submit(client: Any, func: Callable[[Any], Any], items: list[tuple[str, Any]], key: str
-            ) -> Any:
+def _submit(client: Client, func: Callable[[Any], Any], items: list[tuple[str, Any]], key: str
+            ) -> Future:
     return client.submit(_chunk, func, items, key=key, pure=False)
 
 
-def _evaluate_on(client: Any, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
+def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
                  store: StudyStore, bar: Any, task: Any, chunk: int | None) -> int:
     """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
     stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
@@ -463,9 +470,9 @@ def _evaluate_on(client: Any, func: Callable[[Any], Any], study: str, todo: dict
     return computed
 
 
-def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
+def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
-              client: Any = None, n_workers: int | None = None,
+              client: Client | None = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None) -> StudyResult:
     """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
     key is stored are not recomputed.
@@ -507,8 +514,9 @@ def run_study(func: Callable[[Any], Any], inputs: Sequence[Any], *, study: str,
     computed = 0
     if todo:
         own = client is None
-        cluster = watchdog = None
-        if own:
+        cluster: LocalCluster | None = None
+        watchdog: _Watchdog | None = None
+        if client is None:
             client, cluster = _client(scheduler, n_workers)
             watchdog = None if cluster is None else _Watchdog(cluster)
         try:
@@ -699,11 +707,11 @@ def _evaluate_vector(inputs: Mapping[str, Any]) -> dict[str, Any]:
     return {"evaluation": ev.to_dict(), "design": None if drive is None else design_mapping(drive)}
 
 
-def problem_fingerprint(problem: Any) -> str:
+def problem_fingerprint(problem: Problem) -> str:
     """A stable hash of a problem's definition (start design, genes, objectives, settings)."""
     parts = [problem.base_mapping, repr(problem.genes), list(problem.objectives),
              repr(problem.constraints), problem.ratio_tolerance]
-    if getattr(problem, "robust", None) is not None:  # [optimize.robust] (chaindrive.robust)
+    if problem.robust is not None:  # [optimize.robust] (chaindrive.robust)
         parts.append(repr(problem.robust))
     return hashlib.sha256(_json(parts).encode()).hexdigest()[:16]
 
@@ -735,7 +743,7 @@ class DaskEvaluator:
     """
 
     def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                 scheduler: str | None = None, client: Any = None,
+                 scheduler: str | None = None, client: Client | None = None,
                  progress: bool | None = False, n_workers: int | None = None) -> None:
         self.store = db if isinstance(db, StudyStore) else StudyStore(db)
         self.study = study
@@ -744,11 +752,11 @@ class DaskEvaluator:
         self.n_workers = n_workers
         self._client = client
         self._own = client is None
-        self._cluster: Any = None
+        self._cluster: LocalCluster | None = None
         self._watchdog: _Watchdog | None = None
 
     @property
-    def client(self) -> Any:
+    def client(self) -> Client:
         """The Dask client, started on first use (with a watchdog that keeps its own
         LocalCluster at full strength)."""
         if self._client is None:
@@ -757,7 +765,8 @@ class DaskEvaluator:
                 self._watchdog = _Watchdog(self._cluster)
         return self._client
 
-    def __call__(self, problem: Any, xs: Sequence[Sequence[float]]) -> list[tuple[Any, Any]]:
+    def __call__(self, problem: Problem, xs: Sequence[Sequence[float]]
+                 ) -> list[tuple[Evaluation, dict[str, Any] | None]]:
 
         fp = problem_fingerprint(problem)
         name = self.study or f"optimize-{fp}"
@@ -790,7 +799,7 @@ class DaskEvaluator:
 
 
 def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                   scheduler: str | None = None, client: Any = None,
+                   scheduler: str | None = None, client: Client | None = None,
                    progress: bool | None = False) -> DaskEvaluator:
     """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done).
 
@@ -818,7 +827,7 @@ def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = Non
 class _VectorInput(dict[str, Any]):
     """Input of one vector: hashed by (problem fingerprint, vector), carries the problem."""
 
-    def __init__(self, problem: Any, vector: list[float], fingerprint: str) -> None:
+    def __init__(self, problem: Problem, vector: list[float], fingerprint: str) -> None:
         super().__init__(problem_fingerprint=fingerprint, vector=vector)
         self.problem = problem
 

@@ -1,0 +1,121 @@
+"""The chain's damping in the whole-drive model of :mod:`chaindrive.dynamics.drive_model`.
+
+The damping ratio ζ of every span and of every sprocket's wrap is the ratio of its material
+pair [MultimassChainDrives, Table 1], the design's ``[dynamics] damping_ratio``, or each
+span's hinge friction at its own tension [ChainHingeDissipation]. Span and wrap dampers
+d = 2ζ k/ω_ref are proportional to their stiffness, ω_ref the first elastic mode in which
+the chain holds most of the strain energy, so that mode has the ratio ζ (times the chain's
+share of its strain energy).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from chaindrive.catalog import find_material
+from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
+from chaindrive.dynamics.drive_assembly import LinearModel, _Built
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.dynamics.drive import RingParameters
+    from chaindrive.dynamics.torsional_system import TorsionalModes
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.model import Drive, Material
+
+__all__ = ["CHAIN_MODE_SHARE", "chain_damping_ratio"]
+
+FloatArray = NDArray[np.float64]
+#: Least share of the strain energy the chain (spans and wraps) holds in the mode whose
+#: frequency is the reference of the chain's damping.
+CHAIN_MODE_SHARE = 0.5
+
+
+def _chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
+                   lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
+    """ζ of every span and of every sprocket's wrap [-], and their source."""
+    spec = drive.chain.spec
+    n = len(drive.sprockets)
+    chain_polymer = lookup(spec.material).is_polymer
+    sprocket_polymer = [lookup(s.material).is_polymer for s in drive.sprockets]
+    wraps = np.array([pair_damping_ratio(chain_polymer, p) for p in sprocket_polymer])
+    settings = drive.dynamics
+    if settings.damping_ratio is not None:
+        z = settings.damping_ratio
+        return np.full(n, z), np.full(n, z), "given ([dynamics] damping_ratio)"
+    spans = 0.5 * (wraps + np.roll(wraps, -1))
+    if settings.hinge_friction:
+        if ring.span_tensions_n is None:
+            raise DesignError("dynamics.hinge_friction", "needs the span tensions: give the "
+                              "drive's power")
+        lengths = np.array([sp.length for sp in geometry.spans])
+        spans = span_hinge_damping_ratios(ring.span_tensions_n, lengths, spec.pin_diameter,
+                                          settings.hinge_amplitude)
+        return spans, wraps, "hinge friction [ChainHingeDissipation]"
+    return spans, wraps, "material pair [MultimassChainDrives, Table 1]"
+
+
+def chain_damping_ratio(drive: Drive,
+                        material_lookup: Callable[[str], Material] | None = None) -> float:
+    """One damping ratio ζ [-] of a drive's chain: ``[dynamics] damping_ratio`` when given,
+    else the mean over its sprockets of the ratio of the chain/sprocket material pair
+    ([MultimassChainDrives], Table 1; :func:`chaindrive.dynamics.damping.pair_damping_ratio`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    material_lookup : callable | None
+        name → Material (None: the catalogue).
+
+    Returns
+    -------
+    float
+        ζ [-].
+    """
+    if drive.dynamics.damping_ratio is not None:
+        return drive.dynamics.damping_ratio
+    lookup = material_lookup or find_material
+    chain = lookup(drive.chain.spec.material).is_polymer
+    return float(np.mean([pair_damping_ratio(chain, lookup(s.material).is_polymer)
+                          for s in drive.sprockets]))
+
+
+
+def _chain_dampers(model: _Built, span_zeta: FloatArray, wrap_zeta: FloatArray,
+                   w_ref: float) -> LinearModel:
+    """The linear model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
+    docstring); the torsional model's elements get them too."""
+    lin, sys, t = model.linear, model.system, model.torsional
+    if w_ref <= 0:
+        return lin
+    d_span = 2.0 * span_zeta * lin.span_stiffness / w_ref
+    kinds = np.array(sys.element_kinds)
+    wraps = np.flatnonzero(kinds == "wrap")
+    d_wrap = 2.0 * wrap_zeta * sys.element_stiffness[wraps] / w_ref
+    Bw = sys.element_incidence[wraps] @ model.condensation
+    for name, d in zip(sys.span_names, d_span.tolist(), strict=True):
+        t.set_damping(name, d)
+    for k, d in zip(wraps.tolist(), d_wrap.tolist(), strict=True):
+        t.set_damping(sys.element_names[k], d)
+    return LinearModel(lin.mass, lin.stiffness_linear, lin.damping_linear + (Bw.T * d_wrap) @ Bw,
+                       lin.span_incidence, lin.span_stiffness, d_span, lin.span_tension_only)
+
+
+def _reference_angular_frequency(modes: TorsionalModes) -> float:
+    """ω [rad/s] of the first elastic mode in which the chain's elements (spans and wraps)
+    hold at least :data:`CHAIN_MODE_SHARE` of the strain energy (else the first elastic)."""
+    kinds = np.array(modes.system.element_kinds)
+    chain = (kinds == "span") | (kinds == "wrap")
+    shares = modes.strain_energy_shares[chain].sum(axis=0)
+    elastic = np.flatnonzero(~modes.rigid_body)
+    if elastic.size == 0:
+        return 0.0
+    for j in elastic:
+        if shares[j] >= CHAIN_MODE_SHARE:
+            return float(modes.angular_frequencies_rad_s[j])
+    return float(modes.angular_frequencies_rad_s[elastic[0]])
