@@ -32,6 +32,7 @@ References
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -46,8 +47,9 @@ from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.perturbation import modulus_factors
 
-__all__ = ["WORKING_HARMONICS", "batch_chain_stiffness", "batch_elastic_frequencies",
-           "batch_system_values", "modal_margins"]
+__all__ = ["WORKING_HARMONICS", "StackedState", "batch_chain_stiffness",
+           "batch_elastic_frequencies", "batch_system_values", "modal_margins",
+           "stacked_frequencies", "stacked_margins", "stacked_state"]
 
 FloatArray = NDArray[np.float64]
 #: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
@@ -193,12 +195,38 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
     ----------
     [Guyan1965], [Rao2011, ch. 6]
     """
+    return stacked_frequencies(system, node_inertia,
+                               _stacked_stiffness(system.element_incidence, element_stiffness))
+
+
+def stacked_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
+                        stiffness: FloatArray) -> FloatArray:
+    """:func:`batch_elastic_frequencies` of stiffness matrices already stacked.
+
+    Parameters
+    ----------
+    system : TorsionalSystem
+        The system the variants share.
+    node_inertia : ndarray
+        (S, nodes) J of every node [kg·m²]; a node of the system with J = 0 must keep it.
+    stiffness : ndarray
+        (S, N, N) K_s = Bᵀ diag(k_s) B in the system's coordinates [N·m/rad].
+
+    Returns
+    -------
+    ndarray
+        (S, E) [Hz], E = massed coordinates − rigid-body motions.
+
+    References
+    ----------
+    [Guyan1965], [Rao2011, ch. 6]
+    """
     S = node_inertia.shape[0]
     f2 = system.node_factor**2
     onto = np.zeros((len(system.node_names), system.size))
     onto[np.arange(onto.shape[0]), system.node_dof] = f2
     mass = system.mass[None, :] + (node_inertia - system.node_inertia_kg_m2[None, :]) @ onto
-    K = _stacked_stiffness(system.element_incidence, element_stiffness)
+    K = stiffness
     massed = system.mass > 0.0
     coupling = system.mass_coupling
     if not massed.all():
@@ -322,9 +350,15 @@ def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, Flo
     ----------
     [MultimassChainDrives, §3.2], [API684], [Bolotin1964]
     """
+    return _margins(_excitation(state), elastic)
+
+
+def _margins(excitation: tuple[FloatArray, FloatArray, float], elastic: FloatArray
+             ) -> tuple[FloatArray, FloatArray]:
+    """:func:`modal_margins` of a state's excitation (:func:`_excitation`)."""
     S = elastic.shape[0]
     f1 = elastic[:, 0] if elastic.shape[1] else np.full(S, math.nan)
-    working, transverse, fz = _excitation(state)
+    working, transverse, fz = excitation
     margin = np.full(S, np.inf)
     if working.size and elastic.shape[1]:
         nearest = _nearest(elastic, working)
@@ -334,3 +368,103 @@ def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, Flo
         margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
                             * 100.0)
     return f1, margin
+
+
+# ---------------------------------------------------------------------- a state, stacked once
+@dataclass(frozen=True, slots=True, eq=False)
+class StackedState:
+    """One geometric state of a drive under the S samples of its modal variables, stacked
+    once: what does not change when only inertias are added on the sprockets' shafts (the
+    flywheels an optimiser varies) — the stiffness matrices, the inertia factors, the
+    working and transverse frequencies (:func:`stacked_state`).
+
+    Parameters
+    ----------
+    state : Analysis
+        The geometric state (its model's topology and values).
+    inertia_factors : ndarray
+        (S, n) factors on the sprockets' own inertias [–].
+    node_inertia : ndarray
+        (S, nodes) J of every node with the factors, no inertia added [kg·m²].
+    stiffness : ndarray
+        (S, N, N) stacked stiffness matrices [N·m/rad].
+    sprocket_nodes : ndarray
+        (n,) node index of every sprocket.
+    excitation : tuple
+        Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz],
+        the tooth frequency [Hz].
+    """
+
+    state: Analysis
+    inertia_factors: FloatArray
+    node_inertia: FloatArray
+    stiffness: FloatArray
+    sprocket_nodes: NDArray[np.intp]
+    excitation: tuple[FloatArray, FloatArray, float]
+
+
+def stacked_state(state: Analysis, inertia: FloatArray, link: FloatArray,
+                  temperature: FloatArray) -> StackedState:
+    """A state's model under S sets of modal factors, stacked once
+    (:func:`batch_system_values`, the stiffness matrices K_s = Bᵀ diag(k_s) B).
+
+    Parameters
+    ----------
+    state : Analysis
+        The analysis of one geometric state (factors 1, reference temperature).
+    inertia : ndarray
+        (S, n) factors on the sprockets' inertias [–].
+    link : ndarray
+        (S,) factors on the link stiffness [–].
+    temperature : ndarray
+        (S,) temperatures of the polymer parts [°C].
+
+    Returns
+    -------
+    StackedState
+
+    References
+    ----------
+    [MultimassChainDrives], [Naji1983], [Ernst1965]
+    """
+    model = state.drive_model
+    system = model.system
+    J, k = batch_system_values(state, inertia, link, temperature)
+    nodes = np.array([system.node_names.index(x) for x in model.sprocket_names], dtype=np.intp)
+    return StackedState(state, np.asarray(inertia, dtype=float), J,
+                        _stacked_stiffness(system.element_incidence, k), nodes,
+                        _excitation(state))
+
+
+def stacked_margins(stacked: StackedState, added_inertia: FloatArray | None = None
+                    ) -> tuple[FloatArray, FloatArray]:
+    """f₁ [Hz] and resonance margin [%] of the S samples of a stacked state with inertias
+    ΔJ added on the sprockets' shafts (:func:`modal_margins`).
+
+    A flywheel ΔJ_i is part of sprocket i's own inertia (the inertia factor f_i scales the
+    sum, as :func:`chaindrive.dynamics.drive.drive_ring_parameters` adds it): the node of
+    sprocket i carries J_node + J_i (f_i − 1) + ΔJ_i f_i, nothing else changes.
+
+    Parameters
+    ----------
+    stacked : StackedState
+        The state (:func:`stacked_state`, of the design without those inertias).
+    added_inertia : ndarray | None
+        (n,) inertia added on every sprocket's shaft [kg·m²] (None: none).
+
+    Returns
+    -------
+    tuple of ndarray
+        f₁ (S,) [Hz], margin (S,) [%].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1, §3.2], [Guyan1965]
+    """
+    J = stacked.node_inertia
+    if added_inertia is not None and np.any(added_inertia):
+        J = J.copy()
+        J[:, stacked.sprocket_nodes] += (np.asarray(added_inertia, dtype=float)[None, :]
+                                         * stacked.inertia_factors)
+    elastic = stacked_frequencies(stacked.state.drive_model.system, J, stacked.stiffness)
+    return _margins(stacked.excitation, elastic)

@@ -45,20 +45,17 @@ from chaindrive.catalog import find_material
 from chaindrive.checks import Check
 from chaindrive.errors import ChainDriveError
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
-from chaindrive.robust.modal import (
-    batch_elastic_frequencies,
-    batch_system_values,
-    modal_margins,
-)
+from chaindrive.robust.modal import StackedState, stacked_margins, stacked_state
 from chaindrive.robust.perturbation import (
     REFERENCE_TEMPERATURE_C,
     Perturbation,
     modulus_factors,
 )
-from chaindrive.robust.uncertainty import UncertaintyModel
+from chaindrive.robust.uncertainty import UncertaintyModel, UncertaintySettings
 
-__all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ReliabilityResult",
-           "StateOutcome", "estimate_probability", "reliability",
+__all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ModalBasis",
+           "ReliabilityResult", "StateOutcome", "basis_reliability", "estimate_probability",
+           "modal_basis", "reliability",
            "sample_count", "sobol_points", "state_outcome"]
 
 #: The pseudo-check of a state that cannot be built (e.g. the chain does not fit).
@@ -586,6 +583,110 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
         for lam in life}
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class ModalBasis:
+    """The batched modal path of a drive built up to its frequencies: every geometric state
+    (:func:`modal_states`) stacked under the samples (:class:`~chaindrive.robust.modal.
+    StackedState`), ready for inertias added on the sprockets' shafts
+    (:func:`basis_reliability`).
+
+    Parameters
+    ----------
+    settings : UncertaintySettings
+        Samples, replicates and confidence.
+    replicates : int
+        R scrambled sequences.
+    points : int
+        Points per sequence.
+    band_percent : float
+        The resonance margin required [%].
+    names : tuple of str
+        The geometric states.
+    states : tuple of StackedState
+        Each state stacked.
+    """
+
+    settings: UncertaintySettings
+    replicates: int
+    points: int
+    band_percent: float
+    names: tuple[str, ...]
+    states: tuple[StackedState, ...]
+
+
+def modal_basis(nominal: Analysis, model: UncertaintyModel) -> ModalBasis:
+    """Everything of the batched modal path that the sprockets' added inertias leave
+    unchanged: the geometric states, their models and stiffness matrices under the samples.
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn.
+    model : UncertaintyModel
+        Its uncertainty model (its modal variables are sampled).
+
+    Returns
+    -------
+    ModalBasis
+    """
+    s = model.settings
+    modal = model.modal_only()
+    states = modal_states(nominal, modal)
+    if modal.dimension:
+        u = sobol_points(modal.dimension, s.samples, s.replicates, s.seed)
+        shaped = modal.values(u.reshape(-1, modal.dimension)).reshape(*u.shape)
+    else:
+        shaped = np.zeros((1, 1, 0))
+    r, n = shaped.shape[:2]
+    stacked = []
+    for state in states.values():
+        inertia, link, temperature = _modal_factors(modal, shaped.reshape(r * n, -1),
+                                                    len(state.drive.sprockets))
+        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
+                                      temperature)
+        stacked.append(stacked_state(state, inertia, link, temperature))
+    return ModalBasis(s, r, n, nominal.limits.resonance_band_percent, tuple(states),
+                      tuple(stacked))
+
+
+def basis_reliability(basis: ModalBasis, added_inertia: NDArray[np.float64] | None = None
+                      ) -> ReliabilityResult:
+    """The resonance check and f₁ by the batched modal path of a basis, with inertias added
+    on the sprockets' shafts (:func:`chaindrive.robust.modal.stacked_margins`).
+
+    Parameters
+    ----------
+    basis : ModalBasis
+        The drive without the added inertias (:func:`modal_basis`).
+    added_inertia : ndarray | None
+        (n,) inertia added on every sprocket's shaft [kg·m²] (None: none).
+
+    Returns
+    -------
+    ReliabilityResult
+        With the one check ``resonance_margin``.
+    """
+    s, r, n, band = basis.settings, basis.replicates, basis.points, basis.band_percent
+    per_state, f1_all, margin_all = [], [], []
+    for stacked in basis.states:
+        f1, margin = stacked_margins(stacked, added_inertia)
+        per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
+        f1_all.append(f1)
+        margin_all.append(margin)
+    failed = np.mean(np.stack(per_state), axis=0)  # the midpoint rule over the life
+    p, lo, hi = estimate_probability(failed, s.confidence)
+    entry = CheckProbability("resonance_margin", "resonance margin",
+                             "[MultimassChainDrives, §3.2], [API684]", p, lo, hi,
+                             int(np.stack(per_state).sum()), failed.size * len(per_state))
+    margins = np.concatenate(margin_all)
+    values = {"f1_hz": np.concatenate(f1_all), "resonance_margin_percent": margins}
+    return ReliabilityResult("modal", r * n, r, s.confidence, (entry,),
+                             tuple(_summary(k, v) for k, v in values.items()), values,
+                             {"resonance_margin": np.where(np.isfinite(margins),
+                                                           margins / band - 1.0, 1e6)},
+                             basis.names)
+
+
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
     """The resonance check and f₁ by the batched modal path (module docstring).
 
@@ -601,37 +702,4 @@ def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> Reliability
     ReliabilityResult
         With the one check ``resonance_margin``.
     """
-    s = model.settings
-    modal = model.modal_only()
-    states = modal_states(nominal, modal)
-    if modal.dimension:
-        u = sobol_points(modal.dimension, s.samples, s.replicates, s.seed)
-        shaped = modal.values(u.reshape(-1, modal.dimension)).reshape(*u.shape)
-    else:
-        shaped = np.zeros((1, 1, 0))
-    r, n = shaped.shape[:2]
-    band = nominal.limits.resonance_band_percent
-    per_state, f1_all, margin_all = [], [], []
-    for state in states.values():
-        inertia, link, temperature = _modal_factors(modal, shaped.reshape(r * n, -1),
-                                                    len(state.drive.sprockets))
-        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
-                                      temperature)
-        J, k = batch_system_values(state, inertia, link, temperature)
-        f1, margin = modal_margins(
-            state, batch_elastic_frequencies(state.drive_model.system, J, k))
-        per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
-        f1_all.append(f1)
-        margin_all.append(margin)
-    failed = np.mean(np.stack(per_state), axis=0)  # the midpoint rule over the life
-    p, lo, hi = estimate_probability(failed, s.confidence)
-    entry = CheckProbability("resonance_margin", "resonance margin",
-                             "[MultimassChainDrives, §3.2], [API684]", p, lo, hi,
-                             int(np.stack(per_state).sum()), failed.size * len(per_state))
-    margins = np.concatenate(margin_all)
-    values = {"f1_hz": np.concatenate(f1_all), "resonance_margin_percent": margins}
-    return ReliabilityResult("modal", r * n, r, s.confidence, (entry,),
-                             tuple(_summary(k, v) for k, v in values.items()), values,
-                             {"resonance_margin": np.where(np.isfinite(margins),
-                                                           margins / band - 1.0, 1e6)},
-                             tuple(states))
+    return basis_reliability(modal_basis(nominal, model))

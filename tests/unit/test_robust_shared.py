@@ -1,0 +1,105 @@
+"""The modal basis shared by designs that differ only in their flywheels
+(chaindrive.robust.study.shared_modal_basis).
+
+* A design with flywheels through the shared basis of its flywheel-free twin gives the
+  frequencies, margins and probability of its own batched modal path (built with the
+  flywheels, no sharing) to 1e-9 — new and worn (the wear states are rebuilt analyses).
+* The flywheel enters as inertia on the sprocket's node only: J_node = J₀ + ΔJ·f with the
+  sample's inertia factor f (closed form, the sum J_i + ΔJ_i scaled by f_i).
+* A changed geometric input is never served a stale basis: a design with another tooth count
+  gets a basis of its own whose pitch radius is R = p / (2 sin(π/z)) of the new count
+  ([ISO606], closed form), and its results equal its own path.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import chaindrive
+from chaindrive.model import Drive
+from chaindrive.robust import UncertaintySettings, nominal_analysis, uncertainty_model
+from chaindrive.robust.modal import batch_system_values
+from chaindrive.robust.sampling import ReliabilityResult, basis_reliability, modal_reliability
+from chaindrive.robust.study import shared_modal_basis, without_flywheels
+from tests.conftest import EXAMPLES
+
+
+@pytest.fixture(scope="module")
+def drive() -> Drive:
+    return chaindrive.load(EXAMPLES / "eight_sprocket.toml")
+
+
+def with_flywheels(drive: Drive, flywheels: dict[str, float]) -> Drive:
+    return drive.with_sprockets(tuple(replace(s, flywheel=flywheels.get(s.name, s.flywheel))
+                                      for s in drive.sprockets))
+
+
+def own_path(design: Drive, settings: UncertaintySettings) -> ReliabilityResult:
+    nominal = nominal_analysis(design)
+    return modal_reliability(nominal, uncertainty_model(nominal, settings))
+
+
+def assert_same(shared: ReliabilityResult, own: ReliabilityResult) -> None:
+    for key in ("f1_hz", "resonance_margin_percent"):
+        assert np.allclose(shared.values[key], own.values[key], rtol=1e-9, atol=0.0)
+    assert shared.checks[0].probability == own.checks[0].probability
+    assert shared.checks[0].failures == own.checks[0].failures
+
+
+@pytest.mark.parametrize("wear", ["new", "worn"])
+def test_designs_differing_in_flywheels_share_a_basis_and_keep_their_results(
+        drive: Drive, wear: str) -> None:
+    settings = UncertaintySettings(samples=32, replicates=2, seed=3, wear=wear,
+                                   inertia_scatter=0.2)
+    first = with_flywheels(drive, {"D1": 0.02, "D3": 0.05})
+    second = with_flywheels(drive, {"D1": 0.004, "D4": 0.03})
+    basis_1, added_1 = shared_modal_basis(first, settings)
+    basis_2, added_2 = shared_modal_basis(second, settings)
+    assert basis_2 is basis_1                      # built once for both
+    assert added_1 is not None and added_2 is not None
+    assert_same(basis_reliability(basis_1, added_1), own_path(first, settings))
+    assert_same(basis_reliability(basis_2, added_2), own_path(second, settings))
+    # the flywheels move the frequencies: the sharing is not blind to them
+    assert not np.allclose(basis_reliability(basis_1, added_1).values["f1_hz"],
+                           basis_reliability(basis_2, added_2).values["f1_hz"])
+
+
+def test_flywheel_is_inertia_on_its_node_scaled_with_the_sprocket(drive: Drive) -> None:
+    settings = UncertaintySettings(samples=8, replicates=2, seed=1, wear="new",
+                                   inertia_scatter=0.2)
+    design = with_flywheels(drive, {"D2": 0.03})
+    twin, added = without_flywheels(design)
+    assert all(s.flywheel == 0.0 for s in twin.sprockets)
+    i = [s.name for s in design.sprockets].index("D2")
+    assert added[i] == 0.03 and np.count_nonzero(added) == 1
+    stacked = shared_modal_basis(design, settings)[0].states[0]
+    f = stacked.inertia_factors
+    S = f.shape[0]
+    # the design's own node inertias under the same factors (flywheel built in)
+    J_own = batch_system_values(nominal_analysis(design), f, np.ones(S), np.full(S, 23.0))[0]
+    expected = stacked.node_inertia.copy()
+    expected[:, stacked.sprocket_nodes[i]] += 0.03 * f[:, i]   # J₀ + ΔJ·f
+    assert np.allclose(J_own, expected, rtol=1e-12, atol=0.0)
+    assert np.ptp(f[:, i]) > 0.0                   # the factors do scatter
+
+
+def test_changed_tooth_count_gets_its_own_basis(drive: Drive) -> None:
+    settings = UncertaintySettings(samples=16, replicates=2, seed=2, wear="new")
+    design = with_flywheels(drive, {"D1": 0.01})
+    i = [s.name for s in drive.sprockets].index("D3")
+    other = design.with_sprockets(tuple(replace(s, teeth=s.teeth + 2) if k == i else s
+                                        for k, s in enumerate(design.sprockets)))
+    basis, _ = shared_modal_basis(design, settings)
+    changed, added = shared_modal_basis(other, settings)
+    assert changed is not basis
+    p = drive.chain.spec.pitch
+    z = other.sprockets[i].teeth
+    radius = changed.states[0].state.geometry.sprockets[i].pitch_radius
+    assert radius == pytest.approx(p / (2.0 * math.sin(math.pi / z)), rel=1e-12)
+    assert radius != pytest.approx(basis.states[0].state.geometry.sprockets[i].pitch_radius,
+                                   rel=1e-6)
+    assert_same(basis_reliability(changed, added), own_path(other, settings))
