@@ -3,7 +3,9 @@
 
 * A design with flywheels through the shared basis of its flywheel-free twin gives the
   frequencies, margins and probability of its own batched modal path (built with the
-  flywheels, no sharing) to 1e-9 — new and worn (the wear states are rebuilt analyses).
+  flywheels, no sharing) to 1e-9 — new and worn (the wear states are rebuilt analyses),
+  with and without inertia scatter, and with trains, a motor and a massless node condensed
+  statically [Guyan1965].
 * The flywheel enters as inertia on the sprocket's node only: J_node = J₀ + ΔJ·f with the
   sample's inertia factor f (closed form, the sum J_i + ΔJ_i scaled by f_i).
 * A changed geometric input is never served a stale basis: a design with another tooth count
@@ -20,7 +22,7 @@ import numpy as np
 import pytest
 
 import chaindrive
-from chaindrive.model import Drive
+from chaindrive.model import Drive, TrainElement
 from chaindrive.robust import UncertaintySettings, nominal_analysis, uncertainty_model
 from chaindrive.robust.modal import batch_system_values
 from chaindrive.robust.sampling import ReliabilityResult, basis_reliability, modal_reliability
@@ -50,13 +52,30 @@ def assert_same(shared: ReliabilityResult, own: ReliabilityResult) -> None:
     assert shared.checks[0].failures == own.checks[0].failures
 
 
-@pytest.mark.parametrize("wear", ["new", "worn"])
+def conveyor_with_massless_node() -> Drive:
+    """The conveyor example with a shaft element before D1's train: a massless train node,
+    condensed statically [Guyan1965]."""
+    drive = chaindrive.load(EXAMPLES / "conveyor_five_sprocket.toml")
+    d1 = next(i for i, s in enumerate(drive.sprockets) if s.name == "D1")
+    train = (TrainElement("shaft", name="mid", stiffness=3e4), *drive.sprockets[d1].train)
+    return drive.with_sprockets(tuple(replace(s, train=train) if i == d1 else s
+                                      for i, s in enumerate(drive.sprockets)))
+
+
+@pytest.mark.parametrize(("example", "wear", "scatter", "flywheels"), [
+    ("eight", "new", 0.2, ({"D1": 0.02, "D3": 0.05}, {"D1": 0.004, "D4": 0.03})),
+    ("eight", "worn", 0.2, ({"D1": 0.02, "D3": 0.05}, {"D1": 0.004, "D4": 0.03})),
+    # no inertia scatter: only the flywheels change the sprockets' masses; trains, a motor
+    # and a massless node
+    ("conveyor", "new", 0.0, ({"D1": 0.5}, {"D1": 2.0, "D2": 1.0})),
+])
 def test_designs_differing_in_flywheels_share_a_basis_and_keep_their_results(
-        drive: Drive, wear: str) -> None:
+        drive: Drive, example: str, wear: str, scatter: float,
+        flywheels: tuple[dict[str, float], dict[str, float]]) -> None:
+    base = drive if example == "eight" else conveyor_with_massless_node()
     settings = UncertaintySettings(samples=32, replicates=2, seed=3, wear=wear,
-                                   inertia_scatter=0.2)
-    first = with_flywheels(drive, {"D1": 0.02, "D3": 0.05})
-    second = with_flywheels(drive, {"D1": 0.004, "D4": 0.03})
+                                   inertia_scatter=scatter)
+    first, second = (with_flywheels(base, f) for f in flywheels)
     basis_1, added_1 = shared_modal_basis(first, settings)
     basis_2, added_2 = shared_modal_basis(second, settings)
     assert basis_2 is basis_1                      # built once for both

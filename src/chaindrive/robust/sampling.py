@@ -284,13 +284,26 @@ def estimate_probability(failed: NDArray[np.bool_], confidence: float = 0.95
     if r * n == 1:
         return p, p, p
     means = f.mean(axis=1)
-    half = (float(t_dist.ppf(0.5 * (1.0 + confidence), r - 1)) * float(means.std(ddof=1))
+    half = (_student_t(0.5 * (1.0 + confidence), r - 1) * float(means.std(ddof=1))
             / math.sqrt(r)) if r > 1 else 1.0
-    k, total = round(float(f.sum())), r * n
-    alpha = 1.0 - confidence
-    cp_low = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, total - k + 1))
-    cp_high = 1.0 if k == total else float(beta_dist.ppf(1 - alpha / 2, k + 1, total - k))
+    cp_low, cp_high = _clopper_pearson(round(float(f.sum())), r * n, 1.0 - confidence)
     return p, max(0.0, min(p - half, cp_low)), min(1.0, max(p + half, cp_high))
+
+
+@lru_cache(maxsize=64)
+def _student_t(q: float, dof: int) -> float:
+    """The q quantile of Student's t with ``dof`` degrees of freedom [–] (kept: a study
+    asks for the same one for every design)."""
+    return float(t_dist.ppf(q, dof))
+
+
+@lru_cache(maxsize=4096)
+def _clopper_pearson(k: int, total: int, alpha: float) -> tuple[float, float]:
+    """The Clopper–Pearson interval of k failures in ``total`` trials at level 1 − α [–]
+    [ClopperPearson1934] (kept: k takes few values over a study's designs)."""
+    low = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, total - k + 1))
+    high = 1.0 if k == total else float(beta_dist.ppf(1 - alpha / 2, k + 1, total - k))
+    return low, high
 
 
 @dataclass(frozen=True, slots=True)
