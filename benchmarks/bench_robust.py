@@ -26,6 +26,9 @@ every design and rebuilds everything, as before.
 1. The target: ``--designs`` (10 000) × ``--samples`` (100, i.e. 128 states) on a Dask
    LocalCluster of two worker processes, stored in a throw-away SQLite study (batches of 100
    designs per stored evaluation). Target: under 2 minutes on the 2-core project machine.
+   Beside the wall time, the CPU time the run took (the workers', and this process's:
+   scheduler, client, study store; the nannies' few left out): what two free cores would
+   take is about half of it.
 2. The speed-up from one to two Dask workers on the same workload (the first ``--speedup``
    designs), the contenders in alternation, two rounds each.
 3. CPU time per design in one process (no Dask), side by side in alternation (several
@@ -110,8 +113,9 @@ def load() -> str:
     return f"load {one:.1f} (5 min {five:.1f})"
 
 
-def on_dask(inputs: list[dict], workers: int) -> float:
-    """Wall time [s] of the study on a LocalCluster of ``workers`` processes (warm)."""
+def on_dask(inputs: list[dict], workers: int) -> tuple[float, float]:
+    """Wall time [s] of the study on a LocalCluster of ``workers`` processes (warm), and the
+    CPU time [s] it took: the workers' and this process's (scheduler, client, study store)."""
     from distributed import Client, LocalCluster
 
     with tempfile.TemporaryDirectory() as tmp, \
@@ -122,13 +126,15 @@ def on_dask(inputs: list[dict], workers: int) -> float:
         client.run(lambda: __import__("chaindrive.robust.study"))
         run_study(robust_batch, warm * workers, study="warm", db=db, client=client,
                   progress=False, chunk=1)
-        t0 = time.perf_counter()
+        w0 = sum(client.run(time.process_time).values())
+        c0, t0 = time.process_time(), time.perf_counter()
         result = run_study(robust_batch, inputs, study="bench", db=db, client=client,
                            progress=False, chunk=1)
         seconds = time.perf_counter() - t0
+        cpu = time.process_time() - c0 + sum(client.run(time.process_time).values()) - w0
         designs = sum(len(r["designs"]) for r in result.results)
         assert designs == sum(len(i["vectors"]) for i in inputs)
-    return seconds
+    return seconds, cpu
 
 
 def frequencies_side_by_side(text: str, xs: list[list[float]]) -> tuple[float, float]:
@@ -229,16 +235,18 @@ def main() -> None:
           f"{single / stacked:.1f}×; {load()}")
 
     before = load()
-    seconds = on_dask(inputs_of(text, xs), 2)
+    seconds, cpu = on_dask(inputs_of(text, xs), 2)
     print(f"{designs} designs × {states} states on 2 Dask workers: {seconds:.1f} s "
           f"({designs * states / seconds:,.0f} modal analyses/s; target < 120 s); "
           f"{before} → {load()}")
+    print(f"   CPU time of the workers and the scheduler, client and store: {cpu:.1f} s "
+          f"({cpu / designs * 1e3:.1f} ms per design): on two free cores ≈ {cpu / 2:.0f} s")
 
     sub = inputs_of(text, xs[:speedup])
     times: dict[int, list[float]] = {1: [], 2: []}
     for _ in range(2):
         for workers in (1, 2):
-            times[workers].append(on_dask(sub, workers))
+            times[workers].append(on_dask(sub, workers)[0])
     t1, t2 = min(times[1]), min(times[2])
     print(f"speed-up 1 → 2 workers ({speedup} designs): {t1:.1f} s → {t2:.1f} s = "
           f"{t1 / t2:.2f}× (best of 2 rounds in alternation; all {times}); {load()}")
