@@ -24,7 +24,12 @@ import pytest
 import chaindrive
 from chaindrive.model import Drive, TrainElement
 from chaindrive.robust import UncertaintySettings, nominal_analysis, uncertainty_model
-from chaindrive.robust.modal import batch_system_values
+from chaindrive.robust.modal import (
+    _stacked_stiffness,
+    batch_system_values,
+    stacked_margins,
+    stacked_state,
+)
 from chaindrive.robust.sampling import ReliabilityResult, basis_reliability, modal_reliability
 from chaindrive.robust.study import shared_modal_basis, without_flywheels
 from tests.conftest import EXAMPLES
@@ -122,3 +127,30 @@ def test_changed_tooth_count_gets_its_own_basis(drive: Drive) -> None:
     assert radius != pytest.approx(basis.states[0].state.geometry.sprockets[i].pitch_radius,
                                    rel=1e-6)
     assert_same(basis_reliability(changed, added), own_path(other, settings))
+
+
+def test_every_branch_of_a_stacked_state_gives_the_same_margins(drive: Drive) -> None:
+    """The split mass normalisation (what a shared basis keeps) against the per-call one
+    (a varying coordinate mass-coupled) and against no condensation kept (a sprocket on a
+    massless coordinate): one eigenvalue problem three ways, the same f₁ and margins to
+    1e-9 (the block normalisation is a similarity, [Guyan1965] exact for the undamped
+    modes)."""
+    settings = UncertaintySettings(samples=16, replicates=2, seed=4, wear="new",
+                                   inertia_scatter=0.2)
+    stacked = shared_modal_basis(with_flywheels(drive, {"D1": 0.01}), settings)[0].states[0]
+    assert stacked.split is not None and stacked.stiffness is None
+    system = stacked.state.drive_model.system
+    S = stacked.node_inertia.shape[0]
+    k = np.repeat(system.element_stiffness[None, :], S, axis=0)
+    # rebuild the stack the state keeps: the same link and temperature factors (1 here)
+    rebuilt = stacked_state(stacked.state, stacked.inertia_factors, np.ones(S),
+                            np.full(S, 23.0))
+    K = _stacked_stiffness(system.element_incidence, k)
+    per_call = replace(rebuilt, split=None, stiffness=K)
+    uncondensed = replace(rebuilt, split=None, massed=None, stiffness=K)
+    added = np.linspace(0.0, 0.02, len(drive.sprockets))
+    f1, margin = stacked_margins(rebuilt, added)
+    for other in (per_call, uncondensed):
+        g1, other_margin = stacked_margins(other, added)
+        assert np.allclose(g1, f1, rtol=1e-9, atol=0.0)
+        assert np.allclose(other_margin, margin, rtol=1e-9, atol=0.0)

@@ -435,9 +435,9 @@ class StackedState:
         (S, n) factors on the sprockets' own inertias [–].
     node_inertia : ndarray
         (S, nodes) J of every node with the factors, no inertia added [kg·m²].
-    stiffness : ndarray
+    stiffness : ndarray | None
         (S, N, N) stacked stiffness matrices [N·m/rad], the massless coordinates condensed
-        when ``massed`` is given, else as assembled.
+        when ``massed`` is given, else as assembled (None: ``split`` holds them).
     massed : ndarray | None
         Mask of the massed coordinates kept in ``stiffness`` (None: a sprocket sits on a
         massless coordinate, every call condenses anew).
@@ -454,7 +454,7 @@ class StackedState:
     state: Analysis
     inertia_factors: FloatArray
     node_inertia: FloatArray
-    stiffness: FloatArray
+    stiffness: FloatArray | None
     massed: NDArray[np.bool_] | None
     split: _Split | None
     sprocket_nodes: NDArray[np.intp]
@@ -503,7 +503,8 @@ def stacked_state(state: Analysis, inertia: FloatArray, link: FloatArray,
         split = _split(K, mass[0], system.mass_coupling[np.ix_(massed, massed)], varying)
     else:
         massed = None
-    return StackedState(state, np.asarray(inertia, dtype=float), J, K, massed, split, nodes,
+    return StackedState(state, np.asarray(inertia, dtype=float), J,
+                        None if split is not None else K, massed, split, nodes,
                         _excitation(state))
 
 
@@ -538,12 +539,18 @@ def stacked_margins(stacked: StackedState, added_inertia: FloatArray | None = No
         J[:, stacked.sprocket_nodes] += (np.asarray(added_inertia, dtype=float)[None, :]
                                          * stacked.inertia_factors)
     system = stacked.state.drive_model.system
-    if stacked.massed is None:
-        elastic = stacked_frequencies(system, J, stacked.stiffness)
-    else:
+    if stacked.split is not None and stacked.massed is not None:
         mass = _coordinate_mass(system, J)[:, stacked.massed]
-        A = (_scaled(stacked.split, mass[:, stacked.split.v]) if stacked.split is not None
-             else _mass_normalised(stacked.stiffness, mass, system.mass_coupling[
-                 np.ix_(stacked.massed, stacked.massed)]))
-        elastic = _frequencies(system, A)
+        return _margins(stacked.excitation,
+                        _frequencies(system, _scaled(stacked.split, mass[:, stacked.split.v])))
+    K = stacked.stiffness
+    if K is None:
+        raise ValueError("a stacked state without its split keeps its stiffness matrices")
+    if stacked.massed is None:
+        elastic = stacked_frequencies(system, J, K)
+    else:
+        massed = stacked.massed
+        elastic = _frequencies(system, _mass_normalised(
+            K, _coordinate_mass(system, J)[:, massed],
+            system.mass_coupling[np.ix_(massed, massed)]))
     return _margins(stacked.excitation, elastic)

@@ -235,9 +235,9 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
 
 #: Bases kept per process by :func:`shared_modal_basis` (most recently used last).
 _SHARED_BASES: dict[str, ModalBasis] = {}
-#: How many bases a process keeps (one is ~2.5 MB per geometric state for 24 sprockets and
-#: 128 samples).
-SHARED_BASES = 8
+#: How many bases a process keeps (one takes ≈ 2.5 MB per geometric state for 24 sprockets
+#: and 128 samples; a search whose variables move the geometry misses every time).
+SHARED_BASES = 4
 
 
 def without_flywheels(design: Drive) -> tuple[Drive, NDArray[np.float64]]:
