@@ -439,13 +439,13 @@ class StackedState:
         (S, N, N) stacked stiffness matrices [N·m/rad], the massless coordinates condensed
         when ``massed`` is given, else as assembled (None: ``split`` holds them).
     massed : ndarray | None
-        Mask of the massed coordinates kept in ``stiffness`` (None: a sprocket sits on a
-        massless coordinate, every call condenses anew).
+        Mask of the massed coordinates kept in ``stiffness`` [-] (None: a sprocket sits on
+        a massless coordinate, every call condenses anew).
     split : _Split | None
         The mass normalisation of ``stiffness`` with the sprockets' (and every varying)
         coordinate left to scale (None: a varying coordinate is mass-coupled).
     sprocket_nodes : ndarray
-        (n,) node index of every sprocket.
+        (n,) node index of every sprocket [-].
     excitation : tuple
         Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz],
         the tooth frequency [Hz].
