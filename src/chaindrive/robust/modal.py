@@ -32,6 +32,7 @@ References
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -46,8 +47,9 @@ from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.perturbation import modulus_factors
 
-__all__ = ["WORKING_HARMONICS", "batch_chain_stiffness", "batch_elastic_frequencies",
-           "batch_system_values", "modal_margins"]
+__all__ = ["WORKING_HARMONICS", "StackedState", "batch_chain_stiffness",
+           "batch_elastic_frequencies", "batch_system_values", "modal_margins",
+           "stacked_frequencies", "stacked_margins", "stacked_state"]
 
 FloatArray = NDArray[np.float64]
 #: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
@@ -193,23 +195,66 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
     ----------
     [Guyan1965], [Rao2011, ch. 6]
     """
-    S = node_inertia.shape[0]
-    f2 = system.node_factor**2
+    return stacked_frequencies(system, node_inertia,
+                               _stacked_stiffness(system.element_incidence, element_stiffness))
+
+
+def stacked_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
+                        stiffness: FloatArray) -> FloatArray:
+    """:func:`batch_elastic_frequencies` of stiffness matrices already stacked.
+
+    Parameters
+    ----------
+    system : TorsionalSystem
+        The system the variants share.
+    node_inertia : ndarray
+        (S, nodes) J of every node [kg·m²]; a node of the system with J = 0 must keep it.
+    stiffness : ndarray
+        (S, N, N) K_s = Bᵀ diag(k_s) B in the system's coordinates [N·m/rad].
+
+    Returns
+    -------
+    ndarray
+        (S, E) [Hz], E = massed coordinates − rigid-body motions.
+
+    References
+    ----------
+    [Guyan1965], [Rao2011, ch. 6]
+    """
+    K, massed = _condensed(system, stiffness)
+    mass = _coordinate_mass(system, node_inertia)[:, massed]
+    return _frequencies(system, _mass_normalised(
+        K, mass, system.mass_coupling[np.ix_(massed, massed)]))
+
+
+def _coordinate_mass(system: TorsionalSystem, node_inertia: FloatArray) -> FloatArray:
+    """(S, N) diagonal of the mass matrix of every variant [kg·m²]: the system's, with the
+    nodes' inertias changed (a node's J enters its coordinate × its factor²)."""
     onto = np.zeros((len(system.node_names), system.size))
-    onto[np.arange(onto.shape[0]), system.node_dof] = f2
-    mass = system.mass[None, :] + (node_inertia - system.node_inertia_kg_m2[None, :]) @ onto
-    K = _stacked_stiffness(system.element_incidence, element_stiffness)
+    onto[np.arange(onto.shape[0]), system.node_dof] = system.node_factor**2
+    return np.asarray(system.mass[None, :] + (node_inertia - system.node_inertia_kg_m2[None, :])
+                      @ onto, dtype=np.float64)
+
+
+def _condensed(system: TorsionalSystem, K: FloatArray) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """The stack K (S, N, N) with the massless coordinates condensed statically
+    [Guyan1965], and the mask of the massed coordinates it keeps."""
     massed = system.mass > 0.0
-    coupling = system.mass_coupling
-    if not massed.all():
-        free = ~massed
-        K00 = K[:, free][:, :, free]
-        K0m = K[:, free][:, :, massed]
-        K = K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m)
-        mass, coupling = mass[:, massed], coupling[np.ix_(massed, massed)]
-    lam = np.asarray(np.linalg.eigvalsh(_mass_normalised(K, mass, coupling)), dtype=np.float64)
+    if massed.all():
+        return K, massed
+    free = ~massed
+    K00 = K[:, free][:, :, free]
+    K0m = K[:, free][:, :, massed]
+    return K[:, massed][:, :, massed] - np.swapaxes(K0m, 1, 2) @ np.linalg.solve(K00, K0m), \
+        massed
+
+
+def _frequencies(system: TorsionalSystem, A: FloatArray) -> FloatArray:
+    """Elastic frequencies (S, E) [Hz] of the stacked mass-normalised problems A: one
+    :func:`numpy.linalg.eigvalsh`, the r rigid-body eigenvalues dropped [Rao2011, ch. 6]."""
+    lam = np.asarray(np.linalg.eigvalsh(A), dtype=np.float64)
     r = int(system.rigid_motions.shape[1])
-    return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(S, -1) / TWO_PI
+    return np.sqrt(np.maximum(lam[:, r:], 0.0)).reshape(A.shape[0], -1) / TWO_PI
 
 
 def _stacked_stiffness(B: FloatArray, k: FloatArray) -> FloatArray:
@@ -240,24 +285,55 @@ def _mass_normalised(K: FloatArray, mass: FloatArray, coupling: FloatArray) -> F
     the whole stack and scalings, instead of two N×N products per sample. Otherwise one
     Cholesky factor per sample.
     """
-    S = K.shape[0]
     varying = np.any(mass != mass[:1], axis=0)
-    coupled = np.any(coupling - np.diag(np.diag(coupling)) != 0.0, axis=1)
-    if np.any(varying & coupled):
+    split = _split(K, mass[0], coupling, varying)
+    if split is None:
         M = coupling[None, :, :] + mass[:, :, None] * np.eye(mass.shape[1])[None]
         W = np.linalg.inv(np.linalg.cholesky(M))
         return np.asarray(W @ K @ np.swapaxes(W, 1, 2), dtype=np.float64)
+    return _scaled(split, mass[:, split.v])
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class _Split:
+    """The mass-normalised stack of :func:`_mass_normalised` before the masses of the
+    coordinates v enter: ``base`` holds R K_ff Rᵀ, K_vf Rᵀ and K_vv in the order (f, v)."""
+
+    f: NDArray[np.intp]
+    v: NDArray[np.intp]
+    base: FloatArray
+    diagonal: FloatArray
+
+
+def _split(K: FloatArray, mass: FloatArray, coupling: FloatArray, varying: NDArray[np.bool_]
+           ) -> _Split | None:
+    """:class:`_Split` of K (S, N, N) with the masses (N,) of the coordinates that do not
+    vary (None when a varying coordinate is mass-coupled)."""
+    coupled = np.any(coupling - np.diag(np.diag(coupling)) != 0.0, axis=1)
+    if np.any(varying & coupled):
+        return None
+    S = K.shape[0]
     f, v = np.flatnonzero(~varying), np.flatnonzero(varying)
     F = f.size
-    R = np.linalg.inv(np.linalg.cholesky(coupling[np.ix_(f, f)] + np.diag(mass[0, f])))
-    d = 1.0 / np.sqrt(mass[:, v] + np.diag(coupling)[v])
+    R = np.linalg.inv(np.linalg.cholesky(coupling[np.ix_(f, f)] + np.diag(mass[f])))
     A = np.zeros_like(K)  # the upper triangle is not read
     # X_s = K_ff,s Rᵀ, then R K_ff,s Rᵀ = X_sᵀ Rᵀ (K_ff symmetric): two products of the stack
     X = (K[:, f[:, None], f].reshape(S * F, F) @ R.T).reshape(S, F, F)
     A[:, :F, :F] = (np.swapaxes(X, 1, 2).reshape(S * F, F) @ R.T).reshape(S, F, F)
-    A[:, F:, :F] = (K[:, v[:, None], f].reshape(S * v.size, F) @ R.T).reshape(
-        S, v.size, F) * d[:, :, None]
-    A[:, F:, F:] = K[:, v[:, None], v] * d[:, :, None] * d[:, None, :]
+    A[:, F:, :F] = (K[:, v[:, None], f].reshape(S * v.size, F) @ R.T).reshape(S, v.size, F)
+    A[:, F:, F:] = K[:, v[:, None], v]
+    return _Split(f, v, A, np.diag(coupling)[v])
+
+
+def _scaled(split: _Split, mass_v: FloatArray) -> FloatArray:
+    """The stack A of a :class:`_Split` with the masses (S, v) of its coordinates v:
+    D = diag(m_v)^(−½) scales the rows (and the columns) of v."""
+    F = split.f.size
+    d = 1.0 / np.sqrt(mass_v + split.diagonal)
+    A = split.base.copy()
+    A[:, F:, :F] *= d[:, :, None]
+    A[:, F:, F:] *= d[:, :, None]
+    A[:, F:, F:] *= d[:, None, :]
     return A
 
 
@@ -322,9 +398,15 @@ def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, Flo
     ----------
     [MultimassChainDrives, §3.2], [API684], [Bolotin1964]
     """
+    return _margins(_excitation(state), elastic)
+
+
+def _margins(excitation: tuple[FloatArray, FloatArray, float], elastic: FloatArray
+             ) -> tuple[FloatArray, FloatArray]:
+    """:func:`modal_margins` of a state's excitation (:func:`_excitation`)."""
     S = elastic.shape[0]
     f1 = elastic[:, 0] if elastic.shape[1] else np.full(S, math.nan)
-    working, transverse, fz = _excitation(state)
+    working, transverse, fz = excitation
     margin = np.full(S, np.inf)
     if working.size and elastic.shape[1]:
         nearest = _nearest(elastic, working)
@@ -334,3 +416,141 @@ def modal_margins(state: Analysis, elastic: FloatArray) -> tuple[FloatArray, Flo
         margin = np.minimum(margin, float(np.min(np.abs(fz - 2 * f_span) / (2 * f_span)))
                             * 100.0)
     return f1, margin
+
+
+# ---------------------------------------------------------------------- a state, stacked once
+@dataclass(frozen=True, slots=True, eq=False)
+class StackedState:
+    """One geometric state of a drive under the S samples of its modal variables, stacked
+    once: what does not change when only inertias are added on the sprockets' shafts (the
+    flywheels an optimiser varies) — the stiffness matrices condensed, their mass
+    normalisation but for the sprockets' coordinates, the inertia factors, the working and
+    transverse frequencies (:func:`stacked_state`).
+
+    Parameters
+    ----------
+    state : Analysis
+        The geometric state (its model's topology and values).
+    inertia_factors : ndarray
+        (S, n) factors on the sprockets' own inertias [–].
+    node_inertia : ndarray
+        (S, nodes) J of every node with the factors, no inertia added [kg·m²].
+    stiffness : ndarray | None
+        (S, N, N) stacked stiffness matrices [N·m/rad], the massless coordinates condensed
+        when ``massed`` is given, else as assembled (None: ``split`` holds them).
+    massed : ndarray | None
+        Mask of the massed coordinates kept in ``stiffness`` [-] (None: a sprocket sits on
+        a massless coordinate, every call condenses anew).
+    split : _Split | None
+        The mass normalisation of ``stiffness`` with the sprockets' (and every varying)
+        coordinate left to scale (None: a varying coordinate is mass-coupled).
+    sprocket_nodes : ndarray
+        (n,) node index of every sprocket [-].
+    excitation : tuple
+        Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz],
+        the tooth frequency [Hz].
+    """
+
+    state: Analysis
+    inertia_factors: FloatArray
+    node_inertia: FloatArray
+    stiffness: FloatArray | None
+    massed: NDArray[np.bool_] | None
+    split: _Split | None
+    sprocket_nodes: NDArray[np.intp]
+    excitation: tuple[FloatArray, FloatArray, float]
+
+
+def stacked_state(state: Analysis, inertia: FloatArray, link: FloatArray,
+                  temperature: FloatArray) -> StackedState:
+    """A state's model under S sets of modal factors, stacked once
+    (:func:`batch_system_values`, the stiffness matrices K_s = Bᵀ diag(k_s) B condensed
+    [Guyan1965] and normalised by the masses that no added inertia changes, the factor
+    R = L_ff⁻¹ of :func:`_mass_normalised`).
+
+    Parameters
+    ----------
+    state : Analysis
+        The analysis of one geometric state (factors 1, reference temperature).
+    inertia : ndarray
+        (S, n) factors on the sprockets' inertias [–].
+    link : ndarray
+        (S,) factors on the link stiffness [–].
+    temperature : ndarray
+        (S,) temperatures of the polymer parts [°C].
+
+    Returns
+    -------
+    StackedState
+
+    References
+    ----------
+    [MultimassChainDrives], [Naji1983], [Ernst1965], [Guyan1965]
+    """
+    model = state.drive_model
+    system = model.system
+    J, k = batch_system_values(state, inertia, link, temperature)
+    nodes = np.array([system.node_names.index(x) for x in model.sprocket_names], dtype=np.intp)
+    K = _stacked_stiffness(system.element_incidence, k)
+    sprockets = np.zeros(system.size, dtype=bool)
+    sprockets[system.node_dof[nodes]] = True
+    massed: NDArray[np.bool_] | None = system.mass > 0.0
+    split = None
+    if np.all(system.mass[sprockets] > 0.0):
+        K, massed = _condensed(system, K)
+        mass = _coordinate_mass(system, J)[:, massed]
+        varying = np.any(mass != mass[:1], axis=0) | sprockets[massed]
+        split = _split(K, mass[0], system.mass_coupling[np.ix_(massed, massed)], varying)
+    else:
+        massed = None
+    return StackedState(state, np.asarray(inertia, dtype=float), J,
+                        None if split is not None else K, massed, split, nodes,
+                        _excitation(state))
+
+
+def stacked_margins(stacked: StackedState, added_inertia: FloatArray | None = None
+                    ) -> tuple[FloatArray, FloatArray]:
+    """f₁ [Hz] and resonance margin [%] of the S samples of a stacked state with inertias
+    ΔJ added on the sprockets' shafts (:func:`modal_margins`).
+
+    A flywheel ΔJ_i is part of sprocket i's own inertia (the inertia factor f_i scales the
+    sum, as :func:`chaindrive.dynamics.drive.drive_ring_parameters` adds it): the node of
+    sprocket i carries J_node + J_i (f_i − 1) + ΔJ_i f_i, nothing else changes.
+
+    Parameters
+    ----------
+    stacked : StackedState
+        The state (:func:`stacked_state`, of the design without those inertias).
+    added_inertia : ndarray | None
+        (n,) inertia added on every sprocket's shaft [kg·m²] (None: none).
+
+    Returns
+    -------
+    tuple of ndarray
+        f₁ (S,) [Hz], margin (S,) [%].
+
+    References
+    ----------
+    [MultimassChainDrives, §3.1, §3.2], [Guyan1965]
+    """
+    J = stacked.node_inertia
+    if added_inertia is not None and np.any(added_inertia):
+        J = J.copy()
+        J[:, stacked.sprocket_nodes] += (np.asarray(added_inertia, dtype=float)[None, :]
+                                         * stacked.inertia_factors)
+    system = stacked.state.drive_model.system
+    if stacked.split is not None and stacked.massed is not None:
+        mass = _coordinate_mass(system, J)[:, stacked.massed]
+        return _margins(stacked.excitation,
+                        _frequencies(system, _scaled(stacked.split, mass[:, stacked.split.v])))
+    K = stacked.stiffness
+    if K is None:
+        raise ValueError("a stacked state without its split keeps its stiffness matrices")
+    if stacked.massed is None:
+        elastic = stacked_frequencies(system, J, K)
+    else:
+        massed = stacked.massed
+        elastic = _frequencies(system, _mass_normalised(
+            K, _coordinate_mass(system, J)[:, massed],
+            system.mass_coupling[np.ix_(massed, massed)]))
+    return _margins(stacked.excitation, elastic)

@@ -45,20 +45,17 @@ from chaindrive.catalog import find_material
 from chaindrive.checks import Check
 from chaindrive.errors import ChainDriveError
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
-from chaindrive.robust.modal import (
-    batch_elastic_frequencies,
-    batch_system_values,
-    modal_margins,
-)
+from chaindrive.robust.modal import StackedState, stacked_margins, stacked_state
 from chaindrive.robust.perturbation import (
     REFERENCE_TEMPERATURE_C,
     Perturbation,
     modulus_factors,
 )
-from chaindrive.robust.uncertainty import UncertaintyModel
+from chaindrive.robust.uncertainty import UncertaintyModel, UncertaintySettings
 
-__all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ReliabilityResult",
-           "StateOutcome", "estimate_probability", "reliability",
+__all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ModalBasis",
+           "ReliabilityResult", "StateOutcome", "basis_reliability", "estimate_probability",
+           "modal_basis", "reliability",
            "sample_count", "sobol_points", "state_outcome"]
 
 #: The pseudo-check of a state that cannot be built (e.g. the chain does not fit).
@@ -287,13 +284,26 @@ def estimate_probability(failed: NDArray[np.bool_], confidence: float = 0.95
     if r * n == 1:
         return p, p, p
     means = f.mean(axis=1)
-    half = (float(t_dist.ppf(0.5 * (1.0 + confidence), r - 1)) * float(means.std(ddof=1))
+    half = (_student_t(0.5 * (1.0 + confidence), r - 1) * float(means.std(ddof=1))
             / math.sqrt(r)) if r > 1 else 1.0
-    k, total = round(float(f.sum())), r * n
-    alpha = 1.0 - confidence
-    cp_low = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, total - k + 1))
-    cp_high = 1.0 if k == total else float(beta_dist.ppf(1 - alpha / 2, k + 1, total - k))
+    cp_low, cp_high = _clopper_pearson(round(float(f.sum())), r * n, 1.0 - confidence)
     return p, max(0.0, min(p - half, cp_low)), min(1.0, max(p + half, cp_high))
+
+
+@lru_cache(maxsize=64)
+def _student_t(q: float, dof: int) -> float:
+    """The q quantile of Student's t with ``dof`` degrees of freedom [–] (kept: a study
+    asks for the same one for every design)."""
+    return float(t_dist.ppf(q, dof))
+
+
+@lru_cache(maxsize=4096)
+def _clopper_pearson(k: int, total: int, alpha: float) -> tuple[float, float]:
+    """The Clopper–Pearson interval of k failures in ``total`` trials at level 1 − α [–]
+    [ClopperPearson1934] (kept: k takes few values over a study's designs)."""
+    low = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, total - k + 1))
+    high = 1.0 if k == total else float(beta_dist.ppf(1 - alpha / 2, k + 1, total - k))
+    return low, high
 
 
 @dataclass(frozen=True, slots=True)
@@ -587,6 +597,110 @@ def modal_states(nominal: Analysis, model: UncertaintyModel) -> dict[str, Analys
         take_up_capacity=model.take_up_capacity, response=False) for lam in life}
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class ModalBasis:
+    """The batched modal path of a drive built up to its frequencies: every geometric state
+    (:func:`modal_states`) stacked under the samples (:class:`~chaindrive.robust.modal.
+    StackedState`), ready for inertias added on the sprockets' shafts
+    (:func:`basis_reliability`).
+
+    Parameters
+    ----------
+    settings : UncertaintySettings
+        Samples, replicates and confidence.
+    replicates : int
+        R scrambled sequences.
+    points : int
+        Points per sequence.
+    band_percent : float
+        The resonance margin required [%].
+    names : tuple of str
+        The geometric states.
+    states : tuple of StackedState
+        Each state stacked.
+    """
+
+    settings: UncertaintySettings
+    replicates: int
+    points: int
+    band_percent: float
+    names: tuple[str, ...]
+    states: tuple[StackedState, ...]
+
+
+def modal_basis(nominal: Analysis, model: UncertaintyModel) -> ModalBasis:
+    """Everything of the batched modal path that the sprockets' added inertias leave
+    unchanged: the geometric states, their models and stiffness matrices under the samples.
+
+    Parameters
+    ----------
+    nominal : Analysis
+        The analysis of the drive as drawn.
+    model : UncertaintyModel
+        Its uncertainty model (its modal variables are sampled).
+
+    Returns
+    -------
+    ModalBasis
+    """
+    s = model.settings
+    modal = model.modal_only()
+    states = modal_states(nominal, modal)
+    if modal.dimension:
+        u = sobol_points(modal.dimension, s.samples, s.replicates, s.seed)
+        shaped = modal.values(u.reshape(-1, modal.dimension)).reshape(*u.shape)
+    else:
+        shaped = np.zeros((1, 1, 0))
+    r, n = shaped.shape[:2]
+    stacked = []
+    for state in states.values():
+        inertia, link, temperature = _modal_factors(modal, shaped.reshape(r * n, -1),
+                                                    len(state.drive.sprockets))
+        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
+                                      temperature)
+        stacked.append(stacked_state(state, inertia, link, temperature))
+    return ModalBasis(s, r, n, nominal.limits.resonance_band_percent, tuple(states),
+                      tuple(stacked))
+
+
+def basis_reliability(basis: ModalBasis, added_inertia: NDArray[np.float64] | None = None
+                      ) -> ReliabilityResult:
+    """The resonance check and f₁ by the batched modal path of a basis, with inertias added
+    on the sprockets' shafts (:func:`chaindrive.robust.modal.stacked_margins`).
+
+    Parameters
+    ----------
+    basis : ModalBasis
+        The drive without the added inertias (:func:`modal_basis`).
+    added_inertia : ndarray | None
+        (n,) inertia added on every sprocket's shaft [kg·m²] (None: none).
+
+    Returns
+    -------
+    ReliabilityResult
+        With the one check ``resonance_margin``.
+    """
+    s, r, n, band = basis.settings, basis.replicates, basis.points, basis.band_percent
+    per_state, f1_all, margin_all = [], [], []
+    for stacked in basis.states:
+        f1, margin = stacked_margins(stacked, added_inertia)
+        per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
+        f1_all.append(f1)
+        margin_all.append(margin)
+    failed = np.mean(np.stack(per_state), axis=0)  # the midpoint rule over the life
+    p, lo, hi = estimate_probability(failed, s.confidence)
+    entry = CheckProbability("resonance_margin", "resonance margin",
+                             "[MultimassChainDrives, §3.2], [API684]", p, lo, hi,
+                             int(np.stack(per_state).sum()), failed.size * len(per_state))
+    margins = np.concatenate(margin_all)
+    values = {"f1_hz": np.concatenate(f1_all), "resonance_margin_percent": margins}
+    return ReliabilityResult("modal", r * n, r, s.confidence, (entry,),
+                             tuple(_summary(k, v) for k, v in values.items()), values,
+                             {"resonance_margin": np.where(np.isfinite(margins),
+                                                           margins / band - 1.0, 1e6)},
+                             basis.names)
+
+
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
     """The resonance check and f₁ by the batched modal path (module docstring).
 
@@ -602,37 +716,4 @@ def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> Reliability
     ReliabilityResult
         With the one check ``resonance_margin``.
     """
-    s = model.settings
-    modal = model.modal_only()
-    states = modal_states(nominal, modal)
-    if modal.dimension:
-        u = sobol_points(modal.dimension, s.samples, s.replicates, s.seed)
-        shaped = modal.values(u.reshape(-1, modal.dimension)).reshape(*u.shape)
-    else:
-        shaped = np.zeros((1, 1, 0))
-    r, n = shaped.shape[:2]
-    band = nominal.limits.resonance_band_percent
-    per_state, f1_all, margin_all = [], [], []
-    for state in states.values():
-        inertia, link, temperature = _modal_factors(modal, shaped.reshape(r * n, -1),
-                                                    len(state.drive.sprockets))
-        link = link * modulus_factors(find_material(state.drive.chain.spec.material),
-                                      temperature)
-        J, k = batch_system_values(state, inertia, link, temperature)
-        f1, margin = modal_margins(
-            state, batch_elastic_frequencies(state.drive_model.system, J, k))
-        per_state.append((margin < band * (1 - 1e-12)).reshape(r, n))
-        f1_all.append(f1)
-        margin_all.append(margin)
-    failed = np.mean(np.stack(per_state), axis=0)  # the midpoint rule over the life
-    p, lo, hi = estimate_probability(failed, s.confidence)
-    entry = CheckProbability("resonance_margin", "resonance margin",
-                             "[MultimassChainDrives, §3.2], [API684]", p, lo, hi,
-                             int(np.stack(per_state).sum()), failed.size * len(per_state))
-    margins = np.concatenate(margin_all)
-    values = {"f1_hz": np.concatenate(f1_all), "resonance_margin_percent": margins}
-    return ReliabilityResult("modal", r * n, r, s.confidence, (entry,),
-                             tuple(_summary(k, v) for k, v in values.items()), values,
-                             {"resonance_margin": np.where(np.isfinite(margins),
-                                                           margins / band - 1.0, 1e6)},
-                             tuple(states))
+    return basis_reliability(modal_basis(nominal, model))

@@ -15,7 +15,7 @@ import json
 import math
 import tomllib
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -31,9 +31,12 @@ from chaindrive.robust.analysis import PerturbedAnalysis, nominal_analysis
 from chaindrive.robust.life import LifeCurve, life_curve
 from chaindrive.robust.sampling import (
     METRICS,
+    ModalBasis,
     ReliabilityResult,
     StateEvaluator,
     StateOutcome,
+    basis_reliability,
+    modal_basis,
     reliability,
     state_outcome,
 )
@@ -48,7 +51,8 @@ from chaindrive.synthesis.problem import Problem, problem_from_mapping
 from chaindrive.synthesis.studies import DEFAULT_DB, StudyStore, run_study
 
 __all__ = ["DaskOptions", "RobustResult", "dask_states", "load_robust", "nominal_analysis",
-           "robust_batch", "robust_state", "robust_study"]
+           "robust_batch", "robust_state", "robust_study", "shared_modal_basis",
+           "without_flywheels"]
 
 
 def load_robust(path: str | Path) -> tuple[Analysis, UncertaintySettings]:
@@ -230,6 +234,76 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
         if with_sensitivity else None)
 
 
+#: Bases kept per process by :func:`shared_modal_basis` (most recently used last).
+_SHARED_BASES: dict[str, ModalBasis] = {}
+#: How many bases a process keeps (one takes ≈ 2.5 MB per geometric state for 24 sprockets
+#: and 128 samples; a search whose variables move the geometry misses every time).
+SHARED_BASES = 4
+
+
+def without_flywheels(design: Drive) -> tuple[Drive, NDArray[np.float64]]:
+    """The design with no flywheel on any shaft, and the flywheels it had.
+
+    Parameters
+    ----------
+    design : Drive
+        The design.
+
+    Returns
+    -------
+    tuple of (Drive, ndarray)
+        The design without flywheels; (n,) the flywheels ΔJ [kg·m²] in sprocket order.
+    """
+    added = np.array([s.flywheel for s in design.sprockets], dtype=float)
+    return replace(design, sprockets=tuple(replace(s, flywheel=0.0) if s.flywheel else s
+                                           for s in design.sprockets)), added
+
+
+def shared_modal_basis(design: Drive, settings: UncertaintySettings
+                       ) -> tuple[ModalBasis, NDArray[np.float64] | None]:
+    """The batched modal path of a design built up to its frequencies, shared by every design
+    this process sees that differs from it only in its flywheels.
+
+    A flywheel enters the modal path only as inertia on its sprocket's shaft
+    (:func:`chaindrive.robust.modal.stacked_margins`): the geometry, the static tensions,
+    the stiffnesses, the model's topology, the working frequencies and the uncertainty model
+    do not depend on it. So the basis is that of the design without flywheels
+    (:func:`without_flywheels`), kept under the value of that design and of the settings —
+    their ``repr``, which for these frozen dataclasses of numbers, strings and tuples
+    spells every value out (a float's repr reads back to the same float), so any other
+    input (a tooth count, a position, a chain, a material, a train) gives another key and
+    a basis of its own. A design whose chain is to be selected is not shared (the selection
+    checks the resonance of each candidate, which the flywheels move): its basis is its own,
+    flywheels included.
+
+    Parameters
+    ----------
+    design : Drive
+        The design.
+    settings : UncertaintySettings
+        Its ``[uncertainty]`` table.
+
+    Returns
+    -------
+    tuple of (ModalBasis, ndarray | None)
+        The basis and the inertias (n,) to add on the shafts [kg·m²] (None: none, the basis
+        is the design's own).
+    """
+    if design.chain.request is not None:
+        nominal = nominal_analysis(design)
+        return modal_basis(nominal, uncertainty_model(nominal, settings)), None
+    twin, added = without_flywheels(design)
+    key = repr((twin, settings))
+    basis = _SHARED_BASES.pop(key, None)
+    if basis is None:
+        nominal = nominal_analysis(twin)
+        basis = modal_basis(nominal, uncertainty_model(nominal, settings))
+    _SHARED_BASES[key] = basis
+    while len(_SHARED_BASES) > SHARED_BASES:
+        del _SHARED_BASES[next(iter(_SHARED_BASES))]
+    return basis, added
+
+
 @lru_cache(maxsize=4)
 def _problem(text: str) -> Problem:
     """An optimisation problem read once per process and text."""
@@ -245,6 +319,7 @@ def robust_batch(inputs: Mapping[str, Any]) -> dict[str, Any]:
 
     The designs are the problem's (:meth:`chaindrive.synthesis.problem.Problem.decode`), the
     uncertainty model its ``[uncertainty]`` table (``[optimize.robust]`` samples when given).
+    Designs that differ only in their flywheels share one basis (:func:`shared_modal_basis`).
 
     Parameters
     ----------
@@ -264,8 +339,8 @@ def robust_batch(inputs: Mapping[str, Any]) -> dict[str, Any]:
     out: list[dict[str, Any]] = []
     for x in inputs["vectors"]:
         try:
-            nominal = nominal_analysis(problem.decode(x))
-            r = reliability(nominal, uncertainty_model(nominal, settings), path="modal")
+            basis, added = shared_modal_basis(problem.decode(x), settings)
+            r = basis_reliability(basis, added)
         except ChainDriveError as exc:
             out.append({"error": str(exc)})
             continue
