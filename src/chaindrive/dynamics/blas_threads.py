@@ -1,9 +1,9 @@
 """One BLAS thread while a small dense eigenproblem is solved (docs/torsional.md §8).
 
 A modal analysis of a few dozen coordinates is a handful of LAPACK calls of tens of
-microseconds each. OpenBLAS splits the level-3 products inside them (a 72×72 product is above
-its threading threshold) across all its threads, and waking and joining them costs as much as
-the product; on a machine whose cores are busy the threads also wait for one another. Measured
+microseconds each. OpenBLAS runs the products inside them on all its threads even at 72×72,
+and waking and joining the threads costs about as much as the product; on a machine whose
+cores are busy the threads also wait for one another. Measured
 (benchmarks/bench_torsional.py, 72 coordinates, one process, load average 3–5 on two cores):
 ``numpy.linalg.eigh`` 1.9–4.4 ms with two BLAS threads against 1.0–1.3 ms with one, the whole
 modal analysis 2–6× slower with the default two threads.
