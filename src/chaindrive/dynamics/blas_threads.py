@@ -3,10 +3,11 @@
 A modal analysis of a few dozen coordinates is a handful of LAPACK calls of tens of
 microseconds each. OpenBLAS runs the products inside them on all its threads even at 72×72,
 and waking and joining the threads costs about as much as the product; on a machine whose
-cores are busy the threads also wait for one another. Measured
-(benchmarks/bench_torsional.py, 72 coordinates, one process, load average 3–5 on two cores):
-``numpy.linalg.eigh`` 1.9–4.4 ms with two BLAS threads against 1.0–1.3 ms with one, the whole
-modal analysis 2–6× slower with the default two threads.
+cores are busy the threads also wait for one another. Measured on the project machine (two
+cores, load average 3–5): ``numpy.linalg.eigh`` of a 72×72 symmetric matrix 1.9 ms best,
+4.4 ms median on two BLAS threads against 1.0 / 1.3 ms on one; the modal analysis of
+benchmarks/bench_torsional.py (72 coordinates, assembly included) 2.6× (best) to 7.5×
+(median) slower on the default two threads than on one.
 
 :func:`small_problem_threads` limits every BLAS library loaded in the process to one thread
 for the duration of a block when the problem is small (:data:`SMALL_PROBLEM_SIZE`), through
@@ -41,13 +42,12 @@ from threadpoolctl import ThreadpoolController
 
 __all__ = ["SMALL_PROBLEM_SIZE", "blas_thread_counts", "small_problem_threads"]
 
-#: Largest eigenproblem [coordinates] solved on one BLAS thread. A judgement, not a fit: at
-#: 72 coordinates one thread was 1.5–3× faster under load (module docstring); at 256 a dense
-#: symmetric eigensolve is still a few ms, where a second thread gains little on an idle
-#: machine and loses much on a busy one. Measured on the project machine only.
+#: Largest eigenproblem [coordinates] solved on one BLAS thread. A judgement, not a fit:
+#: ``numpy.linalg.eigh`` of a random symmetric matrix on one thread against two, best of 5 at
+#: load average 4–5 on two cores: 1.0 / 1.9 ms at n = 72, 4.5 / 12.6 ms at 150, 22.6 / 26.2 ms
+#: at 300. Whether a second thread pays above that on an idle machine was not measured (the
+#: shared project machine was never idle).
 SMALL_PROBLEM_SIZE = 256
-
-
 
 _lock = threading.Lock()
 _controller: list[ThreadpoolController] = []
@@ -55,7 +55,8 @@ _local = threading.local()  # per Python thread: .limited inside a block
 
 
 def _blas_controller() -> ThreadpoolController:
-    """The process's controller of BLAS libraries (built once, at the first call)."""
+    """The process's controller of the BLAS libraries loaded at its first call (numpy's
+    OpenBLAS, which the eigensolvers here use, is loaded with numpy)."""
     with _lock:
         if not _controller:
             _controller.append(ThreadpoolController())
