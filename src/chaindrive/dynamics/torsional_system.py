@@ -24,6 +24,7 @@ from types import MappingProxyType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.blas_threads import small_problem_threads
 from chaindrive.dynamics.torsional_assembly import gram as _gram
 from chaindrive.dynamics.torsional_assembly import grams
 from chaindrive.errors import DesignError
@@ -193,9 +194,11 @@ class TorsionalSystem:
 
         References
         ----------
-        [Rao2011, ch. 6]; massless coordinates condensed [Guyan1965].
+        [Rao2011, ch. 6]; massless coordinates condensed [Guyan1965]; on one BLAS thread
+        when small (:func:`chaindrive.dynamics.blas_threads.small_problem_threads`).
         """
-        return _modal(self)
+        with small_problem_threads(self.size):
+            return _modal(self)
 
     def frequencies_hz(self) -> FloatArray:
         """The natural frequencies [Hz] without the shapes (as
@@ -206,7 +209,8 @@ class TorsionalSystem:
         ndarray
             Natural frequencies [Hz], ascending, the rigid-body zeros first.
         """
-        return _frequencies(self)
+        with small_problem_threads(self.size):
+            return _frequencies(self)
 
     def dof_of(self, node: str) -> tuple[int, float]:
         """(reduced coordinate, factor) of a node: φ_node = factor·q[coordinate].
