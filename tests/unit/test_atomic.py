@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import signal
+import threading
 from pathlib import Path
 
 import pytest
@@ -135,3 +136,27 @@ def test_a_signal_the_instant_the_temporary_appears_leaves_nothing(
     finally:
         signal.signal(signal.SIGTERM, previous)
     assert _files(tmp_path) == []
+
+
+def test_signals_held_are_delivered_once_when_the_block_ends() -> None:
+    """A SIGTERM sent twice inside ``signals_held`` does not reach its handler within the
+    block, and the handler runs once right after it — also with another thread running,
+    which the kernel may choose to take a process-wide signal (why a thread's signal mask
+    cannot hold it)."""
+    seen: list[int] = []
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait, daemon=True)
+    other.start()
+    previous = signal.signal(signal.SIGTERM, lambda signum, frame: seen.append(signum))
+    try:
+        with atomic.signals_held():
+            os.kill(os.getpid(), signal.SIGTERM)
+            os.kill(os.getpid(), signal.SIGTERM)
+            for _ in range(10_000):  # give a handler every chance to run in here
+                pass
+            inside = len(seen)
+        after = len(seen)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        stop.set()
+    assert (inside, after) == (0, 1)

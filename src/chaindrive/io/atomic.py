@@ -28,6 +28,7 @@ import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from types import FrameType
 
 from chaindrive.errors import DesignError
 from chaindrive.units import shown
@@ -43,7 +44,13 @@ _HELD = (signal.SIGINT, signal.SIGTERM)
 def signals_held() -> Iterator[None]:
     """Hold SIGINT and SIGTERM back within the block (they are delivered when it ends).
 
-    Only the main thread receives Python's signal handlers; elsewhere it does nothing.
+    The hold is kept by Python's handlers, not by the thread's signal mask: a process-wide
+    signal goes to any thread that does not block it (a BLAS or I/O thread), and Python then
+    runs its handler in the main thread at once, whatever the main thread's mask says. Within
+    the block a handler that only notes the signal stands in for the installed one; at the
+    end the installed ones come back and each signal noted is raised again, once, so that
+    its own handler runs. Only the main thread can install handlers; elsewhere this does
+    nothing.
 
     Yields
     ------
@@ -52,11 +59,19 @@ def signals_held() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+    noted: list[int] = []
+
+    def _note(signum: int, frame: FrameType | None) -> None:
+        noted.append(signum)
+
+    installed = {s: signal.signal(s, _note) for s in _HELD}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for s, handler in installed.items():
+            signal.signal(s, handler)
+        for signum in dict.fromkeys(noted):
+            signal.raise_signal(signum)
 
 
 def _failed(target: Path, exc: OSError, field: str) -> DesignError:
