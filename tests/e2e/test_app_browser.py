@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import shutil
 import socket
 import statistics
@@ -63,8 +62,6 @@ FIRST_MS, STEP_MS, REPORT_MS = 90_000, 30_000, 120_000
 #: page's store of finished screens.
 TIMED_TEETH = (16, 17, 18, 19, 20, 21, 22, 15)
 FORM_TEETH = (23, 24, 25, 26, 27, 28, 29, 30)
-#: Row height and header height of the sprocket table's grid, and its row-marker column [px].
-GRID_ROW, GRID_HEADER, GRID_MARKER = 35, 35, 34
 
 if not (CHROMIUM.is_file() and os.access(CHROMIUM, os.X_OK)):
     pytest.skip(f"Chromium not found at {CHROMIUM} (apt-get install -y chromium)",
@@ -237,43 +234,13 @@ def _edit_teeth(pg: Page, row: int, name: str, shown: int, teeth: int) -> int:
     return version + 1
 
 
-def _grid(pg: Page) -> Locator:
-    """The sprocket table (the page's first grid), scrolled into view."""
-    grid = pg.get_by_test_id("stDataFrame").first
-    grid.scroll_into_view_if_needed()
-    return grid
-
-
-def _cell(grid: Locator, column: int, row: int) -> Locator:
-    """A cell of the table's accessible copy (columns from 1, rows from 0)."""
-    return grid.locator(f"#glide-cell-{column}-{row}")
-
-
-def _select_cell(pg: Page, grid: Locator, column: int, row: int) -> None:
-    """Select a cell of the table: click the name cell of ``row``, move right with the arrow
-    keys; each step waits for the grid to report the selection."""
-    box = grid.bounding_box()
-    assert box is not None
-    pg.mouse.click(box["x"] + GRID_MARKER + 20, box["y"] + GRID_HEADER + GRID_ROW * row + 17)
-    expect(_cell(grid, 1, row)).to_have_attribute("aria-selected", "true")
-    for c in range(2, column + 1):
-        pg.keyboard.press("ArrowRight")
-        expect(_cell(grid, c, row)).to_have_attribute("aria-selected", "true")
-
-
-def _type_in_selected_cell(pg: Page, text: str) -> None:
-    """Open the editor of the selected cell of the table (Enter; pressed again when the
-    grid had not taken the key), wait for it, type."""
-    editor = pg.locator("input.gdg-input, textarea.gdg-input")
-    for _ in range(5):
-        pg.keyboard.press("Enter")
-        try:
-            expect(editor).to_be_visible(timeout=3_000)
-            break
-        except AssertionError:
-            continue
-    expect(editor).to_be_visible()
-    editor.fill(text)
+def _cell(pg: Page, column: str, row: int) -> Locator:
+    """The field of ``column`` (a row key: ``teeth``, ``x_mm``) in row ``row`` (from 0) of
+    the sprocket table, scrolled into view."""
+    cell = pg.locator(f'.cd-table [data-row="{row}"][data-column="{column}"]')
+    expect(cell).to_have_count(1)
+    cell.scroll_into_view_if_needed()
+    return cell
 
 
 # --- the design, computed by the library ---------------------------------------------------------
@@ -325,17 +292,22 @@ def test_seed_edit_table_report_and_screenshot(page: Page, tmp_path: Path) -> No
         expect(warnings).to_contain_text(w)
     expect(warnings).not_to_contain_text(warn_before[0])
 
-    # two values typed in the table, one after the other: both are kept (in the table and
-    # in the results), and stay through a later run of the page (a change of units)
+    # two values typed in the table, one after the other from the keyboard (Tab commits the
+    # first and moves on): both are kept (in the table and in the results), and stay through
+    # a later run of the page (a change of units)
     typed = _analysis(SEED, r2={"teeth": NEW_TEETH + 2, "x": "700 mm"})
-    grid = _grid(pg)
-    expect(_cell(grid, 2, ROW)).to_have_text(str(NEW_TEETH))  # the redrawn table's data
-    for column, text in ((2, str(NEW_TEETH + 2)), (3, "700")):
-        old = _design(pg)
-        _select_cell(pg, grid, column, ROW)
-        _type_in_selected_cell(pg, text)
-        pg.keyboard.press("Enter")
-        _changed(pg, "#chaindrive-ready", old)
+    teeth, x = _cell(pg, "teeth", ROW), _cell(pg, "x_mm", ROW)
+    expect(teeth).to_have_value(str(NEW_TEETH))  # the table drawn from the form's edit
+    old = _design(pg)
+    teeth.fill(str(NEW_TEETH + 2))
+    teeth.press("Tab")
+    _changed(pg, "#chaindrive-ready", old)
+    expect(x).to_be_focused()  # the page's run left the focus where Tab put it
+    old = _design(pg)
+    pg.keyboard.press("Control+A")
+    pg.keyboard.type("700")
+    pg.keyboard.press("Enter")
+    _changed(pg, "#chaindrive-ready", old)
     expect(links).to_have_text(str(typed.geometry.links))
     slack = f"slack {fmt(typed.geometry.slack * 1e3)} mm"  # moved with S3's x
     expect(pg.get_by_text(slack)).to_be_visible()
@@ -344,8 +316,8 @@ def test_seed_edit_table_report_and_screenshot(page: Page, tmp_path: Path) -> No
     expect(pg.get_by_text(f"slack {fmt(typed.geometry.slack / 0.0254)} in")).to_be_visible()
     pg.get_by_text("SI (mm, N, kW)").click()
     expect(pg.get_by_text(slack)).to_be_visible()
-    expect(_cell(grid, 3, ROW)).to_have_text(re.compile(r"^700(\.0+)?$"))
-    expect(_cell(grid, 2, ROW)).to_have_text(str(NEW_TEETH + 2))
+    expect(_cell(pg, "x_mm", ROW)).to_have_value("700")
+    expect(_cell(pg, "teeth", ROW)).to_have_value(str(NEW_TEETH + 2))
 
     # the report of the edited design as a PDF, downloaded from its tab
     pg.get_by_role("tab", name="Report & files").click()
@@ -430,11 +402,10 @@ def _time_edits(pg: Page) -> dict[str, list[float]]:
     design's links are checked against chaindrive.analyze."""
     times: dict[str, list[float]] = {k: [] for k in ("table_shown_s", "table_complete_s",
                                                       "form_shown_s", "form_complete_s")}
-    grid = _grid(pg)
+    cell = _cell(pg, "teeth", 1)
     for teeth in TIMED_TEETH:
-        _select_cell(pg, grid, 2, 1)
-        shown, done = _timed(pg, lambda t=teeth: _type_in_selected_cell(pg, str(t)),
-                             lambda: pg.keyboard.press("Enter"))
+        shown, done = _timed(pg, lambda t=teeth: cell.fill(str(t)),
+                             lambda: cell.press("Enter"))
         times["table_shown_s"].append(shown)
         times["table_complete_s"].append(done)
     _choose(pg, "Sprocket to edit", "row 2: S2")

@@ -12,9 +12,8 @@ widgets give, and when the two differ it discards the early results and runs aga
 the widgets' design (:mod:`chaindrive.app.main`): what stays on screen is always the
 analysis of the design in the form.
 
-The sprocket table's edits are applied with the data editor's own function (a Streamlit
-internal, so :func:`design_from_state` gives None when it is not there, and the page then
-reads the design from its widgets as before).
+The sprocket table's rows are in the session state as the table sent them
+(:mod:`chaindrive.app.table`).
 """
 
 from __future__ import annotations
@@ -22,19 +21,17 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any, Protocol
 
-from chaindrive.app.state import SPROCKET_COLUMNS, DesignForm, design_from_form, is_empty, plain
+from chaindrive.app.state import DesignForm, design_from_form, is_empty
+from chaindrive.app.table import merged_rows, table_rows_from_state
 
 __all__ = ["AUTO_FORM", "CHAIN_PREFIX", "FORMS", "chain_values", "design_from_state",
-           "drive_values", "sprocket_frame", "table_rows"]
+           "drive_values"]
 
 AUTO_FORM = "(by chain standard)"
 #: The tooth forms of the form's select box (the first: by the chain's standard).
 FORMS = (AUTO_FORM, "ISO 606", "GOST 591")
 #: How a chain choice "select for the power of a standard" starts.
 CHAIN_PREFIX = "(select for the power: "
-#: Columns of the sprocket table that are numbers (nullable floats in the editor).
-NUMERIC = ("teeth", "x_mm", "y_mm", "speed_rpm", "power_share", "inertia_kg_m2",
-           "adjust_angle_deg")
 
 
 class _State(Protocol):
@@ -113,59 +110,6 @@ def chain_values(chain: Mapping[str, Any], strands: Any, choice: str, links: Any
     return ch
 
 
-def sprocket_frame(base: DesignForm) -> Any:
-    """The sprocket table as the data editor is given it.
-
-    Parameters
-    ----------
-    base : DesignForm
-        The loaded form.
-
-    Returns
-    -------
-    pandas.DataFrame
-        The columns of :data:`~chaindrive.app.state.SPROCKET_COLUMNS` (numbers as nullable
-        floats), then any other keys of the rows.
-    """
-    import pandas as pd
-
-    keys = [c.key for c in SPROCKET_COLUMNS]
-    extra = sorted({k for r in base.sprockets for k in r} - set(keys))
-    frame = pd.DataFrame([{k: r.get(k) for k in keys + extra} for r in base.sprockets],
-                         columns=keys + extra)
-    for key in NUMERIC:
-        frame[key] = pd.to_numeric(frame[key], errors="coerce").astype("Float64")
-    frame["adjustable"] = frame["adjustable"].fillna(False).astype(bool)
-    return frame
-
-
-def table_rows(frame: Any) -> list[dict[str, Any]]:
-    """The rows of an (edited) sprocket table as plain Python values.
-
-    Parameters
-    ----------
-    frame : pandas.DataFrame
-        The table (:func:`sprocket_frame`, with the editor's edits).
-
-    Returns
-    -------
-    list of dict
-        One mapping per row, column → value.
-    """
-    return [{str(k): plain(v) for k, v in row.items()} for row in frame.to_dict("records")]
-
-
-def _edited(frame: Any, edits: Mapping[str, Any]) -> Any:
-    """``frame`` with the data editor's ``edits`` (edited, deleted and added rows) applied
-    by the editor's own function."""
-    import pyarrow as pa  # type: ignore[import-untyped]
-    from streamlit.elements.lib.column_config_utils import determine_dataframe_schema
-    from streamlit.elements.widgets.data_editor import _apply_dataframe_edits
-
-    schema = determine_dataframe_schema(frame, pa.Table.from_pandas(frame).schema)
-    return _apply_dataframe_edits(frame, dict(edits), schema)  # type: ignore[arg-type]
-
-
 def design_from_state(base: DesignForm, state: _State, key: Callable[[str], str],
                       table_key: str, chain_choice: str, chain_options: list[str]
                       ) -> dict[str, Any] | None:
@@ -213,10 +157,6 @@ def design_from_state(base: DesignForm, state: _State, key: Callable[[str], str]
                          number("chain.links", ch.get("links")),
                          number("chain.contours", ch.get("contours")),
                          read("chain.allow_odd", bool(ch.get("allow_odd"))))
-    frame = sprocket_frame(base)
-    if table_key in state:
-        try:
-            frame = _edited(frame, state[table_key])
-        except Exception:  # the editor's internals changed: read the widgets instead
-            return None
-    return design_from_form(DesignForm(drive, chain, table_rows(frame), base.other))
+    held = table_rows_from_state(state, table_key)
+    rows = base.sprockets if held is None else merged_rows(base.sprockets, held)
+    return design_from_form(DesignForm(drive, chain, rows, base.other))

@@ -35,8 +35,6 @@ from chaindrive.app.early import (
     chain_values,
     design_from_state,
     drive_values,
-    sprocket_frame,
-    table_rows,
 )
 from chaindrive.app.state import (
     SPROCKET_COLUMNS,
@@ -52,6 +50,7 @@ from chaindrive.app.state import (
     read_design_text,
     sprocket_label,
 )
+from chaindrive.app.table import sprocket_table
 from chaindrive.app.uploads import Uploads, design_text
 from chaindrive.app.views import Screen, check_records
 from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt
@@ -61,13 +60,6 @@ from chaindrive.model import ROLES, SIDES
 DEFAULT_EXAMPLE = "seed_three_sprocket"
 AUTO_CHAIN = CHAIN_PREFIX + "{})"
 STANDARDS = ("ISO 606", "GOST 13568", "ANSI")
-#: Pixel widths of the sprocket-table columns: every column shows whole at 1400 px wide.
-WIDTHS = {"name": 62, "teeth": 54, "x_mm": 78, "y_mm": 78, "role": 70, "side": 70,
-          "adjustable": 48, "adjust_angle_deg": 74, "speed_rpm": 70, "power_share": 70,
-          "inertia_kg_m2": 84, "material": 90}
-#: Headers of the narrow columns (the full name is the column's help).
-SHORT_LABELS = {"adjustable": "adj.", "adjust_angle_deg": "adj. ∠ [°]", "speed_rpm": "n [rpm]",
-                "power_share": "P share", "inertia_kg_m2": "J [kg·m²]"}
 UNEXPECTED = tabs.UNEXPECTED
 #: Page styles: less space above the page, a compact title, the warnings in a scroll box.
 CSS = """<style>
@@ -290,43 +282,8 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
     return chain_values(ch, strands, choice, links, contours, allow_odd)
 
 
-def _column_config() -> dict[str, Any]:
-
-    cc = st.column_config
-    labels = {c.key: c.label for c in SPROCKET_COLUMNS} | SHORT_LABELS
-    w = WIDTHS
-    return {
-        "name": cc.TextColumn(labels["name"], width=w["name"]),
-        "teeth": cc.NumberColumn(labels["teeth"], width=w["teeth"], step=1, format="%d"),
-        "x_mm": cc.NumberColumn(labels["x_mm"], width=w["x_mm"], format="%.2f"),
-        "y_mm": cc.NumberColumn(labels["y_mm"], width=w["y_mm"], format="%.2f"),
-        "role": cc.SelectboxColumn(labels["role"], width=w["role"], options=list(ROLES)),
-        "side": cc.SelectboxColumn(labels["side"], width=w["side"], options=list(SIDES),
-                                   help="empty: outside"),
-        "speed_rpm": cc.NumberColumn(labels["speed_rpm"], width=w["speed_rpm"],
-                                     help="speed [rpm], the driver only"),
-        "power_share": cc.NumberColumn(labels["power_share"], width=w["power_share"],
-                                       help="share of the power taken off (driven)"),
-        "inertia_kg_m2": cc.NumberColumn(labels["inertia_kg_m2"], width=w["inertia_kg_m2"],
-                                         format="%.4g", help="moment of inertia [kg·m²]; "
-                                         "empty: from the material"),
-        "material": cc.SelectboxColumn(labels["material"], width=w["material"],
-                                       options=[m.name for m in catalog.materials()],
-                                       help="empty: steel"),
-        "adjustable": cc.CheckboxColumn(labels["adjustable"], width=w["adjustable"],
-                                        help="adjustable: this sprocket takes up the chain"),
-        "adjust_angle_deg": cc.NumberColumn(labels["adjust_angle_deg"],
-                                            width=w["adjust_angle_deg"],
-                                            help="direction of the line of adjustment [°]"),
-    }
-
-
 def _sprocket_table(base: DesignForm) -> list[dict[str, Any]]:
-    frame = sprocket_frame(base)
-    edited = st.data_editor(frame, key=_table_key(), num_rows="dynamic", hide_index=True,
-                            column_config=_column_config(), width="stretch",
-                            placeholder="", height=min(36 * (len(frame) + 2), 330))
-    return table_rows(edited)
+    return sprocket_table(base.sprockets, _table_key(), [m.name for m in catalog.materials()])
 
 
 def _apply_edit(index: int, keys: dict[str, str], rows: list[dict[str, Any]]) -> None:
