@@ -131,12 +131,14 @@ def _signature_names(func: Callable[..., object]) -> tuple[list[str], bool]:
 
 
 def _problems(qualname: str, func: Callable[..., object], doc: str | None, *,
-              needs_returns: bool) -> Iterator[str]:
+              needs_returns: bool, inherited: dict[str, tuple[str, str]] | None = None
+              ) -> Iterator[str]:
     if not doc:
         yield f"{qualname}: no docstring"
         return
     names, var_kw = _signature_names(func)
-    documented = documented_parameters(doc)
+    # a dataclass's fields documented by the dataclass it extends count as documented
+    documented = (inherited or {}) | documented_parameters(doc)
     plain = {n.lstrip("*") for n in documented}
     for name in names:
         if name.lstrip("*") not in plain:
@@ -165,7 +167,12 @@ def _public_names(module: ModuleType) -> list[str]:
 
 def _class_problems(qualname: str, cls: type) -> Iterator[str]:
     if dataclasses.is_dataclass(cls) or "__init__" in vars(cls):
-        yield from _problems(qualname, cls, inspect.getdoc(cls), needs_returns=False)
+        inherited: dict[str, tuple[str, str]] = {}
+        for base in reversed(cls.__mro__[1:]):
+            if dataclasses.is_dataclass(base) and base.__doc__:
+                inherited |= documented_parameters(inspect.cleandoc(base.__doc__))
+        yield from _problems(qualname, cls, inspect.getdoc(cls), needs_returns=False,
+                             inherited=inherited)
     for name, attr in vars(cls).items():
         if name.startswith("_"):
             continue

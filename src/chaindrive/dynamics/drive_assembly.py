@@ -31,9 +31,11 @@ if TYPE_CHECKING:
 __all__ = [
     "CHAIN_NODE",
     "SHAFT_POISSON_RATIO",
+    "DriveParts",
     "LinearModel",
     "LoadPlacement",
     "MotorPlacement",
+    "assembled_parts",
     "shaft_stiffness",
 ]
 
@@ -347,9 +349,65 @@ def _sprocket_senses(geometry: GeometryResult) -> FloatArray:
     return np.array([-1.0 if g.side == "inside" else 1.0 for g in geometry.sprockets])
 
 
-@dataclass(slots=True)
-class _Built:
-    """What :func:`_build` returns (the fields of :class:`DriveModel` it fills)."""
+@dataclass(frozen=True, slots=True, eq=False)
+class DriveParts:
+    """The assembled model of a drive before its chain dampers, completeness and modes: what
+    :func:`assembled_parts` returns and what
+    :class:`~chaindrive.dynamics.drive_model.DriveModel` extends.
+
+    Parameters
+    ----------
+    torsional : TorsionalEngine
+        The torsional model (nodes, elements; the modal analysis).
+    system : TorsionalSystem
+        Its assembled matrices in reduced coordinates.
+    linear : LinearModel
+        Its matrices in q (massless nodes condensed [Guyan1965]).
+    condensation : ndarray
+        (size, N) T: the reduced coordinates of ``system`` are T q [-].
+    sprocket_names : tuple of str
+        The sprockets, in the order of the design.
+    sprocket_coordinate : ndarray of int
+        (n,) index k_i [-] of each sprocket's coordinate in q.
+    sprocket_gain : ndarray
+        (n,) g_i [-]: the forward angular speed of sprocket i is g_i q̇[k_i].
+    pitch_radii : ndarray
+        (n,) pitch radii R [m].
+    mean_radii : ndarray
+        (n,) mean radii R̄ = z p/2π [m] (chain travel per radian).
+    nominal_speeds : ndarray
+        (n,) nominal angular speeds of the sprockets [rad/s].
+    rotor_names : tuple of str
+        Every node of the trains with an inertia (motor and machines among them).
+    rotor_coordinate : ndarray of int
+        Index [-] of each rotor's coordinate in q.
+    rotor_gain : ndarray
+        Gain g [-] of each rotor (forward speed g q̇).
+    rotor_nominal_speed : ndarray
+        Nominal angular speed of each rotor [rad/s].
+    motor : MotorPlacement | None
+        The motor (None: the design gives none).
+    loads : tuple of LoadPlacement
+        The driven machines.
+    span_damping_ratios : ndarray
+        (S,) damping ratios ζ of the chain spans [-].
+    damping_source : str
+        Where ζ comes from: the design's ``[dynamics] damping_ratio``, hinge friction
+        [ChainHingeDissipation] or the material pair [MultimassChainDrives, Table 1].
+    reference_frequency_hz : float
+        f_ref = ω_ref/2π of the chain's dampers d = 2ζk/ω_ref [Hz].
+    contours : int
+        m: the spans carry m parallel contours (forces per contour are F/m).
+    ring : RingParameters
+        The ring reduction (reduced masses, series branch stiffnesses) for the ring-model
+        tools.
+    driver_index : int
+        Index of the driving sprocket.
+    notes : tuple of str
+        What the model rests on (estimates, approximations).
+    trains : dict
+        Sprocket name → its train as plain data (for the JSON document).
+    """
 
     torsional: TorsionalEngine
     system: TorsionalSystem
@@ -373,13 +431,31 @@ class _Built:
     contours: int
     ring: RingParameters
     driver_index: int
-    notes: tuple[str, ...]
-    trains: dict[str, list[dict[str, Any]]]
+    notes: tuple[str, ...] = ()
+    trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
 
 
-def _build(drive: Drive, geometry: GeometryResult, ring: RingParameters,
-           lookup: Callable[[str], Material]) -> _Built:
-    """The model without the chain's dampers (they follow from its modes)."""
+def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters,
+                    lookup: Callable[[str], Material]) -> DriveParts:
+    """The model of ``drive`` without the chain's dampers (they follow from its modes).
+
+    Parameters
+    ----------
+    drive : Drive
+        The validated drive.
+    geometry : GeometryResult
+        Its geometry.
+    ring : RingParameters
+        Its ring reduction (inertias, span and wrap stiffnesses, sag factors).
+    lookup : callable
+        Material name → :class:`~chaindrive.model.Material`.
+
+    Returns
+    -------
+    DriveParts
+        The torsional model, its matrices and where sprockets, rotors, motor and machines
+        are in them (docs/dynamics.md §1).
+    """
     spec = drive.chain.spec
     m = drive.chain.contours
     q = spec.mass_per_length * m
@@ -480,7 +556,7 @@ def _placements(drive: Drive, t: TorsionalEngine, system: TorsionalSystem, T: Fl
                 lin: LinearModel, index: NDArray[np.intp], trains: dict[str, _Train],
                 speeds: FloatArray, R: FloatArray, Rbar: FloatArray, ring: RingParameters,
                 rated_power: float | None, rated_speed: float, j_rotor: float,
-                estimated: bool, notes: list[str]) -> _Built:
+                estimated: bool, notes: list[str]) -> DriveParts:
     """Coordinates of the sprockets, rotors, motor and machines."""
     names = tuple(s.name for s in drive.sprockets)
     sc, sg = zip(*(_node_coordinate(system, T, x) for x in names), strict=True)
@@ -512,7 +588,7 @@ def _placements(drive: Drive, t: TorsionalEngine, system: TorsionalSystem, T: Fl
             loads.append(LoadPlacement(s.name, tr.node, k, f * math.copysign(1.0, tr.speed),
                                        tr.efficiency, s.load or drive.dynamics.resistance,
                                        shares[i] * drive.power / w_n, w_n))
-    return _Built(
+    return DriveParts(
         torsional=t, system=system, linear=lin, condensation=T, sprocket_names=names,
         sprocket_coordinate=s_coord, sprocket_gain=s_gain, pitch_radii=R, mean_radii=Rbar,
         nominal_speeds=np.abs(speeds), rotor_names=tuple(rotors),

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
-from chaindrive.dynamics.drive_assembly import LinearModel, _Built
+from chaindrive.dynamics.drive_assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
@@ -27,7 +27,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material
 
-__all__ = ["CHAIN_MODE_SHARE", "chain_damping_ratio"]
+__all__ = ["CHAIN_MODE_SHARE", "chain_damping", "chain_damping_ratio",
+           "reference_angular_frequency", "with_chain_dampers"]
 
 FloatArray = NDArray[np.float64]
 #: Least share of the strain energy the chain (spans and wraps) holds in the mode whose
@@ -35,9 +36,38 @@ FloatArray = NDArray[np.float64]
 CHAIN_MODE_SHARE = 0.5
 
 
-def _chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
-                   lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
-    """ζ of every span and of every sprocket's wrap [-], and their source."""
+def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
+                  lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
+    """ζ of every span and of every sprocket's wrap [-], and where they come from: the
+    design's ``[dynamics] damping_ratio``, hinge friction at each span's tension
+    [ChainHingeDissipation], or the chain/sprocket material pair [MultimassChainDrives,
+    Table 1] (a span: the mean of its two ends' pairs).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its geometry (span lengths).
+    ring : RingParameters
+        Its ring reduction (span tensions, for hinge friction).
+    lookup : callable
+        Material name → :class:`~chaindrive.model.Material`.
+
+    Returns
+    -------
+    spans : ndarray
+        (n,) ζ of the spans [-].
+    wraps : ndarray
+        (n,) ζ of the wraps [-].
+    source : str
+        Where they come from.
+
+    Raises
+    ------
+    DesignError
+        ``dynamics.hinge_friction`` without the span tensions (no power given).
+    """
     spec = drive.chain.spec
     n = len(drive.sprockets)
     chain_polymer = lookup(spec.material).is_polymer
@@ -86,10 +116,25 @@ def chain_damping_ratio(drive: Drive,
 
 
 
-def _chain_dampers(model: _Built, span_zeta: FloatArray, wrap_zeta: FloatArray,
-                   w_ref: float) -> LinearModel:
+def with_chain_dampers(model: DriveParts, span_zeta: FloatArray, wrap_zeta: FloatArray,
+                       w_ref: float) -> LinearModel:
     """The linear model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
-    docstring); the torsional model's elements get them too."""
+    docstring); the torsional model's elements get them too (set in place).
+
+    Parameters
+    ----------
+    model : DriveParts
+        The assembled model.
+    span_zeta, wrap_zeta : ndarray
+        ζ of the spans and of the wraps [-] (:func:`chain_damping`).
+    w_ref : float
+        ω_ref [rad/s] (:func:`reference_angular_frequency`); ≤ 0 adds no damper.
+
+    Returns
+    -------
+    LinearModel
+        The model's linear matrices with the dampers.
+    """
     lin, sys, t = model.linear, model.system, model.torsional
     if w_ref <= 0:
         return lin
@@ -106,9 +151,21 @@ def _chain_dampers(model: _Built, span_zeta: FloatArray, wrap_zeta: FloatArray,
                        lin.span_incidence, lin.span_stiffness, d_span, lin.span_tension_only)
 
 
-def _reference_angular_frequency(modes: TorsionalModes) -> float:
-    """ω [rad/s] of the first elastic mode in which the chain's elements (spans and wraps)
-    hold at least :data:`CHAIN_MODE_SHARE` of the strain energy (else the first elastic)."""
+def reference_angular_frequency(modes: TorsionalModes) -> float:
+    """ω_ref [rad/s] of the chain's dampers: the first elastic mode in which the chain's
+    elements (spans and wraps) hold at least :data:`CHAIN_MODE_SHARE` of the strain energy
+    (else the first elastic mode; 0 without one).
+
+    Parameters
+    ----------
+    modes : TorsionalModes
+        The undamped modes of the assembled model.
+
+    Returns
+    -------
+    float
+        ω_ref [rad/s].
+    """
     kinds = np.array(modes.system.element_kinds)
     chain = (kinds == "span") | (kinds == "wrap")
     shares = modes.strain_energy_shares[chain].sum(axis=0)

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -49,20 +49,20 @@ from chaindrive.catalog import find_material
 from chaindrive.dynamics.drive import RingParameters, drive_ring_parameters
 from chaindrive.dynamics.drive_assembly import (
     CHAIN_NODE,
+    DriveParts,
     LinearModel,
     LoadPlacement,
     MotorPlacement,
-    _build,
+    assembled_parts,
     shaft_stiffness,
 )
 from chaindrive.dynamics.drive_damping import (
-    _chain_dampers,
-    _chain_damping,
-    _reference_angular_frequency,
+    chain_damping,
     chain_damping_ratio,
+    reference_angular_frequency,
+    with_chain_dampers,
 )
-from chaindrive.dynamics.torsional_engine import TorsionalEngine
-from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional_system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
 
 if TYPE_CHECKING:
@@ -86,93 +86,22 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
-class DriveModel:
+class DriveModel(DriveParts):
     """The whole-drive model (module docstring) in the coordinates q of its
-    :class:`LinearModel`.
+    :class:`LinearModel`: the fields of
+    :class:`~chaindrive.dynamics.drive_assembly.DriveParts` (the assembled model: torsional
+    model, matrices, coordinates of sprockets, rotors, motor and machines, damping, ring,
+    notes, trains) and the two below.
 
     Parameters
     ----------
-    torsional : TorsionalEngine
-        The torsional model (nodes, elements; the modal analysis).
-    system : TorsionalSystem
-        Its assembled matrices in reduced coordinates.
-    linear : LinearModel
-        Its matrices in q (massless nodes condensed [Guyan1965]).
-    condensation : ndarray
-        (size, N) T: the reduced coordinates of ``system`` are T q [-].
-    sprocket_names : tuple of str
-        The sprockets, in the order of the design.
-    sprocket_coordinate : ndarray of int
-        (n,) index k_i [-] of each sprocket's coordinate in q.
-    sprocket_gain : ndarray
-        (n,) g_i [-]: the forward angular speed of sprocket i is g_i q̇[k_i].
-    pitch_radii : ndarray
-        (n,) pitch radii R [m].
-    mean_radii : ndarray
-        (n,) mean radii R̄ = z p/2π [m] (chain travel per radian).
-    nominal_speeds : ndarray
-        (n,) nominal angular speeds of the sprockets [rad/s].
-    rotor_names : tuple of str
-        Every node of the trains with an inertia (motor and machines among them).
-    rotor_coordinate : ndarray of int
-        Index [-] of each rotor's coordinate in q.
-    rotor_gain : ndarray
-        Gain g [-] of each rotor (forward speed g q̇).
-    rotor_nominal_speed : ndarray
-        Nominal angular speed of each rotor [rad/s].
-    motor : MotorPlacement | None
-        The motor (None: the design gives none).
-    loads : tuple of LoadPlacement
-        The driven machines.
-    span_damping_ratios : ndarray
-        (S,) damping ratios ζ of the chain spans [-].
-    damping_source : str
-        Where ζ comes from: the design's ``[dynamics] damping_ratio``, hinge friction
-        [ChainHingeDissipation] or the material pair [MultimassChainDrives, Table 1].
-    reference_frequency_hz : float
-        f_ref = ω_ref/2π of the chain's dampers d = 2ζk/ω_ref [Hz].
-    contours : int
-        m: the spans carry m parallel contours (forces per contour are F/m).
-    ring : RingParameters
-        The ring reduction (reduced masses, series branch stiffnesses) for the ring-model
-        tools.
-    driver_index : int
-        Index of the driving sprocket.
     missing : tuple of str
         What makes the model incomplete (empty: complete).
-    notes : tuple of str
-        What the model rests on (estimates, approximations).
-    trains : dict
-        Sprocket name → its train as plain data (for the JSON document).
     modes : TorsionalModes | None
         The modal analysis done while building (None: computed on demand).
     """
 
-    torsional: TorsionalEngine
-    system: TorsionalSystem
-    linear: LinearModel
-    condensation: FloatArray
-    sprocket_names: tuple[str, ...]
-    sprocket_coordinate: NDArray[np.intp]
-    sprocket_gain: FloatArray
-    pitch_radii: FloatArray
-    mean_radii: FloatArray
-    nominal_speeds: FloatArray
-    rotor_names: tuple[str, ...]
-    rotor_coordinate: NDArray[np.intp]
-    rotor_gain: FloatArray
-    rotor_nominal_speed: FloatArray
-    motor: MotorPlacement | None
-    loads: tuple[LoadPlacement, ...]
-    span_damping_ratios: FloatArray
-    damping_source: str
-    reference_frequency_hz: float
-    contours: int
-    ring: RingParameters
-    driver_index: int
     missing: tuple[str, ...] = ()
-    notes: tuple[str, ...] = ()
-    trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
     modes: TorsionalModes | None = None
 
     @property
@@ -312,18 +241,18 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
     if ring is None:
         ring = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
                                      material_lookup=lookup)
-    model = _build(drive, geometry, ring, lookup)
+    model = assembled_parts(drive, geometry, ring, lookup)
     modes = model.torsional.modal()
-    w_ref = _reference_angular_frequency(modes)
-    zs, zw, source = _chain_damping(drive, geometry, ring, lookup)
-    model.linear = _chain_dampers(model, zs, zw, w_ref)
+    w_ref = reference_angular_frequency(modes)
+    zs, zw, source = chain_damping(drive, geometry, ring, lookup)
+    linear = with_chain_dampers(model, zs, zw, w_ref)
     missing = model_completeness(drive)
     if missing and drive.dynamics.require_complete_model:
         raise DesignError("dynamics.require_complete_model", "the dynamic model is incomplete: "
                           + "; ".join(missing) + " (give the [motor] table and what turns with "
                           "every driven sprocket, or set require_complete_model = false)")
     values = {f.name: getattr(model, f.name) for f in fields(model)}
-    values.update(span_damping_ratios=zs, damping_source=source,
+    values.update(linear=linear, span_damping_ratios=zs, damping_source=source,
                   reference_frequency_hz=w_ref / TWO_PI, missing=missing, modes=modes)
     return DriveModel(**values)
 
