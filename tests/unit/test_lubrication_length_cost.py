@@ -19,6 +19,7 @@ from chaindrive.geometry.sag import sag_of_slack, slack_for_sag
 from chaindrive.io.design import drive_from_mapping, drive_to_toml, parse_toml
 from chaindrive.model import Chain, Drive, Sprocket
 from chaindrive.strength import iso10823
+from chaindrive.strength.loads import sag_tension
 from chaindrive.strength.lubrication import lubrication_advice, speed_limits
 
 RPM = math.pi / 30
@@ -77,6 +78,32 @@ def test_sag_allowance_sets_the_installed_centre_distance():
     assert tight.center_distance - sagged.center_distance == pytest.approx(expected / 2, rel=0.01)
     assert sag_of_slack(sagged.spans[0].length, sagged.slack) == pytest.approx(
         0.04 * sagged.spans[0].length, rel=0.005)
+
+
+def test_installed_sag_sets_the_static_tension_and_the_span_stiffness():
+    """The slack span installed with sag s carries F₀ = k_f q g ℓ with k_f = cos ψ/(8s) +
+    |sin ψ| (the parabolic catenary, H = q g ℓ²/(8f) [ChainDesignRU, §8]): halving the sag
+    from the default 2 % to 1 % doubles F₀ on this horizontal drive, and the spans, whose
+    sag stiffness rises as T³ [Ernst1965], get stiffer, so f₁ rises."""
+    import chaindrive
+
+    default = chaindrive.analyze(_two(), response=False)
+    taut = chaindrive.analyze(replace(_two(), chain=replace(_two().chain, sag=0.01)),
+                              response=False)
+    span = taut.geometry.spans[taut.strength.loads.slack_span]
+    q = taut.drive.chain.spec.mass_per_length
+    assert taut.strength.loads.sag_tension == pytest.approx(
+        sag_tension(q, span.length, span.inclination, 0.01), rel=1e-12)
+    psi = span.inclination
+    assert taut.strength.loads.sag_factor == pytest.approx(
+        math.cos(psi) / (8 * 0.01) + abs(math.sin(psi)), rel=1e-12)
+    loose = default.geometry.spans[default.strength.loads.slack_span]
+    assert default.strength.loads.sag_tension == pytest.approx(
+        sag_tension(q, loose.length, loose.inclination, 0.02), rel=1e-12)
+    ratio = taut.strength.loads.sag_tension / default.strength.loads.sag_tension
+    assert ratio == pytest.approx(2.0, rel=0.02)  # the installed span is a little shorter
+    assert (taut.dynamics.modal.first_elastic_frequency_hz
+            > default.dynamics.modal.first_elastic_frequency_hz)
 
 
 def test_length_options_round_down_and_up():

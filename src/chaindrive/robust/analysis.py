@@ -174,15 +174,21 @@ class PerturbedAnalysis(Analysis):
 
     @cached_property
     def extra_slack(self) -> float:
-        """Chain length in the slack span beyond its chord [m]: the static model's 2 % sag
-        when new ([ChainDesignRU]) plus the slack the take-up does not follow (0 with a
-        take-up)."""
+        """Chain length in the slack span beyond its chord [m]: the installed sag when new
+        (``[chain] sag``, else the static model's 2 % [ChainDesignRU]) plus the slack the
+        take-up does not follow (0 with a take-up)."""
         g = self.geometry
         span = g.spans[next(s.index for s in g.spans if s.start == self.drive.driver_index)]
-        base = catenary_excess_length(span.length, DEFAULT_SAG_RATIO)
+        base = catenary_excess_length(span.length, self._installed_sag)
         if g.adjusted is not None:
             return base
         return base + (g.slack - self.nominal.geometry.slack)
+
+    @property
+    def _installed_sag(self) -> float:
+        """Sag ratio of the slack span of the new chain as installed [–]."""
+        sag = self.drive.chain.sag
+        return DEFAULT_SAG_RATIO if sag is None else sag
 
     @cached_property
     def sag_ratio(self) -> float:
@@ -192,7 +198,7 @@ class PerturbedAnalysis(Analysis):
         g = self.geometry
         span = g.spans[next(s.index for s in g.spans if s.start == self.drive.driver_index)]
         if g.adjusted is not None:
-            return DEFAULT_SAG_RATIO
+            return self._installed_sag
         if self.extra_slack <= catenary_excess_length(span.length, MIN_SAG_RATIO):
             return MIN_SAG_RATIO
         return equivalent_sag_ratio(span.length, self.extra_slack)

@@ -17,7 +17,6 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import ke_method, ratings
 from chaindrive.strength.loads import (
-    DEFAULT_SAG_RATIO,
     LoadsResult,
     hinge_pressure,
     loads_of,
@@ -104,7 +103,7 @@ class StrengthResult:
 
 def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: float | None = None,
                 dynamic_factor: float = 1.0, service_factor: float | None = None,
-                elongation: float = BASIS_ELONGATION, sag_ratio: float = DEFAULT_SAG_RATIO,
+                elongation: float = BASIS_ELONGATION, sag_ratio: float | None = None,
                 shaft_load_factor: float = 1.0) -> StrengthResult:
     """Loads, joint pressure, static safety and wear life of a laid-out drive.
 
@@ -128,8 +127,9 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
         K_s for the wear life [-] (default ``drive.service_factor`` or 1).
     elongation : float
         Permitted elongation for the wear life [-] (default 3 %).
-    sag_ratio : float
-        Sag of the slack span as a fraction of its length [-].
+    sag_ratio : float | None
+        Sag of the slack span as a fraction of its length [-]; None: the design's installed
+        sag (``[chain] sag``), else 0.02.
     shaft_load_factor : float
         kв of the shaft loads [-].
 

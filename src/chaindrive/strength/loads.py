@@ -365,7 +365,7 @@ def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
     return tight, slack
 
 
-def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAULT_SAG_RATIO,
+def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None = None,
              shaft_load_factor: float = 1.0) -> LoadsResult:
     """Static loads round the contour of a drive.
 
@@ -379,8 +379,9 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAU
         The design (power [W] and the driver's speed [rad/s] needed).
     geometry : GeometryResult
         Its contour.
-    sag_ratio : float
-        Sag of the slack span as a fraction of its length [-].
+    sag_ratio : float | None
+        Sag of the slack span as a fraction of its length [-]; None: the design's installed
+        sag (``[chain] sag``), else :data:`DEFAULT_SAG_RATIO` (the textbook k_f = 6).
     shaft_load_factor : float
         kв of the shaft loads [-].
 
@@ -402,6 +403,8 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float = DEFAU
         raise DesignError("geometry.spans",
                           f"expected {len(drive.sprockets)} spans, got {len(geometry.spans)}")
     spec = drive.chain.spec
+    if sag_ratio is None:
+        sag_ratio = drive.chain.sag if drive.chain.sag is not None else DEFAULT_SAG_RATIO
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
     shares = power_shares(drive)
     ft = peripheral_force(drive.power, v)
