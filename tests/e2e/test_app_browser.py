@@ -10,7 +10,8 @@ checked against ``chaindrive.analyze`` of the same design.
 
 * the seed example: a tooth count changed through the "edit one sprocket" form (links and
   warnings follow), values typed in the sprocket table one after the other (both kept), the
-  PDF report downloaded, a bad tooth count giving the loader's message; a screenshot at
+  PDF report downloaded, a bad tooth count (form) and text in a number cell (table) giving
+  the loader's message; a screenshot at
   1400×900 (copied to docs/app_seed.png when CHAINDRIVE_UPDATE_SCREENSHOTS=1);
 * the 24-sprocket example at 1400×900 and 1024×768: the contour and the verdict above the
   fold, a loaded file resetting the edit form and the deltas, and the time from an edit to
@@ -258,7 +259,7 @@ def _analysis(path: Path, **rows: dict[str, Any]) -> Any:
     return chaindrive.analyze(drive_from_mapping(_edited(path, **rows)), response=False)
 
 
-def _loader_message(teeth: int) -> str:
+def _loader_message(teeth: int | str) -> str:
     """The line the loader (and so ``chaindrive analyze``) gives for a bad tooth count."""
     with pytest.raises(ChainDriveError) as info:
         drive_from_mapping(_edited(SEED, **{f"r{ROW}": {"teeth": teeth}}))
@@ -334,6 +335,16 @@ def test_seed_edit_table_report_and_screenshot(page: Page, tmp_path: Path) -> No
     _ready(pg, _edit_teeth(pg, ROW, "S3", NEW_TEETH + 2, BAD_TEETH), state="error")
     expect(pg.get_by_text(_loader_message(BAD_TEETH))).to_be_visible()
     expect(links).to_have_text(str(typed.geometry.links))  # the last good results stay
+    # text typed in a number cell of the table: the loader's line under the table, naming
+    # the row and the column
+    cell = _cell(pg, "teeth", ROW)
+    old = _design(pg)
+    cell.fill("abc")
+    cell.press("Enter")
+    _changed(pg, "#chaindrive-ready", old)
+    expect(pg.get_by_text(f"row {ROW + 1} (S3), column “teeth” — "
+                          + _loader_message("abc"))).to_be_visible()
+    expect(links).to_have_text(str(typed.geometry.links))
     expect(pg.get_by_test_id("stException")).to_have_count(0)
     assert "Traceback" not in pg.content()
 
