@@ -146,7 +146,7 @@ def _sidebar(design: dict[str, Any] | None) -> None:
     if design is not None:
         sb.download_button("Save design (TOML)", design_to_toml(design),
                            file_name=tabs.file_name(".toml"), mime="application/toml",
-                           key="save_toml", width="stretch")
+                           key="save_toml", width="stretch", on_click="ignore")
     sb.radio("Units of the results", UNIT_SYSTEMS, key="units", horizontal=True,
              format_func=lambda u: "SI (mm, N, kW)" if u == "SI" else "US (in, lbf, hp)",
              help="the units of the results, tables and report; the form is in mm, kW, rpm")

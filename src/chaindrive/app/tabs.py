@@ -420,7 +420,8 @@ def tab_files(screen: Screen, design: dict[str, Any]) -> None:
     cols = st.columns(5)
     with cols[0]:
         st.download_button("Download design (TOML)", design_to_toml(design), key="dl_toml",
-                           file_name=file_name(".toml"), mime="application/toml")
+                           file_name=file_name(".toml"), mime="application/toml",
+                           on_click="ignore")
     for col, (kind, (label, suffix, mime)) in zip(cols[1:], DOWNLOADS.items(), strict=True):
         with col:
             reason = runs.missing(kind)
@@ -438,7 +439,7 @@ def tab_files(screen: Screen, design: dict[str, Any]) -> None:
             if key in store:
                 st.download_button(f"Download {label}", store[key],
                                    file_name=file_name(suffix), mime=mime,
-                                   key=f"dl_{kind}", type="primary")
+                                   key=f"dl_{kind}", type="primary", on_click="ignore")
 
 
 def tabs(screen: Screen, design: dict[str, Any]) -> None:
