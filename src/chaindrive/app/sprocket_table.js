@@ -17,7 +17,7 @@
 const NUMBER = /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/;
 const sent = new WeakMap(); // parentElement -> JSON of the rows last sent or drawn
 
-function cellText(column, value) {
+function cellText(value) {
   if (value === null || value === undefined) return "";
   if (typeof value === "number") {
     // 12 significant digits: a unit conversion's round-off (700.0000000000001) is not shown
@@ -34,10 +34,9 @@ function parsed(column, text) {
   return t; // the page names the field it cannot read
 }
 
-function label(column, row, index) {
-  const name = row.name === null || row.name === undefined || row.name === ""
+function rowName(row, index) {
+  return row.name === null || row.name === undefined || row.name === ""
     ? `row ${index + 1}` : String(row.name);
-  return `${name} ${column.label}`;
 }
 
 export default function (component) {
@@ -101,7 +100,7 @@ export default function (component) {
           const element = document.createElement("option");
           element.value = option;
           element.textContent = option === "" ? (column.placeholder || "—") : option;
-          element.selected = option === cellText(column, value);
+          element.selected = option === cellText(value);
           field.appendChild(element);
         }
         field.addEventListener("change", () => {
@@ -119,7 +118,7 @@ export default function (component) {
           field.className = "cd-number";
         }
         field.placeholder = column.placeholder || "";
-        field.value = cellText(column, row[column.key]);
+        field.value = cellText(row[column.key]);
         let committed = field.value;
         const commit = () => {
           if (field.value === committed) return;
@@ -133,7 +132,7 @@ export default function (component) {
           if (event.key === "Escape") field.value = committed;
         });
       }
-      field.setAttribute("aria-label", label(column, row, index));
+      field.setAttribute("aria-label", `${rowName(row, index)} ${column.label}`);
       field.title = column.title || column.label;
       field.dataset.column = column.key;
       field.dataset.row = String(index);
@@ -145,7 +144,7 @@ export default function (component) {
     remove.className = "cd-remove";
     remove.textContent = "×";
     remove.title = "remove this sprocket";
-    remove.setAttribute("aria-label", `remove ${label({ label: "" }, row, index).trim()}`);
+    remove.setAttribute("aria-label", `remove ${rowName(row, index)}`);
     remove.addEventListener("click", () => {
       rows.splice(index, 1);
       send();

@@ -22,7 +22,7 @@ from functools import cache
 from importlib import resources
 from typing import Any
 
-from chaindrive.app.state import SPROCKET_COLUMNS, plain
+from chaindrive.app.state import SPROCKET_COLUMNS, is_empty, plain
 from chaindrive.model import ROLES, SIDES
 
 __all__ = ["SHORT_LABELS", "WIDTHS", "merged_rows", "shown_rows", "sprocket_table",
@@ -80,13 +80,11 @@ def table_columns(materials: Sequence[str]) -> list[dict[str, Any]]:
 def _cell(value: Any) -> Any:
     """A shown cell as a JSON value: numbers, text, True/False or None (empty)."""
     value = plain(value)
-    if value is None or isinstance(value, bool | int | str):
-        return value
+    if is_empty(value):
+        return None
     if isinstance(value, float):
         return value if math.isfinite(value) else None
-    if type(value).__name__ in ("NAType", "NaTType"):
-        return None
-    return str(value)
+    return value if isinstance(value, bool | int | str) else str(value)
 
 
 def shown_rows(rows: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
@@ -153,7 +151,7 @@ def table_rows_from_state(state: Any, key: str) -> list[dict[str, Any]] | None:
     if key not in state:
         return None
     held = state[key]
-    rows = held.get("rows") if isinstance(held, Mapping) else getattr(held, "rows", None)
+    rows = held.get("rows") if isinstance(held, Mapping) else None
     if not isinstance(rows, list) or not all(isinstance(r, Mapping) for r in rows):
         return None
     return [dict(r) for r in rows]

@@ -53,7 +53,7 @@ from chaindrive.robust.perturbation import Perturbation, modulus_factor
 from chaindrive.robust.wear import catenary_excess_length, equivalent_sag_ratio, links_removed
 from chaindrive.strength import StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
-from chaindrive.strength.loads import DEFAULT_SAG_RATIO
+from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.strength.safety import steady_safety_factor
 
 __all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "nominal_analysis", "perturbed_design",
@@ -179,16 +179,10 @@ class PerturbedAnalysis(Analysis):
         take-up does not follow (0 with a take-up)."""
         g = self.geometry
         span = g.spans[next(s.index for s in g.spans if s.start == self.drive.driver_index)]
-        base = catenary_excess_length(span.length, self._installed_sag)
+        base = catenary_excess_length(span.length, installed_sag_ratio(self.drive))
         if g.adjusted is not None:
             return base
         return base + (g.slack - self.nominal.geometry.slack)
-
-    @property
-    def _installed_sag(self) -> float:
-        """Sag ratio of the slack span of the new chain as installed [–]."""
-        sag = self.drive.chain.sag
-        return DEFAULT_SAG_RATIO if sag is None else sag
 
     @cached_property
     def sag_ratio(self) -> float:
@@ -198,7 +192,7 @@ class PerturbedAnalysis(Analysis):
         g = self.geometry
         span = g.spans[next(s.index for s in g.spans if s.start == self.drive.driver_index)]
         if g.adjusted is not None:
-            return self._installed_sag
+            return installed_sag_ratio(self.drive)
         if self.extra_slack <= catenary_excess_length(span.length, MIN_SAG_RATIO):
             return MIN_SAG_RATIO
         return equivalent_sag_ratio(span.length, self.extra_slack)

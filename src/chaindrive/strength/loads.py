@@ -27,7 +27,7 @@ from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 
 __all__ = ["DEFAULT_SAG_RATIO", "G", "LoadsResult", "centrifugal_tension", "hinge_pressure",
-           "loads_of", "peripheral_force", "power_shares", "sag_factor", "sag_tension",
+           "installed_sag_ratio", "loads_of", "peripheral_force", "power_shares", "sag_factor", "sag_tension",
            "shaft_load_vectors", "small_sprocket", "span_tensions"]
 
 G = 9.80665  # standard gravity [m/s²]
@@ -365,6 +365,23 @@ def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
     return tight, slack
 
 
+def installed_sag_ratio(drive: Drive) -> float:
+    """Sag of the slack span of the new chain as installed, as a fraction of its length [-]:
+    the design's ``[chain] sag``, else :data:`DEFAULT_SAG_RATIO`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    float
+        s = f/ℓ [-].
+    """
+    return DEFAULT_SAG_RATIO if drive.chain.sag is None else drive.chain.sag
+
+
 def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None = None,
              shaft_load_factor: float = 1.0) -> LoadsResult:
     """Static loads round the contour of a drive.
@@ -404,7 +421,7 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None 
                           f"expected {len(drive.sprockets)} spans, got {len(geometry.spans)}")
     spec = drive.chain.spec
     if sag_ratio is None:
-        sag_ratio = drive.chain.sag if drive.chain.sag is not None else DEFAULT_SAG_RATIO
+        sag_ratio = installed_sag_ratio(drive)
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
     shares = power_shares(drive)
     ft = peripheral_force(drive.power, v)
