@@ -587,7 +587,8 @@ class Analysis:
             out += self._static.loads.warnings
             out += self._static.warnings
         out += resonance_warnings(self.dynamics.resonances)
-        out += dynamics_warnings(self.drive_model, self.bands)
+        out += dynamics_warnings(self.drive_model, self.bands,
+                                 assumed_sag=self.drive.chain.sag is None)
         return tuple(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ the document

@@ -151,3 +151,19 @@ def test_cost_breakdown_adds_up_and_says_what_is_estimated():
         + g.chain_length * cm.chain_per_kg * drive.chain.spec.mass_per_length)
     d = bd.to_dict()
     assert all(item["estimate"] for item in d["items"]) and "estimate" in d["items"][0]["basis"]
+
+
+def test_an_assumed_sag_is_said_where_the_spans_follow_it():
+    """The seed contour's spans are set by their sag (the slack span keeps about 1 % of its
+    taut stiffness): without ``[chain] sag`` the analysis says that the tensions rest on the
+    assumed 2 %; with the sag given it does not."""
+    import chaindrive
+    from chaindrive import examples
+
+    seed = examples.load("seed_three_sprocket")
+    said = [w for w in chaindrive.analyze(seed, response=False).warnings
+            if w.part == "chain.sag"]
+    assert len(said) == 1 and said[0].code == "dynamics.estimate"
+    given = replace(seed, chain=replace(seed.chain, sag=0.02))
+    assert not [w for w in chaindrive.analyze(given, response=False).warnings
+                if w.part == "chain.sag"]

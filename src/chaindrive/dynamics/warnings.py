@@ -6,15 +6,20 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from chaindrive.errors import ChainDriveWarning
+from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.drive_response import Bands
 
-__all__ = ["dynamics_warnings"]
+__all__ = ["SAG_DOMINATED", "dynamics_warnings"]
+
+#: A span keeping less than this share of its taut stiffness is set by its sag (its tension).
+SAG_DOMINATED = 0.9
 
 
-def dynamics_warnings(model: DriveModel, bands: Bands) -> list[ChainDriveWarning]:
+def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = False
+                      ) -> list[ChainDriveWarning]:
     """The warnings of a drive model and its bands.
 
     Parameters
@@ -23,6 +28,9 @@ def dynamics_warnings(model: DriveModel, bands: Bands) -> list[ChainDriveWarning
         The whole-drive model (completeness, estimates, damping source).
     bands : Bands
         The bands for the design's uncertainty.
+    assumed_sag : bool
+        True when the design gives no installed sag (``[chain] sag``) and the static
+        tensions rest on the default one.
 
     Returns
     -------
@@ -35,6 +43,14 @@ def dynamics_warnings(model: DriveModel, bands: Bands) -> list[ChainDriveWarning
     out = list(model.warnings())
     out += [ChainDriveWarning("dynamics.estimate", "motor.rotor_inertia", note)
             for note in model.notes if "estimated" in note]
+    sag = model.ring.sag_factors
+    if assumed_sag and sag is not None and float(min(sag)) < SAG_DOMINATED:
+        out.append(ChainDriveWarning(
+            "dynamics.estimate", "chain.sag",
+            f"the span tensions rest on an installed sag of {100 * DEFAULT_SAG_RATIO:g} % of "
+            "the slack span (assumed: [chain] sag is not given), and the sagging spans keep "
+            f"down to {100 * float(min(sag)):.2g} % of their taut stiffness (∝ T³): the natural "
+            "frequencies follow the sag; give the installed sag"))
     inside = bands.resonances_inside
     if inside:
         pct = f"{100 * bands.uncertainty:g}"
