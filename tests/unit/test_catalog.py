@@ -206,7 +206,7 @@ def test_nonsense_designation_gives_a_hint_instead():
 
 def test_chains_by_pitch_and_standard():
     at_25 = chains_by_pitch(0.0254)
-    # and the estimated polymer PA66 16B-1 of the seed example's pair
+    # and the estimated polymer 16B-1 chains (PA66-GF30 16B-1: the seed example's pair)
     assert {s.standard for s in at_25} == {"ISO 606", "GOST 13568", "ANSI", "polymer"}
     assert all(abs(s.pitch - 0.0254) < 1e-9 for s in at_25)
     assert [s.ansi for s in chains_by_pitch(0.0254, "ANSI")] == [

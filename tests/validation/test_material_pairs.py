@@ -25,21 +25,23 @@ def metal_polymer(seed_drive):
     d, g = seed_drive
     t = loads_of(d, g).span_tensions
     return (_case(d, g, "steel", "steel", t, 0.3, 300),
-            _case(d, g, "PA66", "steel", t, 0.3, 300))
+            _case(d, g, "PA6-GF30", "steel", t, 0.3, 300))
 
 
 def test_polymer_chain_resonance_lower_and_smaller(metal_polymer) -> None:
-    # Fig. 3 / Table 1: a polymer chain's resonance lies lower, ≈ 3× smaller (measured on the
-    # seed example: 25.9 against 74.5 Hz, 50× smaller: its damping ratio 0.175 against 0.06
-    # and its lighter, softer chain)
+    # Fig. 3: a polymer chain's resonance lies lower, with an amplitude "almost 3 times"
+    # smaller. The paper's polymer is its glass-filled polyamide composite (§3.5). Measured on
+    # the seed example: 44.8 against 74.5 Hz, 57 against 941 N (16× smaller: the composite
+    # chain's damping ratio 0.175 against 0.06, and its resonance far from the metal chain's)
     metal, polymer = metal_polymer
-    assert polymer.resonance_tooth_frequency_hz < metal.resonance_tooth_frequency_hz / 2
+    assert polymer.resonance_tooth_frequency_hz < 0.9 * metal.resonance_tooth_frequency_hz
     assert polymer.resonance_amplitude_n < metal.resonance_amplitude_n / 3
 
 
 def test_polymer_chain_lowers_startup_peak(metal_polymer) -> None:
     """Fig. 2: a polymer chain lowers the start-up peak (542 N → 470 N, −13 %); on the
-    seed example's masses (whole-drive model, damping of the material pair) measured −48 %:
+    seed example's masses (whole-drive model, damping of the material pair) measured 533
+    against 956 N, −44 %:
     the metal chain's first mode lies at the tooth frequency (tests/validation/
     test_drive_dynamics.py)."""
     metal, polymer = metal_polymer
