@@ -588,7 +588,8 @@ class Analysis:
             out += self._static.warnings
         out += resonance_warnings(self.dynamics.resonances)
         out += dynamics_warnings(self.drive_model, self.bands,
-                                 assumed_sag=self.drive.chain.sag is None)
+                                 assumed_sag=self.drive.chain.sag is None,
+                                 computed_link_stiffness=self.drive.chain.link_stiffness is None)
         return tuple(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ the document

@@ -202,6 +202,12 @@ class Chain:
     sag : float or None
         Installed sag of the slack span as a fraction of its length [-], in (0, 0.1]; None:
         laid out tight (see :mod:`chaindrive.geometry.length_options`).
+    link_stiffness : float or None
+        Measured axial stiffness of one link (one pitch) of the whole chain, all strands
+        [N/m], e.g. from the maker's elastic-elongation curve: k_link = F/(ε p) for a load F
+        that stretches the chain by the strain ε = ΔL/L (p: the pitch). None: computed from the
+        plates and the pin (:func:`chaindrive.dynamics.stiffness.link_stiffness`, the
+        contact compliance of pin, bush and roller left out).
 
     Raises
     ------
@@ -216,6 +222,7 @@ class Chain:
     contours: int = 1
     rounding: str = "round up"
     sag: float | None = None
+    link_stiffness: float | None = None
 
     def __post_init__(self) -> None:
         if self.rounding not in ROUNDINGS:
@@ -224,6 +231,10 @@ class Chain:
         if self.sag is not None and not 0.0 < self.sag <= 0.1:
             raise DesignError("chain.sag", f"must be a fraction of the slack span in (0, 0.1], "
                               f"got {self.sag!r}")
+        if self.link_stiffness is not None and not (
+                math.isfinite(self.link_stiffness) and self.link_stiffness > 0.0):
+            raise DesignError("chain.link_stiffness", "must be a positive finite stiffness "
+                              f"[N/m], got {self.link_stiffness!r}")
         if (not isinstance(self.contours, int) or isinstance(self.contours, bool)
                 or not 1 <= self.contours <= MAX_CONTOURS):
             raise DesignError("chain.contours", f"must be a whole number from 1 to {MAX_CONTOURS}, "

@@ -54,7 +54,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
-__all__ = ["DynamicsResult", "RingParameters", "drive_dynamics", "drive_ring_parameters",
+__all__ = ["DynamicsResult", "RingParameters", "chain_link_stiffness", "drive_dynamics",
+           "drive_ring_parameters",
            "ring_damping_ratio", "ring_model", "static_span_tensions"]
 
 
@@ -171,6 +172,39 @@ def sprocket_inertia(sprocket: Sprocket, pitch_radius: float, spec: ChainSpec,
                                      transverse_pitch=spec.transverse_pitch).moment_of_inertia
 
 
+def chain_link_stiffness(drive: Drive, youngs_modulus: float, *,
+                         reference_modulus: float | None = None) -> float:
+    """Axial stiffness k_link [N/m] of one link of the drive's chain.
+
+    The design's measured value (``Chain.link_stiffness``, ``[chain] link_stiffness``) when
+    given, scaled by E/E_ref when the chain's modulus differs from the one it was measured at
+    (a chain at another temperature); else the plates and the pin at E
+    (:func:`chaindrive.dynamics.stiffness.link_stiffness`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    youngs_modulus : float
+        Young's modulus E of the chain material in the state computed [Pa].
+    reference_modulus : float or None
+        E_ref [Pa] the measured value belongs to (None: E, no scaling).
+
+    Returns
+    -------
+    float
+        k_link [N/m].
+
+    References
+    ----------
+    [Roark2012, Table 8.1 case 2e] (the pin of the computed value).
+    """
+    given = drive.chain.link_stiffness
+    if given is None:
+        return link_stiffness_from_plates(drive.chain.spec, youngs_modulus)
+    return given * (youngs_modulus / reference_modulus if reference_modulus else 1.0)
+
+
 def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           span_tensions: Sequence[float] | None = None,
                           link_stiffness: float | None = None,
@@ -196,9 +230,8 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
         :func:`chaindrive.strength.loads.loads_of` when the drive has a power, else the spans
         are taken as taut, no sag).
     link_stiffness : float or None
-        Stiffness of one link [N/m], e.g. from catalogue data (None:
-        :func:`~chaindrive.dynamics.stiffness.link_stiffness` from plates and pin with the
-        chain material's E).
+        Stiffness of one link [N/m] (None: :func:`chain_link_stiffness`, the design's
+        measured value or the plates and pin with the chain material's E).
     material_lookup : callable or None
         Name → Material (None: :func:`chaindrive.catalog.find_material`).
 
@@ -215,7 +248,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
     spec = drive.chain.spec
     chain_mat = lookup(spec.material)
     k_link = (link_stiffness if link_stiffness is not None
-              else link_stiffness_from_plates(spec, chain_mat.youngs_modulus))
+              else chain_link_stiffness(drive, chain_mat.youngs_modulus))
     n = len(drive.sprockets)
     if len(geometry.sprockets) != n or len(geometry.spans) != n:
         raise DesignError("geometry", f"need {n} sprockets and spans, got "

@@ -12,14 +12,17 @@ if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.drive_response import Bands
 
-__all__ = ["SAG_DOMINATED", "dynamics_warnings"]
+__all__ = ["ELASTIC_DOMINATED", "SAG_DOMINATED", "dynamics_warnings"]
 
 #: A span keeping less than this share of its taut stiffness is set by its sag (its tension).
 SAG_DOMINATED = 0.9
+#: A span keeping at least this share of its taut stiffness is set mostly by its links and
+#: teeth (its elastic compliance is at least this share of the whole).
+ELASTIC_DOMINATED = 0.5
 
 
-def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = False
-                      ) -> list[ChainDriveWarning]:
+def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = False,
+                      computed_link_stiffness: bool = False) -> list[ChainDriveWarning]:
     """The warnings of a drive model and its bands.
 
     Parameters
@@ -31,6 +34,9 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
     assumed_sag : bool
         True when the design gives no installed sag (``[chain] sag``) and the static
         tensions rest on the default one.
+    computed_link_stiffness : bool
+        True when the design gives no measured link stiffness (``[chain] link_stiffness``)
+        and the model computed it from the plates and the pin.
 
     Returns
     -------
@@ -51,6 +57,14 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
             "the slack span (assumed: [chain] sag is not given), and the sagging spans keep "
             f"down to {100 * float(min(sag)):.2g} % of their taut stiffness (∝ T³): the natural "
             "frequencies follow the sag; give the installed sag"))
+    if computed_link_stiffness and sag is not None and float(max(sag)) >= ELASTIC_DOMINATED:
+        out.append(ChainDriveWarning(
+            "dynamics.estimate", "chain.link_stiffness",
+            f"the link stiffness is computed from the plates and the pin "
+            f"({model.ring.link_stiffness_n_per_m:.3g} N/m; the contact of pin, bush and "
+            "roller left out, so an upper bound), and spans keeping up to "
+            f"{100 * float(max(sag)):.3g} % of their taut stiffness follow it: the natural "
+            "frequencies are upper bounds too; give the maker's measured value"))
     inside = bands.resonances_inside
     if inside:
         pct = f"{100 * bands.uncertainty:g}"

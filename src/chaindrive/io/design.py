@@ -197,6 +197,12 @@ CHAIN_FIELDS: tuple[Field, ...] = (
     Field("sag", "float", "installed sag of the slack span as a fraction of its length "
           "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True,
           reason="at most 10 % of the span: the shallow-sag (parabolic) catenary [Irvine1981]"),
+    Field("link_stiffness", "stiffness", "measured axial stiffness of one link (one pitch) of "
+          "the whole chain, all strands, e.g. F/(ε·p) from the maker's elastic-elongation "
+          "curve (default: computed from the plates and the pin, the contact of pin, bush "
+          "and roller left out)", minimum=1e5, maximum=1e11, example="1.7e8 N/m",
+          reason="1e5 N/m: a twentieth of the softest catalogue chain's computed value "
+          "(POM 06B-1, 2.6e6 N/m); 1e11 N/m: ten times the stiffest (48B-4, 7.9e9 N/m)"),
     Field("allow_odd", "bool", "allow an odd number of links (needs an offset link)",
           default=False),
     Field("contours", "int", "identical chain contours side by side on common shafts "
@@ -755,7 +761,7 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                   allow_odd=chain_values["allow_odd"], request=request,
                   contours=chain_values["contours"],
                   rounding=links if isinstance(links, str) else "round up",
-                  sag=chain_values["sag"])
+                  sag=chain_values["sag"], link_stiffness=chain_values["link_stiffness"])
     drive = Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                   power=drive_values["power"], tooth_form=tooth_form,
                   service_factor=drive_values["service_factor"], dynamics=dynamics,
@@ -911,6 +917,8 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
         chain["links"] = drive.chain.rounding
     if drive.chain.sag is not None:
         chain["sag"] = drive.chain.sag
+    if drive.chain.link_stiffness is not None:
+        chain["link_stiffness"] = _q(drive.chain.link_stiffness, 1.0, "N/m")
     if drive.chain.allow_odd:
         chain["allow_odd"] = True
     if drive.chain.contours != 1:

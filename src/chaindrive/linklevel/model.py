@@ -3,8 +3,9 @@
 * Roller (hinge) masses: one pitch of chain per roller, m = q·p [kg] (q the catalogue mass
   per metre) — the chain as mass particles at the roller centres joined by spring–dampers,
   the discrete model of [Pedersen2004] and [Pedersen2005].
-* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.stiffness.link_stiffness`
-  (plates and pin, the ring model's own value, so both models share it); viscous link damping
+* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.drive.chain_link_stiffness`
+  (the design's measured value, else plates and pin: the ring model's own value, so both
+  models share it); viscous link damping
   c = β·k_link with the ring model's β = 2ζ/ω₁ (ζ the drive's damping ratio, 0.06 measured
   on chain drives [MultimassChainDrives, §3.2], plus the material part of
   :func:`chaindrive.dynamics.drive.ring_damping_ratio`; ω₁ the ring's first elastic
@@ -44,13 +45,16 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
-from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
+from chaindrive.dynamics.drive import (
+    chain_link_stiffness,
+    drive_ring_parameters,
+    ring_damping_ratio,
+)
 from chaindrive.dynamics.drive_model import chain_damping_ratio
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
     TOOTH_WIDTH_FACTOR,
-    link_stiffness,
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError
@@ -320,7 +324,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     lookup = material_lookup or _default_lookup()
     spec = drive.chain.spec
     chain_mat = lookup(spec.material)
-    k_link = link_stiffness(spec, chain_mat.youngs_modulus)
+    k_link = chain_link_stiffness(drive, chain_mat.youngs_modulus)
     ring = drive_ring_parameters(drive, geometry, link_stiffness=k_link, material_lookup=lookup)
     f1 = modal_analysis(ring.masses_kg, ring.stiffness_n_per_m).first_elastic_frequency_hz
     m = spec.mass_per_length * spec.pitch

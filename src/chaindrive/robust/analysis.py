@@ -41,12 +41,11 @@ import numpy as np
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check, judged
-from chaindrive.dynamics.drive import drive_ring_parameters
+from chaindrive.dynamics.drive import chain_link_stiffness, drive_ring_parameters
 from chaindrive.dynamics.drive_model import DriveModel, drive_model
 from chaindrive.dynamics.drive_response import drive_steady
 from chaindrive.dynamics.response import disturbance_excitations
 from chaindrive.dynamics.steady import SteadyStateResult
-from chaindrive.dynamics.stiffness import link_stiffness
 from chaindrive.model import Drive, Material
 from chaindrive.multicontour.drive import ContourCheck, most_loaded_share
 from chaindrive.robust.perturbation import Perturbation, modulus_factor
@@ -231,8 +230,10 @@ class PerturbedAnalysis(Analysis):
         st = self._static
         pert = self.perturbation
         spec = self.nominal.drive.chain.spec  # the plates do not stretch: k_link is nominal
-        k_link = (link_stiffness(spec, self._material(spec.material).youngs_modulus)
-                  * pert.chain_stiffness_factor)
+        k_link = (chain_link_stiffness(
+            self.nominal.drive, self._material(spec.material).youngs_modulus,
+            reference_modulus=find_material(spec.material).youngs_modulus)
+            * pert.chain_stiffness_factor)
         tensions = None if st is None else st.loads.span_tensions
         p = drive_ring_parameters(self.drive, self.geometry, span_tensions=tensions,
                                   link_stiffness=k_link, material_lookup=self._material)
