@@ -45,6 +45,7 @@ from chaindrive.app.views import (
 )
 from chaindrive.cli import app as cli_app
 from chaindrive.errors import DesignError
+from chaindrive.io.design import drive_from_mapping
 from tests.conftest import EXAMPLES
 
 pytestmark = pytest.mark.concurrency  # the page runs in Streamlit's script thread
@@ -101,6 +102,20 @@ def test_other_units_are_converted_on_load() -> None:
     assert form.sprockets[0]["x_mm"] == pytest.approx(1364.0)
     assert form.sprockets[0]["speed_rpm"] == pytest.approx(300.0)
     assert form.drive["power_kw"] == pytest.approx(0.5)
+
+
+def test_sag_and_link_stiffness_are_form_fields() -> None:
+    """The installed sag (a fraction) and the measured link stiffness (N/m; read in any
+    unit) are fields of the form and come back to the design mapping with their unit."""
+    data = tomllib.loads(SEED.read_text(encoding="utf-8"))
+    data["chain"].update(sag=0.015, link_stiffness="170 kN/mm")
+    form = form_from_design(data)
+    assert form.chain["sag"] == 0.015
+    assert form.chain["link_stiffness_n_per_m"] == pytest.approx(1.7e8)
+    back = design_from_form(form)["chain"]
+    assert back["sag"] == 0.015 and back["link_stiffness"] == "170000000 N/m"
+    drive = drive_from_mapping(design_from_form(form))
+    assert drive.chain.sag == 0.015 and drive.chain.link_stiffness == pytest.approx(1.7e8)
 
 
 @pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.stem)
@@ -258,6 +273,9 @@ BAD |= {
                       Location("chain", None, "designation")),
     "too many strands": (lambda: _form_with("chain", strands=9.0),
                          Location("chain", None, "strands")),
+    "sag of a half": (lambda: _form_with("chain", sag=0.5), Location("chain", None, "sag")),
+    "soft link": (lambda: _form_with("chain", link_stiffness_n_per_m=10.0),
+                  Location("chain", None, "link_stiffness_n_per_m")),
 }
 
 
@@ -288,6 +306,8 @@ def test_locate_field_paths() -> None:
     assert locate("sprockets", names) == Location("sprockets")
     assert locate("drive.power", names) == Location("drive", None, "power_kw")
     assert locate("chain.pitch", names) == Location("chain", None, "pitch_mm")
+    assert locate("chain.link_stiffness", names) == Location("chain", None,
+                                                             "link_stiffness_n_per_m")
     assert locate("chian", names) == Location("design")
     assert locate("", names) == Location("design")
 

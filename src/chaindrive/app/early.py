@@ -77,7 +77,8 @@ def drive_values(drive: Mapping[str, Any], name: Any, tooth_form: Any, power: An
 
 
 def chain_values(chain: Mapping[str, Any], strands: Any, choice: str, links: Any,
-                 contours: Any, allow_odd: Any) -> dict[str, Any]:
+                 contours: Any, allow_odd: Any, sag: Any, link_stiffness: Any
+                 ) -> dict[str, Any]:
     """The ``[chain]`` table of the form from its fields' values: a catalogue chain, or a
     selection for the power within a standard (``choice``).
 
@@ -95,6 +96,10 @@ def chain_values(chain: Mapping[str, Any], strands: Any, choice: str, links: Any
         The contours field [-] (None: empty).
     allow_odd : object
         The odd-links box.
+    sag : object
+        The installed-sag field [-] (fraction of the slack span; None: empty).
+    link_stiffness : object
+        The link-stiffness field [N/m] (None: empty).
 
     Returns
     -------
@@ -106,7 +111,8 @@ def chain_values(chain: Mapping[str, Any], strands: Any, choice: str, links: Any
         ch.update(designation=None, standard=choice[len(CHAIN_PREFIX):-1])
     else:
         ch.update(designation=choice, standard=None, series=None, pitch_mm=None)
-    ch.update(strands=strands, links=links, contours=contours, allow_odd=allow_odd)
+    ch.update(strands=strands, links=links, contours=contours, allow_odd=allow_odd, sag=sag,
+              link_stiffness_n_per_m=link_stiffness)
     return ch
 
 
@@ -156,7 +162,9 @@ def design_from_state(base: DesignForm, state: _State, key: Callable[[str], str]
     chain = chain_values(ch, number("chain.strands", ch.get("strands")), choice,
                          number("chain.links", ch.get("links")),
                          number("chain.contours", ch.get("contours")),
-                         read("chain.allow_odd", bool(ch.get("allow_odd"))))
+                         read("chain.allow_odd", bool(ch.get("allow_odd"))),
+                         number("chain.sag", ch.get("sag")),
+                         number("chain.link_stiffness", ch.get("link_stiffness_n_per_m")))
     held = table_rows_from_state(state, table_key)
     rows = base.sprockets if held is None else merged_rows(base.sprockets, held)
     return design_from_form(DesignForm(drive, chain, rows, base.other))

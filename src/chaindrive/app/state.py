@@ -88,7 +88,8 @@ COLUMN_OF_FIELD: dict[str, Column] = {c.field: c for c in SPROCKET_COLUMNS}
 #: Drive fields the page edits as numbers: form key → (field, unit, SI → number factor).
 DRIVE_NUMBERS: dict[str, tuple[str, str, float]] = {"power_kw": ("power", "kW", 1e-3)}
 #: Form key of each design-file field that the form shows under another name.
-FORM_KEY_OF_FIELD: dict[str, str] = {"power": "power_kw"}
+FORM_KEY_OF_FIELD: dict[str, str] = {"power": "power_kw",
+                                     "link_stiffness": "link_stiffness_n_per_m"}
 
 
 @dataclass(slots=True)
@@ -254,10 +255,13 @@ def form_from_design(data: Mapping[str, Any]) -> DesignForm:
              "tooth_form": drive_in.pop("tooth_form", None), **drive_in}
     chain_in = dict(data.get("chain") or {})
     chain = {k: chain_in.pop(k, None) for k in ("designation", "standard", "series", "strands",
-                                                "links", "contours", "catalog")}
+                                                "links", "contours", "catalog", "sag")}
     chain["allow_odd"] = chain_in.pop("allow_odd", False)
     pitch = chain_in.pop("pitch", None)
     chain["pitch_mm"] = None if pitch is None else _si(pitch, "length", "chain.pitch") * 1e3
+    k_link = chain_in.pop("link_stiffness", None)
+    chain["link_stiffness_n_per_m"] = (None if k_link is None else
+                                       _si(k_link, "stiffness", "chain.link_stiffness"))
     chain.update(chain_in)
     rows = []
     for i, raw in enumerate(data.get("sprockets") or []):
@@ -376,7 +380,8 @@ def _section_to_design(values: Mapping[str, Any], numbers: Mapping[str, tuple[st
     return out
 
 
-CHAIN_NUMBERS: dict[str, tuple[str, str, float]] = {"pitch_mm": ("pitch", "mm", 1e3)}
+CHAIN_NUMBERS: dict[str, tuple[str, str, float]] = {
+    "pitch_mm": ("pitch", "mm", 1e3), "link_stiffness_n_per_m": ("link_stiffness", "N/m", 1.0)}
 
 
 def design_from_form(form: DesignForm) -> dict[str, Any]:
