@@ -56,7 +56,7 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
             f"the span tensions rest on an installed sag of {100 * DEFAULT_SAG_RATIO:g} % of "
             "the slack span (assumed: [chain] sag is not given), and the sagging spans keep "
             f"down to {100 * float(min(sag)):.2g} % of their taut stiffness (∝ T³): the natural "
-            "frequencies follow the sag; give the installed sag"))
+            "frequencies follow the sag; give the installed sag ([chain] sag)"))
     if computed_link_stiffness and sag is not None and float(max(sag)) >= ELASTIC_DOMINATED:
         out.append(ChainDriveWarning(
             "dynamics.estimate", "chain.link_stiffness",
@@ -64,7 +64,8 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
             f"({model.ring.link_stiffness_n_per_m:.3g} N/m; the contact of pin, bush and "
             "roller left out, so an upper bound), and spans keeping up to "
             f"{100 * float(max(sag)):.3g} % of their taut stiffness follow it: the natural "
-            "frequencies are upper bounds too; give the maker's measured value"))
+            "frequencies are upper bounds too; give the maker's measured value ([chain] "
+            "link_stiffness)"))
     inside = bands.resonances_inside
     if inside:
         pct = f"{100 * bands.uncertainty:g}"
