@@ -55,8 +55,7 @@ if TYPE_CHECKING:
     from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
 __all__ = ["DynamicsResult", "RingParameters", "chain_link_stiffness", "drive_dynamics",
-           "drive_ring_parameters",
-           "ring_damping_ratio", "ring_model", "static_span_tensions"]
+           "drive_ring_parameters", "ring_damping_ratio", "ring_model", "static_span_tensions"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
