@@ -274,12 +274,12 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
         contours = _field(slots, ("chain", "contours"), lambda: _number(
             "Contours", ch.get("contours"), "chain.contours", step=1,
             help_text="identical contours side by side on common shafts, default 1"))
-    c_sag, c_stiffness, c_odd = st.columns([0.9, 1.2, 1.9])
+    c_sag, c_stiffness, c_odd = st.columns([1.0, 1.3, 1.5], vertical_alignment="bottom")
     with c_sag:
         sag = _field(slots, ("chain", "sag"), lambda: _number(
-            "Installed sag (fraction)", ch.get("sag"), "chain.sag", step=0.005, fmt="%g",
-            help_text="sag of the slack span as a fraction of its length, up to 0.1; empty: "
-            "laid out tight, the tensions for an assumed 0.02"))
+            "Installed sag", ch.get("sag"), "chain.sag", step=0.005, fmt="%g",
+            help_text="sag of the slack span as a fraction of its length (e.g. 0.02), up to "
+            "0.1; empty: laid out tight, the tensions for an assumed 0.02"))
     with c_stiffness:
         stiffness = _field(slots, ("chain", "link_stiffness_n_per_m"), lambda: _number(
             "Link stiffness [N/m]", ch.get("link_stiffness_n_per_m"), "chain.link_stiffness",
@@ -287,8 +287,8 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
             "the whole chain, F/(ε·p); empty: computed from the plates and the pin"))
     with c_odd:
         allow_odd = _field(slots, ("chain", "allow_odd"), lambda: st.checkbox(
-            "Odd number of links allowed (needs an offset link)",
-            value=bool(ch.get("allow_odd")), key=_key("chain.allow_odd")))
+            "Odd number of links", value=bool(ch.get("allow_odd")),
+            key=_key("chain.allow_odd"), help="allowed: it needs an offset link"))
     for key in ("standard", "pitch_mm", "series", "catalog"):
         slots[("chain", key)] = slots[("chain", "designation")]
     return chain_values(ch, strands, choice, links, contours, allow_odd, sag, stiffness)
