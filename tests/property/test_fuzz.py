@@ -140,6 +140,8 @@ def designs(draw: st.DrawFn) -> tuple[bytes, str | None]:
                 st.floats(allow_nan=True).map(repr)))
         catalog = HEADER + "\n" + "\n".join(",".join(r) for r in rows) + "\n"
         data["chain"] = {"designation": "FUZZ 1", "catalog": "CATALOG"}
+    if draw(st.integers(0, 2)) == 0:  # optional inputs no example gives, mutated like the rest
+        data.setdefault("chain", {}).update(sag=0.02, link_stiffness="1.7e8 N/m")
     for _ in range(draw(st.integers(0, 3))):
         leaves = _leaves(data)
         path = draw(st.sampled_from(leaves))
