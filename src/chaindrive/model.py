@@ -235,6 +235,10 @@ class Chain:
                 math.isfinite(self.link_stiffness) and self.link_stiffness > 0.0):
             raise DesignError("chain.link_stiffness", "must be a positive finite stiffness "
                               f"[N/m], got {self.link_stiffness!r}")
+        if self.link_stiffness is not None and self.request is not None:
+            raise DesignError("chain.link_stiffness", "a measured link stiffness belongs to one "
+                              "chain: give its designation, or leave the stiffness out to have "
+                              "the chain selected")
         if (not isinstance(self.contours, int) or isinstance(self.contours, bool)
                 or not 1 <= self.contours <= MAX_CONTOURS):
             raise DesignError("chain.contours", f"must be a whole number from 1 to {MAX_CONTOURS}, "
@@ -729,7 +733,8 @@ class Drive:
 
     def with_chain(self, spec: ChainSpec) -> Drive:
         """A copy with another catalogue chain (links and allow_odd kept; the request is
-        answered, so it is cleared).
+        answered, so it is cleared; a measured link stiffness is kept for the same chain
+        only).
 
         Parameters
         ----------
@@ -741,7 +746,10 @@ class Drive:
         Drive
             The copy.
         """
-        return replace(self, chain=replace(self.chain, spec=spec, request=None))
+        same = spec.designation == self.chain.spec.designation
+        return replace(self, chain=replace(
+            self.chain, spec=spec, request=None,
+            link_stiffness=self.chain.link_stiffness if same else None))
 
     def with_sprockets(self, sprockets: tuple[Sprocket, ...]) -> Drive:
         """A copy with other sprockets (e.g. after the take-up).

@@ -15,8 +15,9 @@ import pytest
 
 import chaindrive
 from chaindrive import examples
-from chaindrive.catalog import find_material
+from chaindrive.catalog import find_chain, find_material
 from chaindrive.dynamics.drive import chain_link_stiffness, drive_ring_parameters
+from chaindrive.dynamics.materials import with_materials
 from chaindrive.dynamics.stiffness import link_stiffness
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_from_mapping, drive_to_toml, parse_toml
@@ -95,3 +96,21 @@ def test_the_computed_value_is_said_where_the_spans_follow_it() -> None:
     assert len(said(taut)) == 1 and "upper bound" in said(taut)[0]
     assert not said(replace(taut, chain=replace(taut.chain, link_stiffness=MEASURED)))
     assert not said(seed)
+
+
+def test_the_measured_value_stays_with_its_chain() -> None:
+    """A measured stiffness belongs to the chain it was measured on: with a chain to be
+    selected it is refused; another catalogue chain (selection, optimiser) drops it; the
+    same chain keeps it; the chain in another material (the material-pair study) scales it
+    by E_new/E_old, as every compliance of a one-material chain does."""
+    seed = examples.load("seed_three_sprocket")
+    measured = replace(seed, chain=replace(seed.chain, link_stiffness=MEASURED))
+    with pytest.raises(DesignError, match="chain.link_stiffness"):
+        drive_from_mapping(parse_toml(TEXT.replace('designation = "12B-1"',
+                                                   'standard = "ISO 606"'), "x.toml"))
+    other = find_chain("ISO 606 16B-1")
+    assert measured.with_chain(other).chain.link_stiffness is None
+    assert measured.with_chain(measured.chain.spec).chain.link_stiffness == MEASURED
+    e = {m: find_material(m).youngs_modulus for m in ("steel", "PA6-GF30")}
+    poly = with_materials(measured, "PA6-GF30", "steel")
+    assert poly.chain.link_stiffness == pytest.approx(MEASURED * e["PA6-GF30"] / e["steel"])

@@ -85,7 +85,8 @@ class MaterialCase:
 
 def with_materials(drive: Drive, chain_material: str, sprocket_material: str) -> Drive:
     """The drive with its chain and all its sprockets of other materials (module docstring:
-    the chain's mass per length scales with the density).
+    the chain's mass per length scales with the density, a measured link stiffness with the
+    Young's modulus).
 
     Parameters
     ----------
@@ -99,9 +100,13 @@ def with_materials(drive: Drive, chain_material: str, sprocket_material: str) ->
     Drive
     """
     spec = drive.chain.spec
-    rho = find_material(chain_material).density / find_material(spec.material).density
-    spec = replace(spec, material=chain_material, mass_per_length=spec.mass_per_length * rho)
-    return replace(drive, chain=replace(drive.chain, spec=spec),
+    new, old = find_material(chain_material), find_material(spec.material)
+    spec = replace(spec, material=chain_material,
+                   mass_per_length=spec.mass_per_length * new.density / old.density)
+    k_link = drive.chain.link_stiffness
+    if k_link is not None:  # every compliance of a one-material chain scales as 1/E
+        k_link *= new.youngs_modulus / old.youngs_modulus
+    return replace(drive, chain=replace(drive.chain, spec=spec, link_stiffness=k_link),
                    sprockets=tuple(replace(s, material=sprocket_material)
                                    for s in drive.sprockets))
 
