@@ -45,11 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
-from chaindrive.dynamics.drive import (
-    chain_link_stiffness,
-    drive_ring_parameters,
-    ring_damping_ratio,
-)
+from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
 from chaindrive.dynamics.drive_model import chain_damping_ratio
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
@@ -324,8 +320,8 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     lookup = material_lookup or _default_lookup()
     spec = drive.chain.spec
     chain_mat = lookup(spec.material)
-    k_link = chain_link_stiffness(drive, chain_mat.youngs_modulus)
-    ring = drive_ring_parameters(drive, geometry, link_stiffness=k_link, material_lookup=lookup)
+    ring = drive_ring_parameters(drive, geometry, material_lookup=lookup)
+    k_link = ring.link_stiffness_n_per_m  # the ring's own (chain_link_stiffness): one value
     f1 = modal_analysis(ring.masses_kg, ring.stiffness_n_per_m).first_elastic_frequency_hz
     m = spec.mass_per_length * spec.pitch
     teeth = np.array([s.teeth for s in drive.sprockets], dtype=np.int64)
