@@ -42,8 +42,9 @@ def test_wear_life_scaling():
                     15000 * 2**2.5 * 1.2 * 2 / 3, rtol=1e-12)
 
 
-def drive_two(material: str = "steel") -> Drive:
-    spec = dataclasses.replace(make_spec(0.0254), material=material, bearing_area=180e-6)
+def drive_two(material: str = "steel", standard: str = "ISO 606") -> Drive:
+    spec = dataclasses.replace(make_spec(0.0254), material=material, bearing_area=180e-6,
+                               standard=standard)
     return Drive("two", Chain(spec), (Sprocket("A", 19, 0.0, 0.0, "driver", speed=rpm(400)),
                                       Sprocket("B", 38, 1.0, 0.0, "driven")),
                  power=5000.0, service_factor=1.3)
@@ -60,9 +61,33 @@ def test_strength_of_keys_and_values():
     assert_allclose(d["hinge_pressure_mpa"], ft * 1.3 / 180e-6 / 1e6, rtol=1e-12)
     assert_allclose(d["safety_factor_static"], 60_000 / (1.2 * ft + res.loads.sag_tension
                                                          + res.loads.centrifugal_tension))
-    assert d["allowable_pressure_mpa"] == pytest.approx(26.0)   # Table 2A: 25.4 mm, 400 rpm
-    assert d["allowable_safety_factor"] == pytest.approx(9.3)
+    # a rated (ISO 606 B) chain: no joint-pressure limit in its method, s >= 6 [DiamondChain]
+    assert d["allowable_pressure_mpa"] is None
+    assert d["allowable_safety_factor"] == 6.0
     assert d["wear_life_h"] > 0
+
+
+def test_strength_of_gost_chain_takes_the_russian_tables():
+    drive = drive_two(standard="GOST 13568")
+    d = strength_of(drive, hand_geometry(drive)).to_dict()
+    assert d["allowable_pressure_mpa"] == pytest.approx(26.0)   # Table 2A: 25.4 mm, 400 rpm
+    assert d["allowable_safety_factor"] == pytest.approx(9.3)   # Table 9A: 25.4 mm, 400 rpm
+
+
+@pytest.mark.parametrize("standard", ["ISO 606", "GOST 13568"])
+def test_strength_allowables_are_those_of_the_checks(standard: str) -> None:
+    """The strength block states the limits the analysis's checks hold the chain to: one
+    chain, one [s] and one [p] (chaindrive.strength.drive_checks)."""
+    from chaindrive.strength.drive_checks import checks_for
+    drive = drive_two(standard=standard)
+    geometry = hand_geometry(drive)
+    d = strength_of(drive, geometry).to_dict()
+    checks = {c.name: c for c in checks_for(drive, geometry)}
+    assert checks["static safety"].limit == pytest.approx(d["allowable_safety_factor"])
+    if d["allowable_pressure_mpa"] is None:
+        assert "hinge pressure" not in checks
+    else:
+        assert checks["hinge pressure"].limit == pytest.approx(d["allowable_pressure_mpa"] * 1e6)
 
 
 def test_strength_of_polymer_chain_drops_steel_limits():
