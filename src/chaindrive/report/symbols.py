@@ -131,13 +131,16 @@ _ALL: tuple[Symbol, ...] = (
     Symbol("ph", "p_h", "p_h", "mean pressure in the chain joints (A: projected bearing area "
            "of the joints)", "p_h = Kэ F_t / A", "p_h = K_\"э\" F_t \\/ A", "pressure",
            "[ChainDesignRU]"),
-    Symbol("ph_allow", "[p_h]", "[p_h]", "allowable joint pressure (table by pitch and speed "
-           "of the small sprocket)", unit="pressure", source="[ChainDesignRU, Table 2A]"),
+    Symbol("ph_allow", "[p_h]", "[p_h]", "allowable joint pressure of the Kэ method (GOST "
+           "chains: table by pitch and speed of the small sprocket; a rated chain has none, its "
+           "rating is its wear and fatigue limit)", unit="pressure",
+           source="[ChainDesignRU, Table 2A]"),
     Symbol("s", "s", "s", "static safety factor (k_д = 1: dynamic factor of the Kэ method)",
            "s = Q / (k_д F_t + F₀ + F_v)", "s = Q / (k_\"д\" F_t + F_0 + F_v)", "1",
            "[ChainDesignRU]"),
-    Symbol("s_allow", "[s]", "[s]", "allowable static safety factor (table by pitch and "
-           "speed)", unit="1", source="[TrinhChat2006, Table 5.10]"),
+    Symbol("s_allow", "[s]", "[s]", "allowable static safety factor (GOST chains: table by "
+           "pitch and speed; rated chains: working load ≤ 1/6 of the breaking load)", unit="1",
+           source="[TrinhChat2006, Table 5.10]; [DiamondChain]"),
     Symbol("Prated", "P_r", "P_r", "rated power of the chain at the small sprocket's speed "
            "(ACA or ISO 606 B tables)", unit="power", source="[Shigley2015, §17-5]"),
     Symbol("Lh", "L_h", "L_h", "wear life to the permitted elongation",
