@@ -59,6 +59,7 @@ from chaindrive.dynamics.warnings import dynamics_warnings
 from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_frequency
@@ -67,6 +68,7 @@ from chaindrive.model import Drive
 from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import rank_chains, rank_key
 from chaindrive.units import RAD_S_TO_RPM
 
@@ -231,6 +233,19 @@ class Analysis:
     def kinematics(self) -> KinematicsResult:
         """Speeds, chain speed and the polygonal non-uniformity."""
         return drive_kinematics(self.drive, self.geometry)
+
+    @cached_property
+    def length_choice(self) -> LengthChoice:
+        """The whole link counts below and above the tight length of the layout as designed,
+        each laid out with its centre distance, take-up and slack-span sag, and the design's
+        pick (:func:`chaindrive.geometry.length_options.length_options`)."""
+        return length_options(self._designed)
+
+    @cached_property
+    def lubrication(self) -> LubricationAdvice:
+        """The lubrication regime of the analysed chain at its mean speed
+        (:func:`chaindrive.strength.lubrication.lubrication_advice`)."""
+        return lubrication_advice(self.drive.chain.spec, self.kinematics.chain_speed)
 
     # ------------------------------------------------------------------ strength
     @cached_property
@@ -617,8 +632,10 @@ class Analysis:
                 strength.update(fragment["strength"])
         out: dict[str, Any] = {
             "drive": drive_summary(self.drive),
-            "geometry": geometry_dict(self.geometry),
+            "geometry": {**geometry_dict(self.geometry),
+                         "length_options": self.length_choice.to_dict()},
             "kinematics": self.kinematics.to_dict(),
+            "lubrication": self.lubrication.to_dict(),
             "selection": None if self.selection is None else self.selection.to_dict(),
             "strength": strength,
             "dynamics": dynamics,

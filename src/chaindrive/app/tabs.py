@@ -19,7 +19,9 @@ from chaindrive.app import runs
 from chaindrive.app.state import design_to_toml
 from chaindrive.app.views import (
     Screen,
+    length_option_records,
     line_chart_svg,
+    lubrication_records,
     modal_records,
     resonance_records,
     selection_records,
@@ -88,6 +90,19 @@ def tab_geometry(screen: Screen) -> None:
     doc, units = screen.document or {}, _units()
     st.dataframe(sprocket_records(doc, units), hide_index=True, width="stretch")
     st.dataframe(span_records(doc, units), hide_index=True, width="stretch")
+    if doc:
+        lengths, lube = st.columns([3, 2])
+        with lengths:
+            tight = doc["geometry"]["length_options"]["tight_length_pitches"]
+            st.markdown(f"**Chain length options** (tight length as designed {fmt(tight)} "
+                        "pitches; pick one with `links` in `[chain]`)")
+            st.dataframe(length_option_records(doc, units), hide_index=True, width="stretch")
+        with lube:
+            st.markdown("**Lubrication** at the chain speed")
+            st.dataframe(lubrication_records(doc, units), hide_index=True, width="stretch")
+            note = doc["lubrication"]["note"]
+            st.caption(f"{note[:1].upper() + note[1:] + '. ' if note else ''}Source: "
+                       f"{doc['lubrication']['source']}")
     a = screen.outcome.analysis
     kin = a.kinematics
     beta = np.degrees(kin.phase)

@@ -490,7 +490,68 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
              "passed": c["passed"],
              "margin, %": None if c["margin_fraction"] is None
              else clean(100 * c["margin_fraction"], 3),
-             "governing check": c["governing"]} for c in selection["candidates"][:top]]
+             "governing check": c["governing"], "lubrication": c["lubrication"]}
+            for c in selection["candidates"][:top]]
+
+
+def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
+                          ) -> list[dict[str, Any]]:
+    """Rows of the chain length options: each whole link count around the tight length as
+    designed, laid out (:func:`chaindrive.geometry.length_options.length_options`).
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per link count: column header (with its unit) → cell; the design's pick
+        marked "(chosen)", a count that cannot be laid out with the reason.
+    """
+    lc = document["geometry"]["length_options"]
+    cols = (("centre distance", "centre_distance_mm"), ("take-up", "take_up_mm"),
+            ("slack-span sag", "slack_sag_mm"))
+    errors = any(o["error"] for o in lc["options"])
+    return [{"links": o["links"],
+             "rounding": o["rounding"] + (" (chosen)" if o["rounding"] == lc["chosen"] else ""),
+             **_row(o, cols, units), **({"note": o["error"] or ""} if errors else {})}
+            for o in lc["options"]]
+
+
+def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
+                        ) -> list[dict[str, Any]]:
+    """Rows (quantity, value, unit) of the lubrication advice at the chain speed
+    (:func:`chaindrive.strength.lubrication.lubrication_advice`).
+
+    Parameters
+    ----------
+    document : dict
+        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per quantity: ``quantity``, ``value`` (formatted), ``unit``; the note and
+        the source are the document's ``lubrication.note`` and ``.source`` (shown below the
+        table, they are long).
+    """
+    lube = document["lubrication"]
+    regime = lube["regime"] + ("" if lube["ansi_type"] is None
+                               else f" (ANSI type {lube['ansi_type']})")
+    out = [{"quantity": "regime", "value": regime, "unit": ""}]
+    for label, key in (("chain speed", "chain_speed_m_s"), ("manual up to", "manual_max_m_s"),
+                       ("drip up to", "drip_max_m_s"),
+                       ("oil bath or slinger disc up to", "bath_max_m_s")):
+        if lube[key] is not None:
+            value, unit = doc_value(key, lube[key], units)
+            out.append({"quantity": label, "value": fmt(value), "unit": unit})
+    return out
 
 
 @dataclass(frozen=True, slots=True, eq=False)

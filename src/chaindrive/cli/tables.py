@@ -40,7 +40,7 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
                           "subject", "required", "result", "unit", "direction", "side",
                           "source", "allowed", "description", "example", "working",
                           "position", "span", "constraint", "closest design", "closest miss",
-                          "designation", "what", "design", "group", "distribution",
+                          "designation", "what", "design", "group", "distribution", "lubrication",
                           "failed", "failures"})
 
 
@@ -141,6 +141,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
     if g["adjusted_sprocket"] is not None:
         con.print(f"take-up: {escape(g['adjusted_sprocket'])} moved "
                   f"{_q(g, 'adjustment_mm', units)}")
+    con.print(_length_options(g["length_options"], units))
     cols = [("name", "name"), ("teeth", "teeth"), ("side", "side"), ("x", "x_mm"),
             ("y", "y_mm"), ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
             ("wrap", "wrap_angle_deg"), ("teeth in mesh", "teeth_in_mesh")]
@@ -157,6 +158,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
                                         ("direction", "direction"),
                                         ("speed variation, %", "speed_variation_percent")],
                          k["sprockets"], units))
+    con.print(_lubrication(doc["lubrication"], units))
     if doc["strength"] is not None:
         _print_strength(con, doc["strength"], [s["name"] for s in g["sprockets"]],
                         [f"{s['from']}→{s['to']}" for s in g["spans"]], units)
@@ -277,6 +279,42 @@ def _default(field: dict[str, Any]) -> Any:
     return f"{fmt(float(value))} {unit}"
 
 
+def _length_options(lc: dict[str, Any], units: UnitSystem) -> str:
+    """One line: each whole link count around the tight length, laid out (the design's pick
+    marked)."""
+    parts = []
+    for o in lc["options"]:
+        picked = ", chosen" if o["rounding"] == lc["chosen"] else ""
+        head = f"{o['links']} links ({o['rounding']}{picked})"
+        if o["error"] is not None:
+            parts.append(f"{head}: cannot be laid out ({escape(o['error'])})")
+            continue
+        what = []
+        if o["centre_distance_mm"] is not None:
+            what.append(f"centre distance {_q(o, 'centre_distance_mm', units)}")
+        if o["take_up_mm"] is not None:
+            what.append(f"take-up {_q(o, 'take_up_mm', units)}")
+        what.append(f"slack-span sag {_q(o, 'slack_sag_mm', units)}")
+        parts.append(f"{head}: {', '.join(what)}")
+    given = "; the design imposes its count" if lc["chosen"] == "given" else ""
+    return (f"length options (tight length as designed {fmt(lc['tight_length_pitches'])} "
+            f"pitches{given}): " + "; ".join(parts))
+
+
+def _lubrication(lube: dict[str, Any], units: UnitSystem) -> str:
+    """One line: the lubrication regime at the chain speed, the limits of the pitch and the
+    source."""
+    line = f"lubrication: {escape(lube['regime'])}"
+    if lube["ansi_type"] is not None:
+        line += (f" (ANSI type {lube['ansi_type']}) at {_q(lube, 'chain_speed_m_s', units)}; "
+                 f"this pitch: manual up to {_q(lube, 'manual_max_m_s', units)}, drip up to "
+                 f"{_q(lube, 'drip_max_m_s', units)}, bath or disc up to "
+                 f"{_q(lube, 'bath_max_m_s', units)}, forced above")
+    if lube["note"]:
+        line += f" ({escape(lube['note'])})"
+    return line + f"; source: {escape(lube['source'])}"
+
+
 def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     """The chain selected and the ranked candidates, on stdout.
 
@@ -295,11 +333,11 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
                     "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",
-                                "governing"],
+                                "governing", "lubrication"],
                     [[c["chain"], c["method"], c["strands"],
                       doc_value("mass_kg_m", c["mass_kg_m"], units)[0], c["passed"],
                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
-                      c["governing"]] for c in doc["candidates"]]))
+                      c["governing"], c["lubrication"]] for c in doc["candidates"]]))
 
 
 def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],

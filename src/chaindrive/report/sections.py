@@ -270,10 +270,26 @@ def geometry_section(inp: ReportInput) -> list[Block]:
                         "tight"),
               rows([(s.start_name, s.end_name, inp.val(s.length, "length"), s.pitches,
                      math.degrees(s.inclination), s.tight) for s in g.spans])),
+        _length_options_table(inp),
         plot_block(contour_layout(g), "Contour layout to scale (tight span red)", inp.dpi,
                    "layout"),
     ]
     return blocks
+
+
+def _length_options_table(inp: ReportInput) -> Table:
+    """The whole link counts around the tight length as designed, each laid out."""
+    lc = inp.analysis.length_choice
+    given = "; the design imposes its count" if lc.chosen == "given" else ""
+    return Table(f"Chain length options (tight length as designed {fmt(lc.tight_pitches)} "
+                 f"pitches{given})",
+                 ("links", "rounding", inp.col("a", "length"), inp.col("take-up", "length"),
+                  inp.col("slack-span sag", "length"), "note"),
+                 rows([(o.links, o.rounding + (" (chosen)" if o.rounding == lc.chosen else ""),
+                        inp.val(o.centre_distance, "length"), inp.val(o.take_up, "length"),
+                        inp.val(o.slack_sag, "length"),
+                        "" if o.error is None else f"cannot be laid out: {o.error}")
+                       for o in lc.options]))
 
 
 def kinematics_section(inp: ReportInput) -> list[Block]:
@@ -306,12 +322,32 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
               rows([(s["name"], s["speed_rpm"], s["direction"], s["speed_variation_percent"],
                      inp.val(s["hinge_deviation_peak_mm"] * 1e-3, "length"))
                     for s in doc["sprockets"]])),
+        _lubrication_table(inp),
         plot_block(chain_speed(k), "Chain speed over one tooth period", inp.dpi,
                    "chain_speed"),
         plot_block(transmission_ratio(inp.analysis), "Instantaneous transmission ratio",
                    inp.dpi, "ratio"),
     ]
     return blocks
+
+
+def _lubrication_table(inp: ReportInput) -> Table:
+    """The lubrication regime at the chain speed and the limits of the chain's pitch."""
+    lube = inp.analysis.lubrication
+    V = inp.unit("velocity")
+    items: list[tuple[str, Any, str]] = [
+        ("regime", lube.regime + ("" if lube.ansi_type is None
+                                  else f" (ANSI type {lube.ansi_type})"), "")]
+    if lube.manual_max is not None and lube.drip_max is not None and lube.bath_max is not None:
+        items += [("manual (brush, oil can) up to", inp.val(lube.manual_max, "velocity"), V),
+                  ("drip up to", inp.val(lube.drip_max, "velocity"), V),
+                  ("oil bath or slinger disc up to", inp.val(lube.bath_max, "velocity"), V),
+                  ("forced (oil stream) above", inp.val(lube.bath_max, "velocity"), V)]
+    if lube.note:
+        items.append(("note", lube.note, ""))
+    items.append(("source", lube.source, ""))
+    return Table(f"Lubrication at the chain speed {fmt(inp.val(lube.speed, 'velocity'))} {V}",
+                 ("quantity", "value", "unit"), rows(items))
 
 
 # --- selection and strength -------------------------------------------------------------------

@@ -68,11 +68,16 @@ class LubricationAdvice:
     source: str
     note: str = ""
 
+    @property
+    def manual_max(self) -> float | None:
+        """Upper chain speed of manual lubrication [m/s] (None for a polymer chain)."""
+        return None if self.drip_max is None else MANUAL_MAX
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary."""
         return {"chain": self.chain, "chain_speed_m_s": self.speed, "regime": self.regime,
-                "ansi_type": self.ansi_type, "manual_max_m_s": None if self.drip_max is None
-                else MANUAL_MAX, "drip_max_m_s": self.drip_max,
+                "ansi_type": self.ansi_type, "manual_max_m_s": self.manual_max,
+                "drip_max_m_s": self.drip_max,
                 "bath_max_m_s": self.bath_max, "source": self.source, "note": self.note}
 
 
