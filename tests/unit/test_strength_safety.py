@@ -74,15 +74,19 @@ def test_strength_of_gost_chain_takes_the_russian_tables():
     assert d["allowable_safety_factor"] == pytest.approx(9.3)   # Table 9A: 25.4 mm, 400 rpm
 
 
+@pytest.mark.parametrize("sag", [None, 0.005])
 @pytest.mark.parametrize("standard", ["ISO 606", "GOST 13568"])
-def test_strength_allowables_are_those_of_the_checks(standard: str) -> None:
-    """The strength block states the limits the analysis's checks hold the chain to: one
-    chain, one [s] and one [p] (chaindrive.strength.drive_checks)."""
+def test_strength_allowables_are_those_of_the_checks(standard: str, sag: float | None) -> None:
+    """The strength block states the values and limits the analysis's checks hold the chain
+    to: one chain, one s, one [s] and one [p] (chaindrive.strength.drive_checks), the
+    installed sag included (it sets F0 in s = Q/(kд·Ft + F0 + Fv))."""
     from chaindrive.strength.drive_checks import checks_for
     drive = drive_two(standard=standard)
+    drive = dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
     geometry = hand_geometry(drive)
     d = strength_of(drive, geometry).to_dict()
     checks = {c.name: c for c in checks_for(drive, geometry)}
+    assert checks["static safety"].value == pytest.approx(d["safety_factor_static"], rel=1e-12)
     assert checks["static safety"].limit == pytest.approx(d["allowable_safety_factor"])
     if d["allowable_pressure_mpa"] is None:
         assert "hinge pressure" not in checks

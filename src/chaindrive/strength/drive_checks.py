@@ -39,6 +39,7 @@ from chaindrive.strength import iso10823, ke_method, ratings
 from chaindrive.strength.loads import (
     centrifugal_tension,
     hinge_pressure,
+    installed_sag_ratio,
     peripheral_force,
     sag_tension,
     small_sprocket,
@@ -120,14 +121,16 @@ class _Forces:
 
 
 def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
-    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver — the same
-    formulas as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
+    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver at the
+    installed sag — the same formulas and inputs as :func:`chaindrive.strength.loads.loads_of`,
+    without the contour balance."""
     spec, driver = drive.chain.spec, drive.driver
     assert drive.power is not None and driver.speed is not None
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
     slack = next(sp for sp in geometry.spans if sp.start == drive.driver_index)
     return _Forces(v, peripheral_force(drive.power, v),
-                   sag_tension(spec.mass_per_length, slack.length, slack.inclination),
+                   sag_tension(spec.mass_per_length, slack.length, slack.inclination,
+                               installed_sag_ratio(drive)),
                    centrifugal_tension(spec.mass_per_length, v))
 
 
