@@ -145,3 +145,25 @@ def test_shigley_ex17_5_selection_by_strands(strands, ansi):
     res = rank_chains(drive, standard="ANSI", series="A", strands=strands, design_factor=1.5)
     assert res.chosen is not None
     assert res.chain.ansi.split("-")[0] == ansi
+
+
+def test_both_methods_are_stated_where_two_apply(capsys):
+    """BHANDARI-DME-EX14.4 (12B, z1 = 17, 1400 rpm): the B-series table governs (18.15 kW) and
+    the output says what the ACA formulas give beside it (13.47 kW, the measured gap of
+    test_aca_rates_b_series_low_where_the_table_has_a_value), in the JSON and on the command
+    line."""
+    import chaindrive
+    from chaindrive.cli.tables import print_analysis
+
+    a = chaindrive.analyze(two("12B-1", 17, 34, 40 * 0.01905, 1400.0, 12e3, 1.3),
+                           response=False)
+    st = a.to_dict()["strength"]
+    assert st["rating_method"] == ratings.B_TABLE
+    assert st["rated_power_w"] == pytest.approx(18.15e3)
+    aca = next(x for x in ratings.chain_rating(find_chain("12B-1"), 17, 1400 * RPM).alternatives
+               if x.method == ratings.ACA).rated_power
+    assert f"give {aca / 1e3:.4g} kW beside it" in st["rating_note"]
+    print_analysis(a.to_dict(), a.checks())
+    out = " ".join(capsys.readouterr().out.split())
+    assert f"rated power 18.15 kW by {ratings.B_TABLE} — B-series chain: the published" in out
+    assert f"{aca / 1e3:.4g} kW beside it" in out

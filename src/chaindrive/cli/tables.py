@@ -245,6 +245,9 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
     allowed = st["allowable_pressure_mpa"]
     life = "—" if st["wear_life_h"] is None else f"{fmt(st['wear_life_h'])} h"
     extrapolated = " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""
+    if st["rated_power_w"] is not None:
+        con.print(f"rated power {_q(st, 'rated_power_w', units)} by {escape(st['rating_method'])} — "
+                  f"{escape(st['rating_note'])}")
     con.print(f"hinge pressure {_q(st, 'hinge_pressure_mpa', units)} (allowable "
               f"{'—' if allowed is None else _q(st, 'allowable_pressure_mpa', units)}), static "
               f"safety factor {fmt(st['safety_factor_static'])} (allowable "

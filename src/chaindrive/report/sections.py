@@ -429,6 +429,8 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
     spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
     blocks += [
         Table("Loads and strength", ("quantity", "symbol", "value", "unit"), rows(items)),
+        *([Text(f"Rating: {doc['rating_note']}.")] if st.rated_power is not None
+          and doc["rating_note"] else []),
         Table("Span tensions and shaft loads", ("span", inp.col("F_R", "force"), "sprocket",
                                                 inp.col("F_s", "force")),
               rows([(sp, inp.val(t, "force"), n, inp.val(f, "force")) for sp, t, n, f in zip(

@@ -67,6 +67,9 @@ class StrengthResult:
         Estimates and models that do not apply.
     rating_method : str
         ACA, the ISO 606 B table … (:mod:`chaindrive.strength.ratings`).
+    rating_note : str
+        Which method governs and what the other gives beside it
+        (:attr:`chaindrive.strength.ratings.RatingResult.note`).
     """
 
     loads: LoadsResult
@@ -81,6 +84,7 @@ class StrengthResult:
     elongation: float
     warnings: tuple[ChainDriveWarning, ...] = ()
     rating_method: str = ""
+    rating_note: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (the ``strength`` block of ``analyze --json``)."""
@@ -96,6 +100,7 @@ class StrengthResult:
             "allowable_safety_factor": self.allowable_safety_factor,
             "rated_power_w": self.rated_power,
             "rating_method": self.rating_method,
+            "rating_note": self.rating_note,
             "wear_life_h": self.wear_life_h,
             "wear_life_extrapolated": (None if self.wear_life_h is None
                                        else is_extrapolated(self.wear_life_h)),
@@ -212,4 +217,4 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     # a pressure or safety beyond its limit, or outside the tables, is a failed check of
     # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,
-                          life, elongation, tuple(warnings), rating.method)
+                          life, elongation, tuple(warnings), rating.method, rating.note)

@@ -332,10 +332,12 @@ def chain_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 1
         strands = (iso10823.strand_factor(chain.strands)
                    if str(chain.strands) in iso10823.data()["strand_factor"] else None)
         if table is not None and strands is not None:
+            beside = ("no value" if aca is None else
+                      f"{aca[0] / 1e3:.4g} kW beside it ({aca[1]} envelope)")
             return RatingResult(chain.designation, B_TABLE, table[0] * strands, "table",
                                 table[1], (aca_alt,),
                                 "B-series chain: the published B-series table governs; the "
-                                "ACA formulas (ANSI proportions) are shown beside it")
+                                f"ACA formulas (ANSI proportions) give {beside}")
         b_alt = Alternative(B_TABLE, None, METHOD_SOURCES[B_TABLE],
                             "no printed B-series rating at this speed")
         note = ("B-series chain without a printed B-series rating at this speed: the ACA "
