@@ -44,7 +44,7 @@ from chaindrive.dynamics.startup import (
 )
 from chaindrive.dynamics.steady import SteadyStateResult, damping_beta, steady_state
 from chaindrive.errors import DesignError
-from chaindrive.strength.loads import loads_of, power_shares, sag_tension
+from chaindrive.strength.loads import installed_sag_ratio, loads_of, power_shares, sag_tension
 from chaindrive.strength.safety import ALLOWABLE_DYNAMIC_SAFETY
 
 if TYPE_CHECKING:
@@ -91,7 +91,8 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
 
 def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
     """Pre-tension T₀ [N] of the spans at rest: the sag tension of the span leaving the driver
-    (:func:`chaindrive.strength.loads.sag_tension`).
+    at the installed sag (:func:`chaindrive.strength.loads.sag_tension`,
+    :func:`chaindrive.strength.loads.installed_sag_ratio`), the F₀ of the static loads.
 
     Parameters
     ----------
@@ -106,7 +107,8 @@ def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
         T₀ [N].
     """
     slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
-    return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination))
+    return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination,
+                             installed_sag_ratio(drive)))
 
 
 def disturbance_excitations(drive: Drive, geometry: GeometryResult, *,

@@ -61,7 +61,7 @@ from chaindrive.geometry.sprocket import (
     iso606_seating_radius_range,
     tip_diameter,
 )
-from chaindrive.strength.loads import sag_tension
+from chaindrive.strength.loads import installed_sag_ratio, sag_tension
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -265,10 +265,12 @@ def _default_lookup() -> Callable[[str], Material]:
 
 
 def _pretension(drive: Drive, geometry: GeometryResult) -> float:
-    """Sag tension of the span leaving the driver [N] (as the ring model's start-up)."""
+    """Sag tension of the span leaving the driver at the installed sag [N] (as the ring
+    model's start-up)."""
 
     span = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
-    return float(sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination))
+    return float(sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination,
+                             installed_sag_ratio(drive)))
 
 
 def build_model(drive: Drive, geometry: GeometryResult, *,
