@@ -260,7 +260,10 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
         strands = _field(slots, ("chain", "strands"), lambda: _number(
             "Strands", ch.get("strands"), "chain.strands", step=1,
             help_text="rows of the chain (default 1)"))
-    c1, c_links, c_contours = st.columns([2.2, 0.9, 0.9])
+    # chain and links on one row; contours, sag and stiffness on the next (three equal
+    # columns keep every label whole down to a 1024 px window with the sidebar open); the
+    # odd-links box below
+    c1, c_links = st.columns([2.2, 1.0], vertical_alignment="bottom")
     with c1:
         options = _chain_options(ch.get("designation"))
         choice = _field(slots, ("chain", "designation"), lambda: st.selectbox(
@@ -270,11 +273,11 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
         links = _field(slots, ("chain", "links"), lambda: _number(
             "Links", ch.get("links"), "chain.links", step=1,
             help_text="impose the number of links; empty: the nearest even number that fits"))
+    c_contours, c_sag, c_stiffness = st.columns(3, vertical_alignment="bottom")
     with c_contours:
         contours = _field(slots, ("chain", "contours"), lambda: _number(
             "Contours", ch.get("contours"), "chain.contours", step=1,
             help_text="identical contours side by side on common shafts, default 1"))
-    c_sag, c_stiffness, c_odd = st.columns([1.0, 1.3, 1.5], vertical_alignment="bottom")
     with c_sag:
         sag = _field(slots, ("chain", "sag"), lambda: _number(
             "Installed sag", ch.get("sag"), "chain.sag", step=0.005, fmt="%g",
@@ -285,10 +288,9 @@ def _chain_fields(base: DesignForm, slots: dict[tuple[str, str], Any], columns: 
             "Link stiffness [N/m]", ch.get("link_stiffness_n_per_m"), "chain.link_stiffness",
             step=1e7, fmt="%.4g", help_text="the maker's measured stiffness of one link of "
             "the whole chain, F/(ε·p); empty: computed from the plates and the pin"))
-    with c_odd:
-        allow_odd = _field(slots, ("chain", "allow_odd"), lambda: st.checkbox(
-            "Odd number of links", value=bool(ch.get("allow_odd")),
-            key=_key("chain.allow_odd"), help="allowed: it needs an offset link"))
+    allow_odd = _field(slots, ("chain", "allow_odd"), lambda: st.checkbox(
+        "Odd number of links", value=bool(ch.get("allow_odd")),
+        key=_key("chain.allow_odd"), help="allowed: it needs an offset link"))
     for key in ("standard", "pitch_mm", "series", "catalog"):
         slots[("chain", key)] = slots[("chain", "designation")]
     return chain_values(ch, strands, choice, links, contours, allow_odd, sag, stiffness)
