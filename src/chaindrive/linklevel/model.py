@@ -29,8 +29,8 @@
   (``Sprocket.inertia`` or the steel/polymer body of
   :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`); an optional linear
   torsional system (:class:`TorsionalAttachment`) can be coupled to them.
-* Pre-tension T₀: the sag tension of the span leaving the driver, as the ring model's start-up
-  (:func:`chaindrive.strength.loads.sag_tension`).
+* Pre-tension T₀: the ring model's start-up pre-tension, the sag tension of the span leaving
+  the driver at the installed sag (:func:`chaindrive.dynamics.response.startup_pretension`).
 """
 
 from __future__ import annotations
@@ -47,6 +47,7 @@ from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
 from chaindrive.dynamics.drive_model import chain_damping_ratio
+from chaindrive.dynamics.response import startup_pretension
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
@@ -61,7 +62,6 @@ from chaindrive.geometry.sprocket import (
     iso606_seating_radius_range,
     tip_diameter,
 )
-from chaindrive.strength.loads import installed_sag_ratio, sag_tension
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -264,15 +264,6 @@ def _default_lookup() -> Callable[[str], Material]:
     return find_material
 
 
-def _pretension(drive: Drive, geometry: GeometryResult) -> float:
-    """Sag tension of the span leaving the driver at the installed sag [N] (as the ring
-    model's start-up)."""
-
-    span = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
-    return float(sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination,
-                             installed_sag_ratio(drive)))
-
-
 def build_model(drive: Drive, geometry: GeometryResult, *,
                 hinge_friction: float = HINGE_FRICTION, clearance: float = 0.0,
                 contact_damping_ratio: float = DEFAULT_DAMPING_RATIO,
@@ -295,7 +286,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     contact_damping_ratio : float
         Damping ratio ζ_c of the roller–tooth contact [-].
     pretension : float or None
-        Pre-tension T₀ [N] (None: the sag tension).
+        Pre-tension T₀ [N] (None: :func:`chaindrive.dynamics.response.startup_pretension`).
     gravity : float
         Acceleration of gravity g [m/s²] (acting along −y).
     damping_ratio : float or None
@@ -336,7 +327,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                                          form=drive.tooth_form), dtype=float)
     zeta = ring_damping_ratio(ring, chain_damping_ratio(drive) if damping_ratio is None
                               else float(damping_ratio))
-    t0 = _pretension(drive, geometry) if pretension is None else float(pretension)
+    t0 = startup_pretension(drive, geometry) if pretension is None else float(pretension)
     return LinkLevelModel(
         names=tuple(s.name for s in drive.sprockets), links=geometry.links, pitch=spec.pitch,
         roller_mass=m, roller_radius=0.5 * spec.roller_diameter, link_stiffness=k_link,
