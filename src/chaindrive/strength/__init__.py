@@ -14,9 +14,9 @@ from typing import Any
 
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult
-from chaindrive.model import ChainSpec, Drive
+from chaindrive.model import Drive
 from chaindrive.strength import ke_method, ratings
-from chaindrive.strength.checks import MIN_SAFETY_RATED
+from chaindrive.strength.drive_checks import chain_limits
 from chaindrive.strength.loads import (
     LoadsResult,
     hinge_pressure,
@@ -108,43 +108,16 @@ class StrengthResult:
         }
 
 
-def _allowables(spec: ChainSpec, speed: float) -> tuple[float | None, float | None]:
-    """[p] and [s] of the method that checks the chain (:mod:`.drive_checks`): the Russian
-    tables by pitch and speed for GOST chains [ChainDesignRU, Table 2A, Table 9A]; no joint
-    pressure limit and s ≥ 6 [DiamondChain] for rated chains (ACA, the ISO 606 B table); none
-    for non-steel chains (their allowable load is the check).
-
-    Parameters
-    ----------
-    spec : ChainSpec
-        The chain.
-    speed : float
-        Small-sprocket speed [rad/s].
-
-    Returns
-    -------
-    tuple of (float or None, float or None)
-        [p] [Pa] and [s] [-]; None where the method has no such limit or its table no value.
-    """
-    method = ratings.method_for(spec)
-    if method == ratings.KE:
-        return (ke_method.allowable_pressure(spec.pitch, speed),
-                ke_method.allowable_safety_factor(spec.pitch, speed))
-    if method == ratings.POLYMER:
-        return None, None
-    return None, MIN_SAFETY_RATED
-
-
 def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: float | None = None,
                 dynamic_factor: float = 1.0, service_factor: float | None = None,
                 elongation: float = BASIS_ELONGATION, sag_ratio: float | None = None,
                 shaft_load_factor: float = 1.0) -> StrengthResult:
     """Loads, joint pressure, static safety and wear life of a laid-out drive.
 
-    [p] and [s] are those of the method that checks the chain (:func:`_allowables`, the
-    same as :func:`chaindrive.strength.drive_checks.chain_checks`): the Russian tables by
-    pitch and small-sprocket speed for GOST chains, s ≥ 6 and no joint-pressure limit for
-    rated chains; the wear life is the ACA load–life model (:mod:`chaindrive.strength.wear`).
+    [p] and [s] are those the chain's checks hold it to
+    (:func:`chaindrive.strength.drive_checks.chain_limits`): the Russian tables by pitch and
+    small-sprocket speed for GOST chains, s ≥ 6 and no joint-pressure limit for rated chains;
+    the wear life is the ACA load–life model (:mod:`chaindrive.strength.wear`).
     Non-steel (polymer) chains: [p], [s] and the wear life are not given (the steel tables
     do not apply) and a warning says so; s uses the chain's own breaking load Q (from its
     material strength).
@@ -196,7 +169,7 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     s = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                              loads.centrifugal_tension, dynamic_factor)
     steel = spec.material == "steel"
-    allowed_p, allowed_s = _allowables(spec, speed)
+    allowed_p, allowed_s = chain_limits(spec, speed)
     rated = life = None
     rating = ratings.chain_rating(spec, teeth, speed)
     if steel and rating.rated_power is not None:

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from chaindrive.checks import judged
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
-from chaindrive.model import Drive
+from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import iso10823, ke_method, ratings
 from chaindrive.strength.loads import (
@@ -47,7 +47,8 @@ from chaindrive.strength.loads import (
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.wear import BASIS_LIFE_H, BASIS_LINKS, wear_life_hours
 
-__all__ = ["CheckSettings", "chain_checks", "checks_for", "geometry_checks", "settings_for"]
+__all__ = ["CheckSettings", "chain_checks", "chain_limits", "checks_for", "geometry_checks",
+           "settings_for"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -158,9 +159,41 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                                     "pin–bush galling limit"))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety, ck.MIN_SAFETY_RATED, "[DiamondChain]",
+    out.append(ck.static_safety_check(name, safety, chain_limits(spec, speed, ratings.ACA)[1],
+                                      "[DiamondChain]",
                                       "working load ≤ 1/6 of the breaking load"))
     return out
+
+
+def chain_limits(spec: ChainSpec, speed: float, method: str | None = None
+                 ) -> tuple[float | None, float | None]:
+    """[p] and [s] of the method that checks the chain (the checks below and the strength
+    summary, :func:`chaindrive.strength.strength_of`, both take them from here): the Russian
+    tables by pitch and speed for GOST chains [ChainDesignRU, Table 2A, Table 9A]; no joint
+    pressure limit and s ≥ 6 [DiamondChain] for rated chains (ACA, the ISO 606 B table); none
+    for non-steel chains (their allowable load is the check).
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The chain.
+    speed : float
+        Small-sprocket speed [rad/s].
+    method : str or None
+        The method the chain is checked by (None: its own, :func:`ratings.method_for`).
+
+    Returns
+    -------
+    tuple of (float or None, float or None)
+        [p] [Pa] and [s] [-]; None where the method has no such limit or its table no value.
+    """
+    method = method or ratings.method_for(spec)
+    if method == ratings.KE:
+        return (ke_method.allowable_pressure(spec.pitch, speed),
+                ke_method.allowable_safety_factor(spec.pitch, speed))
+    if method == ratings.POLYMER:
+        return None, None
+    return None, ck.MIN_SAFETY_RATED
 
 
 def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
@@ -171,8 +204,8 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     area, estimated = ke_method.bearing_area(spec)
     pressure = hinge_pressure(loads.peripheral_force, s.operating_factor, area)
     note = "bearing area estimated" if estimated else ""
-    out = [ck.hinge_pressure_check(name, pressure,
-                                   ke_method.allowable_pressure(spec.pitch, speed), note=note)]
+    allowed_p, allowed_s = chain_limits(spec, speed, ratings.KE)
+    out = [ck.hinge_pressure_check(name, pressure, allowed_p, note=note)]
     out.append(ck.speed_limit_check(name, speed, ke_method.max_speed(spec.pitch),
                                     "[TrinhChat2006, Table 5.8]"))
     hits = ke_method.impacts_per_second(teeth, speed, geometry.links)
@@ -182,9 +215,7 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                       note="" if allowed is not None else "no [i] for this pitch", part="chain"))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety,
-                                      ke_method.allowable_safety_factor(spec.pitch, speed),
-                                      "[TrinhChat2006, Table 5.10]"))
+    out.append(ck.static_safety_check(name, safety, allowed_s, "[TrinhChat2006, Table 5.10]"))
     return out
 
 
