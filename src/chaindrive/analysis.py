@@ -239,7 +239,7 @@ class Analysis:
         """The whole link counts below and above the tight length of the layout as designed,
         each laid out with its centre distance, take-up and slack-span sag, and the design's
         pick (:func:`chaindrive.geometry.length_options.length_options`)."""
-        return length_options(self._designed)
+        return length_options(self._designed, self.geometry)
 
     @cached_property
     def lubrication(self) -> LubricationAdvice:

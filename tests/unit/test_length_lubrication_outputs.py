@@ -114,3 +114,17 @@ def test_the_page_tables_in_both_unit_systems(jindal):
     sel = chaindrive.analyze(chaindrive.load(EXAMPLES / "conveyor_five_sprocket.toml"),
                              response=False).to_dict()["selection"]
     assert all(r["lubrication"] for r in selection_records(sel))
+
+
+def test_reusing_the_design_layout_changes_no_option(jindal):
+    """The analysis hands its own layout to length_options for the count it made; laying
+    every count out afresh gives the same options to round-off."""
+    from chaindrive.geometry.length_options import length_options
+
+    fresh = length_options(jindal.design).to_dict()  # names its chain: no selection
+    reused = jindal.length_choice.to_dict()
+    assert fresh["chosen"] == reused["chosen"]
+    for a, b in zip(fresh["options"], reused["options"], strict=True):
+        assert a["links"] == b["links"] and a["error"] == b["error"]
+        for key in ("centre_distance_mm", "take_up_mm", "slack_sag_mm"):
+            assert a[key] == pytest.approx(b[key], rel=1e-12, abs=1e-12)

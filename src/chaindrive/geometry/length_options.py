@@ -25,6 +25,7 @@ import numpy as np
 
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry, round_links, tight_pitches_of
+from chaindrive.geometry.results import GeometryResult
 from chaindrive.geometry.sag import sag_of_slack
 from chaindrive.geometry.sprocket import pitch_radius
 from chaindrive.model import Drive
@@ -97,12 +98,16 @@ class LengthChoice:
                 "options": [o.to_dict() for o in self.options]}
 
 
-def _option(drive: Drive, rounding: str, links: int) -> LengthOption:
-    chain = replace(drive.chain, links=links, request=None)
-    try:
-        g = contour_geometry(replace(drive, chain=chain))
-    except DesignError as exc:
-        return LengthOption(rounding, links, None, None, None, str(exc))
+def _option(drive: Drive, rounding: str, links: int,
+            laid: GeometryResult | None = None) -> LengthOption:
+    if laid is not None and laid.links == links:
+        g = laid  # the design's own layout of this count: not laid out again
+    else:
+        chain = replace(drive.chain, links=links, request=None)
+        try:
+            g = contour_geometry(replace(drive, chain=chain))
+        except DesignError as exc:
+            return LengthOption(rounding, links, None, None, None, str(exc))
     slack_span = g.spans[drive.driver_index]
     sag = sag_of_slack(slack_span.length, g.slack) if g.slack > 0 else 0.0
     return LengthOption(rounding, links, g.center_distance,
@@ -130,13 +135,16 @@ def tight_pitches_as_designed(drive: Drive) -> float:
     return tight_pitches_of(centres, radii, inside, teeth, p)
 
 
-def length_options(drive: Drive) -> LengthChoice:
+def length_options(drive: Drive, laid: GeometryResult | None = None) -> LengthChoice:
     """The link counts below and above the tight length of a design, laid out.
 
     Parameters
     ----------
     drive : Drive
         The design (even counts, odd too with ``chain.allow_odd``).
+    laid : GeometryResult or None
+        The design's own layout (:func:`~chaindrive.geometry.contour.contour_geometry` of
+        ``drive``), used for its link count instead of laying that count out again.
 
     Returns
     -------
@@ -150,8 +158,8 @@ def length_options(drive: Drive) -> LengthChoice:
     tight = tight_pitches_as_designed(drive)
     odd = drive.chain.allow_odd
     down, up = round_links(tight, odd, down=True), round_links(tight, odd)
-    options = [_option(drive, "round down", down)]
+    options = [_option(drive, "round down", down, laid)]
     if up != down:
-        options.append(_option(drive, "round up", up))
+        options.append(_option(drive, "round up", up, laid))
     chosen = "given" if drive.chain.links is not None else drive.chain.rounding
     return LengthChoice(tight, tuple(options), chosen, drive.chain.sag)
