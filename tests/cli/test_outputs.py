@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from chaindrive.display import fmt
 from tests.conftest import EXAMPLES
 
 pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
@@ -44,6 +45,26 @@ def test_simulate_writes_the_histories(short_seed: Path, tmp_path: Path) -> None
     assert abs(last_time - 0.1) < 1e-3
     peaks = [max(float(r[1 + i]) for r in rows[1:]) for i in range(3)]
     assert max(peaks) == pytest.approx(doc["max_force_n"], rel=1e-6)
+
+
+def test_startup_times_stated_separately(short_seed: Path, tmp_path: Path) -> None:
+    """The run-up and the decay after it are reported apart (settling = run-up + decay), and
+    the share of samples with a slack span is the count of such rows in the histories."""
+    out = tmp_path / "history.csv"
+    doc = json.loads(run_cli("simulate", str(short_seed), "-o", str(out), "--json").stdout)
+    assert doc["runup_time_s"] is not None
+    assert doc["decay_time_s"] == pytest.approx(
+        max(0.0, doc["settling_time_s"] - doc["runup_time_s"]))
+    rows = [[float(v) for v in r] for r in csv.reader(
+        out.read_text(encoding="utf-8").splitlines()[1:])]
+    slack = sum(1 for r in rows if min(r[1:4]) <= 0.0)
+    assert doc["slack_fraction"] == pytest.approx(slack / len(rows))
+    assert doc["slack_samples"] == slack
+    text = run_cli("simulate", str(short_seed), "-o", str(tmp_path / "h2.csv")).stdout
+    assert f"run-up {fmt(doc['runup_time_s'])} s" in text
+    assert f"{fmt(doc['decay_time_s'])} s" in text
+    analysis = run_cli("analyze", str(short_seed)).stdout.replace("\n", " ")
+    assert f"run-up {fmt(doc['runup_time_s'])} s" in analysis
 
 
 def test_afc_writes_the_sweep(short_seed: Path, tmp_path: Path) -> None:

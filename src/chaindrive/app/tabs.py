@@ -229,10 +229,16 @@ def tab_startup(screen: Screen) -> None:
         st.info("The start-up is switched off (transient = false in [dynamics]).")
         return
     d = result.to_dict()
-    c = st.columns(3)
+    c = st.columns(4)
     c[0].metric("largest span force F₁max [N]", fmt(d["max_force_n"]))
-    c[1].metric("settling time [s]", fmt(d["settling_time_s"]))
-    c[2].metric("k₁ = Q / F₁max", fmt(d["k1"]))
+    c[1].metric("run-up [s]", fmt(d["runup_time_s"]),
+                help="the driver at 95 % of its working speed")
+    c[2].metric("decay after it [s]", fmt(d["decay_time_s"]),
+                help=f"every span force in its final band after {fmt(d['settling_time_s'])} s")
+    c[3].metric("k₁ = Q / F₁max", fmt(d["k1"]))
+    if d["slack_fraction"]:
+        st.caption(f"A span is slack in {fmt(100 * d['slack_fraction'])} % of the recorded "
+                   "samples (the chain cannot push: its force is held at zero there).")
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
     frame = pd.DataFrame(result.span_forces[::step], columns=names,

@@ -187,8 +187,9 @@ def simulate(
     if as_json:
         _write_json({"history": str(output.resolve()), **startup.to_dict()})
         return
-    print(f"max span force {startup.max_span_force.max():.1f} N, settling time "
-          f"{startup.settling_time:.3f} s, k1 = {startup.k1:.2f}; histories written to {output}")
+    k1 = "" if startup.k1 is None else f", k1 = {startup.k1:.2f}"
+    print(f"max span force {startup.max_span_force.max():.1f} N{k1}; "
+          f"{tables.startup_times_text(startup.to_dict())}; histories written to {output}")
 
 
 def _simulate_links(file: Path, output: Path, duration: str | None, as_json: bool) -> None:

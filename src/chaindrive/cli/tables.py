@@ -225,11 +225,30 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
                   f"{fmt(max(steady['span_dynamic_load_n']))} N, coefficient of dynamics "
                   f"K_D {fmt(dyn['coefficient_of_dynamics'])}")
     if startup is not None:
-        con.print(f"start-up: largest span force {fmt(startup['max_force_n'])} N, settling "
-                  f"time {fmt(startup['settling_time_s'])} s")
+        con.print(f"start-up: largest span force {fmt(startup['max_force_n'])} N; "
+                  + startup_times_text(startup))
     if st is not None and "k1" in st:
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}, k2 {fmt(st['k2'])}, k2min "
                   f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
+
+
+def startup_times_text(startup: dict[str, Any]) -> str:
+    """The start-up's run-up, decay and slack share as one clause (JSON keys of
+    :meth:`chaindrive.dynamics.startup.StartupResult.to_dict`)."""
+    if startup.get("runup_time_s") is None:
+        text = (f"the driver does not reach its working speed in the simulated start-up; "
+                f"forces settled after {fmt(startup['settling_time_s'])} s")
+    elif startup["decay_time_s"] > 0:
+        text = (f"run-up {fmt(startup['runup_time_s'])} s, then the transient decays in "
+                f"{fmt(startup['decay_time_s'])} s (settled after "
+                f"{fmt(startup['settling_time_s'])} s)")
+    else:
+        text = (f"run-up {fmt(startup['runup_time_s'])} s, decay after it 0 s (the span "
+                f"forces in their final band from {fmt(startup['settling_time_s'])} s)")
+    if startup.get("slack_fraction"):
+        text += (f"; a span is slack in {fmt(100 * startup['slack_fraction'])} % of the "
+                 "recorded samples")
+    return text
 
 
 def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: list[str],

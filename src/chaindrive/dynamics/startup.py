@@ -110,6 +110,11 @@ class StartupResult:
         (R, 2N) the coordinates and their rates [m, rad; m/s, rad/s], or None.
     time_step : float
         The integration step [s].
+
+    Attributes
+    ----------
+    slack_fraction : float
+        Share of the recorded samples in which at least one span is slack [-].
     """
 
     times: FloatArray
@@ -126,6 +131,11 @@ class StartupResult:
     rotor_speeds: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
     states: FloatArray | None = None
     time_step: float = math.nan
+
+    @property
+    def slack_fraction(self) -> float:
+        """Share of the recorded samples with a slack span [-] (0 for an empty record)."""
+        return self.slack_steps / len(self.times) if len(self.times) else 0.0
 
     def to_dict(self, include_history: bool = False) -> dict[str, Any]:
         """JSON-ready dict.
@@ -154,6 +164,7 @@ class StartupResult:
             "steps": self.steps,
             "time_step_s": None if math.isnan(self.time_step) else self.time_step,
             "slack_samples": self.slack_steps,
+            "slack_fraction": self.slack_fraction,
         }
         if include_history:
             out["time_s"] = self.times.tolist()

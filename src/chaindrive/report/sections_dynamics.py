@@ -214,7 +214,15 @@ def response_section(inp: ReportInput) -> list[Block] | None:
     if startup is not None:
         load_rows += [("largest start-up force", "F₁max",
                        inp.val(float(startup.max_span_force.max()), "force"), F),
-                      ("settling time", "", startup.settling_time * 1e3, "ms"),
+                      ("run-up time (driver at 95 % of its working speed)", "",
+                       None if math.isnan(startup.runup_time) else startup.runup_time * 1e3,
+                       "ms"),
+                      ("decay of the transient after the run-up", "",
+                       None if math.isnan(startup.decay_time) else startup.decay_time * 1e3,
+                       "ms"),
+                      ("settling time (run-up and decay)", "", startup.settling_time * 1e3,
+                       "ms"),
+                      ("samples with a slack span", "", 100.0 * startup.slack_fraction, "%"),
                       ("start-up simulated", "", float(startup.times[-1]) * 1e3, "ms")]
     blocks.append(Table("Dynamic loads", ("quantity", "symbol", "value", "unit"),
                         rows(load_rows)))
