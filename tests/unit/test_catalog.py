@@ -8,6 +8,7 @@ and ANSI/ASME B29.1 numbering (pitch = leading digits/8 inch).
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -17,6 +18,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from chaindrive import catalog
+from chaindrive.analysis import drive_summary
 from chaindrive.catalog import (
     ROW_FACTORS,
     bearing_area_estimate,
@@ -30,7 +32,9 @@ from chaindrive.catalog import (
     materials,
 )
 from chaindrive.errors import CatalogError
+from chaindrive.io.design import load_drive
 from chaindrive.model import Chain, ChainSpec, Material
+from tests.conftest import EXAMPLES
 
 INCH = 0.0254
 DATA = Path(catalog.__file__).parent / "data"
@@ -426,3 +430,14 @@ def test_malformed_headers_and_files(tmp_path: Path):
     toml.write_text("[[chains]\n", encoding="utf-8")
     with pytest.raises(CatalogError, match="TOML syntax error"):
         load_chain_file(toml)
+
+
+@pytest.mark.parametrize(("designation", "same"), [("ISO 606 16A-2", "80-2"),
+                                                    ("ISO 606 16B-1", None),
+                                                    ("ANSI 100H-1", None)])
+def test_analysis_names_the_ansi_twin_of_an_iso_chain(designation: str, same: str | None):
+    """An ISO 606 A chain is the ANSI chain of the same number ([ISO606], [ANSI-B29.1]): the
+    analysis says so beside the ISO designation (an ANSI entry is named as it is)."""
+    drive = load_drive(EXAMPLES / "two_sprocket_jindal.toml")
+    drive = dataclasses.replace(drive, chain=Chain(find_chain(designation)))
+    assert drive_summary(drive)["ansi_number"] == same

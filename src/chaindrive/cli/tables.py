@@ -130,7 +130,8 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
     """
     con = console()
     d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
-    con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])} (pitch "
+    same = f" = ANSI {escape(d['ansi_number'])}" if d.get("ansi_number") else ""
+    con.print(f"[bold]{escape(d['name'])}[/bold] — chain {escape(d['chain'])}{same} (pitch "
               f"{_q(d, 'pitch_mm', units)}), tooth form {escape(d['tooth_form'])}")
     summary = (f"{g['links']} links, chain length {_q(g, 'chain_length_mm', units)}, tight "
                f"length {_q(g, 'tight_length_mm', units)} ({fmt(g['tight_length_pitches'])} "

@@ -185,8 +185,9 @@ def inputs_section(inp: ReportInput) -> list[Block]:
     d = inp.analysis.drive
     spec = d.chain.spec
     blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
-    items = [("chain", "", spec.designation, ""), ("pitch", "p", inp.val(spec.pitch, "length"),
-                                                   inp.unit("length")),
+    same = f" (= ANSI {spec.ansi})" if spec.ansi and spec.standard != "ANSI" else ""
+    items = [("chain", "", spec.designation + same, ""),
+             ("pitch", "p", inp.val(spec.pitch, "length"), inp.unit("length")),
              ("strands", "", spec.strands, ""),
              ("roller diameter", "d₁", inp.val(spec.roller_diameter, "length"),
               inp.unit("length")),
