@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 
 from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
-from chaindrive.dynamics.startup import PolygonalLaw, simulate_startup
+from chaindrive.dynamics.startup import PolygonalLaw, settling_time, simulate_startup
 from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
 from chaindrive.dynamics.zoh import expm, zoh_matrices
 from chaindrive.errors import DesignError
@@ -252,3 +252,22 @@ def test_ahead_of_time_kernel_is_built_and_current(monkeypatch: pytest.MonkeyPat
         assert kernel_build.compiled_kernel() is None
     finally:
         kernel_build.compiled_kernel.cache_clear()
+
+
+def test_settling_time_of_a_decay_into_a_clipped_ripple() -> None:
+    """A decaying transient e^{-t/τ} that ends in a steady ripple clipped at zero (a span that
+    goes slack: F = max(0, F₀ + A sin ωt)) settles where the decay has fallen into the band
+    of the ripple, not at the end of the record: the final band is centred on the ripple's
+    mid-range, which holds every sample of a ripple of any shape (closed form below)."""
+    t = np.linspace(0.0, 2.0, 20001)
+    omega, f0, amp, tol = 2 * math.pi * 50.0, 100.0, 150.0, 0.05
+    ripple = np.maximum(0.0, f0 + amp * np.sin(omega * t))
+    peak, tau = 400.0, 0.05
+    force = ripple + peak * np.exp(-t / tau)
+    got = settling_time(t, force[:, None], tolerance=tol)
+    tail = ripple[t >= 1.8]
+    margin = tol * tail.mean()  # the band's width beyond the ripple's own half-range
+    # the decay leaves the band where peak·e^{-t/τ} ≤ margin (± one ripple period)
+    expected = tau * math.log(peak / margin)
+    assert abs(got - expected) <= 2 * math.pi / omega
+    assert got < 0.5  # the old, mean-centred band put it at the end of the record

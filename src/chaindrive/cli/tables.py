@@ -244,8 +244,8 @@ def startup_times_text(startup: dict[str, Any]) -> str:
                 f"{fmt(startup['decay_time_s'])} s (settled after "
                 f"{fmt(startup['settling_time_s'])} s)")
     else:
-        text = (f"run-up {fmt(startup['runup_time_s'])} s, decay after it 0 s (the span "
-                f"forces in their final band from {fmt(startup['settling_time_s'])} s)")
+        text = (f"run-up {fmt(startup['runup_time_s'])} s, the span forces already in their "
+                "final band then (no decay after it)")
     if startup.get("slack_fraction"):
         text += (f"; a span is slack in {fmt(100 * startup['slack_fraction'])} % of the "
                  "recorded samples")

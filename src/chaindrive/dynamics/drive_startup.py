@@ -158,7 +158,9 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
     k1 = breaking_load / float(fmax.max()) if breaking_load and fmax.max() > 0 else None
     settle = settling_time(times, forces)
     runup = runup_time(times, speeds[:, model.driver_index])
+    if not math.isnan(runup):  # over when the driver is at speed and the forces settled
+        settle = max(settle, runup)
     return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
                          int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
-                         max(0.0, settle - runup) if not math.isnan(runup) else math.nan,
+                         settle - runup if not math.isnan(runup) else math.nan,
                          model.rotor_names, rotors, states if keep_states else None, dt)

@@ -91,7 +91,8 @@ class StartupResult:
     max_span_force : ndarray
         (S,) F₁max per span over every step [N].
     settling_time : float
-        Run-up and decay together [s] (:func:`settling_time`).
+        Run-up and decay together [s]: the later of the run-up time and the time after
+        which every span force stays in its final band (:func:`settling_time`).
     k1 : float or None
         k₁ = Q / max F₁max [-] ([MultimassChainDrives, §3.6]; None without Q).
     steps : int
@@ -101,7 +102,8 @@ class StartupResult:
     runup_time : float
         Time to reach the working speed [s] (:func:`runup_time`).
     decay_time : float
-        Settling after the run-up [s].
+        Settling after the run-up [s] (settling_time − runup_time; 0 when the forces are
+        in their final band by the time the driver is at speed).
     rotor_names : tuple of str
         The rotors of the trains.
     rotor_speeds : ndarray
@@ -177,9 +179,11 @@ def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05
                   tail: float = 0.1) -> float:
     """Time [s] after which every span force stays in its final band.
 
-    The final state is the last ``tail`` fraction of the record: its mean F̄_i and
-    half-range r_i (a steady ripple, e.g. polygonal). Band: |F_i − F̄_i| ≤ r_i +
-    tolerance·max_j |F̄_j|.
+    The final state is the last ``tail`` fraction of the record: its mid-range
+    F̃_i = (max + min)/2 and half-range r_i (a steady ripple, e.g. polygonal), so that every
+    sample of the final state lies in the band, whatever the shape of the ripple (a span that
+    goes slack clips it at zero). Band: |F_i − F̃_i| ≤ r_i + tolerance·max_j |F̄_j|, F̄_j the
+    mean of span j over the final state.
 
     Parameters
     ----------
@@ -199,9 +203,10 @@ def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05
     """
     k0 = int(len(times) * (1.0 - tail))
     end = forces[k0:]
-    mean = end.mean(axis=0)
-    band = 0.5 * (end.max(axis=0) - end.min(axis=0)) + tolerance * np.abs(mean).max()
-    out = np.any(np.abs(forces - mean) > band, axis=1)
+    top, bottom = end.max(axis=0), end.min(axis=0)
+    middle = 0.5 * (top + bottom)
+    band = 0.5 * (top - bottom) + tolerance * np.abs(end.mean(axis=0)).max()
+    out = np.any(np.abs(forces - middle) > band, axis=1)
     idx = np.flatnonzero(out)
     return float(times[min(idx[-1] + 1, len(times) - 1)]) if idx.size else 0.0
 
@@ -709,9 +714,11 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
         else None
     settle = settling_time(times, forces)
     runup = runup_time(times, speeds[:, driver_index])
+    if not math.isnan(runup):  # over when the driver is at speed and the forces settled
+        settle = max(settle, runup)
     return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
                          int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
-                         max(0.0, settle - runup) if not math.isnan(runup) else math.nan,
+                         settle - runup if not math.isnan(runup) else math.nan,
                          time_step=float(dt))
 
 
