@@ -44,6 +44,7 @@ from chaindrive.app.views import (
     recompute,
 )
 from chaindrive.cli import app as cli_app
+from chaindrive.display import fmt
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_from_mapping
 from tests.conftest import EXAMPLES
@@ -446,3 +447,18 @@ def test_page_keeps_the_other_tables_of_the_design() -> None:
     assert at.session_state["last_good"][1]["dynamics"] == {"transient": False}
     next(b for b in at.button if b.label == "Apply").click().run()  # and through the form
     assert at.session_state["form"].other == {"dynamics": {"transient": False}}
+
+
+def test_page_startup_states_runup_and_decay_apart() -> None:
+    """The Start-up tab shows the run-up and the decay after it as the analysis gives them."""
+    at = page_test().run()
+    at.session_state["tabs"] = "Start-up"  # only the open tab is drawn
+    at.run()
+    next(b for b in at.button if b.label == "Run the start-up simulation").click().run()
+    assert not at.exception
+    startup = chaindrive.analyze(chaindrive.load(SEED)).startup
+    assert startup is not None
+    shown = {m.label: m.value for m in at.metric}
+    assert shown["run-up [s]"] == fmt(startup.runup_time)
+    assert shown["decay after it [s]"] == fmt(startup.decay_time)
+    assert shown["k₁ = Q / F₁max"] == fmt(startup.k1)
