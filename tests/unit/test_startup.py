@@ -12,7 +12,12 @@ from scipy.integrate import solve_ivp
 
 from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
-from chaindrive.dynamics.startup import PolygonalLaw, settling_time, simulate_startup
+from chaindrive.dynamics.startup import (
+    PolygonalLaw,
+    settling_time,
+    simulate_startup,
+    transient_times,
+)
 from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
 from chaindrive.dynamics.zoh import expm, zoh_matrices
 from chaindrive.errors import DesignError
@@ -271,3 +276,45 @@ def test_settling_time_of_a_decay_into_a_clipped_ripple() -> None:
     expected = tau * math.log(peak / margin)
     assert abs(got - expected) <= 2 * math.pi / omega
     assert got < 0.5  # the old, mean-centred band put it at the end of the record
+
+
+def test_settling_time_waits_for_a_growing_ripple() -> None:
+    """A ripple that grows toward its final amplitude, A(t) = A∞(1 − e^{−t/τ}) (a resonance
+    approached as the speed creeps up), has settled once A∞e^{−t/τ} ≤ δ = 5 % of the mean
+    force: closed form t = τ ln(A∞/δ), to within one window (a tenth of the record). A ripple
+    still growing by more than δ per window at the end (A = 150 N/s · t: 30 N per 0.2 s
+    window against δ = 25 N) has not settled (nan)."""
+    t = np.linspace(0.0, 2.0, 40001)
+    omega, f0, a_inf, tau = 2 * math.pi * 40.0, 500.0, 300.0, 0.1
+    delta = 0.05 * f0
+    force = f0 + a_inf * (1 - np.exp(-t / tau)) * np.sin(omega * t)
+    got = settling_time(t, force[:, None], period=1 / 40.0)
+    expected = tau * math.log(a_inf / delta)
+    assert expected - 0.01 <= got <= expected + 0.2 + 0.01
+    growing = f0 + 150.0 * t * np.sin(omega * t)
+    assert math.isnan(settling_time(t, growing[:, None], period=1 / 40.0))
+
+
+def test_settling_needs_a_record_of_two_ripple_periods() -> None:
+    """A final state must hold two periods of the ripple: a record shorter than four
+    periods cannot show one (nan), a longer one can (0: a steady ripple from the start)."""
+    omega = 2 * math.pi * 5.0
+    for end, settled in ((0.7, False), (1.0, True)):
+        t = np.linspace(0.0, end, 7001)
+        force = (300.0 + 100.0 * np.sin(omega * t))[:, None]
+        got = settling_time(t, force, period=0.2)
+        assert (got == 0.0) if settled else math.isnan(got)
+
+
+def test_transient_times_run_up_then_decay() -> None:
+    """Settling is the later of the run-up and the force settling; decay is the rest."""
+    t = np.linspace(0.0, 1.0, 10001)
+    speed = np.minimum(t / 0.3, 1.0) * 100.0               # at 95 % at t = 0.285 s
+    force = (400.0 + 300.0 * np.exp(-t / 0.02))[:, None]   # settled long before
+    settle, runup, decay = transient_times(t, force, speed, 0.0)
+    assert runup == pytest.approx(0.285, abs=1e-4)
+    assert settle == runup and decay == 0.0
+    late = (400.0 + 300.0 * np.exp(-t / 0.1))[:, None]     # 300 e^{-t/0.1} = 20 N at 0.27 s
+    settle, runup, decay = transient_times(t, late, speed, 0.0)
+    assert settle == pytest.approx(max(runup, 0.1 * math.log(300.0 / 20.0)), abs=1e-3)
+    assert decay == pytest.approx(settle - runup)

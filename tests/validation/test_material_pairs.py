@@ -55,7 +55,9 @@ def test_dynamics_response_fragment(seed_drive) -> None:
     out = dynamics_response(d, g, model, startup_duration=0.05, afc_points=400,
                             eccentricity=[1e-4, 0, 0], accumulated_error=2e-4).to_dict()
     st = out["dynamics"]["startup"]
-    assert len(st["max_span_force_n"]) == 3 and st["settling_time_s"] >= 0
+    assert len(st["max_span_force_n"]) == 3
+    # a 0.05 s record ends before the forces settle: no settling time is claimed
+    assert st["settled"] is False and st["settling_time_s"] is None
     for key in ("span_dynamic_load_n", "inertia_load_n", "irregularity_percent"):
         assert len(out["dynamics"]["steady"][key]) == 3
     assert out["dynamics"]["coefficient_of_dynamics"] > 1

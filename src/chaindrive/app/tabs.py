@@ -234,7 +234,9 @@ def tab_startup(screen: Screen) -> None:
     c[1].metric("run-up [s]", fmt(d["runup_time_s"]),
                 help="the driver at 95 % of its working speed")
     c[2].metric("decay after it [s]", fmt(d["decay_time_s"]),
-                help=f"every span force in its final band after {fmt(d['settling_time_s'])} s")
+                help=(f"every span force in its final band after {fmt(d['settling_time_s'])} s"
+                      if d["settled"] else "the span forces have not settled within the "
+                      f"simulated {fmt(d['simulated_time_s'])} s"))
     c[3].metric("k₁ = Q / F₁max", fmt(d["k1"]))
     if d["slack_fraction"]:
         st.caption(f"A span is slack in {fmt(100 * d['slack_fraction'])} % of the recorded "

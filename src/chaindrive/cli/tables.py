@@ -236,9 +236,12 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
 def startup_times_text(startup: dict[str, Any]) -> str:
     """The start-up's run-up, decay and slack share as one clause (JSON keys of
     :meth:`chaindrive.dynamics.startup.StartupResult.to_dict`)."""
-    if startup.get("runup_time_s") is None:
-        text = (f"the driver does not reach its working speed in the simulated start-up; "
-                f"forces settled after {fmt(startup['settling_time_s'])} s")
+    simulated = fmt(startup["simulated_time_s"])
+    if startup["runup_time_s"] is None:
+        text = f"the driver is not at its working speed within the simulated {simulated} s"
+    elif not startup["settled"]:
+        text = (f"run-up {fmt(startup['runup_time_s'])} s; the span forces have not settled "
+                f"within the simulated {simulated} s (lengthen [dynamics] startup_duration)")
     elif startup["decay_time_s"] > 0:
         text = (f"run-up {fmt(startup['runup_time_s'])} s, then the transient decays in "
                 f"{fmt(startup['decay_time_s'])} s (settled after "

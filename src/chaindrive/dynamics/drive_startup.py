@@ -29,9 +29,8 @@ from chaindrive.dynamics.startup import (
     PolygonalLaw,
     StartupProblem,
     StartupResult,
-    runup_time,
-    settling_time,
     solve_startup,
+    transient_times,
     work_estimate,
 )
 from chaindrive.errors import DesignError
@@ -156,11 +155,9 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
     speeds = states[:, n + model.sprocket_coordinate] * model.sprocket_gain
     rotors = states[:, n + model.rotor_coordinate] * model.rotor_gain
     k1 = breaking_load / float(fmax.max()) if breaking_load and fmax.max() > 0 else None
-    settle = settling_time(times, forces)
-    runup = runup_time(times, speeds[:, model.driver_index])
-    if not math.isnan(runup):  # over when the driver is at speed and the forces settled
-        settle = max(settle, runup)
+    period = 1.0 / tooth_frequency_hz if polygonal is not None and tooth_frequency_hz > 0 \
+        else 0.0
+    settle, runup, decay = transient_times(times, forces, speeds[:, model.driver_index], period)
     return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
-                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
-                         settle - runup if not math.isnan(runup) else math.nan,
+                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup, decay,
                          model.rotor_names, rotors, states if keep_states else None, dt)

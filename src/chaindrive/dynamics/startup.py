@@ -58,7 +58,7 @@ from chaindrive.errors import DesignError
 
 __all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
            "StartupResult", "runup_time", "settling_time", "simulate_startup", "solve_startup",
-           "work_estimate"]
+           "transient_times", "work_estimate"]
 
 TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
@@ -92,7 +92,8 @@ class StartupResult:
         (S,) F₁max per span over every step [N].
     settling_time : float
         Run-up and decay together [s]: the later of the run-up time and the time after
-        which every span force stays in its final band (:func:`settling_time`).
+        which every span force stays in its final band (:func:`transient_times`); nan when
+        the record ends before (not settled within the simulated time).
     k1 : float or None
         k₁ = Q / max F₁max [-] ([MultimassChainDrives, §3.6]; None without Q).
     steps : int
@@ -155,7 +156,9 @@ class StartupResult:
         out: dict[str, Any] = {
             "max_span_force_n": self.max_span_force.tolist(),
             "max_force_n": float(self.max_span_force.max()),
-            "settling_time_s": self.settling_time,
+            "settled": not math.isnan(self.settling_time),
+            "settling_time_s": None if math.isnan(self.settling_time) else self.settling_time,
+            "simulated_time_s": float(self.times[-1]) if len(self.times) else 0.0,
             "runup_time_s": None if math.isnan(self.runup_time) else self.runup_time,
             "decay_time_s": None if math.isnan(self.decay_time) else self.decay_time,
             "k1": self.k1,
@@ -176,14 +179,26 @@ class StartupResult:
 
 
 def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05,
-                  tail: float = 0.1) -> float:
-    """Time [s] after which every span force stays in its final band.
+                  tail: float = 0.1, period: float = 0.0) -> float:
+    """Time [s] after which every span force stays in its final band and its envelope is
+    the final one; nan when the record ends before that.
 
-    The final state is the last ``tail`` fraction of the record: its mid-range
+    The final state is the last ``tail`` fraction of the record, or two periods of the
+    steady ripple if they are longer (``period``, the tooth period); its mid-range
     F̃_i = (max + min)/2 and half-range r_i (a steady ripple, e.g. polygonal), so that every
     sample of the final state lies in the band, whatever the shape of the ripple (a span that
-    goes slack clips it at zero). Band: |F_i − F̃_i| ≤ r_i + tolerance·max_j |F̄_j|, F̄_j the
-    mean of span j over the final state.
+    goes slack clips it at zero). With δ = tolerance·max_j |F̄_j| (F̄_j the mean of span j
+    over the final state) the record has settled after
+
+    * the last excursion from the band |F_i − F̃_i| ≤ r_i + δ (a transient that decays into
+      the ripple), and
+    * the end of the last window, as long as the final state and sliding by a quarter of it,
+      whose largest or smallest force of some span stays more than δ inside the final
+      band (a ripple still growing toward its final amplitude: a resonance approached as
+      the speed creeps up, a beat that has not died out).
+
+    When that time reaches the final state, or the final state would take more than half of
+    the record, the record has not settled: nan.
 
     Parameters
     ----------
@@ -195,20 +210,65 @@ def settling_time(times: FloatArray, forces: FloatArray, tolerance: float = 0.05
         Band beyond the ripple as a fraction of the largest mean force [-].
     tail : float
         Fraction of the record taken as the final state [-].
+    period : float
+        Period of the steady ripple [s] (the tooth period; 0: none).
 
     Returns
     -------
     float
-        The first time after the last excursion [s] (0 if none).
+        The settling time [s] (0 if the record starts settled), nan if it has not settled
+        before its final state.
     """
-    k0 = int(len(times) * (1.0 - tail))
+    k0 = min(int(len(times) * (1.0 - tail)),
+             int(np.searchsorted(times, times[-1] - 2.0 * period, side="right")))
+    if k0 < len(times) // 2 or times[-1] <= times[0]:
+        return math.nan
     end = forces[k0:]
     top, bottom = end.max(axis=0), end.min(axis=0)
     middle = 0.5 * (top + bottom)
-    band = 0.5 * (top - bottom) + tolerance * np.abs(end.mean(axis=0)).max()
-    out = np.any(np.abs(forces - middle) > band, axis=1)
+    delta = tolerance * np.abs(end.mean(axis=0)).max()
+    out = np.any(np.abs(forces - middle) > 0.5 * (top - bottom) + delta, axis=1)
     idx = np.flatnonzero(out)
-    return float(times[min(idx[-1] + 1, len(times) - 1)]) if idx.size else 0.0
+    settle = float(times[min(idx[-1] + 1, len(times) - 1)]) if idx.size else 0.0
+    width = len(times) - k0  # k0 ≥ width: every window lies before the final state
+    for start in {*range(0, k0 - width + 1, max(1, width // 4)), k0 - width}:
+        window = forces[start:start + width]
+        if np.any(window.max(axis=0) < top - delta) or np.any(
+                window.min(axis=0) > bottom + delta):
+            settle = max(settle, float(times[start + width]))
+    return settle if settle < times[k0] else math.nan
+
+
+def transient_times(times: FloatArray, forces: FloatArray, driver_speed: FloatArray,
+                    period: float) -> tuple[float, float, float]:
+    """Settling, run-up and decay times of a start-up record [s].
+
+    The transient is over when the driver is at speed (:func:`runup_time`) and the span
+    forces have settled (:func:`settling_time`): settling = max of the two, decay = settling
+    − run-up. nan where the record ends first.
+
+    Parameters
+    ----------
+    times : ndarray
+        (R,) [s].
+    forces : ndarray
+        (R, S) span forces [N].
+    driver_speed : ndarray
+        (R,) forward speed of the driver [rad/s].
+    period : float
+        Period of the steady ripple [s] (the tooth period; 0: none).
+
+    Returns
+    -------
+    tuple of float
+        (settling, run-up, decay) [s].
+    """
+    settle = settling_time(times, forces, period=period)
+    runup = runup_time(times, driver_speed)
+    if math.isnan(runup) or math.isnan(settle):
+        return math.nan, runup, math.nan
+    settle = max(settle, runup)
+    return settle, runup, settle - runup
 
 
 def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
@@ -712,13 +772,11 @@ def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, 
     speeds = states[:, n:] / R
     k1 = breaking_load / float(fmax.max()) if breaking_load is not None and fmax.max() > 0 \
         else None
-    settle = settling_time(times, forces)
-    runup = runup_time(times, speeds[:, driver_index])
-    if not math.isnan(runup):  # over when the driver is at speed and the forces settled
-        settle = max(settle, runup)
+    final = float(speeds[-1, driver_index]) * R[driver_index]  # chain speed [m/s]
+    period = polygonal.pitch / final if polygonal is not None and final > 0 else 0.0
+    settle, runup, decay = transient_times(times, forces, speeds[:, driver_index], period)
     return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
-                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup,
-                         settle - runup if not math.isnan(runup) else math.nan,
+                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup, decay,
                          time_step=float(dt))
 
 

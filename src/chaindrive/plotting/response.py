@@ -79,7 +79,8 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
     """Span forces F_i(t) [N] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), the
     largest one F₁max marked and labelled, the settling time as a dashed vertical line
-    (:func:`chaindrive.dynamics.startup.settling_time`). names label the spans. When the
+    (:func:`chaindrive.dynamics.startup.transient_times`; the title says when the record
+    ends before the forces settle). names label the spans. When the
     start-up settles within a fifth of the record the time axis ends at 4× the settling
     time (the title says so).
 
@@ -120,6 +121,8 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     title = "Start-up: span forces"
     if end < t[-1]:
         title += f" (first {end:.0f} of {t[-1]:.0f} ms)"
+    if not math.isfinite(ts):
+        title += f", not settled within {t[-1]:.0f} ms"
     finish(ax, title)
     return fig
 

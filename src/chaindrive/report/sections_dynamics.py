@@ -220,8 +220,10 @@ def response_section(inp: ReportInput) -> list[Block] | None:
                       ("decay of the transient after the run-up", "",
                        None if math.isnan(startup.decay_time) else startup.decay_time * 1e3,
                        "ms"),
-                      ("settling time (run-up and decay)", "", startup.settling_time * 1e3,
-                       "ms"),
+                      ("settling time (run-up and decay)", "",
+                       *(("not within the simulated time", "")
+                         if math.isnan(startup.settling_time)
+                         else (startup.settling_time * 1e3, "ms"))),
                       ("samples with a slack span", "", 100.0 * startup.slack_fraction, "%"),
                       ("start-up simulated", "", float(startup.times[-1]) * 1e3, "ms")]
     blocks.append(Table("Dynamic loads", ("quantity", "symbol", "value", "unit"),
