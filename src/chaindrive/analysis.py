@@ -55,7 +55,7 @@ from chaindrive.dynamics.response import (
 )
 from chaindrive.dynamics.startup import StartupResult
 from chaindrive.dynamics.steady import SteadyStateResult
-from chaindrive.dynamics.warnings import dynamics_warnings
+from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
 from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
@@ -605,6 +605,10 @@ class Analysis:
         out += dynamics_warnings(self.drive_model, self.bands,
                                  assumed_sag=self.drive.chain.sag is None,
                                  computed_link_stiffness=self.drive.chain.link_stiffness is None)
+        startup = self.startup if self.with_response else None
+        if startup is not None:
+            out += startup_warnings(startup, [f"{s.start_name}→{s.end_name}"
+                                              for s in self.geometry.spans])
         return tuple(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ the document

@@ -14,11 +14,13 @@ from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 from chaindrive.dynamics.startup import (
     PolygonalLaw,
+    StartupResult,
     settling_time,
     simulate_startup,
     transient_times,
 )
 from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
+from chaindrive.dynamics.warnings import startup_warnings
 from chaindrive.dynamics.zoh import expm, zoh_matrices
 from chaindrive.errors import DesignError
 
@@ -318,3 +320,23 @@ def test_transient_times_run_up_then_decay() -> None:
     settle, runup, decay = transient_times(t, late, speed, 0.0)
     assert settle == pytest.approx(max(runup, 0.1 * math.log(300.0 / 20.0)), abs=1e-3)
     assert decay == pytest.approx(settle - runup)
+
+
+def test_startup_warnings_name_an_unsettled_record_and_slack_spans() -> None:
+    """A record that ends before the forces settle, and the spans slack in more than 1 % of
+    the samples, each give one warning naming them; a settled taut record gives none."""
+    t = np.linspace(0.0, 1.0, 1001)
+    forces = np.column_stack([np.full(t.size, 300.0),
+                              np.where(np.arange(t.size) % 10 == 0, 0.0, 200.0)])
+    speeds = np.ones((t.size, 2))
+    record = StartupResult(t, forces, speeds, forces.max(axis=0), math.nan, None, 1000,
+                           101, 0.2, math.nan)
+    warnings = startup_warnings(record, ["A→B", "B→A"])
+    assert [w.code for w in warnings] == ["dynamics.startup-not-settled",
+                                          "dynamics.startup-slack"]
+    assert "run-up 0.2 s" in warnings[0].message and "within the simulated 1 s" in \
+        warnings[0].message
+    assert "B→A 10.1 %" in warnings[1].message and "A→B" not in warnings[1].message
+    taut = StartupResult(t, forces + 1.0, speeds, forces.max(axis=0), 0.3, None, 1000, 0,
+                         0.2, 0.1)
+    assert startup_warnings(taut, ["A→B", "B→A"]) == []

@@ -238,9 +238,9 @@ def tab_startup(screen: Screen) -> None:
                       if d["settled"] else "the span forces have not settled within the "
                       f"simulated {fmt(d['simulated_time_s'])} s"))
     c[3].metric("k₁ = Q / F₁max", fmt(d["k1"]))
-    if d["slack_fraction"]:
-        st.caption(f"A span is slack in {fmt(100 * d['slack_fraction'])} % of the recorded "
-                   "samples (the chain cannot push: its force is held at zero there).")
+    for w in full.warnings:
+        if w.code.startswith("dynamics.startup"):
+            st.warning(w.message)
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
     frame = pd.DataFrame(result.span_forces[::step], columns=names,

@@ -3,22 +3,29 @@ inside the band of uncertain stiffness and inertia, hinge friction outside its d
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from chaindrive.errors import ChainDriveWarning
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.drive_response import Bands
+    from chaindrive.dynamics.startup import StartupResult
 
-__all__ = ["ELASTIC_DOMINATED", "SAG_DOMINATED", "dynamics_warnings"]
+__all__ = ["ELASTIC_DOMINATED", "SAG_DOMINATED", "SLACK_SHARE", "dynamics_warnings",
+           "startup_warnings"]
 
 #: A span keeping less than this share of its taut stiffness is set by its sag (its tension).
 SAG_DOMINATED = 0.9
 #: A span keeping at least this share of its taut stiffness is set mostly by its links and
 #: teeth (its elastic compliance is at least this share of the whole).
 ELASTIC_DOMINATED = 0.5
+#: A span slack in more than this share of the start-up's samples is named in a warning.
+SLACK_SHARE = 0.01
 
 
 def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = False,
@@ -79,4 +86,48 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
             "dynamics.hinge-friction-extrapolated", "dynamics.hinge_friction",
             "the hinge-friction damping rests on the friction fit of one chain "
             "(ПР-12,7-1820-1) [ChainHingeDissipation]; for this chain it is an extrapolation"))
+    return out
+
+
+def startup_warnings(startup: StartupResult, span_names: Sequence[str]
+                     ) -> list[ChainDriveWarning]:
+    """The warnings of a start-up record.
+
+    Parameters
+    ----------
+    startup : StartupResult
+        The start-up.
+    span_names : sequence of str
+        Names of the spans of one contour ("S1→S2", …), in the order of the span forces.
+
+    Returns
+    -------
+    list of ChainDriveWarning
+        ``dynamics.startup-not-settled`` (the record ends before the driver is at speed or
+        before the forces settle: F₁max and k₁ cover only the simulated time) and
+        ``dynamics.startup-slack`` (spans slack in more than :data:`SLACK_SHARE` of the
+        samples).
+    """
+    out = []
+    simulated = float(startup.times[-1]) if len(startup.times) else 0.0
+    if math.isnan(startup.runup_time) or math.isnan(startup.settling_time):
+        what = ("the driver is not at its working speed" if math.isnan(startup.runup_time)
+                else f"the span forces have not settled (run-up {startup.runup_time:.3g} s)")
+        out.append(ChainDriveWarning(
+            "dynamics.startup-not-settled", "dynamics.startup_duration",
+            f"{what} within the simulated {simulated:.3g} s of the start-up: F₁max and k₁ "
+            "cover only that time; lengthen [dynamics] startup_duration"))
+    share = (startup.span_forces <= 0.0).mean(axis=0) if len(startup.times) else []
+    names = (list(span_names) if len(span_names) == len(share)
+             else [f"span {i + 1}" for i in range(len(share))])
+    slack = [f"{name} {100 * float(f):.3g} %" for name, f in zip(names, share, strict=True)
+             if f > SLACK_SHARE]
+    if slack:
+        out.append(ChainDriveWarning(
+            "dynamics.startup-slack", "chain.sag",
+            f"in the start-up the chain goes slack ({', '.join(slack)} of the samples): it "
+            "cannot push, so the span whips and snatches taut again; the ring model holds "
+            "the force at zero and re-engages the span as a spring, without the roller–tooth "
+            "impacts (the link-level model has them); a tauter installation ([chain] sag), a "
+            "softer start or a drive detuned from its resonances lowers it"))
     return out
