@@ -464,5 +464,5 @@ def test_page_startup_states_runup_and_decay_apart() -> None:
     assert shown["run-up [s]"] == fmt(startup.runup_time)
     assert shown["decay after it [s]"] == fmt(startup.decay_time)
     assert shown["k₁ = Q / F₁max"] == fmt(startup.k1)
-    slack = [w.value for w in at.warning if "goes slack" in w.value]
+    slack = [w.value for w in at.warning if "spans go slack" in w.value]
     assert len(slack) == 1 and "S2→S3" in slack[0]   # as the analysis's warning says

@@ -125,9 +125,9 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str]
     if slack:
         out.append(ChainDriveWarning(
             "dynamics.startup-slack", "chain.sag",
-            f"in the start-up the chain goes slack ({', '.join(slack)} of the samples): it "
-            "cannot push, so the span whips and snatches taut again; the ring model holds "
-            "the force at zero and re-engages the span as a spring, without the roller–tooth "
-            "impacts (the link-level model has them); a tauter installation ([chain] sag), a "
-            "softer start or a drive detuned from its resonances lowers it"))
+            f"in the start-up spans go slack ({', '.join(slack)} of the samples): the ring "
+            "holds their force at zero (a chain cannot push) and re-engages them as springs, "
+            "without the roller–tooth impacts of a span snatching taut (the link-level model "
+            "has them), so F₁max may be low there; a tauter installation ([chain] sag) or a "
+            "softer start lowers the slack"))
     return out
