@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 
@@ -71,3 +72,28 @@ def test_design_without_a_chain_gets_the_selected_one(tmp_path) -> None:  # type
     proc = run_cli("analyze", str(missing_power))
     assert proc.returncode == 2
     assert "drive.power" in proc.stderr
+
+
+def test_ansi_selection_names_the_ansi_numbers(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """Asked for ANSI chains, the selection ranks every chain with an ANSI number; an ISO 606 A
+    chain is named with its ANSI twin (the same chain, [ISO606], [ANSI-B29.1]), in the JSON
+    and in the table."""
+    text = (EXAMPLES / "eight_sprocket.toml").read_text(encoding="utf-8")
+    design = tmp_path / "ansi.toml"
+    design.write_text(text.replace('designation = "ISO 606 12B-1"', 'standard = "ANSI"'),
+                      encoding="utf-8")
+    doc = json.loads(run_cli("select", str(design), "--json").stdout)
+    iso = [c for c in doc["candidates"] if c["chain"].startswith("ISO 606")]
+    assert iso and all(c["ansi_number"] for c in iso)
+    assert all(c["ansi_number"] is None for c in doc["candidates"]
+               if c["chain"].startswith("ANSI"))
+    matched = [(c, re.fullmatch(r"ISO 606 (\d\d)A-(\d)", c["chain"])) for c in iso]
+    matched = [(c, m) for c, m in matched if m]
+    assert len(matched) >= 5
+    for c, m in matched:  # ISO 606 nnA-k is ANSI (5·nn)-k: 16A-2 is ANSI 80-2
+        base = str(5 * int(m[1]))
+        assert c["ansi_number"] == (base if m[2] == "1" else f"{base}-{m[2]}")
+    first = doc["candidates"][0]
+    table = run_cli("select", str(design), "--top", "1").stdout
+    same = f" = ANSI {first['ansi_number']}" if first["ansi_number"] else ""
+    assert f"{first['chain']}{same}" in table

@@ -353,14 +353,17 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     """
     con = console()
     if doc["chain"] is not None:
-        con.print(f"selected: [bold]{escape(doc['chain'])}[/bold] ({escape(doc['method'])})")
+        same = f" = ANSI {escape(doc['ansi_number'])}" if doc.get("ansi_number") else ""
+        con.print(f"selected: [bold]{escape(doc['chain'])}[/bold]{same} "
+                  f"({escape(doc['method'])})")
     else:
         con.print(f"[red]{escape(doc['shortfall'])}[/red]")
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
                     "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",
                                 "governing", "lubrication"],
-                    [[c["chain"], c["method"], c["strands"],
+                    [[c["chain"] + (f" = ANSI {c['ansi_number']}" if c.get("ansi_number")
+                                    else ""), c["method"], c["strands"],
                       doc_value("mass_kg_m", c["mass_kg_m"], units)[0], c["passed"],
                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                       c["governing"], c["lubrication"]] for c in doc["candidates"]]))

@@ -235,12 +235,19 @@ class SelectionResult:
         chosen, closest = self.chosen, self.closest
         shown = self.candidates if top is None else self.top(top)
         return {"chain": None if chosen is None else chosen.designation,
+                "ansi_number": None if chosen is None else self._ansi_twin(chosen.designation),
                 "method": self.method,
                 "closest": None if closest is None else closest.to_dict(),
                 "shortfall": None if chosen is not None else self.shortfall(),
                 "candidate_count": len(self.candidates),
-                "candidates": [c.to_dict(with_checks=False) for c in shown],
+                "candidates": [{**c.to_dict(with_checks=False),
+                                "ansi_number": self._ansi_twin(c.designation)} for c in shown],
                 "warnings": list(self.warnings)}
+
+    def _ansi_twin(self, designation: str) -> str | None:
+        """The ANSI number of an ISO 606 A chain (the same chain), None otherwise."""
+        spec = self.specs.get(designation)
+        return None if spec is None or spec.standard == "ANSI" else spec.ansi
 
 
 def _missed_text(c: ck.Check) -> str:
