@@ -53,6 +53,7 @@ __all__ = [
     "result_word",
     "show",
     "shown_value",
+    "unit_header",
     "unit_of",
     "unit_system",
 ]
@@ -285,6 +286,29 @@ def header(label: str, key: str, system: UnitSystem = "SI") -> str:
     """
     q = doc_quantity(key)
     return label if q is None else f"{label}, {unit_of(q[0], system)}"
+
+
+def unit_header(label: str, unit: str) -> str:
+    """A column header ``label, unit`` for a value in a named unit (``label`` alone for a
+    dimensionless one: "", "-"); ``_`` in the label read as spaces, ``^2``/``^3`` as
+    superscripts.
+
+    Parameters
+    ----------
+    label : str
+        The column's name (e.g. an objective's name, ``chain_length``).
+    unit : str
+        Its unit (e.g. "m^3", "EUR", "-").
+
+    Returns
+    -------
+    str
+        E.g. "chain length, m", "volume, m³".
+    """
+    text = label.replace("_", " ")
+    if unit in ("", "-"):
+        return text
+    return f"{text}, {unit.replace('^2', '²').replace('^3', '³')}"
 
 
 #: Below this magnitude a value shown to people is zero (round-off of a computed zero).

@@ -113,6 +113,10 @@ def test_optimize_json(tmp_path: Path) -> None:
     assert doc["pareto"]
     for p in doc["pareto"]:
         assert {"objectives", "constraints_ok", "design"} <= set(p)
+    # every objective names its unit; a price is in the cost model's currency
+    # (src/chaindrive/data/cost.toml)
+    assert doc["objective_units"] == {"cost": "EUR", "mass": "kg", "volume": "m^3",
+                                      "chain_length": "m"}
     # one TOML per Pareto design, and the report of the first with the Pareto set and front
     assert len(doc["files"]) == len(doc["pareto"]) + 1
     assert all(Path(f).exists() for f in doc["files"])

@@ -22,6 +22,7 @@ from chaindrive.display import (
     fmt,
     header,
     margin_percent,
+    unit_header,
     unit_system,
 )
 from chaindrive.errors import DesignError
@@ -71,3 +72,10 @@ def test_checks_read_in_either_system_with_one_margin_sign() -> None:
     assert us[1] == pytest.approx(31e6 / 6894.757293168) and us[2].endswith(" psi")
     assert margin_percent(c) == pytest.approx(100 * (28 / 31 - 1))
     assert check_line(c) == "FAIL: hinge pressure: chain = 31 MPa (required ≤ 28 MPa)"
+
+
+@pytest.mark.parametrize(("label", "unit", "text"), [
+    ("chain_length", "m", "chain length, m"), ("volume", "m^3", "volume, m³"),
+    ("cost", "EUR", "cost, EUR"), ("coefficient_of_dynamics", "-", "coefficient of dynamics")])
+def test_unit_header_names_the_unit(label: str, unit: str, text: str) -> None:
+    assert unit_header(label, unit) == text

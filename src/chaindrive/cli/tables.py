@@ -21,6 +21,7 @@ from chaindrive.display import (
     fmt,
     header,
     margin_percent,
+    unit_header,
 )
 
 if TYPE_CHECKING:
@@ -386,10 +387,12 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
         Where to print (None: :func:`console`).
     """
     names = list(result.objectives)
+    heads = [unit_header(n, u) for n, u in zip(names, result.units or ("",) * len(names),
+                                                strict=True)]
     con = con or console()
     con.print(f"[bold]{escape(name)}[/bold] — {result.evaluations} designs evaluated by "
               f"{escape(result.method)} (seed {result.seed}) in {fmt(result.seconds, 3)} s")
-    con.print(table("Start design", ["design", *names, "constraints ok"],
+    con.print(table("Start design", ["design", *heads, "constraints ok"],
                     [["start", *[result.start.objectives[n] for n in names],
                       result.start.feasible]]))
     rows = []
@@ -399,7 +402,7 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
                      " ".join(str(s["teeth"]) for s in d["sprockets"]),
                      *[p.objectives[n] for n in names], p.constraints_ok])
     con.print(table(f"Pareto set ({len(rows)} designs)",
-                    ["design", "chain", "teeth", *names, "constraints ok"], rows))
+                    ["design", "chain", "teeth", *heads, "constraints ok"], rows))
     checked = [[str(k), f"P({v['key']}) ≤ {fmt(100 * v['alpha'], 3)} %",
                 f"{fmt(v['search']['failures'], 3)} / {v['search']['samples']}",
                 f"{fmt(v['failures'], 3)} / {v['samples']}",

@@ -9,7 +9,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from chaindrive.display import constraint_row
+from chaindrive.display import constraint_row, unit_header
 from chaindrive.plotting import (
     absorption_vs_amplitude,
     afc_curves,
@@ -440,7 +440,9 @@ def synthesis_section(inp: ReportInput) -> list[Block] | None:
     blocks: list[Block] = [
         Text(f"{result.evaluations} designs evaluated by {result.method} (random seed "
              f"{result.seed}); this report is of Pareto design 1."),
-        Table("Pareto set", ("design", *names, "constraints met"), rows(table_rows)),
+        Table("Pareto set", ("design", *(unit_header(n, u) for n, u in zip(
+            names, result.units or ("",) * len(names), strict=True)), "constraints met"),
+              rows(table_rows)),
     ]
     report = [c for c in result.constraint_report if c.rejected]
     if report:

@@ -71,6 +71,25 @@ def register_objective(metric: Metric) -> Metric:
     return metric
 
 
+def objective_unit(name: str, currency: str) -> str:
+    """The unit of an objective's value, the currency of the cost model for a price.
+
+    Parameters
+    ----------
+    name : str
+        A registered objective.
+    currency : str
+        The cost model's currency (e.g. "EUR").
+
+    Returns
+    -------
+    str
+        E.g. "kg", "m^3", "EUR", "-".
+    """
+    unit = OBJECTIVES[name].unit
+    return currency if unit == "currency" else unit
+
+
 def available_objectives() -> tuple[str, ...]:
     """Names of the registered objectives.
 

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.cost import default_cost_model
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_to_mapping
 from chaindrive.model import Drive
@@ -34,6 +35,7 @@ from chaindrive.synthesis.evaluation import (
     evaluate_drive,
     evaluate_vector,
 )
+from chaindrive.synthesis.objectives import objective_unit
 from chaindrive.synthesis.problem import Problem
 
 __all__ = ["BatchEvaluator", "ConstraintReport", "ParetoDesign", "SynthesisResult",
@@ -213,6 +215,8 @@ class SynthesisResult:
         Wall time [s].
     constraint_report : tuple of ConstraintReport
         How each constraint acted on the designs, the most rejecting first.
+    units : tuple of str
+        The unit of each objective's value (the cost model's currency for a price).
     """
 
     objectives: tuple[str, ...]
@@ -223,10 +227,13 @@ class SynthesisResult:
     seed: int
     seconds: float
     constraint_report: tuple[ConstraintReport, ...] = ()
+    units: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
-        return {"objectives": list(self.objectives), "method": self.method, "seed": self.seed,
+        return {"objectives": list(self.objectives),
+                "objective_units": dict(zip(self.objectives, self.units, strict=False)),
+                "method": self.method, "seed": self.seed,
                 "evaluations": self.evaluations, "seconds": self.seconds,
                 "start": self.start.to_dict(), "pareto": [p.to_dict() for p in self.pareto],
                 "constraints": [c.to_dict() for c in self.constraint_report]}
@@ -426,6 +433,8 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
     pareto = archive.pareto()
     if problem.robust is not None:  # what a robust search reports is its independent check
         pareto = tuple(_verified(problem, p) for p in pareto)
+    currency = default_cost_model().currency  # the designs are priced by the default model
     return SynthesisResult(problem.objectives, start, pareto, len(archive.rows),
                            method, seed, time.perf_counter() - t0,
-                           constraint_reports([(ev, d) for _, ev, d in archive.rows]))
+                           constraint_reports([(ev, d) for _, ev, d in archive.rows]),
+                           tuple(objective_unit(n, currency) for n in problem.objectives))
