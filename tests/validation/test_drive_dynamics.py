@@ -92,6 +92,11 @@ def test_seed_startup_peaks_metal_and_polymer_chain(seed, seed_polymer) -> None:
     for a in (seed, seed_polymer):
         assert 0.2 < a.startup.runup_time < 0.35
         assert a.startup.decay_time >= 0.0
+    # the paper's "transients over by about 0.15 s" is out of reach: measured 0.29 s + 0.59 s
+    # (metal: the resonant ripple grows to its final amplitude as the speed creeps up to the
+    # tooth frequency) and 0.25 s + 0.30 s (polymer); docs/dynamics.md §7
+    assert seed.startup.settling_time == pytest.approx(0.875, rel=0.1)
+    assert seed_polymer.startup.settling_time == pytest.approx(0.55, rel=0.1)
 
 
 # ------------------------------------------------------------------ Table 1 as ratios
