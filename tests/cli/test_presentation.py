@@ -5,6 +5,7 @@ field, numbers without round-off, and the US customary unit system (1 in = 25.4 
 
 from __future__ import annotations
 
+import json
 import re
 import subprocess
 import sys
@@ -12,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from chaindrive.display import fmt
 from tests.conftest import EXAMPLES
 
 pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
@@ -70,3 +72,14 @@ def test_numbers_without_round_off_and_us_units() -> None:
     bad = run_cli("analyze", str(SEED), "--quick", "--units", "imperial")
     assert bad.returncode == 2
     assert bad.stderr.strip() == "error: units: must be SI or US, got 'imperial'"
+
+
+def test_dynamic_loads_in_the_unit_system() -> None:
+    """With --units us the steady and start-up span forces are in lbf (1 lbf = 4.4482216152605
+    N, exact [NIST-SP811]), the same figures as the JSON's newtons."""
+    doc = json.loads(run_cli("analyze", str(SEED), "--json").stdout)
+    us = run_cli("analyze", str(SEED), "--units", "us").stdout.replace("\n", " ")
+    steady = max(doc["dynamics"]["steady"]["span_dynamic_load_n"]) / 4.4482216152605
+    peak = doc["dynamics"]["startup"]["max_force_n"] / 4.4482216152605
+    assert f"largest dynamic span load {fmt(steady)} lbf" in us
+    assert f"largest span force {fmt(peak)} lbf" in us

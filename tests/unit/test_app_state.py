@@ -466,3 +466,8 @@ def test_page_startup_states_runup_and_decay_apart() -> None:
     assert shown["k₁ = Q / F₁max"] == fmt(startup.k1)
     slack = [w.value for w in at.warning if "spans go slack" in w.value]
     assert len(slack) == 1 and "S2→S3" in slack[0]   # as the analysis's warning says
+    assert shown["largest span force F₁max [N]"] == fmt(float(startup.max_span_force.max()))
+    at.radio(key="units").set_value("US").run()      # the page's unit system: lbf
+    shown = {m.label: m.value for m in at.metric}
+    assert shown["largest span force F₁max [lbf]"] == fmt(
+        float(startup.max_span_force.max()) / 4.4482216152605)

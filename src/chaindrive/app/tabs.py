@@ -229,8 +229,10 @@ def tab_startup(screen: Screen) -> None:
         st.info("The start-up is switched off (transient = false in [dynamics]).")
         return
     d = result.to_dict()
+    units = _units()
+    factor, force = convert(1.0, "force", units)
     c = st.columns(4)
-    c[0].metric("largest span force F₁max [N]", fmt(d["max_force_n"]))
+    c[0].metric(f"largest span force F₁max [{force}]", fmt(d["max_force_n"] * (factor or 1.0)))
     c[1].metric("run-up [s]", fmt(d["runup_time_s"]),
                 help="the driver at 95 % of its working speed")
     c[2].metric("decay after it [s]", fmt(d["decay_time_s"]),
@@ -243,9 +245,9 @@ def tab_startup(screen: Screen) -> None:
             st.warning(w.message)
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
-    frame = pd.DataFrame(result.span_forces[::step], columns=names,
+    frame = pd.DataFrame(result.span_forces[::step] * (factor or 1.0), columns=names,
                          index=pd.Index(result.times[::step], name="time [s]"))
-    st.line_chart(frame, x_label="time [s]", y_label="span force [N]")
+    st.line_chart(frame, x_label="time [s]", y_label=f"span force [{force}]")
 
 
 def tab_afc(screen: Screen) -> None:
@@ -264,10 +266,12 @@ def tab_afc(screen: Screen) -> None:
     response = full.response
     afc = response.afc
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
-    frame = pd.DataFrame(afc.span_load, columns=names,
+    factor, force = convert(1.0, "force", _units())
+    frame = pd.DataFrame(afc.span_load * (factor or 1.0), columns=names,
                          index=pd.Index(afc.driver_speeds * 30 / math.pi,
                                         name="driver speed [rpm]"))
-    st.line_chart(frame, x_label="driver speed [rpm]", y_label="peak dynamic span load [N]")
+    st.line_chart(frame, x_label="driver speed [rpm]",
+                  y_label=f"peak dynamic span load [{force}]")
     s = response.strength_dict()
     c = st.columns(4)
     c[0].metric("K_D", fmt(response.steady.coefficient_of_dynamics))

@@ -168,7 +168,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         sel = doc["selection"]
         con.print(f"selection ({escape(sel['method'])}): "
                   f"{escape(sel['chain'] or sel['shortfall'])}")
-    _print_dynamics(con, doc["dynamics"], doc["strength"])
+    _print_dynamics(con, doc["dynamics"], doc["strength"], units)
     print_checks(con, checks, units)
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
@@ -208,8 +208,10 @@ def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI"
                                "result", "source"], rows))
 
 
-def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None) -> None:
-    """Natural frequencies, the closest resonances and the dynamic response."""
+def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None,
+                    units: UnitSystem = "SI") -> None:
+    """Natural frequencies, the closest resonances and the dynamic response (forces in the
+    unit system's force unit)."""
     freqs = [f for f, rigid in zip(dyn["natural_frequencies_hz"], dyn["rigid_body_modes"],
                                    strict=True) if not rigid]
     more = " …" if len(freqs) > 8 else ""
@@ -223,11 +225,11 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
                                            "detuning, %", "position"], rows))
     startup, steady = dyn.get("startup"), dyn.get("steady")
     if steady is not None:
-        con.print(f"steady state: largest dynamic span load "
-                  f"{fmt(max(steady['span_dynamic_load_n']))} N, coefficient of dynamics "
-                  f"K_D {fmt(dyn['coefficient_of_dynamics'])}")
+        largest = {"largest_n": max(steady["span_dynamic_load_n"])}
+        con.print(f"steady state: largest dynamic span load {_q(largest, 'largest_n', units)}, "
+                  f"coefficient of dynamics K_D {fmt(dyn['coefficient_of_dynamics'])}")
     if startup is not None:
-        con.print(f"start-up: largest span force {fmt(startup['max_force_n'])} N; "
+        con.print(f"start-up: largest span force {_q(startup, 'max_force_n', units)}; "
                   + startup_times_text(startup))
     if st is not None and "k1" in st:
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}, k2 {fmt(st['k2'])}, k2min "
