@@ -25,6 +25,7 @@ from chaindrive.dynamics.checks import (
     disturbed_safety_check,
     dynamic_safety_check,
     resonance_check,
+    startup_safety_check,
 )
 from chaindrive.dynamics.damping import (
     PR_12_7_1820_1,
@@ -555,8 +556,7 @@ class Analysis:
         if self.with_response and self._responds:
             k = self.limits.allowable_dynamic_safety
             if self.drive.dynamics.transient and self.with_startup:
-                out.append(dynamic_safety_check("k1", None if self.startup is None
-                                                else self.startup.k1, k))
+                out.append(startup_safety_check(self.startup, k))
             steady = self.steady
             out.append(dynamic_safety_check("k2", None if steady is None else steady.k2, k))
             out.append(dynamic_safety_check("k2min", None if steady is None else steady.k2_min,

@@ -434,7 +434,10 @@ def test_page_edit_form_changes_the_tooth_count(tmp_path: Path) -> None:
     assert not at.exception
     # the only red boxes are the checks the edited design fails (30 teeth on the idler leave
     # fewer than 3 in mesh), as the analysis says
-    failed = [c for c in chaindrive.analyze(chaindrive.load(edited)).checks() if not c.passed]
+    # (the page's screen runs no start-up: k1 comes with its Start-up tab; here the ripple
+    # still grows at the end of the 1 s record, so k1 cannot be verified)
+    failed = [c for c in chaindrive.analyze(chaindrive.load(edited)).checks()
+              if not c.passed and c.key != "k1"]
     assert [e.value.split(":")[0] for e in at.error] == [
         "FAIL" if c.status == "fail" else "CANNOT BE VERIFIED" for c in failed]
     assert at.session_state["form"].sprockets[2]["teeth"] == 30

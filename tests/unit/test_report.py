@@ -40,9 +40,9 @@ EXPECTED_PLOTS = {"layout", "chain_speed", "ratio", "tensions", "shaft_loads", "
 
 @pytest.fixture(scope="module")
 def seed_analysis() -> chaindrive.analysis.Analysis:
-    drive = chaindrive.load(SEED)
-    short = replace(drive.dynamics, startup_duration=0.05)  # a short start-up keeps it fast
-    return chaindrive.analyze(replace(drive, dynamics=short))
+    # the example's own 1 s start-up: a shorter record ends before the forces settle, and
+    # k1 then cannot be verified
+    return chaindrive.analyze(chaindrive.load(SEED))
 
 
 @pytest.fixture(scope="module")

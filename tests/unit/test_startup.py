@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import math
 import shutil
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
+from chaindrive.checks import UNVERIFIED
+from chaindrive.dynamics.checks import startup_safety_check
 from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 from chaindrive.dynamics.startup import (
@@ -340,3 +343,20 @@ def test_startup_warnings_name_an_unsettled_record_and_slack_spans() -> None:
     taut = StartupResult(t, forces + 1.0, speeds, forces.max(axis=0), 0.3, None, 1000, 0,
                          0.2, 0.1)
     assert startup_warnings(taut, ["A→B", "B→A"]) == []
+
+
+def test_k1_cannot_be_verified_on_an_unsettled_record() -> None:
+    """k₁ = Q/F₁max [MultimassChainDrives, §3.6] of a record that ends before the forces
+    settle cannot be verified (a larger F₁max may follow); the note keeps k₁ so far."""
+    t = np.linspace(0.0, 1.0, 101)
+    forces = np.full((t.size, 1), 100.0)
+    speeds = np.ones((t.size, 1))
+    open_end = StartupResult(t, forces, speeds, forces.max(axis=0), math.nan, 50.0, 100, 0,
+                             0.2, math.nan)
+    check = startup_safety_check(open_end, 2.5)
+    assert check.status == UNVERIFIED and check.value is None
+    assert "k₁ = 50 so far" in check.note and "startup_duration" in check.note
+    settled = StartupResult(t, forces, speeds, forces.max(axis=0), 0.3, 50.0, 100, 0, 0.2,
+                            0.1)
+    assert startup_safety_check(settled, 2.5).status == "pass"
+    assert startup_safety_check(replace(settled, k1=2.0), 2.5).status == "fail"

@@ -3,7 +3,9 @@ two-stage safety factors k₁, k₂, k₂min against [k] [MultimassChainDrives, 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -11,7 +13,11 @@ from numpy.typing import ArrayLike
 from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
 
-__all__ = ["disturbed_safety_check", "dynamic_safety_check", "resonance_check"]
+if TYPE_CHECKING:
+    from chaindrive.dynamics.startup import StartupResult
+
+__all__ = ["disturbed_safety_check", "dynamic_safety_check", "resonance_check",
+           "startup_safety_check"]
 
 
 def dynamic_safety_check(name: str, value: float | None, allowable: float, note: str = ""
@@ -38,6 +44,37 @@ def dynamic_safety_check(name: str, value: float | None, allowable: float, note:
                          "k2min": "resonance in the run-up"}.get(name, name),
                   value, allowable, "min", "[MultimassChainDrives, §3.6]", note=note,
                   part="dynamics")
+
+
+def startup_safety_check(startup: StartupResult | None, allowable: float) -> Check:
+    """k₁ = Q/F₁max ≥ [k] of a start-up record [MultimassChainDrives, §3.6]; it cannot be
+    verified when the record ends before the driver is at speed or the forces settle (a
+    larger F₁max may follow: the note gives the k₁ of the simulated time).
+
+    Parameters
+    ----------
+    startup : StartupResult | None
+        The start-up (None: none was simulated).
+    allowable : float
+        [k] [-].
+
+    Returns
+    -------
+    Check
+        Keyed ``k1``.
+    """
+    if startup is None:
+        return dynamic_safety_check("k1", None, allowable)
+    if math.isnan(startup.runup_time) or math.isnan(startup.settling_time):
+        simulated = float(startup.times[-1]) if len(startup.times) else 0.0
+        what = ("the driver is at its working speed" if math.isnan(startup.runup_time)
+                else "the span forces settle")
+        so_far = "" if startup.k1 is None else f"; k₁ = {startup.k1:.3g} so far"
+        return dynamic_safety_check(
+            "k1", None, allowable,
+            note=f"the start-up record ({simulated:.3g} s) ends before {what}{so_far}; "
+                 "lengthen [dynamics] startup_duration")
+    return dynamic_safety_check("k1", startup.k1, allowable)
 
 
 def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | None:
