@@ -356,6 +356,9 @@ def test_k1_cannot_be_verified_on_an_unsettled_record() -> None:
     check = startup_safety_check(open_end, 2.5)
     assert check.status == UNVERIFIED and check.value is None
     assert "k₁ = 50 so far" in check.note and "startup_duration" in check.note
+    # already below [k] on the partial record: a longer one can only lower k₁, so it fails
+    low = startup_safety_check(replace(open_end, k1=2.0), 2.5)
+    assert low.status == "fail" and low.value == 2.0 and "already below [k]" in low.note
     settled = StartupResult(t, forces, speeds, forces.max(axis=0), 0.3, 50.0, 100, 0, 0.2,
                             0.1)
     assert startup_safety_check(settled, 2.5).status == "pass"
