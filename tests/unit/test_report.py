@@ -27,7 +27,8 @@ from chaindrive.report import (
     render_html,
     write_report,
 )
-from chaindrive.report.sections import FIRST_WARNINGS
+from chaindrive.report.content import ReportInput
+from chaindrive.report.sections import FIRST_WARNINGS, _estimates
 
 ROOT = Path(__file__).parents[2]
 SEED = ROOT / "examples" / "seed_three_sprocket.toml"
@@ -213,3 +214,16 @@ def test_us_customary_units(seed_analysis) -> None:
     assert "F_R, lbf" in _section(html, "strength")
     with pytest.raises(DesignError, match="units"):
         build_report(seed_analysis, units="imperial")
+
+
+def test_inertia_estimate_named_only_where_the_design_gives_none() -> None:
+    """The seed enters a reduced mass for every sprocket (everything that turns with it,
+    [MultimassChainDrives, §3.1]): nothing is estimated. The Jindal drive gives neither an
+    inertia nor a reduced mass: both bodies are estimated, and the report says so."""
+    seed = chaindrive.analyze(chaindrive.load(SEED), response=False)
+    assert not any("Moments of inertia" in n for n in _estimates(ReportInput(seed)))
+    jindal = chaindrive.analyze(chaindrive.load(ROOT / "examples" / "two_sprocket_jindal.toml"),
+                                response=False)
+    notes = [n for n in _estimates(ReportInput(jindal)) if "Moments of inertia" in n]
+    names = ", ".join(s.name for s in jindal.drive.sprockets)
+    assert len(notes) == 1 and f"of the bodies of {names} estimated" in notes[0]

@@ -75,14 +75,15 @@ def _estimates(inp: ReportInput) -> list[str]:
     """What the results rest on that the design does not give (defaults and estimates)."""
     d = inp.analysis.drive
     out = []
-    guessed = [s.name for s in d.sprockets if s.inertia is None]
+    guessed = [s.name for s in d.sprockets if s.inertia is None and s.reduced_mass is None]
     if guessed:
         which = (f"all {len(guessed)} sprockets" if len(guessed) == len(d.sprockets) > 3
                  else ", ".join(guessed))
-        out.append(f"Moments of inertia of {which} estimated from the material "
-                   "and plate proportions (a steel plate of the tooth width with the bore "
-                   "0.19·z·p/π; no hub, shaft or coupling): give the inertia of the real parts "
-                   "in the design file.")
+        out.append(f"Moments of inertia of the bodies of {which} estimated from their "
+                   "material and proportions (a plate of the tooth width, or the polymeric "
+                   "body of [MultimassChainDrives, §3.4], with the bore 0.19·z·p/π; no hub, "
+                   "shaft or coupling): give the inertia of the real parts in the design "
+                   "file.")
     if d.dynamics.damping_ratio == 0.06:
         out.append("Damping ratio 0.06 of the chain hinges, the value of "
                    "[MultimassChainDrives, Table 1] (no measurement of this drive).")
