@@ -385,6 +385,11 @@ def test_modal_table_leaves_out_rigid_body_modes() -> None:
     rigid = doc["dynamics"]["rigid_body_modes"]
     assert len(rows) == len(rigid) - sum(rigid)
     assert all(r["natural, Hz"] > 0 for r in rows)
+    # an overdamped mode (ζ ≥ 1: no damped frequency, [Rao2011, §6.14]) shows no number
+    ratios = [z for z, r in zip(doc["dynamics"]["modal_damping_ratios"], rigid, strict=True)
+              if not r]
+    assert any(z >= 1.0 for z in ratios)  # the seed's fifth ring mode, 1226 Hz
+    assert [r["damped, Hz"] is None for r in rows] == [z >= 1.0 for z in ratios]
 
 
 # --- launcher and on-demand parts -------------------------------------------------------------

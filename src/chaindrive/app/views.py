@@ -424,11 +424,12 @@ def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        One dict per elastic mode: ``mode``, ``natural, Hz``, ``damped, Hz``.
+        One dict per elastic mode: ``mode``, ``natural, Hz``, ``damped, Hz`` (None for an
+        overdamped mode, which does not oscillate).
     """
     dyn = document["dynamics"]
     rigid = dyn["rigid_body_modes"]
-    return [{"mode": j, "natural, Hz": clean(f), "damped, Hz": clean(fd)}
+    return [{"mode": j, "natural, Hz": clean(f), "damped, Hz": clean(fd) if fd > 0 else None}
             for j, (f, fd) in enumerate(zip(dyn["natural_frequencies_hz"],
                                             dyn["damped_frequencies_hz"], strict=True))
             if not rigid[j]]

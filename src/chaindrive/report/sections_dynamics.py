@@ -118,7 +118,9 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     elastic = [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
     blocks.append(Table("Natural frequencies of the ring", ("mode j", "f_j, Hz",
                                                             "damped, Hz", "largest μ at"),
-                        rows([(j, modal.frequencies_hz[j], modal.damped_frequencies_hz[j],
+                        rows([(j, modal.frequencies_hz[j],
+                               modal.damped_frequencies_hz[j]
+                               if modal.damped_frequencies_hz[j] > 0 else "overdamped",
                                names[int(modal.normalized_amplitudes[:, j].argmax())])
                               for j in elastic])))
     blocks.append(plot_block(mode_shapes(modal, names=names),
