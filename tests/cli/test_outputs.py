@@ -73,6 +73,9 @@ def test_startup_times_stated_separately(short_seed: Path, tmp_path: Path) -> No
         assert "no decay after it" in text
     analysis = run_cli("analyze", str(short_seed)).stdout.replace("\n", " ")
     assert f"run-up {fmt(doc['runup_time_s'])} s" in analysis
+    # the k1 of a record that ends before it settles is said to be of a partial record
+    assert ("(of a start-up record that ends before it settles)" in analysis) is (
+        not doc["settled"])
 
 
 def test_afc_writes_the_sweep(short_seed: Path, tmp_path: Path) -> None:
