@@ -479,3 +479,18 @@ def test_page_startup_states_runup_and_decay_apart() -> None:
     shown = {m.label: m.value for m in at.metric}
     assert shown["largest span force F₁max [lbf]"] == fmt(
         float(startup.max_span_force.max()) / 4.4482216152605)
+
+
+def test_page_startup_k1_of_a_partial_record_says_so() -> None:
+    """A start-up record that ends before it settles: the k₁ metric's help says that its
+    check cannot be verified (the analysis's k1 check does)."""
+    at = page_test().run()
+    form = at.session_state["form"]
+    form.other = {"dynamics": {"startup_duration": "0.1 s"}}
+    at.session_state["version"] += 1
+    at.session_state["tabs"] = "Start-up"
+    at.run()
+    next(b for b in at.button if b.label == "Run the start-up simulation").click().run()
+    assert not at.exception
+    k1 = next(m for m in at.metric if m.label == "k₁ = Q / F₁max")
+    assert "cannot be verified" in (k1.proto.help or "")

@@ -18,6 +18,7 @@ from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, R
 from chaindrive.dynamics.startup import (
     PolygonalLaw,
     StartupResult,
+    runup_time,
     settling_time,
     simulate_startup,
     transient_times,
@@ -355,11 +356,24 @@ def test_k1_cannot_be_verified_on_an_unsettled_record() -> None:
                              0.2, math.nan)
     check = startup_safety_check(open_end, 2.5)
     assert check.status == UNVERIFIED and check.value is None
-    assert "k₁ = 50 so far" in check.note and "startup_duration" in check.note
+    assert "(so far 50)" in check.note and "startup_duration" in check.note
     # already below [k] on the partial record: a longer one can only lower k₁, so it fails
     low = startup_safety_check(replace(open_end, k1=2.0), 2.5)
-    assert low.status == "fail" and low.value == 2.0 and "already below [k]" in low.note
+    assert low.status == "fail" and low.value == 2.0 and "already below" in low.note
     settled = StartupResult(t, forces, speeds, forces.max(axis=0), 0.3, 50.0, 100, 0, 0.2,
                             0.1)
     assert startup_safety_check(settled, 2.5).status == "pass"
     assert startup_safety_check(replace(settled, k1=2.0), 2.5).status == "fail"
+
+
+def test_runup_needs_the_speed_levelled_off() -> None:
+    """A ramp to 100 rad/s in 0.3 s, then 100 rad/s with a ±2 % polygonal ripple at 50 Hz:
+    the run-up (95 %) lies between 0.3·0.95/1.02 s (on a ripple crest) and 0.285 s (on the
+    mean) — closed form. The same ramp cut at
+    0.2 s is still accelerating at the end of its record: no run-up time (nan), although its
+    speed passes 95 % of its own final mean."""
+    t = np.linspace(0.0, 1.0, 20001)
+    speed = np.minimum(t / 0.3, 1.0) * 100.0 * (1.0 + 0.02 * np.sin(2 * math.pi * 50.0 * t))
+    assert 0.3 * 0.95 / 1.02 <= runup_time(t, speed, period=0.02) <= 0.285
+    cut = t <= 0.2
+    assert math.isnan(runup_time(t[cut], speed[cut], period=0.02))

@@ -73,8 +73,8 @@ def startup_safety_check(startup: StartupResult | None, allowable: float) -> Che
         record = f"the start-up record ({simulated:.3g} s) ends before {what}"
         if startup.k1 is not None and startup.k1 < allowable:  # a longer record can only
             return dynamic_safety_check("k1", startup.k1, allowable,  # lower it
-                                        note=f"already below [k] although {record}")
-        so_far = "" if startup.k1 is None else f" (k₁ = {startup.k1:.3g} so far)"
+                                        note=f"already below the allowable although {record}")
+        so_far = "" if startup.k1 is None else f" (so far {startup.k1:.3g})"
         return dynamic_safety_check(
             "k1", None, allowable,
             note=f"{record}{so_far}; lengthen [dynamics] startup_duration")

@@ -264,7 +264,7 @@ def transient_times(times: FloatArray, forces: FloatArray, driver_speed: FloatAr
         (settling, run-up, decay) [s].
     """
     settle = settling_time(times, forces, period=period)
-    runup = runup_time(times, driver_speed)
+    runup = runup_time(times, driver_speed, period=period)
     if math.isnan(runup) or math.isnan(settle):
         return math.nan, runup, math.nan
     settle = max(settle, runup)
@@ -272,9 +272,15 @@ def transient_times(times: FloatArray, forces: FloatArray, driver_speed: FloatAr
 
 
 def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
-               tail: float = 0.1) -> float:
-    """Time [s] at which a speed history first reaches ``fraction`` of its final mean (the
-    mean over the last ``tail`` of the record); nan if it never does.
+               tail: float = 0.1, period: float = 0.0, level: float = 0.01) -> float:
+    """Time [s] at which a speed history first reaches ``fraction`` of its final speed; nan
+    when the record ends before the speed has levelled off.
+
+    The final speed is the mean over the last ``tail`` of the record, or two ripple periods
+    if they are longer. It has levelled off when the means of the two halves of that final
+    state differ by at most ``level`` of it (each half holds at least one ripple period, so
+    the polygonal ripple averages out); a record that ends while the driver still
+    accelerates — or whose final state would take more than half of it — has no run-up time.
 
     Parameters
     ----------
@@ -286,14 +292,26 @@ def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
         [-].
     tail : float
         [-].
+    period : float
+        Period of the steady ripple [s] (the tooth period; 0: none).
+    level : float
+        Largest change of the mean speed across the final state, as a fraction of it [-].
 
     Returns
     -------
     float
         [s].
     """
-    final = float(speed[int(len(times) * (1.0 - tail)):].mean())
-    idx = np.flatnonzero(speed >= fraction * final) if final > 0 else np.zeros(0, int)
+    k0 = min(int(len(times) * (1.0 - tail)),
+             int(np.searchsorted(times, times[-1] - 2.0 * period, side="right")))
+    if k0 < len(times) // 2 or len(times) - k0 < 2:
+        return math.nan
+    end = speed[k0:]
+    final = float(end.mean())
+    half = end.size // 2
+    if final <= 0 or abs(float(end[half:].mean()) - float(end[:half].mean())) > level * final:
+        return math.nan
+    idx = np.flatnonzero(speed >= fraction * final)
     return float(times[idx[0]]) if idx.size else math.nan
 
 
