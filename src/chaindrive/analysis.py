@@ -660,7 +660,7 @@ def drive_summary(drive: Drive) -> dict[str, Any]:
     return {
         "name": drive.name,
         "chain": spec.designation,
-        "ansi_number": spec.ansi if spec.standard != "ANSI" else None,
+        "ansi_number": spec.ansi_twin,
         "pitch_mm": spec.pitch * 1e3,
         "strands": spec.strands,
         "breaking_load_n": spec.breaking_load,

@@ -108,6 +108,13 @@ class ChainSpec:
     allowable_load: float | None = None
     max_speed: float | None = None
 
+    @property
+    def ansi_twin(self) -> str | None:
+        """The ANSI number of an ISO 606 A chain, the same chain under the other standard
+        ([ISO606], [ANSI-B29.1]); None for an ANSI entry (its designation names it) and for
+        chains without one."""
+        return None if self.standard == "ANSI" else self.ansi
+
     def __post_init__(self) -> None:
         for name in ("pitch", "roller_diameter", "pin_diameter", "breaking_load",
                      "mass_per_length"):

@@ -186,7 +186,7 @@ def inputs_section(inp: ReportInput) -> list[Block]:
     d = inp.analysis.drive
     spec = d.chain.spec
     blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
-    same = f" (= ANSI {spec.ansi})" if spec.ansi and spec.standard != "ANSI" else ""
+    same = f" (= ANSI {spec.ansi_twin})" if spec.ansi_twin else ""
     items = [("chain", "", spec.designation + same, ""),
              ("pitch", "p", inp.val(spec.pitch, "length"), inp.unit("length")),
              ("strands", "", spec.strands, ""),

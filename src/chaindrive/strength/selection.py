@@ -245,9 +245,9 @@ class SelectionResult:
                 "warnings": list(self.warnings)}
 
     def _ansi_twin(self, designation: str) -> str | None:
-        """The ANSI number of an ISO 606 A chain (the same chain), None otherwise."""
+        """:attr:`ChainSpec.ansi_twin` of a candidate (None when it is not in ``specs``)."""
         spec = self.specs.get(designation)
-        return None if spec is None or spec.standard == "ANSI" else spec.ansi
+        return None if spec is None else spec.ansi_twin
 
 
 def _missed_text(c: ck.Check) -> str:
