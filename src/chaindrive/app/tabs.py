@@ -240,7 +240,7 @@ def tab_startup(screen: Screen) -> None:
                       if d["settled"] else "the span forces have not settled within the "
                       f"simulated {fmt(d['simulated_time_s'])} s"))
     c[3].metric("k₁ = Q / F₁max", fmt(d["k1"]),
-                help=None if d["settled"] and d["runup_time_s"] is not None else
+                help=None if d["settled"] else
                 "of a start-up record that ends before it settles: its check cannot be "
                 "verified, or fails if already below [k]")
     for w in full.warnings:

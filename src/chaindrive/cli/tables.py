@@ -233,9 +233,7 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
                   + startup_times_text(startup))
     if st is not None and "k1" in st:
         partial = (" (of a start-up record that ends before it settles)"
-                   if startup is not None and not (startup["settled"]
-                                                   and startup["runup_time_s"] is not None)
-                   else "")
+                   if startup is not None and not startup["settled"] else "")
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}{partial}, k2 {fmt(st['k2'])}, k2min "
                   f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
 

@@ -66,7 +66,7 @@ def startup_safety_check(startup: StartupResult | None, allowable: float) -> Che
     """
     if startup is None:
         return dynamic_safety_check("k1", None, allowable)
-    if math.isnan(startup.runup_time) or math.isnan(startup.settling_time):
+    if not startup.settled:
         simulated = float(startup.times[-1]) if len(startup.times) else 0.0
         what = ("the driver is at its working speed" if math.isnan(startup.runup_time)
                 else "the span forces settle")

@@ -116,6 +116,8 @@ class StartupResult:
 
     Attributes
     ----------
+    settled : bool
+        The driver reached its speed and the forces settled within the record.
     slack_fraction : float
         Share of the recorded samples in which at least one span is slack [-].
     """
@@ -134,6 +136,11 @@ class StartupResult:
     rotor_speeds: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
     states: FloatArray | None = None
     time_step: float = math.nan
+
+    @property
+    def settled(self) -> bool:
+        """The driver reached its speed and the forces settled within the record."""
+        return not (math.isnan(self.runup_time) or math.isnan(self.settling_time))
 
     @property
     def slack_fraction(self) -> float:
@@ -156,7 +163,7 @@ class StartupResult:
         out: dict[str, Any] = {
             "max_span_force_n": self.max_span_force.tolist(),
             "max_force_n": float(self.max_span_force.max()),
-            "settled": not math.isnan(self.settling_time),
+            "settled": self.settled,
             "settling_time_s": None if math.isnan(self.settling_time) else self.settling_time,
             "simulated_time_s": float(self.times[-1]) if len(self.times) else 0.0,
             "runup_time_s": None if math.isnan(self.runup_time) else self.runup_time,

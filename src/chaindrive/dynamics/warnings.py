@@ -110,7 +110,7 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str]
     """
     out = []
     simulated = float(startup.times[-1]) if len(startup.times) else 0.0
-    if math.isnan(startup.runup_time) or math.isnan(startup.settling_time):
+    if not startup.settled:
         what = ("the driver is not at its working speed" if math.isnan(startup.runup_time)
                 else f"the span forces have not settled (run-up {startup.runup_time:.3g} s)")
         out.append(ChainDriveWarning(
