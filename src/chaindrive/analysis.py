@@ -18,12 +18,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.checks import Check, CheckLimits
+from chaindrive.checks import Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.afc import AfcResult
 from chaindrive.dynamics.checks import (
     disturbed_safety_check,
     dynamic_safety_check,
+    motor_start_check,
     resonance_check,
     startup_safety_check,
 )
@@ -42,7 +43,7 @@ from chaindrive.dynamics.drive_response import (
     span_loads_over,
     uncertainty_bands,
 )
-from chaindrive.dynamics.drive_startup import model_startup
+from chaindrive.dynamics.drive_startup import affordable_duration, model_startup
 from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
 from chaindrive.dynamics.published import published_comparison
@@ -53,6 +54,13 @@ from chaindrive.dynamics.response import (
     disturbance_excitations,
     polygonal_law,
     startup_pretension,
+)
+from chaindrive.dynamics.runup import (
+    LONGEST_STARTUP,
+    SHORTEST_STARTUP,
+    RunUp,
+    rigid_runup,
+    startup_durations,
 )
 from chaindrive.dynamics.startup import StartupResult
 from chaindrive.dynamics.steady import SteadyStateResult
@@ -358,19 +366,36 @@ class Analysis:
                             resonance_loads=self.afc.max_span_load)
 
     @cached_property
+    def runup(self) -> RunUp | None:
+        """The run-up of the drive as one rigid body: the motor's torque against the
+        machines', the time to the working speed (None without a motor or a power)."""
+        if not self._responds or self.drive.power is None:
+            return None
+        return rigid_runup(self.drive_model)
+
+    @cached_property
     def startup(self) -> StartupResult | None:
         """The start-up from rest with the motor law on the motor's rotor and the machines'
-        moments on theirs (None when the design asks for none)."""
+        moments on theirs (None when the design asks for none). Its duration is the design's
+        or, automatic, the first of :func:`~chaindrive.dynamics.runup.startup_durations`
+        whose record settles (the last one tried otherwise)."""
         d, s = self.drive, self.drive.dynamics
         if (not self._responds or not s.transient or not self.with_startup or d.power is None
                 or d.driver.speed is None):
             return None
-        return model_startup(self.drive_model, polygonal_law(self.geometry),
-                             duration=s.startup_duration,
-                             pretension=startup_pretension(d, self.geometry),
-                             tooth_frequency_hz=float(tooth_frequency(d.driver.teeth,
-                                                                      d.driver.speed)),
-                             breaking_load=d.chain.spec.breaking_load)
+        f_z = float(tooth_frequency(d.driver.teeth, d.driver.speed))
+        durations: tuple[float, ...] = (s.startup_duration,) if s.startup_duration else \
+            startup_durations(self.runup, min(LONGEST_STARTUP,
+                                              affordable_duration(self.drive_model, f_z)))
+        polygonal, pretension = polygonal_law(self.geometry), startup_pretension(d, self.geometry)
+        record = None
+        for duration in durations:
+            record = model_startup(self.drive_model, polygonal, duration=duration,
+                                   pretension=pretension, tooth_frequency_hz=f_z,
+                                   breaking_load=d.chain.spec.breaking_load)
+            if record.settled:
+                break
+        return record
 
     @cached_property
     def disturbances(self) -> dict[str, SteadyStateResult]:
@@ -448,8 +473,8 @@ class Analysis:
         # imported here: numba and the link-level kernel (0.6 s) only for this study
         from chaindrive.linklevel import DURATION, simulate
 
-        duration = self.link_duration_s or min(self.drive.dynamics.startup_duration,
-                                               DURATION.high)
+        duration = self.link_duration_s or min(
+            self.drive.dynamics.startup_duration or SHORTEST_STARTUP, DURATION.high)
         return simulate(self._contour_drive, duration, geometry=self.geometry)
 
     @cached_property
@@ -539,7 +564,12 @@ class Analysis:
         of the most loaded contour; the layout checks alone without a power."""
         d = self.drive
         if d.power is None or d.driver.speed is None:
-            return tuple(geometry_checks(d, self.geometry))
+            what = "power" if d.power is None else "driver speed"
+            return (*geometry_checks(d, self.geometry), judged(
+                "chain strength", d.chain.spec.designation, None, None, "min", "",
+                note=f"no {what} given: the chain's rating, static safety, wear life, speed "
+                     "limit and the dynamic checks need the drive's power and speed",
+                part="chain"))
         share = self.contours.km if self.contours is not None else d.chain.contours
         loaded = replace(d, power=d.power / share)
         settings = settings_for(loaded)
@@ -553,10 +583,15 @@ class Analysis:
         resonance = resonance_check(self.dynamics.resonances, self.limits.resonance_band_percent)
         if resonance is not None:
             out.append(resonance)
+        start = motor_start_check(self.runup)
+        if start is not None:
+            out.append(start)
         if self.with_response and self._responds:
             k = self.limits.allowable_dynamic_safety
             if self.drive.dynamics.transient and self.with_startup:
-                out.append(startup_safety_check(self.startup, k))
+                out.append(startup_safety_check(self.startup, k,
+                                                missing=self.drive_model.missing,
+                                                runup=self.runup))
             steady = self.steady
             out.append(dynamic_safety_check("k2", None if steady is None else steady.k2, k))
             out.append(dynamic_safety_check("k2min", None if steady is None else steady.k2_min,
@@ -629,6 +664,7 @@ class Analysis:
             strength["contour_factor_km"] = self.contours.km
         dynamics = self.dynamics.to_dict()
         dynamics["bands"] = self.bands.to_dict()
+        dynamics["runup"] = None if self.runup is None else self.runup.to_dict()
         if self.response is not None:
             fragment = self.response.to_dict()
             dynamics.update(fragment["dynamics"])

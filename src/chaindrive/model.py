@@ -558,8 +558,9 @@ class DynamicsSettings:
         ([MultimassChainDrives]: 10 are practically exact).
     transient : bool
         True runs the start-up.
-    startup_duration : float
-        Simulated duration of the start-up [s].
+    startup_duration : float or None
+        Simulated duration of the start-up [s] (None: automatic, from the rigid-drive
+        run-up, :func:`chaindrive.dynamics.runup.startup_durations`).
     motor : str
         ``"kloss"`` (induction motor with the drive's power and the driver speed as rated
         values), ``"constant"`` (rated torque from t = 0) or ``"ramp"`` (soft start over
@@ -602,7 +603,7 @@ class DynamicsSettings:
     damping_ratio: float | None = None
     harmonics: int = 10
     transient: bool = True
-    startup_duration: float = 1.0
+    startup_duration: float | None = None
     motor: str = "kloss"
     breakdown_ratio: float = 2.5
     critical_slip: float = 0.25
@@ -620,6 +621,9 @@ class DynamicsSettings:
         if not 0.0 <= self.uncertainty < 0.5:
             raise DesignError("dynamics.uncertainty", f"must be from 0 to below 0.5, got "
                               f"{self.uncertainty!r}")
+        if self.startup_duration is not None and not 0.0 < self.startup_duration <= 60.0:
+            raise DesignError("dynamics.startup_duration", f"must be in (0, 60] s, got "
+                              f"{self.startup_duration!r}")
         if not 0.0 < self.hinge_amplitude <= 0.1:
             raise DesignError("dynamics.hinge_amplitude", f"must be in (0, 0.1], got "
                               f"{self.hinge_amplitude!r}")

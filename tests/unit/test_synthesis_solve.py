@@ -34,11 +34,13 @@ def result(problem):
 def test_start_is_the_design_of_the_file_as_analyze_judges_it(problem, result) -> None:
     assert problem.solver.method == "optuna"  # the example uses the default
     # the example's start lies 5 % from the parametric resonance of a span: analyze fails it,
-    # and so does the optimiser (one pipeline); every other check passes
+    # and so does the optimiser (one pipeline); k₁ cannot be verified (the example has no
+    # motor: its model is incomplete), and the optimiser leaves k₁ out unless asked
+    # (startup_safety = false, the default); every other check passes
     failed = {c.key for c in chaindrive.analyze(problem.base).checks() if not c.passed}
-    assert failed == {"resonance_margin"}
+    assert failed == {"resonance_margin", "k1"}
     assert not result.start.feasible
-    assert {k for k, v in result.start.constraints.items() if v > 0} == failed
+    assert {k for k, v in result.start.constraints.items() if v > 0} == failed - {"k1"}
     assert result.evaluations == 16 * 20  # the start, as the file gives it, is evaluated apart
 
 

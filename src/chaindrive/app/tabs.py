@@ -233,8 +233,11 @@ def tab_startup(screen: Screen) -> None:
     factor, force = convert(1.0, "force", units)
     c = st.columns(4)
     c[0].metric(f"largest span force F₁max [{force}]", fmt(d["max_force_n"] * (factor or 1.0)))
+    rigid = full.runup
     c[1].metric("run-up [s]", fmt(d["runup_time_s"]),
-                help="the driver at 95 % of its working speed")
+                help="the driver at 95 % of its working speed from then on"
+                + ("" if rigid is None else
+                   f"; the drive as one rigid body: {fmt(rigid.runup_time)} s"))
     c[2].metric("decay after it [s]", fmt(d["decay_time_s"]),
                 help=(f"every span force in its final band after {fmt(d['settling_time_s'])} s"
                       if d["settled"] else "the span forces have not settled within the "
@@ -311,7 +314,7 @@ def tab_links(screen: Screen) -> None:
         return
     drive = screen.outcome.drive
     store = st.session_state.setdefault("links", {})
-    default = min(drive.dynamics.startup_duration, 1.0)
+    default = min(drive.dynamics.startup_duration or 1.0, 1.0)
     c1, c2 = st.columns([1, 2], vertical_alignment="bottom")
     seconds = c1.number_input("Simulated time [s]", value=default, min_value=0.001,
                               step=0.1, format="%g", key="links_duration",

@@ -110,7 +110,7 @@ def _arrow(mid: tuple[float, float], direction: tuple[float, float], size: float
 def layout_svg(geometry: GeometryResult, *, highlight: str | None = None,
                max_height_px: int = 520) -> str:
     """The contour to scale as an SVG document [mm]: tip circles (grey discs), pitch circles
-    (dash-dot), centre marks, the chain (blue; the tight span red) with an arrow per span in
+    (dash-dot), centre marks, the chain (blue; the tight span orange) with an arrow per span in
     the direction of travel, names with tooth counts; the sprocket named ``highlight`` is
     outlined in red.
 
@@ -170,7 +170,7 @@ def layout_svg(geometry: GeometryResult, *, highlight: str | None = None,
     parts.append(f'<text x="{box[0] + 0.3 * pad:.1f}" y="{box[1] + 1.3 * font:.1f}" '
                  f'font-size="{font:.1f}" font-family="sans-serif" fill="{GREY}">'
                  f'{geometry.links} links · {geometry.chain_length * MM:.1f} mm of chain · '
-                 f'red: tight span · green dash-dot: pitch circles</text>')
+                 f'orange: tight span · green dash-dot: pitch circles</text>')
     parts.append("</svg>")
     return "".join(parts)
 
@@ -295,9 +295,11 @@ def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
     Returns
     -------
     list of Check
-        One per check, in the analysis's order.
+        One per check, in the analysis's order; its ``line`` (the verdict's) without the
+        check's note, which the check table shows.
     """
-    return [Check(*check_row(c, units), margin_percent(c), check_line(c, units))
+    return [Check(*check_row(c, units), margin_percent(c),
+                  check_line(replace(c, note=""), units))
             for c in analysis.checks()]
 
 

@@ -14,10 +14,11 @@ from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
 
 if TYPE_CHECKING:
+    from chaindrive.dynamics.runup import RunUp
     from chaindrive.dynamics.startup import StartupResult
 
-__all__ = ["disturbed_safety_check", "dynamic_safety_check", "resonance_check",
-           "startup_safety_check"]
+__all__ = ["disturbed_safety_check", "dynamic_safety_check", "motor_start_check",
+           "resonance_check", "startup_safety_check"]
 
 
 def dynamic_safety_check(name: str, value: float | None, allowable: float, note: str = ""
@@ -46,11 +47,15 @@ def dynamic_safety_check(name: str, value: float | None, allowable: float, note:
                   part="dynamics")
 
 
-def startup_safety_check(startup: StartupResult | None, allowable: float) -> Check:
-    """k₁ = Q/F₁max ≥ [k] of a start-up record [MultimassChainDrives, §3.6]; it cannot be
-    verified when the record ends before the driver is at speed or the forces settle (a
-    larger F₁max may follow: the note gives the k₁ of the simulated time), unless that k₁ is
-    already below [k] (F₁max over a longer record is at least as large: it fails).
+def startup_safety_check(startup: StartupResult | None, allowable: float, *,
+                         missing: Sequence[str] = (), runup: RunUp | None = None) -> Check:
+    """k₁ = Q/F₁max ≥ [k] of a start-up record [MultimassChainDrives, §3.6]. It cannot be
+    verified on a model without its motor or machines (``missing``: the start-up of bare
+    sprockets is not the drive's), when the motor does not start the drive (``runup``), or
+    when the record ends before the driver is at speed or the forces settle (a larger F₁max
+    may follow: the note gives the k₁ of the simulated time), unless that k₁ is already
+    below [k] (F₁max over a longer record is at least as large: it fails). The note keeps the
+    k₁ computed.
 
     Parameters
     ----------
@@ -58,6 +63,10 @@ def startup_safety_check(startup: StartupResult | None, allowable: float) -> Che
         The start-up (None: none was simulated).
     allowable : float
         [k] [-].
+    missing : sequence of str
+        What makes the dynamic model incomplete (:attr:`DriveModel.missing`).
+    runup : RunUp | None
+        The rigid-drive run-up (:func:`chaindrive.dynamics.runup.rigid_runup`).
 
     Returns
     -------
@@ -66,6 +75,16 @@ def startup_safety_check(startup: StartupResult | None, allowable: float) -> Che
     """
     if startup is None:
         return dynamic_safety_check("k1", None, allowable)
+    computed = "" if startup.k1 is None else f" (computed {startup.k1:.3g})"
+    if missing:
+        return dynamic_safety_check(
+            "k1", None, allowable,
+            note=f"the dynamic model is incomplete ({len(missing)} missing, see its warning): "
+                 f"its start-up is not the drive's{computed}")
+    if runup is not None and not runup.starts:
+        return dynamic_safety_check(
+            "k1", None, allowable,
+            note=f"the motor does not start the drive (motor start check){computed}")
     if not startup.settled:
         simulated = float(startup.times[-1]) if len(startup.times) else 0.0
         what = ("the driver is at its working speed" if math.isnan(startup.runup_time)
@@ -79,6 +98,36 @@ def startup_safety_check(startup: StartupResult | None, allowable: float) -> Che
             "k1", None, allowable,
             note=f"{record}{so_far}; lengthen [dynamics] startup_duration")
     return dynamic_safety_check("k1", startup.k1, allowable)
+
+
+def motor_start_check(runup: RunUp | None) -> Check | None:
+    """The motor runs the drive up: its torque, through the gear stages, above the machines'
+    torques referred to the motor shaft at every speed from standstill to 95 % of its nominal
+    speed, η M_M/M_L > 1 [Chilikin1981] (:mod:`chaindrive.dynamics.runup`; the rigid drive).
+
+    Parameters
+    ----------
+    runup : RunUp | None
+        The rigid-drive run-up (None: no motor, or no rigid-body mode).
+
+    Returns
+    -------
+    Check | None
+        Keyed ``motor_start``; None without a run-up or without a machine load.
+    """
+    if runup is None or not math.isfinite(runup.torque_ratio):
+        return None
+    rpm = 30.0 / math.pi
+    if runup.starts:
+        note = (f"least at {runup.ratio_speed * rpm:.4g} rpm of the motor; rigid-drive run-up "
+                f"{runup.runup_time:.3g} s")
+    else:
+        stall = runup.working_speed if math.isfinite(runup.working_speed) else 0.0
+        note = (f"the motor's torque falls to the load's at {stall * rpm:.4g} rpm, "
+                f"{100 * stall / runup.nominal_speed:.3g} % of its nominal speed: the drive "
+                "stalls there")
+    return judged("motor start", "motor torque / load torque", runup.torque_ratio, 1.0,
+                  "min", "[Chilikin1981]", note=note, part="dynamics")
 
 
 def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | None:
@@ -109,8 +158,27 @@ def resonance_check(rows: Sequence[Resonance], band_percent: float) -> Check | N
     return judged("resonance margin", closest.working.label, closest.detuning_percent,
                   band_percent, "min", "[MultimassChainDrives, §3.2], [API684]", "%",
                   note=f"{closest.working.frequency:.4g} Hz {closest.side} the {what} "
-                       f"{closest.natural_frequency:.4g} Hz; the value is their detuning",
+                       f"{closest.natural_frequency:.4g} Hz; the value is their detuning"
+                       + _also_inside(rows, closest, band_percent),
                   part="dynamics")
+
+
+SHOWN = 3
+"""Other resonances inside the band named in the check's note (the rest counted) [-]."""
+
+
+def _also_inside(rows: Sequence[Resonance], closest: Resonance, band_percent: float) -> str:
+    """"; also inside the band: …" naming every other working frequency closer than the band
+    to a natural frequency ("" when there is none): the check judges the closest, the note
+    counts the rest."""
+    others = sorted((r for r in rows if r is not closest and r.detuning_percent < band_percent),
+                    key=lambda r: r.detuning_percent)
+    if not others:
+        return ""
+    named = ", ".join(f"{r.working.label} {r.detuning_percent:.3g} %" for r in others[:SHOWN])
+    rest = len(others) - SHOWN
+    return (f"; {len(others)} more inside the band: {named}"
+            + (f" and {rest} more (the resonance table)" if rest > 0 else ""))
 
 
 def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal: ArrayLike,

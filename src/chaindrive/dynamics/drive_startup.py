@@ -39,7 +39,7 @@ if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.torsional import TorsionalModes
 
-__all__ = ["model_startup", "startup_step"]
+__all__ = ["affordable_duration", "model_startup", "startup_step"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -96,6 +96,32 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
                           f"{WORK_BUDGET:.3g}); give this body a realistic inertia, shorten "
                           "[dynamics] startup_duration or set transient = false")
     return dt, steps
+
+
+def affordable_duration(model: DriveModel, tooth_frequency_hz: float) -> float:
+    """The longest start-up [s] whose work stays within
+    :data:`~chaindrive.dynamics.startup.WORK_BUDGET` at the step of :func:`startup_step`
+    (0 when not even one step does).
+
+    Parameters
+    ----------
+    model : DriveModel
+        The model.
+    tooth_frequency_hz : float
+        f_z [Hz].
+
+    Returns
+    -------
+    float
+        [s].
+    """
+    f_ref = max(model.reference_frequency_hz, tooth_frequency_hz)
+    if not f_ref > 0:
+        return 0.0
+    n = model.linear.size
+    fixed, per_step = work_estimate(n, 0), work_estimate(n, 1) - work_estimate(n, 0)
+    steps = math.floor((WORK_BUDGET - fixed) / per_step)
+    return max(0, steps) / (STEPS_PER_PERIOD * f_ref)
 
 
 def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration: float,

@@ -280,8 +280,10 @@ def transient_times(times: FloatArray, forces: FloatArray, driver_speed: FloatAr
 
 def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
                tail: float = 0.1, period: float = 0.0, level: float = 0.01) -> float:
-    """Time [s] at which a speed history first reaches ``fraction`` of its final speed; nan
-    when the record ends before the speed has levelled off.
+    """Time [s] from which a speed history stays at or above ``fraction`` of its final speed
+    (averaged over one ripple period, centred, so the ripple does not count; a driver that
+    bounces against a slack chain has not run up while it falls back below); nan when the
+    record ends before the speed has levelled off.
 
     The final speed is the mean over the last ``tail`` of the record, or two ripple periods
     if they are longer. It has levelled off when the means of the two halves of that final
@@ -318,8 +320,16 @@ def runup_time(times: FloatArray, speed: FloatArray, fraction: float = 0.95,
     half = end.size // 2
     if final <= 0 or abs(float(end[half:].mean()) - float(end[:half].mean())) > level * final:
         return math.nan
-    idx = np.flatnonzero(speed >= fraction * final)
-    return float(times[idx[0]]) if idx.size else math.nan
+    smooth = speed
+    if period > 0 and len(times) > 1:
+        width = round(period / float(np.mean(np.diff(times))))
+        if width > 1:
+            smooth = np.convolve(speed, np.ones(width) / width, mode="same")
+            smooth[-(width // 2 + 1):] = speed[-(width // 2 + 1):]  # no zeros past the end
+    below = np.flatnonzero(smooth < fraction * final)
+    if not below.size:
+        return float(times[0])
+    return float(times[below[-1] + 1]) if below[-1] + 1 < len(times) else math.nan
 
 
 # --- the problem ---------------------------------------------------------------------------

@@ -310,7 +310,8 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
           default=10, minimum=1, maximum=50,
           reason="[MultimassChainDrives]: 10 harmonics are practically exact"),
     Field("transient", "bool", "run the start-up transient", default=True),
-    Field("startup_duration", "time", "simulated time of the start-up", default=1.0,
+    Field("startup_duration", "time", "simulated time of the start-up (default: automatic, "
+          "at least 1 s, from the rigid-drive run-up, lengthened until the start-up settles)",
           minimum=0.0, maximum=60.0, exclusive_minimum=True,
           reason="a motor start lasts seconds; 60 s bounds the work of the simulation",
           example="1 s"),
