@@ -76,6 +76,10 @@ def test_nothing_passes_names_the_closest_and_what_it_misses():
     d = res.to_dict(top=5)
     assert d["chain"] is None and d["closest"]["missed"]
     assert res.closest.designation in d["shortfall"]
+    # one rule ranks and names: the closest heads the table, the rest follow by closeness
+    assert d["candidates"][0]["chain"] == res.closest.designation
+    fewest = [len(c.missed) for c in res.candidates if c.governing != "geometry"]
+    assert fewest == sorted(fewest)
     with pytest.raises(DesignError, match=r"no chain passes every check: the closest is"):
         select_chain(drive(5e6), series="A")
     with pytest.raises(DesignError, match="no chain passes"):

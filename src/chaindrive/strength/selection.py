@@ -4,8 +4,9 @@ One rule ranks and chooses: a candidate passes when every check of
 :func:`chaindrive.strength.drive_checks.checks_for` passes (a "cannot be verified" is not a
 pass); candidates are ranked passing first, then by mass per metre (the lightest chain that
 does the job), pitch, strands and the smallest margin (largest first); the chosen chain is the
-first of that ranking. When nothing passes, the selection names the closest candidate —
-the one whose worst check is least short — and what it misses.
+first of that ranking. The failing ones follow from the closest — laid out, fewest missed
+checks, the worst check least short — so when nothing passes, the selection's first row is the
+closest candidate it names, with what it misses.
 
 Each candidate is checked by its own method (:func:`chaindrive.strength.ratings.method_for`):
 ACA ratings for ISO 606 A / ANSI, the B-series table for ISO 606 B, the Kэ method for GOST
@@ -267,8 +268,10 @@ def _closeness(c: Candidate) -> tuple[bool, int, float]:
     return laid_out, -len(c.missed), worst
 
 
-def rank_key(c: Candidate) -> tuple[bool, float, float, int, float]:
-    """The one rule: passing first, then mass per metre, pitch, strands, larger margin.
+def rank_key(c: Candidate) -> tuple[bool, float, float, float, float, float, float]:
+    """The one rule: passing first, by mass per metre, pitch, strands, larger margin; then the
+    failing ones from the closest (:func:`_closeness`: laid out, fewest missed checks, least
+    short worst margin), so that when nothing passes the closest chain heads the table.
 
     Parameters
     ----------
@@ -281,7 +284,11 @@ def rank_key(c: Candidate) -> tuple[bool, float, float, int, float]:
         Its sort key.
     """
     margin = c.margin_fraction if c.margin_fraction is not None else -math.inf
-    return (not c.passed, c.mass_per_length, c.pitch, c.strands, -margin)
+    if c.passed:
+        return (False, c.mass_per_length, c.pitch, float(c.strands), -margin, 0.0, 0.0)
+    laid_out, fewer_missed, worst = _closeness(c)
+    return (True, -float(laid_out), -float(fewer_missed), -worst, c.mass_per_length, c.pitch,
+            float(c.strands))
 
 
 def estimated_links(drive: Drive, pitch: float) -> float:
