@@ -59,7 +59,7 @@ from numpy.typing import NDArray
 
 from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
-from chaindrive.geometry.sag import slack_for_sag
+from chaindrive.geometry.sag import DEFAULT_SAG_RATIO, sag_of_slack, slack_for_sag
 from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
 from chaindrive.model import Drive
 
@@ -720,13 +720,15 @@ def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.floa
         tight_length=tight_length, slack=max(0.0, chain_length - tight_length),
         center_distance=float(np.hypot(*(centres[1] - centres[0]))) if n == 2 else None,
         adjusted=adjusted, adjustment=adjustment, orientation=orientation,
-        warnings=tuple(_geometry_warnings(drive, sprockets, chain_length - tight_length, adjusted)),
+        warnings=tuple(_geometry_warnings(drive, sprockets, chain_length - tight_length, adjusted,
+                                          spans[driver].length)),
     )
 
 
 def _geometry_warnings(drive: Drive, sprockets: list[SprocketGeometry], slack: float,
-                       adjusted: int | None) -> list[ChainDriveWarning]:
-    """Engineering warnings: small driver wrap, few teeth in mesh, untaken slack."""
+                       adjusted: int | None, slack_span: float) -> list[ChainDriveWarning]:
+    """Engineering warnings: small driver wrap, few teeth in mesh, untaken slack (with the sag
+    it hangs in, the slack span's length ``slack_span`` [m])."""
     out = []
     driver = sprockets[drive.driver_index]
     if math.degrees(driver.wrap_angle) < 120.0:
@@ -741,8 +743,15 @@ def _geometry_warnings(drive: Drive, sprockets: list[SprocketGeometry], slack: f
                 f"{s.name}: only {g.teeth_in_mesh:.2f} teeth in mesh on a loaded sprocket "
                 "(at least 3 are needed)"))
     if adjusted is None and slack > 1e-6:
+        sag = sag_of_slack(slack_span, slack)
+        given = drive.chain.sag
+        tension = (f"the span tensions and the dynamics assume a sag of "
+                   f"{100 * DEFAULT_SAG_RATIO:g} % ([chain] sag not given)" if given is None
+                   else f"[chain] sag gives {100 * given:.3g} %")
         out.append(ChainDriveWarning(
             "geometry.slack", "chain",
             f"chain slack {slack * 1e3:.1f} mm ({slack / drive.chain.pitch:.2f} pitches) is "
-            "not taken up: mark a sprocket adjustable or add a tensioner"))
+            f"not taken up: in the slack span ({slack_span * 1e3:.0f} mm) it hangs in a sag of "
+            f"{sag * 1e3:.1f} mm ({100 * sag / slack_span:.3g} %), while {tension}; mark a "
+            "sprocket adjustable, add a tensioner or give the installed sag"))
     return out

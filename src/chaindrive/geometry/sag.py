@@ -15,6 +15,10 @@ from __future__ import annotations
 
 import math
 
+DEFAULT_SAG_RATIO = 0.02
+"""Installed sag of the slack span as a fraction of its length, assumed when a design gives
+none [-] (chains are installed with about 1–3 %, [DiamondChainTension])."""
+
 
 def slack_for_sag(span: float, sag_fraction: float) -> float:
     """Extra chain length ΔL = (8/3)·s²·ℓ that makes a span of chord ℓ sag by s·ℓ.

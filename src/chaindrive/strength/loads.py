@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry
+from chaindrive.geometry.sag import DEFAULT_SAG_RATIO
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 
@@ -31,7 +32,6 @@ __all__ = ["DEFAULT_SAG_RATIO", "G", "LoadsResult", "centrifugal_tension", "hing
            "shaft_load_vectors", "small_sprocket", "span_tensions"]
 
 G = 9.80665  # standard gravity [m/s²]
-DEFAULT_SAG_RATIO = 0.02  # f/a, sag of the slack span as a fraction of its length
 SHARE_TOLERANCE = 1e-6
 
 
