@@ -10,8 +10,9 @@ complete or absent, never half-written.
 from __future__ import annotations
 
 import json
+import re
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -22,13 +23,15 @@ import typer
 from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
 from chaindrive.display import RAD_S_TO_RPM, fmt, unit_system
-from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
+from chaindrive.units import MAX_TEXT, shown
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from chaindrive.analysis import Analysis
+    from chaindrive.model import ChainSpec
     from chaindrive.synthesis.solve import SynthesisResult
 
 app = typer.Typer(
@@ -42,6 +45,9 @@ app = typer.Typer(
 #: Resolution of the report's figures [dpi]: 50 is legible on screen; 600 prints finer than
 #: the eye resolves at reading distance (a 600 dpi figure is 5 000 px wide, 60 MB in memory).
 DPI_RANGE = (50, 600)
+#: TCP ports the web page may serve on: 0 is not one (the system would pick a free port and
+#: the address printed would be wrong), 65535 is the largest port number.
+PORT_RANGE = (1, 65535)
 UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
 # Lazy imports: the commands import inside their bodies only what each runs, so that
 # ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
@@ -199,12 +205,16 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.progress import spinner
-    from chaindrive.linklevel import checked_duration
-    from chaindrive.units import parse_quantity
+    from chaindrive.io.design import Field, parse_quantity_as
+    from chaindrive.linklevel import DURATION, checked_duration
 
     with user_errors(), spinner("simulating the chain link by link …", quiet=as_json):
+        # the example a message shows lies within the option's range (Field.example_text)
+        option = Field("--duration", "time", "simulated time of the link-level run",
+                       minimum=DURATION.low, maximum=DURATION.high, reason=DURATION.reason)
         seconds = None if duration is None else checked_duration(
-            parse_quantity(duration, "time", "--duration"), "--duration")
+            parse_quantity_as(duration, "time", "--duration", option.example_text()),
+            "--duration")
         _csv_suffix(output)
         analysis = chaindrive.analyze(chaindrive.load(file), studies=("links",), lazy=True,
                                       link_duration_s=seconds)
@@ -456,13 +466,13 @@ def robust(
     from dataclasses import replace as dc_replace
 
     # lazy: only what this command runs (see "Lazy imports" above)
-    from chaindrive.cli.robust import print_robust
+    from chaindrive.cli.robust import print_robust, robust_options
     from chaindrive.robust.study import DaskOptions, dask_states, load_robust, robust_study
 
     with user_errors():
+        # the options obey the rules of their [uncertainty] fields, before any work
+        changes = robust_options(samples=samples, seed=seed, wear=wear)
         nominal, settings = load_robust(file)
-        changes: dict[str, Any] = {k: v for k, v in (("samples", samples), ("seed", seed),
-                                                      ("wear", wear)) if v is not None}
         settings = dc_replace(settings, **changes)
         evaluator = None
         if scheduler is not None or db is not None or workers is not None:
@@ -499,7 +509,8 @@ def robust(
 @app.command(name="app")
 def app_command(
     host: Annotated[str, typer.Option(help="address to serve on")] = "127.0.0.1",
-    port: Annotated[int, typer.Option(help="port to serve on")] = 8501,
+    port: Annotated[int, typer.Option(help=f"port to serve on ({PORT_RANGE[0]} to {PORT_RANGE[1]})",
+                                      min=PORT_RANGE[0], max=PORT_RANGE[1])] = 8501,
 ) -> None:
     """Start the interactive web page (Streamlit) and print its address."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -527,20 +538,73 @@ def catalog(
     extra = tuple(file or ())
     with user_errors():
         if materials:
-            rows: list[Any] = [cat.find_material(name, extra)] if name else list(
+            if standard is not None:
+                raise DesignError("--standard", "selects chains; it does not apply with "
+                                  "--materials")
+            rows: list[Any] = [cat.find_material(name, extra)] if name is not None else list(
                 cat.materials(extra))
             doc = [_material_dict(m) for m in rows]
         else:
-            if name:
+            every = cat.chains(extra)
+            wanted = None if standard is None else catalog_standard(standard, every)
+            if name is not None:  # an empty name is refused by the look-up, not read as none
                 rows = [cat.find_chain(name, extra)]
+                if wanted is not None and not _of_standard(rows[0], wanted):
+                    raise DesignError("--standard", f"{rows[0].designation} is not a {wanted} "
+                                      f"chain (it is {rows[0].standard})")
             else:
-                rows = [c for c in cat.chains(extra)
-                        if standard is None or c.standard.lower() == standard.lower()]
+                rows = [c for c in every if wanted is None or _of_standard(c, wanted)]
             doc = [_chain_dict(c) for c in rows]
     if as_json:
         _write_json({"materials" if materials else "chains": doc})
         return
     _print_records(doc, "Materials" if materials else "Chains")
+
+
+#: Short names of the chain standards (upper case, no spaces) → the standard they name: the
+#: spellings a ``[chain] standard`` is read in by :func:`chaindrive.catalog.chains_by_pitch`.
+STANDARD_ALIASES = {"ISO": "ISO 606", "ISO606": "ISO 606", "GOST": "GOST 13568",
+                    "GOST13568": "GOST 13568", "ГОСТ": "GOST 13568", "ГОСТ13568": "GOST 13568",
+                    "ASMEB29.1": "ANSI", "ANSI/ASMEB29.1": "ANSI"}
+
+
+def catalog_standard(given: str, chains: Iterable[ChainSpec]) -> str:
+    """The standard ``--standard`` names among the standards of ``chains``.
+
+    Parameters
+    ----------
+    given : str
+        The option's value: a standard of the catalogue (``"ISO 606"``, ``"ANSI"``,
+        ``"GOST 13568"``, ``"polymer"`` or the standard of a user's file), case and spaces
+        ignored, or a short name of :data:`STANDARD_ALIASES`.
+    chains : iterable of ChainSpec
+        The catalogue listed.
+
+    Returns
+    -------
+    str
+        The standard as the catalogue writes it (``"ANSI"``: the chains with an ANSI number).
+
+    Raises
+    ------
+    DesignError
+        On ``--standard`` with the value and the standards allowed.
+    """
+    known = sorted({c.standard for c in chains} | {"ANSI"})
+    spellings = {re.sub(r"\s+", "", k.upper()): k for k in known}
+    spellings.update({k: v for k, v in STANDARD_ALIASES.items() if v in known})
+    found = spellings.get(re.sub(r"\s+", "", given.upper()))
+    if found is None:
+        raise DesignError("--standard", f"must be one of {', '.join(repr(k) for k in known)} "
+                          f"(or ISO, GOST for short), got {shown(given)}"
+                          + did_you_mean(given[:MAX_TEXT], known))
+    return found
+
+
+def _of_standard(chain: ChainSpec, standard: str) -> bool:
+    """True when ``chain`` belongs to ``standard`` (``"ANSI"``: it has an ANSI number, as in
+    a design file's ``[chain] standard``)."""
+    return chain.ansi is not None if standard == "ANSI" else chain.standard == standard
 
 
 def _chain_dict(c: Any) -> dict[str, Any]:
@@ -577,6 +641,9 @@ LIST_HEADERS = {
 
 def _print_records(doc: list[dict[str, Any]], title: str) -> None:
     con = tables.console()
+    if not doc:
+        con.print(f"no {title.lower()}")
+        return
     if len(doc) == 1:
         for key, value in doc[0].items():
             con.print(f"{key:>22}: {tables.escape(_fmt(value))}")

@@ -1,10 +1,13 @@
 """Tables of ``chaindrive robust``: a presenter of the JSON document of
-:class:`chaindrive.robust.study.RobustResult` (it computes nothing)."""
+:class:`chaindrive.robust.study.RobustResult` (it computes nothing), and the check of its
+options."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
+
+from chaindrive.io.design import UNCERTAINTY_FIELDS, parse_field
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -12,7 +15,33 @@ if TYPE_CHECKING:
 
     TableMaker = Callable[[str, list[str], list[list[Any]]], Table]
 
-__all__ = ["print_robust"]
+__all__ = ["print_robust", "robust_options"]
+
+
+def robust_options(**given: Any) -> dict[str, Any]:
+    """The options of ``chaindrive robust`` that override fields of ``[uncertainty]``
+    (``--samples``, ``--seed``, ``--wear``), checked by the rules of those fields
+    (:data:`chaindrive.io.design.UNCERTAINTY_FIELDS`): a value the design file may not hold
+    is refused on the command line too.
+
+    Parameters
+    ----------
+    **given : object
+        Field name → the option's value (None: not given).
+
+    Returns
+    -------
+    dict
+        Field name → checked value, for the options given.
+
+    Raises
+    ------
+    DesignError
+        One line naming the option (``--samples``), the value and what is allowed.
+    """
+    fields = {f.name: f for f in UNCERTAINTY_FIELDS}
+    return {name: parse_field(fields[name], value, f"--{name.replace('_', '-')}")
+            for name, value in given.items() if value is not None}
 
 
 def _pct(x: float | None, digits: int = 3) -> str | None:

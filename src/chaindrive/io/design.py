@@ -21,7 +21,7 @@ import tomli_w
 from chaindrive import catalog
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
-from chaindrive.io.plausible import check_inertias
+from chaindrive.io.plausible import check_inertias, check_motor_estimate
 from chaindrive.model import (
     LOAD_LAWS,
     MAX_CONTOURS,
@@ -51,6 +51,9 @@ from chaindrive.units import DIMENSIONS, MAX_TEXT, parse_quantity, shown
 
 #: Longest name or other text field [characters].
 MAX_NAME = 200
+#: The byte-order mark (U+FEFF) some editors put at the start of a UTF-8 file; a design file
+#: is read without it (TOML itself does not allow it).
+BOM = "\ufeff"
 
 
 @dataclass(frozen=True, slots=True)
@@ -82,7 +85,8 @@ class Field:
         Where the bounds come from (printed by ``chaindrive schema``).
     example : str
         A value that fits the field, as written in a design file (e.g. ``"25.4 mm"``);
-        empty: the example of its dimension (:meth:`example_text`).
+        empty: the example of its dimension when that lies within the bounds, else one
+        made from the bounds (:meth:`example_text`).
     """
 
     name: str
@@ -98,10 +102,67 @@ class Field:
     example: str = ""
 
     def example_text(self) -> str:
-        """An example value that fits this field (its own, or its dimension's)."""
+        """An example value that fits this field.
+
+        Returns
+        -------
+        str
+            The field's own example; else, for a quantity, its dimension's example
+            (:data:`chaindrive.units.DIMENSIONS`) when that lies within the field's bounds,
+            or else a value made from the bounds (:meth:`_example_in_range`); empty for a
+            field of another kind without an example.
+        """
         if self.example or self.kind not in DIMENSIONS:
             return self.example
-        return DIMENSIONS[self.kind][2]
+        generic = DIMENSIONS[self.kind][2]
+        if self.fits(parse_quantity(generic, self.kind, self.name)):
+            return generic
+        return self._example_in_range()
+
+    def fits(self, value: float) -> bool:
+        """True when ``value`` [SI unit of the field] is finite and within its bounds.
+
+        Parameters
+        ----------
+        value : float
+            The value [SI unit of the field].
+
+        Returns
+        -------
+        bool
+        """
+        if not math.isfinite(value):
+            return False
+        if self.minimum is not None and (value <= self.minimum if self.exclusive_minimum
+                                         else value < self.minimum):
+            return False
+        return self.maximum is None or value <= self.maximum
+
+    def _example_in_range(self) -> str:
+        """An example of a quantity field made from its bounds: its default, else a value
+        of one significant digit between the bounds (their geometric mean, or a tenth of
+        the upper bound above a lower bound of zero), in the unit its range is written in
+        (:data:`DISPLAY_UNITS`; else the SI unit)."""
+        unit, factor = DISPLAY_UNITS.get(self.kind, (DIMENSIONS[self.kind][1], 1.0))
+        lo, hi = self.minimum, self.maximum
+        candidates: list[float] = []
+        if isinstance(self.default, int | float) and not isinstance(self.default, bool):
+            candidates.append(float(self.default))
+        if lo is not None and hi is not None:
+            candidates.append(math.sqrt(lo * hi) if lo > 0.0 else hi / 10.0)
+        elif hi is not None:
+            candidates.append(hi / 10.0 if hi > 0.0 else hi)
+        elif lo is not None:
+            candidates.append(10.0 * lo if lo > 0.0 else lo + 1.0)
+        candidates += [x for x in (hi, lo) if x is not None]
+        # the roundest text first (one significant digit); a zero last, as it shows no typical value
+        texts = [f"{float(f'{si * factor:.{digits}g}'):g} {unit}"
+                 for digits in (1, 3, 12) for si in candidates]
+        texts.sort(key=lambda t: t.startswith(("0 ", "-0 ")))
+        for text in texts:
+            if self.fits(parse_quantity(text, self.kind, self.name)):
+                return text
+        raise ValueError(f"no example fits the field {self.name!r}: give it one")
 
     def allowed(self) -> str:
         """Human description of the allowed values."""
@@ -115,17 +176,22 @@ class Field:
             return "a list of tables"
         unit, factor = DISPLAY_UNITS.get(self.kind, ("", 1.0))
         tail = f" {unit}" if unit else ""
+        whole = self.kind in ("int", "links")
+
+        def bound(value: float) -> str:
+            """A bound as written: a whole number in full (1048576, not 1.04858e+06)."""
+            return str(int(value)) if whole and float(value).is_integer() else f"{value * factor:g}"
+
         lo = "" if self.minimum is None else (
-            f"{'>' if self.exclusive_minimum else '≥'} {self.minimum * factor:g}{tail}")
-        hi = "" if self.maximum is None else f"≤ {self.maximum * factor:g}{tail}"
+            f"{'>' if self.exclusive_minimum else '≥'} {bound(self.minimum)}{tail}")
+        hi = "" if self.maximum is None else f"≤ {bound(self.maximum)}{tail}"
         span = " and ".join(x for x in (lo, hi) if x)
-        if self.kind == "links":
-            return (f'a whole number from {self.minimum:g} to {self.maximum:g}, '
-                    '"round up" or "round down"')
-        if self.kind == "int":
+        if whole:
             if self.minimum is not None and self.maximum is not None:
-                return f"a whole number from {self.minimum:g} to {self.maximum:g}"
-            return "a whole number" + (f" {span}" if span else "")
+                number = f"a whole number from {bound(self.minimum)} to {bound(self.maximum)}"
+            else:
+                number = "a whole number" + (f" {span}" if span else "")
+            return number + (', "round up" or "round down"' if self.kind == "links" else "")
         if self.kind == "float":
             return "a number" + (f" {span}" if span else "")
         noun = self.kind.replace("_", " ")
@@ -195,8 +261,13 @@ CHAIN_FIELDS: tuple[Field, ...] = (
           minimum=4, maximum=10000, reason="4: the shortest closed chain round two sprockets; "
           "10 000: beyond the longest drive chains (80 m at 8 mm pitch)"),
     Field("sag", "float", "installed sag of the slack span as a fraction of its length "
-          "(default: laid out tight)", minimum=0.0, maximum=0.1, exclusive_minimum=True,
-          reason="at most 10 % of the span: the shallow-sag (parabolic) catenary [Irvine1981]"),
+          "(default: the take-up lays the chain out tight, and the span tensions and the "
+          "dynamics assume a sag of 2 %)", minimum=0.001, maximum=0.1,
+          reason="0.1 % to 10 % of the span: chains are installed with a sag of about 1 to "
+          "3 % (a total mid-span movement of 2 to 6 % of the centre distance "
+          "[DiamondChainTension]); 0.1 %, a tenth of the tightest, is a chain laid out taut, "
+          "whose sag tension F₀ = q·g·a/(8s) would pass 125 times the weight of the span; at "
+          "most 10 %: the shallow-sag (parabolic) catenary [Irvine1981]"),
     Field("link_stiffness", "stiffness", "measured axial stiffness of one link (one pitch) of "
           "the whole chain, all strands, e.g. F/(ε·p) from the maker's elastic-elongation "
           "curve (default: computed from the plates and the pin, the contact of pin, bush "
@@ -526,9 +597,44 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
             raise DesignError(path, f"must be {f.allowed()}, got {_number_text(value)}")
         _check_range(f, path, _as_float(value), value)
         return float(value)
-    si = parse_quantity(value, f.kind, path)
+    si = parse_quantity_as(value, f.kind, path, f.example_text())
     _check_range(f, path, si, value)
     return si
+
+
+def parse_quantity_as(text: object, dimension: str, path: str, example: str) -> float:
+    """:func:`chaindrive.units.parse_quantity` whose messages show ``example`` — a value that
+    fits the field — instead of the example of the whole dimension (``"2400 h"`` is a time,
+    but not a ramp time of at most 60 s).
+
+    Parameters
+    ----------
+    text : object
+        The value as read (a string with a unit).
+    dimension : str
+        A key of :data:`chaindrive.units.DIMENSIONS`.
+    path : str
+        The field or option, for the message.
+    example : str
+        A value that fits the field (:meth:`Field.example_text`); empty: the dimension's.
+
+    Returns
+    -------
+    float
+        The value in the SI unit of the dimension.
+
+    Raises
+    ------
+    DesignError
+        One line naming ``path``, the text and, where the message gives one, ``example``.
+    """
+    try:
+        return parse_quantity(text, dimension, path)
+    except DesignError as exc:
+        generic = f'"{DIMENSIONS[dimension][2]}"'
+        if not example or generic not in exc.detail:
+            raise
+        raise type(exc)(exc.field, exc.detail.replace(generic, f'"{example}"')) from None
 
 
 def parse_section(data: Any, fields: tuple[Field, ...], path: str) -> dict[str, Any]:
@@ -738,6 +844,11 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
         if v["speed"] is not None and v["role"] != "driver":
             raise DesignError(f"sprockets[{i}].speed", "give the speed on the driver only "
                               f"(this one is {v['role']})")
+        if v["load"] is not None and v["role"] != "driven":
+            raise DesignError(f"sprockets[{i}].load", "the law of the driven machine's moment "
+                              f"applies to driven sprockets only (this one is {v['role']}), "
+                              f"got {v['load']!r}")
+        catalog.find_material(v["material"], field=f"sprockets[{i}].material")
         sprockets.append(Sprocket(**v))
     drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
     if not drivers:
@@ -768,6 +879,7 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                   service_factor=drive_values["service_factor"], dynamics=dynamics,
                   motor=motor)
     check_inertias(drive)
+    check_motor_estimate(drive)
     return drive
 
 
@@ -801,6 +913,7 @@ def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
     out = []
     for k, raw in enumerate(data):
         v = parse_section(raw, TRAIN_FIELDS, f"{path}[{k}]")
+        catalog.find_material(v["material"], field=f"{path}[{k}].material")
         try:
             out.append(TrainElement(**v))
         except DesignError as exc:  # name the element by its place in the file
@@ -816,7 +929,7 @@ def parse_toml(text: str, name: str) -> dict[str, Any]:
     Parameters
     ----------
     text : str
-        The TOML text.
+        The TOML text (a leading byte-order mark, :data:`BOM`, is dropped).
     name : str
         Where it comes from, for the message.
 
@@ -833,6 +946,7 @@ def parse_toml(text: str, name: str) -> dict[str, Any]:
     where = shown_key(name, 300)
     check_file_size(len(text.encode("utf-8", "surrogatepass")), MAX_DESIGN_BYTES, where,
                     "design file")
+    text = text.removeprefix(BOM)  # a byte-order mark some editors write: not TOML's
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -866,7 +980,7 @@ def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
         if not p.is_file():
             raise DesignError(name, f"no such {what}")
         check_file_size(p.stat().st_size, MAX_DESIGN_BYTES, name, what)
-        text = p.read_text(encoding="utf-8")
+        text = p.read_text(encoding="utf-8-sig")  # a leading byte-order mark is dropped
     except (OSError, UnicodeDecodeError, ValueError) as exc:
         if isinstance(exc, DesignError):
             raise
