@@ -11,6 +11,7 @@ import pytest
 
 import chaindrive
 from chaindrive import plotting
+from chaindrive.display import fmt
 from chaindrive.dynamics.damping import hinge_friction_damping
 from chaindrive.dynamics.whole import model_dynamics
 from chaindrive.multicontour import contour_factor_km, simulate_length_difference
@@ -187,7 +188,8 @@ def test_startup_figures_mark_peak_and_settling(short_response) -> None:
     assert len(curves) == len(spans)
     assert max(float(np.max(c.get_ydata())) for c in curves) == pytest.approx(
         st.max_span_force.max())
-    assert any(f"F₁max = {st.max_span_force.max():.0f} N" in t.get_text() for t in ax.texts)
+    assert any(f"F₁max = {fmt(float(st.max_span_force.max()))} N" in t.get_text()
+               for t in ax.texts)
     fig = plotting.startup_speeds(st, names=names)
     assert _rendered(fig)
     top = max(float(np.max(ln.get_ydata())) for ln in fig.axes[0].get_lines())

@@ -113,6 +113,18 @@ def test_every_symbol_defined_where_it_first_appears(report) -> None:
     """Walking the report in order, a symbol of the glossary (a distinctive one: Greek, a
     subscript or more than one letter) is never shown before a Symbols table defined it."""
     _, r = report
+    _symbols_defined_first(r)
+
+
+@pytest.mark.parametrize("name", ["two_sprocket_jindal", "seed_three_sprocket_polymer",
+                                  "conveyor_five_sprocket", "eight_sprocket"])
+def test_every_symbol_defined_first_in_the_other_examples(name: str) -> None:
+    """The same walk for the other examples, whose warnings and check notes (texts of the
+    analysis) reach the summary before the Symbols tables."""
+    _symbols_defined_first(_report(name))
+
+
+def _symbols_defined_first(r: chaindrive.report.Report) -> None:
     distinctive = {k: s.text for k, s in SYMBOLS.items()
                    if len(s.text) > 1 or not s.text.isascii()}
     defined: set[str] = set()

@@ -149,7 +149,8 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
         irregularity_percent=100.0 * speed_range / model.nominal_speeds,
         dynamic_load_rms=rms, coefficient_of_dynamics=kd, k2=k2, k2_min=k2min,
         periodic=periodic, rotor_names=model.rotor_names,
-        rotor_irregularity_percent=100.0 * rot_range / model.rotor_nominal_speed)
+        rotor_irregularity_percent=100.0 * rot_range / model.rotor_nominal_speed,
+        nominal_force=nominal_force)
 
 
 def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcitation,

@@ -214,6 +214,8 @@ class SteadyStateResult:
         The rotors of the trains (whole-drive model).
     rotor_irregularity_percent : ndarray
         Their irregularity of rotation Δ [%].
+    nominal_force : float or None
+        F_t that K_D is taken against [N] (None: none given).
     """
 
     tooth_angular_frequency: float
@@ -236,6 +238,7 @@ class SteadyStateResult:
     rotor_names: tuple[str, ...] = ()
     rotor_irregularity_percent: NDArray[np.float64] = field(
         default_factory=lambda: np.zeros(0))
+    nominal_force: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (forces N, displacements mm)."""
@@ -252,6 +255,7 @@ class SteadyStateResult:
                 self.rotor_names, self.rotor_irregularity_percent.tolist(), strict=True)),
             "dynamic_load_rms_n": self.dynamic_load_rms,
             "coefficient_of_dynamics": self.coefficient_of_dynamics,
+            "nominal_force_n": self.nominal_force,
             "k2": self.k2,
             "k2min": self.k2_min,
             "periodic": self.periodic,
@@ -349,4 +353,5 @@ def steady_state(model: RingModel, excitation: SpanExcitation, *,
         span_load_amplitude=f_amp, inertia_load=m * acc, displacement_amplitude=x_amp,
         irregularity_percent=100.0 * v_range * z / (R * wz), dynamic_load_rms=rms,
         coefficient_of_dynamics=kd, k2=k2, k2_min=k2min, periodic=periodic,
+        nominal_force=nominal_force,
     )

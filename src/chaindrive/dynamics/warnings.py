@@ -115,8 +115,9 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str]
                 else f"the span forces have not settled (run-up {startup.runup_time:.3g} s)")
         out.append(ChainDriveWarning(
             "dynamics.startup-not-settled", "dynamics.startup_duration",
-            f"{what} within the simulated {simulated:.3g} s of the start-up: F₁max and k₁ "
-            "cover only that time; lengthen [dynamics] startup_duration"))
+            f"{what} within the simulated {simulated:.3g} s of the start-up: its largest span "
+            "force and safety factor cover only that time; lengthen [dynamics] "
+            "startup_duration"))
     share = (startup.span_forces <= 0.0).mean(axis=0) if len(startup.times) else []
     names = (list(span_names) if len(span_names) == len(share)
              else [f"span {i + 1}" for i in range(len(share))])
@@ -128,6 +129,6 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str]
             f"in the start-up spans go slack ({', '.join(slack)} of the samples): the ring "
             "holds their force at zero (a chain cannot push) and re-engages them as springs, "
             "without the roller–tooth impacts of a span snatching taut (the link-level model "
-            "has them), so F₁max may be low there; a tauter installation ([chain] sag) or a "
-            "softer start lowers the slack"))
+            "has them), so the largest start-up force may be low there; a tauter installation "
+            "([chain] sag) or a softer start lowers the slack"))
     return out

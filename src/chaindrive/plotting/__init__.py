@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from chaindrive.plotting.damping import absorption_vs_amplitude
 from chaindrive.plotting.dynamics import campbell_diagram, mode_shapes
-from chaindrive.plotting.kinematics import chain_speed, transmission_ratio
+from chaindrive.plotting.kinematics import chain_speed, ratio_pair, transmission_ratio
 from chaindrive.plotting.layout import contour_layout
 from chaindrive.plotting.linklevel import (
     chain_frame,
@@ -60,6 +60,7 @@ __all__ = [
     "mode_shapes",
     "pareto_front",
     "probability_figure",
+    "ratio_pair",
     "sensitivity_figure",
     "shaft_loads",
     "span_tensions",

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive.display import fmt
 from chaindrive.plotting._base import CYCLE, GREY, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -111,17 +112,88 @@ def campbell_window(campbell: CampbellData, operating_rpm: float | None,
     return out, max(top, 1.0)
 
 
+def crossing_label(excitation: str, mode: int, *, mode_numbers: Sequence[int] | None = None,
+                   span_names: Sequence[str] | None = None) -> str:
+    """What a crossing of a Campbell diagram is, numbered as the tables number the modes:
+    "tooth x1 × mode 1" (a line on a natural frequency) or "tooth x1 = 2·f₁ of span T→D5"
+    (a parametric zone).
+
+    Parameters
+    ----------
+    excitation : str
+        The crossing's excitation (``"tooth x1"``, ``"shaft S2"``, ``"parametric span 6"``).
+    mode : int
+        Its column of the diagram's natural frequencies (the elastic modes from 0), −1 for a
+        parametric zone.
+    mode_numbers : sequence of int or None
+        The number of each column in the tables (None: 1, 2, … — one rigid mode numbered 0).
+    span_names : sequence of str or None
+        Names of the spans in order (None: span 1, span 2, …).
+
+    Returns
+    -------
+    str
+        The label.
+    """
+    if mode >= 0:
+        number = (mode_numbers[mode] if mode_numbers is not None and mode < len(mode_numbers)
+                  else mode + 1)
+        return f"{excitation} × mode {number}"
+    tail = excitation.rsplit(" ", 1)[-1]
+    if tail.isdigit():
+        i = int(tail)
+        tail = (span_names[i] if span_names is not None and i < len(span_names)
+                else f"{i + 1}")
+    return f"tooth x1 = 2·f₁ of span {tail}"
+
+
+#: Where a crossing's number may go, offsets from the point [pt], in the order tried.
+TAG_OFFSETS = ((0.0, 12.0), (0.0, -12.0), (11.0, 0.0), (-11.0, 0.0), (10.0, 11.0),
+               (-10.0, 11.0), (10.0, -11.0), (-10.0, -11.0), (0.0, 22.0), (0.0, -22.0))
+#: Size of the plotting area of a Campbell diagram the tags are placed for [pt] (its axes
+#: in the report's 6.4 × 5 in figure), and the half-size of a tag and of a marker [pt].
+_AXES_PT, _TAG_PT, _MARKER_PT = (400.0, 190.0), (5.0, 6.0), 4.0
+
+
+def _tag_offsets(points: Sequence[tuple[float, float]],
+                 markers: Sequence[tuple[float, float]] = ()) -> list[tuple[float, float]]:
+    """An offset [pt] for the number of each point (axes fractions): the first of
+    :data:`TAG_OFFSETS` whose tag covers neither an earlier tag nor any of the points and
+    ``markers`` (axes fractions)."""
+    w, h = _AXES_PT
+    pts = [(x * w, y * h) for x, y in points]
+    obstacles = pts + [(x * w, y * h) for x, y in markers]
+    placed: list[tuple[float, float]] = []
+    out = []
+    for px, py in pts:
+        def free(dx: float, dy: float, px: float = px, py: float = py) -> bool:
+            cx, cy = px + dx, py + dy
+            clear_tags = all(abs(cx - tx) > 2 * _TAG_PT[0] or abs(cy - ty) > 2 * _TAG_PT[1]
+                             for tx, ty in placed)
+            clear_points = all(abs(cx - qx) > _TAG_PT[0] + _MARKER_PT
+                               or abs(cy - qy) > _TAG_PT[1] + _MARKER_PT
+                               for qx, qy in obstacles)
+            return clear_tags and clear_points
+        dx, dy = next((o for o in TAG_OFFSETS if free(*o)), TAG_OFFSETS[0])
+        placed.append((px + dx, py + dy))
+        out.append((dx, dy))
+    return out
+
+
 def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
                      operating_rpm: float | None = None, max_lines: int = 8,
                      band_percent: float | None = None, window: float = 0.3,
-                     max_labels: int = 4) -> Figure:
+                     max_labels: int = 4, mode_numbers: Sequence[int] | None = None,
+                     span_names: Sequence[str] | None = None) -> Figure:
     """Campbell diagram zoomed to where it matters: natural frequencies of the ring
     (horizontal, solid), the excitation lines (shaft frequencies and tooth-frequency
     harmonics, dashed, at most ``max_lines``), twice the spans' first transverse frequencies
     (parametric resonance, dotted) and every crossing (circles) against the driver speed
     [rpm]; the operating speed as a vertical line with the band ±``band_percent`` round it
     shaded; the crossings within ±``window`` of the operating speed filled, the
-    ``max_labels`` nearest to it labelled ([MultimassChainDrives, §3.3]). Tooth-frequency
+    ``max_labels`` nearest to it numbered on the plot and named in the legend
+    (:func:`crossing_label`, modes numbered as in the tables) ([MultimassChainDrives,
+    §3.3]). Tooth-frequency
     harmonics are drawn before the shaft lines. The frequency axis is cut at 1.3 × the highest of
     those crossings (:func:`campbell_window`): a low crossing near the working speed is
     never lost under a scale set by the highest mode.
@@ -143,6 +215,10 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
         speed [-].
     max_labels : int
         Crossings labelled at most [-].
+    mode_numbers : sequence of int or None
+        The number of each elastic mode in the tables (None: 1, 2, …).
+    span_names : sequence of str or None
+        Names of the spans (None: span 1, span 2, …).
 
     Returns
     -------
@@ -167,21 +243,29 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
     if cross:
         ys = [np.interp(s, rpm, campbell.excitation_hz.get(e, tooth)) for s, e in cross]
         ax.plot([s for s, _ in cross], ys, "o", mfc="none", color=TIGHT, label="crossings")
-    labelled: list[tuple[float, float]] = []
-    span_x, span_y = float(rpm.max() - rpm.min()) or 1.0, top
+    labelled: list[tuple[str, float, float]] = []
+    x0, width = float(rpm.min()), float(np.ptp(rpm)) or 1.0
+    w, h = _AXES_PT
     for e, mode, s, f in sorted(near, key=lambda c: abs(c[2] - (operating_rpm or c[2]))):
         ax.plot([s], [f], "o", color=TIGHT, ms=7)
-        crowded = any(abs(s - x) < 0.12 * span_x and abs(f - y) < 0.08 * span_y
-                      for x, y in labelled)
-        if crowded or len(labelled) >= max_labels:
-            continue
-        labelled.append((s, f))
-        what = (f"{e} × mode {mode}" if mode >= 0
-                else f"tooth x1 = 2·f₁ of span {e.rsplit(' ', 1)[-1]}")
-        ax.annotate(f"{what}\n{s:.0f} rpm, {f:.3g} Hz", (s, f), textcoords="offset points",
-                    xytext=(6, 6), fontsize="x-small", color=TIGHT,
-                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
-                          "alpha": 0.8})
+        covered = any(abs(s - x) / width * w < _MARKER_PT and abs(f - y) / top * h < _MARKER_PT
+                      for _, x, y in labelled)  # on a labelled one: its number would hide it
+        if len(labelled) < max_labels and not covered:
+            labelled.append((crossing_label(e, mode, mode_numbers=mode_numbers,
+                                            span_names=span_names), s, f))
+    # numbers on the plot (above and below the point by turns, so that neighbours do not
+    # print over each other), their names in the legend
+    labelled.sort(key=lambda c: c[1])
+    offsets = _tag_offsets([((s - x0) / width, f / top) for _, s, f in labelled],
+                           [((s - x0) / width, f / top) for *_, s, f in near])
+    for n, ((_, s, f), offset) in enumerate(zip(labelled, offsets, strict=True), start=1):
+        far = max(abs(offset[0]), abs(offset[1])) > 12  # a leader line to its point
+        ax.annotate(str(n), (s, f), textcoords="offset points", xytext=offset,
+                    fontsize="x-small", color=TIGHT, fontweight="bold", ha="center",
+                    va="center", bbox={"boxstyle": "round,pad=0.12", "fc": "white",
+                                       "ec": "none", "alpha": 0.85},
+                    arrowprops={"arrowstyle": "-", "color": TIGHT, "lw": 0.6,
+                                "shrinkA": 0, "shrinkB": 3} if far else None)
     if operating_rpm is not None:
         if band_percent:
             b = band_percent / 100.0
@@ -197,6 +281,10 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
     if hidden:
         ax.text(0.99, 0.98, f"{hidden} higher mode(s) above {top:.0f} Hz not shown",
                 transform=ax.transAxes, ha="right", va="top", fontsize="x-small", color=GREY)
-    ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+    for n, (what, s, f) in enumerate(labelled, start=1):
+        ax.plot([], [], ls="none", marker=f"${n}$", color=TIGHT,
+                label=f"{what}: {fmt(s)} rpm, {fmt(f)} Hz")
+    ax.legend(fontsize="x-small", ncol=2 if labelled else 3, loc="upper center",
+              bbox_to_anchor=(0.5, -0.16))
     finish(ax, "Campbell diagram")
     return fig

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive.display import fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -44,10 +45,29 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figu
     return fig
 
 
+def ratio_pair(analysis: Analysis) -> tuple[int, int]:
+    """The sprockets whose ratio :func:`transmission_ratio` draws: (driver, the sprocket at
+    the far end of the tight span), indices into ``analysis.drive.sprockets``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis (its drive and geometry).
+
+    Returns
+    -------
+    tuple of int
+        (driver index, index of the other sprocket).
+    """
+    tight = next((s for s in analysis.geometry.spans if s.tight), analysis.geometry.spans[0])
+    return analysis.drive.driver_index, tight.start
+
+
 def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Instantaneous ratio i = ω₁/ω₂ over one tooth period for the sprocket at the far end
     of the tight span ([ChainNonUniformity]: i = R₂cos γ / (R₁cos β)), as computed by
-    :func:`chaindrive.kinematics.drive_kinematics` (``ratio_traces``).
+    :func:`chaindrive.kinematics.drive_kinematics` (``ratio_traces``); the labels name the
+    pair (:func:`ratio_pair`), e.g. ω(S1) / ω(S3) and z(S3) / z(S1) = 14/15.
 
     Parameters
     ----------
@@ -62,17 +82,18 @@ def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
-    drive, geometry = analysis.drive, analysis.geometry
-    z1 = drive.driver.teeth
-    tight = next((s for s in geometry.spans if s.tight), geometry.spans[0])
-    other = drive.sprockets[tight.start]
-    ratio = analysis.kinematics.ratio_traces[tight.start]
+    drive = analysis.drive
+    i, j = ratio_pair(analysis)
+    driver, other = drive.sprockets[i], drive.sprockets[j]
+    ratio = analysis.kinematics.ratio_traces[j]
     beta = np.degrees(analysis.kinematics.phase)
-    ax.plot(beta, ratio, color=CYCLE[1], lw=1.6, label=f"{drive.driver.name} → {other.name}")
-    ax.axhline(other.teeth / z1, color=GREY, ls="--", lw=1.0,
-               label=f"z₂/z₁ = {other.teeth / z1:.4g}")
-    ax.set_xlabel("driver rotation within one tooth β, °")
-    ax.set_ylabel("ratio ω₁/ω₂")
+    a, b = driver.name, other.name
+    ax.plot(beta, ratio, color=CYCLE[1], lw=1.6, label=f"ω({a}) / ω({b})")
+    ax.axhline(other.teeth / driver.teeth, color=GREY, ls="--", lw=1.0,
+               label=f"z({b}) / z({a}) = {other.teeth}/{driver.teeth} = "
+                     f"{fmt(other.teeth / driver.teeth)}")
+    ax.set_xlabel(f"driver rotation within one tooth β ({a}), °")
+    ax.set_ylabel(f"ratio ω({a}) / ω({b})")
     ax.legend(fontsize="x-small")
-    finish(ax, "Instantaneous transmission ratio")
+    finish(ax, f"Instantaneous transmission ratio {a} → {b}")
     return fig

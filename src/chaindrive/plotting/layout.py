@@ -80,7 +80,7 @@ def _below_xlabel(ax: Axes) -> Transform:
 def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
                    labels: bool = True) -> Figure:
     """The contour of a drive to scale [mm]: tip circles (grey discs), pitch circles
-    (dash-dot), centre marks, the chain (blue, the tight span red) with an arrow per span in
+    (dash-dot), centre marks, the chain (blue, the tight span orange) with an arrow per span in
     the direction of travel, and sprocket names with tooth counts.
 
     Parameters

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.display import RAD_S_TO_RPM
+from chaindrive.display import RAD_S_TO_RPM, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -105,14 +105,19 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     F = np.asarray(startup.span_forces)
     labels = _labels(F.shape[1], names, "span ")
     _curves(ax, t, F, labels, max_lines)
-    i, k = np.unravel_index(int(np.argmax(F)), F.shape)
-    ax.plot(t[i], F[i, k], "v", color="k", ms=7, zorder=5)
-    ax.annotate(f"F₁max = {F[i, k]:.0f} N ({labels[k]})", (t[i], F[i, k]), xytext=(6, 2),
+    # F₁max as the result holds it (the peak over every step, not only the recorded ones),
+    # written by the rule of the tables, at the recorded peak of its span
+    peaks = np.asarray(startup.max_span_force, dtype=float)
+    k = int(np.argmax(peaks))
+    i = int(np.argmax(F[:, k]))
+    top = float(peaks[k])
+    ax.plot(t[i], top, "v", color="k", ms=7, zorder=5)
+    ax.annotate(f"F₁max = {fmt(top)} N ({labels[k]})", (t[i], top), xytext=(6, 2),
                 textcoords="offset points", fontsize="small", va="bottom")
     ts = startup.settling_time * 1e3
     if math.isfinite(ts) and t[0] < ts <= t[-1]:
         ax.axvline(ts, color=GREY, ls="--", lw=1.0, label=f"settled at {ts:.0f} ms")
-    ax.set_ylim(top=float(F.max()) * 1.15 if F.max() > 0 else None)
+    ax.set_ylim(top=max(top, float(F.max())) * 1.15 if top > 0 else None)
     end = _zoom_end(t, max(ts, t[i]))
     ax.set_xlim(t[0], end)
     ax.set_xlabel("time, ms")
@@ -178,6 +183,14 @@ def _chosen_markers(afc: AfcResult, max_markers: int) -> list[tuple[int, int, fl
     return sorted(chosen, key=lambda m: m[3])
 
 
+def _mode_number(marker: int, mode_numbers: Sequence[int] | None) -> int:
+    """The table's number of the mode an AFC marker names (its own numbers count the
+    elastic modes from 1)."""
+    if mode_numbers is None or not 1 <= marker <= len(mode_numbers):
+        return marker
+    return int(mode_numbers[marker - 1])
+
+
 def _legend(ax: Axes, curves: int,
             inside: Literal["upper right", "lower right", "upper left"] = "upper right") -> None:
     """Legend inside (at ``inside``) for a few curves, outside on the right for many."""
@@ -190,13 +203,15 @@ def _legend(ax: Axes, curves: int,
 
 def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
                max_lines: int = 6, max_markers: int = 8,
-               operating_hz: float | None = None) -> Figure:
+               operating_hz: float | None = None,
+               mode_numbers: Sequence[int] | None = None) -> Figure:
     """Amplitude–frequency characteristics: peak dynamic load of each span [N] against the
     tooth frequency [Hz] ([MultimassChainDrives, Fig. 3]), every resonance (harmonic k of the tooth
     frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
-    "mode j × k" (the ``max_markers`` with the highest load), and the operating tooth
-    frequency ``operating_hz`` as a solid line. Logarithmic load axis: the resonance peaks
-    stand orders of magnitude above the rest of the curves.
+    "mode j × k" above the plot, clear of the curves (the ``max_markers`` with the highest
+    load; modes numbered as in the tables with ``mode_numbers``),
+    and the operating tooth frequency ``operating_hz`` as a solid line. Logarithmic load
+    axis: the resonance peaks stand orders of magnitude above the rest of the curves.
 
     Parameters
     ----------
@@ -212,21 +227,28 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
         Resonance lines labelled at most [-].
     operating_hz : float or None
         Operating tooth frequency [Hz] (None: not drawn).
+    mode_numbers : sequence of int or None
+        The number each elastic mode carries in the tables, in the order of
+        ``afc.natural_frequencies_hz`` (None: the markers' own 1, 2, …).
 
     Returns
     -------
     Figure
         The figure drawn into.
     """
-    fig, ax = figure_axes(ax, (6.4, 3.8))
+    fig, ax = figure_axes(ax, (6.4, 4.0))
     fz = np.asarray(afc.tooth_frequencies_hz)
     F = np.asarray(afc.span_load)
     _curves(ax, fz, F, _labels(F.shape[1], names, "span "), max_lines)
     trans = ax.get_xaxis_transform()
+    longest = 0
     for j, k, _, f in _chosen_markers(afc, max_markers):
         ax.axvline(f, color=GREY, ls=":", lw=0.9)
-        ax.text(f, 0.98, f" mode {j} × {k}", transform=trans, rotation=90, va="top",
-                ha="right", fontsize="xx-small", color="#444444")
+        label = f"mode {_mode_number(j, mode_numbers)} × {k}"
+        longest = max(longest, len(label))
+        # above the plotting area: clear of the curves (the markers are 3 % apart)
+        ax.text(f, 1.01, label, transform=trans, rotation=90, va="bottom", ha="center",
+                fontsize="xx-small", color="#444444", clip_on=False)
     if operating_hz is not None:
         ax.axvline(operating_hz, color="k", lw=1.0,
                    label=f"operating {operating_hz:.1f} Hz")
@@ -239,7 +261,10 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     ax.set_xlabel("tooth frequency f_z, Hz")
     ax.set_ylabel("dynamic load, N")
     _legend(ax, F.shape[1], inside="upper left")
-    finish(ax, "Amplitude–frequency characteristics per span")
+    finish(ax)
+    # the title clears the resonance labels above the plot (≈ 3 pt a character)
+    ax.set_title("Amplitude–frequency characteristics per span", fontsize="medium",
+                 pad=6.0 + 3.0 * longest)
     return fig
 
 

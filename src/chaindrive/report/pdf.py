@@ -227,8 +227,9 @@ def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
                f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
     for i, s in enumerate(report.sections):
-        if i == 1:
-            out.append("#pagebreak()\n")
+        if i == 1:  # the verdict page alone: a new page unless page 1 ran over already
+            out.append("#metadata(none) <chaindrive-page-one-end>\n#context if locate("
+                       "<chaindrive-page-one-end>).page() == 1 { pagebreak() }\n")
         out.append(f"= #{_s(s.title)}\n" + _where(s.key))
         out += _section_typst(s.blocks, figures)
     return "".join(out), figures

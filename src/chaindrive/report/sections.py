@@ -9,12 +9,19 @@ analysis only: the report never computes.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
 from chaindrive.display import check_row, check_unit, fmt, margin_percent
-from chaindrive.plotting import chain_speed, contour_layout, shaft_loads, span_tensions, transmission_ratio
+from chaindrive.plotting import (
+    chain_speed,
+    contour_layout,
+    ratio_pair,
+    shaft_loads,
+    span_tensions,
+    transmission_ratio,
+)
 from chaindrive.report import sections_dynamics as dyn
 from chaindrive.report.bibliography import REFERENCES, cited_keys
 from chaindrive.report.content import (
@@ -28,6 +35,7 @@ from chaindrive.report.content import (
     rows,
 )
 from chaindrive.report.robust import robust_section
+from chaindrive.report.sources import catalogue_estimates, estimate_note, readable_source
 
 if TYPE_CHECKING:
     from chaindrive.checks import Check
@@ -47,7 +55,7 @@ def _check_cells(c: Check, inp: ReportInput) -> tuple[Any, ...]:
     sep = "" if unit in ("°", "%", "") else " "
     shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
     name = c.name + (f" ({c.note})" if c.note and not c.passed else "")
-    return name, c.subject, shown, required, margin_percent(c), result, source
+    return name, c.subject, shown, required, margin_percent(c), result, readable_source(source)
 
 
 def governing_checks(checks: Sequence[Check]) -> list[Check]:
@@ -71,9 +79,33 @@ def governing_checks(checks: Sequence[Check]) -> list[Check]:
     return failed + passed[:max(GOVERNING - len(failed), 1)]
 
 
-def _estimates(inp: ReportInput) -> list[str]:
-    """What the results rest on that the design does not give (defaults and estimates)."""
-    d = inp.analysis.drive
+#: Warning codes of the analysis that say an input was estimated or a default assumed
+#: (``dynamics.estimate``: installed sag, link stiffness, rotor inertia; the bearing area of
+#: a chain the catalogue gives none for).
+ESTIMATE_CODES = ("dynamics.estimate", "strength.bearing-area-estimated")
+#: What the estimate warnings are about, by their part, for the short line of one that page 1
+#: shows in full among its warnings.
+ESTIMATED_PARTS = {"chain.sag": "The installed sag of the chain: assumed",
+                   "chain.link_stiffness": "The link stiffness of the chain: computed, an "
+                                           "upper bound",
+                   "motor.rotor_inertia": "The inertia of the motor's rotor: estimated",
+                   "chain": "The bearing area of the chain: estimated"}
+
+
+def _sentence(text: str) -> str:
+    """``text`` with a capital first letter and a full stop."""
+    text = text.strip()
+    return text[:1].upper() + text[1:] + ("" if text.endswith(".") else ".")
+
+
+def _estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
+    """What the results rest on that the design does not give (defaults and estimates), as
+    the analysis says it: the damping source of its model, its warnings of estimated inputs
+    (:data:`ESTIMATE_CODES`; one whose message is among ``shown`` in one short line), the
+    estimates its catalogue row marks, a service factor the design leaves out and the
+    reading of K_D."""
+    a = inp.analysis
+    d = a.drive
     out = []
     guessed = [s.name for s in d.sprockets if s.inertia is None and s.reduced_mass is None]
     if guessed:
@@ -84,10 +116,31 @@ def _estimates(inp: ReportInput) -> list[str]:
                    "body of [MultimassChainDrives, §3.4], with the bore 0.19·z·p/π; no hub, "
                    "shaft or coupling): give the inertia of the real parts in the design "
                    "file.")
-    if d.dynamics.damping_ratio == 0.06:
-        out.append("Damping ratio 0.06 of the chain hinges, the value of "
-                   "[MultimassChainDrives, Table 1] (no measurement of this drive).")
-    if inp.analysis.response is not None:
+    source = a.drive_model.damping_source
+    if source and not source.startswith("given"):
+        out.append(f"Damping ratio {fmt(a.dynamics.damping_ratio)} of the chain by the "
+                   f"{source}, not a measurement of this drive: give [dynamics] "
+                   "damping_ratio.")
+    for w in a.warnings:
+        if w.code not in ESTIMATE_CODES:
+            continue
+        what = ESTIMATED_PARTS.get(w.part)
+        out.append(f"{what} (the warning above)." if what and w.message in shown
+                   else _sentence(w.message))
+    if d.service_factor is None:
+        st = a.strength
+        used = ("" if st is None else f": the strength checks take the operating factor "
+                f"{fmt(st.operating_factor)} (section Loads and strength)")
+        out.append(f"Service factor not given ([drive] service_factor){used}.")
+    spec = d.chain.spec
+    estimated = catalogue_estimates(spec.source)
+    if estimated:
+        how = estimate_note(spec.source)
+        out.append(_sentence(
+            f"{', '.join(estimated)} of the chain {spec.designation}: estimates of the "
+            f"catalogue{f' ({how})' if how else ''}, not a maker's data sheet; give the "
+            "maker's values in a catalogue file of your own"))
+    if a.response is not None:
         out.append("Coefficient of dynamics from the root mean square of the spans' dynamic "
                    "loads: the reading of [MultimassChainDrives, §3.3] this package uses.")
     return out
@@ -133,7 +186,7 @@ def summary_section(inp: ReportInput) -> list[Block]:
     if len(shown) < len(warnings):
         blocks.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in the "
                            "section Checks.", "note"))
-    estimates = _estimates(inp)
+    estimates = _estimates(inp, shown)
     if estimates:
         blocks.append(Text("The results rest on these defaults and estimates:", "text"))
         blocks += [Text(e, "item") for e in estimates]
@@ -159,9 +212,8 @@ def _glance(inp: ReportInput) -> Table:
     if response is not None:
         s = response.strength_dict()
         items += [("coefficient of dynamics", response.steady.coefficient_of_dynamics, ""),
-                  ("dynamic safety: start-up, steady, run-up",
-                   ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")),
-                   f"allowable {fmt(s['allowable_k'])}")]
+                  (f"dynamic safety: start-up, steady, run-up (allowable {fmt(s['allowable_k'])})",
+                   ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")), "")]
     m = a.metrics
     items += [("mass of chain and sprockets", inp.val(m.mass_kg, "mass"), inp.unit("mass")),
               ("cost (estimate)", m.cost, m.cost_breakdown.currency)]
@@ -187,6 +239,11 @@ def inputs_section(inp: ReportInput) -> list[Block]:
     spec = d.chain.spec
     blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
     same = f" (= ANSI {spec.ansi_twin})" if spec.ansi_twin else ""
+    estimated = catalogue_estimates(spec.source)
+
+    def marked(name: str) -> str:
+        return f"{name} (estimate)" if name in estimated else name
+
     items = [("chain", "", spec.designation + same, ""),
              ("pitch", "p", inp.val(spec.pitch, "length"), inp.unit("length")),
              ("strands", "", spec.strands, ""),
@@ -194,14 +251,24 @@ def inputs_section(inp: ReportInput) -> list[Block]:
               inp.unit("length")),
              ("width between inner plates", "b₁", inp.val(spec.inner_width, "length"),
               inp.unit("length")),
-             ("breaking load", "Q", inp.val(spec.breaking_load, "force_k"),
+             (marked("breaking load"), "Q", inp.val(spec.breaking_load, "force_k"),
               inp.unit("force_k")),
-             ("mass per length", "q", inp.val(spec.mass_per_length, "linear_density"),
-              inp.unit("linear_density")),
-             ("power", "P", inp.val(d.power, "power"), inp.unit("power")),
-             ("service factor", "K_s", d.service_factor, ""),
-             ("tooth form", "", d.tooth_form, ""),
-             ("damping ratio", "ζ", inp.analysis.dynamics.damping_ratio, "")]
+             (marked("mass per length"), "q", inp.val(spec.mass_per_length, "linear_density"),
+              inp.unit("linear_density"))]
+    if spec.allowable_load is not None:
+        items.append((marked("allowable load"), "", inp.val(spec.allowable_load, "force_k"),
+                      inp.unit("force_k")))
+    if spec.max_speed is not None:
+        items.append((marked("speed limit"), "", inp.val(spec.max_speed, "velocity"),
+                      inp.unit("velocity")))
+    if estimated:
+        items.append(("chain data from", "", readable_source(spec.source), ""))
+    items += [("power", "P", inp.val(d.power, "power"), inp.unit("power")),
+              ("service factor", "K_s", "not given" if d.service_factor is None
+               else d.service_factor, ""),
+              ("tooth form", "", d.tooth_form, ""),
+              ("damping ratio", "ζ", inp.analysis.dynamics.damping_ratio, ""),
+              ("damping ratio from", "", inp.analysis.drive_model.damping_source, "")]
     if d.chain.links is not None:
         items.append(("links (imposed)", "L_p", d.chain.links, ""))
     blocks.append(Table("Drive and chain", ("quantity", "symbol", "value", "unit"),
@@ -215,9 +282,11 @@ def inputs_section(inp: ReportInput) -> list[Block]:
                inp.val(s.inertia, "inertia")) for s in d.sprockets])))
     dyn = d.dynamics
     blocks.append(Table("Dynamics settings ([dynamics])", ("setting", "value"), rows([
-        ("harmonics of the tooth frequency", dyn.harmonics),
+        ("harmonics of the tooth frequency in the polygonal excitation (steady response)",
+         dyn.harmonics),
         ("start-up simulated", dyn.transient),
-        ("start-up duration, s", dyn.startup_duration),
+        ("start-up duration, s", "automatic (until it settles, at most 60 s)"
+         if dyn.startup_duration is None else dyn.startup_duration),
         ("motor law", dyn.motor), ("resistance law", dyn.resistance)])))
     return blocks
 
@@ -273,7 +342,7 @@ def geometry_section(inp: ReportInput) -> list[Block]:
               rows([(s.start_name, s.end_name, inp.val(s.length, "length"), s.pitches,
                      math.degrees(s.inclination), s.tight) for s in g.spans])),
         _length_options_table(inp),
-        plot_block(contour_layout(g), "Contour layout to scale (tight span red)", inp.dpi,
+        plot_block(contour_layout(g), "Contour layout to scale (tight span orange)", inp.dpi,
                    "layout"),
     ]
     return blocks
@@ -310,6 +379,7 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
 
     k = inp.analysis.kinematics
     doc = k.to_dict()
+    a, b = (inp.analysis.drive.sprockets[i].name for i in ratio_pair(inp.analysis))
     blocks = inp.define("v", "fz", "dv")
     V = inp.unit("velocity")
     blocks += [
@@ -327,8 +397,9 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
         _lubrication_table(inp),
         plot_block(chain_speed(k), "Chain speed over one tooth period", inp.dpi,
                    "chain_speed"),
-        plot_block(transmission_ratio(inp.analysis), "Instantaneous transmission ratio",
-                   inp.dpi, "ratio"),
+        plot_block(transmission_ratio(inp.analysis), f"Instantaneous transmission ratio "
+                   f"ω({a})/ω({b}) of the driver {a} and {b}, the sprocket at the far end of the "
+                   "tight span", inp.dpi, "ratio"),
     ]
     return blocks
 

@@ -40,6 +40,35 @@ def _span_names(inp: ReportInput) -> list[str]:
     return [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
 
 
+def _elastic_modes(inp: ReportInput) -> list[int]:
+    """The numbers of the elastic modes in the tables (their indices among all the modes,
+    the rigid rotation 0): the numbers the figures give them too."""
+    modal = inp.analysis.dynamics.modal
+    return [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
+
+
+def tooth_harmonics(inp: ReportInput) -> str:
+    """The harmonics of the tooth frequency among the working frequencies of the resonance
+    table, as the analysis lists them ("1–3"; "" when it lists none).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    str
+        "1–3", "1" or "".
+    """
+    ks = sorted({w.harmonic for w in inp.analysis.dynamics.working if w.kind == "tooth"})
+    if not ks:
+        return ""
+    if len(ks) > 1 and ks == list(range(ks[0], ks[-1] + 1)):
+        return f"{ks[0]}–{ks[-1]}"
+    return ", ".join(str(k) for k in ks)
+
+
 def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], tuple[int, ...]]:
     """Rows of the resonance table of the ring modes (``kind`` "ring") or of the spans'
     parametric resonances ("span"): working frequency, f_w, natural frequency, mode or span,
@@ -115,7 +144,7 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
                         rows([(n, inp.val(m, "mass"), inp.val(c, "stiffness")) for n, m, c in
                               zip(names, modal.masses_kg.tolist(),
                                   modal.stiffness_n_per_m.tolist(), strict=True)])))
-    elastic = [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
+    elastic = _elastic_modes(inp)
     blocks.append(Table("Natural frequencies of the ring", ("mode j", "f_j, Hz",
                                                             "damped, Hz", "largest μ at"),
                         rows([(j, modal.frequencies_hz[j],
@@ -128,9 +157,17 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
                              "line crosses zero; the first mass is repeated to close the "
                              "ring)", inp.dpi, "mode_shapes"))
     ring, inside = resonance_rows(inp, "ring")
+    harmonics = tooth_harmonics(inp)
+    if harmonics:
+        blocks.append(Text(
+            f"The resonance check covers the shaft frequencies and the harmonics {harmonics} "
+            f"of the tooth frequency; the {a.drive.dynamics.harmonics} harmonics of the tooth "
+            "frequency in the Dynamics settings are those of the polygonal excitation of the "
+            "steady response and of the amplitude–frequency sweep."))
     if ring:
-        blocks.append(Table(f"Resonances of the ring: every working frequency against the "
-                            f"nearest natural frequency (required Δ ≥ {band:g} %)",
+        blocks.append(Table(f"Resonances of the ring: every working frequency (shaft "
+                            f"frequencies{f', tooth harmonics {harmonics}' if harmonics else ''}"
+                            f") against the nearest natural frequency (required Δ ≥ {band:g} %)",
                             ("working frequency", "f_w, Hz", "f_n, Hz", "ring mode",
                              "detuning Δ, %", "f_w is"), rows(ring), inside))
     span, inside = resonance_rows(inp, "span")
@@ -148,10 +185,13 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     if dyn.campbell is not None and a.drive.driver.speed is not None:
         rpm = float(inp.val(a.drive.driver.speed, "speed") or 0.0)
         blocks.append(plot_block(
-            campbell_diagram(dyn.campbell, operating_rpm=rpm, band_percent=band),
+            campbell_diagram(dyn.campbell, operating_rpm=rpm, band_percent=band,
+                             mode_numbers=elastic, span_names=_span_names(inp)),
             f"Campbell diagram: natural frequencies (black), working frequencies against the "
-            f"driver speed (dashed), the band ±{band:g} % round the working speed (shaded) and "
-            "the crossings (circles; labelled near the working speed)", inp.dpi, "campbell"))
+            f"driver speed (dashed; tooth harmonics {harmonics or '—'}), the band ±{band:g} % "
+            "round the working speed (shaded) and the crossings (circles; those near the "
+            "working speed numbered and named in the legend, modes numbered as in the "
+            "tables)", inp.dpi, "campbell"))
     return blocks
 
 
@@ -206,12 +246,11 @@ def response_section(inp: ReportInput) -> list[Block] | None:
                         ("stage", "factor", "value", "required", "margin, %", "result"),
                         rows(k_rows), tuple(i for i, r in enumerate(k_rows) if r[5] == "FAIL")))
     F = inp.unit("force")
-    st = a.strength
     load_rows: list[tuple[str, str, Any, str]] = [
         ("coefficient of dynamics", "K_D", steady.coefficient_of_dynamics, ""),
         ("dynamic load", "F_D", inp.val(steady.dynamic_load_rms, "force"), F),
-        ("peripheral force", "F_t", None if st is None
-         else inp.val(st.loads.peripheral_force, "force"), F),
+        ("peripheral force at the driver's pitch circle (K_D = 1 + F_D/F_t)", "F_t",
+         None if steady.nominal_force is None else inp.val(steady.nominal_force, "force"), F),
         ("tooth frequency", "f_z", steady.tooth_angular_frequency / (2 * math.pi), "Hz")]
     if startup is not None:
         load_rows += [("largest start-up force", "F₁max",
@@ -238,9 +277,11 @@ def response_section(inp: ReportInput) -> list[Block] | None:
                               "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
     blocks += [
         plot_block(afc_curves(response.afc, names=spans,
-                              operating_hz=steady.tooth_angular_frequency / (2 * math.pi)),
-                   "Amplitude–frequency characteristic per span (speed sweep)", inp.dpi,
-                   "afc"),
+                              operating_hz=steady.tooth_angular_frequency / (2 * math.pi),
+                              mode_numbers=_elastic_modes(inp)),
+                   "Amplitude–frequency characteristic per span (speed sweep); above the "
+                   "plot the resonances, mode × harmonic of the tooth frequency (modes "
+                   "numbered as in the tables)", inp.dpi, "afc"),
         plot_block(steady_loads(steady, names=spans), "Steady dynamic load per span",
                    inp.dpi, "steady_loads"),
         Table("Steady motion per mass", ("sprocket", inp.col("inertia load m·ẍ", "force"),

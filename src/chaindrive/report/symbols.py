@@ -69,8 +69,9 @@ _ALL: tuple[Symbol, ...] = (
            source="[ISO606], [GOST13568]"),
     Symbol("z", "z", "z", "number of teeth of a sprocket", source="design file"),
     Symbol("zeta", "ζ", "zeta", "damping ratio of the ring (hinge friction; material "
-           "damping of polymer parts added by modal strain energy)",
-           "ζ = D = 0.06 unless [dynamics] gives another", "zeta = D = 0.06",
+           "damping of polymer parts added by modal strain energy): [dynamics] damping_ratio "
+           "when given, else by the material pair of chain and sprockets (0.06 for metal on "
+           "metal)", "ζ = D", "zeta = D",
            source="[MultimassChainDrives, Table 1], [Johnson1982]"),
     # --- geometry -------------------------------------------------------------------------
     Symbol("d", "d", "d", "pitch diameter (circle through the roller centres)",

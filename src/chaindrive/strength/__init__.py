@@ -185,8 +185,9 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     if not steel:
         warnings.append(ChainDriveWarning(
             "strength.non-steel-chain", "chain",
-            f"chain material {spec.material!r}: the steel tables [p], [s] and the wear-life "
-            "model do not apply; check the material's limits"))
+            f"chain material {spec.material!r}: the steel tables of allowable hinge pressure "
+            "and safety factor and the wear-life model do not apply; check the material's "
+            "limits"))
     # a pressure or safety beyond its limit, or outside the tables, is a failed check of
     # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,

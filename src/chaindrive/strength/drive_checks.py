@@ -149,7 +149,7 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
     if s.required_life_h is None:  # the life the rating promises for this chain length
         required = BASIS_LIFE_H * geometry.links / BASIS_LINKS
-        note = (f"{geometry.links} links: the rating basis 15 000 h × L_p/100 (set a "
+        note = (f"{geometry.links} links: the rating basis 15 000 h × links/100 (set a "
                 "required life for a service-life requirement)")
     else:
         required, note = s.required_life_h, f"{geometry.links} links, required life"
