@@ -14,7 +14,7 @@ i_j = ω_j/ω the speed ratio of machine j to the motor, η the efficiencies of 
 motor accelerates the drive only while η M_M > M_L; the **working speed** ω_w is the first
 speed where the two meet, and the time to 95 % of it is the quadrature
 
-    t₉₅ = ∫₀^{0.95 ω_w} J_red dω / (η M_M(ω) − M_L(ω)),
+    t₉₅ = ∫₀^{0.95 ω_w} J_red dω / (η M_M(ω) − M_L(ω))   (Gauss–Legendre),
 
 after which the speed approaches ω_w with the time constant τ = J_red / (−d(η M_M − M_L)/dω)
 at ω_w. A torque law that ramps in time (a soft start) is taken at its full torque: the
@@ -31,9 +31,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
-import scipy.integrate
-import scipy.linalg
-import scipy.optimize
 from numpy.typing import NDArray
 
 from chaindrive.dynamics.motors import KlossMotor, RampTorque, ResistanceKind, ResistanceLaw
@@ -141,16 +138,41 @@ def rigid_body_shape(linear: LinearModel) -> FloatArray | None:
     Returns
     -------
     ndarray or None
-        (N,) φ, M-normalised (φᵀ M φ = 1).
+        (N,) φ of unit length: the eigenvector of K whose eigenvalue is zero to round-off
+        (below 10⁻¹⁰ of the largest and 10⁻⁶ of the next).
     """
     b = linear.span_incidence
     k = linear.stiffness_linear + b.T @ (linear.span_stiffness[:, None] * b)
     if linear.size < 2:
         return None
-    w, v = scipy.linalg.eigh(k, linear.mass, subset_by_index=[0, 1])
-    if not abs(w[0]) <= 1e-9 * abs(w[1]):
+    w, v = np.linalg.eigh(0.5 * (k + k.T))
+    order = np.argsort(np.abs(w))
+    zero, next_ = abs(w[order[0]]), abs(w[order[1]])
+    if not (zero <= 1e-10 * float(np.abs(w).max()) and zero <= 1e-6 * next_):
         return None
-    return np.asarray(v[:, 0], dtype=float)
+    return np.asarray(v[:, order[0]], dtype=float)
+
+
+def _root(f: Any, lo: float, hi: float, tol: float) -> float:
+    """The root of a scalar function with f(lo) > 0 ≥ f(hi), by bisection to ``tol`` [its
+    argument's unit]."""
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if f(mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def _integral(f: Any, a: float, b: float, panels: int = 64, order: int = 8) -> float:
+    """∫ₐᵇ f by composite Gauss–Legendre quadrature (``panels`` × ``order`` nodes; ``f``
+    vectorised), exact for polynomials of degree 2·order − 1 on each panel."""
+    x, w = np.polynomial.legendre.leggauss(order)
+    edges = np.linspace(a, b, panels + 1)
+    half = 0.5 * np.diff(edges)
+    nodes = (0.5 * (edges[:-1] + edges[1:]))[:, None] + half[:, None] * x[None, :]
+    return float(np.sum(half[:, None] * w[None, :] * f(nodes.ravel()).reshape(nodes.shape)))
 
 
 def _motor_torque(law: Any, speeds: FloatArray) -> FloatArray:
@@ -202,8 +224,8 @@ def rigid_runup(model: DriveModel) -> RunUp | None:
     if below.size:
         j = int(below[0])
         lo = speeds[j - 1] if j > 0 else 0.0
-        working = lo if j == 0 else float(scipy.optimize.brentq(
-            lambda w: float(net(np.array([w]))[0]), lo, float(speeds[j]), xtol=1e-9 * top))
+        working = lo if j == 0 else _root(lambda w: float(net(np.array([w]))[0]), lo,
+                                          float(speeds[j]), 1e-9 * top)
     target = RUNUP_FRACTION * (working if math.isfinite(working) else motor.nominal_speed)
     span = speeds[speeds <= RUNUP_FRACTION * motor.nominal_speed]
     loads = load(span)
@@ -214,8 +236,7 @@ def rigid_runup(model: DriveModel) -> RunUp | None:
     torque_ratio = float(ratio[worst]) if ratio.size else math.inf
     runup, tau = math.inf, math.nan
     if torque_ratio > 1.0 and target > 0.0:
-        runup = float(scipy.integrate.quad(lambda w: inertia / float(net(np.array([w]))[0]),
-                                           0.0, target, limit=200)[0])
+        runup = _integral(lambda w: inertia / net(w), 0.0, target)
         if math.isfinite(working):
             h = 1e-4 * working
             slope = float(np.diff(net(np.array([working - h, working + h])))[0]) / (2 * h)
