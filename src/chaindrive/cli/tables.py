@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from chaindrive.checks import UNVERIFIED
 from chaindrive.display import (
     UnitSystem,
     check_row,
@@ -168,7 +169,8 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         sel = doc["selection"]
         con.print(f"selection ({escape(sel['method'])}): "
                   f"{escape(sel['chain'] or sel['shortfall'])}")
-    _print_dynamics(con, doc["dynamics"], doc["strength"], units)
+    k1 = next((c for c in doc["checks"] if c["key"] == "k1"), None)
+    _print_dynamics(con, doc["dynamics"], doc["strength"], units, k1)
     print_checks(con, checks, units)
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
@@ -209,9 +211,10 @@ def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI"
 
 
 def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None,
-                    units: UnitSystem = "SI") -> None:
+                    units: UnitSystem = "SI", k1: dict[str, Any] | None = None) -> None:
     """Natural frequencies, the closest resonances and the dynamic response (forces in the
-    unit system's force unit)."""
+    unit system's force unit); the k₁ of a check that cannot be verified says why (its
+    note)."""
     freqs = [f for f, rigid in zip(dyn["natural_frequencies_hz"], dyn["rigid_body_modes"],
                                    strict=True) if not rigid]
     more = " …" if len(freqs) > 8 else ""
@@ -232,8 +235,8 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
         con.print(f"start-up: largest span force {_q(startup, 'max_force_n', units)}; "
                   + startup_times_text(startup))
     if st is not None and "k1" in st:
-        partial = (" (of a start-up record that ends before it settles)"
-                   if startup is not None and not startup["settled"] else "")
+        partial = (f" (cannot be verified: {k1['note']})"
+                   if k1 is not None and k1["status"] == UNVERIFIED else "")
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}{partial}, k2 {fmt(st['k2'])}, k2min "
                   f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
 
