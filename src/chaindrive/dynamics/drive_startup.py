@@ -86,7 +86,7 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
     f_ref = max(model.reference_frequency_hz, tooth_frequency_hz)
     if not f_ref > 0:
         raise DesignError("dynamics", "the model has no elastic mode and no tooth frequency")
-    dt = 1.0 / (STEPS_PER_PERIOD * f_ref)
+    dt = _time_step(f_ref)
     steps = max(1, math.ceil(duration / dt))
     work = work_estimate(model.linear.size, steps)
     if work > WORK_BUDGET:
@@ -120,8 +120,14 @@ def affordable_duration(model: DriveModel, tooth_frequency_hz: float) -> float:
         return 0.0
     n = model.linear.size
     fixed, per_step = work_estimate(n, 0), work_estimate(n, 1) - work_estimate(n, 0)
-    steps = math.floor((WORK_BUDGET - fixed) / per_step)
-    return max(0, steps) / (STEPS_PER_PERIOD * f_ref)
+    steps = math.floor((WORK_BUDGET - fixed) / per_step) - 1  # ceil of the step count: one less
+    return max(0, steps) * _time_step(f_ref)
+
+
+def _time_step(f_ref: float) -> float:
+    """Δt = 1/(160 f_ref) [s] of a start-up at the reference frequency f_ref [Hz] (module
+    docstring)."""
+    return 1.0 / (STEPS_PER_PERIOD * f_ref)
 
 
 def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration: float,
