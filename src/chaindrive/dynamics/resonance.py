@@ -260,7 +260,14 @@ class CampbellData:
         Name → (S,) excitation line [Hz] (shafts, tooth harmonics).
     crossings : tuple of tuple
         (excitation, natural mode index, speed [rpm]) where a line crosses a natural
-        frequency (linear interpolation between grid speeds); mode −1 for a parametric zone.
+        frequency (linear interpolation between grid speeds); the mode index is the column of
+        ``natural_frequencies_hz`` (elastic modes from 0), −1 for a parametric zone, whose
+        excitation is ``"parametric span <i>"`` (spans from 0).
+    rigid_modes : int
+        Rigid-body modes before the elastic ones (the JSON numbers the modes as the
+        resonance table does: the first elastic mode is ``rigid_modes``).
+    span_names : tuple of str
+        Names of the spans ("S1→S2", …; the JSON names a parametric zone's span by it).
     """
 
     speeds_rpm: NDArray[np.float64]
@@ -268,15 +275,25 @@ class CampbellData:
     span_transverse_hz: NDArray[np.float64]
     excitation_hz: dict[str, NDArray[np.float64]]
     crossings: tuple[tuple[str, int, float], ...]
+    rigid_modes: int = 1
+    span_names: tuple[str, ...] = ()
+
+    def _excitation(self, e: str, m: int) -> str:
+        i = e.rsplit(" ", 1)[-1]
+        if m >= 0 or not i.isdigit() or int(i) >= len(self.span_names):
+            return e
+        return f"parametric span {self.span_names[int(i)]}"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
+        """JSON-ready dict: modes numbered as the resonance table (rigid-body modes first,
+        from 0), a parametric zone with mode null and its span by name."""
         return {
             "speeds_rpm": self.speeds_rpm.tolist(),
             "natural_frequencies_hz": self.natural_frequencies_hz.tolist(),
             "span_transverse_frequencies_hz": self.span_transverse_hz.tolist(),
             "excitation_hz": {k: v.tolist() for k, v in self.excitation_hz.items()},
-            "crossings": [{"excitation": e, "mode": m, "speed_rpm": s}
+            "crossings": [{"excitation": self._excitation(e, m),
+                           "mode": m + self.rigid_modes if m >= 0 else None, "speed_rpm": s}
                           for e, m, s in self.crossings],
         }
 
@@ -359,7 +376,9 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                       for _, s in _crossings(w, fz, 2.0 * transverse[:, i:i + 1])]
     rpm = w * 60.0 / TWO_PI
     crossings = [(e, m, float(s * 60.0 / TWO_PI)) for e, m, s in crossings]
-    return CampbellData(rpm, np.array(natural), transverse, lines, tuple(crossings))
+    spans = tuple(f"{a}→{names[(i + 1) % len(names)]}" for i, a in enumerate(names))
+    rigid = int(np.asarray(modal.frequencies_hz).size - modal.elastic_frequencies_hz.size)
+    return CampbellData(rpm, np.array(natural), transverse, lines, tuple(crossings), rigid, spans)
 
 
 #: Half-width of the band round a natural frequency that a working frequency should stay
