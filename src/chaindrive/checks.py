@@ -21,6 +21,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from chaindrive.errors import Quantity
+
 __all__ = ["ALLOWABLE_DYNAMIC_SAFETY", "FAIL", "PASS", "RESONANCE_BAND_PERCENT", "UNVERIFIED",
            "Check", "CheckLimits", "Kind", "Status", "judged", "verdict", "worst"]
 
@@ -68,6 +70,10 @@ class Check:
         The part of the analysis: "chain", "geometry" or "dynamics".
     item : str
         For a check repeated per sprocket, the sprocket (it names the check's ``key``).
+    note_quantities : tuple of Quantity
+        The numbers with units that ``note`` writes (SI;
+        :class:`chaindrive.errors.Quantities`), for a presenter to write in another unit
+        system (:func:`chaindrive.display.quantity_text`).
     """
 
     name: str
@@ -82,6 +88,7 @@ class Check:
     note: str = ""
     part: str = ""
     item: str = ""
+    note_quantities: tuple[Quantity, ...] = ()
 
     @property
     def key(self) -> str:
@@ -135,7 +142,8 @@ class Check:
                 "value": self.shown(self.value), "limit": self.shown(self.limit),
                 "unit": self.unit, "kind": self.kind, "status": self.status,
                 "margin_fraction": None if margin is None or math.isinf(margin) else margin,
-                "source": self.source, "note": self.note, "part": self.part}
+                "source": self.source, "note": self.note, "part": self.part,
+                "note_quantities": [q.to_dict() for q in self.note_quantities]}
 
 
 def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
@@ -164,7 +172,7 @@ def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
 
 def judged(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
            source: str, unit: str = "", scale: float = 1.0, note: str = "", part: str = "",
-           item: str = "") -> Check:
+           item: str = "", note_quantities: tuple[Quantity, ...] = ()) -> Check:
     """A :class:`Check` with its verdict decided by :func:`verdict`.
 
     Parameters
@@ -179,6 +187,8 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         Upper or lower limit.
     scale : float
         Factor from SI to ``unit`` [unit/SI].
+    note_quantities : tuple of Quantity
+        The numbers with units ``note`` writes (:class:`Check`).
 
     Returns
     -------
@@ -186,7 +196,7 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         The check with its status.
     """
     return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
-                 unit, scale, note, part, item)
+                 unit, scale, note, part, item, tuple(note_quantities))
 
 
 def worst(checks: Sequence[Check]) -> Check | None:

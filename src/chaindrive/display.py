@@ -22,10 +22,11 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
-from chaindrive.errors import DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError, Quantity
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -50,12 +51,14 @@ __all__ = [
     "fmt",
     "header",
     "margin_percent",
+    "quantity_text",
     "result_word",
     "show",
     "shown_value",
     "unit_header",
     "unit_of",
     "unit_system",
+    "warning_text",
 ]
 
 UnitSystem = Literal["SI", "US"]
@@ -424,6 +427,94 @@ def shown_value(value: float | None, unit: str) -> tuple[float | None, str]:
     return convert(value, kinds[unit])
 
 
+_SIGNIFICANT = re.compile(r"[1-9][\d.]*")
+
+
+def _significant_digits(number: str) -> int:
+    """Significant digits a number is written with (``"12.1"`` 3, ``"0.47"`` 2,
+    ``"2.16e+08"`` 3, ``"1363"`` 4)."""
+    mantissa = number.lower().partition("e")[0]
+    m = _SIGNIFICANT.search(mantissa)
+    return 1 if m is None else max(1, len(m.group(0).replace(".", "")))
+
+
+def _quantity(q: Quantity | Mapping[str, Any]) -> Quantity:
+    """A quantity of a text, from a :class:`~chaindrive.errors.Quantity` or its JSON dict."""
+    if isinstance(q, Mapping):
+        return Quantity(str(q["text"]), float(q["value_si"]), str(q["kind"]))
+    return Quantity(*q)
+
+
+def quantity_text(text: str, quantities: Iterable[Quantity | Mapping[str, Any]] | None,
+                  system: UnitSystem = "SI") -> str:
+    """A text written in SI (a warning, a note) with each of its quantities written in the
+    unit ``system`` reads them in; in SI, or without quantities, the text unchanged.
+
+    Each quantity (:class:`chaindrive.errors.Quantity`: its text as the SI text writes it,
+    its SI value and kind) replaces the first occurrence of its text not yet replaced (a
+    whole number: ``"1.5 mm"`` is not found in ``"11.5 mm"``); the converted number keeps
+    the significant digits of the SI one (at least 3), by :func:`fmt`. A quantity whose
+    text is not found is left out.
+
+    Parameters
+    ----------
+    text : str
+        The text as the computing module wrote it (SI).
+    quantities : iterable of Quantity or of their JSON dicts, or None
+        The numbers with units it writes (``text``, ``value_si``, ``kind`` in a dict).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The text in ``system``.
+    """
+    items = [_quantity(q) for q in quantities or ()]
+    if system == "SI" or not items or not text:
+        return text
+    taken: list[tuple[int, int, str]] = []
+    for q in items:
+        pattern = re.compile(rf"(?<![\w.]){re.escape(q.text)}(?![\w²³/·])")
+        for m in pattern.finditer(text):
+            if not any(m.start() < end and start < m.end() for start, end, _ in taken):
+                number = q.text.split(" ", 1)[0]
+                digits = max(3, _significant_digits(number))
+                value, unit = convert(q.value, q.kind, system)
+                assert value is not None
+                taken.append((m.start(), m.end(), f"{fmt(clean(value, digits), digits)} {unit}"))
+                break
+    out, pos = [], 0
+    for start, end, shown in sorted(taken):
+        out += [text[pos:start], shown]
+        pos = end
+    return "".join(out) + text[pos:]
+
+
+def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
+                 system: UnitSystem = "SI") -> str:
+    """The text of a warning as a presenter shows it: its message with the numbers with
+    units in the unit ``system`` reads them in (:func:`quantity_text`); in SI the message.
+
+    Parameters
+    ----------
+    warning : ChainDriveWarning or dict
+        The warning (:class:`chaindrive.errors.ChainDriveWarning`) or its JSON dict
+        (:meth:`~chaindrive.errors.ChainDriveWarning.to_dict`: ``message``,
+        ``quantities``).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    str
+        The text to show.
+    """
+    if isinstance(warning, ChainDriveWarning):
+        return quantity_text(warning.message, warning.quantities, system)
+    return quantity_text(str(warning["message"]), warning.get("quantities"), system)
+
+
 def _check_display(check: Check, system: UnitSystem) -> tuple[float, str]:
     """(factor from SI, unit) of a check in ``system``."""
     kind = _CHECK_UNITS.get(check.unit)
@@ -465,7 +556,8 @@ def check_row(check: Check, system: UnitSystem = "SI"
     sep = "" if unit in ("°", "%", "") else " "
     limit = None if check.limit is None else check.limit * factor
     required = "—" if limit is None else f"{sym} {fmt(limit)}{sep}{unit}"
-    label = f"{check.name}: {check.subject}" + (f" ({check.note})" if check.note else "")
+    note = quantity_text(check.note, check.note_quantities, system)
+    label = f"{check.name}: {check.subject}" + (f" ({note})" if note else "")
     value = None if check.value is None else check.value * factor
     return label, value, required, result_word(check), check.source
 

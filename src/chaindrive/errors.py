@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
+from typing import Any, NamedTuple
 
 
 class ChainDriveError(Exception):
@@ -47,6 +48,84 @@ class ConvergenceError(ChainDriveError, RuntimeError):
     """A numerical solution did not converge."""
 
 
+#: Kind of quantity → (the unit a message writes it in, factor from SI to that unit): the SI
+#: units of :data:`chaindrive.display.QUANTITIES`, whose kinds a presenter converts to
+#: another unit system.
+MESSAGE_UNITS: dict[str, tuple[str, float]] = {
+    "length": ("mm", 1e3), "force": ("N", 1.0), "force_k": ("kN", 1e-3), "power": ("kW", 1e-3),
+    "pressure": ("MPa", 1e-6), "velocity": ("m/s", 1.0), "stiffness": ("N/m", 1.0),
+    "mass": ("kg", 1.0), "torque": ("N·m", 1.0), "inertia": ("kg·m²", 1.0),
+    "area": ("mm²", 1e6), "linear_density": ("kg/m", 1.0),
+}
+#: The unit a message writes → its kind of quantity (the inverse of :data:`MESSAGE_UNITS`).
+UNIT_KINDS: dict[str, str] = {unit: kind for kind, (unit, _) in MESSAGE_UNITS.items()}
+
+
+class Quantity(NamedTuple):
+    """A number with a unit in the text of a warning or a note, as the text writes it.
+
+    Parameters
+    ----------
+    text : str
+        The number and its unit exactly as the (SI) text writes them, e.g. ``"12.1 mm"``.
+    value : float
+        The value in SI [the SI unit of ``kind``: m, N, W, Pa, m/s, N/m, kg …].
+    kind : str
+        Its kind of quantity, a key of :data:`MESSAGE_UNITS` and of
+        :data:`chaindrive.display.QUANTITIES` (``"length"``, ``"force"`` …).
+    """
+
+    text: str
+    value: float
+    kind: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: text (SI, as in the message), value_si, kind."""
+        return {"text": self.text, "value_si": self.value, "kind": self.kind}
+
+
+class Quantities:
+    """The numbers with units written into one text, recorded as the text is written, so
+    that the text and its :class:`Quantity` cannot differ.
+
+    Calling it writes a value in its SI message unit and records it::
+
+        q = Quantities()
+        message = f"chain slack {q(slack, 'length', '.1f')} is not taken up"
+        ChainDriveWarning("geometry.slack", "chain", message, q.items)
+    """
+
+    def __init__(self) -> None:
+        self._items: list[Quantity] = []
+
+    def __call__(self, value: float, kind: str, spec: str = ".4g") -> str:
+        """The value as the text writes it, ``"12.1 mm"`` (recorded).
+
+        Parameters
+        ----------
+        value : float
+            The value in SI [the SI unit of ``kind``].
+        kind : str
+            Its kind of quantity (a key of :data:`MESSAGE_UNITS`).
+        spec : str
+            The format of the number in the message's unit (``".1f"``, ``".3g"`` …).
+
+        Returns
+        -------
+        str
+            The number in the unit of :data:`MESSAGE_UNITS` and that unit.
+        """
+        unit, factor = MESSAGE_UNITS[kind]
+        text = f"{value * factor:{spec}} {unit}"
+        self._items.append(Quantity(text, float(value), kind))
+        return text
+
+    @property
+    def items(self) -> tuple[Quantity, ...]:
+        """The quantities written so far, in the order written."""
+        return tuple(self._items)
+
+
 class ChainDriveWarning(UserWarning):
     """An engineering warning carried on a result: what it is about and what to do.
 
@@ -59,27 +138,36 @@ class ChainDriveWarning(UserWarning):
         The field or part of the design it concerns, e.g. ``"sprockets[S1]"`` or
         ``"strength"``.
     message : str
-        One line for the designer, with the figures.
+        One line for the designer, with the figures (in SI).
+    quantities : tuple of Quantity
+        The numbers with units that ``message`` writes (:class:`Quantities`), so that a
+        presenter can write them in another unit system
+        (:func:`chaindrive.display.warning_text`); empty when it writes none.
 
     The results keep them in ``warnings`` tuples; ``to_dict()`` writes them with their code,
-    and ``warnings.warn(w)`` works too (it is a :class:`UserWarning`).
+    and ``warnings.warn(w)`` works too (it is a :class:`UserWarning`). Two warnings are equal
+    when code, part and message are (the quantities restate the message's numbers).
     """
 
-    def __init__(self, code: str, part: str, message: str) -> None:
+    def __init__(self, code: str, part: str, message: str,
+                 quantities: Iterable[Quantity] = ()) -> None:
         super().__init__(message)
         self.code = code
         self.part = part
         self.message = message
+        self.quantities: tuple[Quantity, ...] = tuple(Quantity(*q) for q in quantities)
 
     def __str__(self) -> str:
         return self.message
 
-    def __reduce__(self) -> tuple[type, tuple[str, str, str]]:
-        """Pickle by (code, part, message), so results that carry warnings cross processes."""
-        return type(self), (self.code, self.part, self.message)
+    def __reduce__(self) -> tuple[type, tuple[str, str, str, tuple[Quantity, ...]]]:
+        """Pickle by (code, part, message, quantities), so results that carry warnings
+        cross processes."""
+        return type(self), (self.code, self.part, self.message, self.quantities)
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}({self.code!r}, {self.part!r}, {self.message!r})"
+        more = f", {self.quantities!r}" if self.quantities else ""
+        return f"{type(self).__name__}({self.code!r}, {self.part!r}, {self.message!r}{more})"
 
     def __eq__(self, other: object) -> bool:
         return (isinstance(other, ChainDriveWarning)
@@ -88,9 +176,11 @@ class ChainDriveWarning(UserWarning):
     def __hash__(self) -> int:
         return hash((self.code, self.part, self.message))
 
-    def to_dict(self) -> dict[str, str]:
-        """JSON-ready dict: code, part, message."""
-        return {"code": self.code, "part": self.part, "message": self.message}
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: code, part, message (SI) and the quantities it writes (each its
+        text, SI value and kind: :meth:`Quantity.to_dict`)."""
+        return {"code": self.code, "part": self.part, "message": self.message,
+                "quantities": [q.to_dict() for q in self.quantities]}
 
 
 def closest(name: str, choices: Iterable[str]) -> str | None:

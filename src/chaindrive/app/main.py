@@ -52,8 +52,8 @@ from chaindrive.app.state import (
 )
 from chaindrive.app.table import sprocket_table
 from chaindrive.app.uploads import Uploads, design_text
-from chaindrive.app.views import Screen, check_records
-from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt
+from chaindrive.app.views import Check, Screen, check_records, checks
+from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt, warning_text
 from chaindrive.errors import ChainDriveError
 from chaindrive.model import ROLES, SIDES
 
@@ -457,30 +457,40 @@ def _headline(screen: Screen) -> None:
     st.session_state["previous_numbers"] = n
 
 
+def _checks(screen: Screen) -> tuple[Check, ...]:
+    """The checks of the screen in the page's unit system (the screen holds them in SI)."""
+    units, analysis = _units(), screen.outcome.analysis
+    if units == "SI" or analysis is None or not screen.checks:
+        return screen.checks
+    return tuple(checks(analysis, units))
+
+
 def _verdict(screen: Screen) -> None:
     """The verdict of the checks and each one that does not pass."""
-    failed = [c for c in screen.checks if not c.passed]
+    shown = _checks(screen)
+    failed = [c for c in shown if not c.passed]
     with st.container(key="verdict"):
         if not failed:
-            st.success(f"All {len(screen.checks)} checks pass.")
+            st.success(f"All {len(shown)} checks pass.")
         for c in failed:
             st.error(c.line)
 
 
 def _warnings(screen: Screen) -> None:
-    """The warnings of the analysis (from its document)."""
-    warnings = (screen.document or {}).get("warnings", [])
+    """The warnings of the analysis (from its document), in the page's unit system."""
+    warnings, units = (screen.document or {}).get("warnings", []), _units()
     with st.container(key="warnings"):
         if not warnings:
             st.caption("No warnings.")
         for w in warnings:
-            st.warning(w["message"], icon="⚠️")
+            st.warning(warning_text(w, units), icon="⚠️")
 
 
 def _check_table(screen: Screen) -> None:
-    if screen.checks:
-        st.dataframe(check_records(list(screen.checks)), hide_index=True, width="stretch",
-                     height=min(35 * (len(screen.checks) + 1) + 3, 320),
+    shown = _checks(screen)
+    if shown:
+        st.dataframe(check_records(list(shown)), hide_index=True, width="stretch",
+                     height=min(35 * (len(shown) + 1) + 3, 320),
                      column_config={"check": st.column_config.TextColumn("check",
                                                                          width="large")})
 

@@ -29,7 +29,7 @@ from chaindrive.app.views import (
     sprocket_records,
     strength_records,
 )
-from chaindrive.display import UnitSystem, convert, fmt, header
+from chaindrive.display import UnitSystem, convert, fmt, header, quantity_text, warning_text
 from chaindrive.errors import ChainDriveError
 from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
 from chaindrive.plotting.robust import (
@@ -133,7 +133,9 @@ def tab_strength(screen: Screen) -> None:
     doc, units = screen.document or {}, _units()
     sel = doc.get("selection")
     if sel is not None:
-        st.write(f"Selection by **{sel['method']}**: {sel['chain'] or sel['shortfall']}")
+        what = sel["chain"] or quantity_text(sel["shortfall"], sel.get("shortfall_quantities"),
+                                             units)
+        st.write(f"Selection by **{sel['method']}**: {what}")
         st.dataframe(selection_records(sel, units), hide_index=True, width="stretch")
     st_doc = doc.get("strength")
     if st_doc is None:
@@ -248,7 +250,7 @@ def tab_startup(screen: Screen) -> None:
                 "verified, or fails if already below [k]")
     for w in full.warnings:
         if w.code.startswith("dynamics.startup"):
-            st.warning(w.message)
+            st.warning(warning_text(w, _units()))
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
     frame = pd.DataFrame(result.span_forces[::step] * (factor or 1.0), columns=names,

@@ -22,7 +22,9 @@ from chaindrive.display import (
     fmt,
     header,
     margin_percent,
+    quantity_text,
     unit_header,
+    warning_text,
 )
 
 if TYPE_CHECKING:
@@ -168,12 +170,17 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
     if doc["selection"] is not None:
         sel = doc["selection"]
         con.print(f"selection ({escape(sel['method'])}): "
-                  f"{escape(sel['chain'] or sel['shortfall'])}")
+                  f"{escape(sel['chain'] or _shortfall(sel, units))}")
     k1 = next((c for c in doc["checks"] if c["key"] == "k1"), None)
     _print_dynamics(con, doc["dynamics"], doc["strength"], units, k1)
     print_checks(con, checks, units)
     for w in doc["warnings"]:
-        con.print(f"[yellow]warning:[/yellow] {escape(w['message'])}")
+        con.print(f"[yellow]warning:[/yellow] {escape(warning_text(w, units))}")
+
+
+def _shortfall(selection: dict[str, Any], units: UnitSystem) -> str:
+    """The selection's shortfall (no chain passes) in ``units``."""
+    return quantity_text(selection["shortfall"], selection.get("shortfall_quantities"), units)
 
 
 def _doc_table(title: str, cols: Sequence[tuple[str, str]], items: Sequence[dict[str, Any]],
@@ -277,8 +284,9 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
     life = "—" if st["wear_life_h"] is None else f"{fmt(st['wear_life_h'])} h"
     extrapolated = " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""
     if st["rated_power_w"] is not None:
+        note = quantity_text(st["rating_note"], st.get("rating_note_quantities"), units)
         con.print(f"rated power {_q(st, 'rated_power_w', units)} by {escape(st['rating_method'])} — "
-                  f"{escape(st['rating_note'])}")
+                  f"{escape(note)}")
     con.print(f"hinge pressure {_q(st, 'hinge_pressure_mpa', units)} (allowable "
               f"{'—' if allowed is None else _q(st, 'allowable_pressure_mpa', units)}), static "
               f"safety factor {fmt(st['safety_factor_static'])} (allowable "
@@ -365,7 +373,7 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
         con.print(f"selected: [bold]{escape(doc['chain'])}[/bold]{same} "
                   f"({escape(doc['method'])})")
     else:
-        con.print(f"[red]{escape(doc['shortfall'])}[/red]")
+        con.print(f"[red]{escape(_shortfall(doc, units))}[/red]")
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
                     "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 
 from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
+from chaindrive.errors import Quantities
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.runup import RunUp
@@ -213,7 +214,8 @@ def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal
         total = total + np.asarray(loads, float)
     worst = float(np.max(total))
     value = breaking_load / worst if worst > 0 else None
+    q = Quantities()
+    note = f"largest span load {q(worst, 'force', '.4g')} with the disturbances' peaks added"
     return judged("k2 with disturbances", "steady motion with " + " and ".join(
         k.replace("_", " ") for k in disturbances), value, allowable, "min",
-        "[MultimassChainDrives, §3.6]", part="dynamics",
-        note=f"largest span load {worst:.4g} N with the disturbances' peaks added")
+        "[MultimassChainDrives, §3.6]", part="dynamics", note=note, note_quantities=q.items)

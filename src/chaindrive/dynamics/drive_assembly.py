@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
 from chaindrive.dynamics.torsional_engine import TorsionalEngine
-from chaindrive.errors import DesignError
+from chaindrive.errors import DesignError, Quantities, Quantity
 from chaindrive.strength.loads import power_shares
 
 if TYPE_CHECKING:
@@ -407,6 +407,9 @@ class DriveParts:
         What the model rests on (estimates, approximations).
     trains : dict
         Sprocket name → its train as plain data (for the JSON document).
+    note_quantities : tuple of Quantity
+        The numbers with units the notes write (SI; :class:`chaindrive.errors.Quantities`),
+        for a presenter to write in another unit system.
     """
 
     torsional: TorsionalEngine
@@ -433,6 +436,7 @@ class DriveParts:
     driver_index: int
     notes: tuple[str, ...] = ()
     trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
+    note_quantities: tuple[Quantity, ...] = ()
 
 
 def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters,
@@ -497,13 +501,15 @@ def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters
         _rotor_inertia(drive, rated_power, rated_speed)
     if j_rotor > 0:
         t.add_inertia_to(motor_node, j_rotor)
+    said = Quantities()
     if estimated:
-        notes.append(f"the motor's rotor inertia {j_rotor:.4g} kg·m² is estimated from its "
-                     "rated power and speed [MotiveDelphi] (a factor 2 either way)")
+        notes.append(f"the motor's rotor inertia {said(j_rotor, 'inertia', '.4g')} is estimated "
+                     "from its rated power and speed [MotiveDelphi] (a factor 2 either way)")
     system = t.system()
     T, lin, massed_index = _condensed(system, notes)
-    return _placements(drive, t, system, T, lin, massed_index, trains, speeds, R, Rbar, ring,
-                       rated_power, rated_speed, j_rotor, estimated, notes)
+    parts = _placements(drive, t, system, T, lin, massed_index, trains, speeds, R, Rbar, ring,
+                        rated_power, rated_speed, j_rotor, estimated, notes)
+    return replace(parts, note_quantities=said.items)
 
 
 def _condensed(system: TorsionalSystem, notes: list[str]

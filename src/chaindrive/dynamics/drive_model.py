@@ -150,6 +150,7 @@ class DriveModel(DriveParts):
             "complete": self.complete,
             "missing": list(self.missing),
             "notes": list(self.notes),
+            "note_quantities": [q.to_dict() for q in self.note_quantities],
             "degrees_of_freedom": self.linear.size,
             "nodes": self.torsional.to_dict()["nodes"],
             "trains": self.trains,

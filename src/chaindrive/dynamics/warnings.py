@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from chaindrive.errors import ChainDriveWarning
+from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 
 if TYPE_CHECKING:
@@ -54,7 +54,8 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
         frequency), ``dynamics.hinge-friction-extrapolated``.
     """
     out = list(model.warnings())
-    out += [ChainDriveWarning("dynamics.estimate", "motor.rotor_inertia", note)
+    out += [ChainDriveWarning("dynamics.estimate", "motor.rotor_inertia", note,
+                              [q for q in model.note_quantities if q.text in note])
             for note in model.notes if "estimated" in note]
     sag = model.ring.sag_factors
     if assumed_sag and sag is not None and float(min(sag)) < SAG_DOMINATED:
@@ -65,14 +66,15 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
             f"down to {100 * float(min(sag)):.2g} % of their taut stiffness (∝ T³): the natural "
             "frequencies follow the sag; give the installed sag ([chain] sag)"))
     if computed_link_stiffness and sag is not None and float(max(sag)) >= ELASTIC_DOMINATED:
+        q = Quantities()
         out.append(ChainDriveWarning(
             "dynamics.estimate", "chain.link_stiffness",
             f"the link stiffness is computed from the plates and the pin "
-            f"({model.ring.link_stiffness_n_per_m:.3g} N/m; the contact of pin, bush and "
-            "roller left out, so an upper bound), and spans keeping up to "
+            f"({q(model.ring.link_stiffness_n_per_m, 'stiffness', '.3g')}; the contact of pin, "
+            "bush and roller left out, so an upper bound), and spans keeping up to "
             f"{100 * float(max(sag)):.3g} % of their taut stiffness follow it: the natural "
             "frequencies are upper bounds too; give the maker's measured value ([chain] "
-            "link_stiffness)"))
+            "link_stiffness)", q.items))
     inside = bands.resonances_inside
     if inside:
         pct = f"{100 * bands.uncertainty:g}"

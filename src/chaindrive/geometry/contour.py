@@ -57,7 +57,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, GeometryError
+from chaindrive.errors import (
+    ChainDriveWarning,
+    ConvergenceError,
+    DesignError,
+    GeometryError,
+    Quantities,
+)
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sag import DEFAULT_SAG_RATIO, sag_of_slack, slack_for_sag
 from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
@@ -748,10 +754,12 @@ def _geometry_warnings(drive: Drive, sprockets: list[SprocketGeometry], slack: f
         tension = (f"the span tensions and the dynamics assume a sag of "
                    f"{100 * DEFAULT_SAG_RATIO:g} % ([chain] sag not given)" if given is None
                    else f"[chain] sag gives {100 * given:.3g} %")
+        q = Quantities()
         out.append(ChainDriveWarning(
             "geometry.slack", "chain",
-            f"chain slack {slack * 1e3:.1f} mm ({slack / drive.chain.pitch:.2f} pitches) is "
-            f"not taken up: in the slack span ({slack_span * 1e3:.0f} mm) it hangs in a sag of "
-            f"{sag * 1e3:.1f} mm ({100 * sag / slack_span:.3g} %), while {tension}; mark a "
-            "sprocket adjustable, add a tensioner or give the installed sag"))
+            f"chain slack {q(slack, 'length', '.1f')} ({slack / drive.chain.pitch:.2f} "
+            f"pitches) is not taken up: in the slack span ({q(slack_span, 'length', '.0f')}) "
+            f"it hangs in a sag of {q(sag, 'length', '.1f')} ({100 * sag / slack_span:.3g} "
+            f"%), while {tension}; mark a sprocket adjustable, add a tensioner or give the "
+            "installed sag", q.items))
     return out

@@ -13,7 +13,14 @@ from collections.abc import Collection, Sequence
 from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
-from chaindrive.display import check_row, check_unit, fmt, margin_percent
+from chaindrive.display import (
+    check_row,
+    check_unit,
+    fmt,
+    margin_percent,
+    quantity_text,
+    warning_text,
+)
 from chaindrive.plotting import (
     chain_speed,
     contour_layout,
@@ -54,7 +61,8 @@ def _check_cells(c: Check, inp: ReportInput) -> tuple[Any, ...]:
     unit = check_unit(c, inp.units)
     sep = "" if unit in ("°", "%", "") else " "
     shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
-    name = c.name + (f" ({c.note})" if c.note and not c.passed else "")
+    note = quantity_text(c.note, c.note_quantities, inp.units)
+    name = c.name + (f" ({note})" if note and not c.passed else "")
     return name, c.subject, shown, required, margin_percent(c), result, readable_source(source)
 
 
@@ -125,8 +133,9 @@ def _estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
         if w.code not in ESTIMATE_CODES:
             continue
         what = ESTIMATED_PARTS.get(w.part)
-        out.append(f"{what} (the warning above)." if what and w.message in shown
-                   else _sentence(w.message))
+        text = warning_text(w, inp.units)
+        out.append(f"{what} (the warning above)." if what and text in shown
+                   else _sentence(text))
     if d.service_factor is None:
         st = a.strength
         used = ("" if st is None else f": the strength checks take the operating factor "
@@ -179,7 +188,7 @@ def summary_section(inp: ReportInput) -> list[Block]:
                         ("check", "subject", "value", "required", "margin, %", "result",
                          "source"), rows([_check_cells(c, inp) for c in gov]),
                         tuple(i for i, c in enumerate(gov) if not c.passed)))
-    warnings = [w.message for w in a.warnings] + inp.notes
+    warnings = [warning_text(w, inp.units) for w in a.warnings] + inp.notes
     shown = warnings if len(warnings) <= FIRST_WARNINGS else warnings[:FIRST_WARNINGS - 1]
     blocks.append(Text(f"Warnings ({len(warnings)})" if warnings else "No warnings.", "text"))
     blocks += [Text(w, "warning") for w in shown]
@@ -444,7 +453,7 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
     doc = sel.to_dict()
     cands = doc["candidates"][:10]
     head = (f"Selected ({doc['method']}): {doc['chain']}." if doc["chain"] is not None
-            else f"{doc['shortfall']}.")
+            else f"{quantity_text(doc['shortfall'], doc['shortfall_quantities'], inp.units)}.")
     return [Text(f"{head} The analysis uses the design chain "
                  f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain "
                  "keeps it). Each chain of the family is checked on this drive by the method "
@@ -500,10 +509,10 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
                       else ""), "L_h", doc["wear_life_h"], "h")]
     names = [s.name for s in inp.analysis.drive.sprockets]
     spans = [f"{s.start_name}→{s.end_name}" for s in inp.analysis.geometry.spans]
+    rating = quantity_text(doc["rating_note"], doc["rating_note_quantities"], inp.units)
     blocks += [
         Table("Loads and strength", ("quantity", "symbol", "value", "unit"), rows(items)),
-        *([Text(f"Rating: {doc['rating_note']}.")] if st.rated_power is not None
-          and doc["rating_note"] else []),
+        *([Text(f"Rating: {rating}.")] if st.rated_power is not None and rating else []),
         Table("Span tensions and shaft loads", ("span", inp.col("F_R", "force"), "sprocket",
                                                 inp.col("F_s", "force")),
               rows([(sp, inp.val(t, "force"), n, inp.val(f, "force")) for sp, t, n, f in zip(
@@ -565,10 +574,11 @@ def checks_section(inp: ReportInput) -> list[Block]:
                                    "result", "source"),
                         rows([_check_cells(c, inp) for c in checks]),
                         tuple(i for i, c in enumerate(checks) if not c.passed)))
-    notes = [f"{c.name} ({c.subject}): {c.note}" for c in checks if c.note and c.passed]
+    notes = [f"{c.name} ({c.subject}): {quantity_text(c.note, c.note_quantities, inp.units)}"
+             for c in checks if c.note and c.passed]
     if notes:
         blocks.append(Text("Notes: " + "; ".join(notes) + ".", "note"))
-    warnings = [w.message for w in inp.analysis.warnings] + inp.notes
+    warnings = [warning_text(w, inp.units) for w in inp.analysis.warnings] + inp.notes
     if warnings:
         blocks.append(Text(f"Warnings ({len(warnings)})", "text"))
         blocks += [Text(w, "item") for w in warnings]

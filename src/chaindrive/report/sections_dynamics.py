@@ -9,7 +9,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from chaindrive.display import constraint_row, unit_header
+from chaindrive.display import constraint_row, show, unit_header
 from chaindrive.plotting import (
     absorption_vs_amplitude,
     afc_curves,
@@ -373,12 +373,13 @@ def damping_section(inp: ReportInput) -> list[Block] | None:
     if not results:
         return None
     a = results[0].span_length
+    span = f"{a * 1e3:.0f} mm" if inp.units == "SI" else show(a, "length", inp.units, 3)
     return [*inp.define("psi"),
             Text("Asked for (--study hinge-friction): the dynamics of this report uses the "
                  "damping ratio ζ; the hinge-friction model gives ψ from a chain's empirical "
                  "coefficients, known only for the reference chain of "
                  "[ChainHingeDissipation] (GOST ПР-12,7). The curves are for that chain at "
-                 f"the paper's conditions (span of 49 hinges, a = {a * 1e3:.0f} mm), not for "
+                 f"the paper's conditions (span of 49 hinges, a = {span}), not for "
                  "the chain of this drive.", "note"),
             plot_block(absorption_vs_amplitude(list(results)),
                        "Absorption coefficient ψ against the amplitude ȳ₀ (reference chain)",

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError, Quantities, Quantity
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import ke_method, ratings
@@ -70,6 +70,9 @@ class StrengthResult:
     rating_note : str
         Which method governs and what the other gives beside it
         (:attr:`chaindrive.strength.ratings.RatingResult.note`).
+    rating_note_quantities : tuple of Quantity
+        The numbers with units ``rating_note`` writes (SI), for a presenter to write in
+        another unit system.
     """
 
     loads: LoadsResult
@@ -85,6 +88,7 @@ class StrengthResult:
     warnings: tuple[ChainDriveWarning, ...] = ()
     rating_method: str = ""
     rating_note: str = ""
+    rating_note_quantities: tuple[Quantity, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (the ``strength`` block of ``analyze --json``)."""
@@ -101,6 +105,7 @@ class StrengthResult:
             "rated_power_w": self.rated_power,
             "rating_method": self.rating_method,
             "rating_note": self.rating_note,
+            "rating_note_quantities": [q.to_dict() for q in self.rating_note_quantities],
             "wear_life_h": self.wear_life_h,
             "wear_life_extrapolated": (None if self.wear_life_h is None
                                        else is_extrapolated(self.wear_life_h)),
@@ -161,10 +166,12 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     area, estimated = ke_method.bearing_area(spec)
     warnings: list[ChainDriveWarning] = []
     if estimated:
+        q = Quantities()
         warnings.append(ChainDriveWarning(
             "strength.bearing-area-estimated", "chain",
             f"{spec.designation}: no bearing area in the catalogue; estimated "
-            f"A = {area * 1e6:.1f} mm² (mр·d2·B, chaindrive.catalog.bearing_area_estimate)"))
+            f"A = {q(area, 'area', '.1f')} (mр·d2·B, chaindrive.catalog.bearing_area_estimate)",
+            q.items))
     pressure = hinge_pressure(loads.peripheral_force, ke, area)
     s = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                              loads.centrifugal_tension, dynamic_factor)
@@ -191,4 +198,5 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     # a pressure or safety beyond its limit, or outside the tables, is a failed check of
     # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,
-                          life, elongation, tuple(warnings), rating.method, rating.note)
+                          life, elongation, tuple(warnings), rating.method, rating.note,
+                          rating.note_quantities)

@@ -36,6 +36,7 @@ from __future__ import annotations
 import math
 
 from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Status, judged, verdict, worst
+from chaindrive.errors import Quantity
 from chaindrive.strength.ke_method import MPA
 from chaindrive.strength.wear import BASIS_LIFE_H
 from chaindrive.units import RAD_S_TO_RPM
@@ -157,7 +158,7 @@ def speed_limit_check(subject: str, speed: float, max_speed: float | None, sourc
 
 
 def power_rating_check(subject: str, rated: float | None, design: float, source: str,
-                       note: str = "") -> Check:
+                       note: str = "", *, note_quantities: tuple[Quantity, ...] = ()) -> Check:
     """Rated power of the chain ≥ the design power P·K_s·n_d.
 
     Parameters
@@ -172,6 +173,8 @@ def power_rating_check(subject: str, rated: float | None, design: float, source:
         The rule's reference key.
     note : str
         What the verdict rests on.
+    note_quantities : tuple of Quantity
+        The numbers with units ``note`` writes (SI; :class:`chaindrive.checks.Check`).
 
     Returns
     -------
@@ -185,7 +188,7 @@ def power_rating_check(subject: str, rated: float | None, design: float, source:
     if rated is None:
         note = note or "no rating for this chain at this speed"
     return judged("power rating", subject, rated, design, "min", source, "kW", 1e-3, note,
-                  "chain")
+                  "chain", note_quantities=note_quantities)
 
 
 def wear_life_check(subject: str, life_h: float | None, required_h: float = BASIS_LIFE_H,

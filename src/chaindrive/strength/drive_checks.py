@@ -144,7 +144,8 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     design = drive.power * s.service_factor * s.design_factor
     rating = ratings.chain_rating(spec, teeth, speed)
     out = [ck.power_rating_check(name, rating.rated_power, design, rating.source,
-                                 f"{rating.method}: {rating.note}")]
+                                 f"{rating.method}: {rating.note}",
+                                 note_quantities=rating.note_quantities)]
     life = (None if rating.rated_power is None else
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
     if s.required_life_h is None:  # the life the rating promises for this chain length

@@ -39,6 +39,7 @@ from functools import cache
 from importlib import resources
 from typing import Any
 
+from chaindrive.errors import Quantities, Quantity
 from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823
 from chaindrive.units import RAD_S_TO_RPM
@@ -263,6 +264,9 @@ class RatingResult:
         Every other method computed.
     note : str
         Why this method governs.
+    note_quantities : tuple of Quantity
+        The numbers with units ``note`` writes (SI; :class:`chaindrive.errors.Quantities`),
+        for a presenter to write in another unit system.
     """
 
     chain: str
@@ -272,11 +276,13 @@ class RatingResult:
     source: str
     alternatives: tuple[Alternative, ...] = ()
     note: str = ""
+    note_quantities: tuple[Quantity, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary."""
         return {"chain": self.chain, "method": self.method, "rated_power_w": self.rated_power,
                 "envelope": self.envelope, "source": self.source, "note": self.note,
+                "note_quantities": [q.to_dict() for q in self.note_quantities],
                 "alternatives": [a.to_dict() for a in self.alternatives]}
 
 
@@ -332,12 +338,13 @@ def chain_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 1
         strands = (iso10823.strand_factor(chain.strands)
                    if str(chain.strands) in iso10823.data()["strand_factor"] else None)
         if table is not None and strands is not None:
+            q = Quantities()
             beside = ("no value" if aca is None else
-                      f"{aca[0] / 1e3:.4g} kW beside it ({aca[1]} envelope)")
+                      f"{q(aca[0], 'power', '.4g')} beside it ({aca[1]} envelope)")
             return RatingResult(chain.designation, B_TABLE, table[0] * strands, "table",
                                 table[1], (aca_alt,),
                                 "B-series chain: the published B-series table governs; the "
-                                f"ACA formulas (ANSI proportions) give {beside}")
+                                f"ACA formulas (ANSI proportions) give {beside}", q.items)
         b_alt = Alternative(B_TABLE, None, METHOD_SOURCES[B_TABLE],
                             "no printed B-series rating at this speed")
         note = ("B-series chain without a printed B-series rating at this speed: the ACA "

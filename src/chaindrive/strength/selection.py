@@ -23,7 +23,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from chaindrive.catalog import chains
-from chaindrive.errors import DesignError
+from chaindrive.errors import UNIT_KINDS, DesignError, Quantities, Quantity
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
@@ -194,13 +194,31 @@ class SelectionResult:
 
     def shortfall(self) -> str:
         """One sentence: no chain passes; the closest and the checks it misses."""
+        return self.shortfall_with_quantities()[0]
+
+    def shortfall_with_quantities(self) -> tuple[str, tuple[Quantity, ...]]:
+        """:meth:`shortfall` and the numbers with units it writes (SI;
+        :class:`chaindrive.errors.Quantities`), for a presenter to write in another unit
+        system.
+
+        Returns
+        -------
+        text : str
+            The sentence (SI).
+        quantities : tuple of Quantity
+            Its numbers with units: the values and limits of the missed checks, then those
+            of the notes it quotes.
+        """
         best = self.closest
         if best is None:
-            return "no candidate chain"
-        missed = "; ".join(_missed_text(c) for c in best.missed)
+            return "no candidate chain", ()
+        q = Quantities()
+        parts = [_missed_text(c, q) for c in best.missed]
+        missed = "; ".join(text for text, _ in parts)
+        quantities = (*q.items, *(n for _, notes in parts for n in notes))
         return (f"no chain passes every check: the closest is {best.designation} "
                 f"({best.method}), which misses {missed}; try more strands, a larger pitch, "
-                "another series or a change to the layout")
+                "another series or a change to the layout"), quantities
 
     def top(self, n: int) -> tuple[Candidate, ...]:
         """The head of the ranking.
@@ -235,11 +253,13 @@ class SelectionResult:
         """
         chosen, closest = self.chosen, self.closest
         shown = self.candidates if top is None else self.top(top)
+        shortfall = ("", ()) if chosen is not None else self.shortfall_with_quantities()
         return {"chain": None if chosen is None else chosen.designation,
                 "ansi_number": None if chosen is None else self._ansi_twin(chosen.designation),
                 "method": self.method,
                 "closest": None if closest is None else closest.to_dict(),
-                "shortfall": None if chosen is not None else self.shortfall(),
+                "shortfall": None if chosen is not None else shortfall[0],
+                "shortfall_quantities": [q.to_dict() for q in shortfall[1]],
                 "candidate_count": len(self.candidates),
                 "candidates": [{**c.to_dict(with_checks=False),
                                 "ansi_number": self._ansi_twin(c.designation)} for c in shown],
@@ -251,13 +271,17 @@ class SelectionResult:
         return None if spec is None else spec.ansi_twin
 
 
-def _missed_text(c: ck.Check) -> str:
+def _missed_text(c: ck.Check, q: Quantities) -> tuple[str, tuple[Quantity, ...]]:
+    """A missed check as the shortfall writes it, value and limit in its unit (recorded in
+    ``q`` when they have a kind of quantity), and the quantities of the note it quotes."""
     if c.status == ck.UNVERIFIED or c.value is None or c.limit is None:
-        return f"{c.name} ({c.status}: {c.note})"
-    value = "?" if c.value is None else f"{c.value * c.scale:.4g}"
-    limit = "?" if c.limit is None else f"{c.limit * c.scale:.4g}"
+        return f"{c.name} ({c.status}: {c.note})", c.note_quantities
     rel = "≤" if c.kind == "max" else "≥"
-    return f"{c.name} {value} {c.unit} (required {rel} {limit} {c.unit})".replace("  ", " ")
+    kind = UNIT_KINDS.get(c.unit)
+    if kind is not None:
+        return f"{c.name} {q(c.value, kind)} (required {rel} {q(c.limit, kind)})", ()
+    value, limit = f"{c.value * c.scale:.4g}", f"{c.limit * c.scale:.4g}"
+    return f"{c.name} {value} {c.unit} (required {rel} {limit} {c.unit})".replace("  ", " "), ()
 
 
 def _closeness(c: Candidate) -> tuple[bool, int, float]:
