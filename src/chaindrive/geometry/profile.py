@@ -8,8 +8,11 @@ Tooth profiles (from the dimensions of :mod:`chaindrive.geometry.sprocket`):
   over β, the straight part FC, and the head arc r2 centred at
   O2 = 1.24·d1·(cos 180°/z, sin 180°/z) up to the tip circle De (drawn without the offset
   e of the root-arc centres, which GOST 591 permits);
-* ISO 606 [ISO606] (mean of the minimum and maximum tooth-gap forms): seating arc ri over the seating
-  angle α, then the convex flank arc re tangent to it, up to the tip circle da (mean).
+* ISO 606 [ISO606] (between the minimum and maximum tooth-gap forms): seating arc ri over
+  the seating angle α, then the convex flank arc re tangent to it, up to the tip circle da
+  (mean); re and α are the means of the two forms, ri the one that puts the root d − 2·ri in
+  the middle of the root-diameter tolerance of ISO 606 (d_f = d − d1, upper deviation 0),
+  as far as ri,min … ri,max allow (:func:`iso606_drawn_seating_radius`).
 
 The profile of a tooth gap is drawn in a frame at the seat centre (x along the tangent, y
 radial outward); teeth end on the tip circle or where the flanks of neighbouring gaps meet.
@@ -25,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
+from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import (
     Gost591ToothForm,
     PolymericProportions,
@@ -39,10 +43,14 @@ from chaindrive.model import Drive
 
 __all__ = [
     "BORE_RATIO",
+    "ISO606_ROOT_LOWER_DEVIATIONS_MM",
+    "IT11_UM",
     "SprocketProfile",
     "gost591_gap_wall",
     "hub_limit_diameter",
+    "iso606_drawn_seating_radius",
     "iso606_gap_wall",
+    "iso606_root_diameter_tolerance",
     "outline_of",
     "sprocket_outline",
     "sprocket_profiles",
@@ -92,8 +100,93 @@ def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.fl
     return wall
 
 
+#: ISO 606 root-diameter tolerance: upper deviation 0, lower deviation by the root diameter
+#: d_f, as (d_f up to [mm], lower deviation [mm]); above the last row h11 [ISO606].
+ISO606_ROOT_LOWER_DEVIATIONS_MM: tuple[tuple[float, float], ...] = ((127.0, -0.25), (250.0, -0.30))
+
+#: Standard tolerance IT11 [µm] for nominal sizes (over, up to] [mm] from 250 mm, the sizes
+#: ISO 606 tolerances by h11 [ISO286-1, Table 1].
+IT11_UM: tuple[tuple[float, float, float], ...] = (
+    (250, 315, 320), (315, 400, 360), (400, 500, 400), (500, 630, 440), (630, 800, 500),
+    (800, 1000, 560), (1000, 1250, 660), (1250, 1600, 780), (1600, 2000, 920),
+    (2000, 2500, 1100), (2500, 3150, 1350),
+)
+
+
+def iso606_root_diameter_tolerance(root_diameter: float) -> tuple[float, float, str]:
+    """ISO 606 deviations of a sprocket's root diameter d_f = d − d1: upper deviation 0, lower
+    deviation −0.25 mm up to d_f = 127 mm, −0.30 mm up to 250 mm, h11 above [ISO606].
+
+    Above 3150 mm (the end of the IT11 table of ISO 286-1) the tolerance is the standard's
+    formula 100·i with the tolerance unit i = 0.004·D + 2.1 µm at D = d_f.
+
+    Parameters
+    ----------
+    root_diameter : float
+        d_f [m].
+
+    Returns
+    -------
+    tuple of (float, float, str)
+        Upper and lower deviation [m] and the ISO 286 tolerance class ("h11", or "" where
+        ISO 606 gives the deviations in millimetres).
+
+    Raises
+    ------
+    DesignError
+        ``root_diameter`` not positive.
+
+    References
+    ----------
+    [ISO606]; [ISO286-1, Table 1] (IT11).
+    """
+    df_mm = root_diameter * 1e3
+    if not df_mm > 0:
+        raise DesignError("root_diameter", f"must be positive, got {root_diameter!r}")
+    for up_to, lower in ISO606_ROOT_LOWER_DEVIATIONS_MM:
+        if df_mm <= up_to:
+            return 0.0, lower * 1e-3, ""
+    it11 = next((t for _, up_to, t in IT11_UM if df_mm <= up_to),
+                100.0 * (0.004 * df_mm + 2.1))
+    return 0.0, -it11 * 1e-6, "h11"
+
+
+def iso606_drawn_seating_radius(form: ToothForm) -> float:
+    """The seating radius ri an ISO 606 outline is drawn with: the one that puts the root
+    d − 2·ri in the middle of what both the root-diameter tolerance (d_f = d − d1, upper
+    deviation 0, :func:`iso606_root_diameter_tolerance`) and the seating-radius limits
+    ri,min … ri,max allow [ISO606].
+
+    Both limits hold together when 0.01·d1 (ri,min = 0.505·d1 puts the root 0.01·d1 below
+    d_f) is within the lower deviation, as for every chain up to a roller of 25 mm; for a
+    larger roller the outline is drawn with ri,min, its root the closest to the tolerance.
+
+    Parameters
+    ----------
+    form : ToothForm
+        The tooth-form limits (dimensions [m]).
+
+    Returns
+    -------
+    float
+        ri [m], between ri,min and ri,max.
+
+    References
+    ----------
+    [ISO606].
+    """
+    d = form.pitch_diameter
+    _, lower, _ = iso606_root_diameter_tolerance(form.root_diameter)
+    high = min(form.root_diameter, d - 2 * form.seating_radius_min)
+    low = max(form.root_diameter + lower, d - 2 * form.seating_radius_max)
+    root = 0.5 * (low + high) if low <= high else high
+    return 0.5 * (d - root)
+
+
 def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
-    """The left wall of an ISO 606 tooth gap (mean form) in the seat frame.
+    """The left wall of an ISO 606 tooth gap in the seat frame, between the two tooth-gap
+    forms: the means of their flank radius and seating angle, the seating radius of
+    :func:`iso606_drawn_seating_radius` (the root within its tolerance).
 
     Seating arc ri over half the seating angle, then the convex flank re tangent to it.
 
@@ -113,7 +206,7 @@ def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
     ----------
     [ISO606].
     """
-    ri, re = form.seating_radius_mean, form.flank_radius_mean
+    ri, re = iso606_drawn_seating_radius(form), form.flank_radius_mean
     half = 0.25 * (form.seating_angle_min + form.seating_angle_max)
     t = np.linspace(0.0, half, samples)
     seat = ri * np.column_stack([-np.sin(t), -np.cos(t)])
@@ -255,6 +348,12 @@ class SprocketProfile:
         Bore [m]: the polymeric body's, else 0.19·z·p/π [MultimassChainDrives, §3.4].
     hub_limit_diameter : float
         The largest hub the chain's inner plates clear [m] (:func:`hub_limit_diameter`).
+    root_deviations : tuple of float
+        Upper and lower deviation of the root diameter [m] by the tooth-form standard
+        (ISO 606: :func:`iso606_root_diameter_tolerance`; (0, 0): not compiled, GOST 591).
+    root_tolerance_class : str
+        The ISO 286 class of those deviations ("h11"), or "" when the standard gives them in
+        millimetres or they are not compiled.
     """
 
     name: str
@@ -268,6 +367,8 @@ class SprocketProfile:
     standard: str = "ISO 606"
     bore_diameter: float = 0.0
     hub_limit_diameter: float = 0.0
+    root_deviations: tuple[float, float] = (0.0, 0.0)
+    root_tolerance_class: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (the tooth form in mm and degrees)."""
@@ -307,10 +408,13 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
                                          transverse_pitch=spec.transverse_pitch)
         bore = (body.bore_diameter if body is not None
                 else BORE_RATIO * s.teeth * spec.pitch / math.pi)
+        gost = isinstance(form, Gost591ToothForm)
+        upper, lower, grade = ((0.0, 0.0, "") if gost
+                               else iso606_root_diameter_tolerance(form.root_diameter))
         out.append(SprocketProfile(
             s.name, form, outline_of(form), mat.name, mat.is_polymer, body, mass, mat.density,
-            "GOST 591" if isinstance(form, Gost591ToothForm) else "ISO 606", bore,
-            hub_limit_diameter(spec.pitch, s.teeth, spec.plate_depth)))
+            "GOST 591" if gost else "ISO 606", bore,
+            hub_limit_diameter(spec.pitch, s.teeth, spec.plate_depth), (upper, lower), grade))
     return tuple(out)
 
 
