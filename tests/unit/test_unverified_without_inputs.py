@@ -31,3 +31,15 @@ def test_k1_of_an_incomplete_model_cannot_be_verified() -> None:
     k1 = a.check("k1")
     assert k1 is not None and k1.status == UNVERIFIED and "incomplete" in k1.note
     assert any(w.code == "dynamics.model-incomplete" for w in a.warnings)
+
+
+def test_polymer_sprockets_are_said_to_be_unchecked() -> None:
+    """No tooth-load model exists for a polymer sprocket: the analysis says so, naming them,
+    instead of listing the steel drive's checks as if they covered the sprockets."""
+    a = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket_polymer.toml"),
+                           response=False)
+    polymer = [w for w in a.warnings if w.code == "strength.polymer-sprocket"]
+    assert len(polymer) == 1 and all(s.name in polymer[0].message for s in a.drive.sprockets)
+    steel = chaindrive.analyze(chaindrive.load(EXAMPLES / "two_sprocket_jindal.toml"),
+                               response=False)
+    assert not any(w.code == "strength.polymer-sprocket" for w in steel.warnings)
