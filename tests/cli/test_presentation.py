@@ -83,3 +83,14 @@ def test_dynamic_loads_in_the_unit_system() -> None:
     peak = doc["dynamics"]["startup"]["max_force_n"] / 4.4482216152605
     assert f"largest dynamic span load {fmt(steady)} lbf" in us
     assert f"largest span force {fmt(peak)} lbf" in us
+
+
+def test_quick_verdict_says_what_it_left_out() -> None:
+    """`analyze --quick` computes no dynamic response: its verdict says k1, k2 and k2min were
+    not computed, the full analysis says nothing of the kind."""
+    quick = run_cli("analyze", str(SEED), "--quick")
+    assert quick.returncode == 0, quick.stderr
+    assert "k1, k2 and k2min were not computed" in " ".join(quick.stdout.split())
+    full = run_cli("analyze", str(SEED))
+    assert full.returncode == 0, full.stderr
+    assert "were not computed" not in " ".join(full.stdout.split())

@@ -121,7 +121,7 @@ def analyze(
     if as_json:
         _write_json(document)
         return
-    tables.print_analysis(document, result.checks(), system)
+    tables.print_analysis(document, result.checks(), system, quick=quick)
 
 
 @app.command()

@@ -119,8 +119,8 @@ def _q(doc: dict[str, Any], key: str, units: UnitSystem, digits: int = 4) -> str
     return fmt(value, digits) if value is None or not unit else f"{fmt(value, digits)} {unit}"
 
 
-def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSystem = "SI"
-                   ) -> None:
+def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSystem = "SI",
+                   *, quick: bool = False) -> None:
     """Readable tables of an analysis document (values in ``units``) on stdout.
 
     Parameters
@@ -131,6 +131,9 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         Its checks (:meth:`chaindrive.analysis.Analysis.checks`).
     units : {"SI", "US"}
         The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    quick : bool
+        True for an analysis without the dynamic response: the verdict says which checks it
+        leaves out.
     """
     con = console()
     d, g, k = doc["drive"], doc["geometry"], doc["kinematics"]
@@ -173,7 +176,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
                   f"{escape(sel['chain'] or _shortfall(sel, units))}")
     k1 = next((c for c in doc["checks"] if c["key"] == "k1"), None)
     _print_dynamics(con, doc["dynamics"], doc["strength"], units, k1)
-    print_checks(con, checks, units)
+    print_checks(con, checks, units, left_out=QUICK_LEFT_OUT if quick else "")
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {escape(warning_text(w, units))}")
 
@@ -190,9 +193,16 @@ def _doc_table(title: str, cols: Sequence[tuple[str, str]], items: Sequence[dict
                  [[doc_value(key, item[key], units)[0] for _, key in cols] for item in items])
 
 
-def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI") -> None:
+#: What a quick analysis (``--quick``) leaves out, said beside its verdict.
+QUICK_LEFT_OUT = ("quick: the dynamic response and its checks k1, k2 and k2min were not "
+                  "computed")
+
+
+def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI",
+                 left_out: str = "") -> None:
     """The verdict and the table of checks, failed and unverifiable ones first; the margin
-    is :attr:`chaindrive.checks.Check.margin_fraction` in per cent (≥ 0 passes).
+    is :attr:`chaindrive.checks.Check.margin_fraction` in per cent (≥ 0 passes); ``left_out``
+    (what the analysis did not check) is said beside the verdict.
 
     Parameters
     ----------
@@ -202,12 +212,16 @@ def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI"
         The checks of the analysis.
     units : {"SI", "US"}
         The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    left_out : str
+        What the analysis left unchecked ("": nothing).
     """
     failed = [c for c in checks if not c.passed]
+    besides = f" ({escape(left_out)})" if left_out else ""
     if failed:
-        con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]")
+        con.print(f"[bold red]{len(failed)} of {len(checks)} checks do not pass[/bold red]"
+                  f"{besides}")
     else:
-        con.print(f"[bold green]all {len(checks)} checks pass[/bold green]")
+        con.print(f"[bold green]all {len(checks)} checks pass[/bold green]{besides}")
     rows = []
     for c in sorted(checks, key=lambda c: c.passed):
         _, value, required, result, source = check_row(c, units)
