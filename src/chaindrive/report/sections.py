@@ -285,10 +285,13 @@ def inputs_section(inp: ReportInput) -> list[Block]:
     blocks.append(Table(
         "Sprockets as given (positions after the take-up)",
         ("name", "role", "teeth z", inp.col("x", "length"), inp.col("y", "length"), "side",
-         "speed n, rpm", "adjustable", "material", inp.col("inertia", "inertia")),
+         "speed n, rpm", "adjustable", "material", inp.col("inertia", "inertia"),
+         inp.col("reduced mass", "mass"), "power share", "load law"),
         rows([(s.name, s.role, s.teeth, inp.val(s.x, "length"), inp.val(s.y, "length"),
                s.side, inp.val(s.speed, "speed"), s.adjustable, s.material,
-               inp.val(s.inertia, "inertia")) for s in d.sprockets])))
+               inp.val(s.inertia, "inertia"), inp.val(s.reduced_mass, "mass"),
+               s.power_share, s.load) for s in d.sprockets])))
+    blocks += _motor_and_trains(inp)
     dyn = d.dynamics
     blocks.append(Table("Dynamics settings ([dynamics])", ("setting", "value"), rows([
         ("harmonics of the tooth frequency in the polygonal excitation (steady response)",
@@ -298,6 +301,46 @@ def inputs_section(inp: ReportInput) -> list[Block]:
          if dyn.startup_duration is None else dyn.startup_duration),
         ("motor law", dyn.motor), ("resistance law", dyn.resistance)])))
     return blocks
+
+
+def _motor_and_trains(inp: ReportInput) -> list[Block]:
+    """The motor as the model uses it (given values, defaults and the rotor inertia, said when
+    estimated) and every element of the sprockets' trains, as given."""
+    a, d = inp.analysis, inp.analysis.drive
+    out: list[Block] = []
+    placed = a.drive_model.motor if d.power is not None else None
+    if d.motor is not None:
+        m, dyn = d.motor, d.dynamics
+
+        def given(value: Any, default: str) -> Any:
+            return default if value is None else value
+
+        inertia = None if placed is None else placed.rotor_inertia
+        out.append(Table("Motor ([motor]; what is not given, from [dynamics] or the drive)",
+                         ("quantity", "value", "unit"), rows([
+            ("law", given(None if m is None else m.law, f"{dyn.motor} ([dynamics])"), ""),
+            ("rated power", inp.val(d.power if m is None or m.rated_power is None
+                                    else m.rated_power, "power"), inp.unit("power")),
+            ("rated speed", "the driver's speed through its train" if m is None
+             or m.rated_speed is None else inp.val(m.rated_speed, "speed"), "rpm"),
+            ("rotor inertia" + (" (estimated)" if placed is not None and placed.estimated
+                                else ""), inp.val(inertia, "inertia"), inp.unit("inertia")),
+            ("breakdown ratio λ = M_k/M_r", dyn.breakdown_ratio if m is None
+             or m.breakdown_ratio is None else m.breakdown_ratio, ""),
+            ("critical slip s_k", dyn.critical_slip if m is None or m.critical_slip is None
+             else m.critical_slip, "")])))
+    elements = [(s.name, e) for s in d.sprockets for e in s.train]
+    if elements:
+        out.append(Table(
+            "Trains of the sprockets (in order from the sprocket outward)",
+            ("sprocket", "element", "name", inp.col("inertia", "inertia"),
+             inp.col("stiffness", "torsional_stiffness"),
+             inp.col("damping", "torsional_damping"), "ratio", "efficiency"),
+            rows([(sp, e.kind, e.name or "", inp.val(e.inertia, "inertia"),
+                   inp.val(e.stiffness, "torsional_stiffness"),
+                   inp.val(e.damping, "torsional_damping"), e.ratio, e.efficiency)
+                  for sp, e in elements])))
+    return out
 
 
 # --- geometry and kinematics -----------------------------------------------------------------
