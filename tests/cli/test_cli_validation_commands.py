@@ -110,6 +110,13 @@ def test_robust_samples_above_the_file_limit_is_refused_before_any_work() -> Non
                       "got 100000000", "from 8 to 1048576")
 
 
+@pytest.mark.parametrize("workers", ["0", "-2"])
+def test_robust_workers_must_be_at_least_one(capsys: pytest.CaptureFixture[str],
+                                             workers: str) -> None:
+    status, out, err = cli(capsys, "robust", JINDAL, "--modal", "--workers", workers)
+    assert_user_error(status, out, err, "--workers", workers, "1<=x<=256")
+
+
 def test_robust_wear_is_named_as_the_option(capsys: pytest.CaptureFixture[str]) -> None:
     status, out, err = cli(capsys, "robust", JINDAL, "--modal", "--wear", "bogus")
     assert_user_error(status, out, err, "--wear:", "'bogus'", '"life"')

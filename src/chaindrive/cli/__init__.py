@@ -458,7 +458,8 @@ def robust(
         "--db", help="study database URL; the states run on Dask (a local cluster unless "
         "--scheduler) and a rerun resumes from it")] = None,
     workers: Annotated[int | None, typer.Option(
-        "--workers", help="workers of the local Dask cluster (implies Dask)")] = None,
+        "--workers", help="workers of the local Dask cluster (implies Dask)", min=1,
+        max=256)] = None,
 ) -> None:
     """Robust design over the chain's life: the life curve as the chain wears, the
     probability of failing each check over the tolerances, and which tolerance matters
