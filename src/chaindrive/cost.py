@@ -318,8 +318,8 @@ def cost_breakdown(drive: Drive, chain_length: float, sprocket_masses: Iterable[
     cm = model or default_cost_model()
     m = drive.chain.contours
     items = []
-    for s, mass in zip(drive.sprockets, sprocket_masses, strict=True):
-        family = find_material(s.material).family
+    for i, (s, mass) in enumerate(zip(drive.sprockets, sprocket_masses, strict=True)):
+        family = find_material(s.material, field=f"sprockets[{i}].material").family
         basis, est = _estimated(cm, "material_per_kg", "manufacturing_per_kg", "per_tooth")
         items.append(CostItem(s.name, "sprocket", family, float(mass) * m, "kg",
                               m * cm.sprocket_price(family, float(mass), s.teeth), basis, est))

@@ -113,8 +113,8 @@ def sprocket_body_masses(drive: Drive) -> NDArray[np.float64]:
     """
     spec = drive.chain.spec
     out = []
-    for s in drive.sprockets:
-        mat = find_material(s.material)
+    for i, s in enumerate(drive.sprockets):
+        mat = find_material(s.material, field=f"sprockets[{i}].material")
         out.append(sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
                                              mat.is_polymer, strands=spec.strands,
                                              transverse_pitch=spec.transverse_pitch).mass)

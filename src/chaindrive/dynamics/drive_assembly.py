@@ -337,7 +337,7 @@ def _rotor_inertia(drive: Drive, rated_power: float, rated_speed: float
     s = drive.dynamics
     lam = m.breakdown_ratio or s.breakdown_ratio
     sk = m.critical_slip or s.critical_slip
-    synchronous = rated_speed / (1.0 - sk * (lam - math.sqrt(lam * lam - 1.0)))
+    synchronous = KlossMotor(rated_power, rated_speed, lam, sk).synchronous_speed
     try:
         return estimated_rotor_inertia(rated_power, synchronous).inertia_kg_m2, True
     except DesignError as exc:

@@ -398,9 +398,9 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
     """
     spec = drive.chain.spec
     out = []
-    for s in drive.sprockets:
+    for i, s in enumerate(drive.sprockets):
         form = tooth_form_of(drive, s.teeth)
-        mat = find_material(s.material)
+        mat = find_material(s.material, field=f"sprockets[{i}].material")
         body = (polymeric_sprocket_proportions(spec.pitch, s.teeth, spec.inner_width)
                 if mat.is_polymer else None)
         mass = sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,

@@ -196,7 +196,8 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
             f"chain material {spec.material!r}: the steel tables of allowable hinge pressure "
             "and safety factor and the wear-life model do not apply; check the material's "
             "limits"))
-    polymer = [sp.name for sp in drive.sprockets if find_material(sp.material).is_polymer]
+    polymer = [sp.name for i, sp in enumerate(drive.sprockets)
+               if find_material(sp.material, field=f"sprockets[{i}].material").is_polymer]
     if polymer:
         warnings.append(ChainDriveWarning(
             "strength.polymer-sprocket", "sprockets",
