@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from chaindrive.display import QUANTITIES, UnitSystem
+
 if TYPE_CHECKING:
     from collections.abc import Iterable
 
@@ -77,3 +79,26 @@ def labels_of(items: Iterable[object]) -> list[str]:
         Their names.
     """
     return [str(getattr(i, "name", i)) for i in items]
+
+
+def scale(kind: str, units: UnitSystem = "SI") -> tuple[float, str]:
+    """Factor from SI and unit symbol of a kind of quantity in a unit system, as
+    :mod:`chaindrive.display` defines them: plotted value = SI value × factor.
+
+    Parameters
+    ----------
+    kind : str
+        A kind of quantity of :data:`chaindrive.display.QUANTITIES` (``"length"``,
+        ``"force"``, ``"velocity"`` …).
+    units : {"SI", "US"}
+        The output unit system.
+
+    Returns
+    -------
+    factor : float
+        From the SI unit of ``kind`` (m, N, m/s …) to the unit shown [unit / SI unit].
+    unit : str
+        The unit's symbol (``"mm"``, ``"in"``, ``"lbf"`` …).
+    """
+    shown = QUANTITIES[kind][units]
+    return shown.factor, shown.unit

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.plotting._base import CYCLE, figure_axes, finish
+from chaindrive.display import UnitSystem, fmt
+from chaindrive.plotting._base import CYCLE, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -18,7 +19,7 @@ if TYPE_CHECKING:
 
 
 def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
-                            ax: Axes | None = None) -> Figure:
+                            ax: Axes | None = None, units: UnitSystem = "SI") -> Figure:
     """ψ = 6πfd₂/(ȳ₀aK_aF) ([ChainHingeDissipation, eq. 14]) against ȳ₀, one curve per tension F₀ [N].
 
     results : :class:`chaindrive.dynamics.damping.HingeFrictionResult` over a grid of (F₀, ȳ₀),
@@ -31,6 +32,9 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
         Results over a grid of (F₀, ȳ₀).
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the tensions F₀ in the legend: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -38,12 +42,14 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.0, 3.8))
+    factor, unit = scale("force", units)
     tensions = sorted({r.tension for r in results})
     for k, f0 in enumerate(tensions):
         rows = sorted((r for r in results if r.tension == f0), key=lambda r: r.relative_amplitude)
         y = np.array([r.relative_amplitude for r in rows])
         psi = np.array([r.absorption_coefficient for r in rows])
-        ax.plot(y, psi, "o-", ms=3, color=CYCLE[k % len(CYCLE)], label=f"F₀ = {f0:g} N")
+        ax.plot(y, psi, "o-", ms=3, color=CYCLE[k % len(CYCLE)], label=f"F₀ = {f0:g} N" if units == "SI"
+                else f"F₀ = {fmt(f0 * factor)} {unit}")
     ax.set_xlabel("relative amplitude ȳ₀ = y₀/a")
     ax.set_ylabel("absorption coefficient ψ")
     right = ax.secondary_yaxis("right", functions=(lambda p: np.asarray(p) / (4 * np.pi),

@@ -6,8 +6,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.display import fmt
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, figure_axes, finish
+from chaindrive.display import UnitSystem, fmt
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -17,9 +17,11 @@ if TYPE_CHECKING:
     from chaindrive.kinematics import KinematicsResult
 
 
-def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figure:
-    """Instantaneous chain speed v = R₁ω₁cos β [m/s] over one tooth period of the driver
-    ([ChainNonUniformity, eq. 6]), with the mean speed v̄ = z₁pω₁/2π dashed. x: driver rotation β [°].
+def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None,
+                units: UnitSystem = "SI") -> Figure:
+    """Instantaneous chain speed v = R₁ω₁cos β [m/s, or ft/min with ``units="US"``] over one tooth period of
+    the driver ([ChainNonUniformity, eq. 6]), with the mean speed v̄ = z₁pω₁/2π dashed. x: driver rotation β
+    [°].
 
     Parameters
     ----------
@@ -27,6 +29,9 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figu
         The drive's kinematics (speed traces of the tight span).
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the speed axis: m/s (SI) or ft/min (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"velocity"``).
 
     Returns
     -------
@@ -34,12 +39,15 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None) -> Figu
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
+    factor, unit = scale("velocity", units)
     beta = np.degrees(kinematics.phase)
-    ax.plot(beta, kinematics.chain_speed_trace, color=CHAIN, lw=1.6, label="v(β)")
-    ax.axhline(kinematics.chain_speed, color=GREY, ls="--", lw=1.0,
-               label=f"mean {kinematics.chain_speed:.3f} m/s")
+    mean = kinematics.chain_speed * factor
+    ax.plot(beta, np.asarray(kinematics.chain_speed_trace) * factor, color=CHAIN, lw=1.6,
+            label="v(β)")
+    ax.axhline(mean, color=GREY, ls="--", lw=1.0,
+               label=f"mean {mean:.3f} {unit}" if units == "SI" else f"mean {fmt(mean)} {unit}")
     ax.set_xlabel("driver rotation within one tooth β, °")
-    ax.set_ylabel("chain speed, m/s")
+    ax.set_ylabel(f"chain speed, {unit}")
     ax.legend(fontsize="x-small")
     finish(ax, "Chain speed over a tooth period")
     return fig

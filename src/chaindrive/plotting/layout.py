@@ -1,5 +1,5 @@
 """The contour to scale: sprockets (pitch and tip circles, centre marks), spans, wrap arcs,
-direction of travel and labels (millimetres)."""
+direction of travel and labels (millimetres, or inches in the US customary system)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.plotting._base import CHAIN, GREY, PITCH, TIGHT, figure_axes, finish
+from chaindrive.display import UnitSystem
+from chaindrive.plotting._base import CHAIN, GREY, PITCH, TIGHT, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -17,7 +18,7 @@ if TYPE_CHECKING:
 
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
 
-MM = 1e3  # metres → millimetres
+MM = 1e3  # metres → millimetres (the SI drawing; other systems: display's length factor)
 
 
 def wrap_arc_points(s: SprocketGeometry, samples: int = 60) -> np.ndarray:
@@ -42,7 +43,8 @@ def wrap_arc_points(s: SprocketGeometry, samples: int = 60) -> np.ndarray:
                             s.y + s.pitch_radius * np.sin(angles)])
 
 
-def _sprocket(ax: Axes, s: SprocketGeometry, label: bool) -> None:
+def _sprocket(ax: Axes, s: SprocketGeometry, label: bool, MM: float = MM) -> None:
+    """One sprocket, drawn with MM the factor from metres to the drawing's length unit."""
     from matplotlib.patches import Circle
 
     c = (s.x * MM, s.y * MM)
@@ -78,10 +80,10 @@ def _below_xlabel(ax: Axes) -> Transform:
 
 
 def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
-                   labels: bool = True) -> Figure:
-    """The contour of a drive to scale [mm]: tip circles (grey discs), pitch circles
-    (dash-dot), centre marks, the chain (blue, the tight span orange) with an arrow per span in
-    the direction of travel, and sprocket names with tooth counts.
+                   labels: bool = True, units: UnitSystem = "SI") -> Figure:
+    """The contour of a drive to scale [mm, or in with ``units="US"``]: tip circles (grey discs), pitch
+    circles (dash-dot), centre marks, the chain (blue, the tight span orange) with an arrow per span in the
+    direction of travel, and sprocket names with tooth counts.
 
     Parameters
     ----------
@@ -91,6 +93,9 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
         Axes to draw into (None: a new figure).
     labels : bool
         True writes the sprocket names and tooth counts.
+    units : {"SI", "US"}
+        Unit system of the axes and of the chain length in the title: mm (SI) or in (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"length"``).
 
     Returns
     -------
@@ -98,22 +103,25 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, _figsize(geometry))
+    MM, unit = scale("length", units)  # metres → the drawing's unit
+    arrow = MM / 1e3  # the arrows' 1 mm half-length in the drawing's unit
     for s in geometry.sprockets:
-        _sprocket(ax, s, labels)
+        _sprocket(ax, s, labels, MM)
     for span in geometry.spans:
         (x0, y0), (x1, y1) = span.start_point, span.end_point
         colour = TIGHT if span.tight else CHAIN
         ax.plot([x0 * MM, x1 * MM], [y0 * MM, y1 * MM], color=colour, lw=1.6)
         xm, ym = 0.5 * (x0 + x1) * MM, 0.5 * (y0 + y1) * MM
         dx, dy = span.direction
+        dx, dy = dx * arrow, dy * arrow
         ax.annotate("", xy=(xm + dx, ym + dy), xytext=(xm - dx, ym - dy),
                     arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.2,
                                 "mutation_scale": 14})
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.06)  # room for the labels of the outermost sprockets
     ax.autoscale_view()
-    ax.set_xlabel("x, mm")
-    ax.set_ylabel("y, mm")
+    ax.set_xlabel(f"x, {unit}")
+    ax.set_ylabel(f"y, {unit}")
     ax.plot([], [], color=TIGHT, lw=1.6, label="tight span")
     ax.plot([], [], color=CHAIN, lw=1.6, label="chain (wrap arcs, spans)")
     ax.plot([], [], color=PITCH, lw=0.8, ls="-.", label="pitch circles")
@@ -122,5 +130,5 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3, fontsize="x-small",
               frameon=False, bbox_transform=_below_xlabel(ax))
     finish(ax, f"Contour layout ({geometry.links} links, "
-           f"{geometry.chain_length * MM:.1f} mm of chain)")
+           f"{geometry.chain_length * MM:.1f} {unit} of chain)")
     return fig

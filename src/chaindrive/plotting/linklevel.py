@@ -10,7 +10,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish
+from chaindrive.display import UnitSystem
+from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -30,10 +31,12 @@ def _sample(result: LinkLevelResult, time_s: float | None) -> int:
     return int(np.argmin(np.abs(result.times - time_s)))
 
 
-def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float) -> None:
+def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float,
+          units: UnitSystem = "SI") -> None:
     """One frame on ``ax``: pitch and tip circles with the gap centres, links coloured by
     tension, rollers (filled where in contact); transverse deviations from the nominal
-    spans multiplied by ``magnify``."""
+    spans multiplied by ``magnify``. Positions in display's ``"distance"`` unit, tensions
+    (and vmax, already converted) in its ``"force"`` unit of ``units``."""
     from matplotlib.collections import LineCollection
 
     model, geometry = result.model, result.geometry
@@ -49,16 +52,19 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
             on = ((along > 0) & (along < span.length) & (np.abs(across) < 2.0 * model.pitch)
                   & (result.contact_sprocket[k] < 0))
             pos[on] = a + np.outer(along[on], u) + np.outer(magnify * across[on], normal)
+    m, _ = scale("distance", units)
+    f, _ = scale("force", units)
+    pos = pos * m
     for i, g in enumerate(geometry.sprockets):
-        ax.add_patch(_circle((g.x, g.y), model.tip_radii[i], GREY, 0.6))
-        ax.add_patch(_circle((g.x, g.y), g.pitch_radius, GREY, 0.3, dashed=True))
+        x, y, r = g.x * m, g.y * m, g.pitch_radius * m
+        ax.add_patch(_circle((x, y), model.tip_radii[i] * m, GREY, 0.6))
+        ax.add_patch(_circle((x, y), r, GREY, 0.3, dashed=True))
         angle = result.angles[k, i] + 2 * math.pi * np.arange(g.teeth) / g.teeth
-        ax.plot(g.x + g.pitch_radius * np.cos(angle), g.y + g.pitch_radius * np.sin(angle),
-                ".", color=GREY, markersize=2)
-        ax.annotate(g.name, (g.x, g.y), ha="center", va="center", fontsize="small")
+        ax.plot(x + r * np.cos(angle), y + r * np.sin(angle), ".", color=GREY, markersize=2)
+        ax.annotate(g.name, (x, y), ha="center", va="center", fontsize="small")
     segments = np.stack([pos, np.roll(pos, -1, axis=0)], axis=1)
     lines = LineCollection(list(segments), cmap="viridis", linewidths=1.5)
-    lines.set_array(result.link_tensions[k])
+    lines.set_array(result.link_tensions[k] * f)
     lines.set_clim(0.0, vmax)
     ax.add_collection(lines)
     touching = result.contact_sprocket[k] >= 0
@@ -79,7 +85,7 @@ def _circle(centre: tuple[float, float], radius: float, color: str, alpha: float
 
 
 def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axes | None = None,
-                magnify: float = 1.0) -> Figure:
+                magnify: float = 1.0, units: UnitSystem = "SI") -> Figure:
     """The chain at the recorded instant nearest ``time_s`` [s] (None: the last): sprockets
     (tip and pitch circles, gap centres), links coloured by tension [N], rollers in contact
     filled; ``magnify`` scales the transverse deviations of the free rollers within two
@@ -95,6 +101,9 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
         Axes to draw into (None: a new figure).
     magnify : float
         Scale of the transverse deviations of the free rollers [-].
+    units : {"SI", "US"}
+        Unit system: positions in m (SI) or ft (US), link tensions in N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kinds ``"distance"`` and ``"force"``).
 
     Returns
     -------
@@ -103,16 +112,17 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     """
     fig, ax = figure_axes(ax, (7.0, 4.0))
     k = _sample(result, time_s)
-    vmax = float(max(result.link_tensions[k].max(), 1.0))
-    _draw(result, k, ax, vmax, magnify)
-    _colorbar(fig, ax, vmax)
+    vmax = float(max(result.link_tensions[k].max(), 1.0)) * scale("force", units)[0]
+    _draw(result, k, ax, vmax, magnify, units)
+    _colorbar(fig, ax, vmax, units=units)
     finish(ax, None, grid=False)
     ax.set_title(f"Link-level model, t = {result.times[k] * 1e3:.1f} ms")
     return fig
 
 
 def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
-                 columns: int | None = None, magnify: float = 1.0) -> Figure:
+                 columns: int | None = None, magnify: float = 1.0,
+                 units: UnitSystem = "SI") -> Figure:
     """A sequence of frames (one axes per instant, :func:`chain_frame`), on one tension
     scale. Each frame is sized to the contour's aspect.
 
@@ -127,6 +137,9 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
         else two).
     magnify : float
         Scale of the transverse deviations of the free rollers [-].
+    units : {"SI", "US"}
+        Unit system: positions in m (SI) or ft (US), link tensions in N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kinds ``"distance"`` and ``"force"``).
 
     Returns
     -------
@@ -145,27 +158,30 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
     height = min(max(width / aspect, 0.8), 4.0) + 0.45  # the drawing, its title and ticks
     fig = Figure(figsize=(8.0, height * rows), layout="constrained")
     axes = fig.subplots(rows, columns, squeeze=False)
-    vmax = float(max(result.link_tensions[idx].max(), 1.0))
+    vmax = float(max(result.link_tensions[idx].max(), 1.0)) * scale("force", units)[0]
     for ax, k in zip(axes.ravel(), idx, strict=False):
-        _draw(result, k, ax, vmax, magnify)
+        _draw(result, k, ax, vmax, magnify, units)
         ax.tick_params(labelsize="x-small")
     for ax in axes.ravel()[len(idx):]:
         ax.set_visible(False)
-    _colorbar(fig, axes.ravel()[0], vmax, axes=list(axes.ravel()))
+    _colorbar(fig, axes.ravel()[0], vmax, axes=list(axes.ravel()), units=units)
     return fig
 
 
-def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None) -> None:
+def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None,
+              units: UnitSystem = "SI") -> None:
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import Normalize
 
     mappable = ScalarMappable(Normalize(0.0, vmax), cmap="viridis")
-    fig.colorbar(mappable, ax=axes or ax, label="link tension [N]", shrink=0.8)
+    fig.colorbar(mappable, ax=axes or ax, label=f"link tension [{scale('force', units)[1]}]",
+                 shrink=0.8)
 
 
-def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
-    """Mean contact force on the rollers at each place of every sprocket's wrap (place 0
-    where the chain arrives) over the steady window, one line per sprocket.
+def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None,
+                units: UnitSystem = "SI") -> Figure:
+    """Mean contact force [N, or lbf with ``units="US"``] on the rollers at each place of every sprocket's
+    wrap (place 0 where the chain arrives) over the steady window, one line per sprocket.
 
     Parameters
     ----------
@@ -173,6 +189,9 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
         A link-level run.
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the link tensions: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -180,11 +199,12 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None) -> Figure:
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
+    factor, unit = scale("force", units)
     for i, (name, loads) in enumerate(zip(result.names, result.tooth_loads, strict=True)):
-        ax.plot(np.arange(loads.size), loads, "o-", color=CYCLE[i % len(CYCLE)], label=name,
+        ax.plot(np.arange(loads.size), loads * factor, "o-", color=CYCLE[i % len(CYCLE)], label=name,
                 markersize=3)
     ax.set_xlabel("place on the wrap (from the chain's arrival)")
-    ax.set_ylabel("mean tooth load [N]")
+    ax.set_ylabel(f"mean tooth load [{unit}]")
     ax.legend(fontsize="x-small", ncol=2)
     finish(ax, "Tooth load distribution")
     return fig
@@ -210,8 +230,8 @@ def frame_times(result: LinkLevelResult, count: int = 4) -> list[float]:
 
 
 def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None = None, *,
-                        ax: Axes | None = None) -> Figure:
-    """The tension of every link along the chain [N] at recorded instants (None:
+                        ax: Axes | None = None, units: UnitSystem = "SI") -> Figure:
+    """The tension of every link along the chain [N, or lbf with ``units="US"``] at recorded instants (None:
     :func:`frame_times`), links numbered as assembled (link i joins rollers i and i + 1).
 
     Parameters
@@ -222,6 +242,9 @@ def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None
         The instants [s] (None: :func:`frame_times`).
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the link tensions: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -229,14 +252,15 @@ def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.4, 3.4))
+    factor, unit = scale("force", units)
     times = frame_times(result) if times_s is None else list(times_s)
     links = np.arange(result.link_tensions.shape[1])
     for j, t in enumerate(times):
         k = _sample(result, t)
-        ax.plot(links, result.link_tensions[k], color=CYCLE[j % len(CYCLE)], linewidth=1.0,
+        ax.plot(links, result.link_tensions[k] * factor, color=CYCLE[j % len(CYCLE)], linewidth=1.0,
                 label=f"t = {result.times[k] * 1e3:.1f} ms")
     ax.set_xlabel("link along the chain")
-    ax.set_ylabel("link tension [N]")
+    ax.set_ylabel(f"link tension [{unit}]")
     ax.legend(fontsize="x-small")
     finish(ax, "Link tension along the chain")
     return fig

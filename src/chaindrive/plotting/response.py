@@ -18,8 +18,8 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.display import RAD_S_TO_RPM, fmt
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish
+from chaindrive.display import RAD_S_TO_RPM, UnitSystem, fmt
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -76,13 +76,13 @@ def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
 
 
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
-                        names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
-    """Span forces F_i(t) [N] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), the
-    largest one F₁max marked and labelled, the settling time as a dashed vertical line
-    (:func:`chaindrive.dynamics.startup.transient_times`; the title says when the record
-    ends before the forces settle). names label the spans. When the
-    start-up settles within a fifth of the record the time axis ends at 4× the settling
-    time (the title says so).
+                        names: Sequence[str] | None = None, max_lines: int = 6,
+                        units: UnitSystem = "SI") -> Figure:
+    """Span forces F_i(t) [N, or lbf with ``units="US"``] during the start-up against time [ms]
+    ([MultimassChainDrives, Fig. 2]), the largest one F₁max marked and labelled, the settling time as a dashed
+    vertical line (:func:`chaindrive.dynamics.startup.transient_times`; the title says when the record ends
+    before the forces settle). names label the spans. When the start-up settles within a fifth of the record
+    the time axis ends at 4× the settling time (the title says so).
 
     Parameters
     ----------
@@ -94,6 +94,9 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
         Labels of the spans (None: numbered).
     max_lines : int
         Spans drawn at most (those of the largest peaks) [-].
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -101,18 +104,19 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
+    factor, unit = scale("force", units)
     t = np.asarray(startup.times) * 1e3
-    F = np.asarray(startup.span_forces)
+    F = np.asarray(startup.span_forces) * factor
     labels = _labels(F.shape[1], names, "span ")
     _curves(ax, t, F, labels, max_lines)
     # F₁max as the result holds it (the peak over every step, not only the recorded ones),
     # written by the rule of the tables, at the recorded peak of its span
-    peaks = np.asarray(startup.max_span_force, dtype=float)
+    peaks = np.asarray(startup.max_span_force, dtype=float) * factor
     k = int(np.argmax(peaks))
     i = int(np.argmax(F[:, k]))
     top = float(peaks[k])
     ax.plot(t[i], top, "v", color="k", ms=7, zorder=5)
-    ax.annotate(f"F₁max = {fmt(top)} N ({labels[k]})", (t[i], top), xytext=(6, 2),
+    ax.annotate(f"F₁max = {fmt(top)} {unit} ({labels[k]})", (t[i], top), xytext=(6, 2),
                 textcoords="offset points", fontsize="small", va="bottom")
     ts = startup.settling_time * 1e3
     if math.isfinite(ts) and t[0] < ts <= t[-1]:
@@ -121,7 +125,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     end = _zoom_end(t, max(ts, t[i]))
     ax.set_xlim(t[0], end)
     ax.set_xlabel("time, ms")
-    ax.set_ylabel("span force, N")
+    ax.set_ylabel(f"span force, {unit}")
     _legend(ax, F.shape[1])
     title = "Start-up: span forces"
     if end < t[-1]:
@@ -204,8 +208,9 @@ def _legend(ax: Axes, curves: int,
 def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
                max_lines: int = 6, max_markers: int = 8,
                operating_hz: float | None = None,
-               mode_numbers: Sequence[int] | None = None) -> Figure:
-    """Amplitude–frequency characteristics: peak dynamic load of each span [N] against the
+               mode_numbers: Sequence[int] | None = None, units: UnitSystem = "SI") -> Figure:
+    """Amplitude–frequency characteristics: peak dynamic load of each span [N, or lbf with
+    ``units="US"``] against the
     tooth frequency [Hz] ([MultimassChainDrives, Fig. 3]), every resonance (harmonic k of the tooth
     frequency on natural frequency f_j, at f_z = f_j/k) as a dotted vertical line labelled
     "mode j × k" above the plot, clear of the curves (the ``max_markers`` with the highest
@@ -230,6 +235,9 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     mode_numbers : sequence of int or None
         The number each elastic mode carries in the tables, in the order of
         ``afc.natural_frequencies_hz`` (None: the markers' own 1, 2, …).
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -238,7 +246,8 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     """
     fig, ax = figure_axes(ax, (6.4, 4.0))
     fz = np.asarray(afc.tooth_frequencies_hz)
-    F = np.asarray(afc.span_load)
+    factor, unit = scale("force", units)
+    F = np.asarray(afc.span_load) * factor
     _curves(ax, fz, F, _labels(F.shape[1], names, "span "), max_lines)
     trans = ax.get_xaxis_transform()
     longest = 0
@@ -259,7 +268,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
         ax.set_ylim(max(float(positive.min()), float(positive.max()) * 1e-4) * 0.8,
                     float(positive.max()) * 3.0)
     ax.set_xlabel("tooth frequency f_z, Hz")
-    ax.set_ylabel("dynamic load, N")
+    ax.set_ylabel(f"dynamic load, {unit}")
     _legend(ax, F.shape[1], inside="upper left")
     finish(ax)
     # the title clears the resonance labels above the plot (≈ 3 pt a character)
@@ -269,9 +278,10 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
 
 
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
-                 names: Sequence[str] | None = None) -> Figure:
+                 names: Sequence[str] | None = None, units: UnitSystem = "SI") -> Figure:
     """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
-    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N], grouped bars.
+    |F_i(t)| and amplitude (max − min)/2 over a tooth period [N, or lbf with ``units="US"``],
+    grouped bars.
 
     Parameters
     ----------
@@ -281,6 +291,9 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
         Axes to draw into (None: a new figure).
     names : sequence of str or None
         Labels of the spans (None: numbered).
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -288,24 +301,26 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
-    peak = np.asarray(steady.span_dynamic_load)
-    amp = np.asarray(steady.span_load_amplitude)
+    factor, unit = scale("force", units)
+    peak = np.asarray(steady.span_dynamic_load) * factor
+    amp = np.asarray(steady.span_load_amplitude) * factor
     labels = _labels(peak.size, names, "span ")
     x = np.arange(peak.size)
     ax.bar(x - 0.2, peak, 0.4, color=TIGHT, label="peak |F(t)|")
     ax.bar(x + 0.2, amp, 0.4, color=CHAIN, label="amplitude (max − min)/2")
     _bar_ticks(ax, labels)
-    ax.set_ylabel("dynamic load, N")
+    ax.set_ylabel(f"dynamic load, {unit}")
     ax.legend(fontsize="x-small")
     finish(ax, "Steady dynamic load per span (polygonal effect)")
     return fig
 
 
 def inertia_and_irregularity(steady: SteadyStateResult, *,
-                             names: Sequence[str] | None = None) -> Figure:
-    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load
-    max |m_i ẍ_i| [N] and the irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars
-    when the radii were not given to the steady state).
+                             names: Sequence[str] | None = None,
+                             units: UnitSystem = "SI") -> Figure:
+    """Two bar charts per mass ([MultimassChainDrives, §3.3]): the inertia load max |m_i ẍ_i| [N, or lbf with
+    ``units="US"``] and the irregularity of rotation Δ_i = 2 x_A/R_i · 100 [%] (nan bars when the radii were
+    not given to the steady state).
 
     Parameters
     ----------
@@ -313,6 +328,9 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
         The steady state.
     names : sequence of str or None
         Labels of the masses (None: M1, M2, …).
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -321,7 +339,8 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
     """
     from matplotlib.figure import Figure
 
-    inertia = np.asarray(steady.inertia_load)
+    factor, unit = scale("force", units)
+    inertia = np.asarray(steady.inertia_load) * factor
     irr = np.asarray(steady.irregularity_percent)
     labels = _labels(inertia.size, names, "M")
     wide = inertia.size > 8
@@ -329,7 +348,7 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
     rows, columns = (2, 1) if wide else (1, 2)
     ax1, ax2 = fig.add_subplot(rows, columns, 1), fig.add_subplot(rows, columns, 2)
     ax1.bar(range(inertia.size), inertia, color=CHAIN)
-    ax1.set_ylabel("inertia load m·ẍ, N")
+    ax1.set_ylabel(f"inertia load m·ẍ, {unit}")
     _bar_ticks(ax1, labels)
     finish(ax1, "Inertia load per mass")
     ax2.bar(range(irr.size), np.nan_to_num(irr), color=TIGHT)
@@ -343,16 +362,20 @@ def _pair_label(case: MaterialCase) -> str:
     return f"{case.chain_material}\non {case.sprocket_material}"
 
 
-def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
+def material_comparison_chart(cases: Sequence[MaterialCase], *,
+                              units: UnitSystem = "SI") -> Figure:
     """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
-    [N] and the amplitude of the first resonance [N] (its tooth frequency [Hz] printed on the
-    bar) per pair of chain and sprocket materials
+    [N] and the amplitude of the first resonance [N] (lbf for both with ``units="US"``; its tooth frequency
+    [Hz] printed on the bar) per pair of chain and sprocket materials
     (:func:`chaindrive.dynamics.materials.material_comparison`).
 
     Parameters
     ----------
     cases : sequence of MaterialCase
         One per material pair.
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -365,15 +388,17 @@ def material_comparison_chart(cases: Sequence[MaterialCase]) -> Figure:
     colours = [CYCLE[i % len(CYCLE)] for i in range(len(cases))]
     fig = Figure(figsize=(7.6, 3.4), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
+    factor, unit = scale("force", units)
     x = np.arange(len(cases))
-    bars = ax1.bar(x, [c.startup_peak_n for c in cases], color=colours)
+    bars = ax1.bar(x, [c.startup_peak_n * factor for c in cases], color=colours)
     ax1.bar_label(bars, fmt="%.0f", fontsize="x-small")
-    ax1.set_ylabel("start-up peak F₁max, N")
+    ax1.set_ylabel(f"start-up peak F₁max, {unit}")
     finish(ax1, "Start-up peak")
-    bars = ax2.bar(x, [c.resonance_amplitude_n for c in cases], color=colours)
-    ax2.bar_label(bars, [f"{c.resonance_amplitude_n:.0f} N\n@ {c.resonance_tooth_frequency_hz:.0f} Hz"
-                         for c in cases], fontsize="x-small")
-    ax2.set_ylabel("first resonance amplitude, N")
+    amplitude = [c.resonance_amplitude_n * factor for c in cases]
+    bars = ax2.bar(x, amplitude, color=colours)
+    ax2.bar_label(bars, [f"{a:.0f} {unit}\n@ {c.resonance_tooth_frequency_hz:.0f} Hz"
+                         for a, c in zip(amplitude, cases, strict=True)], fontsize="x-small")
+    ax2.set_ylabel(f"first resonance amplitude, {unit}")
     finish(ax2, "First resonance (AFC)")
     for ax in (ax1, ax2):
         ax.set_xticks(x, labels, fontsize="x-small")

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish
+from chaindrive.display import UnitSystem
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -29,7 +30,7 @@ def _limits(ax: Axes, life: LifeCurve) -> None:
                    linewidth=1.2, label=f"first failure ({life.first_failure})")
 
 
-def life_curve_figure(life: LifeCurve) -> Figure:
+def life_curve_figure(life: LifeCurve, *, units: UnitSystem = "SI") -> Figure:
     """f₁ and the detuning Δ, K_D and k₂, and the take-up travel or the sag against the
     chain's elongation, with the replacement elongation and the first failure marked.
 
@@ -37,6 +38,9 @@ def life_curve_figure(life: LifeCurve) -> Figure:
     ----------
     life : LifeCurve
         The life curve (:func:`chaindrive.robust.life.life_curve`).
+    units : {"SI", "US"}
+        Unit system of the take-up travel: mm (SI) or in (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"length"``).
 
     Returns
     -------
@@ -68,8 +72,11 @@ def life_curve_figure(life: LifeCurve) -> Figure:
     finish(ax)
     ax = axes[2]
     if any(s.take_up_travel_mm for s in life.states):
-        ax.plot(eps, [s.take_up_travel_mm for s in life.states], color=CHAIN, marker="o", ms=3)
-        ax.set_ylabel("take-up travel [mm]")
+        factor, unit = scale("length", units)
+        factor /= 1e3  # the travel is held in mm
+        ax.plot(eps, [s.take_up_travel_mm * factor for s in life.states], color=CHAIN,
+                marker="o", ms=3)
+        ax.set_ylabel(f"take-up travel [{unit}]")
         if life.take_up_runs_out is not None:
             ax.axvline(life.take_up_runs_out * 100, color=CYCLE[3], linestyle="-.",
                        linewidth=1, label="take-up capacity used")

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
+from chaindrive.display import UnitSystem
 from chaindrive.errors import DesignError
-from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish
+from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -21,9 +24,10 @@ def _strength(analysis: Analysis) -> StrengthResult:
     return analysis.strength
 
 
-def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
-    """Static tension of each span [N] (tight span red): F_t + F_0 + F_v on the tight span,
-    F_0 + F_v on the slack one, stepping at each driven sprocket
+def span_tensions(analysis: Analysis, *, ax: Axes | None = None,
+                  units: UnitSystem = "SI") -> Figure:
+    """Static tension of each span [N, or lbf with ``units="US"``] (tight span red): F_t + F_0 + F_v on the
+    tight span, F_0 + F_v on the slack one, stepping at each driven sprocket
     (:mod:`chaindrive.strength.loads`).
 
     Parameters
@@ -32,6 +36,9 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
         The analysis (its loads).
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the force axis: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -41,7 +48,9 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     loads = _strength(analysis).loads
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
     colours = [TIGHT if s.tight else CHAIN for s in analysis.geometry.spans]
-    return _bars(ax, names, loads.span_tensions, colours, "tension, N", "Static tension per span")
+    factor, unit = scale("force", units)
+    return _bars(ax, names, np.asarray(loads.span_tensions) * factor, colours, f"tension, {unit}",
+                 "Static tension per span")
 
 
 def _bars(ax: Axes | None, names: list[str], values: Any, colours: Any, ylabel: str,
@@ -56,9 +65,10 @@ def _bars(ax: Axes | None, names: list[str], values: Any, colours: Any, ylabel: 
     return fig
 
 
-def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
-    """Magnitude of the load on each shaft [N] (vector sum of the two span tensions
-    meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`).
+def shaft_loads(analysis: Analysis, *, ax: Axes | None = None,
+                units: UnitSystem = "SI") -> Figure:
+    """Magnitude of the load on each shaft [N, or lbf with ``units="US"``] (vector sum of the two span
+    tensions meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`).
 
     Parameters
     ----------
@@ -66,6 +76,9 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
         The analysis (its loads).
     ax : Axes or None
         Axes to draw into (None: a new figure).
+    units : {"SI", "US"}
+        Unit system of the force axis: N (SI) or lbf (US)
+        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
@@ -74,4 +87,6 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """
     loads = _strength(analysis).loads
     names = [s.name for s in analysis.drive.sprockets]
-    return _bars(ax, names, loads.shaft_load_magnitudes, CHAIN, "shaft load, N", "Load per shaft")
+    factor, unit = scale("force", units)
+    return _bars(ax, names, np.asarray(loads.shaft_load_magnitudes) * factor, CHAIN,
+                 f"shaft load, {unit}", "Load per shaft")

@@ -60,13 +60,16 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
     life, rel = doc["life"], doc["reliability"]
     blocks: list[Block] = [Text(_summary(life))]
     blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "detuning Δ, %", "K_D",
-                                       "k2", "take-up, mm", "sag, %", "failed checks"),
+                                       "k2", inp.col("take-up", "length"), "sag, %",
+                                       "failed checks"),
                         _rows([[s["elongation"] * 100, s["f1_hz"],
                                 s["resonance_margin_percent"], s["coefficient_of_dynamics"],
-                                s["k2"], s["take_up_travel_mm"], s["sag_ratio"] * 100,
+                                s["k2"], None if s["take_up_travel_mm"] is None
+                                else inp.val(s["take_up_travel_mm"] * 1e-3, "length"),
+                                s["sag_ratio"] * 100,
                                 ", ".join(s["failed"])] for s in life["states"]])))
-    blocks.append(plot_block(life_curve_figure(result.life), "The drive as its chain wears",
-                             inp.dpi, "robust_life"))
+    blocks.append(plot_block(life_curve_figure(result.life, units=inp.units),
+                             "The drive as its chain wears", inp.dpi, "robust_life"))
     blocks.append(Table(f"Probability of failure over the tolerances ({rel['samples']} states, "
                         f"{rel['confidence']:.0%} interval)",
                         ("check", "probability", "low", "high", "source"),

@@ -394,7 +394,7 @@ def geometry_section(inp: ReportInput) -> list[Block]:
               rows([(s.start_name, s.end_name, inp.val(s.length, "length"), s.pitches,
                      math.degrees(s.inclination), s.tight) for s in g.spans])),
         _length_options_table(inp),
-        plot_block(contour_layout(g), "Contour layout to scale (tight span orange)", inp.dpi,
+        plot_block(contour_layout(g, units=inp.units), "Contour layout to scale (tight span orange)", inp.dpi,
                    "layout"),
     ]
     return blocks
@@ -447,7 +447,7 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
                      inp.val(s["hinge_deviation_peak_mm"] * 1e-3, "length"))
                     for s in doc["sprockets"]])),
         _lubrication_table(inp),
-        plot_block(chain_speed(k), "Chain speed over one tooth period", inp.dpi,
+        plot_block(chain_speed(k, units=inp.units), "Chain speed over one tooth period", inp.dpi,
                    "chain_speed"),
         plot_block(transmission_ratio(inp.analysis), f"Instantaneous transmission ratio "
                    f"ω({a})/ω({b}) of the driver {a} and {b}, the sprocket at the far end of the "
@@ -560,9 +560,9 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
                                                 inp.col("F_s", "force")),
               rows([(sp, inp.val(t, "force"), n, inp.val(f, "force")) for sp, t, n, f in zip(
                   spans, doc["span_tensions_n"], names, doc["shaft_loads_n"], strict=True)])),
-        plot_block(span_tensions(inp.analysis), "Static tension per span", inp.dpi,
+        plot_block(span_tensions(inp.analysis, units=inp.units), "Static tension per span", inp.dpi,
                    "tensions"),
-        plot_block(shaft_loads(inp.analysis), "Load per shaft", inp.dpi, "shaft_loads"),
+        plot_block(shaft_loads(inp.analysis, units=inp.units), "Load per shaft", inp.dpi, "shaft_loads"),
     ]
     return blocks
 

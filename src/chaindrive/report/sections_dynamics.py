@@ -271,18 +271,18 @@ def response_section(inp: ReportInput) -> list[Block] | None:
                         rows(load_rows)))
     blocks.append(_span_table(inp, spans))
     if startup is not None:
-        blocks += [plot_block(startup_oscillogram(startup, names=spans),
+        blocks += [plot_block(startup_oscillogram(startup, names=spans, units=inp.units),
                               "Start-up: span forces", inp.dpi, "startup"),
                    plot_block(startup_speeds(startup, names=sprockets),
                               "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
     blocks += [
         plot_block(afc_curves(response.afc, names=spans,
                               operating_hz=steady.tooth_angular_frequency / (2 * math.pi),
-                              mode_numbers=_elastic_modes(inp)),
+                              mode_numbers=_elastic_modes(inp), units=inp.units),
                    "Amplitude–frequency characteristic per span (speed sweep); above the "
                    "plot the resonances, mode × harmonic of the tooth frequency (modes "
                    "numbered as in the tables)", inp.dpi, "afc"),
-        plot_block(steady_loads(steady, names=spans), "Steady dynamic load per span",
+        plot_block(steady_loads(steady, names=spans, units=inp.units), "Steady dynamic load per span",
                    inp.dpi, "steady_loads"),
         Table("Steady motion per mass", ("sprocket", inp.col("inertia load m·ẍ", "force"),
                                          inp.col("displacement amplitude x_A", "length"),
@@ -290,7 +290,7 @@ def response_section(inp: ReportInput) -> list[Block] | None:
               rows(zip(sprockets, [inp.val(v, "force") for v in steady.inertia_load.tolist()],
                        [inp.val(v, "length") for v in steady.displacement_amplitude.tolist()],
                        steady.irregularity_percent.tolist(), strict=True))),
-        plot_block(inertia_and_irregularity(steady, names=sprockets),
+        plot_block(inertia_and_irregularity(steady, names=sprockets, units=inp.units),
                    "Inertia load and irregularity per mass", inp.dpi, "inertia"),
     ]
     return blocks
@@ -349,7 +349,7 @@ def materials_section(inp: ReportInput) -> list[Block] | None:
               rows([(c.chain_material, c.sprocket_material, inp.val(c.startup_peak_n, "force"),
                      c.first_natural_frequency_hz, c.resonance_tooth_frequency_hz,
                      inp.val(c.resonance_amplitude_n, "force")) for c in cases])),
-        plot_block(material_comparison_chart(cases), "Material pairs: start-up peak and "
+        plot_block(material_comparison_chart(cases, units=inp.units), "Material pairs: start-up peak and "
                    "first resonance", inp.dpi, "materials"),
     ]
 
@@ -381,7 +381,7 @@ def damping_section(inp: ReportInput) -> list[Block] | None:
                  "[ChainHingeDissipation] (GOST ПР-12,7). The curves are for that chain at "
                  f"the paper's conditions (span of 49 hinges, a = {span}), not for "
                  "the chain of this drive.", "note"),
-            plot_block(absorption_vs_amplitude(list(results)),
+            plot_block(absorption_vs_amplitude(list(results), units=inp.units),
                        "Absorption coefficient ψ against the amplitude ȳ₀ (reference chain)",
                        inp.dpi, "damping")]
 
@@ -447,12 +447,12 @@ def links_section(inp: ReportInput) -> list[Block] | None:
         "stiffness (ISO 6336-1 gear value [ISO6336-1])."))
     times = frame_times(result)
     blocks += [
-        plot_block(chain_frames(result, times), "The chain at four instants of the run, "
+        plot_block(chain_frames(result, times, units=inp.units), "The chain at four instants of the run, "
                    "links coloured by tension (rollers in contact with a tooth filled)",
                    inp.dpi, "link_frames"),
-        plot_block(tension_along_chain(result, times), "Link tension along the chain at the "
+        plot_block(tension_along_chain(result, times, units=inp.units), "Link tension along the chain at the "
                    "same instants", inp.dpi, "link_tensions"),
-        plot_block(tooth_loads(result), "Mean tooth load at each place of every wrap over "
+        plot_block(tooth_loads(result, units=inp.units), "Mean tooth load at each place of every wrap over "
                    "the closing half of the run", inp.dpi, "tooth_loads"),
     ]
     return blocks
