@@ -131,10 +131,15 @@ def dynamics_section(inp: ReportInput) -> list[Block] | None:
     model = a.drive_model
     blocks.append(Text(
         f"The whole drive is one torsional model: the contour's {len(names)} sprockets, each "
-        "with the links wrapped on it and half of each adjacent span's chain mass, joined by "
-        "the spans, and the open train on every shaft (motor, couplings, reducers, machines); "
-        f"{model.linear.size} degrees of freedom. Damping ratio ζ = {dyn.damping_ratio:.3g} "
-        f"({model.damping_source}). Mode 0 is the rigid rotation of the whole drive (0 Hz)."))
+        "with the links wrapped on it, joined by the spans (each span's chain mass "
+        "distributed consistently on its two ends), and the open train on every shaft (motor, "
+        f"couplings, reducers, machines); {model.linear.size} degrees of freedom. Damping "
+        f"ratio ζ = {dyn.damping_ratio:.3g} ({model.damping_source}): the chain's dampers are "
+        "proportional to its stiffness, so the reference mode (the first in which the chain "
+        "holds most of the strain energy) has ζ, and a mode of frequency f_j about ζ·f_j/f_ref "
+        "times the chain's share of its strain energy: the stiff higher modes are heavily "
+        "damped or overdamped (their damped frequencies in the table). Mode 0 is the rigid "
+        "rotation of the whole drive (0 Hz)."))
     if not model.complete:
         blocks.append(Text("INCOMPLETE MODEL: " + "; ".join(model.missing) + ". Its natural "
                            "frequencies are upper bounds and its start-up is not meaningful.",
