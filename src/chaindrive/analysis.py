@@ -59,6 +59,7 @@ from chaindrive.dynamics.runup import (
     LONGEST_STARTUP,
     SHORTEST_STARTUP,
     RunUp,
+    elastic_stall,
     rigid_runup,
     startup_durations,
 )
@@ -393,7 +394,7 @@ class Analysis:
             record = model_startup(self.drive_model, polygonal, duration=duration,
                                    pretension=pretension, tooth_frequency_hz=f_z,
                                    breaking_load=d.chain.spec.breaking_load)
-            if record.settled:
+            if record.settled or elastic_stall(self.runup, record):
                 break
         return record
 
@@ -643,7 +644,7 @@ class Analysis:
         startup = self.startup if self.with_response else None
         if startup is not None:
             out += startup_warnings(startup, [f"{s.start_name}→{s.end_name}"
-                                              for s in self.geometry.spans])
+                                              for s in self.geometry.spans], self.runup)
         return tuple(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ the document

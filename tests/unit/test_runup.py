@@ -183,3 +183,25 @@ def test_every_resonance_inside_the_band_is_named() -> None:
     assert all(f"{r.working.label} {r.detuning_percent:.3g} %" in check.note
                for r in others[:3])
     assert f"and {len(others) - 3} more (the resonance table)" in check.note
+
+
+def test_an_elastic_stall_is_said_and_not_lengthened() -> None:
+    """The conveyor with ten times heavier drums (12 kg·m²) and its constant loads: the motor
+    starts the rigid drive (torque ratio 1.10, rigid run-up about 2 s), but the elastic model's
+    motor side bounces against the slack spans (the static Kloss curve's rising branch feeds
+    it; docs/dynamics.md §8). The start-up stops at its first duration, a warning says it is
+    out of the model's range, and k₁ cannot be verified."""
+    from chaindrive.checks import UNVERIFIED
+    from chaindrive.dynamics.runup import elastic_stall
+
+    drive = load_drive(EXAMPLES / "conveyor_five_sprocket.toml")
+    heavy = [replace(s, train=tuple(replace(e, inertia=12.0) if e.name.startswith("drum")
+                                    else e for e in s.train)) if s.role == "driven" else s
+             for s in drive.sprockets]
+    a = analyze(replace(drive, sprockets=tuple(heavy)))
+    assert a.runup is not None and a.runup.starts and 1.0 < a.runup.runup_time < 3.0
+    assert a.startup is not None and elastic_stall(a.runup, a.startup)
+    assert a.startup.times[-1] == pytest.approx(startup_durations(a.runup)[0], rel=1e-3)
+    assert any(w.code == "dynamics.startup-stall" for w in a.warnings)
+    k1 = a.check("k1")
+    assert k1 is not None and k1.status == UNVERIFIED and "outside the model's range" in k1.note

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 
 from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
+from chaindrive.dynamics.runup import elastic_stall
 from chaindrive.errors import Quantities
 
 if TYPE_CHECKING:
@@ -86,6 +87,11 @@ def startup_safety_check(startup: StartupResult | None, allowable: float, *,
         return dynamic_safety_check(
             "k1", None, allowable,
             note=f"the motor does not start the drive (motor start check){computed}")
+    if elastic_stall(runup, startup):
+        return dynamic_safety_check(
+            "k1", None, allowable,
+            note="the elastic start-up does not run up where the rigid drive does: outside "
+                 f"the model's range (see its warning){computed}")
     if not startup.settled:
         simulated = float(startup.times[-1]) if len(startup.times) else 0.0
         what = ("the driver is at its working speed" if math.isnan(startup.runup_time)

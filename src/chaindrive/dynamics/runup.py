@@ -38,9 +38,10 @@ from chaindrive.dynamics.motors import KlossMotor, RampTorque, ResistanceKind, R
 if TYPE_CHECKING:
     from chaindrive.dynamics.drive_assembly import LinearModel
     from chaindrive.dynamics.drive_model import DriveModel
+    from chaindrive.dynamics.startup import StartupResult
 
-__all__ = ["LONGEST_STARTUP", "RUNUP_FRACTION", "SHORTEST_STARTUP", "RunUp", "rigid_body_shape",
-           "rigid_runup", "startup_durations"]
+__all__ = ["LONGEST_STARTUP", "RUNUP_FRACTION", "SHORTEST_STARTUP", "RunUp", "elastic_stall",
+           "rigid_body_shape", "rigid_runup", "startup_durations"]
 
 FloatArray = NDArray[np.float64]
 
@@ -274,3 +275,24 @@ def startup_durations(runup: RunUp | None, longest: float = LONGEST_STARTUP
     if runup is None or not runup.starts:
         return (first,)
     return tuple(dict.fromkeys(min(f * first, longest) for f in (1.0, 2.0, 4.0)))
+
+
+def elastic_stall(runup: RunUp | None, record: StartupResult) -> bool:
+    """True when the elastic start-up has not run up in a time in which the drive as one rigid
+    body does (its motor starts it): the record is outside the model's range (docs/dynamics.md
+    §8), and a longer one shows nothing new.
+
+    Parameters
+    ----------
+    runup : RunUp | None
+        The rigid-drive run-up.
+    record : StartupResult
+        The elastic start-up.
+
+    Returns
+    -------
+    bool
+    """
+    simulated = float(record.times[-1]) if len(record.times) else 0.0
+    return (runup is not None and runup.starts and math.isnan(record.runup_time)
+            and runup.runup_time < simulated)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from chaindrive.dynamics.runup import RunUp, elastic_stall
 from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 
@@ -91,8 +92,8 @@ def dynamics_warnings(model: DriveModel, bands: Bands, *, assumed_sag: bool = Fa
     return out
 
 
-def startup_warnings(startup: StartupResult, span_names: Sequence[str]
-                     ) -> list[ChainDriveWarning]:
+def startup_warnings(startup: StartupResult, span_names: Sequence[str],
+                     runup: RunUp | None = None) -> list[ChainDriveWarning]:
     """The warnings of a start-up record.
 
     Parameters
@@ -101,25 +102,40 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str]
         The start-up.
     span_names : sequence of str
         Names of the spans of one contour ("S1→S2", …), in the order of the span forces.
+    runup : RunUp | None
+        The drive's run-up as a rigid body (:func:`chaindrive.dynamics.runup.rigid_runup`).
 
     Returns
     -------
     list of ChainDriveWarning
         ``dynamics.startup-not-settled`` (the record ends before the driver is at speed or
-        before the forces settle: F₁max and k₁ cover only the simulated time) and
-        ``dynamics.startup-slack`` (spans slack in more than :data:`SLACK_SHARE` of the
-        samples).
+        before the forces settle: F₁max and k₁ cover only the simulated time),
+        ``dynamics.startup-stall`` (the elastic start-up has not run up in a time in which
+        the rigid drive does: out of the model's range) and ``dynamics.startup-slack`` (spans
+        slack in more than :data:`SLACK_SHARE` of the samples).
     """
     out = []
     simulated = float(startup.times[-1]) if len(startup.times) else 0.0
+    stall = elastic_stall(runup, startup)
+    if stall:
+        assert runup is not None
+        out.append(ChainDriveWarning(
+            "dynamics.startup-stall", "dynamics",
+            f"the elastic start-up has not run up in {simulated:.3g} s, while the drive as "
+            f"one rigid body runs up in {runup.runup_time:.3g} s: the motor side bounces "
+            "against the slack spans, fed by the motor's static torque curve, which rises with "
+            "the speed below the breakdown torque (the model has no electromagnetic "
+            "transient of the motor); the start-up is outside the model's range — read the "
+            "rigid run-up and the motor-start check, and give the motor more starting torque "
+            "or a softer start"))
     if not startup.settled:
         what = ("the driver is not at its working speed" if math.isnan(startup.runup_time)
                 else f"the span forces have not settled (run-up {startup.runup_time:.3g} s)")
         out.append(ChainDriveWarning(
             "dynamics.startup-not-settled", "dynamics.startup_duration",
             f"{what} within the simulated {simulated:.3g} s of the start-up: its largest span "
-            "force and safety factor cover only that time; lengthen [dynamics] "
-            "startup_duration"))
+            "force and safety factor cover only that time"
+            + ("" if stall else "; lengthen [dynamics] startup_duration")))
     share = (startup.span_forces <= 0.0).mean(axis=0) if len(startup.times) else []
     names = (list(span_names) if len(span_names) == len(share)
              else [f"span {i + 1}" for i in range(len(share))])
