@@ -128,3 +128,14 @@ def test_optimize_json(tmp_path: Path) -> None:
     no_problem = run_cli("optimize", str(SEED))
     assert no_problem.returncode == 2
     assert no_problem.stderr.startswith("error: ")
+
+
+def test_simulate_prints_in_the_unit_system(short_seed: Path, tmp_path: Path) -> None:
+    """`simulate --units us` prints the largest span force in lbf: the JSON's newtons over
+    4.4482216152605 N/lbf (the exact definition, NIST SP 811); the CSV keeps SI."""
+    doc = json.loads(run_cli("simulate", str(short_seed), "-o", str(tmp_path / "a.csv"),
+                             "--json").stdout)
+    us = run_cli("simulate", str(short_seed), "-o", str(tmp_path / "b.csv"), "--units", "us")
+    assert us.returncode == 0, us.stderr
+    assert f"max span force {fmt(doc['max_force_n'] / 4.4482216152605)} lbf" in us.stdout
+    assert "_n," in (tmp_path / "b.csv").read_text(encoding="utf-8").splitlines()[0] + ","

@@ -22,7 +22,7 @@ import typer
 
 from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
-from chaindrive.display import RAD_S_TO_RPM, fmt, unit_system
+from chaindrive.display import RAD_S_TO_RPM, convert, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
 from chaindrive.units import MAX_TEXT, shown
@@ -162,6 +162,8 @@ def simulate(
         "--duration", help="simulated time of the link-level run, e.g. 0.5s (default: the "
         "design's start-up duration, at most 10 s)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    units: Annotated[str, typer.Option("--units", help=UNITS_HELP + "; the CSV stays SI, "
+                                       "its columns named with their units")] = "SI",
 ) -> None:
     """Start-up transient: write the time histories of every span force and sprocket speed
     (with --model links also the span transverse motion and every link's tension)."""
@@ -172,6 +174,8 @@ def simulate(
     if model not in ("ring", "links"):
         with user_errors():
             raise DesignError("--model", f"must be ring or links, got {model!r}")
+    with user_errors():
+        system = unit_system(units)
     if model == "links":
         _simulate_links(file, output, duration, as_json)
         return
@@ -194,7 +198,8 @@ def simulate(
         _write_json({"history": str(output.resolve()), **startup.to_dict()})
         return
     k1 = "" if startup.k1 is None else f", k1 = {startup.k1:.2f}"
-    print(f"max span force {startup.max_span_force.max():.1f} N{k1}; "
+    force, unit = convert(float(startup.max_span_force.max()), "force", system)
+    print(f"max span force {fmt(force)} {unit}{k1}; "
           f"{tables.startup_times_text(startup.to_dict())}; histories written to {output}")
 
 
