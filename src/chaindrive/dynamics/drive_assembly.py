@@ -36,6 +36,8 @@ __all__ = [
     "LoadPlacement",
     "MotorPlacement",
     "assembled_parts",
+    "kloss_parameters",
+    "motor_rating",
     "shaft_stiffness",
 ]
 
@@ -309,14 +311,57 @@ def _add_element(t: TorsionalEngine, tr: _Train, k: int, e: TrainElement,
     tr.nodes.append(new)
 
 
+def kloss_parameters(drive: Drive) -> tuple[float, float]:
+    """(λ = M_k/M_r, s_k) of the motor's Kloss law: ``[motor]`` over ``[dynamics]``.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    tuple of float
+        Breakdown ratio [-] and critical slip [-].
+    """
+    m, s = drive.motor, drive.dynamics
+    lam = m.breakdown_ratio if m is not None and m.breakdown_ratio is not None else \
+        s.breakdown_ratio
+    sk = m.critical_slip if m is not None and m.critical_slip is not None else s.critical_slip
+    return lam, sk
+
+
+def motor_rating(drive: Drive) -> tuple[float | None, float | None]:
+    """(rated power [W], rated speed [rad/s]) of the motor as the model places it:
+    ``[motor] rated_power`` else the drive's power; ``[motor] rated_speed`` else the driver's
+    speed times the ratios of the gear stages on its train (the motor's own speed). None where
+    neither is given.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    tuple of float or None
+    """
+    m, driver = drive.motor, drive.driver
+    power = m.rated_power if m is not None and m.rated_power else drive.power
+    if m is not None and m.rated_speed:
+        return power, m.rated_speed
+    if driver.speed is None:
+        return power, None
+    ratios = [e.ratio for e in driver.train if e.kind == "gear" and e.ratio is not None]
+    return power, abs(driver.speed * math.prod(ratios))
+
+
 def _motor_law(drive: Drive, rated_power: float, rated_speed: float
                ) -> Callable[[float, float], float]:
     """The torque law of the motor (``[motor]`` over ``[dynamics]``)."""
     m, s = drive.motor, drive.dynamics
     law = (m.law if m is not None and m.law is not None else s.motor)
-    lam = m.breakdown_ratio if m is not None and m.breakdown_ratio is not None else \
-        s.breakdown_ratio
-    sk = m.critical_slip if m is not None and m.critical_slip is not None else s.critical_slip
+    lam, sk = kloss_parameters(drive)
     torque = m.torque if m is not None and m.torque is not None else rated_power / rated_speed
     if law == "kloss":
         return KlossMotor(rated_power, rated_speed, lam, sk)
@@ -334,9 +379,7 @@ def _rotor_inertia(drive: Drive, rated_power: float, rated_speed: float
         return 0.0, False
     if m.rotor_inertia is not None:
         return m.rotor_inertia, False
-    s = drive.dynamics
-    lam = m.breakdown_ratio or s.breakdown_ratio
-    sk = m.critical_slip or s.critical_slip
+    lam, sk = kloss_parameters(drive)
     synchronous = KlossMotor(rated_power, rated_speed, lam, sk).synchronous_speed
     try:
         return estimated_rotor_inertia(rated_power, synchronous).inertia_kg_m2, True
@@ -492,11 +535,8 @@ def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters
         trains[s.name] = tr
     notes: list[str] = []
     motor_node = trains[drive.driver.name].node
-    rated_power = (drive.motor.rated_power if drive.motor and drive.motor.rated_power
-                   else drive.power)
-    nominal_motor = abs(trains[drive.driver.name].speed)
-    rated_speed = (drive.motor.rated_speed if drive.motor and drive.motor.rated_speed
-                   else nominal_motor)
+    rated_power, rated = motor_rating(drive)
+    rated_speed = rated if rated is not None else abs(trains[drive.driver.name].speed)
     j_rotor, estimated = (0.0, False) if rated_power is None else \
         _rotor_inertia(drive, rated_power, rated_speed)
     if j_rotor > 0:

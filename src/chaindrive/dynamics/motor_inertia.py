@@ -205,7 +205,7 @@ def estimated_rotor_inertia(rated_power_w: float,
     if not (math.isfinite(T) and lo_t * 0.999 <= T <= hi_t * 1.001):
         raise DesignError("motor.rated_power", f"{P:.4g} W at a synchronous speed of "
                           f"{w * RPM:.4g} rpm, a rated torque P/ω_s = {T:.3g} N·m, is outside "
-                          f"the catalogue's {lo_t:g} to {hi_t:g} N·m: give the motor's inertia")
+                          f"the catalogue's {lo_t:g} to {hi_t:g} N·m")
     x = math.log(T)
     a0, a1, a2 = FIT_COEFFICIENTS
     J = math.exp(a0 + a1 * x + a2 * x * x)

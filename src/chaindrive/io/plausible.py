@@ -7,11 +7,8 @@ from __future__ import annotations
 import math
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.motor_inertia import (
-    SPEED_RANGE_RAD_S,
-    TORQUE_RANGE_N_M,
-    estimated_rotor_inertia,
-)
+from chaindrive.dynamics.drive_assembly import kloss_parameters, motor_rating
+from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import KlossMotor
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
@@ -77,9 +74,9 @@ def check_motor_estimate(drive: Drive) -> None:
     [MotiveDelphi]); the estimate covers synchronous speeds of
     :data:`~chaindrive.dynamics.motor_inertia.SPEED_RANGE_RAD_S` and rated torques of
     :data:`~chaindrive.dynamics.motor_inertia.TORQUE_RANGE_N_M`. The rated power and speed
-    are the ones the dynamics uses: ``[motor] rated_power`` else the drive's power;
-    ``[motor] rated_speed`` else the driver's speed times the gear ratios of its train; the
-    synchronous speed is the Kloss law's (:attr:`KlossMotor.synchronous_speed`).
+    are the ones the dynamics uses (:func:`chaindrive.dynamics.drive_assembly.motor_rating`),
+    the synchronous speed the Kloss law's (:attr:`KlossMotor.synchronous_speed`), and the
+    range errors the estimate's own, re-addressed to the field the designer wrote.
 
     Parameters
     ----------
@@ -96,45 +93,27 @@ def check_motor_estimate(drive: Drive) -> None:
     m = drive.motor
     if m is None or m.rotor_inertia is not None:
         return
-    power = m.rated_power or drive.power
-    d = drive.driver_index
-    driver = drive.sprockets[d]
-    if power is None or driver.speed is None:
+    power, speed = motor_rating(drive)
+    if power is None or speed is None:
         return
-    gears = [e.ratio for e in driver.train if e.kind == "gear" and e.ratio is not None]
-    speed = m.rated_speed or abs(driver.speed * math.prod(gears))
-    lam = m.breakdown_ratio or drive.dynamics.breakdown_ratio
-    sk = m.critical_slip or drive.dynamics.critical_slip
-    synchronous = KlossMotor(power, speed, lam, sk).synchronous_speed
+    synchronous = KlossMotor(power, speed, *kloss_parameters(drive)).synchronous_speed
     try:
         estimated_rotor_inertia(power, synchronous)
-    except DesignError:
-        pass
+    except DesignError as exc:
+        outside, reason = exc.field, exc.detail  # which range, and it in rpm or N·m
     else:
         return
-    lo_w, hi_w = SPEED_RANGE_RAD_S
-    lo_t, hi_t = TORQUE_RANGE_N_M
-    give = "give motor.rotor_inertia (the maker's value)"
+    d = drive.driver_index
+    gears = any(e.kind == "gear" for e in drive.sprockets[d].train)
     source = ("" if m.rated_speed else f" (the driver's speed, sprockets[{d}].speed"
               + (" times the ratios of its train)" if gears else ")"))
-    turning = (f"{speed * _RPM:.4g} rpm{source}, a synchronous speed of "
-               f"{synchronous * _RPM:.4g} rpm,")
-    if not lo_w <= synchronous <= hi_w:
-        outside = (f"outside the synchronous speeds {lo_w * _RPM:.0f} to {hi_w * _RPM:.0f} rpm "
-                   "(8-pole 50 Hz to 2-pole 60 Hz) over which the rotor inertia is estimated "
-                   "[MotiveDelphi]")
-        if m.rated_speed:
-            raise DesignError("motor.rated_speed", f"{turning} is {outside}; {give}")
-        raise DesignError("motor.rotor_inertia", f"is needed: the motor turns at {turning} "
-                          f"{outside}; give it (the maker's value), or a gear on the driver's "
-                          "train")
-    torque = power / synchronous
-    what = (f"{_power_text(power)} at {turning} is a rated torque of {torque:.3g} N·m, outside "
-            f"the {lo_t:g} to {hi_t:g} N·m of the motor catalogue the rotor inertia is "
-            f"estimated from [MotiveDelphi]; {give}")
-    if m.rated_power:
-        raise DesignError("motor.rated_power", what)
-    if m.rated_speed:
-        raise DesignError("motor.rated_speed", f"the rated power {what}")
-    raise DesignError("motor.rotor_inertia", "is needed: the drive's power (drive.power) "
-                      + what.replace(give, "give it (the maker's value)"))
+    given = "" if m.rated_power else " (the drive's power, drive.power)"
+    turning = f"{_power_text(power)}{given} at {speed * _RPM:.4g} rpm{source}"
+    if outside == "motor.rated_speed" and m.rated_speed:
+        raise DesignError("motor.rated_speed", f"{turning}: {reason}; give motor.rotor_inertia "
+                          "(the maker's value)")
+    if outside == "motor.rated_power" and (m.rated_power or m.rated_speed):
+        raise DesignError("motor.rated_power" if m.rated_power else "motor.rated_speed",
+                          f"{turning}: {reason}; give motor.rotor_inertia (the maker's value)")
+    raise DesignError("motor.rotor_inertia", f"is needed: {turning}: {reason}; give it (the "
+                      "maker's value), or a gear on the driver's train")
