@@ -207,20 +207,23 @@ def rigid_runup(model: DriveModel) -> RunUp | None:
     speeds = np.linspace(0.0, top, GRID)
     speeds[0] = 1e-9 * top  # standstill, a load's breakaway torque already acting
 
+    laws = [ResistanceLaw(cast(ResistanceKind, ld.kind), np.array([ld.torque]),
+                          np.array([ld.nominal_speed]),
+                          breakaway=1e-12)  # the full breakaway torque once moving
+            for ld in model.loads]
+
     def load(w: FloatArray) -> FloatArray:
         out = np.zeros_like(w)
-        for ld, i in zip(model.loads, ratios, strict=True):
-            law = ResistanceLaw(cast(ResistanceKind, ld.kind), np.array([ld.torque]),
-                                np.array([ld.nominal_speed]),
-                                breakaway=1e-12)  # the full breakaway torque once moving
+        for ld, law, i in zip(model.loads, laws, ratios, strict=True):
             out += i * law(i * w) / ld.efficiency
         return out
 
     def net(w: FloatArray) -> FloatArray:
         return motor.efficiency * _motor_torque(motor.law, w) - load(w)
 
-    f = net(speeds)
-    below = np.flatnonzero(f <= 0.0)
+    loads = load(speeds)
+    driving = motor.efficiency * _motor_torque(motor.law, speeds)
+    below = np.flatnonzero(driving - loads <= 0.0)
     working = math.nan
     if below.size:
         j = int(below[0])
@@ -228,11 +231,10 @@ def rigid_runup(model: DriveModel) -> RunUp | None:
         working = lo if j == 0 else _root(lambda w: float(net(np.array([w]))[0]), lo,
                                           float(speeds[j]), 1e-9 * top)
     target = RUNUP_FRACTION * (working if math.isfinite(working) else motor.nominal_speed)
-    span = speeds[speeds <= RUNUP_FRACTION * motor.nominal_speed]
-    loads = load(span)
+    upto = speeds <= RUNUP_FRACTION * motor.nominal_speed
+    span = speeds[upto]
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(loads > 0.0, motor.efficiency * _motor_torque(motor.law, span) / loads,
-                         np.inf)
+        ratio = np.where(loads[upto] > 0.0, driving[upto] / loads[upto], np.inf)
     worst = int(np.argmin(ratio)) if ratio.size else 0
     torque_ratio = float(ratio[worst]) if ratio.size else math.inf
     runup, tau = math.inf, math.nan
