@@ -311,24 +311,18 @@ def _motor_and_trains(inp: ReportInput) -> list[Block]:
     placed = a.drive_model.motor if d.power is not None else None
     if d.motor is not None:
         m, dyn = d.motor, d.dynamics
-
-        def given(value: Any, default: str) -> Any:
-            return default if value is None else value
-
-        inertia = None if placed is None else placed.rotor_inertia
         out.append(Table("Motor ([motor]; what is not given, from [dynamics] or the drive)",
                          ("quantity", "value", "unit"), rows([
-            ("law", given(None if m is None else m.law, f"{dyn.motor} ([dynamics])"), ""),
-            ("rated power", inp.val(d.power if m is None or m.rated_power is None
-                                    else m.rated_power, "power"), inp.unit("power")),
-            ("rated speed", "the driver's speed through its train" if m is None
-             or m.rated_speed is None else inp.val(m.rated_speed, "speed"), "rpm"),
+            ("law", m.law or f"{dyn.motor} ([dynamics])", ""),
+            ("rated power", inp.val(m.rated_power or d.power, "power"), inp.unit("power")),
+            ("rated speed", "the driver's speed through its train" if m.rated_speed is None
+             else inp.val(m.rated_speed, "speed"), "rpm"),
             ("rotor inertia" + (" (estimated)" if placed is not None and placed.estimated
-                                else ""), inp.val(inertia, "inertia"), inp.unit("inertia")),
-            ("breakdown ratio λ = M_k/M_r", dyn.breakdown_ratio if m is None
-             or m.breakdown_ratio is None else m.breakdown_ratio, ""),
-            ("critical slip s_k", dyn.critical_slip if m is None or m.critical_slip is None
-             else m.critical_slip, "")])))
+                                else ""),
+             inp.val(None if placed is None else placed.rotor_inertia, "inertia"),
+             inp.unit("inertia")),
+            ("breakdown ratio λ = M_k/M_r", m.breakdown_ratio or dyn.breakdown_ratio, ""),
+            ("critical slip s_k", m.critical_slip or dyn.critical_slip, "")])))
     elements = [(s.name, e) for s in d.sprockets for e in s.train]
     if elements:
         out.append(Table(
