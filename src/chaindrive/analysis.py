@@ -702,6 +702,7 @@ def drive_summary(drive: Drive) -> dict[str, Any]:
         "strands": spec.strands,
         "breaking_load_n": spec.breaking_load,
         "mass_per_length_kg_m": spec.mass_per_length,
+        "estimated_data": list(spec.estimated),
         "tooth_form": drive.tooth_form,
         "power_w": drive.power,
         "driver": drive.driver.name,

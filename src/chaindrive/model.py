@@ -37,6 +37,31 @@ MAX_CONTOURS = 8
 ROUNDINGS: tuple[str, ...] = ("round up", "round down")
 
 
+#: What a catalogue row's source writes before the columns it estimates
+#: (:attr:`ChainSpec.estimated`).
+ESTIMATE_MARK = "ESTIMATED:"
+
+
+def estimated_columns(source: str) -> tuple[str, ...]:
+    """The catalogue columns a row's source lists as estimates: ``"…; ESTIMATED: a|b (how)"``
+    → ``("a", "b")`` (empty when it marks none).
+
+    Parameters
+    ----------
+    source : str
+        A catalogue row's source cell.
+
+    Returns
+    -------
+    tuple of str
+    """
+    _, mark, tail = source.partition(ESTIMATE_MARK)
+    if not mark:
+        return ()
+    columns = tail.strip().partition(" (")[0]
+    return tuple(c.strip() for c in columns.split("|") if c.strip())
+
+
 @dataclass(frozen=True, slots=True)
 class ChainSpec:
     """One catalogue chain (all strands together), SI units.
@@ -107,6 +132,14 @@ class ChainSpec:
     source: str = ""
     allowable_load: float | None = None
     max_speed: float | None = None
+
+    @property
+    def estimated(self) -> tuple[str, ...]:
+        """The catalogue columns of this chain that are estimates, not published values
+        (e.g. ``("breaking_load_kN", "mass_kg_m")``): the ones its source lists after
+        :data:`ESTIMATE_MARK` (the convention of the polymer catalogue); empty for published
+        rows."""
+        return estimated_columns(self.source)
 
     @property
     def ansi_twin(self) -> str | None:

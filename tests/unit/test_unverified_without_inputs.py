@@ -43,3 +43,16 @@ def test_polymer_sprockets_are_said_to_be_unchecked() -> None:
     steel = chaindrive.analyze(chaindrive.load(EXAMPLES / "two_sprocket_jindal.toml"),
                                response=False)
     assert not any(w.code == "strength.polymer-sprocket" for w in steel.warnings)
+
+
+def test_estimated_catalogue_data_are_named_in_the_json() -> None:
+    """The polymer catalogue row marks its breaking load, mass, allowable load and speed limit
+    as estimates (formulas of the catalogue's header): the JSON's drive summary names them
+    beside the numbers; a published steel row names none."""
+    polymer = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket_polymer.toml"),
+                                 response=False).to_dict()["drive"]
+    assert polymer["estimated_data"] == ["breaking_load_kN", "mass_kg_m", "allowable_load_kN",
+                                         "max_speed_m_s"]
+    steel = chaindrive.analyze(chaindrive.load(EXAMPLES / "two_sprocket_jindal.toml"),
+                               response=False).to_dict()["drive"]
+    assert steel["estimated_data"] == []

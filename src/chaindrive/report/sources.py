@@ -22,10 +22,10 @@ from __future__ import annotations
 
 import re
 
+from chaindrive.model import ESTIMATE_MARK, estimated_columns
+
 __all__ = ["ESTIMATE_MARK", "FIELD_NAMES", "catalogue_estimates", "estimate_note", "readable_source"]
 
-#: What a catalogue's source cell writes before the columns it estimates.
-ESTIMATE_MARK = "ESTIMATED:"
 #: Catalogue columns → what the report calls them.
 FIELD_NAMES: dict[str, str] = {
     "breaking_load_kN": "breaking load",
@@ -50,12 +50,10 @@ def _split_estimate(source: str) -> tuple[str, list[str], str] | None:
     head, mark, tail = source.partition(ESTIMATE_MARK)
     if not mark:
         return None
-    tail = tail.strip()
-    columns, _, note = tail.partition(" (")
-    note = note.strip()
+    note = tail.strip().partition(" (")[2].strip()
     if note.endswith(")"):
         note = note[:-1]
-    return head, [c.strip() for c in columns.split("|") if c.strip()], note.strip()
+    return head, list(estimated_columns(source)), note.strip()
 
 
 def catalogue_estimates(source: str) -> tuple[str, ...]:
