@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import re
 import sys
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -22,6 +22,7 @@ import typer
 
 from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
+from chaindrive.cli.threads import limit_blas_threads
 from chaindrive.display import RAD_S_TO_RPM, convert, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
@@ -678,8 +679,11 @@ def run(argv: list[str] | None = None) -> int:
     """
     args = list(sys.argv[1:] if argv is None else argv)
     command: Any = typer.main.get_command(app)
-    invoke: Callable[[], object] = lambda: command.main(args=args, prog_name="chaindrive",  # noqa: E731
-                                                        standalone_mode=False)
+
+    def invoke() -> object:
+        limit_blas_threads()  # one BLAS thread unless asked (chaindrive.cli.threads)
+        return command.main(args=args, prog_name="chaindrive", standalone_mode=False)
+
     return guarded(invoke, args)
 
 
