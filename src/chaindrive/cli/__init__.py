@@ -38,6 +38,11 @@ if TYPE_CHECKING:
 app = typer.Typer(
     name="chaindrive",
     help="Design and dynamic analysis of roller-chain drives.",
+    epilog=("\b\nExit status:\n"
+            "  0    the command ran (a design that fails a check is reported, not an error)\n"
+            "  2    a mistake in the input: one line names the field, the value and what is allowed\n"
+            "  1    an unforeseen error: one line names it and the log file with its traceback\n"
+            "  128+N  ended by signal N (130 after Ctrl-C); no file is left half-written"),
     add_completion=False,
     rich_markup_mode=None,  # help texts name TOML tables such as [optimize]: no markup
     no_args_is_help=True,
