@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import re
 import sys
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -145,8 +145,9 @@ def select(
     """Rank the family's chains by every check; the first is the one selected."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
+    from chaindrive.cli.progress import spinner
 
-    with user_errors():
+    with user_errors(), spinner("checking the family's chains …", quiet=as_json):
         system = unit_system(units)
         analysis = chaindrive.analyze(chaindrive.load(file), lazy=True)
         doc = analysis.selection_by(method=method, strands=strands).to_dict(top=top)
@@ -387,6 +388,7 @@ def optimize(
     """Search the Pareto set of a design ([MultimassChainDrives] optimal synthesis;
     docs/synthesis.md)."""
     # lazy: only what this command runs (see "Lazy imports" above)
+    from chaindrive.cli.progress import progress_bar
     from chaindrive.synthesis import load_problem
     from chaindrive.synthesis.solve import solve
 
@@ -401,8 +403,11 @@ def optimize(
             from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
 
             evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+        designs = problem.solver.population * problem.solver.generations
         try:
-            result = solve(problem, seed=seed, evaluator=evaluator)
+            with progress_bar("optimising: designs evaluated", total=designs,
+                              quiet=as_json) as advance:
+                result = solve(problem, seed=seed, evaluator=_counted(evaluator, advance))
         finally:
             if evaluator is not None:
                 evaluator.close()
@@ -416,6 +421,28 @@ def optimize(
         return
     tables.print_optimisation(problem.base.name, result,
                               [*written, *([] if plot is None else [str(plot)])])
+
+
+def _counted(evaluator: Callable[[Any, Any], list[Any]] | None,
+             advance: Callable[[str | None], None]) -> Callable[[Any, Any], list[Any]]:
+    """The optimiser's batch evaluator that moves the progress bar one step a design: in this
+    process design by design, on a cluster batch by batch."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    from chaindrive.synthesis.solve import serial_evaluator
+
+    def counted(problem: Any, xs: Any) -> list[Any]:
+        if evaluator is None:
+            out = []
+            for x in xs:
+                out += serial_evaluator(problem, [x])
+                advance(None)
+            return out
+        batch = evaluator(problem, xs)
+        for _ in batch:
+            advance(None)
+        return batch
+
+    return counted
 
 
 def _write_pareto(result: SynthesisResult, file: Path, out: Path) -> tuple[list[str], Path | None]:

@@ -64,10 +64,18 @@ def progress_bar(description: str, total: int | None = None, *,
         yield _no_progress
         return
     from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
-    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.fields[step]}"),
-                  TimeElapsedColumn(), console=Console(stderr=True), transient=True) as bar:
+    # the estimate of what is left only where the steps are counted
+    columns = [TextColumn("{task.description}"), BarColumn(), TextColumn("{task.fields[step]}"),
+               TimeElapsedColumn(), *([TimeRemainingColumn()] if total else [])]
+    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
         task = bar.add_task(description, total=total, step="")
 
         def advance(label: str | None = None) -> None:
