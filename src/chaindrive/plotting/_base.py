@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from chaindrive.display import QUANTITIES, UnitSystem
 
@@ -18,6 +18,40 @@ CHAIN = "#0072B2"
 PITCH = "#009E73"
 GREY = "#7f7f7f"
 CYCLE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
+
+
+def new_figure(figsize: tuple[float, float]) -> Figure:
+    """A new figure (no pyplot, so nothing global changes) with a constrained layout, whose
+    texts are drawn as written.
+
+    Matplotlib reads a text between two dollar signs as a formula: a drive or sprocket named
+    ``"$\\frac{a}{$"`` would stop the drawing with a parse error, and ``"$x$"`` would come out
+    as an italic x. No label of these figures is a formula, so every text of the figure is
+    drawn without the math parser, whatever was added to it and whenever (the setting is
+    applied to each text as the figure is drawn).
+
+    Parameters
+    ----------
+    figsize : tuple of float
+        Width and height [in].
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.text import Text
+
+    class PlainTextFigure(Figure):
+        """A figure that draws every text literally (no mathtext)."""
+
+        def draw(self, renderer: Any) -> None:
+            for text in self.findobj(Text):
+                text.set_parse_math(False)
+            super().draw(renderer)
+
+    return PlainTextFigure(figsize=figsize, layout="constrained")
 
 
 def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
@@ -41,9 +75,7 @@ def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
     """
     if ax is not None:
         return ax.figure, ax  # type: ignore[return-value]
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=figsize, layout="constrained")
+    fig = new_figure(figsize)
     return fig, fig.add_subplot()
 
 

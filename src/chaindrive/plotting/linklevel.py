@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from chaindrive.display import UnitSystem
-from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, scale
+from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, new_figure, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -146,7 +146,6 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
     Figure
         A new figure with one axes per instant.
     """
-    from matplotlib.figure import Figure
 
     idx = [_sample(result, t) for t in times_s]
     extent = np.ptp(result.positions[idx[-1]], axis=0) + 2.0 * float(result.model.tip_radii.max())
@@ -156,7 +155,7 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
     rows = math.ceil(len(idx) / columns)
     width = 5.0 / columns  # of one drawing, beside the colour bar [in]
     height = min(max(width / aspect, 0.8), 4.0) + 0.45  # the drawing, its title and ticks
-    fig = Figure(figsize=(8.0, height * rows), layout="constrained")
+    fig = new_figure(figsize=(8.0, height * rows))
     axes = fig.subplots(rows, columns, squeeze=False)
     vmax = float(max(result.link_tensions[idx].max(), 1.0)) * scale("force", units)[0]
     for ax, k in zip(axes.ravel(), idx, strict=False):

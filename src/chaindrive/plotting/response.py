@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.display import RAD_S_TO_RPM, UnitSystem, fmt
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, scale
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -337,14 +337,13 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
     Figure
         A new figure with the two charts.
     """
-    from matplotlib.figure import Figure
 
     factor, unit = scale("force", units)
     inertia = np.asarray(steady.inertia_load) * factor
     irr = np.asarray(steady.irregularity_percent)
     labels = _labels(inertia.size, names, "M")
     wide = inertia.size > 8
-    fig = Figure(figsize=(6.4, 5.6) if wide else (7.6, 3.2), layout="constrained")
+    fig = new_figure(figsize=(6.4, 5.6) if wide else (7.6, 3.2))
     rows, columns = (2, 1) if wide else (1, 2)
     ax1, ax2 = fig.add_subplot(rows, columns, 1), fig.add_subplot(rows, columns, 2)
     ax1.bar(range(inertia.size), inertia, color=CHAIN)
@@ -382,11 +381,10 @@ def material_comparison_chart(cases: Sequence[MaterialCase], *,
     Figure
         A new figure.
     """
-    from matplotlib.figure import Figure
 
     labels = [_pair_label(c) for c in cases]
     colours = [CYCLE[i % len(CYCLE)] for i in range(len(cases))]
-    fig = Figure(figsize=(7.6, 3.4), layout="constrained")
+    fig = new_figure(figsize=(7.6, 3.4))
     ax1, ax2 = fig.subplots(1, 2)
     factor, unit = scale("force", units)
     x = np.arange(len(cases))

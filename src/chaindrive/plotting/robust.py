@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from chaindrive.display import UnitSystem
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, scale
+from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -46,10 +46,9 @@ def life_curve_figure(life: LifeCurve, *, units: UnitSystem = "SI") -> Figure:
     -------
     Figure
     """
-    from matplotlib.figure import Figure
 
     eps = np.array([s.elongation for s in life.states]) * 100
-    fig = Figure(figsize=(7.2, 7.0), layout="constrained")
+    fig = new_figure(figsize=(7.2, 7.0))
     axes = fig.subplots(3, 1, sharex=True)
     ax = axes[0]
     ax.plot(eps, [s.f1_hz for s in life.states], color=CHAIN, marker="o", ms=3, label="f₁")
