@@ -48,6 +48,7 @@ __all__ = [
     "dimension",
     "doc_quantity",
     "doc_value",
+    "finding_lines",
     "fmt",
     "header",
     "margin_percent",
@@ -517,6 +518,31 @@ def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
     if isinstance(warning, ChainDriveWarning):
         return quantity_text(warning.message, warning.quantities, system)
     return quantity_text(str(warning["message"]), warning.get("quantities"), system)
+
+
+def finding_lines(selection: Mapping[str, Any] | None, system: UnitSystem = "SI"
+                  ) -> list[tuple[str, str]]:
+    """The findings beside a selection's choice as a presenter shows them: (kind, text), the
+    text's numbers with units in ``system`` (:func:`quantity_text`).
+
+    Parameters
+    ----------
+    selection : dict or None
+        The selection's JSON document
+        (:meth:`chaindrive.strength.selection.SelectionResult.to_dict`).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of (str, str)
+        Kind ("layout remedy", "resonance possible", "passed over") and text, in the
+        selection's order; empty without a selection or findings.
+    """
+    if not selection:
+        return []
+    return [(str(f["kind"]), quantity_text(str(f["text"]), f.get("quantities"), system))
+            for f in selection.get("findings") or ()]
 
 
 def _check_display(check: Check, system: UnitSystem) -> tuple[float, str]:

@@ -490,7 +490,10 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
     mass = header("mass", "mass_kg_m", units)
     return [{"chain": c["chain"], "method": c["method"], "strands": c["strands"],
              mass: clean(doc_value("mass_kg_m", c["mass_kg_m"], units)[0]),
-             "passed": c["passed"],
+             "chain checks": "pass" if c["chain_checks_passed"] else "fail",
+             "layout short, %": None if c["layout_shortfall_fraction"] is None
+             else clean(100 * c["layout_shortfall_fraction"], 3),
+             "resonance": c["resonance"] or "",
              "margin, %": None if c["margin_fraction"] is None
              else clean(100 * c["margin_fraction"], 3),
              "governing check": c["governing"], "lubrication": c["lubrication"]}

@@ -19,6 +19,7 @@ from chaindrive.display import (
     check_unit,
     constraint_row,
     doc_value,
+    finding_lines,
     fmt,
     header,
     margin_percent,
@@ -45,7 +46,7 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
                           "source", "allowed", "description", "example", "working",
                           "position", "span", "constraint", "closest design", "closest miss",
                           "designation", "what", "design", "group", "distribution", "lubrication",
-                          "failed", "failures"})
+                          "failed", "failures", "chain checks", "resonance"})
 
 
 def escape(text: object) -> str:
@@ -174,11 +175,18 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         sel = doc["selection"]
         con.print(f"selection ({escape(sel['method'])}): "
                   f"{escape(sel['chain'] or _shortfall(sel, units))}")
+        _print_findings(con, sel, units)
     k1 = next((c for c in doc["checks"] if c["key"] == "k1"), None)
     _print_dynamics(con, doc["dynamics"], doc["strength"], units, k1)
     print_checks(con, checks, units, left_out=QUICK_LEFT_OUT if quick else "")
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {escape(warning_text(w, units))}")
+
+
+def _print_findings(con: Console, selection: dict[str, Any], units: UnitSystem) -> None:
+    """The findings beside the selection's choice, one paragraph each."""
+    for kind, text in finding_lines(selection, units):
+        con.print(f"  [yellow]{escape(kind)}:[/yellow] {escape(text)}")
 
 
 def _shortfall(selection: dict[str, Any], units: UnitSystem) -> str:
@@ -388,15 +396,28 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
                   f"({escape(doc['method'])})")
     else:
         con.print(f"[red]{escape(_shortfall(doc, units))}[/red]")
+    _print_findings(con, doc, units)
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
-                    "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",
-                                "governing", "lubrication"],
+                    "ranked)", ["chain", "method", "strands", mass, "chain checks",
+                                "layout short, %", "resonance", "margin, %", "governing",
+                                "lubrication"],
                     [[c["chain"] + (f" = ANSI {c['ansi_number']}" if c.get("ansi_number")
                                     else ""), c["method"], c["strands"],
-                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0], c["passed"],
+                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0],
+                      "pass" if c["chain_checks_passed"] else "fail",
+                      _layout_short(c), c["resonance"] or "",
                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                       c["governing"], c["lubrication"]] for c in doc["candidates"]]))
+
+
+def _layout_short(candidate: dict[str, Any]) -> str | float:
+    """A candidate's largest layout shortfall in per cent ("pass" when its layout passes,
+    "—" when it cannot be laid out or a layout check cannot be verified)."""
+    short = candidate["layout_shortfall_fraction"]
+    if short is None:
+        return "—"
+    return "pass" if short == 0 else 100 * short
 
 
 def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],

@@ -734,7 +734,7 @@ def _resonance_finding(chain: str, probe: ResonanceProbe, verdict: str,
                "speed)",
                "or move the natural frequency with the inertias (flywheel, the machines' "
                "inertias) or the span lengths"]
-    text = (f"resonance possible with {chain}: {label} ({fw:.4g} Hz) lies {abs(offset):.3g} % "
+    text = (f"{chain}: {label} ({fw:.4g} Hz) lies {abs(offset):.3g} % "
             f"from the natural frequency {fn:.4g} Hz (required ≥ {band_percent:g} %), but over "
             f"the band of {u} on every stiffness and inertia that frequency spans "
             f"{fn * lo:.4g}–{fn * hi:.4g} Hz and the detuning {low:.3g}–{high:.3g} %: the "
