@@ -760,6 +760,8 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[Chain
     own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation]
     chosen = selection.chosen
     pick = "no chain passes" if chosen is None else f"the selection picks {chosen.designation}"
+    if chosen is not None and own and own[0] is chosen:
+        pick = "the selection picks it all the same: its layout is to change (its finding)"
     return [ChainDriveWarning(
         "selection.named-chain-fails", "chain.designation",
         f"{c.designation} fails checks of the selection "

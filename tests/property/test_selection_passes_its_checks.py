@@ -224,9 +224,9 @@ def test_thirty_random_drives_choose_by_the_rule_in_the_one_pipeline():
 def _drives(draw: st.DrawFn) -> tuple[Drive, str, str | None]:
     """A drive of 2 to 6 sprockets on the outside of a convex contour: the driver at the
     pointed end (so that its wrap can reach 120°), the others on a half circle at the far
-    end, listed counter-clockwise, with more teeth the more of them share its wrap; at least one driven sprocket (no fewer teeth than the driver:
-    the driver is then the small loaded sprocket), the rest idlers, one of them maybe the
-    take-up; and the chain family to choose from."""
+    end, listed counter-clockwise, with more teeth the more of them share its wrap; at least
+    one driven sprocket (no fewer teeth than the driver: the driver is then the small loaded
+    sprocket), the rest idlers, one of them maybe the take-up; and the chain family."""
     n = draw(st.sampled_from([6, 5, 4, 3, 2]))
     length = draw(st.floats(0.6, 1.2))
     height = length * draw(st.floats(0.2, 0.4))

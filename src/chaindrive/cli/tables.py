@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from chaindrive.checks import UNVERIFIED
 from chaindrive.display import (
     UnitSystem,
+    candidate_verdict,
     check_row,
     check_unit,
     constraint_row,
@@ -46,7 +47,7 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
                           "source", "allowed", "description", "example", "working",
                           "position", "span", "constraint", "closest design", "closest miss",
                           "designation", "what", "design", "group", "distribution", "lubrication",
-                          "failed", "failures", "chain checks", "resonance"})
+                          "failed", "failures", "verdict"})
 
 
 def escape(text: object) -> str:
@@ -399,25 +400,13 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     _print_findings(con, doc, units)
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
-                    "ranked)", ["chain", "method", "strands", mass, "chain checks",
-                                "layout short, %", "resonance", "margin, %", "governing",
-                                "lubrication"],
+                    "ranked)", ["chain", "method", "strands", mass, "verdict", "margin, %",
+                                "governing", "lubrication"],
                     [[c["chain"] + (f" = ANSI {c['ansi_number']}" if c.get("ansi_number")
                                     else ""), c["method"], c["strands"],
-                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0],
-                      "pass" if c["chain_checks_passed"] else "fail",
-                      _layout_short(c), c["resonance"] or "",
+                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0], candidate_verdict(c),
                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                       c["governing"], c["lubrication"]] for c in doc["candidates"]]))
-
-
-def _layout_short(candidate: dict[str, Any]) -> str | float:
-    """A candidate's largest layout shortfall in per cent ("pass" when its layout passes,
-    "—" when it cannot be laid out or a layout check cannot be verified)."""
-    short = candidate["layout_shortfall_fraction"]
-    if short is None:
-        return "—"
-    return "pass" if short == 0 else 100 * short
 
 
 def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str],

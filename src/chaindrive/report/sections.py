@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
 from chaindrive.display import (
+    candidate_verdict,
     check_row,
     check_unit,
     finding_lines,
@@ -504,14 +505,10 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
                  "governing check."),
             *findings,
             Table("Candidates (best 10, ranked)",
-                  ("chain", "method", "strands", inp.col("q", "linear_density"),
-                   "chain checks", "layout short, %", "resonance", "margin, %",
-                   "governing check"),
+                  ("chain", "method", "strands", inp.col("q", "linear_density"), "verdict",
+                   "margin, %", "governing check"),
                   rows([(c["chain"], c["method"], c["strands"],
-                         inp.val(c["mass_kg_m"], "linear_density"),
-                         "pass" if c["chain_checks_passed"] else "fail",
-                         "—" if c["layout_shortfall_fraction"] is None
-                         else 100 * c["layout_shortfall_fraction"], c["resonance"] or "",
+                         inp.val(c["mass_kg_m"], "linear_density"), candidate_verdict(c),
                          None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                          c["governing"]) for c in cands]))]
 
