@@ -841,7 +841,7 @@ def _findings(drive: Drive, ranked: Sequence[Candidate],
                   key=lambda c: (c.mass_per_length, c.pitch, c.strands))
     for c in over[:NAMED_PASSED_OVER]:
         out += [f for f in c.findings if f.kind == PASSED_OVER]
-        if c.layout_shortfall > 0 and c.geometry is not None:
+        if c.layout_shortfall > SMALL_LAYOUT_SHORTFALL and c.geometry is not None:
             out.append(_layout_finding(drive, specs[c.designation], c, chosen, cache))
     return tuple(out)
 
