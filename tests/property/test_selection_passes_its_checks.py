@@ -31,6 +31,7 @@ from chaindrive.strength.selection import (
     BEYOND_BAND,
     INSIDE_BAND,
     LAYOUT_REMEDY,
+    NAMED_PASSED_OVER,
     PASSED_OVER,
     RESONANCE_POSSIBLE,
     SMALL_LAYOUT_SHORTFALL,
@@ -138,7 +139,7 @@ def _assert_analysis_chooses_by_its_rule(data: dict[str, object]) -> SelectionRe
         elif c.key == "resonance_margin":
             assert sel.chosen.resonance == INSIDE_BAND
             assert any(f.kind == RESONANCE_POSSIBLE for f in sel.findings)
-    _assert_no_lighter_passed_over_inside_its_band(sel)
+    _assert_no_lighter_passed_over_inside_its_band(a)
     _assert_remedies_make_their_checks_pass(a.design, sel)
     return sel
 
@@ -158,21 +159,30 @@ def _assert_remedies_make_their_checks_pass(design: Drive, sel: SelectionResult)
             assert check.passed, (f.chain, r.text, check.to_dict())
 
 
-def _assert_no_lighter_passed_over_inside_its_band(sel: SelectionResult) -> None:
+def _assert_no_lighter_passed_over_inside_its_band(a: chaindrive.Analysis) -> None:
     """Every lighter candidate that passes every chain check was passed over for a layout
-    shortfall beyond the small one, or for a resonance beyond its band — the highest
-    detuning of some row over the band below the limit (checked on the rows themselves)."""
+    shortfall beyond the small one, or for a resonance beyond its band: on the drive with
+    that chain, some working frequency's highest detuning over the band, from the closed
+    form max(|f_w/(f_n·lo) − 1|, |f_w/(f_n·hi) − 1|), stays below the limit."""
+    sel = a.selection
+    assert sel is not None
     chosen = sel.chosen
     assert chosen is not None
-    for c in sel.candidates:
-        if not c.chain_passed or c.mass_per_length >= chosen.mass_per_length or c is chosen:
-            continue
+    lighter = sorted((c for c in sel.candidates if c.chain_passed and c is not chosen
+                      and c.mass_per_length < chosen.mass_per_length),
+                     key=lambda c: (c.mass_per_length, c.pitch, c.strands))
+    named = {f.chain for f in sel.findings if f.kind == PASSED_OVER}
+    assert {c.designation for c in lighter[:NAMED_PASSED_OVER]} <= named
+    for c in lighter:
         if c.layout_shortfall > SMALL_LAYOUT_SHORTFALL:
             continue
         assert c.resonance == BEYOND_BAND, (c.designation, c.resonance)
-        res = c.dynamic_checks[0]
-        assert not res.passed
-        assert any(f.kind == PASSED_OVER and f.chain == c.designation for f in sel.findings)
+        assert not c.dynamic_checks[0].passed
+        probe = a._resonance_probe(sel.specs[c.designation])
+        u = probe.uncertainty
+        lo, hi = math.sqrt((1 - u) / (1 + u)), math.sqrt((1 + u) / (1 - u))
+        assert any(100 * max(abs(fw / (fn * lo) - 1), abs(fw / (fn * hi) - 1))
+                   < a.limits.resonance_band_percent for _, fw, fn, *_ in probe.rows)
 
 
 def test_jindal_b_series_resonance_inside_its_band_keeps_the_lightest_chain():

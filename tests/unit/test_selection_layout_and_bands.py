@@ -290,3 +290,22 @@ def test_json_and_select_table_carry_the_findings():
     assert first["chain_checks_passed"] and first["selectable"] and not first["passed"]
     assert first["layout_shortfall_fraction"] == pytest.approx(
         -a.check("teeth_in_mesh[T]").margin_fraction)
+
+
+def test_presenters_show_the_findings_in_the_unit_system():
+    """The page's candidate rows carry the verdict; the findings are written in the output
+    unit system (the move of the remedy in inches: 1 in = 25.4 mm exactly)."""
+    from chaindrive.app.views import selection_records
+    from chaindrive.display import candidate_verdict, finding_lines
+
+    a = _analysis("selection_tensioner.toml")
+    assert a.selection is not None
+    doc = a.selection.to_dict()
+    rows = selection_records(doc)
+    assert rows[0]["verdict"] == candidate_verdict(doc["candidates"][0])
+    assert rows[0]["verdict"].startswith("layout ") and "short" in rows[0]["verdict"]
+    si = dict(finding_lines(doc))
+    us = dict(finding_lines(doc, "US"))
+    move = next(r for f in a.selection.findings for r in f.remedies if r.action == "move")
+    assert f"move T {move.distance * 1e3:.0f} mm" in si[LAYOUT_REMEDY]
+    assert f"{abs(move.distance) / 0.0254:.3g} in" in us[LAYOUT_REMEDY]

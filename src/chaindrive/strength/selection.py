@@ -58,8 +58,8 @@ from chaindrive.strength.loads import small_sprocket
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.remedies import Remedy, layout_remedies, span_limit_text
 
-__all__ = ["BEYOND_BAND", "INSIDE_BAND", "KE", "LAYOUT_REMEDY", "METHODS", "NOT_LAID_OUT",
-           "PASSED_OVER", "RATING", "RESONANCE_PASS", "RESONANCE_POSSIBLE",
+__all__ = ["BEYOND_BAND", "INSIDE_BAND", "KE", "LAYOUT_REMEDY", "METHODS", "NAMED_PASSED_OVER",
+           "NOT_LAID_OUT", "PASSED_OVER", "RATING", "RESONANCE_PASS", "RESONANCE_POSSIBLE",
            "SMALL_LAYOUT_SHORTFALL", "Candidate", "Finding", "ResonanceProbe",
            "SelectionResult", "banded_resonance_check", "candidate", "estimated_links",
            "family_method", "rank_chains", "rank_key", "resonance_verdict", "select_chain"]
