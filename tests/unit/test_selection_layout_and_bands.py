@@ -309,3 +309,15 @@ def test_presenters_show_the_findings_in_the_unit_system():
     move = next(r for f in a.selection.findings for r in f.remedies if r.action == "move")
     assert f"move T {move.distance * 1e3:.0f} mm" in si[LAYOUT_REMEDY]
     assert f"{abs(move.distance) / 0.0254:.3g} in" in us[LAYOUT_REMEDY]
+
+
+def test_two_sprocket_remedy_reads_as_a_centre_distance():
+    spec = find_chain("12B-1")
+    r1, r2 = pitch_radius(spec.pitch, 17), pitch_radius(spec.pitch, 60)
+    drive = Drive("wrap", Chain(spec, rounding="round down"), (
+        Sprocket("A", 17, 0.0, 0.0, "driver", speed=rpm(300.0)),
+        Sprocket("B", 60, 1.9 * (r2 - r1), 0.0, "driven")), power=2000.0)
+    geometry = contour_geometry(drive)
+    failed = next(c for c in geometry_checks(drive, geometry) if c.key == "wrap[A]")
+    (move,) = layout_remedies(drive, geometry, failed)
+    assert move.text.startswith("move B ") and "away from A" in move.text

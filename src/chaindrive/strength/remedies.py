@@ -216,6 +216,9 @@ def _move_remedy(drive: Drive, geometry: GeometryResult, index: int, sign: float
         distance = math.hypot(moved.x - s.x, moved.y - s.y)
         q = Quantities()
         way = "into the chain" if sign > 0 else "out of the chain"
+        if len(drive.sprockets) == 2:  # the bisector is the line of centres
+            other = drive.sprockets[1 - index].name
+            way = f"away from {other}" if sign > 0 else f"towards {other}"
         value = check.shown(check.value) or 0.0
         take_up = (f"; the take-up then needs {laid.links} links"
                    if drive.adjustable_index is not None else f"; {laid.links} links")
@@ -244,7 +247,7 @@ def _movable(drive: Drive, near: int | None) -> Iterator[int]:
     if near is None:
         yield from pool
         return
-    for i in (near, (near - 1) % n, (near + 1) % n):
+    for i in dict.fromkeys((near, (near - 1) % n, (near + 1) % n)):
         if i in pool:
             yield i
 
