@@ -198,25 +198,31 @@ class Analysis:
                         cost_model=self._cost_model).resonance_probe
 
     @cached_property
+    def _resonance_band(self) -> ResonanceProbe:
+        """The resonance check of this drive and the detuning band of every resonance row
+        (:func:`chaindrive.dynamics.drive_response.uncertainty_bands` without the K_D sweep:
+        the detunings do not need the response)."""
+        dyn, u = self.dynamics, self.drive.dynamics.uncertainty
+        bands = uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances)
+        return ResonanceProbe(resonance_check(dyn.resonances,
+                                              self.limits.resonance_band_percent),
+                              bands.detunings, bands.uncertainty, frequency_band_factors(u))
+
+    @cached_property
     def resonance_probe(self) -> ResonanceProbe:
-        """The resonance check of this drive, the detuning band of every resonance row
-        (:attr:`bands`), and the inputs the frequencies rest on that the design does not
-        give (those of the ``dynamics.estimate`` warnings on the sag and the link
-        stiffness)."""
-        chain, bands = self.drive.chain, self.bands
+        """The resonance check of this drive, the detuning band of every resonance row, and
+        the inputs the frequencies rest on that the design does not give (those of the
+        ``dynamics.estimate`` warnings on the sag and the link stiffness)."""
+        probe, chain = self._resonance_band, self.drive.chain
         estimates = {w.part for w in dynamics_warnings(
-            self.drive_model, bands, assumed_sag=chain.sag is None,
+            self.drive_model, self.bands, assumed_sag=chain.sag is None,
             computed_link_stiffness=chain.link_stiffness is None)
             if w.code == "dynamics.estimate"}
-        assumed = tuple((rests, give) for part, rests, give in (
+        return replace(probe, assumed=tuple((rests, give) for part, rests, give in (
             ("chain.sag", "an assumed installed sag", "the installed sag ([chain] sag)"),
             ("chain.link_stiffness", "a link stiffness computed from the plates and the pin",
              "the maker's measured link stiffness ([chain] link_stiffness)"))
-            if part in estimates)
-        return ResonanceProbe(resonance_check(self.dynamics.resonances,
-                                              self.limits.resonance_band_percent),
-                              bands.detunings, bands.uncertainty,
-                              frequency_band_factors(bands.uncertainty), assumed)
+            if part in estimates))
 
     @cached_property
     def _designed(self) -> Drive:
@@ -583,7 +589,7 @@ class Analysis:
     @cached_property
     def _dynamic_checks(self) -> tuple[Check, ...]:
         out: list[Check] = []
-        resonance = banded_resonance_check(self.resonance_probe,
+        resonance = banded_resonance_check(self._resonance_band,
                                            self.limits.resonance_band_percent)
         if resonance is not None:
             out.append(resonance)
