@@ -74,12 +74,12 @@ from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_frequency
 from chaindrive.metrics import DesignMetrics, design_metrics
-from chaindrive.model import Drive
+from chaindrive.model import ChainSpec, Drive
 from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
-from chaindrive.strength.selection import rank_chains, rank_key
+from chaindrive.strength.selection import ResonanceProbe, banded_resonance_check, rank_chains
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -158,17 +158,20 @@ class Analysis:
     @cached_property
     def selection(self) -> SelectionResult | None:
         """Every chain of the family checked on this drive and ranked by the checks
-        (:func:`chaindrive.strength.selection.rank_chains`); None without a power."""
+        (:func:`chaindrive.strength.selection.rank_chains`), the resonance check of each
+        candidate's own drive judged against its band when the design asks for a chain;
+        None without a power."""
         d = self.design
         if d.power is None:
             return None
         request = d.chain.request
         try:  # each of m contours carries its nominal share P/m
-            ranked = rank_chains(replace(d, power=d.power / d.chain.contours),
-                                 standard=request.standard if request else None,
-                                 series=request.series if request else None,
-                                 strands=request.strands if request else None)
-            return ranked if request is None else self._resonance_verified(ranked)
+            return rank_chains(replace(d, power=d.power / d.chain.contours),
+                               standard=request.standard if request else None,
+                               series=request.series if request else None,
+                               strands=request.strands if request else None,
+                               resonance=None if request is None else self._resonance_probe,
+                               band_percent=self.limits.resonance_band_percent)
         except DesignError as exc:
             if request is not None:
                 raise
@@ -176,46 +179,50 @@ class Analysis:
                                                               f"selection: {exc}"))
             return None
 
-    def _resonance_verified(self, ranked: SelectionResult) -> SelectionResult:
-        """The ranking with the resonance check of each candidate's own drive, tried in rank
-        order until one passes every check: the chosen chain then passes every check this
-        analysis makes without a response (k₁, k₂, k₂min are judged on it by the analysis
-        itself). A candidate whose drive cannot be laid out fails.
+    def _resonance_probe(self, spec: ChainSpec) -> ResonanceProbe:
+        """The :attr:`resonance_probe` of this design with chain ``spec`` (modal analysis
+        only, no response): what the selection judges a candidate's dynamics by
+        (:func:`chaindrive.strength.selection.resonance_verdict`).
 
         Parameters
         ----------
-        ranked : SelectionResult
-            The ranking by the chain and layout checks.
+        spec : ChainSpec
+            The candidate chain.
 
         Returns
         -------
-        SelectionResult
-            The candidates re-ranked (:func:`chaindrive.strength.selection.rank_key`) with
-            the resonance check of those tried.
+        ResonanceProbe
+            The check and its band on the drive with that chain.
         """
-        out = list(ranked.candidates)
-        for i, c in enumerate(out):
-            if not c.passed:
-                break  # ranked: none after it passes either
-            trial = Analysis(self.design.with_chain(ranked.specs[c.designation]),
-                             response=False, limits=self.limits, cost_model=self._cost_model)
-            try:
-                res = resonance_check(trial.dynamics.resonances,
-                                      self.limits.resonance_band_percent)
-            except DesignError as exc:
-                out[i] = replace(c, passed=False, governing="layout",
-                                 notes=(*c.notes, f"cannot be laid out: {exc}"))
-                continue
-            if res is None:
-                break
-            worse = (res.margin_fraction is not None and
-                     (c.margin_fraction is None or res.margin_fraction < c.margin_fraction))
-            out[i] = replace(c, passed=c.passed and res.passed, checks=(*c.checks, res),
-                             margin_fraction=res.margin_fraction if worse else c.margin_fraction,
-                             governing=res.name if worse else c.governing)
-            if res.passed:
-                break
-        return replace(ranked, candidates=tuple(sorted(out, key=rank_key)))
+        return Analysis(self.design.with_chain(spec), response=False, limits=self.limits,
+                        cost_model=self._cost_model).resonance_probe
+
+    @cached_property
+    def _resonance_band(self) -> ResonanceProbe:
+        """The resonance check of this drive and the detuning band of every resonance row
+        (:func:`chaindrive.dynamics.drive_response.uncertainty_bands` without the K_D sweep:
+        the detunings do not need the response)."""
+        dyn, u = self.dynamics, self.drive.dynamics.uncertainty
+        bands = uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances)
+        return ResonanceProbe(resonance_check(dyn.resonances,
+                                              self.limits.resonance_band_percent),
+                              bands.detunings, bands.uncertainty, frequency_band_factors(u))
+
+    @cached_property
+    def resonance_probe(self) -> ResonanceProbe:
+        """The resonance check of this drive, the detuning band of every resonance row, and
+        the inputs the frequencies rest on that the design does not give (those of the
+        ``dynamics.estimate`` warnings on the sag and the link stiffness)."""
+        probe, chain = self._resonance_band, self.drive.chain
+        estimates = {w.part for w in dynamics_warnings(
+            self.drive_model, self.bands, assumed_sag=chain.sag is None,
+            computed_link_stiffness=chain.link_stiffness is None)
+            if w.code == "dynamics.estimate"}
+        return replace(probe, assumed=tuple((rests, give) for part, rests, give in (
+            ("chain.sag", "an assumed installed sag", "the installed sag ([chain] sag)"),
+            ("chain.link_stiffness", "a link stiffness computed from the plates and the pin",
+             "the maker's measured link stiffness ([chain] link_stiffness)"))
+            if part in estimates))
 
     @cached_property
     def _designed(self) -> Drive:
@@ -539,12 +546,13 @@ class Analysis:
         request = d.chain.request
         if method is None and strands is None and self.selection is not None:
             return self.selection
-        ranked = rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
-                             method=method,
-                             strands=strands or (request.strands if request else None),
-                             standard=request.standard if request else None,
-                             series=request.series if request else None)
-        return self._resonance_verified(ranked)
+        return rank_chains(replace(d, power=(d.power or 0.0) / d.chain.contours),
+                           method=method,
+                           strands=strands or (request.strands if request else None),
+                           standard=request.standard if request else None,
+                           series=request.series if request else None,
+                           resonance=self._resonance_probe,
+                           band_percent=self.limits.resonance_band_percent)
 
     # ------------------------------------------------------------------ metrics
     @cached_property
@@ -581,7 +589,8 @@ class Analysis:
     @cached_property
     def _dynamic_checks(self) -> tuple[Check, ...]:
         out: list[Check] = []
-        resonance = resonance_check(self.dynamics.resonances, self.limits.resonance_band_percent)
+        resonance = banded_resonance_check(self._resonance_band,
+                                           self.limits.resonance_band_percent)
         if resonance is not None:
             out.append(resonance)
         start = motor_start_check(self.runup)
@@ -757,6 +766,8 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[Chain
     own = [c for c in selection.candidates if c.designation == drive.chain.spec.designation]
     chosen = selection.chosen
     pick = "no chain passes" if chosen is None else f"the selection picks {chosen.designation}"
+    if chosen is not None and own and own[0] is chosen:
+        pick = "the selection picks it all the same: its layout is to change (its finding)"
     return [ChainDriveWarning(
         "selection.named-chain-fails", "chain.designation",
         f"{c.designation} fails checks of the selection "

@@ -38,6 +38,7 @@ __all__ = [
     "RAD_S_TO_RPM",
     "UNIT_SYSTEMS",
     "UnitSystem",
+    "candidate_verdict",
     "check_line",
     "check_row",
     "check_unit",
@@ -48,6 +49,7 @@ __all__ = [
     "dimension",
     "doc_quantity",
     "doc_value",
+    "finding_lines",
     "fmt",
     "header",
     "margin_percent",
@@ -517,6 +519,65 @@ def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
     if isinstance(warning, ChainDriveWarning):
         return quantity_text(warning.message, warning.quantities, system)
     return quantity_text(str(warning["message"]), warning.get("quantities"), system)
+
+
+def candidate_verdict(candidate: Mapping[str, Any]) -> str:
+    """A selection candidate's standing in words, from its JSON flags
+    (:meth:`chaindrive.strength.selection.Candidate.to_dict`): "pass", "chain fails",
+    "layout 1.8 % short" (with "passed over" when the selection does not take it), "cannot
+    be laid out", and "resonance possible" or "resonance beyond band".
+
+    Parameters
+    ----------
+    candidate : dict
+        The candidate's JSON dict.
+
+    Returns
+    -------
+    str
+        The words.
+    """
+    if not candidate["chain_checks_passed"]:
+        return "chain fails"
+    short = candidate["layout_shortfall_fraction"]
+    words = []
+    if short is None:
+        words.append("cannot be laid out")
+    elif short > 0:
+        words.append(f"layout {fmt(100 * short, 2)} % short")
+    resonance = candidate.get("resonance")
+    if resonance == "inside its band":
+        words.append("resonance possible")
+    elif resonance == "beyond its band":
+        words.append("resonance beyond band")
+    if not candidate["selectable"] and short is not None:
+        words.append("passed over")
+    return "; ".join(words) or "pass"
+
+
+def finding_lines(selection: Mapping[str, Any] | None, system: UnitSystem = "SI"
+                  ) -> list[tuple[str, str]]:
+    """The findings beside a selection's choice as a presenter shows them: (kind, text), the
+    text's numbers with units in ``system`` (:func:`quantity_text`).
+
+    Parameters
+    ----------
+    selection : dict or None
+        The selection's JSON document
+        (:meth:`chaindrive.strength.selection.SelectionResult.to_dict`).
+    system : {"SI", "US"}
+        The output unit system (:data:`UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of (str, str)
+        Kind ("layout remedy", "resonance possible", "passed over") and text, in the
+        selection's order; empty without a selection or findings.
+    """
+    if not selection:
+        return []
+    return [(str(f["kind"]), quantity_text(str(f["text"]), f.get("quantities"), system))
+            for f in selection.get("findings") or ()]
 
 
 def _check_display(check: Check, system: UnitSystem) -> tuple[float, str]:

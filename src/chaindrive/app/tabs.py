@@ -29,7 +29,15 @@ from chaindrive.app.views import (
     sprocket_records,
     strength_records,
 )
-from chaindrive.display import UnitSystem, convert, fmt, header, quantity_text, warning_text
+from chaindrive.display import (
+    UnitSystem,
+    convert,
+    finding_lines,
+    fmt,
+    header,
+    quantity_text,
+    warning_text,
+)
 from chaindrive.errors import ChainDriveError
 from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
 from chaindrive.plotting.robust import (
@@ -136,6 +144,8 @@ def tab_strength(screen: Screen) -> None:
         what = sel["chain"] or quantity_text(sel["shortfall"], sel.get("shortfall_quantities"),
                                              units)
         st.write(f"Selection by **{sel['method']}**: {what}")
+        for kind, text in finding_lines(sel, units):
+            st.warning(f"**{kind}**: {text}")
         st.dataframe(selection_records(sel, units), hide_index=True, width="stretch")
     st_doc = doc.get("strength")
     if st_doc is None:

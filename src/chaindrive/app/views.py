@@ -21,6 +21,7 @@ from chaindrive.analysis import Analysis
 from chaindrive.app.state import Location, Outcome, locate
 from chaindrive.display import (
     UnitSystem,
+    candidate_verdict,
     check_line,
     check_row,
     clean,
@@ -490,7 +491,7 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
     mass = header("mass", "mass_kg_m", units)
     return [{"chain": c["chain"], "method": c["method"], "strands": c["strands"],
              mass: clean(doc_value("mass_kg_m", c["mass_kg_m"], units)[0]),
-             "passed": c["passed"],
+             "verdict": candidate_verdict(c),
              "margin, %": None if c["margin_fraction"] is None
              else clean(100 * c["margin_fraction"], 3),
              "governing check": c["governing"], "lubrication": c["lubrication"]}

@@ -15,10 +15,12 @@ from typing import TYPE_CHECKING, Any
 from chaindrive.checks import UNVERIFIED
 from chaindrive.display import (
     UnitSystem,
+    candidate_verdict,
     check_row,
     check_unit,
     constraint_row,
     doc_value,
+    finding_lines,
     fmt,
     header,
     margin_percent,
@@ -45,7 +47,7 @@ TEXT_COLUMNS = frozenset({"name", "from", "to", "chain", "field", "method", "gov
                           "source", "allowed", "description", "example", "working",
                           "position", "span", "constraint", "closest design", "closest miss",
                           "designation", "what", "design", "group", "distribution", "lubrication",
-                          "failed", "failures"})
+                          "failed", "failures", "verdict"})
 
 
 def escape(text: object) -> str:
@@ -174,11 +176,18 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         sel = doc["selection"]
         con.print(f"selection ({escape(sel['method'])}): "
                   f"{escape(sel['chain'] or _shortfall(sel, units))}")
+        _print_findings(con, sel, units)
     k1 = next((c for c in doc["checks"] if c["key"] == "k1"), None)
     _print_dynamics(con, doc["dynamics"], doc["strength"], units, k1)
     print_checks(con, checks, units, left_out=QUICK_LEFT_OUT if quick else "")
     for w in doc["warnings"]:
         con.print(f"[yellow]warning:[/yellow] {escape(warning_text(w, units))}")
+
+
+def _print_findings(con: Console, selection: dict[str, Any], units: UnitSystem) -> None:
+    """The findings beside the selection's choice, one paragraph each."""
+    for kind, text in finding_lines(selection, units):
+        con.print(f"  [yellow]{escape(kind)}:[/yellow] {escape(text)}")
 
 
 def _shortfall(selection: dict[str, Any], units: UnitSystem) -> str:
@@ -388,13 +397,14 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
                   f"({escape(doc['method'])})")
     else:
         con.print(f"[red]{escape(_shortfall(doc, units))}[/red]")
+    _print_findings(con, doc, units)
     mass = header("mass", "mass_kg_m", units)
     con.print(table(f"Candidates (first {len(doc['candidates'])} of {doc['candidate_count']}, "
-                    "ranked)", ["chain", "method", "strands", mass, "passed", "margin, %",
+                    "ranked)", ["chain", "method", "strands", mass, "verdict", "margin, %",
                                 "governing", "lubrication"],
                     [[c["chain"] + (f" = ANSI {c['ansi_number']}" if c.get("ansi_number")
                                     else ""), c["method"], c["strands"],
-                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0], c["passed"],
+                      doc_value("mass_kg_m", c["mass_kg_m"], units)[0], candidate_verdict(c),
                       None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                       c["governing"], c["lubrication"]] for c in doc["candidates"]]))
 

@@ -14,8 +14,10 @@ from typing import TYPE_CHECKING, Any
 
 from chaindrive.checks import worst
 from chaindrive.display import (
+    candidate_verdict,
     check_row,
     check_unit,
+    finding_lines,
     fmt,
     margin_percent,
     quantity_text,
@@ -491,15 +493,22 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
     cands = doc["candidates"][:10]
     head = (f"Selected ({doc['method']}): {doc['chain']}." if doc["chain"] is not None
             else f"{quantity_text(doc['shortfall'], doc['shortfall_quantities'], inp.units)}.")
+    findings = [Text(f"{kind[:1].upper()}{kind[1:]}: {text}")
+                for kind, text in finding_lines(doc, inp.units)]
     return [Text(f"{head} The analysis uses the design chain "
                  f"{inp.analysis.drive.chain.spec.designation} (a design that names its chain "
                  "keeps it). Each chain of the family is checked on this drive by the method "
-                 "that fits it; the margin is that of its governing check."),
+                 "that fits it; it is chosen on its chain checks (a layout check it misses by "
+                 f"at most {100 * doc['small_layout_shortfall_fraction']:g} % is the layout's "
+                 "to fix, said below with the remedy), and passed over for resonance only when "
+                 "the check fails beyond its uncertainty band; the margin is that of its "
+                 "governing check."),
+            *findings,
             Table("Candidates (best 10, ranked)",
-                  ("chain", "method", "strands", inp.col("q", "linear_density"), "passed",
+                  ("chain", "method", "strands", inp.col("q", "linear_density"), "verdict",
                    "margin, %", "governing check"),
                   rows([(c["chain"], c["method"], c["strands"],
-                         inp.val(c["mass_kg_m"], "linear_density"), c["passed"],
+                         inp.val(c["mass_kg_m"], "linear_density"), candidate_verdict(c),
                          None if c["margin_fraction"] is None else 100 * c["margin_fraction"],
                          c["governing"]) for c in cands]))]
 

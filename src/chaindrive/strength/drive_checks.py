@@ -2,7 +2,8 @@
 
 :func:`checks_for` returns the :class:`~chaindrive.strength.checks.Check` list of a drive
 (its chain, its geometry): the analysis lists the same checks for the chain it analyses as
-the selection made for every candidate, so a chosen chain cannot fail the analysis.
+the selection made for every candidate, so a chosen chain cannot fail a chain check of the
+analysis (its layout checks are judged beside it: ``docs/selection.md``).
 
 Which checks, by the chain's method (:func:`chaindrive.strength.ratings.method_for`):
 
