@@ -15,11 +15,9 @@ from chaindrive.dynamics import (
     RingModel,
     campbell_data,
     coefficient_of_dynamics,
-    drive_dynamics,
     modal_analysis,
     ring_frequencies_batch,
     ring_stiffness_matrix,
-    span_transverse_frequencies,
 )
 from chaindrive.dynamics.drive import drive_ring_parameters, ring_model
 from chaindrive.dynamics.stiffness import (
@@ -246,29 +244,6 @@ def test_from_drive_masses_and_slack_span() -> None:
     m2 = ring_model(d2, geom, material_lookup=find_material)
     assert_allclose(m2.masses_kg[0], 0.5 / geom.sprockets[0].pitch_radius ** 2)
 
-
-def test_analyze_dynamics_outputs() -> None:
-    drive = seed_drive(power=500.0)
-    geom = fake_geometry(drive)
-    w = drive.driver.speed
-    params = drive_ring_parameters(drive, geom, material_lookup=find_material)
-    res = drive_dynamics(drive, geom, RingModel(params.masses_kg, params.stiffness_n_per_m),
-                         params, speed_range=(0.5 * w, 2 * w), speed_points=21)
-    d = res.to_dict()
-    json.dumps(d)
-    for key in ("natural_frequencies_hz", "mode_shapes", "normalized_amplitudes",
-                "span_transverse_frequencies_hz", "resonances", "damping_ratio"):
-        assert key in d
-    assert d["model"]["reduced_masses_kg"] and d["model"]["branch_stiffness_n_per_m"]
-    assert any(r["kind"] == "parametric" for r in d["resonances"])
-    detunings = [r["detuning_percent"] for r in d["resonances"]]
-    assert detunings == sorted(detunings)
-    # transverse f1 of each span from its own tension (Mote): recompute one
-    spec = drive.chain.spec
-    v = 15 * spec.pitch * w / (2 * np.pi)
-    t = res.parameters.span_tensions_n
-    f = span_transverse_frequencies(geom.spans[1].length, t[1], spec.mass_per_length, v)
-    assert_allclose(res.span_transverse_hz[1], f)
 
 
 def test_campbell_crossing_speed() -> None:

@@ -24,68 +24,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
-from chaindrive.dynamics.steady import _stiffness, damping_beta, span_incidence
-from chaindrive.errors import DesignError
+from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.excitation import SpanExcitation
-    from chaindrive.dynamics.ring import RingModel
+    pass
 
-__all__ = ["AfcResult", "afc_sweep", "modal_harmonic_response"]
+__all__ = ["AfcResult"]
 
 TWO_PI = 2.0 * math.pi
 
-
-def modal_harmonic_response(shapes: NDArray[np.float64], omegas_n: NDArray[np.float64],
-                            stiffness: NDArray[np.float64], beta: float,
-                            angular_frequencies: ArrayLike, elongation: ArrayLike
-                            ) -> NDArray[np.complex128]:
-    """Span force amplitudes [N] by modal superposition (module docstring):
-    q_j = Φ_jᵀ f / (ω_j² (1 + iωβ) − ω²), f = −(1 + iωβ) Bᵀ C_s D,
-    F = (1 + iωβ) C_s (B Φ q + D).
-
-    Parameters
-    ----------
-    shapes : ndarray
-        (n, n) mass-normalised modes Φ [kg^-1/2].
-    omegas_n : ndarray
-        (n,) natural angular frequencies Ω [rad/s].
-    stiffness : ndarray
-        (n,) span stiffnesses c_i [N/m].
-    beta : float
-        β of the stiffness-proportional damping C = βK [s].
-    angular_frequencies : array_like
-        (..., K) excitation angular frequencies ω > 0 [rad/s].
-    elongation : array_like
-        (K, n) complex amplitudes D of the kinematic span elongations [m].
-
-    Returns
-    -------
-    ndarray
-        (..., K, n) complex span force amplitudes F [N].
-
-    References
-    ----------
-    [Rao2011, §6.13–6.15] (modal superposition with proportional damping);
-    [MultimassChainDrives, §3.3].
-    """
-    n = stiffness.size
-    B = span_incidence(n)
-    BPhi = B @ shapes                                              # (n spans, modes)
-    D = np.asarray(elongation, dtype=complex)
-    w = np.asarray(angular_frequencies, dtype=float)
-    g = 1.0 + 1j * w * beta                                        # (..., K)
-    P0 = -(D * stiffness) @ BPhi                                   # (K, modes): Φᵀ(−BᵀC_sD)
-    den = (omegas_n**2) * g[..., None] - (w**2)[..., None]          # (..., K, modes)
-    q = g[..., None] * P0 / den
-    # one matrix product for all frequencies (a stacked product runs one small one each)
-    qB = (q.reshape(-1, q.shape[-1]) @ BPhi.T).reshape((*q.shape[:-1], n))
-    qB += D
-    qB *= stiffness
-    qB *= g[..., None]
-    return np.asarray(qB, dtype=np.complex128)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -158,68 +105,3 @@ def _local_maxima(y: NDArray[np.float64]) -> NDArray[np.intp]:
     return 1 + np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:]))
 
 
-def afc_sweep(model: RingModel, excitation: SpanExcitation, driver_speeds: ArrayLike,
-              driver_teeth: int, *, beta: float | None = None,
-              samples: int = 64) -> AfcResult:
-    """Amplitude–frequency characteristic of ``model`` under ``excitation`` over
-    ``driver_speeds`` (module docstring).
-
-    Parameters
-    ----------
-    model : RingModel
-        The ring model of the contour.
-    excitation : SpanExcitation
-        The kinematic (polygonal) excitation of the spans: harmonic orders and elongation
-        amplitudes [m].
-    driver_speeds : array_like
-        (S,) driver speeds ω₁ [rad/s], positive.
-    driver_teeth : int
-        Teeth z₁ of the driver [-] (tooth frequency ω_z = z₁ω₁).
-    beta : float or None
-        β of the damping C = βK [s] (None: :func:`~chaindrive.dynamics.steady.damping_beta`).
-    samples : int
-        Samples per tooth period for the peak load [-] (the harmonic orders must be whole
-        numbers for the trace; otherwise the peak is Σ_f |F_f|, exact for incommensurate
-        frequencies).
-
-    Returns
-    -------
-    AfcResult
-        Span loads over the sweep with the resonance markers.
-
-    Raises
-    ------
-    DesignError
-        ``driver_speeds`` not a 1-D array of positive speeds.
-
-    References
-    ----------
-    [MultimassChainDrives, §3.3, Fig. 3].
-    """
-    speeds = np.asarray(driver_speeds, dtype=float)
-    if speeds.ndim != 1 or speeds.size < 1 or np.any(speeds <= 0):
-        raise DesignError("driver_speeds", "need a 1-D array of positive speeds [rad/s]")
-    modal = model.modal()
-    c = _stiffness(model)
-    b = damping_beta(model) if beta is None else float(beta)
-    wz = speeds * driver_teeth                                    # (S,)
-    orders = excitation.orders
-    W = wz[:, None] * orders[None, :]                              # (S, K)
-    F = modal_harmonic_response(modal.shapes, modal.angular_frequencies_rad_s, c, b, W,
-                                excitation.elongation)             # (S, K, n)
-    if np.allclose(orders, np.round(orders)):
-        load = _peak_over_period(F, orders, int(samples))
-    else:
-        load = np.abs(F).sum(axis=1)
-    fz_hz = wz / TWO_PI
-    nat = modal.frequencies_hz[~modal.rigid_body]
-    lo, hi = fz_hz.min(), fz_hz.max()
-    markers = []
-    whole = sorted({round(k) for k in orders.tolist() if k >= 1})  # (np.unique imports numpy.ma)
-    for j, f in enumerate(nat):
-        for k in whole:
-            if lo <= f / k <= hi:
-                markers.append((j + 1, int(k), float(f), float(f / k)))
-    peaks = _local_maxima(load.max(axis=1))
-    return AfcResult(speeds, fz_hz, load, load.max(axis=0), nat, tuple(markers),
-                     fz_hz[peaks])

@@ -34,22 +34,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
-from chaindrive.dynamics.quality import coefficient_of_dynamics
-from chaindrive.errors import DesignError
-from chaindrive.strength.safety import steady_safety_factor
+from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.excitation import SpanExcitation
-    from chaindrive.dynamics.ring import RingModel
+    pass
 
 __all__ = [
     "SteadyStateResult",
-    "damping_beta",
-    "harmonic_response",
     "span_incidence",
-    "steady_state",
 ]
 
 TWO_PI = 2.0 * math.pi
@@ -78,95 +70,6 @@ def span_incidence(n: int, closed: bool = True) -> NDArray[np.float64]:
         B[-1] = 0.0
     return B
 
-
-def damping_beta(model: RingModel, reference_angular_frequency: float | None = None) -> float:
-    """β = 2ζ/ω_ref [s] of the stiffness-proportional damping C = βK (module docstring).
-
-    Parameters
-    ----------
-    model : RingModel
-        The ring model (its damping ratio ζ).
-    reference_angular_frequency : float or None
-        ω_ref [rad/s] (None: the first elastic natural frequency of ``model``).
-
-    Returns
-    -------
-    float
-        β [s]; 0 when the model has no elastic mode or ζ = 0.
-
-    References
-    ----------
-    [Rao2011, §6.13] (proportional damping).
-    """
-    w = reference_angular_frequency
-    if w is None:
-        modal = model.modal()
-        el = modal.angular_frequencies_rad_s[~modal.rigid_body]
-        w = float(el[0]) if el.size else 0.0
-    return 2.0 * model.damping_ratio / w if w > 0 else 0.0
-
-
-def _stiffness(model: RingModel) -> NDArray[np.float64]:
-    c = model.stiffness_n_per_m.copy()
-    if not model.closed:
-        c[-1] = 0.0
-    return c
-
-
-def harmonic_response(masses: ArrayLike, stiffness: ArrayLike, beta: float,
-                      angular_frequencies: ArrayLike, elongation: ArrayLike
-                      ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Complex amplitudes of the displacements X and span forces F for prescribed span
-    elongations: one stacked :func:`numpy.linalg.solve` of
-    [(1 + iωβ) K − ω² M] X = −(1 + iωβ) Bᵀ C_s D (module docstring).
-
-    Parameters
-    ----------
-    masses : array_like
-        (n,) reduced masses [kg].
-    stiffness : array_like
-        (n,) span stiffnesses c_i [N/m] (0: slack or open).
-    beta : float
-        β of the damping C = βK [s].
-    angular_frequencies : array_like
-        (F,) excitation angular frequencies ω > 0 [rad/s].
-    elongation : array_like
-        (F, n) complex amplitudes D of the prescribed span elongations [m].
-
-    Returns
-    -------
-    displacement : ndarray
-        (F, n) complex amplitudes X [m].
-    span_force : ndarray
-        (F, n) complex span force amplitudes [N].
-
-    Raises
-    ------
-    DesignError
-        A wrong shape of ``elongation`` or a frequency that is not positive.
-
-    References
-    ----------
-    [Rao2011, §6.15] (harmonic response of a damped multi-degree-of-freedom system);
-    [MultimassChainDrives, §3.2–3.3].
-    """
-    m = np.asarray(masses, dtype=float)
-    c = np.asarray(stiffness, dtype=float)
-    w = np.atleast_1d(np.asarray(angular_frequencies, dtype=float))
-    D = np.atleast_2d(np.asarray(elongation, dtype=complex))
-    n = m.size
-    if D.shape != (w.size, n):
-        raise DesignError("elongation", f"need shape ({w.size}, {n}), got {D.shape}")
-    if np.any(w <= 0):
-        raise DesignError("angular_frequencies", "must be > 0 (the static part is not solved)")
-    B = span_incidence(n)
-    K = B.T @ (c[:, None] * B)
-    g = 1.0 + 1j * w * beta                                          # (F,)
-    A = g[:, None, None] * K[None] - (w**2)[:, None, None] * np.diag(m)[None]
-    rhs = -(g[:, None] * (D * c[None, :])) @ B                       # −g Bᵀ C_s D, row form
-    X = np.linalg.solve(A, rhs[..., None])[..., 0]
-    F = g[:, None] * c[None, :] * (X @ B.T + D)
-    return X, F
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -264,94 +167,4 @@ class SteadyStateResult:
         }
 
 
-def _peaks(amplitudes: NDArray[np.complex128], trace: NDArray[np.float64] | None
-           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(max |y(t)|, (max − min)/2) per column, from the trace or from Σ|Y_f|."""
-    if trace is not None:
-        return np.abs(trace).max(axis=0), 0.5 * (trace.max(axis=0) - trace.min(axis=0))
-    s = np.abs(amplitudes).sum(axis=0)
-    return s, s
 
-
-def steady_state(model: RingModel, excitation: SpanExcitation, *,
-                 radii: ArrayLike | None = None, beta: float | None = None,
-                 samples: int = 128, nominal_force: float | None = None,
-                 teeth: ArrayLike | None = None,
-                 breaking_load: float | None = None,
-                 operating_forces: ArrayLike | None = None,
-                 resonance_loads: ArrayLike | None = None) -> SteadyStateResult:
-    """Steady response of ``model`` to ``excitation`` in the frequency domain.
-
-    Parameters
-    ----------
-    model : RingModel
-        The ring model.
-    excitation : SpanExcitation
-        The prescribed span elongations.
-    radii : array_like or None
-        (n,) pitch radii R_i [m], with ``teeth`` for the irregularity of rotation
-        Δ = (ω_max − ω_min)/ω_mean·100, ω_mean = ω_z/z_i (None: Δ is NaN).
-    beta : float or None
-        β of the damping C = βK [s] (None: :func:`damping_beta`).
-    samples : int
-        Samples per tooth period of the traces [-].
-    nominal_force : float or None
-        Nominal peripheral force F_t [N] → K_D = 1 + F_D/F_t.
-    teeth : array_like or None
-        (n,) teeth z_i [-].
-    breaking_load : float or None
-        Breaking load Q of the chain [N], with ``operating_forces`` → k2.
-    operating_forces : array_like or None
-        (n,) static span tensions F_R [N]; k2 = min_i Q/(F_R,i + F_2,i).
-    resonance_loads : array_like or None
-        (n,) F_2max at resonance [N] → k2_min.
-
-    Returns
-    -------
-    SteadyStateResult
-        Amplitudes, one period of traces, loads and the quality indices.
-
-    References
-    ----------
-    [MultimassChainDrives, §3.3] (dynamic loads, irregularity, K_D);
-    [MultimassChainDrives, §3.6] (k2, k2_min).
-    """
-    m = model.masses_kg
-    c = _stiffness(model)
-    b = damping_beta(model) if beta is None else float(beta)
-    w = excitation.angular_frequencies
-    X, F = harmonic_response(m, c, b, w, excitation.elongation)
-    orders = excitation.orders
-    wz = float(w[0] / orders[0]) if w.size else 0.0
-    periodic = bool(np.allclose(orders, np.round(orders)) and np.all(orders >= 1))
-    times = np.linspace(0.0, TWO_PI / wz, int(samples), endpoint=False)
-    E = np.exp(1j * np.outer(times, w))                              # (T, F)
-    f_tr = (E @ F).real
-    x_tr = (E @ X).real
-    a_tr = (E @ (-(w**2)[:, None] * X)).real
-    f_max, f_amp = _peaks(F, f_tr if periodic else None)
-    _, x_amp = _peaks(X, x_tr if periodic else None)
-    acc, _ = _peaks(-(w**2)[:, None] * X, a_tr if periodic else None)
-    R = np.full(m.size, np.nan) if radii is None else np.asarray(radii, dtype=float)
-    z = np.full(m.size, np.nan) if teeth is None else np.asarray(teeth, dtype=float)
-    v_tr = (E @ (1j * w[:, None] * X)).real
-    v_range = np.ptp(v_tr, axis=0) if periodic else 2.0 * np.abs(w[:, None] * X).sum(axis=0)
-    rms = float(np.sqrt(np.mean(f_max**2)))
-    kd = (coefficient_of_dynamics(f_max, nominal_force)
-          if nominal_force is not None and np.any(f_max > 0) else None)
-    k2 = k2min = None
-    if breaking_load is not None and operating_forces is not None:
-        fr = np.asarray(operating_forces, dtype=float).tolist()
-        k2 = min(steady_safety_factor(breaking_load, a, b)
-                 for a, b in zip(fr, f_max.tolist(), strict=True))
-        if resonance_loads is not None:
-            k2min = min(steady_safety_factor(breaking_load, a, b) for a, b in
-                        zip(fr, np.asarray(resonance_loads, float).tolist(), strict=True))
-    return SteadyStateResult(
-        tooth_angular_frequency=wz, angular_frequencies=w, displacement=X, span_force=F,
-        times=times, span_force_trace=f_tr, displacement_trace=x_tr, span_dynamic_load=f_max,
-        span_load_amplitude=f_amp, inertia_load=m * acc, displacement_amplitude=x_amp,
-        irregularity_percent=100.0 * v_range * z / (R * wz), dynamic_load_rms=rms,
-        coefficient_of_dynamics=kd, k2=k2, k2_min=k2min, periodic=periodic,
-        nominal_force=nominal_force,
-    )
