@@ -47,7 +47,6 @@ from chaindrive.dynamics.drive_startup import affordable_duration, model_startup
 from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
 from chaindrive.dynamics.published import published_comparison
-from chaindrive.dynamics.quality import nominal_peripheral_force
 from chaindrive.dynamics.resonance import resonance_warnings
 from chaindrive.dynamics.response import (
     DynamicResponse,
@@ -78,9 +77,10 @@ from chaindrive.model import Drive
 from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import rank_chains, rank_key
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
@@ -336,12 +336,11 @@ class Analysis:
 
     @cached_property
     def _nominal_force(self) -> float | None:
-        """F_t = P/v of one contour [N]."""
+        """F_t = P/v̄ of one contour [N], v̄ the mean chain speed of the kinematics stage."""
         d = self._contour_drive
         if d.power is None or d.driver.speed is None:
             return None
-        return nominal_peripheral_force(d.power, self.geometry.sprockets[d.driver_index]
-                                        .pitch_diameter, d.driver.speed)
+        return peripheral_force(d.power, self.kinematics.chain_speed)
 
     @cached_property
     def afc(self) -> AfcResult | None:
@@ -707,7 +706,7 @@ def drive_summary(drive: Drive) -> dict[str, Any]:
         "power_w": drive.power,
         "driver": drive.driver.name,
         "driver_speed_rpm": None if drive.driver.speed is None
-        else drive.driver.speed * RAD_S_TO_RPM,
+        else drive.driver.speed * RPM_PER_RAD_S,
     }
 
 

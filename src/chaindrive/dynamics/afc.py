@@ -26,12 +26,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.units import TWO_PI
+
 if TYPE_CHECKING:
     pass
 
 __all__ = ["AfcResult"]
 
-TWO_PI = 2.0 * math.pi
 
 
 

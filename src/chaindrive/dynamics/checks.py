@@ -14,6 +14,7 @@ from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
 from chaindrive.dynamics.runup import elastic_stall
 from chaindrive.errors import Quantities
+from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.runup import RunUp
@@ -124,7 +125,7 @@ def motor_start_check(runup: RunUp | None) -> Check | None:
     """
     if runup is None or not math.isfinite(runup.torque_ratio):
         return None
-    rpm = 30.0 / math.pi
+    rpm = RPM_PER_RAD_S
     if runup.starts:
         note = (f"least at {runup.ratio_speed * rpm:.4g} rpm of the motor; rigid-drive run-up "
                 f"{runup.runup_time:.3g} s")

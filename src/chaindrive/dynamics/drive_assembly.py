@@ -21,6 +21,7 @@ from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
 from chaindrive.dynamics.torsional_engine import TorsionalEngine
 from chaindrive.errors import DesignError, Quantities, Quantity
 from chaindrive.strength.loads import power_shares
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.drive import RingParameters
@@ -41,7 +42,6 @@ __all__ = [
     "shaft_stiffness",
 ]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: Name of the chain node at sprocket S: ``CHAIN_NODE.format("S")``.
 CHAIN_NODE = "chain@{}"

@@ -64,6 +64,7 @@ from chaindrive.dynamics.drive_damping import (
 )
 from chaindrive.dynamics.torsional_system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -81,7 +82,6 @@ __all__ = [
     "shaft_stiffness",
 ]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 
 

@@ -41,6 +41,7 @@ from chaindrive.dynamics.quality import coefficient_of_dynamics
 from chaindrive.dynamics.steady import SteadyStateResult
 from chaindrive.errors import DesignError
 from chaindrive.strength.safety import steady_safety_factor
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
@@ -50,7 +51,6 @@ if TYPE_CHECKING:
 __all__ = ["Bands", "drive_steady", "drive_sweep", "frequency_band_factors", "span_loads_over",
            "uncertainty_bands"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 

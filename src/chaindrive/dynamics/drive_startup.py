@@ -41,7 +41,6 @@ if TYPE_CHECKING:
 
 __all__ = ["affordable_duration", "model_startup", "startup_step"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def _step_body(model: DriveModel, modes: TorsionalModes, f_ref: float) -> tuple[str, str]:

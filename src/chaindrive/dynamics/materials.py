@@ -30,6 +30,7 @@ from chaindrive.dynamics.excitation import polygonal_excitation
 from chaindrive.dynamics.modes import drive_modes
 from chaindrive.dynamics.response import polygonal_law, startup_pretension
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -37,7 +38,6 @@ if TYPE_CHECKING:
 
 __all__ = ["MaterialCase", "material_comparison", "with_materials"]
 
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True, slots=True)

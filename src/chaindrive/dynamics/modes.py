@@ -22,13 +22,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.units import TWO_PI
+
 if TYPE_CHECKING:
     from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.torsional import TorsionalModes
 
 __all__ = ["DriveModes", "StateModes", "drive_modes", "inertia_modes_batch", "state_modes"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 

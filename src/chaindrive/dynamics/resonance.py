@@ -17,7 +17,6 @@ passes, like every margin of the package.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -28,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.units import TWO_PI
 
 
 class Modes(Protocol):
@@ -53,7 +53,6 @@ class Modes(Protocol):
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
            "resonance_table", "shaft_frequencies", "working_frequencies"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,

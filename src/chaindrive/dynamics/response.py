@@ -13,7 +13,6 @@ the span leaving the driver; polygonal excitation with 10 harmonics; damping ζ 
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -39,6 +38,7 @@ from chaindrive.dynamics.startup import (
 from chaindrive.dynamics.steady import SteadyStateResult
 from chaindrive.errors import DesignError
 from chaindrive.strength.loads import installed_sag_ratio, sag_tension
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -49,7 +49,6 @@ if TYPE_CHECKING:
 __all__ = ["DynamicResponse", "disturbance_excitations", "mean_radii", "motor_of", "polygonal_law",
            "startup_pretension"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def mean_radii(drive: Drive) -> NDArray[np.float64]:

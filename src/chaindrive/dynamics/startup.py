@@ -52,12 +52,12 @@ from chaindrive.dynamics.kernel_codes import RESISTANCE_KINDS, motor_code
 from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.zoh import zoh_matrices
 from chaindrive.errors import DesignError
+from chaindrive.units import TWO_PI
 
 __all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
            "StartupResult", "runup_time", "settling_time", "solve_startup",
            "transient_times", "work_estimate"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: Default steps per period of the reference mode (or tooth period): slack events and the
 #: explicit forces need it (measured: 40 is unstable on the 24-sprocket example, 160 agrees

@@ -29,12 +29,13 @@ All harmonics are solved at once by :func:`numpy.linalg.solve` on the stacked sy
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     pass
@@ -44,7 +45,6 @@ __all__ = [
     "span_incidence",
 ]
 
-TWO_PI = 2.0 * math.pi
 
 
 def span_incidence(n: int, closed: bool = True) -> NDArray[np.float64]:
@@ -143,10 +143,15 @@ class SteadyStateResult:
         default_factory=lambda: np.zeros(0))
     nominal_force: float | None = None
 
+    @property
+    def tooth_frequency_hz(self) -> float:
+        """f_z = ω_z/2π [Hz]."""
+        return self.tooth_angular_frequency / TWO_PI
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (forces N, displacements mm)."""
         return {
-            "tooth_frequency_hz": self.tooth_angular_frequency / TWO_PI,
+            "tooth_frequency_hz": self.tooth_frequency_hz,
             "harmonic_frequencies_hz": (self.angular_frequencies / TWO_PI).tolist(),
             "span_dynamic_load_n": self.span_dynamic_load.tolist(),
             "span_load_amplitude_n": self.span_load_amplitude.tolist(),

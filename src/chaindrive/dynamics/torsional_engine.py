@@ -56,7 +56,6 @@ from chaindrive.errors import DesignError
 
 __all__ = ["RATIO_RTOL", "TorsionalEngine", "reducer_input_torque"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: One element of a train in :meth:`TorsionalEngine.from_contour` (plain data).
 TrainElement = Mapping[str, "float | str | bool"]

@@ -28,10 +28,10 @@ from chaindrive.dynamics.blas_threads import small_problem_threads
 from chaindrive.dynamics.torsional_assembly import gram as _gram
 from chaindrive.dynamics.torsional_assembly import grams
 from chaindrive.errors import DesignError
+from chaindrive.units import TWO_PI
 
 __all__ = ["TorsionalModes", "TorsionalSystem"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 
 

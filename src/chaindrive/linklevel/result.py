@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.quality import coefficient_of_dynamics, nominal_peripheral_force
+from chaindrive.dynamics.quality import coefficient_of_dynamics
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.linklevel.kernel import (
     E_CONTACT,
     E_HINGE,
@@ -29,6 +30,8 @@ from chaindrive.linklevel.kernel import (
     E_TORSION,
     _penetration,
 )
+from chaindrive.strength.loads import peripheral_force
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -37,7 +40,6 @@ if TYPE_CHECKING:
 
 __all__ = ["LinkLevelResult", "state_energy"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.float64],
@@ -274,8 +276,8 @@ class LinkLevelResult:
                    "torsional_damping_j": float(energy_terms[E_TORSION])}
         ft = None
         if drive.power and drive.driver.speed:
-            ft = nominal_peripheral_force(drive.power, 2.0 * model.pitch_radii[model.driver],
-                                          drive.driver.speed)
+            ft = peripheral_force(drive.power, float(mean_chain_speed(
+                model.pitch, model.teeth[model.driver], drive.driver.speed)))
         return cls(
             names=model.names,
             span_names=tuple(f"{s.start_name}-{s.end_name}" for s in geometry.spans),

@@ -40,6 +40,7 @@ from chaindrive.linklevel.model import (
 )
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
 from chaindrive.strength.loads import power_shares
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -49,7 +50,6 @@ if TYPE_CHECKING:
 
 __all__ = ["COURANT", "InitialState", "initial_state", "simulate"]
 
-TWO_PI = 2.0 * math.pi
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
 #: Contact search every this many steps; the reach circle is widened by a quarter pitch,

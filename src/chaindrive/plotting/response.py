@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.display import RAD_S_TO_RPM, UnitSystem, fmt
+from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, scale
 
 if TYPE_CHECKING:
@@ -159,7 +159,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
-    w = np.asarray(startup.speeds) * RAD_S_TO_RPM
+    w = np.asarray(startup.speeds) * RPM_PER_RAD_S
     _curves(ax, t, w, _labels(w.shape[1], names, "M"), max_lines)
     end = _zoom_end(t, startup.settling_time * 1e3)
     ax.set_xlim(t[0], end)
