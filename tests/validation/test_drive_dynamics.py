@@ -65,7 +65,8 @@ def test_seed_first_frequency(seed) -> None:
 def test_seed_steady_loads_and_kd(seed) -> None:
     """The paper's branch loads 55.39 / 51.95 / 15.32 N, RMS 44.75 N, K_D 1.18: measured
     27 / 812 / 771 N, RMS 647 N, K_D 3.46 (F_t = P/v̄ = 262.5 N) — our f₁ (73.1 Hz) lies
-    2.6 % below the 75 Hz tooth frequency, where the paper's designer had moved his (67.68 Hz, 10 % below) by choosing
+    2.6 % below the 75 Hz tooth frequency, where the paper's designer had moved his (67.68 Hz,
+    10 % below) by choosing
     the chain. The band of K_D for ±10 % on stiffness and inertia (1.5–3.9) holds the paper's
     1.18 only at its low end: the resonance is inside the band and the analysis says so."""
     st = seed.steady
