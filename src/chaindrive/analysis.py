@@ -475,7 +475,8 @@ class Analysis:
 
         duration = self.link_duration_s or min(
             self.drive.dynamics.startup_duration or SHORTEST_STARTUP, DURATION.high)
-        return simulate(self._contour_drive, duration, geometry=self.geometry)
+        return simulate(self._contour_drive, duration, geometry=self.geometry,
+                        dynamics=self.drive_model)
 
     @cached_property
     def link_level_comparison(self) -> ModelComparison | None:

@@ -166,3 +166,21 @@ def test_plotting_draws_frames_and_tooth_loads(jindal):
     assert chain_frame(r, magnify=10).axes
     assert len(chain_frames(r, [0.0, 0.002, 0.004], columns=2).axes) >= 3
     assert tooth_loads(r).axes[0].get_lines()
+
+
+def test_link_damping_is_the_analysis_damping() -> None:
+    # one damping selector: the links' c = 2ζ k_link/ω_ref with ζ (the mean of the spans'
+    # ratios) and ω_ref of the whole-drive model the analysis builds (seed: ζ 0.0633 of the
+    # steel pair with its polymer-free sprockets, f_ref 73.06 Hz; not the ring's 0.0688 and
+    # 52.7 Hz)
+    from chaindrive.analysis import analyze
+
+    a = analyze(load_drive(EXAMPLES / "seed_three_sprocket.toml"))
+    dm = a.drive_model
+    model = build_model(a.drive, a.geometry)
+    assert model.reference_frequency_hz == pytest.approx(dm.reference_frequency_hz, rel=1e-12)
+    assert model.reference_frequency_hz == pytest.approx(
+        a.dynamics.modal.first_elastic_frequency_hz, rel=1e-9)  # a chain mode on the seed
+    zeta = float(np.mean(dm.span_damping_ratios))
+    assert model.link_damping == pytest.approx(
+        2 * zeta * model.link_stiffness / (2 * np.pi * dm.reference_frequency_hz), rel=1e-12)

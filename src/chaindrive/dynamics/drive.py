@@ -4,9 +4,6 @@ contour geometry, and its modal stage.
 * :func:`drive_ring_parameters` — reduced masses m_i = I_i/R_i² and branch stiffnesses of the
   ring (chain, sprocket wrap and sag compliance in series; :mod:`.stiffness` has the
   formulas), with their parts;
-* :func:`ring_damping_ratio` — the ring's damping ratio: hinge friction plus material damping;
-* :func:`ring_model` — the :class:`~chaindrive.dynamics.ring.RingModel` of a drive (the ring
-  of reduced masses is a constructor of a model; the analyses run on the whole-drive model).
 """
 
 from __future__ import annotations
@@ -19,8 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.damping import loss_factor, modal_loss_factor, series_loss_factor
-from chaindrive.dynamics.ring import RingModel, modal_analysis
+from chaindrive.dynamics.damping import loss_factor, series_loss_factor
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
     TOOTH_WIDTH_FACTOR,
@@ -42,8 +38,7 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
-__all__ = ["RingParameters", "chain_link_stiffness", "drive_ring_parameters", "ring_damping_ratio",
-           "ring_model", "static_span_tensions"]
+__all__ = ["RingParameters", "chain_link_stiffness", "drive_ring_parameters", "static_span_tensions"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -278,75 +273,3 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
             [np.full(n, loss_factor(chain_mat.family, chain_mat.is_polymer)), eta_wrap[starts],
              eta_wrap[ends]], [1.0 / chain_c, 1.0 / wrap[starts], 1.0 / wrap[ends]]),
     )
-
-
-def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
-    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given plus
-    the material part η₁/2 of the first elastic mode by the modal strain energy method
-    (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets about
-    +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains
-    damp more).
-
-    Parameters
-    ----------
-    params : RingParameters
-        The ring's masses, stiffnesses and loss factors.
-    hinge_damping : float
-        The hinge-friction or measured damping ratio [-] ([MultimassChainDrives]: D = 0.06).
-
-    Returns
-    -------
-    float
-        ζ [-].
-
-    References
-    ----------
-    [Johnson1982] (modal strain energy).
-    """
-
-    modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
-    elastic = np.flatnonzero(~modal.rigid_body)
-    if elastic.size == 0:
-        return hinge_damping
-    eta = modal_loss_factor(params.loss_factors, params.stiffness_n_per_m,
-                            modal.shapes[:, elastic[0]])
-    return min(0.99, hinge_damping + eta / 2.0)
-
-
-def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
-               span_tensions: Sequence[float] | None = None,
-               link_stiffness: float | None = None,
-               material_lookup: Callable[[str], Material] | None = None) -> RingModel:
-    """The ring model of a drive; see :func:`drive_ring_parameters`.
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its contour.
-    damping : float
-        Hinge-friction damping ratio [-] (D = 0.06 [MultimassChainDrives]; or ζ = ψ/4π from
-        :mod:`chaindrive.dynamics.damping`), to which the material damping of the first mode
-        is added (:func:`ring_damping_ratio`).
-    span_tensions : sequence of float or None
-        Tension of every span [N] (None: the static tensions when the drive has a power, see
-        :func:`static_span_tensions`).
-    link_stiffness : float or None
-        Stiffness of one link [N/m] from catalogue data (None: from the plates and pin).
-    material_lookup : callable or None
-        Name → Material (None: :func:`chaindrive.catalog.find_material`).
-
-    Returns
-    -------
-    RingModel
-        Masses, stiffnesses, damping ratio and sprocket names.
-    """
-    p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
-                              link_stiffness=link_stiffness, material_lookup=material_lookup)
-    return RingModel(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
-                     damping_ratio=ring_damping_ratio(p, damping),
-                     names=tuple(s.name for s in drive.sprockets))
-
-
-

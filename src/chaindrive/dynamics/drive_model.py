@@ -58,10 +58,10 @@ from chaindrive.dynamics.drive_assembly import (
 )
 from chaindrive.dynamics.drive_damping import (
     chain_damping,
-    chain_damping_ratio,
     reference_angular_frequency,
     with_chain_dampers,
 )
+from chaindrive.dynamics.ring import RingModel
 from chaindrive.dynamics.torsional_system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.units import TWO_PI
@@ -76,9 +76,9 @@ __all__ = [
     "LinearModel",
     "LoadPlacement",
     "MotorPlacement",
-    "chain_damping_ratio",
     "drive_model",
     "model_completeness",
+    "ring_model",
     "shaft_stiffness",
 ]
 
@@ -268,3 +268,42 @@ def _memoized(lookup: Callable[[str], Material]) -> Callable[[str], Material]:
         return found[name]
 
     return get
+
+
+def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float | None = None,
+               span_tensions: Sequence[float] | None = None,
+               link_stiffness: float | None = None,
+               material_lookup: Callable[[str], Material] | None = None) -> RingModel:
+    """The ring of reduced masses of a drive
+    (:func:`~chaindrive.dynamics.drive.drive_ring_parameters`), a second constructor of a
+    linear model beside :func:`drive_model`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its contour.
+    damping : float or None
+        Damping ratio ζ [-] (None: the mean of the spans' ratios the whole-drive model takes,
+        :func:`chaindrive.dynamics.drive_damping.chain_damping`).
+    span_tensions : sequence of float or None
+        Tension of every span [N] (None: the static tensions when the drive has a power, see
+        :func:`static_span_tensions`).
+    link_stiffness : float or None
+        Stiffness of one link [N/m] from catalogue data (None: from the plates and pin).
+    material_lookup : callable or None
+        Name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    RingModel
+        Masses, stiffnesses, damping ratio and sprocket names.
+    """
+    lookup = material_lookup or find_material
+    p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                              link_stiffness=link_stiffness, material_lookup=lookup)
+    return RingModel(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
+                     damping_ratio=damping if damping is not None else float(
+                         np.mean(chain_damping(drive, geometry, p, lookup)[0])),
+                     names=tuple(s.name for s in drive.sprockets))
