@@ -14,7 +14,6 @@ from numpy.typing import NDArray
 from chaindrive.dynamics.drive_model import DriveModel
 from chaindrive.dynamics.modes import DriveModes, StateModes, drive_modes
 from chaindrive.dynamics.resonance import (
-    TWO_PI,
     CampbellData,
     Resonance,
     WorkingFrequency,
@@ -24,6 +23,7 @@ from chaindrive.dynamics.resonance import (
 )
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult

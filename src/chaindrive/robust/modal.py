@@ -40,12 +40,13 @@ from scipy.sparse import csr_matrix
 
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
+from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
 from chaindrive.dynamics.torsional_system import TorsionalSystem
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.perturbation import modulus_factors
+from chaindrive.units import TWO_PI
 
 __all__ = ["WORKING_HARMONICS", "StackedState", "batch_chain_stiffness",
            "batch_elastic_frequencies", "batch_system_values", "modal_margins",
