@@ -15,8 +15,8 @@ import time
 from pathlib import Path
 
 from chaindrive.analysis import analyze
-from chaindrive.dynamics.drive_startup import model_startup
 from chaindrive.dynamics.response import polygonal_law, startup_pretension
+from chaindrive.dynamics.transient.drive_startup import model_startup
 from chaindrive.io.design import load_drive
 from chaindrive.kinematics import tooth_frequency
 
@@ -32,7 +32,7 @@ def best(fn, repeats: int = 7):
 
 
 def nonlinear_case() -> None:
-    from chaindrive.dynamics.kernel_build import compiled_kernel
+    from chaindrive.dynamics.transient.kernel_build import compiled_kernel
 
     root = Path(__file__).resolve().parents[1]
     d = load_drive(root / "examples" / "twenty_four_sprocket.toml")

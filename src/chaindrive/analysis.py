@@ -20,7 +20,6 @@ from numpy.typing import NDArray
 
 from chaindrive.checks import Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
-from chaindrive.dynamics.afc import AfcResult
 from chaindrive.dynamics.checks import (
     disturbed_safety_check,
     dynamic_safety_check,
@@ -33,9 +32,9 @@ from chaindrive.dynamics.damping import (
     HingeFrictionResult,
     hinge_friction_grid,
 )
-from chaindrive.dynamics.drive import RingParameters
-from chaindrive.dynamics.drive_model import DriveModel, drive_model
-from chaindrive.dynamics.drive_response import (
+from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
+from chaindrive.dynamics.frequency.afc import AfcResult
+from chaindrive.dynamics.frequency.response import (
     Bands,
     drive_steady,
     drive_sweep,
@@ -43,9 +42,11 @@ from chaindrive.dynamics.drive_response import (
     span_loads_over,
     uncertainty_bands,
 )
-from chaindrive.dynamics.drive_startup import affordable_duration, model_startup
-from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
+from chaindrive.dynamics.frequency.steady import SteadyStateResult
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
+from chaindrive.dynamics.model.build import DriveModel, drive_model
+from chaindrive.dynamics.modes import DriveDynamics, model_dynamics
+from chaindrive.dynamics.parameters import RingParameters
 from chaindrive.dynamics.published import published_comparison
 from chaindrive.dynamics.resonance import resonance_warnings
 from chaindrive.dynamics.response import (
@@ -54,7 +55,8 @@ from chaindrive.dynamics.response import (
     polygonal_law,
     startup_pretension,
 )
-from chaindrive.dynamics.runup import (
+from chaindrive.dynamics.transient.drive_startup import affordable_duration, model_startup
+from chaindrive.dynamics.transient.runup import (
     LONGEST_STARTUP,
     SHORTEST_STARTUP,
     RunUp,
@@ -62,10 +64,8 @@ from chaindrive.dynamics.runup import (
     rigid_runup,
     startup_durations,
 )
-from chaindrive.dynamics.startup import StartupResult
-from chaindrive.dynamics.steady import SteadyStateResult
+from chaindrive.dynamics.transient.startup import StartupResult
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
-from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.length_options import LengthChoice, length_options
@@ -299,7 +299,7 @@ class Analysis:
     @cached_property
     def drive_model(self) -> DriveModel:
         """The whole-drive model: the contour with the chain's own mass, every sprocket's
-        train, the motor and the machines (:mod:`chaindrive.dynamics.drive_model`); the
+        train, the motor and the machines (:mod:`chaindrive.dynamics.model.build`); the
         static span tensions of one contour set the sag stiffness."""
         st = self._static
         return drive_model(self.drive, self.geometry,
@@ -377,7 +377,7 @@ class Analysis:
     def startup(self) -> StartupResult | None:
         """The start-up from rest with the motor law on the motor's rotor and the machines'
         moments on theirs (None when the design asks for none). Its duration is the design's
-        or, automatic, the first of :func:`~chaindrive.dynamics.runup.startup_durations`
+        or, automatic, the first of :func:`~chaindrive.dynamics.transient.runup.startup_durations`
         whose record settles (the last one tried otherwise)."""
         d, s = self.drive, self.drive.dynamics
         if (not self._responds or not s.transient or not self.with_startup or d.power is None

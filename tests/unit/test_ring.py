@@ -19,8 +19,8 @@ from chaindrive.dynamics import (
     ring_frequencies_batch,
     ring_stiffness_matrix,
 )
-from chaindrive.dynamics.drive import drive_ring_parameters
-from chaindrive.dynamics.drive_model import ring_model
+from chaindrive.dynamics.model.build import ring_model
+from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.stiffness import (
     link_stiffness,
     sag_stiffness_factor,

@@ -1,4 +1,4 @@
-"""Start-up transient (chaindrive.dynamics.startup)."""
+"""Start-up transient (chaindrive.dynamics.transient.startup)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,10 @@ from scipy.integrate import solve_ivp
 
 from chaindrive.checks import UNVERIFIED
 from chaindrive.dynamics.checks import startup_safety_check
+from chaindrive.dynamics.frequency.steady import span_incidence
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
-from chaindrive.dynamics.startup import (
+from chaindrive.dynamics.transient.kernel import HAVE_NUMBA
+from chaindrive.dynamics.transient.startup import (
     PolygonalLaw,
     StartupProblem,
     StartupResult,
@@ -24,10 +26,8 @@ from chaindrive.dynamics.startup import (
     solve_startup,
     transient_times,
 )
-from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
-from chaindrive.dynamics.steady import span_incidence
+from chaindrive.dynamics.transient.zoh import expm, zoh_matrices
 from chaindrive.dynamics.warnings import startup_warnings
-from chaindrive.dynamics.zoh import expm, zoh_matrices
 from chaindrive.errors import DesignError
 
 
@@ -205,9 +205,9 @@ def test_unknown_motor_falls_back_to_numpy_loop() -> None:
 
 @pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler: no ahead-of-time build")
 def test_ahead_of_time_kernel_is_built_and_current(monkeypatch: pytest.MonkeyPatch) -> None:
-    # make builds chaindrive.dynamics._startup_aot from the current kernel source; a module
+    # make builds chaindrive.dynamics.transient._startup_aot from the current kernel source; a module
     # whose source digest differs (a stale build) is not used
-    from chaindrive.dynamics import _startup_aot, kernel_build  # type: ignore[attr-defined]
+    from chaindrive.dynamics.transient import _startup_aot, kernel_build  # type: ignore[attr-defined]
 
     assert _startup_aot.source_digest() == kernel_build.source_digest()
     assert kernel_build.compiled_kernel() is _startup_aot.run_kernel_flat

@@ -1,4 +1,4 @@
-"""Frequency-domain steady state (chaindrive.dynamics.steady, excitation)."""
+"""Frequency-domain steady state (chaindrive.dynamics.frequency.steady, excitation)."""
 
 from __future__ import annotations
 

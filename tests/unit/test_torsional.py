@@ -1,5 +1,5 @@
 """TorsionalModel: construction errors, matrices for the integrator, torques through reducers,
-strain-energy shares (src/chaindrive/dynamics/torsional.py)."""
+strain-energy shares (src/chaindrive/dynamics/torsional/model.py)."""
 
 from __future__ import annotations
 

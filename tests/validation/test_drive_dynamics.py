@@ -15,13 +15,13 @@ from numpy.testing import assert_allclose
 
 import chaindrive
 from chaindrive import examples
-from chaindrive.dynamics.drive_model import drive_model
-from chaindrive.dynamics.drive_response import drive_steady, frequency_band_factors
-from chaindrive.dynamics.drive_startup import model_startup
 from chaindrive.dynamics.excitation import polygonal_excitation
+from chaindrive.dynamics.frequency.response import drive_steady, frequency_band_factors
 from chaindrive.dynamics.materials import with_materials
+from chaindrive.dynamics.model.build import drive_model
 from chaindrive.dynamics.modes import drive_modes
-from chaindrive.dynamics.torsional import TorsionalModel
+from chaindrive.dynamics.torsional.model import TorsionalModel
+from chaindrive.dynamics.transient.drive_startup import model_startup
 from chaindrive.model import TrainElement
 
 

@@ -13,8 +13,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from chaindrive.dynamics.drive import drive_ring_parameters
 from chaindrive.dynamics.motors import ConstantTorque
+from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive

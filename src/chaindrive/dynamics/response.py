@@ -19,26 +19,25 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.afc import AfcResult
 from chaindrive.dynamics.excitation import (
     SpanExcitation,
     chain_error_excitation,
     eccentricity_excitation,
     path_positions,
 )
+from chaindrive.dynamics.frequency.afc import AfcResult
+from chaindrive.dynamics.frequency.steady import SteadyStateResult
 from chaindrive.dynamics.motors import (
     ConstantTorque,
     KlossMotor,
     RampTorque,
 )
-from chaindrive.dynamics.startup import (
+from chaindrive.dynamics.transient.startup import (
     PolygonalLaw,
     StartupResult,
 )
-from chaindrive.dynamics.steady import SteadyStateResult
 from chaindrive.errors import DesignError
 from chaindrive.strength.loads import installed_sag_ratio, sag_tension
-from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -46,29 +45,10 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, DynamicsSettings
 
-__all__ = ["DynamicResponse", "disturbance_excitations", "mean_radii", "motor_of", "polygonal_law",
+__all__ = ["DynamicResponse", "disturbance_excitations", "motor_of", "polygonal_law",
            "startup_pretension"]
 
 
-
-def mean_radii(drive: Drive) -> NDArray[np.float64]:
-    """R̄_i = z_i p/2π [m]: chain travel per radian of sprocket i.
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive (teeth and pitch).
-
-    Returns
-    -------
-    ndarray
-        (n,) R̄_i [m].
-
-    References
-    ----------
-    [ChainNonUniformity] (the mean chain speed z p ω/2π).
-    """
-    return np.array([s.teeth for s in drive.sprockets], float) * drive.chain.pitch / TWO_PI
 
 
 def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:

@@ -5,7 +5,7 @@ motor whose rotor inertia is left to the estimate must lie within the estimate's
 from __future__ import annotations
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.drive_assembly import kloss_parameters, motor_rating
+from chaindrive.dynamics.model.assembly import kloss_parameters, motor_rating
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import KlossMotor
 from chaindrive.errors import DesignError
@@ -72,7 +72,7 @@ def check_motor_estimate(drive: Drive) -> None:
     [MotiveDelphi]); the estimate covers synchronous speeds of
     :data:`~chaindrive.dynamics.motor_inertia.SPEED_RANGE_RAD_S` and rated torques of
     :data:`~chaindrive.dynamics.motor_inertia.TORQUE_RANGE_N_M`. The rated power and speed
-    are the ones the dynamics uses (:func:`chaindrive.dynamics.drive_assembly.motor_rating`),
+    are the ones the dynamics uses (:func:`chaindrive.dynamics.model.assembly.motor_rating`),
     the synchronous speed the Kloss law's (:attr:`KlossMotor.synchronous_speed`), and the
     range errors the estimate's own, re-addressed to the field the designer wrote.
 

@@ -3,12 +3,12 @@
 * Roller (hinge) masses: one pitch of chain per roller, m = q·p [kg] (q the catalogue mass
   per metre) — the chain as mass particles at the roller centres joined by spring–dampers,
   the discrete model of [Pedersen2004] and [Pedersen2005].
-* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.drive.chain_link_stiffness`
+* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.parameters.chain_link_stiffness`
   (the design's measured value, else plates and pin: the ring model's own value, so both
   models share it); viscous link damping
   c = 2ζ·k_link/ω_ref with the whole-drive model's ζ and ω_ref
-  (:func:`chaindrive.dynamics.drive_model.drive_model`: ζ the mean of its spans' damping
-  ratios, chosen by :func:`chaindrive.dynamics.drive_damping.chain_damping` — the design's
+  (:func:`chaindrive.dynamics.model.build.drive_model`: ζ the mean of its spans' damping
+  ratios, chosen by :func:`chaindrive.dynamics.model.damping.chain_damping` — the design's
   ``[dynamics] damping_ratio``, hinge friction or the material pair; ω_ref the frequency of
   its first chain mode, its ``reference_frequency_hz``): a span of L/p such links is the
   analysis's span damper 2ζ·c_span/ω_ref, so the two models carry the same damping;
@@ -47,8 +47,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
-from chaindrive.dynamics.drive import drive_ring_parameters
-from chaindrive.dynamics.drive_model import DriveModel, drive_model
+from chaindrive.dynamics.model.build import DriveModel, drive_model
+from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.response import startup_pretension
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
@@ -79,7 +79,7 @@ HINGE_FRICTION = 0.1
 @dataclass(frozen=True, slots=True, eq=False)
 class TorsionalAttachment:
     """A linear torsional system coupled to the sprockets (e.g. the trains of
-    :mod:`chaindrive.dynamics.torsional`): rotational coordinates θ = (sprockets…, extra…).
+    :mod:`chaindrive.dynamics.torsional.model`): rotational coordinates θ = (sprockets…, extra…).
 
     Parameters
     ----------
@@ -302,7 +302,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
         Name → Material (None: :func:`chaindrive.catalog.find_material`).
     dynamics : DriveModel or None
         The analysis's whole-drive model, whose damping ratios and reference frequency the
-        links take (None: :func:`chaindrive.dynamics.drive_model.drive_model` of ``drive``).
+        links take (None: :func:`chaindrive.dynamics.model.build.drive_model` of ``drive``).
 
     Returns
     -------

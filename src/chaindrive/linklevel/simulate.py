@@ -45,7 +45,7 @@ from chaindrive.units import TWO_PI
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 
-    from chaindrive.dynamics.drive_model import DriveModel
+    from chaindrive.dynamics.model.build import DriveModel
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
@@ -60,7 +60,7 @@ Start = Literal["rest", "steady"]
 
 
 def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
-    """Kernel code of a motor law of :mod:`chaindrive.dynamics.startup`."""
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.transient.startup`."""
     if type(motor) is ConstantTorque:
         return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
     if type(motor) is RampTorque:

@@ -2,7 +2,7 @@
 chain's own mass, the motor and the driven machines (docs/dynamics.md §1).
 
 :func:`drive_model` builds it from a :class:`~chaindrive.model.Drive` and its contour as a
-:class:`~chaindrive.dynamics.torsional.TorsionalEngine` [Rao2011, ch. 6]:
+:class:`~chaindrive.dynamics.torsional.model.TorsionalEngine` [Rao2011, ch. 6]:
 
 * **sprockets** — rotating bodies of inertia J_i (``inertia``, ``reduced_mass``·R², or the
   sprocket body) with their flywheels;
@@ -46,8 +46,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.drive import RingParameters, drive_ring_parameters
-from chaindrive.dynamics.drive_assembly import (
+from chaindrive.dynamics.model.assembly import (
     CHAIN_NODE,
     DriveParts,
     LinearModel,
@@ -56,13 +55,14 @@ from chaindrive.dynamics.drive_assembly import (
     assembled_parts,
     shaft_stiffness,
 )
-from chaindrive.dynamics.drive_damping import (
+from chaindrive.dynamics.model.damping import (
     chain_damping,
     reference_angular_frequency,
     with_chain_dampers,
 )
+from chaindrive.dynamics.parameters import RingParameters, drive_ring_parameters
 from chaindrive.dynamics.ring import RingModel
-from chaindrive.dynamics.torsional_system import TorsionalModes
+from chaindrive.dynamics.torsional.system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.units import TWO_PI
 
@@ -89,7 +89,7 @@ FloatArray = NDArray[np.float64]
 class DriveModel(DriveParts):
     """The whole-drive model (module docstring) in the coordinates q of its
     :class:`LinearModel`: the fields of
-    :class:`~chaindrive.dynamics.drive_assembly.DriveParts` (the assembled model: torsional
+    :class:`~chaindrive.dynamics.model.assembly.DriveParts` (the assembled model: torsional
     model, matrices, coordinates of sprockets, rotors, motor and machines, damping, ring,
     notes, trains) and the two below.
 
@@ -226,7 +226,7 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
         name → Material (None: :func:`chaindrive.catalog.find_material`).
     ring : RingParameters | None
         The ring reduction to build on (sprocket inertias, span stiffnesses and tensions);
-        None: :func:`chaindrive.dynamics.drive.drive_ring_parameters` of the drive. A
+        None: :func:`chaindrive.dynamics.parameters.drive_ring_parameters` of the drive. A
         perturbed state of the drive (worn chain, scattered inertias) passes its own.
 
     Returns
@@ -275,7 +275,7 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float | None 
                link_stiffness: float | None = None,
                material_lookup: Callable[[str], Material] | None = None) -> RingModel:
     """The ring of reduced masses of a drive
-    (:func:`~chaindrive.dynamics.drive.drive_ring_parameters`), a second constructor of a
+    (:func:`~chaindrive.dynamics.parameters.drive_ring_parameters`), a second constructor of a
     linear model beside :func:`drive_model`.
 
     Parameters
@@ -286,7 +286,7 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float | None 
         Its contour.
     damping : float or None
         Damping ratio ζ [-] (None: the mean of the spans' ratios the whole-drive model takes,
-        :func:`chaindrive.dynamics.drive_damping.chain_damping`).
+        :func:`chaindrive.dynamics.model.damping.chain_damping`).
     span_tensions : sequence of float or None
         Tension of every span [N] (None: the static tensions when the drive has a power, see
         :func:`static_span_tensions`).

@@ -2,7 +2,7 @@ r"""Start-up transient from rest: the nonlinear time integration of a drive mode
 tension-only chain spans [MultimassChainDrives, §3.1, Fig. 2].
 
 Equations, for coordinates q of any drive model (the whole drive of
-:mod:`chaindrive.dynamics.drive_model`, or any :class:`StartupProblem` built by hand)::
+:mod:`chaindrive.dynamics.model.build`, or any :class:`StartupProblem` built by hand)::
 
     M q̈ + C_lin q̇ + K_lin q = −Bᵀ F + Q_laws(t, q̇),
     F_i = s_i · [T₀,i + c_i (e_i + d_i) + d_s,i (ė_i + ḋ_i)],   e = B q,
@@ -18,16 +18,16 @@ its sprocket; :mod:`chaindrive.dynamics.motors`).
 
 **Integrator** (exponential / zero-order-hold [VanLoan1978]): for each slack pattern s the
 linear part ẏ = A_s y + E f (y = (q, q̇)) is discretised exactly,
-expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.zoh`), and
+expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.transient.zoh`), and
 y_{k+1} = Φ_s y_k + Γ_s f_{k+½}, f_{k+½} = (3 f_k − f_{k−1})/2 for the explicit span forces
 (pre-tension, polygonal); the laws are linearly implicit on their own coordinate's speed.
 Φ_s, Γ_s are cached per pattern. The linear part is exact at any step (no stability limit
 from stiff modes); a step whose end state changes the slack pattern is redone once with the
 new pattern.
 
-**Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.startup_kernel`)
+**Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.transient.kernel`)
 when the motor is a ConstantTorque, RampTorque or KlossMotor — compiled ahead of time when
-that build is present and current (:mod:`chaindrive.dynamics.kernel_build`), else just in
+that build is present and current (:mod:`chaindrive.dynamics.transient.kernel_build`), else just in
 time; otherwise in NumPy. Both take the same steps and agree to round-off on small cases
 (with slack spans and polygonal excitation the trajectory itself amplifies round-off: peak
 forces are the robust output).
@@ -48,9 +48,9 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.kernel_codes import RESISTANCE_KINDS, motor_code
 from chaindrive.dynamics.motors import ResistanceLaw
-from chaindrive.dynamics.zoh import zoh_matrices
+from chaindrive.dynamics.transient.kernel_codes import RESISTANCE_KINDS, motor_code
+from chaindrive.dynamics.transient.zoh import zoh_matrices
 from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
 
@@ -624,24 +624,24 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
 
 def _compiled_runner(backend: Backend) -> Any:  # a numba Dispatcher or an AOT function
     """The compiled step loop: the ahead-of-time module when built from the current source
-    (:mod:`chaindrive.dynamics.kernel_build`; loads without numba), else numba's
+    (:mod:`chaindrive.dynamics.transient.kernel_build`; loads without numba), else numba's
     just-in-time ``run_kernel_flat`` (backend "jit" forces it), else None."""
     # imported here: the kernel module imports numba (0.25 s), the ahead-of-time module not
     if backend != "jit":
-        from chaindrive.dynamics.kernel_build import compiled_kernel
+        from chaindrive.dynamics.transient.kernel_build import compiled_kernel
 
         runner = compiled_kernel()
         if runner is not None:
             return runner
     # lazy: the just-in-time kernel imports numba (0.25 s), only when no compiled one exists
-    from chaindrive.dynamics.startup_kernel import HAVE_NUMBA, run_kernel_flat
+    from chaindrive.dynamics.transient.kernel import HAVE_NUMBA, run_kernel_flat
 
     return run_kernel_flat if HAVE_NUMBA else None
 
 
 def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
                   ) -> tuple[FloatArray, FloatArray, FloatArray, int]:
-    """The step loop compiled (:mod:`chaindrive.dynamics.startup_kernel`); same output as
+    """The step loop compiled (:mod:`chaindrive.dynamics.transient.kernel`); same output as
     :func:`_run_numpy`. Slack patterns new to the kernel are discretised here, then the
     kernel resumes from the step that met them."""
     n, ns = p.size, p.span_stiffness.size

@@ -1,4 +1,4 @@
-"""The chain's damping in the whole-drive model of :mod:`chaindrive.dynamics.drive_model`.
+"""The chain's damping in the whole-drive model of :mod:`chaindrive.dynamics.model.build`.
 
 The damping ratio ζ of every span and of every sprocket's wrap is the ratio of its material
 pair [MultimassChainDrives, Table 1], the design's ``[dynamics] damping_ratio``, or each
@@ -17,12 +17,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
-from chaindrive.dynamics.drive_assembly import DriveParts, LinearModel
+from chaindrive.dynamics.model.assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive import RingParameters
-    from chaindrive.dynamics.torsional_system import TorsionalModes
+    from chaindrive.dynamics.parameters import RingParameters
+    from chaindrive.dynamics.torsional.system import TorsionalModes
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material
 

@@ -1,5 +1,5 @@
 """The engine of the torsional model of a whole chain drive train (the public class with
-its builders is :class:`chaindrive.dynamics.torsional.TorsionalModel`): the ring of
+its builders is :class:`chaindrive.dynamics.torsional.model.TorsionalModel`): the ring of
 sprockets with an open train of shafts, couplings, gear pairs and machines on every
 sprocket (docs/torsional.md).
 
@@ -42,7 +42,7 @@ from collections.abc import Mapping
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.torsional_assembly import (
+from chaindrive.dynamics.torsional.assembly import (
     RATIO_RTOL,
     WeightedUnion,
     gear_coordinates,
@@ -51,7 +51,7 @@ from chaindrive.dynamics.torsional_assembly import (
     kinematic_groups,
     rigid_motions,
 )
-from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
 from chaindrive.errors import DesignError
 
 __all__ = ["RATIO_RTOL", "TorsionalEngine", "reducer_input_torque"]
@@ -107,7 +107,7 @@ def _check_efficiency(field: str, efficiency: float) -> None:
 _INF = math.inf
 
 
-def _nonneg(field: str, value: float, what: str) -> float:
+def nonneg(field: str, value: float, what: str) -> float:
     value = float(value)
     if not 0.0 <= value < _INF:  # also False for nan
         raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
@@ -186,7 +186,7 @@ class TorsionalEngine:
         i = self._node(name, True, name)
         if self._given[i]:
             raise DesignError(name, "the node already has an inertia")
-        self._inertia[i] = _nonneg(name, inertia, "inertia [kg·m²]")
+        self._inertia[i] = nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
         self._system = None
         return self
@@ -207,7 +207,7 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         i = self._node(name, False, name)
-        self._inertia[i] += _nonneg(name, inertia, "inertia [kg·m²]")
+        self._inertia[i] += nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
         self._system = None
         return self
@@ -245,7 +245,7 @@ class TorsionalEngine:
             The nodes it joins (created massless when new).
         stiffness : float
             Torsional stiffness k [N·m/rad] (of a round shaft:
-            :func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
+            :func:`chaindrive.dynamics.model.build.shaft_stiffness`).
         damping : float
             Torsional damping c [N·m·s/rad].
         name : str | None
@@ -265,11 +265,11 @@ class TorsionalEngine:
         if ia is None or ib is None or a == b:
             ia, ib = self._pair(a, b, name)
         k = float(stiffness)
-        if not 0.0 <= k < _INF:  # also True for nan (as _nonneg, without the call)
-            _nonneg(name, k, "stiffness [N·m/rad]")
+        if not 0.0 <= k < _INF:  # also True for nan (as nonneg, without the call)
+            nonneg(name, k, "stiffness [N·m/rad]")
         c = float(damping)
         if not 0.0 <= c < _INF:
-            _nonneg(name, c, "damping [N·m·s/rad]")
+            nonneg(name, c, "damping [N·m·s/rad]")
         self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, 1.0))
@@ -297,9 +297,9 @@ class TorsionalEngine:
         """
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
+        k = nonneg(name, stiffness, "stiffness [N·m/rad]")
         self._elements.append((name, "ground", i, -1, 1.0, 0.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
+                               nonneg(name, damping, "damping [N·m·s/rad]"), False))
         self._held[i] = self._held[i] or k > 0.0
         return self
 
@@ -382,17 +382,17 @@ class TorsionalEngine:
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         m = float(mass)
-        if not 0.0 <= m < _INF:  # also True for nan (as _nonneg, without the call)
-            _nonneg(name, m, "span mass [kg]")
+        if not 0.0 <= m < _INF:  # also True for nan (as nonneg, without the call)
+            nonneg(name, m, "span mass [kg]")
         ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
         if ia is None or ib is None or a == b:
             ia, ib = self._pair(a, b, name)
         k = float(stiffness)
         if not 0.0 <= k < _INF:
-            _nonneg(name, k, "stiffness [N/m]")
+            nonneg(name, k, "stiffness [N/m]")
         c = float(damping)
         if not 0.0 <= c < _INF:
-            _nonneg(name, c, "damping [N·s/m]")
+            nonneg(name, c, "damping [N·s/m]")
         self._elements.append((name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, ra / rb))
@@ -445,9 +445,9 @@ class TorsionalEngine:
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N/m]")
+        k = nonneg(name, stiffness, "stiffness [N/m]")
         self._elements.append((name, kind, ia, ib, -ra, rb, k,
-                               _nonneg(name, damping, "damping [N·s/m]"), False))
+                               nonneg(name, damping, "damping [N·s/m]"), False))
         self._kinematics(ia, ib, ra / rb, k)
         return self
 
@@ -469,7 +469,7 @@ class TorsionalEngine:
         """
         for k, e in enumerate(self._elements):
             if e[0] == element:
-                self._elements[k] = (*e[:7], _nonneg(element, damping, "damping"), e[8])
+                self._elements[k] = (*e[:7], nonneg(element, damping, "damping"), e[8])
                 self._system = None
                 return self
         raise DesignError(element, "no element of that name")
@@ -492,7 +492,7 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         i = self._node(node, False, f"wrap:{node}")
-        m = _nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
+        m = nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
         self._chain[i] += m * float(radius) ** 2
         self._system = None
         return self
@@ -500,7 +500,7 @@ class TorsionalEngine:
     def _kinematics(self, a: int, b: int, w: float, stiffness: float) -> None:
         """Strain-free relation φ_b = w·φ_a of an element (ignored at stiffness 0); one that
         contradicts the others holds its group (no rigid-body motion; resolved at assembly:
-        :func:`chaindrive.dynamics.torsional_assembly.kinematic_groups`)."""
+        :func:`chaindrive.dynamics.torsional.assembly.kinematic_groups`)."""
         if stiffness > 0.0:
             self._relations.append((a, b, w))
 
@@ -634,7 +634,7 @@ class TorsionalEngine:
 
 def _assemble(model: TorsionalEngine) -> TorsionalSystem:
     """Reduced coordinates (one per gear tree), element incidence, rigid-body motions, on
-    whole arrays (:mod:`chaindrive.dynamics.torsional_assembly`)."""
+    whole arrays (:mod:`chaindrive.dynamics.torsional.assembly`)."""
     n_nodes = len(model._inertia)
     if n_nodes == 0:
         raise DesignError("nodes", "the model has no node")

@@ -3,7 +3,7 @@ r"""Amplitude–frequency characteristics (AFC) of a chain contour ([MultimassCh
 The driver speed is swept (default 10 %–150 % of nominal, 2000 points) and, at every speed,
 the steady response to the kinematic excitation (:mod:`chaindrive.dynamics.excitation`) is
 found by **modal superposition** with the eigen-decomposition computed once: with the
-stiffness-proportional damping C = βK of :mod:`chaindrive.dynamics.steady` the undamped
+stiffness-proportional damping C = βK of :mod:`chaindrive.dynamics.frequency.steady` the undamped
 mass-normalised modes Φ (Φᵀ M Φ = I, Φᵀ K Φ = Ω²) decouple the equations ([Rao2011,
 §6.13–6.15]), so each frequency needs only diagonal modal responses::
 
@@ -81,7 +81,7 @@ class AfcResult:
         }
 
 
-def _peak_over_period(F: NDArray[np.complex128], orders: NDArray[np.float64], samples: int,
+def peak_over_period(F: NDArray[np.complex128], orders: NDArray[np.float64], samples: int,
                       block: int = 128) -> NDArray[np.float64]:
     """max over one tooth period of |Σ_k Re(F_k e^{i k θ})|, θ on ``samples`` points, for
     every (speed, span): F (S, K, n) → (S, n). The trace of ``block`` speeds at a time is one
@@ -99,7 +99,7 @@ def _peak_over_period(F: NDArray[np.complex128], orders: NDArray[np.float64], sa
     return load
 
 
-def _local_maxima(y: NDArray[np.float64]) -> NDArray[np.intp]:
+def local_maxima(y: NDArray[np.float64]) -> NDArray[np.intp]:
     """Interior indices with y[i−1] < y[i] ≥ y[i+1]."""
     if y.size < 3:
         return np.zeros(0, dtype=np.intp)
