@@ -160,8 +160,14 @@ class TorsionalEngine:
         return i
 
     def _element_name(self, name: str | None, default: str) -> str:
-        name = name or default
-        if name in self._names:
+        """The element's name: the one given (refused when taken) or the default, numbered
+        ``default#2``, ``default#3``, … when another element already has it."""
+        if not name:
+            name, k = default, 1
+            while name in self._names:
+                k += 1
+                name = f"{default}#{k}"
+        elif name in self._names:
             raise DesignError(name, "an element of that name already exists")
         self._names.add(name)
         self._system = None
