@@ -127,6 +127,14 @@ def test_wrap_and_series_and_sag() -> None:
     k_inf = 0.5 + math.sqrt(0.25 + 5.0)
     assert_allclose(wrap_stiffness(1.0, 5.0, 200), k_inf, rtol=1e-12)
     assert wrap_stiffness(1.0, 5.0, 2) == pytest.approx(1 + 5 / 6)
+    # one ladder for a row of sprockets and a batch of states (the robust path): each
+    # element is the scalar recursion with its own teeth in mesh
+    kt, kl, mesh = np.array([[1.0, 2.0, 3.0]]), np.array([[5.0], [7.0]]), [1.5, 2, 200]
+    batch = wrap_stiffness(kt, kl, mesh)
+    assert batch.shape == (2, 3)
+    for a in range(2):
+        for b in range(3):
+            assert batch[a, b] == wrap_stiffness(kt[0, b], kl[a, 0], mesh[b])
     assert_allclose(series_stiffness(2.0, 2.0, 1.0), 0.5)
     assert series_stiffness(2.0, 0.0) == 0.0
     # Dischinger-Ernst: taut span → 1, slack → ~0, T ≤ 0 → 0

@@ -19,11 +19,11 @@ from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import loss_factor, series_loss_factor
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
-    TOOTH_WIDTH_FACTOR,
     chain_span_stiffness,
     reduced_mass,
     sag_stiffness_factor,
     series_stiffness,
+    tooth_contact_width,
     tooth_stiffness,
     wrap_stiffness,
 )
@@ -237,7 +237,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           f"{len(geometry.sprockets)} and {len(geometry.spans)}")
     if any(sp.start != i or sp.end != (i + 1) % n for i, sp in enumerate(geometry.spans)):
         raise DesignError("geometry.spans", "span i must join sprocket i and i+1 (ring order)")
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     inertia = np.empty(n)
     radius = np.array([g.pitch_radius for g in geometry.sprockets])
     wrap = np.empty(n)

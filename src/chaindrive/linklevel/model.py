@@ -52,7 +52,7 @@ from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.response import startup_pretension
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
-    TOOTH_WIDTH_FACTOR,
+    tooth_contact_width,
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError
@@ -327,7 +327,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     f_ref = dynamics.reference_frequency_hz
     m = spec.mass_per_length * spec.pitch
     teeth = np.array([s.teeth for s in drive.sprockets], dtype=np.int64)
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     k_c = np.array([tooth_stiffness(width, lookup(s.material).youngs_modulus,
                                     chain_mat.youngs_modulus) for s in drive.sprockets])
     seat_r, seat_a = seating_geometry(drive.tooth_form, spec.pitch, teeth, spec.roller_diameter,

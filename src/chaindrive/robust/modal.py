@@ -41,7 +41,7 @@ from scipy.sparse import csr_matrix
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.resonance import working_frequencies
-from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
+from chaindrive.dynamics.stiffness import tooth_contact_width, tooth_stiffness, wrap_stiffness
 from chaindrive.dynamics.torsional.system import TorsionalSystem
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
@@ -63,7 +63,7 @@ def _tooth_stiffness(state: Analysis, temperature: FloatArray) -> FloatArray:
     (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`, vectorised)."""
     d = state.drive
     spec = d.chain.spec
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     chain = find_material(spec.material)
     e_chain = chain.youngs_modulus * modulus_factors(chain, temperature)
     out = np.empty((temperature.size, len(d.sprockets)))
@@ -105,11 +105,8 @@ def batch_chain_stiffness(state: Analysis, link: FloatArray, temperature: FloatA
     p = state.ring_parameters
     k_link = p.link_stiffness_n_per_m * link[:, None]
     k_t = _tooth_stiffness(state, temperature)
-    mesh = np.array([max(1, math.floor(g.teeth_in_mesh)) for g in state.geometry.sprockets])
-    wrap = k_t.copy()
-    for j in range(int(mesh.max()) - 1):
-        step = k_t + k_link * wrap / (k_link + wrap)
-        wrap = np.where(j < mesh - 1, step, wrap)
+    wrap = np.asarray(wrap_stiffness(k_t, k_link, [g.teeth_in_mesh
+                                                   for g in state.geometry.sprockets]))
     chain = p.chain_stiffness_n_per_m[None, :] * link[:, None]
     with np.errstate(divide="ignore"):
         sag = np.where(p.sag_factors > 0, 1.0 / (1.0 + (1.0 / p.sag_factors - 1.0)
