@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,11 +55,44 @@ from chaindrive.dynamics.torsional.assembly import (
 from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
 from chaindrive.errors import DesignError
 
-__all__ = ["RATIO_RTOL", "TorsionalEngine", "reducer_input_torque"]
+__all__ = ["RATIO_RTOL", "Element", "TorsionalEngine", "reducer_input_torque"]
 
 FloatArray = NDArray[np.float64]
 #: One element of a train in :meth:`TorsionalEngine.from_contour` (plain data).
 TrainElement = Mapping[str, "float | str | bool"]
+
+
+@dataclass(frozen=True, slots=True)
+class Element:
+    """One spring–damper element of the model: its strain is coef_a·φ_a + coef_b·φ_b.
+
+    Parameters
+    ----------
+    name : str
+        Unique name.
+    kind : str
+        ``shaft``, ``ground``, ``span``, ``wrap``, ``link``, … (what added it).
+    a, b : int
+        Node indices (b = −1: the ground).
+    coef_a, coef_b : float
+        Strain per rotation of node a and of node b [m/rad or rad/rad].
+    stiffness : float
+        k [N/m or N·m/rad].
+    damping : float
+        c [N·s/m or N·m·s/rad].
+    tension_only : bool
+        True for a chain span that goes slack instead of pushing.
+    """
+
+    name: str
+    kind: str
+    a: int
+    b: int
+    coef_a: float
+    coef_b: float
+    stiffness: float
+    damping: float
+    tension_only: bool
 
 
 def reducer_input_torque(output_torque: float, ratio: float, efficiency: float = 1.0,
@@ -136,8 +170,7 @@ class TorsionalEngine:
         self._relations: list[tuple[int, int, float]] = []
         self._held: list[bool] = []
         self._meshes: list[tuple[str, int, int, float, float, float]] = []
-        # elements: name, kind, a, b (-1: ground), coef_a, coef_b, k, c, tension_only
-        self._elements: list[tuple[str, str, int, int, float, float, float, float, bool]] = []
+        self._elements: list[Element] = []
         self._names: set[str] = set()
         self._system: TorsionalSystem | None = None
 
@@ -276,7 +309,7 @@ class TorsionalEngine:
         c = float(damping)
         if not 0.0 <= c < _INF:
             nonneg(name, c, "damping [N·m·s/rad]")
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
+        self._elements.append(Element(name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, 1.0))
         return self
@@ -304,8 +337,8 @@ class TorsionalEngine:
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
         k = nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "ground", i, -1, 1.0, 0.0, k,
-                               nonneg(name, damping, "damping [N·m·s/rad]"), False))
+        self._elements.append(Element(name, "ground", i, -1, 1.0, 0.0, k,
+                                      nonneg(name, damping, "damping [N·m·s/rad]"), False))
         self._held[i] = self._held[i] or k > 0.0
         return self
 
@@ -399,7 +432,7 @@ class TorsionalEngine:
         c = float(damping)
         if not 0.0 <= c < _INF:
             nonneg(name, c, "damping [N·s/m]")
-        self._elements.append((name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
+        self._elements.append(Element(name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, ra / rb))
         if m == 0.0:
@@ -452,8 +485,8 @@ class TorsionalEngine:
             raise DesignError(name, f"radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         ia, ib = self._pair(a, b, name)
         k = nonneg(name, stiffness, "stiffness [N/m]")
-        self._elements.append((name, kind, ia, ib, -ra, rb, k,
-                               nonneg(name, damping, "damping [N·s/m]"), False))
+        self._elements.append(Element(name, kind, ia, ib, -ra, rb, k,
+                                      nonneg(name, damping, "damping [N·s/m]"), False))
         self._kinematics(ia, ib, ra / rb, k)
         return self
 
@@ -474,8 +507,8 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         for k, e in enumerate(self._elements):
-            if e[0] == element:
-                self._elements[k] = (*e[:7], nonneg(element, damping, "damping"), e[8])
+            if e.name == element:
+                self._elements[k] = replace(e, damping=nonneg(element, damping, "damping"))
                 self._system = None
                 return self
         raise DesignError(element, "no element of that name")
@@ -628,9 +661,10 @@ class TorsionalEngine:
         return {
             "nodes": {n: {"inertia_kg_m2": self._inertia[i], "chain_inertia_kg_m2": self._chain[i]}
                       for n, i in self._index.items()},
-            "elements": [{"name": e[0], "kind": e[1], "a": names[e[2]],
-                          "b": None if e[3] < 0 else names[e[3]], "coef_a": e[4], "coef_b": e[5],
-                          "stiffness": e[6], "damping": e[7], "tension_only": e[8]}
+            "elements": [{"name": e.name, "kind": e.kind, "a": names[e.a],
+                          "b": None if e.b < 0 else names[e.b], "coef_a": e.coef_a,
+                          "coef_b": e.coef_b, "stiffness": e.stiffness, "damping": e.damping,
+                          "tension_only": e.tension_only}
                          for e in self._elements],
             "gear_meshes": [{"name": m[0], "driver": names[m[1]], "driven": names[m[2]],
                              "ratio": m[3], "efficiency": m[4], "same_sense": m[5] > 0}
@@ -659,8 +693,12 @@ def _assemble(model: TorsionalEngine) -> TorsionalSystem:
             coupling[ka, kb] += w_ab
             coupling[kb, ka] += w_ab
     el = model._elements
-    names, kinds, a, b, ca, cb, k, c, tension = (zip(*el, strict=True) if el else
-                                                 ((),) * 9)
+    names = [e.name for e in el]
+    kinds = [e.kind for e in el]
+    a, b = [e.a for e in el], [e.b for e in el]
+    ca, cb = [e.coef_a for e in el], [e.coef_b for e in el]
+    k, c = [e.stiffness for e in el], [e.damping for e in el]
+    tension = [e.tension_only for e in el]
     B, cols, coef = incidence(node_dof, factor, np.array(a, dtype=np.intp),
                               np.array(b, dtype=np.intp), np.array(ca, dtype=float),
                               np.array(cb, dtype=float), n)
