@@ -498,7 +498,7 @@ class Analysis:
             ring_dynamic_load_rms=None if steady is None else steady.dynamic_load_rms,
             ring_kd=None if steady is None else steady.coefficient_of_dynamics,
             ring_startup_peak=None if startup is None else startup.max_span_force,
-            ring_first_frequency_hz=f1 if math.isfinite(f1) else None)
+            first_frequency_hz=f1 if math.isfinite(f1) else None)
 
     @cached_property
     def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:

@@ -281,9 +281,9 @@ def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float | None 
     Parameters
     ----------
     drive : Drive
-        The drive.
+        The drive whose sprockets become the ring's masses.
     geometry : GeometryResult
-        Its contour.
+        The contour its spans run on.
     damping : float or None
         Damping ratio ζ [-] (None: the mean of the spans' ratios the whole-drive model takes,
         :func:`chaindrive.dynamics.model.damping.chain_damping`).
