@@ -20,10 +20,10 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 
 # The start-up kernel compiled ahead of time (numba.pycc, needs a C compiler; without one
 # the build says why and numba compiles the kernel on first use instead). After an install.
-KERNEL := src/chaindrive/dynamics/startup_kernel.py src/chaindrive/dynamics/kernel_codes.py
+KERNEL := src/chaindrive/dynamics/transient/kernel.py src/chaindrive/dynamics/transient/kernel_codes.py
 
 $(VENV)/.kernel: $(KERNEL) | $(BIN)/python
-	$(BIN)/python -m chaindrive.dynamics.kernel_build
+	$(BIN)/python -m chaindrive.dynamics.transient.kernel_build
 	touch $@
 
 # An editable install leaves the package's own byte code to the first run, which cannot keep
@@ -81,5 +81,5 @@ app: $(VENV)/.installed $(VENV)/.kernel bytecode
 	$(BIN)/chaindrive app
 
 clean:
-	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache .mypy_cache src/chaindrive/dynamics/_startup_aot.*
+	rm -rf $(VENV) $(OUT) .pytest_cache .ruff_cache .mypy_cache src/chaindrive/dynamics/transient/_startup_aot.*
 	find src tests benchmarks -name __pycache__ -type d -prune -exec rm -rf {} +

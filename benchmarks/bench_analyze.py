@@ -87,7 +87,7 @@ def main() -> None:
           f"{max(run):>8.4f}")
     print(f"load average (1 min) {load_before[0]:.1f} before, {load_after[0]:.1f} after, "
           f"on {os.cpu_count()} cores")
-    from chaindrive.dynamics.kernel_build import compiled_kernel
+    from chaindrive.dynamics.transient.kernel_build import compiled_kernel
 
     print("start-up kernel:", "compiled ahead of time" if compiled_kernel() is not None
           else "numba just in time (run make to build it ahead of time)")

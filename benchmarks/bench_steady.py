@@ -8,7 +8,6 @@ import time
 import numpy as np
 
 from chaindrive.dynamics import RingModel
-from chaindrive.dynamics.afc import modal_harmonic_response
 
 N, S = 24, 2000
 
@@ -56,12 +55,6 @@ def main() -> None:
     print(f"chaindrive modal sweep ({S} freq.)   {t1 * 1e3:8.2f} ms")
     print(f"opentorsion ss_response ({S} freq.)  {t2 * 1e3:8.2f} ms")
     print(f"ratio opentorsion/chaindrive = {t2 / t1:.1f} (need ≥ 30); max rel. diff {err:.1e}")
-    # the full drive-level AFC (10 harmonics, peak over a tooth period) for scale
-    D = (rng.normal(size=(10, N)) + 1j * rng.normal(size=(10, N))) * 1e-5
-    modal = model.modal()
-    t3 = best(lambda: modal_harmonic_response(modal.shapes, modal.angular_frequencies_rad_s,
-                                              c, beta, w[:, None] * np.arange(1, 11), D))
-    print(f"span forces, 10 harmonics × {S} speeds  {t3 * 1e3:8.2f} ms")
 
 
 if __name__ == "__main__":

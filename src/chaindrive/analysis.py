@@ -20,7 +20,6 @@ from numpy.typing import NDArray
 
 from chaindrive.checks import Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
-from chaindrive.dynamics.afc import AfcResult
 from chaindrive.dynamics.checks import (
     disturbed_safety_check,
     dynamic_safety_check,
@@ -33,9 +32,9 @@ from chaindrive.dynamics.damping import (
     HingeFrictionResult,
     hinge_friction_grid,
 )
-from chaindrive.dynamics.drive import RingParameters
-from chaindrive.dynamics.drive_model import DriveModel, drive_model
-from chaindrive.dynamics.drive_response import (
+from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
+from chaindrive.dynamics.frequency.afc import AfcResult
+from chaindrive.dynamics.frequency.response import (
     Bands,
     drive_steady,
     drive_sweep,
@@ -43,11 +42,12 @@ from chaindrive.dynamics.drive_response import (
     span_loads_over,
     uncertainty_bands,
 )
-from chaindrive.dynamics.drive_startup import affordable_duration, model_startup
-from chaindrive.dynamics.excitation import SpanExcitation, polygonal_excitation
+from chaindrive.dynamics.frequency.steady import SteadyStateResult
 from chaindrive.dynamics.materials import MaterialCase, material_comparison
+from chaindrive.dynamics.model.build import DriveModel, drive_model
+from chaindrive.dynamics.modes import DriveDynamics, model_dynamics
+from chaindrive.dynamics.parameters import RingParameters
 from chaindrive.dynamics.published import published_comparison
-from chaindrive.dynamics.quality import nominal_peripheral_force
 from chaindrive.dynamics.resonance import resonance_warnings
 from chaindrive.dynamics.response import (
     DynamicResponse,
@@ -55,7 +55,8 @@ from chaindrive.dynamics.response import (
     polygonal_law,
     startup_pretension,
 )
-from chaindrive.dynamics.runup import (
+from chaindrive.dynamics.transient.drive_startup import affordable_duration, model_startup
+from chaindrive.dynamics.transient.runup import (
     LONGEST_STARTUP,
     SHORTEST_STARTUP,
     RunUp,
@@ -63,10 +64,8 @@ from chaindrive.dynamics.runup import (
     rigid_runup,
     startup_durations,
 )
-from chaindrive.dynamics.startup import StartupResult
-from chaindrive.dynamics.steady import SteadyStateResult
+from chaindrive.dynamics.transient.startup import StartupResult
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
-from chaindrive.dynamics.whole import DriveDynamics, model_dynamics
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.length_options import LengthChoice, length_options
@@ -78,9 +77,10 @@ from chaindrive.model import ChainSpec, Drive
 from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import ResonanceProbe, banded_resonance_check, rank_chains
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
@@ -306,7 +306,7 @@ class Analysis:
     @cached_property
     def drive_model(self) -> DriveModel:
         """The whole-drive model: the contour with the chain's own mass, every sprocket's
-        train, the motor and the machines (:mod:`chaindrive.dynamics.drive_model`); the
+        train, the motor and the machines (:mod:`chaindrive.dynamics.model.build`); the
         static span tensions of one contour set the sag stiffness."""
         st = self._static
         return drive_model(self.drive, self.geometry,
@@ -343,12 +343,11 @@ class Analysis:
 
     @cached_property
     def _nominal_force(self) -> float | None:
-        """F_t = P/v of one contour [N]."""
+        """F_t = P/v̄ of one contour [N], v̄ the mean chain speed of the kinematics stage."""
         d = self._contour_drive
         if d.power is None or d.driver.speed is None:
             return None
-        return nominal_peripheral_force(d.power, self.geometry.sprockets[d.driver_index]
-                                        .pitch_diameter, d.driver.speed)
+        return peripheral_force(d.power, self.kinematics.chain_speed)
 
     @cached_property
     def afc(self) -> AfcResult | None:
@@ -385,7 +384,7 @@ class Analysis:
     def startup(self) -> StartupResult | None:
         """The start-up from rest with the motor law on the motor's rotor and the machines'
         moments on theirs (None when the design asks for none). Its duration is the design's
-        or, automatic, the first of :func:`~chaindrive.dynamics.runup.startup_durations`
+        or, automatic, the first of :func:`~chaindrive.dynamics.transient.runup.startup_durations`
         whose record settles (the last one tried otherwise)."""
         d, s = self.drive, self.drive.dynamics
         if (not self._responds or not s.transient or not self.with_startup or d.power is None
@@ -483,7 +482,8 @@ class Analysis:
 
         duration = self.link_duration_s or min(
             self.drive.dynamics.startup_duration or SHORTEST_STARTUP, DURATION.high)
-        return simulate(self._contour_drive, duration, geometry=self.geometry)
+        return simulate(self._contour_drive, duration, geometry=self.geometry,
+                        dynamics=self.drive_model)
 
     @cached_property
     def link_level_comparison(self) -> ModelComparison | None:
@@ -505,7 +505,7 @@ class Analysis:
             ring_dynamic_load_rms=None if steady is None else steady.dynamic_load_rms,
             ring_kd=None if steady is None else steady.coefficient_of_dynamics,
             ring_startup_peak=None if startup is None else startup.max_span_force,
-            ring_first_frequency_hz=f1 if math.isfinite(f1) else None)
+            first_frequency_hz=f1 if math.isfinite(f1) else None)
 
     @cached_property
     def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:
@@ -716,7 +716,7 @@ def drive_summary(drive: Drive) -> dict[str, Any]:
         "power_w": drive.power,
         "driver": drive.driver.name,
         "driver_speed_rpm": None if drive.driver.speed is None
-        else drive.driver.speed * RAD_S_TO_RPM,
+        else drive.driver.speed * RPM_PER_RAD_S,
     }
 
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from chaindrive.errors import ChainDriveWarning, DesignError, Quantity
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import DEG_PER_RAD, RAD_PER_DEG, RPM_PER_RAD_S
 
 if TYPE_CHECKING:
     from chaindrive.checks import Check
@@ -35,7 +35,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "QUANTITIES",
-    "RAD_S_TO_RPM",
+    "RPM_PER_RAD_S",
     "UNIT_SYSTEMS",
     "UnitSystem",
     "candidate_verdict",
@@ -103,9 +103,9 @@ QUANTITIES: dict[str, dict[str, Shown]] = {
                           "US": Shown("lbf·ft·s/rad", 1 / (_LBF * _FT))},
     "area": {"SI": Shown("mm²", 1e6), "US": Shown("in²", 1 / _IN**2)},
     "density": {"SI": Shown("kg/m³", 1.0), "US": Shown("lb/ft³", _FT**3 / _LB)},
-    "speed": {"SI": Shown("rpm", RAD_S_TO_RPM), "US": Shown("rpm", RAD_S_TO_RPM)},
+    "speed": {"SI": Shown("rpm", RPM_PER_RAD_S), "US": Shown("rpm", RPM_PER_RAD_S)},
     "frequency": {"SI": Shown("Hz", 1.0), "US": Shown("Hz", 1.0)},
-    "angle": {"SI": Shown("°", 180 / math.pi), "US": Shown("°", 180 / math.pi)},
+    "angle": {"SI": Shown("°", DEG_PER_RAD), "US": Shown("°", DEG_PER_RAD)},
     "time": {"SI": Shown("s", 1.0), "US": Shown("s", 1.0)},
     "time_ms": {"SI": Shown("ms", 1e3), "US": Shown("ms", 1e3)},
     "hours": {"SI": Shown("h", 1 / 3600), "US": Shown("h", 1 / 3600)},
@@ -118,8 +118,8 @@ _KEY_UNITS: tuple[tuple[str, str, float], ...] = (
     ("_kg_m3", "density", 1.0), ("_kg_m", "linear_density", 1.0), ("_m_s", "velocity", 1.0),
     ("_mm2", "area", 1e-6), ("_mm", "length", 1e-3), ("_mpa", "pressure", 1e6),
     ("_kn", "force_k", 1e3), ("_n_m", "torque", 1.0), ("_n", "force", 1.0),
-    ("_kw", "power", 1e3), ("_w", "power", 1.0), ("_rpm", "speed", 1 / RAD_S_TO_RPM),
-    ("_hz", "frequency", 1.0), ("_deg", "angle", math.pi / 180), ("_kg", "mass", 1.0),
+    ("_kw", "power", 1e3), ("_w", "power", 1.0), ("_rpm", "speed", 1 / RPM_PER_RAD_S),
+    ("_hz", "frequency", 1.0), ("_deg", "angle", RAD_PER_DEG), ("_kg", "mass", 1.0),
     ("_ms", "time_ms", 1e-3), ("_s", "time", 1.0), ("_h", "hours", 3600.0),
 )
 

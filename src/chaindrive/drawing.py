@@ -52,6 +52,7 @@ import chaindrive
 from chaindrive.display import dimension
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:  # ezdxf is imported where a drawing is made
     from ezdxf.document import Drawing
@@ -769,7 +770,7 @@ def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProport
         msp.add_circle(centre, d / 2 * MM, dxfattribs={"layer": "BODY"})
     hole = 0.5 * (p.rim_inner_diameter - p.hub_outer_diameter) / 2 * MM
     for k in range(6):
-        a = 2 * math.pi * k / 6
+        a = TWO_PI * k / 6
         msp.add_circle((p.hole_circle_diameter / 2 * MM * math.cos(a),
                         p.hole_circle_diameter / 2 * MM * math.sin(a)), hole / 2,
                        dxfattribs={"layer": "BODY"})

@@ -338,7 +338,7 @@ class TrainElement:
         Efficiency η of a gear stage [-], in (0, 1].
     diameter, length : float or None
         Diameter d [m] and length l [m] of a solid round shaft: k = G π d⁴/(32 l), G of
-        ``material`` (:func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
+        ``material`` (:func:`chaindrive.dynamics.model.build.shaft_stiffness`).
     material : str
         Catalogue name of the shaft's material (its shear modulus G).
 
@@ -593,7 +593,7 @@ class DynamicsSettings:
         True runs the start-up.
     startup_duration : float or None
         Simulated duration of the start-up [s] (None: automatic, from the rigid-drive
-        run-up, :func:`chaindrive.dynamics.runup.startup_durations`).
+        run-up, :func:`chaindrive.dynamics.transient.runup.startup_durations`).
     motor : str
         ``"kloss"`` (induction motor with the drive's power and the driver speed as rated
         values), ``"constant"`` (rated torque from t = 0) or ``"ramp"`` (soft start over

@@ -41,8 +41,17 @@ from chaindrive.errors import DesignError
 if TYPE_CHECKING:  # pint is imported on first use (see _import_pint)
     from pint import UnitRegistry
 
-#: rad/s → rpm (revolutions per minute): ω·60/(2π); divide by it for rpm → rad/s.
-RAD_S_TO_RPM = 30.0 / math.pi
+#: 2π: radians per revolution (ω = 2π f). The one definition in the package
+#: (tests/unit/test_constants.py refuses another).
+TWO_PI = 2.0 * math.pi
+#: rad/s → rpm (revolutions per minute): n = ω·60/(2π) = ω · RPM_PER_RAD_S.
+RPM_PER_RAD_S = 30.0 / math.pi
+#: rpm → rad/s: ω = 2π n/60 = n · RAD_S_PER_RPM.
+RAD_S_PER_RPM = math.pi / 30.0
+#: rad → degree: 180/π.
+DEG_PER_RAD = 180.0 / math.pi
+#: degree → rad: π/180.
+RAD_PER_DEG = math.pi / 180.0
 
 #: Dimension name → (pint dimensionality string, SI unit it is converted to, example).
 DIMENSIONS: dict[str, tuple[str, str, str]] = {

@@ -303,3 +303,51 @@ def test_a_function_level_import_says_why() -> None:
         missing += [f"{module_name(path)}:{n} ({fn})"
                     for n, fn in _local_package_imports(path) if not _has_reason(lines, n)]
     assert not missing, "function-level imports without a reason: " + ", ".join(missing)
+
+
+#: at most this many modules (files and subpackages) directly in ``chaindrive/dynamics``: a
+#: subject that outgrows a module becomes a subpackage (docs/architecture.md).
+MAX_DYNAMICS_MODULES = 20
+
+
+def dynamics_entries() -> list[str]:
+    """The modules and subpackages directly in ``chaindrive/dynamics`` (not ``__init__``)."""
+    root = PACKAGE / "dynamics"
+    files = [p.stem for p in root.glob("*.py") if p.stem != "__init__"]
+    packages = [p.name for p in root.iterdir() if (p / "__init__.py").is_file()]
+    return sorted(files + packages)
+
+
+def test_dynamics_is_arranged_by_subject() -> None:
+    entries = dynamics_entries()
+    assert len(entries) <= MAX_DYNAMICS_MODULES, (
+        f"{len(entries)} modules directly in dynamics/ (at most {MAX_DYNAMICS_MODULES}): "
+        "put a subject that outgrows one module into a subpackage")
+    # each subpackage says what it holds
+    for p in (PACKAGE / "dynamics").iterdir():
+        init = p / "__init__.py"
+        if init.is_file():
+            assert ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))), init
+
+
+def private_imports(tree: ast.AST) -> list[tuple[int, str]]:
+    """(line, name) of every ``from chaindrive… import _name`` in ``tree``: a module's
+    private names (a leading underscore, not a dunder) are not imported by another module."""
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("chaindrive"):
+            out.extend((node.lineno, a.name) for a in node.names
+                       if a.name.startswith("_") and not a.name.startswith("__"))
+    return out
+
+
+def test_the_private_import_rule_sees_one() -> None:
+    tree = ast.parse("from chaindrive.x import a, _b\nfrom chaindrive.y import c as _c\n")
+    assert private_imports(tree) == [(1, "_b")]
+
+
+def test_no_private_name_is_imported_across_modules() -> None:
+    found = [f"{p.relative_to(SRC)}:{line}: {name}" for p in sorted(PACKAGE.rglob("*.py"))
+             for line, name in private_imports(ast.parse(p.read_text(encoding="utf-8")))]
+    assert not found, "private names imported from another module (make them public):\n" \
+        + "\n".join(found)

@@ -1,4 +1,4 @@
-"""One BLAS thread for small eigenproblems (chaindrive.dynamics.blas_threads): the limit holds
+"""One BLAS thread for small eigenproblems (chaindrive.dynamics.torsional.blas_threads): the limit holds
 inside the block, what was there before comes back after it (also when blocks nest or other
 threads open theirs meanwhile), a large problem is left alone, and the modes do not depend on it.
 
@@ -16,8 +16,9 @@ import numpy as np
 import pytest
 from threadpoolctl import ThreadpoolController
 
-from chaindrive.dynamics import TorsionalModel, blas_threads
-from chaindrive.dynamics.blas_threads import blas_thread_counts, small_problem_threads
+from chaindrive.dynamics import TorsionalModel
+from chaindrive.dynamics.torsional import blas_threads
+from chaindrive.dynamics.torsional.blas_threads import blas_thread_counts, small_problem_threads
 
 pytestmark = pytest.mark.concurrency  # threads
 

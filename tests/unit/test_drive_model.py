@@ -1,5 +1,5 @@
 """The whole-drive model from a design file: trains, motor, machines, completeness, damping
-sources, the design schema and the bounded start-up (chaindrive.dynamics.drive_model)."""
+sources, the design schema and the bounded start-up (chaindrive.dynamics.model.build)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 import chaindrive
 from chaindrive import examples
 from chaindrive.dynamics.damping import span_hinge_damping_ratios
-from chaindrive.dynamics.drive_model import shaft_stiffness
+from chaindrive.dynamics.model.build import shaft_stiffness
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_from_mapping, drive_to_toml, parse_toml, schema

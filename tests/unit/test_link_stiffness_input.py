@@ -16,8 +16,8 @@ import pytest
 import chaindrive
 from chaindrive import examples
 from chaindrive.catalog import find_chain, find_material
-from chaindrive.dynamics.drive import chain_link_stiffness, drive_ring_parameters
 from chaindrive.dynamics.materials import with_materials
+from chaindrive.dynamics.parameters import chain_link_stiffness, drive_ring_parameters
 from chaindrive.dynamics.stiffness import link_stiffness
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_from_mapping, drive_to_toml, parse_toml

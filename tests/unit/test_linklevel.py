@@ -14,7 +14,7 @@ from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.linklevel import TorsionalAttachment, build_model, simulate
 from chaindrive.linklevel.assembly import assemble_chain, sagging_polygon
-from chaindrive.linklevel.kernel import _gap_local, _penetration, _velocity_update
+from chaindrive.linklevel.kernel import _gap_local, _velocity_update, penetration
 from tests.conftest import EXAMPLES
 
 
@@ -58,11 +58,11 @@ def test_penetration_of_a_roller_in_its_gap():
     z, R, rr, ri, alpha, Ra = 15, 0.0611, 0.00794, 0.00803, math.radians(51.0), 0.0665
     th = 0.3
     centre = R * np.array([math.cos(th), math.sin(th)])
-    d, nx, ny, j = _penetration(*centre, th, z, R, rr, ri, alpha, Ra)
+    d, nx, ny, j = penetration(*centre, th, z, R, rr, ri, alpha, Ra)
     assert j == 0 and d == pytest.approx(rr - ri)
     inward = -centre / R
     p = centre + 0.0002 * inward
-    d, nx, ny, _ = _penetration(*p, th, z, R, rr, ri, alpha, Ra)
+    d, nx, ny, _ = penetration(*p, th, z, R, rr, ri, alpha, Ra)
     assert d == pytest.approx(0.0002 + rr - ri)
     assert (nx, ny) == pytest.approx(tuple(-inward))
     gx, gy = math.cos(th), math.sin(th)
@@ -77,7 +77,7 @@ def test_penetration_of_a_roller_in_its_gap():
     if along @ centre < 0:  # the flank runs outwards from the arc's end
         along = -along
     q = end - rr * flank_normal + 0.0001 * flank_normal + 0.001 * along
-    d, *_ = _penetration(*q, th, z, R, rr, ri, alpha, Ra)
+    d, *_ = penetration(*q, th, z, R, rr, ri, alpha, Ra)
     assert d == pytest.approx(0.0001, abs=1e-9)
 
 
@@ -166,3 +166,21 @@ def test_plotting_draws_frames_and_tooth_loads(jindal):
     assert chain_frame(r, magnify=10).axes
     assert len(chain_frames(r, [0.0, 0.002, 0.004], columns=2).axes) >= 3
     assert tooth_loads(r).axes[0].get_lines()
+
+
+def test_link_damping_is_the_analysis_damping() -> None:
+    # one damping selector: the links' c = 2ζ k_link/ω_ref with ζ (the mean of the spans'
+    # ratios) and ω_ref of the whole-drive model the analysis builds (seed: ζ 0.0633 of the
+    # steel pair with its polymer-free sprockets, f_ref 73.06 Hz; not the ring's 0.0688 and
+    # 52.7 Hz)
+    from chaindrive.analysis import analyze
+
+    a = analyze(load_drive(EXAMPLES / "seed_three_sprocket.toml"))
+    dm = a.drive_model
+    model = build_model(a.drive, a.geometry)
+    assert model.reference_frequency_hz == pytest.approx(dm.reference_frequency_hz, rel=1e-12)
+    assert model.reference_frequency_hz == pytest.approx(
+        a.dynamics.modal.first_elastic_frequency_hz, rel=1e-9)  # a chain mode on the seed
+    zeta = float(np.mean(dm.span_damping_ratios))
+    assert model.link_damping == pytest.approx(
+        2 * zeta * model.link_stiffness / (2 * np.pi * dm.reference_frequency_hz), rel=1e-12)

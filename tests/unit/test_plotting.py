@@ -13,7 +13,7 @@ import chaindrive
 from chaindrive import plotting
 from chaindrive.display import fmt
 from chaindrive.dynamics.damping import hinge_friction_damping
-from chaindrive.dynamics.whole import model_dynamics
+from chaindrive.dynamics.modes import model_dynamics
 from chaindrive.multicontour import contour_factor_km, simulate_length_difference
 
 EXAMPLES = sorted(p for p in (Path(__file__).parents[2] / "examples").glob("*.toml")

@@ -17,7 +17,7 @@ import pytest
 
 import chaindrive
 from chaindrive import plotting
-from chaindrive.display import RAD_S_TO_RPM, fmt
+from chaindrive.display import RPM_PER_RAD_S, fmt
 from chaindrive.plotting.dynamics import crossing_label
 from chaindrive.report import Plot, Table, Text, build_report, report_text
 from chaindrive.report.content import ReportInput
@@ -174,7 +174,7 @@ def test_campbell_of_the_report_names_mode_1_and_spans(seed, eight) -> None:
         elastic = [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
         spans = [f"{s.start_name}→{s.end_name}" for s in a.geometry.spans]
         fig = plotting.campbell_diagram(a.dynamics.campbell,
-                                        operating_rpm=a.drive.driver.speed * RAD_S_TO_RPM,
+                                        operating_rpm=a.drive.driver.speed * RPM_PER_RAD_S,
                                         band_percent=10.0, mode_numbers=elastic,
                                         span_names=spans)
         texts = _legend_texts(fig)

@@ -15,13 +15,12 @@ from chaindrive.dynamics import (
     RingModel,
     campbell_data,
     coefficient_of_dynamics,
-    drive_dynamics,
     modal_analysis,
     ring_frequencies_batch,
     ring_stiffness_matrix,
-    span_transverse_frequencies,
 )
-from chaindrive.dynamics.drive import drive_ring_parameters, ring_model
+from chaindrive.dynamics.model.build import ring_model
+from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.stiffness import (
     link_stiffness,
     sag_stiffness_factor,
@@ -128,6 +127,14 @@ def test_wrap_and_series_and_sag() -> None:
     k_inf = 0.5 + math.sqrt(0.25 + 5.0)
     assert_allclose(wrap_stiffness(1.0, 5.0, 200), k_inf, rtol=1e-12)
     assert wrap_stiffness(1.0, 5.0, 2) == pytest.approx(1 + 5 / 6)
+    # one ladder for a row of sprockets and a batch of states (the robust path): each
+    # element is the scalar recursion with its own teeth in mesh
+    kt, kl, mesh = np.array([[1.0, 2.0, 3.0]]), np.array([[5.0], [7.0]]), [1.5, 2, 200]
+    batch = wrap_stiffness(kt, kl, mesh)
+    assert batch.shape == (2, 3)
+    for a in range(2):
+        for b in range(3):
+            assert batch[a, b] == wrap_stiffness(kt[0, b], kl[a, 0], mesh[b])
     assert_allclose(series_stiffness(2.0, 2.0, 1.0), 0.5)
     assert series_stiffness(2.0, 0.0) == 0.0
     # Dischinger-Ernst: taut span → 1, slack → ~0, T ≤ 0 → 0
@@ -246,29 +253,6 @@ def test_from_drive_masses_and_slack_span() -> None:
     m2 = ring_model(d2, geom, material_lookup=find_material)
     assert_allclose(m2.masses_kg[0], 0.5 / geom.sprockets[0].pitch_radius ** 2)
 
-
-def test_analyze_dynamics_outputs() -> None:
-    drive = seed_drive(power=500.0)
-    geom = fake_geometry(drive)
-    w = drive.driver.speed
-    params = drive_ring_parameters(drive, geom, material_lookup=find_material)
-    res = drive_dynamics(drive, geom, RingModel(params.masses_kg, params.stiffness_n_per_m),
-                         params, speed_range=(0.5 * w, 2 * w), speed_points=21)
-    d = res.to_dict()
-    json.dumps(d)
-    for key in ("natural_frequencies_hz", "mode_shapes", "normalized_amplitudes",
-                "span_transverse_frequencies_hz", "resonances", "damping_ratio"):
-        assert key in d
-    assert d["model"]["reduced_masses_kg"] and d["model"]["branch_stiffness_n_per_m"]
-    assert any(r["kind"] == "parametric" for r in d["resonances"])
-    detunings = [r["detuning_percent"] for r in d["resonances"]]
-    assert detunings == sorted(detunings)
-    # transverse f1 of each span from its own tension (Mote): recompute one
-    spec = drive.chain.spec
-    v = 15 * spec.pitch * w / (2 * np.pi)
-    t = res.parameters.span_tensions_n
-    f = span_transverse_frequencies(geom.spans[1].length, t[1], spec.mass_per_length, v)
-    assert_allclose(res.span_transverse_hz[1], f)
 
 
 def test_campbell_crossing_speed() -> None:

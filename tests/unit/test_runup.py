@@ -1,4 +1,4 @@
-"""The rigid-drive run-up (chaindrive.dynamics.runup) against closed forms of the equation of
+"""The rigid-drive run-up (chaindrive.dynamics.transient.runup) against closed forms of the equation of
 motion of an electric drive, J dω/dt = η M_M − M_L [Chilikin1981], its check, the durations an
 automatic start-up tries, and the elastic start-up of the bundled seed drive."""
 
@@ -14,16 +14,16 @@ import pytest
 
 from chaindrive.analysis import analyze
 from chaindrive.dynamics.checks import motor_start_check
-from chaindrive.dynamics.drive_assembly import LinearModel, LoadPlacement, MotorPlacement
+from chaindrive.dynamics.model.assembly import LinearModel, LoadPlacement, MotorPlacement
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor
-from chaindrive.dynamics.runup import (
+from chaindrive.dynamics.transient.runup import (
     LONGEST_STARTUP,
     SHORTEST_STARTUP,
     RunUp,
     rigid_runup,
     startup_durations,
 )
-from chaindrive.dynamics.startup import runup_time
+from chaindrive.dynamics.transient.startup import runup_time
 from chaindrive.io.design import load_drive
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -154,7 +154,7 @@ def test_k1_cannot_be_verified_without_the_drive_or_when_the_motor_stalls() -> N
     not start the drive, it cannot be verified, and the note keeps the k₁ computed."""
     from chaindrive.checks import UNVERIFIED
     from chaindrive.dynamics.checks import startup_safety_check
-    from chaindrive.dynamics.startup import StartupResult
+    from chaindrive.dynamics.transient.startup import StartupResult
 
     t = np.linspace(0.0, 1.0, 101)
     forces = np.full((t.size, 1), 100.0)
@@ -192,7 +192,7 @@ def test_an_elastic_stall_is_said_and_not_lengthened() -> None:
     it; docs/dynamics.md §8). The start-up stops at its first duration, a warning says it is
     out of the model's range, and k₁ cannot be verified."""
     from chaindrive.checks import UNVERIFIED
-    from chaindrive.dynamics.runup import elastic_stall
+    from chaindrive.dynamics.transient.runup import elastic_stall
 
     drive = load_drive(EXAMPLES / "conveyor_five_sprocket.toml")
     heavy = [replace(s, train=tuple(replace(e, inertia=12.0) if e.name.startswith("drum")

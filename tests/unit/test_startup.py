@@ -1,10 +1,11 @@
-"""Start-up transient (chaindrive.dynamics.startup)."""
+"""Start-up transient (chaindrive.dynamics.transient.startup)."""
 
 from __future__ import annotations
 
 import math
 import shutil
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -13,22 +14,54 @@ from scipy.integrate import solve_ivp
 
 from chaindrive.checks import UNVERIFIED
 from chaindrive.dynamics.checks import startup_safety_check
-from chaindrive.dynamics.linear import exp_poly_on_grid, linear_transient
+from chaindrive.dynamics.frequency.steady import span_incidence
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
-from chaindrive.dynamics.startup import (
+from chaindrive.dynamics.transient.kernel import HAVE_NUMBA
+from chaindrive.dynamics.transient.startup import (
     PolygonalLaw,
+    StartupProblem,
     StartupResult,
     runup_time,
     settling_time,
-    simulate_startup,
+    solve_startup,
     transient_times,
 )
-from chaindrive.dynamics.startup_kernel import HAVE_NUMBA
+from chaindrive.dynamics.transient.zoh import expm, zoh_matrices
 from chaindrive.dynamics.warnings import startup_warnings
-from chaindrive.dynamics.zoh import expm, zoh_matrices
 from chaindrive.errors import DesignError
 
-GROUND = 1e9
+
+def simulate_startup(masses: np.ndarray, stiffness: np.ndarray, radii: np.ndarray, beta: float,
+                     motor, driver_index: int, resistance: ResistanceLaw | None, *,
+                     duration: float, dt: float, pretension: float = 0.0,
+                     polygonal: PolygonalLaw | None = None, backend: str = "auto"
+                     ) -> SimpleNamespace:
+    """A closed ring of reduced masses (span i joins mass i and i+1, span dampers βc_i, the
+    motor on ``driver_index`` and the moments of resistance on the others), built as a
+    :class:`StartupProblem` and integrated by the solver the analysis runs."""
+    m, c, R = (np.asarray(a, dtype=float) for a in (masses, stiffness, radii))
+    n = m.size
+    others = np.flatnonzero(np.arange(n) != driver_index)
+    law = resistance
+    steps = max(1, math.ceil(duration / dt))
+    p = StartupProblem(
+        mass=np.diag(m), stiffness_linear=np.zeros((n, n)), damping_linear=np.zeros((n, n)),
+        span_incidence=span_incidence(n), span_stiffness=c, span_damping=beta * c,
+        span_tension_only=np.ones(n, dtype=bool), pretension=np.full(n, float(pretension)),
+        motor=(int(driver_index), 1.0 / float(R[driver_index]), 1.0, motor),
+        load_coordinate=others if law is not None else np.zeros(0, np.intp),
+        load_gain=1.0 / R[others] if law is not None else np.zeros(0),
+        load_efficiency=np.ones(others.size if law is not None else 0),
+        load_torque=np.asarray(law.torques, float)[others] if law is not None else np.zeros(0),
+        load_speed=(np.asarray(law.nominal_speeds, float)[others] if law is not None
+                    else np.zeros(0)),
+        load_kind=(law.kind,) * others.size if law is not None else (),
+        breakaway=law.breakaway if law is not None else 0.01, polygonal=polygonal,
+        travel_coordinate=np.arange(n), travel_gain=np.ones(n), dt=float(dt), steps=steps)
+    times, forces, states, fmax, _ = solve_startup(p, backend)  # type: ignore[arg-type]  # a str from parametrize
+    return SimpleNamespace(times=times, span_forces=forces, speeds=states[:, n:] / R,
+                           max_span_force=fmax,
+                           slack_steps=int(np.count_nonzero((forces <= 0).any(axis=1))))
 
 
 def test_zero_order_hold_of_one_oscillator_is_the_closed_form() -> None:
@@ -86,85 +119,6 @@ def test_transition_matrix_against_the_modal_closed_form() -> None:
     assert_allclose(P, ref, rtol=0, atol=1e-9 * np.abs(ref).max())
     assert_allclose(expm(np.zeros((3, 3))), np.eye(3), rtol=0, atol=1e-15)
 
-
-def _step(zeta: float) -> tuple[np.ndarray, np.ndarray, float, float]:
-    m, c, F = 1.5, 6e5, 300.0
-    wn = math.sqrt(c / m)
-    t = np.linspace(0, 40 * 2 * math.pi / wn, 8001)
-    r = linear_transient([m, GROUND], [0.0, c], 2 * zeta / wn, t, np.array([F, 0.0]))
-    rel = r.displacements[:, 0] - r.displacements[:, 1]
-    return t, rel * c / F, wn, F  # normalised elongation of span 1 (static = 1)
-
-
-def test_step_response_overshoot_and_period() -> None:
-    # Rao §4.5 / Thomson: overshoot exp(−ζπ/√(1−ζ²)), damped period 2π/(ω_n√(1−ζ²))
-    zeta = 0.06
-    t, y, wn, _ = _step(zeta)
-    assert_allclose(y.max() - 1, math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2)), rtol=2e-3)
-    peaks = np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:])) + 1
-    period = np.diff(t[peaks]).mean()
-    assert_allclose(period, 2 * math.pi / (wn * math.sqrt(1 - zeta**2)), rtol=2e-3)
-
-
-def test_logarithmic_decrement() -> None:
-    # δ = ln(x_k/x_{k+1}) = 2πζ/√(1−ζ²) (Rao §2.6.3)
-    zeta = 0.03
-    _, y, _, _ = _step(zeta)
-    peaks = np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:])) + 1
-    a = y[peaks[:6]] - 1
-    delta = np.log(a[:-1] / a[1:]).mean()
-    assert_allclose(delta, 2 * math.pi * zeta / math.sqrt(1 - zeta**2), rtol=5e-3)
-
-
-RING3 = (np.array([0.7, 1.9, 0.6]), np.array([8e4, 4.4e6, 4.4e6]))
-
-
-@pytest.mark.parametrize("beta", [1e-5, 2e-3])  # 2e-3: the two stiff modes overdamped (ζ > 1)
-def test_closed_form_equals_discrete_propagation(beta: float) -> None:
-    # step closed form (modal step responses on the whole grid) vs the exact zero-order-hold
-    # modal recursion of the same constant forces sampled: equal to 1e-9 relative
-    m, c = RING3
-    t = np.linspace(0, 0.05, 2001)
-    f = np.array([100.0, -60.0, -40.0])
-    a = linear_transient(m, c, beta, t, f)
-    b = linear_transient(m, c, beta, t, np.tile(f, (t.size, 1)))
-    for x, y in ((b.span_forces, a.span_forces), (b.displacements, a.displacements),
-                 (b.velocities, a.velocities)):
-        assert_allclose(x, y, rtol=0, atol=1e-9 * np.abs(y).max())
-
-
-def test_ramp_closed_form_matches_dop853() -> None:
-    # soft start f·min(t/t_r, 1): closed-form modal ramp response vs a tight DOP853 solution
-    m, c = RING3
-    beta, tr = 2e-5, 0.013
-    t = np.linspace(0, 0.05, 1001)
-    f = np.array([100.0, -60.0, -40.0])
-    r = linear_transient(m, c, beta, t, f, ramp_time=tr)
-    B = np.array([[-1, 1, 0], [0, -1, 1], [1, 0, -1]], float)
-    K = B.T @ (c[:, None] * B)
-
-    def rhs(tt: float, y: np.ndarray) -> np.ndarray:
-        x, v = y[:3], y[3:]
-        return np.concatenate([v, (f * min(tt / tr, 1.0) - K @ x - beta * K @ v) / m])
-
-    sol = solve_ivp(rhs, (0, t[-1]), np.zeros(6), method="DOP853", t_eval=t, rtol=1e-11,
-                    atol=1e-14)
-    assert_allclose(r.displacements, sol.y[:3].T, atol=1e-7 * np.abs(sol.y[:3]).max())
-    assert_allclose(r.velocities, sol.y[3:].T, atol=1e-7 * np.abs(sol.y[3:]).max())
-
-
-def test_block_exp_poly_equals_direct_sum() -> None:
-    # the blocked evaluation (e^{s(t_a + τ)} = e^{s t_a}e^{sτ}, binomial shift of t^p) against
-    # the direct sum Re Σ κ e^{st} + Σ c_p t^p, including a grid not starting at 0
-    rng = np.random.default_rng(1)
-    s = np.array([-3.0 + 2000j, -0.5 + 60j, -40.0 + 0j, -1e4 + 0j])
-    coef = rng.normal(size=(5, 4)) + 1j * rng.normal(size=(5, 4))
-    poly = rng.normal(size=(5, 4))
-    t = 0.25 + 1e-4 * np.arange(3001)
-    ref = (np.exp(np.outer(t, s)) @ coef.T).real + (t[:, None] ** np.arange(4)) @ poly.T
-    for block in (7, 100, 512, 5000):
-        y = exp_poly_on_grid(float(t[0]), 1e-4, t.size, s, coef, poly, block=block)
-        assert_allclose(y, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
 def test_nonlinear_startup_matches_tight_reference() -> None:
@@ -251,9 +205,9 @@ def test_unknown_motor_falls_back_to_numpy_loop() -> None:
 
 @pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler: no ahead-of-time build")
 def test_ahead_of_time_kernel_is_built_and_current(monkeypatch: pytest.MonkeyPatch) -> None:
-    # make builds chaindrive.dynamics._startup_aot from the current kernel source; a module
+    # make builds chaindrive.dynamics.transient._startup_aot from the current kernel source; a module
     # whose source digest differs (a stale build) is not used
-    from chaindrive.dynamics import _startup_aot, kernel_build  # type: ignore[attr-defined]
+    from chaindrive.dynamics.transient import _startup_aot, kernel_build  # type: ignore[attr-defined]
 
     assert _startup_aot.source_digest() == kernel_build.source_digest()
     assert kernel_build.compiled_kernel() is _startup_aot.run_kernel_flat

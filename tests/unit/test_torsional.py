@@ -1,5 +1,5 @@
 """TorsionalModel: construction errors, matrices for the integrator, torques through reducers,
-strain-energy shares (src/chaindrive/dynamics/torsional.py)."""
+strain-energy shares (src/chaindrive/dynamics/torsional/model.py)."""
 
 from __future__ import annotations
 
@@ -43,12 +43,28 @@ def test_springs_in_series_through_a_gear() -> None:
     (lambda t: t.add_gear_mesh("a", "b", ratio=2.0, efficiency=1.2), "mesh:a-b"),
     (lambda t: t.add_span("a", "b", 1e6, 0.0, 0.1), "span:a-b"),
     (lambda t: t.add_inertia("a", 1.0).add_inertia("a", 2.0), "a"),
-    (lambda t: t.add_shaft("a", "b", 1.0).add_shaft("a", "b", 2.0), "shaft:a-b"),
+    (lambda t: t.add_shaft("a", "b", 1.0, name="s").add_shaft("a", "c", 2.0, name="s"), "s"),
 ])
 def test_bad_input_names_the_element(build, field: str) -> None:
     with pytest.raises(DesignError) as err:
         build(TorsionalModel())
     assert err.value.field == field
+
+
+def test_default_element_names_are_unique() -> None:
+    # two ground springs on one node without names: both kept (numbered names), and they act
+    # in parallel: f = √((k₁ + k₂)/J)/2π (one rotor on two springs to ground, Rao §2.2)
+    t = TorsionalModel().add_inertia("rotor", 2.0)
+    t.add_ground_spring("rotor", 3e4).add_ground_spring("rotor", 5e4)
+    t.add_shaft("rotor", "hub", 1e5).add_shaft("rotor", "hub", 2e5)
+    t.add_inertia("hub", 1.0)
+    assert {"ground:rotor", "ground:rotor#2", "shaft:rotor-hub", "shaft:rotor-hub#2"} <= set(
+        t.system().element_names)
+    single = TorsionalModel().add_inertia("rotor", 2.0).add_ground_spring("rotor", 8e4)
+    assert_allclose(single.frequencies_hz(), [math.sqrt(8e4 / 2.0) / (2 * math.pi)], rtol=1e-12)
+    both = TorsionalModel().add_inertia("rotor", 2.0)
+    both.add_ground_spring("rotor", 3e4).add_ground_spring("rotor", 5e4)
+    assert_allclose(both.frequencies_hz(), single.frequencies_hz(), rtol=1e-12)
 
 
 def test_gear_loop_that_over_constrains() -> None:

@@ -5,9 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from chaindrive.dynamics.drive import ring_model
 from chaindrive.dynamics.materials import _case
-from chaindrive.dynamics.response import dynamics_response
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.strength.loads import loads_of
@@ -48,20 +46,3 @@ def test_polymer_chain_lowers_startup_peak(metal_polymer) -> None:
     assert polymer.startup_peak_n < 0.87 * metal.startup_peak_n
 
 
-def test_dynamics_response_fragment(seed_drive) -> None:
-    # issue 5 §5 keys; k1 = Q/F1max, k2 ≥ k2min (resonance load ≥ working load)
-    d, g = seed_drive
-    model = ring_model(d, g, damping=0.06)
-    out = dynamics_response(d, g, model, startup_duration=0.05, afc_points=400,
-                            eccentricity=[1e-4, 0, 0], accumulated_error=2e-4).to_dict()
-    st = out["dynamics"]["startup"]
-    assert len(st["max_span_force_n"]) == 3
-    # a 0.05 s record ends before the forces settle: no settling time is claimed
-    assert st["settled"] is False and st["settling_time_s"] is None
-    for key in ("span_dynamic_load_n", "inertia_load_n", "irregularity_percent"):
-        assert len(out["dynamics"]["steady"][key]) == 3
-    assert out["dynamics"]["coefficient_of_dynamics"] > 1
-    s = out["strength"]
-    assert s["k1"] == pytest.approx(d.chain.spec.breaking_load / max(st["max_span_force_n"]))
-    assert s["k2"] >= s["k2min"] and s["allowable_k"] == 2.5
-    assert set(out["dynamics"]["disturbances"]) == {"eccentricity", "chain_error"}

@@ -1,5 +1,5 @@
 """Published torsional cases, opentorsion and closed forms for the torsional model
-(src/chaindrive/dynamics/torsional.py, docs/torsional.md).
+(src/chaindrive/dynamics/torsional/model.py, docs/torsional.md).
 
 Textbook answers are the printed values as re-run by the FOSSEE textbook companions
 (Python-Textbook-Companions: "The Theory of Machines by T. Bevan", ch15; "Theory Of Machines

@@ -38,8 +38,8 @@ if TYPE_CHECKING:
 
 #: What each on-demand feature needs: feature → modules that must be importable.
 NEEDS: dict[str, tuple[str, ...]] = {
-    "startup": ("chaindrive.dynamics.startup", "chaindrive.dynamics.response"),
-    "afc": ("chaindrive.dynamics.afc", "chaindrive.dynamics.response"),
+    "startup": ("chaindrive.dynamics.transient.startup", "chaindrive.dynamics.response"),
+    "afc": ("chaindrive.dynamics.frequency.afc", "chaindrive.dynamics.response"),
     "response": ("chaindrive.dynamics.response",),
     "report": ("chaindrive.report", "matplotlib"),
     "report_html": ("chaindrive.report", "matplotlib"),

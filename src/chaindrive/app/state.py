@@ -26,13 +26,12 @@ from chaindrive import examples
 from chaindrive.analysis import analyze
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping, parse_toml
-from chaindrive.units import parse_quantity
+from chaindrive.units import DEG_PER_RAD, RPM_PER_RAD_S, parse_quantity
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
     from chaindrive.model import Drive
 
-RPM_PER_RAD_S = 30.0 / math.pi
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,7 +75,7 @@ SPROCKET_COLUMNS: tuple[Column, ...] = (
     Column("side", "side", "side"),
     Column("adjustable", "adjustable", "adjustable"),
     Column("adjust_angle_deg", "adjust_angle", "adjust angle [°]", "deg", "angle",
-           180.0 / math.pi),
+           DEG_PER_RAD),
     Column("speed_rpm", "speed", "speed [rpm]", "rpm", "speed", RPM_PER_RAD_S),
     Column("power_share", "power_share", "power share"),
     Column("inertia_kg_m2", "inertia", "inertia [kg·m²]", "kg*m^2", "inertia", 1.0),

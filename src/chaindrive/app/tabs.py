@@ -7,7 +7,6 @@ browser's own charts. Numbers and units come from :mod:`chaindrive.display` thro
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -45,6 +44,7 @@ from chaindrive.plotting.robust import (
     probability_figure,
     sensitivity_figure,
 )
+from chaindrive.units import RPM_PER_RAD_S
 
 UNEXPECTED = "Something went wrong on the page ({}). Reload the page; if it persists, please "\
              "report it with the design file."
@@ -286,7 +286,7 @@ def tab_afc(screen: Screen) -> None:
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     factor, force = convert(1.0, "force", _units())
     frame = pd.DataFrame(afc.span_load * (factor or 1.0), columns=names,
-                         index=pd.Index(afc.driver_speeds * 30 / math.pi,
+                         index=pd.Index(afc.driver_speeds * RPM_PER_RAD_S,
                                         name="driver speed [rpm]"))
     st.line_chart(frame, x_label="driver speed [rpm]",
                   y_label=f"peak dynamic span load [{force}]")

@@ -23,7 +23,7 @@ import typer
 from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
 from chaindrive.cli.threads import limit_blas_threads
-from chaindrive.display import RAD_S_TO_RPM, convert, fmt, unit_system
+from chaindrive.display import RPM_PER_RAD_S, convert, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
 from chaindrive.units import MAX_TEXT, shown
@@ -199,7 +199,7 @@ def simulate(
         names = _span_names(result)
         header = (["time_s", *(f"span_{n}_n" for n in names),
                    *(f"speed_{s.name}_rpm" for s in result.drive.sprockets)])
-        rows = np.column_stack((startup.times, startup.span_forces, startup.speeds * RAD_S_TO_RPM))
+        rows = np.column_stack((startup.times, startup.span_forces, startup.speeds * RPM_PER_RAD_S))
         _write_csv(output, header, rows)
     if as_json:
         _write_json({"history": str(output.resolve()), **startup.to_dict()})
@@ -264,7 +264,7 @@ def afc(
             raise DesignError("drive.power", "the sweep needs the power and the driver speed")
         header = ["driver_speed_rpm", "tooth_frequency_hz",
                   *(f"span_{n}_n" for n in _span_names(result))]
-        rows = np.column_stack((sweep.driver_speeds * RAD_S_TO_RPM, sweep.tooth_frequencies_hz,
+        rows = np.column_stack((sweep.driver_speeds * RPM_PER_RAD_S, sweep.tooth_frequencies_hz,
                                 sweep.span_load))
         _write_csv(output, header, rows)
     if as_json:

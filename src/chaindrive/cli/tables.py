@@ -273,7 +273,7 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
 
 def startup_times_text(startup: dict[str, Any]) -> str:
     """The start-up's run-up, decay and slack share as one clause (JSON keys of
-    :meth:`chaindrive.dynamics.startup.StartupResult.to_dict`)."""
+    :meth:`chaindrive.dynamics.transient.startup.StartupResult.to_dict`)."""
     simulated = fmt(startup["simulated_time_s"])
     if startup["runup_time_s"] is None:
         text = f"the driver is not at its working speed within the simulated {simulated} s"

@@ -12,12 +12,13 @@ from numpy.typing import ArrayLike
 
 from chaindrive.checks import Check, judged
 from chaindrive.dynamics.resonance import Resonance
-from chaindrive.dynamics.runup import elastic_stall
+from chaindrive.dynamics.transient.runup import elastic_stall
 from chaindrive.errors import Quantities
+from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.runup import RunUp
-    from chaindrive.dynamics.startup import StartupResult
+    from chaindrive.dynamics.transient.runup import RunUp
+    from chaindrive.dynamics.transient.startup import StartupResult
 
 __all__ = ["disturbed_safety_check", "dynamic_safety_check", "motor_start_check",
            "resonance_check", "startup_safety_check"]
@@ -68,7 +69,7 @@ def startup_safety_check(startup: StartupResult | None, allowable: float, *,
     missing : sequence of str
         What makes the dynamic model incomplete (:attr:`DriveModel.missing`).
     runup : RunUp | None
-        The rigid-drive run-up (:func:`chaindrive.dynamics.runup.rigid_runup`).
+        The rigid-drive run-up (:func:`chaindrive.dynamics.transient.runup.rigid_runup`).
 
     Returns
     -------
@@ -110,7 +111,7 @@ def startup_safety_check(startup: StartupResult | None, allowable: float, *,
 def motor_start_check(runup: RunUp | None) -> Check | None:
     """The motor runs the drive up: its torque, through the gear stages, above the machines'
     torques referred to the motor shaft at every speed from standstill to 95 % of its nominal
-    speed, η M_M/M_L > 1 [Chilikin1981] (:mod:`chaindrive.dynamics.runup`; the rigid drive).
+    speed, η M_M/M_L > 1 [Chilikin1981] (:mod:`chaindrive.dynamics.transient.runup`; the rigid drive).
 
     Parameters
     ----------
@@ -124,7 +125,7 @@ def motor_start_check(runup: RunUp | None) -> Check | None:
     """
     if runup is None or not math.isfinite(runup.torque_ratio):
         return None
-    rpm = 30.0 / math.pi
+    rpm = RPM_PER_RAD_S
     if runup.starts:
         note = (f"least at {runup.ratio_speed * rpm:.4g} rpm of the motor; rigid-drive run-up "
                 f"{runup.runup_time:.3g} s")
@@ -196,7 +197,7 @@ def disturbed_safety_check(breaking_load: float, operating: ArrayLike, polygonal
     The steady dynamic loads of the sprockets' eccentricity and of the chain's pitch
     scatter and accumulated error (``[dynamics]``) add to the polygonal load F₂ of each span;
     their peaks are summed — exact when the frequencies are incommensurate, an upper bound
-    otherwise (the superposition of :mod:`chaindrive.dynamics.steady`).
+    otherwise (the superposition of :mod:`chaindrive.dynamics.frequency.steady`).
 
     Parameters
     ----------

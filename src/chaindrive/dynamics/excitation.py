@@ -58,7 +58,6 @@ interpolation of a_j; harmonic m has the frequency m ω_z/N.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -67,6 +66,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError
 from chaindrive.kinematics import hinge_displacement_coefficients
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -81,7 +81,6 @@ __all__ = [
     "polygonal_span_elongation",
 ]
 
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True, slots=True, eq=False)

@@ -2,7 +2,7 @@
 layout, with the whole-drive model.
 
 Metal or polymer chain on metal or polymer sprockets: for each pair the whole-drive model is
-rebuilt (:func:`chaindrive.dynamics.drive_model.drive_model`: the chain's E and the sprockets'
+rebuilt (:func:`chaindrive.dynamics.model.build.drive_model`: the chain's E and the sprockets'
 E from ``chaindrive.catalog.find_material``; the damping ratio of the pair, Table 1), then the
 start-up peak span force, the first elastic natural frequency, its damped value and the first
 resonance of the AFC (the tooth frequency of the largest peak of a sweep through 0.3–1.5 f₁,
@@ -23,13 +23,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.drive_model import drive_model
-from chaindrive.dynamics.drive_response import drive_sweep
-from chaindrive.dynamics.drive_startup import model_startup
 from chaindrive.dynamics.excitation import polygonal_excitation
+from chaindrive.dynamics.frequency.response import drive_sweep
+from chaindrive.dynamics.model.build import drive_model
 from chaindrive.dynamics.modes import drive_modes
 from chaindrive.dynamics.response import polygonal_law, startup_pretension
+from chaindrive.dynamics.transient.drive_startup import model_startup
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -37,7 +38,6 @@ if TYPE_CHECKING:
 
 __all__ = ["MaterialCase", "material_comparison", "with_materials"]
 
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True, slots=True)

@@ -29,8 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.errors import DesignError
-
-RPM = 30.0 / math.pi  # rad/s → rev/min
+from chaindrive.units import RPM_PER_RAD_S
 
 __all__ = ["CATALOGUE", "EXCLUDED", "FIT_COEFFICIENTS", "RotorInertiaEstimate",
            "catalogue_points", "estimated_rotor_inertia", "fit_coefficients"]
@@ -197,14 +196,15 @@ def estimated_rotor_inertia(rated_power_w: float,
     P, w = float(rated_power_w), float(synchronous_speed_rad_s)
     lo_w, hi_w = SPEED_RANGE_RAD_S
     if not (math.isfinite(w) and lo_w * 0.999 <= w <= hi_w * 1.001):
-        raise DesignError("motor.rated_speed", f"a synchronous speed of {w * RPM:.4g} rpm is "
-                          f"outside the catalogue's {lo_w * RPM:.0f} to {hi_w * RPM:.0f} rpm "
+        rpm = RPM_PER_RAD_S
+        raise DesignError("motor.rated_speed", f"a synchronous speed of {w * rpm:.4g} rpm is "
+                          f"outside the catalogue's {lo_w * rpm:.0f} to {hi_w * rpm:.0f} rpm "
                           "(8-pole 50 Hz to 2-pole 60 Hz)")
     T = P / w
     lo_t, hi_t = TORQUE_RANGE_N_M
     if not (math.isfinite(T) and lo_t * 0.999 <= T <= hi_t * 1.001):
         raise DesignError("motor.rated_power", f"{P:.4g} W at a synchronous speed of "
-                          f"{w * RPM:.4g} rpm, a rated torque P/ω_s = {T:.3g} N·m, is outside "
+                          f"{w * RPM_PER_RAD_S:.4g} rpm, a rated torque P/ω_s = {T:.3g} N·m, is outside "
                           f"the catalogue's {lo_t:g} to {hi_t:g} N·m")
     x = math.log(T)
     a0, a1, a2 = FIT_COEFFICIENTS

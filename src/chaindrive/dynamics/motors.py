@@ -1,8 +1,8 @@
 """Motor and load laws of a drive: the torque a motor gives and the moments of resistance
 of the driven machines, as functions of time and speed.
 
-Used by the start-up solvers (:mod:`chaindrive.dynamics.startup`) and the compiled kernel
-(:mod:`chaindrive.dynamics.kernel_codes` maps each law to the kernel's integer codes).
+Used by the start-up solvers (:mod:`chaindrive.dynamics.transient.startup`) and the compiled kernel
+(:mod:`chaindrive.dynamics.transient.kernel_codes` maps each law to the kernel's integer codes).
 """
 
 from __future__ import annotations

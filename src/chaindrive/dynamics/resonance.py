@@ -17,7 +17,6 @@ passes, like every margin of the package.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -27,7 +26,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveWarning, DesignError
-from chaindrive.kinematics import tooth_frequency
+from chaindrive.kinematics import mean_chain_speed, tooth_frequency
+from chaindrive.units import TWO_PI
 
 
 class Modes(Protocol):
@@ -53,7 +53,6 @@ class Modes(Protocol):
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
            "resonance_table", "shaft_frequencies", "working_frequencies"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
@@ -367,7 +366,7 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                  for j, s in _crossings(w, line, natural)]
     transverse = np.zeros((w.size, 0))
     if span_lengths is not None and span_tensions is not None and mass_per_length and pitch:
-        v = driver_teeth * pitch * w / TWO_PI
+        v = np.asarray(mean_chain_speed(pitch, driver_teeth, w))
         transverse = span_transverse_frequencies(np.asarray(span_lengths)[None, :],
                                                  np.asarray(span_tensions)[None, :],
                                                  mass_per_length, v[:, None], modes=1)[..., 0]

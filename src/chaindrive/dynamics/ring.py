@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
 
@@ -34,7 +35,6 @@ if TYPE_CHECKING:
 __all__ = ["ModalResult", "RingModel", "modal_analysis", "ring_frequencies_batch",
            "ring_stiffness_matrix"]
 
-TWO_PI = 2.0 * math.pi
 _ALL = np.arange(64)
 _ALL.flags.writeable = False
 

@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import FloatOrArray
+from chaindrive._numeric import float_or_array as out_value
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
@@ -32,6 +34,7 @@ __all__ = [
     "reduced_mass",
     "sag_stiffness_factor",
     "series_stiffness",
+    "tooth_contact_width",
     "tooth_stiffness",
     "wrap_stiffness",
 ]
@@ -163,6 +166,28 @@ def chain_span_stiffness(link_k: ArrayLike, span_length: ArrayLike,
                       / np.asarray(span_length, dtype=float), dtype=np.float64)
 
 
+def tooth_contact_width(spec: ChainSpec) -> float:
+    """Width of the roller–tooth contact of a chain [m]: the tooth width
+    :data:`TOOTH_WIDTH_FACTOR`·b₁ of one strand plus a transverse pitch p_t for every further
+    strand (the teeth of an m-strand sprocket stand p_t apart).
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The chain (inner width b₁, strands m, transverse pitch p_t).
+
+    Returns
+    -------
+    float
+        0.93·b₁ + (m − 1)·p_t [m].
+
+    References
+    ----------
+    [ISO606] (b_f1 ≈ 0.93·b₁ for p ≤ 12.7 mm, 0.95·b₁ above; p_t).
+    """
+    return TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+
+
 def tooth_stiffness(width: float, e_sprocket: float, e_roller: float,
                     per_width: float = TOOTH_STIFFNESS_PER_WIDTH) -> float:
     """Contact stiffness k_t [N/m] of one sprocket tooth under a roller.
@@ -195,7 +220,8 @@ def tooth_stiffness(width: float, e_sprocket: float, e_roller: float,
     return per_width * width * e_red / E_STEEL
 
 
-def wrap_stiffness(tooth_k: float, link_k: float, teeth_in_mesh: float) -> float:
+def wrap_stiffness(tooth_k: ArrayLike, link_k: ArrayLike, teeth_in_mesh: ArrayLike
+                   ) -> FloatOrArray:
     """Stiffness [N/m] with which the wrap of the chain on a sprocket holds a span's end.
 
     Ladder model of the load sharing among the N = max(1, ⌊teeth in mesh⌋) teeth: each
@@ -206,27 +232,29 @@ def wrap_stiffness(tooth_k: float, link_k: float, teeth_in_mesh: float) -> float
 
     Parameters
     ----------
-    tooth_k : float
+    tooth_k : float or array_like
         Stiffness of one tooth under a roller k_t [N/m].
-    link_k : float
+    link_k : float or array_like
         Stiffness of one link k_link [N/m].
-    teeth_in_mesh : float
-        Teeth in mesh on the sprocket [-] (its whole part is used, at least 1).
+    teeth_in_mesh : float or array_like
+        Teeth in mesh on the sprocket [-] (its whole part is used, at least 1); the three
+        broadcast together (a batch of states, a row of sprockets).
 
     Returns
     -------
-    float
+    float or ndarray
         K_1 [N/m].
 
     References
     ----------
     [Naji1983] (spring model of sprocket load distribution).
     """
-    n = max(1, math.floor(teeth_in_mesh))
-    k = tooth_k
-    for _ in range(n - 1):
-        k = tooth_k + link_k * k / (link_k + k)
-    return k
+    kt, kl = np.asarray(tooth_k, dtype=float), np.asarray(link_k, dtype=float)
+    n = np.maximum(1, np.floor(np.asarray(teeth_in_mesh, dtype=float))).astype(np.int64)
+    k = np.broadcast_to(kt, np.broadcast_shapes(kt.shape, kl.shape, n.shape)).copy()
+    for j in range(int(n.max()) - 1):
+        k = np.where(j < n - 1, kt + kl * k / (kl + k), k)
+    return out_value(k)
 
 
 def series_stiffness(*stiffnesses: ArrayLike) -> NDArray[np.float64]:

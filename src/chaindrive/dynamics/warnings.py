@@ -6,16 +6,16 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from chaindrive.dynamics.runup import RunUp, elastic_stall
+from chaindrive.dynamics.transient.runup import RunUp, elastic_stall
 from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.strength.loads import DEFAULT_SAG_RATIO
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from chaindrive.dynamics.drive_model import DriveModel
-    from chaindrive.dynamics.drive_response import Bands
-    from chaindrive.dynamics.startup import StartupResult
+    from chaindrive.dynamics.frequency.response import Bands
+    from chaindrive.dynamics.model.build import DriveModel
+    from chaindrive.dynamics.transient.startup import StartupResult
 
 __all__ = ["ELASTIC_DOMINATED", "SAG_DOMINATED", "SLACK_SHARE", "dynamics_warnings",
            "startup_warnings"]
@@ -103,7 +103,7 @@ def startup_warnings(startup: StartupResult, span_names: Sequence[str],
     span_names : sequence of str
         Names of the spans of one contour ("S1→S2", …), in the order of the span forces.
     runup : RunUp | None
-        The drive's run-up as a rigid body (:func:`chaindrive.dynamics.runup.rigid_runup`).
+        The drive's run-up as a rigid body (:func:`chaindrive.dynamics.transient.runup.rigid_runup`).
 
     Returns
     -------

@@ -68,13 +68,13 @@ from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGe
 from chaindrive.geometry.sag import DEFAULT_SAG_RATIO, sag_of_slack, slack_for_sag
 from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
 from chaindrive.model import Drive
+from chaindrive.units import TWO_PI
 
 __all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry", "round_links",
            "solve_layout", "span_lengths", "span_normals", "tight_pitches_of",
            "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823",
            "two_sprocket_links_exact", "two_sprocket_links_iso10823", "wrap_angles"]
 
-TWO_PI = 2.0 * math.pi
 _CLOSE_TOL = 1e-6
 
 

@@ -47,7 +47,15 @@ from chaindrive.model import (
     ToothFormName,
     TrainElement,
 )
-from chaindrive.units import DIMENSIONS, MAX_TEXT, parse_quantity, shown
+from chaindrive.units import (
+    DEG_PER_RAD,
+    DIMENSIONS,
+    MAX_TEXT,
+    RAD_S_PER_RPM,
+    RPM_PER_RAD_S,
+    parse_quantity,
+    shown,
+)
 
 #: Longest name or other text field [characters].
 MAX_NAME = 200
@@ -202,10 +210,9 @@ class Field:
 
 #: The unit the allowed range of a quantity is written in: dimension → (unit, SI → unit).
 DISPLAY_UNITS: dict[str, tuple[str, float]] = {
-    "length": ("mm", 1e3), "speed": ("rpm", 30.0 / math.pi), "power": ("kW", 1e-3),
-    "inertia": ("kg·m²", 1.0), "time": ("s", 1.0), "angle": ("deg", 180.0 / math.pi),
+    "length": ("mm", 1e3), "speed": ("rpm", RPM_PER_RAD_S), "power": ("kW", 1e-3),
+    "inertia": ("kg·m²", 1.0), "time": ("s", 1.0), "angle": ("deg", DEG_PER_RAD),
 }
-RPM = math.pi / 30.0  # 1 rev/min [rad/s]
 _POWER = ("1 W to 20 MW: the largest catalogue chain (4 strands of 114.3 mm pitch) carries "
           "about 10 MW at its best speed by the ACA ratings [Shigley2015, eq. 17-32/17-33]")
 _SPEED = ("1 to 30 000 rev/min: slower, the start-up and the sweep cover hours of motion; "
@@ -292,8 +299,8 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
     Field("y", "length", "y of the centre", required=True, minimum=-100.0, maximum=100.0,
           reason=_XY, example="60.67 mm"),
     Field("role", "choice", "driver, driven or idler", default="driven", choices=ROLES),
-    Field("speed", "speed", "rotational speed (driver only)", minimum=1.0 * RPM,
-          maximum=30_000.0 * RPM, reason=_SPEED),
+    Field("speed", "speed", "rotational speed (driver only)", minimum=1.0 * RAD_S_PER_RPM,
+          maximum=30_000.0 * RAD_S_PER_RPM, reason=_SPEED),
     Field("side", "choice", "outside: the chain wraps round it; inside: the chain wraps it from "
           "outside the loop (it turns the other way)", default="outside", choices=SIDES),
     Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
@@ -347,7 +354,7 @@ MOTOR_FIELDS: tuple[Field, ...] = (
     Field("rated_power", "power", "rated power (default: the drive's power)", minimum=1.0,
           maximum=20e6, reason=_POWER),
     Field("rated_speed", "speed", "rated speed of the motor shaft (default: the driver's speed "
-          "times the ratios of its train)", minimum=1.0 * RPM, maximum=30_000.0 * RPM,
+          "times the ratios of its train)", minimum=1.0 * RAD_S_PER_RPM, maximum=30_000.0 * RAD_S_PER_RPM,
           reason=_SPEED),
     Field("rotor_inertia", "inertia", "rotor moment of inertia (default: estimated from the "
           "rated power and synchronous speed, IEC cage motors)", minimum=1e-6, maximum=1e5,

@@ -4,20 +4,18 @@ motor whose rotor inertia is left to the estimate must lie within the estimate's
 
 from __future__ import annotations
 
-import math
-
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.drive_assembly import kloss_parameters, motor_rating
+from chaindrive.dynamics.model.assembly import kloss_parameters, motor_rating
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import KlossMotor
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
 from chaindrive.io.limits import MIN_INERTIA_SHARE
 from chaindrive.model import Drive
+from chaindrive.units import RPM_PER_RAD_S
 
 __all__ = ["check_inertias", "check_motor_estimate"]
 
-_RPM = 30.0 / math.pi  # rad/s → rev/min
 
 
 def check_inertias(drive: Drive) -> None:
@@ -74,7 +72,7 @@ def check_motor_estimate(drive: Drive) -> None:
     [MotiveDelphi]); the estimate covers synchronous speeds of
     :data:`~chaindrive.dynamics.motor_inertia.SPEED_RANGE_RAD_S` and rated torques of
     :data:`~chaindrive.dynamics.motor_inertia.TORQUE_RANGE_N_M`. The rated power and speed
-    are the ones the dynamics uses (:func:`chaindrive.dynamics.drive_assembly.motor_rating`),
+    are the ones the dynamics uses (:func:`chaindrive.dynamics.model.assembly.motor_rating`),
     the synchronous speed the Kloss law's (:attr:`KlossMotor.synchronous_speed`), and the
     range errors the estimate's own, re-addressed to the field the designer wrote.
 
@@ -108,7 +106,7 @@ def check_motor_estimate(drive: Drive) -> None:
     source = ("" if m.rated_speed else f" (the driver's speed, sprockets[{d}].speed"
               + (" times the ratios of its train)" if gears else ")"))
     given = "" if m.rated_power else " (the drive's power, drive.power)"
-    turning = f"{_power_text(power)}{given} at {speed * _RPM:.4g} rpm{source}"
+    turning = f"{_power_text(power)}{given} at {speed * RPM_PER_RAD_S:.4g} rpm{source}"
     if outside == "motor.rated_speed" and m.rated_speed:
         raise DesignError("motor.rated_speed", f"{turning}: {reason}; give motor.rotor_inertia "
                           "(the maker's value)")

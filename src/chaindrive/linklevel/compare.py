@@ -109,7 +109,7 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
                      ring_span_dynamic_load: NDArray[np.float64] | None,
                      ring_dynamic_load_rms: float | None, ring_kd: float | None,
                      ring_startup_peak: NDArray[np.float64] | None,
-                     ring_first_frequency_hz: float | None) -> ModelComparison:
+                     first_frequency_hz: float | None) -> ModelComparison:
     """Rows of the quantities both models give, the ring model's beside the link-level's.
 
     Parameters
@@ -126,8 +126,8 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
         K_D = 1 + F_D/F_t of the ring [–].
     ring_startup_peak : ndarray | None
         F₁max,i of the ring's start-up [N] per span (None without a start-up).
-    ring_first_frequency_hz : float | None
-        The ring's first elastic natural frequency [Hz].
+    first_frequency_hz : float | None
+        The first elastic natural frequency of the analysis's whole-drive model [Hz].
 
     Returns
     -------
@@ -157,7 +157,7 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
     rows += [("largest start-up span force F₁max",
               None if ring_startup_peak is None else float(np.max(ring_startup_peak)),
               float(link_peak.max()), "N"),
-             ("first natural frequency", ring_first_frequency_hz, None, "Hz"),
+             ("first natural frequency", first_frequency_hz, None, "Hz"),
              ("largest roller–tooth impact force", None,
               float(impacts.max()) if impacts.size else None, "N")]
     late = result.times >= result.steady_from

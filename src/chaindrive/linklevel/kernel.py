@@ -51,7 +51,7 @@ E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
 @numba.njit(cache=True)
 def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
-    :mod:`chaindrive.dynamics.startup`: constant, ramp, Kloss)."""
+    :mod:`chaindrive.dynamics.transient.startup`: constant, ramp, Kloss)."""
     if kind == MOTOR_CONSTANT:
         return float(mp[0])
     if kind == MOTOR_RAMP:
@@ -126,7 +126,7 @@ def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any)
 
 
 @numba.njit(cache=True)
-def _penetration(px: float, py: float, th: float, z: float, R: float, rr: float, ri: float,
+def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, ri: float,
                  ah: float, Ra: float) -> tuple[float, float, float, int]:
     """(δ [m], n_x, n_y, gap) of a roller centred at (px, py) relative to the sprocket
     centre, the sprocket at angle th: n the unit normal of the force on the roller."""
@@ -330,7 +330,7 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
                ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
     """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
     the gap whose centre direction is the unit vector (gx, gy): the trigonometry-free form of
-    :func:`_penetration` (α given by its cosine, sine and tangent)."""
+    :func:`penetration` (α given by its cosine, sine and tangent)."""
     wx, wy = px - R * gx, py - R * gy
     wi = -(wx * gx + wy * gy)
     wt = -wx * gy + wy * gx

@@ -3,14 +3,16 @@
 * Roller (hinge) masses: one pitch of chain per roller, m = q·p [kg] (q the catalogue mass
   per metre) — the chain as mass particles at the roller centres joined by spring–dampers,
   the discrete model of [Pedersen2004] and [Pedersen2005].
-* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.drive.chain_link_stiffness`
+* Link (pin–bush joint) stiffness k_link: :func:`chaindrive.dynamics.parameters.chain_link_stiffness`
   (the design's measured value, else plates and pin: the ring model's own value, so both
   models share it); viscous link damping
-  c = β·k_link with the ring model's β = 2ζ/ω₁ (ζ the drive's damping ratio, 0.06 measured
-  on chain drives [MultimassChainDrives, §3.2], plus the material part of
-  :func:`chaindrive.dynamics.drive.ring_damping_ratio`; ω₁ the ring's first elastic
-  frequency): a span of L/p such links is the ring's branch damper β·c_span, so the two
-  models carry the same damping; optional clearance Δ (a dead band of the joint).
+  c = 2ζ·k_link/ω_ref with the whole-drive model's ζ and ω_ref
+  (:func:`chaindrive.dynamics.model.build.drive_model`: ζ the mean of its spans' damping
+  ratios, chosen by :func:`chaindrive.dynamics.model.damping.chain_damping` — the design's
+  ``[dynamics] damping_ratio``, hinge friction or the material pair; ω_ref the frequency of
+  its first chain mode, its ``reference_frequency_hz``): a span of L/p such links is the
+  analysis's span damper 2ζ·c_span/ω_ref, so the two models carry the same damping;
+  optional clearance Δ (a dead band of the joint).
 * Hinge friction: moment f·T̄·d₂/2 opposing the relative rotation of two links,
   f = 0.1 and d₂ the pin diameter [ChainHingeDissipation, eqs. 7–8].
 * Roller–tooth contact: linear penalty k_c = the tooth stiffness of
@@ -45,13 +47,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
-from chaindrive.dynamics.drive import drive_ring_parameters, ring_damping_ratio
-from chaindrive.dynamics.drive_model import chain_damping_ratio
+from chaindrive.dynamics.model.build import DriveModel, drive_model
+from chaindrive.dynamics.parameters import drive_ring_parameters
 from chaindrive.dynamics.response import startup_pretension
-from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
-    TOOTH_WIDTH_FACTOR,
+    tooth_contact_width,
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError
@@ -62,6 +63,7 @@ from chaindrive.geometry.sprocket import (
     iso606_seating_radius_range,
     tip_diameter,
 )
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -77,7 +79,7 @@ HINGE_FRICTION = 0.1
 @dataclass(frozen=True, slots=True, eq=False)
 class TorsionalAttachment:
     """A linear torsional system coupled to the sprockets (e.g. the trains of
-    :mod:`chaindrive.dynamics.torsional`): rotational coordinates θ = (sprockets…, extra…).
+    :mod:`chaindrive.dynamics.torsional.model`): rotational coordinates θ = (sprockets…, extra…).
 
     Parameters
     ----------
@@ -157,8 +159,9 @@ class LinkLevelModel:
         (n,) sprocket moments of inertia [kg·m²].
     driver : int
         Index of the driver [-].
-    ring_first_frequency_hz : float
-        First elastic natural frequency of the drive's ring model [Hz] (sets the record rate).
+    reference_frequency_hz : float
+        ω_ref/2π of the whole-drive model's chain dampers [Hz] (the link damping; sets the
+        record rate).
     torsional : TorsionalAttachment or None
         An attached torsional system (None: none).
     """
@@ -186,7 +189,7 @@ class LinkLevelModel:
     turn: NDArray[np.float64]
     inertias: NDArray[np.float64]
     driver: int
-    ring_first_frequency_hz: float
+    reference_frequency_hz: float
     torsional: TorsionalAttachment | None = field(default=None)
 
     @property
@@ -270,7 +273,8 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                 pretension: float | None = None, gravity: float = GRAVITY,
                 damping_ratio: float | None = None,
                 torsional: TorsionalAttachment | None = None,
-                material_lookup: Callable[[str], Material] | None = None) -> LinkLevelModel:
+                material_lookup: Callable[[str], Material] | None = None,
+                dynamics: DriveModel | None = None) -> LinkLevelModel:
     """Link-level parameters of ``drive`` on its built contour ``geometry`` (module docstring).
 
     Parameters
@@ -290,12 +294,15 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     gravity : float
         Acceleration of gravity g [m/s²] (acting along −y).
     damping_ratio : float or None
-        Damping ratio ζ of the first mode [-] (None: the drive's ``[dynamics]
-        damping_ratio``).
+        Damping ratio ζ of the links [-] (None: the mean of the whole-drive model's span
+        damping ratios).
     torsional : TorsionalAttachment or None
         An attached torsional system.
     material_lookup : callable or None
         Name → Material (None: :func:`chaindrive.catalog.find_material`).
+    dynamics : DriveModel or None
+        The analysis's whole-drive model, whose damping ratios and reference frequency the
+        links take (None: :func:`chaindrive.dynamics.model.build.drive_model` of ``drive``).
 
     Returns
     -------
@@ -315,23 +322,25 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     chain_mat = lookup(spec.material)
     ring = drive_ring_parameters(drive, geometry, material_lookup=lookup)
     k_link = ring.link_stiffness_n_per_m  # the ring's own (chain_link_stiffness): one value
-    f1 = modal_analysis(ring.masses_kg, ring.stiffness_n_per_m).first_elastic_frequency_hz
+    if dynamics is None:
+        dynamics = drive_model(drive, geometry, material_lookup=lookup, ring=ring)
+    f_ref = dynamics.reference_frequency_hz
     m = spec.mass_per_length * spec.pitch
     teeth = np.array([s.teeth for s in drive.sprockets], dtype=np.int64)
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     k_c = np.array([tooth_stiffness(width, lookup(s.material).youngs_modulus,
                                     chain_mat.youngs_modulus) for s in drive.sprockets])
     seat_r, seat_a = seating_geometry(drive.tooth_form, spec.pitch, teeth, spec.roller_diameter,
                                       spec.inner_width)
     tips = 0.5 * np.asarray(tip_diameter(spec.pitch, teeth, spec.roller_diameter,
                                          form=drive.tooth_form), dtype=float)
-    zeta = ring_damping_ratio(ring, chain_damping_ratio(drive) if damping_ratio is None
-                              else float(damping_ratio))
+    zeta = (float(np.mean(dynamics.span_damping_ratios)) if damping_ratio is None
+            else float(damping_ratio))
     t0 = startup_pretension(drive, geometry) if pretension is None else float(pretension)
     return LinkLevelModel(
         names=tuple(s.name for s in drive.sprockets), links=geometry.links, pitch=spec.pitch,
         roller_mass=m, roller_radius=0.5 * spec.roller_diameter, link_stiffness=k_link,
-        link_damping=2.0 * zeta * k_link / (2.0 * math.pi * f1) if f1 > 0 else 0.0,
+        link_damping=2.0 * zeta * k_link / (TWO_PI * f_ref) if f_ref > 0 else 0.0,
         clearance=float(clearance), hinge_friction=float(hinge_friction),
         pin_radius=0.5 * spec.pin_diameter, pretension=t0,
         gravity=np.array([0.0, -float(gravity)]),
@@ -341,5 +350,5 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
         contact_stiffness=k_c, contact_damping=2.0 * contact_damping_ratio * np.sqrt(k_c * m),
         turn=np.array([float(g.turn) for g in geometry.sprockets]),
         inertias=ring.inertias_kg_m2.copy(), driver=drive.driver_index,
-        ring_first_frequency_hz=float(f1), torsional=torsional,
+        reference_frequency_hz=float(f_ref), torsional=torsional,
     )

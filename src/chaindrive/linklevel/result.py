@@ -5,7 +5,7 @@ tangent of :func:`chaindrive.geometry.contour.contour_geometry`); transverse mot
 link's midpoint offset from the line (positive to the left of the chain travel). Steady
 span dynamic load F_D,i = max |F_i(t) − F̄_i| over the closing ``steady_window`` of the run,
 and K_D = 1 + F_D/F_t with F_D the RMS over the spans
-(:func:`chaindrive.dynamics.quality.coefficient_of_dynamics`, [MultimassChainDrives]) — the
+(:func:`chaindrive.dynamics.frequency.quality.coefficient_of_dynamics`, [MultimassChainDrives]) — the
 ring model's definitions, so both sit side by side. Tooth loads: the contact force of each
 roller in mesh, binned by its place on the wrap (tooth 0 at the arrival of the chain).
 """
@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.quality import coefficient_of_dynamics, nominal_peripheral_force
+from chaindrive.dynamics.frequency.quality import coefficient_of_dynamics
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.linklevel.kernel import (
     E_CONTACT,
     E_HINGE,
@@ -27,8 +28,10 @@ from chaindrive.linklevel.kernel import (
     E_LOAD,
     E_MOTOR,
     E_TORSION,
-    _penetration,
+    penetration,
 )
+from chaindrive.strength.loads import peripheral_force
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -37,7 +40,6 @@ if TYPE_CHECKING:
 
 __all__ = ["LinkLevelResult", "state_energy"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.float64],
@@ -86,7 +88,7 @@ def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.fl
     for r in range(x.shape[0]):
         rel = x[r] - model.centres
         k = int(np.argmin(np.hypot(rel[:, 0], rel[:, 1])))
-        delta = _penetration(float(rel[k, 0]), float(rel[k, 1]), float(th[k]), spr[2, k],
+        delta = penetration(float(rel[k, 0]), float(rel[k, 1]), float(th[k]), spr[2, k],
                              spr[3, k], spr[4, k], spr[5, k], spr[6, k], spr[7, k])[0]
         if delta > 0:
             contact += 0.5 * spr[8, k] * delta * delta
@@ -274,8 +276,8 @@ class LinkLevelResult:
                    "torsional_damping_j": float(energy_terms[E_TORSION])}
         ft = None
         if drive.power and drive.driver.speed:
-            ft = nominal_peripheral_force(drive.power, 2.0 * model.pitch_radii[model.driver],
-                                          drive.driver.speed)
+            ft = peripheral_force(drive.power, float(mean_chain_speed(
+                model.pitch, model.teeth[model.driver], drive.driver.speed)))
         return cls(
             names=model.names,
             span_names=tuple(f"{s.start_name}-{s.end_name}" for s in geometry.spans),

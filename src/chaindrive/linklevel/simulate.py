@@ -40,16 +40,17 @@ from chaindrive.linklevel.model import (
 )
 from chaindrive.linklevel.result import LinkLevelResult, state_energy
 from chaindrive.strength.loads import power_shares
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 
+    from chaindrive.dynamics.model.build import DriveModel
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
 __all__ = ["COURANT", "InitialState", "initial_state", "simulate"]
 
-TWO_PI = 2.0 * math.pi
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
 #: Contact search every this many steps; the reach circle is widened by a quarter pitch,
@@ -59,7 +60,7 @@ Start = Literal["rest", "steady"]
 
 
 def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
-    """Kernel code of a motor law of :mod:`chaindrive.dynamics.startup`."""
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.transient.startup`."""
     if type(motor) is ConstantTorque:
         return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
     if type(motor) is RampTorque:
@@ -130,7 +131,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
              sample_rate_hz: float | None = None, hinge_friction: float | None = None,
              clearance_m: float = 0.0, torsional: TorsionalAttachment | None = None,
              steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
-             span_kick_m_s: tuple[int, float] | None = None) -> LinkLevelResult:
+             span_kick_m_s: tuple[int, float] | None = None,
+             dynamics: DriveModel | None = None) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
     Parameters
@@ -156,8 +158,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     dt_s : float or None
         Time step [s] (None: :data:`COURANT`·2/ω_max).
     sample_rate_hz : float or None
-        Rate of the recorded history [Hz] (None: about 10× the ring model's first natural
-        frequency).
+        Rate of the recorded history [Hz] (None: about 10× the whole-drive model's reference
+        frequency, at least 1 kHz).
     hinge_friction : float or None
         Coefficient of friction in the hinges [-] (None: 0.1).
     clearance_m : float
@@ -172,6 +174,9 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     span_kick_m_s : tuple of (int, float) or None
         (span k, u [m/s]): a transverse velocity u·sin(πξ) on the rollers of span k at
         t = 0 (ξ ∈ (0, 1) along it, to the left of the travel).
+    dynamics : DriveModel or None
+        The analysis's whole-drive model: the links' damping ratio and reference frequency
+        (None: built from ``drive``; see :func:`chaindrive.linklevel.model.build_model`).
 
     Returns
     -------
@@ -194,6 +199,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     geometry = geometry or contour_geometry(drive)
     if model is None:
         model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional,
+                            dynamics=dynamics,
                             hinge_friction=HINGE_FRICTION if hinge_friction is None
                             else hinge_friction)
     omega = _nominal_speeds(drive)
@@ -204,7 +210,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     omega_max = TWO_PI * model.highest_frequency_hz
     dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / omega_max
     steps = max(1, math.ceil(duration_s / dt))
-    rate = sample_rate_hz or 10.0 * max(model.ring_first_frequency_hz, 100.0)
+    rate = sample_rate_hz or 10.0 * max(model.reference_frequency_hz, 100.0)
     every = max(1, round(1.0 / (rate * dt)))
     asm = assemble_chain(geometry, drive.driver_index)
     state = _initial_state(model, asm, geometry, omega, start)

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError
 from chaindrive.multicontour.clearance import (
-    _check_positive,
+    check_positive,
     half_normal_quantile,
     length_difference_stats,
     sample_clearances,
@@ -138,7 +138,7 @@ def contour_factor_at_risk(c4: float, max_clearance: float, span_deformation: fl
     """
     if not 0.0 < risk < 1.0:
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")
-    _check_positive("span_deformation", span_deformation)
+    check_positive("span_deformation", span_deformation)
     sigma = length_difference_stats(c4, max_clearance).sigma
     return float(contour_factor_km(half_normal_quantile(sigma, 1.0 - risk), span_deformation))
 
@@ -208,7 +208,7 @@ def load_sharing(extra_lengths: ArrayLike, total_force: float,
     s = np.asarray(extra_lengths, dtype=float).ravel()
     if not 1 <= s.size <= MAX_CONTOURS or not np.all(np.isfinite(s)):
         raise DesignError("extra_lengths", f"must be 1 to {MAX_CONTOURS} finite lengths")
-    _check_positive("total_force", total_force)
+    check_positive("total_force", total_force)
     k = np.broadcast_to(np.asarray(stiffness, dtype=float), s.shape)
     if np.any(~np.isfinite(k) | (k <= 0)):
         raise DesignError("stiffness", "must be positive")
@@ -353,9 +353,9 @@ def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int 
         raise DesignError("n", f"must be a positive whole number, got {n!r}")
     if not 0.0 < risk < 1.0:
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")
-    _check_positive("c4", c4)
-    _check_positive("max_clearance", max_clearance)
-    _check_positive("allowable_deformation", allowable_deformation)
+    check_positive("c4", c4)
+    check_positive("max_clearance", max_clearance)
+    check_positive("allowable_deformation", allowable_deformation)
     gen = np.random.default_rng(rng)
     z = sample_clearances((n, contours, 2), gen, max_clearance, truncated=truncated)
     km = contour_factor_compatibility(c4 * z.sum(axis=-1), allowable_deformation,
@@ -397,6 +397,6 @@ def contour_factor_linear_at_risk(c4: float, max_clearance: float,
     """
     if not 0.0 < risk < 1.0:
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")
-    _check_positive("allowable_deformation", allowable_deformation)
+    check_positive("allowable_deformation", allowable_deformation)
     q = half_normal_quantile(length_difference_stats(c4, max_clearance).sigma, 1.0 - risk)
     return max(1.0, 2.0 - q / allowable_deformation)

@@ -39,7 +39,7 @@ SIGMAS_IN_RANGE = 3.0  # z_max = 6 σ_z, z̄ = z_max/2 [Lyashuk, after eq. 7]
 _NORMAL = NormalDist()  # the standard normal: cdf Φ, inv_cdf Φ⁻¹ (scalars)
 
 
-def _check_positive(name: str, value: float) -> None:
+def check_positive(name: str, value: float) -> None:
     if not (math.isfinite(value) and value > 0):
         raise DesignError(name, f"must be a positive number, got {value!r}")
 
@@ -68,7 +68,7 @@ def clearance_pdf(clearance: ArrayLike, max_clearance: float, *,
     ----------
     [Lyashuk, eq. 7–8].
     """
-    _check_positive("max_clearance", max_clearance)
+    check_positive("max_clearance", max_clearance)
     z = np.asarray(clearance, dtype=float)
     sigma = max_clearance / (2.0 * SIGMAS_IN_RANGE)
     u = (z - max_clearance / 2.0) / sigma
@@ -272,8 +272,8 @@ def length_difference_stats(c4: float, max_clearance: float) -> LengthDifference
     ----------
     [Lyashuk, eq. 11–14].
     """
-    _check_positive("c4", c4)
-    _check_positive("max_clearance", max_clearance)
+    check_positive("c4", c4)
+    check_positive("max_clearance", max_clearance)
     z_mean = max_clearance / 2.0
     sigma_z = max_clearance / (2.0 * SIGMAS_IN_RANGE)
     sigma = 2.0 * c4 * sigma_z
@@ -364,8 +364,8 @@ def simulate_length_difference(n: int, rng: np.random.Generator | int | None = N
                                    f"{did_you_mean(model, LENGTH_MODELS)}")
     if not isinstance(n, int) or n < 1:
         raise DesignError("n", f"must be a positive whole number, got {n!r}")
-    _check_positive("c4", c4)
-    _check_positive("max_clearance", max_clearance)
+    check_positive("c4", c4)
+    check_positive("max_clearance", max_clearance)
     gen = np.random.default_rng(rng)
     z = sample_clearances((n, len(JOINTS)), gen, max_clearance, truncated=truncated)
     if model == "placements":

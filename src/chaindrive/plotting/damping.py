@@ -10,6 +10,7 @@ import numpy as np
 
 from chaindrive.display import UnitSystem, fmt
 from chaindrive.plotting._base import CYCLE, figure_axes, finish, scale
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -52,8 +53,8 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                 else f"F₀ = {fmt(f0 * factor)} {unit}")
     ax.set_xlabel("relative amplitude ȳ₀ = y₀/a")
     ax.set_ylabel("absorption coefficient ψ")
-    right = ax.secondary_yaxis("right", functions=(lambda p: np.asarray(p) / (4 * np.pi),
-                                                   lambda z: np.asarray(z) * (4 * np.pi)))
+    right = ax.secondary_yaxis("right", functions=(lambda p: np.asarray(p) / (2 * TWO_PI),
+                                                   lambda z: np.asarray(z) * (2 * TWO_PI)))
     right.set_ylabel("ζ = ψ/4π")
     ax.legend(fontsize="x-small")
     finish(ax, "Hinge-friction damping [ChainHingeDissipation]")

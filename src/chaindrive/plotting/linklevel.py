@@ -12,6 +12,7 @@ import numpy as np
 
 from chaindrive.display import UnitSystem
 from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, new_figure, scale
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -59,7 +60,7 @@ def _draw(result: LinkLevelResult, k: int, ax: Axes, vmax: float, magnify: float
         x, y, r = g.x * m, g.y * m, g.pitch_radius * m
         ax.add_patch(_circle((x, y), model.tip_radii[i] * m, GREY, 0.6))
         ax.add_patch(_circle((x, y), r, GREY, 0.3, dashed=True))
-        angle = result.angles[k, i] + 2 * math.pi * np.arange(g.teeth) / g.teeth
+        angle = result.angles[k, i] + TWO_PI * np.arange(g.teeth) / g.teeth
         ax.plot(x + r * np.cos(angle), y + r * np.sin(angle), ".", color=GREY, markersize=2)
         ax.annotate(g.name, (x, y), ha="center", va="center", fontsize="small")
     segments = np.stack([pos, np.roll(pos, -1, axis=0)], axis=1)

@@ -18,17 +18,17 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.display import RAD_S_TO_RPM, UnitSystem, fmt
+from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from chaindrive.dynamics.afc import AfcResult
+    from chaindrive.dynamics.frequency.afc import AfcResult
+    from chaindrive.dynamics.frequency.steady import SteadyStateResult
     from chaindrive.dynamics.materials import MaterialCase
-    from chaindrive.dynamics.startup import StartupResult
-    from chaindrive.dynamics.steady import SteadyStateResult
+    from chaindrive.dynamics.transient.startup import StartupResult
 
 __all__ = ["afc_curves", "inertia_and_irregularity", "material_comparison_chart",
            "startup_oscillogram", "startup_speeds", "steady_loads"]
@@ -79,10 +79,12 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6,
                         units: UnitSystem = "SI") -> Figure:
     """Span forces F_i(t) [N, or lbf with ``units="US"``] during the start-up against time [ms]
-    ([MultimassChainDrives, Fig. 2]), the largest one F₁max marked and labelled, the settling time as a dashed
-    vertical line (:func:`chaindrive.dynamics.startup.transient_times`; the title says when the record ends
-    before the forces settle). names label the spans. When the start-up settles within a fifth of the record
-    the time axis ends at 4× the settling time (the title says so).
+    ([MultimassChainDrives, Fig. 2]), the largest one F₁max marked and labelled, the settling
+    time as a dashed vertical line
+    (:func:`chaindrive.dynamics.transient.startup.transient_times`; the title says when the
+    record ends before the forces settle). names label the spans. When the start-up settles
+    within a fifth of the record the time axis ends at 4× the settling time (the title says
+    so).
 
     Parameters
     ----------
@@ -159,7 +161,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
-    w = np.asarray(startup.speeds) * RAD_S_TO_RPM
+    w = np.asarray(startup.speeds) * RPM_PER_RAD_S
     _curves(ax, t, w, _labels(w.shape[1], names, "M"), max_lines)
     end = _zoom_end(t, startup.settling_time * 1e3)
     ax.set_xlim(t[0], end)

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from chaindrive.analysis import Analysis
-    from chaindrive.dynamics.whole import DriveDynamics
+    from chaindrive.dynamics.modes import DriveDynamics
     from chaindrive.robust.study import RobustResult
     from chaindrive.synthesis.solve import SynthesisResult
 
@@ -315,7 +315,7 @@ class ReportInput:
 
     @property
     def dynamics(self) -> DriveDynamics:
-        """The analysis's dynamics part (:class:`~chaindrive.dynamics.whole.DriveDynamics`)."""
+        """The analysis's dynamics part (:class:`~chaindrive.dynamics.modes.DriveDynamics`)."""
         return self.analysis.dynamics
 
 

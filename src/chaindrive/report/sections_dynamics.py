@@ -256,7 +256,7 @@ def response_section(inp: ReportInput) -> list[Block] | None:
         ("dynamic load", "F_D", inp.val(steady.dynamic_load_rms, "force"), F),
         ("peripheral force at the driver's pitch circle (K_D = 1 + F_D/F_t)", "F_t",
          None if steady.nominal_force is None else inp.val(steady.nominal_force, "force"), F),
-        ("tooth frequency", "f_z", steady.tooth_angular_frequency / (2 * math.pi), "Hz")]
+        ("tooth frequency", "f_z", steady.tooth_frequency_hz, "Hz")]
     if startup is not None:
         load_rows += [("largest start-up force", "F₁max",
                        inp.val(float(startup.max_span_force.max()), "force"), F),
@@ -282,7 +282,7 @@ def response_section(inp: ReportInput) -> list[Block] | None:
                               "Start-up: sprocket speeds", inp.dpi, "startup_speeds")]
     blocks += [
         plot_block(afc_curves(response.afc, names=spans,
-                              operating_hz=steady.tooth_angular_frequency / (2 * math.pi),
+                              operating_hz=steady.tooth_frequency_hz,
                               mode_numbers=_elastic_modes(inp), units=inp.units),
                    "Amplitude–frequency characteristic per span (speed sweep); above the "
                    "plot the resonances, mode × harmonic of the tooth frequency (modes "

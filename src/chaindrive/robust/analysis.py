@@ -41,11 +41,11 @@ import numpy as np
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check, judged
-from chaindrive.dynamics.drive import chain_link_stiffness, drive_ring_parameters
-from chaindrive.dynamics.drive_model import DriveModel, drive_model
-from chaindrive.dynamics.drive_response import drive_steady
+from chaindrive.dynamics.frequency.response import drive_steady
+from chaindrive.dynamics.frequency.steady import SteadyStateResult
+from chaindrive.dynamics.model.build import DriveModel, drive_model
+from chaindrive.dynamics.parameters import chain_link_stiffness, drive_ring_parameters
 from chaindrive.dynamics.response import disturbance_excitations
-from chaindrive.dynamics.steady import SteadyStateResult
 from chaindrive.model import Drive, Material
 from chaindrive.multicontour.drive import ContourCheck, most_loaded_share
 from chaindrive.robust.perturbation import Perturbation, modulus_factor
@@ -224,7 +224,7 @@ class PerturbedAnalysis(Analysis):
     @cached_property
     def drive_model(self) -> DriveModel:
         """The whole-drive model in this state: the ring reduction of the worn, built drive
-        (:func:`chaindrive.dynamics.drive.drive_ring_parameters` with this state's link
+        (:func:`chaindrive.dynamics.parameters.drive_ring_parameters` with this state's link
         stiffness, materials at the operating temperature and span tensions), the sprocket
         inertias scaled by the state's factors; the trains as designed."""
         st = self._static

@@ -3,8 +3,8 @@ under S sets of modal factors (sprocket inertias, chain stiffness, polymer tempe
 natural frequencies and resonance margins, every sample at once.
 
 The model is the analysis's own (:attr:`chaindrive.analysis.Analysis.drive_model`, the
-:class:`~chaindrive.dynamics.torsional_system.TorsionalSystem` of
-:mod:`chaindrive.dynamics.drive_model`); a sample changes only values, never the topology:
+:class:`~chaindrive.dynamics.torsional.system.TorsionalSystem` of
+:mod:`chaindrive.dynamics.model.build`); a sample changes only values, never the topology:
 
 * **inertias** — the node of sprocket i carries J_node + J_i (f_i − 1): its own inertia J_i
   times the factor, what else sits on the node (the motor's rotor) unchanged — as
@@ -40,12 +40,13 @@ from scipy.sparse import csr_matrix
 
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.resonance import TWO_PI, working_frequencies
-from chaindrive.dynamics.stiffness import TOOTH_WIDTH_FACTOR, tooth_stiffness
-from chaindrive.dynamics.torsional_system import TorsionalSystem
+from chaindrive.dynamics.resonance import working_frequencies
+from chaindrive.dynamics.stiffness import tooth_contact_width, tooth_stiffness, wrap_stiffness
+from chaindrive.dynamics.torsional.system import TorsionalSystem
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.kinematics import tooth_frequency
 from chaindrive.robust.perturbation import modulus_factors
+from chaindrive.units import TWO_PI
 
 __all__ = ["WORKING_HARMONICS", "StackedState", "batch_chain_stiffness",
            "batch_elastic_frequencies", "batch_system_values", "modal_margins",
@@ -53,7 +54,7 @@ __all__ = ["WORKING_HARMONICS", "StackedState", "batch_chain_stiffness",
 
 FloatArray = NDArray[np.float64]
 #: Harmonics of the tooth frequency among the working frequencies of the modal stage (the
-#: default of :func:`chaindrive.dynamics.whole.model_dynamics`, which the analysis calls).
+#: default of :func:`chaindrive.dynamics.modes.model_dynamics`, which the analysis calls).
 WORKING_HARMONICS = 3
 
 
@@ -62,7 +63,7 @@ def _tooth_stiffness(state: Analysis, temperature: FloatArray) -> FloatArray:
     (:func:`chaindrive.dynamics.stiffness.tooth_stiffness`, vectorised)."""
     d = state.drive
     spec = d.chain.spec
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     chain = find_material(spec.material)
     e_chain = chain.youngs_modulus * modulus_factors(chain, temperature)
     out = np.empty((temperature.size, len(d.sprockets)))
@@ -78,7 +79,7 @@ def batch_chain_stiffness(state: Analysis, link: FloatArray, temperature: FloatA
                           ) -> tuple[FloatArray, FloatArray]:
     """Span and wrap stiffnesses (S, n) of one contour of a state under S modal factors.
 
-    The model of :func:`chaindrive.dynamics.drive.drive_ring_parameters`: the span
+    The model of :func:`chaindrive.dynamics.parameters.drive_ring_parameters`: the span
     c·s, c = k_link·p/L scaled by the link factor f, s = 1/(1 + (1/s₀ − 1)·f) the
     Dischinger–Ernst sag factor for EA scaled by f [Ernst1965]; the wrap by the ladder
     recursion K ← k_t + k_link·K/(k_link + K) over the teeth in mesh [Naji1983].
@@ -104,11 +105,8 @@ def batch_chain_stiffness(state: Analysis, link: FloatArray, temperature: FloatA
     p = state.ring_parameters
     k_link = p.link_stiffness_n_per_m * link[:, None]
     k_t = _tooth_stiffness(state, temperature)
-    mesh = np.array([max(1, math.floor(g.teeth_in_mesh)) for g in state.geometry.sprockets])
-    wrap = k_t.copy()
-    for j in range(int(mesh.max()) - 1):
-        step = k_t + k_link * wrap / (k_link + wrap)
-        wrap = np.where(j < mesh - 1, step, wrap)
+    wrap = np.asarray(wrap_stiffness(k_t, k_link, [g.teeth_in_mesh
+                                                   for g in state.geometry.sprockets]))
     chain = p.chain_stiffness_n_per_m[None, :] * link[:, None]
     with np.errstate(divide="ignore"):
         sag = np.where(p.sag_factors > 0, 1.0 / (1.0 + (1.0 / p.sag_factors - 1.0)
@@ -119,7 +117,7 @@ def batch_chain_stiffness(state: Analysis, link: FloatArray, temperature: FloatA
 def _chain_elements(system: TorsionalSystem, n: int) -> tuple[NDArray[np.intp],
                                                               NDArray[np.intp]]:
     """Indices of the span elements (span i) and wrap elements (sprocket i) of a drive model,
-    in the order :func:`chaindrive.dynamics.drive_model.drive_model` adds them."""
+    in the order :func:`chaindrive.dynamics.model.build.drive_model` adds them."""
     kinds = np.array(system.element_kinds)
     spans, wraps = np.flatnonzero(kinds == "span"), np.flatnonzero(kinds == "wrap")
     if spans.size != n or wraps.size != n:
@@ -132,7 +130,7 @@ def batch_system_values(state: Analysis, inertia: FloatArray, link: FloatArray,
                         temperature: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Node inertias and element stiffnesses of a state's whole-drive model under S sets of
     modal factors (module docstring): the values
-    :meth:`~chaindrive.dynamics.torsional_system.TorsionalSystem.updated` takes.
+    :meth:`~chaindrive.dynamics.torsional.system.TorsionalSystem.updated` takes.
 
     Parameters
     ----------
@@ -340,7 +338,7 @@ def _scaled(split: _Split, mass_v: FloatArray) -> FloatArray:
 def _excitation(state: Analysis) -> tuple[FloatArray, FloatArray, float]:
     """Working frequencies (W,) [Hz], the spans' first transverse frequencies (n,) [Hz] and
     the tooth frequency [Hz] of a state: what its modal stage compares the natural
-    frequencies with (:func:`chaindrive.dynamics.whole.model_dynamics`), from the same
+    frequencies with (:func:`chaindrive.dynamics.modes.model_dynamics`), from the same
     functions, without the stage's own modes and Campbell data."""
     d = state.drive
     w = d.driver.speed
@@ -514,7 +512,7 @@ def stacked_margins(stacked: StackedState, added_inertia: FloatArray | None = No
     ΔJ added on the sprockets' shafts (:func:`modal_margins`).
 
     A flywheel ΔJ_i is part of sprocket i's own inertia (the inertia factor f_i scales the
-    sum, as :func:`chaindrive.dynamics.drive.drive_ring_parameters` adds it): the node of
+    sum, as :func:`chaindrive.dynamics.parameters.drive_ring_parameters` adds it): the node of
     sprocket i carries J_node + J_i (f_i − 1) + ΔJ_i f_i, nothing else changes.
 
     Parameters

@@ -39,7 +39,7 @@ from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Status, judged, ver
 from chaindrive.errors import Quantity
 from chaindrive.strength.ke_method import MPA
 from chaindrive.strength.wear import BASIS_LIFE_H
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 __all__ = ["BASIS_LIFE_H", "FAIL", "MAX_SPAN_PITCHES", "MIN_SAFETY_RATED", "MIN_TEETH_IN_MESH",
            "MIN_WRAP", "PASS", "UNVERIFIED", "Check", "Status", "allowable_load_check",
@@ -152,7 +152,7 @@ def speed_limit_check(subject: str, speed: float, max_speed: float | None, sourc
     """
     if max_speed is None:
         note = note or "no speed limit known for this pitch"
-    unit, scale = ("m/s", 1.0) if linear else ("rpm", RAD_S_TO_RPM)
+    unit, scale = ("m/s", 1.0) if linear else ("rpm", RPM_PER_RAD_S)
     return judged("speed limit", subject, speed, max_speed, "max", source, unit, scale, note,
                   "chain")
 

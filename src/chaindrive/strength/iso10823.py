@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 HP = 745.699872  # 1 hp [W]
 INCH = 0.0254  # [m]
@@ -325,7 +325,7 @@ def aca_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 100
     [Shigley2015, Eq. 17-32/17-33].
     """
     p_in = chain.pitch / INCH
-    n1 = speed * RAD_S_TO_RPM
+    n1 = speed * RPM_PER_RAD_S
     light = (chain.ansi or "").split("-")[0] == "41"
     h1 = float(link_plate_rating_hp(teeth, n1, p_in, light))
     h2 = float(roller_bush_rating_hp(teeth, n1, p_in, roller_constant(chain), links, life_h))
@@ -363,7 +363,7 @@ def galling_speed_limit(pitch: float, teeth: int, tension: float) -> float:
     log_ratio = (math.log(82.5) - p * math.log(7.95) - teeth * math.log(1.0278)
                  - f / 1000.0 * math.log(1.323))
     exponent = log_ratio / (1.59 * math.log10(p) + 1.873)
-    return float(1000.0 * math.exp(min(exponent, 700.0)) / RAD_S_TO_RPM)
+    return float(1000.0 * math.exp(min(exponent, 700.0)) / RPM_PER_RAD_S)
 
 
 def lubrication_type(chain: ChainSpec, speed: float) -> Lubrication | None:

@@ -23,7 +23,7 @@ import numpy as np
 from chaindrive.catalog import bearing_area_estimate, row_factor
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 __all__ = ["MPA", "allowable_impacts", "allowable_pressure", "allowable_safety_factor",
            "bearing_area", "center_distance_factor", "data", "factor", "impacts_per_second",
@@ -158,7 +158,7 @@ def operating_factor(kd: float = 1.0, ka: float = 1.0, kn: float = 1.0, kreg: fl
 def _grid_value(section: str, pitch: float, speed: float) -> float | None:
     """Linear interpolation in n1 on the table ``section`` for the pitch group of ``pitch``."""
     table = data()[section]
-    n1 = speed * RAD_S_TO_RPM
+    n1 = speed * RPM_PER_RAD_S
     for group in table["groups"]:
         lo, hi = group["pitch_min_mm"] * 1e-3, group["pitch_max_mm"] * 1e-3
         if lo - PITCH_TOL <= pitch <= hi + PITCH_TOL:
@@ -265,7 +265,7 @@ def max_speed(pitch: float) -> float | None:
     [TrinhChat2006, Table 5.8]; [ChainDesignRU, §5].
     """
     value = _by_pitch("speed_limit", "max_rpm", pitch)
-    return None if value is None else value / RAD_S_TO_RPM
+    return None if value is None else value / RPM_PER_RAD_S
 
 
 def impacts_per_second(teeth: int, speed: float, links: int | float) -> float:
@@ -290,7 +290,7 @@ def impacts_per_second(teeth: int, speed: float, links: int | float) -> float:
     ----------
     [ChainDesignRU, §5]; [TrinhChat2006, Table 5.9].
     """
-    return teeth * (speed * RAD_S_TO_RPM) / (15.0 * links)
+    return teeth * (speed * RPM_PER_RAD_S) / (15.0 * links)
 
 
 def allowable_impacts(pitch: float) -> float | None:

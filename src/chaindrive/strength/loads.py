@@ -85,14 +85,19 @@ def power_shares(drive: Drive) -> NDArray[np.float64]:
 
 
 def peripheral_force(power: float, speed: float) -> float:
-    """Peripheral (useful) force F_t = P/v.
+    """Peripheral (useful) force F_t = P/v̄ [N], v̄ the mean chain speed z·p·n/60
+    (:func:`chaindrive.kinematics.mean_chain_speed`).
+
+    The one F_t of the package: the static span loads, the strength checks and the
+    coefficient of dynamics K_D = 1 + F_D/F_t all divide by it. (The driver's pitch diameter
+    gives v_max = Dω/2 ≥ v̄; P/v_max is not used.)
 
     Parameters
     ----------
     power : float
         Transmitted power P [W].
     speed : float
-        Chain speed v [m/s].
+        Mean chain speed v̄ [m/s].
 
     Returns
     -------
@@ -101,7 +106,7 @@ def peripheral_force(power: float, speed: float) -> float:
 
     References
     ----------
-    [Shigley2015, §17-5].
+    [ISO10823] (F = P/v with v = z p n/60 000, p in mm); [Shigley2015, §17-5].
     """
     return power / speed
 

@@ -42,7 +42,7 @@ from typing import Any
 from chaindrive.errors import Quantities, Quantity
 from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823
-from chaindrive.units import RAD_S_TO_RPM
+from chaindrive.units import RPM_PER_RAD_S
 
 __all__ = ["ACA", "B_TABLE", "KE", "METHOD_SOURCES", "POLYMER", "Alternative", "RatingResult",
            "TablePoint", "b_table", "chain_number", "chain_rating", "method_for", "table_rating",
@@ -201,7 +201,7 @@ def table_rating(chain: ChainSpec, teeth: int, speed: float) -> tuple[float, str
     ----------
     [Bhandari2010, Table 14.2]; [Jindal2010, Table 30-8].
     """
-    n1 = speed * RAD_S_TO_RPM
+    n1 = speed * RPM_PER_RAD_S
     points = sorted((p for p in b_table() if p.chain == chain_number(chain)),
                     key=lambda p: p.speed_rpm)
     for p in points:

@@ -33,11 +33,11 @@ from chaindrive.dynamics.modes import inertia_modes_batch
 from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.errors import DesignError
 from chaindrive.model import Drive
+from chaindrive.units import TWO_PI
 
 __all__ = ["DetuningResult", "band_shortfall", "detune", "detune_drive", "detuning_objective",
            "normalised_amplitude_at", "ring_modes_batch"]
 
-TWO_PI = 2.0 * np.pi
 BAND = 0.10
 PENALTY = 1e4
 

@@ -24,7 +24,6 @@ tried, and any one solution is returned.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -35,10 +34,10 @@ from scipy.optimize import least_squares
 
 from chaindrive.dynamics.ring import ring_stiffness_matrix
 from chaindrive.errors import ConvergenceError, DesignError
+from chaindrive.units import TWO_PI
 
 __all__ = ["masses_for_spectrum", "ring_eigen", "solve_inverse", "stiffnesses_for_spectrum"]
 
-TWO_PI = 2.0 * math.pi
 #: relative error of the recovered eigenvalues accepted as a solution
 SPECTRUM_TOL = 1e-10
 #: steps of the continuation from the start values' spectrum to the prescribed one

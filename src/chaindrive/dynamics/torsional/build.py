@@ -1,5 +1,5 @@
 """Plain-data builder of the torsional model of a chain contour with a train on any
-sprocket: the body of :meth:`chaindrive.dynamics.torsional.TorsionalEngine.from_contour`
+sprocket: the body of :meth:`chaindrive.dynamics.torsional.model.TorsionalEngine.from_contour`
 (docs/torsional.md)."""
 
 from __future__ import annotations
@@ -10,11 +10,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from chaindrive.dynamics.torsional_engine import FloatArray, TrainElement, _nonneg
+from chaindrive.dynamics.torsional.engine import FloatArray, TrainElement, nonneg
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.torsional_engine import TorsionalEngine
+    from chaindrive.dynamics.torsional.engine import TorsionalEngine
 
 __all__ = ["build_contour"]
 
@@ -40,7 +40,7 @@ def build_contour(model: TorsionalEngine, sprockets: Sequence[str], inertias_kg_
                    span_lengths_m: ArrayLike | None, wrap_lengths_m: ArrayLike | None,
                    closed: bool, consistent_mass: bool = False) -> TorsionalEngine:
     """Add a chain contour with trains to ``model`` (the body of
-    :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`).
+    :meth:`chaindrive.dynamics.torsional.model.TorsionalModel.from_contour`).
 
     Parameters
     ----------
@@ -104,7 +104,7 @@ def build_contour(model: TorsionalEngine, sprockets: Sequence[str], inertias_kg_
         raise DesignError("pitch_radii_m", f"must all be finite and > 0, got {R.tolist()}")
     if not np.all(np.abs(s) == 1.0):
         raise DesignError("senses", f"must each be +1 or -1, got {s.tolist()}")
-    q = _nonneg("chain_mass_per_length_kg_per_m", chain_mass_per_length_kg_per_m, "q [kg/m]")
+    q = nonneg("chain_mass_per_length_kg_per_m", chain_mass_per_length_kg_per_m, "q [kg/m]")
     span_mass = q * _per_sprocket("span_lengths_m", span_lengths_m, n, 0.0)
     wrap_mass = q * _per_sprocket("wrap_lengths_m", wrap_lengths_m, n, 0.0)
     if q > 0.0 and span_lengths_m is None:
@@ -128,7 +128,7 @@ def build_contour(model: TorsionalEngine, sprockets: Sequence[str], inertias_kg_
 
 def _add_train(model: TorsionalEngine, sprocket: str, train: Sequence[TrainElement]) -> None:
     """Adds an open train outward from ``sprocket`` (see
-    :meth:`chaindrive.dynamics.torsional.TorsionalModel.from_contour`)."""
+    :meth:`chaindrive.dynamics.torsional.model.TorsionalModel.from_contour`)."""
     previous = sprocket
     for k, element in enumerate(train):
         field = f"trains.{sprocket}[{k}]"

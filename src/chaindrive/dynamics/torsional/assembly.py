@@ -1,5 +1,5 @@
 """Assembly of the torsional model on plain arrays (the engine is
-:class:`chaindrive.dynamics.torsional_engine.TorsionalEngine`; docs/torsional.md): the gear
+:class:`chaindrive.dynamics.torsional.engine.TorsionalEngine`; docs/torsional.md): the gear
 trees' reduced coordinates, the groups of strain-free motion, the element incidence in the
 (at most two) columns of each row and the scatter of K and C from it.
 

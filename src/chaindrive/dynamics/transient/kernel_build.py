@@ -1,15 +1,15 @@
-"""Ahead-of-time build of the start-up kernel: ``python -m chaindrive.dynamics.kernel_build``.
+"""Ahead-of-time build of the start-up kernel: ``python -m chaindrive.dynamics.transient.kernel_build``.
 
-The nonlinear start-up (:mod:`chaindrive.dynamics.startup`) steps in the numba kernel
-:func:`chaindrive.dynamics.startup_kernel.run_kernel_flat`. Compiled just in time, it costs
+The nonlinear start-up (:mod:`chaindrive.dynamics.transient.startup`) steps in the numba kernel
+:func:`chaindrive.dynamics.transient.kernel.run_kernel_flat`. Compiled just in time, it costs
 every new process about 0.7 s before the first step (importing numba 0.25 s, its typing and
 lowering registries, loading the cached machine code; measured with ``python -X importtime``
 and cProfile) — most of a command-line ``analyze``. This module compiles the same Python
 source once, ahead of time, with numba's ``numba.pycc`` into the extension module
-``chaindrive.dynamics._startup_aot``, which imports in milliseconds and without numba (numba
+``chaindrive.dynamics.transient._startup_aot``, which imports in milliseconds and without numba (numba
 documents that such modules do not need numba at run time).
 
-The module also exports ``source_digest()``: a digest of ``startup_kernel.py`` and
+The module also exports ``source_digest()``: a digest of ``kernel.py`` and
 ``kernel_codes.py`` as they were at the build. :func:`compiled_kernel` uses the module only
 while the digest still matches the sources, so an edited kernel is never run from a stale
 build (it falls back to numba's just-in-time compilation until rebuilt).
@@ -32,7 +32,7 @@ __all__ = ["MODULE", "build", "compiled_kernel", "source_digest"]
 
 MODULE = "_startup_aot"
 _HERE = Path(__file__).resolve().parent
-_SOURCES = ("startup_kernel.py", "kernel_codes.py")
+_SOURCES = ("kernel.py", "kernel_codes.py")
 
 
 def source_digest() -> int:
@@ -56,7 +56,7 @@ def compiled_kernel() -> Any:  # a function of a generated extension module: no 
     built from other sources (decided once per process)."""
     try:
         # imported by name: the extension module exists only once built
-        _startup_aot = importlib.import_module("chaindrive.dynamics._startup_aot")
+        _startup_aot = importlib.import_module("chaindrive.dynamics.transient._startup_aot")
     except ImportError:
         return None
     if _startup_aot.source_digest() != source_digest():
@@ -84,7 +84,7 @@ def build(output_dir: Path | None = None) -> Path:
         from numba.pycc import CC
 
     # lazy: the kernel module imports numba (≈0.25 s); only a build needs it
-    from chaindrive.dynamics.startup_kernel import FLAT_SIGNATURE, run_kernel_flat
+    from chaindrive.dynamics.transient.kernel import FLAT_SIGNATURE, run_kernel_flat
 
     digest = source_digest()
     cc = CC(MODULE)

@@ -2,8 +2,7 @@ r"""Start-up transient from rest: the nonlinear time integration of a drive mode
 tension-only chain spans [MultimassChainDrives, §3.1, Fig. 2].
 
 Equations, for coordinates q of any drive model (the whole drive of
-:mod:`chaindrive.dynamics.drive_model`, or the ring of reduced masses of
-:func:`simulate_startup`)::
+:mod:`chaindrive.dynamics.model.build`, or any :class:`StartupProblem` built by hand)::
 
     M q̈ + C_lin q̇ + K_lin q = −Bᵀ F + Q_laws(t, q̇),
     F_i = s_i · [T₀,i + c_i (e_i + d_i) + d_s,i (ė_i + ḋ_i)],   e = B q,
@@ -19,16 +18,16 @@ its sprocket; :mod:`chaindrive.dynamics.motors`).
 
 **Integrator** (exponential / zero-order-hold [VanLoan1978]): for each slack pattern s the
 linear part ẏ = A_s y + E f (y = (q, q̇)) is discretised exactly,
-expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.zoh`), and
+expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.transient.zoh`), and
 y_{k+1} = Φ_s y_k + Γ_s f_{k+½}, f_{k+½} = (3 f_k − f_{k−1})/2 for the explicit span forces
 (pre-tension, polygonal); the laws are linearly implicit on their own coordinate's speed.
 Φ_s, Γ_s are cached per pattern. The linear part is exact at any step (no stability limit
 from stiff modes); a step whose end state changes the slack pattern is redone once with the
 new pattern.
 
-**Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.startup_kernel`)
+**Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.transient.kernel`)
 when the motor is a ConstantTorque, RampTorque or KlossMotor — compiled ahead of time when
-that build is present and current (:mod:`chaindrive.dynamics.kernel_build`), else just in
+that build is present and current (:mod:`chaindrive.dynamics.transient.kernel_build`), else just in
 time; otherwise in NumPy. Both take the same steps and agree to round-off on small cases
 (with slack spans and polygonal excitation the trajectory itself amplifies round-off: peak
 forces are the robust output).
@@ -47,20 +46,18 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
-from chaindrive.dynamics.kernel_codes import RESISTANCE_KINDS, motor_code
 from chaindrive.dynamics.motors import ResistanceLaw
-from chaindrive.dynamics.ring import modal_analysis
-from chaindrive.dynamics.steady import span_incidence
-from chaindrive.dynamics.zoh import zoh_matrices
+from chaindrive.dynamics.transient.kernel_codes import RESISTANCE_KINDS, motor_code
+from chaindrive.dynamics.transient.zoh import zoh_matrices
 from chaindrive.errors import DesignError
+from chaindrive.units import TWO_PI
 
 __all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
-           "StartupResult", "runup_time", "settling_time", "simulate_startup", "solve_startup",
+           "StartupResult", "runup_time", "settling_time", "solve_startup",
            "transient_times", "work_estimate"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: Default steps per period of the reference mode (or tooth period): slack events and the
 #: explicit forces need it (measured: 40 is unstable on the 24-sprocket example, 160 agrees
@@ -627,24 +624,24 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
 
 def _compiled_runner(backend: Backend) -> Any:  # a numba Dispatcher or an AOT function
     """The compiled step loop: the ahead-of-time module when built from the current source
-    (:mod:`chaindrive.dynamics.kernel_build`; loads without numba), else numba's
+    (:mod:`chaindrive.dynamics.transient.kernel_build`; loads without numba), else numba's
     just-in-time ``run_kernel_flat`` (backend "jit" forces it), else None."""
     # imported here: the kernel module imports numba (0.25 s), the ahead-of-time module not
     if backend != "jit":
-        from chaindrive.dynamics.kernel_build import compiled_kernel
+        from chaindrive.dynamics.transient.kernel_build import compiled_kernel
 
         runner = compiled_kernel()
         if runner is not None:
             return runner
     # lazy: the just-in-time kernel imports numba (0.25 s), only when no compiled one exists
-    from chaindrive.dynamics.startup_kernel import HAVE_NUMBA, run_kernel_flat
+    from chaindrive.dynamics.transient.kernel import HAVE_NUMBA, run_kernel_flat
 
     return run_kernel_flat if HAVE_NUMBA else None
 
 
 def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
                   ) -> tuple[FloatArray, FloatArray, FloatArray, int]:
-    """The step loop compiled (:mod:`chaindrive.dynamics.startup_kernel`); same output as
+    """The step loop compiled (:mod:`chaindrive.dynamics.transient.kernel`); same output as
     :func:`_run_numpy`. Slack patterns new to the kernel are discretised here, then the
     kernel resumes from the step that met them."""
     n, ns = p.size, p.span_stiffness.size
@@ -733,91 +730,4 @@ def solve_startup(p: StartupProblem, backend: Backend = "auto"
 
 # --- the ring of reduced masses ------------------------------------------------------------
 
-def simulate_startup(masses: ArrayLike, stiffness: ArrayLike, radii: ArrayLike, beta: float,
-                     motor: Callable[[float, float], float], driver_index: int,
-                     resistance: ResistanceLaw | None, *, duration: float = 1.0,
-                     dt: float | None = None, pretension: float = 0.0,
-                     polygonal: PolygonalLaw | None = None,
-                     breaking_load: float | None = None,
-                     backend: Backend = "auto") -> StartupResult:
-    """Nonlinear start-up of the ring of reduced masses [MultimassChainDrives, §3.1].
-
-    Parameters
-    ----------
-    masses : array_like
-        (n,) reduced masses [kg]; x_i is the chain travel at sprocket i [m].
-    stiffness : array_like
-        (n,) span stiffness c_i [N/m] (span i joins mass i and i+1, closed ring; 0: slack for
-        good).
-    radii : array_like
-        (n,) R̄_i = z_i p/2π [m] converting torques and speeds.
-    beta : float
-        Stiffness-proportional damping, span dampers β c_i [s].
-    motor : callable
-        motor(t, ω) → torque [N·m] on mass ``driver_index``.
-    driver_index : int
-        The driver.
-    resistance : ResistanceLaw | None
-        Moments of the other sprockets (None: none).
-    duration : float
-        [s].
-    dt : float | None
-        Step [s] (None: 1/(160 f₁), f₁ the first elastic frequency of the taut ring).
-    pretension : float
-        T₀ [N] of every span.
-    polygonal : PolygonalLaw | None
-        The polygonal hinge law (None: no polygonal excitation).
-    breaking_load : float | None
-        Q [N] → k₁.
-    backend : str
-        See :func:`solve_startup`.
-
-    Returns
-    -------
-    StartupResult
-    """
-    m = np.asarray(masses, dtype=float)
-    c = np.asarray(stiffness, dtype=float)
-    R = np.asarray(radii, dtype=float)
-    n = m.size
-    if c.shape != (n,) or R.shape != (n,) or not 0 <= driver_index < n:
-        raise DesignError("startup", "masses, stiffness and radii must have one entry per mass")
-    if dt is None:
-        dt = _default_step(m, c)
-    steps = max(1, math.ceil(duration / dt))
-    others = np.flatnonzero(np.arange(n) != driver_index)
-    law = resistance
-    p = StartupProblem(
-        mass=np.diag(m), stiffness_linear=np.zeros((n, n)), damping_linear=np.zeros((n, n)),
-        span_incidence=span_incidence(n), span_stiffness=c, span_damping=beta * c,
-        span_tension_only=np.ones(n, dtype=bool), pretension=np.full(n, float(pretension)),
-        motor=(int(driver_index), 1.0 / float(R[driver_index]), 1.0, motor),
-        load_coordinate=others if law is not None else np.zeros(0, np.intp),
-        load_gain=1.0 / R[others] if law is not None else np.zeros(0),
-        load_efficiency=np.ones(others.size if law is not None else 0),
-        load_torque=(np.broadcast_to(np.asarray(law.torques, float), (n,))[others]
-                     if law is not None else np.zeros(0)),
-        load_speed=(np.broadcast_to(np.asarray(law.nominal_speeds, float), (n,))[others]
-                    if law is not None else np.zeros(0)),
-        load_kind=(law.kind,) * others.size if law is not None else (),
-        breakaway=law.breakaway if law is not None else 0.01, polygonal=polygonal,
-        travel_coordinate=np.arange(n), travel_gain=np.ones(n), dt=float(dt), steps=steps,
-        record_every=max(1, math.ceil(steps / MAX_RECORDS)))
-    times, forces, states, fmax, _ = solve_startup(p, backend)
-    speeds = states[:, n:] / R
-    k1 = breaking_load / float(fmax.max()) if breaking_load is not None and fmax.max() > 0 \
-        else None
-    final = float(speeds[-1, driver_index]) * R[driver_index]  # chain speed [m/s]
-    period = polygonal.pitch / final if polygonal is not None and final > 0 else 0.0
-    settle, runup, decay = transient_times(times, forces, speeds[:, driver_index], period)
-    return StartupResult(times, forces, speeds, fmax, settle, k1, steps,
-                         int(np.count_nonzero((forces <= 0).any(axis=1))), runup, decay,
-                         time_step=float(dt))
-
-
-def _default_step(m: FloatArray, c: FloatArray) -> float:
-    """1/(160 f_1) [s], f_1 the first elastic natural frequency of the taut ring."""
-    modal = modal_analysis(m, np.maximum(c, 0.0))
-    f1 = modal.first_elastic_frequency_hz
-    return 1.0 / (STEPS_PER_PERIOD * f1) if f1 > 0 else 1e-3
 

@@ -1,4 +1,4 @@
-"""The chain's damping in the whole-drive model of :mod:`chaindrive.dynamics.drive_model`.
+"""The chain's damping in the whole-drive model of :mod:`chaindrive.dynamics.model.build`.
 
 The damping ratio ζ of every span and of every sprocket's wrap is the ratio of its material
 pair [MultimassChainDrives, Table 1], the design's ``[dynamics] damping_ratio``, or each
@@ -16,18 +16,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
-from chaindrive.dynamics.drive_assembly import DriveParts, LinearModel
+from chaindrive.dynamics.model.assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive import RingParameters
-    from chaindrive.dynamics.torsional_system import TorsionalModes
+    from chaindrive.dynamics.parameters import RingParameters
+    from chaindrive.dynamics.torsional.system import TorsionalModes
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material
 
-__all__ = ["CHAIN_MODE_SHARE", "chain_damping", "chain_damping_ratio",
+__all__ = ["CHAIN_MODE_SHARE", "chain_damping",
            "reference_angular_frequency", "with_chain_dampers"]
 
 FloatArray = NDArray[np.float64]
@@ -87,32 +86,6 @@ def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
                                           settings.hinge_amplitude)
         return spans, wraps, "hinge friction [ChainHingeDissipation]"
     return spans, wraps, "material pair [MultimassChainDrives, Table 1]"
-
-
-def chain_damping_ratio(drive: Drive,
-                        material_lookup: Callable[[str], Material] | None = None) -> float:
-    """One damping ratio ζ [-] of a drive's chain: ``[dynamics] damping_ratio`` when given,
-    else the mean over its sprockets of the ratio of the chain/sprocket material pair
-    ([MultimassChainDrives], Table 1; :func:`chaindrive.dynamics.damping.pair_damping_ratio`).
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive.
-    material_lookup : callable | None
-        name → Material (None: the catalogue).
-
-    Returns
-    -------
-    float
-        ζ [-].
-    """
-    if drive.dynamics.damping_ratio is not None:
-        return drive.dynamics.damping_ratio
-    lookup = material_lookup or find_material
-    chain = lookup(drive.chain.spec.material).is_polymer
-    return float(np.mean([pair_damping_ratio(chain, lookup(s.material).is_polymer)
-                          for s in drive.sprockets]))
 
 
 

@@ -1,6 +1,6 @@
-r"""Compiled time-stepping kernel of the nonlinear start-up (:mod:`chaindrive.dynamics.startup`).
+r"""Compiled time-stepping kernel of the nonlinear start-up (:mod:`chaindrive.dynamics.transient.startup`).
 
-The same step as the NumPy loop of :func:`chaindrive.dynamics.startup.run_startup`, for a
+The same step as the NumPy loop of :func:`chaindrive.dynamics.transient.startup.run_startup`, for a
 model M q̈ + C q̇ + K q = Q of any coordinates q (the whole drive, or the ring as a special
 case): exact zero-order-hold transition Φ_s, Γ_s per slack pattern s [VanLoan1978];
 explicit pre-tension and polygonal span forces −Bᵀ(...) extrapolated to mid-step; the motor
@@ -8,7 +8,7 @@ and load laws linearly implicit on the speed of their own coordinate; a step tha
 slack pattern redone once with the new pattern. Written on plain arrays so that numba
 compiles it (``@njit(cache=True)``).
 
-Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.kernel_codes`): the motor acts
+Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.transient.kernel_codes`): the motor acts
 on coordinate ``mk`` with gain g and efficiency η (torque g·η·T(t, g q̇)); every load l on
 coordinate lk[l] (moment −g_l M_l φ(g_l q̇/ω_n,l)/η_l, φ by its kind). The span forces are
 F = T₀ + c (B q + d) + d_s (B q̇ + ḋ) with the polygonal elongations d at the span ends
@@ -22,7 +22,7 @@ every ``rec`` steps; the largest force of every span is tracked at every step.
 
 numba is optional: :data:`HAVE_NUMBA` is False when it is not importable and the caller
 falls back to the NumPy loop. :func:`run_kernel_flat` is the entry point with plain arguments
-that :mod:`chaindrive.dynamics.kernel_build` compiles ahead of time.
+that :mod:`chaindrive.dynamics.transient.kernel_build` compiles ahead of time.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from typing import Any, TypeVar, cast
 
 import numpy as np
 
-from chaindrive.dynamics.kernel_codes import (  # the kernel's integer codes
+from chaindrive.dynamics.transient.kernel_codes import (  # the kernel's integer codes
     MOTOR_CONSTANT,
     MOTOR_RAMP,
     RESISTANCE_CONSTANT,

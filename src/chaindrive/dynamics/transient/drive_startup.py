@@ -2,16 +2,16 @@
 machines' moments on theirs, tension-only spans with their pre-tension and the polygonal
 hinge law [MultimassChainDrives, §3.1, Fig. 2] (docs/dynamics.md §5).
 
-The integrator is :func:`chaindrive.dynamics.startup.solve_startup`. Its step follows the
+The integrator is :func:`chaindrive.dynamics.transient.startup.solve_startup`. Its step follows the
 model: Δt = 1/(160 max(f_ref, f_z)), f_ref the chain's reference mode (the first elastic mode
 in which the spans and wraps hold most of the strain energy, :mod:`.drive_model`) and f_z the
 tooth frequency — stiff modes above it cost nothing (the zero-order hold is exact for the
-linear part). A run whose work would exceed :data:`chaindrive.dynamics.startup.WORK_BUDGET`
+linear part). A run whose work would exceed :data:`chaindrive.dynamics.transient.startup.WORK_BUDGET`
 is refused with one line naming the body that sets the step.
 
 Reported separately: the **run-up time** (the driver first at 95 % of its final speed) and the
 **decay** of the transient after it (until every span force stays within its final band,
-:func:`chaindrive.dynamics.startup.settling_time`).
+:func:`chaindrive.dynamics.transient.startup.settling_time`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from chaindrive.dynamics.startup import (
+from chaindrive.dynamics.transient.startup import (
     MAX_RECORDS,
     STEPS_PER_PERIOD,
     WORK_BUDGET,
@@ -36,12 +36,11 @@ from chaindrive.dynamics.startup import (
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive_model import DriveModel
-    from chaindrive.dynamics.torsional import TorsionalModes
+    from chaindrive.dynamics.model.build import DriveModel
+    from chaindrive.dynamics.torsional.model import TorsionalModes
 
 __all__ = ["affordable_duration", "model_startup", "startup_step"]
 
-TWO_PI = 2.0 * math.pi
 
 
 def _step_body(model: DriveModel, modes: TorsionalModes, f_ref: float) -> tuple[str, str]:
@@ -100,7 +99,7 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
 
 def affordable_duration(model: DriveModel, tooth_frequency_hz: float) -> float:
     """The longest start-up [s] whose work stays within
-    :data:`~chaindrive.dynamics.startup.WORK_BUDGET` at the step of :func:`startup_step`
+    :data:`~chaindrive.dynamics.transient.startup.WORK_BUDGET` at the step of :func:`startup_step`
     (0 when not even one step does).
 
     Parameters
@@ -154,7 +153,7 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
         Keep the state (q, q̇) of every step (``StartupResult.states``; the memory grows with
         the steps: for checks such as the energy balance).
     backend : str
-        See :func:`chaindrive.dynamics.startup.solve_startup`.
+        See :func:`chaindrive.dynamics.transient.startup.solve_startup`.
 
     Returns
     -------

@@ -2,7 +2,7 @@
 chain's own mass, the motor and the driven machines (docs/dynamics.md §1).
 
 :func:`drive_model` builds it from a :class:`~chaindrive.model.Drive` and its contour as a
-:class:`~chaindrive.dynamics.torsional.TorsionalEngine` [Rao2011, ch. 6]:
+:class:`~chaindrive.dynamics.torsional.model.TorsionalEngine` [Rao2011, ch. 6]:
 
 * **sprockets** — rotating bodies of inertia J_i (``inertia``, ``reduced_mass``·R², or the
   sprocket body) with their flywheels;
@@ -46,8 +46,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.drive import RingParameters, drive_ring_parameters
-from chaindrive.dynamics.drive_assembly import (
+from chaindrive.dynamics.model.assembly import (
     CHAIN_NODE,
     DriveParts,
     LinearModel,
@@ -56,14 +55,16 @@ from chaindrive.dynamics.drive_assembly import (
     assembled_parts,
     shaft_stiffness,
 )
-from chaindrive.dynamics.drive_damping import (
+from chaindrive.dynamics.model.damping import (
     chain_damping,
-    chain_damping_ratio,
     reference_angular_frequency,
     with_chain_dampers,
 )
-from chaindrive.dynamics.torsional_system import TorsionalModes
+from chaindrive.dynamics.parameters import RingParameters, drive_ring_parameters
+from chaindrive.dynamics.ring import RingModel
+from chaindrive.dynamics.torsional.system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -75,13 +76,12 @@ __all__ = [
     "LinearModel",
     "LoadPlacement",
     "MotorPlacement",
-    "chain_damping_ratio",
     "drive_model",
     "model_completeness",
+    "ring_model",
     "shaft_stiffness",
 ]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 
 
@@ -89,7 +89,7 @@ FloatArray = NDArray[np.float64]
 class DriveModel(DriveParts):
     """The whole-drive model (module docstring) in the coordinates q of its
     :class:`LinearModel`: the fields of
-    :class:`~chaindrive.dynamics.drive_assembly.DriveParts` (the assembled model: torsional
+    :class:`~chaindrive.dynamics.model.assembly.DriveParts` (the assembled model: torsional
     model, matrices, coordinates of sprockets, rotors, motor and machines, damping, ring,
     notes, trains) and the two below.
 
@@ -226,7 +226,7 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
         name → Material (None: :func:`chaindrive.catalog.find_material`).
     ring : RingParameters | None
         The ring reduction to build on (sprocket inertias, span stiffnesses and tensions);
-        None: :func:`chaindrive.dynamics.drive.drive_ring_parameters` of the drive. A
+        None: :func:`chaindrive.dynamics.parameters.drive_ring_parameters` of the drive. A
         perturbed state of the drive (worn chain, scattered inertias) passes its own.
 
     Returns
@@ -268,3 +268,42 @@ def _memoized(lookup: Callable[[str], Material]) -> Callable[[str], Material]:
         return found[name]
 
     return get
+
+
+def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float | None = None,
+               span_tensions: Sequence[float] | None = None,
+               link_stiffness: float | None = None,
+               material_lookup: Callable[[str], Material] | None = None) -> RingModel:
+    """The ring of reduced masses of a drive
+    (:func:`~chaindrive.dynamics.parameters.drive_ring_parameters`), a second constructor of a
+    linear model beside :func:`drive_model`.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive whose sprockets become the ring's masses.
+    geometry : GeometryResult
+        The contour its spans run on.
+    damping : float or None
+        Damping ratio ζ [-] (None: the mean of the spans' ratios the whole-drive model takes,
+        :func:`chaindrive.dynamics.model.damping.chain_damping`).
+    span_tensions : sequence of float or None
+        Tension of every span [N] (None: the static tensions when the drive has a power, see
+        :func:`static_span_tensions`).
+    link_stiffness : float or None
+        Stiffness of one link [N/m] from catalogue data (None: from the plates and pin).
+    material_lookup : callable or None
+        Name → Material (None: :func:`chaindrive.catalog.find_material`).
+
+    Returns
+    -------
+    RingModel
+        Masses, stiffnesses, damping ratio and sprocket names.
+    """
+    lookup = material_lookup or find_material
+    p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
+                              link_stiffness=link_stiffness, material_lookup=lookup)
+    return RingModel(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
+                     damping_ratio=damping if damping is not None else float(
+                         np.mean(chain_damping(drive, geometry, p, lookup)[0])),
+                     names=tuple(s.name for s in drive.sprockets))

@@ -4,10 +4,6 @@ contour geometry, and its modal stage.
 * :func:`drive_ring_parameters` — reduced masses m_i = I_i/R_i² and branch stiffnesses of the
   ring (chain, sprocket wrap and sag compliance in series; :mod:`.stiffness` has the
   formulas), with their parts;
-* :func:`ring_damping_ratio` — the ring's damping ratio: hinge friction plus material damping;
-* :func:`ring_model` — the :class:`~chaindrive.dynamics.ring.RingModel` of a drive;
-* :func:`drive_dynamics` — modes, span transverse frequencies, the resonance table and the
-  Campbell data: :class:`DynamicsResult`.
 """
 
 from __future__ import annotations
@@ -20,42 +16,29 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
-from chaindrive.dynamics.damping import loss_factor, modal_loss_factor, series_loss_factor
-from chaindrive.dynamics.resonance import (
-    TWO_PI,
-    CampbellData,
-    Resonance,
-    WorkingFrequency,
-    campbell_data,
-    resonance_table,
-    working_frequencies,
-)
-from chaindrive.dynamics.ring import ModalResult, RingModel, modal_analysis
+from chaindrive.dynamics.damping import loss_factor, series_loss_factor
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
-    TOOTH_WIDTH_FACTOR,
     chain_span_stiffness,
     reduced_mass,
     sag_stiffness_factor,
     series_stiffness,
+    tooth_contact_width,
     tooth_stiffness,
     wrap_stiffness,
 )
 from chaindrive.dynamics.stiffness import (
     link_stiffness as link_stiffness_from_plates,
 )
-from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
-from chaindrive.kinematics import tooth_frequency
 from chaindrive.strength.loads import loads_of
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import ChainSpec, Drive, Material, Sprocket
 
-__all__ = ["DynamicsResult", "RingParameters", "chain_link_stiffness", "drive_dynamics",
-           "drive_ring_parameters", "ring_damping_ratio", "ring_model", "static_span_tensions"]
+__all__ = ["RingParameters", "chain_link_stiffness", "drive_ring_parameters", "static_span_tensions"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -254,7 +237,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           f"{len(geometry.sprockets)} and {len(geometry.spans)}")
     if any(sp.start != i or sp.end != (i + 1) % n for i, sp in enumerate(geometry.spans)):
         raise DesignError("geometry.spans", "span i must join sprocket i and i+1 (ring order)")
-    width = TOOTH_WIDTH_FACTOR * spec.inner_width + (spec.strands - 1) * spec.transverse_pitch
+    width = tooth_contact_width(spec)
     inertia = np.empty(n)
     radius = np.array([g.pitch_radius for g in geometry.sprockets])
     wrap = np.empty(n)
@@ -290,185 +273,3 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
             [np.full(n, loss_factor(chain_mat.family, chain_mat.is_polymer)), eta_wrap[starts],
              eta_wrap[ends]], [1.0 / chain_c, 1.0 / wrap[starts], 1.0 / wrap[ends]]),
     )
-
-
-def ring_damping_ratio(params: RingParameters, hinge_damping: float) -> float:
-    """Damping ratio ζ of the ring: the hinge-friction (or measured) damping ratio given plus
-    the material part η₁/2 of the first elastic mode by the modal strain energy method
-    (:func:`chaindrive.dynamics.damping.modal_loss_factor`). A steel drive gets about
-    +0.0003; a polyamide chain about +0.015 ([MultimassChainDrives, Fig. 2]: polymer chains
-    damp more).
-
-    Parameters
-    ----------
-    params : RingParameters
-        The ring's masses, stiffnesses and loss factors.
-    hinge_damping : float
-        The hinge-friction or measured damping ratio [-] ([MultimassChainDrives]: D = 0.06).
-
-    Returns
-    -------
-    float
-        ζ [-].
-
-    References
-    ----------
-    [Johnson1982] (modal strain energy).
-    """
-
-    modal = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
-    elastic = np.flatnonzero(~modal.rigid_body)
-    if elastic.size == 0:
-        return hinge_damping
-    eta = modal_loss_factor(params.loss_factors, params.stiffness_n_per_m,
-                            modal.shapes[:, elastic[0]])
-    return min(0.99, hinge_damping + eta / 2.0)
-
-
-def ring_model(drive: Drive, geometry: GeometryResult, *, damping: float = 0.06,
-               span_tensions: Sequence[float] | None = None,
-               link_stiffness: float | None = None,
-               material_lookup: Callable[[str], Material] | None = None) -> RingModel:
-    """The ring model of a drive; see :func:`drive_ring_parameters`.
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its contour.
-    damping : float
-        Hinge-friction damping ratio [-] (D = 0.06 [MultimassChainDrives]; or ζ = ψ/4π from
-        :mod:`chaindrive.dynamics.damping`), to which the material damping of the first mode
-        is added (:func:`ring_damping_ratio`).
-    span_tensions : sequence of float or None
-        Tension of every span [N] (None: the static tensions when the drive has a power, see
-        :func:`static_span_tensions`).
-    link_stiffness : float or None
-        Stiffness of one link [N/m] from catalogue data (None: from the plates and pin).
-    material_lookup : callable or None
-        Name → Material (None: :func:`chaindrive.catalog.find_material`).
-
-    Returns
-    -------
-    RingModel
-        Masses, stiffnesses, damping ratio and sprocket names.
-    """
-    p = drive_ring_parameters(drive, geometry, span_tensions=span_tensions,
-                              link_stiffness=link_stiffness, material_lookup=material_lookup)
-    return RingModel(masses_kg=p.masses_kg, stiffness_n_per_m=p.stiffness_n_per_m, closed=True,
-                     damping_ratio=ring_damping_ratio(p, damping),
-                     names=tuple(s.name for s in drive.sprockets))
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class DynamicsResult:
-    """Everything a designer reads about a drive's vibration (JSON ``dynamics``).
-
-    Parameters
-    ----------
-    parameters : RingParameters
-        Masses and stiffnesses with their parts.
-    modal : ModalResult
-        The ring's modes.
-    span_transverse_hz : ndarray
-        (spans, modes) transverse frequencies of the spans [Hz] (empty when the span tensions
-        are unknown).
-    working : tuple of WorkingFrequency
-        The working frequencies.
-    resonances : tuple of Resonance
-        The resonance table.
-    campbell : CampbellData or None
-        Campbell data over the speed range (None: not computed).
-    damping_ratio : float
-        ζ of the ring [-].
-    """
-
-    parameters: RingParameters
-    modal: ModalResult
-    span_transverse_hz: NDArray[np.float64]
-    working: tuple[WorkingFrequency, ...]
-    resonances: tuple[Resonance, ...]
-    campbell: CampbellData | None
-    damping_ratio: float
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (the JSON ``dynamics`` section)."""
-        m = self.modal.to_dict()
-        st = self.span_transverse_hz
-        return {
-            "model": self.parameters.to_dict(),
-            "natural_frequencies_hz": m["natural_frequencies_hz"],
-            "natural_frequencies_rad_s": m["natural_frequencies_rad_s"],
-            "damped_frequencies_hz": m["damped_frequencies_hz"],
-            "rigid_body_modes": m["rigid_body_modes"],
-            "mode_shapes": m["mode_shapes"],
-            "normalized_amplitudes": m["normalized_amplitudes"],
-            "partial_frequencies_hz": m["partial_frequencies_hz"],
-            "span_transverse_frequencies_hz": st[:, 0].tolist() if st.size else [],
-            "span_transverse_modes_hz": st.tolist(),
-            "working_frequencies": [w.to_dict() for w in self.working],
-            "resonances": [r.to_dict() for r in self.resonances],
-            "campbell": None if self.campbell is None else self.campbell.to_dict(),
-            "damping_ratio": self.damping_ratio,
-        }
-
-
-def drive_dynamics(drive: Drive, geometry: GeometryResult, model: RingModel,
-                   parameters: RingParameters, *, harmonics: int = 3,
-                   transverse_modes: int = 3, speed_range: tuple[float, float] | None = None,
-                   speed_points: int = 61) -> DynamicsResult:
-    """Modal analysis, span transverse frequencies, resonance table and Campbell data.
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive (one contour's share of the power).
-    geometry : GeometryResult
-        Its contour.
-    model : RingModel
-        Its ring model (:func:`ring_model`, or built from ``parameters``).
-    parameters : RingParameters
-        The masses and stiffnesses the model was built from, with the span tensions.
-    harmonics : int
-        Harmonics of the tooth frequency among the working frequencies.
-    transverse_modes : int
-        Transverse modes per span.
-    speed_range : tuple of float | None
-        (ω_min, ω_max) of the driver [rad/s] for the Campbell data (None: none).
-    speed_points : int
-        Speeds of the Campbell data.
-
-    Returns
-    -------
-    DynamicsResult
-    """
-    modal = model.modal()
-    spec = drive.chain.spec
-    driver = drive.driver
-    teeth = [s.teeth for s in drive.sprockets]
-    names = [s.name for s in drive.sprockets]
-    lengths = np.array([sp.length for sp in geometry.spans])
-    tensions = parameters.span_tensions_n
-    transverse = np.zeros((0, transverse_modes))
-    working: tuple[WorkingFrequency, ...] = ()
-    rows: tuple[Resonance, ...] = ()
-    fz = None
-    if driver.speed is not None:
-        v = driver.teeth * spec.pitch * driver.speed / TWO_PI
-        if tensions is not None:
-            transverse = span_transverse_frequencies(lengths, tensions, spec.mass_per_length, v,
-                                                     modes=transverse_modes)
-        working = working_frequencies(driver.speed, driver.teeth, teeth, names, harmonics)
-        fz = float(tooth_frequency(driver.teeth, driver.speed))
-    if working:
-        rows = resonance_table(modal, working, transverse[:, 0] if transverse.size else None, fz,
-                               [f"{sp.start_name}→{sp.end_name}" for sp in geometry.spans])
-    campbell = None
-    if speed_range is not None:
-        speeds = np.linspace(speed_range[0], speed_range[1], speed_points)
-        campbell = campbell_data(modal, speeds, driver.teeth, teeth, names, harmonics,
-                                 lengths if tensions is not None else None, tensions,
-                                 spec.mass_per_length, spec.pitch)
-    return DynamicsResult(parameters, modal, transverse, working, rows, campbell,
-                          model.damping_ratio)

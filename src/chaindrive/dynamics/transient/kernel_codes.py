@@ -1,6 +1,6 @@
 """Integer codes and parameter arrays of the motor and resistance laws, as the compiled
-start-up kernel takes them (:mod:`chaindrive.dynamics.startup_kernel`, its ahead-of-time
-build, and the caller in :mod:`chaindrive.dynamics.startup`). Plain Python: importing it
+start-up kernel takes them (:mod:`chaindrive.dynamics.transient.kernel`, its ahead-of-time
+build, and the caller in :mod:`chaindrive.dynamics.transient.startup`). Plain Python: importing it
 does not import numba.
 """
 

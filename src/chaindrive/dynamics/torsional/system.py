@@ -1,5 +1,5 @@
 """The assembled torsional system of a drive train and its undamped modes: the matrices of a
-:class:`chaindrive.dynamics.torsional_engine.TorsionalEngine` in reduced coordinates
+:class:`chaindrive.dynamics.torsional.engine.TorsionalEngine` in reduced coordinates
 (:class:`TorsionalSystem`) and the natural frequencies and mode shapes solved from them
 (:class:`TorsionalModes`), docs/torsional.md.
 
@@ -24,14 +24,14 @@ from types import MappingProxyType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.dynamics.blas_threads import small_problem_threads
-from chaindrive.dynamics.torsional_assembly import gram as _gram
-from chaindrive.dynamics.torsional_assembly import grams
+from chaindrive.dynamics.torsional.assembly import gram as _gram
+from chaindrive.dynamics.torsional.assembly import grams
+from chaindrive.dynamics.torsional.blas_threads import small_problem_threads
 from chaindrive.errors import DesignError
+from chaindrive.units import TWO_PI
 
 __all__ = ["TorsionalModes", "TorsionalSystem"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 
 
@@ -195,7 +195,7 @@ class TorsionalSystem:
         References
         ----------
         [Rao2011, ch. 6]; massless coordinates condensed [Guyan1965]; on one BLAS thread
-        when small (:func:`chaindrive.dynamics.blas_threads.small_problem_threads`).
+        when small (:func:`chaindrive.dynamics.torsional.blas_threads.small_problem_threads`).
         """
         with small_problem_threads(self.size):
             return _modal(self)

@@ -4,7 +4,7 @@ the bands of the natural frequencies, resonance detunings and K_D for uncertain 
 
 The kinematic excitation is a prescribed elongation d of the chain spans
 (:mod:`chaindrive.dynamics.excitation`); with the model M q̈ + C q̇ + K q = −Bᵀ(c d + d_s ḋ) of
-:class:`~chaindrive.dynamics.drive_model.LinearModel` a harmonic e^{iωt} of amplitude D gives
+:class:`~chaindrive.dynamics.model.build.LinearModel` a harmonic e^{iωt} of amplitude D gives
 [Rao2011, §6.15]::
 
     (K + iωC − ω²M) X = −Bᵀ (c + iω d_s) D,     F = (c + iω d_s)(B X + D),
@@ -35,22 +35,22 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from chaindrive.dynamics.afc import AfcResult, _local_maxima, _peak_over_period
+from chaindrive.dynamics.frequency.afc import AfcResult, local_maxima, peak_over_period
+from chaindrive.dynamics.frequency.quality import coefficient_of_dynamics
+from chaindrive.dynamics.frequency.steady import SteadyStateResult
 from chaindrive.dynamics.modes import StateModes
-from chaindrive.dynamics.quality import coefficient_of_dynamics
-from chaindrive.dynamics.steady import SteadyStateResult
 from chaindrive.errors import DesignError
 from chaindrive.strength.safety import steady_safety_factor
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive_model import DriveModel
     from chaindrive.dynamics.excitation import SpanExcitation
+    from chaindrive.dynamics.model.build import DriveModel
     from chaindrive.dynamics.resonance import Resonance
 
 __all__ = ["Bands", "drive_steady", "drive_sweep", "frequency_band_factors", "span_loads_over",
            "uncertainty_bands"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 
@@ -202,7 +202,7 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
         F += D
         F *= cd
         F /= model.contours                                          # (b, K, S)
-        out[a:a + block] = _peak_over_period(F, orders, samples)
+        out[a:a + block] = peak_over_period(F, orders, samples)
     return out
 
 
@@ -241,7 +241,7 @@ def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation
     whole = sorted({round(k) for k in excitation.orders.tolist() if k >= 1})
     markers = tuple((j + 1, int(k), float(f), float(f / k)) for j, f in enumerate(nat)
                     for k in whole if lo <= f / k <= hi)
-    peaks = _local_maxima(load.max(axis=1))
+    peaks = local_maxima(load.max(axis=1))
     return AfcResult(speeds, fz_hz, load, load.max(axis=0), nat, markers, fz_hz[peaks])
 
 

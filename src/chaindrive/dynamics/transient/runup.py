@@ -36,9 +36,9 @@ from numpy.typing import NDArray
 from chaindrive.dynamics.motors import KlossMotor, RampTorque, ResistanceKind, ResistanceLaw
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive_assembly import LinearModel
-    from chaindrive.dynamics.drive_model import DriveModel
-    from chaindrive.dynamics.startup import StartupResult
+    from chaindrive.dynamics.model.assembly import LinearModel
+    from chaindrive.dynamics.model.build import DriveModel
+    from chaindrive.dynamics.transient.startup import StartupResult
 
 __all__ = ["LONGEST_STARTUP", "RUNUP_FRACTION", "SHORTEST_STARTUP", "RunUp", "elastic_stall",
            "rigid_body_shape", "rigid_runup", "startup_durations"]

@@ -1,7 +1,7 @@
 """The torsional model of a whole chain drive train: the ring of sprockets (with the chain's
 own mass) and an open train of shafts, couplings, gear pairs and machines on every sprocket
 (docs/torsional.md). The engine — nodes, elements, gear constraints, condensation, the modal
-analysis — is :class:`chaindrive.dynamics.torsional_engine.TorsionalEngine`; this class adds
+analysis — is :class:`chaindrive.dynamics.torsional.engine.TorsionalEngine`; this class adds
 the builders from plain data and from a design::
 
     from chaindrive.dynamics import TorsionalModel
@@ -20,15 +20,15 @@ from collections.abc import Mapping, Sequence
 
 from numpy.typing import ArrayLike
 
-from chaindrive.dynamics.drive_model import drive_model
-from chaindrive.dynamics.torsional_build import build_contour
-from chaindrive.dynamics.torsional_engine import (
+from chaindrive.dynamics.model.build import drive_model
+from chaindrive.dynamics.torsional.build import build_contour
+from chaindrive.dynamics.torsional.engine import (
     FloatArray,
     TorsionalEngine,
     TrainElement,
     reducer_input_torque,
 )
-from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
@@ -46,7 +46,7 @@ class TorsionalModel(TorsionalEngine):
                    span_tensions: Sequence[float] | None = None) -> TorsionalEngine:
         """The whole-drive model of a design: its contour with the chain's own mass, the
         teeth, every sprocket's train, the motor and the machines
-        (:func:`chaindrive.dynamics.drive_model.drive_model`; docs/dynamics.md §1).
+        (:func:`chaindrive.dynamics.model.build.drive_model`; docs/dynamics.md §1).
 
         Parameters
         ----------
@@ -77,42 +77,8 @@ class TorsionalModel(TorsionalEngine):
                      closed: bool = True, consistent_mass: bool = False) -> TorsionalEngine:
         """The model of a chain contour with a train on any sprocket, from plain data.
 
-        Parameters
-        ----------
-        sprockets : sequence of str
-            (n,) sprocket names in ring order; span i joins sprocket i and i+1 (the last one
-            closes the ring when ``closed``), as in :class:`~chaindrive.dynamics.RingModel`.
-        inertias_kg_m2 : array_like
-            (n,) moment of inertia of each sprocket (with its hub) [kg·m²].
-        pitch_radii_m : array_like
-            (n,) pitch radii R_i [m] (> 0).
-        span_stiffness_n_per_m : array_like
-            (n,) span stiffnesses c_i [N/m] (0: slack).
-        senses : sequence of int | None
-            (n,) +1 or −1 [-] for a sprocket wrapped from the inside, which turns the other way
-            (its signed radius is −R_i) (None: all +1).
-        span_damping_n_s_per_m : array_like | None
-            (n,) span dampers [N·s/m] (None: 0).
-        trains : mapping | None
-            Sprocket name → list of elements outward from the sprocket, each a mapping with
-            ``name`` (the new node), ``inertia`` [kg·m²] (default 0) and either ``stiffness``
-            [N·m/rad] (+ ``damping`` [N·m·s/rad]): a shaft or coupling from the previous node, or
-            ``ratio`` [-] (+ ``efficiency`` [-], ``same_sense``): a gear mesh from the previous node
-            (driver) to this one; optional ``ground_stiffness`` [N·m/rad], ``ground_damping``
-            [N·m·s/rad].
-        chain_mass_per_length_kg_per_m : float
-            Chain mass per length q [kg/m] (0: massless chain).
-        span_lengths_m : array_like | None
-            (n,) span lengths L [m]: each span's mass q·L goes to its two sprockets (needed when
-            q > 0).
-        wrap_lengths_m : array_like | None
-            (n,) length of chain wrapped on each sprocket [m]: those links turn with it (None:
-            none).
-        closed : bool
-            False for an open contour (the last span is left out).
-        consistent_mass : bool
-            True: each span's mass q·L as the consistent mass of a linear velocity profile along
-            it (coupling its two sprockets); False: lumped, split in halves (docs/torsional.md).
+        The parameters are those of :func:`chaindrive.dynamics.torsional.build.build_contour`
+        (which does the work) without its first, ``model``: this builds into a new model.
 
         Returns
         -------

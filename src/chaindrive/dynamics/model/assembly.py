@@ -1,4 +1,4 @@
-"""Assembly of the whole-drive model of :mod:`chaindrive.dynamics.drive_model`: its parts
+"""Assembly of the whole-drive model of :mod:`chaindrive.dynamics.model.build`: its parts
 (the :class:`LinearModel` in the coordinates q, the motor's and the machines' places) and
 how they are built from a :class:`~chaindrive.model.Drive` — sprockets with their chain
 nodes, spans and wraps, the trains (shafts, couplings, gear stages, rotors, springs to the
@@ -18,13 +18,14 @@ from numpy.typing import NDArray
 
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
-from chaindrive.dynamics.torsional_engine import TorsionalEngine
+from chaindrive.dynamics.torsional.engine import TorsionalEngine
 from chaindrive.errors import DesignError, Quantities, Quantity
+from chaindrive.kinematics import mean_chain_speed
 from chaindrive.strength.loads import power_shares
 
 if TYPE_CHECKING:
-    from chaindrive.dynamics.drive import RingParameters
-    from chaindrive.dynamics.torsional_system import TorsionalSystem
+    from chaindrive.dynamics.parameters import RingParameters
+    from chaindrive.dynamics.torsional.system import TorsionalSystem
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material, TrainElement
 
@@ -41,7 +42,6 @@ __all__ = [
     "shaft_stiffness",
 ]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: Name of the chain node at sprocket S: ``CHAIN_NODE.format("S")``.
 CHAIN_NODE = "chain@{}"
@@ -396,7 +396,7 @@ def _sprocket_senses(geometry: GeometryResult) -> FloatArray:
 class DriveParts:
     """The assembled model of a drive before its chain dampers, completeness and modes: what
     :func:`assembled_parts` returns and what
-    :class:`~chaindrive.dynamics.drive_model.DriveModel` extends.
+    :class:`~chaindrive.dynamics.model.build.DriveModel` extends.
 
     Parameters
     ----------
@@ -510,7 +510,8 @@ def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters
     n = len(names)
     sense = _sprocket_senses(geometry)
     R = ring.pitch_radii_m
-    Rbar = np.array([s.teeth for s in drive.sprockets], float) * spec.pitch / TWO_PI
+    # R̄_i = z_i p/2π: the mean chain speed per rad/s of sprocket i
+    Rbar = np.asarray(mean_chain_speed(spec.pitch, [s.teeth for s in drive.sprockets], 1.0))
     w_d = drive.driver.speed or 1.0
     speeds = sense * w_d * drive.driver.teeth / np.array([s.teeth for s in drive.sprockets])
     t = TorsionalEngine()

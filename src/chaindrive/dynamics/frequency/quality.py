@@ -9,35 +9,7 @@ from numpy.typing import ArrayLike
 
 from chaindrive.errors import DesignError
 
-__all__ = ["coefficient_of_dynamics", "nominal_peripheral_force"]
-
-
-def nominal_peripheral_force(power: float, pitch_diameter: float, speed: float) -> float:
-    """Nominal peripheral force F_t = P / v = 2P / (D ω) [N] (F_t = 60 P / (π D n) with n in
-    rpm).
-
-    Parameters
-    ----------
-    power : float
-        Transmitted power P [W].
-    pitch_diameter : float
-        Pitch diameter D of the driver [m].
-    speed : float
-        Angular speed ω of the driver [rad/s].
-
-    Returns
-    -------
-    float
-        F_t [N].
-
-    Raises
-    ------
-    DesignError
-        When a value is not positive.
-    """
-    if not (power > 0 and pitch_diameter > 0 and speed > 0):
-        raise DesignError("power", "power, pitch diameter and speed must be positive")
-    return 2.0 * power / (pitch_diameter * speed)
+__all__ = ["coefficient_of_dynamics"]
 
 
 def coefficient_of_dynamics(dynamic_loads: ArrayLike, nominal_force: float) -> float:
@@ -52,7 +24,8 @@ def coefficient_of_dynamics(dynamic_loads: ArrayLike, nominal_force: float) -> f
     dynamic_loads : array_like
         The largest dynamic load of every branch [N] (sign ignored).
     nominal_force : float
-        Nominal peripheral force F_t [N].
+        Nominal peripheral force F_t = P/v̄ [N]
+        (:func:`chaindrive.strength.loads.peripheral_force`).
 
     Returns
     -------

@@ -1,5 +1,5 @@
 """The engine of the torsional model of a whole chain drive train (the public class with
-its builders is :class:`chaindrive.dynamics.torsional.TorsionalModel`): the ring of
+its builders is :class:`chaindrive.dynamics.torsional.model.TorsionalModel`): the ring of
 sprockets with an open train of shafts, couplings, gear pairs and machines on every
 sprocket (docs/torsional.md).
 
@@ -38,11 +38,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.torsional_assembly import (
+from chaindrive.dynamics.torsional.assembly import (
     RATIO_RTOL,
     WeightedUnion,
     gear_coordinates,
@@ -51,15 +52,36 @@ from chaindrive.dynamics.torsional_assembly import (
     kinematic_groups,
     rigid_motions,
 )
-from chaindrive.dynamics.torsional_system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
 from chaindrive.errors import DesignError
 
-__all__ = ["RATIO_RTOL", "TorsionalEngine", "reducer_input_torque"]
+__all__ = ["RATIO_RTOL", "Element", "TorsionalEngine", "reducer_input_torque"]
 
-TWO_PI = 2.0 * math.pi
 FloatArray = NDArray[np.float64]
 #: One element of a train in :meth:`TorsionalEngine.from_contour` (plain data).
 TrainElement = Mapping[str, "float | str | bool"]
+
+
+@dataclass(frozen=True, slots=True)
+class Element:
+    """One spring–damper element of the model: its strain is coef_a·φ_a + coef_b·φ_b.
+
+    Fields: ``name`` (unique), ``kind`` (``shaft``, ``ground``, ``span``, ``wrap``, ``link``,
+    …: what added it), node indices ``a`` and ``b`` (b = −1: the ground), the strain per
+    rotation of each, ``coef_a`` and ``coef_b`` [m/rad or rad/rad], ``stiffness`` k [N/m or
+    N·m/rad], ``damping`` c [N·s/m or N·m·s/rad], and ``tension_only`` (a chain span that goes
+    slack instead of pushing).
+    """
+
+    name: str
+    kind: str
+    a: int
+    b: int
+    coef_a: float
+    coef_b: float
+    stiffness: float
+    damping: float
+    tension_only: bool
 
 
 def reducer_input_torque(output_torque: float, ratio: float, efficiency: float = 1.0,
@@ -108,7 +130,7 @@ def _check_efficiency(field: str, efficiency: float) -> None:
 _INF = math.inf
 
 
-def _nonneg(field: str, value: float, what: str) -> float:
+def nonneg(field: str, value: float, what: str) -> float:
     value = float(value)
     if not 0.0 <= value < _INF:  # also False for nan
         raise DesignError(field, f"{what} must be finite and ≥ 0, got {value!r}")
@@ -137,8 +159,7 @@ class TorsionalEngine:
         self._relations: list[tuple[int, int, float]] = []
         self._held: list[bool] = []
         self._meshes: list[tuple[str, int, int, float, float, float]] = []
-        # elements: name, kind, a, b (-1: ground), coef_a, coef_b, k, c, tension_only
-        self._elements: list[tuple[str, str, int, int, float, float, float, float, bool]] = []
+        self._elements: list[Element] = []
         self._names: set[str] = set()
         self._system: TorsionalSystem | None = None
 
@@ -161,8 +182,14 @@ class TorsionalEngine:
         return i
 
     def _element_name(self, name: str | None, default: str) -> str:
-        name = name or default
-        if name in self._names:
+        """The element's name: the one given (refused when taken) or the default, numbered
+        ``default#2``, ``default#3``, … when another element already has it."""
+        if not name:
+            name, k = default, 1
+            while name in self._names:
+                k += 1
+                name = f"{default}#{k}"
+        elif name in self._names:
             raise DesignError(name, "an element of that name already exists")
         self._names.add(name)
         self._system = None
@@ -187,7 +214,7 @@ class TorsionalEngine:
         i = self._node(name, True, name)
         if self._given[i]:
             raise DesignError(name, "the node already has an inertia")
-        self._inertia[i] = _nonneg(name, inertia, "inertia [kg·m²]")
+        self._inertia[i] = nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
         self._system = None
         return self
@@ -208,7 +235,7 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         i = self._node(name, False, name)
-        self._inertia[i] += _nonneg(name, inertia, "inertia [kg·m²]")
+        self._inertia[i] += nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
         self._system = None
         return self
@@ -246,7 +273,7 @@ class TorsionalEngine:
             The nodes it joins (created massless when new).
         stiffness : float
             Torsional stiffness k [N·m/rad] (of a round shaft:
-            :func:`chaindrive.dynamics.drive_model.shaft_stiffness`).
+            :func:`chaindrive.dynamics.model.build.shaft_stiffness`).
         damping : float
             Torsional damping c [N·m·s/rad].
         name : str | None
@@ -266,12 +293,12 @@ class TorsionalEngine:
         if ia is None or ib is None or a == b:
             ia, ib = self._pair(a, b, name)
         k = float(stiffness)
-        if not 0.0 <= k < _INF:  # also True for nan (as _nonneg, without the call)
-            _nonneg(name, k, "stiffness [N·m/rad]")
+        if not 0.0 <= k < _INF:  # also True for nan (as nonneg, without the call)
+            nonneg(name, k, "stiffness [N·m/rad]")
         c = float(damping)
         if not 0.0 <= c < _INF:
-            _nonneg(name, c, "damping [N·m·s/rad]")
-        self._elements.append((name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
+            nonneg(name, c, "damping [N·m·s/rad]")
+        self._elements.append(Element(name, "shaft", ia, ib, -1.0, 1.0, k, c, False))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, 1.0))
         return self
@@ -298,9 +325,9 @@ class TorsionalEngine:
         """
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
-        k = _nonneg(name, stiffness, "stiffness [N·m/rad]")
-        self._elements.append((name, "ground", i, -1, 1.0, 0.0, k,
-                               _nonneg(name, damping, "damping [N·m·s/rad]"), False))
+        k = nonneg(name, stiffness, "stiffness [N·m/rad]")
+        self._elements.append(Element(name, "ground", i, -1, 1.0, 0.0, k,
+                                      nonneg(name, damping, "damping [N·m·s/rad]"), False))
         self._held[i] = self._held[i] or k > 0.0
         return self
 
@@ -383,18 +410,18 @@ class TorsionalEngine:
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"pitch radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         m = float(mass)
-        if not 0.0 <= m < _INF:  # also True for nan (as _nonneg, without the call)
-            _nonneg(name, m, "span mass [kg]")
+        if not 0.0 <= m < _INF:  # also True for nan (as nonneg, without the call)
+            nonneg(name, m, "span mass [kg]")
         ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
         if ia is None or ib is None or a == b:
             ia, ib = self._pair(a, b, name)
         k = float(stiffness)
         if not 0.0 <= k < _INF:
-            _nonneg(name, k, "stiffness [N/m]")
+            nonneg(name, k, "stiffness [N/m]")
         c = float(damping)
         if not 0.0 <= c < _INF:
-            _nonneg(name, c, "damping [N·s/m]")
-        self._elements.append((name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
+            nonneg(name, c, "damping [N·s/m]")
+        self._elements.append(Element(name, "span", ia, ib, -ra, rb, k, c, bool(tension_only)))
         if k > 0.0:  # its strain-free relation (as _kinematics, without the call)
             self._relations.append((ia, ib, ra / rb))
         if m == 0.0:
@@ -446,9 +473,9 @@ class TorsionalEngine:
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
             raise DesignError(name, f"radii must be finite and ≠ 0, got {ra!r}, {rb!r}")
         ia, ib = self._pair(a, b, name)
-        k = _nonneg(name, stiffness, "stiffness [N/m]")
-        self._elements.append((name, kind, ia, ib, -ra, rb, k,
-                               _nonneg(name, damping, "damping [N·s/m]"), False))
+        k = nonneg(name, stiffness, "stiffness [N/m]")
+        self._elements.append(Element(name, kind, ia, ib, -ra, rb, k,
+                                      nonneg(name, damping, "damping [N·s/m]"), False))
         self._kinematics(ia, ib, ra / rb, k)
         return self
 
@@ -469,8 +496,8 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         for k, e in enumerate(self._elements):
-            if e[0] == element:
-                self._elements[k] = (*e[:7], _nonneg(element, damping, "damping"), e[8])
+            if e.name == element:
+                self._elements[k] = replace(e, damping=nonneg(element, damping, "damping"))
                 self._system = None
                 return self
         raise DesignError(element, "no element of that name")
@@ -493,7 +520,7 @@ class TorsionalEngine:
             The model itself (calls chain).
         """
         i = self._node(node, False, f"wrap:{node}")
-        m = _nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
+        m = nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
         self._chain[i] += m * float(radius) ** 2
         self._system = None
         return self
@@ -501,7 +528,7 @@ class TorsionalEngine:
     def _kinematics(self, a: int, b: int, w: float, stiffness: float) -> None:
         """Strain-free relation φ_b = w·φ_a of an element (ignored at stiffness 0); one that
         contradicts the others holds its group (no rigid-body motion; resolved at assembly:
-        :func:`chaindrive.dynamics.torsional_assembly.kinematic_groups`)."""
+        :func:`chaindrive.dynamics.torsional.assembly.kinematic_groups`)."""
         if stiffness > 0.0:
             self._relations.append((a, b, w))
 
@@ -623,9 +650,10 @@ class TorsionalEngine:
         return {
             "nodes": {n: {"inertia_kg_m2": self._inertia[i], "chain_inertia_kg_m2": self._chain[i]}
                       for n, i in self._index.items()},
-            "elements": [{"name": e[0], "kind": e[1], "a": names[e[2]],
-                          "b": None if e[3] < 0 else names[e[3]], "coef_a": e[4], "coef_b": e[5],
-                          "stiffness": e[6], "damping": e[7], "tension_only": e[8]}
+            "elements": [{"name": e.name, "kind": e.kind, "a": names[e.a],
+                          "b": None if e.b < 0 else names[e.b], "coef_a": e.coef_a,
+                          "coef_b": e.coef_b, "stiffness": e.stiffness, "damping": e.damping,
+                          "tension_only": e.tension_only}
                          for e in self._elements],
             "gear_meshes": [{"name": m[0], "driver": names[m[1]], "driven": names[m[2]],
                              "ratio": m[3], "efficiency": m[4], "same_sense": m[5] > 0}
@@ -635,7 +663,7 @@ class TorsionalEngine:
 
 def _assemble(model: TorsionalEngine) -> TorsionalSystem:
     """Reduced coordinates (one per gear tree), element incidence, rigid-body motions, on
-    whole arrays (:mod:`chaindrive.dynamics.torsional_assembly`)."""
+    whole arrays (:mod:`chaindrive.dynamics.torsional.assembly`)."""
     n_nodes = len(model._inertia)
     if n_nodes == 0:
         raise DesignError("nodes", "the model has no node")
@@ -654,8 +682,12 @@ def _assemble(model: TorsionalEngine) -> TorsionalSystem:
             coupling[ka, kb] += w_ab
             coupling[kb, ka] += w_ab
     el = model._elements
-    names, kinds, a, b, ca, cb, k, c, tension = (zip(*el, strict=True) if el else
-                                                 ((),) * 9)
+    names = [e.name for e in el]
+    kinds = [e.kind for e in el]
+    a, b = [e.a for e in el], [e.b for e in el]
+    ca, cb = [e.coef_a for e in el], [e.coef_b for e in el]
+    k, c = [e.stiffness for e in el], [e.damping for e in el]
+    tension = [e.tension_only for e in el]
     B, cols, coef = incidence(node_dof, factor, np.array(a, dtype=np.intp),
                               np.array(b, dtype=np.intp), np.array(ca, dtype=float),
                               np.array(cb, dtype=float), n)
