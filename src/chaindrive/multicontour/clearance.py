@@ -40,6 +40,20 @@ _NORMAL = NormalDist()  # the standard normal: cdf Φ, inv_cdf Φ⁻¹ (scalars)
 
 
 def check_positive(name: str, value: float) -> None:
+    """Refuse a value that is not a finite positive number.
+
+    Parameters
+    ----------
+    name : str
+        The field the value was given in.
+    value : float
+        The value [its field's unit].
+
+    Raises
+    ------
+    DesignError
+        ``value`` is not finite or not positive.
+    """
     if not (math.isfinite(value) and value > 0):
         raise DesignError(name, f"must be a positive number, got {value!r}")
 

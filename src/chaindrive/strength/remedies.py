@@ -76,7 +76,7 @@ class Remedy:
     unit : str
         The unit the check is read in.
     scale : float
-        Factor from SI to ``unit``.
+        Factor from SI to ``unit`` [-].
     links : int
         The chain's links in the changed layout [-].
     text : str

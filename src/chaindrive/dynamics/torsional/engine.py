@@ -66,11 +66,22 @@ TrainElement = Mapping[str, "float | str | bool"]
 class Element:
     """One spring–damper element of the model: its strain is coef_a·φ_a + coef_b·φ_b.
 
-    Fields: ``name`` (unique), ``kind`` (``shaft``, ``ground``, ``span``, ``wrap``, ``link``,
-    …: what added it), node indices ``a`` and ``b`` (b = −1: the ground), the strain per
-    rotation of each, ``coef_a`` and ``coef_b`` [m/rad or rad/rad], ``stiffness`` k [N/m or
-    N·m/rad], ``damping`` c [N·s/m or N·m·s/rad], and ``tension_only`` (a chain span that goes
-    slack instead of pushing).
+    Parameters
+    ----------
+    name : str
+        Unique name.
+    kind : str
+        What added it: ``shaft``, ``ground``, ``span``, ``wrap``, ``link``, …
+    a, b : int
+        Node indices [-] (b = −1: the ground).
+    coef_a, coef_b : float
+        Strain per rotation of node a and of node b [m/rad or rad/rad].
+    stiffness : float
+        k [N/m or N·m/rad].
+    damping : float
+        c [N·s/m or N·m·s/rad].
+    tension_only : bool
+        True for a chain span that goes slack instead of pushing.
     """
 
     name: str

@@ -77,8 +77,46 @@ class TorsionalModel(TorsionalEngine):
                      closed: bool = True, consistent_mass: bool = False) -> TorsionalEngine:
         """The model of a chain contour with a train on any sprocket, from plain data.
 
-        The parameters are those of :func:`chaindrive.dynamics.torsional.build.build_contour`
-        (which does the work) without its first, ``model``: this builds into a new model.
+        :func:`chaindrive.dynamics.torsional.build.build_contour` does the work, into a new
+        model.
+
+        Parameters
+        ----------
+        sprockets : sequence of str
+            (n,) sprocket names in ring order; span i joins sprocket i and i+1 (the last one
+            closes the ring when ``closed``), as in :class:`~chaindrive.dynamics.RingModel`.
+        inertias_kg_m2 : array_like
+            (n,) moment of inertia of each sprocket (with its hub) [kg·m²].
+        pitch_radii_m : array_like
+            (n,) pitch radii R_i [m] (> 0).
+        span_stiffness_n_per_m : array_like
+            (n,) span stiffnesses c_i [N/m] (0: slack).
+        senses : sequence of int | None
+            (n,) +1 or −1 [-] for a sprocket wrapped from the inside, which turns the other way
+            (its signed radius is −R_i) (None: all +1).
+        span_damping_n_s_per_m : array_like | None
+            (n,) span dampers [N·s/m] (None: 0).
+        trains : mapping | None
+            Sprocket name → list of elements outward from the sprocket, each a mapping with
+            ``name`` (the new node), ``inertia`` [kg·m²] (default 0) and either ``stiffness``
+            [N·m/rad] (+ ``damping`` [N·m·s/rad]): a shaft or coupling from the previous node, or
+            ``ratio`` [-] (+ ``efficiency`` [-], ``same_sense``): a gear mesh from the previous node
+            (driver) to this one; optional ``ground_stiffness`` [N·m/rad], ``ground_damping``
+            [N·m·s/rad].
+        chain_mass_per_length_kg_per_m : float
+            Chain mass per length q [kg/m] (0: massless chain).
+        span_lengths_m : array_like | None
+            (n,) span lengths L [m]: each span's mass q·L goes to its two sprockets (needed when
+            q > 0).
+        wrap_lengths_m : array_like | None
+            (n,) length of chain wrapped on each sprocket [m]: those links turn with it (None:
+            none).
+        closed : bool
+            False for an open contour (the last span is left out).
+        consistent_mass : bool
+            True: each span's mass q·L as the consistent mass of a linear velocity profile along
+            it (coupling its two sprockets); False: lumped, split in halves (docs/torsional.md).
+
 
         Returns
         -------
