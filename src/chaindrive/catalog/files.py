@@ -393,7 +393,8 @@ def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
     CSV: the columns of ``chains_iso606.csv`` (required: designation, pitch_mm,
     roller_diameter_mm, pin_diameter_mm, inner_width_mm, plate_depth_mm, breaking_load_kN,
     mass_kg_m; optional: standard, series, strands, transverse_pitch_mm, bearing_area_mm2,
-    ansi, aliases ('|'-separated), material, source); ``#`` lines are comments.
+    fatigue_strength_kN, ansi, aliases ('|'-separated), material, source); ``#`` lines are
+    comments.
     TOML: ``[[chains]]`` tables with the same fields without the unit suffix, dimensional
     values as strings with units (``pitch = "25.4 mm"``, ``breaking_load = "60 kN"``,
     ``mass_per_length = "2.6 kg/m"``, ``bearing_area = "180 mm^2"``), ``aliases`` a list.
