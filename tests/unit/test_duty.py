@@ -203,3 +203,15 @@ def test_fatigue_check_against_the_catalogue_strength():
     worse = fatigue_check(given, 1600.0, 1200.0)
     assert worse.status == FAIL and worse.value == 1600.0 and "steady running" in worse.note
     assert worse.margin_fraction == pytest.approx(1500.0 / 1600.0 - 1.0)
+
+
+def test_schema_shows_the_duty_fields_with_allowed_values_and_example_machines():
+    from chaindrive.io.design import schema
+
+    drive = {f["field"]: f for f in schema()["drive"]}
+    assert drive["driver"]["allowed"] == 'one of "smooth", "slight shock", "moderate shock"'
+    assert drive["driven"]["allowed"] == 'one of "smooth", "moderate shock", "heavy shock"'
+    assert drive["rotation"]["allowed"] == 'one of "cw", "ccw"'
+    assert drive["required_life"]["kind"] == "time"
+    assert "electric motor" in drive["driver"]["description"]
+    assert "hammer mills" in drive["driven"]["description"]
