@@ -81,7 +81,7 @@ from chaindrive.strength.drive_checks import checks_for, geometry_checks, settin
 from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import rank_chains, rank_key
-from chaindrive.strength.span_checks import fatigue_check, idler_checks
+from chaindrive.strength.span_checks import fatigue_check, idler_checks, idler_warnings
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -662,6 +662,7 @@ class Analysis:
         if self._static is not None:
             out += self._static.loads.warnings
             out += self._static.warnings
+            out += idler_warnings(self.drive, self._static.loads)
         out += resonance_warnings(self.dynamics.resonances)
         out += dynamics_warnings(self.drive_model, self.bands,
                                  assumed_sag=self.drive.chain.sag is None,

@@ -34,7 +34,7 @@ from chaindrive.strength.duty import (
 )
 from chaindrive.strength.loads import loads_of
 from chaindrive.strength.selection import rank_chains
-from chaindrive.strength.span_checks import fatigue_check, idler_checks
+from chaindrive.strength.span_checks import fatigue_check, idler_checks, idler_warnings
 
 RPM = math.pi / 30
 
@@ -215,3 +215,26 @@ def test_schema_shows_the_duty_fields_with_allowed_values_and_example_machines()
     assert drive["required_life"]["kind"] == "time"
     assert "electric motor" in drive["driver"]["description"]
     assert "hammer mills" in drive["driven"]["description"]
+
+
+def square(adjustable: bool) -> Drive:
+    """A → B → C → D counter-clockwise round a square: driven B and D take half the power
+    each, so the span B → C → D carries F_0 + F_v + F_t/2 (share 1/2, closed form)."""
+    return Drive("t", Chain(find_chain("ISO 606 08B-1")),
+                 (Sprocket("A", 17, 0.0, 0.0, "driver", speed=300 * RPM),
+                  Sprocket("B", 25, 0.6, 0.0, "driven"),
+                  Sprocket("C", 17, 0.6, 0.4, "idler", adjustable=adjustable),
+                  Sprocket("D", 25, 0.0, 0.4, "driven")), power=2e3)
+
+
+def test_guide_idler_between_driven_sprockets_is_a_warning_a_tensioner_there_fails():
+    guide = square(False)
+    loads = loads_of(guide, contour_geometry(guide))
+    assert idler_checks(guide, loads) == []
+    (w,) = idler_warnings(guide, loads)
+    assert w.code == "strength.idler-on-loaded-span" and "50% of F_t" in w.message
+    tensioner = square(True)
+    loads = loads_of(tensioner, contour_geometry(tensioner))
+    (check,) = idler_checks(tensioner, loads)
+    assert check.status == FAIL and check.value == pytest.approx(0.5, rel=1e-9)
+    assert idler_warnings(tensioner, loads) == []

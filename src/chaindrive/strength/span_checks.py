@@ -9,8 +9,11 @@ driver, the idler carries only the sag and centrifugal tension F_0 + F_v. On a s
 carries the driving force (the tight span into the driver, or a span between two driven
 sprockets) it is pushed back by the working tension: a spring tensioner yields and lets the
 slack into the driver's mesh, a fixed idler's shaft carries the load of the working tension
-on both its spans. :func:`idler_checks` fails every idler whose spans carry more than the
-slack-span tension, and writes its shaft load in the note.
+on both its spans. :func:`idler_checks` fails a tensioner (an idler marked ``adjustable``) whose
+spans carry more than the slack-span tension, and a fixed idler on the tight span into the
+driver (all of F_t), and writes its shaft load in the note; a fixed idler guiding the chain
+between two driven sprockets of a serpentine (part of F_t) is said in a warning with its
+shaft load (:func:`idler_warnings`), as a guide it cannot sit anywhere else.
 
 Fatigue
 -------
@@ -30,19 +33,73 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from chaindrive.checks import Check, judged
-from chaindrive.errors import Quantities
+from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength.loads import LoadsResult
 
-__all__ = ["SHARE_TOLERANCE", "fatigue_check", "idler_checks"]
+__all__ = ["SHARE_TOLERANCE", "fatigue_check", "idler_checks", "idler_warnings"]
 
 #: Share of the peripheral force below which a span counts as slack [-] (round-off of the
 #: tension balance).
 SHARE_TOLERANCE = 1e-9
 
 
+def _idler_states(drive: Drive, loads: LoadsResult) -> list[tuple[int, float]]:
+    """(index, share of F_t its spans carry beyond the slack-span tension) of every idler."""
+    slack = loads.span_tensions[loads.slack_span]
+    ft = loads.peripheral_force
+    out = []
+    for i, s in enumerate(drive.sprockets):
+        if s.role != "idler":
+            continue
+        tension = loads.span_tensions[i]  # the span leaving it; the arriving one is equal
+        share = (tension - slack) / ft if ft > 0 else 0.0
+        out.append((i, 0.0 if abs(share) < SHARE_TOLERANCE else share))
+    return out
+
+
+def _guide(drive: Drive, index: int, share: float) -> bool:
+    """A fixed idler between two driven sprockets: it carries part, not all, of F_t."""
+    return not drive.sprockets[index].adjustable and 0.0 < share < 1.0 - 1e-6
+
+
+def idler_warnings(drive: Drive, loads: LoadsResult) -> list[ChainDriveWarning]:
+    """Say the shaft load of every fixed idler that guides the chain on a loaded span between
+    two driven sprockets (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    loads : LoadsResult
+        Its static loads.
+
+    Returns
+    -------
+    list of ChainDriveWarning
+        One per such idler.
+    """
+    n = len(drive.sprockets)
+    out = []
+    for i, share in _idler_states(drive, loads):
+        if not _guide(drive, i, share):
+            continue
+        q = Quantities()
+        s = drive.sprockets[i]
+        out.append(ChainDriveWarning(
+            "strength.idler-on-loaded-span", f"sprockets[{s.name}]",
+            f"idler {s.name} guides the chain on a loaded span ({drive.sprockets[i - 1].name} → "
+            f"{s.name} → {drive.sprockets[(i + 1) % n].name}, "
+            f"{q(loads.span_tensions[i], 'force', '.4g')}, {share:.0%} of F_t): its shaft "
+            f"carries {q(loads.shaft_load_magnitudes[i], 'force', '.4g')}; a tensioner "
+            "there would be pushed back by the working tension", q.items))
+    return out
+
+
 def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
-    """Every idler on a slack span: the share of the peripheral force its span carries ≤ 0.
+    """Every tensioner on the slack side, every fixed idler off the tight span: the share of
+    the peripheral force its span carries beyond the slack span ≤ 0 (fixed idlers between
+    two driven sprockets are left to :func:`idler_warnings`).
 
     Parameters
     ----------
@@ -62,15 +119,12 @@ def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
     [Renold-DG, chain adjustment].
     """
     n = len(drive.sprockets)
-    slack = loads.span_tensions[loads.slack_span]
-    ft = loads.peripheral_force
     out: list[Check] = []
-    for i, s in enumerate(drive.sprockets):
-        if s.role != "idler":
+    for i, share in _idler_states(drive, loads):
+        if _guide(drive, i, share):
             continue
-        tension = loads.span_tensions[i]  # the span leaving it; the arriving one is equal
-        share = (tension - slack) / ft if ft > 0 else 0.0
-        share = 0.0 if abs(share) < SHARE_TOLERANCE else share
+        s = drive.sprockets[i]
+        tension = loads.span_tensions[i]
         q = Quantities()
         what = "tensioner" if s.adjustable else "idler"
         span = f"{drive.sprockets[i - 1].name} → {s.name} → {drive.sprockets[(i + 1) % n].name}"
