@@ -238,3 +238,26 @@ def test_guide_idler_between_driven_sprockets_is_a_warning_a_tensioner_there_fai
     (check,) = idler_checks(tensioner, loads)
     assert check.status == FAIL and check.value == pytest.approx(0.5, rel=1e-9)
     assert idler_warnings(tensioner, loads) == []
+
+
+def test_json_carries_the_duty_with_its_origins_and_the_defaults_are_warned():
+    from chaindrive.analysis import Analysis
+
+    bare = Analysis(two(), response=False)
+    doc = bare.to_dict()["drive"]
+    assert (doc["service_factor"], doc["service_factor_origin"]) == (1.0, "default")
+    assert doc["required_life_h"] is None and doc["required_life_origin"].startswith("default")
+    assert (doc["rotation"], doc["rotation_origin"]) == (
+        "ccw", "default: from the order of the sprockets")
+    codes = {w.code for w in bare.warnings}
+    assert {"duty.service-factor-default", "duty.rotation-default"} <= codes
+    given = Analysis(two(driver_duty="smooth", driven_duty="moderate shock",
+                         required_life=3600.0 * 20000, rotation="cw"), response=False)
+    doc = given.to_dict()["drive"]
+    assert (doc["service_factor"], doc["service_factor_origin"]) == (1.3, "duty classes")
+    assert doc["required_life_h"] == pytest.approx(20000.0)
+    assert (doc["rotation"], doc["rotation_origin"]) == ("cw", "given")
+    assert not {"duty.service-factor-default", "duty.rotation-default"} & {
+        w.code for w in given.warnings}
+    wear = next(c for c in given.checks() if c.name == "wear life")
+    assert wear.limit == pytest.approx(20000.0)
