@@ -67,7 +67,7 @@ from chaindrive.dynamics.transient.runup import (
 from chaindrive.dynamics.transient.startup import StartupResult
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
 from chaindrive.errors import ChainDriveWarning, DesignError
-from chaindrive.geometry.contour import contour_geometry
+from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_travel_order
 from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
@@ -77,9 +77,11 @@ from chaindrive.model import ChainSpec, Drive
 from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
 from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import ResonanceProbe, banded_resonance_check, rank_chains
+from chaindrive.strength.span_checks import fatigue_check, idler_checks, idler_warnings
 from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
@@ -146,7 +148,7 @@ class Analysis:
 
             link_duration_s = checked_duration(link_duration_s)
         self.link_duration_s = link_duration_s
-        self.design = design
+        self.design = in_travel_order(design)  # the order the driver's rotation runs the chain
         self.with_response = response
         self.with_startup = startup
         self.studies = tuple(studies)
@@ -613,11 +615,28 @@ class Analysis:
                     {n: r.span_dynamic_load for n, r in self.disturbances.items()}, k))
         return tuple(out)
 
+    @cached_property
+    def _span_checks(self) -> tuple[Check, ...]:
+        """Idlers on the slack side and, with the response, the largest span force against
+        the chain's fatigue strength (:mod:`chaindrive.strength.span_checks`)."""
+        st = self._static
+        if st is None:
+            return ()
+        out = idler_checks(self.drive, st.loads)
+        if self.with_response and self._responds:
+            steady = self.steady
+            startup = self.startup if self.with_startup else None
+            steady_peak = (None if steady is None else float(np.max(
+                np.asarray(st.loads.span_tensions) + steady.span_dynamic_load)))
+            startup_peak = None if startup is None else float(np.max(startup.max_span_force))
+            out.append(fatigue_check(self.drive.chain.spec, steady_peak, startup_peak))
+        return tuple(out)
+
     def checks(self) -> tuple[Check, ...]:
         """Every check of the design: the chain's by its method, the layout's (teeth in mesh,
-        wrap, span length), resonance, and with the response the dynamic safety factors
-        k₁, k₂, k₂min."""
-        return (*self._static_checks, *self._dynamic_checks)
+        wrap, span length, idlers on the slack side), resonance, and with the response the
+        dynamic safety factors k₁, k₂, k₂min and the fatigue check."""
+        return (*self._static_checks, *self._span_checks, *self._dynamic_checks)
 
     def check(self, key: str) -> Check | None:
         """The check with this :attr:`~chaindrive.checks.Check.key` (None when the design
@@ -639,6 +658,12 @@ class Analysis:
     def warnings(self) -> tuple[ChainDriveWarning, ...]:
         """Every warning of the analysed stages."""
         out: list[ChainDriveWarning] = list(self.geometry.warnings)
+        out += duty_warnings(self.drive)
+        if self.drive.rotation is None:
+            out.append(ChainDriveWarning(
+                "duty.rotation-default", "drive.rotation",
+                f"driver {self.drive.driver.name} turns {self.rotation} (default: from the "
+                "order of the sprockets; set [drive] rotation to fix which span is tight)"))
         _ = self.selection
         out += self._selection_warnings
         if self.selection is not None and self.design.chain.request is None:
@@ -646,6 +671,7 @@ class Analysis:
         if self._static is not None:
             out += self._static.loads.warnings
             out += self._static.warnings
+            out += idler_warnings(self.drive, self._static.loads)
         out += resonance_warnings(self.dynamics.resonances)
         out += dynamics_warnings(self.drive_model, self.bands,
                                  assumed_sag=self.drive.chain.sag is None,
@@ -655,6 +681,28 @@ class Analysis:
             out += startup_warnings(startup, [f"{s.start_name}→{s.end_name}"
                                               for s in self.geometry.spans], self.runup)
         return tuple(dict.fromkeys(out))
+
+    @property
+    def rotation(self) -> str:
+        """The driver's direction of rotation, "cw" or "ccw" (given, or from the order of
+        the sprockets)."""
+        return driver_rotation(self.geometry, self.drive.driver_index)
+
+    def duty_summary(self) -> dict[str, Any]:
+        """The duty of the drive for the JSON document: the service factor with its origin
+        ("given", "duty classes", "default") and table, the duty classes, the required life
+        [h] with its origin, and the driver's rotation with its origin."""
+        sf = service_factor_for(self.drive)
+        life = required_life_h(self.drive)
+        return {"service_factor": sf.value, "service_factor_origin": sf.origin,
+                "service_factor_table": sf.table, "service_factor_note": sf.note,
+                "driver_duty": self.drive.driver_duty, "driven_duty": self.drive.driven_duty,
+                "required_life_h": life,
+                "required_life_origin": "given" if life is not None else
+                "default: the rating method's basis",
+                "rotation": self.rotation,
+                "rotation_origin": "given" if self.drive.rotation is not None else
+                "default: from the order of the sprockets"}
 
     # ------------------------------------------------------------------ the document
     def evaluate(self) -> Analysis:
@@ -681,7 +729,7 @@ class Analysis:
             if strength is not None:
                 strength.update(fragment["strength"])
         out: dict[str, Any] = {
-            "drive": drive_summary(self.drive),
+            "drive": {**drive_summary(self.drive), **self.duty_summary()},
             "geometry": {**geometry_dict(self.geometry),
                          "length_options": self.length_choice.to_dict()},
             "kinematics": self.kinematics.to_dict(),

@@ -31,6 +31,12 @@ ToothFormName = Literal["ISO 606", "GOST 591"]
 ROLES: tuple[str, ...] = ("driver", "driven", "idler")
 SIDES: tuple[str, ...] = ("outside", "inside")
 TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
+#: Duty classes of the driver (prime mover), mildest first (:mod:`chaindrive.strength.duty`).
+DRIVER_DUTIES: tuple[str, ...] = ("smooth", "slight shock", "moderate shock")
+#: Duty classes of the driven machine, mildest first (:mod:`chaindrive.strength.duty`).
+DRIVEN_DUTIES: tuple[str, ...] = ("smooth", "moderate shock", "heavy shock")
+#: Directions of rotation of the driver seen on the drawing plane (x right, y up).
+ROTATIONS: tuple[str, ...] = ("cw", "ccw")
 MIN_TEETH, MAX_TEETH = 6, 150
 MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
 MAX_CONTOURS = 8
@@ -107,6 +113,11 @@ class ChainSpec:
         the catalogue gives none).
     max_speed : float or None
         The maker's highest chain speed [m/s] (None: not given).
+    fatigue_strength : float or None
+        Fatigue (minimum dynamic) strength of the whole chain [N]: the largest span force it
+        carries for the endurance of the test basis ([ISO606] minimum dynamic strength, tested
+        to [ISO15654]); None when the catalogue gives none (catalogue column
+        ``fatigue_strength_kN``).
 
     Raises
     ------
@@ -132,6 +143,7 @@ class ChainSpec:
     source: str = ""
     allowable_load: float | None = None
     max_speed: float | None = None
+    fatigue_strength: float | None = None
 
     @property
     def estimated(self) -> tuple[str, ...]:
@@ -697,6 +709,17 @@ class Drive:
     motor : Motor or None
         The motor on the driver's train (None: not modelled; the start-up then uses the
         ``[dynamics]`` law).
+    driver_duty, driven_duty : str or None
+        Duty classes of the driver (:data:`DRIVER_DUTIES`) and of the driven machine
+        (:data:`DRIVEN_DUTIES`) that give the service factor when ``service_factor`` is not
+        given (:func:`chaindrive.strength.duty.service_factor_for`); None: not given.
+    required_life : float or None
+        Required wear life [s] (None: the rating method's own basis).
+    rotation : {"cw", "ccw"} or None
+        Direction of rotation of the driver on the drawing plane; the chain runs round the
+        sprockets in the order that agrees with it
+        (:func:`chaindrive.geometry.contour.in_travel_order`). None: the order of the
+        sprockets decides.
 
     Raises
     ------
@@ -715,8 +738,23 @@ class Drive:
     dynamics: DynamicsSettings = field(default_factory=DynamicsSettings)
     notes: dict[str, str] = field(default_factory=dict)
     motor: Motor | None = None
+    driver_duty: str | None = None
+    driven_duty: str | None = None
+    required_life: float | None = None
+    rotation: str | None = None
 
     def __post_init__(self) -> None:
+        for name, allowed in (("driver_duty", DRIVER_DUTIES), ("driven_duty", DRIVEN_DUTIES),
+                              ("rotation", ROTATIONS)):
+            value = getattr(self, name)
+            if value is not None and value not in allowed:
+                key = {"driver_duty": "driver", "driven_duty": "driven"}.get(name, name)
+                raise DesignError(f"drive.{key}", f"got {value!r}; allowed: "
+                                  + ", ".join(f'"{a}"' for a in allowed))
+        if self.required_life is not None and not (math.isfinite(self.required_life)
+                                                   and self.required_life > 0):
+            raise DesignError("drive.required_life",
+                              f"must be a positive time, got {self.required_life!r} s")
         n = len(self.sprockets)
         if not MIN_SPROCKETS <= n <= MAX_SPROCKETS:
             raise DesignError(

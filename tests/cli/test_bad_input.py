@@ -74,6 +74,18 @@ CASES: dict[str, tuple[str, str]] = {
     "bad role": (TWO.replace('role = "driver"', 'role = "drivr"'),
                  "sprockets[0].role: must be one of \"driver\", \"driven\", \"idler\", got 'drivr';"
                  " did you mean 'driver'?"),
+    "bad driver duty": (TWO.replace('name = "t"', 'name = "t"\ndriver = "bumpy"'),
+                        'drive.driver: must be one of "smooth", "slight shock", "moderate '
+                        "shock\", got 'bumpy'"),
+    "bad driven duty": (TWO.replace('name = "t"', 'name = "t"\ndriven = "slight shock"'),
+                        'drive.driven: must be one of "smooth", "moderate shock", "heavy '
+                        "shock\", got 'slight shock'"),
+    "bad rotation": (TWO.replace('name = "t"', 'name = "t"\nrotation = "left"'),
+                     "drive.rotation: must be one of \"cw\", \"ccw\", got 'left'"),
+    "negative required life": (TWO.replace('name = "t"', 'name = "t"\nrequired_life = "-5 h"'),
+                               "drive.required_life: must be a time"),
+    "required life not a time": (TWO.replace('name = "t"', 'name = "t"\nrequired_life = "5 kg"'),
+                                 "drive.required_life: '5 kg' is not a time"),
 }
 
 

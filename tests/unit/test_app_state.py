@@ -442,8 +442,9 @@ def test_page_edit_form_changes_the_tooth_count(tmp_path: Path) -> None:
     # fewer than 3 in mesh), as the analysis says
     # (the page's screen runs no start-up: k1 comes with its Start-up tab; here the ripple
     # still grows at the end of the 1 s record, so k1 cannot be verified)
+    # (nor the response the fatigue check reads: it comes with the dynamic response)
     failed = [c for c in chaindrive.analyze(chaindrive.load(edited)).checks()
-              if not c.passed and c.key != "k1"]
+              if not c.passed and c.key not in ("k1", "fatigue")]
     assert [e.value.split(":")[0] for e in at.error] == [
         "FAIL" if c.status == "fail" else "CANNOT BE VERIFIED" for c in failed]
     assert at.session_state["form"].sprockets[2]["teeth"] == 30

@@ -61,6 +61,7 @@ _CHAIN_NUMBERS: dict[str, tuple[str, float, str]] = {
     "bearing_area_mm2": ("bearing_area", 1e-6, "opt"),
     "allowable_load_kN": ("allowable_load", 1e3, "opt"),
     "max_speed_m_s": ("max_speed", 1.0, "opt"),
+    "fatigue_strength_kN": ("fatigue_strength", 1e3, "opt"),
 }
 _CHAIN_TEXT = ("designation", "standard", "series", "strands", "ansi", "aliases", "material",
                "source")
@@ -83,6 +84,7 @@ _CHAIN_TOML: dict[str, tuple[str, str]] = {
     "breaking_load": ("force", "pos"), "mass_per_length": ("linear_density", "pos"),
     "bearing_area": ("area", "opt"),
     "allowable_load": ("force", "opt"), "max_speed": ("velocity", "opt"),
+    "fatigue_strength": ("force", "opt"),
 }
 _MATERIAL_TOML: dict[str, tuple[str, str]] = {
     "density": ("density", "pos"), "youngs_modulus": ("pressure", "pos"),
@@ -391,7 +393,8 @@ def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
     CSV: the columns of ``chains_iso606.csv`` (required: designation, pitch_mm,
     roller_diameter_mm, pin_diameter_mm, inner_width_mm, plate_depth_mm, breaking_load_kN,
     mass_kg_m; optional: standard, series, strands, transverse_pitch_mm, bearing_area_mm2,
-    ansi, aliases ('|'-separated), material, source); ``#`` lines are comments.
+    fatigue_strength_kN, ansi, aliases ('|'-separated), material, source); ``#`` lines are
+    comments.
     TOML: ``[[chains]]`` tables with the same fields without the unit suffix, dimensional
     values as strings with units (``pitch = "25.4 mm"``, ``breaking_load = "60 kN"``,
     ``mass_per_length = "2.6 kg/m"``, ``bearing_area = "180 mm^2"``), ``aliases`` a list.

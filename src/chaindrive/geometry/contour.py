@@ -70,8 +70,9 @@ from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diamet
 from chaindrive.model import Drive
 from chaindrive.units import TWO_PI
 
-__all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry", "round_links",
-           "solve_layout", "span_lengths", "span_normals", "tight_pitches_of",
+__all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry",
+           "driver_rotation", "in_travel_order", "round_links", "solve_layout",
+           "span_lengths", "span_normals", "tight_pitches_of", "travel_orientation",
            "two_sprocket_center_distance_exact", "two_sprocket_center_distance_iso10823",
            "two_sprocket_links_exact", "two_sprocket_links_iso10823", "wrap_angles"]
 
@@ -201,8 +202,8 @@ def _solve_ccw(centres: NDArray[np.float64], radii: NDArray[np.float64], teeth: 
 
 def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
                  inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float,
-                 ) -> tuple[Layout, int]:
-    """Solve the contour in whichever travel direction closes it.
+                 prefer: int = 1) -> tuple[Layout, int]:
+    """Solve the contour in whichever travel direction closes it (``prefer`` first).
 
     Parameters
     ----------
@@ -216,6 +217,9 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
         (n,) numbers of teeth z [-].
     pitch : float
         Chain pitch p [m].
+    prefer : int
+        The orientation tried first: +1 counter-clockwise, −1 clockwise (it decides only a
+        contour that closes both ways, e.g. two sprockets on the outside).
 
     Returns
     -------
@@ -231,13 +235,10 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
         When the contour closes in neither direction.
     """
     radii = np.where(inside, -radii_abs, radii_abs)
-    layout = _solve_ccw(centres, radii, teeth, pitch)
-    if layout is not None:
-        return layout, 1
-    mirrored = centres * np.array([1.0, -1.0])
-    layout = _solve_ccw(mirrored, radii, teeth, pitch)
-    if layout is not None:
-        return layout, -1
+    for orientation in ((1, -1) if prefer >= 0 else (-1, 1)):
+        layout = _solve_ccw(centres * np.array([1.0, float(orientation)]), radii, teeth, pitch)
+        if layout is not None:
+            return layout, orientation
     raise GeometryError(
         "sprockets",
         "the contour cannot close: list the sprockets in the order the chain runs round them, "
@@ -639,7 +640,8 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     tips = np.asarray(tip_diameter(p, teeth, spec.roller_diameter, form=drive.tooth_form), float)
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
-    layout, orientation = solve_layout(centres, radii, inside, teeth, p)
+    prefer = travel_orientation(drive)
+    layout, orientation = solve_layout(centres, radii, inside, teeth, p, prefer)
     links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd,
                                              down=drive.chain.rounding == "round down")
     adjusted = drive.adjustable_index
@@ -653,7 +655,7 @@ def contour_geometry(drive: Drive) -> GeometryResult:
         if drive.chain.sag is not None:  # installed with sag: the slack span keeps ΔL
             moved = centres.copy()
             moved[adjusted] = centres[adjusted] + adjustment * direction
-            tight_layout, _ = solve_layout(moved, radii, inside, teeth, p)
+            tight_layout, _ = solve_layout(moved, radii, inside, teeth, p, prefer)
             slack_span = float(tight_layout.span_lengths[drive.driver_index])
             target = links - slack_for_sag(slack_span, drive.chain.sag) / p
             adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
@@ -665,9 +667,91 @@ def contour_geometry(drive: Drive) -> GeometryResult:
             f"{links} links are shorter than the tight contour ({layout.tight_pitches:.2f} pitches) "
             "and no sprocket is adjustable",
         )
-    layout, orientation = solve_layout(centres, radii, inside, teeth, p)
+    layout, orientation = solve_layout(centres, radii, inside, teeth, p, prefer)
     return _assemble(drive, centres, radii, tips, inside, layout, orientation, links, adjusted,
                      adjustment)
+
+
+def travel_orientation(drive: Drive) -> int:
+    """The orientation of chain travel round the contour that the driver's rotation asks
+    for: +1 counter-clockwise, −1 clockwise (+1, the orientation tried first, when the
+    design gives no rotation).
+
+    A driver on the outside of the contour turns the way the chain travels round it; one on
+    the inside turns the other way (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (``drive.rotation``: "cw", "ccw" or None).
+
+    Returns
+    -------
+    int
+        +1 or −1.
+    """
+    if drive.rotation is None:
+        return 1
+    turn = 1 if drive.rotation == "ccw" else -1
+    return -turn if drive.driver.side == "inside" else turn
+
+
+def driver_rotation(geometry: GeometryResult, driver_index: int) -> str:
+    """The driver's direction of rotation in a laid-out contour.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    driver_index : int
+        Index of the driver.
+
+    Returns
+    -------
+    str
+        "ccw" or "cw" on the drawing plane (x right, y up).
+    """
+    return "ccw" if geometry.sprockets[driver_index].turn > 0 else "cw"
+
+
+def in_travel_order(drive: Drive) -> Drive:
+    """The drive with its sprockets listed in the order the chain runs round them when the
+    driver turns as ``drive.rotation`` says.
+
+    The chain leaves the driver on the slack span and the driver pulls in the tight span, so
+    the direction of travel, and with it which spans are tight, follows from the rotation.
+    When the listing runs against it, the order is reversed (the first sprocket kept first:
+    S0, S(n−1), …, S1); a contour of two sprockets closes both ways and keeps its order (the
+    layout takes the orientation of the rotation, :func:`travel_orientation`). Without a
+    rotation the drive is returned as it is.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    Drive
+        The same drive, its sprockets in the order of travel.
+
+    Raises
+    ------
+    GeometryError
+        When the contour closes in neither direction.
+    """
+    if drive.rotation is None or len(drive.sprockets) < 3:
+        return drive
+    sps = drive.sprockets
+    p = drive.chain.spec.pitch
+    teeth = np.array([s.teeth for s in sps])
+    centres = np.array([[s.x, s.y] for s in sps], dtype=float)
+    inside = np.array([s.side == "inside" for s in sps])
+    want = travel_orientation(drive)
+    _, orientation = solve_layout(centres, _radii(p, teeth), inside, teeth, p, want)
+    if orientation == want:
+        return drive
+    return drive.with_sprockets((sps[0], *sps[:0:-1]))
 
 
 def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.float64],

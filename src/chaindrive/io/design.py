@@ -20,9 +20,12 @@ import tomli_w
 
 from chaindrive import catalog
 from chaindrive.errors import DesignError, did_you_mean
+from chaindrive.geometry.contour import in_travel_order
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
 from chaindrive.io.plausible import check_inertias, check_motor_estimate
 from chaindrive.model import (
+    DRIVEN_DUTIES,
+    DRIVER_DUTIES,
     LOAD_LAWS,
     MAX_CONTOURS,
     MAX_SPROCKETS,
@@ -33,6 +36,7 @@ from chaindrive.model import (
     MOTORS,
     RESISTANCES,
     ROLES,
+    ROTATIONS,
     ROUNDINGS,
     SIDES,
     TOOTH_FORMS,
@@ -47,6 +51,7 @@ from chaindrive.model import (
     ToothFormName,
     TrainElement,
 )
+from chaindrive.strength.duty import DRIVEN_EXAMPLES, DRIVER_EXAMPLES
 from chaindrive.units import (
     DEG_PER_RAD,
     DIMENSIONS,
@@ -246,9 +251,27 @@ DRIVE_FIELDS: tuple[Field, ...] = (
           reason=_POWER),
     Field("tooth_form", "choice", "sprocket tooth form (default: GOST 591 for GOST chains, "
           "ISO 606 otherwise)", choices=TOOTH_FORMS),
-    Field("service_factor", "float", "service (application) factor of the drive", minimum=1.0,
-          maximum=5.0, reason="published application factors run from 1 to about 2.5; 5 is "
-          "twice the largest"),
+    Field("service_factor", "float", "service (application) factor of the drive; overrides "
+          "the duty classes driver / driven (neither given: 1.0, said as a warning)",
+          minimum=1.0, maximum=5.0, reason="published application factors run from 1 to about "
+          "2.5; 5 is twice the largest"),
+    Field("driver", "choice", "duty class of the driver (prime mover), with driven it gives "
+          "the service factor from the table of the chain's rating method "
+          "(chaindrive.strength.duty): " + "; ".join(
+              f"{k}: {v}" for k, v in DRIVER_EXAMPLES.items()),
+          choices=DRIVER_DUTIES, example="smooth"),
+    Field("driven", "choice", "duty class of the driven machine: " + "; ".join(
+              f"{k}: {v}" for k, v in DRIVEN_EXAMPLES.items()),
+          choices=DRIVEN_DUTIES, example="moderate shock"),
+    Field("required_life", "time", "required wear life of the chain, read by the wear-life "
+          "check (default: the rating method's basis, 15 000 h × links/100)", minimum=3600.0,
+          maximum=1e6 * 3600.0, example="20000 h",
+          reason="1 h to 1 000 000 h (114 years of continuous running)"),
+    Field("rotation", "choice", "direction of rotation of the driver on the drawing plane "
+          "(x right, y up): cw or ccw; the chain runs round the sprockets in the order that "
+          "agrees with it and the span the driver pulls in is the tight one (default: the "
+          "order of the sprockets decides, said in the output)", choices=ROTATIONS,
+          example="ccw"),
 )
 CHAIN_FIELDS: tuple[Field, ...] = (
     Field("designation", "str", 'catalogue designation, e.g. "ISO 606 16B-1", "ANSI 80", '
@@ -884,7 +907,11 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
     drive = Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                   power=drive_values["power"], tooth_form=tooth_form,
                   service_factor=drive_values["service_factor"], dynamics=dynamics,
-                  motor=motor)
+                  motor=motor, driver_duty=drive_values["driver"],
+                  driven_duty=drive_values["driven"],
+                  required_life=drive_values["required_life"],
+                  rotation=drive_values["rotation"])
+    drive = in_travel_order(drive)
     check_inertias(drive)
     check_motor_estimate(drive)
     return drive
@@ -1051,6 +1078,14 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     head["tooth_form"] = drive.tooth_form
     if drive.service_factor is not None:
         head["service_factor"] = drive.service_factor
+    if drive.driver_duty is not None:
+        head["driver"] = drive.driver_duty
+    if drive.driven_duty is not None:
+        head["driven"] = drive.driven_duty
+    if drive.required_life is not None:
+        head["required_life"] = _q(drive.required_life, 1.0 / 3600.0, "h")
+    if drive.rotation is not None:
+        head["rotation"] = drive.rotation
     out: dict[str, Any] = {"drive": head, "chain": chain,
                            "sprockets": [_sprocket_table(s) for s in drive.sprockets]}
     if drive.motor is not None:

@@ -78,6 +78,7 @@ CATALOG_LIMITS: dict[str, Range] = {
     "bearing_area_mm2": Range(0.1, 1_000_000.0, "projected hinge areas d₂·B of real chains"),
     "allowable_load_kN": Range(0.001, 20_000.0, "at most the breaking-load range"),
     "max_speed_m_s": Range(0.001, 100.0, "roller chains run at up to about 30 m/s"),
+    "fatigue_strength_kN": Range(0.001, 20_000.0, "below the breaking-load range"),
     "density_kg_m3": Range(100.0, 25_000.0, "from foamed polymers to tungsten"),
     "youngs_modulus_GPa": Range(0.01, 1000.0, "from soft polymers to carbides"),
     "tensile_strength_MPa": Range(1.0, 10_000.0, "from soft polymers to high-strength steel"),

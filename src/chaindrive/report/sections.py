@@ -138,11 +138,16 @@ def _estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
         text = warning_text(w, inp.units)
         out.append(f"{what} (the warning above)." if what and text in shown
                    else _sentence(text))
-    if d.service_factor is None:
+    duty = a.duty_summary()
+    if duty["service_factor_origin"] == "default":
         st = a.strength
         used = ("" if st is None else f": the strength checks take the operating factor "
                 f"{fmt(st.operating_factor)} (section Loads and strength)")
-        out.append(f"Service factor not given ([drive] service_factor){used}.")
+        out.append("Service factor 1.0 by default: no duty classes ([drive] driver, driven) "
+                   f"and no service_factor given{used}.")
+    if duty["rotation_origin"] != "given":
+        out.append(f"Driver's rotation {duty['rotation']} from the order of the sprockets "
+                   "([drive] rotation not given): it decides which spans are tight.")
     spec = d.chain.spec
     estimated = catalogue_estimates(spec.source)
     if estimated:
@@ -247,6 +252,7 @@ def inputs_section(inp: ReportInput) -> list[Block]:
         The section's blocks.
     """
     d = inp.analysis.drive
+    duty = inp.analysis.duty_summary()
     spec = d.chain.spec
     blocks = inp.define("P", "n1", "Ks", "p", "d1", "b1", "Q", "q", "z", "zeta")
     same = f" (= ANSI {spec.ansi_twin})" if spec.ansi_twin else ""
@@ -275,8 +281,14 @@ def inputs_section(inp: ReportInput) -> list[Block]:
     if estimated:
         items.append(("chain data from", "", readable_source(spec.source), ""))
     items += [("power", "P", inp.val(d.power, "power"), inp.unit("power")),
-              ("service factor", "K_s", "not given" if d.service_factor is None
-               else d.service_factor, ""),
+              ("service factor", "K_s", f"{fmt(duty['service_factor'])} "
+               f"({duty['service_factor_origin']}"
+               + (f": {duty['service_factor_note']}" if duty["service_factor_origin"]
+                  == "duty classes" else "") + ")", ""),
+              ("required life", "", "the rating's basis" if duty["required_life_h"] is None
+               else f"{fmt(duty['required_life_h'])} h", ""),
+              ("driver's rotation", "", f"{duty['rotation']} ({duty['rotation_origin']})",
+               ""),
               ("tooth form", "", d.tooth_form, ""),
               ("damping ratio", "ζ", inp.analysis.dynamics.damping_ratio, ""),
               ("damping ratio from", "", inp.analysis.drive_model.damping_source, "")]

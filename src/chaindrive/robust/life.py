@@ -30,6 +30,7 @@ from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
 from chaindrive.robust.perturbation import Perturbation
 from chaindrive.robust.uncertainty import UncertaintyModel
 from chaindrive.robust.wear import roller_lift
+from chaindrive.strength.duty import service_factor_for
 from chaindrive.strength.wear import wear_life_hours
 
 __all__ = ["LifeCurve", "WearState", "life_curve", "wear_state"]
@@ -198,7 +199,7 @@ def _hours_per_elongation(nominal: Analysis) -> float | None:
     st, d = nominal.strength, nominal.drive
     if st is None or st.rated_power is None or d.power is None:
         return None
-    ks = d.service_factor or 1.0
+    ks = service_factor_for(d).value  # given, from the duty classes, else 1
     return float(wear_life_hours(st.rated_power, d.power * ks / d.chain.contours,
                                  nominal.geometry.links, 1.0))
 

@@ -18,6 +18,7 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 from chaindrive.strength import ke_method, ratings
 from chaindrive.strength.drive_checks import chain_limits
+from chaindrive.strength.duty import service_factor_for
 from chaindrive.strength.loads import (
     LoadsResult,
     hinge_pressure,
@@ -135,11 +136,13 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     geometry : GeometryResult
         Its contour.
     operating_factor : float or None
-        Kэ for p = F_t·Kэ/A [-] (default ``drive.service_factor`` or 1).
+        Kэ for p = F_t·Kэ/A [-] (default: the drive's service factor,
+        :func:`~chaindrive.strength.duty.service_factor_for`).
     dynamic_factor : float
         kд for s = Q/(kд·F_t + F_0 + F_v) [-].
     service_factor : float or None
-        K_s for the wear life [-] (default ``drive.service_factor`` or 1).
+        K_s for the wear life [-] (default: the drive's service factor,
+        :func:`~chaindrive.strength.duty.service_factor_for`).
     elongation : float
         Permitted elongation for the wear life [-] (default 3 %).
     sag_ratio : float | None
@@ -161,8 +164,9 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
         raise DesignError("elongation", f"must be a fraction in (0, 0.1], got {elongation!r}")
     loads = loads_of(drive, geometry, sag_ratio=sag_ratio, shaft_load_factor=shaft_load_factor)
     spec = drive.chain.spec
-    ke = operating_factor if operating_factor is not None else (drive.service_factor or 1.0)
-    ks = service_factor if service_factor is not None else (drive.service_factor or 1.0)
+    base = service_factor_for(drive).value  # given, from the duty classes, else 1
+    ke = operating_factor if operating_factor is not None else base
+    ks = service_factor if service_factor is not None else base
     teeth, speed = small_sprocket(drive)
     area, estimated = ke_method.bearing_area(spec)
     warnings: list[ChainDriveWarning] = []

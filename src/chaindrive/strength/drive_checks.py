@@ -37,6 +37,8 @@ from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength import checks as ck
 from chaindrive.strength import iso10823, ke_method, ratings
+from chaindrive.strength.duty import required_life_h as design_life_h
+from chaindrive.strength.duty import service_factor_for
 from chaindrive.strength.loads import (
     centrifugal_tension,
     hinge_pressure,
@@ -85,7 +87,9 @@ def settings_for(drive: Drive, *, service_factor: float | None = None,
                  design_factor: float | None = None, operating_factor: float | None = None,
                  dynamic_factor: float | None = None, required_life_h: float | None = None,
                  method: str | None = None) -> CheckSettings:
-    """Settings with K_s and Kэ defaulting to ``drive.service_factor`` (or 1).
+    """Settings with K_s and Kэ defaulting to the drive's service factor (given, from its
+    duty classes, else 1: :func:`chaindrive.strength.duty.service_factor_for`) and the
+    required life to the design's ``required_life``.
 
     Parameters
     ----------
@@ -94,7 +98,7 @@ def settings_for(drive: Drive, *, service_factor: float | None = None,
     service_factor, design_factor, operating_factor, dynamic_factor : float or None
         K_s, n_d, Kэ, kд [-] (None: the default).
     required_life_h : float or None
-        Required wear life [h] (None: the rating's own).
+        Required wear life [h] (None: the design's ``required_life``, else the rating's own).
     method : str or None
         Force a method (None: each chain's own).
 
@@ -103,7 +107,9 @@ def settings_for(drive: Drive, *, service_factor: float | None = None,
     CheckSettings
         The settings.
     """
-    base = drive.service_factor or 1.0
+    base = service_factor_for(drive).value
+    if required_life_h is None:
+        required_life_h = design_life_h(drive)
     return CheckSettings(
         service_factor=base if service_factor is None else service_factor,
         design_factor=1.0 if design_factor is None else design_factor,

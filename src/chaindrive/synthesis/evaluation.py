@@ -56,7 +56,10 @@ def constrained(check: Check, settings: Constraints) -> bool:
     """Whether ``[optimize.constraints]`` keeps an analysis check as a constraint: every
     check, except the chain's strength checks when ``static_safety = false``, the speed
     limit when ``speed_limit = false`` and k₁ unless ``startup_safety = true`` (it needs a
-    time integration per design).
+    time integration per design). Not constraints: the idlers' side of the contour (set by
+    the order of the sprockets and the rotation, which no variable changes) and the fatigue
+    check of a chain without a fatigue strength in the catalogue (it cannot be verified for
+    any design); the analysis of the chosen design still reports both.
 
     Parameters
     ----------
@@ -70,6 +73,10 @@ def constrained(check: Check, settings: Constraints) -> bool:
     bool
         True when the check is a constraint.
     """
+    if check.name == "idler on slack span":
+        return False
+    if check.name == "fatigue" and check.limit is None:
+        return False
     if check.name == "speed limit":
         return settings.speed_limit
     if check.part == "chain":

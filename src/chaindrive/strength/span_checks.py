@@ -1,0 +1,186 @@
+"""Checks on the span forces: an idler or tensioner on a span that carries the driving force,
+and the largest span force against the chain's fatigue strength.
+
+Idlers and tensioners
+---------------------
+A chain is adjusted by moving a shaft, else by "an adjustable idler sprocket engaging with the
+unloaded strand of the chain" [Renold-DG, chain adjustment]: on the slack span, leaving the
+driver, the idler carries only the sag and centrifugal tension F_0 + F_v. On a span that
+carries the driving force (the tight span into the driver, or a span between two driven
+sprockets) it is pushed back by the working tension: a spring tensioner yields and lets the
+slack into the driver's mesh, a fixed idler's shaft carries the load of the working tension
+on both its spans. :func:`idler_checks` fails a tensioner (an idler marked ``adjustable``) whose
+spans carry more than the slack-span tension, and a fixed idler on the tight span into the
+driver (all of F_t), and writes its shaft load in the note; a fixed idler guiding the chain
+between two driven sprockets of a serpentine (part of F_t) is said in a warning with its
+shaft load (:func:`idler_warnings`), as a guide it cannot sit anywhere else.
+
+Fatigue
+-------
+[ISO606] gives a minimum dynamic (fatigue) strength for its chains, tested by the fatigue
+test of [ISO15654]; manufacturers' selectors judge the chain against it. The largest force
+the chain's spans carry — in steady running the static tension plus the steady dynamic load
+of the span F_R,i + F_2,i (:mod:`chaindrive.dynamics.steady`), and the peak at start-up
+(:mod:`chaindrive.dynamics.startup`) — is held to the chain's fatigue strength
+(:attr:`chaindrive.model.ChainSpec.fatigue_strength`). The packaged catalogues carry no
+fatigue strength (the values of the standard's table were not available), so the check
+says "cannot be verified" unless a catalogue of the designer's own gives the column
+``fatigue_strength_kN``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from chaindrive.checks import Check, judged
+from chaindrive.errors import ChainDriveWarning, Quantities
+from chaindrive.model import ChainSpec, Drive
+from chaindrive.strength.loads import LoadsResult
+
+__all__ = ["SHARE_TOLERANCE", "fatigue_check", "idler_checks", "idler_warnings"]
+
+#: Share of the peripheral force below which a span counts as slack [-] (round-off of the
+#: tension balance).
+SHARE_TOLERANCE = 1e-9
+
+
+def _idler_states(drive: Drive, loads: LoadsResult) -> list[tuple[int, float]]:
+    """(index, share of F_t its spans carry beyond the slack-span tension) of every idler."""
+    slack = loads.span_tensions[loads.slack_span]
+    ft = loads.peripheral_force
+    out = []
+    for i, s in enumerate(drive.sprockets):
+        if s.role != "idler":
+            continue
+        tension = loads.span_tensions[i]  # the span leaving it; the arriving one is equal
+        share = (tension - slack) / ft if ft > 0 else 0.0
+        out.append((i, 0.0 if abs(share) < SHARE_TOLERANCE else share))
+    return out
+
+
+def _guide(drive: Drive, index: int, share: float) -> bool:
+    """A fixed idler between two driven sprockets: it carries part, not all, of F_t."""
+    return not drive.sprockets[index].adjustable and 0.0 < share < 1.0 - 1e-6
+
+
+def idler_warnings(drive: Drive, loads: LoadsResult) -> list[ChainDriveWarning]:
+    """Say the shaft load of every fixed idler that guides the chain on a loaded span between
+    two driven sprockets (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    loads : LoadsResult
+        Its static loads.
+
+    Returns
+    -------
+    list of ChainDriveWarning
+        One per such idler.
+    """
+    n = len(drive.sprockets)
+    out = []
+    for i, share in _idler_states(drive, loads):
+        if not _guide(drive, i, share):
+            continue
+        q = Quantities()
+        s = drive.sprockets[i]
+        out.append(ChainDriveWarning(
+            "strength.idler-on-loaded-span", f"sprockets[{s.name}]",
+            f"idler {s.name} guides the chain on a loaded span ({drive.sprockets[i - 1].name} → "
+            f"{s.name} → {drive.sprockets[(i + 1) % n].name}, "
+            f"{q(loads.span_tensions[i], 'force', '.4g')}, {share:.0%} of F_t): its shaft "
+            f"carries {q(loads.shaft_load_magnitudes[i], 'force', '.4g')}; a tensioner "
+            "there would be pushed back by the working tension", q.items))
+    return out
+
+
+def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
+    """Every tensioner on the slack side, every fixed idler off the tight span: the share of
+    the peripheral force its span carries beyond the slack span ≤ 0 (fixed idlers between
+    two driven sprockets are left to :func:`idler_warnings`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (its sprockets in the order of travel, as the loads).
+    loads : LoadsResult
+        The static loads of the contour (span tensions, shaft loads).
+
+    Returns
+    -------
+    list of Check
+        One check per idler ("idler on slack span", value (T − T_slack)/F_t [-], limit 0);
+        a failure names the span, its tension and the idler's shaft load.
+
+    References
+    ----------
+    [Renold-DG, chain adjustment].
+    """
+    n = len(drive.sprockets)
+    out: list[Check] = []
+    for i, share in _idler_states(drive, loads):
+        if _guide(drive, i, share):
+            continue
+        s = drive.sprockets[i]
+        tension = loads.span_tensions[i]
+        q = Quantities()
+        what = "tensioner" if s.adjustable else "idler"
+        span = f"{drive.sprockets[i - 1].name} → {s.name} → {drive.sprockets[(i + 1) % n].name}"
+        if share > 0:
+            note = (f"{what} on a span carrying the driving force ({span}, "
+                    f"{q(tension, 'force', '.4g')}, {share:.0%} of F_t): shaft load "
+                    f"{q(loads.shaft_load_magnitudes[i], 'force', '.4g')}; place it on the "
+                    f"slack span leaving {drive.driver.name}, or reverse the rotation")
+        else:
+            note = (f"{what} on the slack side ({span}, {q(tension, 'force', '.4g')}): shaft "
+                    f"load {q(loads.shaft_load_magnitudes[i], 'force', '.4g')}")
+        out.append(judged("idler on slack span", s.name, share, 0.0, "max",
+                          "[Renold-DG, chain adjustment]", note=note, part="geometry",
+                          item=s.name, note_quantities=q.items))
+    return out
+
+
+def fatigue_check(spec: ChainSpec, steady_peak: float | None,
+                  startup_peak: float | None) -> Check:
+    """The largest span force ≤ the chain's fatigue strength (module docstring).
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The chain (its ``fatigue_strength`` [N], None when the catalogue has none).
+    steady_peak : float or None
+        Largest static + steady dynamic span force F_R,i + F_2,i [N] (None: not computed).
+    startup_peak : float or None
+        Largest span force at start-up [N] (None: no start-up run).
+
+    Returns
+    -------
+    Check
+        "fatigue" [N]; "cannot be verified" when the catalogue gives no fatigue strength or
+        no span force was computed.
+
+    References
+    ----------
+    [ISO606] (minimum dynamic strength); [ISO15654] (its test).
+    """
+    peaks: Sequence[tuple[str, float]] = [
+        (k, v) for k, v in (("steady running", steady_peak), ("start-up", startup_peak))
+        if v is not None]
+    q = Quantities()
+    if not peaks:
+        return judged("fatigue", spec.designation, None, spec.fatigue_strength, "max",
+                      "[ISO606]; [ISO15654]", "N", note="no span forces of the dynamic "
+                      "response (run the analysis with the response)", part="chain")
+    where, value = max(peaks, key=lambda kv: kv[1])
+    shown = ", ".join(f"{k} {q(v, 'force', '.4g')}" for k, v in peaks)
+    if spec.fatigue_strength is None:
+        note = (f"cannot be verified: no fatigue strength in the catalogue for "
+                f"{spec.designation} (catalogue column fatigue_strength_kN); largest span "
+                f"force {shown}")
+    else:
+        note = f"largest span force in {where}; {shown}"
+    return judged("fatigue", spec.designation, value, spec.fatigue_strength, "max",
+                  "[ISO606]; [ISO15654]", "N", note=note, part="chain",
+                  note_quantities=q.items)
