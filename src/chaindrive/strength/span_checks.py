@@ -10,10 +10,11 @@ carries the driving force (the tight span into the driver, or a span between two
 sprockets) it is pushed back by the working tension: a spring tensioner yields and lets the
 slack into the driver's mesh, a fixed idler's shaft carries the load of the working tension
 on both its spans. :func:`idler_checks` fails a tensioner (an idler marked ``adjustable``) whose
-spans carry more than the slack-span tension, and a fixed idler on the tight span into the
-driver (all of F_t), and writes its shaft load in the note; a fixed idler guiding the chain
-between two driven sprockets of a serpentine (part of F_t) is said in a warning with its
-shaft load (:func:`idler_warnings`), as a guide it cannot sit anywhere else.
+spans carry more than the slack-span tension, and writes its shaft load in the note; a fixed
+idler on a loaded span (a guide on the tight span, or between two driven sprockets of a
+serpentine) is said in a warning with its shaft load (:func:`idler_warnings`): a fixed shaft
+holds its place under the working tension, and a guide often cannot sit anywhere else, but
+its bearings carry that load.
 
 Fatigue
 -------
@@ -59,13 +60,13 @@ def _idler_states(drive: Drive, loads: LoadsResult) -> list[tuple[int, float]]:
 
 
 def _guide(drive: Drive, index: int, share: float) -> bool:
-    """A fixed idler between two driven sprockets: it carries part, not all, of F_t."""
-    return not drive.sprockets[index].adjustable and 0.0 < share < 1.0 - 1e-6
+    """A fixed idler on a span that carries part or all of the driving force."""
+    return not drive.sprockets[index].adjustable and share > 0.0
 
 
 def idler_warnings(drive: Drive, loads: LoadsResult) -> list[ChainDriveWarning]:
-    """Say the shaft load of every fixed idler that guides the chain on a loaded span between
-    two driven sprockets (module docstring).
+    """Say the shaft load of every fixed idler that guides the chain on a loaded span
+    (module docstring).
 
     Parameters
     ----------
@@ -90,16 +91,16 @@ def idler_warnings(drive: Drive, loads: LoadsResult) -> list[ChainDriveWarning]:
             "strength.idler-on-loaded-span", f"sprockets[{s.name}]",
             f"idler {s.name} guides the chain on a loaded span ({drive.sprockets[i - 1].name} → "
             f"{s.name} → {drive.sprockets[(i + 1) % n].name}, "
-            f"{q(loads.span_tensions[i], 'force', '.4g')}, {share:.0%} of F_t): its shaft "
+            f"{q(loads.span_tensions[i], 'force', '.4g')}, {share:.0%} of the peripheral force): its shaft "
             f"carries {q(loads.shaft_load_magnitudes[i], 'force', '.4g')}; a tensioner "
             "there would be pushed back by the working tension", q.items))
     return out
 
 
 def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
-    """Every tensioner on the slack side, every fixed idler off the tight span: the share of
-    the peripheral force its span carries beyond the slack span ≤ 0 (fixed idlers between
-    two driven sprockets are left to :func:`idler_warnings`).
+    """Every tensioner (an adjustable idler) on the slack side: the share of the peripheral
+    force its span carries beyond the slack span ≤ 0 (fixed idlers on a loaded span are left
+    to :func:`idler_warnings`).
 
     Parameters
     ----------
@@ -111,7 +112,7 @@ def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
     Returns
     -------
     list of Check
-        One check per idler ("idler on slack span", value (T − T_slack)/F_t [-], limit 0);
+        One check per tensioner ("idler on slack span", value (T − T_slack)/F_t [-], limit 0);
         a failure names the span, its tension and the idler's shaft load.
 
     References
@@ -121,16 +122,16 @@ def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
     n = len(drive.sprockets)
     out: list[Check] = []
     for i, share in _idler_states(drive, loads):
-        if _guide(drive, i, share):
-            continue
         s = drive.sprockets[i]
+        if not s.adjustable:  # a fixed idler: a warning on a loaded span, nothing to check
+            continue
         tension = loads.span_tensions[i]
         q = Quantities()
         what = "tensioner" if s.adjustable else "idler"
         span = f"{drive.sprockets[i - 1].name} → {s.name} → {drive.sprockets[(i + 1) % n].name}"
         if share > 0:
             note = (f"{what} on a span carrying the driving force ({span}, "
-                    f"{q(tension, 'force', '.4g')}, {share:.0%} of F_t): shaft load "
+                    f"{q(tension, 'force', '.4g')}, {share:.0%} of the peripheral force): shaft load "
                     f"{q(loads.shaft_load_magnitudes[i], 'force', '.4g')}; place it on the "
                     f"slack span leaving {drive.driver.name}, or reverse the rotation")
         else:
