@@ -80,6 +80,7 @@ from chaindrive.strength import SelectionResult, StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import rank_chains, rank_key
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:
@@ -576,7 +577,9 @@ class Analysis:
         settings = settings_for(loaded)
         if self.limits.required_life_h is not None:
             settings = replace(settings, required_life_h=self.limits.required_life_h)
-        return checks_for(loaded, self.geometry, settings)
+        teeth = (() if self.strength is None
+                 else polymer_tooth_checks(loaded, self.geometry, self.strength.loads))
+        return (*checks_for(loaded, self.geometry, settings), *teeth)
 
     @cached_property
     def _dynamic_checks(self) -> tuple[Check, ...]:
