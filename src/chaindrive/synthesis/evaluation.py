@@ -6,7 +6,9 @@ The constraints are the analysis's own checks (:meth:`~chaindrive.analysis.Analy
 their ``violation`` ≤ 0 when satisfied) that the problem's ``[optimize.constraints]`` selects
 and sets the limits of, plus two wishes of the designer that are not engineering rules: the
 driven speeds' ratio tolerance and a highest mean chain speed. A design costs only the
-stages its objectives and constraints read.
+stages its objectives and constraints read. A check that cannot be verified is a violated
+constraint. A design the optimiser returns is judged by every check, as ``analyze`` judges
+its design file (:func:`verify_mapping`).
 """
 
 from __future__ import annotations
