@@ -110,6 +110,18 @@ def test_an_unverifiable_start_up_empties_the_set_and_is_named(problem) -> None:
     base = drive_from_mapping({k: v for k, v in data.items() if k != "optimize"}, FILE.parent)
     k1_check = chaindrive.analyze(base).check("k1")
     assert k1_check is not None and k1_check.status == "cannot be verified"
+    # the command's table says it in words
+    import io
+
+    from rich.console import Console
+
+    from chaindrive.cli import tables
+
+    buffer = io.StringIO()
+    tables.print_optimisation("eight", r, [], Console(file=buffer, width=400, highlight=False))
+    out = " ".join(buffer.getvalue().split())
+    assert f"0 of {r.evaluations} designs met every constraint of the search" in out
+    assert f"cannot be verified on {r.evaluations}: the dynamic model is incomplete" in out
 
 
 def test_same_seed_same_pareto_set(problem) -> None:
