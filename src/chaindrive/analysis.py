@@ -76,11 +76,15 @@ from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_freq
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import Drive
 from chaindrive.multicontour.drive import contour_check
-from chaindrive.strength import SelectionResult, StrengthResult, strength_of
+from chaindrive.strength import (
+    SelectionResult,
+    StrengthResult,
+    polymer_tooth_checks,
+    strength_of,
+)
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.selection import rank_chains, rank_key
-from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.units import RAD_S_TO_RPM
 
 if TYPE_CHECKING:

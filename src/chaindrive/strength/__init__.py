@@ -25,6 +25,7 @@ from chaindrive.strength.loads import (
 )
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.strength.wear import (
     BASIS_ELONGATION,
     EXTRAPOLATION_LIMIT_H,
@@ -33,7 +34,7 @@ from chaindrive.strength.wear import (
 )
 
 __all__ = ["Candidate", "LoadsResult", "SelectionResult", "StrengthResult", "loads_of",
-           "select_chain", "strength_of"]
+           "polymer_tooth_checks", "select_chain", "strength_of"]
 
 
 @dataclass(frozen=True, slots=True)
