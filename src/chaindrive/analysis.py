@@ -75,7 +75,12 @@ from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_freq
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.multicontour.drive import contour_check
-from chaindrive.strength import SelectionResult, StrengthResult, strength_of
+from chaindrive.strength import (
+    SelectionResult,
+    StrengthResult,
+    polymer_tooth_checks,
+    strength_of,
+)
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
 from chaindrive.strength.loads import peripheral_force
@@ -586,7 +591,9 @@ class Analysis:
         settings = settings_for(loaded)
         if self.limits.required_life_h is not None:
             settings = replace(settings, required_life_h=self.limits.required_life_h)
-        return checks_for(loaded, self.geometry, settings)
+        teeth = (() if self.strength is None
+                 else polymer_tooth_checks(loaded, self.geometry, self.strength.loads))
+        return (*checks_for(loaded, self.geometry, settings), *teeth)
 
     @cached_property
     def _dynamic_checks(self) -> tuple[Check, ...]:

@@ -762,7 +762,8 @@ def constraint_row(report: ConstraintReport) -> tuple[str, int, int, str, str]:
         Designs it rejected and designs evaluated [-].
     miss : str
         By how much the closest rejected design missed [% of the limit], or why it could not
-        be built; "—" when nothing was rejected.
+        be built, and how many designs it could not verify and why; "—" when nothing was
+        rejected.
     design : str
         That design's chain and tooth counts; "—" when there is none.
     """
@@ -772,6 +773,10 @@ def constraint_row(report: ConstraintReport) -> tuple[str, int, int, str, str]:
         miss = f"not buildable: {report.error}" if report.error else "not buildable"
     else:
         miss = f"by {fmt(100 * report.least_violation, 3)} % of the limit"
+    if report.unverified:
+        unknown = (f"cannot be verified on {report.unverified}"
+                   + (f": {report.unverified_reason}" if report.unverified_reason else ""))
+        miss = unknown if report.least_violation is None else f"{miss}; {unknown}"
     design = report.closest
     if design is None:
         what = "—"

@@ -47,7 +47,9 @@ def _reloaded(text: str) -> chaindrive.Drive:
 
 def test_pareto_design_files_analyse_as_their_drives() -> None:
     problem = load_problem(EXAMPLES / "eight_sprocket_optimize.toml")
-    result = solve(problem, population=6, generations=2, seed=4)
+    # 12 designs: seed 1 finds one that passes every check (seed 4 finds none since the
+    # PA66 designs, whose teeth cannot be verified, are no longer feasible)
+    result = solve(problem, population=6, generations=2, seed=1)
     files = pareto_design_files(result, "eight", EXAMPLES)
     drives = pareto_drives(result, EXAMPLES)
     assert files and len(files) == len(drives)

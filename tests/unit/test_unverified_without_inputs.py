@@ -33,18 +33,6 @@ def test_k1_of_an_incomplete_model_cannot_be_verified() -> None:
     assert any(w.code == "dynamics.model-incomplete" for w in a.warnings)
 
 
-def test_polymer_sprockets_are_said_to_be_unchecked() -> None:
-    """No tooth-load model exists for a polymer sprocket: the analysis says so, naming them,
-    instead of listing the steel drive's checks as if they covered the sprockets."""
-    a = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket_polymer.toml"),
-                           response=False)
-    polymer = [w for w in a.warnings if w.code == "strength.polymer-sprocket"]
-    assert len(polymer) == 1 and all(s.name in polymer[0].message for s in a.drive.sprockets)
-    steel = chaindrive.analyze(chaindrive.load(EXAMPLES / "two_sprocket_jindal.toml"),
-                               response=False)
-    assert not any(w.code == "strength.polymer-sprocket" for w in steel.warnings)
-
-
 def test_estimated_catalogue_data_are_named_in_the_json() -> None:
     """The polymer catalogue row marks its breaking load, mass, allowable load and speed limit
     as estimates (formulas of the catalogue's header): the JSON's drive summary names them

@@ -453,12 +453,20 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
                         "Clopper–Pearson bound)",
                         ["design", "constraint", "search failures", "failures", "P, %",
                          "bound, %", "certified"], checked))
+    con.print(f"{result.feasible_in_search} of {result.evaluations} designs met every "
+              f"constraint of the search; {result.verified} of them judged as analyze judges "
+              f"their design file (every check, the start-up included): "
+              f"{result.verified_passed} passed")
     diagnostics = [c for c in result.constraint_report if c.rejected]
     if diagnostics and len(rows) < POOR_PARETO:
         con.print(table("Why designs were rejected: each constraint, the designs it rejected "
                         "and by how much the closest of them missed",
                         ["constraint", "rejected", "of", "closest miss", "closest design"],
                         [list(constraint_row(c)) for c in diagnostics]))
+    if result.verification_report:
+        con.print(table("Why designs the search found feasible failed their analysis",
+                        ["constraint", "rejected", "of", "closest miss", "closest design"],
+                        [list(constraint_row(c)) for c in result.verification_report]))
     if not rows:
         worst = diagnostics[0].name if diagnostics else "a constraint"
         con.print(f"[red]no design met every constraint[/red]: {escape(worst)} rejected the "

@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Literal
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
@@ -66,7 +66,7 @@ __all__ = [
     "iso606_root_diameter_range", "iso606_seating_angle_range", "iso606_seating_radius_range",
     "iso606_side_radius", "iso606_side_relief_range", "iso606_tip_diameter_range",
     "iso606_tooth_form", "iso606_tooth_width", "multi_strand_width", "pitch_diameter",
-    "pitch_radius", "polymeric_sprocket_proportions", "root_diameter",
+    "pitch_radius", "polymeric_sprocket_proportions", "root_diameter", "seating_geometry",
     "sprocket_mass_and_inertia", "teeth_array", "tip_diameter",
 ]
 
@@ -144,3 +144,47 @@ def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike
     if form == "GOST 591":
         return gost591_root_diameter(pitch, teeth, roller_diameter)
     return iso606_root_diameter(pitch, teeth, roller_diameter)
+
+
+def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter: float,
+                     inner_width: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Seating radius r_i [m] and seating half-angle α [rad] of every sprocket.
+
+    ISO 606: the means of the limits, r_i = (r_i,min + r_i,max)/2 and α = (α_min + α_max)/4
+    (the standard gives the full seating angle); GOST 591-69: r = 0.5025·d₁ + 0.05 mm and
+    α = 55° − 60°/z (its half-space angle).
+
+    Parameters
+    ----------
+    form : str
+        ``"ISO 606"`` or ``"GOST 591"``.
+    pitch : float
+        Chain pitch p [m].
+    teeth : array_like
+        (n,) teeth z [-].
+    roller_diameter : float
+        Roller diameter d₁ [m].
+    inner_width : float
+        Inner width b₁ of the chain [m].
+
+    Returns
+    -------
+    seating_radii : ndarray
+        (n,) r_i [m].
+    half_angles : ndarray
+        (n,) α [rad].
+
+    References
+    ----------
+    [ISO606], [GOST591].
+    """
+    z = np.atleast_1d(np.asarray(teeth, dtype=int))
+    if form == "GOST 591":
+        r = np.full(z.size, float(gost591_seating_radius(roller_diameter)))
+        alpha = np.array([gost591_tooth_form(pitch, int(k), roller_diameter, inner_width)
+                          .half_space_angle for k in z])
+        return r, alpha
+    lo, hi = iso606_seating_radius_range(roller_diameter)
+    a_lo, a_hi = iso606_seating_angle_range(z)
+    r = np.full(z.size, 0.5 * (float(lo) + float(hi)))
+    return r, 0.25 * (np.asarray(a_lo, float) + np.asarray(a_hi, float))

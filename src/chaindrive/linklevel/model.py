@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
@@ -56,13 +56,7 @@ from chaindrive.dynamics.stiffness import (
     tooth_stiffness,
 )
 from chaindrive.errors import DesignError
-from chaindrive.geometry.sprocket import (
-    gost591_seating_radius,
-    gost591_tooth_form,
-    iso606_seating_angle_range,
-    iso606_seating_radius_range,
-    tip_diameter,
-)
+from chaindrive.geometry.sprocket import seating_geometry, tip_diameter
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
@@ -216,50 +210,6 @@ class LinkLevelModel:
             "sprocket_inertia_kg_m2": self.inertias.tolist(),
             "highest_frequency_hz": self.highest_frequency_hz,
         }
-
-
-def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter: float,
-                     inner_width: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Seating radius r_i [m] and seating half-angle α [rad] of every sprocket.
-
-    ISO 606: the means of the limits, r_i = (r_i,min + r_i,max)/2 and α = (α_min + α_max)/4
-    (the standard gives the full seating angle); GOST 591-69: r = 0.5025·d₁ + 0.05 mm and
-    α = 55° − 60°/z (its half-space angle).
-
-    Parameters
-    ----------
-    form : str
-        ``"ISO 606"`` or ``"GOST 591"``.
-    pitch : float
-        Chain pitch p [m].
-    teeth : array_like
-        (n,) teeth z [-].
-    roller_diameter : float
-        Roller diameter d₁ [m].
-    inner_width : float
-        Inner width b₁ of the chain [m].
-
-    Returns
-    -------
-    seating_radii : ndarray
-        (n,) r_i [m].
-    half_angles : ndarray
-        (n,) α [rad].
-
-    References
-    ----------
-    [ISO606], [GOST591].
-    """
-    z = np.atleast_1d(np.asarray(teeth, dtype=int))
-    if form == "GOST 591":
-        r = np.full(z.size, float(gost591_seating_radius(roller_diameter)))
-        alpha = np.array([gost591_tooth_form(pitch, int(k), roller_diameter, inner_width)
-                          .half_space_angle for k in z])
-        return r, alpha
-    lo, hi = iso606_seating_radius_range(roller_diameter)
-    a_lo, a_hi = iso606_seating_angle_range(z)
-    r = np.full(z.size, 0.5 * (float(lo) + float(hi)))
-    return r, 0.25 * (np.asarray(a_lo, float) + np.asarray(a_hi, float))
 
 
 def _default_lookup() -> Callable[[str], Material]:

@@ -488,7 +488,10 @@ def synthesis_section(inp: ReportInput) -> list[Block] | None:
                    for k, p in enumerate(result.pareto, start=1)]
     blocks: list[Block] = [
         Text(f"{result.evaluations} designs evaluated by {result.method} (random seed "
-             f"{result.seed}); this report is of Pareto design 1."),
+             f"{result.seed}); {result.feasible_in_search} met every constraint of the "
+             f"search, {result.verified} of them were judged as analyze judges their design "
+             f"file (every check, the start-up included) and {result.verified_passed} passed; "
+             "this report is of Pareto design 1."),
         Table("Pareto set", ("design", *(unit_header(n, u) for n, u in zip(
             names, result.units or ("",) * len(names), strict=True)), "constraints met"),
               rows(table_rows)),
@@ -499,6 +502,10 @@ def synthesis_section(inp: ReportInput) -> list[Block] | None:
                             "closest of them missed",
                             ("constraint", "rejected", "of", "closest miss", "closest design"),
                             rows([constraint_row(c) for c in report])))
+    if result.verification_report:
+        blocks.append(Table("Why designs the search found feasible failed their analysis",
+                            ("constraint", "rejected", "of", "closest miss", "closest design"),
+                            rows([constraint_row(c) for c in result.verification_report])))
     if result.pareto:
         blocks.append(plot_block(pareto_front(result), "Pareto front", inp.dpi,
                                  "pareto_front"))

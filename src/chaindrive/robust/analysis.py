@@ -54,6 +54,7 @@ from chaindrive.strength import StrengthResult, strength_of
 from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
 from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.strength.safety import steady_safety_factor
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 
 __all__ = ["MIN_SAG_RATIO", "PerturbedAnalysis", "nominal_analysis", "perturbed_design",
            "removed_links"]
@@ -213,7 +214,9 @@ class PerturbedAnalysis(Analysis):
         settings = settings_for(loaded)
         if self.limits.required_life_h is not None:
             settings = replace(settings, required_life_h=self.limits.required_life_h)
-        return checks_for(loaded, self.geometry, settings)
+        teeth = (() if self.strength is None
+                 else polymer_tooth_checks(loaded, self.geometry, self.strength.loads))
+        return (*checks_for(loaded, self.geometry, settings), *teeth)
 
     # ------------------------------------------------------------------ ring and contours
     def _material(self, name: str) -> Material:

@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from chaindrive.catalog import find_material
 from chaindrive.errors import ChainDriveWarning, DesignError, Quantities, Quantity
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
@@ -27,6 +26,7 @@ from chaindrive.strength.loads import (
 )
 from chaindrive.strength.safety import static_safety_factor
 from chaindrive.strength.selection import Candidate, SelectionResult, select_chain
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.strength.wear import (
     BASIS_ELONGATION,
     EXTRAPOLATION_LIMIT_H,
@@ -35,7 +35,7 @@ from chaindrive.strength.wear import (
 )
 
 __all__ = ["Candidate", "LoadsResult", "SelectionResult", "StrengthResult", "loads_of",
-           "select_chain", "strength_of"]
+           "polymer_tooth_checks", "select_chain", "strength_of"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -200,14 +200,6 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
             f"chain material {spec.material!r}: the steel tables of allowable hinge pressure "
             "and safety factor and the wear-life model do not apply; check the material's "
             "limits"))
-    polymer = [sp.name for i, sp in enumerate(drive.sprockets)
-               if find_material(sp.material, field=f"sprockets[{i}].material").is_polymer]
-    if polymer:
-        warnings.append(ChainDriveWarning(
-            "strength.polymer-sprocket", "sprockets",
-            f"polymer sprockets ({', '.join(polymer)}): no check of their teeth is made (the "
-            "analysis has no tooth-load model for a polymer sprocket, whose teeth, not the "
-            "chain, may limit the drive); check the maker's allowable torque or tooth load"))
     # a pressure or safety beyond its limit, or outside the tables, is a failed check of
     # the analysis (chaindrive.checks), not a warning
     return StrengthResult(loads, ke, dynamic_factor, pressure, allowed_p, s, allowed_s, rated,

@@ -6,20 +6,29 @@ The constraints are the analysis's own checks (:meth:`~chaindrive.analysis.Analy
 their ``violation`` ≤ 0 when satisfied) that the problem's ``[optimize.constraints]`` selects
 and sets the limits of, plus two wishes of the designer that are not engineering rules: the
 driven speeds' ratio tolerance and a highest mean chain speed. A design costs only the
-stages its objectives and constraints read.
+stages its objectives and constraints read. A check that cannot be verified is a violated
+constraint. A design the optimiser returns is judged by every check, as ``analyze`` judges
+its design file (:func:`verify_mapping`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from chaindrive.analysis import Analysis
-from chaindrive.checks import RESONANCE_BAND_PERCENT, Check, CheckLimits
+from chaindrive.checks import (
+    RESONANCE_BAND_PERCENT,
+    UNVERIFIED,
+    UNVERIFIED_VIOLATION,
+    Check,
+    CheckLimits,
+)
 from chaindrive.cost import CostModel
 from chaindrive.errors import ChainDriveError
+from chaindrive.io.design import drive_from_mapping
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 from chaindrive.robust.synthesis import RobustAnalysis, RobustSettings, robust_constraints
@@ -27,7 +36,8 @@ from chaindrive.synthesis.objectives import OBJECTIVES
 from chaindrive.synthesis.problem import Constraints, Problem
 
 __all__ = ["FAILED", "Evaluation", "analysis_of", "base_ratios", "check_limits",
-           "constrained", "constraint_names", "evaluate_drive", "evaluate_vector"]
+           "constrained", "constraint_names", "evaluate_drive", "evaluate_vector",
+           "unverifiable_for_any_design", "verify_mapping"]
 
 #: objective value given to a design that cannot be built (a finite stand-in for ∞)
 FAILED = 1e12
@@ -52,14 +62,33 @@ def check_limits(settings: Constraints) -> CheckLimits:
                                                else RESONANCE_BAND_PERCENT))
 
 
+def unverifiable_for_any_design(check: Check) -> bool:
+    """Whether a check cannot be verified on any design of a search: the fatigue check of a
+    chain whose catalogue gives no fatigue strength (no variable of the search supplies it).
+    Such a check neither constrains nor ranks the designs; each design names it among its
+    unverified checks (:attr:`Evaluation.unverified`), so a result never reads as verified
+    where it is not.
+
+    Parameters
+    ----------
+    check : Check
+        An analysis check.
+
+    Returns
+    -------
+    bool
+        True for the fatigue check without a fatigue strength.
+    """
+    return check.name == "fatigue" and check.limit is None
+
+
 def constrained(check: Check, settings: Constraints) -> bool:
     """Whether ``[optimize.constraints]`` keeps an analysis check as a constraint: every
     check, except the chain's strength checks when ``static_safety = false``, the speed
     limit when ``speed_limit = false`` and k₁ unless ``startup_safety = true`` (it needs a
-    time integration per design). Not constraints: the idlers' side of the contour (set by
-    the order of the sprockets and the rotation, which no variable changes) and the fatigue
-    check of a chain without a fatigue strength in the catalogue (it cannot be verified for
-    any design); the analysis of the chosen design still reports both.
+    time integration per design). Not a constraint: the fatigue check of a chain without a
+    fatigue strength in the catalogue (:func:`unverifiable_for_any_design`), which every
+    design names among its unverified checks instead.
 
     Parameters
     ----------
@@ -73,9 +102,7 @@ def constrained(check: Check, settings: Constraints) -> bool:
     bool
         True when the check is a constraint.
     """
-    if check.name == "idler on slack span":
-        return False
-    if check.name == "fatigue" and check.limit is None:
+    if unverifiable_for_any_design(check):
         return False
     if check.name == "speed limit":
         return settings.speed_limit
@@ -147,12 +174,16 @@ class Evaluation:
         Every constraint satisfied.
     error : str or None
         Why the design could not be built, or None.
+    unverified : dict of str to str
+        The constraints that are checks which cannot be verified, each with why (the
+        check's note); a failure of unknown size (g = 1).
     """
 
     objectives: dict[str, float]
     constraints: dict[str, float]
     feasible: bool
     error: str | None = None
+    unverified: dict[str, str] = field(default_factory=dict)
 
     def minimised(self, names: Sequence[str]) -> list[float]:
         """Objective values with the sense applied (every one minimised).
@@ -176,7 +207,8 @@ class Evaluation:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
         return {"objectives": dict(self.objectives), "constraints": dict(self.constraints),
-                "constraints_ok": self.feasible, "error": self.error}
+                "constraints_ok": self.feasible, "error": self.error,
+                "unverified": dict(self.unverified)}
 
 
 def _failed(objectives: Sequence[str], error: str) -> Evaluation:
@@ -213,13 +245,34 @@ def _wishes(a: Analysis, settings: Constraints, ratios: Sequence[float] | None,
     return out
 
 
+def _startup_unverifiable(a: Analysis) -> str | None:
+    """Why ``analyze`` would say k₁ cannot be verified whatever its start-up gives (the
+    dynamic model is incomplete: the start-up of bare sprockets is not the drive's), or
+    None; a search without start-ups reads it from the model, which it builds anyway."""
+    if not (a.with_response and a.drive.dynamics.transient and a.drive.power is not None
+            and a.drive.driver.speed is not None):
+        return None
+    missing = a.drive_model.missing
+    if not missing:
+        return None
+    return (f"the dynamic model is incomplete ({'; '.join(missing)}): its start-up is not "
+            "the drive's")
+
+
 def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraints, *,
                    base_ratios: Sequence[float] | None = None, ratio_tolerance: float = 0.03,
                    cost_model: CostModel | None = None,
-                   robust: RobustSettings | None = None) -> Evaluation:
+                   robust: RobustSettings | None = None,
+                   every_check: bool = False) -> Evaluation:
     """Objectives and constraints of one design, from its lazy :class:`Analysis`; a design
     that cannot be built (the geometry or strength raises: span interference, impossible
     take-up …) gets objectives :data:`FAILED` and the constraint ``buildable`` = 1.
+
+    A check that cannot be verified is a violated constraint (g = 1) and is named in
+    :attr:`Evaluation.unverified` with why; one that cannot be verified on any design
+    (:func:`unverifiable_for_any_design`) is named there and constrains nothing. Without the
+    start-up (``startup_safety = false``) k₁ is still a constraint where ``analyze`` could not verify it whatever the
+    start-up gives: on an incomplete dynamic model.
 
     Parameters
     ----------
@@ -238,19 +291,33 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
     robust : RobustSettings or None
         With robust settings the chance constraints ``P(<check>)`` are added
         (:func:`chaindrive.robust.synthesis.robust_constraints`).
+    every_check : bool
+        Judge the design as ``analyze`` does: every check of its analysis is a constraint,
+        the start-up (k₁) included, whatever ``[optimize.constraints]`` switches off (the
+        verdict of a design the optimiser returns).
 
     Returns
     -------
     Evaluation
         Objectives and constraint values.
     """
+    if every_check:
+        settings = replace(settings, startup_safety=True)
     a = analysis_of(drive, settings, cost_model, robust)
+    unverified: dict[str, str] = {}
     try:
         obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}
         cons: dict[str, float] = {"buildable": 0.0}
         for check in a.checks():
-            if constrained(check, settings):
+            if unverifiable_for_any_design(check):
+                unverified[check.key] = check.note or "no rule covers the design"
+            elif every_check or constrained(check, settings):
                 cons[check.key] = check.violation
+                if check.status == UNVERIFIED:
+                    unverified[check.key] = check.note or "no rule covers the design"
+        why = None if settings.startup_safety else _startup_unverifiable(a)
+        if why is not None:
+            cons["k1"], unverified["k1"] = UNVERIFIED_VIOLATION, why
         cons.update(_wishes(a, settings, base_ratios, ratio_tolerance))
         if isinstance(a, RobustAnalysis):
             cons.update(robust_constraints(a))
@@ -258,7 +325,37 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
         return _failed(objectives, str(exc))
     if not all(math.isfinite(v) for v in [*obj.values(), *cons.values()]):
         return _failed(objectives, "non-finite result")
-    return Evaluation(obj, cons, all(v <= 0 for v in cons.values()))
+    return Evaluation(obj, cons, all(v <= 0 for v in cons.values()), None, unverified)
+
+
+def verify_mapping(problem: Problem, design: Mapping[str, Any],
+                   cost_model: CostModel | None = None) -> Evaluation:
+    """The verdict on a design the search found: the design file it is written as, loaded
+    and judged by every check of its analysis (:func:`evaluate_drive` with
+    ``every_check``), the start-up included.
+
+    Parameters
+    ----------
+    problem : Problem
+        The synthesis problem.
+    design : mapping
+        The design's TOML mapping (what its design file loads to).
+    cost_model : CostModel or None
+        Prices.
+
+    Returns
+    -------
+    Evaluation
+        Feasible only when every check passes and the designer's wishes hold.
+    """
+    try:
+        drive = drive_from_mapping(dict(design), problem.base_dir)
+    except ChainDriveError as exc:
+        return _failed(problem.objectives, str(exc))
+    return evaluate_drive(drive, problem.objectives, problem.constraints,
+                          base_ratios=base_ratios(problem.base),
+                          ratio_tolerance=problem.ratio_tolerance, cost_model=cost_model,
+                          robust=problem.robust, every_check=True)
 
 
 def base_ratios(drive: Drive) -> list[float]:

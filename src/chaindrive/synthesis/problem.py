@@ -214,6 +214,8 @@ class Problem:
         The search settings.
     robust : RobustSettings | None
         ``[optimize.robust]`` with ``[uncertainty]`` (None: a deterministic problem).
+    base_dir : pathlib.Path | None
+        Where relative paths of the design file start (its designs are loaded from there).
     """
 
     base: Drive
@@ -224,6 +226,7 @@ class Problem:
     constraints: Constraints = field(default_factory=Constraints)
     solver: SolverSettings = field(default_factory=SolverSettings)
     robust: RobustSettings | None = None
+    base_dir: Path | None = None
 
     @property
     def bounds(self) -> tuple[list[float], list[float]]:
@@ -485,7 +488,7 @@ def problem_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None) 
                           f"({', '.join(o for o in objectives if o in ROBUST_OBJECTIVES)})")
     return Problem(base=drive, base_mapping=base_mapping, genes=tuple(genes), ratio_tolerance=tol,
                    objectives=objectives, constraints=Constraints(**cons),
-                   solver=SolverSettings(**solver), robust=robust)
+                   solver=SolverSettings(**solver), robust=robust, base_dir=base_dir)
 
 
 def load_problem(path: str | Path) -> Problem:

@@ -34,6 +34,7 @@ from chaindrive.synthesis.evaluation import (
     base_ratios,
     evaluate_drive,
     evaluate_vector,
+    verify_mapping,
 )
 from chaindrive.synthesis.objectives import objective_unit
 from chaindrive.synthesis.problem import Problem
@@ -145,6 +146,11 @@ class ConstraintReport:
         built).
     error : str | None
         For ``buildable``: the most frequent reason a design could not be built.
+    unverified : int
+        Of the designs it rejected, those where it is a check that cannot be verified (they
+        have no violation to measure: ``least_violation`` is of the others).
+    unverified_reason : str | None
+        Why it could not be verified (the most frequent note), or None.
     """
 
     name: str
@@ -153,12 +159,22 @@ class ConstraintReport:
     least_violation: float | None
     closest: dict[str, Any] | None = None
     error: str | None = None
+    unverified: int = 0
+    unverified_reason: str | None = None
+
+    @property
+    def share(self) -> float:
+        """Rejected/evaluated [-] (0 when nothing was evaluated)."""
+        return self.rejected / self.evaluated if self.evaluated else 0.0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (``constraints[]`` of ``chaindrive optimize --json``)."""
         return {"constraint": self.name, "rejected": self.rejected,
-                "evaluated": self.evaluated, "least_violation": self.least_violation,
-                "closest_design": self.closest, "error": self.error}
+                "evaluated": self.evaluated, "rejected_fraction": self.share,
+                "least_violation": self.least_violation,
+                "closest_design": self.closest, "error": self.error,
+                "cannot_be_verified": self.unverified,
+                "cannot_be_verified_reason": self.unverified_reason}
 
 
 def constraint_reports(rows: Sequence[tuple[Evaluation, dict[str, Any] | None]]
@@ -186,10 +202,14 @@ def constraint_reports(rows: Sequence[tuple[Evaluation, dict[str, Any] | None]]
         if not missed:
             out.append(ConstraintReport(name, 0, len(rows), None))
             continue
-        g, _, design = min(missed, key=lambda m: m[0])
+        unknown = Counter(ev.unverified[name] for _, ev, _ in missed if name in ev.unverified)
+        measured = [m for m in missed if name not in m[1].unverified]
+        g, _, design = min(measured or missed, key=lambda m: m[0])
         errors = Counter(ev.error for _, ev, _ in missed if ev.error)
-        out.append(ConstraintReport(name, len(missed), len(rows), float(g), design,
-                                    errors.most_common(1)[0][0] if errors else None))
+        out.append(ConstraintReport(
+            name, len(missed), len(rows), float(g) if measured else None, design,
+            errors.most_common(1)[0][0] if errors else None, sum(unknown.values()),
+            unknown.most_common(1)[0][0] if unknown else None))
     return tuple(sorted(out, key=lambda c: -c.rejected))
 
 
@@ -217,6 +237,15 @@ class SynthesisResult:
         How each constraint acted on the designs, the most rejecting first.
     units : tuple of str
         The unit of each objective's value (the cost model's currency for a price).
+    feasible_in_search : int
+        Designs that met every constraint of the search [-].
+    verified : int
+        Designs the search found feasible that were judged as ``analyze`` judges their design
+        file (every check, the start-up included) to settle the Pareto set [-].
+    verified_passed : int
+        Of those, the designs that passed [-].
+    verification_report : tuple of ConstraintReport
+        How each constraint acted on those designs, the most rejecting first.
     """
 
     objectives: tuple[str, ...]
@@ -228,6 +257,10 @@ class SynthesisResult:
     seconds: float
     constraint_report: tuple[ConstraintReport, ...] = ()
     units: tuple[str, ...] = ()
+    feasible_in_search: int = 0
+    verified: int = 0
+    verified_passed: int = 0
+    verification_report: tuple[ConstraintReport, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -235,8 +268,12 @@ class SynthesisResult:
                 "objective_units": dict(zip(self.objectives, self.units, strict=False)),
                 "method": self.method, "seed": self.seed,
                 "evaluations": self.evaluations, "seconds": self.seconds,
+                "feasible_in_search": self.feasible_in_search,
                 "start": self.start.to_dict(), "pareto": [p.to_dict() for p in self.pareto],
-                "constraints": [c.to_dict() for c in self.constraint_report]}
+                "constraints": [c.to_dict() for c in self.constraint_report],
+                "verification": {
+                    "verified": self.verified, "passed": self.verified_passed,
+                    "constraints": [c.to_dict() for c in self.verification_report]}}
 
 
 def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
@@ -299,15 +336,42 @@ class _Archive:
             self.rows.append((tuple(float(v) for v in x), ev, design))
         return [ev for ev, _ in results]
 
-    def pareto(self) -> tuple[ParetoDesign, ...]:
+    def feasible(self) -> list[int]:
+        """Rows that met every constraint of the search and could be built."""
+        return [i for i, r in enumerate(self.rows) if r[1].feasible and r[2] is not None]
+
+    def pareto(self) -> tuple[tuple[ParetoDesign, ...], dict[int, Evaluation]]:
+        """The Pareto set of the designs that pass every check of their analysis.
+
+        The front of the designs the search found feasible is taken; each of its designs not
+        yet judged is judged as ``analyze`` judges its design file
+        (:func:`chaindrive.synthesis.evaluation.verify_mapping`: every check, the start-up
+        included); those that fail leave the set and the front is taken again, until every
+        design on it has passed. Every returned design then passes, and every feasible design
+        off it is dominated by one on it [Deb2002].
+
+        Returns
+        -------
+        tuple
+            The Pareto set (sorted by the objectives) and every verdict, by row.
+        """
         names = self.problem.objectives
-        ok = [r for r in self.rows if r[1].feasible and r[2] is not None]
-        if not ok:
-            return ()
-        F = np.array([r[1].minimised(names) for r in ok])
-        idx = sorted(pareto_indices(F), key=lambda i: tuple(F[i]))
-        return tuple(ParetoDesign(ok[i][1].objectives, ok[i][1].constraints, True,
-                                  ok[i][2] or {}, ok[i][0]) for i in idx)
+        verdicts: dict[int, Evaluation] = {}
+        while True:
+            ok = [i for i in self.feasible() if i not in verdicts or verdicts[i].feasible]
+            if not ok:
+                return (), verdicts
+            F = np.array([self.rows[i][1].minimised(names) for i in ok])
+            front = [ok[k] for k in pareto_indices(F)]
+            todo = [i for i in front if i not in verdicts]
+            if not todo:
+                break
+            for i in todo:
+                verdicts[i] = verify_mapping(self.problem, self.rows[i][2] or {})
+        front.sort(key=lambda i: tuple(self.rows[i][1].minimised(names)))
+        return tuple(ParetoDesign(verdicts[i].objectives, verdicts[i].constraints, True,
+                                  self.rows[i][2] or {}, self.rows[i][0]) for i in front), \
+            verdicts
 
 
 def _arrays(problem: Problem, evs: Sequence[Evaluation]) -> tuple[NDArray, NDArray]:
@@ -423,18 +487,24 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
     # whatever the search space; its nearest search vector seeds the first generation
     start = evaluate_drive(problem.base, problem.objectives, problem.constraints,
                            base_ratios=base_ratios(problem.base),
-                           ratio_tolerance=problem.ratio_tolerance, robust=problem.robust)
+                           ratio_tolerance=problem.ratio_tolerance, robust=problem.robust,
+                           every_check=True)
     if method == "nsga2":
         _solve_pymoo(problem, archive, pop, gens, seed)
     elif method == "optuna":
         _solve_optuna(problem, archive, pop, gens, seed)
     else:
         raise DesignError("optimize.solver.method", f'must be "nsga2" or "optuna", got {method!r}')
-    pareto = archive.pareto()
+    pareto, verdicts = archive.pareto()
     if problem.robust is not None:  # what a robust search reports is its independent check
         pareto = tuple(_verified(problem, p) for p in pareto)
     currency = default_cost_model().currency  # the designs are priced by the default model
+    judged = [(ev, archive.rows[i][2]) for i, ev in verdicts.items()]
     return SynthesisResult(problem.objectives, start, pareto, len(archive.rows),
                            method, seed, time.perf_counter() - t0,
                            constraint_reports([(ev, d) for _, ev, d in archive.rows]),
-                           tuple(objective_unit(n, currency) for n in problem.objectives))
+                           tuple(objective_unit(n, currency) for n in problem.objectives),
+                           feasible_in_search=len(archive.feasible()), verified=len(verdicts),
+                           verified_passed=sum(ev.feasible for ev in verdicts.values()),
+                           verification_report=tuple(
+                               c for c in constraint_reports(judged) if c.rejected))

@@ -777,7 +777,7 @@ class DaskEvaluator:
         for r in res.results:
             e = r["evaluation"]
             out.append((Evaluation(e["objectives"], e["constraints"], e["constraints_ok"],
-                                   e["error"]), r["design"]))
+                                   e["error"], dict(e.get("unverified") or {})), r["design"]))
         return out
 
     def close(self) -> None:
