@@ -119,10 +119,12 @@ def modal_path_held(model: UncertaintyModel) -> tuple[str, ...]:
     tuple of str
         One line per quantity held.
     """
-    geometric = [v.name for v in model.variables
-                 if v.group not in MODAL_GROUPS and v.group != "wear"]
-    held = [f"{name}: at nominal (a variable of the model, not sampled on the modal path)"
-            for name in geometric]
+    counts: dict[str, int] = {}
+    for v in model.variables:
+        if v.group not in MODAL_GROUPS and v.group != "wear":
+            counts[v.group] = counts.get(v.group, 0) + 1
+    held = [f"{group}{'' if k == 1 else f' ({k} variables)'}: at nominal (in the model, "
+            "not sampled on the modal path)" for group, k in counts.items()]
     if "temperature" in model.groups:
         held.append(f"train shafts' stiffness: at {REFERENCE_TEMPERATURE_C:g} °C (the full "
                     "path softens polymer shafts)")

@@ -64,9 +64,11 @@ __all__ = ["MIN_STOP_BASE", "SENSITIVITY_BUDGET", "SENSITIVITY_METRICS", "TARGET
 SENSITIVITY_METRICS: dict[str, str] = {"resonance_margin_percent": "%",
                                        "coefficient_of_dynamics": "-", "k2": "-",
                                        "k2_with_errors": "-", "f1_hz": "Hz"}
-#: Half-width of the interval of every metric's leading S_T the sample grows to [–].
+#: Half-width of the interval of every metric's leading S_T the sample grows to [–] (the
+#: default of ``[uncertainty] sensitivity_target``).
 TARGET_HALF_WIDTH = 0.1
-#: Evaluations the adaptive sample may spend by default [–].
+#: Evaluations the adaptive sample may spend [–] (the default of ``[uncertainty]
+#: sensitivity_budget``).
 SENSITIVITY_BUDGET = 8192
 #: Base points from which the stopping test is applied [–].
 MIN_STOP_BASE = 128
@@ -217,6 +219,20 @@ class SensitivityResult:
         return [(i.group, i.total) for i in sorted(self.indices(metric),
                                                    key=lambda i: -i.total_raw)]
 
+    def leading_half_width(self, metric: str) -> float:
+        """The interval half-width of the leading S_T of ``metric`` [–] (nan: no variance).
+
+        Parameters
+        ----------
+        metric : str
+            A metric of the result.
+
+        Returns
+        -------
+        float
+        """
+        return _leading_half_width(self.total[metric], self.total_conf[metric])
+
     def tied(self, metric: str) -> list[list[str]]:
         """Sets of two or more groups whose S_T cannot be told apart (one rank).
 
@@ -246,7 +262,11 @@ class SensitivityResult:
         metrics: dict[str, Any] = {}
         for m in self.first_order:
             idx = self.indices(m)
+            half = self.leading_half_width(m)
             entry: dict[str, Any] = {"unit": SENSITIVITY_METRICS.get(m, "-"),
+                                     "leading_half_width": half if math.isfinite(half) else None,
+                                     "converged": bool(math.isfinite(half)
+                                                       and half <= self.target),
                                      "first_order_conf": clean(self.first_order_conf[m]),
                                      "total_conf": clean(self.total_conf[m])}
             if idx:
@@ -405,8 +425,8 @@ def grouped_indices(model: UncertaintyModel, evaluate: RowEvaluator, *, start: i
 
 def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
                 evaluator: StateEvaluator | None = None,
-                checks: Sequence[str] = (), budget: int = SENSITIVITY_BUDGET,
-                target: float = TARGET_HALF_WIDTH,
+                checks: Sequence[str] = (), budget: int | None = None,
+                target: float | None = None,
                 progress: StepProgress | None = None) -> SensitivityResult | None:
     """Sobol indices of the drive's metrics over the groups of ``model`` (module docstring).
 
@@ -420,10 +440,11 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
         Evaluates the states (default :func:`chaindrive.robust.sampling.serial_states`).
     checks : sequence of str
         Check keys whose margin fraction is apportioned too (as ``margin[<key>]``).
-    budget : int
-        Evaluations the adaptive sample may spend [–].
-    target : float
-        Half-width aimed at for every metric's leading S_T [–].
+    budget : int | None
+        Evaluations the adaptive sample may spend [–] (None: ``sensitivity_budget``).
+    target : float | None
+        Half-width aimed at for every metric's leading S_T [–] (None:
+        ``sensitivity_target``).
     progress : callable | None
         ``progress(done, total)`` in states.
 
@@ -462,7 +483,9 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
 
     len_done = [0]
     r = grouped_indices(model, evaluate, start=model.settings.sensitivity_samples,
-                        budget=budget, target=target, progress=progress)
+                        budget=model.settings.sensitivity_budget if budget is None else budget,
+                        target=model.settings.sensitivity_target if target is None else target,
+                        progress=progress)
     return SensitivityResult(r.groups, r.first_order, r.total, r.first_order_conf, r.total_conf,
                              r.base_samples, r.evaluations, unbuilt, r.target, r.budget,
                              r.converged, r.budget_hit, r.history, r.confidence,

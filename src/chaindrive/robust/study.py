@@ -40,12 +40,7 @@ from chaindrive.robust.sampling import (
     reliability,
     state_outcome,
 )
-from chaindrive.robust.sensitivity import (
-    SENSITIVITY_BUDGET,
-    TARGET_HALF_WIDTH,
-    SensitivityResult,
-    sensitivity,
-)
+from chaindrive.robust.sensitivity import SensitivityResult, sensitivity
 from chaindrive.robust.uncertainty import (
     UncertaintyModel,
     UncertaintySettings,
@@ -212,8 +207,8 @@ class RobustResult:
 def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None, *,
                  with_sensitivity: bool = True, life_points: int = 13, path: str = "full",
                  evaluator: StateEvaluator | None = None,
-                 sensitivity_budget: int = SENSITIVITY_BUDGET,
-                 sensitivity_target: float = TARGET_HALF_WIDTH,
+                 sensitivity_budget: int | None = None,
+                 sensitivity_target: float | None = None,
                  progress: StudyProgress | None = None) -> RobustResult:
     """Life curve, probabilities of failure and sensitivity indices of a drive.
 
@@ -232,11 +227,12 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
         "full" or "modal" for the probabilities (:func:`chaindrive.robust.sampling.reliability`).
     evaluator : StateEvaluator | None
         Where the states run (None: this process; :func:`dask_states` for Dask).
-    sensitivity_budget : int
+    sensitivity_budget : int | None
         Evaluations the adaptive Sobol sample may spend [–]
-        (:func:`chaindrive.robust.sensitivity.sensitivity`).
-    sensitivity_target : float
-        Half-width it aims at for every metric's leading total index [–].
+        (:func:`chaindrive.robust.sensitivity.sensitivity`; None: the settings').
+    sensitivity_target : float | None
+        Half-width it aims at for every metric's leading total index [–] (None: the
+        settings').
     progress : callable | None
         ``progress(stage, done, total)`` as the states are evaluated (per state in this
         process; per stage on Dask, which draws its own bar).
@@ -268,7 +264,10 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
     return RobustResult(
         nominal.drive.name, model, life, rel,
         sensitivity(nominal, model, evaluator=evaluator, checks=uncertain,
-                    budget=sensitivity_budget, target=sensitivity_target,
+                    budget=model.settings.sensitivity_budget if sensitivity_budget is None
+                    else sensitivity_budget,
+                    target=model.settings.sensitivity_target if sensitivity_target is None
+                    else sensitivity_target,
                     progress=stage("sensitivity"))
         if with_sensitivity else None)
 
