@@ -125,3 +125,13 @@ def test_indices_outside_the_unit_interval_are_clipped_and_flagged() -> None:
     # a (0.85…0.95) is clearly above c (0…0.6) and b (0.05…0.15); b and c overlap
     assert [a.rank, b.rank, c.rank] == [1, 2, 2] and r.tied("m") == [["c", "b"]]
     assert ranks([0.5, 0.5], [0.0, 0.0]) == [1, 1]
+
+
+def test_intervals_are_reproducible() -> None:
+    """The bootstrap intervals are seeded (a seed of 0 is not left unseeded): the same model
+    and seed give the same half-widths."""
+    model = _model([Variable(f"x{k}", f"x{k}", "uniform", -math.pi, math.pi)
+                    for k in (1, 2, 3)], seed=0)
+    one = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
+    two = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
+    assert one.total_conf == two.total_conf and one.first_order_conf == two.first_order_conf

@@ -349,8 +349,9 @@ def _analyse(problem: dict[str, Any], outputs: Mapping[str, NDArray[np.float64]]
         y = np.where(finite, y, float(np.mean(y[finite])))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # SALib's bootstrap on few points
+            # SALib seeds its bootstrap only for a seed that is true: 0 would be unseeded
             r = sobol_analyze.analyze(problem, y, calc_second_order=False,
-                                      conf_level=confidence, seed=seed)
+                                      conf_level=confidence, seed=seed + 1)
         out[metric] = tuple(tuple(float(v) for v in r[k])
                             for k in ("S1", "ST", "S1_conf", "ST_conf"))
     return out
