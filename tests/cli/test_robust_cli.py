@@ -53,6 +53,11 @@ def test_robust_mistake_is_one_line(tmp_path: Path) -> None:
     assert proc.stdout == ""
     assert proc.stderr.strip().startswith("error: uncertainty.wear: must be one of")
     assert len(proc.stderr.strip().splitlines()) == 1
+    proc = run_cli("robust", str(EXAMPLES / "seed_three_sprocket.toml"),
+                   "--sensitivity-budget", "8")
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.strip().startswith("error: --sensitivity-budget:")
+    assert len(proc.stderr.strip().splitlines()) == 1
 
 
 def test_robust_optimisation_runs_on_dask_and_resumes(tmp_path: Path) -> None:

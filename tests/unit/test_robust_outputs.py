@@ -39,6 +39,7 @@ def test_document_is_json_and_complete(result) -> None:
         assert 0.0 <= c["ci_low"] <= c["probability"] <= c["ci_high"] <= 1.0
     assert doc["reliability"]["evaluated_states"] == 8 and doc["reliability"]["wear_states"] == 0
     assert doc["reliability"]["held_at_nominal"] and len(doc["reliability"]["averaged_over"]) == 3
+    assert doc["life"]["held_at_nominal"][0].startswith("every tolerance")
     assert doc["reliability"]["averaged_over"][0].startswith("the life: wear elongation uniform")
     sens = doc["sensitivity"]
     assert sens["evaluations"] == sens["base_samples"] * (len(sens["groups"]) + 2)

@@ -196,6 +196,7 @@ def print_robust(con: Console, doc: dict[str, Any], make: TableMaker) -> None:
                      s["coefficient_of_dynamics"], s["k2"], s["take_up_travel_mm"],
                      s["sag_ratio"] * 100, ", ".join(s["failed"])] for s in life["states"]]))
     con.print(escape(_life_summary(life)))
+    con.print(escape("held at nominal (life curve): " + "; ".join(life["held_at_nominal"])))
     con.print(make(_probability_title(rel),
                    ["check", "P", "low", "high", "failures", "source"],
                    [[c["key"], c["probability"], c["ci_low"], c["ci_high"],

@@ -90,7 +90,8 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
         return None
     doc = result.to_dict()
     life, rel = doc["life"], doc["reliability"]
-    blocks: list[Block] = [Text(_summary(life))]
+    blocks: list[Block] = [Text(_summary(life) + " The life curve holds at nominal: "
+                                + "; ".join(life["held_at_nominal"]) + ".")]
     blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "detuning Δ, %", "K_D",
                                        "k2", inp.col("take-up", "length"), "sag, %",
                                        "failed checks"),

@@ -460,21 +460,19 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
     """
     if len(model.groups) < 2:
         return None
-    unbuilt = 0
-    run = evaluator or serial_states
+    counts = {"done": 0, "unbuilt": 0}
 
     def evaluate(x: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
-        nonlocal unbuilt
-        base = len_done[0]
+        base = counts["done"]
 
         def step(k: int, total: int) -> None:
             if progress is not None:
                 progress(base + k, base + total)
 
-        outcomes = (run(nominal, model, x, True) if evaluator is not None
+        outcomes = (evaluator(nominal, model, x, True) if evaluator is not None
                     else serial_states(nominal, model, x, True, progress=step))
-        len_done[0] += len(x)
-        unbuilt += sum(o.error is not None for o in outcomes)
+        counts["done"] += len(x)
+        counts["unbuilt"] += sum(o.error is not None for o in outcomes)
         out = {m: np.array([o.metrics.get(m, math.nan) for o in outcomes])
                for m in SENSITIVITY_METRICS}
         out |= {f"margin[{k}]": np.array([math.nan if o.margin.get(k) is None
@@ -482,12 +480,11 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
                 for k in checks}
         return out
 
-    len_done = [0]
     r = grouped_indices(model, evaluate, start=model.settings.sensitivity_samples,
                         budget=model.settings.sensitivity_budget if budget is None else budget,
                         target=model.settings.sensitivity_target if target is None else target,
                         progress=progress)
     return SensitivityResult(r.groups, r.first_order, r.total, r.first_order_conf, r.total_conf,
-                             r.base_samples, r.evaluations, unbuilt, r.target, r.budget,
+                             r.base_samples, r.evaluations, counts["unbuilt"], r.target, r.budget,
                              r.converged, r.budget_hit, r.history, r.confidence,
                              full_path_held(model))
