@@ -128,8 +128,6 @@ def modal_path_held(model: UncertaintyModel) -> tuple[str, ...]:
     if "temperature" in model.groups:
         held.append(f"train shafts' stiffness: at {REFERENCE_TEMPERATURE_C:g} °C (the full "
                     "path softens polymer shafts)")
-    if model.sprockets and "eccentricity" not in model.groups:
-        held.append("eccentricity: not in the model")
     return (*held, *full_path_held(model))
 
 
