@@ -11,6 +11,7 @@ ranking) against closed forms:
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -135,3 +136,28 @@ def test_intervals_are_reproducible() -> None:
     one = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
     two = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
     assert one.total_conf == two.total_conf and one.first_order_conf == two.first_order_conf
+
+
+def test_study_reports_its_progress_per_state() -> None:
+    """robust_study calls progress(stage, done, total) per state in this process: the stages
+    in order, done never decreasing within a stage and ending at its total, the Sobol
+    stage's total the states it evaluated (the compute never prints)."""
+    import chaindrive
+    from chaindrive.robust.study import nominal_analysis, robust_study
+    from tests.conftest import EXAMPLES
+
+    calls: list[tuple[str, int, int]] = []
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
+    result = robust_study(nominal, UncertaintySettings(samples=8, replicates=2,
+                                                       sensitivity_samples=4,
+                                                       sensitivity_budget=48),
+                          life_points=3, progress=lambda *c: calls.append(c))
+    stages = list(dict.fromkeys(c[0] for c in calls))
+    assert stages == ["probabilities", "life curve", "sensitivity"]
+    for stage in stages:
+        mine = [(d, t) for s, d, t in calls if s == stage]
+        assert all(a[0] <= b[0] for a, b in itertools.pairwise(mine))
+        assert mine[-1][0] == mine[-1][1] > 0
+    assert [c for c in calls if c[0] == "probabilities"][-1][1:] == (8, 8)
+    assert result.sensitivity is not None
+    assert [c for c in calls if c[0] == "sensitivity"][-1][1] == result.sensitivity.evaluations
