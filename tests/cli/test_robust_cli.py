@@ -25,7 +25,7 @@ def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
 def test_robust_json_and_report(tmp_path: Path) -> None:
     design = tmp_path / "seed.toml"
     design.write_text(SEED + "\n[uncertainty]\nsamples = 8\nreplicates = 2\n"
-                      "sensitivity_samples = 4\n"
+                      "sensitivity_samples = 4\nsensitivity_budget = 48\n"
                       '\n[dynamics]\nstartup_duration = "0.05 s"\n',  # a short report
                       encoding="utf-8")
     report = tmp_path / "seed.html"
@@ -38,7 +38,11 @@ def test_robust_json_and_report(tmp_path: Path) -> None:
     assert "Life and reliability" in report.read_text(encoding="utf-8")
     tables = run_cli("robust", str(design), "--modal", "--samples", "16")
     assert tables.returncode == 0, tables.stderr
-    assert "Probability of failure (16 states, modal path" in tables.stdout
+    # the states counted as the failures column counts them: points × wear states
+    assert ("Probability of failure (modal path, 16 sampled points × 8 wear states = 128 "
+            "states" in tables.stdout)
+    assert "held at nominal (modal path): chain length: at nominal" in tables.stdout
+    assert "averaged over: the life: 8 wear states" in tables.stdout
 
 
 def test_robust_mistake_is_one_line(tmp_path: Path) -> None:
@@ -48,6 +52,11 @@ def test_robust_mistake_is_one_line(tmp_path: Path) -> None:
     assert proc.returncode == 2
     assert proc.stdout == ""
     assert proc.stderr.strip().startswith("error: uncertainty.wear: must be one of")
+    assert len(proc.stderr.strip().splitlines()) == 1
+    proc = run_cli("robust", str(EXAMPLES / "seed_three_sprocket.toml"),
+                   "--sensitivity-budget", "8")
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.strip().startswith("error: --sensitivity-budget:")
     assert len(proc.stderr.strip().splitlines()) == 1
 
 

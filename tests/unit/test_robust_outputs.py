@@ -24,7 +24,8 @@ from tests.conftest import EXAMPLES
 def result():
     nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
     return robust_study(nominal, UncertaintySettings(samples=8, replicates=2,
-                                                     sensitivity_samples=4), life_points=5)
+                                                     sensitivity_samples=4,
+                                                     sensitivity_budget=48), life_points=5)
 
 
 def test_document_is_json_and_complete(result) -> None:
@@ -36,8 +37,18 @@ def test_document_is_json_and_complete(result) -> None:
     assert keys[-1] == "any" and "resonance_margin" in keys and "buildable" in keys
     for c in doc["reliability"]["checks"]:
         assert 0.0 <= c["ci_low"] <= c["probability"] <= c["ci_high"] <= 1.0
+    assert doc["reliability"]["evaluated_states"] == 8 and doc["reliability"]["wear_states"] == 0
+    assert doc["reliability"]["held_at_nominal"] and len(doc["reliability"]["averaged_over"]) == 3
+    assert doc["life"]["held_at_nominal"][0].startswith("every tolerance")
+    assert doc["reliability"]["averaged_over"][0].startswith("the life: wear elongation uniform")
     sens = doc["sensitivity"]
     assert sens["evaluations"] == sens["base_samples"] * (len(sens["groups"]) + 2)
+    # N = 4 (32 states); 8 would need 64 > the budget of 48: said so, not converged
+    assert (sens["base_samples"], sens["budget_hit"], sens["converged"]) == (4, True, False)
+    assert sens["held_at_nominal"] == doc["reliability"]["held_at_nominal"]
+    for m in sens["metrics"].values():
+        if m["rank"] is not None:
+            assert min(m["rank"]) == 1 and all(0.0 <= v <= 1.0 for v in m["total"])
     assert all(v["source"] for v in doc["uncertainty"]["variables"])
 
 

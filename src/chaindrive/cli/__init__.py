@@ -487,6 +487,9 @@ def robust(
         "--modal", help="resonance and f1 only, by the batched modal path (fast)")] = False,
     sensitivity: Annotated[bool, typer.Option(
         "--sensitivity/--no-sensitivity", help="Sobol indices of the tolerance groups")] = True,
+    sensitivity_budget: Annotated[int | None, typer.Option(
+        "--sensitivity-budget", help="states the Sobol sample may grow to (default: "
+        "[uncertainty] sensitivity_budget)")] = None,
     report_file: Annotated[Path | None, typer.Option(
         "--report", help="also write the design report with its life and reliability "
         "section (.html or .pdf)")] = None,
@@ -505,12 +508,13 @@ def robust(
     from dataclasses import replace as dc_replace
 
     # lazy: only what this command runs (see "Lazy imports" above)
-    from chaindrive.cli.robust import print_robust, robust_options
+    from chaindrive.cli.robust import print_robust, robust_options, robust_progress
     from chaindrive.robust.study import DaskOptions, dask_states, load_robust, robust_study
 
     with user_errors():
         # the options obey the rules of their [uncertainty] fields, before any work
-        changes = robust_options(samples=samples, seed=seed, wear=wear)
+        changes = robust_options(samples=samples, seed=seed, wear=wear,
+                                 sensitivity_budget=sensitivity_budget)
         nominal, settings = load_robust(file)
         settings = dc_replace(settings, **changes)
         evaluator = None
@@ -523,8 +527,12 @@ def robust(
             evaluator = dask_states(DaskOptions(db=db or DEFAULT_DB, scheduler=scheduler,
                                                 n_workers=workers,
                                                 progress=None if not as_json else False))
-        result = robust_study(nominal, settings, with_sensitivity=sensitivity and not modal,
-                              path="modal" if modal else "full", evaluator=evaluator)
+        # a bar per stage on a terminal (Dask draws its own: one live display at a time)
+        with robust_progress(quiet=as_json or evaluator is not None) as progress:
+            result = robust_study(nominal, settings,
+                                  with_sensitivity=sensitivity and not modal,
+                                  path="modal" if modal else "full", evaluator=evaluator,
+                                  progress=progress)
         written = None
         if report_file is not None:
             # lazy: a command imports only what it runs, so that `--help`, `schema` and `catalog`

@@ -444,15 +444,18 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
                     ["design", "chain", "teeth", *heads, "constraints ok"], rows))
     checked = [[str(k), f"P({v['key']}) ≤ {fmt(100 * v['alpha'], 3)} %",
                 f"{fmt(v['search']['failures'], 3)} / {v['search']['samples']}",
+                f"{fmt(100 * v['search'].get('probability', float('nan')), 3)} "
+                f"({v['search'].get('path', '?')})",
                 f"{fmt(v['failures'], 3)} / {v['samples']}",
                 f"{fmt(100 * v['probability'], 3)} [{fmt(100 * v['ci_low'], 3)}, "
-                f"{fmt(100 * v['ci_high'], 3)}]", fmt(100 * v['upper'], 3), v["certified"]]
+                f"{fmt(100 * v['ci_high'], 3)}]", fmt(100 * v['upper'], 3),
+                "yes" if v["certified"] else "NO: fails on the full path"]
                for k, p in enumerate(result.pareto, start=1) for v in p.verification]
     if checked:  # a robust search: what its independent sample says, not the search's
-        con.print(table("Chance constraints verified on an independent sample (95 % one-sided "
-                        "Clopper–Pearson bound)",
-                        ["design", "constraint", "search failures", "failures", "P, %",
-                         "bound, %", "certified"], checked))
+        con.print(table("Chance constraints verified on an independent sample on the full "
+                        "path (95 % one-sided Clopper–Pearson bound)",
+                        ["design", "constraint", "search failures", "search P, % (path)",
+                         "failures", "P, %", "bound, %", "certified"], checked))
     con.print(f"{result.feasible_in_search} of {result.evaluations} designs met every "
               f"constraint of the search; {result.verified} of them judged as analyze judges "
               f"their design file (every check, the start-up included): "

@@ -501,6 +501,14 @@ UNCERTAINTY_FIELDS: tuple[Field, ...] = (
     Field("sensitivity_samples", "int", "base samples N of the Sobol sensitivity indices "
           "(N·(groups + 2) evaluations)", default=32, minimum=4, maximum=1 << 16,
           reason="[Saltelli2010]: N of some tens to thousands; 2^16 bounds the work"),
+    Field("sensitivity_budget", "int", "evaluations the Sobol sample may grow to (N doubles "
+          "from sensitivity_samples until every metric's leading total index is within "
+          "sensitivity_target)", default=8192, minimum=16, maximum=1 << 20,
+          reason="16 is the least design of two groups; 2^20 states bound the work of a study"),
+    Field("sensitivity_target", "float", "half-width of the interval of every metric's "
+          "leading total Sobol index at which the sample stops growing", default=0.1,
+          minimum=0.01, maximum=0.5,
+          reason="an index lies in [0, 1]: ±0.5 says nothing, below ±0.01 costs 10^5 states"),
 )
 SECTIONS: dict[str, tuple[Field, ...]] = {
     "drive": DRIVE_FIELDS,

@@ -38,6 +38,38 @@ def _summary(life: dict[str, Any]) -> str:
     return text
 
 
+def _index(m: dict[str, Any], k: int) -> str:
+    """S_T ± half-width and rank of group k of a metric's entry ("–": no variance)."""
+    v, h = m["total"][k], m["total_conf"][k]
+    if v is None or h is None or m["rank"] is None:
+        return "–"
+    tied = m["rank"].count(m["rank"][k]) > 1
+    return (f"{v:.2f} ± {h:.2f} ({m['rank'][k]}{'=' if tied else ''})"
+            + (" !" if m["total_outside"][k] else ""))
+
+
+def _sobol_summary(sens: dict[str, Any]) -> str:
+    """The Sobol sample in words: its size, whether it converged, what cannot be ranked."""
+    sizes = " → ".join(str(h["base_samples"]) for h in sens["history"])
+    text = (f"Saltelli sample grown N = {sizes} base points ({sens['evaluations']} states on "
+            f"the full path) [Saltelli2010], [Herman2017]; ")
+    if sens["converged"]:
+        text += (f"every metric's leading S_T is within ±{sens['target_half_width']:g}.")
+    else:
+        wide = [f"{m} (±{e['leading_half_width']:.2f})" for m, e in sens["metrics"].items()
+                if e["leading_half_width"] is not None and not e["converged"]]
+        text += ((f"the budget of {sens['budget_evaluations']} states was spent first; "
+                  if sens["budget_hit"] else "")
+                 + f"leading S_T wider than ±{sens['target_half_width']:g}, not to be ranked "
+                 f"on: {', '.join(wide)}.")
+    flagged = [m for m, e in sens["metrics"].items()
+               if any(e.get("first_order_outside") or []) or any(e.get("total_outside") or [])]
+    if flagged:
+        text += (" ! an estimate left [0, 1] by more than its interval (shown clipped): "
+                 + ", ".join(flagged) + ".")
+    return text
+
+
 def robust_section(inp: ReportInput) -> list[Block] | None:
     """Life curve, probabilities of failure and sensitivity indices (None without a robust
     study).
@@ -58,7 +90,8 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
         return None
     doc = result.to_dict()
     life, rel = doc["life"], doc["reliability"]
-    blocks: list[Block] = [Text(_summary(life))]
+    blocks: list[Block] = [Text(_summary(life) + " The life curve holds at nominal: "
+                                + "; ".join(life["held_at_nominal"]) + ".")]
     blocks.append(Table("Life curve", ("elongation, %", "f1, Hz", "detuning Δ, %", "K_D",
                                        "k2", inp.col("take-up", "length"), "sag, %",
                                        "failed checks"),
@@ -70,19 +103,29 @@ def robust_section(inp: ReportInput) -> list[Block] | None:
                                 ", ".join(s["failed"])] for s in life["states"]])))
     blocks.append(plot_block(life_curve_figure(result.life, units=inp.units),
                              "The drive as its chain wears", inp.dpi, "robust_life"))
-    blocks.append(Table(f"Probability of failure over the tolerances ({rel['samples']} states, "
-                        f"{rel['confidence']:.0%} interval)",
-                        ("check", "probability", "low", "high", "source"),
+    states = (f"{rel['sampled_points']} sampled points × {rel['wear_states']} wear states = "
+              f"{rel['evaluated_states']} states" if rel["wear_states"]
+              else f"{rel['evaluated_states']} states")
+    blocks.append(Table(f"Probability of failure over the tolerances ({rel['path']} path, "
+                        f"{states}, {rel['confidence']:.0%} interval)",
+                        ("check", "probability", "low", "high", "failures", "source"),
                         _rows([[c["key"], c["probability"], c["ci_low"], c["ci_high"],
-                                c["source"]] for c in rel["checks"]])))
+                                f"{c['failures']}/{c['samples']}", c["source"]]
+                               for c in rel["checks"]])))
+    blocks.append(Text("Averaged over " + "; ".join(rel["averaged_over"]) + ". Held at "
+                       f"nominal on the {rel['path']} path: "
+                       + "; ".join(rel["held_at_nominal"]) + "."))
     blocks.append(plot_block(probability_figure(result.reliability),
                              "Probability of failing each check", inp.dpi, "robust_probability"))
     if result.sensitivity is not None:
         sens = doc["sensitivity"]
         metrics = list(sens["metrics"])
-        blocks.append(Table("Total Sobol indices S_T by tolerance group", ("group", *metrics),
-                            _rows([[g, *[sens["metrics"][m]["total"][k] for m in metrics]]
+        blocks.append(Table(f"Total Sobol indices S_T ± {sens['confidence']:.0%} half-width by "
+                            "tolerance group, with the rank (= tied: the intervals overlap)",
+                            ("group", *metrics),
+                            _rows([[g, *[_index(sens["metrics"][m], k) for m in metrics]]
                                    for k, g in enumerate(sens["groups"])])))
+        blocks.append(Text(_sobol_summary(sens)))
         blocks.append(plot_block(sensitivity_figure(result.sensitivity),
                                  "Which tolerance matters", inp.dpi, "robust_sensitivity"))
     blocks += [Text(note, "note") for note in doc["uncertainty"]["notes"]]

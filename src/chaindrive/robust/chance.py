@@ -16,8 +16,9 @@ The bound treats the states as independent draws. The optimiser's states are scr
 Sobol points (randomised quasi-Monte Carlo [Owen1997]): each is uniform, but the count is not
 exactly binomial; and every design of a search sees the same points (common random numbers),
 so the search selects designs that happen to pass on them. Both are why the designs a search
-returns are verified with an independent, larger sample
-(:func:`chaindrive.robust.synthesis.verify_design`), whose figures are the ones reported.
+returns are verified with an independent, larger sample on the full path
+(:func:`chaindrive.robust.synthesis.verify_design`), whose figures are the ones reported: a
+design is certified only when that verification's bound holds.
 
 References
 ----------

@@ -27,7 +27,7 @@ import numpy as np
 from chaindrive.analysis import Analysis
 from chaindrive.errors import ChainDriveError
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
-from chaindrive.robust.perturbation import Perturbation
+from chaindrive.robust.perturbation import REFERENCE_TEMPERATURE_C, Perturbation
 from chaindrive.robust.uncertainty import UncertaintyModel
 from chaindrive.robust.wear import roller_lift
 from chaindrive.strength.duty import service_factor_for
@@ -131,6 +131,14 @@ def wear_state(nominal: Analysis, model: UncertaintyModel, elongation: float) ->
         failed=tuple(c.key for c in a.all_checks() if not c.passed))
 
 
+#: What every state of the life curve holds at nominal: it is the drive as drawn, its chain
+#: worn to each elongation.
+LIFE_HELD_AT_NOMINAL = ("every tolerance of the uncertainty model (chain length, "
+                        "eccentricity, shaft positions, key clearances, inertias, chain "
+                        "stiffness): the drive as drawn, only the elongation varies",
+                        f"temperature: {REFERENCE_TEMPERATURE_C:g} °C")
+
+
 @dataclass(frozen=True, slots=True)
 class LifeCurve:
     """The drive from new to past its replacement elongation.
@@ -191,6 +199,7 @@ class LifeCurve:
                 "first_failure_hours": (None if self.first_failure_elongation is None
                                         else self.hours(self.first_failure_elongation)),
                 "take_up_runs_out_elongation": self.take_up_runs_out,
+                "held_at_nominal": list(LIFE_HELD_AT_NOMINAL),
                 "states": [s.to_dict() for s in self.states]}
 
 

@@ -16,6 +16,12 @@ analysis, and a batched modal path.
   the stacked eigenvalue problems (:mod:`chaindrive.robust.modal`). Over the
   life the probability is the mean over the K states (the midpoint rule in the life
   fraction, which is uniform).
+* **What is held, what is averaged.** Each result lists what its states hold at nominal
+  (:func:`full_path_held`, :func:`modal_path_held`: the modal path holds every geometric
+  tolerance; both hold the individual link pitches and judge the catalogue checks at the
+  nominal chain speed) and over what its probability is averaged (:func:`averaged_over`:
+  the life, the temperature, the tolerances sampled), and counts sampled points, wear
+  states and the states evaluated (points × wear states on the modal path).
 * **Estimate and interval.** p̂ is the mean of the R replicate means; the interval is the
   Student-t interval of the replicates [Owen1997], widened to contain the Clopper–Pearson
   interval of the pooled count [ClopperPearson1934] (which bounds an estimate of 0 or 1). A
@@ -51,12 +57,16 @@ from chaindrive.robust.perturbation import (
     Perturbation,
     modulus_factors,
 )
-from chaindrive.robust.uncertainty import UncertaintyModel, UncertaintySettings
+from chaindrive.robust.uncertainty import (
+    MODAL_GROUPS,
+    UncertaintyModel,
+    UncertaintySettings,
+)
 
 __all__ = ["BUILD_FAILURE", "CheckProbability", "MetricSummary", "ModalBasis",
-           "ReliabilityResult", "StateOutcome", "basis_reliability", "estimate_probability",
-           "modal_basis", "reliability",
-           "sample_count", "sobol_points", "state_outcome"]
+           "ReliabilityResult", "StateOutcome", "StepProgress", "averaged_over",
+           "basis_reliability", "estimate_probability", "full_path_held", "modal_basis",
+           "modal_path_held", "reliability", "sample_count", "sobol_points", "state_outcome"]
 
 #: The pseudo-check of a state that cannot be built (e.g. the chain does not fit).
 BUILD_FAILURE = "buildable"
@@ -65,6 +75,97 @@ METRICS: dict[str, str] = {"f1_hz": "Hz", "resonance_margin_percent": "%",
                            "coefficient_of_dynamics": "-", "k2": "-", "k2min": "-",
                            "k2_with_errors": "-",
                            "take_up_travel_mm": "mm", "sag_ratio": "-", "elongation": "-"}
+#: ``progress(done, total)``: states evaluated so far and states planned (a presenter's bar).
+StepProgress = Callable[[int, int], None]
+
+
+def full_path_held(model: UncertaintyModel) -> tuple[str, ...]:
+    """What every state of the full path holds at nominal (not sampled).
+
+    Parameters
+    ----------
+    model : UncertaintyModel
+        The uncertainty model.
+
+    Returns
+    -------
+    tuple of str
+        One line per quantity held, with its nominal value where it has one.
+    """
+    groups = set(model.groups)
+    held = ["individual link pitches (only the chain's length is toleranced)",
+            "the chain's catalogue checks: judged at the nominal chain speed and pitch"]
+    if "temperature" not in groups:
+        held.append(f"temperature: {REFERENCE_TEMPERATURE_C:g} °C (it enters only polymer "
+                    "moduli)")
+    for name, group in (("inertias", "inertias"), ("chain stiffness", "chain stiffness")):
+        if group not in groups:
+            held.append(f"{name}: no scatter asked for")
+    return tuple(held)
+
+
+def modal_path_held(model: UncertaintyModel) -> tuple[str, ...]:
+    """What every state of the batched modal path holds at nominal: the geometric
+    tolerances of the model (they are listed as its variables but not sampled), then what
+    the full path holds too.
+
+    Parameters
+    ----------
+    model : UncertaintyModel
+        The whole uncertainty model (geometric and modal groups).
+
+    Returns
+    -------
+    tuple of str
+        One line per quantity held.
+    """
+    counts: dict[str, int] = {}
+    for v in model.variables:
+        if v.group not in MODAL_GROUPS and v.group != "wear":
+            counts[v.group] = counts.get(v.group, 0) + 1
+    held = [f"{group}{'' if k == 1 else f' ({k} variables)'}: at nominal (in the model, "
+            "not sampled on the modal path)" for group, k in counts.items()]
+    if "temperature" in model.groups:
+        held.append(f"train shafts' stiffness: at {REFERENCE_TEMPERATURE_C:g} °C (the full "
+                    "path softens polymer shafts)")
+    return (*held, *full_path_held(model))
+
+
+def averaged_over(model: UncertaintyModel, path: str) -> tuple[str, ...]:
+    """Over what a probability of the path is averaged: the life, the temperature, the
+    groups sampled.
+
+    Parameters
+    ----------
+    model : UncertaintyModel
+        The uncertainty model.
+    path : str
+        "full" or "modal".
+
+    Returns
+    -------
+    tuple of str
+        One line each for the life, the temperature and the tolerances.
+    """
+    s = model.settings
+    eps = f"{model.allowable_elongation:.3g}"
+    if s.wear == "life":
+        life = (f"the life: {s.wear_states} wear states at the midpoints of the life "
+                f"fraction, uniform from new to the replacement elongation {eps}"
+                if path == "modal" else "the life: wear elongation uniform from new to the "
+                f"replacement elongation {eps} (sampled with the tolerances)")
+    elif s.wear == "new":
+        life = "a new chain only (no wear)"
+    else:
+        life = f"a chain worn to the replacement elongation {eps} only"
+    if "temperature" in model.groups:
+        temperature = (f"temperature uniform over {s.temperature_min:g} … "
+                       f"{s.temperature_max:g} °C")
+    else:
+        temperature = f"temperature fixed at {REFERENCE_TEMPERATURE_C:g} °C"
+    sampled = [g for g in model.groups if g != "wear" and (path == "full"
+                                                            or g in MODAL_GROUPS)]
+    return (life, temperature, "tolerances sampled: " + (", ".join(sampled) or "none"))
 
 
 def sobol_points(dimension: int, samples: int, replicates: int, seed: int) -> NDArray[np.float64]:
@@ -370,6 +471,10 @@ class ReliabilityResult:
         Check key → (states,) margin fractions (nan where it cannot be verified).
     states : tuple of str
         The wear states of the modal path (empty for the full path).
+    held_at_nominal : tuple of str
+        What every state holds at nominal (:func:`full_path_held`, :func:`modal_path_held`).
+    averaged_over : tuple of str
+        Over what the probabilities are averaged (:func:`averaged_over`).
     """
 
     path: str
@@ -381,6 +486,13 @@ class ReliabilityResult:
     values: dict[str, NDArray[np.float64]]
     margins: dict[str, NDArray[np.float64]]
     states: tuple[str, ...] = ()
+    held_at_nominal: tuple[str, ...] = ()
+    averaged_over: tuple[str, ...] = ()
+
+    @property
+    def evaluated_states(self) -> int:
+        """States evaluated: the sampled points × the wear states of the modal path [–]."""
+        return self.samples * max(1, len(self.states))
 
     def probability(self, key: str) -> CheckProbability | None:
         """The entry of check ``key``.
@@ -429,8 +541,11 @@ class ReliabilityResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
-        return {"path": self.path, "samples": self.samples, "replicates": self.replicates,
-                "confidence": self.confidence, "states": list(self.states),
+        return {"path": self.path, "samples": self.samples, "sampled_points": self.samples,
+                "wear_states": len(self.states), "evaluated_states": self.evaluated_states,
+                "replicates": self.replicates, "confidence": self.confidence,
+                "states": list(self.states), "held_at_nominal": list(self.held_at_nominal),
+                "averaged_over": list(self.averaged_over),
                 "checks": [c.to_dict() for c in self.checks],
                 "metrics": [m.to_dict() for m in self.metrics]}
 
@@ -475,7 +590,8 @@ StateEvaluator = Callable[[Analysis, UncertaintyModel, NDArray[np.float64], bool
 
 
 def serial_states(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.float64],
-                  response: bool) -> list[StateOutcome]:
+                  response: bool, *, progress: StepProgress | None = None
+                  ) -> list[StateOutcome]:
     """Evaluate the states of the variable rows in this process.
 
     Parameters
@@ -488,20 +604,28 @@ def serial_states(nominal: Analysis, model: UncertaintyModel, x: NDArray[np.floa
         (S, d) variable values [SI].
     response : bool
         Compute the states' dynamic response.
+    progress : callable | None
+        ``progress(done, total)`` after every state.
 
     Returns
     -------
     list of StateOutcome
         In the order of the rows.
     """
-    return [state_outcome(PerturbedAnalysis(
-        nominal, model.perturbation(row), allowable_elongation=model.allowable_elongation,
-        take_up_capacity=model.take_up_capacity, response=response)) for row in x]
+    out = []
+    for row in x:
+        out.append(state_outcome(PerturbedAnalysis(
+            nominal, model.perturbation(row), allowable_elongation=model.allowable_elongation,
+            take_up_capacity=model.take_up_capacity, response=response)))
+        if progress is not None:
+            progress(len(out), len(x))
+    return out
 
 
 def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full",
                 evaluator: StateEvaluator | None = None,
-                response: bool = True) -> ReliabilityResult:
+                response: bool = True, progress: StepProgress | None = None
+                ) -> ReliabilityResult:
     """Probabilities of failure of every check of the drive over ``model``.
 
     Parameters
@@ -519,6 +643,8 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
     response : bool
         Compute the states' dynamic response (K_D, k₂, k₂min); False stops after the modes
         (the layout, chain and resonance checks only).
+    progress : callable | None
+        ``progress(done, total)`` after every state of the full path in this process.
 
     Returns
     -------
@@ -534,7 +660,9 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
         u = sobol_points(model.dimension, s.samples, s.replicates, s.seed)
         shaped = model.values(u.reshape(-1, model.dimension)).reshape(*u.shape)
     r, n = shaped.shape[:2]
-    flat = (evaluator or serial_states)(nominal, model, shaped.reshape(r * n, -1), response)
+    flat = (evaluator(nominal, model, shaped.reshape(r * n, -1), response)
+            if evaluator is not None else serial_states(
+                nominal, model, shaped.reshape(r * n, -1), response, progress=progress))
     rows = [flat[i * n:(i + 1) * n] for i in range(r)]
     info = _check_info([PerturbedAnalysis(nominal, model.perturbation(shaped[0, 0]),
                                           allowable_elongation=model.allowable_elongation,
@@ -547,7 +675,9 @@ def reliability(nominal: Analysis, model: UncertaintyModel, *, path: str = "full
     margins = {k: np.array([_finite(o.margin.get(k)) for o in flat]) for k in info}
     return ReliabilityResult("full", r * n, r, s.confidence,
                              tuple(_aggregate(rows, info, s.confidence)),
-                             tuple(_summary(k, v) for k, v in values.items()), values, margins)
+                             tuple(_summary(k, v) for k, v in values.items()), values, margins,
+                             held_at_nominal=full_path_held(model),
+                             averaged_over=averaged_over(model, "full"))
 
 
 # ---------------------------------------------------------------------- the modal path
@@ -618,6 +748,9 @@ class ModalBasis:
         The geometric states.
     states : tuple of StackedState
         Each state stacked.
+    held_at_nominal, averaged_over : tuple of str
+        What its states hold at nominal and over what its probability is averaged
+        (:func:`modal_path_held`, :func:`averaged_over`).
     """
 
     settings: UncertaintySettings
@@ -626,6 +759,8 @@ class ModalBasis:
     band_percent: float
     names: tuple[str, ...]
     states: tuple[StackedState, ...]
+    held_at_nominal: tuple[str, ...] = ()
+    averaged_over: tuple[str, ...] = ()
 
 
 def modal_basis(nominal: Analysis, model: UncertaintyModel) -> ModalBasis:
@@ -660,7 +795,7 @@ def modal_basis(nominal: Analysis, model: UncertaintyModel) -> ModalBasis:
                                       temperature)
         stacked.append(stacked_state(state, inertia, link, temperature))
     return ModalBasis(s, r, n, nominal.limits.resonance_band_percent, tuple(states),
-                      tuple(stacked))
+                      tuple(stacked), modal_path_held(model), averaged_over(model, "modal"))
 
 
 def basis_reliability(basis: ModalBasis, added_inertia: NDArray[np.float64] | None = None
@@ -698,7 +833,7 @@ def basis_reliability(basis: ModalBasis, added_inertia: NDArray[np.float64] | No
                              tuple(_summary(k, v) for k, v in values.items()), values,
                              {"resonance_margin": np.where(np.isfinite(margins),
                                                            margins / band - 1.0, 1e6)},
-                             basis.names)
+                             basis.names, basis.held_at_nominal, basis.averaged_over)
 
 
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:

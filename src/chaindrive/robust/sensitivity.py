@@ -1,5 +1,5 @@
 """Which tolerance matters: Sobol global sensitivity indices of the drive's metrics over the
-groups of its uncertainty model (SALib).
+groups of its uncertainty model (SALib), on a sample grown until the indices can be ranked.
 
 The Saltelli design of N·(G + 2) points (first-order and total indices, no second order)
 [Saltelli2010] is drawn in the unit cube of the d variables with the groups of
@@ -7,9 +7,26 @@ The Saltelli design of N·(G + 2) points (first-order and total indices, no seco
 inertias, … each one group), mapped through the variables' inverse CDFs and evaluated
 through the full path (:class:`~chaindrive.robust.analysis.PerturbedAnalysis`). For every
 metric (resonance margin, K_D, k₂, k₂ with the eccentricity loads, f₁, and the margin of the
-checks asked for) SALib estimates S1
-(the share of the variance a group explains alone) and ST (with all its interactions) with
-bootstrap intervals [Herman2017].
+checks asked for) SALib estimates S1 (the share of the variance a group explains alone, the
+estimator of [Saltelli2010]) and ST (with all its interactions, Jansen's estimator
+[Saltelli2010]) with bootstrap intervals at the model's confidence [Herman2017].
+
+**Adaptive sample.** The design's base points are a scrambled Sobol sequence, so the design
+of 2N base points begins with the design of N: N is doubled from ``sensitivity_samples``,
+every state is evaluated once, until the leading total index of every metric (the group with
+the largest S_T) has an interval no wider than ± ``target`` (0.1), or the next doubling
+would exceed the budget of evaluations; the result says which (``converged``,
+``budget_hit``) and keeps the widths at every N. The stopping test starts at
+:data:`MIN_STOP_BASE` base points: a bootstrap interval of fewer points is itself too noisy
+to stop on (a choice of this package, not a published figure).
+
+**Reading the indices.** An index is a share of the variance, in [0, 1]; the estimators can
+leave that range on a finite sample. A value outside by no more than its interval half-width
+is reported clipped to [0, 1]; one outside by more is clipped too and flagged (``outside``),
+since the estimate contradicts its own interval. Groups are ranked by S_T; a group's rank is
+1 + the number of groups whose interval lies entirely above its own, so groups whose
+intervals cannot be told apart share a rank (tied).
+
 A state that cannot be built takes the mean of the others (said in the result).
 
 References
@@ -21,36 +38,107 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 from SALib.analyze import sobol as sobol_analyze
 from SALib.sample import sobol as sobol_sample
 
 from chaindrive.analysis import Analysis
-from chaindrive.robust.sampling import StateEvaluator, serial_states
+from chaindrive.robust.sampling import (
+    StateEvaluator,
+    StepProgress,
+    full_path_held,
+    serial_states,
+)
 from chaindrive.robust.uncertainty import UncertaintyModel
 
-__all__ = ["SENSITIVITY_METRICS", "SensitivityResult", "sensitivity"]
+__all__ = ["MIN_STOP_BASE", "SENSITIVITY_BUDGET", "SENSITIVITY_METRICS", "TARGET_HALF_WIDTH",
+           "GroupIndex", "SensitivityResult", "Step", "grouped_indices", "ranks",
+           "sensitivity"]
 
 #: Metrics whose variance is apportioned, with their units.
 SENSITIVITY_METRICS: dict[str, str] = {"resonance_margin_percent": "%",
                                        "coefficient_of_dynamics": "-", "k2": "-",
                                        "k2_with_errors": "-", "f1_hz": "Hz"}
+#: Half-width of the interval of every metric's leading S_T the sample grows to [–] (the
+#: default of ``[uncertainty] sensitivity_target``).
+TARGET_HALF_WIDTH = 0.1
+#: Evaluations the adaptive sample may spend [–] (the default of ``[uncertainty]
+#: sensitivity_budget``).
+SENSITIVITY_BUDGET = 8192
+#: Base points from which the stopping test is applied [–].
+MIN_STOP_BASE = 128
+
+#: Evaluates (S, d) variable rows [SI] to metric name → (S,) values (nan: not available).
+RowEvaluator = Callable[[NDArray[np.float64]], Mapping[str, NDArray[np.float64]]]
+
+
+@dataclass(frozen=True, slots=True)
+class GroupIndex:
+    """The Sobol indices of one group for one metric, as reported.
+
+    Parameters
+    ----------
+    group : str
+        The group.
+    first, first_conf : float
+        S1 clipped to [0, 1] and its interval half-width [–].
+    total, total_conf : float
+        S_T clipped to [0, 1] and its interval half-width [–].
+    first_raw, total_raw : float
+        The estimators' values before clipping [–].
+    first_outside, total_outside : bool
+        The raw value leaves [0, 1] by more than its half-width.
+    rank : int
+        1 + the groups whose S_T interval lies entirely above this one's (equal ranks: tied).
+    """
+
+    group: str
+    first: float
+    first_conf: float
+    total: float
+    total_conf: float
+    first_raw: float
+    total_raw: float
+    first_outside: bool
+    total_outside: bool
+    rank: int
+
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """One size of the adaptive sample.
+
+    Parameters
+    ----------
+    base_samples, evaluations : int
+        N and N·(G + 2) [–].
+    widest_half_width : float
+        The widest interval half-width of a leading S_T over the metrics [–].
+    metric : str
+        The metric it belongs to.
+    """
+
+    base_samples: int
+    evaluations: int
+    widest_half_width: float
+    metric: str
 
 
 @dataclass(frozen=True, slots=True)
 class SensitivityResult:
-    """Sobol indices per metric and group.
+    """Sobol indices per metric and group, with the sample that gave them.
 
     Parameters
     ----------
     groups : tuple of str
         The groups of variables.
     first_order, total : dict
-        Metric → (G,) S1 and ST [–] (nan for a metric without variance).
+        Metric → (G,) S1 and ST as estimated [–] (nan for a metric without variance).
     first_order_conf, total_conf : dict
         Metric → (G,) half-widths of their bootstrap intervals [–].
     base_samples : int
@@ -59,6 +147,20 @@ class SensitivityResult:
         States evaluated.
     unbuilt : int
         States that could not be built (their metrics took the mean).
+    target : float
+        Half-width aimed at for every metric's leading S_T [–].
+    budget : int
+        Evaluations allowed [–].
+    converged : bool
+        Every leading S_T's half-width ≤ ``target``.
+    budget_hit : bool
+        The sample stopped because the next doubling would pass ``budget``.
+    history : tuple of Step
+        The widest leading half-width at each N.
+    confidence : float
+        Level of the intervals [–].
+    held_at_nominal : tuple of str
+        What the states hold at nominal (the full path's).
     """
 
     groups: tuple[str, ...]
@@ -69,6 +171,36 @@ class SensitivityResult:
     base_samples: int
     evaluations: int
     unbuilt: int
+    target: float = TARGET_HALF_WIDTH
+    budget: int = SENSITIVITY_BUDGET
+    converged: bool = False
+    budget_hit: bool = False
+    history: tuple[Step, ...] = ()
+    confidence: float = 0.95
+    held_at_nominal: tuple[str, ...] = field(default=())
+
+    def indices(self, metric: str) -> list[GroupIndex]:
+        """The indices of ``metric`` as reported, in the order of :attr:`groups`.
+
+        Parameters
+        ----------
+        metric : str
+            A metric of the result.
+
+        Returns
+        -------
+        list of GroupIndex
+            Clipped values, intervals, flags and ranks (empty for a metric without
+            variance).
+        """
+        s1, st = self.first_order[metric], self.total[metric]
+        c1, ct = self.first_order_conf[metric], self.total_conf[metric]
+        if not all(math.isfinite(v) for v in st):
+            return []
+        rank = ranks(st, ct)
+        return [GroupIndex(g, _clip(s1[k]), c1[k], _clip(st[k]), ct[k], s1[k], st[k],
+                           _outside(s1[k], c1[k]), _outside(st[k], ct[k]), rank[k])
+                for k, g in enumerate(self.groups)]
 
     def ranking(self, metric: str) -> list[tuple[str, float]]:
         """Groups by decreasing total index of ``metric``.
@@ -81,43 +213,241 @@ class SensitivityResult:
         Returns
         -------
         list of (str, float)
-            (group, total Sobol index S_T [-]), the largest first; groups without a finite
-            index are left out.
+            (group, total Sobol index S_T [-] clipped to [0, 1]), the largest first; groups
+            without a finite index are left out.
         """
-        st = self.total.get(metric, ())
-        pairs = [(g, v) for g, v in zip(self.groups, st, strict=True) if math.isfinite(v)]
-        return sorted(pairs, key=lambda p: -p[1])
+        return [(i.group, i.total) for i in sorted(self.indices(metric),
+                                                   key=lambda i: -i.total_raw)]
+
+    def leading_half_width(self, metric: str) -> float:
+        """The interval half-width of the leading S_T of ``metric`` [–] (nan: no variance).
+
+        Parameters
+        ----------
+        metric : str
+            A metric of the result.
+
+        Returns
+        -------
+        float
+        """
+        return _leading_half_width(self.total[metric], self.total_conf[metric])
+
+    def tied(self, metric: str) -> list[list[str]]:
+        """Sets of two or more groups whose S_T cannot be told apart (one rank).
+
+        Parameters
+        ----------
+        metric : str
+            A metric of the result.
+
+        Returns
+        -------
+        list of list of str
+            Each set's groups, by decreasing S_T; the sets by rank.
+        """
+        by_rank: dict[int, list[GroupIndex]] = {}
+        for i in self.indices(metric):
+            by_rank.setdefault(i.rank, []).append(i)
+        return [[i.group for i in sorted(v, key=lambda i: -i.total_raw)]
+                for _, v in sorted(by_rank.items()) if len(v) > 1]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (nan as None)."""
-        def clean(values: tuple[float, ...]) -> list[float | None]:
+        """JSON-ready dict (nan as None); ``first_order``/``total`` are the clipped values,
+        ``*_raw`` the estimators', ``*_outside`` the flags, ``rank`` and ``tied`` the
+        ranking by S_T."""
+        def clean(values: Sequence[float]) -> list[float | None]:
             return [v if math.isfinite(v) else None for v in values]
 
-        return {"groups": list(self.groups), "base_samples": self.base_samples,
+        metrics: dict[str, Any] = {}
+        for m in self.first_order:
+            idx = self.indices(m)
+            half = self.leading_half_width(m)
+            entry: dict[str, Any] = {"unit": SENSITIVITY_METRICS.get(m, "-"),
+                                     "leading_half_width": half if math.isfinite(half) else None,
+                                     "converged": bool(math.isfinite(half)
+                                                       and half <= self.target),
+                                     "first_order_conf": clean(self.first_order_conf[m]),
+                                     "total_conf": clean(self.total_conf[m])}
+            if idx:
+                entry |= {"first_order": [i.first for i in idx],
+                          "total": [i.total for i in idx],
+                          "first_order_raw": [i.first_raw for i in idx],
+                          "total_raw": [i.total_raw for i in idx],
+                          "first_order_outside": [i.first_outside for i in idx],
+                          "total_outside": [i.total_outside for i in idx],
+                          "rank": [i.rank for i in idx], "tied": self.tied(m)}
+            else:
+                entry |= {"first_order": clean(self.first_order[m]),
+                          "total": clean(self.total[m]), "rank": None, "tied": []}
+            metrics[m] = entry
+        return {"groups": list(self.groups), "path": "full", "base_samples": self.base_samples,
                 "evaluations": self.evaluations, "unbuilt": self.unbuilt,
-                "metrics": {m: {"unit": SENSITIVITY_METRICS.get(m, "-"),
-                                "first_order": clean(self.first_order[m]),
-                                "first_order_conf": clean(self.first_order_conf[m]),
-                                "total": clean(self.total[m]),
-                                "total_conf": clean(self.total_conf[m])}
-                            for m in self.first_order}}
+                "confidence": self.confidence, "target_half_width": self.target,
+                "budget_evaluations": self.budget, "converged": self.converged,
+                "budget_hit": self.budget_hit,
+                "history": [{"base_samples": h.base_samples, "evaluations": h.evaluations,
+                             "widest_leading_half_width": (h.widest_half_width if math.isfinite(
+                                 h.widest_half_width) else None), "metric": h.metric}
+                            for h in self.history],
+                "held_at_nominal": list(self.held_at_nominal), "metrics": metrics}
+
+
+def _clip(v: float) -> float:
+    return min(1.0, max(0.0, v)) if math.isfinite(v) else v
+
+
+def _outside(v: float, half: float) -> bool:
+    """Whether ``v`` leaves [0, 1] by more than ``half``."""
+    return math.isfinite(v) and (v < -half or v > 1.0 + half)
+
+
+def ranks(values: Sequence[float], half_widths: Sequence[float]) -> list[int]:
+    """Rank of each value: 1 + the number of values whose interval [v − h, v + h] lies
+    entirely above its own (values that cannot be told apart share a rank).
+
+    Parameters
+    ----------
+    values, half_widths : sequence of float
+        Estimates and their interval half-widths [–].
+
+    Returns
+    -------
+    list of int
+        Ranks ≥ 1, in the order given.
+    """
+    lo = [v - h for v, h in zip(values, half_widths, strict=True)]
+    hi = [v + h for v, h in zip(values, half_widths, strict=True)]
+    return [1 + sum(lo[j] > hi[k] for j in range(len(values))) for k in range(len(values))]
+
+
+def _saltelli_problem(model: UncertaintyModel) -> dict[str, Any]:
+    return {"num_vars": model.dimension, "names": [v.name for v in model.variables],
+            "bounds": [[0.0, 1.0]] * model.dimension,
+            "groups": [v.group for v in model.variables]}
+
+
+def _leading_half_width(total: tuple[float, ...], conf: tuple[float, ...]) -> float:
+    if not all(math.isfinite(v) for v in total):
+        return math.nan
+    return conf[int(np.argmax(total))]
+
+
+def _analyse(problem: dict[str, Any], outputs: Mapping[str, NDArray[np.float64]],
+             confidence: float, seed: int
+             ) -> dict[str, tuple[tuple[float, ...], ...]]:
+    """Metric → (S1, ST, S1 half-width, ST half-width) of outputs on a Saltelli design."""
+    g = len(dict.fromkeys(problem["groups"]))
+    nan = (math.nan,) * g
+    out: dict[str, tuple[tuple[float, ...], ...]] = {}
+    for metric, y in outputs.items():
+        finite = np.isfinite(y)
+        if finite.sum() < 2 or float(np.var(y[finite])) <= 1e-24 * max(1.0, float(
+                np.mean(y[finite]) ** 2)):
+            out[metric] = (nan, nan, nan, nan)
+            continue
+        y = np.where(finite, y, float(np.mean(y[finite])))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # SALib's bootstrap on few points
+            # SALib seeds its bootstrap only for a seed that is true: 0 would be unseeded
+            r = sobol_analyze.analyze(problem, y, calc_second_order=False,
+                                      conf_level=confidence, seed=seed + 1)
+        out[metric] = tuple(tuple(float(v) for v in r[k])
+                            for k in ("S1", "ST", "S1_conf", "ST_conf"))
+    return out
+
+
+def grouped_indices(model: UncertaintyModel, evaluate: RowEvaluator, *, start: int,
+                    budget: int = SENSITIVITY_BUDGET, target: float = TARGET_HALF_WIDTH,
+                    progress: StepProgress | None = None) -> SensitivityResult:
+    """Sobol indices over the groups of ``model`` of the outputs of ``evaluate``, on a
+    Saltelli design doubled from ``start`` base points until every output's leading S_T
+    has a half-width ≤ ``target`` or the budget is spent (module docstring).
+
+    Parameters
+    ----------
+    model : UncertaintyModel
+        The variables (their inverse CDFs map the design) and their groups (≥ 2); its
+        settings give the seed and the confidence.
+    evaluate : callable
+        (S, d) variable rows [SI] → output name → (S,) values.
+    start : int
+        First N (rounded up to a power of two ≥ 4) [–].
+    budget : int
+        Evaluations allowed; the first N is evaluated whatever it costs [–].
+    target : float
+        Half-width aimed at [–].
+    progress : callable | None
+        ``progress(done, total)`` in evaluations, the total growing with N.
+
+    Returns
+    -------
+    SensitivityResult
+        With ``unbuilt`` = 0 (see :func:`sensitivity`).
+
+    References
+    ----------
+    [Saltelli2010], [Herman2017]
+    """
+    s = model.settings
+    problem = _saltelli_problem(model)
+    per_base = len(model.groups) + 2
+    n = 1 << max(2, math.ceil(math.log2(max(1, start))))
+    outputs: dict[str, NDArray[np.float64]] = {}
+    done = 0
+    history: list[Step] = []
+    while True:
+        u = sobol_sample.sample(problem, n, calc_second_order=False, seed=s.seed)
+        if progress is not None:
+            progress(done, len(u))
+        fresh = evaluate(model.values(u[done:]))
+        outputs = {k: np.concatenate([outputs.get(k, np.empty(0)), np.asarray(v, float)])
+                   for k, v in fresh.items()}
+        done = len(u)
+        if progress is not None:
+            progress(done, done)
+        result = _analyse(problem, outputs, s.confidence, s.seed)
+        widths = {m: _leading_half_width(r[1], r[3]) for m, r in result.items()}
+        finite = {m: w for m, w in widths.items() if math.isfinite(w)}
+        worst = max(finite, key=lambda m: finite[m]) if finite else ""
+        history.append(Step(n, done, finite.get(worst, math.nan), worst))
+        converged = all(w <= target for w in finite.values())
+        stop_test = n >= MIN_STOP_BASE
+        over = 2 * n * per_base > budget
+        if (converged and stop_test) or over:
+            break
+        n *= 2
+    return SensitivityResult(
+        model.groups, {m: r[0] for m, r in result.items()}, {m: r[1] for m, r in result.items()},
+        {m: r[2] for m, r in result.items()}, {m: r[3] for m, r in result.items()}, n, done, 0,
+        target, budget, converged, over and not converged, tuple(history),
+        s.confidence)
 
 
 def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
                 evaluator: StateEvaluator | None = None,
-                checks: Sequence[str] = ()) -> SensitivityResult | None:
-    """Sobol indices of the drive's metrics over the groups of ``model``.
+                checks: Sequence[str] = (), budget: int | None = None,
+                target: float | None = None,
+                progress: StepProgress | None = None) -> SensitivityResult | None:
+    """Sobol indices of the drive's metrics over the groups of ``model`` (module docstring).
 
     Parameters
     ----------
     nominal : Analysis
         The analysis of the drive as drawn.
     model : UncertaintyModel
-        Its model (``sensitivity_samples`` and ``seed`` from its settings).
+        Its model (``sensitivity_samples``: the first N; ``seed`` from its settings).
     evaluator : StateEvaluator | None
         Evaluates the states (default :func:`chaindrive.robust.sampling.serial_states`).
     checks : sequence of str
         Check keys whose margin fraction is apportioned too (as ``margin[<key>]``).
+    budget : int | None
+        Evaluations the adaptive sample may spend [–] (None: ``sensitivity_budget``).
+    target : float | None
+        Half-width aimed at for every metric's leading S_T [–] (None:
+        ``sensitivity_target``).
+    progress : callable | None
+        ``progress(done, total)`` in states.
 
     Returns
     -------
@@ -128,40 +458,33 @@ def sensitivity(nominal: Analysis, model: UncertaintyModel, *,
     ----------
     [Saltelli2010], [Herman2017]
     """
-    groups = model.groups
-    if len(groups) < 2:
+    if len(model.groups) < 2:
         return None
-    s = model.settings
-    problem = {"num_vars": model.dimension, "names": [v.name for v in model.variables],
-               "bounds": [[0.0, 1.0]] * model.dimension,
-               "groups": [v.group for v in model.variables]}
-    n = 1 << max(2, math.ceil(math.log2(s.sensitivity_samples)))
-    u = sobol_sample.sample(problem, n, calc_second_order=False, seed=s.seed)
-    outcomes = (evaluator or serial_states)(nominal, model, model.values(u), True)
-    unbuilt = sum(o.error is not None for o in outcomes)
-    first: dict[str, tuple[float, ...]] = {}
-    total: dict[str, tuple[float, ...]] = {}
-    first_conf: dict[str, tuple[float, ...]] = {}
-    total_conf: dict[str, tuple[float, ...]] = {}
-    nan = (math.nan,) * len(groups)
-    outputs = {m: np.array([o.metrics.get(m, math.nan) for o in outcomes])
+    counts = {"done": 0, "unbuilt": 0}
+
+    def evaluate(x: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+        base = counts["done"]
+
+        def step(k: int, total: int) -> None:
+            if progress is not None:
+                progress(base + k, base + total)
+
+        outcomes = (evaluator(nominal, model, x, True) if evaluator is not None
+                    else serial_states(nominal, model, x, True, progress=step))
+        counts["done"] += len(x)
+        counts["unbuilt"] += sum(o.error is not None for o in outcomes)
+        out = {m: np.array([o.metrics.get(m, math.nan) for o in outcomes])
                for m in SENSITIVITY_METRICS}
-    outputs.update({f"margin[{k}]": np.array([math.nan if o.margin.get(k) is None
-                                              else float(o.margin[k] or 0.0)
-                                              for o in outcomes]) for k in checks})
-    for metric, y in outputs.items():
-        finite = np.isfinite(y)
-        if finite.sum() < 2 or float(np.var(y[finite])) <= 1e-24 * max(1.0, float(
-                np.mean(y[finite]) ** 2)):
-            first[metric] = total[metric] = first_conf[metric] = total_conf[metric] = nan
-            continue
-        y = np.where(finite, y, float(np.mean(y[finite])))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)  # SALib's bootstrap on few points
-            r = sobol_analyze.analyze(problem, y, calc_second_order=False, seed=s.seed)
-        first[metric] = tuple(float(v) for v in r["S1"])
-        total[metric] = tuple(float(v) for v in r["ST"])
-        first_conf[metric] = tuple(float(v) for v in r["S1_conf"])
-        total_conf[metric] = tuple(float(v) for v in r["ST_conf"])
-    return SensitivityResult(tuple(groups), first, total, first_conf, total_conf, n,
-                             len(outcomes), unbuilt)
+        out |= {f"margin[{k}]": np.array([math.nan if o.margin.get(k) is None
+                                          else float(o.margin[k] or 0.0) for o in outcomes])
+                for k in checks}
+        return out
+
+    r = grouped_indices(model, evaluate, start=model.settings.sensitivity_samples,
+                        budget=model.settings.sensitivity_budget if budget is None else budget,
+                        target=model.settings.sensitivity_target if target is None else target,
+                        progress=progress)
+    return SensitivityResult(r.groups, r.first_order, r.total, r.first_order_conf, r.total_conf,
+                             r.base_samples, r.evaluations, counts["unbuilt"], r.target, r.budget,
+                             r.converged, r.budget_hit, r.history, r.confidence,
+                             full_path_held(model))

@@ -14,7 +14,7 @@ import hashlib
 import json
 import math
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
 from pathlib import Path
@@ -50,7 +50,7 @@ from chaindrive.robust.uncertainty import (
 from chaindrive.synthesis.problem import Problem, problem_from_mapping
 from chaindrive.synthesis.studies import DEFAULT_DB, StudyStore, run_study
 
-__all__ = ["DaskOptions", "RobustResult", "dask_states", "load_robust", "nominal_analysis",
+__all__ = ["DaskOptions", "RobustResult", "StudyProgress", "dask_states", "load_robust", "nominal_analysis",
            "robust_batch", "robust_state", "robust_study", "shared_modal_basis",
            "without_flywheels"]
 
@@ -168,6 +168,11 @@ def dask_states(options: DaskOptions) -> StateEvaluator:
     return evaluate
 
 
+#: ``progress(stage, done, total)``: a stage of the study ("probabilities", "life curve",
+#: "sensitivity") has ``done`` of ``total`` states evaluated (a presenter draws it).
+StudyProgress = Callable[[str, int, int], None]
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class RobustResult:
     """The robust study of a drive.
@@ -201,7 +206,10 @@ class RobustResult:
 
 def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None, *,
                  with_sensitivity: bool = True, life_points: int = 13, path: str = "full",
-                 evaluator: StateEvaluator | None = None) -> RobustResult:
+                 evaluator: StateEvaluator | None = None,
+                 sensitivity_budget: int | None = None,
+                 sensitivity_target: float | None = None,
+                 progress: StudyProgress | None = None) -> RobustResult:
     """Life curve, probabilities of failure and sensitivity indices of a drive.
 
     Parameters
@@ -219,18 +227,48 @@ def robust_study(nominal: Analysis, settings: UncertaintySettings | None = None,
         "full" or "modal" for the probabilities (:func:`chaindrive.robust.sampling.reliability`).
     evaluator : StateEvaluator | None
         Where the states run (None: this process; :func:`dask_states` for Dask).
+    sensitivity_budget : int | None
+        Evaluations the adaptive Sobol sample may spend [–]
+        (:func:`chaindrive.robust.sensitivity.sensitivity`; None: the settings').
+    sensitivity_target : float | None
+        Half-width it aims at for every metric's leading total index [–] (None: the
+        settings').
+    progress : callable | None
+        ``progress(stage, done, total)`` as the states are evaluated (per state in this
+        process; per stage on Dask, which draws its own bar).
 
     Returns
     -------
     RobustResult
     """
+    def stage(name: str) -> Callable[[int, int], None] | None:
+        if progress is None:
+            return None
+        return lambda done, total: progress(name, done, total)
+
     model = uncertainty_model(nominal, settings)
-    rel = reliability(nominal, model, path=path, evaluator=evaluator)
+    step = stage("probabilities")
+    if step is not None:
+        step(0, 0)
+    rel = reliability(nominal, model, path=path, evaluator=evaluator, progress=step)
+    if step is not None:
+        step(rel.evaluated_states, rel.evaluated_states)
+    step = stage("life curve")
+    if step is not None:
+        step(0, life_points)
+    life = life_curve(nominal, model, points=life_points)
+    if step is not None:
+        step(life_points, life_points)
     uncertain = [c.key for c in rel.checks
                  if 0.0 < c.probability < 1.0 and c.key not in ("any", "buildable")][:3]
     return RobustResult(
-        nominal.drive.name, model, life_curve(nominal, model, points=life_points), rel,
-        sensitivity(nominal, model, evaluator=evaluator, checks=uncertain)
+        nominal.drive.name, model, life, rel,
+        sensitivity(nominal, model, evaluator=evaluator, checks=uncertain,
+                    budget=model.settings.sensitivity_budget if sensitivity_budget is None
+                    else sensitivity_budget,
+                    target=model.settings.sensitivity_target if sensitivity_target is None
+                    else sensitivity_target,
+                    progress=stage("sensitivity"))
         if with_sensitivity else None)
 
 

@@ -23,8 +23,11 @@ instead of the point estimate. S below S_min = ⌈ln(1 − c)/ln(1 − α)⌉ (2
 cannot certify α at all and is refused; left out, ``samples`` is the least Sobol count that
 certifies every chance constraint. Every design of a search sees the same points (common
 random numbers), so the Pareto designs found are verified with an independent sample
-(another seed, ``verification`` states, by default four times the search's) and that
-verification (:class:`ChanceVerification`) is what the result reports. The path "auto"
+(another seed, ``verification`` states, by default four times the search's) **on the full
+path** (every tolerance sampled, whatever path the search took: the modal path holds the
+geometric tolerances at nominal), and that verification (:class:`ChanceVerification`: the
+search's probability and the full path's, ``certified`` only when the full path's bound
+holds) is what the result reports. The path "auto"
 takes the batched modal path when the constraints and objectives need only the resonance
 margin and f₁, and the full path otherwise; the modal path evaluates each sampled point at
 its wear states, so there a point counts as the fraction of its wear states that fail.
@@ -346,6 +349,12 @@ class ChanceVerification:
         Its states [–].
     seed : int
         Its seed (the search's + 1).
+    search_probability : float
+        The search's own estimate p̂ on its path [–].
+    search_path : str
+        The path of the search ("modal" or "full").
+    path : str
+        The path of the verification (always "full").
     """
 
     key: str
@@ -361,17 +370,22 @@ class ChanceVerification:
     failures: float
     samples: int
     seed: int
+    search_probability: float = math.nan
+    search_path: str = "full"
+    path: str = "full"
 
     @property
     def certified(self) -> bool:
-        """The independent sample certifies P ≤ α (p_up ≤ α)."""
-        return self.upper <= self.alpha
+        """The independent sample on the full path certifies P ≤ α (p_up ≤ α)."""
+        return self.path == "full" and self.upper <= self.alpha
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
         return {"key": self.key, "alpha": self.alpha, "confidence": self.confidence,
-                "search": {"failures": self.search_failures, "samples": self.search_samples,
+                "search": {"path": self.search_path, "probability": self.search_probability,
+                           "failures": self.search_failures, "samples": self.search_samples,
                            "upper": self.search_upper},
+                "path": self.path,
                 "probability": self.probability, "ci_low": self.low, "ci_high": self.high,
                 "upper": self.upper, "failures": self.failures, "samples": self.samples,
                 "seed": self.seed, "certified": self.certified}
@@ -379,7 +393,7 @@ class ChanceVerification:
 
 def verify_design(analysis: RobustAnalysis) -> tuple[ChanceVerification, ...]:
     """Every chance constraint of a design re-estimated with an independent sample: the
-    settings' ``verification`` states, another seed, the same path (module docstring).
+    settings' ``verification`` states, another seed, on the full path (module docstring).
 
     Parameters
     ----------
@@ -398,7 +412,7 @@ def verify_design(analysis: RobustAnalysis) -> tuple[ChanceVerification, ...]:
     s = analysis.robust_settings
     u = s.uncertainty
     other = replace(u, samples=s.verification, seed=u.seed + 1)
-    fresh = RobustAnalysis(analysis.design, robust=replace(s, uncertainty=other),
+    fresh = RobustAnalysis(analysis.design, robust=replace(s, uncertainty=other, path="full"),
                            limits=analysis.limits, startup=analysis.with_startup)
     out = []
     for key, alpha in s.chance:
@@ -407,6 +421,9 @@ def verify_design(analysis: RobustAnalysis) -> tuple[ChanceVerification, ...]:
         entry = fresh.robust.probability(key)
         p, lo, hi = ((entry.probability, entry.low, entry.high) if entry is not None
                      else (k / n, math.nan, math.nan))
+        searched = analysis.robust.probability(key)
         out.append(ChanceVerification(key, alpha, u.confidence, k0, n0, up0, p, lo, hi, up,
-                                      k, n, other.seed))
+                                      k, n, other.seed,
+                                      math.nan if searched is None else searched.probability,
+                                      s.path, "full"))
     return tuple(out)

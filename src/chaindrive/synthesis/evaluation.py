@@ -271,8 +271,8 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
     A check that cannot be verified is a violated constraint (g = 1) and is named in
     :attr:`Evaluation.unverified` with why; one that cannot be verified on any design
     (:func:`unverifiable_for_any_design`) is named there and constrains nothing. Without the
-    start-up (``startup_safety = false``) k₁ is still a constraint where ``analyze`` could not verify it whatever the
-    start-up gives: on an incomplete dynamic model.
+    start-up (``startup_safety = false``) k₁ is still a constraint where ``analyze`` could not
+    verify it whatever the start-up gives: on an incomplete dynamic model.
 
     Parameters
     ----------

@@ -1,0 +1,163 @@
+"""Sobol indices through the package's own machinery (the uncertainty model's inverse CDFs,
+the grouped Saltelli design, SALib's estimators, the adaptive sample, the clipping and the
+ranking) against closed forms:
+
+* the Ishigami function sin x₁ + 7 sin² x₂ + 0.1 x₃⁴ sin x₁, x ~ U(−π, π)³
+  [IshigamiHomma1990], whose partial variances are V₁ = (1 + bπ⁴/5)²/2, V₂ = a²/8, V₃ = 0,
+  V₁₃ = 8b²π⁸/225 [SobolLevitan1999];
+* a grouped linear model Y = Σ aᵢXᵢ of independent normals, whose group indices are the
+  groups' shares of the variance, S1 = ST = Σ_{i∈g} aᵢ²σᵢ² / Σ aᵢ²σᵢ² [Saltelli2008].
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from chaindrive.robust.sensitivity import (
+    SensitivityResult,
+    grouped_indices,
+    ranks,
+)
+from chaindrive.robust.uncertainty import UncertaintyModel, UncertaintySettings, Variable
+
+
+def _model(variables: list[Variable], **settings: object) -> UncertaintyModel:
+    return UncertaintyModel(UncertaintySettings(**settings),  # type: ignore[arg-type]
+                            tuple(variables), 0.03, None, True, None, 0, 1)
+
+
+def _ishigami(x: np.ndarray, a: float = 7.0, b: float = 0.1) -> dict[str, np.ndarray]:
+    return {"y": np.sin(x[:, 0]) + a * np.sin(x[:, 1]) ** 2
+            + b * x[:, 2] ** 4 * np.sin(x[:, 0])}
+
+
+def _ishigami_exact(a: float = 7.0, b: float = 0.1) -> tuple[list[float], list[float]]:
+    v1 = 0.5 * (1 + b * math.pi ** 4 / 5) ** 2
+    v2 = a * a / 8
+    v13 = 8 * b * b * math.pi ** 8 / 225
+    v = v1 + v2 + v13
+    return [v1 / v, v2 / v, 0.0], [(v1 + v13) / v, v2 / v, v13 / v]
+
+
+def test_ishigami_indices_against_their_closed_form() -> None:
+    model = _model([Variable(f"x{k}", f"x{k}", "uniform", -math.pi, math.pi)
+                    for k in (1, 2, 3)])
+    r = grouped_indices(model, _ishigami, start=2048, budget=16384)
+    s1, st = _ishigami_exact()
+    assert s1[0] == pytest.approx(0.3139, abs=1e-4) and st[2] == pytest.approx(0.2437, abs=1e-4)
+    assert r.base_samples == 2048 and r.evaluations == 2048 * 5 and r.converged
+    for k in range(3):
+        # each estimate within its own 95 % interval of the closed form, no wider than ±0.1
+        assert abs(r.first_order["y"][k] - s1[k]) <= r.first_order_conf["y"][k] <= 0.1
+        assert abs(r.total["y"][k] - st[k]) <= r.total_conf["y"][k] <= 0.1
+    assert [g for g, _ in r.ranking("y")] == ["x1", "x2", "x3"]
+
+
+def _linear(coefficients: list[float]):  # type: ignore[no-untyped-def]
+    def evaluate(x: np.ndarray) -> dict[str, np.ndarray]:
+        return {"y": x @ np.asarray(coefficients)}
+    return evaluate
+
+
+def test_grouped_linear_indices_and_ties_against_the_variance_shares() -> None:
+    # groups g1 = {x1, x2}, g2 = {x3}, g3 = {x4, x5}; variances 4 + 5 = 9, 9, 1 + 1 = 2 →
+    # shares 9/20, 9/20, 2/20: g1 and g2 cannot be told apart, g3 is clearly below
+    sigma = [1.0, 1.0, 3.0, 1.0, 0.5]
+    a = [2.0, math.sqrt(5.0), 1.0, 1.0, 2.0]
+    groups = ["g1", "g1", "g2", "g3", "g3"]
+    model = _model([Variable(f"x{k + 1}", g, "normal", 0.0, s)
+                    for k, (g, s) in enumerate(zip(groups, sigma, strict=True))])
+    exact = {"g1": 9 / 20, "g2": 9 / 20, "g3": 2 / 20}
+    r = grouped_indices(model, _linear(a), start=32, budget=16384)
+    assert r.converged and not r.budget_hit
+    assert r.history[-1].widest_half_width <= 0.1 < r.history[0].widest_half_width
+    for k, g in enumerate(r.groups):
+        assert abs(r.first_order["y"][k] - exact[g]) <= r.first_order_conf["y"][k]
+        assert abs(r.total["y"][k] - exact[g]) <= r.total_conf["y"][k]
+    idx = {i.group: i for i in r.indices("y")}
+    assert idx["g1"].rank == idx["g2"].rank == 1 and idx["g3"].rank == 3
+    assert r.tied("y") == [sorted(["g1", "g2"], key=lambda g: -idx[g].total_raw)]
+    d = r.to_dict()["metrics"]["y"]
+    assert d["rank"] == [1, 1, 3] and d["tied"] == r.tied("y")
+
+
+def test_adaptive_sample_doubles_and_stops_at_the_budget() -> None:
+    sigma = [1.0, 1.0, 3.0, 1.0, 0.5]
+    model = _model([Variable(f"x{k + 1}", g, "normal", 0.0, s) for k, (g, s) in
+                    enumerate(zip(["g1", "g1", "g2", "g3", "g3"], sigma, strict=True))])
+    r = grouped_indices(model, _linear([2.0, 2.0, 1.0, 1.0, 2.0]), start=8, budget=200)
+    # 8 → 16 base points (5 per point: 80 evaluations), 32 would need 160, 64 would pass
+    # the budget of 200
+    assert [h.base_samples for h in r.history] == [8, 16, 32]
+    assert r.evaluations == 32 * 5 and r.budget_hit and not r.converged
+    assert r.history[-1].widest_half_width > 0.1
+    d = r.to_dict()
+    assert d["budget_hit"] and d["budget_evaluations"] == 200 and not d["converged"]
+
+
+def test_the_first_points_of_a_larger_design_are_the_smaller_design() -> None:
+    """Growing N re-uses every state: the evaluations of the adaptive sample are those of
+    one design of the final N (same indices, each state evaluated once)."""
+    model = _model([Variable(f"x{k}", f"x{k}", "uniform", -math.pi, math.pi)
+                    for k in (1, 2, 3)])
+    seen: list[int] = []
+
+    def counting(x: np.ndarray) -> dict[str, np.ndarray]:
+        seen.append(len(x))
+        return _ishigami(x)
+
+    grown = grouped_indices(model, counting, start=32, budget=5 * 256)
+    once = grouped_indices(model, _ishigami, start=256, budget=5 * 256)
+    assert sum(seen) == grown.evaluations == once.evaluations == 5 * 256
+    assert grown.total["y"] == pytest.approx(once.total["y"], abs=1e-12)
+
+
+def test_indices_outside_the_unit_interval_are_clipped_and_flagged() -> None:
+    r = SensitivityResult(("a", "b", "c"), {"m": (1.103, -0.02, 0.3)}, {"m": (0.9, 0.1, 0.3)},
+                          {"m": (0.05, 0.05, 0.05)}, {"m": (0.05, 0.05, 0.3)}, 32, 160, 0)
+    a, b, c = r.indices("m")
+    assert (a.first, a.first_raw, a.first_outside) == (1.0, 1.103, True)   # 0.103 > 0.05
+    assert (b.first, b.first_outside) == (0.0, False)                       # within ±0.05
+    assert not c.first_outside and c.first == 0.3
+    # a (0.85…0.95) is clearly above c (0…0.6) and b (0.05…0.15); b and c overlap
+    assert [a.rank, b.rank, c.rank] == [1, 2, 2] and r.tied("m") == [["c", "b"]]
+    assert ranks([0.5, 0.5], [0.0, 0.0]) == [1, 1]
+
+
+def test_intervals_are_reproducible() -> None:
+    """The bootstrap intervals are seeded (a seed of 0 is not left unseeded): the same model
+    and seed give the same half-widths."""
+    model = _model([Variable(f"x{k}", f"x{k}", "uniform", -math.pi, math.pi)
+                    for k in (1, 2, 3)], seed=0)
+    one = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
+    two = grouped_indices(model, _ishigami, start=64, budget=5 * 64)
+    assert one.total_conf == two.total_conf and one.first_order_conf == two.first_order_conf
+
+
+def test_study_reports_its_progress_per_state() -> None:
+    """robust_study calls progress(stage, done, total) per state in this process: the stages
+    in order, done never decreasing within a stage and ending at its total, the Sobol
+    stage's total the states it evaluated (the compute never prints)."""
+    import chaindrive
+    from chaindrive.robust.study import nominal_analysis, robust_study
+    from tests.conftest import EXAMPLES
+
+    calls: list[tuple[str, int, int]] = []
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
+    result = robust_study(nominal, UncertaintySettings(samples=8, replicates=2,
+                                                       sensitivity_samples=4,
+                                                       sensitivity_budget=48),
+                          life_points=3, progress=lambda *c: calls.append(c))
+    stages = list(dict.fromkeys(c[0] for c in calls))
+    assert stages == ["probabilities", "life curve", "sensitivity"]
+    for stage in stages:
+        mine = [(d, t) for s, d, t in calls if s == stage]
+        assert all(a[0] <= b[0] for a, b in itertools.pairwise(mine))
+        assert mine[-1][0] == mine[-1][1] > 0
+    assert [c for c in calls if c[0] == "probabilities"][-1][1:] == (8, 8)
+    assert result.sensitivity is not None
+    assert [c for c in calls if c[0] == "sensitivity"][-1][1] == result.sensitivity.evaluations
