@@ -232,7 +232,7 @@ def test_guide_idler_between_driven_sprockets_is_a_warning_a_tensioner_there_fai
     loads = loads_of(guide, contour_geometry(guide))
     assert idler_checks(guide, loads) == []
     (w,) = idler_warnings(guide, loads)
-    assert w.code == "strength.idler-on-loaded-span" and "50% of F_t" in w.message
+    assert w.code == "strength.idler-on-loaded-span" and "50% of the peripheral force" in w.message
     tensioner = square(True)
     loads = loads_of(tensioner, contour_geometry(tensioner))
     (check,) = idler_checks(tensioner, loads)

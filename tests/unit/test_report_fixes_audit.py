@@ -104,7 +104,7 @@ def test_service_factor_listed_only_when_not_given(seed, jindal) -> None:
     assert len(line) == 1 and fmt(jindal.strength.operating_factor) in line[0]
     inputs = next(b for b in _blocks(build_report(jindal, dpi=20), "inputs")
                   if isinstance(b, Table) and b.caption == "Drive and chain")
-    assert ("service factor", "K_s", "not given", "") in inputs.rows
+    assert ("service factor", "K_s", "1 (default)", "") in inputs.rows
 
 
 def test_polymer_chain_data_are_called_estimates(polymer) -> None:

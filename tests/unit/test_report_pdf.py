@@ -93,7 +93,7 @@ def test_pages_verdict_first_and_furniture(report, tmp_path: Path) -> None:
         assert float(np.std(image)) > 0.01  # not blank
     where = page_map(r)
     assert where["verdict"] == 1 and where["summary"] == 1
-    assert where["inputs"] == 2  # the verdict page stands alone
+    assert 2 <= where["inputs"] <= 3  # the verdict and its summary stand alone, on two pages at most
     assert list(where) == ["summary", "verdict", *GOLDEN[name][1:]]
     assert where["references"] == len(pages) or where["references"] == len(pages) - 1
     source, _ = typst_source(r)
