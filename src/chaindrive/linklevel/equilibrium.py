@@ -34,7 +34,7 @@ across that) and its spans stretched or hung to T₀. Three steps build that sta
 ℓ₀ stays within microns of p − T₀/k: the chain keeps the sprockets' pitch.
 
 With gravity the tension along a chain hanging over freely turning wheels is hydrostatic,
-T(y) = T_ref + q g (y − y_ref) ([Irvine1981, §1.2]: dT/ds = q g dy/ds for a cable under its
+T(y) = T_ref + q g (y − y_ref) ([Irvine1981, ch. 1]: dT/ds = q g dy/ds for a cable under its
 own weight), so every span's middle carries T₀ + q g (y_k − y_ref); without gravity every
 span carries T₀ — both up to the polygon: a free sprocket passes the tension on at arms
 between R cos(π/z) and R, so spans may differ by up to 1/cos(π/z) − 1 per sprocket.
@@ -361,7 +361,7 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
     References
     ----------
     [Kelley1998] (pseudo-transient continuation); [Dennis1996] (Newton with line search);
-    [Curtis1974] (grouped differences); [Irvine1981, §1.2] (hydrostatic tension).
+    [Curtis1974] (grouped differences); [Irvine1981, ch. 1] (hydrostatic tension).
     """
     tables = kernel_tables(model)
     n = model.centres.shape[0]
