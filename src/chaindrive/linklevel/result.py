@@ -160,8 +160,8 @@ def step_convergence(coarse: LinkLevelResult, fine: LinkLevelResult) -> dict[str
     Returns
     -------
     dict
-        ``time_step_s``, ``half_step_s``, the ``*_change`` fractions, ``tolerance`` and
-        ``converged`` (all changes within it).
+        ``checked`` (True), ``time_step_s``, ``half_step_s``, the ``*_change`` fractions,
+        ``tolerance`` and ``converged`` (all changes within it).
     """
     kd_c, kd_f = coarse.coefficient_of_dynamics, fine.coefficient_of_dynamics
     changes = {
@@ -178,7 +178,8 @@ def step_convergence(coarse: LinkLevelResult, fine: LinkLevelResult) -> dict[str
                                           strict=True)),
     }
     ok = all(v is None or v <= CONVERGENCE_TOLERANCE for v in changes.values())
-    return {"time_step_s": coarse.dt, "half_step_s": fine.dt, **changes,
+    return {"checked": True, "time_step_s": coarse.dt, "half_step_s": fine.dt,
+            **{k: None if v is None else float(v) for k, v in changes.items()},
             "tolerance": CONVERGENCE_TOLERANCE, "converged": ok}
 
 
@@ -476,7 +477,10 @@ class LinkLevelResult:
             "energy_residual_j": self.energy_residual_j,
             "energy_drift_fraction": self.energy["drift_fraction"],
             "equilibrium": dict(self.equilibrium),
-            "step_convergence": dict(self.convergence),
+            "step_convergence": dict(self.convergence) or {
+                "checked": False,
+                "note": "step convergence not checked: simulate(..., check_step=True) runs "
+                        "the same simulation at half the step and reports the changes"},
         }
         if include_history:
             cols, data = self.history()
