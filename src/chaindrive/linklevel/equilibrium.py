@@ -28,8 +28,9 @@ across that) and its spans stretched or hung to T₀. Three steps build that sta
    of every roller (gravity, link springs, roller–tooth contacts) and every free sprocket
    (contact torques; the driver is held, which fixes the free turning of the chain round its
    loop, and the torque it takes is reported), bordered with the reference tension = T₀ in
-   the unknown ℓ₀: the residual falls to 10⁻⁶ T₀ (the polished state is kept only if it
-   improves on the settled one; its residual is reported).
+   the unknown ℓ₀: the residual falls to 10⁻⁶ T₀. Where Newton stops short (a contact
+   changing state on the way), the best state so far is settled again and polished again,
+   three rounds at most; the best state is kept and its residual reported.
 
 ℓ₀ stays within microns of p − T₀/k: the chain keeps the sprockets' pitch.
 
@@ -67,6 +68,8 @@ TWO_PI = 2.0 * math.pi
 #: Largest residual force on a roller at the solved equilibrium, as a fraction of T₀ [-].
 FORCE_TOLERANCE = 1e-6
 _NEWTON_STEPS = 20
+#: Rounds of settling and Newton polish at most [-].
+_POLISH_ROUNDS = 3
 _SECANT_STEPS = 8
 #: Decay of the settling: e^{−8} of every mode's amplitude (η/2 = ω_s its rate) [-].
 _SETTLE_DECAYS = 8.0
@@ -284,7 +287,10 @@ class _Balance:
             if worst <= tol:
                 break
             J = self.jacobian(x, th, rest, r)
-            du = np.linalg.lstsq(J, -r, rcond=None)[0]
+            try:
+                du = np.linalg.solve(J, -r)
+            except np.linalg.LinAlgError:  # singular: the least-squares step
+                du = np.linalg.lstsq(J, -r, rcond=None)[0]
             norm0 = float(r @ r)
             step = 1.0
             for _ls in range(40):
@@ -396,10 +402,25 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
             (r0, e0), (r1, e1) = history[-2], history[-1]
             rest = r1 - e1 * (r1 - r0) / (e1 - e0) if e1 != e0 else r1
         duration = 0.5 * _SETTLE_DECAYS / omega
-    xs, ths, rests, worst = bal.solve(x, th, rest, tol)
-    res = bal(x, th, rest)
-    if worst < float(np.abs(res).max()):
-        x, th, rest = xs, ths, rests
+    def merit(r: NDArray[np.float64]) -> float:
+        """Largest residual force, infinite unless the reference span is at T₀."""
+        return float(np.abs(r[:-1]).max()) if abs(r[-1]) <= _TENSION_SETTLED * t0 \
+            else math.inf
+
+    best = (merit(bal(x, th, rest)), x, th, rest)
+    for _ in range(_POLISH_ROUNDS):
+        xs, ths, rests, worst = bal.solve(x, th, rest, tol)
+        score = merit(bal(xs, ths, rests))
+        if score < best[0]:
+            best = (score, xs, ths, rests)
+        if worst <= tol:
+            break
+        # Newton stopped short (a contact changing state on the way): settle further
+        # from the best state and polish again (the bordered Newton restores T₀)
+        x, th = _settle(model, tables, best[1], best[2], best[3], dt,
+                        _SETTLE_DECAYS / omega, eta)
+        rest = best[3]
+    _, x, th, rest = best
     res = bal(x, th, rest)
     worst = float(np.abs(res[:-1]).max())
     if abs(res[-1]) > _TENSION_SETTLED * t0:
