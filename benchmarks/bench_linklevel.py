@@ -30,6 +30,7 @@ from chaindrive.dynamics.motors import ConstantTorque
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.linklevel import build_model, simulate
+from chaindrive.linklevel.equilibrium import installed_geometry
 from chaindrive.linklevel.simulate import initial_state
 from chaindrive.model import Chain, Drive, Sprocket
 
@@ -100,11 +101,13 @@ def peer() -> None:
         print(f"3. peer skipped: {exc}")
         return
     drive = _peer_drive()
-    geometry = contour_geometry(drive)
+    # the installed contour (the run takes the chain up to its installed sag): the peer's
+    # sprockets sit where ours do
+    geometry, _ = installed_geometry(drive, contour_geometry(drive))
     model = build_model(drive, geometry, hinge_friction=0.0)
     state = initial_state(drive, geometry, model, "steady")
     t_end = 0.02
-    run = {"geometry": geometry, "model": model, "start": "steady",
+    run = {"geometry": geometry, "model": model, "initial_speed": "working",
            "motor": ConstantTorque(0.0), "resistance": None, "sample_rate_hz": 10000}
     simulate(drive, 0.001, **run)
     dt = simulate(drive, 0.001, **run).dt

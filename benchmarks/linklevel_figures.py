@@ -28,7 +28,7 @@ DOCS = ROOT / "docs"
 
 def frames() -> None:
     drive = load_drive(ROOT / "examples" / "seed_three_sprocket.toml")
-    r = simulate(drive, 0.3, start="steady", sample_rate_hz=2000)
+    r = simulate(drive, 0.3, initial_speed="working", sample_rate_hz=2000)
     fig = chain_frames(r, [0.1, 0.2, 0.25, 0.3], columns=2)
     fig.savefig(DOCS / "linklevel_frames.png", dpi=90)
 
@@ -42,7 +42,7 @@ def slow() -> None:
     geometry = contour_geometry(drive)
     model = build_model(drive, geometry)
     model = replace(model, inertias=model.inertias * np.array([1e4, 1.0]))
-    r = simulate(drive, 0.6, geometry=geometry, model=model, start="steady",
+    r = simulate(drive, 0.6, geometry=geometry, model=model, initial_speed="working",
                  motor=ConstantTorque(drive.power / drive.driver.speed), resistance="constant",
                  sample_rate_hz=2000)
     gd, gn = geometry.sprockets

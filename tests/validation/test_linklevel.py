@@ -19,7 +19,7 @@ from chaindrive.dynamics.ring import modal_analysis
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.io.design import load_drive
 from chaindrive.kinematics import instantaneous_chain_speed
-from chaindrive.linklevel import build_model, simulate
+from chaindrive.linklevel import build_model, linear_modes, simulate
 from chaindrive.linklevel.model import seating_geometry
 from chaindrive.model import Chain, Drive, Sprocket
 from tests.conftest import EXAMPLES
@@ -53,16 +53,18 @@ def _wrap_phase(angle: np.ndarray, teeth: int) -> np.ndarray:
 def slow_run():
     """A 15/25-tooth 12B drive at 30 rpm under 300 W: quasi-static (tooth frequency 7.5 Hz
     against a first natural frequency of some 200 Hz); the driver's inertia ×10⁴ holds
-    its speed, as the kinematic law assumes."""
+    its speed, as the kinematic law assumes. The load comes on at t = 0 on the chain at its
+    static state: the transient it starts has died out after 0.4 s (measured), the window
+    the tests read."""
     drive = _two_sprocket(15, 25, 30, 30.0, 300.0)
     geometry = contour_geometry(drive)
     model = build_model(drive, geometry)
     model = replace(model, inertias=model.inertias * np.array([1e4, 1.0]))
     w = drive.driver.speed
-    result = simulate(drive, 0.6, geometry=geometry, model=model, start="steady",
+    result = simulate(drive, 0.8, geometry=geometry, model=model, initial_speed="working",
                       motor=ConstantTorque(drive.power / w), resistance="constant",
                       sample_rate_hz=2000)
-    return drive, geometry, result
+    return drive, result.geometry, result
 
 
 def test_slow_running_driven_speed_follows_polygonal_law(slow_run):
@@ -78,7 +80,7 @@ def test_slow_running_driven_speed_follows_polygonal_law(slow_run):
     gamma = _wrap_phase(leave - r.angles[:, 1], gn.teeth)
     w1, w2 = r.sprocket_speeds[:, 0], r.sprocket_speeds[:, 1]
     law = gd.pitch_radius * w1 * np.cos(beta) / (gn.pitch_radius * np.cos(gamma))
-    late = r.times > 0.2
+    late = r.times > 0.4
     dev = np.abs(w2 - law)[late] / w2[late].mean()
     assert np.percentile(dev, 95) < 0.01
     assert np.median(dev) < 0.002
@@ -106,7 +108,7 @@ def test_slow_running_chain_speed_is_r_omega_cos_beta(slow_run):
     arrive = math.atan2(gd.arrive[1] - gd.y, gd.arrive[0] - gd.x)
     law = instantaneous_chain_speed(drive.chain.pitch, gd.teeth, r.sprocket_speeds[1:-1, 0],
                                     gd.teeth * (arrive - r.angles[1:-1, 0]))
-    late = r.times[1:-1] > 0.2
+    late = r.times[1:-1] > 0.4
     dev = np.abs(v_span - law)[late] / law[late].mean()
     assert np.percentile(dev, 95) < 0.01
 
@@ -140,6 +142,22 @@ def _wrap_tensions(result, geometry, index: int) -> np.ndarray:
                                      2 * math.pi))]
         rows.append(result.link_tensions[k, (order - 1) % result.link_tensions.shape[1]][:6])
     return np.mean(rows, axis=0)
+
+
+def test_slow_running_tight_span_carries_pretension_plus_peripheral_force(slow_run):
+    """Static balance of the loaded drive ([MultimassChainDrives, §3.3]; the static loads of
+    chaindrive.strength.loads): the tight span carries T₀ + F_t, T₀ the span's tension at
+    the static state the run starts from and F_t = P/v the peripheral force, the slack span
+    stays near T₀ (it hangs in its sag, a hundred times softer than the tight span's links).
+    Mean over the steady window of the quasi-static run; within 3 %."""
+    drive, geometry, r = slow_run
+    tight = next(k for k, s in enumerate(geometry.spans) if s.end == drive.driver_index)
+    slack = next(k for k, s in enumerate(geometry.spans) if s.start == drive.driver_index)
+    late = r.times > 0.4
+    t0 = np.asarray(r.equilibrium["span_tension_n"])
+    mean = r.span_forces[late].mean(axis=0)
+    assert mean[tight] == pytest.approx(t0[tight] + r.nominal_force, rel=0.03)
+    assert mean[slack] < 0.1 * r.nominal_force
 
 
 def test_quasi_static_tooth_loads_decay_geometrically(slow_run):
@@ -178,7 +196,8 @@ def _wrap_tensions_reversed(result, geometry, index: int) -> np.ndarray:
 def test_span_transverse_frequency_is_the_moving_string():
     """[Mote1965]: fundamental of an axially moving string f = (1/2L)√(T/q)(1 − v²/c²),
     c² = T/q, T the span's mean tension in the run. A 20/20-tooth 12B drive at 1200 rpm
-    under 4 kW (v = 7.6 m/s, v/c ≈ 0.4, a 16 % drop from the stationary string), hinge
+    under 4 kW (v = 7.6 m/s; at the tension the span carries from its static state
+    v/c ≈ 0.17, a 3 % drop from the stationary string), hinge
     friction off, no gravity, the tight span kicked into its first mode (0.3 mm: the
     tension it adds stays under 1 %). Frequency: the peak of the Hann-windowed spectrum of
     the span's mid offset averaged over one tooth period (which removes the tooth-frequency
@@ -207,8 +226,8 @@ def test_span_transverse_frequency_is_the_moving_string():
     lo, mid, hi = np.log(spectrum[i - 1:i + 2])  # parabolic interpolation of the peak
     measured = freq[i] + 0.5 * (lo - hi) / (lo - 2 * mid + hi) * (freq[1] - freq[0])
     assert measured == pytest.approx(expected, rel=0.03)
-    # and the axial motion matters: the stationary string is off by more than 5 %
-    assert abs(measured / (c / (2 * L)) - 1) > 0.05
+    # and the axial motion is resolved: nearer the moving string than the stationary one
+    assert abs(measured - expected) < abs(measured - c / (2 * L))
 
 
 def test_energy_balance_over_a_start_up():
@@ -234,30 +253,6 @@ def _load(name: str) -> Drive:
                                           for s in drive.sprockets))
 
 
-def _impulse_peak_hz(drive: Drive, duration: float) -> float:
-    """Strongest natural frequency above 20 Hz [Hz] of the link-level model carrying its
-    nominal torque quasi-statically (at 1 % of the nominal speed, where engagement impacts
-    vanish): the run kicked at t = 0 (driver +0.05 rad/s) minus the same run unkicked
-    (the polygonal forced response cancels), Hann-windowed spectrum of the sprocket
-    speeds."""
-    geometry = contour_geometry(drive)
-    i, w, power = drive.driver_index, drive.driver.speed, drive.power
-    slow = replace(drive, power=power / 100, sprockets=tuple(
-        replace(s, speed=w / 100) if k == i else s for k, s in enumerate(drive.sprockets)))
-    kick = np.zeros(len(drive.sprockets))
-    kick[i] = 0.05
-    run = {"geometry": geometry, "start": "steady", "sample_rate_hz": 8000,
-           "motor": ConstantTorque(power / w), "resistance": "constant"}
-    base = simulate(slow, duration, **run)
-    hit = simulate(slow, duration, kick_rad_s=kick, **run)
-    x = hit.sprocket_speeds - base.sprocket_speeds
-    x = x * np.hanning(len(x))[:, None]
-    spec = np.abs(np.fft.rfft(x, 8 * len(x), axis=0)).sum(axis=1)
-    freq = np.fft.rfftfreq(8 * len(x), base.times[1] - base.times[0])
-    band = freq > 20.0
-    return float(freq[band][np.argmax(spec[band])])
-
-
 def _ring_with_chain_mass(drive: Drive, geometry, params) -> np.ndarray:
     """Elastic frequencies [Hz] of the ring with the chain's mass added: a third of each
     span to each of its end sprockets (Rayleigh's energy method for a spring's own mass,
@@ -272,21 +267,25 @@ def _ring_with_chain_mass(drive: Drive, geometry, params) -> np.ndarray:
     return modal_analysis(params.masses_kg + extra, params.stiffness_n_per_m).elastic_frequencies_hz
 
 
-def test_ring_model_frequency_against_link_level():
-    """Ring model [MultimassChainDrives] vs link-level, natural frequency under the nominal
-    load: the link-level's strongest resonance lies below the ring's first (measured ratio
-    0.50 on the seed contour: band 0.35–0.85), because the ring leaves out the chain's own
-    mass; the ring with the chain's mass added (Rayleigh) comes within 25 % of the
-    link-level (measured: 9 %). The eight-sprocket contour is not identified: with the
-    analysis's damping its kick spectrum has no dominant peak (docs/linklevel.md §6)."""
-    drive = _load("seed_three_sprocket.toml")
+@pytest.mark.parametrize("name", ["seed_three_sprocket.toml", "eight_sprocket.toml"])
+def test_ring_model_frequency_against_link_level(name):
+    """Ring model [MultimassChainDrives] vs link-level, first natural frequency: the
+    link-level's first mode along the chain, from its linearisation about the static state
+    (chaindrive.linklevel.linear_modes), lies below the ring's first (measured ratio 0.44 on
+    the bare seed contour, 0.47 on the eight-sprocket one: band 0.35–0.85), because the ring
+    leaves out the chain's own mass; the ring with the chain's mass added by Rayleigh's
+    estimate (a third of each span to its ends) comes closer but stays above it (measured
+    180 against 142 Hz and 201 against 137 Hz), as Rayleigh's quotient bounds the
+    fundamental from above [Rao2011, ch. 2]. docs/linklevel.md §6."""
+    drive = _load(name)
     geometry = contour_geometry(drive)
-    peak = _impulse_peak_hz(drive, 0.2)
+    first = linear_modes(drive, geometry=geometry).first_longitudinal_hz
+    assert first is not None
     params = drive_ring_parameters(drive, geometry)
     ring = modal_analysis(params.masses_kg, params.stiffness_n_per_m)
-    assert 0.35 < peak / ring.first_elastic_frequency_hz < 0.85
+    assert 0.35 < first / ring.first_elastic_frequency_hz < 0.85
     heavy = _ring_with_chain_mass(drive, geometry, params)
-    assert abs(heavy[0] / peak - 1) < 0.25
+    assert first < heavy[0] < ring.first_elastic_frequency_hz
 
 
 @pytest.mark.parametrize("name", ["seed_three_sprocket.toml", "eight_sprocket.toml"])
@@ -296,8 +295,9 @@ def test_ring_model_dynamic_loads_against_link_level(name):
     the roller–tooth engagement impacts the ring leaves out, so its K_D − 1 is the larger,
     by a measured factor of 9 (eight sprockets) to 19 (seed): band 3–60 (docs/linklevel.md
     §6 says why the link-level is the one to believe, and what its impact forces rest on);
-    the impacts are there, above the nominal force F_t (measured 1.1× F_t on the eight
-    sprockets, 10× on the seed's 15-tooth driver)."""
+    the impacts are there, of the order of the nominal force F_t (measured 0.76× F_t on the
+    eight sprockets and above F_t on the seed's 15-tooth driver, from the static state at
+    the installed pre-tension: band above F_t/2)."""
     from chaindrive import analyze
 
     drive = _load(name)
@@ -305,18 +305,18 @@ def test_ring_model_dynamic_loads_against_link_level(name):
     link = simulate(drive, 0.3, start="steady")
     excess = (link.coefficient_of_dynamics - 1) / (ring.coefficient_of_dynamics - 1)
     assert 3.0 < excess < 60.0
-    assert link.impacts[:, 3].max() > link.nominal_force
+    assert link.impacts[:, 3].max() > 0.5 * link.nominal_force
 
 
 def test_ring_model_startup_peak_against_link_level():
     """The analysis' start-up (now the whole-drive model [MultimassChainDrives, §3.1] with the
     chain's own mass) vs link-level, from rest by the Kloss motor over 1 s (bare seed
     contour): the peak force of the loaded spans (static tension over half the largest)
-    agrees within 35 % and lies below the link-level's (measured −25 % and −16 %): the
-    link-level's roller–tooth engagement impacts add to its peaks, which are chaotic (a
-    0.2 % change of its damping ratio moves them by 8 %: 791/784 N against 857/859 N);
-    docs/linklevel.md §6. The slack span's does not agree (the analysis' slack span goes
-    slack, the link-level's carries the engagement waves)."""
+    lies below the link-level's, at more than 45 % of it (measured 57 % and 64 %: 646/719 N
+    against 1141/1115 N, the link-level started from its static state at the installed
+    pre-tension): the link-level's roller–tooth engagement impacts add to its peaks, which
+    are chaotic (docs/linklevel.md §6). The slack span's does not agree (the analysis'
+    slack span goes slack, the link-level's carries the engagement waves)."""
     from chaindrive import analyze
 
     drive = _load("seed_three_sprocket.toml")
@@ -326,5 +326,5 @@ def test_ring_model_startup_peak_against_link_level():
     loaded = static > 0.5 * static.max()
     link = simulate(drive, 1.0, sample_rate_hz=2000).peak_span_force
     assert loaded.sum() >= 2
-    np.testing.assert_allclose(ring[loaded], link[loaded], rtol=0.35)
     assert np.all(ring[loaded] < link[loaded])
+    assert np.all(ring[loaded] > 0.45 * link[loaded])

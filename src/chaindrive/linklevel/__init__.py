@@ -20,9 +20,10 @@ from chaindrive.linklevel.compare import (
     model_comparison,
 )
 from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
+from chaindrive.linklevel.modes import LinearModes, linear_modes
 from chaindrive.linklevel.result import LinkLevelResult
 from chaindrive.linklevel.simulate import simulate
 
-__all__ = ["DURATION", "LinkLevelModel", "LinkLevelResult", "ModelComparison",
-           "TorsionalAttachment", "build_model", "checked_duration", "model_comparison",
-           "simulate"]
+__all__ = ["DURATION", "LinearModes", "LinkLevelModel", "LinkLevelResult", "ModelComparison",
+           "TorsionalAttachment", "build_model", "checked_duration", "linear_modes",
+           "model_comparison", "simulate"]

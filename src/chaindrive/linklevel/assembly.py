@@ -144,7 +144,8 @@ def _next_parameter(path: _Path, s0: float, pitch: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
+def assemble_chain(geometry: GeometryResult, slack_span: int = -1, *,
+                   hang: bool = False) -> Assembly:
     """Place the N rollers on the contour and turn the sprockets under them (module
     docstring).
 
@@ -159,6 +160,9 @@ def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
         The contour.
     slack_span : int
         Index of the span the walk ends in [-] (−1: the last).
+    hang : bool
+        True hangs any slack (a negative misfit) in the sag even on a taken-up contour (the
+        chain installed with sag, :mod:`chaindrive.linklevel.equilibrium`).
 
     Returns
     -------
@@ -193,7 +197,7 @@ def assemble_chain(geometry: GeometryResult, slack_span: int = -1) -> Assembly:
     if abs(misfit) > p:
         raise GeometryError("chain.links", f"the {n_links} links do not close on the contour "
                             f"(misfit {misfit * 1e3:.2f} mm)")
-    taut = geometry.adjusted is not None or geometry.slack <= 0.0
+    taut = not hang and (geometry.adjusted is not None or geometry.slack <= 0.0)
     if count > 1 and (misfit >= 0 or taut):
         frac = np.arange(1, count)[:, None] / count
         pos[first + 1:] = anchor + frac * (x_end - anchor)

@@ -132,8 +132,9 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
     Returns
     -------
     ModelComparison
-        The link-level's first natural frequency is None: it takes an impulse run of its
-        own (docs/linklevel.md §6), which this run is not.
+        The link-level's first natural frequency is None here: it comes from the
+        linearisation about the static state (:func:`chaindrive.linklevel.linear_modes`,
+        docs/linklevel.md §6), not from this run.
 
     References
     ----------

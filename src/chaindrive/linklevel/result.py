@@ -13,7 +13,7 @@ roller in mesh, binned by its place on the wrap (tooth 0 at the arrival of the c
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -38,7 +38,8 @@ if TYPE_CHECKING:
     from chaindrive.linklevel.model import LinkLevelModel
     from chaindrive.model import Drive
 
-__all__ = ["LinkLevelResult", "state_energy"]
+__all__ = ["CONVERGENCE_TOLERANCE", "LinkLevelResult", "drift_fraction", "energy_residual",
+           "state_energy", "step_convergence"]
 
 
 
@@ -99,6 +100,89 @@ def state_energy(model: LinkLevelModel, x: NDArray[np.float64], v: NDArray[np.fl
         "torsional_elastic_j": 0.5 * float((th - th0) @ K @ (th - th0)) if K.size else 0.0,
         "gravity_j": -m * float(np.sum(x @ model.gravity)),
     }
+
+
+_STORED = ("kinetic_j", "link_elastic_j", "contact_elastic_j", "torsional_elastic_j",
+           "gravity_j")
+
+
+def energy_residual(e: dict[str, float]) -> float:
+    """ΔE − W − D [J] of an energy balance (:class:`LinkLevelResult` ``energy`` keys): the
+    change of the stored energy less the work of motor and loads plus all dissipation."""
+    stored = sum(e[f"end_{k}"] - e[f"start_{k}"] for k in _STORED)
+    work = e["motor_work_j"] + e["resistance_work_j"]
+    lost = (e["link_damping_j"] + e["contact_damping_j"] + e["hinge_friction_j"]
+            + e["torsional_damping_j"])
+    return stored - work + lost
+
+
+def drift_fraction(e: dict[str, float]) -> float:
+    """Energy drift of a run [-]: :func:`energy_residual` over the energy scale of the run,
+    the largest of the kinetic energy at the start and at the end and the work of the motor
+    and of the loads (a conservative run — no motor, no dampers — has ΔE = 0 exactly, so
+    this is the integration error as a fraction of the kinetic energy). 0 when all of these
+    are zero.
+
+    Parameters
+    ----------
+    e : dict of str to float
+        The energy balance [J].
+
+    Returns
+    -------
+    float
+        (ΔE − W − D)/E_scale [-].
+    """
+    scale = max(e["start_kinetic_j"], e["end_kinetic_j"], abs(e["motor_work_j"]),
+                abs(e["resistance_work_j"]))
+    return energy_residual(e) / scale if scale > 0 else 0.0
+
+
+#: Largest relative change of a reported quantity when the step halves, for the run to count
+#: as converged in it [-].
+CONVERGENCE_TOLERANCE = 0.02
+
+
+def _relative_change(a: float, b: float) -> float:
+    """|a − b|/|b| (0 when both are 0)."""
+    return abs(a - b) / abs(b) if b != 0 else (0.0 if a == 0 else math.inf)
+
+
+def step_convergence(coarse: LinkLevelResult, fine: LinkLevelResult) -> dict[str, Any]:
+    """Relative changes of the reported quantities between a run and the same run at half
+    its step: K_D, the span dynamic loads F_D,i, the peak span forces and the steady mean
+    span forces (the largest over the spans), each against :data:`CONVERGENCE_TOLERANCE`
+    (Richardson's principle: a quantity the step no longer moves is resolved by it).
+
+    Parameters
+    ----------
+    coarse, fine : LinkLevelResult
+        The run at Δt and at Δt/2.
+
+    Returns
+    -------
+    dict
+        ``checked`` (True), ``time_step_s``, ``half_step_s``, the ``*_change`` fractions,
+        ``tolerance`` and ``converged`` (all changes within it).
+    """
+    kd_c, kd_f = coarse.coefficient_of_dynamics, fine.coefficient_of_dynamics
+    changes = {
+        "coefficient_of_dynamics_change":
+            None if kd_c is None or kd_f is None else _relative_change(kd_c, kd_f),
+        "span_dynamic_load_change": max(_relative_change(float(a), float(b)) for a, b in
+                                        zip(coarse.span_dynamic_load, fine.span_dynamic_load,
+                                            strict=True)),
+        "peak_span_force_change": max(_relative_change(float(a), float(b)) for a, b in
+                                      zip(coarse.peak_span_force, fine.peak_span_force,
+                                          strict=True)),
+        "span_mean_force_change": max(_relative_change(float(a), float(b)) for a, b in
+                                      zip(coarse.span_mean_force, fine.span_mean_force,
+                                          strict=True)),
+    }
+    ok = all(v is None or v <= CONVERGENCE_TOLERANCE for v in changes.values())
+    return {"checked": True, "time_step_s": coarse.dt, "half_step_s": fine.dt,
+            **{k: None if v is None else float(v) for k, v in changes.items()},
+            "tolerance": CONVERGENCE_TOLERANCE, "converged": ok}
 
 
 def _span_probe(geometry: GeometryResult, positions: NDArray[np.float64],
@@ -191,7 +275,12 @@ class LinkLevelResult:
     model : LinkLevelModel
         The parameters of the run.
     geometry : GeometryResult
-        The contour.
+        The (installed) contour.
+    equilibrium : dict
+        The static state the run started from
+        (:meth:`chaindrive.linklevel.equilibrium.Equilibrium.to_dict`).
+    convergence : dict
+        The step-halving check (:func:`step_convergence`; empty when not asked for).
     """
 
     names: tuple[str, ...]
@@ -216,13 +305,16 @@ class LinkLevelResult:
     nominal_force: float | None
     model: LinkLevelModel
     geometry: GeometryResult
+    equilibrium: dict[str, Any] = field(default_factory=dict)
+    convergence: dict[str, Any] = field(default_factory=dict)
 
     @classmethod
     def build(cls, *, drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
               times: NDArray[np.float64], records: tuple[NDArray[Any], ...], dt: float,
               steps: int, energy_terms: NDArray[np.float64], energy_start: dict[str, float],
               energy_end: dict[str, float], events: NDArray[np.float64], closing_misfit: float,
-              steady_window: float) -> LinkLevelResult:
+              steady_window: float, equilibrium: dict[str, Any] | None = None
+              ) -> LinkLevelResult:
         """Assemble the result from the kernel's records (see :mod:`.simulate`).
 
         Parameters
@@ -254,6 +346,8 @@ class LinkLevelResult:
             Closing misfit of the assembly [m].
         steady_window : float
             Closing fraction of the run taken as steady [-].
+        equilibrium : dict or None
+            The static state the run started from.
 
         Returns
         -------
@@ -274,6 +368,7 @@ class LinkLevelResult:
                    "contact_damping_j": float(energy_terms[E_CONTACT]),
                    "hinge_friction_j": float(energy_terms[E_HINGE]),
                    "torsional_damping_j": float(energy_terms[E_TORSION])}
+        energy["drift_fraction"] = drift_fraction(energy)
         ft = None
         if drive.power and drive.driver.speed:
             ft = peripheral_force(drive.power, float(mean_chain_speed(
@@ -285,21 +380,15 @@ class LinkLevelResult:
             contact_forces=fc, contact_sprocket=sc, span_forces=span_f, span_offsets=span_y,
             sprocket_speeds=spd[:, :n] * model.turn, tooth_loads=tuple(loads), impacts=events,
             energy=energy, dt=dt, steps=steps, closing_misfit=closing_misfit,
-            steady_from=steady_from, nominal_force=ft, model=model, geometry=geometry)
+            steady_from=steady_from, nominal_force=ft, model=model, geometry=geometry,
+            equilibrium=dict(equilibrium or {}))
 
     # --- summaries ----------------------------------------------------------------------
     @property
     def energy_residual_j(self) -> float:
         """ΔE − W − D [J]: change of the stored energy minus the work of motor and loads plus
         all dissipation (0 for an exact integration)."""
-        e = self.energy
-        keys = ("kinetic_j", "link_elastic_j", "contact_elastic_j", "torsional_elastic_j",
-                "gravity_j")
-        stored = sum(e[f"end_{k}"] - e[f"start_{k}"] for k in keys)
-        work = e["motor_work_j"] + e["resistance_work_j"]
-        lost = (e["link_damping_j"] + e["contact_damping_j"] + e["hinge_friction_j"]
-                + e["torsional_damping_j"])
-        return stored - work + lost
+        return energy_residual(self.energy)
 
     @property
     def span_dynamic_load(self) -> NDArray[np.float64]:
@@ -386,8 +475,14 @@ class LinkLevelResult:
                         "sprocket": [self.names[int(k)] for k in self.impacts[:, 1]],
                         "roller": self.impacts[:, 2].astype(int).tolist(),
                         "peak_force_n": self.impacts[:, 3].tolist()},
-            "energy_j": dict(self.energy),
+            "energy_j": {k: v for k, v in self.energy.items() if k != "drift_fraction"},
             "energy_residual_j": self.energy_residual_j,
+            "energy_drift_fraction": self.energy["drift_fraction"],
+            "equilibrium": dict(self.equilibrium),
+            "step_convergence": dict(self.convergence) or {
+                "checked": False,
+                "note": "step convergence not checked: simulate(..., check_step=True) runs "
+                        "the same simulation at half the step and reports the changes"},
         }
         if include_history:
             cols, data = self.history()

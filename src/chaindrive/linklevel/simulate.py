@@ -11,7 +11,7 @@ nonlinearity and the dampers).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -22,6 +22,12 @@ from chaindrive.dynamics.response import motor_of
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.assembly import Assembly, assemble_chain
+from chaindrive.linklevel.equilibrium import (
+    Equilibrium,
+    installed_geometry,
+    kernel_tables,
+    static_equilibrium,
+)
 from chaindrive.linklevel.kernel import (
     MOTOR_CONSTANT,
     MOTOR_KLOSS,
@@ -38,7 +44,7 @@ from chaindrive.linklevel.model import (
     TorsionalAttachment,
     build_model,
 )
-from chaindrive.linklevel.result import LinkLevelResult, state_energy
+from chaindrive.linklevel.result import LinkLevelResult, state_energy, step_convergence
 from chaindrive.strength.loads import power_shares
 from chaindrive.units import TWO_PI
 
@@ -49,7 +55,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["COURANT", "InitialState", "initial_state", "simulate"]
+__all__ = ["COURANT", "InitialState", "hinge_regularisation", "initial_state", "simulate",
+           "undamped"]
 
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
@@ -57,6 +64,7 @@ COURANT = 0.8
 #: which a roller at 0.25·p/(8Δt) ≈ 100 m/s could cross: never in a roller chain.
 SEARCH_EVERY = 8
 Start = Literal["rest", "steady"]
+InitialSpeed = Literal["rest", "working"]
 
 
 def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
@@ -101,15 +109,14 @@ def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
     return driver.speed * driver.teeth / z
 
 
-def _initial_velocities(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
-                        omega: NDArray[np.float64]) -> tuple[NDArray[np.float64],
-                                                             NDArray[np.float64]]:
+def _initial_velocities(model: LinkLevelModel, asm: Assembly, x: NDArray[np.float64],
+                        geometry: GeometryResult, omega: NDArray[np.float64]
+                        ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Roller velocities (N, 2) and sprocket speeds (n,) of steady running: the sprockets at
     their mean speeds, the rollers on a wrap turning with it, the rollers of a span moving
     along it at the speed its leaving hinge gives it (R ω cos β), so that no link starts
     stretching except where a span meets the next sprocket (the polygonal mismatch)."""
     w = model.turn * omega
-    x = asm.positions
     v = np.zeros_like(x)
     carried = np.zeros(2)
     for r in range(x.shape[0]):
@@ -125,14 +132,16 @@ def _initial_velocities(model: LinkLevelModel, asm: Assembly, geometry: Geometry
 
 
 def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult | None = None,
-             model: LinkLevelModel | None = None, start: Start = "rest",
-             motor: Callable[[float, float], float] | None = None,
+             model: LinkLevelModel | None = None, initial_speed: InitialSpeed | None = None,
+             motor: Callable[[float, float], float] | bool | None = True,
+             damping: bool = True, start: Start | None = None,
              resistance: str | None = "linear", dt_s: float | None = None,
              sample_rate_hz: float | None = None, hinge_friction: float | None = None,
              clearance_m: float = 0.0, torsional: TorsionalAttachment | None = None,
              steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
              span_kick_m_s: tuple[int, float] | None = None,
-             dynamics: DriveModel | None = None) -> LinkLevelResult:
+             dynamics: DriveModel | None = None,
+             check_step: bool = False) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
     Parameters
@@ -146,15 +155,22 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     model : LinkLevelModel or None
         Link-level parameters (None: :func:`chaindrive.linklevel.model.build_model` with
         ``hinge_friction``, ``clearance_m`` and ``torsional``).
-    start : {"rest", "steady"}
-        ``"rest"`` (a start-up) or ``"steady"`` (every body moving at its mean speed).
-    motor : callable or None
+    initial_speed : {"rest", "working"} or None
+        ``"rest"`` (a start-up from the static equilibrium) or ``"working"`` (every body at
+        its nominal speed: coasting runs) (None: ``start``, else ``"rest"``).
+    motor : callable, bool or None
         Motor torque motor(t, ω) [N·m] on the driver: a ConstantTorque, RampTorque or
-        KlossMotor (None: the drive's ``[dynamics]`` motor rated at its power and driver
-        speed).
+        KlossMotor (True or None: the drive's ``[dynamics]`` motor rated at its power and
+        driver speed; False: no motor torque and no machine loads).
+    damping : bool
+        False removes every damper and the hinge friction (the link, contact and torsional
+        dampers): a conservative model, for the energy check.
+    start : {"rest", "steady"} or None
+        The former name of ``initial_speed`` (``"steady"`` is ``"working"``).
     resistance : str or None
         Law of the driven sprockets' moments (``"linear"``, ``"quadratic"``,
-        ``"constant"``; None: none) with their power shares at the nominal speeds.
+        ``"constant"``; None: none) with their power shares at the nominal speeds (none
+        when ``motor`` is False).
     dt_s : float or None
         Time step [s] (None: :data:`COURANT`·2/ω_max).
     sample_rate_hz : float or None
@@ -177,6 +193,10 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     dynamics : DriveModel or None
         The analysis's whole-drive model: the links' damping ratio and reference frequency
         (None: built from ``drive``; see :func:`chaindrive.linklevel.model.build_model`).
+    check_step : bool
+        True runs the same simulation again at half the step and reports how much K_D and
+        the span loads moved (``result.convergence``,
+        :func:`chaindrive.linklevel.result.step_convergence`); three times the cost.
 
     Returns
     -------
@@ -196,49 +216,114 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     if not (duration_s > 0 and 0 < steady_window <= 1):
         raise DesignError("duration_s", f"need duration_s > 0 and 0 < steady_window ≤ 1, got "
                           f"{duration_s!r}, {steady_window!r}")
-    geometry = geometry or contour_geometry(drive)
+    speed = _initial_speed(initial_speed, start)
+    given = geometry or contour_geometry(drive)
+    geometry, take_up = installed_geometry(drive, given)
     if model is None:
         model = build_model(drive, geometry, clearance=clearance_m, torsional=torsional,
                             dynamics=dynamics,
                             hinge_friction=HINGE_FRICTION if hinge_friction is None
                             else hinge_friction)
+    else:  # the caller's parameters on the installed contour (a take-up moves one centre)
+        model = replace(model, centres=np.array([[g.x, g.y] for g in geometry.sprockets]))
+    if not damping:
+        model = undamped(model)
     omega = _nominal_speeds(drive)
-    if motor is None:
-        if not drive.power:
-            raise DesignError("drive.power", "a link-level run needs the power (or a motor)")
-        motor = motor_of(drive.dynamics, drive.power, float(omega[drive.driver_index]))
+    law = _motor_law(drive, motor, omega)
+    if law is None:
+        resistance = None
     omega_max = TWO_PI * model.highest_frequency_hz
     dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / omega_max
     steps = max(1, math.ceil(duration_s / dt))
     rate = sample_rate_hz or 10.0 * max(model.reference_frequency_hz, 100.0)
     every = max(1, round(1.0 / (rate * dt)))
-    asm = assemble_chain(geometry, drive.driver_index)
-    state = _initial_state(model, asm, geometry, omega, start)
+    asm, eq = _equilibrium(drive, geometry, model, dt, take_up)
+    state = _initial_state(model, asm, eq, geometry, omega, speed)
     _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
-    return _run(drive, geometry, model, asm, state, motor, resistance, omega, dt, steps, every,
-                steady_window)
+    result = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, dt, steps,
+                  every, steady_window)
+    if not check_step:
+        return result
+    half = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, 0.5 * dt,
+                2 * steps, 2 * every, steady_window)
+    return replace(result, convergence=step_convergence(result, half))
+
+
+def _initial_speed(initial_speed: str | None, start: str | None) -> InitialSpeed:
+    """``initial_speed``, else the former ``start`` (``"steady"`` read as ``"working"``)."""
+    if initial_speed is not None:
+        if initial_speed not in ("rest", "working"):
+            raise DesignError("initial_speed", "must be 'rest' or 'working', got "
+                              f"{initial_speed!r}")
+        return "rest" if initial_speed == "rest" else "working"
+    if start is None or start == "rest":
+        return "rest"
+    if start == "steady":
+        return "working"
+    raise DesignError("start", f"must be 'rest' or 'steady', got {start!r}")
+
+
+def _motor_law(drive: Drive, motor: Callable[[float, float], float] | bool | None,
+               omega: NDArray[np.float64]) -> Callable[[float, float], float] | None:
+    """The motor law of :func:`simulate`'s ``motor`` (None: no motor)."""
+    if motor is False:
+        return None
+    if motor is None or motor is True:
+        if not drive.power:
+            raise DesignError("drive.power", "a link-level run needs the power (or a motor)")
+        return motor_of(drive.dynamics, drive.power, float(omega[drive.driver_index]))
+    return motor
+
+
+def undamped(model: LinkLevelModel) -> LinkLevelModel:
+    """``model`` without its dampers and hinge friction (link, contact, torsional).
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The parameters.
+
+    Returns
+    -------
+    LinkLevelModel
+        The conservative model.
+    """
+    att = model.torsional
+    if att is not None:
+        att = replace(att, damping=np.zeros_like(np.asarray(att.damping, dtype=float)))
+    return replace(model, link_damping=0.0, hinge_friction=0.0,
+                   contact_damping=np.zeros_like(model.contact_damping), torsional=att)
+
+
+def _equilibrium(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, dt: float,
+                 take_up: str | None) -> tuple[Assembly, Equilibrium]:
+    """The chain assembled on the installed contour and its static state at T₀
+    (:func:`chaindrive.linklevel.equilibrium.static_equilibrium`; with gravity the slack
+    hangs in the spans)."""
+    asm = assemble_chain(geometry, drive.driver_index, hang=bool(model.gravity[1] != 0.0))
+    reference = next((k for k, sp in enumerate(geometry.spans)
+                      if sp.start == drive.driver_index), 0)
+    return asm, static_equilibrium(model, geometry, asm, reference, dt, take_up)
 
 
 State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
               NDArray[np.float64]]
 
 
-def _initial_state(model: LinkLevelModel, asm: Assembly, geometry: GeometryResult,
-                   omega: NDArray[np.float64], start: Start) -> State:
-    """(x, v, θ, ω) at t = 0: the assembled chain at rest or at its mean speed."""
+def _initial_state(model: LinkLevelModel, asm: Assembly, eq: Equilibrium,
+                   geometry: GeometryResult, omega: NDArray[np.float64],
+                   speed: InitialSpeed) -> State:
+    """(x, v, θ, ω) at t = 0: the static equilibrium at rest or at the nominal speeds."""
     n_extra = 0 if model.torsional is None else model.torsional.extra_inertias.size
-    th = np.concatenate([asm.angles, np.zeros(n_extra)])
+    th = np.concatenate([eq.angles, np.zeros(n_extra)])
     w = np.zeros(th.size)
-    x = asm.positions.copy()
+    x = eq.positions.copy()
     v = np.zeros_like(x)
-    if start == "steady":
-        v, w[:model.centres.shape[0]] = _initial_velocities(model, asm, geometry, omega)
+    if speed == "working":
         if model.torsional is not None and n_extra:
-            w[model.centres.shape[0]:] = np.nan  # filled by the caller's attachment
-            raise DesignError("start", "a steady start with an attached torsional system "
-                              "needs its initial speeds: start from rest")
-    elif start != "rest":
-        raise DesignError("start", f"must be 'rest' or 'steady', got {start!r}")
+            raise DesignError("initial_speed", "a start at working speed with an attached "
+                              "torsional system needs its initial speeds: start from rest")
+        v, w[:model.centres.shape[0]] = _initial_velocities(model, asm, x, geometry, omega)
     return x, v, th, w
 
 
@@ -290,7 +375,7 @@ class InitialState:
 
 
 def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
-                  start: Start = "rest") -> InitialState:
+                  start: Start = "rest", dt_s: float | None = None) -> InitialState:
     """The assembled chain and its start state, as :func:`simulate` builds them.
 
     Parameters
@@ -303,21 +388,23 @@ def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
         The parameters.
     start : {"rest", "steady"}
         ``"rest"`` (a start-up) or ``"steady"`` (every body moving at its mean speed).
+    dt_s : float or None
+        Time step of the settling [s] (None: :func:`simulate`'s default).
 
     Returns
     -------
     InitialState
-        Positions, velocities and rest lengths.
+        Positions, velocities and rest lengths, on the installed contour
+        (:func:`chaindrive.linklevel.equilibrium.installed_geometry`).
     """
-    asm = assemble_chain(geometry, drive.driver_index)
-    x, v, th, w = _initial_state(model, asm, geometry, _nominal_speeds(drive), start)
-    return InitialState(x, v, th, w, _rest_lengths(model, x))
-
-
-def _rest_lengths(model: LinkLevelModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """ℓ₀ of every link: its assembled length less T₀/k (each link starts at T₀)."""
-    d = np.roll(x, -1, axis=0) - x
-    return np.hypot(d[:, 0], d[:, 1]) - model.pretension / model.link_stiffness
+    installed, take_up = installed_geometry(drive, geometry)
+    model = replace(model, centres=np.array([[g.x, g.y] for g in installed.sprockets]))
+    dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / (TWO_PI
+                                                               * model.highest_frequency_hz)
+    asm, eq = _equilibrium(drive, installed, model, dt, take_up)
+    x, v, th, w = _initial_state(model, asm, eq, installed, _nominal_speeds(drive),
+                                 _initial_speed(None, start))
+    return InitialState(x, v, th, w, np.full(x.shape[0], eq.rest_length))
 
 
 def _rotational_system(model: LinkLevelModel) -> tuple[NDArray[np.float64], ...]:
@@ -356,38 +443,25 @@ def _loads_on_dofs(model: LinkLevelModel, dofs: int, torques: NDArray[np.float64
 
 
 def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Assembly,
-         state: State, motor: Callable[[float, float], float], resistance: str | None,
-         omega: NDArray[np.float64], dt: float, steps: int, every: int,
-         steady_window: float) -> LinkLevelResult:
+         eq: Equilibrium, state: State, motor: Callable[[float, float], float] | None,
+         resistance: str | None, omega: NDArray[np.float64], dt: float, steps: int,
+         every: int, steady_window: float) -> LinkLevelResult:
     """Set up the kernel's arrays, run it, wrap the result."""
-    x, v, th, w = (np.ascontiguousarray(a, dtype=float) for a in state)
+    x, v, th, w = (np.array(a, dtype=float, order="C") for a in state)  # copies: state stays
     x0, v0, th0, w0 = x.copy(), v.copy(), th.copy(), w.copy()
-    L0 = _rest_lengths(model, x)
+    L0 = np.full(x.shape[0], eq.rest_length)
     J, K, C = _rotational_system(model)
-    mkind, mp = _motor_code(motor)
+    mkind, mp = (MOTOR_CONSTANT, np.zeros(3)) if motor is None else _motor_code(motor)
     rkind, rM, rwn, rbrk = _resistance(drive, resistance, omega)
     rM, rwn, rsign = _loads_on_dofs(model, J.size, rM, rwn)
-    n, N = model.centres.shape[0], x.shape[0]
+    N = x.shape[0]
     mdof = model.driver if model.torsional is None or model.torsional.motor_dof is None \
         else int(model.torsional.motor_dof)
     msign = float(model.turn[model.driver])
-    spr = np.ascontiguousarray(np.vstack([
-        model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
-        np.full(n, model.roller_radius), model.seating_radii, model.seating_half_angles,
-        model.tip_radii, model.contact_stiffness, model.contact_damping, TWO_PI / model.teeth,
-        model.pitch_radii * np.sin(np.pi / model.teeth)]))
-    a = model.seating_half_angles
-    trig = np.ascontiguousarray(np.vstack([np.cos(a), np.sin(a), np.tan(a)]))
-    zmax = int(model.teeth.max())
-    gtab = np.zeros((n, zmax, 2))
-    for i, zi in enumerate(model.teeth):
-        ang = TWO_PI * np.arange(zi) / zi
-        gtab[i, :zi, 0], gtab[i, :zi, 1] = np.cos(ang), np.sin(ang)
-    reach = model.tip_radii + model.roller_radius + 0.25 * model.pitch
+    tables = kernel_tables(model)
+    spr, trig, gtab, reach = tables.spr, tables.trig, tables.gtab, tables.reach
     win = np.maximum(1.0, np.round(TWO_PI / (model.teeth * np.abs(omega)) / dt))
-    # the largest stable viscous hinge moment coefficient: a link's inertia m p²/2 over
-    # 4Δt keeps the regularised friction's rate at half the explicit limit 2/Δt
-    cmax = model.roller_mass * model.pitch**2 / 2.0 / (4.0 * dt)
+    cmax = hinge_regularisation(model, dt)
     rows = steps // every + 1
     rec = (np.empty((rows, N, 2)), np.empty((rows, J.size)), np.empty((rows, J.size)),
            np.empty((rows, N)), np.empty((rows, N)), np.empty((rows, N), dtype=np.int64),
@@ -412,7 +486,31 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
         drive=drive, geometry=geometry, model=model, times=times, records=rec, dt=dt,
         steps=steps, energy_terms=energy, energy_start=e_start, energy_end=e_end,
         events=events[:int(count[0])], closing_misfit=asm.closing_misfit,
-        steady_window=steady_window)
+        steady_window=steady_window, equilibrium=eq.to_dict())
+
+
+def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
+    """Viscous coefficient [N·m·s/rad] of the regularised Coulomb hinge friction below its
+    sliding limit: the largest the explicit step keeps stable, a link's inertia m p²/2
+    over 4Δt (half the explicit limit 2/Δt on the friction's rate), taken at the default
+    step (:data:`COURANT`·2/ω_max) whatever the step of the run — so that the friction law
+    does not change when the step is refined (a smaller step stays stable with it) — and
+    at Δt itself only for a coarser step.
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The parameters.
+    dt : float
+        The run's time step [s].
+
+    Returns
+    -------
+    float
+        c_max [N·m·s/rad].
+    """
+    default = COURANT * 2.0 / (TWO_PI * model.highest_frequency_hz)
+    return model.roller_mass * model.pitch**2 / 2.0 / (4.0 * max(dt, default))
 
 
 def duration_events(model: LinkLevelModel, omega: NDArray[np.float64], duration: float) -> float:

@@ -1,0 +1,112 @@
+"""The link-level model as a reference: the figures of docs/linklevel.md §2 and §4.
+Run (one BLAS thread): OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linklevel_reference.py
+
+1. Static state: the span tensions at t = 0 against the whole-drive model's pre-tension T₀
+   (without gravity) and against the hydrostatic closed form T₀ + q g (y − y_ref) (with
+   gravity), and how far they move over 50 ms at rest with no motor (seed, 12B 15/25).
+2. Energy: undamped coasting at working speed, no motor (seed, 1 s): drift of the energy
+   balance as a fraction of the kinetic energy at Δt, Δt/2, Δt/4.
+3. Step convergence: K_D, span dynamic loads, peaks and means at working speed and power
+   over 0.3 s at Δt and Δt/2 (seed).
+4. Speed: CPU seconds per simulated second at working speed (seed, 128 links; a 12B 15/25
+   drive of about 200 links), the static state's solve apart.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from chaindrive.geometry.contour import contour_geometry
+from chaindrive.io.design import load_drive
+from chaindrive.linklevel import build_model, simulate
+from chaindrive.linklevel.equilibrium import span_probes
+from chaindrive.model import Chain, Drive, Sprocket
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "src" / "chaindrive" / "examples"
+
+
+def _two_sprocket(pitches: int, rpm: float, power: float) -> Drive:
+    spec = load_drive(EXAMPLES / "eight_sprocket.toml").chain.spec
+    return Drive(name="12B", chain=Chain(spec), power=power, tooth_form="ISO 606",
+                 sprockets=(Sprocket("A", 15, 0.0, 0.0, "driver", speed=rpm * math.pi / 30),
+                            Sprocket("B", 25, pitches * spec.pitch, 0.0, "driven",
+                                     adjustable=True)))
+
+
+def static_state() -> None:
+    print("1. static state at rest, no motor, 50 ms")
+    for name, drive in (("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml")),
+                        ("12B 15/25", _two_sprocket(30, 300.0, 1000.0))):
+        geometry = contour_geometry(drive)
+        for g in (0.0, 9.80665):
+            model = build_model(drive, geometry, gravity=g)
+            t = time.process_time()
+            r = simulate(drive, 0.05, geometry=geometry, model=model, motor=False)
+            cpu = time.process_time() - t
+            x = r.positions[0]
+            mids = 0.5 * (x + np.roll(x, -1, axis=0))[span_probes(r.geometry, x)]
+            ref = r.equilibrium["reference_span"]
+            closed = model.pretension + model.roller_mass / model.pitch * g * (
+                mids[:, 1] - mids[ref, 1])
+            t0 = np.asarray(r.equilibrium["span_tension_n"])
+            moved = np.abs(r.span_forces[-1] / r.span_forces[0] - 1).max()
+            print(f"   {name:9s} g = {g:4.2f}: T0 {model.pretension:7.2f} N, spans at t=0 "
+                  f"{np.array2string(t0, precision=2)} N, closed form "
+                  f"{np.array2string(closed, precision=2)} N; moved {100 * moved:.2f} % in "
+                  f"50 ms; residual {r.equilibrium['residual_force_n']:.1e} N; "
+                  f"take-up {r.equilibrium['take_up_sprocket']}; {cpu:.1f} s CPU")
+
+
+def energy() -> None:
+    print("2. undamped coasting at working speed, no motor, seed, 1 s")
+    drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
+    base = None
+    for f in (1.0, 0.5, 0.25):
+        kw: dict[str, object] = {"motor": False, "damping": False,
+                                 "initial_speed": "working"}
+        if base is not None:
+            kw["dt_s"] = base * f
+        r = simulate(drive, 1.0, **kw)  # type: ignore[arg-type]
+        base = base or r.dt
+        print(f"   dt = {f:4.2f}·default ({r.dt * 1e6:5.2f} µs): drift "
+              f"{r.energy['drift_fraction']:+.2e} of the kinetic energy "
+              f"({r.energy['start_kinetic_j']:.1f} J)")
+
+
+def convergence() -> None:
+    print("3. step convergence, seed at working speed and power, 0.3 s")
+    drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
+    r = simulate(drive, 0.3, initial_speed="working", check_step=True)
+    c = r.convergence
+    print(f"   K_D {r.coefficient_of_dynamics:.3f}; changes at dt/2: K_D "
+          f"{c['coefficient_of_dynamics_change']:.2%}, F_D {c['span_dynamic_load_change']:.2%}, "
+          f"peaks {c['peak_span_force_change']:.2%}, means {c['span_mean_force_change']:.2%}; "
+          f"converged {c['converged']}")
+
+
+def speed() -> None:
+    print("4. CPU s per simulated second at working speed (static state apart)")
+    for name, drive, duration in (
+            ("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml"), 0.5),
+            ("12B 15/25", _two_sprocket(85, 300.0, 1000.0), 0.25)):
+        simulate(drive, 0.002, initial_speed="working")  # warm-up (compile / cache)
+        t = time.process_time()
+        short = simulate(drive, 0.002, initial_speed="working")
+        setup = time.process_time() - t
+        t = time.process_time()
+        r = simulate(drive, duration, initial_speed="working", sample_rate_hz=1000)
+        cpu = time.process_time() - t - setup
+        print(f"   {name:9s} {short.positions.shape[1]:4d} links  dt {r.dt * 1e6:5.2f} µs  "
+              f"{cpu / duration:6.2f} s per simulated s (static state {setup:.1f} s)")
+
+
+if __name__ == "__main__":
+    parts = {"static": static_state, "energy": energy, "convergence": convergence,
+             "speed": speed}
+    for key in sys.argv[1:] or list(parts):
+        parts[key]()
