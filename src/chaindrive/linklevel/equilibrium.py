@@ -54,6 +54,7 @@ from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.kernel import run_kernel, static_forces
 from chaindrive.strength.loads import installed_sag_ratio
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -61,10 +62,16 @@ if TYPE_CHECKING:
     from chaindrive.linklevel.model import LinkLevelModel
     from chaindrive.model import Drive
 
-__all__ = ["Equilibrium", "KernelTables", "installed_geometry", "kernel_tables",
-           "span_probes", "static_equilibrium"]
+__all__ = [
+    "Balance",
+    "Equilibrium",
+    "KernelTables",
+    "installed_geometry",
+    "kernel_tables",
+    "span_probes",
+    "static_equilibrium",
+]
 
-TWO_PI = 2.0 * math.pi
 #: Largest residual force on a roller at the solved equilibrium, as a fraction of T₀ [-].
 FORCE_TOLERANCE = 1e-6
 _NEWTON_STEPS = 20
@@ -208,7 +215,7 @@ class Equilibrium:
                 "take_up_sprocket": self.take_up}
 
 
-class _Balance:
+class Balance:
     """Residual of the static balance — the forces on the rollers, the torques on the free
     sprockets [N·m]/R and the reference link's tension less T₀ [N] — in the unknowns x [m],
     R_s·θ_s [m] and the rest length ℓ₀ [m], and its Jacobian by finite differences grouped
@@ -386,7 +393,7 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
     drop = sum(float(model.seating_radii[i] - model.roller_radius) * sg.wrap_angle
                for i, sg in enumerate(geometry.sprockets))
     rest = (float(lengths.sum()) - drop) / x.shape[0] - t0 / model.link_stiffness
-    bal = _Balance(model, tables, free, x.shape[0], 0)
+    bal = Balance(model, tables, free, x.shape[0], 0)
     history: list[tuple[float, float]] = []
     for _ in range(_SECANT_STEPS):
         x, th = _settle(model, tables, x, th, rest, dt, duration, eta)

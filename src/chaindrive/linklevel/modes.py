@@ -25,9 +25,10 @@ from numpy.typing import NDArray
 from scipy.linalg import eigh
 
 from chaindrive.geometry.contour import contour_geometry
-from chaindrive.linklevel.equilibrium import _Balance, installed_geometry, kernel_tables
+from chaindrive.linklevel.equilibrium import Balance, installed_geometry, kernel_tables
 from chaindrive.linklevel.model import build_model
-from chaindrive.linklevel.simulate import COURANT, _equilibrium
+from chaindrive.linklevel.simulate import COURANT, equilibrium_state
+from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -54,21 +55,22 @@ class LinearModes:
         (k,) each mode's kinetic energy fraction along the chain and in the sprockets [-].
     first_longitudinal_hz : float or None
         The lowest mode with ``longitudinal_fraction`` > :data:`LONGITUDINAL` [Hz].
-    ring_first_frequency_hz : float
-        The whole-drive (ring) model's first elastic frequency [Hz], for comparison.
+    reference_frequency_hz : float
+        The whole-drive model's first chain mode [Hz] (the links' damping reference), for
+        comparison.
     """
 
     frequencies_hz: NDArray[np.float64]
     longitudinal_fraction: NDArray[np.float64]
     first_longitudinal_hz: float | None
-    ring_first_frequency_hz: float
+    reference_frequency_hz: float
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (SI, units in the keys)."""
         return {"frequencies_hz": self.frequencies_hz.tolist(),
                 "longitudinal_fraction": self.longitudinal_fraction.tolist(),
                 "first_longitudinal_hz": self.first_longitudinal_hz,
-                "ring_first_frequency_hz": self.ring_first_frequency_hz}
+                "reference_frequency_hz": self.reference_frequency_hz}
 
 
 def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
@@ -99,11 +101,11 @@ def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
     if model is None:
         model = build_model(drive, geometry)
     dt = COURANT * 2.0 / (2.0 * math.pi * model.highest_frequency_hz)
-    _, eq = _equilibrium(drive, geometry, model, dt, take_up)
+    _, eq = equilibrium_state(drive, geometry, model, dt, take_up)
     n = model.centres.shape[0]
     x, th = eq.positions, eq.angles[:n].copy()
     N = x.shape[0]
-    bal = _Balance(model, kernel_tables(model), np.arange(n, dtype=np.int64), N, 0)
+    bal = Balance(model, kernel_tables(model), np.arange(n, dtype=np.int64), N, 0)
     r0 = bal(x, th, eq.rest_length)
     K = -bal.jacobian(x, th, eq.rest_length, r0)[:-1, :-1]
     K = 0.5 * (K + K.T)
@@ -111,7 +113,7 @@ def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
                            model.inertias / model.pitch_radii**2])
     scale = 1.0 / np.sqrt(mass)
     lam, vec = eigh(K * scale[:, None] * scale[None, :])
-    freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
+    freq = np.sqrt(np.clip(lam, 0.0, None)) / TWO_PI
     keep = np.flatnonzero(freq > _RIGID_HZ)[:count]
     modes = vec[:, keep] * scale[:, None]  # displacements u = M^{-1/2} φ
     d = np.roll(x, -1, axis=0) - x
@@ -123,4 +125,4 @@ def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
     fraction = (ke_rollers_along.sum(axis=0) + ke_sprockets) / ke_total
     first = next((float(f) for f, a in zip(freq[keep], fraction, strict=True)
                   if a > LONGITUDINAL), None)
-    return LinearModes(freq[keep], fraction, first, model.ring_first_frequency_hz)
+    return LinearModes(freq[keep], fraction, first, model.reference_frequency_hz)

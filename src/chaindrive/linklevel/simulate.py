@@ -55,8 +55,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["COURANT", "InitialState", "hinge_regularisation", "initial_state", "simulate",
-           "undamped"]
+__all__ = ["COURANT", "InitialState", "equilibrium_state", "hinge_regularisation", "initial_state",
+           "simulate", "undamped"]
 
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
@@ -237,7 +237,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     steps = max(1, math.ceil(duration_s / dt))
     rate = sample_rate_hz or 10.0 * max(model.reference_frequency_hz, 100.0)
     every = max(1, round(1.0 / (rate * dt)))
-    asm, eq = _equilibrium(drive, geometry, model, dt, take_up)
+    asm, eq = equilibrium_state(drive, geometry, model, dt, take_up)
     state = _initial_state(model, asm, eq, geometry, omega, speed)
     _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
     result = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, dt, steps,
@@ -295,8 +295,8 @@ def undamped(model: LinkLevelModel) -> LinkLevelModel:
                    contact_damping=np.zeros_like(model.contact_damping), torsional=att)
 
 
-def _equilibrium(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, dt: float,
-                 take_up: str | None) -> tuple[Assembly, Equilibrium]:
+def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
+                      dt: float, take_up: str | None) -> tuple[Assembly, Equilibrium]:
     """The chain assembled on the installed contour and its static state at T₀
     (:func:`chaindrive.linklevel.equilibrium.static_equilibrium`; with gravity the slack
     hangs in the spans)."""
@@ -401,7 +401,7 @@ def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
     model = replace(model, centres=np.array([[g.x, g.y] for g in installed.sprockets]))
     dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / (TWO_PI
                                                                * model.highest_frequency_hz)
-    asm, eq = _equilibrium(drive, installed, model, dt, take_up)
+    asm, eq = equilibrium_state(drive, installed, model, dt, take_up)
     x, v, th, w = _initial_state(model, asm, eq, installed, _nominal_speeds(drive),
                                  _initial_speed(None, start))
     return InitialState(x, v, th, w, np.full(x.shape[0], eq.rest_length))
