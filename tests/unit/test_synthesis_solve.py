@@ -74,6 +74,8 @@ def test_front_is_non_dominated_and_every_design_re_analyses_clean(problem, resu
         assert not bad, (f.name, bad)
     for p in result.pareto:
         assert p.constraints_ok and all(v <= 0 for v in p.constraints.values())
+        assert set(p.unverified) == {"fatigue"} and "fatigue_strength_kN" in p.unverified["fatigue"]
+        assert p.to_dict()["unverified"] == p.unverified
         assert p.design["sprockets"][0].get("material", "steel") == "steel"
 
 

@@ -439,7 +439,9 @@ def print_optimisation(name: str, result: SynthesisResult, written: Sequence[str
         d = p.design
         rows.append([str(k), d["chain"].get("designation", "—"),
                      " ".join(str(s["teeth"]) for s in d["sprockets"]),
-                     *[p.objectives[n] for n in names], p.constraints_ok])
+                     *[p.objectives[n] for n in names],
+                     fmt(p.constraints_ok) + (f"; not verified: {', '.join(p.unverified)}"
+                                              if p.unverified else "")])
     con.print(table(f"Pareto set ({len(rows)} designs)",
                     ["design", "chain", "teeth", *heads, "constraints ok"], rows))
     checked = [[str(k), f"P({v['key']}) ≤ {fmt(100 * v['alpha'], 3)} %",

@@ -17,7 +17,7 @@ from __future__ import annotations
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -106,6 +106,10 @@ class ParetoDesign:
     verification : tuple of dict
         A robust problem's chance constraints re-estimated with an independent sample
         (:func:`chaindrive.robust.synthesis.verify_design`); empty otherwise.
+    unverified : dict of str to str
+        The checks of its analysis that cannot be verified on any design of the search (the
+        chain's fatigue without a catalogue fatigue strength), each with why: constraints ok
+        does not cover them.
     """
 
     objectives: dict[str, float]
@@ -114,11 +118,13 @@ class ParetoDesign:
     design: dict[str, Any]
     vector: tuple[float, ...]
     verification: tuple[dict[str, Any], ...] = ()
+    unverified: dict[str, str] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (the ``pareto[]`` items of ``chaindrive optimize --json``)."""
         out = {"objectives": dict(self.objectives), "constraints_ok": self.constraints_ok,
-               "constraints": dict(self.constraints), "design": self.design}
+               "constraints": dict(self.constraints), "unverified": dict(self.unverified),
+               "design": self.design}
         if self.verification:
             out["verification"] = list(self.verification)
         return out
@@ -370,7 +376,8 @@ class _Archive:
                 verdicts[i] = verify_mapping(self.problem, self.rows[i][2] or {})
         front.sort(key=lambda i: tuple(self.rows[i][1].minimised(names)))
         return tuple(ParetoDesign(verdicts[i].objectives, verdicts[i].constraints, True,
-                                  self.rows[i][2] or {}, self.rows[i][0]) for i in front), \
+                                  self.rows[i][2] or {}, self.rows[i][0],
+                                  unverified=dict(verdicts[i].unverified)) for i in front), \
             verdicts
 
 
