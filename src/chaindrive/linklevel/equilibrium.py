@@ -91,11 +91,12 @@ class KernelTables:
     Parameters
     ----------
     spr : ndarray
-        (12, n) centre, teeth, radii, contact stiffness and damping, gap angle, half-chord.
+        (12, n) centre, teeth, radii, contact stiffness and damping, gap angle, half-chord
+        [SI, each row in its own unit].
     trig : ndarray
-        (3, n) cos α, sin α, tan α of the seating half-angle.
+        (3, n) cos α, sin α, tan α of the seating half-angle [-].
     gtab : ndarray
-        (n, z_max, 2) gap directions in the sprocket frames.
+        (n, z_max, 2) gap directions in the sprocket frames [-].
     reach : ndarray
         (n,) radius within which a roller is a contact candidate [m].
     """
@@ -107,7 +108,18 @@ class KernelTables:
 
 
 def kernel_tables(model: LinkLevelModel) -> KernelTables:
-    """Sprocket tables of ``model`` for the kernel (reach: tip circle + roller + p/4)."""
+    """Sprocket tables of ``model`` for the kernel (reach: tip circle + roller + p/4).
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The model.
+
+    Returns
+    -------
+    KernelTables
+        Its tables.
+    """
     n = model.centres.shape[0]
     spr = np.ascontiguousarray(np.vstack([
         model.centres[:, 0], model.centres[:, 1], model.teeth.astype(float), model.pitch_radii,
@@ -159,7 +171,20 @@ def installed_geometry(drive: Drive, geometry: GeometryResult
 
 
 def span_probes(geometry: GeometryResult, positions: NDArray[np.float64]) -> NDArray[np.int64]:
-    """(spans,) the link whose midpoint is nearest the middle of each span's line [-]."""
+    """The link whose midpoint is nearest the middle of each span's line.
+
+    Parameters
+    ----------
+    geometry : GeometryResult
+        The contour.
+    positions : ndarray
+        (N, 2) roller positions [m].
+
+    Returns
+    -------
+    ndarray of int
+        (spans,) link indices [-].
+    """
     mids = 0.5 * (positions + np.roll(positions, -1, axis=0))
     out = np.empty(len(geometry.spans), dtype=np.int64)
     for k, sp in enumerate(geometry.spans):
@@ -220,7 +245,21 @@ class Balance:
     sprockets [N·m]/R and the reference link's tension less T₀ [N] — in the unknowns x [m],
     R_s·θ_s [m] and the rest length ℓ₀ [m], and its Jacobian by finite differences grouped
     over rollers three links apart (a roller's force depends on its own position and its
-    two neighbours', [Curtis1974])."""
+    two neighbours', [Curtis1974]).
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The model.
+    tables : KernelTables
+        Its sprocket tables (:func:`kernel_tables`).
+    free : ndarray of int
+        Indices of the sprockets free to turn [-].
+    N : int
+        Number of rollers [-].
+    ref : int
+        The link whose tension is held at T₀ [-].
+    """
 
     def __init__(self, model: LinkLevelModel, tables: KernelTables, free: NDArray[np.int64],
                  N: int, ref: int) -> None:
@@ -243,7 +282,24 @@ class Balance:
 
     def jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
                  r0: NDArray[np.float64]) -> NDArray[np.float64]:
-        """d residual / d (x, R_s θ_s, ℓ₀) by forward differences of step h = 1 nm."""
+        """d residual / d (x, R_s θ_s, ℓ₀) by forward differences of step h = 1 nm.
+
+        Parameters
+        ----------
+        x : ndarray
+            (N, 2) roller positions [m].
+        th : ndarray
+            (n,) sprocket angles [rad].
+        rest : float
+            Rest length of the links [m].
+        r0 : ndarray
+            The residual at (x, θ, ℓ₀) [N].
+
+        Returns
+        -------
+        ndarray
+            The Jacobian [N/m].
+        """
         N, nf = x.shape[0], self.free.size
         h = 1e-9
         size = 2 * N + nf + 1
@@ -286,7 +342,24 @@ class Balance:
     def solve(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float, tol: float
               ) -> tuple[NDArray[np.float64], NDArray[np.float64], float, float]:
         """Newton's method with a backtracking line search on |residual| [Dennis1996, §6.3]
-        from (x, θ, ℓ₀); returns the solution and its largest residual [N]."""
+        from (x, θ, ℓ₀).
+
+        Parameters
+        ----------
+        x : ndarray
+            (N, 2) roller positions to start from [m].
+        th : ndarray
+            (n,) sprocket angles to start from [rad].
+        rest : float
+            Rest length of the links to start from [m].
+        tol : float
+            Largest residual accepted [N].
+
+        Returns
+        -------
+        tuple of (ndarray, ndarray, float, float)
+            Positions [m], angles [rad], rest length [m] and the largest residual [N].
+        """
         N = x.shape[0]
         r = self(x, th, rest)
         worst = float(np.abs(r).max())

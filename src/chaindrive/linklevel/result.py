@@ -107,8 +107,19 @@ _STORED = ("kinetic_j", "link_elastic_j", "contact_elastic_j", "torsional_elasti
 
 
 def energy_residual(e: dict[str, float]) -> float:
-    """ΔE − W − D [J] of an energy balance (:class:`LinkLevelResult` ``energy`` keys): the
-    change of the stored energy less the work of motor and loads plus all dissipation."""
+    """ΔE − W − D of an energy balance: the change of the stored energy less the work of motor
+    and loads plus all dissipation.
+
+    Parameters
+    ----------
+    e : dict of str to float
+        The balance (:class:`LinkLevelResult` ``energy`` keys) [J].
+
+    Returns
+    -------
+    float
+        The residual [J] (0 for an exact integration).
+    """
     stored = sum(e[f"end_{k}"] - e[f"start_{k}"] for k in _STORED)
     work = e["motor_work_j"] + e["resistance_work_j"]
     lost = (e["link_damping_j"] + e["contact_damping_j"] + e["hinge_friction_j"]

@@ -299,7 +299,26 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
                       dt: float, take_up: str | None) -> tuple[Assembly, Equilibrium]:
     """The chain assembled on the installed contour and its static state at T₀
     (:func:`chaindrive.linklevel.equilibrium.static_equilibrium`; with gravity the slack
-    hangs in the spans)."""
+    hangs in the spans).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its installed contour.
+    model : LinkLevelModel
+        The link-level model.
+    dt : float
+        Time step [s].
+    take_up : str or None
+        The sprocket that took up the slack (None: none).
+
+    Returns
+    -------
+    tuple of (Assembly, Equilibrium)
+        The assembled chain and its static state.
+    """
     asm = assemble_chain(geometry, drive.driver_index, hang=bool(model.gravity[1] != 0.0))
     reference = next((k for k, sp in enumerate(geometry.spans)
                       if sp.start == drive.driver_index), 0)
