@@ -52,7 +52,7 @@ from chaindrive.app.state import (
 )
 from chaindrive.app.table import sprocket_table
 from chaindrive.app.uploads import Uploads, design_text
-from chaindrive.app.views import Check, Screen, check_records, checks
+from chaindrive.app.views import Check, Screen, check_records, checks, plain
 from chaindrive.display import UNIT_SYSTEMS, UnitSystem, convert, fmt, warning_text
 from chaindrive.errors import ChainDriveError
 from chaindrive.model import ROLES, SIDES
@@ -453,7 +453,7 @@ def _headline(screen: Screen) -> None:
     if n["adjusted_sprocket"]:
         text += (f"; take-up: {n['adjusted_sprocket']} moved "
                  f"{fmt(convert(n['adjustment_m'], 'length', units)[0])} {lu}")
-    st.caption(text)
+    st.caption(plain(text))
     st.session_state["previous_numbers"] = n
 
 
@@ -473,7 +473,7 @@ def _verdict(screen: Screen) -> None:
         if not failed:
             st.success(f"All {len(shown)} checks pass.")
         for c in failed:
-            st.error(c.line)
+            st.error(plain(c.line))
 
 
 def _warnings(screen: Screen) -> None:
@@ -483,7 +483,7 @@ def _warnings(screen: Screen) -> None:
         if not warnings:
             st.caption("No warnings.")
         for w in warnings:
-            st.warning(warning_text(w, units), icon="⚠️")
+            st.warning(plain(warning_text(w, units)), icon="⚠️")
 
 
 def _check_table(screen: Screen) -> None:

@@ -22,6 +22,7 @@ from chaindrive.app.views import (
     line_chart_svg,
     lubrication_records,
     modal_records,
+    plain,
     resonance_records,
     selection_records,
     span_records,
@@ -143,9 +144,9 @@ def tab_strength(screen: Screen) -> None:
     if sel is not None:
         what = sel["chain"] or quantity_text(sel["shortfall"], sel.get("shortfall_quantities"),
                                              units)
-        st.write(f"Selection by **{sel['method']}**: {what}")
+        st.write(f"Selection by **{plain(sel['method'])}**: {plain(what)}")
         for kind, text in finding_lines(sel, units):
-            st.warning(f"**{kind}**: {text}")
+            st.warning(f"**{plain(kind)}**: {plain(text)}")
         st.dataframe(selection_records(sel, units), hide_index=True, width="stretch")
     st_doc = doc.get("strength")
     if st_doc is None:
@@ -260,7 +261,7 @@ def tab_startup(screen: Screen) -> None:
                 "verified, or fails if already below [k]")
     for w in full.warnings:
         if w.code.startswith("dynamics.startup"):
-            st.warning(warning_text(w, _units()))
+            st.warning(plain(warning_text(w, _units())))
     names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
     frame = pd.DataFrame(result.span_forces[::step] * (factor or 1.0), columns=names,

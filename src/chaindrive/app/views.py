@@ -38,6 +38,28 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
 
 MM = 1e3
+#: The characters Streamlit's Markdown reads as markup (CommonMark's punctuation, the dollar
+#: signs of its math, the tilde of strikethrough, the colon of its emoji shortcodes).
+MARKDOWN_SPECIALS = frozenset("\\`*_{}[]()#+-.!|$~<>:&")
+
+
+def plain(text: str) -> str:
+    """``text`` as Markdown that shows it as written: every character Streamlit's Markdown
+    reads as markup escaped with a backslash (CommonMark: a backslash before any ASCII
+    punctuation stands for that character). A sprocket named ``$x$`` or ``**A**`` is shown
+    so, not as a formula or in bold.
+
+    Parameters
+    ----------
+    text : str
+        Plain text (names, warnings, check lines).
+
+    Returns
+    -------
+    str
+        The Markdown.
+    """
+    return "".join("\\" + ch if ch in MARKDOWN_SPECIALS else ch for ch in text)
 #: Height of the contour on the page [px]: it and the verdict fit above the fold at 900 px.
 LAYOUT_HEIGHT_PX = 370
 #: Colours of the figures of :mod:`chaindrive.plotting` (Okabe–Ito), reused for the SVG.
