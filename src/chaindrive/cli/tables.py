@@ -266,7 +266,9 @@ def _print_dynamics(con: Console, dyn: dict[str, Any], st: dict[str, Any] | None
                   + startup_times_text(startup))
     if st is not None and "k1" in st:
         partial = (f" (cannot be verified: {k1['note']})"
-                   if k1 is not None and k1["status"] == UNVERIFIED else "")
+                   if k1 is not None and k1["status"] == UNVERIFIED
+                   else f" (not computed: no start-up, {escape('[dynamics]')} transient = false)"
+                   if st["k1"] is None and startup is None else "")
         con.print(f"dynamic safety: k1 {fmt(st['k1'])}{partial}, k2 {fmt(st['k2'])}, k2min "
                   f"{fmt(st['k2min'])} (allowable {escape('[k]')} {fmt(st['allowable_k'])})")
 
