@@ -75,3 +75,17 @@ def test_unknown_model_is_one_line_exit_2() -> None:
     proc = run_cli("simulate", str(SEED), "--model", "beams")
     assert proc.returncode == 2 and proc.stderr.startswith("error: --model:")
     assert proc.stderr.count("\n") == 1
+
+
+def test_a_cold_kernel_cache_is_said_before_the_first_run(tmp_path) -> None:
+    """With numba's cache empty (a fresh NUMBA_CACHE_DIR) the kernel is not compiled, so the
+    command says the first run compiles; with the package's cache it is (docs/linklevel.md)."""
+    import os
+    import subprocess
+    import sys
+
+    probe = "from chaindrive.linklevel.kernel import compiled; print(compiled())"
+    cold = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True,
+                          timeout=120)
+    assert cold.stdout.strip() == "False"

@@ -219,8 +219,12 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     from chaindrive.cli.progress import spinner
     from chaindrive.io.design import Field, parse_quantity_as
     from chaindrive.linklevel import DURATION, checked_duration
+    from chaindrive.linklevel.kernel import compiled
 
-    with user_errors(), spinner("simulating the chain link by link …", quiet=as_json):
+    what = ("simulating the chain link by link …" if compiled() else
+            "simulating the chain link by link (the first run compiles the model: about 10 s "
+            "on an idle machine, longer on a busy one) …")
+    with user_errors(), spinner(what, quiet=as_json):
         # the example a message shows lies within the option's range (Field.example_text)
         option = Field("--duration", "time", "simulated time of the link-level run",
                        minimum=DURATION.low, maximum=DURATION.high, reason=DURATION.reason)

@@ -41,7 +41,7 @@ from typing import Any
 import numba
 import numpy as np
 
-__all__ = ["run_kernel"]
+__all__ = ["compiled", "run_kernel"]
 
 MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
 RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
@@ -591,3 +591,26 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
         if s >= 0:
             px, py = x[r, 0] - spr[0, s], x[r, 1] - spr[1, s]
             tr[r] = -(px * (f[r, 1] - before[r, 1]) - py * (f[r, 0] - before[r, 0]))
+
+
+def compiled() -> bool:
+    """Whether the kernel's compiled code is in numba's cache, so that a run starts at once;
+    False when the first run will compile it (about 10 s on an idle core of the project
+    machine — 11.8 s for a 0.05 s seed run against 1.5 s with the cache — and minutes on a
+    busy one). Read from the cache index numba keeps beside this module (or under
+    ``NUMBA_CACHE_DIR``); where numba's cache cannot be inspected, False (a message too many
+    rather than a silent wait).
+
+    Returns
+    -------
+    bool
+        True when the cache of the step loop and of the static balance is present.
+    """
+    import os
+
+    try:
+        dispatchers: tuple[Any, ...] = (run_kernel, static_forces)
+        return all(os.path.exists(f._cache._cache_file._index_path)  # numba's cache index
+                   for f in dispatchers)
+    except AttributeError:
+        return False
