@@ -84,7 +84,7 @@ def test_a_cold_kernel_cache_is_said_before_the_first_run(tmp_path) -> None:
     import subprocess
     import sys
 
-    probe = "from chaindrive.linklevel.kernel import compiled; print(compiled())"
+    probe = "from chaindrive.linklevel import kernel_compiled; print(kernel_compiled())"
     cold = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True,
                           timeout=120)

@@ -218,10 +218,9 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     import chaindrive
     from chaindrive.cli.progress import spinner
     from chaindrive.io.design import Field, parse_quantity_as
-    from chaindrive.linklevel import DURATION, checked_duration
-    from chaindrive.linklevel.kernel import compiled
+    from chaindrive.linklevel import DURATION, checked_duration, kernel_compiled
 
-    what = ("simulating the chain link by link …" if compiled() else
+    what = ("simulating the chain link by link …" if kernel_compiled() else
             "simulating the chain link by link (the first run compiles the model: about 10 s "
             "on an idle machine, longer on a busy one) …")
     with user_errors(), spinner(what, quiet=as_json):

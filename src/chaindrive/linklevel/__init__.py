@@ -19,11 +19,12 @@ from chaindrive.linklevel.compare import (
     checked_duration,
     model_comparison,
 )
+from chaindrive.linklevel.kernel import compiled as kernel_compiled
 from chaindrive.linklevel.model import LinkLevelModel, TorsionalAttachment, build_model
 from chaindrive.linklevel.modes import LinearModes, linear_modes
 from chaindrive.linklevel.result import LinkLevelResult
 from chaindrive.linklevel.simulate import simulate
 
 __all__ = ["DURATION", "LinearModes", "LinkLevelModel", "LinkLevelResult", "ModelComparison",
-           "TorsionalAttachment", "build_model", "checked_duration", "linear_modes",
+           "TorsionalAttachment", "build_model", "checked_duration", "kernel_compiled", "linear_modes",
            "model_comparison", "simulate"]
