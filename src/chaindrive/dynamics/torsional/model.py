@@ -18,23 +18,38 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from chaindrive.dynamics.model.build import drive_model
-from chaindrive.dynamics.torsional.build import build_contour
 from chaindrive.dynamics.torsional.engine import (
     FloatArray,
     TorsionalEngine,
     TrainElement,
+    nonneg,
     reducer_input_torque,
 )
 from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
+from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 
 __all__ = ["FloatArray", "TorsionalModel", "TorsionalModes", "TorsionalSystem", "TrainElement",
            "reducer_input_torque"]
+
+
+_TRAIN_KEYS = frozenset({"name", "inertia", "stiffness", "damping", "ratio", "efficiency",
+                         "same_sense", "ground_stiffness", "ground_damping"})
+
+
+def _per_sprocket(field: str, values: ArrayLike | None, n: int, default: float) -> FloatArray:
+    if values is None:
+        return np.full(n, default)
+    a = np.asarray(values, dtype=float)
+    if a.shape != (n,):
+        raise DesignError(field, f"need one value per sprocket ({n}), got shape {a.shape}")
+    return a
 
 
 class TorsionalModel(TorsionalEngine):
@@ -76,9 +91,6 @@ class TorsionalModel(TorsionalEngine):
                      wrap_lengths_m: ArrayLike | None = None,
                      closed: bool = True, consistent_mass: bool = False) -> TorsionalEngine:
         """The model of a chain contour with a train on any sprocket, from plain data.
-
-        :func:`chaindrive.dynamics.torsional.build.build_contour` does the work, into a new
-        model.
 
         Parameters
         ----------
@@ -128,9 +140,64 @@ class TorsionalModel(TorsionalEngine):
         [MultimassChainDrives, §3.1] (the ring of sprockets and spans); [Rao2011, ch. 2]
         (consistent mass).
         """
-        return build_contour(cls(), sprockets, inertias_kg_m2, pitch_radii_m,
-                             span_stiffness_n_per_m, senses=senses,
-                             span_damping_n_s_per_m=span_damping_n_s_per_m, trains=trains,
-                             chain_mass_per_length_kg_per_m=chain_mass_per_length_kg_per_m,
-                             span_lengths_m=span_lengths_m, wrap_lengths_m=wrap_lengths_m,
-                             closed=closed, consistent_mass=consistent_mass)
+        model = cls()
+        names = [str(s) for s in sprockets]
+        n = len(names)
+        if n < 2 or len(set(names)) != n:
+            raise DesignError("sprockets", f"need at least 2 distinct sprocket names, got {names}")
+        J = _per_sprocket("inertias_kg_m2", inertias_kg_m2, n, 0.0)
+        R = _per_sprocket("pitch_radii_m", pitch_radii_m, n, 0.0)
+        c = _per_sprocket("span_stiffness_n_per_m", span_stiffness_n_per_m, n, 0.0)
+        d = _per_sprocket("span_damping_n_s_per_m", span_damping_n_s_per_m, n, 0.0)
+        s = _per_sprocket("senses", senses, n, 1.0)
+        if not (np.all(R > 0) and np.all(np.isfinite(R))):
+            raise DesignError("pitch_radii_m", f"must all be finite and > 0, got {R.tolist()}")
+        if not np.all(np.abs(s) == 1.0):
+            raise DesignError("senses", f"must each be +1 or -1, got {s.tolist()}")
+        q = nonneg("chain_mass_per_length_kg_per_m", chain_mass_per_length_kg_per_m, "q [kg/m]")
+        span_mass = q * _per_sprocket("span_lengths_m", span_lengths_m, n, 0.0)
+        wrap_mass = q * _per_sprocket("wrap_lengths_m", wrap_lengths_m, n, 0.0)
+        if q > 0.0 and span_lengths_m is None:
+            raise DesignError("span_lengths_m", "a chain mass per length needs the span lengths")
+        r = s * R
+        for name, j in zip(names, J.tolist(), strict=True):
+            model.add_inertia(name, j)
+        for i in range(n if closed else n - 1):
+            b = (i + 1) % n
+            model.add_span(names[i], names[b], c[i], r[i], r[b], damping=d[i], mass=span_mass[i],
+                           name=f"span:{names[i]}-{names[b]}", consistent_mass=consistent_mass)
+        for name, m, radius in zip(names, wrap_mass.tolist(), R.tolist(), strict=True):
+            if m > 0.0:
+                model.add_chain_wrap(name, m, radius)
+        for sprocket, train in (trains or {}).items():
+            if sprocket not in model.node_names:
+                raise DesignError(f"trains.{sprocket}", f"unknown sprocket; sprockets: {names}")
+            _add_train(model, sprocket, train)
+        return model
+
+
+def _add_train(model: TorsionalEngine, sprocket: str, train: Sequence[TrainElement]) -> None:
+    """Adds an open train outward from ``sprocket`` (see
+    :meth:`TorsionalModel.from_contour`)."""
+    previous = sprocket
+    for k, element in enumerate(train):
+        field = f"trains.{sprocket}[{k}]"
+        unknown = set(element) - _TRAIN_KEYS
+        if unknown or "name" not in element:
+            raise DesignError(field, f"keys must be among {sorted(_TRAIN_KEYS)} with a 'name', "
+                              f"got {sorted(element)}")
+        node = str(element["name"])
+        if ("stiffness" in element) == ("ratio" in element):
+            raise DesignError(field, "give either 'stiffness' (shaft) or 'ratio' (gear mesh)")
+        model.add_inertia(node, float(element.get("inertia", 0.0)))
+        if "stiffness" in element:
+            model.add_shaft(previous, node, float(element["stiffness"]),
+                            float(element.get("damping", 0.0)))
+        else:
+            model.add_gear_mesh(previous, node, float(element["ratio"]),
+                                float(element.get("efficiency", 1.0)),
+                                bool(element.get("same_sense", False)))
+        if "ground_stiffness" in element or "ground_damping" in element:
+            model.add_ground_spring(node, float(element.get("ground_stiffness", 0.0)),
+                                    float(element.get("ground_damping", 0.0)))
+        previous = node
