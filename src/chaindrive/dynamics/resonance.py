@@ -31,8 +31,9 @@ from chaindrive.units import TWO_PI
 
 
 class Modes(Protocol):
-    """What the resonance table and the Campbell data read of a modal result (the ring's
-    :class:`~chaindrive.dynamics.ring.ModalResult` or the whole drive's
+    """What the resonance table, the Campbell data and the detuning
+    (:func:`chaindrive.synthesis.detuning.normalised_amplitude_at`) read of a modal result
+    (the ring's :class:`~chaindrive.dynamics.ring.ModalResult` or the whole drive's
     :class:`~chaindrive.dynamics.modes.DriveModes`)."""
 
     @property
@@ -48,6 +49,11 @@ class Modes(Protocol):
     @property
     def elastic_frequencies_hz(self) -> NDArray[np.float64]:
         """The elastic natural frequencies [Hz]."""
+        ...
+
+    @property
+    def normalized_amplitudes(self) -> NDArray[np.float64]:
+        """μ_k^(j), columns per mode [-]."""
         ...
 
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",

@@ -22,7 +22,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -30,7 +30,7 @@ from scipy.optimize import differential_evolution
 
 from chaindrive.analysis import Analysis
 from chaindrive.dynamics.modes import inertia_modes_batch
-from chaindrive.dynamics.resonance import working_frequencies
+from chaindrive.dynamics.resonance import Modes, working_frequencies
 from chaindrive.errors import DesignError
 from chaindrive.model import Drive
 from chaindrive.units import TWO_PI
@@ -354,24 +354,6 @@ def detune_drive(drive: Drive, added_inertia: Mapping[str, tuple[float, float]],
     sprockets = tuple(replace(s, inertia=float(inertia[k]), reduced_mass=None)
                       if s.name in added_inertia else s for k, s in enumerate(drive.sprockets))
     return drive.with_sprockets(sprockets), res
-
-
-class Modes(Protocol):
-    """What :func:`normalised_amplitude_at` reads of a modal result (a ring's
-    :class:`~chaindrive.dynamics.ring.ModalResult` or a whole drive's
-    :class:`~chaindrive.dynamics.modes.DriveModes`)."""
-
-    @property
-    def frequencies_hz(self) -> NDArray[np.float64]:
-        """Natural frequencies [Hz]."""
-
-    @property
-    def rigid_body(self) -> NDArray[np.bool_]:
-        """True for rigid-body modes."""
-
-    @property
-    def normalized_amplitudes(self) -> NDArray[np.float64]:
-        """μ_k^(j), columns per mode [-]."""
 
 
 def normalised_amplitude_at(modal: Modes, working_hz: ArrayLike,
