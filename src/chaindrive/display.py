@@ -173,9 +173,16 @@ def unit_of(kind: str, system: UnitSystem = "SI") -> str:
     return QUANTITIES[kind][system].unit
 
 
+#: The finest a shown quantity of each kind resolves [SI unit of the kind]: a length below a
+#: micrometre is shown as 0 (a sag of 1.4e-5 mm is a taut span's round-off; ISO 606's
+#: tolerances on a chain's parts are tens of micrometres).
+RESOLUTION: dict[str, float] = {"length": 1e-6}
+
+
 def convert(value: float | None, kind: str, system: UnitSystem = "SI"
             ) -> tuple[float | None, str]:
-    """An SI value in the unit ``system`` reads ``kind`` in: (value, unit).
+    """An SI value in the unit ``system`` reads ``kind`` in: (value, unit); a magnitude below
+    the kind's :data:`RESOLUTION` is 0.
 
     Parameters
     ----------
@@ -198,7 +205,11 @@ def convert(value: float | None, kind: str, system: UnitSystem = "SI"
     [NIST-SP811, App. B] (the factors of the US customary units).
     """
     shown = QUANTITIES[kind][system]
-    return (None if value is None else value * shown.factor), shown.unit
+    if value is None:
+        return None, shown.unit
+    if abs(value) < RESOLUTION.get(kind, 0.0):
+        return 0.0, shown.unit
+    return value * shown.factor, shown.unit
 
 
 def show(value: float | None, kind: str, system: UnitSystem = "SI", digits: int = 4) -> str:

@@ -79,3 +79,15 @@ def test_checks_read_in_either_system_with_one_margin_sign() -> None:
     ("cost", "EUR", "cost, EUR"), ("coefficient_of_dynamics", "-", "coefficient of dynamics")])
 def test_unit_header_names_the_unit(label: str, unit: str, text: str) -> None:
     assert unit_header(label, unit) == text
+
+
+def test_a_length_below_a_micrometre_is_shown_as_zero() -> None:
+    """A taut span's sag of 1.376e-8 m (round-off) was printed as 1.376e-5 mm; lengths
+    resolve to 1 µm (display.RESOLUTION), in either unit system."""
+    from chaindrive.display import RESOLUTION, convert
+
+    assert RESOLUTION["length"] == 1e-6
+    assert convert(1.376e-8, "length") == (0.0, "mm")
+    assert convert(-3.9e-7 * 0.0254, "length", "US") == (0.0, "in")
+    assert convert(2e-6, "length")[0] == pytest.approx(2e-3)
+    assert convert(1.376e-8, "force") == (pytest.approx(1.376e-8), "N")  # other kinds as they are
