@@ -240,7 +240,9 @@ def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.C
 
 
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
-    """Teeth in mesh and wrap of every sprocket, and the longest span (module docstring).
+    """Teeth in mesh of every sprocket, the wrap of the driver and of the small loaded sprocket
+    (the others have no wrap limit: a check that cannot fail is not listed), and the longest
+    span (module docstring).
 
     Parameters
     ----------
@@ -259,7 +261,8 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     small = min(loaded, key=lambda s: s.teeth).name
     for s, g in zip(drive.sprockets, geometry.sprockets, strict=True):
         out.append(ck.teeth_in_mesh_check(s.name, g.teeth_in_mesh, s.role))
-        out.append(ck.wrap_check(s.name, g.wrap_angle, s.role, small=s.name == small))
+        if s.role == "driver" or s.name == small:  # elsewhere no wrap limit: nothing to check
+            out.append(ck.wrap_check(s.name, g.wrap_angle, s.role, small=s.name == small))
     longest = max(geometry.spans, key=lambda sp: sp.pitches)
     out.append(ck.span_length_check(f"span {longest.start_name} → {longest.end_name}",
                                     longest.pitches))
