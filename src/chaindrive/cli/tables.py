@@ -302,9 +302,14 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
     con.print(table("Span tensions", ["span", force],
                     [[sp, doc_value("t_n", t, units)[0]]
                      for sp, t in zip(spans, st["span_tensions_n"], strict=True)]))
-    con.print(table("Shaft loads", ["name", header("shaft load", "f_n", units)],
-                    [[n, doc_value("f_n", f, units)[0]]
-                     for n, f in zip(names, st["shaft_loads_n"], strict=True)]))
+    con.print(table("Shaft loads (direction from +x, counter-clockwise)",
+                    ["name", header("shaft load", "f_n", units), header("x", "f_n", units),
+                     header("y", "f_n", units), "direction, °"],
+                    [[n, doc_value("f_n", f, units)[0], doc_value("f_n", v[0], units)[0],
+                      doc_value("f_n", v[1], units)[0], a]
+                     for n, f, v, a in zip(names, st["shaft_loads_n"],
+                                           st["shaft_load_vectors_n"],
+                                           st["shaft_load_directions_deg"], strict=True)]))
     allowed = st["allowable_pressure_mpa"]
     life = "—" if st["wear_life_h"] is None else f"{fmt(st['wear_life_h'])} h"
     extrapolated = " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""

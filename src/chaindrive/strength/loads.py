@@ -343,6 +343,12 @@ class LoadsResult:
         """|F_k| per sprocket [N]."""
         return tuple(math.hypot(x, y) for x, y in self.shaft_loads)
 
+    @property
+    def shaft_load_directions(self) -> tuple[float, ...]:
+        """Direction of the load on each shaft [rad], from the +x axis of the drawing,
+        counter-clockwise (atan2 of its components; 0 for a shaft without load)."""
+        return tuple(math.atan2(y, x) if (x or y) else 0.0 for x, y in self.shaft_loads)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (forces in N, speed in m/s)."""
         return {
@@ -358,6 +364,7 @@ class LoadsResult:
             "tight_span": self.tight_span,
             "shaft_loads_n": list(self.shaft_load_magnitudes),
             "shaft_load_vectors_n": [list(v) for v in self.shaft_loads],
+            "shaft_load_directions_deg": [math.degrees(a) for a in self.shaft_load_directions],
         }
 
 
