@@ -465,15 +465,22 @@ def _checks(screen: Screen) -> tuple[Check, ...]:
     return tuple(checks(analysis, units))
 
 
+#: What the screen's verdict does not judge (it runs without the dynamic response, as
+#: ``analyze --quick`` does, which says the same).
+SCREEN_LEAVES_OUT = ("Checked without the dynamic response, which judges k1 (tab Start-up), "
+                     "k2 and k2min (tab AFC) and the chain's fatigue (chaindrive analyze).")
+
+
 def _verdict(screen: Screen) -> None:
     """The verdict of the checks and each one that does not pass."""
     shown = _checks(screen)
     failed = [c for c in shown if not c.passed]
     with st.container(key="verdict"):
         if not failed:
-            st.success(f"All {len(shown)} checks pass.")
+            st.success(f"All {len(shown)} checks of the screen pass.")
         for c in failed:
             st.error(plain(c.line))
+        st.caption(SCREEN_LEAVES_OUT)
 
 
 def _warnings(screen: Screen) -> None:
