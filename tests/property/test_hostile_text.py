@@ -66,3 +66,16 @@ def test_a_report_renders_a_hostile_name_as_text(name: str) -> None:
     # every string literal taken out, the name as written is nowhere left
     source, _ = typst_source(report)
     assert name not in re.sub(r'"(?:[^"\\]|\\.)*"', '""', source)
+
+
+def test_a_figure_pickles_and_keeps_its_text_literal() -> None:
+    """A figure is one class for every call (not a class made inside a function), so it
+    pickles like any matplotlib figure (a process pool or a user keeping it) and the copy still
+    draws its names literally."""
+    import pickle
+
+    analysis = chaindrive.analyze(_renamed("$\\frac{a}{$"), response=False)
+    fig = contour_layout(analysis.geometry)
+    copy = pickle.loads(pickle.dumps(fig))
+    assert type(copy) is type(fig)
+    copy.savefig(io.BytesIO(), format="png", dpi=40)  # a formula parser would raise here

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from chaindrive.display import QUANTITIES, UnitSystem
 
@@ -40,16 +40,7 @@ def new_figure(figsize: tuple[float, float]) -> Figure:
     Figure
         The figure.
     """
-    from matplotlib.figure import Figure
-    from matplotlib.text import Text
-
-    class PlainTextFigure(Figure):
-        """A figure that draws every text literally (no mathtext)."""
-
-        def draw(self, renderer: Any) -> None:
-            for text in self.findobj(Text):
-                text.set_parse_math(False)
-            super().draw(renderer)
+    from chaindrive.plotting._figure import PlainTextFigure
 
     return PlainTextFigure(figsize=figsize, layout="constrained")
 
