@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -1102,28 +1102,33 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     return out
 
 
+def _fields_table(obj: object, fields: Sequence[Field],
+                  units: Mapping[str, tuple[float, str]],
+                  skip_default: bool = False) -> dict[str, Any]:
+    """The given fields of ``obj`` as a TOML table, each with its unit where it has one.
+
+    A field whose value is None (or, with ``skip_default``, its default) is left out.
+    """
+    out: dict[str, Any] = {}
+    for f in fields:
+        value = getattr(obj, f.name)
+        if value is None or (skip_default and value == f.default):
+            continue
+        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+    return out
+
+
 def _motor_table(m: Motor) -> dict[str, Any]:
     units = {"rated_power": (1e-3, "kW"), "rated_speed": (30.0 / math.pi, "rpm"),
              "rotor_inertia": (1.0, "kg*m^2"), "ramp_time": (1.0, "s"),
              "torque": (1.0, "N*m")}
-    out: dict[str, Any] = {}
-    for f in MOTOR_FIELDS:
-        value = getattr(m, f.name)
-        if value is not None:
-            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return _fields_table(m, MOTOR_FIELDS, units)
 
 
 def _train_table(e: TrainElement) -> dict[str, Any]:
     units = {"inertia": (1.0, "kg*m^2"), "stiffness": (1.0, "N*m/rad"),
              "damping": (1.0, "N*m*s/rad"), "diameter": (1e3, "mm"), "length": (1e3, "mm")}
-    out: dict[str, Any] = {"kind": e.kind}
-    for f in TRAIN_FIELDS[1:]:
-        value = getattr(e, f.name)
-        if value is None or value == f.default:
-            continue
-        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return {"kind": e.kind, **_fields_table(e, TRAIN_FIELDS[1:], units, skip_default=True)}
 
 
 def _sprocket_table(s: Sprocket) -> dict[str, Any]:
@@ -1158,12 +1163,7 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
     units = {"startup_duration": (1.0, "s"), "ramp_time": (1.0, "s"),
              "eccentricity": (1e3, "mm"), "pitch_scatter": (1e3, "mm"),
              "accumulated_error": (1e3, "mm")}
-    out: dict[str, Any] = {}
-    for f in DYNAMICS_FIELDS:
-        value = getattr(d, f.name)
-        if value is not None:
-            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return _fields_table(d, DYNAMICS_FIELDS, units)
 
 
 def drive_to_toml(drive: Drive) -> str:
