@@ -50,8 +50,8 @@ def test_pareto_design_files_analyse_as_their_drives() -> None:
     # 12 designs: seed 1 finds one that passes every check (seed 4 finds none since the
     # PA66 designs, whose teeth cannot be verified, are no longer feasible)
     result = solve(problem, population=6, generations=2, seed=1)
-    files = pareto_design_files(result, "eight", EXAMPLES)
     drives = pareto_drives(result, EXAMPLES)
+    files = pareto_design_files(drives, "eight")
     assert files and len(files) == len(drives)
     for f, drive in zip(files, drives, strict=True):
         again = _reloaded(f.text)

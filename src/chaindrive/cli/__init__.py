@@ -452,10 +452,11 @@ def _write_pareto(result: SynthesisResult, file: Path, out: Path) -> tuple[list[
     """Write the Pareto designs (one TOML each), the plot of the front and the report of the
     first into ``out`` — all or nothing (:func:`chaindrive.io.atomic.atomic_directory`)."""
     # lazy: only what this command runs (see "Lazy imports" above)
-    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
+    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files, pareto_drives
 
-    files = pareto_design_files(result, file.stem, file.parent)
-    chosen = chosen_analysis(result, file.parent)
+    drives = pareto_drives(result, file.parent)
+    files = pareto_design_files(drives, file.stem)
+    chosen = chosen_analysis(drives)
     names = [f.name for f in files]
     plot_name = None
     with atomic_directory(out, field="--out") as tmp:
