@@ -31,7 +31,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from chaindrive.checks import judged
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import ChainSpec, Drive
@@ -150,9 +149,9 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     teeth, speed = small_sprocket(drive)
     design = drive.power * s.service_factor * s.design_factor
     rating = ratings.chain_rating(spec, teeth, speed)
-    out = [ck.power_rating_check(name, rating.rated_power, design, rating.source,
-                                 f"{rating.method}: {rating.note}",
-                                 note_quantities=rating.note_quantities)]
+    out = [ck.chain_check("power rating", name, rating.rated_power, design, rating.source,
+                          f"{rating.method}: {rating.note}",
+                          note_quantities=rating.note_quantities)]
     life = (None if rating.rated_power is None else
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
     if s.required_life_h is None:  # the life the rating promises for this chain length
@@ -161,15 +160,15 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                 "required life for a service-life requirement)")
     else:
         required, note = s.required_life_h, f"{geometry.links} links, required life"
-    out.append(ck.wear_life_check(name, life, required, note=f"{rating.method}; {note}"))
+    out.append(ck.chain_check("wear life", name, life, required, note=f"{rating.method}; {note}"))
     galling = iso10823.galling_speed_limit(spec.pitch, teeth, design / loads.speed / spec.strands)
-    out.append(ck.speed_limit_check(name, speed, galling, "[Shigley2015, §17-5]",
-                                    "pin–bush galling limit"))
+    out.append(ck.chain_check("speed limit", name, speed, galling, "[Shigley2015, §17-5]",
+                              "pin–bush galling limit"))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety, chain_limits(spec, speed, ratings.ACA)[1],
-                                      "[DiamondChain]",
-                                      "working load ≤ 1/6 of the breaking load"))
+    out.append(ck.chain_check("static safety", name, safety,
+                              chain_limits(spec, speed, ratings.ACA)[1], "[DiamondChain]",
+                              "working load ≤ 1/6 of the breaking load"))
     return out
 
 
@@ -213,17 +212,16 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     pressure = hinge_pressure(loads.peripheral_force, s.operating_factor, area)
     note = "bearing area estimated" if estimated else ""
     allowed_p, allowed_s = chain_limits(spec, speed, ratings.KE)
-    out = [ck.hinge_pressure_check(name, pressure, allowed_p, note=note)]
-    out.append(ck.speed_limit_check(name, speed, ke_method.max_speed(spec.pitch),
-                                    "[TrinhChat2006, Table 5.8]"))
-    hits = ke_method.impacts_per_second(teeth, speed, geometry.links)
-    allowed = ke_method.allowable_impacts(spec.pitch)
-    out.append(judged("impacts per second", name, hits, allowed, "max",
-                      "[TrinhChat2006, Table 5.9]", "1/s",
-                      note="" if allowed is not None else "no [i] for this pitch", part="chain"))
+    out = [ck.chain_check("hinge pressure", name, pressure, allowed_p, note=note)]
+    out.append(ck.chain_check("speed limit", name, speed, ke_method.max_speed(spec.pitch),
+                              "[TrinhChat2006, Table 5.8]"))
+    out.append(ck.chain_check("impacts per second", name,
+                              ke_method.impacts_per_second(teeth, speed, geometry.links),
+                              ke_method.allowable_impacts(spec.pitch)))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety, allowed_s, "[TrinhChat2006, Table 5.10]"))
+    out.append(ck.chain_check("static safety", name, safety, allowed_s,
+                              "[TrinhChat2006, Table 5.10]"))
     return out
 
 
@@ -231,12 +229,12 @@ def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.C
     spec = drive.chain.spec
     pull = (loads.peripheral_force * s.service_factor * s.design_factor + loads.sag_tension
             + loads.centrifugal_tension)
-    return [ck.allowable_load_check(spec.designation, pull, spec.allowable_load,
-                                    f"catalogue row: {spec.source}"),
-            ck.speed_limit_check(spec.designation, loads.speed, spec.max_speed,
-                                 f"catalogue row: {spec.source}",
-                                 "" if spec.max_speed else "the catalogue gives no speed limit",
-                                 linear=True)]
+    return [ck.chain_check("allowable load", spec.designation, pull, spec.allowable_load,
+                           f"catalogue row: {spec.source}"),
+            ck.chain_check("speed limit", spec.designation, loads.speed, spec.max_speed,
+                           f"catalogue row: {spec.source}",
+                           "" if spec.max_speed else "the catalogue gives no speed limit",
+                           linear=True)]
 
 
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
