@@ -29,7 +29,7 @@ See :mod:`chaindrive.strength.checks` and ``docs/selection.md``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
@@ -39,6 +39,7 @@ from chaindrive.strength import iso10823, ke_method, ratings
 from chaindrive.strength.duty import required_life_h as design_life_h
 from chaindrive.strength.duty import service_factor_for
 from chaindrive.strength.loads import (
+    LoadsResult,
     centrifugal_tension,
     hinge_pressure,
     installed_sag_ratio,
@@ -47,10 +48,11 @@ from chaindrive.strength.loads import (
     small_sprocket,
 )
 from chaindrive.strength.safety import static_safety_factor
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.strength.wear import BASIS_LIFE_H, BASIS_LINKS, wear_life_hours
 
 __all__ = ["CheckSettings", "chain_checks", "chain_limits", "checks_for", "geometry_checks",
-           "settings_for"]
+           "loaded_contour_checks", "settings_for"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -314,3 +316,38 @@ def checks_for(drive: Drive, geometry: GeometryResult,
         :func:`chain_checks` then :func:`geometry_checks`.
     """
     return (*chain_checks(drive, geometry, settings), *geometry_checks(drive, geometry))
+
+
+def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
+                          loads: LoadsResult | None = None,
+                          required_life_h: float | None = None) -> tuple[ck.Check, ...]:
+    """Every check of the most loaded contour: :func:`checks_for` with the drive's power
+    divided by K_m, then the polymer teeth (:func:`polymer_tooth_checks`) where the span
+    tensions are known.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed given).
+    geometry : GeometryResult
+        Its contour.
+    km : float
+        K_m, the number of contours the power is divided by for the most loaded one [-]
+        (the contours' compatibility factor, or the chain's contour count).
+    loads : LoadsResult or None
+        The strength stage's span tensions [N]; None: no tooth checks.
+    required_life_h : float or None
+        A required life that replaces the drive's own [h].
+
+    Returns
+    -------
+    tuple of Check
+        The chain's, the layout's and the polymer teeth's checks.
+    """
+    assert drive.power is not None
+    loaded = replace(drive, power=drive.power / km)
+    settings = settings_for(loaded)
+    if required_life_h is not None:
+        settings = replace(settings, required_life_h=required_life_h)
+    teeth = () if loads is None else polymer_tooth_checks(loaded, geometry, loads)
+    return (*checks_for(loaded, geometry, settings), *teeth)
