@@ -91,6 +91,15 @@ def _write_json(document: dict[str, Any]) -> None:
     sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
 
 
+def _say_written(what: str, path: Path, as_json: bool) -> None:
+    """Say where ``what`` (a report, a drawing) was written: ``{what: absolute path}`` as
+    JSON, else one line."""
+    if as_json:
+        _write_json({what: str(path.resolve())})
+    else:
+        print(f"{what} written to {path}")
+
+
 def _check_finite(value: Any, path: str) -> None:
     """Raise ``ArithmeticError`` naming the first non-finite number in ``value``."""
     if isinstance(value, float) and not np.isfinite(value):
@@ -342,10 +351,7 @@ def report(
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
                                 units=unit_system(units))
-    if as_json:
-        _write_json({"report": str(path.resolve())})
-        return
-    print(f"report written to {path}")
+    _say_written("report", path, as_json)
 
 
 @app.command()
@@ -366,10 +372,7 @@ def draw(
     with user_errors():
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
         path = write_drawing(analysis, output, sprocket=sprocket)
-    if as_json:
-        _write_json({"drawing": str(path.resolve())})
-        return
-    print(f"drawing written to {path}")
+    _say_written("drawing", path, as_json)
 
 
 @app.command()
