@@ -664,7 +664,7 @@ class KinematicsResult:
         }
 
 
-def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64]:
+def tooth_phase_offsets(geometry: GeometryResult) -> NDArray[np.float64]:
     """Tooth-phase offset of every sprocket against the driver.
 
     2π × the fractional part of the chain path, in pitches, from the point where the chain
@@ -673,10 +673,8 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
 
     Parameters
     ----------
-    drive : Drive
-        The design.
     geometry : GeometryResult
-        Its contour.
+        The contour; the driver is the sprocket its tight span runs into.
 
     Returns
     -------
@@ -684,7 +682,7 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
         (n,) offsets [rad], 0 for the driver.
     """
     n = len(geometry.sprockets)
-    d = drive.driver_index
+    d = next(sp.end for sp in geometry.spans if sp.tight)
     out = np.zeros(n)
     for i in range(n):
         if i == d:
@@ -734,7 +732,7 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257)
     z_d = driver.teeth
     phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
     psi = phase * z_d  # tooth phase over one period
-    offsets = tooth_phase_offsets(drive, geometry)
+    offsets = tooth_phase_offsets(geometry)
     teeth = np.array([s.teeth for s in drive.sprockets])[:, None]
     ratios = np.asarray(instantaneous_ratio(z_d, teeth, psi[None, :], offsets[:, None]))
     ratios[drive.driver_index] = 1.0
