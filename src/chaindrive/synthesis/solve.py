@@ -2,7 +2,7 @@
 NSGA-II.
 
 Both search the same vector (:class:`chaindrive.synthesis.problem.Gene`): integers and
-categories are rounded in :func:`chaindrive.synthesis.problem.decode_vector`, so one
+categories are rounded in :meth:`chaindrive.synthesis.problem.Problem.decode`, so one
 decoding serves both libraries. The start design (as the file gives it) is evaluated on its
 own and its nearest search vector seeds the first generation. The Pareto set is taken from
 every design evaluated (an archive), keeping the feasible non-dominated ones [Deb2002]
