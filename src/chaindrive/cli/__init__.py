@@ -406,9 +406,9 @@ def optimize(
             # lazy: a command imports only what it runs, so that `--help`, `schema` and `catalog`
             # start fast (-X importtime: analysis ≈0.15 s, report ≈0.5 s, synthesis and robust ≈2.7
             # s each)
-            from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
+            from chaindrive.synthesis.studies import DEFAULT_DB, DaskEvaluator
 
-            evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+            evaluator = DaskEvaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
         designs = problem.solver.population * problem.solver.generations
         try:
             with progress_bar("optimising: designs evaluated", total=designs,

@@ -476,7 +476,7 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
         Random seed (default: the problem's).
     evaluator : callable or None
         Evaluates a batch of vectors in order (default :func:`serial_evaluator`;
-        :func:`chaindrive.synthesis.studies.dask_evaluator` spreads a population over a Dask
+        :class:`chaindrive.synthesis.studies.DaskEvaluator` spreads a population over a Dask
         cluster and stores it in a study database).
 
     Returns

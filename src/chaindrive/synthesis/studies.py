@@ -68,8 +68,7 @@ from chaindrive.units import registry
 if TYPE_CHECKING:  # distributed is imported where a study runs: `-X importtime` 1.2–1.4 s
     from distributed import Client, Future, LocalCluster
 
-__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
-           "input_key",
+__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "evaluate_design", "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
@@ -796,32 +795,6 @@ class DaskEvaluator:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                   scheduler: str | None = None, client: Client | None = None,
-                   progress: bool | None = False) -> DaskEvaluator:
-    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done).
-
-    Parameters
-    ----------
-    db : str | StudyStore
-        The study database.
-    study : str | None
-        Name of the study (None: from the problem's fingerprint).
-    scheduler : str | None
-        Address of an existing scheduler.
-    client : distributed.Client | None
-        An existing client.
-    progress : bool | None
-        Progress bar (None: only on a terminal).
-
-    Returns
-    -------
-    DaskEvaluator
-    """
-    return DaskEvaluator(db=db, study=study, scheduler=scheduler, client=client,
-                         progress=progress)
 
 
 class _VectorInput(dict[str, Any]):
