@@ -37,7 +37,7 @@ from chaindrive.geometry.sprocket import (
     gost591_tooth_form,
     iso606_tooth_form,
     polymeric_sprocket_proportions,
-    sprocket_mass_and_inertia,
+    sprocket_body,
 )
 from chaindrive.model import Drive
 
@@ -403,9 +403,7 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
         mat = find_material(s.material, field=f"sprockets[{i}].material")
         body = (polymeric_sprocket_proportions(spec.pitch, s.teeth, spec.inner_width)
                 if mat.is_polymer else None)
-        mass = sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
-                                         mat.is_polymer, strands=spec.strands,
-                                         transverse_pitch=spec.transverse_pitch)
+        mass = sprocket_body(spec, s.teeth, mat)
         bore = (body.bore_diameter if body is not None
                 else BORE_RATIO * s.teeth * spec.pitch / math.pi)
         gost = isinstance(form, Gost591ToothForm)
