@@ -738,7 +738,7 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257)
     ratios[drive.driver_index] = 1.0
     motions = []
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
-        omega = omega_d * z_d / s.teeth
+        omega = float(mean_driven_speed(z_d, omega_d, s.teeth))
         ratio = ratios[i]
         motions.append(SprocketMotion(
             name=s.name, speed=omega, direction="ccw" if g.turn > 0 else "cw",
