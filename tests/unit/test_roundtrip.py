@@ -85,5 +85,5 @@ def test_an_optimised_drive_named_with_quotes_and_backslashes() -> None:
     data = read_toml(EXAMPLES / "eight_sprocket_optimize.toml")
     data["drive"]["name"] = 'a "quoted" \\ name'
     result = solve(problem_from_mapping(data, EXAMPLES), population=4, generations=1, seed=1)
-    for f in pareto_design_files(result, "q", EXAMPLES):
+    for f in pareto_design_files(pareto_drives(result, EXAMPLES), "q"):
         assert _reloaded(f.text).name == data["drive"]["name"]
