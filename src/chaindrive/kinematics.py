@@ -39,6 +39,7 @@ from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius as _radius
 from chaindrive.geometry.sprocket import teeth_array as _teeth
+from chaindrive.units import RPM_PER_RAD_S, TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -69,7 +70,7 @@ def mean_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> Fl
     ----------
     [ChainNonUniformity, eq. 4]; [Shigley2015, Eq. 17-30].
     """
-    return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / (2 * np.pi))
+    return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / TWO_PI)
 
 
 def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
@@ -91,7 +92,7 @@ def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     ----------
     [MultimassChainDrives, §3.1] (ω_z = z1 ω1 = z2 ω2 = …).
     """
-    return _out(_teeth(teeth) * np.asarray(speed, float) / (2 * np.pi))
+    return _out(_teeth(teeth) * np.asarray(speed, float) / TWO_PI)
 
 
 def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
@@ -261,7 +262,7 @@ def wrap_phase(phase: ArrayLike) -> FloatOrArray:
     float or numpy.ndarray
         wrap(ψ) [rad].
     """
-    return _out(np.mod(np.asarray(phase, float) + np.pi, 2 * np.pi) - np.pi)
+    return _out(np.mod(np.asarray(phase, float) + np.pi, TWO_PI) - np.pi)
 
 
 def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
@@ -451,7 +452,7 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
     z = _teeth(teeth)
     psi = np.asarray(wrap_phase(phase))
     p = np.asarray(pitch, float)
-    return _out(_radius(p, z) * np.sin(psi / z) - p * psi / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(psi / z) - p * psi / TWO_PI)
 
 
 def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
@@ -473,7 +474,7 @@ def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     z = _teeth(teeth)
     beta = np.arccos(z * np.sin(np.pi / z) / np.pi)
     p = np.asarray(pitch, float)
-    return _out(_radius(p, z) * np.sin(beta) - p * z * beta / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(beta) - p * z * beta / TWO_PI)
 
 
 def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonics: int,
@@ -610,7 +611,7 @@ class SprocketMotion:
     @property
     def speed_rpm(self) -> float:
         """Mean speed [rpm]."""
-        return self.speed * 30.0 / math.pi
+        return self.speed * RPM_PER_RAD_S
 
 
 @dataclass(frozen=True, slots=True)
@@ -693,8 +694,8 @@ def tooth_phase_offsets(geometry: GeometryResult) -> NDArray[np.float64]:
             k = (k + 1) % n
             if k != d:
                 g = geometry.sprockets[k]
-                path += g.teeth * g.wrap_angle / (2 * math.pi)
-        out[i] = 2 * math.pi * (path % 1.0)
+                path += g.teeth * g.wrap_angle / TWO_PI
+        out[i] = TWO_PI * (path % 1.0)
     return out
 
 

@@ -58,6 +58,7 @@ from chaindrive.units import (
     MAX_TEXT,
     RAD_S_PER_RPM,
     RPM_PER_RAD_S,
+    TWO_PI,
     parse_quantity,
     shown,
 )
@@ -328,7 +329,7 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "outside the loop (it turns the other way)", default="outside", choices=SIDES),
     Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
     Field("adjust_angle", "angle", "direction of the line of adjustment (default: away from "
-          "the contour)", minimum=-2 * math.pi, maximum=2 * math.pi,
+          "the contour)", minimum=-TWO_PI, maximum=TWO_PI,
           reason="a direction: one turn either way"),
     Field("inertia", "inertia", "moment of inertia of what turns rigidly with it; without a "
           "train, everything on its shaft (motor, reducer, machine) referred to it (default: "
@@ -1119,7 +1120,7 @@ def _fields_table(obj: object, fields: Sequence[Field],
 
 
 def _motor_table(m: Motor) -> dict[str, Any]:
-    units = {"rated_power": (1e-3, "kW"), "rated_speed": (30.0 / math.pi, "rpm"),
+    units = {"rated_power": (1e-3, "kW"), "rated_speed": (RPM_PER_RAD_S, "rpm"),
              "rotor_inertia": (1.0, "kg*m^2"), "ramp_time": (1.0, "s"),
              "torque": (1.0, "N*m")}
     return _fields_table(m, MOTOR_FIELDS, units)
@@ -1135,13 +1136,13 @@ def _sprocket_table(s: Sprocket) -> dict[str, Any]:
     t: dict[str, Any] = {"name": s.name, "teeth": s.teeth, "x": _q(s.x, 1e3, "mm"),
                          "y": _q(s.y, 1e3, "mm"), "role": s.role}
     if s.speed is not None:
-        t["speed"] = _q(s.speed, 30.0 / math.pi, "rpm")
+        t["speed"] = _q(s.speed, RPM_PER_RAD_S, "rpm")
     if s.side != "outside":
         t["side"] = s.side
     if s.adjustable:
         t["adjustable"] = True
     if s.adjust_angle is not None:
-        t["adjust_angle"] = _q(s.adjust_angle, 180.0 / math.pi, "deg")
+        t["adjust_angle"] = _q(s.adjust_angle, DEG_PER_RAD, "deg")
     if s.inertia is not None:
         t["inertia"] = _q(s.inertia, 1.0, "kg*m^2")
     if s.flywheel:

@@ -51,6 +51,7 @@ from chaindrive.io.design import (
 from chaindrive.model import MAX_TEETH, MIN_TEETH, ChainSpec, Drive
 from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, RobustSettings, robust_settings
 from chaindrive.synthesis.objectives import available_objectives
+from chaindrive.units import TWO_PI
 
 __all__ = [
     "CONSTRAINT_FIELDS",
@@ -69,7 +70,7 @@ TOP_FIELDS: tuple[Field, ...] = (
 )
 CONSTRAINT_FIELDS: tuple[Field, ...] = (
     Field("min_driver_wrap", "angle", "smallest wrap angle on the driver", default=math.radians(120),
-          minimum=0.0, maximum=2 * math.pi),
+          minimum=0.0, maximum=TWO_PI),
     Field("min_teeth_in_mesh", "float", "smallest number of teeth in mesh on loaded sprockets",
           default=3.0, minimum=0.0, maximum=50.0),
     Field("static_safety", "bool", "static safety factor s ≥ [s] [ChainDesignRU, Table 9A]",
