@@ -206,7 +206,7 @@ class Analysis:
     @cached_property
     def _resonance_band(self) -> ResonanceProbe:
         """The resonance check of this drive and the detuning band of every resonance row
-        (:func:`chaindrive.dynamics.drive_response.uncertainty_bands` without the K_D sweep:
+        (:func:`chaindrive.dynamics.frequency.response.uncertainty_bands` without the K_D sweep:
         the detunings do not need the response)."""
         dyn, u = self.dynamics, self.drive.dynamics.uncertainty
         bands = uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances)
