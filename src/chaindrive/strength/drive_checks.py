@@ -129,10 +129,13 @@ class _Forces:
     centrifugal_tension: float
 
 
-def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
-    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver at the
-    installed sag — the same formulas and inputs as :func:`chaindrive.strength.loads.loads_of`,
-    without the contour balance."""
+def _forces(drive: Drive, geometry: GeometryResult, loads: LoadsResult | None = None) -> _Forces:
+    """The strength stage's ``loads`` where they are known; else v = z·p·ω/2π, F_t = P/v,
+    F_v = q·v², F_0 of the span leaving the driver at the installed sag — the same formulas
+    and inputs as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
+    if loads is not None:
+        return _Forces(loads.speed, loads.peripheral_force, loads.sag_tension,
+                       loads.centrifugal_tension)
     spec, driver = drive.chain.spec, drive.driver
     assert drive.power is not None and driver.speed is not None
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
@@ -269,8 +272,8 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     return out
 
 
-def chain_checks(drive: Drive, geometry: GeometryResult,
-                 settings: CheckSettings | None = None) -> list[ck.Check]:
+def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
+                 loads: LoadsResult | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method.
 
     Parameters
@@ -281,6 +284,9 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
         Its contour.
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
+    loads : LoadsResult or None
+        The strength stage's loads of this drive (:func:`~chaindrive.strength.loads.loads_of`),
+        read for v, F_t, F_0 and F_v; None: those four computed here.
 
     Returns
     -------
@@ -288,17 +294,17 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
         The chain's checks.
     """
     s = settings or settings_for(drive)
-    loads = _forces(drive, geometry)
+    forces = _forces(drive, geometry, loads)
     method = s.method or ratings.method_for(drive.chain.spec)
     if method == ratings.POLYMER:
-        return _polymer_checks(drive, loads, s)
+        return _polymer_checks(drive, forces, s)
     if method == ratings.KE:
-        return _ke_checks(drive, geometry, loads, s)
-    return _rating_checks(drive, geometry, loads, s)
+        return _ke_checks(drive, geometry, forces, s)
+    return _rating_checks(drive, geometry, forces, s)
 
 
-def checks_for(drive: Drive, geometry: GeometryResult,
-               settings: CheckSettings | None = None) -> tuple[ck.Check, ...]:
+def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
+               loads: LoadsResult | None = None) -> tuple[ck.Check, ...]:
     """Every check of a drive: its chain's and its layout's.
 
     Parameters
@@ -309,13 +315,15 @@ def checks_for(drive: Drive, geometry: GeometryResult,
         Its contour.
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
+    loads : LoadsResult or None
+        The strength stage's loads of this drive, as :func:`chain_checks` reads them.
 
     Returns
     -------
     tuple of Check
         :func:`chain_checks` then :func:`geometry_checks`.
     """
-    return (*chain_checks(drive, geometry, settings), *geometry_checks(drive, geometry))
+    return (*chain_checks(drive, geometry, settings, loads), *geometry_checks(drive, geometry))
 
 
 def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
@@ -335,7 +343,9 @@ def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
         K_m, the number of contours the power is divided by for the most loaded one [-]
         (the contours' compatibility factor, or the chain's contour count).
     loads : LoadsResult or None
-        The strength stage's span tensions [N]; None: no tooth checks.
+        The strength stage's loads of the most loaded contour (its speed, forces and span
+        tensions [N], read by the chain's and the teeth's checks); None: computed for the
+        chain's checks, no tooth checks.
     required_life_h : float or None
         A required life that replaces the drive's own [h].
 
@@ -350,4 +360,4 @@ def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
     if required_life_h is not None:
         settings = replace(settings, required_life_h=required_life_h)
     teeth = () if loads is None else polymer_tooth_checks(loaded, geometry, loads)
-    return (*checks_for(loaded, geometry, settings), *teeth)
+    return (*checks_for(loaded, geometry, settings, loads), *teeth)
