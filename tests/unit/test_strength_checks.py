@@ -97,3 +97,17 @@ def test_polymer_chain_checks_allowable_load_and_says_what_it_cannot_verify():
     bare = replace(d, chain=Chain(replace(spec, max_speed=None)))
     unlimited = {c.name: c for c in checks_for(bare, contour_geometry(bare))}
     assert unlimited["speed limit"].status == "cannot be verified"
+
+
+@pytest.mark.parametrize("chain", ["08A-1", "POM 08B"])
+def test_chain_checks_read_the_strength_stage_loads_to_the_same_figures(chain: str) -> None:
+    """The analysis hands the chain's checks the strength stage's loads (v, F_t, F_0, F_v of
+    loads_of); computed again here from the same formulas they give the same checks, value
+    for value (the rated path and the polymer path)."""
+    from chaindrive.strength.loads import loads_of
+
+    d = Drive("two", Chain(find_chain(chain)),
+              (Sprocket("A", 19, 0, 0, "driver", speed=300 * RPM),
+               Sprocket("B", 38, 0.5, 0, "driven")), power=200.0)
+    g = contour_geometry(d)
+    assert checks_for(d, g, loads=loads_of(d, g)) == checks_for(d, g)
