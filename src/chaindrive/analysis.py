@@ -78,10 +78,9 @@ from chaindrive.multicontour.drive import contour_check
 from chaindrive.strength import (
     SelectionResult,
     StrengthResult,
-    polymer_tooth_checks,
     strength_of,
 )
-from chaindrive.strength.drive_checks import checks_for, geometry_checks, settings_for
+from chaindrive.strength.drive_checks import geometry_checks, loaded_contour_checks
 from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
 from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
@@ -207,7 +206,7 @@ class Analysis:
     @cached_property
     def _resonance_band(self) -> ResonanceProbe:
         """The resonance check of this drive and the detuning band of every resonance row
-        (:func:`chaindrive.dynamics.drive_response.uncertainty_bands` without the K_D sweep:
+        (:func:`chaindrive.dynamics.frequency.response.uncertainty_bands` without the K_D sweep:
         the detunings do not need the response)."""
         dyn, u = self.dynamics, self.drive.dynamics.uncertainty
         bands = uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances)
@@ -586,14 +585,10 @@ class Analysis:
                 note=f"no {what} given: the chain's rating, static safety, wear life, speed "
                      "limit and the dynamic checks need the drive's power and speed",
                 part="chain"))
-        share = self.contours.km if self.contours is not None else d.chain.contours
-        loaded = replace(d, power=d.power / share)
-        settings = settings_for(loaded)
-        if self.limits.required_life_h is not None:
-            settings = replace(settings, required_life_h=self.limits.required_life_h)
-        teeth = (() if self.strength is None
-                 else polymer_tooth_checks(loaded, self.geometry, self.strength.loads))
-        return (*checks_for(loaded, self.geometry, settings), *teeth)
+        km = self.contours.km if self.contours is not None else d.chain.contours
+        return loaded_contour_checks(d, self.geometry, km,
+                                     None if self.strength is None else self.strength.loads,
+                                     self.limits.required_life_h)
 
     @cached_property
     def _dynamic_checks(self) -> tuple[Check, ...]:

@@ -39,6 +39,7 @@ from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius as _radius
 from chaindrive.geometry.sprocket import teeth_array as _teeth
+from chaindrive.units import RPM_PER_RAD_S, TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
@@ -69,7 +70,7 @@ def mean_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> Fl
     ----------
     [ChainNonUniformity, eq. 4]; [Shigley2015, Eq. 17-30].
     """
-    return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / (2 * np.pi))
+    return _out(_teeth(teeth) * np.asarray(pitch, float) * np.asarray(speed, float) / TWO_PI)
 
 
 def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
@@ -91,7 +92,7 @@ def tooth_frequency(teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     ----------
     [MultimassChainDrives, §3.1] (ω_z = z1 ω1 = z2 ω2 = …).
     """
-    return _out(_teeth(teeth) * np.asarray(speed, float) / (2 * np.pi))
+    return _out(_teeth(teeth) * np.asarray(speed, float) / TWO_PI)
 
 
 def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
@@ -261,7 +262,7 @@ def wrap_phase(phase: ArrayLike) -> FloatOrArray:
     float or numpy.ndarray
         wrap(ψ) [rad].
     """
-    return _out(np.mod(np.asarray(phase, float) + np.pi, 2 * np.pi) - np.pi)
+    return _out(np.mod(np.asarray(phase, float) + np.pi, TWO_PI) - np.pi)
 
 
 def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
@@ -451,7 +452,7 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
     z = _teeth(teeth)
     psi = np.asarray(wrap_phase(phase))
     p = np.asarray(pitch, float)
-    return _out(_radius(p, z) * np.sin(psi / z) - p * psi / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(psi / z) - p * psi / TWO_PI)
 
 
 def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
@@ -473,7 +474,7 @@ def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     z = _teeth(teeth)
     beta = np.arccos(z * np.sin(np.pi / z) / np.pi)
     p = np.asarray(pitch, float)
-    return _out(_radius(p, z) * np.sin(beta) - p * z * beta / (2 * np.pi))
+    return _out(_radius(p, z) * np.sin(beta) - p * z * beta / TWO_PI)
 
 
 def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonics: int,
@@ -610,7 +611,7 @@ class SprocketMotion:
     @property
     def speed_rpm(self) -> float:
         """Mean speed [rpm]."""
-        return self.speed * 30.0 / math.pi
+        return self.speed * RPM_PER_RAD_S
 
 
 @dataclass(frozen=True, slots=True)
@@ -664,7 +665,7 @@ class KinematicsResult:
         }
 
 
-def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64]:
+def tooth_phase_offsets(geometry: GeometryResult) -> NDArray[np.float64]:
     """Tooth-phase offset of every sprocket against the driver.
 
     2π × the fractional part of the chain path, in pitches, from the point where the chain
@@ -673,10 +674,8 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
 
     Parameters
     ----------
-    drive : Drive
-        The design.
     geometry : GeometryResult
-        Its contour.
+        The contour; the driver is the sprocket its tight span runs into.
 
     Returns
     -------
@@ -684,7 +683,7 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
         (n,) offsets [rad], 0 for the driver.
     """
     n = len(geometry.sprockets)
-    d = drive.driver_index
+    d = next(sp.end for sp in geometry.spans if sp.tight)
     out = np.zeros(n)
     for i in range(n):
         if i == d:
@@ -695,8 +694,8 @@ def tooth_phase_offsets(drive: Drive, geometry: GeometryResult) -> NDArray[np.fl
             k = (k + 1) % n
             if k != d:
                 g = geometry.sprockets[k]
-                path += g.teeth * g.wrap_angle / (2 * math.pi)
-        out[i] = 2 * math.pi * (path % 1.0)
+                path += g.teeth * g.wrap_angle / TWO_PI
+        out[i] = TWO_PI * (path % 1.0)
     return out
 
 
@@ -734,13 +733,13 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257)
     z_d = driver.teeth
     phase = np.linspace(-math.pi / z_d, math.pi / z_d, samples)
     psi = phase * z_d  # tooth phase over one period
-    offsets = tooth_phase_offsets(drive, geometry)
+    offsets = tooth_phase_offsets(geometry)
     teeth = np.array([s.teeth for s in drive.sprockets])[:, None]
     ratios = np.asarray(instantaneous_ratio(z_d, teeth, psi[None, :], offsets[:, None]))
     ratios[drive.driver_index] = 1.0
     motions = []
     for i, (s, g) in enumerate(zip(drive.sprockets, geometry.sprockets, strict=True)):
-        omega = omega_d * z_d / s.teeth
+        omega = float(mean_driven_speed(z_d, omega_d, s.teeth))
         ratio = ratios[i]
         motions.append(SprocketMotion(
             name=s.name, speed=omega, direction="ccw" if g.turn > 0 else "cw",

@@ -20,7 +20,7 @@ from chaindrive.catalog import find_material
 from chaindrive.cost import CostBreakdown, CostModel, cost_breakdown
 from chaindrive.dynamics.stiffness import plate_thickness
 from chaindrive.geometry.results import GeometryResult
-from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
+from chaindrive.geometry.sprocket import sprocket_body
 from chaindrive.model import ChainSpec, Drive
 
 __all__ = ["DesignMetrics", "chain_width", "design_metrics", "sprocket_body_masses"]
@@ -109,16 +109,12 @@ def sprocket_body_masses(drive: Drive) -> NDArray[np.float64]:
     -------
     numpy.ndarray
         (n,) mass of each sprocket body [kg]
-        (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`).
+        (:func:`chaindrive.geometry.sprocket.sprocket_body`).
     """
-    spec = drive.chain.spec
-    out = []
-    for i, s in enumerate(drive.sprockets):
-        mat = find_material(s.material, field=f"sprockets[{i}].material")
-        out.append(sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
-                                             mat.is_polymer, strands=spec.strands,
-                                             transverse_pitch=spec.transverse_pitch).mass)
-    return np.array(out)
+    return np.array([
+        sprocket_body(drive.chain.spec, s.teeth,
+                      find_material(s.material, field=f"sprockets[{i}].material")).mass
+        for i, s in enumerate(drive.sprockets)])
 
 
 def _volume(geometry: GeometryResult, width: float, contours: int) -> float:

@@ -50,8 +50,8 @@ def test_pareto_design_files_analyse_as_their_drives() -> None:
     # 12 designs: seed 1 finds one that passes every check (seed 4 finds none since the
     # PA66 designs, whose teeth cannot be verified, are no longer feasible)
     result = solve(problem, population=6, generations=2, seed=1)
-    files = pareto_design_files(result, "eight", EXAMPLES)
     drives = pareto_drives(result, EXAMPLES)
+    files = pareto_design_files(drives, "eight")
     assert files and len(files) == len(drives)
     for f, drive in zip(files, drives, strict=True):
         again = _reloaded(f.text)
@@ -85,5 +85,5 @@ def test_an_optimised_drive_named_with_quotes_and_backslashes() -> None:
     data = read_toml(EXAMPLES / "eight_sprocket_optimize.toml")
     data["drive"]["name"] = 'a "quoted" \\ name'
     result = solve(problem_from_mapping(data, EXAMPLES), population=4, generations=1, seed=1)
-    for f in pareto_design_files(result, "q", EXAMPLES):
+    for f in pareto_design_files(pareto_drives(result, EXAMPLES), "q"):
         assert _reloaded(f.text).name == data["drive"]["name"]

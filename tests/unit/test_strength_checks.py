@@ -20,20 +20,20 @@ RPM = math.pi / 30
 
 
 def test_verdicts_and_margins():
-    c = ck.hinge_pressure_check("x", 20e6, 25e6)
+    c = ck.chain_check("hinge pressure", "x", 20e6, 25e6)
     assert c.status == "pass" and c.margin_fraction == pytest.approx(0.25)
     assert c.to_dict()["value"] == pytest.approx(20.0) and c.to_dict()["unit"] == "MPa"
-    c = ck.static_safety_check("x", 5.0, 6.0, "[DiamondChain]")
+    c = ck.chain_check("static safety", "x", 5.0, 6.0, "[DiamondChain]")
     assert c.status == "fail" and c.margin_fraction == pytest.approx(5 / 6 - 1)
-    c = ck.hinge_pressure_check("x", 20e6, None)
+    c = ck.chain_check("hinge pressure", "x", 20e6, None)
     assert c.status == "cannot be verified" and not c.passed and c.margin_fraction is None
     assert "no [p]" in c.note
 
 
 def test_worst_orders_failures_then_unverified_then_smallest_margin():
-    a = ck.wear_life_check("x", 20000.0, 15000.0)
-    b = ck.speed_limit_check("x", 10.0, None, "s")
-    f = ck.power_rating_check("x", 900.0, 1000.0, "s")
+    a = ck.chain_check("wear life", "x", 20000.0, 15000.0)
+    b = ck.chain_check("speed limit", "x", 10.0, None, "s")
+    f = ck.chain_check("power rating", "x", 900.0, 1000.0, "s")
     assert ck.worst([a, b, f]) is f and ck.worst([a, b]) is b and ck.worst([a]) is a
 
 
@@ -97,3 +97,17 @@ def test_polymer_chain_checks_allowable_load_and_says_what_it_cannot_verify():
     bare = replace(d, chain=Chain(replace(spec, max_speed=None)))
     unlimited = {c.name: c for c in checks_for(bare, contour_geometry(bare))}
     assert unlimited["speed limit"].status == "cannot be verified"
+
+
+@pytest.mark.parametrize("chain", ["08A-1", "POM 08B"])
+def test_chain_checks_read_the_strength_stage_loads_to_the_same_figures(chain: str) -> None:
+    """The analysis hands the chain's checks the strength stage's loads (v, F_t, F_0, F_v of
+    loads_of); computed again here from the same formulas they give the same checks, value
+    for value (the rated path and the polymer path)."""
+    from chaindrive.strength.loads import loads_of
+
+    d = Drive("two", Chain(find_chain(chain)),
+              (Sprocket("A", 19, 0, 0, "driver", speed=300 * RPM),
+               Sprocket("B", 38, 0.5, 0, "driven")), power=200.0)
+    g = contour_geometry(d)
+    assert checks_for(d, g, loads=loads_of(d, g)) == checks_for(d, g)

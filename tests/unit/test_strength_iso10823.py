@@ -14,7 +14,7 @@ from numpy.testing import assert_allclose
 from chaindrive.errors import DesignError
 from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823 as iso
-from chaindrive.strength.checks import power_rating_check
+from chaindrive.strength.checks import chain_check
 
 RPM = math.pi / 30
 
@@ -99,8 +99,8 @@ def test_rating_margin_and_multi_strand():
     # single-strand rating × K_s = 1.25 the power-rating check has a margin 2.5/1.25 − 1
     c1 = ansi("80", 1.0)
     single = iso.aca_rating(c1, 17, 300 * RPM)[0]
-    check = power_rating_check("80-3", single * iso.strand_factor(3), single * 1.25,
-                               "[Shigley2015]")
+    check = chain_check("power rating", "80-3", single * iso.strand_factor(3), single * 1.25,
+                        "[Shigley2015]")
     assert_allclose(check.margin_fraction, 2.5 / 1.25 - 1, rtol=1e-12)
     assert check.passed and iso.lubrication_type(c1, 3.0) in {"A", "B", "C"}
     assert iso.required_rating(10.0, 1.3, 1.5, 1.0, 2.5) == pytest.approx(7.8)

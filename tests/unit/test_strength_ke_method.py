@@ -13,7 +13,7 @@ from numpy.testing import assert_allclose
 from chaindrive.errors import DesignError
 from chaindrive.model import ChainSpec
 from chaindrive.strength import ke_method as ke
-from chaindrive.strength.checks import hinge_pressure_check, speed_limit_check
+from chaindrive.strength.checks import chain_check
 from chaindrive.strength.loads import hinge_pressure
 
 RPM = math.pi / 30
@@ -75,16 +75,18 @@ def test_pressure_and_speed_checks_by_the_tables():
     area, estimated = ke.bearing_area(chain)
     assert not estimated and area == pytest.approx(180e-6)
     p = hinge_pressure(1000.0, 1.0, area)
-    ok = hinge_pressure_check(chain.designation, p, ke.allowable_pressure(chain.pitch, 300 * RPM))
+    ok = chain_check("hinge pressure", chain.designation, p,
+                     ke.allowable_pressure(chain.pitch, 300 * RPM))
     assert ok.passed and p == pytest.approx(1000.0 / 180e-6)
     heavy_p = hinge_pressure(5000.0, 1.0, area)
     allowed = ke.allowable_pressure(chain.pitch, 300 * RPM)
-    heavy = hinge_pressure_check(chain.designation, heavy_p, allowed)
+    heavy = chain_check("hinge pressure", chain.designation, heavy_p, allowed)
     assert heavy.margin_fraction < ok.margin_fraction
     assert_allclose(heavy.margin_fraction, allowed / heavy_p - 1, rtol=1e-12)
-    fast = speed_limit_check(chain.designation, 900 * RPM, ke.max_speed(chain.pitch), "x")
-    fast_p = hinge_pressure_check(chain.designation, p, ke.allowable_pressure(chain.pitch,
-                                                                                900 * RPM))
+    fast = chain_check("speed limit", chain.designation, 900 * RPM, ke.max_speed(chain.pitch),
+                       "x")
+    fast_p = chain_check("hinge pressure", chain.designation, p,
+                         ke.allowable_pressure(chain.pitch, 900 * RPM))
     assert not (fast.passed and fast_p.passed)
 
 

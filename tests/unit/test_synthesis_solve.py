@@ -19,7 +19,7 @@ from chaindrive.io.design import drive_from_mapping
 from chaindrive.synthesis.evaluation import evaluate_drive
 from chaindrive.synthesis.problem import load_problem, problem_from_mapping
 from chaindrive.synthesis.solve import dominates, pareto_indices, solve
-from chaindrive.synthesis.workflow import pareto_design_files
+from chaindrive.synthesis.workflow import pareto_design_files, pareto_drives
 from tests.conftest import EXAMPLES
 
 pytest.importorskip("pymoo")
@@ -64,7 +64,7 @@ def test_front_is_non_dominated_and_every_design_re_analyses_clean(problem, resu
     names = problem.objectives
     vectors = [[p.objectives[n] for n in names] for p in result.pareto]  # all minimised
     assert not any(dominates(a, b) for a in vectors for b in vectors if a is not b)
-    for f in pareto_design_files(result, "eight", FILE.parent):
+    for f in pareto_design_files(pareto_drives(result, FILE.parent), "eight"):
         path = tmp_path / f.name
         path.write_text(f.text, encoding="utf-8")
         a = chaindrive.analyze(chaindrive.load(path))

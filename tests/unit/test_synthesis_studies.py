@@ -166,7 +166,7 @@ def test_interrupted_study_resumes_from_sqlite(tmp_path) -> None:
 def test_optimiser_population_on_dask_matches_serial_and_resumes(tmp_path) -> None:
     from chaindrive.synthesis.problem import load_problem
     from chaindrive.synthesis.solve import solve
-    from chaindrive.synthesis.studies import dask_evaluator
+    from chaindrive.synthesis.studies import DaskEvaluator
 
     pytest.importorskip("optuna")
     problem = load_problem(EXAMPLES / "eight_sprocket_optimize.toml")
@@ -176,10 +176,10 @@ def test_optimiser_population_on_dask_matches_serial_and_resumes(tmp_path) -> No
                                   dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         first = solve(problem, population=8, generations=2, seed=5,
-                      evaluator=dask_evaluator(db=url, study="opt", client=client))
+                      evaluator=DaskEvaluator(db=url, study="opt", client=client))
         stored = StudyStore(url).count("opt")
         again = solve(problem, population=8, generations=2, seed=5,
-                      evaluator=dask_evaluator(db=url, study="opt", client=client))
+                      evaluator=DaskEvaluator(db=url, study="opt", client=client))
     assert [p.objectives for p in first.pareto] == [p.objectives for p in serial.pareto]
     assert [p.objectives for p in again.pareto] == [p.objectives for p in serial.pareto]
     assert StudyStore(url).count("opt") == stored  # the rerun computed nothing new
@@ -228,7 +228,7 @@ def test_one_cluster_serves_every_generation(tmp_path, monkeypatch) -> None:
 
     monkeypatch.setattr(studies, "_client", client)
     url = f"sqlite:///{tmp_path / 'one.db'}"
-    with studies.dask_evaluator(db=url, study="one") as evaluator:
+    with studies.DaskEvaluator(db=url, study="one") as evaluator:
         result = solve(_small_problem(), population=4, generations=3, seed=2,
                        evaluator=evaluator)
         assert len(started) == 1 and evaluator.client.status == "running"

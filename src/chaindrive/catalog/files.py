@@ -9,7 +9,7 @@ from __future__ import annotations
 import csv
 import math
 import tomllib
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
@@ -387,6 +387,16 @@ def packaged_content() -> FileContent:
     return FileContent(tuple(chain_entries), tuple(material_entries))
 
 
+def _entries(path: PathLike, kind: str, pick: Callable[[FileContent], tuple[Named[Entry], ...]],
+             hint: str = "") -> tuple[Entry, ...]:
+    """The entries of one kind (``pick``: chains or materials) of a user's catalogue file, in
+    SI units; a file with none is refused (``hint``: where they would be)."""
+    entries = pick(read_catalog_file(path))
+    if not entries:
+        raise CatalogError(str(path), f"no {kind} in this file{hint}")
+    return tuple(entry.item for entry in entries)
+
+
 def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
     """Chains of a user's catalogue file.
 
@@ -411,10 +421,7 @@ def load_chain_file(path: PathLike) -> tuple[ChainSpec, ...]:
     tuple of ChainSpec
         Its chains, in SI units.
     """
-    content = read_catalog_file(path)
-    if not content.chains:
-        raise CatalogError(str(path), "no chains in this file (chain CSV columns or [[chains]])")
-    return tuple(entry.item for entry in content.chains)
+    return _entries(path, "chains", lambda c: c.chains, " (chain CSV columns or [[chains]])")
 
 
 def load_material_file(path: PathLike) -> tuple[Material, ...]:
@@ -432,7 +439,4 @@ def load_material_file(path: PathLike) -> tuple[Material, ...]:
     tuple of Material
         Its materials, in SI units.
     """
-    content = read_catalog_file(path)
-    if not content.materials:
-        raise CatalogError(str(path), "no materials in this file")
-    return tuple(entry.item for entry in content.materials)
+    return _entries(path, "materials", lambda c: c.materials)

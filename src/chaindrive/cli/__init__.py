@@ -91,6 +91,15 @@ def _write_json(document: dict[str, Any]) -> None:
     sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
 
 
+def _say_written(what: str, path: Path, as_json: bool) -> None:
+    """Say where ``what`` (a report, a drawing) was written: ``{what: absolute path}`` as
+    JSON, else one line."""
+    if as_json:
+        _write_json({what: str(path.resolve())})
+    else:
+        print(f"{what} written to {path}")
+
+
 def _check_finite(value: Any, path: str) -> None:
     """Raise ``ArithmeticError`` naming the first non-finite number in ``value``."""
     if isinstance(value, float) and not np.isfinite(value):
@@ -342,10 +351,7 @@ def report(
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
                                 units=unit_system(units))
-    if as_json:
-        _write_json({"report": str(path.resolve())})
-        return
-    print(f"report written to {path}")
+    _say_written("report", path, as_json)
 
 
 @app.command()
@@ -366,10 +372,7 @@ def draw(
     with user_errors():
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
         path = write_drawing(analysis, output, sprocket=sprocket)
-    if as_json:
-        _write_json({"drawing": str(path.resolve())})
-        return
-    print(f"drawing written to {path}")
+    _say_written("drawing", path, as_json)
 
 
 @app.command()
@@ -403,9 +406,9 @@ def optimize(
             # lazy: a command imports only what it runs, so that `--help`, `schema` and `catalog`
             # start fast (-X importtime: analysis ≈0.15 s, report ≈0.5 s, synthesis and robust ≈2.7
             # s each)
-            from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
+            from chaindrive.synthesis.studies import DEFAULT_DB, DaskEvaluator
 
-            evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+            evaluator = DaskEvaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
         designs = problem.solver.population * problem.solver.generations
         try:
             with progress_bar("optimising: designs evaluated", total=designs,
@@ -452,10 +455,11 @@ def _write_pareto(result: SynthesisResult, file: Path, out: Path) -> tuple[list[
     """Write the Pareto designs (one TOML each), the plot of the front and the report of the
     first into ``out`` — all or nothing (:func:`chaindrive.io.atomic.atomic_directory`)."""
     # lazy: only what this command runs (see "Lazy imports" above)
-    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files
+    from chaindrive.synthesis.workflow import chosen_analysis, pareto_design_files, pareto_drives
 
-    files = pareto_design_files(result, file.stem, file.parent)
-    chosen = chosen_analysis(result, file.parent)
+    drives = pareto_drives(result, file.parent)
+    files = pareto_design_files(drives, file.stem)
+    chosen = chosen_analysis(drives)
     names = [f.name for f in files]
     plot_name = None
     with atomic_directory(out, field="--out") as tmp:

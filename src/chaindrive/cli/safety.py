@@ -33,6 +33,7 @@ import click
 
 import chaindrive
 from chaindrive.errors import ChainDriveError
+from chaindrive.io.atomic import handlers_installed
 
 __all__ = ["EXIT_INTERNAL", "EXIT_USER_ERROR", "LOG_DIR_ENV", "Interrupted", "exit_on_signal",
            "guarded", "log_dir", "one_line", "signals_raise"]
@@ -83,17 +84,8 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     ------
     None
     """
-    import threading
-
-    if threading.current_thread() is not threading.main_thread():
+    with handlers_installed(signums, _raise):
         yield
-        return
-    previous = {s: signal.signal(s, _raise) for s in signums}
-    try:
-        yield
-    finally:
-        for s, handler in previous.items():
-            signal.signal(s, handler)
 
 
 def _exit_now(signum: int, frame: FrameType | None) -> None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import asdict, dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,6 +20,9 @@ from chaindrive.geometry.iso606 import iso606_tooth_width, multi_strand_width
 from chaindrive.geometry.pitch import MM as _MM
 from chaindrive.geometry.pitch import approximate_pitch_diameter, pitch_diameter
 from chaindrive.geometry.pitch import positive_length as _positive
+
+if TYPE_CHECKING:
+    from chaindrive.model import ChainSpec, Material
 
 __all__ = ["PolymericProportions", "SprocketMassProperties", "annulus_mass_and_inertia",
            "polymeric_sprocket_proportions", "sprocket_mass_and_inertia"]
@@ -228,3 +231,27 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     inertia -= hole_count * m_hole * (dh**2 / 8 + rc**2)
     return SprocketMassProperties(m, inertia,
                                   "polymeric rim + web with holes + hub [MultimassChainDrives]")
+
+
+def sprocket_body(spec: ChainSpec, teeth: int, material: Material) -> SprocketMassProperties:
+    """The body of a sprocket of a drive: :func:`sprocket_mass_and_inertia` for its chain
+    (pitch, inner width, strands, transverse pitch) and its material (density; polymeric or
+    steel), the default lightening holes.
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The drive's chain.
+    teeth : int
+        The sprocket's teeth z [-].
+    material : Material
+        The sprocket's material.
+
+    Returns
+    -------
+    SprocketMassProperties
+        Mass [kg] and moment of inertia [kg·m²] with the body model's name.
+    """
+    return sprocket_mass_and_inertia(spec.pitch, teeth, spec.inner_width, material.density,
+                                     material.is_polymer, strands=spec.strands,
+                                     transverse_pitch=spec.transverse_pitch)

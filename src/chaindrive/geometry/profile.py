@@ -37,9 +37,10 @@ from chaindrive.geometry.sprocket import (
     gost591_tooth_form,
     iso606_tooth_form,
     polymeric_sprocket_proportions,
-    sprocket_mass_and_inertia,
+    sprocket_body,
 )
 from chaindrive.model import Drive
+from chaindrive.units import TWO_PI
 
 __all__ = [
     "BORE_RATIO",
@@ -263,13 +264,13 @@ def sprocket_outline(wall: NDArray[np.float64], teeth: int, pitch_radius: float,
     half = math.pi / teeth
     parts = []
     for k in range(teeth):
-        th = 2 * math.pi * k / teeth
+        th = TWO_PI * k / teeth
         u_r = np.array([math.cos(th), math.sin(th)])
         seat = pitch_radius * u_r
         left = _clip_wall(wall, seat, u_r, tip_radius, half)
         right = _clip_wall(wall * np.array([-1.0, 1.0]), seat, u_r, tip_radius, half)
         parts.append(np.vstack([left[::-1], right[1:]]))
-        rel = math.remainder(math.atan2(right[-1, 1], right[-1, 0]) - th, 2 * math.pi)
+        rel = math.remainder(math.atan2(right[-1, 1], right[-1, 0]) - th, TWO_PI)
         if np.hypot(*right[-1]) > 0.999 * tip_radius:
             # from this gap's right end to the next gap's left end (by symmetry)
             t = np.linspace(th + rel, th + 2 * half - rel, 5)[1:-1]
@@ -403,9 +404,7 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
         mat = find_material(s.material, field=f"sprockets[{i}].material")
         body = (polymeric_sprocket_proportions(spec.pitch, s.teeth, spec.inner_width)
                 if mat.is_polymer else None)
-        mass = sprocket_mass_and_inertia(spec.pitch, s.teeth, spec.inner_width, mat.density,
-                                         mat.is_polymer, strands=spec.strands,
-                                         transverse_pitch=spec.transverse_pitch)
+        mass = sprocket_body(spec, s.teeth, mat)
         bore = (body.bore_diameter if body is not None
                 else BORE_RATIO * s.teeth * spec.pitch / math.pi)
         gost = isinstance(form, Gost591ToothForm)

@@ -23,6 +23,7 @@ from chaindrive.geometry.body import (
     SprocketMassProperties,
     annulus_mass_and_inertia,
     polymeric_sprocket_proportions,
+    sprocket_body,
     sprocket_mass_and_inertia,
 )
 from chaindrive.geometry.gost591 import (
@@ -67,7 +68,7 @@ __all__ = [
     "iso606_side_radius", "iso606_side_relief_range", "iso606_tip_diameter_range",
     "iso606_tooth_form", "iso606_tooth_width", "multi_strand_width", "pitch_diameter",
     "pitch_radius", "polymeric_sprocket_proportions", "root_diameter", "seating_geometry",
-    "sprocket_mass_and_inertia", "teeth_array", "tip_diameter",
+    "sprocket_body", "sprocket_mass_and_inertia", "teeth_array", "tip_diameter",
 ]
 
 TOOTH_FORM_NAMES: tuple[str, ...] = ("ISO 606", "GOST 591")

@@ -25,7 +25,7 @@ import secrets
 import shutil
 import signal
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from types import FrameType
@@ -33,11 +33,42 @@ from types import FrameType
 from chaindrive.errors import DesignError
 from chaindrive.units import shown
 
-__all__ = ["atomic_directory", "atomic_path", "signals_held", "write_bytes", "write_text"]
+__all__ = ["atomic_directory", "atomic_path", "handlers_installed", "signals_held", "write_bytes",
+           "write_file", "write_text"]
 
 #: Marker in the names of temporary files and directories.
 TMP_MARK = ".tmp"
 _HELD = (signal.SIGINT, signal.SIGTERM)
+
+
+@contextmanager
+def handlers_installed(signums: Iterable[int],
+                       handler: Callable[[int, FrameType | None], object]) -> Iterator[bool]:
+    """Within the block, ``handler`` handles the signals ``signums``; the previous handlers
+    come back after it. Only the main thread can install handlers; elsewhere this does
+    nothing.
+
+    Parameters
+    ----------
+    signums : iterable of int
+        The signals.
+    handler : callable
+        ``handler(signum, frame)``.
+
+    Yields
+    ------
+    bool
+        Whether the handlers were installed (False outside the main thread).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield False
+        return
+    previous = {s: signal.signal(s, handler) for s in signums}
+    try:
+        yield True
+    finally:
+        for s, old in previous.items():
+            signal.signal(s, old)
 
 
 @contextmanager
@@ -56,20 +87,15 @@ def signals_held() -> Iterator[None]:
     ------
     None
     """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
     noted: list[int] = []
 
     def _note(signum: int, frame: FrameType | None) -> None:
         noted.append(signum)
 
-    installed = {s: signal.signal(s, _note) for s in _HELD}
     try:
-        yield
+        with handlers_installed(_HELD, _note):
+            yield
     finally:
-        for s, handler in installed.items():
-            signal.signal(s, handler)
         for signum in dict.fromkeys(noted):
             signal.raise_signal(signum)
 
@@ -165,14 +191,15 @@ def atomic_path(target: str | Path, *, field: str = "output") -> Iterator[Path]:
                 tmp.unlink(missing_ok=True)
 
 
-def write_text(target: str | Path, text: str, *, field: str = "output") -> Path:
-    """Write ``text`` (UTF-8) to ``target`` atomically (:func:`atomic_path`).
+def write_file(target: str | Path, content: str | bytes, *, field: str = "output") -> Path:
+    """Write ``content`` to ``target`` atomically (:func:`atomic_path`); text is written
+    as UTF-8.
 
     Parameters
     ----------
     target : str | Path
         The file to write.
-    text : str
+    content : str | bytes
         Its whole content.
     field : str
         What the output is called in an error line.
@@ -182,31 +209,14 @@ def write_text(target: str | Path, text: str, *, field: str = "output") -> Path:
     Path
         ``target``.
     """
-    with atomic_path(target, field=field) as tmp:
-        tmp.write_text(text, encoding="utf-8")
-    return Path(target)
-
-
-def write_bytes(target: str | Path, data: bytes, *, field: str = "output") -> Path:
-    """Write ``data`` to ``target`` atomically (:func:`atomic_path`).
-
-    Parameters
-    ----------
-    target : str | Path
-        The file to write.
-    data : bytes
-        Its whole content.
-    field : str
-        What the output is called in an error line.
-
-    Returns
-    -------
-    Path
-        ``target``.
-    """
+    data = content.encode("utf-8") if isinstance(content, str) else content
     with atomic_path(target, field=field) as tmp:
         tmp.write_bytes(data)
     return Path(target)
+
+
+#: The names the writers of text and of bytes call it by.
+write_text = write_bytes = write_file
 
 
 def _move_into(tmp: Path, final: Path) -> None:

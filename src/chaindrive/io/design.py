@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -58,6 +58,7 @@ from chaindrive.units import (
     MAX_TEXT,
     RAD_S_PER_RPM,
     RPM_PER_RAD_S,
+    TWO_PI,
     parse_quantity,
     shown,
 )
@@ -328,7 +329,7 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "outside the loop (it turns the other way)", default="outside", choices=SIDES),
     Field("adjustable", "bool", "this sprocket moves to take up the chain length", default=False),
     Field("adjust_angle", "angle", "direction of the line of adjustment (default: away from "
-          "the contour)", minimum=-2 * math.pi, maximum=2 * math.pi,
+          "the contour)", minimum=-TWO_PI, maximum=TWO_PI,
           reason="a direction: one turn either way"),
     Field("inertia", "inertia", "moment of inertia of what turns rigidly with it; without a "
           "train, everything on its shaft (motor, reducer, machine) referred to it (default: "
@@ -1102,41 +1103,46 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     return out
 
 
+def _fields_table(obj: object, fields: Sequence[Field],
+                  units: Mapping[str, tuple[float, str]],
+                  skip_default: bool = False) -> dict[str, Any]:
+    """The given fields of ``obj`` as a TOML table, each with its unit where it has one.
+
+    A field whose value is None (or, with ``skip_default``, its default) is left out.
+    """
+    out: dict[str, Any] = {}
+    for f in fields:
+        value = getattr(obj, f.name)
+        if value is None or (skip_default and value == f.default):
+            continue
+        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
+    return out
+
+
 def _motor_table(m: Motor) -> dict[str, Any]:
-    units = {"rated_power": (1e-3, "kW"), "rated_speed": (30.0 / math.pi, "rpm"),
+    units = {"rated_power": (1e-3, "kW"), "rated_speed": (RPM_PER_RAD_S, "rpm"),
              "rotor_inertia": (1.0, "kg*m^2"), "ramp_time": (1.0, "s"),
              "torque": (1.0, "N*m")}
-    out: dict[str, Any] = {}
-    for f in MOTOR_FIELDS:
-        value = getattr(m, f.name)
-        if value is not None:
-            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return _fields_table(m, MOTOR_FIELDS, units)
 
 
 def _train_table(e: TrainElement) -> dict[str, Any]:
     units = {"inertia": (1.0, "kg*m^2"), "stiffness": (1.0, "N*m/rad"),
              "damping": (1.0, "N*m*s/rad"), "diameter": (1e3, "mm"), "length": (1e3, "mm")}
-    out: dict[str, Any] = {"kind": e.kind}
-    for f in TRAIN_FIELDS[1:]:
-        value = getattr(e, f.name)
-        if value is None or value == f.default:
-            continue
-        out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return {"kind": e.kind, **_fields_table(e, TRAIN_FIELDS[1:], units, skip_default=True)}
 
 
 def _sprocket_table(s: Sprocket) -> dict[str, Any]:
     t: dict[str, Any] = {"name": s.name, "teeth": s.teeth, "x": _q(s.x, 1e3, "mm"),
                          "y": _q(s.y, 1e3, "mm"), "role": s.role}
     if s.speed is not None:
-        t["speed"] = _q(s.speed, 30.0 / math.pi, "rpm")
+        t["speed"] = _q(s.speed, RPM_PER_RAD_S, "rpm")
     if s.side != "outside":
         t["side"] = s.side
     if s.adjustable:
         t["adjustable"] = True
     if s.adjust_angle is not None:
-        t["adjust_angle"] = _q(s.adjust_angle, 180.0 / math.pi, "deg")
+        t["adjust_angle"] = _q(s.adjust_angle, DEG_PER_RAD, "deg")
     if s.inertia is not None:
         t["inertia"] = _q(s.inertia, 1.0, "kg*m^2")
     if s.flywheel:
@@ -1158,12 +1164,7 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
     units = {"startup_duration": (1.0, "s"), "ramp_time": (1.0, "s"),
              "eccentricity": (1e3, "mm"), "pitch_scatter": (1e3, "mm"),
              "accumulated_error": (1e3, "mm")}
-    out: dict[str, Any] = {}
-    for f in DYNAMICS_FIELDS:
-        value = getattr(d, f.name)
-        if value is not None:
-            out[f.name] = _q(value, *units[f.name]) if f.name in units else value
-    return out
+    return _fields_table(d, DYNAMICS_FIELDS, units)
 
 
 def drive_to_toml(drive: Drive) -> str:

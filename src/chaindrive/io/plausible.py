@@ -9,7 +9,7 @@ from chaindrive.dynamics.model.assembly import kloss_parameters, motor_rating
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import KlossMotor
 from chaindrive.errors import DesignError
-from chaindrive.geometry.sprocket import sprocket_mass_and_inertia
+from chaindrive.geometry.sprocket import sprocket_body
 from chaindrive.io.limits import MIN_INERTIA_SHARE
 from chaindrive.model import Drive
 from chaindrive.units import RPM_PER_RAD_S
@@ -24,7 +24,7 @@ def check_inertias(drive: Drive) -> None:
 
     The inertia of a sprocket is that of *everything turning with it*, so it cannot be less
     than the sprocket's own; the plate estimate is the one the dynamics uses when no inertia
-    is given (:func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`: a plate of the
+    is given (:func:`chaindrive.geometry.sprocket.sprocket_body`: a plate of the
     chain's width with lightening holes), and a tenth of it leaves room for spoked or
     polymer wheels. A smaller value is a slip of a unit (g for kg, mm² for m²) — and would
     make the ring's highest natural frequency, and with it the start-up's step count, grow
@@ -45,9 +45,7 @@ def check_inertias(drive: Drive) -> None:
         if s.inertia is None:
             continue
         material = find_material(s.material, field=f"sprockets[{i}].material")
-        plate = sprocket_mass_and_inertia(
-            spec.pitch, s.teeth, spec.inner_width, material.density, material.is_polymer,
-            strands=spec.strands, transverse_pitch=spec.transverse_pitch).moment_of_inertia
+        plate = sprocket_body(spec, s.teeth, material).moment_of_inertia
         least = MIN_INERTIA_SHARE * plate
         if s.inertia < least:
             raise DesignError(

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.errors import DesignError, did_you_mean
+from chaindrive.units import TWO_PI
 
 JOINTS: tuple[str, ...] = ("1-I", "2-I", "1-II", "2-II")
 PlacementRule = Literal["table", "all"]
@@ -86,7 +87,7 @@ def clearance_pdf(clearance: ArrayLike, max_clearance: float, *,
     z = np.asarray(clearance, dtype=float)
     sigma = max_clearance / (2.0 * SIGMAS_IN_RANGE)
     u = (z - max_clearance / 2.0) / sigma
-    density = np.exp(-0.5 * u**2) / (sigma * math.sqrt(2.0 * math.pi))
+    density = np.exp(-0.5 * u**2) / (sigma * math.sqrt(TWO_PI))
     if not truncated:
         return density
     mass = _NORMAL.cdf(SIGMAS_IN_RANGE) - _NORMAL.cdf(-SIGMAS_IN_RANGE)

@@ -1,6 +1,7 @@
-"""The checks a chain selection makes, one pure function each.
+"""The checks a chain selection makes: the chain's rules a table (:data:`CHAIN_RULES`, judged
+by :func:`chain_check`), the layout's one pure function each.
 
-Every function takes numbers (SI) and returns a :class:`Check`: the value, the limit it is
+Every check takes numbers (SI) and returns a :class:`Check`: the value, the limit it is
 held to, the verdict — ``"pass"``, ``"fail"`` or ``"cannot be verified"`` (the rule has no
 limit for this chain or operating point; a selection treats it as a failure and says so) —
 and the source of the rule as a key of ``docs/references.md``. The functions know nothing
@@ -16,6 +17,7 @@ Rules and their sources
 * speed limit: small-sprocket speed ≤ n1 max by pitch [TrinhChat2006, Table 5.8] (GOST), the
   pin–bush galling limit [Shigley2015, §17-5] (ACA), the manufacturer's chain speed limit
   (polymer chains);
+* impacts per second i = z1·n1/(15·Lt) ≤ [i] by pitch (GOST chains) [TrinhChat2006, Table 5.9];
 * power rating: rated power ≥ design power (ACA, European table, see
   :mod:`chaindrive.strength.ratings`);
 * wear life ≥ the rating basis, 15 000 h to 3 % elongation [Shigley2015, Eq. 17-40];
@@ -34,18 +36,18 @@ Each rule above names its source; see also ``docs/selection.md``.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
-from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Status, judged, verdict, worst
+from chaindrive.checks import FAIL, PASS, UNVERIFIED, Check, Kind, Status, judged, verdict, worst
 from chaindrive.errors import Quantity
 from chaindrive.strength.ke_method import MPA
 from chaindrive.strength.wear import BASIS_LIFE_H
 from chaindrive.units import RPM_PER_RAD_S
 
-__all__ = ["BASIS_LIFE_H", "FAIL", "MAX_SPAN_PITCHES", "MIN_SAFETY_RATED", "MIN_TEETH_IN_MESH",
-           "MIN_WRAP", "PASS", "UNVERIFIED", "Check", "Status", "allowable_load_check",
-           "hinge_pressure_check", "power_rating_check", "span_length_check",
-           "speed_limit_check", "static_safety_check", "teeth_in_mesh_check", "verdict",
-           "wear_life_check", "worst", "wrap_check"]
+__all__ = ["BASIS_LIFE_H", "CHAIN_RULES", "FAIL", "MAX_SPAN_PITCHES",
+           "MIN_SAFETY_RATED", "MIN_TEETH_IN_MESH", "MIN_WRAP", "PASS", "UNVERIFIED", "ChainRule",
+           "Check", "Status", "chain_check", "span_length_check", "teeth_in_mesh_check",
+           "verdict", "worst", "wrap_check"]
 
 #: Least teeth in mesh on any sprocket, idlers included [Renold-DG].
 MIN_TEETH_IN_MESH = 3.0
@@ -56,171 +58,6 @@ MIN_WRAP = math.radians(120.0)
 MIN_SAFETY_RATED = 6.0
 #: Longest span between two sprockets, in pitches (kа given up to a = 80 t) [TrinhChat2006].
 MAX_SPAN_PITCHES = 80.0
-
-
-def hinge_pressure_check(subject: str, pressure: float, allowable: float | None,
-                         source: str = "[ChainDesignRU, Table 2A]", note: str = "") -> Check:
-    """Hinge pressure p ≤ [p].
-
-    Parameters
-    ----------
-    subject : str
-        The chain.
-    pressure : float
-        p = Kэ·F_t/A [Pa].
-    allowable : float or None
-        [p] [Pa]; None (outside the table) → "cannot be verified".
-    source : str
-        The rule's reference key.
-    note : str
-        What the verdict rests on.
-
-    Returns
-    -------
-    Check
-        Shown in MPa.
-
-    References
-    ----------
-    [ChainDesignRU, Table 2A].
-    """
-    if allowable is None:
-        note = note or "no [p] in the table for this pitch and speed"
-    return judged("hinge pressure", subject, pressure, allowable, "max", source, "MPa",
-                  1 / MPA, note, "chain")
-
-
-def static_safety_check(subject: str, safety: float, allowable: float | None,
-                        source: str, note: str = "") -> Check:
-    """Static safety s ≥ [s].
-
-    Parameters
-    ----------
-    subject : str
-        The chain.
-    safety : float
-        s [-].
-    allowable : float or None
-        [s] [-]; None → "cannot be verified".
-    source : str
-        The rule's reference key.
-    note : str
-        What the verdict rests on.
-
-    Returns
-    -------
-    Check
-        The check.
-
-    References
-    ----------
-    [TrinhChat2006, Table 5.10]; [DiamondChain].
-    """
-    if allowable is None:
-        note = note or "no [s] in the table for this pitch and speed"
-    return judged("static safety", subject, safety, allowable, "min", source, note=note,
-                  part="chain")
-
-
-def speed_limit_check(subject: str, speed: float, max_speed: float | None, source: str,
-                      note: str = "", *, linear: bool = False) -> Check:
-    """Speed ≤ its limit.
-
-    Parameters
-    ----------
-    subject : str
-        The chain.
-    speed : float
-        Small-sprocket speed [rad/s] (shown in rpm) or, with ``linear``, chain speed [m/s].
-    max_speed : float or None
-        The limit [rad/s or m/s]; None → "cannot be verified".
-    source : str
-        The rule's reference key.
-    note : str
-        What the verdict rests on.
-    linear : bool
-        True for a chain speed.
-
-    Returns
-    -------
-    Check
-        The check.
-
-    References
-    ----------
-    [TrinhChat2006, Table 5.8]; [Shigley2015, §17-5].
-    """
-    if max_speed is None:
-        note = note or "no speed limit known for this pitch"
-    unit, scale = ("m/s", 1.0) if linear else ("rpm", RPM_PER_RAD_S)
-    return judged("speed limit", subject, speed, max_speed, "max", source, unit, scale, note,
-                  "chain")
-
-
-def power_rating_check(subject: str, rated: float | None, design: float, source: str,
-                       note: str = "", *, note_quantities: tuple[Quantity, ...] = ()) -> Check:
-    """Rated power of the chain ≥ the design power P·K_s·n_d.
-
-    Parameters
-    ----------
-    subject : str
-        The chain.
-    rated : float or None
-        Rated power of the whole chain [W]; None → "cannot be verified".
-    design : float
-        Design power [W].
-    source : str
-        The rule's reference key.
-    note : str
-        What the verdict rests on.
-    note_quantities : tuple of Quantity
-        The numbers with units ``note`` writes (SI; :class:`chaindrive.checks.Check`).
-
-    Returns
-    -------
-    Check
-        Shown in kW.
-
-    References
-    ----------
-    [Shigley2015, §17-5].
-    """
-    if rated is None:
-        note = note or "no rating for this chain at this speed"
-    return judged("power rating", subject, rated, design, "min", source, "kW", 1e-3, note,
-                  "chain", note_quantities=note_quantities)
-
-
-def wear_life_check(subject: str, life_h: float | None, required_h: float = BASIS_LIFE_H,
-                    source: str = "[Shigley2015, Eq. 17-40]", note: str = "") -> Check:
-    """Wear life to the permitted elongation ≥ the required life.
-
-    Parameters
-    ----------
-    subject : str
-        The chain.
-    life_h : float or None
-        Wear life [h]; None → "cannot be verified".
-    required_h : float
-        Required life [h] (default the 15 000 h rating basis).
-    source : str
-        The rule's reference key.
-    note : str
-        What the verdict rests on.
-
-    Returns
-    -------
-    Check
-        The check.
-
-    References
-    ----------
-    [Shigley2015, Eq. 17-40].
-    """
-    if life_h is None:
-        note = note or "no wear-life model for this chain"
-    return judged("wear life", subject, life_h, required_h, "min", source, "h", note=note,
-                  part="chain")
 
 
 def teeth_in_mesh_check(sprocket: str, teeth_in_mesh: float, role: str) -> Check:
@@ -310,29 +147,91 @@ def span_length_check(subject: str, span_pitches: float,
                   "[TrinhChat2006, Table 5.2]", "pitches", part="geometry")
 
 
-def allowable_load_check(subject: str, tension: float, allowable: float | None,
-                         source: str, note: str = "") -> Check:
-    """Chain pull ≤ the manufacturer's allowable (working) load.
+# --- the rules of the chain: one table, one function ---------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class ChainRule:
+    """How one rule of the chain is judged and shown (the rules: the module docstring).
 
     Parameters
     ----------
+    kind : {"max", "min"}
+        Whether the value is held below or above the limit.
+    unit : str
+        The unit the check is shown in.
+    scale : float
+        Factor from SI to ``unit`` [unit/SI].
+    missing : str
+        The note when the value or the limit is unknown ("cannot be verified").
+    source : str
+        The reference key the rule is known by ("" where the caller names the source: the
+        table, the catalogue row or the rating used).
+    """
+
+    kind: Kind
+    unit: str
+    scale: float
+    missing: str
+    source: str = ""
+
+
+#: The rules of the chain itself, by the name of their check. Values [SI]: hinge pressure
+#: p = Kэ·F_t/A [Pa]; static safety s [-]; speed limit, small-sprocket speed [rad/s] (or the
+#: chain speed [m/s]); power rating, rated power of the whole chain ≥ design power P·K_s·n_d
+#: [W]; wear life to the permitted elongation [h]; impacts per second i = z1·n1/(15·Lt)
+#: [1/s]; allowable load, chain pull [N].
+CHAIN_RULES: dict[str, ChainRule] = {
+    "hinge pressure": ChainRule("max", "MPa", 1 / MPA,
+                                "no [p] in the table for this pitch and speed",
+                                "[ChainDesignRU, Table 2A]"),
+    "static safety": ChainRule("min", "", 1.0, "no [s] in the table for this pitch and speed"),
+    "speed limit": ChainRule("max", "rpm", RPM_PER_RAD_S, "no speed limit known for this pitch"),
+    "power rating": ChainRule("min", "kW", 1e-3, "no rating for this chain at this speed"),
+    "wear life": ChainRule("min", "h", 1.0, "no wear-life model for this chain",
+                           "[Shigley2015, Eq. 17-40]"),
+    "impacts per second": ChainRule("max", "1/s", 1.0, "no [i] for this pitch",
+                                    "[TrinhChat2006, Table 5.9]"),
+    "allowable load": ChainRule("max", "kN", 1e-3,
+                                "the catalogue gives no allowable load for this chain"),
+}
+
+
+def chain_check(rule: str, subject: str, value: float | None, limit: float | None,
+                source: str = "", note: str = "", *, linear: bool = False,
+                note_quantities: tuple[Quantity, ...] = ()) -> Check:
+    """The chain's ``value`` held to ``limit`` by one rule of :data:`CHAIN_RULES`.
+
+    Parameters
+    ----------
+    rule : str
+        A name of :data:`CHAIN_RULES`.
     subject : str
         The chain.
-    tension : float
-        Chain pull [N].
-    allowable : float or None
-        Allowable load [N]; None → "cannot be verified".
+    value, limit : float or None
+        The design's value and the limit it is held to [SI, as the rule says]; None (no
+        rating, no table entry) → "cannot be verified" with the rule's note.
     source : str
-        The catalogue row.
+        The rule's reference key ("": the rule's own).
     note : str
         What the verdict rests on.
+    linear : bool
+        True for a speed limit on the chain speed [m/s] (shown in m/s).
+    note_quantities : tuple of Quantity
+        The numbers with units ``note`` writes (SI; :class:`chaindrive.checks.Check`).
 
     Returns
     -------
     Check
-        Shown in kN.
+        Shown in the rule's unit.
+
+    References
+    ----------
+    The rule's source (module docstring).
     """
-    if allowable is None:
-        note = note or "the catalogue gives no allowable load for this chain"
-    return judged("allowable load", subject, tension, allowable, "max", source, "kN", 1e-3,
-                  note, "chain")
+    r = CHAIN_RULES[rule]
+    if value is None or limit is None:
+        note = note or r.missing
+    unit, scale = ("m/s", 1.0) if linear else (r.unit, r.scale)
+    return judged(rule, subject, value, limit, r.kind, source or r.source, unit, scale, note,
+                  "chain", note_quantities=note_quantities)

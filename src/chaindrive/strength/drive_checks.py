@@ -29,9 +29,8 @@ See :mod:`chaindrive.strength.checks` and ``docs/selection.md``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
-from chaindrive.checks import judged
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import ChainSpec, Drive
@@ -40,6 +39,7 @@ from chaindrive.strength import iso10823, ke_method, ratings
 from chaindrive.strength.duty import required_life_h as design_life_h
 from chaindrive.strength.duty import service_factor_for
 from chaindrive.strength.loads import (
+    LoadsResult,
     centrifugal_tension,
     hinge_pressure,
     installed_sag_ratio,
@@ -48,10 +48,11 @@ from chaindrive.strength.loads import (
     small_sprocket,
 )
 from chaindrive.strength.safety import static_safety_factor
+from chaindrive.strength.sprocket_teeth import polymer_tooth_checks
 from chaindrive.strength.wear import BASIS_LIFE_H, BASIS_LINKS, wear_life_hours
 
 __all__ = ["CheckSettings", "chain_checks", "chain_limits", "checks_for", "geometry_checks",
-           "settings_for"]
+           "loaded_contour_checks", "settings_for"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,10 +129,13 @@ class _Forces:
     centrifugal_tension: float
 
 
-def _forces(drive: Drive, geometry: GeometryResult) -> _Forces:
-    """v = z·p·ω/2π, F_t = P/v, F_v = q·v², F_0 of the span leaving the driver at the
-    installed sag — the same formulas and inputs as :func:`chaindrive.strength.loads.loads_of`,
-    without the contour balance."""
+def _forces(drive: Drive, geometry: GeometryResult, loads: LoadsResult | None = None) -> _Forces:
+    """The strength stage's ``loads`` where they are known; else v = z·p·ω/2π, F_t = P/v,
+    F_v = q·v², F_0 of the span leaving the driver at the installed sag — the same formulas
+    and inputs as :func:`chaindrive.strength.loads.loads_of`, without the contour balance."""
+    if loads is not None:
+        return _Forces(loads.speed, loads.peripheral_force, loads.sag_tension,
+                       loads.centrifugal_tension)
     spec, driver = drive.chain.spec, drive.driver
     assert drive.power is not None and driver.speed is not None
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
@@ -150,9 +154,9 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     teeth, speed = small_sprocket(drive)
     design = drive.power * s.service_factor * s.design_factor
     rating = ratings.chain_rating(spec, teeth, speed)
-    out = [ck.power_rating_check(name, rating.rated_power, design, rating.source,
-                                 f"{rating.method}: {rating.note}",
-                                 note_quantities=rating.note_quantities)]
+    out = [ck.chain_check("power rating", name, rating.rated_power, design, rating.source,
+                          f"{rating.method}: {rating.note}",
+                          note_quantities=rating.note_quantities)]
     life = (None if rating.rated_power is None else
             float(wear_life_hours(rating.rated_power, design, geometry.links)))
     if s.required_life_h is None:  # the life the rating promises for this chain length
@@ -161,15 +165,15 @@ def _rating_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
                 "required life for a service-life requirement)")
     else:
         required, note = s.required_life_h, f"{geometry.links} links, required life"
-    out.append(ck.wear_life_check(name, life, required, note=f"{rating.method}; {note}"))
+    out.append(ck.chain_check("wear life", name, life, required, note=f"{rating.method}; {note}"))
     galling = iso10823.galling_speed_limit(spec.pitch, teeth, design / loads.speed / spec.strands)
-    out.append(ck.speed_limit_check(name, speed, galling, "[Shigley2015, §17-5]",
-                                    "pin–bush galling limit"))
+    out.append(ck.chain_check("speed limit", name, speed, galling, "[Shigley2015, §17-5]",
+                              "pin–bush galling limit"))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety, chain_limits(spec, speed, ratings.ACA)[1],
-                                      "[DiamondChain]",
-                                      "working load ≤ 1/6 of the breaking load"))
+    out.append(ck.chain_check("static safety", name, safety,
+                              chain_limits(spec, speed, ratings.ACA)[1], "[DiamondChain]",
+                              "working load ≤ 1/6 of the breaking load"))
     return out
 
 
@@ -213,17 +217,16 @@ def _ke_checks(drive: Drive, geometry: GeometryResult, loads: _Forces,
     pressure = hinge_pressure(loads.peripheral_force, s.operating_factor, area)
     note = "bearing area estimated" if estimated else ""
     allowed_p, allowed_s = chain_limits(spec, speed, ratings.KE)
-    out = [ck.hinge_pressure_check(name, pressure, allowed_p, note=note)]
-    out.append(ck.speed_limit_check(name, speed, ke_method.max_speed(spec.pitch),
-                                    "[TrinhChat2006, Table 5.8]"))
-    hits = ke_method.impacts_per_second(teeth, speed, geometry.links)
-    allowed = ke_method.allowable_impacts(spec.pitch)
-    out.append(judged("impacts per second", name, hits, allowed, "max",
-                      "[TrinhChat2006, Table 5.9]", "1/s",
-                      note="" if allowed is not None else "no [i] for this pitch", part="chain"))
+    out = [ck.chain_check("hinge pressure", name, pressure, allowed_p, note=note)]
+    out.append(ck.chain_check("speed limit", name, speed, ke_method.max_speed(spec.pitch),
+                              "[TrinhChat2006, Table 5.8]"))
+    out.append(ck.chain_check("impacts per second", name,
+                              ke_method.impacts_per_second(teeth, speed, geometry.links),
+                              ke_method.allowable_impacts(spec.pitch)))
     safety = static_safety_factor(spec.breaking_load, loads.peripheral_force, loads.sag_tension,
                                   loads.centrifugal_tension, s.dynamic_factor)
-    out.append(ck.static_safety_check(name, safety, allowed_s, "[TrinhChat2006, Table 5.10]"))
+    out.append(ck.chain_check("static safety", name, safety, allowed_s,
+                              "[TrinhChat2006, Table 5.10]"))
     return out
 
 
@@ -231,12 +234,12 @@ def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.C
     spec = drive.chain.spec
     pull = (loads.peripheral_force * s.service_factor * s.design_factor + loads.sag_tension
             + loads.centrifugal_tension)
-    return [ck.allowable_load_check(spec.designation, pull, spec.allowable_load,
-                                    f"catalogue row: {spec.source}"),
-            ck.speed_limit_check(spec.designation, loads.speed, spec.max_speed,
-                                 f"catalogue row: {spec.source}",
-                                 "" if spec.max_speed else "the catalogue gives no speed limit",
-                                 linear=True)]
+    return [ck.chain_check("allowable load", spec.designation, pull, spec.allowable_load,
+                           f"catalogue row: {spec.source}"),
+            ck.chain_check("speed limit", spec.designation, loads.speed, spec.max_speed,
+                           f"catalogue row: {spec.source}",
+                           "" if spec.max_speed else "the catalogue gives no speed limit",
+                           linear=True)]
 
 
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
@@ -269,8 +272,8 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     return out
 
 
-def chain_checks(drive: Drive, geometry: GeometryResult,
-                 settings: CheckSettings | None = None) -> list[ck.Check]:
+def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
+                 loads: LoadsResult | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method.
 
     Parameters
@@ -281,6 +284,9 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
         Its contour.
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
+    loads : LoadsResult or None
+        The strength stage's loads of this drive (:func:`~chaindrive.strength.loads.loads_of`),
+        read for v, F_t, F_0 and F_v; None: those four computed here.
 
     Returns
     -------
@@ -288,17 +294,17 @@ def chain_checks(drive: Drive, geometry: GeometryResult,
         The chain's checks.
     """
     s = settings or settings_for(drive)
-    loads = _forces(drive, geometry)
+    forces = _forces(drive, geometry, loads)
     method = s.method or ratings.method_for(drive.chain.spec)
     if method == ratings.POLYMER:
-        return _polymer_checks(drive, loads, s)
+        return _polymer_checks(drive, forces, s)
     if method == ratings.KE:
-        return _ke_checks(drive, geometry, loads, s)
-    return _rating_checks(drive, geometry, loads, s)
+        return _ke_checks(drive, geometry, forces, s)
+    return _rating_checks(drive, geometry, forces, s)
 
 
-def checks_for(drive: Drive, geometry: GeometryResult,
-               settings: CheckSettings | None = None) -> tuple[ck.Check, ...]:
+def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
+               loads: LoadsResult | None = None) -> tuple[ck.Check, ...]:
     """Every check of a drive: its chain's and its layout's.
 
     Parameters
@@ -309,10 +315,49 @@ def checks_for(drive: Drive, geometry: GeometryResult,
         Its contour.
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
+    loads : LoadsResult or None
+        The strength stage's loads of this drive, as :func:`chain_checks` reads them.
 
     Returns
     -------
     tuple of Check
         :func:`chain_checks` then :func:`geometry_checks`.
     """
-    return (*chain_checks(drive, geometry, settings), *geometry_checks(drive, geometry))
+    return (*chain_checks(drive, geometry, settings, loads), *geometry_checks(drive, geometry))
+
+
+def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
+                          loads: LoadsResult | None = None,
+                          required_life_h: float | None = None) -> tuple[ck.Check, ...]:
+    """Every check of the most loaded contour: :func:`checks_for` with the drive's power
+    divided by K_m, then the polymer teeth (:func:`polymer_tooth_checks`) where the span
+    tensions are known.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (power and driver speed given).
+    geometry : GeometryResult
+        Its contour.
+    km : float
+        K_m, the number of contours the power is divided by for the most loaded one [-]
+        (the contours' compatibility factor, or the chain's contour count).
+    loads : LoadsResult or None
+        The strength stage's loads of the most loaded contour (its speed, forces and span
+        tensions [N], read by the chain's and the teeth's checks); None: computed for the
+        chain's checks, no tooth checks.
+    required_life_h : float or None
+        A required life that replaces the drive's own [h].
+
+    Returns
+    -------
+    tuple of Check
+        The chain's, the layout's and the polymer teeth's checks.
+    """
+    assert drive.power is not None
+    loaded = replace(drive, power=drive.power / km)
+    settings = settings_for(loaded)
+    if required_life_h is not None:
+        settings = replace(settings, required_life_h=required_life_h)
+    teeth = () if loads is None else polymer_tooth_checks(loaded, geometry, loads)
+    return (*checks_for(loaded, geometry, settings, loads), *teeth)

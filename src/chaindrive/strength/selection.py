@@ -165,7 +165,7 @@ class ResonanceProbe:
     check : Check or None
         The resonance check (None: no working frequency).
     rows : tuple of tuple
-        Per resonance row (:attr:`chaindrive.dynamics.drive_response.Bands.detunings`):
+        Per resonance row (:attr:`chaindrive.dynamics.frequency.response.Bands.detunings`):
         label, working frequency [Hz], natural frequency [Hz], signed offset [%], lowest and
         highest detuning over the band [%], inside.
     uncertainty : float
@@ -639,7 +639,7 @@ def resonance_verdict(probe: ResonanceProbe, band_percent: float) -> str:
 
     Over the band (every stiffness and inertia within ±u) each working frequency's detuning
     from its natural frequency ranges from its lowest to its highest value
-    (:func:`chaindrive.dynamics.drive_response.uncertainty_bands`). The check fails beyond
+    (:func:`chaindrive.dynamics.frequency.response.uncertainty_bands`). The check fails beyond
     its band when some working frequency stays closer than the limit over the whole band
     (highest detuning < limit): a resonance the uncertainty does not explain away. A check
     that fails at the nominal values only is inside its band: it cannot decide.

@@ -51,6 +51,7 @@ from chaindrive.io.design import (
 from chaindrive.model import MAX_TEETH, MIN_TEETH, ChainSpec, Drive
 from chaindrive.robust.synthesis import ROBUST_OBJECTIVES, RobustSettings, robust_settings
 from chaindrive.synthesis.objectives import available_objectives
+from chaindrive.units import TWO_PI
 
 __all__ = [
     "CONSTRAINT_FIELDS",
@@ -59,7 +60,6 @@ __all__ = [
     "Gene",
     "Problem",
     "SolverSettings",
-    "decode_vector",
     "load_problem",
     "problem_from_mapping",
 ]
@@ -70,7 +70,7 @@ TOP_FIELDS: tuple[Field, ...] = (
 )
 CONSTRAINT_FIELDS: tuple[Field, ...] = (
     Field("min_driver_wrap", "angle", "smallest wrap angle on the driver", default=math.radians(120),
-          minimum=0.0, maximum=2 * math.pi),
+          minimum=0.0, maximum=TWO_PI),
     Field("min_teeth_in_mesh", "float", "smallest number of teeth in mesh on loaded sprockets",
           default=3.0, minimum=0.0, maximum=50.0),
     Field("static_safety", "bool", "static safety factor s ≥ [s] [ChainDesignRU, Table 9A]",
@@ -244,7 +244,12 @@ class Problem:
         return [_start_value(self, g) for g in self.genes]
 
     def decode(self, x: Sequence[float]) -> Drive:
-        """The drive of a search vector (:func:`decode_vector`).
+        """The drive of a search vector (see :class:`Gene`).
+
+        Integers are rounded and clipped, categories picked by the integer part, ratio genes
+        pick among the tooth counts that keep the ratio; an added inertia becomes the
+        sprocket's ``flywheel`` (so the drive, and its design file, analyse to the same masses
+        and count the flywheel's mass and cost).
 
         Parameters
         ----------
@@ -255,8 +260,41 @@ class Problem:
         -------
         Drive
             The design.
+
+        Raises
+        ------
+        DesignError
+            When no tooth count keeps a ratio.
         """
-        return decode_vector(self, x)
+        base = self.base
+        vals = dict(zip((g.name for g in self.genes), (float(v) for v in x), strict=True))
+        sp: list[dict[str, Any]] = [dict(teeth=s.teeth, x=s.x, y=s.y, material=s.material,
+                                         flywheel=s.flywheel) for s in base.sprockets]
+        designation, strands = base.chain.spec.designation, None
+        for g in self.genes:
+            v = vals[g.name]
+            if g.kind == "int":
+                sp[g.index]["teeth"] = round(min(max(v, g.low), g.high))
+            elif g.target in ("x", "y"):
+                # 0.01 mm: what the design file keeps, so the file re-analyses the same
+                sp[g.index][g.target] = round(min(max(v, g.low), g.high), 5)
+            elif g.target == "inertia":
+                sp[g.index]["flywheel"] = min(max(v, g.low), g.high)
+            elif g.target == "chain":
+                designation = str(_pick(g, v))
+            elif g.target == "strands":
+                strands = int(_pick(g, v))
+            elif g.target == "material":
+                for s in sp:
+                    s["material"] = _pick(g, v)
+        z1 = sp[base.driver_index]["teeth"]
+        for g in self.genes:
+            if g.kind == "ratio":
+                sp[g.index]["teeth"] = _ratio_teeth(self, g, min(max(vals[g.name], 0.0), 1.0),
+                                                  z1)
+        spec = _chain_spec(designation, strands)
+        sprockets = tuple(replace(s, **new) for s, new in zip(base.sprockets, sp, strict=True))
+        return replace(base.with_chain(spec), sprockets=sprockets)
 
 
 def _start_value(problem: Problem, g: Gene) -> float:
@@ -366,27 +404,27 @@ def _choice_gene(name: str, values: object, path: str, target: str,
     return Gene(name, "choice", 0.0, float(len(values)), target, -1, tuple(values))
 
 
-def _check_chain(value: object, path: str) -> None:
-    if not isinstance(value, str):
-        raise DesignError(path, f"must be a catalogue designation, got {value!r}")
-    try:
-        find_chain(value)
-    except DesignError as exc:
-        raise DesignError(path, f"{value!r} is not in the catalogue ({exc})") from None
+def _in_catalogue(find: Callable[[str], object], what: str) -> Callable[[object, str], None]:
+    """A check that a value names an entry of the catalogue (``find`` looks it up)."""
+
+    def check(value: object, path: str) -> None:
+        if not isinstance(value, str):
+            raise DesignError(path, f"must be {what}, got {value!r}")
+        try:
+            find(value)
+        except DesignError as exc:
+            raise DesignError(path, f"{value!r} is not in the catalogue ({exc})") from None
+
+    return check
+
+
+_check_chain = _in_catalogue(find_chain, "a catalogue designation")
+_check_material = _in_catalogue(find_material, "a material name")
 
 
 def _check_strands(value: object, path: str) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 4:
         raise DesignError(path, f"must be a whole number from 1 to 4, got {value!r}")
-
-
-def _check_material(value: object, path: str) -> None:
-    if not isinstance(value, str):
-        raise DesignError(path, f"must be a material name, got {value!r}")
-    try:
-        find_material(value)
-    except DesignError as exc:
-        raise DesignError(path, f"{value!r} is not in the catalogue ({exc})") from None
 
 
 def _categorical_genes(data: Mapping[str, Any]) -> list[Gene]:
@@ -543,58 +581,3 @@ def _ratio_teeth(problem: Problem, g: Gene, u: float, z_driver: int) -> int:
                           f"no tooth count from {lo} to {hi} keeps the ratio {i0:.4g} within "
                           f"±{tol:.1%} for {z_driver} driver teeth")
     return allowed[min(int(u * len(allowed)), len(allowed) - 1)]
-
-
-def decode_vector(problem: Problem, x: Sequence[float]) -> Drive:
-    """The drive of a search vector (see :class:`Gene`).
-
-    Integers are rounded and clipped, categories picked by the integer part, ratio genes pick
-    among the tooth counts that keep the ratio; an added inertia becomes the sprocket's
-    ``flywheel`` (so the drive, and its design file, analyse to the same masses and count the
-    flywheel's mass and cost).
-
-    Parameters
-    ----------
-    problem : Problem
-        The synthesis problem.
-    x : sequence of float
-        One value per gene [the unit of each gene].
-
-    Returns
-    -------
-    Drive
-        The design.
-
-    Raises
-    ------
-    DesignError
-        When no tooth count keeps a ratio.
-    """
-    base = problem.base
-    vals = dict(zip((g.name for g in problem.genes), (float(v) for v in x), strict=True))
-    sp: list[dict[str, Any]] = [dict(teeth=s.teeth, x=s.x, y=s.y, material=s.material,
-                                     flywheel=s.flywheel) for s in base.sprockets]
-    designation, strands = base.chain.spec.designation, None
-    for g in problem.genes:
-        v = vals[g.name]
-        if g.kind == "int":
-            sp[g.index]["teeth"] = round(min(max(v, g.low), g.high))
-        elif g.target in ("x", "y"):
-            # 0.01 mm: what the design file keeps, so the file re-analyses the same
-            sp[g.index][g.target] = round(min(max(v, g.low), g.high), 5)
-        elif g.target == "inertia":
-            sp[g.index]["flywheel"] = min(max(v, g.low), g.high)
-        elif g.target == "chain":
-            designation = str(_pick(g, v))
-        elif g.target == "strands":
-            strands = int(_pick(g, v))
-        elif g.target == "material":
-            for s in sp:
-                s["material"] = _pick(g, v)
-    z1 = sp[base.driver_index]["teeth"]
-    for g in problem.genes:
-        if g.kind == "ratio":
-            sp[g.index]["teeth"] = _ratio_teeth(problem, g, min(max(vals[g.name], 0.0), 1.0), z1)
-    spec = _chain_spec(designation, strands)
-    sprockets = tuple(replace(s, **new) for s, new in zip(base.sprockets, sp, strict=True))
-    return replace(base.with_chain(spec), sprockets=sprockets)

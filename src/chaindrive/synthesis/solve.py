@@ -2,7 +2,7 @@
 NSGA-II.
 
 Both search the same vector (:class:`chaindrive.synthesis.problem.Gene`): integers and
-categories are rounded in :func:`chaindrive.synthesis.problem.decode_vector`, so one
+categories are rounded in :meth:`chaindrive.synthesis.problem.Problem.decode`, so one
 decoding serves both libraries. The start design (as the file gives it) is evaluated on its
 own and its nearest search vector seeds the first generation. The Pareto set is taken from
 every design evaluated (an archive), keeping the feasible non-dominated ones [Deb2002]
@@ -476,7 +476,7 @@ def solve(problem: Problem, *, method: str | None = None, population: int | None
         Random seed (default: the problem's).
     evaluator : callable or None
         Evaluates a batch of vectors in order (default :func:`serial_evaluator`;
-        :func:`chaindrive.synthesis.studies.dask_evaluator` spreads a population over a Dask
+        :class:`chaindrive.synthesis.studies.DaskEvaluator` spreads a population over a Dask
         cluster and stores it in a study database).
 
     Returns

@@ -68,8 +68,7 @@ from chaindrive.units import registry
 if TYPE_CHECKING:  # distributed is imported where a study runs: `-X importtime` 1.2–1.4 s
     from distributed import Client, Future, LocalCluster
 
-__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
-           "input_key",
+__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "evaluate_design", "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
@@ -141,21 +140,25 @@ class StudyStore:
                               f"({type(exc).__name__}: {reason})") from None
         self.url = url
 
-    def keys(self, study: str) -> set[str]:
-        """Keys already stored for ``study``.
+    def keys(self, study: str, among: Iterable[str] | None = None) -> set[str]:
+        """Keys already stored for ``study``: all of them, or those of ``among``.
 
         Parameters
         ----------
         study : str
             The study's name.
+        among : iterable of str or None
+            Keys to look up (None: every key of the study).
 
         Returns
         -------
         set of str
         """
+        where = EVALUATIONS.c.study == study
+        if among is not None:
+            where = where & EVALUATIONS.c.key.in_(list(among))
         with self.engine.connect() as con:
-            rows = con.execute(select(EVALUATIONS.c.key).where(EVALUATIONS.c.study == study))
-            return {r[0] for r in rows}
+            return {r[0] for r in con.execute(select(EVALUATIONS.c.key).where(where))}
 
     def put(self, study: str, key: str, inputs: Any, result: Any) -> bool:
         """Store one evaluation.
@@ -200,7 +203,7 @@ class StudyStore:
         """
         if not rows:
             return 0
-        stored = self.get_keys(study, [k for k, _, _ in rows])
+        stored = self.keys(study, [k for k, _, _ in rows])
         fresh = {k: (x, r) for k, x, r in rows if k not in stored}
         now = datetime.now(UTC).replace(tzinfo=None)
         try:
@@ -212,25 +215,6 @@ class StudyStore:
         except IntegrityError:  # another client stored some meanwhile: one by one
             return sum(self.put(study, k, x, r) for k, (x, r) in fresh.items())
         return len(fresh)
-
-    def get_keys(self, study: str, keys: Sequence[str]) -> set[str]:
-        """The subset of ``keys`` already stored.
-
-        Parameters
-        ----------
-        study : str
-            The study's name.
-        keys : sequence of str
-            Keys to look up.
-
-        Returns
-        -------
-        set of str
-        """
-        with self.engine.connect() as con:
-            rows = con.execute(select(EVALUATIONS.c.key).where(
-                EVALUATIONS.c.study == study, EVALUATIONS.c.key.in_(list(keys))))
-            return {r[0] for r in rows}
 
     def get(self, study: str, keys: Iterable[str]) -> dict[str, Any]:
         """Stored results by key.
@@ -796,32 +780,6 @@ class DaskEvaluator:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-def dask_evaluator(*, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
-                   scheduler: str | None = None, client: Client | None = None,
-                   progress: bool | None = False) -> DaskEvaluator:
-    """A :class:`DaskEvaluator` (one cluster for the whole study; close it when done).
-
-    Parameters
-    ----------
-    db : str | StudyStore
-        The study database.
-    study : str | None
-        Name of the study (None: from the problem's fingerprint).
-    scheduler : str | None
-        Address of an existing scheduler.
-    client : distributed.Client | None
-        An existing client.
-    progress : bool | None
-        Progress bar (None: only on a terminal).
-
-    Returns
-    -------
-    DaskEvaluator
-    """
-    return DaskEvaluator(db=db, study=study, scheduler=scheduler, client=client,
-                         progress=progress)
 
 
 class _VectorInput(dict[str, Any]):

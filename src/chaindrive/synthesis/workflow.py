@@ -7,6 +7,7 @@ figures the optimiser saw.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -52,42 +53,36 @@ def pareto_drives(result: SynthesisResult, base_dir: Path | None = None) -> tupl
     return tuple(drive_from_mapping(p.design, base_dir) for p in result.pareto)
 
 
-def pareto_design_files(result: SynthesisResult, stem: str,
-                        base_dir: Path | None = None) -> tuple[ParetoDesignFile, ...]:
+def pareto_design_files(drives: Sequence[Drive], stem: str) -> tuple[ParetoDesignFile, ...]:
     """The Pareto designs as design files ``<stem>_pareto_<k>.toml``.
 
     Parameters
     ----------
-    result : SynthesisResult
-        The search.
+    drives : sequence of Drive
+        The Pareto set, validated once (:func:`pareto_drives`).
     stem : str
         Start of the file names.
-    base_dir : pathlib.Path or None
-        Where relative paths of the designs start.
 
     Returns
     -------
     tuple of ParetoDesignFile
-        One per Pareto design.
+        One per Pareto design, in the order of the set.
     """
     return tuple(ParetoDesignFile(f"{stem}_pareto_{k:02d}.toml", drive_to_toml(d))
-                 for k, d in enumerate(pareto_drives(result, base_dir), start=1))
+                 for k, d in enumerate(drives, start=1))
 
 
-def chosen_analysis(result: SynthesisResult, base_dir: Path | None = None) -> Analysis | None:
+def chosen_analysis(drives: Sequence[Drive]) -> Analysis | None:
     """The analysis of the first Pareto design (the one the report presents).
 
     Parameters
     ----------
-    result : SynthesisResult
-        The search.
-    base_dir : pathlib.Path or None
-        Where relative paths of the designs start.
+    drives : sequence of Drive
+        The Pareto set, validated once (:func:`pareto_drives`).
 
     Returns
     -------
     Analysis or None
         None when the set is empty.
     """
-    drives = pareto_drives(result, base_dir)
     return analyze(drives[0]) if drives else None
