@@ -30,6 +30,8 @@ ToothFormName = Literal["ISO 606", "GOST 591"]
 
 ROLES: tuple[str, ...] = ("driver", "driven", "idler")
 SIDES: tuple[str, ...] = ("outside", "inside")
+#: Hole-basis fits a sprocket's bore may be given (ISO 286, fundamental deviation H).
+BORE_FITS: tuple[str, ...] = ("H6", "H7", "H8")
 TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
 #: Duty classes of the driver (prime mover), mildest first (:mod:`chaindrive.strength.duty`).
 DRIVER_DUTIES: tuple[str, ...] = ("smooth", "slight shock", "moderate shock")
@@ -449,6 +451,14 @@ class Sprocket:
     load : str or None
         Law of the driven machine's moment in speed: ``"constant"``, ``"linear"`` or
         ``"quadratic"`` (None: ``[dynamics] resistance``).
+    bore : float or None
+        Bore of the sprocket for its drawing [m] (None: the body model's 0.19·z·p/π).
+    bore_fit : str
+        ISO 286 hole-basis class of the bore: ``"H6"``, ``"H7"`` or ``"H8"``.
+    keyway : bool
+        The drawing gives the bore a DIN 6885-1 hub keyway (False: no keyway).
+    hardening : str or None
+        Heat-treatment note of the drawing (None: not given).
 
     Raises
     ------
@@ -472,9 +482,18 @@ class Sprocket:
     reduced_mass: float | None = None
     train: tuple[TrainElement, ...] = ()
     load: str | None = None
+    bore: float | None = None
+    bore_fit: str = "H7"
+    keyway: bool = True
+    hardening: str | None = None
 
     def __post_init__(self) -> None:
         where = f"sprockets[{self.name}]"
+        if self.bore is not None and not (math.isfinite(self.bore) and self.bore > 0):
+            raise DesignError(f"{where}.bore", f"must be positive, got {self.bore!r} m")
+        if self.bore_fit not in BORE_FITS:
+            raise DesignError(f"{where}.bore_fit", f"must be one of {', '.join(BORE_FITS)}, "
+                              f"got {self.bore_fit!r}")
         if self.reduced_mass is not None:
             if not (math.isfinite(self.reduced_mass) and self.reduced_mass > 0):
                 raise DesignError(f"{where}.reduced_mass", f"must be positive, got "

@@ -24,6 +24,7 @@ from chaindrive.geometry.contour import in_travel_order
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
 from chaindrive.io.plausible import check_inertias, check_motor_estimate
 from chaindrive.model import (
+    BORE_FITS,
     DRIVEN_DUTIES,
     DRIVER_DUTIES,
     LOAD_LAWS,
@@ -62,6 +63,8 @@ from chaindrive.units import (
     shown,
 )
 
+#: Largest bore of the DIN 6885-1 key table [m] (chaindrive/data/keyways_iso286.toml).
+KEYWAY_MAX_BORE = 0.230
 #: Longest name or other text field [characters].
 MAX_NAME = 200
 #: The byte-order mark (U+FEFF) some editors put at the start of a UTF-8 file; a design file
@@ -346,6 +349,16 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "[dynamics] resistance)", choices=LOAD_LAWS),
     Field("train", "tables", "the open train on its shaft, outward from the sprocket: "
           "[[sprockets.train]] tables (below)"),
+    Field("bore", "length", "bore of the sprocket on its drawing (default: the body model's "
+          "0.19·z·p/π, said on the drawing)", minimum=0.006, maximum=0.5, exclusive_minimum=True,
+          example="32 mm", reason="over 6 mm up to 500 mm: the ISO 286 tolerance table and the "
+          "DIN 6885-1 key table (over 6 mm up to 230 mm with a keyway)"),
+    Field("bore_fit", "choice", "ISO 286 hole-basis class of the bore", default="H7",
+          choices=BORE_FITS),
+    Field("keyway", "bool", "the bore has a DIN 6885-1 / ISO 773 hub keyway (false: the "
+          "drawing says no keyway)", default=True),
+    Field("hardening", "str", 'heat-treatment note of the drawing, e.g. "teeth induction '
+          'hardened 45…50 HRC" (default: the drawing says none is given)'),
 )
 TRAIN_FIELDS: tuple[Field, ...] = (
     Field("kind", "choice", "shaft or coupling: a torsional spring to a new node; gear: a "
@@ -887,6 +900,10 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                               f"applies to driven sprockets only (this one is {v['role']}), "
                               f"got {v['load']!r}")
         catalog.find_material(v["material"], field=f"sprockets[{i}].material")
+        if v["bore"] is not None and v["keyway"] and v["bore"] > KEYWAY_MAX_BORE:
+            raise DesignError(f"sprockets[{i}].bore", f"{v['bore'] * 1e3:g} mm is beyond the "
+                              f"DIN 6885-1 key table (up to {KEYWAY_MAX_BORE * 1e3:g} mm); "
+                              "allowed: a smaller bore, or keyway = false")
         sprockets.append(Sprocket(**v))
     drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
     if not drivers:
@@ -1151,6 +1168,14 @@ def _sprocket_table(s: Sprocket) -> dict[str, Any]:
         t["load"] = s.load
     if s.train:
         t["train"] = [_train_table(e) for e in s.train]
+    if s.bore is not None:
+        t["bore"] = _q(s.bore, 1e3, "mm")
+    if s.bore_fit != "H7":
+        t["bore_fit"] = s.bore_fit
+    if not s.keyway:
+        t["keyway"] = False
+    if s.hardening is not None:
+        t["hardening"] = s.hardening
     return t
 
 
