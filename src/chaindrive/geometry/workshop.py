@@ -314,7 +314,8 @@ def hub_proportions(bore: float, rim_width: float, hub_limit: float) -> tuple[fl
 
 
 def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4", "A3"),
-                    title_height: float = 0.0) -> tuple[str, int]:
+                    title_height: float = 0.0, margin: float = 0.0,
+                    scales: tuple[int, ...] = ISO5455_SCALES) -> tuple[str, int]:
     """The first ISO 5457 sheet of ``sheets`` at the largest ISO 5455 scale 1:N (scales
     first, then sheets) whose drawing area holds a drawing of ``width`` × ``height`` above a
     title block ``title_height`` high.
@@ -329,6 +330,10 @@ def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4"
         Candidate sheets of :data:`ISO5457_SHEETS`, smallest first.
     title_height : float
         Height of the title block strip at the bottom of the area [mm on paper].
+    margin : float
+        Clearance kept inside the frame on every side [mm on paper].
+    scales : tuple of int
+        The N of the candidate scales 1:N, largest scale first.
 
     Returns
     -------
@@ -344,14 +349,14 @@ def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4"
     ----------
     [ISO5457] (sizes, borders); [ISO5455] (scales).
     """
-    for n in ISO5455_SCALES:
+    for n in scales:
         for name in sheets:
             w, h = ISO5457_SHEETS[name]
-            if (width / n <= w - BORDER_LEFT - BORDER
-                    and height / n <= h - 2 * BORDER - title_height):
+            if (width / n + 2 * margin <= w - BORDER_LEFT - BORDER
+                    and height / n + 2 * margin <= h - 2 * BORDER - title_height):
                 return name, n
     raise DesignError("drawing", f"{width:.0f} × {height:.0f} mm does not fit "
-                                 f"{sheets[-1]} at 1:{ISO5455_SCALES[-1]}")
+                                 f"{sheets[-1]} at 1:{scales[-1]}")
 
 
 @dataclass(frozen=True, slots=True)
