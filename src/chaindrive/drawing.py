@@ -633,11 +633,9 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     it takes [mm]."""
     from ezdxf import bbox
 
-    from chaindrive.geometry.workshop import sprocket_workshop
-
     g = analysis.geometry.sprockets[index]
     profile = analysis.profiles[index]
-    w = sprocket_workshop(analysis, index)
+    w = analysis.workshop(index)
     origin = (0.0, 0.0)
     pts = outline_mm(profile)
     msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
@@ -905,6 +903,63 @@ def _index_of(analysis: Analysis, name: str) -> int:
 
 # --- standard sheets (ISO 5457 sizes and borders, ISO 5455 scales, ISO 7200 title block) ------
 
+#: ISO 5457 trimmed sheet sizes [mm] (width, height) as drawn: A4 upright, the others
+#: landscape.
+ISO5457_SHEETS: dict[str, tuple[float, float]] = {
+    "A4": (210.0, 297.0), "A3": (420.0, 297.0), "A2": (594.0, 420.0), "A1": (841.0, 594.0),
+    "A0": (1189.0, 841.0)}
+#: ISO 5455 reduction scales 1:N (the 1, 2, 5 series).
+ISO5455_SCALES: tuple[int, ...] = (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
+#: ISO 5457 borders [mm]: 20 at the left (filing margin), 10 at the other edges.
+BORDER_LEFT, BORDER = 20.0, 10.0
+
+def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4", "A3"),
+                    title_height: float = 0.0, margin: float = 0.0,
+                    scales: tuple[int, ...] = ISO5455_SCALES) -> tuple[str, int]:
+    """The first ISO 5457 sheet of ``sheets`` at the largest ISO 5455 scale 1:N (scales
+    first, then sheets) whose drawing area holds a drawing of ``width`` × ``height`` above a
+    title block ``title_height`` high.
+
+    The drawing area is the sheet inside its borders (20 mm left, 10 mm elsewhere).
+
+    Parameters
+    ----------
+    width, height : float
+        Size of the drawing [mm of the object, 1:1].
+    sheets : tuple of str
+        Candidate sheets of :data:`ISO5457_SHEETS`, smallest first.
+    title_height : float
+        Height of the title block strip at the bottom of the area [mm on paper].
+    margin : float
+        Clearance kept inside the frame on every side [mm on paper].
+    scales : tuple of int
+        The N of the candidate scales 1:N, largest scale first.
+
+    Returns
+    -------
+    tuple of (str, int)
+        (sheet, N).
+
+    Raises
+    ------
+    DesignError
+        Nothing fits (beyond 1:1000 on the largest sheet).
+
+    References
+    ----------
+    [ISO5457] (sizes, borders); [ISO5455] (scales).
+    """
+    for n in scales:
+        for name in sheets:
+            w, h = ISO5457_SHEETS[name]
+            if (width / n + 2 * margin <= w - BORDER_LEFT - BORDER
+                    and height / n + 2 * margin <= h - 2 * BORDER - title_height):
+                return name, n
+    raise DesignError("drawing", f"{width:.0f} × {height:.0f} mm does not fit "
+                                 f"{sheets[-1]} at 1:{scales[-1]}")
+
+
+
 #: ISO 7200 title block [mm on paper]: 180 wide, rows 9 high; each row's cells as
 #: (field, label, width).
 TITLE_ROWS: tuple[tuple[tuple[str, str, float], ...], ...] = (
@@ -963,8 +1018,6 @@ def _frame(msp: Modelspace, content: Box, sheet: str, n: int,
     ISO 5457 frame (layer SHEET), the drawing's top left corner ``SHEET_MARGIN`` inside the
     frame's, the ISO 7200 title block in the frame's lower right corner; returns the sheet's
     box [mm]."""
-    from chaindrive.geometry.workshop import BORDER, BORDER_LEFT, ISO5457_SHEETS
-
     w, h = ISO5457_SHEETS[sheet]
     x = content[0] - (BORDER_LEFT + SHEET_MARGIN) * n
     y = content[3] + (BORDER + SHEET_MARGIN) * n - h * n
@@ -980,8 +1033,6 @@ def _frame(msp: Modelspace, content: Box, sheet: str, n: int,
 def _fits(content: Box, sheet: str, n: int) -> bool:
     """Does a drawing of box ``content`` [mm] fit the sheet at 1:``n`` above its title
     block?"""
-    from chaindrive.geometry.workshop import sheet_and_scale
-
     try:
         sheet_and_scale(content[2] - content[0], content[3] - content[1], (sheet,),
                         TITLE_HEIGHT, SHEET_MARGIN, (n,))
@@ -1000,8 +1051,6 @@ def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
     [mm] could fit the largest sheet, the first scale, then the first sheet, then the first
     arrangement (notes below, notes to the right) at which the drawing made with text
     3.5 mm high on paper fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`)."""
-    from chaindrive.geometry.workshop import ISO5455_SCALES, ISO5457_SHEETS
-
     room = min(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - TITLE_HEIGHT - 30.0
     for n in ISO5455_SCALES:
         if size / n > room:
@@ -1200,8 +1249,6 @@ def svg_string(doc: Drawing, page_width_mm: float = 420.0) -> str:
     """
     from ezdxf import bbox
     from ezdxf.addons.drawing import Frontend, RenderContext, config, layout, svg
-
-    from chaindrive.geometry.workshop import ISO5457_SHEETS
 
     box = bbox.extents(doc.modelspace(), fast=True)
     w, h = (box.size.x, box.size.y) if box.has_data else (100.0, 100.0)

@@ -8,9 +8,7 @@
 * the tooth chamfer of the axial section (ISO 606 side relief and side radius; GOST 591
   side radius r3 = 1.7 d1 about centres h3 = 0.8 d1 below the tip) —
   :func:`iso606_chamfer`, :func:`gost591_chamfer`;
-* the hub (the proportions of the body model) — :func:`hub_proportions`;
-* the standard sheet and scale of a drawing (ISO 5457 sizes, ISO 5455 scales) —
-  :func:`sheet_and_scale`.
+* the hub (the proportions of the body model) — :func:`hub_proportions`.
 
 Tables: ``chaindrive/data/keyways_iso286.toml`` (sources in its header).
 """
@@ -22,30 +20,19 @@ import math
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from chaindrive.errors import DesignError
-from chaindrive.model import BORE_FITS
+from chaindrive.geometry.profile import SprocketProfile
+from chaindrive.geometry.sprocket import Gost591ToothForm, ToothForm
+from chaindrive.model import BORE_FITS, Drive
 
-if TYPE_CHECKING:
-    from chaindrive.analysis import Analysis
-
-__all__ = ["BORE_FITS", "HUB_DIAMETER_RATIO", "HUB_LENGTH_RATIO", "ISO5455_SCALES",
-           "ISO5457_SHEETS", "Keyway", "SprocketWorkshop", "bore_deviations",
-           "chosen_tip_diameter", "gost591_chamfer", "hub_keyway", "hub_proportions",
-           "iso286_tolerance", "iso606_chamfer", "measurement_over_pins", "sheet_and_scale",
+__all__ = ["BORE_FITS", "HUB_DIAMETER_RATIO", "HUB_LENGTH_RATIO", "Keyway", "SprocketWorkshop",
+           "bore_deviations", "chosen_tip_diameter", "gost591_chamfer", "hub_keyway",
+           "hub_proportions", "iso286_tolerance", "iso606_chamfer", "measurement_over_pins",
            "sprocket_workshop"]
 
 MM = 1e-3  # millimetres → metres
-#: ISO 5457 trimmed sheet sizes [mm] (width, height) as drawn: A4 upright, the others
-#: landscape.
-ISO5457_SHEETS: dict[str, tuple[float, float]] = {
-    "A4": (210.0, 297.0), "A3": (420.0, 297.0), "A2": (594.0, 420.0), "A1": (841.0, 594.0),
-    "A0": (1189.0, 841.0)}
-#: ISO 5455 reduction scales 1:N (the 1, 2, 5 series).
-ISO5455_SCALES: tuple[int, ...] = (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
-#: ISO 5457 borders [mm]: 20 at the left (filing margin), 10 at the other edges.
-BORDER_LEFT, BORDER = 20.0, 10.0
 #: Hub outer diameter and length of the body model: 0.33·D and 3·b with the bore 0.19·D
 #: [MultimassChainDrives, §3.4], so the hub is 0.33/0.19 of the bore.
 HUB_DIAMETER_RATIO = 0.33 / 0.19
@@ -313,52 +300,6 @@ def hub_proportions(bore: float, rim_width: float, hub_limit: float) -> tuple[fl
     return min(HUB_DIAMETER_RATIO * bore, hub_limit), HUB_LENGTH_RATIO * rim_width
 
 
-def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4", "A3"),
-                    title_height: float = 0.0, margin: float = 0.0,
-                    scales: tuple[int, ...] = ISO5455_SCALES) -> tuple[str, int]:
-    """The first ISO 5457 sheet of ``sheets`` at the largest ISO 5455 scale 1:N (scales
-    first, then sheets) whose drawing area holds a drawing of ``width`` × ``height`` above a
-    title block ``title_height`` high.
-
-    The drawing area is the sheet inside its borders (20 mm left, 10 mm elsewhere).
-
-    Parameters
-    ----------
-    width, height : float
-        Size of the drawing [mm of the object, 1:1].
-    sheets : tuple of str
-        Candidate sheets of :data:`ISO5457_SHEETS`, smallest first.
-    title_height : float
-        Height of the title block strip at the bottom of the area [mm on paper].
-    margin : float
-        Clearance kept inside the frame on every side [mm on paper].
-    scales : tuple of int
-        The N of the candidate scales 1:N, largest scale first.
-
-    Returns
-    -------
-    tuple of (str, int)
-        (sheet, N).
-
-    Raises
-    ------
-    DesignError
-        Nothing fits (beyond 1:1000 on the largest sheet).
-
-    References
-    ----------
-    [ISO5457] (sizes, borders); [ISO5455] (scales).
-    """
-    for n in scales:
-        for name in sheets:
-            w, h = ISO5457_SHEETS[name]
-            if (width / n + 2 * margin <= w - BORDER_LEFT - BORDER
-                    and height / n + 2 * margin <= h - 2 * BORDER - title_height):
-                return name, n
-    raise DesignError("drawing", f"{width:.0f} × {height:.0f} mm does not fit "
-                                 f"{sheets[-1]} at 1:{scales[-1]}")
-
-
 @dataclass(frozen=True, slots=True)
 class SprocketWorkshop:
     """What the drawing of one sprocket states besides its outline (lengths [m]).
@@ -441,13 +382,15 @@ class SprocketWorkshop:
     hardening: str | None
 
 
-def sprocket_workshop(analysis: Analysis, index: int) -> SprocketWorkshop:
+def sprocket_workshop(drive: Drive, profile: SprocketProfile, index: int) -> SprocketWorkshop:
     """Everything the drawing of sprocket ``index`` states besides its outline.
 
     Parameters
     ----------
-    analysis : Analysis
-        The analysis (the drive, its chain and the sprockets' profiles).
+    drive : Drive
+        The design as analysed (its chain and sprockets).
+    profile : SprocketProfile
+        The sprocket's profile (tooth form, bore and hub limit).
     index : int
         The sprocket.
 
@@ -465,10 +408,7 @@ def sprocket_workshop(analysis: Analysis, index: int) -> SprocketWorkshop:
     ----------
     [ISO606]; [GOST591]; [DIN6885-1]; [ISO286-1]; [MultimassChainDrives, §3.4].
     """
-    from chaindrive.geometry.sprocket import Gost591ToothForm, ToothForm
-
-    drive = analysis.drive
-    s, profile, spec = drive.sprockets[index], analysis.profiles[index], drive.chain.spec
+    s, spec = drive.sprockets[index], drive.chain.spec
     where = f"sprockets[{index}]"
     bore = s.bore if s.bore is not None else profile.bore_diameter
     fit = s.bore_fit
