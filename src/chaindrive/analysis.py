@@ -792,6 +792,7 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
         "center_distance_mm": None if g.center_distance is None else g.center_distance * 1e3,
         "adjusted_sprocket": None if g.adjusted is None else g.sprockets[g.adjusted].name,
         "adjustment_mm": g.adjustment * 1e3,
+        "sag_allowance_mm": g.sag_allowance * 1e3,
         "direction_of_travel": "ccw" if g.orientation > 0 else "cw",
         "sprockets": [
             {

@@ -42,7 +42,7 @@ ROTATIONS: tuple[str, ...] = ("cw", "ccw")
 MIN_TEETH, MAX_TEETH = 6, 150
 MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
 MAX_CONTOURS = 8
-ROUNDINGS: tuple[str, ...] = ("round up", "round down")
+ROUNDINGS: tuple[str, ...] = ("round up", "round down", "nearest")
 
 
 #: What a catalogue row's source writes before the columns it estimates
@@ -251,11 +251,14 @@ class Chain:
         [-], 1 for an ordinary drive, at most :data:`MAX_CONTOURS` [Lyashuk].
     rounding : str
         How the tight length is rounded to a whole (even) number of links: ``"round up"``
-        (the default, the chain is lengthened) or ``"round down"`` (the take-up shortens
-        the layout).
+        (the default, the chain is lengthened), ``"round down"`` (the take-up shortens
+        the layout) or ``"nearest"`` (the nearer of the two, up on a tie).
     sag : float or None
         Installed sag of the slack span as a fraction of its length [-], in (0, 0.1]; None:
         laid out tight (see :mod:`chaindrive.geometry.length_options`).
+    sag_allowance : float or None
+        Installed centre distance shortened by this fraction of the centre distance [-], in
+        (0, 0.01] (textbooks: 0.002 … 0.004); None: not shortened. Not with ``sag``.
     link_stiffness : float or None
         Measured axial stiffness of one link (one pitch) of the whole chain, all strands
         [N/m], e.g. from the maker's elastic-elongation curve: k_link = F/(ε p) for a load F
@@ -277,6 +280,7 @@ class Chain:
     rounding: str = "round up"
     sag: float | None = None
     link_stiffness: float | None = None
+    sag_allowance: float | None = None
 
     def __post_init__(self) -> None:
         if self.rounding not in ROUNDINGS:
@@ -285,6 +289,13 @@ class Chain:
         if self.sag is not None and not 0.0 < self.sag <= 0.1:
             raise DesignError("chain.sag", f"must be a fraction of the slack span in (0, 0.1], "
                               f"got {self.sag!r}")
+        if self.sag_allowance is not None:
+            if not 0.0 < self.sag_allowance <= 0.01:
+                raise DesignError("chain.sag_allowance", "must be a fraction of the centre "
+                                  f"distance in (0, 0.01], got {self.sag_allowance!r}")
+            if self.sag is not None:
+                raise DesignError("chain.sag_allowance", "give the installed sag or the sag "
+                                  "allowance of the centre distance, not both")
         if self.link_stiffness is not None and not (
                 math.isfinite(self.link_stiffness) and self.link_stiffness > 0.0):
             raise DesignError("chain.link_stiffness", "must be a positive finite stiffness "

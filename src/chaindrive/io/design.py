@@ -290,7 +290,8 @@ CHAIN_FIELDS: tuple[Field, ...] = (
     Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8,
           reason="multi-strand chains are made with up to 8 strands; the catalogue lists 1 to 4"),
     Field("links", "links", 'impose the number of links (the take-up fits it), or how the '
-          'tight length is rounded to an even count: "round up" (default) or "round down"',
+          'tight length is rounded to an even count: "round up" (default), "round down" or '
+          '"nearest" (the nearer even count, up on a tie)',
           minimum=4, maximum=10000, reason="4: the shortest closed chain round two sprockets; "
           "10 000: beyond the longest drive chains (80 m at 8 mm pitch)"),
     Field("sag", "float", "installed sag of the slack span as a fraction of its length "
@@ -301,6 +302,12 @@ CHAIN_FIELDS: tuple[Field, ...] = (
           "[DiamondChainTension]); 0.1 %, a tenth of the tightest, is a chain laid out taut, "
           "whose sag tension F₀ = q·g·a/(8s) would pass 125 times the weight of the span; at "
           "most 10 %: the shallow-sag (parabolic) catenary [Irvine1981]"),
+    Field("sag_allowance", "float", "installed centre distance shortened by this fraction of "
+          "the centre distance of the adjustable sprocket (to the driver) so that the slack "
+          "span sags, e.g. 0.003 for 0.3 % (default: none; not with sag)", minimum=0.0,
+          maximum=0.01, exclusive_minimum=True, example="0.003",
+          reason="textbooks shorten it by 0.2 to 0.4 % [ChainDesignRU, §7] (0.2 % "
+          "[Bhandari2010, ex. 14.4]); 1 % is 2.5 times the largest"),
     Field("link_stiffness", "stiffness", "measured axial stiffness of one link (one pitch) of "
           "the whole chain, all strands, e.g. F/(ε·p) from the maker's elastic-elongation "
           "curve (default: computed from the plates and the pin, the contact of pin, bush "
@@ -635,8 +642,9 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
         return value
     if f.kind == "links" and isinstance(value, str):
         if value not in ROUNDINGS:
-            raise DesignError(path, f'must be a whole number, "round up" or "round down", '
-                              f"got {shown(value)}" + did_you_mean(value[:MAX_NAME], ROUNDINGS))
+            raise DesignError(path, f'must be a whole number, "round up", "round down" or '
+                              f'"nearest", got {shown(value)}'
+                              + did_you_mean(value[:MAX_NAME], ROUNDINGS))
         return value
     if f.kind in ("int", "links"):
         if isinstance(value, bool) or not isinstance(value, int):
@@ -928,7 +936,8 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                   allow_odd=chain_values["allow_odd"], request=request,
                   contours=chain_values["contours"],
                   rounding=links if isinstance(links, str) else "round up",
-                  sag=chain_values["sag"], link_stiffness=chain_values["link_stiffness"])
+                  sag=chain_values["sag"], link_stiffness=chain_values["link_stiffness"],
+                  sag_allowance=chain_values["sag_allowance"])
     drive = Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                   power=drive_values["power"], tooth_form=tooth_form,
                   service_factor=drive_values["service_factor"], dynamics=dynamics,
@@ -1091,6 +1100,8 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
         chain["links"] = drive.chain.rounding
     if drive.chain.sag is not None:
         chain["sag"] = drive.chain.sag
+    if drive.chain.sag_allowance is not None:
+        chain["sag_allowance"] = drive.chain.sag_allowance
     if drive.chain.link_stiffness is not None:
         chain["link_stiffness"] = _q(drive.chain.link_stiffness, 1.0, "N/m")
     if drive.chain.allow_odd:
