@@ -154,7 +154,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
     if g.get("sag_allowance_mm"):
         con.print(f"sag allowance: installed centre distance shortened by "
                   f"{_q(g, 'sag_allowance_mm', units)} from the tight position (the design's "
-                  "[chain] sag_allowance; textbooks 0.2 … 0.4 %)")
+                  f"{escape('[chain]')} sag_allowance; textbooks 0.2 … 0.4 %)")
     con.print(_length_options(g["length_options"], units))
     cols = [("name", "name"), ("teeth", "teeth"), ("side", "side"), ("x", "x_mm"),
             ("y", "y_mm"), ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
