@@ -66,9 +66,18 @@ if TYPE_CHECKING:  # ezdxf is imported where a drawing is made
     from chaindrive.geometry.sprocket import Gost591ToothForm, PolymericProportions, ToothForm
     from chaindrive.geometry.workshop import SprocketWorkshop
 
-__all__ = ["FORMATS", "LAYERS", "drawing_document", "layout_document",
-           "outline_mm", "sprocket_document", "svg_string", "tooth_form_lines",
-           "write_drawing"]
+__all__ = [
+    "FORMATS",
+    "LAYERS",
+    "drawing_document",
+    "layout_document",
+    "outline_mm",
+    "pdf_bytes",
+    "sprocket_document",
+    "svg_string",
+    "tooth_form_lines",
+    "write_drawing",
+]
 
 MM = 1e3  # metres → millimetres
 LAYERS = {"OUTLINE": 7, "BORE": 7, "HUB": 8, "PITCH": 3, "TIP": 8, "CHAIN": 5, "CENTER": 1,
@@ -78,7 +87,7 @@ LAYERS = {"OUTLINE": 7, "BORE": 7, "HUB": 8, "PITCH": 3, "TIP": 8, "CHAIN": 5, "
 #: layout's dimensions and names at 2.5 (the smallest of ISO 3098's series on A4 … A0).
 PAPER_TEXT = 3.5
 LAYOUT_TEXT = 2.5
-FORMATS = (".dxf", ".svg")
+FORMATS = (".dxf", ".svg", ".pdf")
 
 Box = tuple[float, float, float, float]  # x0, y0, x1, y1 [mm]
 Point = tuple[float, float]
@@ -1214,7 +1223,7 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
-        raise DesignError("output", f"must end in .dxf or .svg, got {out.name!r}")
+        raise DesignError("output", f"must end in .dxf, .svg or .pdf, got {out.name!r}")
     doc = (sprocket_document(analysis, sprocket) if sprocket is not None
            else drawing_document(analysis))
     if suffix == ".dxf":
@@ -1223,6 +1232,8 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
         stream = io.StringIO()
         doc.write(stream)
         data = stream.getvalue().encode(doc.output_encoding or "utf-8")
+    elif suffix == ".pdf":
+        data = pdf_bytes(doc)
     else:
         data = svg_string(doc).encode("utf-8")
     write_bytes(out, data)  # complete or absent, never half-written
@@ -1247,21 +1258,73 @@ def svg_string(doc: Drawing, page_width_mm: float = 420.0) -> str:
     str
         The SVG text.
     """
-    from ezdxf import bbox
     from ezdxf.addons.drawing import Frontend, RenderContext, config, layout, svg
 
-    box = bbox.extents(doc.modelspace(), fast=True)
-    w, h = (box.size.x, box.size.y) if box.has_data else (100.0, 100.0)
     backend = svg.SVGBackend()
     cfg = config.Configuration(background_policy=config.BackgroundPolicy.WHITE,
                                color_policy=config.ColorPolicy.COLOR)
     Frontend(RenderContext(doc), backend, config=cfg).draw_layout(doc.modelspace())
-    record = dict(doc.header.custom_vars).get("chaindrive_sheet")
-    if record:
-        sheet = record.split()[0]
-        pw, ph = ISO5457_SHEETS[sheet]
+    pw, ph, edge = _page(doc, page_width_mm)
+    if edge is not None:
         page = layout.Page(pw, ph, layout.Units.mm, margins=layout.Margins.all(0))
     else:
-        page = layout.Page(page_width_mm, page_width_mm * h / max(w, 1e-9) + 20,
-                           layout.Units.mm, margins=layout.Margins.all(10))
+        page = layout.Page(pw, ph + 20, layout.Units.mm, margins=layout.Margins.all(10))
     return backend.get_string(page)
+
+
+def _page(doc: Drawing, page_width_mm: float) -> tuple[float, float, tuple[float, ...] | None]:
+    """Page size [mm] of a document: its sheet's for a one-sheet document (and the sheet's
+    edge in model units), else ``page_width_mm`` wide in the proportion of its extents."""
+    from ezdxf import bbox
+
+    record = dict(doc.header.custom_vars).get("chaindrive_sheet")
+    if record:
+        pw, ph = ISO5457_SHEETS[record.split()[0]]
+        edge = max((bbox.extents([p]) for p in doc.modelspace().query(
+            "LWPOLYLINE[layer=='SHEET']")), key=lambda e: e.size.x)
+        return pw, ph, (edge.extmin.x, edge.extmin.y, edge.extmax.x, edge.extmax.y)
+    box = bbox.extents(doc.modelspace(), fast=True)
+    w, h = (box.size.x, box.size.y) if box.has_data else (100.0, 100.0)
+    return page_width_mm, page_width_mm * h / max(w, 1e-9), None
+
+
+def pdf_bytes(doc: Drawing, page_width_mm: float = 420.0) -> bytes:
+    """The modelspace of ``doc`` as a one-page PDF (ezdxf drawing add-on, matplotlib): a
+    document on one standard sheet on a page of that sheet's size, the sheet filling it (so
+    the drawing prints at its scale); otherwise a page ``page_width_mm`` wide.
+
+    Parameters
+    ----------
+    doc : ezdxf.document.Drawing
+        A DXF document.
+    page_width_mm : float
+        Width of the page of a document of several sheets [mm].
+
+    Returns
+    -------
+    bytes
+        The PDF.
+    """
+    import io
+
+    # matplotlib and the add-on load only when a PDF is asked for (import time of `draw`)
+    import matplotlib.figure
+    from ezdxf.addons.drawing import Frontend, RenderContext, config
+    from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
+
+    pw, ph, edge = _page(doc, page_width_mm)
+    fig = matplotlib.figure.Figure(figsize=(pw / 25.4, ph / 25.4))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+    cfg = config.Configuration(background_policy=config.BackgroundPolicy.WHITE,
+                               color_policy=config.ColorPolicy.COLOR)
+    Frontend(RenderContext(doc), MatplotlibBackend(ax), config=cfg).draw_layout(
+        doc.modelspace(), finalize=True)
+    if edge is not None:
+        ax.set_xlim(edge[0], edge[2])
+        ax.set_ylim(edge[1], edge[3])
+    ax.set_axis_off()
+    fig.set_size_inches(pw / 25.4, ph / 25.4)  # the backend's finalize resizes the figure
+    ax.set_position((0.0, 0.0, 1.0, 1.0))
+    stream = io.BytesIO()
+    fig.savefig(stream, format="pdf")
+    return stream.getvalue()

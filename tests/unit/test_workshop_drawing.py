@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from pathlib import Path
 
 import ezdxf
@@ -133,10 +134,14 @@ def test_iso606_sprocket_drawing_reads_back(tmp_path: Path) -> None:
     assert f"%%c{da:.1f} h11" in " ".join(m.text for dim in msp.query("DIMENSION")
                                          for m in dim.get_geometry_block().query("MTEXT"))
     assert "General tolerances ISO 2768-m" in texts
-    # the SVG's page is the sheet, so the drawing prints at its scale
+    # the SVG's and the PDF's page is the sheet, so the drawing prints at its scale
     svg = write_drawing(a, tmp_path / "driver.svg", sprocket="driver").read_text()
     w, h = {"A4": (210, 297), "A3": (420, 297)}[sheet]
     assert f'width="{w}mm"' in svg and f'height="{h}mm"' in svg
+    pdf = write_drawing(a, tmp_path / "driver.pdf", sprocket="driver").read_bytes()
+    box = re.search(rb"/MediaBox \[ *0 0 ([0-9.]+) ([0-9.]+) *\]", pdf)
+    assert pdf.startswith(b"%PDF") and box is not None
+    assert (float(box[1]), float(box[2])) == pytest.approx((w / 25.4 * 72, h / 25.4 * 72))
 
 
 def test_no_keyway_and_even_teeth(tmp_path: Path) -> None:
