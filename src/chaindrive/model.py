@@ -470,6 +470,9 @@ class Sprocket:
         The drawing gives the bore a DIN 6885-1 hub keyway (False: no keyway).
     hardening : str or None
         Heat-treatment note of the drawing (None: not given).
+    bearings : tuple of float or None
+        Axial positions of the shaft's two bearings from the sprocket's mid-plane [m]
+        (signed, along the shaft; None: not given, no bearing reactions).
 
     Raises
     ------
@@ -497,9 +500,15 @@ class Sprocket:
     bore_fit: str = "H7"
     keyway: bool = True
     hardening: str | None = None
+    bearings: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         where = f"sprockets[{self.name}]"
+        if self.bearings is not None and not (
+                len(self.bearings) == 2 and all(math.isfinite(z) for z in self.bearings)
+                and abs(self.bearings[1] - self.bearings[0]) >= 1e-3):
+            raise DesignError(f"{where}.bearings", "must be two finite positions at least 1 mm "
+                              f"apart, got {self.bearings!r} m")
         if self.bore is not None and not (math.isfinite(self.bore) and self.bore > 0):
             raise DesignError(f"{where}.bore", f"must be positive, got {self.bore!r} m")
         if self.bore_fit not in BORE_FITS:

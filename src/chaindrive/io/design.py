@@ -366,6 +366,13 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "drawing says no keyway)", default=True),
     Field("hardening", "str", 'heat-treatment note of the drawing, e.g. "teeth induction '
           'hardened 45…50 HRC" (default: the drawing says none is given)'),
+    Field("bearing_1", "length", "axial position of the shaft's first bearing from the "
+          "sprocket's mid-plane, signed along the shaft (with bearing_2: the bearing "
+          "reactions to the shaft load)", minimum=-5.0, maximum=5.0, example="-40 mm",
+          reason="±5 m: beyond the shafts of chain drives"),
+    Field("bearing_2", "length", "axial position of the second bearing (see bearing_1; at "
+          "least 1 mm from it)", minimum=-5.0, maximum=5.0, example="60 mm",
+          reason="±5 m: beyond the shafts of chain drives"),
 )
 TRAIN_FIELDS: tuple[Field, ...] = (
     Field("kind", "choice", "shaft or coupling: a torsional spring to a new node; gear: a "
@@ -908,6 +915,14 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                               f"applies to driven sprockets only (this one is {v['role']}), "
                               f"got {v['load']!r}")
         catalog.find_material(v["material"], field=f"sprockets[{i}].material")
+        b1, b2 = v.pop("bearing_1"), v.pop("bearing_2")
+        if (b1 is None) != (b2 is None):
+            raise DesignError(f"sprockets[{i}].{'bearing_2' if b2 is None else 'bearing_1'}",
+                              "is missing: give both bearing positions or neither")
+        if b1 is not None and abs(b2 - b1) < 1e-3:
+            raise DesignError(f"sprockets[{i}].bearing_2", f"{b2 * 1e3:g} mm is within 1 mm "
+                              f"of bearing_1 ({b1 * 1e3:g} mm); allowed: two distinct bearings")
+        v["bearings"] = None if b1 is None else (b1, b2)
         if v["bore"] is not None and v["keyway"] and v["bore"] > KEYWAY_MAX_BORE:
             raise DesignError(f"sprockets[{i}].bore", f"{v['bore'] * 1e3:g} mm is beyond the "
                               f"DIN 6885-1 key table (up to {KEYWAY_MAX_BORE * 1e3:g} mm); "
@@ -1187,6 +1202,8 @@ def _sprocket_table(s: Sprocket) -> dict[str, Any]:
         t["keyway"] = False
     if s.hardening is not None:
         t["hardening"] = s.hardening
+    if s.bearings is not None:
+        t["bearing_1"], t["bearing_2"] = (_q(z, 1e3, "mm") for z in s.bearings)
     return t
 
 
