@@ -1060,7 +1060,7 @@ def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
     [mm] could fit the largest sheet, the first scale, then the first sheet, then the first
     arrangement (notes below, notes to the right) at which the drawing made with text
     3.5 mm high on paper fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`)."""
-    room = min(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - TITLE_HEIGHT - 30.0
+    room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
     for n in ISO5455_SCALES:
         if size / n > room:
             continue
