@@ -746,6 +746,11 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
     if w.strands > 1:
         wanted.append(((cx - overall / 2, root), (cx + overall / 2, root), ra + 4.0 * h, 0,
                        "<>"))
+    if w.keyway is not None:  # d + t2, from the bore's far side to the keyway's bottom
+        k = w.keyway
+        wanted.append(((cx - hub_len / 2, -bore_r), (cx - hub_len / 2, top_bore),
+                       cx - reach - 1.5 * h, 90,
+                       f"<> {_pm(k.depth_upper, 0.0, 1).replace(' / ', '/')}"))
     dims = []
     for p1, p2, base, angle, text in wanted:
         dim = msp.add_linear_dim(base=(base, 0.0) if angle else (0.0, base), p1=p1, p2=p2,

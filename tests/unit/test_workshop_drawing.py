@@ -131,8 +131,11 @@ def test_iso606_sprocket_drawing_reads_back(tmp_path: Path) -> None:
     da = math.floor((lo + hi) / 2 * 10) / 10
     assert lo <= da - 0.190 and da <= hi  # h11 over 50 up to 80 mm: IT11 = 190 µm
     assert f"Tip diameter da = {da:.1f} h11 (0 / −0.190)" in joined
-    assert f"%%c{da:.1f} h11" in " ".join(m.text for dim in msp.query("DIMENSION")
-                                         for m in dim.get_geometry_block().query("MTEXT"))
+    dims = [m.text for dim in msp.query("DIMENSION")
+            for m in dim.get_geometry_block().query("MTEXT")]
+    assert f"%%c{da:.1f} h11" in dims and "%%c32 H7" in dims
+    assert "35.3 +0.2/0" in dims  # d + t2 in the section
+    assert f"{bf1:.2f}" in dims  # the tooth width in the section
     assert "General tolerances ISO 2768-m" in texts
     # the SVG's and the PDF's page is the sheet, so the drawing prints at its scale
     svg = write_drawing(a, tmp_path / "driver.svg", sprocket="driver").read_text()
