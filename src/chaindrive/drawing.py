@@ -1,27 +1,34 @@
-"""Drawings for the workshop, as DXF (ezdxf, model units mm, 1:1) or SVG (the same DXF
-document rendered by ezdxf's drawing add-on).
+"""Drawings for the workshop, as DXF (ezdxf, model units mm, the object 1:1), SVG or PDF (the
+same DXF document rendered by ezdxf's drawing add-on), each on a standard sheet.
 
 * :func:`layout_document` — the contour at its coordinates: pitch and tip circles, the
   chain, the centre distance between consecutive sprockets and each wrap angle dimensioned,
-  a table of the centres and a title block (drive, chain, links, date, chaindrive version);
+  a table of the centres;
 * :func:`sprocket_document` — the manufacturing drawing of one sprocket: the toothed outline
   as ONE closed polyline (layer ``OUTLINE``: what a laser cutter or a CNC takes), the bore
-  (``BORE``), the largest hub that clears the chain (``HUB``, dashed), the pitch circle,
-  diameter dimensions with the limits of the tooth-form standard, a table of the tooth form
-  and a title block;
-* :func:`drawing_document` — the layout and, below it, every sprocket's drawing in rows on
-  one sheet (what ``chaindrive draw`` writes without ``--sprocket``).
+  (``BORE``) with its fit and the hub keyway (``KEYWAY``), the hub (``HUB``, dashed), the
+  pitch circle, diameter dimensions with the limits of the tooth-form standard; the axial
+  section A–A (``SECTION``, hatched on ``HATCH``) with the tooth width and chamfer, the hub
+  and d + t2; the notes: tooth form, bore, keyway, hub, section, measurement over pins, tip
+  diameter, material and hardening, general tolerances ISO 2768-m [ISO2768-1] (the values
+  from :meth:`chaindrive.analysis.Analysis.workshop`);
+* :func:`drawing_document` — the layout's sheet and, to its right, every sprocket's sheet
+  (what ``chaindrive draw`` writes without ``--sprocket``).
+
+Sheets: an ISO 5457 size (A4 upright, A3 … A0 landscape) drawn N times its size at the
+largest ISO 5455 scale 1:N at which the drawing fits its frame above the ISO 7200 title
+block (:func:`sheet_and_scale`); trimmed edge and frame on layer ``SHEET``, the title block
+on ``FRAME`` [ISO5457], [ISO5455], [ISO7200].
 
 Tooth outlines, forms and bodies come from the analysis
 (:attr:`chaindrive.analysis.Analysis.profiles`, :mod:`chaindrive.geometry.profile`): the
 ISO 606 outline lies between the two tooth-gap forms of the standard, its root within the
 root-diameter tolerance d_f = d − d₁ (upper deviation 0) [ISO606]; the GOST 591 outline is
 the profile of GOST 591-69 drawn without the offset e of the root-arc centres, which the
-standard permits [GOST591]. The bore is the 0.19·z·p/π of the body proportions the mass
-model uses [MultimassChainDrives, §3.4]; the hub limit is ISO 606's absolute maximum shroud
-(hub) diameter d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606]. Layers: ``OUTLINE``,
-``BORE``, ``HUB``, ``PITCH``, ``TIP``, ``CHAIN``, ``CENTER``, ``BODY`` (polymeric bodies),
-``DIM``, ``TEXT``, ``FRAME``.
+standard permits [GOST591]. The hub limit is ISO 606's absolute maximum shroud (hub)
+diameter d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606]. Layers: ``OUTLINE``, ``BORE``,
+``KEYWAY``, ``HUB``, ``PITCH``, ``TIP``, ``CHAIN``, ``CENTER``, ``BODY`` (polymeric
+bodies), ``SECTION``, ``HATCH``, ``DIM``, ``TEXT``, ``FRAME``, ``SHEET``.
 
 Placement: no text, table or title block is drawn over another, over a sprocket or across
 a chain line. Every text's box is known before it is drawn (the width by ezdxf's measure of
@@ -29,9 +36,10 @@ the font, the height from the cap height down to the descender, as ``ezdxf.bbox`
 back); a dimension's text is read from the block ezdxf renders. The layout places the wrap
 angles, then the centre distances (beside their sprockets, outward first), then the
 sprockets' names, each where it meets nothing drawn before (or, failing that, the least);
-the centre table and the title block go below the contour. A sprocket's drawing is the
-face view with its diameters, the notes to the right of it and the title block below the
-notes (a polymeric body's section to the left); the sheets are set in rows below the layout.
+the centre table goes below the contour or beside it. A sprocket's drawing is the face view
+with its diameters, the section to its right and the notes below both or beside them (a
+polymeric body's section to the left); the title block sits in the frame's lower right
+corner.
 """
 
 from __future__ import annotations
