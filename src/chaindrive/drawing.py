@@ -692,7 +692,7 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     boxes = [face]
     if profile.body is None:
         boxes.append(_axial_section(msp, w, ra, root, face[2] + 3 * h, h))
-    lines = [*tooth_form_lines(profile), *workshop_lines(w)]
+    lines = [*tooth_form_lines(profile), *workshop_lines(w, profile.body is not None)]
     if profile.body is not None:
         body_lines, section = _polymer_body(msp, profile, profile.body, face, h)
         lines += body_lines
@@ -755,10 +755,9 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
         wanted.append(((cx - overall / 2, root), (cx + overall / 2, root), ra + 4.0 * h, 0,
                        "<>"))
     if w.keyway is not None:  # d + t2, from the bore's far side to the keyway's bottom
-        k = w.keyway
+        t2_tol = _pm(w.keyway.depth_upper, 0.0, 1).replace(" / ", "/")
         wanted.append(((cx - hub_len / 2, -bore_r), (cx - hub_len / 2, top_bore),
-                       cx - reach - 1.5 * h, 90,
-                       f"<> {_pm(k.depth_upper, 0.0, 1).replace(' / ', '/')}"))
+                       cx - reach - 1.5 * h, 90, f"<> {t2_tol}"))
     dims = []
     for p1, p2, base, angle, text in wanted:
         dim = msp.add_linear_dim(base=(base, 0.0) if angle else (0.0, base), p1=p1, p2=p2,
@@ -794,7 +793,7 @@ def _pm(upper: float, lower: float, places: int = 3) -> str:
     return f"{signed(u)} / {signed(lo)}"
 
 
-def workshop_lines(w: SprocketWorkshop) -> list[str]:
+def workshop_lines(w: SprocketWorkshop, polymeric: bool = False) -> list[str]:
     """What the drawing states of the bore, keyway, hub, section, measurement over pins,
     tip diameter, material and general tolerances [mm], each with its rule.
 
@@ -802,6 +801,8 @@ def workshop_lines(w: SprocketWorkshop) -> list[str]:
     ----------
     w : SprocketWorkshop
         The data of the drawing (:func:`chaindrive.geometry.workshop.sprocket_workshop`).
+    polymeric : bool
+        A polymeric body (its own notes give the hub and its section).
 
     Returns
     -------
@@ -826,9 +827,10 @@ def workshop_lines(w: SprocketWorkshop) -> list[str]:
                      f"({_pm(k.width_upper, k.width_lower)}), depth t2 = "
                      f"{d(k.hub_depth * MM, 1)}, d + t2 = {d(k.over_bore * MM, 1)} "
                      f"({_pm(k.depth_upper, 0.0, 1)})")
-    lines.append(f"Hub Ø{d(w.hub_diameter * MM, 1)} × {d(w.hub_length * MM, 1)} long (body "
-                 f"model: 0.33/0.19 of the bore, 3 face widths), at most dg = "
-                 f"{d(w.hub_limit * MM, 1)}")
+    if not polymeric:
+        lines.append(f"Hub Ø{d(w.hub_diameter * MM, 1)} × {d(w.hub_length * MM, 1)} long "
+                     f"(body model: 0.33/0.19 of the bore, 3 face widths), at most dg = "
+                     f"{d(w.hub_limit * MM, 1)}")
     if w.standard == "GOST 591":
         lines.append(f"Section A–A: face width b = {d(w.face_width * MM, 2)}, tooth chamfer "
                      f"r3 = {d(w.chamfer_radius * MM, 2)} (1.7 d1) about centres h3 = 0.8 d1 "
