@@ -84,6 +84,11 @@ def test_tip_diameter_inside_the_range() -> None:
     assert lo * MM <= da + lower and da <= hi * MM
     with pytest.raises(DesignError):
         chosen_tip_diameter(0.1000, 0.1001)  # narrower than IT11
+    da, _, lower = chosen_tip_diameter(5.40, 5.45)  # a large sprocket: IT11 by its formula
+    assert da == pytest.approx(5.425) and lower == pytest.approx(
+        -100 * (0.004 * 5425 + 2.1) * UM)
+    _, _, lower = chosen_tip_diameter(0.70, 0.72)  # IT11 over 630 up to 800 mm: 500 µm
+    assert lower == pytest.approx(-500 * UM)
 
 
 def test_chamfers() -> None:

@@ -23,7 +23,7 @@ from importlib import resources
 from typing import Any
 
 from chaindrive.errors import DesignError
-from chaindrive.geometry.profile import SprocketProfile
+from chaindrive.geometry.profile import IT11_UM, SprocketProfile
 from chaindrive.geometry.sprocket import Gost591ToothForm, ToothForm
 from chaindrive.model import BORE_FITS, Drive
 
@@ -45,15 +45,19 @@ def _tables() -> dict[str, Any]:
     return tomllib.loads(text.decode("utf-8"))
 
 
-def iso286_tolerance(size: float, grade: int) -> float:
-    """Standard tolerance IT of a nominal size [ISO286-1, Table 1].
+def iso286_tolerance(size: float, grade: int, field: str = "bore") -> float:
+    """Standard tolerance IT of a nominal size [ISO286-1, Table 1]; IT11 also above 500 mm
+    (the rows to 3150 mm and beyond the standard's 100·i, i = 0.004·D + 2.1 µm, as the root
+    diameter's h11 of :func:`chaindrive.geometry.profile.iso606_root_diameter_tolerance`).
 
     Parameters
     ----------
     size : float
-        Nominal size [m], over 0 up to 500 mm.
+        Nominal size [m], over 0 up to 500 mm (any size for IT11).
     grade : int
         6 to 11.
+    field : str
+        The design field the size comes from, for the message.
 
     Returns
     -------
@@ -75,8 +79,11 @@ def iso286_tolerance(size: float, grade: int) -> float:
     for row in table["rows"]:
         if row[0] < mm <= row[1]:
             return float(row[column]) * 1e-6
-    raise DesignError("bore", f"must be over 0 and at most 500 mm for the ISO 286 tolerance "
-                              f"table, got {mm:.1f} mm")
+    if grade == 11 and mm > 500:
+        return next((t for _, up_to, t in IT11_UM if mm <= up_to),
+                    100.0 * (0.004 * mm + 2.1)) * 1e-6
+    raise DesignError(field, f"must be over 0 and at most 500 mm for the ISO 286 tolerance "
+                             f"table, got {mm:.1f} mm")
 
 
 def bore_deviations(bore: float, fit: str) -> tuple[float, float]:
@@ -163,7 +170,7 @@ def hub_keyway(bore: float) -> Keyway:
                                     "keyway = false")
     _, _, b, h, _, t2 = row
     depth_upper = next(t for up_to, t in table["depth_tolerance"] if mm <= up_to)
-    it9 = iso286_tolerance(b * MM, 9)
+    it9 = iso286_tolerance(b * MM, 9, "keyway")
     return Keyway(b * MM, h * MM, t2 * MM, depth_upper * MM, it9 / 2, -it9 / 2,
                   bore + t2 * MM)
 
@@ -221,7 +228,7 @@ def chosen_tip_diameter(tip_min: float, tip_max: float) -> tuple[float, float, f
     [ISO606] (the range); [ISO286-1, Table 1] (IT11).
     """
     da = math.floor((tip_min + tip_max) / 2 / (0.1 * MM) + 1e-9) * 0.1 * MM
-    it11 = iso286_tolerance(da, 11)
+    it11 = iso286_tolerance(da, 11, "tip_diameter")
     if da - it11 < tip_min or da > tip_max:
         raise DesignError("tip_diameter", f"h11 of {da / MM:.1f} mm does not fit the ISO 606 "
                                           f"range {tip_min / MM:.2f} … {tip_max / MM:.2f} mm")
