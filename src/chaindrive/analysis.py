@@ -71,6 +71,7 @@ from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_tr
 from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
 from chaindrive.geometry.results import GeometryResult
+from chaindrive.geometry.workshop import SprocketWorkshop, sprocket_workshop
 from chaindrive.kinematics import KinematicsResult, drive_kinematics, tooth_frequency
 from chaindrive.metrics import DesignMetrics, design_metrics
 from chaindrive.model import ChainSpec, Drive
@@ -526,6 +527,11 @@ class Analysis:
         """Tooth form, closed outline and body of every sprocket."""
         return sprocket_profiles(self.drive)
 
+    def workshop(self, index: int) -> SprocketWorkshop:
+        """What the workshop drawing of sprocket ``index`` states besides its outline (bore
+        and fit, keyway, hub, section, measurement over pins, tip diameter, material)."""
+        return sprocket_workshop(self.drive, self.profiles[index], index)
+
     def selection_by(self, *, method: str | None = None,
                      strands: int | None = None) -> SelectionResult:
         """The ranking with another method or number of strands than the design asks (what
@@ -781,6 +787,7 @@ def geometry_dict(g: GeometryResult) -> dict[str, Any]:
         "center_distance_mm": None if g.center_distance is None else g.center_distance * 1e3,
         "adjusted_sprocket": None if g.adjusted is None else g.sprockets[g.adjusted].name,
         "adjustment_mm": g.adjustment * 1e3,
+        "sag_allowance_mm": g.sag_allowance * 1e3,
         "direction_of_travel": "ccw" if g.orientation > 0 else "cw",
         "sprockets": [
             {

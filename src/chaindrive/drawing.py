@@ -1,27 +1,34 @@
-"""Drawings for the workshop, as DXF (ezdxf, model units mm, 1:1) or SVG (the same DXF
-document rendered by ezdxf's drawing add-on).
+"""Drawings for the workshop, as DXF (ezdxf, model units mm, the object 1:1), SVG or PDF (the
+same DXF document rendered by ezdxf's drawing add-on), each on a standard sheet.
 
 * :func:`layout_document` — the contour at its coordinates: pitch and tip circles, the
   chain, the centre distance between consecutive sprockets and each wrap angle dimensioned,
-  a table of the centres and a title block (drive, chain, links, date, chaindrive version);
+  a table of the centres;
 * :func:`sprocket_document` — the manufacturing drawing of one sprocket: the toothed outline
   as ONE closed polyline (layer ``OUTLINE``: what a laser cutter or a CNC takes), the bore
-  (``BORE``), the largest hub that clears the chain (``HUB``, dashed), the pitch circle,
-  diameter dimensions with the limits of the tooth-form standard, a table of the tooth form
-  and a title block;
-* :func:`drawing_document` — the layout and, below it, every sprocket's drawing in rows on
-  one sheet (what ``chaindrive draw`` writes without ``--sprocket``).
+  (``BORE``) with its fit and the hub keyway (``KEYWAY``), the hub (``HUB``, dashed), the
+  pitch circle, diameter dimensions with the limits of the tooth-form standard; the axial
+  section A–A (``SECTION``, hatched on ``HATCH``) with the tooth width and chamfer, the hub
+  and d + t2; the notes: tooth form, bore, keyway, hub, section, measurement over pins, tip
+  diameter, material and hardening, general tolerances ISO 2768-m [ISO2768-1] (the values
+  from :meth:`chaindrive.analysis.Analysis.workshop`);
+* :func:`drawing_document` — the layout's sheet and, to its right, every sprocket's sheet
+  (what ``chaindrive draw`` writes without ``--sprocket``).
+
+Sheets: an ISO 5457 size (A4 upright, A3 … A0 landscape) drawn N times its size at the
+largest ISO 5455 scale 1:N at which the drawing fits its frame above the ISO 7200 title
+block (:func:`sheet_and_scale`); trimmed edge and frame on layer ``SHEET``, the title block
+on ``FRAME`` [ISO5457], [ISO5455], [ISO7200].
 
 Tooth outlines, forms and bodies come from the analysis
 (:attr:`chaindrive.analysis.Analysis.profiles`, :mod:`chaindrive.geometry.profile`): the
 ISO 606 outline lies between the two tooth-gap forms of the standard, its root within the
 root-diameter tolerance d_f = d − d₁ (upper deviation 0) [ISO606]; the GOST 591 outline is
 the profile of GOST 591-69 drawn without the offset e of the root-arc centres, which the
-standard permits [GOST591]. The bore is the 0.19·z·p/π of the body proportions the mass
-model uses [MultimassChainDrives, §3.4]; the hub limit is ISO 606's absolute maximum shroud
-(hub) diameter d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606]. Layers: ``OUTLINE``,
-``BORE``, ``HUB``, ``PITCH``, ``TIP``, ``CHAIN``, ``CENTER``, ``BODY`` (polymeric bodies),
-``DIM``, ``TEXT``, ``FRAME``.
+standard permits [GOST591]. The hub limit is ISO 606's absolute maximum shroud (hub)
+diameter d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606]. Layers: ``OUTLINE``, ``BORE``,
+``KEYWAY``, ``HUB``, ``PITCH``, ``TIP``, ``CHAIN``, ``CENTER``, ``BODY`` (polymeric
+bodies), ``SECTION``, ``HATCH``, ``DIM``, ``TEXT``, ``FRAME``, ``SHEET``.
 
 Placement: no text, table or title block is drawn over another, over a sprocket or across
 a chain line. Every text's box is known before it is drawn (the width by ezdxf's measure of
@@ -29,9 +36,10 @@ the font, the height from the cap height down to the descender, as ``ezdxf.bbox`
 back); a dimension's text is read from the block ezdxf renders. The layout places the wrap
 angles, then the centre distances (beside their sprockets, outward first), then the
 sprockets' names, each where it meets nothing drawn before (or, failing that, the least);
-the centre table and the title block go below the contour. A sprocket's drawing is the
-face view with its diameters, the notes to the right of it and the title block below the
-notes (a polymeric body's section to the left); the sheets are set in rows below the layout.
+the centre table goes below the contour or beside it. A sprocket's drawing is the face view
+with its diameters, the section to its right and the notes below both or beside them (a
+polymeric body's section to the left); the title block sits in the frame's lower right
+corner.
 """
 
 from __future__ import annotations
@@ -64,15 +72,30 @@ if TYPE_CHECKING:  # ezdxf is imported where a drawing is made
     from chaindrive.geometry.profile import SprocketProfile
     from chaindrive.geometry.results import SprocketGeometry
     from chaindrive.geometry.sprocket import Gost591ToothForm, PolymericProportions, ToothForm
+    from chaindrive.geometry.workshop import SprocketWorkshop
 
-__all__ = ["FORMATS", "LAYERS", "drawing_document", "layout_document",
-           "outline_mm", "sprocket_document", "svg_string", "tooth_form_lines",
-           "write_drawing"]
+__all__ = [
+    "FORMATS",
+    "LAYERS",
+    "drawing_document",
+    "layout_document",
+    "outline_mm",
+    "pdf_bytes",
+    "sprocket_document",
+    "svg_string",
+    "tooth_form_lines",
+    "write_drawing",
+]
 
 MM = 1e3  # metres → millimetres
 LAYERS = {"OUTLINE": 7, "BORE": 7, "HUB": 8, "PITCH": 3, "TIP": 8, "CHAIN": 5, "CENTER": 1,
-          "BODY": 30, "DIM": 6, "TEXT": 7, "FRAME": 7}
-FORMATS = (".dxf", ".svg")
+          "BODY": 30, "DIM": 6, "TEXT": 7, "FRAME": 7, "KEYWAY": 7, "SECTION": 7, "HATCH": 8,
+          "SHEET": 7}
+#: Text height on paper [mm] (ISO 3098: 3.5 for values, the notes at 0.75 of it); a
+#: layout's dimensions and names at 2.5 (the smallest of ISO 3098's series on A4 … A0).
+PAPER_TEXT = 3.5
+LAYOUT_TEXT = 2.5
+FORMATS = (".dxf", ".svg", ".pdf")
 
 Box = tuple[float, float, float, float]  # x0, y0, x1, y1 [mm]
 Point = tuple[float, float]
@@ -321,46 +344,6 @@ def _dim_override(h: float, decimals: int = 2) -> dict[str, Any]:
             "dimtad": 1, "dimgap": 0.3 * h}
 
 
-def _title_block(msp: Modelspace, top_left: Point, h: float,
-                 rows: list[tuple[str, str]]) -> Box:
-    """A title block with its upper left corner at ``top_left`` [mm]: a framed table of
-    (label, value) rows, the columns as wide as their longest text; returns its box."""
-    width = _title_size(h, rows)[0]
-    font = _font(_FONT)
-    label_w = h + 0.8 * h * max(font.text_width(a) for a, _ in rows)
-    row = 1.8 * h
-    x0, y1 = top_left
-    x1, y0 = x0 + width, y1 - row * len(rows)
-    msp.add_lwpolyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], close=True,
-                       dxfattribs={"layer": "FRAME"})
-    msp.add_line((x0 + label_w, y0), (x0 + label_w, y1), dxfattribs={"layer": "FRAME"})
-    for i, (label, value) in enumerate(rows):
-        y = y1 - (i + 0.5) * row
-        if i:
-            msp.add_line((x0, y1 - i * row), (x1, y1 - i * row), dxfattribs={"layer": "FRAME"})
-        _text(msp, label, (x0 + 0.5 * h, y), 0.8 * h)
-        _text(msp, value, (x0 + label_w + 0.5 * h, y), 0.8 * h if i else h)
-    return x0, y0, x1, y1
-
-
-def _title_size(h: float, rows: list[tuple[str, str]]) -> tuple[float, float]:
-    """(width, height) [mm] of a title block (:func:`_title_block`)."""
-    font = _font(_FONT)
-    label_w = h + 0.8 * h * max(font.text_width(a) for a, _ in rows)
-    value_w = h + h * max(font.text_width(b) * (0.8 if i else 1.0)
-                          for i, (_, b) in enumerate(rows))
-    return label_w + value_w, 1.8 * h * len(rows)
-
-
-def _stamp(analysis: Analysis) -> list[tuple[str, str]]:
-    """The rows every title block starts with."""
-
-    return [("drive", analysis.drive.name),
-            ("date", _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d")),
-            ("drawn by", f"chaindrive {chaindrive.__version__}"),
-            ("units", "mm, scale 1:1")]
-
-
 # --- the layout ------------------------------------------------------------------------------
 
 def _layout_entities(msp: Modelspace, analysis: Analysis, sheet: _Sheet) -> None:
@@ -547,61 +530,30 @@ def _centre_table(msp: Modelspace, analysis: Analysis, top_left: Point, h: float
     return _union([head, rest]) if lines else head
 
 
-def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float) -> Box:
-    """The layout with its dimensions, centre table and title block; returns its box [mm]."""
-    g = analysis.geometry
+def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float,
+                  table_right: bool = False) -> Box:
+    """The layout with its dimensions and the centre table below it (or to its right);
+    returns its box [mm]."""
     sheet = _Sheet(gap=0.3 * h)
     _layout_entities(msp, analysis, sheet)
     _wrap_dimensions(msp, analysis, h, sheet)
     _centre_distances(msp, analysis, h, sheet)
     _sprocket_names(msp, analysis, h, sheet)
-    x0, y0, x1, _ = box = sheet.extents()
-    table = _centre_table(msp, analysis, (x0, y0 - 2 * h), h)
+    x0, y0, x1, y1 = box = sheet.extents()
+    table = _centre_table(msp, analysis, (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h),
+                          h)
+    return _union([box, table])
+
+
+def _layout_title(analysis: Analysis) -> dict[str, str]:
+    """The title block fields of the layout."""
+    g = analysis.geometry
     spec = analysis.drive.chain.spec
-    rows = [("chain drive layout", analysis.drive.name),
-            ("chain", spec.designation),
-            ("links", f"{g.links} (length {dimension(g.chain_length * MM, 1)} mm)"),
-            ("tooth form", analysis.drive.tooth_form), *_stamp(analysis)[1:]]
-    width, _ = _title_size(h, rows)
-    if x1 - width >= table[2] + 3 * h:  # beside the table, right-aligned with the contour
-        title = _title_block(msp, (x1 - width, y0 - 2 * h), h, rows)
-    else:  # below it
-        title = _title_block(msp, (max(x1, table[0] + width) - width, table[1] - 2 * h), h,
-                             rows)
-    return _union([box, table, title])
-
-
-def layout_document(analysis: Analysis) -> Drawing:
-    """The layout drawing alone (ezdxf document, mm).
-
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis of the design (geometry, sprocket profiles).
-
-    Returns
-    -------
-    ezdxf.document.Drawing
-        The DXF document, drawn 1:1 in mm.
-    """
-    doc = _new_document()
-    _layout_sheet(doc.modelspace(), analysis, _text_height(analysis))
-    return doc
-
-
-def _text_height(analysis: Analysis) -> float:
-    """Text height [mm] of a layout: 1/40 of the largest tip diameter or 1/150 of the
-    contour's extent, at least 2.5 mm."""
-    biggest = max(s.tip_diameter for s in analysis.geometry.sprockets) * MM
-    span = max(np.ptp([s.x for s in analysis.geometry.sprockets]),
-               np.ptp([s.y for s in analysis.geometry.sprockets])) * MM
-    return float(max(2.5, round(max(biggest / 40, float(span) / 150), 1)))
-
-
-def _sheet_text_height(tip_diameter: float) -> float:
-    """Text height [mm] of a sprocket's drawing: 1/40 of the tip diameter [mm], at least
-    2.5 mm."""
-    return float(max(2.5, round(tip_diameter / 40, 1)))
+    return {"title": f"Chain drive layout {analysis.drive.name}",
+            "supplementary": f"chain {spec.designation}, links {g.links} (length "
+                             f"{dimension(g.chain_length * MM, 1)} mm), tooth form "
+                             f"{analysis.drive.tooth_form}",
+            "number": f"{_slug(analysis.drive.name)}-00", "material": "—"}
 
 
 # --- one sprocket ------------------------------------------------------------------------------
@@ -690,73 +642,231 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
             "maximum form (ri max, re min, α min)."]
 
 
-def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float) -> Box:
+def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
+                    notes_right: bool = False) -> Box:
     """The drawing of sprocket ``index`` with its centre at the origin: the face view with
-    its diameters, the notes to the right of it, the title block below the notes and, for
-    a polymeric body, its section to the left; returns the box it takes [mm]."""
+    its diameters and the keyway, the axial section A–A to its right, the notes below both
+    (or to their right) and, for a polymeric body, its section to the left; returns the box
+    it takes [mm]."""
     from ezdxf import bbox
 
     g = analysis.geometry.sprockets[index]
     profile = analysis.profiles[index]
-    spec = analysis.drive.chain.spec
+    w = analysis.workshop(index)
     origin = (0.0, 0.0)
     pts = outline_mm(profile)
     msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
     ra = float(np.max(np.hypot(pts[:, 0], pts[:, 1])))
     root = float(np.min(np.hypot(pts[:, 0], pts[:, 1])))
-    bore = profile.bore_diameter * MM
-    hub = profile.hub_limit_diameter * MM
+    bore = w.bore * MM
+    hub = w.hub_diameter * MM
     msp.add_circle(origin, bore / 2, dxfattribs={"layer": "BORE"})
+    if w.keyway is not None:
+        b, top = w.keyway.key_width * MM / 2, w.keyway.over_bore * MM - bore / 2
+        foot = math.sqrt(max((bore / 2) ** 2 - b * b, 0.0))
+        msp.add_lwpolyline([(-b, foot), (-b, top), (b, top), (b, foot)],
+                           dxfattribs={"layer": "KEYWAY"})
     if hub > bore:
         msp.add_circle(origin, hub / 2, dxfattribs={"layer": "HUB"})
     msp.add_circle(origin, g.pitch_diameter / 2 * MM, dxfattribs={"layer": "PITCH"})
     _centre_mark(msp, origin, 1.1 * ra)
-    tip_text, root_text = _limits_text(profile)
+    tip_text, root_text = _limits_text(profile, w)
     dims = []
     for radius, angle, text in ((g.pitch_diameter / 2 * MM, 30.0, "<>"), (ra, 70.0, tip_text),
-                                (bore / 2, -35.0, "<>"), (root, -70.0, root_text)):
+                                (bore / 2, -35.0, f"<> {w.bore_fit}"),
+                                (root, -70.0, root_text)):
         dim = msp.add_diameter_dim(origin, radius=radius, angle=angle, dimstyle="EZ_RADIUS",
                                    override=_dim_override(0.8 * h), text=text,
                                    dxfattribs={"layer": "DIM"})
-        if radius > bore / 2:  # the text outside the teeth, on the line's extension
-            shown = text.replace("<>", f"%%c{dimension(2 * radius)}").replace("%%c", "Ø")
-            width = _box_size(_text_box(shown, origin, 0.8 * h))[0]
-            t = math.radians(angle + 180.0)  # the side ezdxf writes the text on
-            dim.set_location(((ra + h + width / 2) * math.cos(t),
-                              (ra + h + width / 2) * math.sin(t)), leader=False, relative=False)
+        # every text outside the teeth, on the line's extension
+        shown = text.replace("<>", f"%%c{dimension(2 * radius)}").replace("%%c", "Ø")
+        width = _box_size(_text_box(shown, origin, 0.8 * h))[0]
+        t = math.radians(angle + 180.0)  # the side ezdxf writes the text on
+        dim.set_location(((ra + h + width / 2) * math.cos(t),
+                          (ra + h + width / 2) * math.sin(t)), leader=False, relative=False)
         dim.render()
         dims.append(dim.dimension)
     ext = bbox.extents(dims)
     face = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra),
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
     boxes = [face]
-    lines = [
-        *tooth_form_lines(profile),
-        f"Bore d0 = {dimension(bore, 1)} (0.19·z·p/π; fit to the shaft to be chosen)",
-        f"Hub diameter at most dg = {dimension(hub, 1)} (ISO 606: p·cot(180°/z) − 1.04 h2 "
-        "− 0.76 mm)", "Outline: one closed polyline on layer OUTLINE; bore on layer BORE."]
+    if profile.body is None:
+        boxes.append(_axial_section(msp, w, ra, root, face[2] + 3 * h, h))
+    lines = [*tooth_form_lines(profile), *workshop_lines(w, profile.body is not None)]
     if profile.body is not None:
         body_lines, section = _polymer_body(msp, profile, profile.body, face, h)
         lines += body_lines
         boxes.append(section)
-    notes = _text_lines(msp, lines, (face[2] + 2 * h, ra), 0.75 * h, 1.5 * h)
-    rows = [(f"sprocket {g.name}", f"{g.teeth} teeth"), ("chain", spec.designation),
-            ("material", f"{profile.material} ({profile.density:.0f} kg/m³), mass "
-                         f"{profile.mass.mass:.3g} kg"),
-            ("tooth form", analysis.drive.tooth_form), *_stamp(analysis)]
-    title = _title_block(msp, (notes[0], notes[1] - 1.5 * h), 0.8 * h, rows)
-    return _union([*boxes, notes, title])
+    views = _union(boxes)
+    corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
+    notes = _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)
+    return _union([views, notes])
 
 
-def _limits_text(profile: SprocketProfile) -> tuple[str, str]:
-    """Text of the tip and root diameter dimensions with the standard's limits."""
+def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float, left: float,
+                   h: float) -> Box:
+    """The axial section A–A of a metal sprocket, its left edge at ``left`` and its axis on
+    y = 0: the rim to the root circle, a tooth per strand with its chamfer (an arc tangent to
+    the tooth's side), the hub and the bore (through the keyway above the axis), hatched;
+    dimensioned with the width, the tooth width, the hub length and diameter; returns its
+    box [mm]."""
+    from ezdxf import bbox
+
+    face, overall = w.face_width * MM, w.overall_width * MM
+    pt = w.transverse_pitch * MM
+    hub_len, hub_r = w.hub_length * MM, w.hub_diameter * MM / 2
+    reach = max(hub_len, overall) / 2
+    cx = left + reach
+    bore_r = w.bore * MM / 2
+    top_bore = (w.keyway.over_bore * MM - bore_r) if w.keyway is not None else bore_r
+    rad, depth = w.chamfer_radius * MM, min(w.chamfer_depth * MM, ra - root)
+
+    def tooth(x0: float) -> list[Point]:
+        """Up the left side at x0, over the chamfered tip, down the right side."""
+        up: list[Point] = [(x0, root), (x0, ra - depth)]
+        for t in np.linspace(0.0, 1.0, 9)[1:]:  # the arc tangent to the side at ra − depth
+            dy = t * depth
+            up.append((x0 + rad - math.sqrt(max(rad * rad - dy * dy, 0.0)), ra - depth + dy))
+        down = [(2 * x0 + face - x, y) for x, y in reversed(up)]
+        return up + down
+
+    inner = -1.0  # marks the bore's radius, set per half below
+    outline: list[Point] = [(cx - hub_len / 2, inner), (cx - hub_len / 2, hub_r),
+                            (cx - overall / 2, hub_r)]
+    for k in range(w.strands):
+        outline += tooth(cx - overall / 2 + k * pt)
+    outline += [(cx + overall / 2, hub_r), (cx + hub_len / 2, hub_r),
+                (cx + hub_len / 2, inner)]
+    for sign, radius in ((1.0, top_bore), (-1.0, bore_r)):
+        poly = _ordered([(x, sign * (radius if y == inner else y)) for x, y in outline])
+        msp.add_lwpolyline(poly, close=True, dxfattribs={"layer": "SECTION"})
+        hatch = msp.add_hatch(color=8, dxfattribs={"layer": "HATCH"})
+        hatch.set_pattern_fill("ANSI31", scale=max(0.5, h / 3))
+        hatch.paths.add_polyline_path(poly, is_closed=True)
+    msp.add_line((cx - reach - h, 0.0), (cx + reach + h, 0.0), dxfattribs={"layer": "CENTER"})
+    override = _dim_override(0.8 * h)
+    x_tooth = cx - overall / 2
+    wanted: list[tuple[Point, Point, float, int, str]] = [
+        ((x_tooth, ra - depth), (x_tooth + face, ra - depth), ra + 1.5 * h, 0, "<>"),
+        ((cx - hub_len / 2, -hub_r), (cx + hub_len / 2, -hub_r), -ra - 1.5 * h, 0, "<>"),
+        ((cx + hub_len / 2, -hub_r), (cx + hub_len / 2, hub_r), cx + reach + 1.5 * h, 90,
+         "%%c<>")]
+    if w.strands > 1:
+        wanted.append(((cx - overall / 2, root), (cx + overall / 2, root), ra + 4.0 * h, 0,
+                       "<>"))
+    if w.keyway is not None:  # d + t2, from the bore's far side to the keyway's bottom
+        t2_tol = _pm(w.keyway.depth_upper, 0.0, 1).replace(" / ", "/")
+        wanted.append(((cx - hub_len / 2, -bore_r), (cx - hub_len / 2, top_bore),
+                       cx - reach - 1.5 * h, 90, f"<> {t2_tol}"))
+    dims = []
+    for p1, p2, base, angle, text in wanted:
+        dim = msp.add_linear_dim(base=(base, 0.0) if angle else (0.0, base), p1=p1, p2=p2,
+                                 angle=angle, dimstyle="EZDXF", override=override, text=text,
+                                 dxfattribs={"layer": "DIM"})
+        dim.render()
+        dims.append(dim.dimension)
+    label = _text(msp, "A–A", (cx, ra + (6.5 if w.strands > 1 else 4.0) * h), 0.8 * h,
+                  "BOTTOM_CENTER")
+    ext = bbox.extents(dims)
+    return _union([(cx - reach, -ra, cx + reach, ra), label,
+                   (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
+
+
+def _ordered(points: list[Point]) -> list[Point]:
+    """The points without consecutive repeats (closer than 1 µm)."""
+    out: list[Point] = []
+    for p in points:
+        if not out or math.dist(out[-1], p) > 1e-3:
+            out.append(p)
+    return out
+
+
+def _pm(upper: float, lower: float, places: int = 3) -> str:
+    """Deviations [m] as written: "+0.025 / 0", "±0.018"."""
+    u, lo = upper * MM, lower * MM
+
+    def signed(x: float) -> str:
+        return "0" if abs(x) < 5e-7 else f"{'+' if x > 0 else '−'}{dimension(abs(x), places)}"
+
+    if abs(u + lo) < 5e-7 and u > 0:
+        return f"±{dimension(u, places)}"
+    return f"{signed(u)} / {signed(lo)}"
+
+
+def workshop_lines(w: SprocketWorkshop, polymeric: bool = False) -> list[str]:
+    """What the drawing states of the bore, keyway, hub, section, measurement over pins,
+    tip diameter, material and general tolerances [mm], each with its rule.
+
+    Parameters
+    ----------
+    w : SprocketWorkshop
+        The data of the drawing (:func:`chaindrive.geometry.workshop.sprocket_workshop`).
+    polymeric : bool
+        A polymeric body (its own notes give the hub and its section).
+
+    Returns
+    -------
+    list of str
+        One line per item.
+
+    References
+    ----------
+    [ISO606], [GOST591], [DIN6885-1], [ISO286-1], [ISO2768-1], [MultimassChainDrives, §3.4].
+    """
+    d = dimension
+    source = ("given by the design" if w.bore_given
+              else "default 0.19·z·p/π of the body model, an estimate: give sprockets.bore")
+    lines = [f"Bore Ø{d(w.bore * MM, 1)} {w.bore_fit} ({_pm(w.bore_upper, w.bore_lower)}), "
+             f"{source}"]
+    if w.keyway is None:
+        lines.append("No keyway (keyway = false in the design)")
+    else:
+        k = w.keyway
+        lines.append(f"Keyway DIN 6885-1 / ISO 773 for key {d(k.key_width * MM, 0)} × "
+                     f"{d(k.key_height * MM, 0)}: width {d(k.key_width * MM, 0)} JS9 "
+                     f"({_pm(k.width_upper, k.width_lower)}), depth t2 = "
+                     f"{d(k.hub_depth * MM, 1)}, d + t2 = {d(k.over_bore * MM, 1)} "
+                     f"({_pm(k.depth_upper, 0.0, 1)})")
+    if not polymeric:
+        lines.append(f"Hub Ø{d(w.hub_diameter * MM, 1)} × {d(w.hub_length * MM, 1)} long "
+                     f"(body model: 0.33/0.19 of the bore, 3 face widths), at most dg = "
+                     f"{d(w.hub_limit * MM, 1)}")
+    if w.standard == "GOST 591":
+        lines.append(f"Section A–A: face width b = {d(w.face_width * MM, 2)}, tooth chamfer "
+                     f"r3 = {d(w.chamfer_radius * MM, 2)} (1.7 d1) about centres h3 = 0.8 d1 "
+                     f"below the tip, f = {d(w.chamfer_width * MM, 2)} at the tip (GOST 591)")
+    else:
+        lines.append(f"Section A–A: face width bf1 = {d(w.face_width * MM, 2)}, tooth chamfer "
+                     f"ba = {d(w.chamfer_width * MM, 2)} (0.125 p, inside 0.10 … 0.15 p), "
+                     f"rx = {d(w.chamfer_radius * MM, 2)} (= p), "
+                     f"{d(w.chamfer_depth * MM, 2)} deep (ISO 606)")
+    if w.strands > 1:
+        lines.append(f"{w.strands} strands at pt = {d(w.transverse_pitch * MM, 2)}, overall "
+                     f"{d(w.overall_width * MM, 2)}")
+    rule = "even z: d + dR" if w.teeth % 2 == 0 else "odd z: d·cos(90°/z) + dR"
+    tol = (f"({_pm(w.pins_upper, w.pins_lower, 2)}, as the root diameter)"
+           if w.standard == "ISO 606" else "(GOST 591 tolerance not compiled)")
+    lines.append(f"Measurement over pins MR = {d(w.pins_measurement * MM, 3)} {tol}, "
+                 f"pins Ø dR = d1 = {d(w.pin_diameter * MM, 2)} ({rule})")
+    if w.standard == "ISO 606":
+        lines.append(f"Tip diameter da = {d(w.tip_diameter * MM, 1)} h11 "
+                     f"({_pm(w.tip_upper, w.tip_lower)}): the mean of the ISO 606 range "
+                     f"{d(w.tip_min * MM, 2)} … {d(w.tip_max * MM, 2)} rounded down to 0.1 mm")
+    hardening = w.hardening or "not given by the design (sprockets.hardening)"
+    lines.append(f"Material: {w.material}; hardening: {hardening}")
+    lines.append("General tolerances ISO 2768-m")
+    return lines
+
+
+def _limits_text(profile: SprocketProfile, w: SprocketWorkshop) -> tuple[str, str]:
+    """Text of the tip and root diameter dimensions with the standard's limits (the tip as
+    chosen inside the ISO 606 range, h11)."""
     if profile.standard == "GOST 591":
         form = cast("Gost591ToothForm", profile.form)
         return (f"%%c{dimension(form.tip_diameter * MM, 1)}",
                 f"%%c{dimension(form.root_diameter * MM, 3)}")
     iso = cast("ToothForm", profile.form)
-    return (f"%%c{dimension(iso.tip_diameter_min * MM, 2)} … "
-            f"{dimension(iso.tip_diameter_max * MM, 2)}",
+    return (f"%%c{dimension(w.tip_diameter * MM, 1)} h11",
             f"%%c{dimension(iso.root_diameter * MM, 2)} {_root_tolerance(profile)}")
 
 
@@ -815,8 +925,222 @@ def _index_of(analysis: Analysis, name: str) -> int:
     return names.index(name)
 
 
+# --- standard sheets (ISO 5457 sizes and borders, ISO 5455 scales, ISO 7200 title block) ------
+
+#: ISO 5457 trimmed sheet sizes [mm] (width, height) as drawn: A4 upright, the others
+#: landscape.
+ISO5457_SHEETS: dict[str, tuple[float, float]] = {
+    "A4": (210.0, 297.0), "A3": (420.0, 297.0), "A2": (594.0, 420.0), "A1": (841.0, 594.0),
+    "A0": (1189.0, 841.0)}
+#: ISO 5455 reduction scales 1:N (the 1, 2, 5 series).
+ISO5455_SCALES: tuple[int, ...] = (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
+#: ISO 5457 borders [mm]: 20 at the left (filing margin), 10 at the other edges.
+BORDER_LEFT, BORDER = 20.0, 10.0
+
+def sheet_and_scale(width: float, height: float, sheets: tuple[str, ...] = ("A4", "A3"),
+                    title_height: float = 0.0, margin: float = 0.0,
+                    scales: tuple[int, ...] = ISO5455_SCALES) -> tuple[str, int]:
+    """The first ISO 5457 sheet of ``sheets`` at the largest ISO 5455 scale 1:N (scales
+    first, then sheets) whose drawing area holds a drawing of ``width`` × ``height`` above a
+    title block ``title_height`` high.
+
+    The drawing area is the sheet inside its borders (20 mm left, 10 mm elsewhere).
+
+    Parameters
+    ----------
+    width, height : float
+        Size of the drawing [mm of the object, 1:1].
+    sheets : tuple of str
+        Candidate sheets of :data:`ISO5457_SHEETS`, smallest first.
+    title_height : float
+        Height of the title block strip at the bottom of the area [mm on paper].
+    margin : float
+        Clearance kept inside the frame on every side [mm on paper].
+    scales : tuple of int
+        The N of the candidate scales 1:N, largest scale first.
+
+    Returns
+    -------
+    tuple of (str, int)
+        (sheet, N).
+
+    Raises
+    ------
+    DesignError
+        Nothing fits (beyond 1:1000 on the largest sheet).
+
+    References
+    ----------
+    [ISO5457] (sizes, borders); [ISO5455] (scales).
+    """
+    for n in scales:
+        for name in sheets:
+            w, h = ISO5457_SHEETS[name]
+            if (width / n + 2 * margin <= w - BORDER_LEFT - BORDER
+                    and height / n + 2 * margin <= h - 2 * BORDER - title_height):
+                return name, n
+    raise DesignError("drawing", f"{width:.0f} × {height:.0f} mm does not fit "
+                                 f"{sheets[-1]} at 1:{scales[-1]}")
+
+
+
+#: ISO 7200 title block [mm on paper]: 180 wide, rows 9 high; each row's cells as
+#: (field, label, width).
+TITLE_ROWS: tuple[tuple[tuple[str, str, float], ...], ...] = (
+    (("title", "Title", 135.0), ("number", "Drawing number", 45.0)),
+    (("supplementary", "Supplementary title", 180.0),),
+    (("material", "Material", 100.0), ("scale", "Scale", 35.0), ("sheet", "Sheet size", 45.0)),
+    (("created", "Created by", 50.0), ("checked", "Checked by", 50.0),
+     ("approved", "Approved by", 35.0), ("date", "Date of issue", 45.0)),
+    (("owner", "Legal owner", 100.0), ("type", "Document type", 35.0),
+     ("revision", "Rev. / sheet", 45.0)),
+)
+TITLE_ROW = 10.0
+TITLE_HEIGHT = TITLE_ROW * len(TITLE_ROWS)
+SHEET_MARGIN = 5.0  # mm on paper between the frame and the drawing
+
+
+def _slug(name: str) -> str:
+    """A drawing number's stem from a drive's name (letters, digits and dashes)."""
+    out = "".join(c if c.isalnum() else "-" for c in name.upper()).strip("-")
+    return "-".join(filter(None, out.split("-")))[:24] or "DRIVE"
+
+
+def _iso7200_block(msp: Modelspace, right_bottom: Point, n: float,
+                   values: dict[str, str]) -> Box:
+    """The ISO 7200 title block with its lower right corner at ``right_bottom``, drawn at
+    1:``n`` (every size × n): one closed polyline on FRAME, the cell lines, each cell's
+    label (small, top left) and value (3.5 mm, smaller when it would not fit); returns its
+    box [mm]."""
+    font = _font(_FONT)
+    x1, y0 = right_bottom
+    x0, y1 = x1 - 180.0 * n, y0 + TITLE_HEIGHT * n
+    msp.add_lwpolyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], close=True,
+                       dxfattribs={"layer": "FRAME"})
+    for r, row in enumerate(TITLE_ROWS):
+        top = y1 - r * TITLE_ROW * n
+        if r:
+            msp.add_line((x0, top), (x1, top), dxfattribs={"layer": "FRAME"})
+        x = x0
+        for c, (key, label, width) in enumerate(row):
+            if c:
+                msp.add_line((x, top), (x, top - TITLE_ROW * n), dxfattribs={"layer": "FRAME"})
+            _text(msp, label, (x + 1.0 * n, top - 0.6 * n), 1.8 * n, "TOP_LEFT")
+            value = values.get(key, "")
+            if value:
+                room = (width - 2.0) * n
+                height = min(PAPER_TEXT * n, room / max(font.text_width(value), 1e-9))
+                _text(msp, value, (x + 1.0 * n, top - TITLE_ROW * n + 0.8 * n), height,
+                      "BOTTOM_LEFT")
+            x += width * n
+    return x0, y0, x1, y1
+
+
+def _frame(msp: Modelspace, content: Box, sheet: str, n: int,
+           values: dict[str, str]) -> Box:
+    """Put a drawing on a standard sheet drawn at 1:``n``: the trimmed sheet edge and the
+    ISO 5457 frame (layer SHEET), the drawing's top left corner ``SHEET_MARGIN`` inside the
+    frame's, the ISO 7200 title block in the frame's lower right corner; returns the sheet's
+    box [mm]."""
+    w, h = ISO5457_SHEETS[sheet]
+    x = content[0] - (BORDER_LEFT + SHEET_MARGIN) * n
+    y = content[3] + (BORDER + SHEET_MARGIN) * n - h * n
+    edge = [(x, y), (x + w * n, y), (x + w * n, y + h * n), (x, y + h * n)]
+    msp.add_lwpolyline(edge, close=True, dxfattribs={"layer": "SHEET"})
+    fx0, fy0, fx1, fy1 = x + BORDER_LEFT * n, y + BORDER * n, x + (w - BORDER) * n, y + (h - BORDER) * n
+    msp.add_lwpolyline([(fx0, fy0), (fx1, fy0), (fx1, fy1), (fx0, fy1)], close=True,
+                       dxfattribs={"layer": "SHEET", "lineweight": 70})
+    _iso7200_block(msp, (fx1, fy0), n, {**values, "scale": f"1:{n}", "sheet": sheet})
+    return x, y, x + w * n, y + h * n
+
+
+def _fits(content: Box, sheet: str, n: int) -> bool:
+    """Does a drawing of box ``content`` [mm] fit the sheet at 1:``n`` above its title
+    block?"""
+    try:
+        sheet_and_scale(content[2] - content[0], content[3] - content[1], (sheet,),
+                        TITLE_HEIGHT, SHEET_MARGIN, (n,))
+    except DesignError:
+        return False
+    return True
+
+
+_Build = Callable[["Modelspace", float, bool], Box]
+
+
+def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
+              text: float = PAPER_TEXT) -> tuple[str, int, bool]:
+    """The sheet, scale and arrangement of a drawing made by ``build(msp, text height,
+    notes to the right)``: from the largest ISO 5455 scale at which an object of ``size``
+    [mm] could fit the largest sheet, the first scale, then the first sheet, then the first
+    arrangement (notes below, notes to the right) at which the drawing made with text
+    3.5 mm high on paper fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`)."""
+    room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
+    for n in ISO5455_SCALES:
+        if size / n > room:
+            continue
+        boxes = []
+        for right in (False, True):
+            trial = _new_document()
+            boxes.append(build(trial.modelspace(), text * n, right))
+        for sheet in sheets:
+            for right in (False, True):
+                if _fits(boxes[right], sheet, n):
+                    return sheet, n, right
+    if sheets[-1] != "A0":
+        return _on_sheet(build, size, ("A2", "A1", "A0"), text)
+    raise DesignError("drawing", "does not fit A0 at 1:1000")
+
+
+def _sheet_record(doc: Drawing, sheet: str, n: int) -> None:
+    """Record the sheet and scale of a one-sheet document (read by :func:`svg_string`)."""
+    doc.header.custom_vars.append("chaindrive_sheet", f"{sheet} 1:{n}")
+
+
+def _sprocket_values(analysis: Analysis, index: int) -> dict[str, str]:
+    s = analysis.drive.sprockets[index]
+    spec = analysis.drive.chain.spec
+    return {"title": f"Sprocket {s.name}, z = {s.teeth}",
+            "supplementary": f"for chain {spec.designation}, tooth form "
+                             f"{analysis.drive.tooth_form}, drive {analysis.drive.name}",
+            "number": f"{_slug(analysis.drive.name)}-{index + 1:02d}",
+            "material": f"{s.material}; {s.hardening or 'hardening not given'}",
+            "type": "Detail drawing"}
+
+
+def _common_values() -> dict[str, str]:
+    return {"created": f"chaindrive {chaindrive.__version__}",
+            "date": _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d"), "revision": "A  1/1"}
+
+
+def _place_sprocket(msp: Modelspace, analysis: Analysis, index: int
+                    ) -> tuple[Box, str, int]:
+    """The framed drawing of sprocket ``index`` on its sheet; returns the sheet's box, the
+    sheet and 1:N."""
+    tip = analysis.geometry.sprockets[index].tip_diameter * MM
+    sheet, n, right = _on_sheet(lambda m, h, r: _sprocket_sheet(m, analysis, index, h, r),
+                                1.6 * tip, ("A4", "A3"))
+    box = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n, right)
+    values = {**_common_values(), **_sprocket_values(analysis, index)}
+    return _frame(msp, box, sheet, n, values), sheet, n
+
+
+def _place_layout(msp: Modelspace, analysis: Analysis) -> tuple[Box, str, int]:
+    """The framed layout on its sheet; returns the sheet's box, the sheet and 1:N."""
+    g = analysis.geometry.sprockets
+    r = max(s.tip_diameter for s in g) / 2 * MM
+    size = max(np.ptp([s.x for s in g]), np.ptp([s.y for s in g])) * MM + 2 * r
+    sheet, n, right = _on_sheet(lambda m, h, r: _layout_sheet(m, analysis, h, r), float(size),
+                                ("A4", "A3"), LAYOUT_TEXT)
+    box = _layout_sheet(msp, analysis, LAYOUT_TEXT * n, right)
+    values = {**_common_values(), **_layout_title(analysis), "type": "Layout"}
+    return _frame(msp, box, sheet, n, values), sheet, n
+
+
 def sprocket_document(analysis: Analysis, name: str) -> Drawing:
-    """The manufacturing drawing of the sprocket ``name`` alone (ezdxf document, mm).
+    """The manufacturing drawing of the sprocket ``name`` alone on a standard sheet (ezdxf
+    document, mm): ISO 5457 A4 or A3, the largest ISO 5455 scale 1:N at which it fits, the
+    ISO 7200 title block.
 
     Parameters
     ----------
@@ -828,18 +1152,39 @@ def sprocket_document(analysis: Analysis, name: str) -> Drawing:
     Returns
     -------
     ezdxf.document.Drawing
-        The DXF document, drawn 1:1 in mm.
+        The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
     """
     i = _index_of(analysis, name)
     doc = _new_document()
-    tip = analysis.geometry.sprockets[i].tip_diameter * MM
-    _sprocket_sheet(doc.modelspace(), analysis, i, _sheet_text_height(tip))
+    _, sheet, n = _place_sprocket(doc.modelspace(), analysis, i)
+    _sheet_record(doc, sheet, n)
+    return doc
+
+
+def layout_document(analysis: Analysis) -> Drawing:
+    """The layout drawing alone on a standard sheet (ezdxf document, mm): ISO 5457 A4 or A3
+    (A2 … A0 when nothing smaller holds it at 1:1000), the largest ISO 5455 scale at which
+    it fits, the ISO 7200 title block.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis of the design (geometry, sprocket profiles).
+
+    Returns
+    -------
+    ezdxf.document.Drawing
+        The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
+    """
+    doc = _new_document()
+    _, sheet, n = _place_layout(doc.modelspace(), analysis)
+    _sheet_record(doc, sheet, n)
     return doc
 
 
 def drawing_document(analysis: Analysis) -> Drawing:
-    """The layout and, below it, every sprocket's manufacturing drawing in rows no wider
-    than the layout (or the widest drawing) (ezdxf document, mm).
+    """The layout on its sheet and, to its right, every sprocket's manufacturing drawing on
+    its own sheet (ezdxf document, mm; each sheet at its own scale).
 
     Parameters
     ----------
@@ -853,26 +1198,15 @@ def drawing_document(analysis: Analysis) -> Drawing:
     """
     doc = _new_document()
     msp = doc.modelspace()
-    h = _text_height(analysis)
-    layout = _layout_sheet(msp, analysis, h)
-    hs = _sheet_text_height(max(s.tip_diameter for s in analysis.geometry.sprockets) * MM)
-    sheets: list[tuple[list[DXFGraphic], Box]] = []
+    layout, _, _ = _place_layout(msp, analysis)
+    x = layout[2] + 20.0
     for i in range(len(analysis.geometry.sprockets)):
         start = len(msp)
-        box = _sprocket_sheet(msp, analysis, i, hs)
-        sheets.append((list(msp)[start:], box))
-    gap = 4 * hs
-    width = max(layout[2] - layout[0], *(b[2] - b[0] for _, b in sheets))
-    x, top = layout[0], layout[1] - 4 * h
-    bottom = top
-    for entities, box in sheets:
-        if x > layout[0] and x + box[2] - box[0] > layout[0] + width:  # a new row
-            x, top = layout[0], bottom - gap
-        dx, dy = x - box[0], top - box[3]
-        for e in entities:
+        box, _, _ = _place_sprocket(msp, analysis, i)
+        dx, dy = x - box[0], layout[3] - box[3]
+        for e in list(msp)[start:]:
             e.translate(dx, dy, 0.0)
-        bottom = min(bottom, box[1] + dy)
-        x += box[2] - box[0] + gap
+        x += box[2] - box[0] + 20.0
     return doc
 
 
@@ -904,7 +1238,7 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
     out = Path(path)
     suffix = out.suffix.lower()
     if suffix not in FORMATS:
-        raise DesignError("output", f"must end in .dxf or .svg, got {out.name!r}")
+        raise DesignError("output", f"must end in .dxf, .svg or .pdf, got {out.name!r}")
     doc = (sprocket_document(analysis, sprocket) if sprocket is not None
            else drawing_document(analysis))
     if suffix == ".dxf":
@@ -913,6 +1247,8 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
         stream = io.StringIO()
         doc.write(stream)
         data = stream.getvalue().encode(doc.output_encoding or "utf-8")
+    elif suffix == ".pdf":
+        data = pdf_bytes(doc)
     else:
         data = svg_string(doc).encode("utf-8")
     write_bytes(out, data)  # complete or absent, never half-written
@@ -920,30 +1256,90 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
 
 
 def svg_string(doc: Drawing, page_width_mm: float = 420.0) -> str:
-    """The modelspace of ``doc`` as SVG (ezdxf drawing add-on) on a white page
-    ``page_width_mm`` wide (A3 by default), scaled to fit; the DXF stays 1:1.
+    """The modelspace of ``doc`` as SVG (ezdxf drawing add-on) on a white page: a document
+    on one standard sheet on a page of that sheet's size (the drawing at its scale, true
+    to size when printed 1:1); otherwise a page ``page_width_mm`` wide (A3 by default),
+    scaled to fit. The DXF stays 1:1.
 
     Parameters
     ----------
     doc : ezdxf.document.Drawing
         A DXF document.
     page_width_mm : float
-        Width of the page [mm].
+        Width of the page of a document of several sheets [mm].
 
     Returns
     -------
     str
         The SVG text.
     """
-    from ezdxf import bbox
     from ezdxf.addons.drawing import Frontend, RenderContext, config, layout, svg
 
-    box = bbox.extents(doc.modelspace(), fast=True)
-    w, h = (box.size.x, box.size.y) if box.has_data else (100.0, 100.0)
     backend = svg.SVGBackend()
     cfg = config.Configuration(background_policy=config.BackgroundPolicy.WHITE,
                                color_policy=config.ColorPolicy.COLOR)
     Frontend(RenderContext(doc), backend, config=cfg).draw_layout(doc.modelspace())
-    page = layout.Page(page_width_mm, page_width_mm * h / max(w, 1e-9) + 20, layout.Units.mm,
-                       margins=layout.Margins.all(10))
+    pw, ph, edge = _page(doc, page_width_mm)
+    if edge is not None:
+        page = layout.Page(pw, ph, layout.Units.mm, margins=layout.Margins.all(0))
+    else:
+        page = layout.Page(pw, ph + 20, layout.Units.mm, margins=layout.Margins.all(10))
     return backend.get_string(page)
+
+
+def _page(doc: Drawing, page_width_mm: float) -> tuple[float, float, tuple[float, ...] | None]:
+    """Page size [mm] of a document: its sheet's for a one-sheet document (and the sheet's
+    edge in model units), else ``page_width_mm`` wide in the proportion of its extents."""
+    from ezdxf import bbox
+
+    record = dict(doc.header.custom_vars).get("chaindrive_sheet")
+    if record:
+        pw, ph = ISO5457_SHEETS[record.split()[0]]
+        edge = max((bbox.extents([p]) for p in doc.modelspace().query(
+            "LWPOLYLINE[layer=='SHEET']")), key=lambda e: e.size.x)
+        return pw, ph, (edge.extmin.x, edge.extmin.y, edge.extmax.x, edge.extmax.y)
+    box = bbox.extents(doc.modelspace(), fast=True)
+    w, h = (box.size.x, box.size.y) if box.has_data else (100.0, 100.0)
+    return page_width_mm, page_width_mm * h / max(w, 1e-9), None
+
+
+def pdf_bytes(doc: Drawing, page_width_mm: float = 420.0) -> bytes:
+    """The modelspace of ``doc`` as a one-page PDF (ezdxf drawing add-on, matplotlib): a
+    document on one standard sheet on a page of that sheet's size, the sheet filling it (so
+    the drawing prints at its scale); otherwise a page ``page_width_mm`` wide.
+
+    Parameters
+    ----------
+    doc : ezdxf.document.Drawing
+        A DXF document.
+    page_width_mm : float
+        Width of the page of a document of several sheets [mm].
+
+    Returns
+    -------
+    bytes
+        The PDF.
+    """
+    import io
+
+    # matplotlib and the add-on load only when a PDF is asked for (import time of `draw`)
+    import matplotlib.figure
+    from ezdxf.addons.drawing import Frontend, RenderContext, config
+    from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
+
+    pw, ph, edge = _page(doc, page_width_mm)
+    fig = matplotlib.figure.Figure(figsize=(pw / 25.4, ph / 25.4))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+    cfg = config.Configuration(background_policy=config.BackgroundPolicy.WHITE,
+                               color_policy=config.ColorPolicy.COLOR)
+    Frontend(RenderContext(doc), MatplotlibBackend(ax), config=cfg).draw_layout(
+        doc.modelspace(), finalize=True)
+    if edge is not None:
+        ax.set_xlim(edge[0], edge[2])
+        ax.set_ylim(edge[1], edge[3])
+    ax.set_axis_off()
+    fig.set_size_inches(pw / 25.4, ph / 25.4)  # the backend's finalize resizes the figure
+    ax.set_position((0.0, 0.0, 1.0, 1.0))
+    stream = io.BytesIO()
+    fig.savefig(stream, format="pdf")
+    return stream.getvalue()

@@ -30,6 +30,8 @@ ToothFormName = Literal["ISO 606", "GOST 591"]
 
 ROLES: tuple[str, ...] = ("driver", "driven", "idler")
 SIDES: tuple[str, ...] = ("outside", "inside")
+#: Hole-basis fits a sprocket's bore may be given (ISO 286, fundamental deviation H).
+BORE_FITS: tuple[str, ...] = ("H6", "H7", "H8")
 TOOTH_FORMS: tuple[str, ...] = ("ISO 606", "GOST 591")
 #: Duty classes of the driver (prime mover), mildest first (:mod:`chaindrive.strength.duty`).
 DRIVER_DUTIES: tuple[str, ...] = ("smooth", "slight shock", "moderate shock")
@@ -40,7 +42,7 @@ ROTATIONS: tuple[str, ...] = ("cw", "ccw")
 MIN_TEETH, MAX_TEETH = 6, 150
 MIN_SPROCKETS, MAX_SPROCKETS = 2, 24
 MAX_CONTOURS = 8
-ROUNDINGS: tuple[str, ...] = ("round up", "round down")
+ROUNDINGS: tuple[str, ...] = ("round up", "round down", "nearest")
 
 
 #: What a catalogue row's source writes before the columns it estimates
@@ -249,11 +251,14 @@ class Chain:
         [-], 1 for an ordinary drive, at most :data:`MAX_CONTOURS` [Lyashuk].
     rounding : str
         How the tight length is rounded to a whole (even) number of links: ``"round up"``
-        (the default, the chain is lengthened) or ``"round down"`` (the take-up shortens
-        the layout).
+        (the default, the chain is lengthened), ``"round down"`` (the take-up shortens
+        the layout) or ``"nearest"`` (the nearer of the two, up on a tie).
     sag : float or None
         Installed sag of the slack span as a fraction of its length [-], in (0, 0.1]; None:
         laid out tight (see :mod:`chaindrive.geometry.length_options`).
+    sag_allowance : float or None
+        Installed centre distance shortened by this fraction of the centre distance [-], in
+        (0, 0.01] (textbooks: 0.002 … 0.004); None: not shortened. Not with ``sag``.
     link_stiffness : float or None
         Measured axial stiffness of one link (one pitch) of the whole chain, all strands
         [N/m], e.g. from the maker's elastic-elongation curve: k_link = F/(ε p) for a load F
@@ -275,6 +280,7 @@ class Chain:
     rounding: str = "round up"
     sag: float | None = None
     link_stiffness: float | None = None
+    sag_allowance: float | None = None
 
     def __post_init__(self) -> None:
         if self.rounding not in ROUNDINGS:
@@ -283,6 +289,13 @@ class Chain:
         if self.sag is not None and not 0.0 < self.sag <= 0.1:
             raise DesignError("chain.sag", f"must be a fraction of the slack span in (0, 0.1], "
                               f"got {self.sag!r}")
+        if self.sag_allowance is not None:
+            if not 0.0 < self.sag_allowance <= 0.01:
+                raise DesignError("chain.sag_allowance", "must be a fraction of the centre "
+                                  f"distance in (0, 0.01], got {self.sag_allowance!r}")
+            if self.sag is not None:
+                raise DesignError("chain.sag_allowance", "give the installed sag or the sag "
+                                  "allowance of the centre distance, not both")
         if self.link_stiffness is not None and not (
                 math.isfinite(self.link_stiffness) and self.link_stiffness > 0.0):
             raise DesignError("chain.link_stiffness", "must be a positive finite stiffness "
@@ -449,6 +462,17 @@ class Sprocket:
     load : str or None
         Law of the driven machine's moment in speed: ``"constant"``, ``"linear"`` or
         ``"quadratic"`` (None: ``[dynamics] resistance``).
+    bore : float or None
+        Bore of the sprocket for its drawing [m] (None: the body model's 0.19·z·p/π).
+    bore_fit : str
+        ISO 286 hole-basis class of the bore: ``"H6"``, ``"H7"`` or ``"H8"``.
+    keyway : bool
+        The drawing gives the bore a DIN 6885-1 hub keyway (False: no keyway).
+    hardening : str or None
+        Heat-treatment note of the drawing (None: not given).
+    bearings : tuple of float or None
+        Axial positions of the shaft's two bearings from the sprocket's mid-plane [m]
+        (signed, along the shaft; None: not given, no bearing reactions).
 
     Raises
     ------
@@ -472,9 +496,24 @@ class Sprocket:
     reduced_mass: float | None = None
     train: tuple[TrainElement, ...] = ()
     load: str | None = None
+    bore: float | None = None
+    bore_fit: str = "H7"
+    keyway: bool = True
+    hardening: str | None = None
+    bearings: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         where = f"sprockets[{self.name}]"
+        if self.bearings is not None and not (
+                len(self.bearings) == 2 and all(math.isfinite(z) for z in self.bearings)
+                and abs(self.bearings[1] - self.bearings[0]) >= 1e-3):
+            raise DesignError(f"{where}.bearings", "must be two finite positions at least 1 mm "
+                              f"apart, got {self.bearings!r} m")
+        if self.bore is not None and not (math.isfinite(self.bore) and self.bore > 0):
+            raise DesignError(f"{where}.bore", f"must be positive, got {self.bore!r} m")
+        if self.bore_fit not in BORE_FITS:
+            raise DesignError(f"{where}.bore_fit", f"must be one of {', '.join(BORE_FITS)}, "
+                              f"got {self.bore_fit!r}")
         if self.reduced_mass is not None:
             if not (math.isfinite(self.reduced_mass) and self.reduced_mass > 0):
                 raise DesignError(f"{where}.reduced_mass", f"must be positive, got "

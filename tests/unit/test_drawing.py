@@ -53,9 +53,15 @@ def test_layout_reads_back(example: Path, tmp_path: Path) -> None:
     assert kinds[("LINE", "CHAIN")] == len(a.geometry.spans)
     assert kinds[("LWPOLYLINE", "OUTLINE")] == n
     dims = [d for d in msp.query("DIMENSION")]
-    aligned = [d for d in dims if d.dimtype in (0, 1)]  # linear or aligned
-    assert len(aligned) == (n if n > 2 else 1)
     centres = [(s.x * MM, s.y * MM) for s in a.geometry.sprockets]
+
+    def at_centres(d: ezdxf.entities.Dimension) -> bool:
+        return all(min(math.dist((p.x, p.y), c) for c in centres) < 1e-6
+                   for p in (d.dxf.defpoint2, d.dxf.defpoint3))
+
+    # linear or aligned between centres (the sprocket sections' linear dimensions are not)
+    aligned = [d for d in dims if d.dimtype in (0, 1) and at_centres(d)]
+    assert len(aligned) == (n if n > 2 else 1)
     for d in aligned:  # each measures the distance between two neighbouring centres
         p1, p2 = (d.dxf.defpoint2.x, d.dxf.defpoint2.y), (d.dxf.defpoint3.x, d.dxf.defpoint3.y)
         assert min(math.dist(p1, c) for c in centres) < 1e-6

@@ -235,7 +235,9 @@ def test_full_drawing_writes_nothing_over_anything(example: str) -> None:
     tips = [(c.dxf.center.x, c.dxf.center.y, c.dxf.radius)
             for c in doc.modelspace().query("CIRCLE[layer=='TIP']")]
     for dim in doc.modelspace().query("DIMENSION"):
-        if dim.dimtype not in (0, 1):
+        if dim.dimtype not in (0, 1) or dim.dxf.layer != "DIM" or not any(
+                math.dist((dim.dxf.defpoint2.x, dim.dxf.defpoint2.y), c[:2]) < 1e-6
+                for c in tips):  # the centre distances, not the sections' dimensions
             continue
         p1, p2 = np.array(dim.dxf.defpoint2)[:2], np.array(dim.dxf.defpoint3)[:2]
         u = (p2 - p1) / np.linalg.norm(p2 - p1)

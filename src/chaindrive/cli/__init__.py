@@ -357,14 +357,15 @@ def report(
 @app.command()
 def draw(
     file: Annotated[Path, typer.Argument(help="design file (TOML)")],
-    output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf or layout.svg")]
+    output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf, layout.svg or "
+                                         "layout.pdf")]
     = Path("layout.dxf"),
     sprocket: Annotated[str | None, typer.Option(
         "--sprocket", help="draw this sprocket alone (its manufacturing drawing)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Write the drawing: the dimensioned layout and each sprocket's manufacturing drawing,
-    or one sprocket alone (DXF or SVG, mm)."""
+    or one sprocket alone (DXF, SVG or PDF, mm; each on an ISO 5457 sheet at its scale)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.drawing import write_drawing

@@ -151,6 +151,10 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
     if g["adjusted_sprocket"] is not None:
         con.print(f"take-up: {escape(g['adjusted_sprocket'])} moved "
                   f"{_q(g, 'adjustment_mm', units)}")
+    if g.get("sag_allowance_mm"):
+        con.print(f"sag allowance: installed centre distance shortened by "
+                  f"{_q(g, 'sag_allowance_mm', units)} from the tight position (the design's "
+                  f"{escape('[chain]')} sag_allowance; textbooks 0.2 … 0.4 %)")
     con.print(_length_options(g["length_options"], units))
     cols = [("name", "name"), ("teeth", "teeth"), ("side", "side"), ("x", "x_mm"),
             ("y", "y_mm"), ("pitch Ø", "pitch_diameter_mm"), ("tip Ø", "tip_diameter_mm"),
@@ -310,6 +314,17 @@ def _print_strength(con: Console, st: dict[str, Any], names: list[str], spans: l
                      for n, f, v, a in zip(names, st["shaft_loads_n"],
                                            st["shaft_load_vectors_n"],
                                            st["shaft_load_directions_deg"], strict=True)]))
+    bearings = [(n, b, m) for n, b, m in zip(names, st.get("bearing_load_vectors_n") or [],
+                                            st.get("bearing_loads_n") or [], strict=False)
+                if b is not None]
+    if bearings:  # where the design gives the bearing positions
+        con.print(table("Bearing loads (statics of the shaft: the load each bearing carries)",
+                        ["name", header("bearing 1", "f_n", units), header("x", "f_n", units),
+                         header("y", "f_n", units), header("bearing 2", "f_n", units),
+                         header("x", "f_n", units), header("y", "f_n", units)],
+                        [[n, *(doc_value("f_n", x, units)[0]
+                               for k in (0, 1) for x in (m[k], b[k][0], b[k][1]))]
+                         for n, b, m in bearings]))
     allowed = st["allowable_pressure_mpa"]
     life = "—" if st["wear_life_h"] is None else f"{fmt(st['wear_life_h'])} h"
     extrapolated = " (extrapolated: wear does not limit)" if st["wear_life_extrapolated"] else ""

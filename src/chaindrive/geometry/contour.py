@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -402,7 +402,8 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
 # --- the drive -----------------------------------------------------------------------------
 
 
-def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = False) -> int:
+def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = False,
+                nearest: bool = False) -> int:
     """Whole number of links for a tight length.
 
     Parameters
@@ -413,13 +414,23 @@ def round_links(tight_pitches: float, allow_odd: bool = False, down: bool = Fals
         Allow an odd count (it needs an offset link).
     down : bool
         Round down (the take-up then shortens the layout) instead of up.
+    nearest : bool
+        The nearer of the counts below and above (the one above on a tie).
 
     Returns
     -------
     int
         The smallest whole (even unless ``allow_odd``) count ≥ L_p, or with ``down`` the
-        largest one ≤ it [links].
+        largest one ≤ it, or with ``nearest`` the nearer of the two [links].
+
+    References
+    ----------
+    [ChainDesignRU, §6] (round to a whole, preferably even, count).
     """
+    if nearest:
+        below = round_links(tight_pitches, allow_odd, down=True)
+        above = round_links(tight_pitches, allow_odd)
+        return below if tight_pitches - below < above - tight_pitches else above
     if down:
         links = math.floor(tight_pitches + 1e-9)
         return links if allow_odd or links % 2 == 0 else links - 1
@@ -643,9 +654,10 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     prefer = travel_orientation(drive)
     layout, orientation = solve_layout(centres, radii, inside, teeth, p, prefer)
     links = drive.chain.links or round_links(layout.tight_pitches, drive.chain.allow_odd,
-                                             down=drive.chain.rounding == "round down")
+                                             down=drive.chain.rounding == "round down",
+                                             nearest=drive.chain.rounding == "nearest")
     adjusted = drive.adjustable_index
-    adjustment = 0.0
+    adjustment = shortening = 0.0
     if adjusted is not None:
         s = sps[adjusted]
         direction = adjustment_direction(layout, orientation, adjusted, s.side == "inside",
@@ -660,7 +672,18 @@ def contour_geometry(drive: Drive) -> GeometryResult:
             target = links - slack_for_sag(slack_span, drive.chain.sag) / p
             adjustment = _take_up(centres, radii, inside, teeth, p, adjusted, direction, target,
                                   s.name)
+        if drive.chain.sag_allowance is not None:  # installed short of the tight position
+            other = (drive.driver_index if adjusted != drive.driver_index
+                     else (adjusted + 1) % len(sps))
+            shortening = drive.chain.sag_allowance * float(np.linalg.norm(
+                centres[adjusted] + adjustment * direction - centres[other]))
+            adjustment += sag_allowance_travel(centres[adjusted] + adjustment * direction,
+                                               centres[other], direction, shortening, s.name)
         centres[adjusted] = centres[adjusted] + adjustment * direction
+    elif drive.chain.sag_allowance is not None:
+        raise DesignError("chain.sag_allowance", "shortens the installed centre distance by "
+                          "moving the adjustable sprocket; no sprocket is adjustable "
+                          "(give one adjustable = true)")
     elif drive.chain.links is not None and links < layout.tight_pitches - 1e-9:
         raise DesignError(
             "chain.links",
@@ -668,8 +691,54 @@ def contour_geometry(drive: Drive) -> GeometryResult:
             "and no sprocket is adjustable",
         )
     layout, orientation = solve_layout(centres, radii, inside, teeth, p, prefer)
-    return _assemble(drive, centres, radii, tips, inside, layout, orientation, links, adjusted,
-                     adjustment)
+    result = _assemble(drive, centres, radii, tips, inside, layout, orientation, links, adjusted,
+                       adjustment)
+    return replace(result, sag_allowance=shortening) if shortening else result
+
+
+def sag_allowance_travel(centre: NDArray[np.float64], other: NDArray[np.float64],
+                         direction: NDArray[np.float64], shortening: float, name: str) -> float:
+    """How far [m] to move a sprocket along its line of adjustment (negative: back) so that
+    its centre distance a to ``other`` becomes a − Δa: the root of |v + t·u|² = (a − Δa)²
+    (v = centre − other, u = direction) nearest to 0. Textbooks install the chain with the
+    centre distance shortened by Δa = (0.002 … 0.004)·a so that the slack span sags.
+
+    Parameters
+    ----------
+    centre, other : ndarray
+        The adjustable sprocket's centre at the tight position and the other centre [m].
+    direction : ndarray
+        Unit vector of the line of adjustment.
+    shortening : float
+        Δa [m].
+    name : str
+        The adjustable sprocket, for the message.
+
+    Returns
+    -------
+    float
+        t [m].
+
+    Raises
+    ------
+    DesignError
+        The line of adjustment cannot shorten that distance by Δa.
+
+    References
+    ----------
+    [ChainDesignRU, §7]; [Bhandari2010, ex. 14.4] (Δa = 0.002·a).
+    """
+    v = centre - other
+    a = float(np.linalg.norm(v))
+    vu = float(v @ direction)
+    disc = vu * vu - (2.0 * a * shortening - shortening * shortening)
+    if disc < 0.0 or a <= shortening:
+        raise DesignError("chain.sag_allowance", f"the line of adjustment of {name} cannot "
+                          f"shorten its centre distance {a * 1e3:.1f} mm by "
+                          f"{shortening * 1e3:.2f} mm; allowed: a line of adjustment with a "
+                          "component along the centre line (adjust_angle)")
+    root = math.sqrt(disc)
+    return min((-vu + root, -vu - root), key=abs)
 
 
 def travel_orientation(drive: Drive) -> int:

@@ -161,5 +161,8 @@ def length_options(drive: Drive, laid: GeometryResult | None = None) -> LengthCh
     options = [_option(drive, "round down", down, laid)]
     if up != down:
         options.append(_option(drive, "round up", up, laid))
-    chosen = "given" if drive.chain.links is not None else drive.chain.rounding
+    rule = drive.chain.rounding
+    if rule == "nearest":  # the nearer of the two, up on a tie
+        rule = "round down" if tight - down < up - tight else "round up"
+    chosen = "given" if drive.chain.links is not None else rule
     return LengthChoice(tight, tuple(options), chosen, drive.chain.sag)

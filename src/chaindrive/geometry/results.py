@@ -125,6 +125,9 @@ class GeometryResult:
         +1 when the chain runs counter-clockwise round the contour, −1 clockwise.
     warnings : tuple of ChainDriveWarning
         Driver wrap, teeth in mesh, untaken slack.
+    sag_allowance : float
+        How much the installed centre distance of the adjustable sprocket was shortened
+        from the tight position by the design's sag allowance, Δa [m] (0: none).
     """
 
     pitch: float
@@ -140,3 +143,4 @@ class GeometryResult:
     adjustment: float
     orientation: int
     warnings: tuple[ChainDriveWarning, ...] = ()
+    sag_allowance: float = 0.0

@@ -24,6 +24,7 @@ from chaindrive.geometry.contour import in_travel_order
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
 from chaindrive.io.plausible import check_inertias, check_motor_estimate
 from chaindrive.model import (
+    BORE_FITS,
     DRIVEN_DUTIES,
     DRIVER_DUTIES,
     LOAD_LAWS,
@@ -63,6 +64,8 @@ from chaindrive.units import (
     shown,
 )
 
+#: Largest bore of the DIN 6885-1 key table [m] (chaindrive/data/keyways_iso286.toml).
+KEYWAY_MAX_BORE = 0.230
 #: Longest name or other text field [characters].
 MAX_NAME = 200
 #: The byte-order mark (U+FEFF) some editors put at the start of a UTF-8 file; a design file
@@ -288,7 +291,8 @@ CHAIN_FIELDS: tuple[Field, ...] = (
     Field("strands", "int", "number of strands (rows)", default=1, minimum=1, maximum=8,
           reason="multi-strand chains are made with up to 8 strands; the catalogue lists 1 to 4"),
     Field("links", "links", 'impose the number of links (the take-up fits it), or how the '
-          'tight length is rounded to an even count: "round up" (default) or "round down"',
+          'tight length is rounded to an even count: "round up" (default), "round down" or '
+          '"nearest" (the nearer even count, up on a tie)',
           minimum=4, maximum=10000, reason="4: the shortest closed chain round two sprockets; "
           "10 000: beyond the longest drive chains (80 m at 8 mm pitch)"),
     Field("sag", "float", "installed sag of the slack span as a fraction of its length "
@@ -299,6 +303,12 @@ CHAIN_FIELDS: tuple[Field, ...] = (
           "[DiamondChainTension]); 0.1 %, a tenth of the tightest, is a chain laid out taut, "
           "whose sag tension F₀ = q·g·a/(8s) would pass 125 times the weight of the span; at "
           "most 10 %: the shallow-sag (parabolic) catenary [Irvine1981]"),
+    Field("sag_allowance", "float", "installed centre distance shortened by this fraction of "
+          "the centre distance of the adjustable sprocket (to the driver) so that the slack "
+          "span sags, e.g. 0.003 for 0.3 % (default: none; not with sag)", minimum=0.0,
+          maximum=0.01, exclusive_minimum=True, example="0.003",
+          reason="textbooks shorten it by 0.2 to 0.4 % [ChainDesignRU, §7] (0.2 % "
+          "[Bhandari2010, ex. 14.4]); 1 % is 2.5 times the largest"),
     Field("link_stiffness", "stiffness", "measured axial stiffness of one link (one pitch) of "
           "the whole chain, all strands, e.g. F/(ε·p) from the maker's elastic-elongation "
           "curve (default: computed from the plates and the pin, the contact of pin, bush "
@@ -347,6 +357,23 @@ SPROCKET_FIELDS: tuple[Field, ...] = (
           "[dynamics] resistance)", choices=LOAD_LAWS),
     Field("train", "tables", "the open train on its shaft, outward from the sprocket: "
           "[[sprockets.train]] tables (below)"),
+    Field("bore", "length", "bore of the sprocket on its drawing (default: the body model's "
+          "0.19·z·p/π, said on the drawing)", minimum=0.006, maximum=0.5, exclusive_minimum=True,
+          example="32 mm", reason="over 6 mm up to 500 mm: the ISO 286 tolerance table and the "
+          "DIN 6885-1 key table (over 6 mm up to 230 mm with a keyway)"),
+    Field("bore_fit", "choice", "ISO 286 hole-basis class of the bore", default="H7",
+          choices=BORE_FITS),
+    Field("keyway", "bool", "the bore has a DIN 6885-1 / ISO 773 hub keyway (false: the "
+          "drawing says no keyway)", default=True),
+    Field("hardening", "str", 'heat-treatment note of the drawing, e.g. "teeth induction '
+          'hardened 45…50 HRC" (default: the drawing says none is given)'),
+    Field("bearing_1", "length", "axial position of the shaft's first bearing from the "
+          "sprocket's mid-plane, signed along the shaft (with bearing_2: the bearing "
+          "reactions to the shaft load)", minimum=-5.0, maximum=5.0, example="-40 mm",
+          reason="±5 m: beyond the shafts of chain drives"),
+    Field("bearing_2", "length", "axial position of the second bearing (see bearing_1; at "
+          "least 1 mm from it)", minimum=-5.0, maximum=5.0, example="60 mm",
+          reason="±5 m: beyond the shafts of chain drives"),
 )
 TRAIN_FIELDS: tuple[Field, ...] = (
     Field("kind", "choice", "shaft or coupling: a torsional spring to a new node; gear: a "
@@ -623,8 +650,9 @@ def parse_field(f: Field, value: Any, path: str) -> Any:
         return value
     if f.kind == "links" and isinstance(value, str):
         if value not in ROUNDINGS:
-            raise DesignError(path, f'must be a whole number, "round up" or "round down", '
-                              f"got {shown(value)}" + did_you_mean(value[:MAX_NAME], ROUNDINGS))
+            raise DesignError(path, f'must be a whole number, "round up", "round down" or '
+                              f'"nearest", got {shown(value)}'
+                              + did_you_mean(value[:MAX_NAME], ROUNDINGS))
         return value
     if f.kind in ("int", "links"):
         if isinstance(value, bool) or not isinstance(value, int):
@@ -888,6 +916,18 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                               f"applies to driven sprockets only (this one is {v['role']}), "
                               f"got {v['load']!r}")
         catalog.find_material(v["material"], field=f"sprockets[{i}].material")
+        b1, b2 = v.pop("bearing_1"), v.pop("bearing_2")
+        if (b1 is None) != (b2 is None):
+            raise DesignError(f"sprockets[{i}].{'bearing_2' if b2 is None else 'bearing_1'}",
+                              "is missing: give both bearing positions or neither")
+        if b1 is not None and abs(b2 - b1) < 1e-3:
+            raise DesignError(f"sprockets[{i}].bearing_2", f"{b2 * 1e3:g} mm is within 1 mm "
+                              f"of bearing_1 ({b1 * 1e3:g} mm); allowed: two distinct bearings")
+        v["bearings"] = None if b1 is None else (b1, b2)
+        if v["bore"] is not None and v["keyway"] and v["bore"] > KEYWAY_MAX_BORE:
+            raise DesignError(f"sprockets[{i}].bore", f"{v['bore'] * 1e3:g} mm is beyond the "
+                              f"DIN 6885-1 key table (up to {KEYWAY_MAX_BORE * 1e3:g} mm); "
+                              "allowed: a smaller bore, or keyway = false")
         sprockets.append(Sprocket(**v))
     drivers = [i for i, s in enumerate(sprockets) if s.role == "driver"]
     if not drivers:
@@ -912,7 +952,8 @@ def drive_from_mapping(data: Mapping[str, Any], base_dir: Path | None = None, *,
                   allow_odd=chain_values["allow_odd"], request=request,
                   contours=chain_values["contours"],
                   rounding=links if isinstance(links, str) else "round up",
-                  sag=chain_values["sag"], link_stiffness=chain_values["link_stiffness"])
+                  sag=chain_values["sag"], link_stiffness=chain_values["link_stiffness"],
+                  sag_allowance=chain_values["sag_allowance"])
     drive = Drive(name=drive_values["name"], chain=chain, sprockets=tuple(sprockets),
                   power=drive_values["power"], tooth_form=tooth_form,
                   service_factor=drive_values["service_factor"], dynamics=dynamics,
@@ -1075,6 +1116,8 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
         chain["links"] = drive.chain.rounding
     if drive.chain.sag is not None:
         chain["sag"] = drive.chain.sag
+    if drive.chain.sag_allowance is not None:
+        chain["sag_allowance"] = drive.chain.sag_allowance
     if drive.chain.link_stiffness is not None:
         chain["link_stiffness"] = _q(drive.chain.link_stiffness, 1.0, "N/m")
     if drive.chain.allow_odd:
@@ -1157,6 +1200,16 @@ def _sprocket_table(s: Sprocket) -> dict[str, Any]:
         t["load"] = s.load
     if s.train:
         t["train"] = [_train_table(e) for e in s.train]
+    if s.bore is not None:
+        t["bore"] = _q(s.bore, 1e3, "mm")
+    if s.bore_fit != "H7":
+        t["bore_fit"] = s.bore_fit
+    if not s.keyway:
+        t["keyway"] = False
+    if s.hardening is not None:
+        t["hardening"] = s.hardening
+    if s.bearings is not None:
+        t["bearing_1"], t["bearing_2"] = (_q(z, 1e3, "mm") for z in s.bearings)
     return t
 
 

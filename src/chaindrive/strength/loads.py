@@ -27,9 +27,23 @@ from chaindrive.geometry.sag import DEFAULT_SAG_RATIO
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import Drive
 
-__all__ = ["DEFAULT_SAG_RATIO", "G", "LoadsResult", "centrifugal_tension", "hinge_pressure",
-           "installed_sag_ratio", "loads_of", "peripheral_force", "power_shares", "sag_factor", "sag_tension",
-           "shaft_load_vectors", "small_sprocket", "span_tensions"]
+__all__ = [
+    "DEFAULT_SAG_RATIO",
+    "G",
+    "LoadsResult",
+    "bearing_loads",
+    "centrifugal_tension",
+    "hinge_pressure",
+    "installed_sag_ratio",
+    "loads_of",
+    "peripheral_force",
+    "power_shares",
+    "sag_factor",
+    "sag_tension",
+    "shaft_load_vectors",
+    "small_sprocket",
+    "span_tensions",
+]
 
 G = 9.80665  # standard gravity [m/s²]
 SHARE_TOLERANCE = 1e-6
@@ -323,6 +337,9 @@ class LoadsResult:
         (n, 2) load vector on each shaft [N].
     warnings : tuple of ChainDriveWarning
         What the balance found.
+    bearing_loads : tuple
+        Per sprocket, the load vectors its two bearings carry ((x, y), (x, y)) [N], or None
+        where the design gives no bearing positions (:func:`bearing_loads`).
     """
 
     speed: float
@@ -337,6 +354,7 @@ class LoadsResult:
     tight_span: int
     shaft_loads: tuple[tuple[float, float], ...]
     warnings: tuple[ChainDriveWarning, ...] = field(default=())
+    bearing_loads: tuple[tuple[tuple[float, float], tuple[float, float]] | None, ...] = ()
 
     @property
     def shaft_load_magnitudes(self) -> tuple[float, ...]:
@@ -365,7 +383,40 @@ class LoadsResult:
             "shaft_loads_n": list(self.shaft_load_magnitudes),
             "shaft_load_vectors_n": [list(v) for v in self.shaft_loads],
             "shaft_load_directions_deg": [math.degrees(a) for a in self.shaft_load_directions],
+            "bearing_load_vectors_n": [None if b is None else [list(b[0]), list(b[1])]
+                                       for b in self.bearing_loads],
+            "bearing_loads_n": [None if b is None else [math.hypot(*b[0]), math.hypot(*b[1])]
+                                for b in self.bearing_loads],
         }
+
+
+def bearing_loads(shaft_load: tuple[float, float], z1: float, z2: float
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The loads two bearings at z1 and z2 carry from a shaft load F at z = 0 (the
+    sprocket's mid-plane): the statics of a shaft on two simple supports, R1 = F·z2/(z2 − z1),
+    R2 = −F·z1/(z2 − z1) (R1 + R2 = F, R1·z1 + R2·z2 = 0). Between the bearings both carry
+    a part of F in its direction; an overhung sprocket loads the nearer bearing by more than
+    F and the farther one the other way.
+
+    Parameters
+    ----------
+    shaft_load : tuple of float
+        F (x, y) [N].
+    z1, z2 : float
+        Axial positions of the bearings from the sprocket's mid-plane [m], z1 ≠ z2.
+
+    Returns
+    -------
+    tuple
+        ((R1x, R1y), (R2x, R2y)) [N], in the direction of the load the bearing carries.
+
+    References
+    ----------
+    [Shigley2015] (statics of a simply supported shaft).
+    """
+    fx, fy = shaft_load
+    k1, k2 = z2 / (z2 - z1), -z1 / (z2 - z1)
+    return (k1 * fx, k1 * fy), (k2 * fx, k2 * fy)
 
 
 def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
@@ -456,6 +507,9 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None 
         sag_factor=kf, span_tensions=tuple(float(t) for t in tensions), slack_span=slack,
         tight_span=tight, shaft_loads=tuple((float(x), float(y)) for x, y in shafts),
         warnings=tuple(warnings),
+        bearing_loads=tuple(None if s.bearings is None
+                            else bearing_loads((float(f[0]), float(f[1])), *s.bearings)
+                            for s, f in zip(drive.sprockets, shafts, strict=True)),
     )
 
 
