@@ -26,6 +26,7 @@ from chaindrive.cli.threads import limit_blas_threads
 from chaindrive.display import RPM_PER_RAD_S, convert, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
+from chaindrive.io.finite import check_document, check_rows
 from chaindrive.units import MAX_TEXT, shown
 
 if TYPE_CHECKING:
@@ -86,21 +87,10 @@ def _fmt(value: Any) -> str:
 
 
 def _write_json(document: dict[str, Any]) -> None:
-    """Print one JSON document; a NaN or infinity in it is a bug, named by its path."""
-    _check_finite(document, "")
+    """Print one JSON document; a NaN or infinity in it is a computation that did not
+    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path."""
+    check_document(document)
     sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
-
-
-def _check_finite(value: Any, path: str) -> None:
-    """Raise ``ArithmeticError`` naming the first non-finite number in ``value``."""
-    if isinstance(value, float) and not np.isfinite(value):
-        raise ArithmeticError(f"the result holds {value} at {path or 'the top'}")
-    if isinstance(value, dict):
-        for k, v in value.items():
-            _check_finite(v, f"{path}.{k}" if path else str(k))
-    elif isinstance(value, list | tuple):
-        for i, v in enumerate(value):
-            _check_finite(v, f"{path}[{i}]")
 
 
 @app.command()
@@ -127,6 +117,7 @@ def analyze(
     if as_json:
         _write_json(document)
         return
+    check_document(document)
     tables.print_analysis(document, result.checks(), system, quick=quick)
 
 
@@ -154,6 +145,7 @@ def select(
     if as_json:
         _write_json(doc)
         return
+    check_document(doc)
     tables.print_selection(doc, system)
 
 
@@ -292,8 +284,11 @@ def _csv_suffix(path: Path) -> None:
 
 
 def _write_csv(path: Path, header: list[str], rows: NDArray[np.float64]) -> None:
-    """Write a table atomically (:func:`chaindrive.io.atomic.write_text`)."""
+    """Write a table atomically (:func:`chaindrive.io.atomic.write_text`); a NaN or infinity
+    in it is a computation that did not converge, and nothing is written."""
     import io
+
+    check_rows(path.name, header, rows)
 
     buffer = io.StringIO()
     buffer.write(",".join(header) + "\n")
@@ -339,6 +334,7 @@ def report(
     with user_errors():
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
+        check_document(result.to_dict())  # the report shows these numbers
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
                                 units=unit_system(units))
@@ -365,6 +361,7 @@ def draw(
 
     with user_errors():
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        check_document(analysis.to_dict())  # the numbers the drawing dimensions
         path = write_drawing(analysis, output, sprocket=sprocket)
     if as_json:
         _write_json({"drawing": str(path.resolve())})
