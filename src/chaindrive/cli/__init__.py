@@ -515,6 +515,11 @@ def robust(
         # the options obey the rules of their [uncertainty] fields, before any work
         changes = robust_options(samples=samples, seed=seed, wear=wear,
                                  sensitivity_budget=sensitivity_budget)
+        if modal and (db, scheduler, workers) != (None, None, None):
+            option = "--db" if db is not None else (
+                "--scheduler" if scheduler is not None else "--workers")
+            raise DesignError(option, "applies to the full study, not to --modal (the batched "
+                              "modal path runs in this process, in seconds, and stores nothing)")
         nominal, settings = load_robust(file)
         settings = dc_replace(settings, **changes)
         evaluator = None

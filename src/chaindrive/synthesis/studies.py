@@ -33,14 +33,18 @@ import copy
 import hashlib
 import itertools
 import json
+import logging
 import re
+import signal
 import threading
+import time
 import traceback
 import uuid
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from contextlib import suppress
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -56,7 +60,7 @@ from sqlalchemy import (
     create_engine,
     select,
 )
-from sqlalchemy.exc import IntegrityError
+from sqlalchemy.exc import DBAPIError, IntegrityError
 
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping
@@ -68,8 +72,8 @@ from chaindrive.units import registry
 if TYPE_CHECKING:  # distributed is imported where a study runs: `-X importtime` 1.2–1.4 s
     from distributed import Client, Future, LocalCluster
 
-__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "dask_evaluator", "evaluate_design",
-           "input_key",
+__all__ = ["LOST_WORKERS_SECONDS", "DaskEvaluator", "LostWorkersError", "StudyResult",
+           "StudyStore", "dask_evaluator", "evaluate_design", "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
@@ -78,6 +82,10 @@ DEFAULT_DB = "sqlite:///chaindrive-study.db"
 StudyFunction = Callable[[Mapping[str, Any]], Mapping[str, Any]]
 #: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
 RESUBMITS = 3
+#: How long a study waits for a cluster that has no worker [s] before it stops
+#: (:class:`LostWorkersError`): a LocalCluster's nanny restarts a lost worker in about 2 s, and an
+#: external scheduler's workers reconnect within their own 30 s connect timeout.
+LOST_WORKERS_SECONDS = 60.0
 _META = MetaData()
 EVALUATIONS = Table(
     "evaluations", _META,
@@ -89,6 +97,23 @@ EVALUATIONS = Table(
     Column("created", DateTime, nullable=False),
     UniqueConstraint("study", "key", name="one_evaluation_per_key"),
 )
+
+
+def _reason(exc: BaseException) -> str:
+    """The first line of a database error's cause, with its type."""
+    reason = str(getattr(exc, "orig", None) or exc).splitlines()
+    return f"{type(exc).__name__}: {(reason or [''])[0][:200]}"
+
+
+def _new_sqlite_file(engine: Any) -> Path | None:
+    """The file of a SQLite URL when it does not exist yet (this store will create it)."""
+    if engine.url.get_backend_name() != "sqlite":
+        return None
+    name = engine.url.database or ""
+    if not name or name == ":memory:" or name.startswith("file:"):
+        return None
+    path = Path(name)
+    return None if path.exists() else path
 
 
 def _json(value: Any) -> str:
@@ -128,18 +153,59 @@ class StudyStore:
     ----------
     url : str
         SQLAlchemy URL (``sqlite:///study.db``, ``postgresql+psycopg://…``); a URL that
-        cannot be opened is one :class:`DesignError` line (field ``db``).
+        cannot be opened is one :class:`DesignError` line (field ``db``), and a SQLite file
+        it created on the way is removed.
+
+    A write that fails (a full disk, a read-only file) is one :class:`DesignError` line
+    too: the evaluations stored before it stay, so the same command resumes once the cause
+    is gone; a SQLite file this store created and could not write a single evaluation to is
+    removed (no new file is left by a study that stored nothing).
     """
 
     def __init__(self, url: str = DEFAULT_DB) -> None:
+        self.url = url
+        self._created: Path | None = None
         try:
             self.engine = create_engine(url)
+            self._created = _new_sqlite_file(self.engine)
             _META.create_all(self.engine)
         except Exception as exc:  # sqlalchemy raises several types for a bad URL or file
-            reason = str(getattr(exc, "orig", None) or exc).splitlines()[0][:200]
+            self.discard_if_new()
             raise DesignError("db", f"cannot open the study database {url[:200]!r} "
-                              f"({type(exc).__name__}: {reason})") from None
-        self.url = url
+                              f"({_reason(exc)})") from None
+
+    def discard_if_new(self) -> None:
+        """Remove the SQLite file this store created when it holds no evaluation (a study
+        that stopped before it stored anything leaves no new file)."""
+        path, self._created = self._created, None
+        if path is None:
+            return
+        with suppress(Exception):
+            if path.exists() and self.holds_any():
+                return
+        with suppress(Exception):
+            self.engine.dispose()
+        for leftover in (path, path.with_name(path.name + "-journal")):
+            with suppress(OSError):
+                leftover.unlink()
+
+    def holds_any(self) -> bool:
+        """True when the database holds an evaluation of any study.
+
+        Returns
+        -------
+        bool
+        """
+        with self.engine.connect() as con:
+            return con.execute(select(EVALUATIONS.c.id).limit(1)).first() is not None
+
+    def _write_failed(self, exc: BaseException) -> DesignError:
+        """The one line of a write that failed (the file removed when this store created it
+        and it holds nothing)."""
+        self.discard_if_new()
+        return DesignError("db", f"cannot write to the study database {self.url[:200]!r} "
+                           f"({_reason(exc)}); the evaluations stored before stay in it: "
+                           "remove the cause and run the same command again to resume")
 
     def keys(self, study: str) -> set[str]:
         """Keys already stored for ``study``.
@@ -211,6 +277,10 @@ class StudyStore:
                          "created": now} for k, (x, r) in fresh.items()])
         except IntegrityError:  # another client stored some meanwhile: one by one
             return sum(self.put(study, k, x, r) for k, (x, r) in fresh.items())
+        except (DBAPIError, OSError) as exc:  # a full disk, a read-only file, a lost server
+            raise self._write_failed(exc) from None
+        if fresh:
+            self._created = None  # holds evaluations now: kept for a resume
         return len(fresh)
 
     def get_keys(self, study: str, keys: Sequence[str]) -> set[str]:
@@ -350,8 +420,9 @@ def _client(scheduler: str | None, n_workers: int | None
     for attempt in (1, 2):
         cluster = None
         try:
-            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=":0")
+            with _workers_ignore_sigint():
+                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1,
+                                       processes=True, dashboard_address=":0")
             return Client(cluster), cluster
         except Exception:
             if cluster is not None:
@@ -359,6 +430,39 @@ def _client(scheduler: str | None, n_workers: int | None
             if attempt == 2:
                 raise
     raise AssertionError("unreachable")
+
+
+@contextmanager
+def _workers_ignore_sigint() -> Iterator[None]:
+    """Start worker processes with SIGINT ignored (they inherit it), so that Ctrl-C in the
+    terminal reaches only this process, which closes the cluster; a worker's own
+    KeyboardInterrupt traceback is not printed among the one line of the interrupt. In the
+    main thread only (where Python sets handlers)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+@contextmanager
+def quiet_shutdown() -> Iterator[None]:
+    """Silence Dask's and Tornado's logging while a cluster shuts down: closing it with
+    tasks running (an error, an interrupt) logs the cancelled tasks and lost connections,
+    tens of lines around the one line of the command."""
+    names = ("distributed", "tornado", "asyncio")
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for lg, level in zip(loggers, levels, strict=True):
+            lg.setLevel(level)
 
 
 class _Watchdog:
@@ -428,11 +532,56 @@ def _submit(client: Client, func: Callable[[Any], Any], items: list[tuple[str, A
     return client.submit(_chunk, func, items, key=key, pure=False)
 
 
+def _workers(client: Client) -> int:
+    """How many workers the scheduler has now (0 when it cannot be asked)."""
+    try:
+        return len(client.scheduler_info(n_workers=-1)["workers"])
+    except Exception:  # the scheduler itself is gone
+        return 0
+
+
+def _batches(client: Client, pending: Any, lost_after: float) -> Iterable[list[Any]]:
+    """The finished futures of ``pending`` as they arrive; :class:`LostWorkersError` when the
+    cluster has had no worker for ``lost_after`` seconds (Dask would wait for ever)."""
+    alone_since: float | None = None
+    while not pending.is_empty():
+        if pending.has_ready():
+            alone_since = None
+            yield pending.next_batch(block=False)
+            continue
+        now = time.monotonic()
+        if _workers(client) > 0:
+            alone_since = None
+        elif alone_since is None:
+            alone_since = now
+        elif now - alone_since >= lost_after:
+            raise LostWorkersError(lost_after)
+        time.sleep(0.2)
+
+
+class LostWorkersError(ChainDriveError):
+    """The cluster lost every worker and none came back within the timeout.
+
+    Parameters
+    ----------
+    seconds : float
+        How long it had no worker [s].
+    """
+
+    def __init__(self, seconds: float) -> None:
+        self.seconds = seconds
+        super().__init__(f"scheduler: the Dask cluster has had no worker for {seconds:g} s; "
+                         "the study stopped (the evaluations finished are stored: start "
+                         "workers and run the same command again to resume)")
+
+
 def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
-                 store: StudyStore, bar: Any, task: Any, chunk: int | None) -> int:
+                 store: StudyStore, bar: Any, task: Any, chunk: int | None,
+                 lost_after: float | None = None) -> int:
     """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
     stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
-    failure is raised after the finished evaluations are stored."""
+    failure is raised after the finished evaluations are stored; a cluster without a worker
+    for ``lost_after`` seconds ends the study (:class:`LostWorkersError`)."""
     from distributed import as_completed
 
     run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
@@ -443,7 +592,8 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
     pending = as_completed(list(chunks))
     computed = 0
     try:
-        for batch in pending.batches():
+        for batch in _batches(client, pending,
+                              LOST_WORKERS_SECONDS if lost_after is None else lost_after):
             failure: BaseException | None = None
             rows: list[tuple[str, Any, Any]] = []
             for fut in batch:
@@ -473,7 +623,8 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
 def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Client | None = None, n_workers: int | None = None,
-              progress: bool | None = None, chunk: int | None = None) -> StudyResult:
+              progress: bool | None = None, chunk: int | None = None,
+              lost_after: float | None = None) -> StudyResult:
     """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
     key is stored are not recomputed.
 
@@ -498,6 +649,9 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
         Progress bar (None: only on a terminal).
     chunk : int | None
         Evaluations per Dask task (None: by the number of workers, :func:`_chunk_size`).
+    lost_after : float | None
+        Seconds without a worker after which the study stops with :class:`LostWorkersError`
+        (None: :data:`LOST_WORKERS_SECONDS`).
 
     Returns
     -------
@@ -522,14 +676,19 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
         try:
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
-                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk)
+                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk,
+                                        lost_after)
+        except BaseException:
+            store.discard_if_new()
+            raise
         finally:
             if own:
                 if watchdog is not None:
                     watchdog.stop()
-                client.close()
-                if cluster is not None:
-                    cluster.close()
+                with quiet_shutdown():
+                    client.close()
+                    if cluster is not None:
+                        cluster.close()
     stored = store.get(study, keys)
     return StudyResult(study, tuple(stored.get(k) for k in keys), computed,
                        len(keys) - len(todo))
@@ -740,11 +899,16 @@ class DaskEvaluator:
         Progress bar (None: only on a terminal).
     n_workers : int | None
         Workers of the LocalCluster (None: Dask's default).
+    lost_after : float | None
+        Seconds without a worker after which the study stops (:class:`LostWorkersError`;
+        None: :data:`LOST_WORKERS_SECONDS`).
     """
 
     def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
                  scheduler: str | None = None, client: Client | None = None,
-                 progress: bool | None = False, n_workers: int | None = None) -> None:
+                 progress: bool | None = False, n_workers: int | None = None,
+                 lost_after: float | None = None) -> None:
+        self.lost_after = lost_after
         self.store = db if isinstance(db, StudyStore) else StudyStore(db)
         self.study = study
         self.scheduler = scheduler
@@ -772,7 +936,7 @@ class DaskEvaluator:
         name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
         res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
-                        client=self.client, progress=self.progress)
+                        client=self.client, progress=self.progress, lost_after=self.lost_after)
         out = []
         for r in res.results:
             e = r["evaluation"]
@@ -786,9 +950,10 @@ class DaskEvaluator:
             if self._watchdog is not None:
                 self._watchdog.stop()
                 self._watchdog = None
-            self._client.close()
-            if self._cluster is not None:
-                self._cluster.close()
+            with quiet_shutdown():
+                self._client.close()
+                if self._cluster is not None:
+                    self._cluster.close()
             self._client = self._cluster = None
 
     def __enter__(self) -> DaskEvaluator:
