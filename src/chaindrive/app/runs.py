@@ -450,7 +450,7 @@ def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLev
     LinkLevelView
     """
     return run_bounded(link_level_view, drive, duration_s, seconds=FULL_SECONDS,
-                       what="the link-level model")
+                       what="the link-level model", heavy=True)
 
 
 def bounded_robust_study(drive: Drive) -> RobustResult:
@@ -467,4 +467,4 @@ def bounded_robust_study(drive: Drive) -> RobustResult:
         The life curve, probabilities of failure and sensitivity indices.
     """
     return run_bounded(robust_study, drive, seconds=FULL_SECONDS,
-                       what="the life and reliability study")
+                       what="the life and reliability study", heavy=True)
