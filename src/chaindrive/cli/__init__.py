@@ -402,11 +402,13 @@ def optimize(
             # s each)
             from chaindrive.synthesis.studies import DEFAULT_DB, dask_evaluator
 
-            evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+            evaluator = dask_evaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=False)
         designs = problem.solver.population * problem.solver.generations
         try:
             with progress_bar("optimising: designs evaluated", total=designs,
                               quiet=as_json) as advance:
+                if evaluator is not None:  # the bar moves as each chunk of designs is stored
+                    evaluator.on_stored = _steps(advance)
                 result = solve(problem, seed=seed, evaluator=_counted(evaluator, advance))
         finally:
             if evaluator is not None:
@@ -423,10 +425,20 @@ def optimize(
                               [*written, *([] if plot is None else [str(plot)])])
 
 
+def _steps(advance: Callable[[str | None], None]) -> Callable[[int], None]:
+    """A callback moving the bar ``n`` steps at once."""
+    def moved(n: int) -> None:
+        for _ in range(n):
+            advance(None)
+
+    return moved
+
+
 def _counted(evaluator: Callable[[Any, Any], list[Any]] | None,
              advance: Callable[[str | None], None]) -> Callable[[Any, Any], list[Any]]:
     """The optimiser's batch evaluator that moves the progress bar one step a design: in this
-    process design by design, on a cluster batch by batch."""
+    process design by design, on a cluster chunk by chunk as they are stored
+    (``on_stored`` of the evaluator; designs found stored are not counted)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.synthesis.solve import serial_evaluator
 
@@ -438,8 +450,9 @@ def _counted(evaluator: Callable[[Any, Any], list[Any]] | None,
                 advance(None)
             return out
         batch = evaluator(problem, xs)
-        for _ in batch:
-            advance(None)
+        if getattr(evaluator, "on_stored", None) is None:  # else moved as chunks are stored
+            for _ in batch:
+                advance(None)
         return batch
 
     return counted

@@ -22,6 +22,10 @@ populations on Dask, stored in a study database.
   Dask's nanny gives up on a worker (it was lost again while it restarted), a watchdog
   re-creates it, so a LocalCluster never runs out of workers.
 * A rich progress bar while it runs, silent when the output is not a terminal.
+* Failing cleanly: a cluster without a worker for :data:`LOST_WORKERS_SECONDS` ends the
+  study (:class:`LostWorkersError`, one line; it resumes from the database); the workers of
+  a local cluster log errors only and write their stderr to :data:`WORKER_LOG`, and Dask's
+  logging is silenced while a cluster shuts down, so an interrupt is one line.
 
 Compute functions receive one JSON-ready input mapping and return a JSON-ready mapping;
 they must be importable by the workers (module-level functions of an installed package).
@@ -34,8 +38,10 @@ import hashlib
 import itertools
 import json
 import logging
+import os
 import re
-import signal
+import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -420,9 +426,12 @@ def _client(scheduler: str | None, n_workers: int | None
     for attempt in (1, 2):
         cluster = None
         try:
-            with _workers_ignore_sigint():
+            with _workers_stderr_to_log():
+                # the workers log errors only: a task cancelled at an interrupt or an error
+                # is a warning of each worker process, lines around the command's one line
                 cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1,
-                                       processes=True, dashboard_address=":0")
+                                       processes=True, dashboard_address=":0",
+                                       silence_logs=logging.ERROR)
             return Client(cluster), cluster
         except Exception:
             if cluster is not None:
@@ -432,20 +441,32 @@ def _client(scheduler: str | None, n_workers: int | None
     raise AssertionError("unreachable")
 
 
+#: Where the worker processes of a local cluster write their stderr (appended).
+WORKER_LOG = Path(tempfile.gettempdir()) / "chaindrive-dask-workers.log"
+
+
 @contextmanager
-def _workers_ignore_sigint() -> Iterator[None]:
-    """Start worker processes with SIGINT ignored (they inherit it), so that Ctrl-C in the
-    terminal reaches only this process, which closes the cluster; a worker's own
-    KeyboardInterrupt traceback is not printed among the one line of the interrupt. In the
-    main thread only (where Python sets handlers)."""
-    if threading.current_thread() is not threading.main_thread():
+def _workers_stderr_to_log() -> Iterator[None]:
+    """Start a cluster's worker processes with their stderr in :data:`WORKER_LOG`: they
+    inherit the file descriptor 2 of this process when they start, which is the log while
+    the block runs. Ctrl-C in a terminal reaches the workers too, and each printed its own
+    KeyboardInterrupt traceback among the one line of the interrupt (3 times in 10). The
+    signals are left alone: an interrupt while the cluster starts is not lost."""
+    try:
+        log = os.open(WORKER_LOG, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+    except OSError:  # no log: the workers write where this process does
         yield
         return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    with suppress(OSError, ValueError):
+        sys.stderr.flush()
+    saved = os.dup(2)
     try:
+        os.dup2(log, 2)
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(log)
 
 
 @contextmanager
@@ -577,7 +598,8 @@ class LostWorkersError(ChainDriveError):
 
 def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
                  store: StudyStore, bar: Any, task: Any, chunk: int | None,
-                 lost_after: float | None = None) -> int:
+                 lost_after: float | None = None,
+                 on_stored: Callable[[int], None] | None = None) -> int:
     """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
     stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
     failure is raised after the finished evaluations are stored; a cluster without a worker
@@ -613,6 +635,8 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
                 failure = failure or exc
             computed += store.put_many(study, rows)
             bar.advance(task, len(rows))
+            if on_stored is not None and rows:
+                on_stored(len(rows))
             if failure is not None:
                 raise failure
     finally:
@@ -624,7 +648,8 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Client | None = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None,
-              lost_after: float | None = None) -> StudyResult:
+              lost_after: float | None = None,
+              on_stored: Callable[[int], None] | None = None) -> StudyResult:
     """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
     key is stored are not recomputed.
 
@@ -652,6 +677,9 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
     lost_after : float | None
         Seconds without a worker after which the study stops with :class:`LostWorkersError`
         (None: :data:`LOST_WORKERS_SECONDS`).
+    on_stored : callable | None
+        Called with the number of evaluations each time a batch of them is stored (a
+        progress bar of the caller's; the evaluations found stored are not counted).
 
     Returns
     -------
@@ -677,7 +705,7 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
                 computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk,
-                                        lost_after)
+                                        lost_after, on_stored)
         except BaseException:
             store.discard_if_new()
             raise
@@ -902,13 +930,18 @@ class DaskEvaluator:
     lost_after : float | None
         Seconds without a worker after which the study stops (:class:`LostWorkersError`;
         None: :data:`LOST_WORKERS_SECONDS`).
+    on_stored : callable | None
+        Called with the number of evaluations each time a batch of them is stored (as
+        :func:`run_study`): progress within a generation.
     """
 
     def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
                  scheduler: str | None = None, client: Client | None = None,
                  progress: bool | None = False, n_workers: int | None = None,
-                 lost_after: float | None = None) -> None:
+                 lost_after: float | None = None,
+                 on_stored: Callable[[int], None] | None = None) -> None:
         self.lost_after = lost_after
+        self.on_stored = on_stored
         self.store = db if isinstance(db, StudyStore) else StudyStore(db)
         self.study = study
         self.scheduler = scheduler
@@ -936,7 +969,8 @@ class DaskEvaluator:
         name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
         res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
-                        client=self.client, progress=self.progress, lost_after=self.lost_after)
+                        client=self.client, progress=self.progress, lost_after=self.lost_after,
+                        on_stored=self.on_stored)
         out = []
         for r in res.results:
             e = r["evaluation"]
