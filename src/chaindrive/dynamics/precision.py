@@ -12,6 +12,8 @@ spread, never answered with modes that may be round-off.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -27,7 +29,7 @@ __all__ = ["SPREAD_LIMIT", "check_spread"]
 SPREAD_LIMIT = 1e14
 
 
-def check_spread(elastic: NDArray[np.float64], field: str = "dynamics") -> None:
+def check_spread(elastic: NDArray[np.floating[Any]], field: str = "dynamics") -> None:
     """Refuse a model whose elastic eigenvalues spread beyond :data:`SPREAD_LIMIT`.
 
     Parameters
