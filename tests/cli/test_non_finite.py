@@ -206,3 +206,15 @@ def test_the_start_up_budget_bounds_a_small_model_in_time() -> None:
     steps = (WORK_BUDGET - work_estimate(4, 0)) / per_step
     assert steps * 0.9e-6 < 3.0  # [s] at the measured cost of a step
     assert work_estimate(4, 20_832_612) > WORK_BUDGET  # the 20.8 million steps: refused
+
+
+def test_the_page_never_shows_a_non_finite_analysis(monkeypatch: pytest.MonkeyPatch) -> None:
+    from chaindrive import examples
+    from chaindrive.app.runs import full_analysis
+    from chaindrive.app.worker import RunLimitError
+
+    _with_nan(monkeypatch, "chain_length_mm")
+    with pytest.raises(RunLimitError) as info:
+        full_analysis(examples.load("seed_three_sprocket"))
+    assert str(info.value).startswith("The dynamic analysis did not converge (inf at "
+                                      "geometry.chain_length_mm)")

@@ -22,10 +22,12 @@ from chaindrive.app.views import Screen, recompute, screens
 from chaindrive.app.worker import (
     FULL_SECONDS,
     INTERACTIVE_SECONDS,
+    RunLimitError,
     run_bounded,
     run_bounded_steps,
 )
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.io.finite import NonFiniteError, check_document
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -90,9 +92,20 @@ def full_analysis(drive: Drive) -> Analysis:
     Returns
     -------
     Analysis
-    """
 
-    return chaindrive.analyze(drive)
+    Raises
+    ------
+    RunLimitError
+        A sentence, when the analysis holds a NaN or an infinity (it did not converge).
+    """
+    analysis = chaindrive.analyze(drive)
+    try:  # the page shows these numbers: never a NaN or an infinity
+        check_document(analysis.to_dict())
+    except NonFiniteError as exc:
+        raise RunLimitError(f"The dynamic analysis did not converge ({exc}); the design is "
+                            "within the allowed ranges, so this is a defect of the program: "
+                            "please report it with the design file.") from None
+    return analysis
 
 
 def robust_study(drive: Drive, *, samples: int = 64) -> RobustResult:
