@@ -92,7 +92,8 @@ def test_light_runs_answer_while_heavy_runs_go_and_a_session_has_one(tmp_path: P
         Path(flag).touch()
         for t in threads:
             t.join(60)
-    assert results == {"s1": HEAVY_NICE, "s2": HEAVY_NICE}  # heavy workers ran at niceness 10
+    lowered = min(os.nice(0) + HEAVY_NICE, 19)  # 10 below this process (19 is the lowest)
+    assert results == {"s1": lowered, "s2": lowered}  # heavy workers ran at lower priority
     # light sessions keep their usual time (the heavy processes yield the cores to them);
     # the margin covers the noise of a machine shared with other work
     print(f"light run: {baseline:.3f} s alone, {during:.3f} s beside two heavy runs")

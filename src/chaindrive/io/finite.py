@@ -31,7 +31,7 @@ class NonFiniteError(ArithmeticError):
         The path of the number (``"startup.span_forces_n[3]"``, ``"out.csv, row 120, column
         'span_S1-S2_n'"``).
     value : float
-        The number (NaN, +inf or -inf).
+        The number, NaN, +inf or -inf [the unit of its place].
     """
 
     def __init__(self, where: str, value: float) -> None:
@@ -92,7 +92,7 @@ def check_rows(name: str, header: Sequence[str], rows: NDArray[np.float64]) -> N
     header : sequence of str
         The column names.
     rows : ndarray, shape (n, len(header))
-        The table.
+        The table [the units its header names].
 
     Raises
     ------

@@ -162,8 +162,8 @@ class StudyStore:
         cannot be opened is one :class:`DesignError` line (field ``db``), and a SQLite file
         it created on the way is removed.
 
-    A write that fails (a full disk, a read-only file) is one :class:`DesignError` line
-    too: the evaluations stored before it stay, so the same command resumes once the cause
+    A write that fails (a full disk, a read-only file) is one :class:`DesignError` line as
+    well; the evaluations stored before it stay, so the same command resumes once the cause
     is gone; a SQLite file this store created and could not write a single evaluation to is
     removed (no new file is left by a study that stored nothing).
     """
@@ -675,7 +675,7 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
     chunk : int | None
         Evaluations per Dask task (None: by the number of workers, :func:`_chunk_size`).
     lost_after : float | None
-        Seconds without a worker after which the study stops with :class:`LostWorkersError`
+        Time without a worker [s] after which the study stops with :class:`LostWorkersError`
         (None: :data:`LOST_WORKERS_SECONDS`).
     on_stored : callable | None
         Called with the number of evaluations each time a batch of them is stored (a
@@ -928,7 +928,7 @@ class DaskEvaluator:
     n_workers : int | None
         Workers of the LocalCluster (None: Dask's default).
     lost_after : float | None
-        Seconds without a worker after which the study stops (:class:`LostWorkersError`;
+        Time without a worker [s] after which the study stops (:class:`LostWorkersError`;
         None: :data:`LOST_WORKERS_SECONDS`).
     on_stored : callable | None
         Called with the number of evaluations each time a batch of them is stored (as
