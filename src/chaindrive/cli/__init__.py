@@ -421,6 +421,7 @@ def optimize(
     if as_json:
         _write_json({**doc, "files": written, "plot": None if plot is None else str(plot)})
         return
+    check_document(doc)
     tables.print_optimisation(problem.base.name, result,
                               [*written, *([] if plot is None else [str(plot)])])
 
@@ -565,6 +566,7 @@ def robust(
     if as_json:
         _write_json({**doc, "report": None if written is None else str(written.resolve())})
         return
+    check_document(doc)
     con = tables.console()
     print_robust(con, doc, tables.table)
     if written is not None:
