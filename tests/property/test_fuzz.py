@@ -226,6 +226,9 @@ def _check_case(tmp: Path, design: bytes, catalog: str | None, command: list[str
         written = work / Path(command[-1].replace("OUT", "out")).name
         assert written.stat().st_size > 0, where
         assert not [n for n in after if ".tmp" in n], where
+        if written.suffix == ".csv":  # no NaN or infinity written
+            text = written.read_text(encoding="utf-8").lower()
+            assert "nan" not in text and "inf" not in text, where
 
 
 @pytest.fixture(autouse=True)

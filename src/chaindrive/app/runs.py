@@ -22,10 +22,12 @@ from chaindrive.app.views import Screen, recompute, screens
 from chaindrive.app.worker import (
     FULL_SECONDS,
     INTERACTIVE_SECONDS,
+    RunLimitError,
     run_bounded,
     run_bounded_steps,
 )
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.io.finite import NonFiniteError, check_document
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -90,9 +92,20 @@ def full_analysis(drive: Drive) -> Analysis:
     Returns
     -------
     Analysis
-    """
 
-    return chaindrive.analyze(drive)
+    Raises
+    ------
+    RunLimitError
+        A sentence, when the analysis holds a NaN or an infinity (it did not converge).
+    """
+    analysis = chaindrive.analyze(drive)
+    try:  # the page shows these numbers: never a NaN or an infinity
+        check_document(analysis.to_dict())
+    except NonFiniteError as exc:
+        raise RunLimitError(f"The dynamic analysis did not converge ({exc}); the design is "
+                            "within the allowed ranges, so this is a defect of the program: "
+                            "please report it with the design file.") from None
+    return analysis
 
 
 def robust_study(drive: Drive, *, samples: int = 64) -> RobustResult:
@@ -450,7 +463,7 @@ def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLev
     LinkLevelView
     """
     return run_bounded(link_level_view, drive, duration_s, seconds=FULL_SECONDS,
-                       what="the link-level model")
+                       what="the link-level model", heavy=True)
 
 
 def bounded_robust_study(drive: Drive) -> RobustResult:
@@ -467,4 +480,4 @@ def bounded_robust_study(drive: Drive) -> RobustResult:
         The life curve, probabilities of failure and sensitivity indices.
     """
     return run_bounded(robust_study, drive, seconds=FULL_SECONDS,
-                       what="the life and reliability study")
+                       what="the life and reliability study", heavy=True)

@@ -19,9 +19,17 @@ fork, re-importing the page's script, the first touch of every copied page, the 
 caches cold); a warm worker answers at once.
 
 A limit that is hit becomes a :class:`RunLimitError` — a
-:class:`~chaindrive.errors.ChainDriveError`, so the page shows it as one line like any
-other mistake in a design. At most :data:`MAX_RUNS` runs go at once; a further one waits
-for a slot (within its own time limit).
+:class:`~chaindrive.errors.ChainDriveError` whose text is one sentence, so the page shows
+it as one line like any other mistake in a design. At most :data:`MAX_RUNS` runs go at
+once; a further one waits for a slot (within its own time limit).
+
+Heavy runs — the link-level model, the robust study: up to a minute of both cores — share
+a smaller pool: at most :data:`MAX_HEAVY` of them at once (a further one waits for a heavy
+slot), at most :data:`HEAVY_PER_SESSION` per session (a second one of the same session is
+refused at once), and in worker processes of their own that run at a lower CPU priority
+(:data:`HEAVY_NICE`). So the slots and the cores that the light runs need — the analysis
+after every edit, the full analysis, the report — stay theirs: the kernel's scheduler gives
+a process of niceness 10 about a tenth of a core that a process of niceness 0 wants.
 """
 
 from __future__ import annotations
@@ -38,8 +46,9 @@ from typing import Any, TypeVar
 
 from chaindrive.errors import ChainDriveError
 
-__all__ = ["FULL_SECONDS", "INTERACTIVE_SECONDS", "MAX_IDLE", "MAX_RUNS", "MEMORY_BYTES",
-           "PRELOAD", "RUNS_PER_WORKER", "RunLimitError", "run_bounded", "run_bounded_steps"]
+__all__ = ["FULL_SECONDS", "HEAVY_NICE", "HEAVY_PER_SESSION", "INTERACTIVE_SECONDS",
+           "MAX_HEAVY", "MAX_IDLE", "MAX_RUNS", "MEMORY_BYTES", "PRELOAD", "RUNS_PER_WORKER",
+           "RunLimitError", "run_bounded", "run_bounded_steps"]
 
 T = TypeVar("T")
 
@@ -54,6 +63,15 @@ FULL_SECONDS = float(os.environ.get("CHAINDRIVE_APP_FULL_SECONDS", "60"))
 MEMORY_BYTES = int(float(os.environ.get("CHAINDRIVE_APP_MEMORY_GB", "3")) * 1024**3)
 #: Runs at once (each may use up to MEMORY_BYTES).
 MAX_RUNS = 4
+#: Heavy runs at once (each also takes one of the MAX_RUNS slots): the other slots stay for
+#: the light runs.
+MAX_HEAVY = 2
+#: Heavy runs one session may have going at once.
+HEAVY_PER_SESSION = 1
+#: Niceness of the worker processes of heavy runs (Linux CFS weights: a process of
+#: niceness 10 weighs 110 against 1024 at niceness 0, so it gets about a tenth of a core
+#: that a light run wants).
+HEAVY_NICE = 10
 #: Runs a worker process serves before it is retired (a new one is forked for the next).
 RUNS_PER_WORKER = 64
 #: Idle workers kept warm at most (each holds its imported modules, about 0.2 GB resident).
@@ -71,14 +89,36 @@ PRELOAD = ["streamlit", "chaindrive.app.worker", "chaindrive.app.preload", "chai
 THREADS = {"OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
 
 _slots = threading.BoundedSemaphore(MAX_RUNS)
+_heavy_slots = threading.BoundedSemaphore(MAX_HEAVY)
 _context_lock = threading.Lock()
 _context: Any = None
-#: Idle workers by their memory limit (at most MAX_IDLE in all), guarded by _context_lock.
-_idle: dict[int, list[_Worker]] = {}
+#: Idle workers by (memory limit, niceness) (at most MAX_IDLE in all), guarded by
+#: _context_lock.
+_idle: dict[tuple[int, int], list[_Worker]] = {}
+#: Heavy runs going, by session, guarded by _context_lock.
+_heavy_runs: dict[str, int] = {}
 
 
 class RunLimitError(ChainDriveError):
-    """A run of the page passed its time or memory limit, or its process was lost."""
+    """A run of the page passed its time or memory limit, or its process was lost; or a
+    heavy run was refused (its session has one going).
+
+    Parameters
+    ----------
+    message : str
+        One sentence for the page.
+    """
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message)
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+    def __reduce__(self) -> tuple[type, tuple[str]]:
+        """Pickle by its message (it crosses from a worker process)."""
+        return type(self), (self.message,)
 
 
 def _mp() -> Any:
@@ -132,13 +172,17 @@ def _answer(conn: Connection, func: Callable[..., Any], args: tuple[Any, ...],
     return True
 
 
-def _serve(conn: Connection, memory: int) -> None:
-    """The worker process: limit its memory, then answer one request (function, arguments,
-    whether it yields steps) after another until the server closes the pipe."""
+def _serve(conn: Connection, memory: int, nice: int = 0) -> None:
+    """The worker process: limit its memory (and lower its CPU priority by ``nice``), then
+    answer one request (function, arguments, whether it yields steps) after another until
+    the server closes the pipe."""
     import resource
 
     with suppress(ValueError, OSError):  # a hard limit below ours: keep it
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    if nice:
+        with suppress(OSError):
+            os.nice(nice)
     try:
         while True:
             try:
@@ -154,12 +198,13 @@ def _serve(conn: Connection, memory: int) -> None:
 class _Worker:
     """A warm worker process and the server's end of its pipe."""
 
-    def __init__(self, memory: int) -> None:
+    def __init__(self, memory: int, nice: int = 0) -> None:
         ctx = _mp()
         self.memory = memory
+        self.nice = nice
         self.runs = 0
         self.conn, child = ctx.Pipe(duplex=True)
-        self.process = ctx.Process(target=_serve, args=(child, memory), daemon=True)
+        self.process = ctx.Process(target=_serve, args=(child, memory, nice), daemon=True)
         self.process.start()
         child.close()
 
@@ -172,16 +217,16 @@ class _Worker:
         self.process.join(5.0)
 
 
-def _worker(memory: int) -> _Worker:
-    """An idle worker with this memory limit, or a new one."""
+def _worker(memory: int, nice: int = 0) -> _Worker:
+    """An idle worker with this memory limit and niceness, or a new one."""
     with _context_lock:
-        idle = _idle.get(memory, [])
+        idle = _idle.get((memory, nice), [])
         while idle:
             worker = idle.pop()
             if worker.process.is_alive():
                 return worker
             worker.stop()
-    return _Worker(memory)
+    return _Worker(memory, nice)
 
 
 def _release(worker: _Worker) -> None:
@@ -190,13 +235,14 @@ def _release(worker: _Worker) -> None:
     with _context_lock:
         if (worker.runs < RUNS_PER_WORKER and worker.process.is_alive()
                 and sum(len(v) for v in _idle.values()) < MAX_IDLE):
-            _idle.setdefault(worker.memory, []).append(worker)
+            _idle.setdefault((worker.memory, worker.nice), []).append(worker)
             return
     worker.stop()
 
 
 def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE_SECONDS,
-                memory: int = MEMORY_BYTES, what: str = "the analysis") -> T:
+                memory: int = MEMORY_BYTES, what: str = "the analysis", heavy: bool = False,
+                session: str | None = None) -> T:
     """``func(*args)`` in a child process, killed after ``seconds`` or when it needs more
     than ``memory`` bytes of address space.
 
@@ -212,6 +258,11 @@ def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE
         Address-space limit of the child [bytes].
     what : str
         What the run is, for the message.
+    heavy : bool
+        A heavy run (module docstring: its own pool, share and priority).
+    session : str | None
+        The session it belongs to (None: the Streamlit session running this thread, else
+        this thread).
 
     Returns
     -------
@@ -225,7 +276,8 @@ def run_bounded(func: Callable[..., T], *args: Any, seconds: float = INTERACTIVE
     RuntimeError
         When the function failed unexpectedly (its message; the page shows a short note).
     """
-    results = _run(func, args, seconds, memory, what, steps=False)
+    results = _run(func, args, seconds, memory, what, steps=False,
+                   heavy=_session(session) if heavy else None)
     try:
         return next(results)  # type: ignore[no-any-return]
     finally:
@@ -261,18 +313,68 @@ def run_bounded_steps(func: Callable[..., Iterator[T]], *args: Any,
     return _run(func, args, seconds, memory, what, steps=True)
 
 
+def _session(given: str | None) -> str:
+    """The session a run belongs to: ``given``, else the Streamlit session of this thread,
+    else this thread."""
+    if given is not None:
+        return given
+    with suppress(Exception):  # outside a Streamlit script run
+        from streamlit.runtime.scriptrunner import get_script_run_ctx
+
+        ctx = get_script_run_ctx(suppress_warning=True)
+        if ctx is not None:
+            return str(ctx.session_id)
+    return f"thread-{threading.get_ident()}"
+
+
+def _take_heavy(session: str, what: str, start: float, seconds: float) -> None:
+    """Count a heavy run of ``session`` and take a heavy slot; RunLimitError (a sentence)
+    when the session has its share going, or no heavy slot frees within ``seconds``."""
+    with _context_lock:
+        going = _heavy_runs.get(session, 0)
+        if going >= HEAVY_PER_SESSION:
+            raise RunLimitError(f"{what[0].upper()}{what[1:]} was not started: this session "
+                                "already has a heavy computation running (the link-level "
+                                "model or the life and reliability study); wait for it to "
+                                "finish, then try again.")
+        _heavy_runs[session] = going + 1
+    if not _heavy_slots.acquire(timeout=max(seconds - (time.monotonic() - start), 0.0)):
+        _give_heavy(session, slot=False)
+        raise RunLimitError(f"{what[0].upper()}{what[1:]} waited {seconds:g} s for the server "
+                            f"to finish other heavy computations (it runs at most {MAX_HEAVY} "
+                            "at once); try again in a minute.")
+
+
+def _give_heavy(session: str, slot: bool = True) -> None:
+    """Undo :func:`_take_heavy`."""
+    if slot:
+        _heavy_slots.release()
+    with _context_lock:
+        left = _heavy_runs.get(session, 1) - 1
+        if left > 0:
+            _heavy_runs[session] = left
+        else:
+            _heavy_runs.pop(session, None)
+
+
 def _run(func: Callable[..., Any], args: tuple[Any, ...], seconds: float, memory: int,
-         what: str, steps: bool) -> Generator[Any, None, None]:
-    """Send the request to a worker (after a free slot), yield its results; the worker is
-    free again as soon as its last message is in (the end of a run comes right after its
-    last item, so the worker is released before that item is used)."""
+         what: str, steps: bool, heavy: str | None = None) -> Generator[Any, None, None]:
+    """Send the request to a worker (after a free slot; a heavy run, ``heavy`` its session,
+    after a heavy slot first), yield its results; the worker is free again as soon as its
+    last message is in (the end of a run comes right after its last item, so the worker is
+    released before that item is used)."""
     start = time.monotonic()
-    if not _slots.acquire(timeout=seconds):
-        raise RunLimitError("run", f"{what} waited {seconds:g} s for a free slot (the server "
-                            f"runs at most {MAX_RUNS} computations at once); try again")
+    if heavy is not None:
+        _take_heavy(heavy, what, start, seconds)
+    if not _slots.acquire(timeout=max(seconds - (time.monotonic() - start), 0.0)):
+        if heavy is not None:
+            _give_heavy(heavy)
+        raise RunLimitError(f"{what[0].upper()}{what[1:]} waited {seconds:g} s for a free "
+                            f"slot (the server runs at most {MAX_RUNS} computations at once); "
+                            "try again.")
     worker: _Worker | None = None
     try:
-        worker = _worker(memory)
+        worker = _worker(memory, HEAVY_NICE if heavy is not None else 0)
         worker.conn.send((func, args, steps))
         outcome: tuple[Any, ...] | None = _receive(worker, start, seconds, memory, what)
         while outcome is not None and outcome[0] == "ok":
@@ -294,6 +396,8 @@ def _run(func: Callable[..., Any], args: tuple[Any, ...], seconds: float, memory
         if worker is not None:  # past its time, lost, or its results closed early
             worker.stop()
         _slots.release()
+        if heavy is not None:
+            _give_heavy(heavy)
     assert outcome is not None
     _raise(outcome, memory, what)
 
@@ -311,16 +415,16 @@ def _receive(worker: _Worker, start: float, seconds: float, memory: int, what: s
              ) -> tuple[Any, ...]:
     """The worker's next message, within what is left of the run's ``seconds``."""
     if not worker.conn.poll(max(seconds - (time.monotonic() - start), 0.0)):
-        raise RunLimitError("run", f"{what} took longer than {seconds:g} s, the limit "
-                            "of one run on this page; simplify the design or run "
-                            "`chaindrive analyze` on your own machine")
+        raise RunLimitError(f"{what[0].upper()}{what[1:]} took longer than {seconds:g} s, "
+                            "the limit of one run on this page; simplify the design or run "
+                            "`chaindrive analyze` on your own machine.")
     try:
         return worker.conn.recv()  # type: ignore[no-any-return]
     except (EOFError, OSError):
         worker.process.join(5.0)
-        raise RunLimitError("run", f"{what} stopped (its process ended with status "
-                            f"{worker.process.exitcode}); it may have needed more than "
-                            f"{memory / 1024**3:.3g} GB of memory") from None
+        raise RunLimitError(f"{what[0].upper()}{what[1:]} stopped (its process ended with "
+                            f"status {worker.process.exitcode}); it may have needed more than "
+                            f"{memory / 1024**3:.3g} GB of memory.") from None
 
 
 def _raise(outcome: tuple[Any, ...], memory: int, what: str) -> None:
@@ -331,8 +435,9 @@ def _raise(outcome: tuple[Any, ...], memory: int, what: str) -> None:
     if kind == "error":
         raise outcome[1]
     if kind == "memory":
-        raise RunLimitError("run", f"{what} needed more than {memory / 1024**3:.3g} GB of "
-                            "memory, the limit of one run on this page")
+        raise RunLimitError(f"{what[0].upper()}{what[1:]} needed more than "
+                            f"{memory / 1024**3:.3g} GB of memory, the limit of one run on "
+                            "this page.")
     raise RuntimeError(f"{what} failed unexpectedly ({outcome[1]})")
 
 

@@ -184,10 +184,46 @@ def _chain_spec(designation: str, strands: int, values: dict[str, Any], where: s
     if values["pin_diameter"] >= values["roller_diameter"]:
         raise CatalogError(f"{where}, column 'pin_diameter_mm'",
                            "must be smaller than the roller diameter")
+    _check_proportions(values, where)
     try:
         return ChainSpec(designation=designation, strands=strands, **values, **text)
     except DesignError as exc:
         raise CatalogError(where, str(exc)) from None
+
+
+def _check_proportions(values: dict[str, Any], where: str) -> None:
+    """Refuse a chain whose dimensions cannot belong to one chain, with one line naming the
+    row and the column (the packaged catalogue's ratios are quoted; [ISO606]).
+
+    * the roller is narrower than the pitch: neighbouring rollers of a wider one overlap
+      (a roller of 1.07 pitches gave negative tip and root diameters); [ISO606] rollers are
+      0.53 to 0.67 pitches;
+    * the plate is deeper than the roller: the plate holds the bush the roller turns on
+      (1.28 to 1.77 roller diameters);
+    * the transverse pitch of the strands, where given, exceeds the inner width: the plates
+      of one strand lie between the inner width of the next.
+    """
+    pitch, roller = values["pitch"], values["roller_diameter"]
+    depth, inner = values["plate_depth"], values["inner_width"]
+    transverse = values.get("transverse_pitch") or 0.0
+
+    def mm(x: float) -> str:
+        return f"{x * 1e3:g} mm"
+
+    if roller >= pitch:
+        raise CatalogError(f"{where}, column 'roller_diameter_mm'",
+                           f"{mm(roller)} must be smaller than the pitch {mm(pitch)} "
+                           "(neighbouring rollers would overlap; ISO 606 rollers are 0.53 to "
+                           "0.67 pitches)")
+    if depth <= roller:
+        raise CatalogError(f"{where}, column 'plate_depth_mm'",
+                           f"{mm(depth)} must be larger than the roller diameter {mm(roller)} "
+                           "(the plate holds the bush the roller turns on; catalogue plates "
+                           "are 1.3 to 1.8 roller diameters deep)")
+    if 0.0 < transverse <= inner:
+        raise CatalogError(f"{where}, column 'transverse_pitch_mm'",
+                           f"{mm(transverse)} must be larger than the inner width {mm(inner)} "
+                           "(two plates lie between the inner widths of neighbouring strands)")
 
 
 def _material_from_cells(cells: dict[str, str], where: str,

@@ -26,6 +26,7 @@ from chaindrive.cli.threads import limit_blas_threads
 from chaindrive.display import RPM_PER_RAD_S, convert, fmt, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
+from chaindrive.io.finite import check_document, check_rows
 from chaindrive.units import MAX_TEXT, shown
 
 if TYPE_CHECKING:
@@ -86,8 +87,9 @@ def _fmt(value: Any) -> str:
 
 
 def _write_json(document: dict[str, Any]) -> None:
-    """Print one JSON document; a NaN or infinity in it is a bug, named by its path."""
-    _check_finite(document, "")
+    """Print one JSON document; a NaN or infinity in it is a computation that did not
+    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path."""
+    check_document(document)
     sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
 
 
@@ -98,18 +100,6 @@ def _say_written(what: str, path: Path, as_json: bool) -> None:
         _write_json({what: str(path.resolve())})
     else:
         print(f"{what} written to {path}")
-
-
-def _check_finite(value: Any, path: str) -> None:
-    """Raise ``ArithmeticError`` naming the first non-finite number in ``value``."""
-    if isinstance(value, float) and not np.isfinite(value):
-        raise ArithmeticError(f"the result holds {value} at {path or 'the top'}")
-    if isinstance(value, dict):
-        for k, v in value.items():
-            _check_finite(v, f"{path}.{k}" if path else str(k))
-    elif isinstance(value, list | tuple):
-        for i, v in enumerate(value):
-            _check_finite(v, f"{path}[{i}]")
 
 
 @app.command()
@@ -136,6 +126,7 @@ def analyze(
     if as_json:
         _write_json(document)
         return
+    check_document(document)
     tables.print_analysis(document, result.checks(), system, quick=quick)
 
 
@@ -163,6 +154,7 @@ def select(
     if as_json:
         _write_json(doc)
         return
+    check_document(doc)
     tables.print_selection(doc, system)
 
 
@@ -301,8 +293,11 @@ def _csv_suffix(path: Path) -> None:
 
 
 def _write_csv(path: Path, header: list[str], rows: NDArray[np.float64]) -> None:
-    """Write a table atomically (:func:`chaindrive.io.atomic.write_text`)."""
+    """Write a table atomically (:func:`chaindrive.io.atomic.write_text`); a NaN or infinity
+    in it is a computation that did not converge, and nothing is written."""
     import io
+
+    check_rows(path.name, header, rows)
 
     buffer = io.StringIO()
     buffer.write(",".join(header) + "\n")
@@ -348,6 +343,7 @@ def report(
     with user_errors():
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
+        check_document(result.to_dict())  # the report shows these numbers
         with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
                                 units=unit_system(units))
@@ -372,6 +368,7 @@ def draw(
 
     with user_errors():
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        check_document(analysis.to_dict())  # the numbers the drawing dimensions
         path = write_drawing(analysis, output, sprocket=sprocket)
     _say_written("drawing", path, as_json)
 
@@ -409,11 +406,13 @@ def optimize(
             # s each)
             from chaindrive.synthesis.studies import DEFAULT_DB, DaskEvaluator
 
-            evaluator = DaskEvaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=None)
+            evaluator = DaskEvaluator(db=db or DEFAULT_DB, scheduler=scheduler, progress=False)
         designs = problem.solver.population * problem.solver.generations
         try:
             with progress_bar("optimising: designs evaluated", total=designs,
                               quiet=as_json) as advance:
+                if evaluator is not None:  # the bar moves as each chunk of designs is stored
+                    evaluator.on_stored = _steps(advance)
                 result = solve(problem, seed=seed, evaluator=_counted(evaluator, advance))
         finally:
             if evaluator is not None:
@@ -426,14 +425,25 @@ def optimize(
     if as_json:
         _write_json({**doc, "files": written, "plot": None if plot is None else str(plot)})
         return
+    check_document(doc)
     tables.print_optimisation(problem.base.name, result,
                               [*written, *([] if plot is None else [str(plot)])])
+
+
+def _steps(advance: Callable[[str | None], None]) -> Callable[[int], None]:
+    """A callback moving the bar ``n`` steps at once."""
+    def moved(n: int) -> None:
+        for _ in range(n):
+            advance(None)
+
+    return moved
 
 
 def _counted(evaluator: Callable[[Any, Any], list[Any]] | None,
              advance: Callable[[str | None], None]) -> Callable[[Any, Any], list[Any]]:
     """The optimiser's batch evaluator that moves the progress bar one step a design: in this
-    process design by design, on a cluster batch by batch."""
+    process design by design, on a cluster chunk by chunk as they are stored
+    (``on_stored`` of the evaluator; designs found stored are not counted)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     from chaindrive.synthesis.solve import serial_evaluator
 
@@ -445,8 +455,9 @@ def _counted(evaluator: Callable[[Any, Any], list[Any]] | None,
                 advance(None)
             return out
         batch = evaluator(problem, xs)
-        for _ in batch:
-            advance(None)
+        if getattr(evaluator, "on_stored", None) is None:  # else moved as chunks are stored
+            for _ in batch:
+                advance(None)
         return batch
 
     return counted
@@ -523,6 +534,11 @@ def robust(
         # the options obey the rules of their [uncertainty] fields, before any work
         changes = robust_options(samples=samples, seed=seed, wear=wear,
                                  sensitivity_budget=sensitivity_budget)
+        if modal and (db, scheduler, workers) != (None, None, None):
+            option = "--db" if db is not None else (
+                "--scheduler" if scheduler is not None else "--workers")
+            raise DesignError(option, "applies to the full study, not to --modal (the batched "
+                              "modal path runs in this process, in seconds, and stores nothing)")
         nominal, settings = load_robust(file)
         settings = dc_replace(settings, **changes)
         evaluator = None
@@ -555,6 +571,7 @@ def robust(
     if as_json:
         _write_json({**doc, "report": None if written is None else str(written.resolve())})
         return
+    check_document(doc)
     con = tables.console()
     print_robust(con, doc, tables.table)
     if written is not None:

@@ -34,6 +34,7 @@ import click
 import chaindrive
 from chaindrive.errors import ChainDriveError
 from chaindrive.io.atomic import handlers_installed
+from chaindrive.io.finite import NonFiniteError
 
 __all__ = ["EXIT_INTERNAL", "EXIT_USER_ERROR", "LOG_DIR_ENV", "Interrupted", "exit_on_signal",
            "guarded", "log_dir", "one_line", "signals_raise"]
@@ -176,15 +177,17 @@ def _command_name(argv: Sequence[str]) -> str:
 
 
 def _internal(argv: Sequence[str], exc: BaseException,
-              caught: Sequence[warnings.WarningMessage]) -> int:
-    """One line for an unforeseen failure, and the log."""
-    what = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+              caught: Sequence[warnings.WarningMessage], what: str = "") -> int:
+    """One line for an unforeseen failure (``what``: its description, else the error's
+    type and text), and the log."""
+    if not what:
+        name = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+        what = f"internal error in `{_command_name(argv).strip()}` ({name[:200]})"
     try:
         where = f"the traceback is in {_write_log(argv, exc, caught)}"
     except OSError as log_error:
         where = f"no log could be written ({log_error})"
-    _say(f"error: internal error in `{_command_name(argv).strip()}` ({what[:200]}); {where}; "
-         "please report it with the design file")
+    _say(f"error: {what}; {where}; please report it with the design file")
     return EXIT_INTERNAL
 
 
@@ -233,6 +236,8 @@ def guarded(invoke: Callable[[], object], argv: Sequence[str]) -> int:
             return exc.code if isinstance(exc.code, int) else EXIT_INTERNAL
         except BrokenPipeError:
             return EXIT_INTERNAL
+        except NonFiniteError as exc:
+            return _internal(argv, exc, caught, f"the computation did not converge ({exc})")
         except (Exception, RecursionError, MemoryError) as exc:
             return _internal(argv, exc, caught)
     return int(status) if isinstance(status, int) and not isinstance(status, bool) else 0

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.precision import check_spread
 from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
 
@@ -309,6 +310,7 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     # exactly one rigid-body mode per group; a small elastic eigenvalue is a genuine mode
     # (e.g. masses [1, 1e-11, 1]: 0.159 Hz), never zeroed by a relative round-off threshold
     lam[:n_rigid] = 0.0
+    check_spread(lam[n_rigid:])  # modes lost in round-off are refused, never answered
     np.maximum(lam, 0.0, out=lam)
     if n_rigid == 1 and isinstance(groups[0], slice):  # one connected ring: uniform shape
         shapes[:, 0] = 1.0 / math.sqrt(math.fsum(m.tolist()))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -66,6 +67,10 @@ from chaindrive.units import (
 
 #: Largest bore of the DIN 6885-1 key table [m] (chaindrive/data/keyways_iso286.toml).
 KEYWAY_MAX_BORE = 0.230
+#: The smallest positive normal double (2.2e-308): a number nearer zero than this (a
+#: subnormal, down to 5e-324) keeps only some of its digits and overflows when divided into
+#: anything; no measured quantity in SI is so small, so every field refuses it.
+SMALLEST_NORMAL = sys.float_info.min
 #: Longest name or other text field [characters].
 MAX_NAME = 200
 #: The byte-order mark (U+FEFF) some editors put at the start of a UTF-8 file; a design file
@@ -104,6 +109,11 @@ class Field:
         A value that fits the field, as written in a design file (e.g. ``"25.4 mm"``);
         empty: the example of its dimension when that lies within the bounds, else one
         made from the bounds (:meth:`example_text`).
+    smallest : float
+        The smallest magnitude other than zero that means something [SI unit of the field]:
+        zero is allowed (``minimum`` 0) and means "none", but a value between zero and this
+        is refused (an undamped ring is 0, a damping ratio of 5e-324 is a slip). 0: every
+        value within the bounds.
     """
 
     name: str
@@ -117,6 +127,7 @@ class Field:
     exclusive_minimum: bool = False
     reason: str = ""
     example: str = ""
+    smallest: float = 0.0
 
     def example_text(self) -> str:
         """An example value that fits this field.
@@ -148,7 +159,7 @@ class Field:
         -------
         bool
         """
-        if not math.isfinite(value):
+        if not math.isfinite(value) or 0.0 < abs(value) < max(self.smallest, SMALLEST_NORMAL):
             return False
         if self.minimum is not None and (value <= self.minimum if self.exclusive_minimum
                                          else value < self.minimum):
@@ -202,6 +213,8 @@ class Field:
         lo = "" if self.minimum is None else (
             f"{'>' if self.exclusive_minimum else '≥'} {bound(self.minimum)}{tail}")
         hi = "" if self.maximum is None else f"≤ {bound(self.maximum)}{tail}"
+        if self.smallest > 0.0:
+            lo = f"0, or ≥ {bound(self.smallest)}{tail}"
         span = " and ".join(x for x in (lo, hi) if x)
         if whole:
             if self.minimum is not None and self.maximum is not None:
@@ -247,6 +260,12 @@ _ROTOR = ("1e-6 to 1e5 kg·m²: from a 10 W micro-motor to the rotor of a 20 MW 
 _BREAKDOWN = ("above 1 (a motor that could not carry its rated torque) and at most 5 "
               "([IEC60034-12] design N breakdown torques are 1.6 to about 3.5 times rated)")
 _TORQUE = "1 mN·m to 10 MN·m: the rated torques of the power and speed limits above"
+#: The smallest critical slip of the Kloss law: a slip of 0 (or a subnormal one) divides the
+#: torque by zero.
+MIN_CRITICAL_SLIP = 1e-3
+_CRITICAL_SLIP = ("a slip, a share of the synchronous speed: at most 1; induction motors "
+                  "break down at slips of some per cent, the largest at about 1 %, and below "
+                  "0.1 % the Kloss torque would be a step at the synchronous speed")
 _RUNOUT = ("at most 10 mm: sprocket run-out tolerances are fractions of a millimetre; 10 mm "
            "is the eccentricity of a sprocket bored off-centre by a whole pitch of 05B")
 DRIVE_FIELDS: tuple[Field, ...] = (
@@ -384,7 +403,8 @@ TRAIN_FIELDS: tuple[Field, ...] = (
           '"motor", "reducer", "drum"'),
     Field("inertia", "inertia", "the new node's moment of inertia (rotor: added to the current "
           "node; 0: a massless node)", default=0.0, minimum=0.0, maximum=1e6,
-          reason="at most a 50 t flywheel of 6 m radius"),
+          smallest=1e-8, reason="0 (a massless node), else at least the 1.7e-8 kg·m² of the "
+          "smallest catalogue sprocket and at most a 50 t flywheel of 6 m radius"),
     Field("stiffness", "torsional_stiffness", "shaft, coupling or ground: torsional stiffness",
           minimum=1.0, maximum=1e10, reason=_TORSIONAL_STIFFNESS),
     Field("damping", "torsional_damping", "shaft or coupling: viscous damping coefficient",
@@ -397,8 +417,9 @@ TRAIN_FIELDS: tuple[Field, ...] = (
     Field("ratio", "float", "gear: input speed / output speed in the direction of the power "
           "flow (motor → driver sprocket, driven sprocket → machine)", minimum=0.01,
           maximum=1000.0, reason=_GEAR_RATIO),
-    Field("efficiency", "float", "gear: efficiency", default=1.0, minimum=0.0, maximum=1.0,
-          exclusive_minimum=True, reason="a share of the power passed on"),
+    Field("efficiency", "float", "gear: efficiency", default=1.0, minimum=0.01, maximum=1.0,
+          reason="a share of the power passed on; a gear passing less than 1 % of its power "
+          "would turn the rest into heat, as no reducer is built"),
 )
 MOTOR_FIELDS: tuple[Field, ...] = (
     Field("law", "choice", "torque law (default: [dynamics] motor)", choices=MOTORS),
@@ -413,8 +434,8 @@ MOTOR_FIELDS: tuple[Field, ...] = (
     Field("breakdown_ratio", "float", "Kloss: breakdown torque / rated torque (default: "
           "[dynamics])", minimum=1.0, maximum=5.0, exclusive_minimum=True,
           reason=_BREAKDOWN),
-    Field("critical_slip", "float", "Kloss: critical slip (default: [dynamics])", minimum=0.0,
-          maximum=1.0, exclusive_minimum=True, reason="a slip: a share of the synchronous speed"),
+    Field("critical_slip", "float", "Kloss: critical slip (default: [dynamics])",
+          minimum=MIN_CRITICAL_SLIP, maximum=1.0, reason=_CRITICAL_SLIP),
     Field("ramp_time", "time", "ramp: time to full torque (default: [dynamics])", minimum=0.0,
           maximum=60.0, exclusive_minimum=True, reason="within the longest start-up simulated"),
     Field("torque", "torque", "constant or ramp law: the torque (default: the rated torque)",
@@ -423,7 +444,9 @@ MOTOR_FIELDS: tuple[Field, ...] = (
 DYNAMICS_FIELDS: tuple[Field, ...] = (
     Field("damping_ratio", "float", "damping ratio ζ of the chain (default: by the "
           "chain/sprocket material pair, 0.06 metal chain, 0.175 polymer chain)", minimum=0.0,
-          maximum=0.9, reason="below 1: an oscillating ring; roller chains show a few per cent"),
+          maximum=0.9, smallest=1e-4, reason="below 1: an oscillating ring; roller chains show "
+          "a few per cent; 0 is an undamped model, and a ratio below 1e-4 (a decay over "
+          "thousands of cycles) is none any measurement tells from 0"),
     Field("hinge_friction", "bool", "damp each span by its hinge friction at its own tension "
           "(ζ = ψ/4π) instead", default=False),
     Field("hinge_amplitude", "float", "hinge friction: relative transverse amplitude of the "
@@ -449,8 +472,8 @@ DYNAMICS_FIELDS: tuple[Field, ...] = (
     Field("breakdown_ratio", "float", "Kloss motor: breakdown torque / rated torque",
           default=2.5, minimum=1.0, maximum=5.0, exclusive_minimum=True,
           reason="induction motors have breakdown torques of 1.6 to 3.5 times the rated one"),
-    Field("critical_slip", "float", "Kloss motor: critical slip", default=0.25, minimum=0.0,
-          maximum=1.0, exclusive_minimum=True, reason="a slip lies between 0 and 1"),
+    Field("critical_slip", "float", "Kloss motor: critical slip", default=0.25,
+          minimum=MIN_CRITICAL_SLIP, maximum=1.0, reason=_CRITICAL_SLIP),
     Field("ramp_time", "time", "ramp motor: time to full torque", default=0.5, minimum=0.0,
           maximum=60.0, exclusive_minimum=True,
           reason="soft starters ramp over seconds; at most the longest start-up",
@@ -589,11 +612,12 @@ def _number_text(value: Any) -> str:
 
 
 def _check_range(f: Field, path: str, value: float, given: Any) -> None:
-    low_bad = f.minimum is not None and (value <= f.minimum if f.exclusive_minimum
-                                         else value < f.minimum)
-    high_bad = f.maximum is not None and value > f.maximum
-    if low_bad or high_bad or not math.isfinite(value):
+    if not f.fits(value):
         why = f" ({f.reason})" if f.reason else ""
+        if 0.0 < abs(value) < SMALLEST_NORMAL:
+            why = (f" ({_number_text(given)} is a subnormal number, below the smallest normal "
+                   "double 2.2e-308, that no measurement gives"
+                   + (f"; {f.reason})" if f.reason else ")"))
         raise DesignError(path, f"must be {f.allowed()}, got {_number_text(given)}{why}")
 
 

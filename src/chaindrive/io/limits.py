@@ -66,7 +66,8 @@ class Range:
 #: [ANSI-B29.1] and polymer chains) spans the ranges quoted; the bounds leave a factor of
 #: about 5 beyond them and refuse what no chain can be.
 CATALOG_LIMITS: dict[str, Range] = {
-    "pitch_mm": Range(1.0, 500.0, "catalogue pitches: 8 to 114.3 mm"),
+    "pitch_mm": Range(5.0, 500.0, "catalogue pitches: 8 to 114.3 mm; at least the 5 mm "
+                      "of a design file's chain.pitch"),
     "roller_diameter_mm": Range(0.5, 500.0, "catalogue rollers: 5 to 72.4 mm"),
     "pin_diameter_mm": Range(0.2, 250.0, "below the roller diameter"),
     "inner_width_mm": Range(0.5, 500.0, "catalogue inner widths: 2.4 to 68.6 mm"),

@@ -22,6 +22,10 @@ populations on Dask, stored in a study database.
   Dask's nanny gives up on a worker (it was lost again while it restarted), a watchdog
   re-creates it, so a LocalCluster never runs out of workers.
 * A rich progress bar while it runs, silent when the output is not a terminal.
+* Failing cleanly: a cluster without a worker for :data:`LOST_WORKERS_SECONDS` ends the
+  study (:class:`LostWorkersError`, one line; it resumes from the database); the workers of
+  a local cluster log errors only and write their stderr to :data:`WORKER_LOG`, and Dask's
+  logging is silenced while a cluster shuts down, so an interrupt is one line.
 
 Compute functions receive one JSON-ready input mapping and return a JSON-ready mapping;
 they must be importable by the workers (module-level functions of an installed package).
@@ -33,14 +37,20 @@ import copy
 import hashlib
 import itertools
 import json
+import logging
+import os
 import re
+import sys
+import tempfile
 import threading
+import time
 import traceback
 import uuid
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from contextlib import suppress
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -56,7 +66,7 @@ from sqlalchemy import (
     create_engine,
     select,
 )
-from sqlalchemy.exc import IntegrityError
+from sqlalchemy.exc import DBAPIError, IntegrityError
 
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping
@@ -68,7 +78,8 @@ from chaindrive.units import registry
 if TYPE_CHECKING:  # distributed is imported where a study runs: `-X importtime` 1.2–1.4 s
     from distributed import Client, Future, LocalCluster
 
-__all__ = ["DaskEvaluator", "StudyResult", "StudyStore", "evaluate_design", "input_key",
+__all__ = ["LOST_WORKERS_SECONDS", "DaskEvaluator", "LostWorkersError", "StudyResult",
+           "StudyStore", "evaluate_design", "input_key",
            "monte_carlo_inputs", "run_study", "set_path", "sweep_inputs"]
 
 DEFAULT_DB = "sqlite:///chaindrive-study.db"
@@ -77,6 +88,10 @@ DEFAULT_DB = "sqlite:///chaindrive-study.db"
 StudyFunction = Callable[[Mapping[str, Any]], Mapping[str, Any]]
 #: How often a chunk that Dask gave up on (its workers were lost) is submitted again.
 RESUBMITS = 3
+#: How long a study waits for a cluster that has no worker [s] before it stops
+#: (:class:`LostWorkersError`): a LocalCluster's nanny restarts a lost worker in about 2 s, and an
+#: external scheduler's workers reconnect within their own 30 s connect timeout.
+LOST_WORKERS_SECONDS = 60.0
 _META = MetaData()
 EVALUATIONS = Table(
     "evaluations", _META,
@@ -88,6 +103,23 @@ EVALUATIONS = Table(
     Column("created", DateTime, nullable=False),
     UniqueConstraint("study", "key", name="one_evaluation_per_key"),
 )
+
+
+def _reason(exc: BaseException) -> str:
+    """The first line of a database error's cause, with its type."""
+    reason = str(getattr(exc, "orig", None) or exc).splitlines()
+    return f"{type(exc).__name__}: {(reason or [''])[0][:200]}"
+
+
+def _new_sqlite_file(engine: Any) -> Path | None:
+    """The file of a SQLite URL when it does not exist yet (this store will create it)."""
+    if engine.url.get_backend_name() != "sqlite":
+        return None
+    name = engine.url.database or ""
+    if not name or name == ":memory:" or name.startswith("file:"):
+        return None
+    path = Path(name)
+    return None if path.exists() else path
 
 
 def _json(value: Any) -> str:
@@ -127,18 +159,59 @@ class StudyStore:
     ----------
     url : str
         SQLAlchemy URL (``sqlite:///study.db``, ``postgresql+psycopg://…``); a URL that
-        cannot be opened is one :class:`DesignError` line (field ``db``).
+        cannot be opened is one :class:`DesignError` line (field ``db``), and a SQLite file
+        it created on the way is removed.
+
+    A write that fails (a full disk, a read-only file) is one :class:`DesignError` line as
+    well; the evaluations stored before it stay, so the same command resumes once the cause
+    is gone; a SQLite file this store created and could not write a single evaluation to is
+    removed (no new file is left by a study that stored nothing).
     """
 
     def __init__(self, url: str = DEFAULT_DB) -> None:
+        self.url = url
+        self._created: Path | None = None
         try:
             self.engine = create_engine(url)
+            self._created = _new_sqlite_file(self.engine)
             _META.create_all(self.engine)
         except Exception as exc:  # sqlalchemy raises several types for a bad URL or file
-            reason = str(getattr(exc, "orig", None) or exc).splitlines()[0][:200]
+            self.discard_if_new()
             raise DesignError("db", f"cannot open the study database {url[:200]!r} "
-                              f"({type(exc).__name__}: {reason})") from None
-        self.url = url
+                              f"({_reason(exc)})") from None
+
+    def discard_if_new(self) -> None:
+        """Remove the SQLite file this store created when it holds no evaluation (a study
+        that stopped before it stored anything leaves no new file)."""
+        path, self._created = self._created, None
+        if path is None:
+            return
+        with suppress(Exception):
+            if path.exists() and self.holds_any():
+                return
+        with suppress(Exception):
+            self.engine.dispose()
+        for leftover in (path, path.with_name(path.name + "-journal")):
+            with suppress(OSError):
+                leftover.unlink()
+
+    def holds_any(self) -> bool:
+        """True when the database holds an evaluation of any study.
+
+        Returns
+        -------
+        bool
+        """
+        with self.engine.connect() as con:
+            return con.execute(select(EVALUATIONS.c.id).limit(1)).first() is not None
+
+    def _write_failed(self, exc: BaseException) -> DesignError:
+        """The one line of a write that failed (the file removed when this store created it
+        and it holds nothing)."""
+        self.discard_if_new()
+        return DesignError("db", f"cannot write to the study database {self.url[:200]!r} "
+                           f"({_reason(exc)}); the evaluations stored before stay in it: "
+                           "remove the cause and run the same command again to resume")
 
     def keys(self, study: str, among: Iterable[str] | None = None) -> set[str]:
         """Keys already stored for ``study``: all of them, or those of ``among``.
@@ -214,6 +287,10 @@ class StudyStore:
                          "created": now} for k, (x, r) in fresh.items()])
         except IntegrityError:  # another client stored some meanwhile: one by one
             return sum(self.put(study, k, x, r) for k, (x, r) in fresh.items())
+        except (DBAPIError, OSError) as exc:  # a full disk, a read-only file, a lost server
+            raise self._write_failed(exc) from None
+        if fresh:
+            self._created = None  # holds evaluations now: kept for a resume
         return len(fresh)
 
     def get(self, study: str, keys: Iterable[str]) -> dict[str, Any]:
@@ -334,8 +411,12 @@ def _client(scheduler: str | None, n_workers: int | None
     for attempt in (1, 2):
         cluster = None
         try:
-            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=":0")
+            with _workers_stderr_to_log():
+                # the workers log errors only: a task cancelled at an interrupt or an error
+                # is a warning of each worker process, lines around the command's one line
+                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1,
+                                       processes=True, dashboard_address=":0",
+                                       silence_logs=logging.ERROR)
             return Client(cluster), cluster
         except Exception:
             if cluster is not None:
@@ -343,6 +424,51 @@ def _client(scheduler: str | None, n_workers: int | None
             if attempt == 2:
                 raise
     raise AssertionError("unreachable")
+
+
+#: Where the worker processes of a local cluster write their stderr (appended).
+WORKER_LOG = Path(tempfile.gettempdir()) / "chaindrive-dask-workers.log"
+
+
+@contextmanager
+def _workers_stderr_to_log() -> Iterator[None]:
+    """Start a cluster's worker processes with their stderr in :data:`WORKER_LOG`: they
+    inherit the file descriptor 2 of this process when they start, which is the log while
+    the block runs. Ctrl-C in a terminal reaches the workers too, and each printed its own
+    KeyboardInterrupt traceback among the one line of the interrupt (3 times in 10). The
+    signals are left alone: an interrupt while the cluster starts is not lost."""
+    try:
+        log = os.open(WORKER_LOG, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+    except OSError:  # no log: the workers write where this process does
+        yield
+        return
+    with suppress(OSError, ValueError):
+        sys.stderr.flush()
+    saved = os.dup(2)
+    try:
+        os.dup2(log, 2)
+        yield
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(log)
+
+
+@contextmanager
+def quiet_shutdown() -> Iterator[None]:
+    """Silence Dask's and Tornado's logging while a cluster shuts down: closing it with
+    tasks running (an error, an interrupt) logs the cancelled tasks and lost connections,
+    tens of lines around the one line of the command."""
+    names = ("distributed", "tornado", "asyncio")
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for lg, level in zip(loggers, levels, strict=True):
+            lg.setLevel(level)
 
 
 class _Watchdog:
@@ -412,11 +538,57 @@ def _submit(client: Client, func: Callable[[Any], Any], items: list[tuple[str, A
     return client.submit(_chunk, func, items, key=key, pure=False)
 
 
+def _workers(client: Client) -> int:
+    """How many workers the scheduler has now (0 when it cannot be asked)."""
+    try:
+        return len(client.scheduler_info(n_workers=-1)["workers"])
+    except Exception:  # the scheduler itself is gone
+        return 0
+
+
+def _batches(client: Client, pending: Any, lost_after: float) -> Iterable[list[Any]]:
+    """The finished futures of ``pending`` as they arrive; :class:`LostWorkersError` when the
+    cluster has had no worker for ``lost_after`` seconds (Dask would wait for ever)."""
+    alone_since: float | None = None
+    while not pending.is_empty():
+        if pending.has_ready():
+            alone_since = None
+            yield pending.next_batch(block=False)
+            continue
+        now = time.monotonic()
+        if _workers(client) > 0:
+            alone_since = None
+        elif alone_since is None:
+            alone_since = now
+        elif now - alone_since >= lost_after:
+            raise LostWorkersError(lost_after)
+        time.sleep(0.2)
+
+
+class LostWorkersError(ChainDriveError):
+    """The cluster lost every worker and none came back within the timeout.
+
+    Parameters
+    ----------
+    seconds : float
+        How long it had no worker [s].
+    """
+
+    def __init__(self, seconds: float) -> None:
+        self.seconds = seconds
+        super().__init__(f"scheduler: the Dask cluster has had no worker for {seconds:g} s; "
+                         "the study stopped (the evaluations finished are stored: start "
+                         "workers and run the same command again to resume)")
+
+
 def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: dict[str, Any],
-                 store: StudyStore, bar: Any, task: Any, chunk: int | None) -> int:
+                 store: StudyStore, bar: Any, task: Any, chunk: int | None,
+                 lost_after: float | None = None,
+                 on_stored: Callable[[int], None] | None = None) -> int:
     """Run every evaluation of ``todo`` on ``client``, storing each as it arrives; the count
     stored. A chunk Dask gave up on is submitted again (:data:`RESUBMITS`); any other
-    failure is raised after the finished evaluations are stored."""
+    failure is raised after the finished evaluations are stored; a cluster without a worker
+    for ``lost_after`` seconds ends the study (:class:`LostWorkersError`)."""
     from distributed import as_completed
 
     run = uuid.uuid4().hex[:8]  # a fresh task key per run: no stale erred task is reused
@@ -427,7 +599,8 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
     pending = as_completed(list(chunks))
     computed = 0
     try:
-        for batch in pending.batches():
+        for batch in _batches(client, pending,
+                              LOST_WORKERS_SECONDS if lost_after is None else lost_after):
             failure: BaseException | None = None
             rows: list[tuple[str, Any, Any]] = []
             for fut in batch:
@@ -447,6 +620,8 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
                 failure = failure or exc
             computed += store.put_many(study, rows)
             bar.advance(task, len(rows))
+            if on_stored is not None and rows:
+                on_stored(len(rows))
             if failure is not None:
                 raise failure
     finally:
@@ -457,7 +632,9 @@ def _evaluate_on(client: Client, func: Callable[[Any], Any], study: str, todo: d
 def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study: str,
               db: str | StudyStore = DEFAULT_DB, scheduler: str | None = None,
               client: Client | None = None, n_workers: int | None = None,
-              progress: bool | None = None, chunk: int | None = None) -> StudyResult:
+              progress: bool | None = None, chunk: int | None = None,
+              lost_after: float | None = None,
+              on_stored: Callable[[int], None] | None = None) -> StudyResult:
     """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
     key is stored are not recomputed.
 
@@ -482,6 +659,12 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
         Progress bar (None: only on a terminal).
     chunk : int | None
         Evaluations per Dask task (None: by the number of workers, :func:`_chunk_size`).
+    lost_after : float | None
+        Time without a worker [s] after which the study stops with :class:`LostWorkersError`
+        (None: :data:`LOST_WORKERS_SECONDS`).
+    on_stored : callable | None
+        Called with the number of evaluations each time a batch of them is stored (a
+        progress bar of the caller's; the evaluations found stored are not counted).
 
     Returns
     -------
@@ -506,14 +689,19 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
         try:
             with _progress(progress) as bar:
                 task = bar.add_task(study, total=len(keys), completed=len(keys) - len(todo))
-                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk)
+                computed = _evaluate_on(client, func, study, todo, store, bar, task, chunk,
+                                        lost_after, on_stored)
+        except BaseException:
+            store.discard_if_new()
+            raise
         finally:
             if own:
                 if watchdog is not None:
                     watchdog.stop()
-                client.close()
-                if cluster is not None:
-                    cluster.close()
+                with quiet_shutdown():
+                    client.close()
+                    if cluster is not None:
+                        cluster.close()
     stored = store.get(study, keys)
     return StudyResult(study, tuple(stored.get(k) for k in keys), computed,
                        len(keys) - len(todo))
@@ -724,11 +912,21 @@ class DaskEvaluator:
         Progress bar (None: only on a terminal).
     n_workers : int | None
         Workers of the LocalCluster (None: Dask's default).
+    lost_after : float | None
+        Time without a worker [s] after which the study stops (:class:`LostWorkersError`;
+        None: :data:`LOST_WORKERS_SECONDS`).
+    on_stored : callable | None
+        Called with the number of evaluations each time a batch of them is stored (as
+        :func:`run_study`): progress within a generation.
     """
 
     def __init__(self, *, db: str | StudyStore = DEFAULT_DB, study: str | None = None,
                  scheduler: str | None = None, client: Client | None = None,
-                 progress: bool | None = False, n_workers: int | None = None) -> None:
+                 progress: bool | None = False, n_workers: int | None = None,
+                 lost_after: float | None = None,
+                 on_stored: Callable[[int], None] | None = None) -> None:
+        self.lost_after = lost_after
+        self.on_stored = on_stored
         self.store = db if isinstance(db, StudyStore) else StudyStore(db)
         self.study = study
         self.scheduler = scheduler
@@ -756,7 +954,8 @@ class DaskEvaluator:
         name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
         res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
-                        client=self.client, progress=self.progress)
+                        client=self.client, progress=self.progress, lost_after=self.lost_after,
+                        on_stored=self.on_stored)
         out = []
         for r in res.results:
             e = r["evaluation"]
@@ -770,9 +969,10 @@ class DaskEvaluator:
             if self._watchdog is not None:
                 self._watchdog.stop()
                 self._watchdog = None
-            self._client.close()
-            if self._cluster is not None:
-                self._cluster.close()
+            with quiet_shutdown():
+                self._client.close()
+                if self._cluster is not None:
+                    self._cluster.close()
             self._client = self._cluster = None
 
     def __enter__(self) -> DaskEvaluator:

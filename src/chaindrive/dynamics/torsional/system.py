@@ -24,6 +24,7 @@ from types import MappingProxyType
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.precision import check_spread
 from chaindrive.dynamics.torsional.assembly import gram as _gram
 from chaindrive.dynamics.torsional.assembly import grams
 from chaindrive.dynamics.torsional.blas_threads import small_problem_threads
@@ -603,6 +604,7 @@ def _frequencies(system: TorsionalSystem) -> FloatArray:
         lam = _deflated_eigh(A, scaling.y_of(U), vectors=False)[0]
     else:
         return f
+    check_spread(lam)  # as _modal: both answer, or both refuse
     f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
     return f
 
@@ -618,6 +620,7 @@ def _modal(system: TorsionalSystem) -> TorsionalModes:
     else:
         lam, V = np.linalg.eigh(A)
         Qm = scaling.q_of(V)
+    check_spread(lam)  # modes lost in round-off are refused, never answered
     if X is None:
         Q = Qm
     else:

@@ -65,9 +65,18 @@ FloatArray = NDArray[np.float64]
 STEPS_PER_PERIOD = 160
 #: Most samples of a history kept (the largest span forces are tracked at every step).
 MAX_RECORDS = 20_000
-#: Most floating-point operations a start-up may take (:func:`work_estimate`): about 2–5 s on
-#: the project machine.
-WORK_BUDGET = 4.0e9
+#: Most floating-point operations a start-up may take (:func:`work_estimate`, a step's own
+#: cost included): about 4 s on the project machine (a step ran at about 1.5e9 of them a
+#: second, small model or large); a 30 s start-up of the eight-sprocket example (4.3e9, 2.6 s)
+#: stays within it, a 60 s one does not.
+WORK_BUDGET = 6.0e9
+#: What a step costs besides its matrix products, in the same operations [-]: the polygonal law
+#: at every span end, the slack test and the records. Measured on the project machine: the
+#: 4-coordinate model of the two-sprocket example at 30 000 rpm ran 20.8 million steps in
+#: 19 s (0.9 µs a step, where its products count 192 operations), so the budget, counted in
+#: products alone, let a small model run past a minute on a loaded machine; a 16-coordinate
+#: model's step (3 072 operations of products) took about 2 µs.
+STEP_OVERHEAD = 1200.0
 Backend = Literal["auto", "numba", "jit", "numpy"]
 
 
@@ -444,8 +453,9 @@ class StartupProblem:
 
 
 def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
-    """Floating-point operations of a start-up [-]: two (2N)×(2N)/(2N)×N products per step and a
-    (3N)³ matrix exponential (about 20 products) per slack pattern.
+    """Floating-point operations of a start-up [-]: two (2N)×(2N)/(2N)×N products and
+    :data:`STEP_OVERHEAD` per step, and a (3N)³ matrix exponential (about 20 products) per
+    slack pattern.
 
     Parameters
     ----------
@@ -465,7 +475,8 @@ def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
     ----------
     [Higham2005] (cost of the scaling-and-squaring exponential).
     """
-    return 2.0 * steps * (2 * size) ** 2 * 1.5 + patterns * 20.0 * (3 * size) ** 3
+    return (steps * (2.0 * (2 * size) ** 2 * 1.5 + STEP_OVERHEAD)
+            + patterns * 20.0 * (3 * size) ** 3)
 
 
 PolyData = tuple[FloatArray, FloatArray, FloatArray, FloatArray, NDArray[np.intp], FloatArray,
