@@ -4,8 +4,10 @@ The same step as the NumPy loop of :func:`chaindrive.dynamics.transient.startup.
 model M q̈ + C q̇ + K q = Q of any coordinates q (the whole drive, or the ring as a special
 case): exact zero-order-hold transition Φ_s, Γ_s per slack pattern s [VanLoan1978];
 explicit pre-tension and polygonal span forces −Bᵀ(...) extrapolated to mid-step; the motor
-and load laws linearly implicit on the speed of their own coordinate; a step that changes the
-slack pattern redone once with the new pattern. Written on plain arrays so that numba
+and load laws acting on the mean speed of their own coordinate over the step, linearly
+implicit and coupled through the step's response (one small linear solve over the law
+coordinates; the stability argument is in :mod:`chaindrive.dynamics.transient.startup`); a
+step that changes the slack pattern redone once with the new pattern. Written on plain arrays so that numba
 compiles it (``@njit(cache=True)``).
 
 Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.transient.kernel_codes`): the motor acts
@@ -35,10 +37,12 @@ import numpy as np
 
 from chaindrive.dynamics.transient.kernel_codes import (  # the kernel's integer codes
     MOTOR_CONSTANT,
+    MOTOR_KLOSS,
     MOTOR_RAMP,
     RESISTANCE_CONSTANT,
     RESISTANCE_LINEAR,
     RESISTANCE_QUADRATIC,
+    kloss_end_speed,
 )
 
 try:  # numba is optional (project rule: compiled hot loop with a NumPy fallback)
@@ -165,30 +169,92 @@ def _span_part(mask: Any, fr: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool,
         fr[k] = -acc
 
 
+#: the plain-Python helper compiled for the kernel
+_kloss_end_speed = _njit(kloss_end_speed)
+
+
 @_njit
-def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any, y_new: Any,
-             lw: tuple, work: Any, fcols: Any, lcols: Any) -> None:
-    """One step; the law forces linearly implicit on their own coordinate's speed (the
-    forces act on the coordinates ``fcols``, the laws on ``lcols``)."""
+def _solve_small(A: Any, b: Any) -> None:
+    """b ← A⁻¹ b by Gaussian elimination with partial pivoting (A overwritten; a few unknowns)."""
+    m = b.size
+    for k in range(m):
+        piv = k
+        big = abs(A[k, k])
+        for i in range(k + 1, m):
+            if abs(A[i, k]) > big:
+                big = abs(A[i, k])
+                piv = i
+        if piv != k:
+            for j in range(m):
+                A[k, j], A[piv, j] = A[piv, j], A[k, j]
+            b[k], b[piv] = b[piv], b[k]
+        for i in range(k + 1, m):
+            r = A[i, k] / A[k, k]
+            if r != 0.0:
+                for j in range(k + 1, m):
+                    A[i, j] -= r * A[k, j]
+                b[i] -= r * b[k]
+    for k in range(m - 1, -1, -1):
+        acc = b[k]
+        for j in range(k + 1, m):
+            acc -= A[k, j] * b[j]
+        b[k] = acc / A[k, k]
+
+
+@_njit
+def _advance(y: Any, w: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, y_new: Any,
+             lw: tuple, work: Any, fcols: Any, lcols: Any, lA: Any, lb: Any) -> None:
+    """One step; the law forces linearly implicit on the mean speeds w of their own
+    coordinates over the step (the forces act on the coordinates ``fcols``, the laws on
+    ``lcols``; lA, lb work arrays of the laws' linear system)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
     n = fr.size
-    v = y[n:]
-    fl, f2, hv, vh, f, df = work[0], work[1], work[2], work[3], work[4], work[5]
+    fl, f2, hv, vh, f = work[0], work[1], work[2], work[3], work[4]
     th = t + 0.5 * dt
-    _laws(th, v, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
+    _laws(th, w, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for i in range(n):
-        hv[i] = 1e-6 * (1.0 + abs(v[i]))
-        vh[i] = v[i] + hv[i]
+        hv[i] = 1e-6 * (1.0 + abs(w[i]))
+        vh[i] = w[i] + hv[i]
     _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for i in range(n):
         f[i] = fr[i] + fl[i]
     y_new[:] = 0.0
     _matvec_add(Phi, y, y_new)
     _matvec_cols_add(Gam, fcols, f, y_new)
-    for i in lcols:
+    m = lcols.size
+    if m == 0:
+        return
+    # (I − diag(J) G) Δf = J (w* − w), G = Γ[L, L]/Δt, J clipped to 1/(2 G_ii) where it rises
+    am = -1
+    for a in range(m):
+        i = lcols[a]
         J = (f2[i] - fl[i]) / hv[i]
-        df[i] = J * (y_new[n + i] - v[i]) / max(1.0 - gvv[i] * J, 0.1)
-    _matvec_cols_add(Gam, lcols, df, y_new)
+        gii = Gam[i, i] / dt
+        if gii > 0.0 and 0.5 / gii < J:
+            J = 0.5 / gii
+            if i == mk and mkind == MOTOR_KLOSS:
+                am = a
+        for b in range(m):
+            lA[a, b] = -J * Gam[i, lcols[b]] / dt
+        lA[a, a] += 1.0
+        lb[a] = J * ((y_new[i] - y[i]) / dt - w[i])
+    _solve_small(lA, lb)
+    if am >= 0:  # a Kloss motor on its rising branch faster than the step: backward Euler
+        wa = (y_new[mk] - y[mk]) / dt
+        for b in range(m):
+            if b != am:
+                wa += Gam[mk, lcols[b]] / dt * lb[b]
+        s = 1.0 - mgain * w[mk] / mp[2]
+        fw = mgain * meff * mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
+        u = _kloss_end_speed(w[mk], wa, fw, Gam[mk, mk] / dt, mgain, mgain * meff, mp[0],
+                             mp[1], mp[2])
+        s = 1.0 - mgain * u / mp[2]
+        lb[am] = mgain * meff * mp[0] * s * mp[1] / (s * s + mp[1] * mp[1]) - fw
+    for r in range(y_new.size):
+        acc = 0.0
+        for a in range(m):
+            acc += Gam[r, lcols[a]] * lb[a]
+        y_new[r] += acc
 
 
 @_njit
@@ -213,13 +279,14 @@ def _span_force(y: Any, F: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d:
 
 
 @_njit
-def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int, masks: Any,
-               Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any, ds: Any,
+def run_kernel(y: Any, w: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int,
+               masks: Any, Phis: Any, Gams: Any, npat: int, B: Any, c: Any, ds: Any,
                tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
                states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
-    y (2N,) state, fr_prev (N,) explicit forces of the previous step, state = [step, slack
+    y (2N,) state, w (N,) the mean speeds over the previous step (updated in place), fr_prev
+    (N,) explicit forces of the previous step, state = [step, slack
     count, pattern index] (all updated in place); forces (R, S) and states (R, 2N) filled at
     every ``rec``-th step, fmax (S,) the largest span forces; fcols the coordinates the span
     and law forces act on, lcols those of the laws. Returns < steps when a step
@@ -236,7 +303,9 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
     fr = np.empty(n)
     fe = np.empty(n)
     span = np.empty(ns)
-    work = np.empty((6, n))
+    work = np.empty((5, n))
+    lA = np.empty((lcols.size, lcols.size))
+    lb = np.empty(lcols.size)
     y_new = np.empty(2 * n)
     F = np.empty(ns)
     p = state[2]
@@ -246,7 +315,7 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
         _span_part(mask, fr, B, c, ds, T0, poly, d, dd, span)
         for i in range(n):
             fe[i] = 1.5 * fr[i] - 0.5 * fr_prev[i]
-        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
+        _advance(y, w, t, dt, fe, Phis[p], Gams[p], y_new, lw, work, fcols, lcols, lA, lb)
         _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
         for i in range(ns):
@@ -259,11 +328,13 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
                 return k
             p = q
             _span_part(masks[p], fr, B, c, ds, T0, poly, d, dd, span)
-            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
+            _advance(y, w, t, dt, fr, Phis[p], Gams[p], y_new, lw, work, fcols, lcols, lA, lb)
             _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
         fr_prev[:] = fr
+        for i in range(n):
+            w[i] = (y_new[i] - y[i]) / dt
         y[:] = y_new
         d, d_new = d_new, d
         dd, dd_new = dd_new, dd
@@ -284,8 +355,8 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
 
 
 @_njit
-def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int,
-                    masks: Any, Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any,
+def run_kernel_flat(y: Any, w: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int,
+                    masks: Any, Phis: Any, Gams: Any, npat: int, B: Any, c: Any,
                     ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
                     mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
                     lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
@@ -293,7 +364,7 @@ def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec
                     states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
     """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
     (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, fr_prev, state, steps, dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
+    return run_kernel(y, w, fr_prev, state, steps, dt, rec, masks, Phis, Gams, npat, B, c,
                       ds, tonly, T0,
                       (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
                       poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
@@ -302,8 +373,8 @@ def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec
 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
 FLAT_SIGNATURE = (
-    "i8(f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1],"
-    " f8[:, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8, f8, f8, i8, f8[::1],"
+    "i8(f8[::1], f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1],"
+    " f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8, f8, f8, i8, f8[::1],"
     " i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1, f8[::1], f8[::1], f8[::1],"
     " f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1], f8[::1], b1[::1],"
     " i8[::1], i8[::1])"
