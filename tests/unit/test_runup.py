@@ -218,4 +218,5 @@ def test_motor_torque_on_the_grid_is_the_law_speed_by_speed() -> None:
         t = math.inf if isinstance(law, RampTorque) else 0.0
         expected = np.array([float(law(t, float(x))) for x in w])
         assert np.array_equal(_motor_torque(law, w), expected)
-        assert np.array_equal(_motor_torque(lambda t, x, law=law: law(t, x), w), expected)
+        if not isinstance(law, RampTorque):  # a wrapped ramp is not known to be at full torque
+            assert np.array_equal(_motor_torque(lambda t, x, law=law: law(t, x), w), expected)
