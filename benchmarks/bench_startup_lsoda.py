@@ -53,7 +53,7 @@ def startup_problem(path: Path) -> StartupProblem:
     finally:
         drive_startup.solve_startup = solve
     p = caught[-1]
-    steps = int(round(1.0 / p.dt))
+    steps = round(1.0 / p.dt)
     return replace(p, span_tension_only=np.zeros_like(p.span_tension_only), polygonal=None,
                    steps=steps, record_every=max(1, steps // 2000))
 
@@ -168,8 +168,10 @@ def compare(path: Path, rounds: int = 5) -> None:
     print(f"  LSODA at the same accuracy: rtol {rtol:g} (error {e_lsoda:.2e})")
     t = cpu_times({"kernel": kernel, "lsoda": lambda: lsoda(rtol)}, rounds)
     for k, v in t.items():
-        print(f"  {k:7s} CPU best {min(v) * 1e3:7.1f} ms, median {statistics.median(v) * 1e3:7.1f} ms")
-    print(f"  LSODA / kernel (median CPU): {statistics.median(t['lsoda']) / statistics.median(t['kernel']):.2f}")
+        print(f"  {k:7s} CPU best {min(v) * 1e3:7.1f} ms, "
+              f"median {statistics.median(v) * 1e3:7.1f} ms")
+    ratio = statistics.median(t["lsoda"]) / statistics.median(t["kernel"])
+    print(f"  LSODA / kernel (median CPU): {ratio:.2f}")
 
 
 if __name__ == "__main__":

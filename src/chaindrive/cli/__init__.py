@@ -176,7 +176,8 @@ def simulate(
     (with --model links also the span transverse motion and every link's tension)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.progress import spinner
+    from chaindrive.cli.progress import step_progress
+    from chaindrive.dynamics.transient.startup import startup_progress
 
     if model not in ("ring", "links"):
         with user_errors():
@@ -186,7 +187,8 @@ def simulate(
     if model == "links":
         _simulate_links(file, output, duration, as_json)
         return
-    with user_errors(), spinner("simulating the start-up …", quiet=as_json):
+    with user_errors(), step_progress("simulating the start-up", quiet=as_json) as update, \
+            startup_progress(update):
         if duration is not None:
             raise DesignError("--duration", "applies to --model links; the whole-drive "
                               "start-up lasts [dynamics] startup_duration")

@@ -62,7 +62,9 @@ and the callers refuse a run beyond :data:`WORK_BUDGET`.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -80,7 +82,7 @@ from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
 
 __all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
-           "StartupResult", "runup_time", "settling_time", "solve_startup",
+           "StartupResult", "runup_time", "settling_time", "solve_startup", "startup_progress",
            "transient_times", "work_estimate"]
 
 FloatArray = NDArray[np.float64]
@@ -94,6 +96,33 @@ MAX_RECORDS = 20_000
 #: the project machine.
 WORK_BUDGET = 4.0e9
 Backend = Literal["auto", "numba", "jit", "numpy"]
+#: Progress reports per start-up when a callback listens (:func:`startup_progress`).
+PROGRESS_REPORTS = 200
+_PROGRESS: ContextVar[Callable[[int, int], None] | None] = ContextVar(
+    "chaindrive_startup_progress", default=None)
+
+
+@contextmanager
+def startup_progress(callback: Callable[[int, int], None]) -> Iterator[None]:
+    """Within the context, every start-up integrated in this thread calls
+    ``callback(steps done, steps in all)`` about :data:`PROGRESS_REPORTS` times (the
+    compiled kernel then runs in as many pieces; the result is the same to the bit: the
+    kernel resumes from its state).
+
+    Parameters
+    ----------
+    callback : callable
+        Called with (steps done, steps in all) [-].
+
+    Yields
+    ------
+    None
+    """
+    token = _PROGRESS.set(callback)
+    try:
+        yield
+    finally:
+        _PROGRESS.reset(token)
 
 
 # --- results -------------------------------------------------------------------------------
@@ -679,6 +708,8 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
     fr_prev = span_part(y, mask)
     w = np.zeros(n)  # mean speed over the last step
     slack = 0
+    report = _PROGRESS.get()
+    chunk = max(1, math.ceil(p.steps / PROGRESS_REPORTS))
     for k in range(p.steps):
         t = k * dt
         fr = span_part(y, mask)
@@ -699,6 +730,8 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
         if (k + 1) % rec == 0:
             forces[(k + 1) // rec] = F
             states[(k + 1) // rec] = y
+        if report is not None and ((k + 1) % chunk == 0 or k + 1 == p.steps):
+            report(k + 1, p.steps)
     return forces, states, fmax, slack
 
 
@@ -765,11 +798,20 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     lcols = _law_columns(p)
     spans = {int(k) for k in np.flatnonzero(np.any(p.span_incidence != 0.0, axis=0))}
     fcols = np.array(sorted({int(k) for k in lcols} | spans), dtype=np.int64)
-    while runner(y, w, fr_prev, state, p.steps, p.dt, rec, masks, Phis, Gams, npat, B, c,
-                 ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
-                 need, fcols, lcols) < p.steps:
-        add(need.copy())
-    return forces, states, fmax, int(state[1])
+    report = _PROGRESS.get()
+    chunk = p.steps if report is None else max(1, math.ceil(p.steps / PROGRESS_REPORTS))
+    end = min(chunk, p.steps)
+    while True:
+        if runner(y, w, fr_prev, state, end, p.dt, rec, masks, Phis, Gams, npat, B, c,
+                  ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
+                  need, fcols, lcols) < end:
+            add(need.copy())
+            continue
+        if report is not None:
+            report(end, p.steps)
+        if end == p.steps:
+            return forces, states, fmax, int(state[1])
+        end = min(end + chunk, p.steps)
 
 
 def solve_startup(p: StartupProblem, backend: Backend = "auto"
