@@ -218,14 +218,14 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     tension); its summary with --json."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.progress import spinner
+    from chaindrive.cli.progress import progress_bar
     from chaindrive.io.design import Field, parse_quantity_as
     from chaindrive.linklevel import DURATION, checked_duration, kernel_compiled
 
-    what = ("simulating the chain link by link …" if kernel_compiled() else
-            "simulating the chain link by link (the first run compiles the model: about 10 s "
-            "on an idle machine, longer on a busy one) …")
-    with user_errors(), spinner(what, quiet=as_json):
+    what = ("link-level run" if kernel_compiled() else
+            "link-level run (the first compiles the model: ≈ 10 s idle)")
+    # the link-level kernel runs in one call: the elapsed time, no estimate
+    with user_errors(), progress_bar(what, quiet=as_json):
         # the example a message shows lies within the option's range (Field.example_text)
         option = Field("--duration", "time", "simulated time of the link-level run",
                        minimum=DURATION.low, maximum=DURATION.high, reason=DURATION.reason)
