@@ -28,8 +28,8 @@ is redone once with the new pattern.
 coordinate over the step, w = (q_{k+1} − q_k)/Δt, not on the speed sampled at the step's
 end: a mode far above the step (a light rotor on a stiff shaft, 10⁹ rad/s against a step of
 10⁻⁵ s) is sampled by the step as an aliased, undamped oscillation that a law fed with the
-sampled speed pumps without bound (a falling torque curve is a negative damper), while its
-mean over the step is smaller by ωΔt. The held law force is linearly implicit on w: with
+sampled speed pumps without bound (a torque rising with the speed is a negative damper),
+while its mean over the step is smaller by ωΔt. The held law force is linearly implicit on w: with
 f(w_k) held the step gives mean speeds w*, a force increment Δf on L changes them by
 G Δf (G = Γ_s[q_L, L]/Δt, fixed per pattern), and the linearised law asks
 Δf = J (w_{k+1} − w_k), J_i = ∂f_i/∂w_i, so (I − diag(J) G) Δf = J (w* − w_k): the linearly
@@ -39,12 +39,15 @@ of a stiff train respond together (G has off-diagonal terms as large as its diag
 a per-coordinate correction then adds up to an amplification — a whole-drive start-up at the
 lowest allowed driver speed (1 rpm) reached 2.5·10³⁰³ N that way. Stability: a dissipative
 law (J ≤ 0: every machine's moment, the stable branch of a motor curve) is a damper taken
-implicitly, v' − v = (w* − w)/(1 + |J| g) for one coordinate of response g > 0, bounded at
+implicitly, w' − w = (w* − w)/(1 + |J| g) for one coordinate of response g > 0, bounded at
 any step. The rising branch of a motor curve (J > 0, below the breakdown speed) is a negative
-damper: taken implicitly while J g ≤ 1/2 (the step's own increment amplified by
-1/(1 − J g) ≤ 2), beyond it with J clipped to 1/(2g): the rest of the slope is explicit, a
-force the curve bounds by its breakdown torque, and past the breakdown speed the falling
-branch holds the speed implicitly again.
+damper: taken linearly implicit while J g ≤ 1/2 (the step's own increment amplified by
+1/(1 − J g) ≤ 2). Steeper, the linearisation does not hold over the step (a motor of little
+inertia runs through its whole curve within one step): a Kloss motor is then taken by
+backward Euler on its own curve, w' − a = g (f(w') − f(w)) — a cubic in the slip — at the
+root first met from w toward the step's speed a, the speed the motor reaches before any
+other equilibrium (:func:`chaindrive.dynamics.transient.kernel_codes.kloss_end_speed`); any
+other law with J clipped to 1/(2g), the rest of its slope explicit.
 
 **Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.transient.kernel`)
 when the motor is a ConstantTorque, RampTorque or KlossMotor — compiled ahead of time when
@@ -557,13 +560,13 @@ def _polygonal_raw(data: PolyData, y: FloatArray) -> tuple[FloatArray, FloatArra
 
 
 class _Patterns:
-    """Φ_s, Γ_s and diag Γ_vv of the slack patterns met so far, cached by pattern."""
+    """Φ_s, Γ_s of the slack patterns met so far, cached by pattern."""
 
     def __init__(self, p: StartupProblem) -> None:
         self.p = p
-        self.cache: dict[bytes, tuple[FloatArray, FloatArray, FloatArray]] = {}
+        self.cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
 
-    def __call__(self, mask: NDArray[np.bool_]) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def __call__(self, mask: NDArray[np.bool_]) -> tuple[FloatArray, FloatArray]:
         key = mask.tobytes()
         if key not in self.cache:
             p = self.p
@@ -571,7 +574,7 @@ class _Patterns:
             K = p.stiffness_linear + (B.T * (p.span_stiffness * mask)) @ B
             C = p.damping_linear + (B.T * (p.span_damping * mask)) @ B
             P, G = zoh_matrices(p.mass, K, C, p.dt)
-            self.cache[key] = (P, G, G[p.size:].diagonal().copy())
+            self.cache[key] = (P, G)
         return self.cache[key]
 
 
@@ -680,7 +683,7 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
 
     def advance(y: FloatArray, w: FloatArray, t: float, fr: FloatArray,
                 mask: NDArray[np.bool_]) -> FloatArray:
-        Phi, Gam, _ = mats(mask)
+        Phi, Gam = mats(mask)
         fl = _laws_numpy(p, t + 0.5 * dt, w)
         hv = 1e-6 * (1.0 + np.abs(w))
         J = (_laws_numpy(p, t + 0.5 * dt, w + hv) - fl) / hv
@@ -769,7 +772,7 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
             masks, Phis, Gams = (np.concatenate([a, np.empty_like(a)])
                                  for a in (masks, Phis, Gams))
         masks[npat] = mask
-        Phis[npat], Gams[npat] = mats(mask)[:2]
+        Phis[npat], Gams[npat] = mats(mask)
         npat += 1
 
     c = np.ascontiguousarray(p.span_stiffness, dtype=float)
