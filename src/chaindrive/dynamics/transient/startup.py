@@ -762,17 +762,22 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     kernel resumes from the step that met them."""
     n, ns = p.size, p.span_stiffness.size
     mats = _Patterns(p)
+    lcols = _law_columns(p)
     masks = np.zeros((4, ns), dtype=np.bool_)
-    Phis, Gams = np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, n))
+    Phis, GBs, GLs = (np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, ns)),
+                      np.empty((4, 2 * n, lcols.size)))
     npat = 0
+    minus_Bt = -p.span_incidence.T
 
     def add(mask: NDArray[np.bool_]) -> None:
-        nonlocal masks, Phis, Gams, npat
+        # per pattern: Φ, Γ(−Bᵀ) (the span forces' columns) and Γ[:, L] (the laws')
+        nonlocal masks, Phis, GBs, GLs, npat
         if npat == masks.shape[0]:
-            masks, Phis, Gams = (np.concatenate([a, np.empty_like(a)])
-                                 for a in (masks, Phis, Gams))
+            masks, Phis, GBs, GLs = (np.concatenate([a, np.empty_like(a)])
+                                     for a in (masks, Phis, GBs, GLs))
         masks[npat] = mask
-        Phis[npat], Gams[npat] = mats(mask)
+        Phi, Gam = mats(mask)
+        Phis[npat], GBs[npat], GLs[npat] = Phi, Gam @ minus_Bt, Gam[:, lcols]
         npat += 1
 
     c = np.ascontiguousarray(p.span_stiffness, dtype=float)
@@ -792,22 +797,19 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     forces[0] = np.where(c > 0, p.pretension, 0.0)
     fmax = np.maximum(forces[0], 0.0)
     y, w, need = np.zeros(2 * n), np.zeros(n), np.zeros(ns, dtype=np.bool_)
-    fr_prev = -(np.where(masks[0], p.pretension, 0.0) @ p.span_incidence)
+    span_prev = np.where(masks[0], p.pretension, 0.0)
     state = np.zeros(3, dtype=np.int64)
     B = f8(p.span_incidence, dtype=float)
     ds, T0 = f8(p.span_damping, dtype=float), f8(p.pretension, dtype=float)
     tonly = f8(p.span_tension_only, dtype=np.bool_)
     # the coordinates the forces act on (a Python set: np.unique imports numpy.ma, 12 ms)
-    lcols = _law_columns(p)
-    spans = {int(k) for k in np.flatnonzero(np.any(p.span_incidence != 0.0, axis=0))}
-    fcols = np.array(sorted({int(k) for k in lcols} | spans), dtype=np.int64)
     report = _PROGRESS.get()
     chunk = p.steps if report is None else max(1, math.ceil(p.steps / PROGRESS_REPORTS))
     end = min(chunk, p.steps)
     while True:
-        if runner(y, w, fr_prev, state, end, p.dt, rec, masks, Phis, Gams, npat, B, c,
+        if runner(y, w, span_prev, state, end, p.dt, rec, masks, Phis, GBs, GLs, npat, B, c,
                   ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
-                  need, fcols, lcols) < end:
+                  need, lcols) < end:
             add(need.copy())
             continue
         if report is not None:
