@@ -205,3 +205,18 @@ def test_an_elastic_stall_is_said_and_not_lengthened() -> None:
     assert any(w.code == "dynamics.startup-stall" for w in a.warnings)
     k1 = a.check("k1")
     assert k1 is not None and k1.status == UNVERIFIED and "outside the model's range" in k1.note
+
+
+def test_motor_torque_on_the_grid_is_the_law_speed_by_speed() -> None:
+    # the package's motor laws take the whole speed grid at once: the same numbers, bit for
+    # bit, as calling the law at every speed (what any other callable gets)
+    from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
+    from chaindrive.dynamics.transient.runup import _motor_torque
+
+    w = np.linspace(1e-9, 160.0, 4001)
+    for law in (KlossMotor(3000.0, 150.0), RampTorque(10.0, 0.2), ConstantTorque(4.0)):
+        t = math.inf if isinstance(law, RampTorque) else 0.0
+        expected = np.array([float(law(t, float(x))) for x in w])
+        assert np.array_equal(_motor_torque(law, w), expected)
+        if not isinstance(law, RampTorque):  # a wrapped ramp is not known to be at full torque
+            assert np.array_equal(_motor_torque(lambda t, x, law=law: law(t, x), w), expected)

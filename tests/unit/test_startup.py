@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import shutil
 from dataclasses import replace
@@ -331,3 +332,29 @@ def test_runup_needs_the_speed_levelled_off() -> None:
     assert 0.3 * 0.95 / 1.02 <= runup_time(t, speed, period=0.02) <= 0.285 + 1.001 * t[1]
     cut = t <= 0.2
     assert math.isnan(runup_time(t[cut], speed[cut], period=0.02))
+
+
+@pytest.mark.parametrize("backend", ["numba", "numpy"])
+def test_progress_reports_leave_the_result_bit_identical(backend: str) -> None:
+    # with a progress callback the compiled kernel runs in pieces, resuming from its state:
+    # the same numbers to the bit; the reports climb to the last step
+    from chaindrive.dynamics.transient.startup import PROGRESS_REPORTS, startup_progress
+
+    if backend == "numba" and not HAVE_NUMBA:
+        pytest.skip("numba not installed")
+    args = _small_ring(True)
+    res = ResistanceLaw("linear", np.array([0.0, 60.0, 10.0, 5.0]),
+                        np.array([26.0, 16., 21., 19.]))
+    plain = simulate_startup(motor=KlossMotor(3000.0, 26.0), resistance=res, backend=backend,
+                             **args)
+    seen: list[tuple[int, int]] = []
+    with startup_progress(lambda done, total: seen.append((done, total))):
+        shown = simulate_startup(motor=KlossMotor(3000.0, 26.0), resistance=res,
+                                 backend=backend, **args)
+    assert np.array_equal(plain.span_forces, shown.span_forces)
+    assert np.array_equal(plain.speeds, shown.speeds)
+    assert np.array_equal(plain.max_span_force, shown.max_span_force)
+    steps = seen[-1][1]
+    assert seen[-1] == (steps, steps)
+    assert len(seen) == math.ceil(steps / math.ceil(steps / PROGRESS_REPORTS))
+    assert all(a[0] < b[0] for a, b in itertools.pairwise(seen))

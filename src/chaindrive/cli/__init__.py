@@ -177,7 +177,8 @@ def simulate(
     (with --model links also the span transverse motion and every link's tension)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.progress import spinner
+    from chaindrive.cli.progress import step_progress
+    from chaindrive.dynamics.transient.startup import startup_progress
 
     if model not in ("ring", "links"):
         with user_errors():
@@ -187,7 +188,8 @@ def simulate(
     if model == "links":
         _simulate_links(file, output, duration, as_json)
         return
-    with user_errors(), spinner("simulating the start-up …", quiet=as_json):
+    with user_errors(), step_progress("simulating the start-up", quiet=as_json) as update, \
+            startup_progress(update):
         if duration is not None:
             raise DesignError("--duration", "applies to --model links; the whole-drive "
                               "start-up lasts [dynamics] startup_duration")
@@ -217,14 +219,14 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     tension); its summary with --json."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.progress import spinner
+    from chaindrive.cli.progress import progress_bar
     from chaindrive.io.design import Field, parse_quantity_as
     from chaindrive.linklevel import DURATION, checked_duration, kernel_compiled
 
-    what = ("simulating the chain link by link …" if kernel_compiled() else
-            "simulating the chain link by link (the first run compiles the model: about 10 s "
-            "on an idle machine, longer on a busy one) …")
-    with user_errors(), spinner(what, quiet=as_json):
+    what = ("link-level run" if kernel_compiled() else
+            "link-level run (the first compiles the model: ≈ 10 s idle)")
+    # the link-level kernel runs in one call: the elapsed time, no estimate
+    with user_errors(), progress_bar(what, quiet=as_json):
         # the example a message shows lies within the option's range (Field.example_text)
         option = Field("--duration", "time", "simulated time of the link-level run",
                        minimum=DURATION.low, maximum=DURATION.high, reason=DURATION.reason)

@@ -84,6 +84,52 @@ def progress_bar(description: str, total: int | None = None, *,
         yield advance
 
 
+@contextmanager
+def step_progress(description: str, *, quiet: bool = False
+                  ) -> Iterator[Callable[[int, int], None]]:
+    """A context giving ``update(done, total)`` for a computation that counts its own steps
+    (a start-up: its time steps): a bar with the elapsed time and an estimate of what is
+    left; same rules as :func:`progress_bar`.
+
+    Parameters
+    ----------
+    description : str
+        What runs.
+    quiet : bool
+        True in ``--json`` mode (no bar).
+
+    Yields
+    ------
+    callable
+        ``update(done, total)``.
+    """
+    if not progress_enabled(quiet):
+        yield _no_steps
+        return
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(TextColumn("{task.description}"), BarColumn(),
+                  TextColumn("{task.percentage:>3.0f} %"), TimeElapsedColumn(),
+                  TimeRemainingColumn(), console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task(description, total=None)
+
+        def update(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        yield update
+
+
+def _no_steps(done: int, total: int) -> None:
+    """What ``update`` is when no bar is drawn."""
+
+
 def track(items: Iterable[T], description: str, total: int | None = None, *,
           quiet: bool = False) -> Iterator[T]:
     """Iterate over ``items`` with a progress bar (see :func:`progress_bar`).

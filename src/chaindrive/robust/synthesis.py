@@ -43,7 +43,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -51,13 +51,11 @@ from chaindrive.analysis import Analysis
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.design import Field, parse_section
 from chaindrive.model import Drive
-from chaindrive.robust.chance import allowed_failures, minimum_samples, upper_bound
-from chaindrive.robust.sampling import ReliabilityResult, reliability, sample_count
-from chaindrive.robust.uncertainty import (
-    UncertaintySettings,
-    uncertainty_model,
-    uncertainty_settings,
-)
+
+if TYPE_CHECKING:  # the sampling, chance and uncertainty modules import scipy.stats (0.35 s):
+    # imported where a robust problem uses them, not by every optimisation that imports this
+    from chaindrive.robust.sampling import ReliabilityResult
+    from chaindrive.robust.uncertainty import UncertaintySettings
 
 __all__ = ["MODAL_KEYS", "RESPONSE_KEYS", "ROBUST_FIELDS", "ROBUST_OBJECTIVES", "ChanceVerification",
            "RobustAnalysis", "RobustSettings", "chance_statement", "robust_constraints",
@@ -178,6 +176,10 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
         raise DesignError("optimize.robust.path", "the modal path gives only the resonance "
                           f"margin and f1; {', '.join(sorted(needs - MODAL_KEYS))} need "
                           'path = "full"')
+    from chaindrive.robust.chance import minimum_samples
+    from chaindrive.robust.sampling import sample_count
+    from chaindrive.robust.uncertainty import uncertainty_settings
+
     base = uncertainty_settings(uncertainty)
     samples = values["samples"]
     if samples is None:
@@ -192,6 +194,9 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
 def _check_certifiable(settings: UncertaintySettings, chance: Sequence[tuple[str, float]]
                        ) -> None:
     """Refuse a sample count that cannot certify a chance constraint (module docstring)."""
+    from chaindrive.robust.chance import minimum_samples
+    from chaindrive.robust.sampling import sample_count
+
     states = sample_count(settings.samples, settings.replicates)
     c = settings.confidence
     for key, alpha in chance:
@@ -225,6 +230,9 @@ class RobustAnalysis(Analysis):
     def robust(self) -> ReliabilityResult:
         """The design's probabilities of failure and metric statistics over its states."""
         s = self.robust_settings
+        from chaindrive.robust.sampling import reliability
+        from chaindrive.robust.uncertainty import uncertainty_model
+
         return reliability(self, uncertainty_model(self, s.uncertainty), path=s.path,
                            response=s.response)
 
@@ -289,6 +297,8 @@ def chance_statement(result: ReliabilityResult, key: str, alpha: float, confiden
     fraction = float(np.mean(m < 0.0))
     if n == 1:  # no random variable: the fraction is exact
         return fraction, 1, fraction, -float(m[min(m.size - 1, math.floor(alpha * m.size))])
+    from chaindrive.robust.chance import allowed_failures, upper_bound
+
     k_star = allowed_failures(alpha, n, confidence)
     failures = fraction * n
     p_up = upper_bound(min(failures, n), n, confidence)

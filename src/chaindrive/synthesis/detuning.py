@@ -26,7 +26,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import differential_evolution
 
 from chaindrive.analysis import Analysis
 from chaindrive.dynamics.modes import inertia_modes_batch
@@ -202,6 +201,10 @@ def _bounds(values: NDArray, bounds: ArrayLike | None, path: str) -> NDArray:
 
 
 def _de_kwargs(seed: int) -> dict[str, Any]:
+    # scipy.optimize (0.2 s) only where the detuning search runs: the optimiser imports
+    # this module for the detuning objective alone
+    from scipy.optimize import differential_evolution
+
     name = "rng" if "rng" in inspect.signature(differential_evolution).parameters else "seed"
     return {name: seed}
 
@@ -281,6 +284,8 @@ def detune(masses: ArrayLike, stiffness: ArrayLike, working_hz: ArrayLike, *,
     inside = bool(np.all(x0 >= b[free, 0]) and np.all(x0 <= b[free, 1]))
     # vectorized=True: func takes the (free, S) population and returns (S,), which the
     # stubs (a scalar function) do not describe
+    from scipy.optimize import differential_evolution
+
     res = differential_evolution(func, b[free],  # type: ignore[arg-type]
                                  maxiter=maxiter, popsize=popsize, tol=1e-8, polish=False,
                                  vectorized=True, updating="deferred",

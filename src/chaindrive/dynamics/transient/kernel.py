@@ -4,8 +4,10 @@ The same step as the NumPy loop of :func:`chaindrive.dynamics.transient.startup.
 model M q̈ + C q̇ + K q = Q of any coordinates q (the whole drive, or the ring as a special
 case): exact zero-order-hold transition Φ_s, Γ_s per slack pattern s [VanLoan1978];
 explicit pre-tension and polygonal span forces −Bᵀ(...) extrapolated to mid-step; the motor
-and load laws linearly implicit on the speed of their own coordinate; a step that changes the
-slack pattern redone once with the new pattern. Written on plain arrays so that numba
+and load laws acting on the mean speed of their own coordinate over the step, linearly
+implicit and coupled through the step's response (one small linear solve over the law
+coordinates; the stability argument is in :mod:`chaindrive.dynamics.transient.startup`); a
+step that changes the slack pattern redone once with the new pattern. Written on plain arrays so that numba
 compiles it (``@njit(cache=True)``).
 
 Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.transient.kernel_codes`): the motor acts
@@ -35,10 +37,12 @@ import numpy as np
 
 from chaindrive.dynamics.transient.kernel_codes import (  # the kernel's integer codes
     MOTOR_CONSTANT,
+    MOTOR_KLOSS,
     MOTOR_RAMP,
     RESISTANCE_CONSTANT,
     RESISTANCE_LINEAR,
     RESISTANCE_QUADRATIC,
+    kloss_end_speed,
 )
 
 try:  # numba is optional (project rule: compiled hot loop with a NumPy fallback)
@@ -125,16 +129,6 @@ def _matvec_add(A: Any, y: Any, out: Any) -> None:
         out[i] += acc
 
 
-@(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
-def _matvec_cols_add(A: Any, cols: Any, y: Any, out: Any) -> None:
-    """out += A[:, cols] @ y[cols] (the forces act on few coordinates)."""
-    for i in range(A.shape[0]):
-        acc = 0.0
-        for j in cols:
-            acc += A[i, j] * y[j]
-        out[i] += acc
-
-
 @_njit
 def _find(masks: Any, npat: int, mask: Any) -> int:
     """Index of ``mask`` among the first ``npat`` stacked patterns, −1 if absent."""
@@ -150,62 +144,142 @@ def _find(masks: Any, npat: int, mask: Any) -> int:
 
 
 @_njit
-def _span_part(mask: Any, fr: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
-               dd: Any, span: Any) -> None:
-    """fr = −Bᵀ (pre-tension and polygonal span forces) of the spans in ``mask``."""
+def _span_part(mask: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any, dd: Any,
+               span: Any) -> None:
+    """span = the pre-tension and polygonal span forces [N] of the spans in ``mask`` (0 for
+    the others); the coordinates receive −Bᵀ span."""
     for i in range(span.size):
         s = T0[i]
         if poly:
             s += c[i] * d[i] + ds[i] * dd[i]
         span[i] = s if mask[i] else 0.0
-    for k in range(fr.size):
-        acc = 0.0
-        for i in range(span.size):
-            acc += B[i, k] * span[i]
-        fr[k] = -acc
 
 
 @_njit
-def _advance(y: Any, t: float, dt: float, fr: Any, Phi: Any, Gam: Any, gvv: Any, y_new: Any,
-             lw: tuple, work: Any, fcols: Any, lcols: Any) -> None:
-    """One step; the law forces linearly implicit on their own coordinate's speed (the
-    forces act on the coordinates ``fcols``, the laws on ``lcols``)."""
+def _sparse_rows(B: Any) -> tuple:
+    """(row pointers, columns, values) of the nonzeros of B, row by row (an incidence has a
+    few a row)."""
+    nnz = 0
+    for i in range(B.shape[0]):
+        for k in range(B.shape[1]):
+            if B[i, k] != 0.0:
+                nnz += 1
+    ptr = np.zeros(B.shape[0] + 1, dtype=np.int64)
+    idx = np.empty(nnz, dtype=np.int64)
+    val = np.empty(nnz)
+    j = 0
+    for i in range(B.shape[0]):
+        for k in range(B.shape[1]):
+            if B[i, k] != 0.0:
+                idx[j] = k
+                val[j] = B[i, k]
+                j += 1
+        ptr[i + 1] = j
+    return ptr, idx, val
+
+
+#: the plain-Python helper compiled for the kernel
+_kloss_end_speed = _njit(kloss_end_speed)
+
+
+@_njit
+def _solve_small(A: Any, b: Any) -> None:
+    """b ← A⁻¹ b by Gaussian elimination with partial pivoting (A overwritten; a few unknowns)."""
+    m = b.size
+    for k in range(m):
+        piv = k
+        big = abs(A[k, k])
+        for i in range(k + 1, m):
+            if abs(A[i, k]) > big:
+                big = abs(A[i, k])
+                piv = i
+        if piv != k:
+            for j in range(m):
+                A[k, j], A[piv, j] = A[piv, j], A[k, j]
+            b[k], b[piv] = b[piv], b[k]
+        for i in range(k + 1, m):
+            r = A[i, k] / A[k, k]
+            if r != 0.0:
+                for j in range(k + 1, m):
+                    A[i, j] -= r * A[k, j]
+                b[i] -= r * b[k]
+    for k in range(m - 1, -1, -1):
+        acc = b[k]
+        for j in range(k + 1, m):
+            acc -= A[k, j] * b[j]
+        b[k] = acc / A[k, k]
+
+
+@_njit
+def _advance(y: Any, w: Any, t: float, dt: float, se: Any, Phi: Any, GB: Any, GL: Any,
+             y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
+    """One step: y' = Φ y + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces s held (GB = Γ(−Bᵀ),
+    GL = Γ[:, L], both per pattern); the law forces on the coordinates L linearly implicit
+    on their mean speeds w over the step (lA, lb work arrays of the laws' linear system)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
-    n = fr.size
-    v = y[n:]
-    fl, f2, hv, vh, f, df = work[0], work[1], work[2], work[3], work[4], work[5]
+    n = w.size
+    fl, f2, hv, vh = work[0], work[1], work[2], work[3]
     th = t + 0.5 * dt
-    _laws(th, v, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
+    _laws(th, w, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for i in range(n):
-        hv[i] = 1e-6 * (1.0 + abs(v[i]))
-        vh[i] = v[i] + hv[i]
+        hv[i] = 1e-6 * (1.0 + abs(w[i]))
+        vh[i] = w[i] + hv[i]
     _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
-    for i in range(n):
-        f[i] = fr[i] + fl[i]
+    m = lcols.size
+    for a in range(m):
+        lb[a] = fl[lcols[a]]
     y_new[:] = 0.0
     _matvec_add(Phi, y, y_new)
-    _matvec_cols_add(Gam, fcols, f, y_new)
-    for i in lcols:
+    _matvec_add(GB, se, y_new)
+    _matvec_add(GL, lb, y_new)
+    if m == 0:
+        return
+    # (I − diag(J) G) Δf = J (w* − w), G = Γ[L, L]/Δt, J clipped to 1/(2 G_ii) where it rises
+    am = -1
+    for a in range(m):
+        i = lcols[a]
         J = (f2[i] - fl[i]) / hv[i]
-        df[i] = J * (y_new[n + i] - v[i]) / max(1.0 - gvv[i] * J, 0.1)
-    _matvec_cols_add(Gam, lcols, df, y_new)
+        gii = GL[i, a] / dt
+        if gii > 0.0 and 0.5 / gii < J:
+            J = 0.5 / gii
+            if i == mk and mkind == MOTOR_KLOSS:
+                am = a
+        for b in range(m):
+            lA[a, b] = -J * GL[i, b] / dt
+        lA[a, a] += 1.0
+        lb[a] = J * ((y_new[i] - y[i]) / dt - w[i])
+    _solve_small(lA, lb)
+    if am >= 0:  # a Kloss motor on its rising branch faster than the step: backward Euler
+        wa = (y_new[mk] - y[mk]) / dt
+        for b in range(m):
+            if b != am:
+                wa += GL[mk, b] / dt * lb[b]
+        s = 1.0 - mgain * w[mk] / mp[2]
+        fw = mgain * meff * mp[0] * s * mp[1] / (s * s + mp[1] * mp[1])
+        u = _kloss_end_speed(w[mk], wa, fw, GL[mk, am] / dt, mgain, mgain * meff, mp[0],
+                             mp[1], mp[2])
+        s = 1.0 - mgain * u / mp[2]
+        lb[am] = mgain * meff * mp[0] * s * mp[1] / (s * s + mp[1] * mp[1]) - fw
+    _matvec_add(GL, lb, y_new)
 
 
 @_njit
-def _span_force(y: Any, F: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
+def _span_force(y: Any, F: Any, Bs: tuple, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
                 dd: Any, pg: tuple) -> None:
-    """Span forces [N] before the slack rule at the state y; the polygonal elongations at y
-    are left in d, ḋ (the next step's explicit part uses them)."""
+    """Span forces [N] before the slack rule at the state y (Bs: the incidence's nonzeros,
+    :func:`_sparse_rows`); the polygonal elongations at y are left in d, ḋ (the next step's
+    explicit part uses them)."""
     pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
+    bptr, bidx, bval = Bs
     n = y.size // 2
     if poly:
         _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
     for i in range(F.size):
         e = 0.0
         ed = 0.0
-        for k in range(n):
-            e += B[i, k] * y[k]
-            ed += B[i, k] * y[n + k]
+        for j in range(bptr[i], bptr[i + 1]):
+            e += bval[j] * y[bidx[j]]
+            ed += bval[j] * y[n + bidx[j]]
         if poly:
             e += d[i]
             ed += dd[i]
@@ -213,41 +287,44 @@ def _span_force(y: Any, F: Any, B: Any, c: Any, ds: Any, T0: Any, poly: bool, d:
 
 
 @_njit
-def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int, masks: Any,
-               Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any, ds: Any,
+def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float, rec: int,
+               masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any, ds: Any,
                tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
-               states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
+               states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
-    y (2N,) state, fr_prev (N,) explicit forces of the previous step, state = [step, slack
-    count, pattern index] (all updated in place); forces (R, S) and states (R, 2N) filled at
-    every ``rec``-th step, fmax (S,) the largest span forces; fcols the coordinates the span
-    and law forces act on, lcols those of the laws. Returns < steps when a step
-    needs a slack pattern not among the first ``npat``: it is written into ``need`` and
-    nothing of that step is kept.
+    y (2N,) state, w (N,) the mean speeds over the previous step, span_prev (S,) the held
+    span forces of the previous step, state = [step, slack count, pattern index] (all
+    updated in place); Φ_s, Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, GBs,
+    GLs (L = ``lcols``, the coordinates of the laws); forces (R, S) and states (R, 2N)
+    filled at every ``rec``-th step, fmax (S,) the largest span forces. Returns < steps when
+    a step needs a slack pattern not among the first ``npat``: it is written into ``need``
+    and nothing of that step is kept.
     """
     ns = c.size
-    n = fr_prev.size
+    n = w.size
+    Bs = _sparse_rows(B)
     d, dd = np.zeros(ns), np.zeros(ns)
     d_new, dd_new = np.zeros(ns), np.zeros(ns)
     if poly:
         pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
         _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
-    fr = np.empty(n)
-    fe = np.empty(n)
+    se = np.empty(ns)
     span = np.empty(ns)
-    work = np.empty((6, n))
+    work = np.empty((4, n))
+    lA = np.empty((lcols.size, lcols.size))
+    lb = np.empty(lcols.size)
     y_new = np.empty(2 * n)
     F = np.empty(ns)
     p = state[2]
     for k in range(state[0], steps):
         t = k * dt
         mask = masks[p]
-        _span_part(mask, fr, B, c, ds, T0, poly, d, dd, span)
-        for i in range(n):
-            fe[i] = 1.5 * fr[i] - 0.5 * fr_prev[i]
-        _advance(y, t, dt, fe, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
-        _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
+        _span_part(mask, c, ds, T0, poly, d, dd, span)
+        for i in range(ns):
+            se[i] = 1.5 * span[i] - 0.5 * span_prev[i]
+        _advance(y, w, t, dt, se, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA, lb)
+        _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
         for i in range(ns):
             need[i] = (F[i] > 0 or not tonly[i]) and c[i] > 0
@@ -258,12 +335,15 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
                 state[0], state[2] = k, p
                 return k
             p = q
-            _span_part(masks[p], fr, B, c, ds, T0, poly, d, dd, span)
-            _advance(y, t, dt, fr, Phis[p], Gams[p], gvvs[p], y_new, lw, work, fcols, lcols)
-            _span_force(y_new, F, B, c, ds, T0, poly, d_new, dd_new, pg)
+            _span_part(masks[p], c, ds, T0, poly, d, dd, span)
+            _advance(y, w, t, dt, span, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA,
+                     lb)
+            _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
-        fr_prev[:] = fr
+        span_prev[:] = span
+        for i in range(n):
+            w[i] = (y_new[i] - y[i]) / dt
         y[:] = y_new
         d, d_new = d_new, d
         dd, dd_new = dd_new, dd
@@ -284,27 +364,27 @@ def run_kernel(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int
 
 
 @_njit
-def run_kernel_flat(y: Any, fr_prev: Any, state: Any, steps: int, dt: float, rec: int,
-                    masks: Any, Phis: Any, Gams: Any, gvvs: Any, npat: int, B: Any, c: Any,
-                    ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
+def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float,
+                    rec: int, masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any,
+                    c: Any, ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
                     mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
                     lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
                     pidx: Any, pgain: Any, pk: float, plin: float, pd0: Any, forces: Any,
-                    states: Any, fmax: Any, need: Any, fcols: Any, lcols: Any) -> int:
+                    states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
     (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, fr_prev, state, steps, dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
-                      ds, tonly, T0,
+    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, GBs, GLs, npat, B,
+                      c, ds, tonly, T0,
                       (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
                       poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
-                      fmax, need, fcols, lcols)
+                      fmax, need, lcols)
 
 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
 FLAT_SIGNATURE = (
-    "i8(f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1], f8[:, :, ::1],"
-    " f8[:, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8, f8, f8, i8, f8[::1],"
-    " i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1, f8[::1], f8[::1], f8[::1],"
-    " f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1], f8[:, ::1], f8[::1], b1[::1],"
-    " i8[::1], i8[::1])"
+    "i8(f8[::1], f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1],"
+    " f8[:, :, ::1], f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8,"
+    " f8, f8, i8, f8[::1], i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1,"
+    " f8[::1], f8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1],"
+    " f8[:, ::1], f8[::1], b1[::1], i8[::1])"
 )

@@ -6,6 +6,7 @@ does not import numba.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -17,7 +18,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-__all__ = ["RESISTANCE_KINDS", "motor_code", "resistance_code"]
+__all__ = ["RESISTANCE_KINDS", "kloss_end_speed", "motor_code", "resistance_code"]
 
 MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
 RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
@@ -83,3 +84,80 @@ def resistance_code(law: ResistanceLaw | None, n: int) -> tuple[int, NDArray[np.
     return (kind, np.broadcast_to(np.asarray(law.torques, float), (n,)).copy(),
             np.broadcast_to(np.asarray(law.nominal_speeds, float), (n,)).copy(),
             float(law.breakaway))
+
+
+def kloss_end_speed(w: float, a: float, fw: float, g: float, gain: float, kappa: float,
+                    peak: float, sk: float, ws: float) -> float:
+    """Mean speed over a step of the coordinate that carries a Kloss motor, by backward
+    Euler on the motor law (the caller's fallback where the linearised step does not hold:
+    the rising branch of the curve steeper than the step resolves).
+
+    The motor force f(u) = κ T(g_m u), T = A s s_k/(s² + s_k²), s = 1 − g_m u/ω_s. With the
+    force f(w) held the step reaches the mean speed a; a force increment Δf changes it by
+    g Δf. The end speed u solves u − a = g (f(u) − f(w)), a cubic in s:
+    β s³ − α s² + (β s_k² + γ) s − α s_k² = 0 with β = ω_s/g_m, α = β − (a − g f(w)),
+    γ = g κ A s_k. Of its real roots the one first met going from w toward a is taken: the
+    speed the motor reaches within the step, not an equilibrium beyond another one.
+
+    Parameters
+    ----------
+    w : float
+        Mean speed over the previous step [rad/s or m/s of the coordinate].
+    a : float
+        Mean speed of the step with f(w) held [same unit].
+    fw : float
+        f(w) [N·m or N].
+    g : float
+        Mean-speed response of the coordinate to a held force [speed unit per force unit].
+    gain : float
+        g_m: motor shaft speed per coordinate speed [-].
+    kappa : float
+        κ: gain × efficiency from the motor torque to the coordinate's force [-].
+    peak : float
+        A = 2 λ M_r [N·m].
+    sk : float
+        Critical slip s_k [-].
+    ws : float
+        Synchronous speed ω_s [rad/s].
+
+    Returns
+    -------
+    float
+        u [speed unit]; a when no root lies toward a (cannot happen for a bounded curve).
+
+    References
+    ----------
+    [HairerWanner1996, §IV.1] (backward Euler); the Kloss formula as in
+    :class:`~chaindrive.dynamics.motors.KlossMotor`.
+    """
+    if a == w or gain == 0.0:
+        return a
+    beta = ws / gain
+    alpha = beta - (a - g * fw)
+    gamma = g * kappa * peak * sk
+    # s³ + c2 s² + c1 s + c0 = 0: Cardano's or the trigonometric form, each real root
+    # polished by two Newton steps (one real root: taken three times)
+    c2, c1, c0 = -alpha / beta, sk * sk + gamma / beta, -alpha * sk * sk / beta
+    shift = c2 / 3.0
+    p = c1 - c2 * shift
+    q = 2.0 * shift ** 3 - shift * c1 + c0
+    disc = 0.25 * q * q + p * p * p / 27.0
+    best, dist = a, math.inf
+    for k in range(3):
+        if disc >= 0.0 or p >= 0.0:
+            r = math.sqrt(max(disc, 0.0))
+            x, y = -0.5 * q + r, -0.5 * q - r
+            s = math.copysign(abs(x) ** (1.0 / 3.0), x) + math.copysign(abs(y) ** (1.0 / 3.0),
+                                                                       y) - shift
+        else:
+            m = 2.0 * math.sqrt(-p / 3.0)
+            phi = math.acos(min(1.0, max(-1.0, 3.0 * q / (p * m)))) / 3.0
+            s = m * math.cos(phi - 2.0 * math.pi * k / 3.0) - shift
+        for _ in range(2):
+            dp = (3.0 * s + 2.0 * c2) * s + c1
+            if dp != 0.0:
+                s -= (((s + c2) * s + c1) * s + c0) / dp
+        u = ws * (1.0 - s) / gain
+        if (u - w) * (a - w) >= 0.0 and abs(u - w) < dist:
+            best, dist = u, abs(u - w)
+    return best

@@ -33,7 +33,13 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.motors import KlossMotor, RampTorque, ResistanceKind, ResistanceLaw
+from chaindrive.dynamics.motors import (
+    ConstantTorque,
+    KlossMotor,
+    RampTorque,
+    ResistanceKind,
+    ResistanceLaw,
+)
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.model.assembly import LinearModel
@@ -177,8 +183,12 @@ def _integral(f: Any, a: float, b: float, panels: int = 64, order: int = 8) -> f
 
 
 def _motor_torque(law: Any, speeds: FloatArray) -> FloatArray:
-    """M_M at the speeds [N·m], a ramp at its full torque."""
+    """M_M at the speeds [N·m], a ramp at its full torque. The package's motor laws are
+    arithmetic on ω, so they take the whole grid at once (the same operations element by
+    element: the same numbers); any other callable is called speed by speed."""
     t = math.inf if isinstance(law, RampTorque) else 0.0
+    if type(law) in (ConstantTorque, RampTorque, KlossMotor):
+        return np.broadcast_to(np.asarray(law(t, speeds), dtype=float), speeds.shape).copy()
     return np.array([float(law(t, float(w))) for w in speeds])
 
 

@@ -20,10 +20,34 @@ its sprocket; :mod:`chaindrive.dynamics.motors`).
 linear part ẏ = A_s y + E f (y = (q, q̇)) is discretised exactly,
 expm([[A_s, E], [0, 0]] Δt) = [[Φ_s, Γ_s], [0, I]] (:mod:`chaindrive.dynamics.transient.zoh`), and
 y_{k+1} = Φ_s y_k + Γ_s f_{k+½}, f_{k+½} = (3 f_k − f_{k−1})/2 for the explicit span forces
-(pre-tension, polygonal); the laws are linearly implicit on their own coordinate's speed.
-Φ_s, Γ_s are cached per pattern. The linear part is exact at any step (no stability limit
-from stiff modes); a step whose end state changes the slack pattern is redone once with the
-new pattern.
+(pre-tension, polygonal). Φ_s, Γ_s are cached per pattern. The linear part is exact at any
+step (no stability limit from stiff modes); a step whose end state changes the slack pattern
+is redone once with the new pattern.
+
+**Laws** (motor and machines, on the coordinates L). They act on the *mean* speed of their
+coordinate over the step, w = (q_{k+1} − q_k)/Δt, not on the speed sampled at the step's
+end: a mode far above the step (a light rotor on a stiff shaft, 10⁹ rad/s against a step of
+10⁻⁵ s) is sampled by the step as an aliased, undamped oscillation that a law fed with the
+sampled speed pumps without bound (a torque rising with the speed is a negative damper),
+while its mean over the step is smaller by ωΔt. The held law force is linearly implicit on w: with
+f(w_k) held the step gives mean speeds w*, a force increment Δf on L changes them by
+G Δf (G = Γ_s[q_L, L]/Δt, fixed per pattern), and the linearised law asks
+Δf = J (w_{k+1} − w_k), J_i = ∂f_i/∂w_i, so (I − diag(J) G) Δf = J (w* − w_k): the linearly
+implicit Euler step on the laws [HairerWanner1996, §IV.7] over the exact transition of the
+linear part. Solved as one system over L, not coordinate by coordinate: the law coordinates
+of a stiff train respond together (G has off-diagonal terms as large as its diagonal), and
+a per-coordinate correction then adds up to an amplification — a whole-drive start-up at the
+lowest allowed driver speed (1 rpm) reached 2.5·10³⁰³ N that way. Stability: a dissipative
+law (J ≤ 0: every machine's moment, the stable branch of a motor curve) is a damper taken
+implicitly, w' − w = (w* − w)/(1 + |J| g) for one coordinate of response g > 0, bounded at
+any step. The rising branch of a motor curve (J > 0, below the breakdown speed) is a negative
+damper: taken linearly implicit while J g ≤ 1/2 (the step's own increment amplified by
+1/(1 − J g) ≤ 2). Steeper, the linearisation does not hold over the step (a motor of little
+inertia runs through its whole curve within one step): a Kloss motor is then taken by
+backward Euler on its own curve, w' − a = g (f(w') − f(w)) — a cubic in the slip — at the
+root first met from w toward the step's speed a, the speed the motor reaches before any
+other equilibrium (:func:`chaindrive.dynamics.transient.kernel_codes.kloss_end_speed`); any
+other law with J clipped to 1/(2g), the rest of its slope explicit.
 
 **Compiled kernel.** The step loop runs in numba (:mod:`chaindrive.dynamics.transient.kernel`)
 when the motor is a ConstantTorque, RampTorque or KlossMotor — compiled ahead of time when
@@ -41,21 +65,27 @@ and the callers refuse a run beyond :data:`WORK_BUDGET`.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.motors import ResistanceLaw
-from chaindrive.dynamics.transient.kernel_codes import RESISTANCE_KINDS, motor_code
+from chaindrive.dynamics.motors import KlossMotor, ResistanceLaw
+from chaindrive.dynamics.transient.kernel_codes import (
+    RESISTANCE_KINDS,
+    kloss_end_speed,
+    motor_code,
+)
 from chaindrive.dynamics.transient.zoh import zoh_matrices
 from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
 
 __all__ = ["MAX_RECORDS", "STEPS_PER_PERIOD", "WORK_BUDGET", "PolygonalLaw", "StartupProblem",
-           "StartupResult", "runup_time", "settling_time", "solve_startup",
+           "StartupResult", "runup_time", "settling_time", "solve_startup", "startup_progress",
            "transient_times", "work_estimate"]
 
 FloatArray = NDArray[np.float64]
@@ -78,6 +108,33 @@ WORK_BUDGET = 6.0e9
 #: model's step (3 072 operations of products) took about 2 µs.
 STEP_OVERHEAD = 1200.0
 Backend = Literal["auto", "numba", "jit", "numpy"]
+#: Progress reports per start-up when a callback listens (:func:`startup_progress`).
+PROGRESS_REPORTS = 200
+_PROGRESS: ContextVar[Callable[[int, int], None] | None] = ContextVar(
+    "chaindrive_startup_progress", default=None)
+
+
+@contextmanager
+def startup_progress(callback: Callable[[int, int], None]) -> Iterator[None]:
+    """Within the context, every start-up integrated in this thread calls
+    ``callback(steps done, steps in all)`` about :data:`PROGRESS_REPORTS` times (the
+    compiled kernel then runs in as many pieces; the result is the same to the bit: the
+    kernel resumes from its state).
+
+    Parameters
+    ----------
+    callback : callable
+        Called with (steps done, steps in all) [-].
+
+    Yields
+    ------
+    None
+    """
+    token = _PROGRESS.set(callback)
+    try:
+        yield
+    finally:
+        _PROGRESS.reset(token)
 
 
 # --- results -------------------------------------------------------------------------------
@@ -514,13 +571,13 @@ def _polygonal_raw(data: PolyData, y: FloatArray) -> tuple[FloatArray, FloatArra
 
 
 class _Patterns:
-    """Φ_s, Γ_s and diag Γ_vv of the slack patterns met so far, cached by pattern."""
+    """Φ_s, Γ_s of the slack patterns met so far, cached by pattern."""
 
     def __init__(self, p: StartupProblem) -> None:
         self.p = p
-        self.cache: dict[bytes, tuple[FloatArray, FloatArray, FloatArray]] = {}
+        self.cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
 
-    def __call__(self, mask: NDArray[np.bool_]) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def __call__(self, mask: NDArray[np.bool_]) -> tuple[FloatArray, FloatArray]:
         key = mask.tobytes()
         if key not in self.cache:
             p = self.p
@@ -528,7 +585,7 @@ class _Patterns:
             K = p.stiffness_linear + (B.T * (p.span_stiffness * mask)) @ B
             C = p.damping_linear + (B.T * (p.span_damping * mask)) @ B
             P, G = zoh_matrices(p.mass, K, C, p.dt)
-            self.cache[key] = (P, G, G[p.size:].diagonal().copy())
+            self.cache[key] = (P, G)
         return self.cache[key]
 
 
@@ -564,6 +621,43 @@ def _laws_numpy(p: StartupProblem, t: float, v: FloatArray) -> FloatArray:
     return out
 
 
+def _law_columns(p: StartupProblem) -> NDArray[np.int64]:
+    """Sorted indices of the coordinates the motor and load laws act on."""
+    law = {int(k) for k in p.load_coordinate} | ({int(p.motor[0])} if p.motor else set())
+    return np.array(sorted(law), dtype=np.int64)
+
+
+def _law_increment(J: FloatArray, G: FloatArray, dw: FloatArray) -> FloatArray:
+    """Increment Δf of the law forces over a step that makes them linearly implicit on the
+    mean speeds of their coordinates (module docstring, *Laws*).
+
+    (I − diag(J̃) G) Δf = J̃ Δw, J̃_i = min(J_i, 1/(2 G_ii)).
+
+    Parameters
+    ----------
+    J : ndarray
+        (L,) slopes ∂f_i/∂w_i of the laws at the previous mean speeds [N·s/m or N·m·s/rad].
+    G : ndarray
+        (L, L) mean-speed response of the step to forces held on the law coordinates,
+        Γ_s[q_L, L]/Δt [m/(N·s) or rad/(N·m·s)].
+    dw : ndarray
+        (L,) w* − w: the mean speeds of the step with the forces f(w) held, less w [m/s or
+        rad/s].
+
+    Returns
+    -------
+    ndarray
+        (L,) Δf [N or N·m].
+
+    References
+    ----------
+    [HairerWanner1996, §IV.7] (linearly implicit methods).
+    """
+    g = G.diagonal()
+    Jc = np.where((J > 0) & (g > 0), np.minimum(J, 0.5 / np.where(g > 0, g, 1.0)), J)
+    return np.asarray(np.linalg.solve(np.eye(J.size) - Jc[:, None] * G, Jc * dw), dtype=float)
+
+
 def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, int]:
     """The step loop in NumPy (fallback without numba): forces (R, S), states (R, 2N), the
     largest span forces (S,), slack re-steps."""
@@ -572,6 +666,12 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
     poly = _polygonal_data(p) if p.polygonal is not None else None
     d0 = _polygonal_raw(poly, np.zeros(2 * n))[0] if poly is not None else None
     mats = _Patterns(p)
+    lcols = _law_columns(p)
+    # a Kloss motor: its coordinate, its place in lcols, gain, efficiency, law
+    kloss: tuple[int, int, float, float, KlossMotor] | None = None
+    if p.motor is not None and type(p.motor[3]) is KlossMotor:  # as the kernel's motor_code
+        kloss = (int(p.motor[0]), int(np.searchsorted(lcols, p.motor[0])), float(p.motor[1]),
+                 float(p.motor[2]), p.motor[3])
 
     def pdd(y: FloatArray) -> tuple[FloatArray, FloatArray]:
         assert poly is not None and d0 is not None
@@ -592,16 +692,26 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
             e, ed = e + d, ed + dd
         return T0 + c * e + ds * ed
 
-    def advance(y: FloatArray, t: float, fr: FloatArray,
+    def advance(y: FloatArray, w: FloatArray, t: float, fr: FloatArray,
                 mask: NDArray[np.bool_]) -> FloatArray:
-        Phi, Gam, gvv = mats(mask)
-        v = y[n:]
-        fl = _laws_numpy(p, t + 0.5 * dt, v)
-        hv = 1e-6 * (1.0 + np.abs(v))
-        J = (_laws_numpy(p, t + 0.5 * dt, v + hv) - fl) / hv
+        Phi, Gam = mats(mask)
+        fl = _laws_numpy(p, t + 0.5 * dt, w)
+        hv = 1e-6 * (1.0 + np.abs(w))
+        J = (_laws_numpy(p, t + 0.5 * dt, w + hv) - fl) / hv
         y_star = Phi @ y + Gam @ (fr + fl)
-        df = J * (y_star[n:] - v) / np.maximum(1.0 - gvv * J, 0.1)
-        return y_star + Gam @ df
+        G = Gam[lcols][:, lcols] / dt
+        w_star = (y_star[lcols] - y[lcols]) / dt
+        df = _law_increment(J[lcols], G, w_star - w[lcols])
+        if kloss is not None and J[kloss[0]] > 0.5 / G[kloss[1], kloss[1]] > 0:
+            # a Kloss motor on its rising branch faster than the step: backward Euler
+            k, am, g_m, eta, law_m = kloss
+            wa = w_star[am] + G[am] @ df - G[am, am] * df[am]
+            fw = g_m * eta * law_m(t + 0.5 * dt, g_m * w[k])
+            u = kloss_end_speed(w[k], wa, fw, G[am, am], g_m, g_m * eta,
+                                2.0 * law_m.breakdown_ratio * law_m.rated_torque,
+                                law_m.critical_slip, law_m.synchronous_speed)
+            df[am] = g_m * eta * law_m(t + 0.5 * dt, g_m * u) - fw
+        return y_star + Gam[:, lcols] @ df
 
     rec = p.record_every
     rows = p.steps // rec + 1
@@ -610,19 +720,23 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
     forces[0] = np.where(mask, T0, 0.0)
     fmax[:] = np.maximum(forces[0], 0.0)
     fr_prev = span_part(y, mask)
+    w = np.zeros(n)  # mean speed over the last step
     slack = 0
+    report = _PROGRESS.get()
+    chunk = max(1, math.ceil(p.steps / PROGRESS_REPORTS))
     for k in range(p.steps):
         t = k * dt
         fr = span_part(y, mask)
-        y_new = advance(y, t, 1.5 * fr - 0.5 * fr_prev, mask)
+        y_new = advance(y, w, t, 1.5 * fr - 0.5 * fr_prev, mask)
         F = span_force(y_new)
         new_mask = ((F > 0) | ~p.span_tension_only) & (c > 0)
         if not np.array_equal(new_mask, mask):
             mask = new_mask
             fr = span_part(y, mask)
-            y_new = advance(y, t, fr, mask)
+            y_new = advance(y, w, t, fr, mask)
             F = span_force(y_new)
             slack += 1
+        w = (y_new[:n] - y[:n]) / dt
         fr_prev, y = fr, y_new
         F = np.where(mask, F, 0.0)
         F = np.where(p.span_tension_only, np.maximum(F, 0.0), F)
@@ -630,6 +744,8 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
         if (k + 1) % rec == 0:
             forces[(k + 1) // rec] = F
             states[(k + 1) // rec] = y
+        if report is not None and ((k + 1) % chunk == 0 or k + 1 == p.steps):
+            report(k + 1, p.steps)
     return forces, states, fmax, slack
 
 
@@ -657,17 +773,22 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     kernel resumes from the step that met them."""
     n, ns = p.size, p.span_stiffness.size
     mats = _Patterns(p)
+    lcols = _law_columns(p)
     masks = np.zeros((4, ns), dtype=np.bool_)
-    Phis, Gams, gvvs = np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, n)), np.empty((4, n))
+    Phis, GBs, GLs = (np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, ns)),
+                      np.empty((4, 2 * n, lcols.size)))
     npat = 0
+    minus_Bt = -p.span_incidence.T
 
     def add(mask: NDArray[np.bool_]) -> None:
-        nonlocal masks, Phis, Gams, gvvs, npat
+        # per pattern: Φ, Γ(−Bᵀ) (the span forces' columns) and Γ[:, L] (the laws')
+        nonlocal masks, Phis, GBs, GLs, npat
         if npat == masks.shape[0]:
-            masks, Phis, Gams, gvvs = (np.concatenate([a, np.empty_like(a)])
-                                       for a in (masks, Phis, Gams, gvvs))
+            masks, Phis, GBs, GLs = (np.concatenate([a, np.empty_like(a)])
+                                     for a in (masks, Phis, GBs, GLs))
         masks[npat] = mask
-        Phis[npat], Gams[npat], gvvs[npat] = mats(mask)
+        Phi, Gam = mats(mask)
+        Phis[npat], GBs[npat], GLs[npat] = Phi, Gam @ minus_Bt, Gam[:, lcols]
         npat += 1
 
     c = np.ascontiguousarray(p.span_stiffness, dtype=float)
@@ -686,22 +807,27 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     forces, states = np.zeros((rows, ns)), np.zeros((rows, 2 * n))
     forces[0] = np.where(c > 0, p.pretension, 0.0)
     fmax = np.maximum(forces[0], 0.0)
-    y, need = np.zeros(2 * n), np.zeros(ns, dtype=np.bool_)
-    fr_prev = -(np.where(masks[0], p.pretension, 0.0) @ p.span_incidence)
+    y, w, need = np.zeros(2 * n), np.zeros(n), np.zeros(ns, dtype=np.bool_)
+    span_prev = np.where(masks[0], p.pretension, 0.0)
     state = np.zeros(3, dtype=np.int64)
     B = f8(p.span_incidence, dtype=float)
     ds, T0 = f8(p.span_damping, dtype=float), f8(p.pretension, dtype=float)
     tonly = f8(p.span_tension_only, dtype=np.bool_)
     # the coordinates the forces act on (a Python set: np.unique imports numpy.ma, 12 ms)
-    law = {int(k) for k in p.load_coordinate} | ({int(p.motor[0])} if p.motor else set())
-    spans = {int(k) for k in np.flatnonzero(np.any(p.span_incidence != 0.0, axis=0))}
-    lcols = np.array(sorted(law), dtype=np.int64)
-    fcols = np.array(sorted(law | spans), dtype=np.int64)
-    while runner(y, fr_prev, state, p.steps, p.dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
-                 ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
-                 need, fcols, lcols) < p.steps:
-        add(need.copy())
-    return forces, states, fmax, int(state[1])
+    report = _PROGRESS.get()
+    chunk = p.steps if report is None else max(1, math.ceil(p.steps / PROGRESS_REPORTS))
+    end = min(chunk, p.steps)
+    while True:
+        if runner(y, w, span_prev, state, end, p.dt, rec, masks, Phis, GBs, GLs, npat, B, c,
+                  ds, tonly, T0, *laws, p.polygonal is not None, *pg, forces, states, fmax,
+                  need, lcols) < end:
+            add(need.copy())
+            continue
+        if report is not None:
+            report(end, p.steps)
+        if end == p.steps:
+            return forces, states, fmax, int(state[1])
+        end = min(end + chunk, p.steps)
 
 
 def solve_startup(p: StartupProblem, backend: Backend = "auto"
