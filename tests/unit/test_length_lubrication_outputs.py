@@ -116,6 +116,21 @@ def test_the_page_tables_in_both_unit_systems(jindal):
     assert all(r["lubrication"] for r in selection_records(sel))
 
 
+def test_the_page_length_table_has_no_none_cells() -> None:
+    """A quantity that does not apply is no column (a contour of more than two sprockets has
+    no centre distance) or a dash with its reason (a count that cannot be laid out), never
+    "None"."""
+    for name in ("seed_three_sprocket.toml", "eight_sprocket.toml"):
+        doc = chaindrive.analyze(chaindrive.load(EXAMPLES / name), response=False).to_dict()
+        rows = length_option_records(doc)
+        assert rows and all(v is not None and v != "None" for r in rows for v in r.values())
+        assert not any("centre distance" in k for r in rows for k in r)
+    seed = length_option_records(chaindrive.analyze(
+        chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"), response=False).to_dict())
+    short = next(r for r in seed if r["rounding"] == "round down")
+    assert short["slack-span sag, mm"] == "—" and "shorter than the tight contour" in short["note"]
+
+
 def test_reusing_the_design_layout_changes_no_option(jindal):
     """The analysis hands its own layout to length_options for the count it made; laying
     every count out afresh gives the same options to round-off."""

@@ -38,6 +38,8 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult, SprocketGeometry
 
 MM = 1e3
+#: A table cell of a quantity that does not apply to its row (instead of "None").
+NOT_APPLICABLE = "—"
 #: The characters Streamlit's Markdown reads as markup (CommonMark's punctuation, the dollar
 #: signs of its math, the tilde of strikethrough, the colon of its emoji shortcodes).
 MARKDOWN_SPECIALS = frozenset("\\`*_{}[]()#+-.!|$~<>:&")
@@ -542,10 +544,15 @@ def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
     cols = (("centre distance", "centre_distance_mm"), ("take-up", "take_up_mm"),
             ("slack-span sag", "slack_sag_mm"))
     errors = any(o["error"] for o in lc["options"])
-    return [{"links": o["links"],
+    # a quantity no option has (the centre distance of a contour of more than two sprockets,
+    # whose take-up is its adjustable sprocket's travel) is no column; one an option lacks
+    # (a count that cannot be laid out) is a dash, with the reason in the note
+    cols = tuple(c for c in cols if any(o.get(c[1]) is not None for o in lc["options"]))
+    rows = [{"links": o["links"],
              "rounding": o["rounding"] + (" (chosen)" if o["rounding"] == lc["chosen"] else ""),
              **_row(o, cols, units), **({"note": o["error"] or ""} if errors else {})}
             for o in lc["options"]]
+    return [{k: NOT_APPLICABLE if v is None else v for k, v in r.items()} for r in rows]
 
 
 def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
