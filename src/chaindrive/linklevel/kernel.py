@@ -51,8 +51,14 @@ import numpy as np
 
 __all__ = ["compiled", "run_kernel"]
 
-MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
-RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
+from chaindrive.dynamics.transient.kernel_codes import (  # the start-up kernel's codes
+    MOTOR_CONSTANT,
+    MOTOR_RAMP,
+    RESISTANCE_CONSTANT,
+    RESISTANCE_LINEAR,
+    RESISTANCE_QUADRATIC,
+)
+
 #: Energy accumulators (indices of ``energy``): work of the motor, of the resistance
 #: laws, dissipated in link dampers, contact dampers, hinge friction, torsional dampers.
 E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5

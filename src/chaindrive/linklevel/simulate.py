@@ -25,8 +25,14 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.response import motor_of
+from chaindrive.dynamics.transient.kernel_codes import (
+    MOTOR_CONSTANT,
+    RESISTANCE_KINDS,
+    RESISTANCE_NONE,
+    motor_code,
+)
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.assembly import Assembly, assemble_chain
@@ -36,16 +42,7 @@ from chaindrive.linklevel.equilibrium import (
     kernel_tables,
     static_equilibrium,
 )
-from chaindrive.linklevel.kernel import (
-    MOTOR_CONSTANT,
-    MOTOR_KLOSS,
-    MOTOR_RAMP,
-    RESISTANCE_CONSTANT,
-    RESISTANCE_LINEAR,
-    RESISTANCE_NONE,
-    RESISTANCE_QUADRATIC,
-    run_kernel,
-)
+from chaindrive.linklevel.kernel import run_kernel
 from chaindrive.linklevel.model import (
     HINGE_FRICTION,
     LinkLevelModel,
@@ -86,20 +83,13 @@ InitialSpeed = Literal["rest", "working"]
 
 
 def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
-    """Kernel code of a motor law of :mod:`chaindrive.dynamics.transient.startup`."""
-    if type(motor) is ConstantTorque:
-        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
-    if type(motor) is RampTorque:
-        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
-    if type(motor) is KlossMotor:
-        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
-                                      motor.critical_slip, motor.synchronous_speed])
-    raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque or "
-                      f"KlossMotor, got {type(motor).__name__}")
-
-
-_RESISTANCE = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
-               "quadratic": RESISTANCE_QUADRATIC}
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.motors` (the start-up
+    kernel's, :func:`chaindrive.dynamics.transient.kernel_codes.motor_code`)."""
+    code = motor_code(motor)
+    if code is None:
+        raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque "
+                          f"or KlossMotor, got {type(motor).__name__}")
+    return code
 
 
 def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
@@ -109,13 +99,14 @@ def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
     n = len(drive.sprockets)
     if kind is None or not drive.power:
         return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
-    if kind not in _RESISTANCE:
-        raise DesignError("resistance", f"must be one of {sorted(_RESISTANCE)}, got {kind!r}")
+    if kind not in RESISTANCE_KINDS:
+        raise DesignError("resistance", f"must be one of {sorted(RESISTANCE_KINDS)}, got "
+                          f"{kind!r}")
 
     torques = np.asarray(power_shares(drive), dtype=float) * drive.power / speeds
     torques[drive.driver_index] = 0.0
     law = ResistanceLaw(kind, torques, speeds)  # type: ignore[arg-type]
-    return _RESISTANCE[kind], law.torques, law.nominal_speeds, law.breakaway
+    return RESISTANCE_KINDS[kind], law.torques, law.nominal_speeds, law.breakaway
 
 
 def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
