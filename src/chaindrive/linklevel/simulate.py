@@ -8,12 +8,12 @@ M⁻¹K): the link springs' 28–41 kHz set it; Δt = C·2/ω_max with C = :data
 for the contact nonlinearity and the dampers). With ``implicit_links`` the link springs are
 taken implicitly (the kernel's θ = 1/4, the implicit–explicit partition of
 [HughesLiu1978]): the step is then stable below 2/ω of the explicit part alone, a roller on
-one tooth, ω² = k_c/m, and :func:`default_step` takes the smaller of C·2/ω and twice the
-explicit step, which resolves the regularised hinge friction. The accuracy, not the
-stability, is what bounds it: the engagement impacts excite the links, and K_D and the span
-loads move by 2–7 % when that step halves (docs/linklevel.md §2), against 0.2 % for the
-explicit step. A joint clearance (a dead band, no tangent stiffness inside it) keeps the
-explicit step.
+one tooth, ω² = k_c/m. The accuracy, not the stability, bounds it: :func:`default_step`
+resolves the roller's oscillation on a tooth and the regularised hinge friction, which
+leaves twice the explicit step on the seed's polymer sprockets and none on steel ones; even
+there K_D and the span loads move by several per cent when the step halves
+(docs/linklevel.md §2), against 0.2 % for the explicit step. A joint clearance (a dead
+band, no tangent stiffness inside it) keeps the explicit step.
 """
 
 from __future__ import annotations
@@ -78,6 +78,9 @@ IMPLICIT_THETA = 0.25
 #: The implicit step's bound in explicit steps Δt_e (:func:`default_step`): two steps per
 #: relaxation time 4Δt_e of the regularised hinge friction (:func:`hinge_regularisation`).
 HINGE_STEPS = 2.0
+#: ω_c·Δt of the implicit step (:func:`default_step`): the phase error of a roller's
+#: oscillation on a tooth, (ω_c Δt)²/24, about 1 %.
+CONTACT_RESOLUTION = 0.5
 Start = Literal["rest", "steady"]
 InitialSpeed = Literal["rest", "working"]
 
@@ -207,10 +210,10 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
         the span loads moved (``result.convergence``,
         :func:`chaindrive.linklevel.result.step_convergence`); three times the cost.
     implicit_links : bool
-        True takes the link springs implicitly (module docstring): twice the step, at the
-        accuracy measured in docs/linklevel.md §2 (K_D and span loads within 2–7 % of the
-        explicit run, which converges to 0.2 %); False (default) explicitly, at the step they
-        allow. A clearance forces False.
+        True takes the link springs implicitly (module docstring) at
+        :func:`default_step`'s implicit step (at most twice the explicit one, less accurate:
+        docs/linklevel.md §2); False (default) explicitly, at the step they allow. A
+        clearance forces False.
 
     Returns
     -------
@@ -526,10 +529,12 @@ def default_step(model: LinkLevelModel, implicit: bool = False) -> float:
     """Default time step [s].
 
     Explicit link springs: Δt_e = :data:`COURANT`·2/ω_max, ω_max² = (4k_link + k_c)/m (the
-    roller between two links on one tooth). Implicit link springs: the smaller of the
-    explicit part's stability limit :data:`COURANT`·2/ω_c, ω_c² = k_c/m [HughesLiu1978],
-    and :data:`HINGE_STEPS`·Δt_e, which resolves the regularised hinge friction (its
-    viscous relaxation time I/c_max = 4Δt_e, :func:`hinge_regularisation`) with two steps.
+    roller between two links on one tooth). Implicit link springs: stable below
+    :data:`COURANT`·2/ω_c, ω_c² = k_c/m, the explicit part alone [HughesLiu1978]; the step
+    is the smaller of :data:`CONTACT_RESOLUTION`/ω_c (a roller's oscillation on a tooth
+    resolved to a phase error (ω_c Δt)²/24 ≈ 1 % [Hairer2006]) and :data:`HINGE_STEPS`·Δt_e
+    (the regularised hinge friction's relaxation time I/c_max = 4Δt_e in two steps,
+    :func:`hinge_regularisation`), and never below Δt_e.
 
     Parameters
     ----------
@@ -546,7 +551,8 @@ def default_step(model: LinkLevelModel, implicit: bool = False) -> float:
     explicit = COURANT * 2.0 / (TWO_PI * model.highest_frequency_hz)
     if not implicit:
         return explicit
-    return min(COURANT * 2.0 / (TWO_PI * model.contact_frequency_hz), HINGE_STEPS * explicit)
+    contact = CONTACT_RESOLUTION / (TWO_PI * model.contact_frequency_hz)
+    return max(explicit, min(contact, HINGE_STEPS * explicit))
 
 
 def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
