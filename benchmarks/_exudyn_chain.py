@@ -21,6 +21,7 @@ import numpy as np
 from exudyn.itemInterface import (
     CoordinateConstraint,
     LoadForceVector,
+    LoadTorqueVector,
     MarkerBodyRigid,
     MarkerNodeCoordinate,
     MarkerNodePosition,
@@ -31,6 +32,7 @@ from exudyn.itemInterface import (
     ObjectConnectorSpringDamper,
     ObjectRigidBody2D,
     SensorNode,
+    SensorObject,
 )
 
 GRAVITY = 9.80665
@@ -82,9 +84,11 @@ def extrude(outline: np.ndarray, half_width: float) -> tuple[list, list]:
     return points, triangles
 
 
-def build(model, state, dt: float, t_end: float):
+def build(model, state, dt: float, t_end: float, torques=None, probes=()):
     """(SystemContainer, mbs, settings, sensor) of the chain of ``model`` from ``state``
-    (:class:`chaindrive.linklevel.simulate.InitialState`), explicit steps of dt [s]."""
+    (:class:`chaindrive.linklevel.simulate.InitialState`), explicit steps of dt [s];
+    ``torques`` (n,) constant torques on the sprockets [N·m] (counter-clockwise positive),
+    ``probes`` link indices whose spring–damper force is recorded (sensor list appended)."""
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
@@ -103,11 +107,12 @@ def build(model, state, dt: float, t_end: float):
         contact.AddSphereWithMarker(marker, model.roller_radius, 2 * model.contact_stiffness[0],
                                     2 * model.contact_damping[0], 0)
     n_links = x.shape[0]
+    links = []
     for i in range(n_links):
-        mbs.AddObject(ObjectConnectorSpringDamper(
+        links.append(mbs.AddObject(ObjectConnectorSpringDamper(
             markerNumbers=[markers[i], markers[(i + 1) % n_links]],
             stiffness=model.link_stiffness, damping=model.link_damping,
-            referenceLength=float(state.rest_lengths[i])))
+            referenceLength=float(state.rest_lengths[i]))))
     nodes = []
     for s in range(model.centres.shape[0]):
         cx, cy = model.centres[s]
@@ -120,6 +125,8 @@ def build(model, state, dt: float, t_end: float):
             mc = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=c))
             mbs.AddObject(CoordinateConstraint(markerNumbers=[ground_x, mc], offset=offset))
         rigid = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0, 0, 0]))
+        if torques is not None and torques[s] != 0.0:
+            mbs.AddLoad(LoadTorqueVector(markerNumber=rigid, loadVector=[0, 0, float(torques[s])]))
         outline = tooth_outline(int(model.teeth[s]), model.pitch_radii[s],
                                 model.seating_radii[s], model.seating_half_angles[s],
                                 model.tip_radii[s])
@@ -133,6 +140,10 @@ def build(model, state, dt: float, t_end: float):
     contact.SetSearchTreeCellSize([40, 10, 1])
     sensor = mbs.AddSensor(SensorNode(nodeNumber=nodes[1], storeInternal=True,
                                       outputVariableType=exu.OutputVariableType.AngularVelocity))
+    if probes:
+        sensor = [sensor] + [mbs.AddSensor(SensorObject(
+            objectNumber=links[i], storeInternal=True,
+            outputVariableType=exu.OutputVariableType.Force)) for i in probes]
     mbs.Assemble()
     settings = exu.SimulationSettings()
     settings.timeIntegration.numberOfSteps = round(t_end / dt)
@@ -155,3 +166,15 @@ def run(model, state, dt: float, t_end: float,
     wall = time.perf_counter() - start
     data = mbs.GetSensorStoredData(sensor)
     return wall, data[:, [0, 3]]
+
+
+def run_loaded(model, state, dt: float, t_end: float, torques, probes,
+               solver=exu.DynamicSolverType.RK44) -> tuple[float, np.ndarray]:
+    """(wall time of the solve [s], (T, 1 + len(probes)) time [s] and the probed links'
+    forces [N]) of the chain under constant sprocket torques."""
+    _container, mbs, settings, sensors = build(model, state, dt, t_end, torques, probes)
+    start = time.perf_counter()
+    exu.SolveDynamic(mbs, settings, solverType=solver)
+    wall = time.perf_counter() - start
+    data = [mbs.GetSensorStoredData(s) for s in sensors[1:]]
+    return wall, np.column_stack([data[0][:, 0]] + [d[:, 1] for d in data])
