@@ -5,16 +5,20 @@ Run (one BLAS thread): OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linkl
    (without gravity) and against the hydrostatic closed form T₀ + q g (y − y_ref) (with
    gravity), and how far they move over 50 ms at rest with no motor (seed, 12B 15/25).
 2. Energy: undamped coasting at working speed, no motor (seed, 1 s): drift of the energy
-   balance as a fraction of the kinetic energy at Δt, Δt/2, Δt/4.
+   balance as a fraction of the kinetic energy at Δt, Δt/2, Δt/4, link springs explicit
+   and implicit.
 3. Step convergence: K_D, span dynamic loads, peaks and means at working speed and power
-   over 0.3 s at Δt and Δt/2 (seed).
-4. Speed: CPU seconds per simulated second at working speed (seed, 128 links; a 12B 15/25
-   drive of about 200 links), the static state's solve apart.
+   over 0.3 s at Δt and Δt/2 (seed; a 12B 15/25 drive of about 200 links), link springs
+   explicit and implicit.
+4. Speed: CPU seconds per simulated second at working speed (seed, 128 links; the 12B
+   15/25 drive; the 24-sprocket example, 744 links), the static state's solve apart, link
+   springs explicit and implicit.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -65,44 +69,59 @@ def static_state() -> None:
 def energy() -> None:
     print("2. undamped coasting at working speed, no motor, seed, 1 s")
     drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
-    base = None
-    for f in (1.0, 0.5, 0.25):
-        kw: dict[str, object] = {"motor": False, "damping": False,
-                                 "initial_speed": "working"}
-        if base is not None:
-            kw["dt_s"] = base * f
-        r = simulate(drive, 1.0, **kw)  # type: ignore[arg-type]
-        base = base or r.dt
-        print(f"   dt = {f:4.2f}·default ({r.dt * 1e6:5.2f} µs): drift "
-              f"{r.energy['drift_fraction']:+.2e} of the kinetic energy "
-              f"({r.energy['start_kinetic_j']:.1f} J)")
+    for implicit in (False, True):
+        base = None
+        for f in (1.0, 0.5, 0.25):
+            kw: dict[str, object] = {"motor": False, "damping": False,
+                                     "initial_speed": "working", "implicit_links": implicit}
+            if base is not None:
+                kw["dt_s"] = base * f
+            r = simulate(drive, 1.0, **kw)  # type: ignore[arg-type]
+            base = base or r.dt
+            print(f"   {'implicit' if implicit else 'explicit'} links, dt = {f:4.2f}·default "
+                  f"({r.dt * 1e6:5.2f} µs): drift {r.energy['drift_fraction']:+.2e} of the "
+                  f"kinetic energy ({r.energy['start_kinetic_j']:.1f} J)")
 
 
 def convergence() -> None:
-    print("3. step convergence, seed at working speed and power, 0.3 s")
-    drive = load_drive(EXAMPLES / "seed_three_sprocket.toml")
-    r = simulate(drive, 0.3, initial_speed="working", check_step=True)
-    c = r.convergence
-    print(f"   K_D {r.coefficient_of_dynamics:.3f}; changes at dt/2: K_D "
-          f"{c['coefficient_of_dynamics_change']:.2%}, F_D {c['span_dynamic_load_change']:.2%}, "
-          f"peaks {c['peak_span_force_change']:.2%}, means {c['span_mean_force_change']:.2%}; "
-          f"converged {c['converged']}")
+    print("3. step convergence at working speed and power, 0.3 s")
+    for name, drive in (("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml")),
+                        ("12B 15/25", _two_sprocket(85, 300.0, 1000.0))):
+        for implicit in (False, True):
+            r = simulate(drive, 0.3, initial_speed="working", check_step=True,
+                         implicit_links=implicit)
+            c = r.convergence
+            print(f"   {name:9s} {'implicit' if implicit else 'explicit'} links, dt "
+                  f"{r.dt * 1e6:5.2f} µs: K_D {r.coefficient_of_dynamics:.3f}, largest peak "
+                  f"{r.span_forces.max():.0f} N; changes at dt/2: K_D "
+                  f"{c['coefficient_of_dynamics_change']:.2%}, F_D "
+                  f"{c['span_dynamic_load_change']:.2%}, peaks "
+                  f"{c['peak_span_force_change']:.2%}, means {c['span_mean_force_change']:.2%}; "
+                  f"converged {c['converged']}")
 
 
 def speed() -> None:
-    print("4. CPU s per simulated second at working speed (static state apart)")
+    print("4. CPU s per simulated second at working speed (static state apart); load "
+          f"{os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     for name, drive, duration in (
             ("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml"), 0.5),
-            ("12B 15/25", _two_sprocket(85, 300.0, 1000.0), 0.25)):
-        simulate(drive, 0.002, initial_speed="working")  # warm-up (compile / cache)
-        t = time.process_time()
-        short = simulate(drive, 0.002, initial_speed="working")
-        setup = time.process_time() - t
-        t = time.process_time()
-        r = simulate(drive, duration, initial_speed="working", sample_rate_hz=1000)
-        cpu = time.process_time() - t - setup
-        print(f"   {name:9s} {short.positions.shape[1]:4d} links  dt {r.dt * 1e6:5.2f} µs  "
-              f"{cpu / duration:6.2f} s per simulated s (static state {setup:.1f} s)")
+            ("12B 15/25", _two_sprocket(85, 300.0, 1000.0), 0.25),
+            ("24 sprockets", load_drive(EXAMPLES / "twenty_four_sprocket.toml"), 0.1)):
+        for implicit in (False, True):
+            kw = {"initial_speed": "working", "implicit_links": implicit,
+                  "sample_rate_hz": 1000}
+            simulate(drive, 0.002, **kw)  # type: ignore[arg-type]  # warm-up (compile)
+            cpu = []
+            for d in (duration, 2 * duration):  # the difference: the static state drops out
+                t = time.process_time()
+                r = simulate(drive, d, **kw)  # type: ignore[arg-type]
+                cpu.append(time.process_time() - t)
+            per = (cpu[1] - cpu[0]) / duration
+            print(f"   {name:12s} {r.positions.shape[1]:4d} links  "
+                  f"{'implicit' if implicit else 'explicit'}  dt {r.dt * 1e6:5.2f} µs  "
+                  f"{per:6.3f} s per simulated s ({1 / per:5.1f}× real time; static state "
+                  f"{cpu[0] - per * duration:.1f} s); energy balance "
+                  f"{r.energy['drift_fraction']:+.1e}", flush=True)
 
 
 if __name__ == "__main__":

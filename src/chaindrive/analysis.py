@@ -502,7 +502,9 @@ class Analysis:
         # lazy: the link-level package imports numba (≈0.75 s, -X importtime); only its studies need
         # it
         from chaindrive.linklevel import model_comparison
+        from chaindrive.linklevel.modes import linear_modes
 
+        link_f1 = linear_modes(self._contour_drive, geometry=self.geometry).first_longitudinal_hz
         steady, startup = self.steady, self.startup
         assert self.drive.driver.speed is not None  # _responds
         f1 = self.dynamics.modal.first_elastic_frequency_hz
@@ -512,7 +514,8 @@ class Analysis:
             ring_dynamic_load_rms=None if steady is None else steady.dynamic_load_rms,
             ring_kd=None if steady is None else steady.coefficient_of_dynamics,
             ring_startup_peak=None if startup is None else startup.max_span_force,
-            first_frequency_hz=f1 if math.isfinite(f1) else None)
+            first_frequency_hz=f1 if math.isfinite(f1) else None,
+            link_first_frequency_hz=link_f1)
 
     @cached_property
     def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:

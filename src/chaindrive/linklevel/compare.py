@@ -92,12 +92,43 @@ class ModelComparison:
     steady_from_s: float
     duration_s: float
 
+    @property
+    def governing(self) -> tuple[str | None, ...]:
+        """Per row, the model whose value governs (:func:`governing_model`)."""
+        return tuple(governing_model(row) for row in self.rows)
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the rows as records and the run's window (SI, unit in the keys)."""
-        return {"rows": [{"quantity": q, "whole_drive": w, "link_level": k, "unit": u}
-                         for q, w, k, u in self.rows],
+        """JSON-ready: the rows as records (with the governing model, ``"whole_drive"``,
+        ``"link_level"`` or null) and the run's window (SI, unit in the keys)."""
+        return {"rows": [{"quantity": q, "whole_drive": w, "link_level": k, "unit": u,
+                          "governing": g}
+                         for (q, w, k, u), g in zip(self.rows, self.governing, strict=True)],
                 "settled": self.settled, "steady_from_s": self.steady_from_s,
                 "duration_s": self.duration_s}
+
+
+def governing_model(row: Row) -> str | None:
+    """The model whose value governs a row: for a load or K_D (unit N or 1) the larger of
+    the two ("whole_drive" or "link_level"; the one given when the other is absent); None
+    for a natural frequency (not a load: docs/linklevel.md §6 says which model is right
+    there) or a row neither model gives.
+
+    Parameters
+    ----------
+    row : Row
+        (quantity, whole drive, link level, unit).
+
+    Returns
+    -------
+    str or None
+        ``"whole_drive"``, ``"link_level"`` or None.
+    """
+    _, ring, link, unit = row
+    if unit not in ("N", "1") or (ring is None and link is None):
+        return None
+    if link is None or (ring is not None and ring >= link):
+        return "whole_drive"
+    return "link_level"
 
 
 def _values(values: NDArray[np.float64] | None, n: int) -> list[float | None]:
@@ -109,7 +140,8 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
                      ring_span_dynamic_load: NDArray[np.float64] | None,
                      ring_dynamic_load_rms: float | None, ring_kd: float | None,
                      ring_startup_peak: NDArray[np.float64] | None,
-                     first_frequency_hz: float | None) -> ModelComparison:
+                     first_frequency_hz: float | None,
+                     link_first_frequency_hz: float | None = None) -> ModelComparison:
     """Rows of the quantities both models give, the ring model's beside the link-level's.
 
     Parameters
@@ -128,13 +160,15 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
         F₁max,i of the ring's start-up [N] per span (None without a start-up).
     first_frequency_hz : float | None
         The first elastic natural frequency of the analysis's whole-drive model [Hz].
+    link_first_frequency_hz : float | None
+        The link-level model's first mode along the chain from its linearisation about the
+        static state [Hz] (:func:`chaindrive.linklevel.modes.linear_modes`,
+        docs/linklevel.md §6; None: not computed).
 
     Returns
     -------
     ModelComparison
-        The link-level's first natural frequency is None here: it comes from the
-        linearisation about the static state (:func:`chaindrive.linklevel.linear_modes`,
-        docs/linklevel.md §6), not from this run.
+        The rows; :attr:`ModelComparison.governing` names the governing model of each.
 
     References
     ----------
@@ -158,7 +192,7 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
     rows += [("largest start-up span force F₁max",
               None if ring_startup_peak is None else float(np.max(ring_startup_peak)),
               float(link_peak.max()), "N"),
-             ("first natural frequency", first_frequency_hz, None, "Hz"),
+             ("first natural frequency", first_frequency_hz, link_first_frequency_hz, "Hz"),
              ("largest roller–tooth impact force", None,
               float(impacts.max()) if impacts.size else None, "N")]
     late = result.times >= result.steady_from

@@ -9,7 +9,8 @@ Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sour
 * gravity m g;
 * links (pin–bush joints) i = (r, r+1): axial spring k·s on the elongation s = ℓ − ℓ₀
   outside the clearance band |ℓ − ℓ₀| ≤ Δ (s = 0 inside it) and an axial damper c·ℓ̇,
-  the damper taken implicitly (:func:`_velocity_update`) so that it sets no step limit;
+  the damper (and with θ = 1/4 the spring) taken implicitly (:func:`_velocity_update`) so
+  that it sets no step limit;
 * hinge friction at roller r between its two links: a moment
   M = −sat(ω_rel)·f·T̄·d₂/2 on the leading link and −M on the trailing one, T̄ the mean
   tension of the two links (≥ 0), ω_rel their relative angular speed; sat regularises the
@@ -23,10 +24,17 @@ Forces on roller r (module docstring of :mod:`chaindrive.linklevel` for the sour
   through the roller centre (exactly work-conjugate to δ).
 
 Integrator: semi-implicit (symplectic) Euler, v ← v + Δt·a(x, v), x ← x + Δt·v
-[Hairer2006, §I.1] — explicit, one force evaluation a step; for the conservative part its
-energy error stays bounded (measured: a few 10⁻⁴ of the kinetic energy over 1 s of the
-seed's undamped coasting at 1, ½ and ¼ of the default step, docs/linklevel.md §2); the
-link dampers implicit (:func:`_velocity_update`).
+[Hairer2006, §I.1] — one force evaluation a step; the link dampers implicit
+(:func:`_velocity_update`). With θ = 1/4 the link springs are implicit too, the
+implicit–explicit partition of [HughesLiu1978]: in the central-difference form of the step,
+x_{n+1} − 2x_n + x_{n−1} = Δt² M⁻¹ F, the springs act at the average
+x̄ = (x_{n+1} + 2x_n + x_{n−1})/4 = x_n + (Δt/4)(v′ − v) (Newmark's β = 1/4, energy-
+conserving and unconditionally stable for a linear spring), linearised along the links with
+their directions frozen over the step: the tension T(x̄) ≈ T(x_n) + (Δt/4)k(ℓ̇′ − ℓ̇), whose
+part in the new rates ℓ̇′ joins the damper's in the same cyclic tridiagonal solve
+(c → c + Δt k/4). For a linear system the step is then stable below 2/ω of the explicit part
+alone (the contacts) [HughesLiu1978]; the link modes come out at ω/√(1 + Δt²ω²/4) (below
+2/Δt), the slow ones unchanged to O((Δt ω)²).
 
 Model: [Pedersen2004], [Pedersen2005] (particles, spring–dampers, continuous contact on the
 real tooth profile); hinge friction [ChainHingeDissipation]; tooth forms [ISO606],
@@ -43,8 +51,14 @@ import numpy as np
 
 __all__ = ["compiled", "run_kernel"]
 
-MOTOR_CONSTANT, MOTOR_RAMP, MOTOR_KLOSS = 0, 1, 2
-RESISTANCE_NONE, RESISTANCE_CONSTANT, RESISTANCE_LINEAR, RESISTANCE_QUADRATIC = 0, 1, 2, 3
+from chaindrive.dynamics.transient.kernel_codes import (  # the start-up kernel's codes
+    MOTOR_CONSTANT,
+    MOTOR_RAMP,
+    RESISTANCE_CONSTANT,
+    RESISTANCE_LINEAR,
+    RESISTANCE_QUADRATIC,
+)
+
 #: Energy accumulators (indices of ``energy``): work of the motor, of the resistance
 #: laws, dissipated in link dampers, contact dampers, hinge friction, torsional dampers.
 E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
@@ -164,9 +178,10 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
 
 @numba.njit(cache=True)
 def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
-           thd: Any, invl: Any) -> None:
-    """Elastic tensions T, unit vectors (ux, uy), angular speeds thd and inverse lengths
-    invl (1/ℓ) of every link (no dependence between iterations: the loop vectorises)."""
+           thd: Any, invl: Any, gd: Any) -> None:
+    """Elastic tensions T, unit vectors (ux, uy), angular speeds thd, inverse lengths
+    invl (1/ℓ) and axial rates gd (ℓ̇) of every link (no dependence between iterations: the
+    loop vectorises)."""
     N = x.shape[0]
     last = N - 1
     for i in range(N):
@@ -179,6 +194,7 @@ def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy:
         e = ell - L0[i]
         T[i] = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
         thd[i] = (dx * dvy - dy * dvx) * inv * inv
+        gd[i] = (dx * dvx + dy * dvy) * inv
         invl[i] = inv
         ux[i] = dx * inv
         uy[i] = dy * inv
@@ -472,14 +488,17 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
                msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float, rsign: Any,
                rec_x: Any, rec_th: Any, rec_w: Any, rec_T: Any, rec_F: Any, rec_S: Any,
                rec_G: Any, energy: Any, cand: Any, eng: Any, events: Any,
-               count: Any, eta: float = 0.0) -> None:
+               count: Any, eta: float = 0.0, theta: float = 0.0) -> None:
     """Advance the state ``steps`` steps of Δt from time t0, recording every
     ``record_every`` steps into the rec_* arrays (row 0: the initial state); x, v, th, w are
     updated in place, energy accumulates the work and dissipation (E_* indices); cand, eng
     carry the contact candidates and engagement windows from call to call, events (E, 4)
     collects the engagement impacts (count[0] of them); event times are those of the window
     ends. eta [1/s]: a mass-proportional damping v ← v/(1 + Δt·η) on every body, taken
-    implicitly (0 in a run; the settling of :mod:`chaindrive.linklevel.equilibrium` only)."""
+    implicitly (0 in a run; the settling of :mod:`chaindrive.linklevel.equilibrium` only).
+    theta: 0 takes the link springs explicitly; 1/4 takes them implicitly, their force at
+    the average x̄ = x + (Δt/4)(v′ − v) of the three positions of the central-difference
+    form, linearised along the links (module docstring; needs no clearance)."""
     N = x.shape[0]
     D = J.size
     th0 = th.copy()
@@ -487,6 +506,8 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     T = np.empty(N)
     thd = np.empty(N)
     invl = np.empty(N)
+    gd = np.empty(N)
+    Tf = np.empty(N)
     M = np.zeros(N)
     ux = np.empty(N)
     uy = np.empty(N)
@@ -509,15 +530,18 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             f[r, 1] = m * gy
         for i in range(D):
             tq[i] = 0.0
-        _links(x, v, L0, k, clear, T, ux, uy, thd, invl)
+        _links(x, v, L0, k, clear, T, ux, uy, thd, invl, gd)
         p_hinge = _hinge_moments(T, thd, mu_r, cmax, M) if mu_r > 0.0 else 0.0
-        _link_forces(f, T, ux, uy, invl, M)
+        kt = theta * dt * k  # the implicit spring's share of the axial rate, T − kt·ℓ̇
+        for i in range(N):
+            Tf[i] = T[i] - kt * gd[i]
+        _link_forces(f, Tf, ux, uy, invl, M)
         p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
         if step < steps:
             _engagements(t, Fc, eng, win, events, count)
             _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
                         rbrk, rsign, energy, dt)
-            _velocity_update(v, f, dt / m, dt * c / m, ux, uy, g, rhs, zz, cp, oo)
+            _velocity_update(v, f, dt / m, dt * (c + kt) / m, ux, uy, g, rhs, zz, cp, oo)
             p_link = 0.0
             for i in range(N):
                 p_link += c * g[i] * g[i]
@@ -565,6 +589,7 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
     uy = np.empty(N)
     thd = np.empty(N)
     invl = np.empty(N)
+    gd = np.empty(N)
     M = np.zeros(N)
     cand = np.full(N, -1, dtype=np.int64)
     Fc = np.zeros(N)
@@ -581,7 +606,7 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
                 break
     for s in range(n):
         tq[s] = 0.0
-    _links(x, v, L0, k, clear, T, ux, uy, thd, invl)
+    _links(x, v, L0, k, clear, T, ux, uy, thd, invl, gd)
     _link_forces(f, T, ux, uy, invl, M)
     before = f.copy()
     _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)

@@ -193,6 +193,13 @@ class LinkLevelModel:
         k = 4.0 * self.link_stiffness + float(self.contact_stiffness.max())
         return math.sqrt(k / self.roller_mass) / (2.0 * math.pi)
 
+    @property
+    def contact_frequency_hz(self) -> float:
+        """Highest natural frequency [Hz] of what stays explicit when the link springs are
+        taken implicitly: a roller on one tooth, ω² = k_c/m. The implicit–explicit step is
+        stable below 2/ω of the explicit part alone [HughesLiu1978]."""
+        return math.sqrt(float(self.contact_stiffness.max()) / self.roller_mass) / (2.0 * math.pi)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready parameters (SI, units in the keys)."""
         return {
@@ -209,6 +216,7 @@ class LinkLevelModel:
             "contact_damping_n_s_per_m": self.contact_damping.tolist(),
             "sprocket_inertia_kg_m2": self.inertias.tolist(),
             "highest_frequency_hz": self.highest_frequency_hz,
+            "contact_frequency_hz": self.contact_frequency_hz,
         }
 
 

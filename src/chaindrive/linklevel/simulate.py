@@ -1,11 +1,19 @@
 """Entry point of the link-level model: :func:`simulate` (drive → :class:`LinkLevelResult`).
 
-Time step (explicit integration, :mod:`chaindrive.linklevel.kernel`): the semi-implicit
-Euler step is stable for Δt < 2/ω_max ([Hairer2006], the Störmer–Verlet stability
-interval of a linear oscillator), ω_max bounded by the stiffest local oscillator, a roller
-between two links on one tooth, ω_max² ≤ (4k_link + k_c)/m (Gershgorin's theorem on
-M⁻¹K). The default Δt = C·2/ω_max with C = :data:`COURANT` (below 1 for the contact
-nonlinearity and the dampers).
+Time step (:mod:`chaindrive.linklevel.kernel`). Taken explicitly (the default), the
+semi-implicit Euler step is stable for Δt < 2/ω_max ([Hairer2006], the Störmer–Verlet
+stability interval of a linear oscillator), ω_max bounded by the stiffest local oscillator, a
+roller between two links on one tooth, ω_max² ≤ (4k_link + k_c)/m (Gershgorin's theorem on
+M⁻¹K): the link springs' 28–41 kHz set it; Δt = C·2/ω_max with C = :data:`COURANT` (below 1
+for the contact nonlinearity and the dampers). With ``implicit_links`` the link springs are
+taken implicitly (the kernel's θ = 1/4, the implicit–explicit partition of
+[HughesLiu1978]): the step is then stable below 2/ω of the explicit part alone, a roller on
+one tooth, ω² = k_c/m. The accuracy, not the stability, bounds it: :func:`default_step`
+resolves the roller's oscillation on a tooth and the regularised hinge friction, which
+leaves twice the explicit step on the seed's polymer sprockets and none on steel ones; even
+there K_D and the span loads move by several per cent when the step halves
+(docs/linklevel.md §2), against 0.2 % for the explicit step. A joint clearance (a dead
+band, no tangent stiffness inside it) keeps the explicit step.
 """
 
 from __future__ import annotations
@@ -17,8 +25,14 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.response import motor_of
+from chaindrive.dynamics.transient.kernel_codes import (
+    MOTOR_CONSTANT,
+    RESISTANCE_KINDS,
+    RESISTANCE_NONE,
+    motor_code,
+)
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.assembly import Assembly, assemble_chain
@@ -28,16 +42,7 @@ from chaindrive.linklevel.equilibrium import (
     kernel_tables,
     static_equilibrium,
 )
-from chaindrive.linklevel.kernel import (
-    MOTOR_CONSTANT,
-    MOTOR_KLOSS,
-    MOTOR_RAMP,
-    RESISTANCE_CONSTANT,
-    RESISTANCE_LINEAR,
-    RESISTANCE_NONE,
-    RESISTANCE_QUADRATIC,
-    run_kernel,
-)
+from chaindrive.linklevel.kernel import run_kernel
 from chaindrive.linklevel.model import (
     HINGE_FRICTION,
     LinkLevelModel,
@@ -55,33 +60,39 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["COURANT", "InitialState", "equilibrium_state", "hinge_regularisation", "initial_state",
-           "simulate", "undamped"]
+__all__ = ["COURANT", "InitialState", "default_step", "equilibrium_state",
+           "hinge_regularisation", "initial_state", "simulate", "undamped"]
 
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
-#: Contact search every this many steps; the reach circle is widened by a quarter pitch,
-#: which a roller at 0.25·p/(8Δt) ≈ 100 m/s could cross: never in a roller chain.
+#: Contact search at least every this many steps; the reach circle is widened by a quarter
+#: pitch, which a roller at :data:`SEARCH_SPEED` crosses in 0.25·p/v: the search interval
+#: stays below that (every step at the implicit step of a 12B chain).
 SEARCH_EVERY = 8
+#: Speed [m/s] a roller is assumed never to reach relative to the sprockets' reach circles
+#: (several times the chain speeds of roller-chain drives).
+SEARCH_SPEED = 60.0
+#: The kernel's θ for the link springs: 1/4 (implicit, average of the central-difference
+#: positions [HughesLiu1978]) or 0 (explicit).
+IMPLICIT_THETA = 0.25
+#: The implicit step's bound in explicit steps Δt_e (:func:`default_step`): two steps per
+#: relaxation time 4Δt_e of the regularised hinge friction (:func:`hinge_regularisation`).
+HINGE_STEPS = 2.0
+#: ω_c·Δt of the implicit step (:func:`default_step`): the phase error of a roller's
+#: oscillation on a tooth, (ω_c Δt)²/24, about 1 %.
+CONTACT_RESOLUTION = 0.5
 Start = Literal["rest", "steady"]
 InitialSpeed = Literal["rest", "working"]
 
 
 def _motor_code(motor: Callable[[float, float], float]) -> tuple[int, NDArray[np.float64]]:
-    """Kernel code of a motor law of :mod:`chaindrive.dynamics.transient.startup`."""
-    if type(motor) is ConstantTorque:
-        return MOTOR_CONSTANT, np.array([motor.torque, 0.0, 0.0])
-    if type(motor) is RampTorque:
-        return MOTOR_RAMP, np.array([motor.torque, motor.ramp_time, 0.0])
-    if type(motor) is KlossMotor:
-        return MOTOR_KLOSS, np.array([2.0 * motor.breakdown_ratio * motor.rated_torque,
-                                      motor.critical_slip, motor.synchronous_speed])
-    raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque or "
-                      f"KlossMotor, got {type(motor).__name__}")
-
-
-_RESISTANCE = {"constant": RESISTANCE_CONSTANT, "linear": RESISTANCE_LINEAR,
-               "quadratic": RESISTANCE_QUADRATIC}
+    """Kernel code of a motor law of :mod:`chaindrive.dynamics.motors` (the start-up
+    kernel's, :func:`chaindrive.dynamics.transient.kernel_codes.motor_code`)."""
+    code = motor_code(motor)
+    if code is None:
+        raise DesignError("motor", "the link-level model takes a ConstantTorque, RampTorque "
+                          f"or KlossMotor, got {type(motor).__name__}")
+    return code
 
 
 def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
@@ -91,13 +102,14 @@ def _resistance(drive: Drive, kind: str | None, speeds: NDArray[np.float64]
     n = len(drive.sprockets)
     if kind is None or not drive.power:
         return RESISTANCE_NONE, np.zeros(n), np.ones(n), 1.0
-    if kind not in _RESISTANCE:
-        raise DesignError("resistance", f"must be one of {sorted(_RESISTANCE)}, got {kind!r}")
+    if kind not in RESISTANCE_KINDS:
+        raise DesignError("resistance", f"must be one of {sorted(RESISTANCE_KINDS)}, got "
+                          f"{kind!r}")
 
     torques = np.asarray(power_shares(drive), dtype=float) * drive.power / speeds
     torques[drive.driver_index] = 0.0
     law = ResistanceLaw(kind, torques, speeds)  # type: ignore[arg-type]
-    return _RESISTANCE[kind], law.torques, law.nominal_speeds, law.breakaway
+    return RESISTANCE_KINDS[kind], law.torques, law.nominal_speeds, law.breakaway
 
 
 def _nominal_speeds(drive: Drive) -> NDArray[np.float64]:
@@ -141,7 +153,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
              steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
              span_kick_m_s: tuple[int, float] | None = None,
              dynamics: DriveModel | None = None,
-             check_step: bool = False) -> LinkLevelResult:
+             check_step: bool = False, implicit_links: bool = False) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
     Parameters
@@ -172,7 +184,7 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
         ``"constant"``; None: none) with their power shares at the nominal speeds (none
         when ``motor`` is False).
     dt_s : float or None
-        Time step [s] (None: :data:`COURANT`·2/ω_max).
+        Time step [s] (None: :func:`default_step`).
     sample_rate_hz : float or None
         Rate of the recorded history [Hz] (None: about 10× the whole-drive model's reference
         frequency, at least 1 kHz).
@@ -197,6 +209,11 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
         True runs the same simulation again at half the step and reports how much K_D and
         the span loads moved (``result.convergence``,
         :func:`chaindrive.linklevel.result.step_convergence`); three times the cost.
+    implicit_links : bool
+        True takes the link springs implicitly (module docstring) at
+        :func:`default_step`'s implicit step (at most twice the explicit one, less accurate:
+        docs/linklevel.md §2); False (default) explicitly, at the step they allow. A
+        clearance forces False.
 
     Returns
     -------
@@ -232,20 +249,20 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     law = _motor_law(drive, motor, omega)
     if law is None:
         resistance = None
-    omega_max = TWO_PI * model.highest_frequency_hz
-    dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / omega_max
+    theta = IMPLICIT_THETA if implicit_links and model.clearance == 0.0 else 0.0
+    dt = float(dt_s) if dt_s is not None else default_step(model, theta > 0.0)
     steps = max(1, math.ceil(duration_s / dt))
     rate = sample_rate_hz or 10.0 * max(model.reference_frequency_hz, 100.0)
     every = max(1, round(1.0 / (rate * dt)))
-    asm, eq = equilibrium_state(drive, geometry, model, dt, take_up)
+    asm, eq = equilibrium_state(drive, geometry, model, default_step(model, False), take_up)
     state = _initial_state(model, asm, eq, geometry, omega, speed)
     _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
     result = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, dt, steps,
-                  every, steady_window)
+                  every, steady_window, theta)
     if not check_step:
         return result
     half = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, 0.5 * dt,
-                2 * steps, 2 * every, steady_window)
+                2 * steps, 2 * every, steady_window, theta)
     return replace(result, convergence=step_convergence(result, half))
 
 
@@ -418,8 +435,7 @@ def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
     """
     installed, take_up = installed_geometry(drive, geometry)
     model = replace(model, centres=np.array([[g.x, g.y] for g in installed.sprockets]))
-    dt = float(dt_s) if dt_s is not None else COURANT * 2.0 / (TWO_PI
-                                                               * model.highest_frequency_hz)
+    dt = float(dt_s) if dt_s is not None else default_step(model, False)
     asm, eq = equilibrium_state(drive, installed, model, dt, take_up)
     x, v, th, w = _initial_state(model, asm, eq, installed, _nominal_speeds(drive),
                                  _initial_speed(None, start))
@@ -464,8 +480,8 @@ def _loads_on_dofs(model: LinkLevelModel, dofs: int, torques: NDArray[np.float64
 def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Assembly,
          eq: Equilibrium, state: State, motor: Callable[[float, float], float] | None,
          resistance: str | None, omega: NDArray[np.float64], dt: float, steps: int,
-         every: int, steady_window: float) -> LinkLevelResult:
-    """Set up the kernel's arrays, run it, wrap the result."""
+         every: int, steady_window: float, theta: float = 0.0) -> LinkLevelResult:
+    """Set up the kernel's arrays, run it, wrap the result (theta: the kernel's)."""
     x, v, th, w = (np.array(a, dtype=float, order="C") for a in state)  # copies: state stays
     x0, v0, th0, w0 = x.copy(), v.copy(), th.copy(), w.copy()
     L0 = np.full(x.shape[0], eq.rest_length)
@@ -481,6 +497,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     spr, trig, gtab, reach = tables.spr, tables.trig, tables.gtab, tables.reach
     win = np.maximum(1.0, np.round(TWO_PI / (model.teeth * np.abs(omega)) / dt))
     cmax = hinge_regularisation(model, dt)
+    search = max(1, min(SEARCH_EVERY, int(0.25 * model.pitch / (SEARCH_SPEED * dt))))
     rows = steps // every + 1
     rec = (np.empty((rows, N, 2)), np.empty((rows, J.size)), np.empty((rows, J.size)),
            np.empty((rows, N)), np.empty((rows, N)), np.empty((rows, N), dtype=np.int64),
@@ -495,8 +512,8 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     run_kernel(x, v, th, w, 0.0, steps, dt, every, model.roller_mass, float(model.gravity[0]),
                float(model.gravity[1]), L0, model.link_stiffness, model.link_damping,
                model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
-               SEARCH_EVERY, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
-               rsign, *rec, energy, cand, eng, events, count)
+               search, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
+               rsign, *rec, energy, cand, eng, events, count, 0.0, theta)
     times = np.arange(rows, dtype=np.float64) * every * dt
     kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
@@ -508,13 +525,43 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
         steady_window=steady_window, equilibrium=eq.to_dict())
 
 
+def default_step(model: LinkLevelModel, implicit: bool = False) -> float:
+    """Default time step [s].
+
+    Explicit link springs: Δt_e = :data:`COURANT`·2/ω_max, ω_max² = (4k_link + k_c)/m (the
+    roller between two links on one tooth). Implicit link springs: stable below
+    :data:`COURANT`·2/ω_c, ω_c² = k_c/m, the explicit part alone [HughesLiu1978]; the step
+    is the smaller of :data:`CONTACT_RESOLUTION`/ω_c (a roller's oscillation on a tooth
+    resolved to a phase error (ω_c Δt)²/24 ≈ 1 % [Hairer2006]) and :data:`HINGE_STEPS`·Δt_e
+    (the regularised hinge friction's relaxation time I/c_max = 4Δt_e in two steps,
+    :func:`hinge_regularisation`), and never below Δt_e.
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The parameters.
+    implicit : bool
+        Whether the link springs are taken implicitly.
+
+    Returns
+    -------
+    float
+        Δt [s].
+    """
+    explicit = COURANT * 2.0 / (TWO_PI * model.highest_frequency_hz)
+    if not implicit:
+        return explicit
+    contact = CONTACT_RESOLUTION / (TWO_PI * model.contact_frequency_hz)
+    return max(explicit, min(contact, HINGE_STEPS * explicit))
+
+
 def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
     """Viscous coefficient [N·m·s/rad] of the regularised Coulomb hinge friction below its
-    sliding limit: the largest the explicit step keeps stable, a link's inertia m p²/2
-    over 4Δt (half the explicit limit 2/Δt on the friction's rate), taken at the default
-    step (:data:`COURANT`·2/ω_max) whatever the step of the run — so that the friction law
-    does not change when the step is refined (a smaller step stays stable with it) — and
-    at Δt itself only for a coarser step.
+    sliding limit: a link's inertia I = m p²/2 over 4Δt_e, Δt_e the explicit step
+    (:func:`default_step` with explicit link springs), whatever the step of the run — so
+    that the friction law does not change with the step or the integrator — and over Δt
+    itself only for a step above 4Δt_e (the law's relaxation time I/c_max: a quarter of the
+    explicit limit 2/Δt on its rate there).
 
     Parameters
     ----------
@@ -528,8 +575,8 @@ def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
     float
         c_max [N·m·s/rad].
     """
-    default = COURANT * 2.0 / (TWO_PI * model.highest_frequency_hz)
-    return model.roller_mass * model.pitch**2 / 2.0 / (4.0 * max(dt, default))
+    explicit = default_step(model, False)
+    return model.roller_mass * model.pitch**2 / 2.0 / (4.0 * max(explicit, dt / 4.0))
 
 
 def duration_events(model: LinkLevelModel, omega: NDArray[np.float64], duration: float) -> float:

@@ -396,12 +396,14 @@ def _comparison_rows(inp: ReportInput) -> list[tuple[Any, ...]]:
     comparison = inp.analysis.link_level_comparison
     assert comparison is not None
     out: list[tuple[Any, ...]] = []
-    for quantity, ring, link, unit in comparison.rows:
+    names = {"whole_drive": "whole drive", "link_level": "link level", None: ""}
+    for (quantity, ring, link, unit), gov in zip(comparison.rows, comparison.governing,
+                                                 strict=True):
         if unit == "N":
             out.append((quantity, inp.val(ring, "force"), inp.val(link, "force"),
-                        inp.unit("force")))
+                        inp.unit("force"), names[gov]))
         else:
-            out.append((quantity, ring, link, "" if unit == "1" else unit))
+            out.append((quantity, ring, link, "" if unit == "1" else unit, names[gov]))
     return out
 
 
@@ -441,14 +443,17 @@ def links_section(inp: ReportInput) -> list[Block] | None:
             "quantities still hold the start-up. A longer run (chaindrive simulate --model "
             "links --duration) gives the steady ones.", "warning"))
     blocks.append(Table("Whole-drive model beside the link-level model",
-                        ("quantity", "whole drive", "link level", "unit"),
+                        ("quantity", "whole drive", "link level", "unit", "governs"),
                         rows(_comparison_rows(inp))))
     blocks.append(Text(
         "Where the two differ: the link-level model carries the roller–tooth engagement "
         "impacts and the chain's own mass moving along the spans, which the whole-drive "
         "model's smooth polygonal excitation leaves out; its steady dynamic loads are then "
-        "the larger [BinderCovert1948]. Its natural frequencies need an impulse run of their "
-        "own and are not given here; its impact forces rest on an estimated roller–tooth "
+        "the larger [BinderCovert1948]. Of each load the larger governs (column 'governs'); "
+        "the verdict's checks still take the whole-drive model's. Its first natural "
+        "frequency is the first mode along the chain of its linearisation about the static "
+        "state; where it differs from the whole-drive model's, docs/linklevel.md §6 says "
+        "which is right. Its impact forces rest on an estimated roller–tooth "
         "stiffness (ISO 6336-1 gear value [ISO6336-1])."))
     times = frame_times(result)
     blocks += [
