@@ -541,7 +541,7 @@ def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
         marked "(chosen)", a count that cannot be laid out with the reason.
     """
     lc = document["geometry"]["length_options"]
-    cols = (("centre distance", "centre_distance_mm"), ("take-up", "take_up_mm"),
+    cols: tuple[tuple[str, str], ...] = (("centre distance", "centre_distance_mm"), ("take-up", "take_up_mm"),
             ("slack-span sag", "slack_sag_mm"))
     errors = any(o["error"] for o in lc["options"])
     # a quantity no option has (the centre distance of a contour of more than two sprockets,
