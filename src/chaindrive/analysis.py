@@ -532,7 +532,19 @@ class Analysis:
 
     def workshop(self, index: int) -> SprocketWorkshop:
         """What the workshop drawing of sprocket ``index`` states besides its outline (bore
-        and fit, keyway, hub, section, measurement over pins, tip diameter, material)."""
+        and fit, keyway, hub, section, measurement over pins, tip diameter, material).
+
+        Parameters
+        ----------
+        index : int
+            The sprocket's place in the design's list [-].
+
+        Returns
+        -------
+        SprocketWorkshop
+            Bore, keyway, hub, section, pins measurement, tip diameter and material
+            (:func:`chaindrive.geometry.workshop.sprocket_workshop`).
+        """
         return sprocket_workshop(self.drive, self.profiles[index], index)
 
     def selection_by(self, *, method: str | None = None,

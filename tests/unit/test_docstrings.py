@@ -177,7 +177,9 @@ def _class_problems(qualname: str, cls: type) -> Iterator[str]:
         if name.startswith("_"):
             continue
         func = attr.__func__ if isinstance(attr, classmethod | staticmethod) else attr
-        if inspect.isfunction(func):
+        # a method a base class generates for each subclass (matplotlib's Artist.set) is the
+        # library's, written in its file: not ours to document
+        if inspect.isfunction(func) and func.__code__.co_filename == inspect.getfile(cls):
             yield from _problems(f"{qualname}.{name}", func, inspect.getdoc(func),
                                  needs_returns=False)
 

@@ -117,15 +117,15 @@ class Keyway:
     Parameters
     ----------
     key_width, key_height : float
-        The key b × h.
+        The key b × h [m].
     hub_depth : float
-        t2, from the bore surface.
+        t2, from the bore surface [m].
     depth_upper : float
-        Upper deviation of t2 (lower 0).
+        Upper deviation of t2 (lower 0) [m].
     width_upper, width_lower : float
-        Deviations of the keyway width (JS9: ±IT9/2).
+        Deviations of the keyway width (JS9: ±IT9/2) [m].
     over_bore : float
-        The depth as dimensioned, d + t2 (from the far side of the bore).
+        The depth as dimensioned, d + t2 (from the far side of the bore) [m].
     """
 
     key_width: float
@@ -185,7 +185,7 @@ def measurement_over_pins(pitch_diameter: float, teeth: int, pin_diameter: float
     pitch_diameter : float
         d [m].
     teeth : int
-        z.
+        z [-].
     pin_diameter : float
         d_R = d1, the roller diameter [m].
 
@@ -316,41 +316,42 @@ class SprocketWorkshop:
     name : str
         The sprocket.
     teeth : int
-        z.
+        z [-].
     standard : str
         "ISO 606" or "GOST 591".
     bore : float
-        d.
+        d [m].
     bore_given : bool
         True when the design gives the bore (else the body model's 0.19·z·p/π).
     bore_fit : str
         Its ISO 286 class ("H7").
     bore_upper, bore_lower : float
-        Its deviations.
+        Its deviations [m].
     keyway : Keyway or None
         The hub keyway (None: no keyway, by the design's choice).
     hub_diameter, hub_length, hub_limit : float
-        The hub and the largest hub the chain clears (d_g).
+        The hub and the largest hub the chain clears (d_g) [m].
     face_width : float
-        Tooth width of one strand (ISO 606 b_f1, GOST 591 b).
+        Tooth width of one strand (ISO 606 b_f1, GOST 591 b) [m].
     overall_width : float
-        Width of the toothed rim over all strands.
+        Width of the toothed rim over all strands [m].
     strands : int
-        Chain strands.
+        Chain strands [-].
     transverse_pitch : float
-        Between strands.
+        Between strands [m].
     chamfer_width, chamfer_radius, chamfer_depth : float
-        The tooth chamfer: taken off each side at the tip, its radius, its radial depth.
+        The tooth chamfer: taken off each side at the tip, its radius, its radial depth [m].
     tip_diameter, tip_upper, tip_lower : float
-        Tip diameter as dimensioned and its deviations (GOST 591: no deviations compiled).
+        Tip diameter as dimensioned and its deviations (GOST 591: no deviations compiled)
+        [m].
     tip_min, tip_max : float
-        The standard's range (GOST 591: both the tip diameter).
+        The standard's range (GOST 591: both the tip diameter) [m].
     pins_measurement : float
-        M_R.
+        M_R [m].
     pins_upper, pins_lower : float
-        Its deviations (those of the root diameter).
+        Its deviations (those of the root diameter) [m].
     pin_diameter : float
-        d_R.
+        d_R [m].
     material : str
         Material (design).
     hardening : str or None
