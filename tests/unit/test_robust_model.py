@@ -120,6 +120,34 @@ def test_life_curve_of_a_fixed_centre_drive() -> None:
     assert life.hours_per_elongation is None       # a GOST chain has no ACA rating
 
 
+def test_seed_kd_tail_is_the_tooth_frequency_resonance_of_a_new_chain() -> None:
+    """The long upper tail of K_D over the seed's states (docs/robust.md) is a resonance,
+    not a numerical jump: with S2 0.4 mm farther from S1 (within one standard deviation of
+    its position tolerance, [TsubakiGuide, §7.1.2.2]) the new chain hangs tighter than the
+    drawing's 2 % sag and f₁ lies above the tooth frequency f_z = z₁n₁ = 15 · 5 Hz = 75 Hz;
+    as the chain wears (ε from 0 to 0.06 %) the slack grows, f₁ falls through f_z
+    monotonically, and K_D traces one resonance peak whose top is the state with f₁
+    nearest f_z ([Rao2011, ch. 3]: the steady amplitude of a lightly damped mode is largest at
+    resonance, within a step here, and falls monotonically on both sides; the next mode,
+    f₂ ≈ 250 Hz, is far away)."""
+    nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
+    assert nominal.steady is not None
+    f_z = nominal.steady.tooth_angular_frequency / (2 * np.pi)
+    assert f_z == pytest.approx(15 * 300 / 60)
+    f1, kd = [], []
+    for eps in np.linspace(0.0, 6e-4, 25):
+        state = PerturbedAnalysis(nominal, Perturbation(
+            elongation=float(eps), offsets=((0.0, 0.0), (-4e-4, 0.0), (0.0, 0.0))))
+        assert state.steady is not None and state.steady.coefficient_of_dynamics is not None
+        f1.append(float(state.dynamics.modal.elastic_frequencies_hz[0]))
+        kd.append(state.steady.coefficient_of_dynamics)
+    assert np.all(np.diff(f1) < 0) and f1[0] > f_z > f1[-1]
+    peak = int(np.argmax(kd))
+    assert abs(peak - int(np.argmin(np.abs(np.asarray(f1) - f_z)))) <= 1
+    assert 0 < peak < len(kd) - 1
+    assert np.all(np.diff(kd[:peak + 1]) > 0) and np.all(np.diff(kd[peak:]) < 0)
+
+
 def test_life_curve_bisects_the_first_failure(tmp_path: Path) -> None:
     """The conveyor example turning the other way (counter-clockwise: its tensioner T then
     sits on the span into the driver) passes every check when new but two (that tensioner,
