@@ -149,7 +149,8 @@ def _sensitivity_lines(sens: dict[str, Any]) -> list[str]:
         verdict = widest
     lines = [f"Sobol sample: N = {sizes} base points, {sens['evaluations']} states "
              f"({sens['confidence']:.0%} bootstrap intervals); {verdict}"]
-    wide = [f"{metric} ±{m['leading_half_width']:.2f}" for metric, m in sens["metrics"].items()
+    wide = [f"{metric} ±{m['leading_half_width']:.2f}" + _tail_note(m)
+            for metric, m in sens["metrics"].items()
             if m["leading_half_width"] is not None and not m["converged"]]
     if wide:
         lines.append(f"leading S_T wider than ±{sens['target_half_width']:g} (do not rank on "
@@ -228,3 +229,12 @@ def print_robust(con: Console, doc: dict[str, Any], make: TableMaker) -> None:
             con.print(escape(line))
         con.print(escape("held at nominal (Sobol states): "
                          + "; ".join(sens["held_at_nominal"])))
+
+
+def _tail_note(metric: dict[str, Any]) -> str:
+    """" (1 % of the states hold 87 % of its variance)" where a few states hold much of it
+    (why its indices converge slowly), else nothing."""
+    if not metric.get("variance_in_few_states"):
+        return ""
+    share = metric["variance_share_of_farthest_1pct"]
+    return f" (1 % of the states hold {share:.0%} of its variance)"
