@@ -64,7 +64,7 @@ from chaindrive.dynamics.transient.runup import (
     rigid_runup,
     startup_durations,
 )
-from chaindrive.dynamics.transient.startup import StartupResult
+from chaindrive.dynamics.transient.startup import StartupResult, startup_progress
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_travel_order
@@ -93,7 +93,9 @@ if TYPE_CHECKING:
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
     from chaindrive.multicontour.drive import ContourCheck
 
-__all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze"]
+#: ``startup_progress(callback)``: the start-ups :func:`analyze` integrates within it report
+#: their steps to ``callback`` (a presenter's progress bar; re-exported from the start-up).
+__all__ = ["SPEED_RANGE", "STUDIES", "Analysis", "analyze", "startup_progress"]
 
 #: Speed range of the Campbell data and of the speed sweep (run-up), as fractions of the
 #: nominal driver speed.

@@ -177,8 +177,8 @@ def simulate(
     (with --model links also the span transverse motion and every link's tension)."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
+    from chaindrive.analysis import startup_progress
     from chaindrive.cli.progress import step_progress
-    from chaindrive.dynamics.transient.startup import startup_progress
 
     if model not in ("ring", "links"):
         with user_errors():

@@ -176,6 +176,8 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
         raise DesignError("optimize.robust.path", "the modal path gives only the resonance "
                           f"margin and f1; {', '.join(sorted(needs - MODAL_KEYS))} need "
                           'path = "full"')
+    # lazy: the robust study's statistics (scipy.stats, SALib) load only for a problem that
+    # has a robust part, not for every `optimize`
     from chaindrive.robust.chance import minimum_samples
     from chaindrive.robust.sampling import sample_count
     from chaindrive.robust.uncertainty import uncertainty_settings
@@ -194,6 +196,7 @@ def robust_settings(table: Mapping[str, Any], uncertainty: Mapping[str, Any] | N
 def _check_certifiable(settings: UncertaintySettings, chance: Sequence[tuple[str, float]]
                        ) -> None:
     """Refuse a sample count that cannot certify a chance constraint (module docstring)."""
+    # lazy: as in robust_settings (the statistics load only for a robust problem)
     from chaindrive.robust.chance import minimum_samples
     from chaindrive.robust.sampling import sample_count
 
@@ -230,6 +233,7 @@ class RobustAnalysis(Analysis):
     def robust(self) -> ReliabilityResult:
         """The design's probabilities of failure and metric statistics over its states."""
         s = self.robust_settings
+        # lazy: as in robust_settings (the statistics load only for a robust problem)
         from chaindrive.robust.sampling import reliability
         from chaindrive.robust.uncertainty import uncertainty_model
 
@@ -297,6 +301,7 @@ def chance_statement(result: ReliabilityResult, key: str, alpha: float, confiden
     fraction = float(np.mean(m < 0.0))
     if n == 1:  # no random variable: the fraction is exact
         return fraction, 1, fraction, -float(m[min(m.size - 1, math.floor(alpha * m.size))])
+    # lazy: as in robust_settings (the statistics load only for a robust problem)
     from chaindrive.robust.chance import allowed_failures, upper_bound
 
     k_star = allowed_failures(alpha, n, confidence)
