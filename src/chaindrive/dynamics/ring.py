@@ -439,6 +439,7 @@ class RingModel:
         c.flags.writeable = False
         object.__setattr__(self, "masses_kg", m)
         object.__setattr__(self, "stiffness_n_per_m", c)
+        object.__setattr__(self, "names", tuple(self.names))
         if self.names and len(self.names) != m.size:
             raise DesignError("names", f"need {m.size} names, got {len(self.names)}")
 
