@@ -48,6 +48,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.dynamics.model.assembly import LinearModel
 from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.transient.kernel_codes import RESISTANCE_KINDS, motor_code
 from chaindrive.dynamics.transient.zoh import zoh_matrices
@@ -372,20 +373,10 @@ class StartupProblem:
 
     Parameters
     ----------
-    mass : ndarray
-        (N, N) mass matrix [kg or kg·m²].
-    stiffness_linear : ndarray
-        (N, N) stiffness of the elements that never go slack [N/m or N·m/rad].
-    damping_linear : ndarray
-        (N, N) their damping [N·s/m or N·m·s/rad].
-    span_incidence : ndarray
-        (S, N) elongation of every span from the coordinates [m per coordinate unit].
-    span_stiffness : ndarray
-        (S,) span stiffnesses [N/m].
-    span_damping : ndarray
-        (S,) span dampers [N·s/m].
-    span_tension_only : ndarray of bool
-        (S,) True for a span that carries tension only (goes slack).
+    linear : LinearModel
+        M, C, K of the elements that never go slack, the spans' incidence, stiffnesses,
+        dampers and which spans carry tension only
+        (:class:`~chaindrive.dynamics.model.assembly.LinearModel`).
     pretension : ndarray
         (S,) pre-tension T₀ at rest [N].
     motor : tuple or None
@@ -422,13 +413,7 @@ class StartupProblem:
         The span forces reported are F/scale [-] (m contours: scale m).
     """
 
-    mass: FloatArray
-    stiffness_linear: FloatArray
-    damping_linear: FloatArray
-    span_incidence: FloatArray
-    span_stiffness: FloatArray
-    span_damping: FloatArray
-    span_tension_only: NDArray[np.bool_]
+    linear: LinearModel
     pretension: FloatArray
     motor: tuple[int, float, float, Callable[[float, float], float]] | None
     load_coordinate: NDArray[np.intp]
@@ -449,7 +434,7 @@ class StartupProblem:
     @property
     def size(self) -> int:
         """N coordinates."""
-        return int(self.mass.shape[0])
+        return self.linear.size
 
 
 def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
@@ -524,10 +509,8 @@ class _Patterns:
         key = mask.tobytes()
         if key not in self.cache:
             p = self.p
-            B = p.span_incidence
-            K = p.stiffness_linear + (B.T * (p.span_stiffness * mask)) @ B
-            C = p.damping_linear + (B.T * (p.span_damping * mask)) @ B
-            P, G = zoh_matrices(p.mass, K, C, p.dt)
+            lin = p.linear
+            P, G = zoh_matrices(lin.mass, lin.stiffness(mask), lin.damping(mask), p.dt)
             self.cache[key] = (P, G, G[p.size:].diagonal().copy())
         return self.cache[key]
 
@@ -568,7 +551,8 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
     """The step loop in NumPy (fallback without numba): forces (R, S), states (R, 2N), the
     largest span forces (S,), slack re-steps."""
     n, dt = p.size, p.dt
-    B, c, ds, T0 = p.span_incidence, p.span_stiffness, p.span_damping, p.pretension
+    lin = p.linear
+    B, c, ds, T0 = lin.span_incidence, lin.span_stiffness, lin.span_damping, p.pretension
     poly = _polygonal_data(p) if p.polygonal is not None else None
     d0 = _polygonal_raw(poly, np.zeros(2 * n))[0] if poly is not None else None
     mats = _Patterns(p)
@@ -616,7 +600,7 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
         fr = span_part(y, mask)
         y_new = advance(y, t, 1.5 * fr - 0.5 * fr_prev, mask)
         F = span_force(y_new)
-        new_mask = ((F > 0) | ~p.span_tension_only) & (c > 0)
+        new_mask = ((F > 0) | ~lin.span_tension_only) & (c > 0)
         if not np.array_equal(new_mask, mask):
             mask = new_mask
             fr = span_part(y, mask)
@@ -625,7 +609,7 @@ def _run_numpy(p: StartupProblem) -> tuple[FloatArray, FloatArray, FloatArray, i
             slack += 1
         fr_prev, y = fr, y_new
         F = np.where(mask, F, 0.0)
-        F = np.where(p.span_tension_only, np.maximum(F, 0.0), F)
+        F = np.where(lin.span_tension_only, np.maximum(F, 0.0), F)
         np.maximum(fmax, F, out=fmax)
         if (k + 1) % rec == 0:
             forces[(k + 1) // rec] = F
@@ -655,7 +639,7 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     """The step loop compiled (:mod:`chaindrive.dynamics.transient.kernel`); same output as
     :func:`_run_numpy`. Slack patterns new to the kernel are discretised here, then the
     kernel resumes from the step that met them."""
-    n, ns = p.size, p.span_stiffness.size
+    n, ns = p.size, p.linear.span_stiffness.size
     mats = _Patterns(p)
     masks = np.zeros((4, ns), dtype=np.bool_)
     Phis, Gams, gvvs = np.empty((4, 2 * n, 2 * n)), np.empty((4, 2 * n, n)), np.empty((4, n))
@@ -670,7 +654,7 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
         Phis[npat], Gams[npat], gvvs[npat] = mats(mask)
         npat += 1
 
-    c = np.ascontiguousarray(p.span_stiffness, dtype=float)
+    c = np.ascontiguousarray(p.linear.span_stiffness, dtype=float)
     add(c > 0)
     f8 = np.ascontiguousarray
     if p.polygonal is not None:
@@ -687,14 +671,14 @@ def _run_compiled(p: StartupProblem, laws: tuple[Any, ...], runner: Any
     forces[0] = np.where(c > 0, p.pretension, 0.0)
     fmax = np.maximum(forces[0], 0.0)
     y, need = np.zeros(2 * n), np.zeros(ns, dtype=np.bool_)
-    fr_prev = -(np.where(masks[0], p.pretension, 0.0) @ p.span_incidence)
+    fr_prev = -(np.where(masks[0], p.pretension, 0.0) @ p.linear.span_incidence)
     state = np.zeros(3, dtype=np.int64)
-    B = f8(p.span_incidence, dtype=float)
-    ds, T0 = f8(p.span_damping, dtype=float), f8(p.pretension, dtype=float)
-    tonly = f8(p.span_tension_only, dtype=np.bool_)
+    B = f8(p.linear.span_incidence, dtype=float)
+    ds, T0 = f8(p.linear.span_damping, dtype=float), f8(p.pretension, dtype=float)
+    tonly = f8(p.linear.span_tension_only, dtype=np.bool_)
     # the coordinates the forces act on (a Python set: np.unique imports numpy.ma, 12 ms)
     law = {int(k) for k in p.load_coordinate} | ({int(p.motor[0])} if p.motor else set())
-    spans = {int(k) for k in np.flatnonzero(np.any(p.span_incidence != 0.0, axis=0))}
+    spans = {int(k) for k in np.flatnonzero(np.any(p.linear.span_incidence != 0.0, axis=0))}
     lcols = np.array(sorted(law), dtype=np.int64)
     fcols = np.array(sorted(law | spans), dtype=np.int64)
     while runner(y, fr_prev, state, p.steps, p.dt, rec, masks, Phis, Gams, gvvs, npat, B, c,
