@@ -93,3 +93,21 @@ def test_ring_model_is_frozen() -> None:
     with pytest.raises(ValueError, match="read-only"):
         ring.masses_kg[0] = 3.0
     assert ring.names == ("a", "b")
+
+
+def test_ring_and_whole_drive_return_the_one_modal_result(seed_model: DriveModel) -> None:
+    from chaindrive.dynamics.modes import Modes, drive_modes
+
+    ring = RingModel([1.0, 2.0, 3.0], [1e5, 2e5, 3e5], damping_ratio=0.06).modal()
+    drive, _ = drive_modes(seed_model)
+    for modes in (ring, drive):
+        assert isinstance(modes, Modes)
+        assert not modes.shapes.flags.writeable
+        with pytest.raises(FrozenInstanceError):
+            modes.damping_ratio = 0.0  # type: ignore[misc]
+    # the ring's modal damping: ζ on every elastic mode, f_d = f·sqrt(1 − ζ²) [Rao2011, ch. 2]
+    assert ring.modal_damping_ratios.tolist() == [0.0, 0.06, 0.06]
+    assert ring.damped_frequencies_hz[1] == pytest.approx(ring.frequencies_hz[1] *
+                                                          (1 - 0.06**2) ** 0.5, rel=1e-15)
+    assert drive.torsional is not None and ring.torsional is None
+    assert drive.partial_frequencies_hz.size == 0 and ring.partial_frequencies_hz.size == 3
