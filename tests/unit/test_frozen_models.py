@@ -99,7 +99,7 @@ def test_ring_and_whole_drive_return_the_one_modal_result(seed_model: DriveModel
     from chaindrive.dynamics.modes import Modes, drive_modes
 
     ring = RingModel([1.0, 2.0, 3.0], [1e5, 2e5, 3e5], damping_ratio=0.06).modal()
-    drive, _ = drive_modes(seed_model)
+    drive, state = drive_modes(seed_model)
     for modes in (ring, drive):
         assert isinstance(modes, Modes)
         assert not modes.shapes.flags.writeable
@@ -110,4 +110,6 @@ def test_ring_and_whole_drive_return_the_one_modal_result(seed_model: DriveModel
     assert ring.damped_frequencies_hz[1] == pytest.approx(ring.frequencies_hz[1] *
                                                           (1 - 0.06**2) ** 0.5, rel=1e-15)
     assert drive.torsional is not None and ring.torsional is None
+    assert not drive.torsional.modal_coordinates.flags.writeable  # the other two results
+    assert not state.right.flags.writeable
     assert drive.partial_frequencies_hz.size == 0 and ring.partial_frequencies_hz.size == 3

@@ -72,6 +72,9 @@ class StateModes:
     left: ComplexArray
     basis: FloatArray
 
+    def __post_init__(self) -> None:
+        freeze_arrays(self)  # read-only arrays (writeable inputs copied)
+
     def damped(self, natural_rad_s: FloatArray) -> tuple[FloatArray, FloatArray]:
         """(damped frequencies [Hz], damping ratios [-]) of the E elastic modes in the order of
         their undamped frequencies: each mode takes the oscillating eigenvalue (Im λ > 0) of

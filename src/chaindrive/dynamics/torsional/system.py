@@ -408,6 +408,9 @@ class TorsionalModes:
     system: TorsionalSystem
     modal_coordinates: FloatArray
 
+    def __post_init__(self) -> None:
+        freeze_arrays(self, copy=False)  # its arrays are the solver's own: frozen in place
+
     @property
     def node_names(self) -> tuple[str, ...]:
         """Node names, rows of ``shape_matrix``."""
