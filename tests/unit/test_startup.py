@@ -16,6 +16,7 @@ from scipy.integrate import solve_ivp
 from chaindrive.checks import UNVERIFIED
 from chaindrive.dynamics.checks import startup_safety_check
 from chaindrive.dynamics.frequency.steady import span_incidence
+from chaindrive.dynamics.model.assembly import LinearModel
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
 from chaindrive.dynamics.transient.kernel import HAVE_NUMBA
 from chaindrive.dynamics.transient.startup import (
@@ -46,9 +47,9 @@ def simulate_startup(masses: np.ndarray, stiffness: np.ndarray, radii: np.ndarra
     law = resistance
     steps = max(1, math.ceil(duration / dt))
     p = StartupProblem(
-        mass=np.diag(m), stiffness_linear=np.zeros((n, n)), damping_linear=np.zeros((n, n)),
-        span_incidence=span_incidence(n), span_stiffness=c, span_damping=beta * c,
-        span_tension_only=np.ones(n, dtype=bool), pretension=np.full(n, float(pretension)),
+        linear=LinearModel(np.diag(m), np.zeros((n, n)), np.zeros((n, n)), span_incidence(n),
+                           c, beta * c, np.ones(n, dtype=bool)),
+        pretension=np.full(n, float(pretension)),
         motor=(int(driver_index), 1.0 / float(R[driver_index]), 1.0, motor),
         load_coordinate=others if law is not None else np.zeros(0, np.intp),
         load_gain=1.0 / R[others] if law is not None else np.zeros(0),

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from chaindrive.dynamics.model.build import DriveModel
+from chaindrive._numeric import freeze_arrays
 from chaindrive.dynamics.resonance import (
     CampbellData,
     Resonance,
@@ -40,11 +40,12 @@ from chaindrive.kinematics import mean_chain_speed, tooth_frequency
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
+    from chaindrive.dynamics.model.build import DriveModel
     from chaindrive.dynamics.torsional.model import TorsionalModes
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["DriveDynamics", "DriveModes", "StateModes", "drive_modes", "inertia_modes_batch",
+__all__ = ["DriveDynamics", "Modes", "StateModes", "drive_modes", "inertia_modes_batch",
            "model_dynamics", "state_modes"]
 
 FloatArray = NDArray[np.float64]
@@ -70,6 +71,9 @@ class StateModes:
     right: ComplexArray
     left: ComplexArray
     basis: FloatArray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)  # read-only arrays (writeable inputs copied)
 
     def damped(self, natural_rad_s: FloatArray) -> tuple[FloatArray, FloatArray]:
         """(damped frequencies [Hz], damping ratios [-]) of the E elastic modes in the order of
@@ -138,8 +142,11 @@ def state_modes(basis: FloatArray, omega: FloatArray, damping: FloatArray) -> St
 
 
 @dataclass(frozen=True, slots=True, eq=False)
-class DriveModes:
-    """Modes of a whole-drive model as a designer reads them (at the sprockets).
+class Modes:
+    """The modes of a chain drive at its sprockets: the one modal result the ring of reduced
+    masses (:meth:`chaindrive.dynamics.ring.RingModel.modal`) and the whole-drive model
+    (:func:`drive_modes`) return, and what the resonance table, the Campbell data and the
+    detuning read. Frozen, its arrays read-only.
 
     Parameters
     ----------
@@ -147,38 +154,48 @@ class DriveModes:
         (M,) undamped natural frequencies [Hz], ascending, rigid-body zeros first.
     rigid_body : ndarray of bool
         (M,) True for a rigid-body mode.
+    shapes : ndarray
+        (n, M) mode shapes at the n sprockets (ring masses), mass-normalised: the chain
+        displacement R̄_i φ_i [m·kg^-1/2] (the ring: X with Xᵀ M X = I [kg^-1/2]).
     damped_frequencies_hz : ndarray
-        (M,) damped natural frequencies [Hz].
+        (M,) damped natural frequencies [Hz] (the ring: f·sqrt(1 − ζ²)).
     modal_damping_ratios : ndarray
         (M,) damping ratio of each mode [-] (0 for rigid-body modes).
-    shapes : ndarray
-        (n, M) chain displacement R̄_i φ_i at sprocket i in each mode, mass-normalised
-        [m·kg^-1/2].
-    governing : tuple of str
-        (M,) the element holding most of each mode's strain energy.
-    chain_share : ndarray
-        (M,) the share of the chain (spans and wraps) in each mode's strain energy [-].
     masses_kg : ndarray
-        (n,) the sprockets' own reduced masses J/R² [kg] ([MultimassChainDrives, §3.1]).
+        (n,) the sprockets' reduced masses J/R² [kg] ([MultimassChainDrives, §3.1]).
     stiffness_n_per_m : ndarray
-        (n,) span stiffness of one contour [N/m].
+        (n,) span (branch) stiffness of one contour [N/m].
     damping_ratio : float
-        Damping ratio ζ of the reference mode [-].
-    torsional : TorsionalModes
-        The full modes of the torsional model (every node).
+        Damping ratio ζ of the reference mode [-] (the ring: its one ζ,
+        [MultimassChainDrives]: D = 0.06).
+    governing : tuple of str
+        (M,) the element holding most of each mode's strain energy (empty for the ring).
+    chain_share : ndarray | None
+        (M,) the share of the chain (spans and wraps) in each mode's strain energy [-]
+        (None for the ring, whose every spring is the chain).
+    torsional : TorsionalModes | None
+        The full modes of the whole-drive model at every node (None for the ring).
+    scaled_diagonal : ndarray | None
+        (n,) K_kk / m_k [rad²/s²] of the ring, the squares of the partial angular
+        frequencies (the diagonal terms of [MultimassChainDrives, eq. 2]; None for the whole
+        drive).
     """
 
     frequencies_hz: FloatArray
     rigid_body: NDArray[np.bool_]
+    shapes: FloatArray
     damped_frequencies_hz: FloatArray
     modal_damping_ratios: FloatArray
-    shapes: FloatArray
-    governing: tuple[str, ...]
-    chain_share: FloatArray
     masses_kg: FloatArray
     stiffness_n_per_m: FloatArray
     damping_ratio: float
-    torsional: TorsionalModes
+    governing: tuple[str, ...] = ()
+    chain_share: FloatArray | None = None
+    torsional: TorsionalModes | None = None
+    scaled_diagonal: FloatArray | None = None
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)  # read-only arrays (writeable inputs copied)
 
     @property
     def angular_frequencies_rad_s(self) -> FloatArray:
@@ -205,9 +222,19 @@ class DriveModes:
         return np.asarray(np.divide(a, total, out=np.zeros_like(a), where=total > 0),
                           dtype=np.float64)
 
+    @property
+    def partial_frequencies_hz(self) -> FloatArray:
+        """sqrt(K_kk / m_k) / 2π [Hz] of the ring (the diagonal of M^{-1/2} K M^{-1/2});
+        empty for the whole drive."""
+        if self.scaled_diagonal is None:
+            return np.zeros(0)
+        return np.sqrt(self.scaled_diagonal) / TWO_PI
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict; ``mode_shapes[j]`` lists the sprockets' amplitudes in mode j."""
-        return {
+        """JSON-ready dict; ``mode_shapes[j]`` lists the sprockets' amplitudes in mode j
+        (``governing_elements``, ``chain_strain_energy_share`` for the whole drive,
+        ``partial_frequencies_hz`` for the ring)."""
+        out: dict[str, Any] = {
             "natural_frequencies_hz": self.frequencies_hz.tolist(),
             "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
             "damped_frequencies_hz": self.damped_frequencies_hz.tolist(),
@@ -215,12 +242,17 @@ class DriveModes:
             "rigid_body_modes": self.rigid_body.tolist(),
             "mode_shapes": self.shapes.T.tolist(),
             "normalized_amplitudes": self.normalized_amplitudes.T.tolist(),
-            "governing_elements": list(self.governing),
-            "chain_strain_energy_share": self.chain_share.tolist(),
-            "reduced_masses_kg": self.masses_kg.tolist(),
-            "span_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
-            "damping_ratio": self.damping_ratio,
         }
+        if self.torsional is not None:
+            out["governing_elements"] = list(self.governing)
+        if self.chain_share is not None:
+            out["chain_strain_energy_share"] = self.chain_share.tolist()
+        out["reduced_masses_kg"] = self.masses_kg.tolist()
+        out["span_stiffness_n_per_m"] = self.stiffness_n_per_m.tolist()
+        if self.scaled_diagonal is not None:
+            out["partial_frequencies_hz"] = self.partial_frequencies_hz.tolist()
+        out["damping_ratio"] = self.damping_ratio
+        return out
 
 
 def elastic_basis(model: DriveModel, modes: TorsionalModes) -> tuple[FloatArray, FloatArray]:
@@ -232,7 +264,7 @@ def elastic_basis(model: DriveModel, modes: TorsionalModes) -> tuple[FloatArray,
     return Q[:, elastic], modes.angular_frequencies_rad_s[elastic]
 
 
-def drive_modes(model: DriveModel) -> tuple[DriveModes, StateModes]:
+def drive_modes(model: DriveModel) -> tuple[Modes, StateModes]:
     """The modes of a whole-drive model (module docstring) and its complex elastic modes.
 
     Parameters
@@ -242,7 +274,7 @@ def drive_modes(model: DriveModel) -> tuple[DriveModes, StateModes]:
 
     Returns
     -------
-    tuple of DriveModes and StateModes
+    tuple of Modes and StateModes
     """
     modes = model.modal()
     basis, omega = elastic_basis(model, modes)
@@ -262,9 +294,9 @@ def drive_modes(model: DriveModel) -> tuple[DriveModes, StateModes]:
     ref = model.reference_frequency_hz
     el = np.flatnonzero(~modes.rigid_body)
     j_ref = int(el[np.argmin(np.abs(modes.frequencies_hz[el] - ref))]) if el.size else 0
-    return DriveModes(modes.frequencies_hz, modes.rigid_body, fd, zeta, phi, governing, chain,
-                      model.ring.masses_kg, model.linear.span_stiffness / model.contours,
-                      float(zeta[j_ref]), modes), state
+    return Modes(modes.frequencies_hz, modes.rigid_body, phi, fd, zeta, model.ring.masses_kg,
+                 model.linear.span_stiffness / model.contours, float(zeta[j_ref]), governing,
+                 chain, modes), state
 
 
 def inertia_modes_batch(model: DriveModel, added_inertia: NDArray[np.float64]
@@ -313,8 +345,8 @@ class DriveDynamics:
     ----------
     model : DriveModel
         The whole-drive model (:class:`~chaindrive.dynamics.model.build.DriveModel`).
-    modal : DriveModes
-        Its modes at the sprockets (:class:`~chaindrive.dynamics.modes.DriveModes`).
+    modal : Modes
+        Its modes at the sprockets (:class:`~chaindrive.dynamics.modes.Modes`).
     state : StateModes
         Its complex elastic modes (with damping).
     span_transverse_hz : ndarray
@@ -331,7 +363,7 @@ class DriveDynamics:
     """
 
     model: DriveModel
-    modal: DriveModes
+    modal: Modes
     state: StateModes
     span_transverse_hz: NDArray[np.float64]
     working: tuple[WorkingFrequency, ...]

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -29,32 +29,9 @@ from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import mean_chain_speed, tooth_frequency
 from chaindrive.units import TWO_PI
 
+if TYPE_CHECKING:
+    from chaindrive.dynamics.modes import Modes
 
-class Modes(Protocol):
-    """What the resonance table, the Campbell data and the detuning
-    (:func:`chaindrive.synthesis.detuning.normalised_amplitude_at`) read of a modal result
-    (the ring's :class:`~chaindrive.dynamics.ring.ModalResult` or the whole drive's
-    :class:`~chaindrive.dynamics.modes.DriveModes`)."""
-
-    @property
-    def frequencies_hz(self) -> NDArray[np.float64]:
-        """Natural frequencies [Hz], ascending, rigid-body zeros first."""
-        ...
-
-    @property
-    def rigid_body(self) -> NDArray[np.bool_]:
-        """True for the rigid-body modes."""
-        ...
-
-    @property
-    def elastic_frequencies_hz(self) -> NDArray[np.float64]:
-        """The elastic natural frequencies [Hz]."""
-        ...
-
-    @property
-    def normalized_amplitudes(self) -> NDArray[np.float64]:
-        """μ_k^(j), columns per mode [-]."""
-        ...
 
 __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
            "resonance_table", "shaft_frequencies", "working_frequencies"]

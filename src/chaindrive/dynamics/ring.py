@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive.dynamics.modes import Modes
 from chaindrive.dynamics.precision import check_spread
 from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
@@ -33,7 +34,7 @@ if TYPE_CHECKING:
 
     pass
 
-__all__ = ["ModalResult", "RingModel", "modal_analysis", "ring_frequencies_batch",
+__all__ = ["RingModel", "modal_analysis", "ring_frequencies_batch",
            "ring_stiffness_matrix"]
 
 _ALL = np.arange(64)
@@ -91,89 +92,6 @@ def _components(cuts: list[int], n: int) -> list[NDArray[np.intp]] | list[slice]
     return groups
 
 
-@dataclass(frozen=True, slots=True, eq=False)
-class ModalResult:
-    """Natural frequencies and mode shapes of a :class:`RingModel`.
-
-    Parameters
-    ----------
-    frequencies_hz : ndarray
-        (n,) natural frequencies f_j [Hz], ascending; rigid-body modes are exactly 0 and come
-        first.
-    shapes : ndarray
-        (n, n) mode shapes X^(j) as columns, mass-normalised (Xᵀ M X = I) [kg^-1/2].
-    rigid_body : ndarray of bool
-        (n,) True for rigid-body modes.
-    damping_ratio : float
-        ζ used for the damped frequencies f_d = f·sqrt(1 − ζ²) [-] ([MultimassChainDrives]:
-        D = 0.06).
-    masses_kg : ndarray
-        (n,) the model's reduced masses [kg].
-    stiffness_n_per_m : ndarray
-        (n,) its branch stiffnesses [N/m].
-    scaled_diagonal : ndarray
-        (n,) K_kk / m_k [rad²/s²], the squares of the partial angular frequencies (each mass
-        with its neighbours held; the diagonal terms of [MultimassChainDrives, eq. 2]).
-    """
-
-    frequencies_hz: NDArray[np.float64]
-    shapes: NDArray[np.float64]
-    rigid_body: NDArray[np.bool_]
-    damping_ratio: float
-    masses_kg: NDArray[np.float64]
-    stiffness_n_per_m: NDArray[np.float64]
-    scaled_diagonal: NDArray[np.float64]
-
-    # Derived on access (cheap), so that a modal analysis costs little more than LAPACK.
-    @property
-    def angular_frequencies_rad_s(self) -> NDArray[np.float64]:
-        """ω_j = 2π f_j [rad/s]."""
-        return self.frequencies_hz * TWO_PI
-
-    @property
-    def normalized_amplitudes(self) -> NDArray[np.float64]:
-        """[MultimassChainDrives]'s μ_k^(j) = |X_k^(j)| / Σ_i |X_i^(j)|, columns per mode."""
-        absx = np.abs(self.shapes)
-        return np.asarray(absx / absx.sum(axis=0), dtype=np.float64)
-
-    @property
-    def partial_frequencies_hz(self) -> NDArray[np.float64]:
-        """sqrt(K_kk / m_k) / 2π [Hz] (the diagonal of M^{-1/2} K M^{-1/2})."""
-        return np.sqrt(self.scaled_diagonal) / TWO_PI
-
-    @property
-    def damped_frequencies_hz(self) -> NDArray[np.float64]:
-        """f_d = f·sqrt(1 − ζ²) [Hz]."""
-        return self.frequencies_hz * math.sqrt(1.0 - self.damping_ratio**2)
-
-    @property
-    def elastic_frequencies_hz(self) -> NDArray[np.float64]:
-        """The non-zero (elastic) natural frequencies [Hz], ascending."""
-        return self.frequencies_hz[~self.rigid_body]
-
-    @property
-    def first_elastic_frequency_hz(self) -> float:
-        """The lowest non-zero natural frequency [Hz] (nan if the model has none)."""
-        f = self.elastic_frequencies_hz
-        return float(f[0]) if f.size else math.nan
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict; ``mode_shapes[j]`` and ``normalized_amplitudes[j]`` list the
-        amplitudes of every mass in mode j."""
-        return {
-            "reduced_masses_kg": self.masses_kg.tolist(),
-            "branch_stiffness_n_per_m": self.stiffness_n_per_m.tolist(),
-            "natural_frequencies_hz": self.frequencies_hz.tolist(),
-            "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
-            "damped_frequencies_hz": self.damped_frequencies_hz.tolist(),
-            "rigid_body_modes": self.rigid_body.tolist(),
-            "mode_shapes": self.shapes.T.tolist(),
-            "normalized_amplitudes": self.normalized_amplitudes.T.tolist(),
-            "partial_frequencies_hz": self.partial_frequencies_hz.tolist(),
-            "damping_ratio": self.damping_ratio,
-        }
-
-
 def _check_damping(damping_ratio: float) -> float:
     if not (math.isfinite(damping_ratio) and 0.0 <= damping_ratio < 1.0):
         raise DesignError("damping_ratio", f"must be from 0 to below 1, got {damping_ratio!r}")
@@ -181,7 +99,7 @@ def _check_damping(damping_ratio: float) -> float:
 
 
 def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
-                   damping_ratio: float = 0.0) -> ModalResult:
+                   damping_ratio: float = 0.0) -> Modes:
     """Undamped modal analysis of masses on a ring ([MultimassChainDrives, eq. 2]).
 
     Solves K X = ω² M X through the symmetric standard form A = M^{-1/2} K M^{-1/2}
@@ -205,8 +123,8 @@ def modal_analysis(masses: ArrayLike, stiffness: ArrayLike, closed: bool = True,
 
     Returns
     -------
-    ModalResult
-        Frequencies, mass-normalised shapes and the damped frequencies.
+    Modes
+        Frequencies, mass-normalised shapes, the damped frequencies and the partial ones.
 
     References
     ----------
@@ -297,7 +215,7 @@ def _eigen(m: NDArray[np.float64], c: NDArray[np.float64], d: NDArray[np.float64
     return lam, V, A.diagonal().copy()
 
 
-def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> ModalResult:
+def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modes:
     """Core of :func:`modal_analysis` on validated arrays (c with slack branches at 0)."""
     n = m.size
     cuts = [i for i, ci in enumerate(c.tolist()) if ci <= 0.0]
@@ -322,7 +240,11 @@ def _modal(m: NDArray[np.float64], c: NDArray[np.float64], zeta: float) -> Modal
     rigid[:n_rigid] = True
     np.sqrt(lam, out=lam)
     lam *= 1.0 / TWO_PI
-    return ModalResult(lam, shapes, rigid, zeta, m, c, diag)
+    ratios = np.where(rigid, 0.0, zeta)
+    for a in (lam, shapes, rigid, m, c, diag, ratios):  # fresh arrays: frozen, not copied
+        a.flags.writeable = False
+    return Modes(lam, rigid, shapes, lam * math.sqrt(1.0 - zeta**2), ratios, m, c, zeta,
+                 scaled_diagonal=diag)
 
 
 def _validate(m: NDArray[np.float64], c: NDArray[np.float64]) -> None:
@@ -439,6 +361,7 @@ class RingModel:
         c.flags.writeable = False
         object.__setattr__(self, "masses_kg", m)
         object.__setattr__(self, "stiffness_n_per_m", c)
+        object.__setattr__(self, "names", tuple(self.names))
         if self.names and len(self.names) != m.size:
             raise DesignError("names", f"need {m.size} names, got {len(self.names)}")
 
@@ -455,7 +378,7 @@ class RingModel:
         """M [kg], diagonal."""
         return np.diag(self.masses_kg)
 
-    def modal(self) -> ModalResult:
+    def modal(self) -> Modes:
         """Natural frequencies and forms; see :func:`modal_analysis`."""
         c = self.stiffness_n_per_m
         if not self.closed:

@@ -16,10 +16,10 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from chaindrive.dynamics import CampbellData, ModalResult
+    from chaindrive.dynamics import CampbellData, Modes
 
 
-def mode_shapes(modal: ModalResult, *, ax: Axes | None = None,
+def mode_shapes(modal: Modes, *, ax: Axes | None = None,
                 names: Sequence[str] | None = None, modes: int = 4) -> Figure:
     """Mode shapes X^(j) of the first ``modes`` elastic modes as signed lines along the
     contour: one point per mass in contour order, the first mass repeated at the end to
@@ -30,7 +30,7 @@ def mode_shapes(modal: ModalResult, *, ax: Axes | None = None,
 
     Parameters
     ----------
-    modal : ModalResult
+    modal : Modes
         The ring's modes.
     ax : Axes or None
         Axes to draw into (None: a new figure).

@@ -28,8 +28,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive.analysis import Analysis
-from chaindrive.dynamics.modes import inertia_modes_batch
-from chaindrive.dynamics.resonance import Modes, working_frequencies
+from chaindrive.dynamics.modes import Modes, inertia_modes_batch
+from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.errors import DesignError
 from chaindrive.model import Drive
 from chaindrive.units import TWO_PI

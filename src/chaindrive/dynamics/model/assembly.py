@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._numeric import freeze_arrays, read_only, rebuilt
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
 from chaindrive.dynamics.torsional.engine import TorsionalEngine
@@ -80,7 +81,8 @@ def shaft_stiffness(diameter: float, length: float, youngs_modulus: float,
 
 @dataclass(frozen=True, slots=True, eq=False)
 class LinearModel:
-    """M q̈ + C q̇ + K q = Q of a drive in its coordinates q (condensed).
+    """M q̈ + C q̇ + K q = Q of a drive in its coordinates q (condensed); frozen, its arrays
+    read-only (writeable inputs are copied).
 
     K = K_lin + Bᵀ diag(c·a) B and C = C_lin + Bᵀ diag(d·a) B, a the spans that carry (all,
     unless told) [Rao2011, ch. 6].
@@ -114,6 +116,16 @@ class LinearModel:
     span_stiffness: FloatArray
     span_damping: FloatArray
     span_tension_only: NDArray[np.bool_]
+
+    def __post_init__(self) -> None:
+        # frozen once built: the model holds read-only arrays (copies of writeable inputs)
+        for name in ("mass", "stiffness_linear", "damping_linear", "span_incidence",
+                     "span_stiffness", "span_damping"):
+            object.__setattr__(self, name, read_only(getattr(self, name)))
+        object.__setattr__(self, "span_tension_only", read_only(self.span_tension_only, bool))
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        return rebuilt(self)  # unpickled: frozen again
 
     @property
     def size(self) -> int:
@@ -396,7 +408,8 @@ def _sprocket_senses(geometry: GeometryResult) -> FloatArray:
 class DriveParts:
     """The assembled model of a drive before its chain dampers, completeness and modes: what
     :func:`assembled_parts` returns and what
-    :class:`~chaindrive.dynamics.model.build.DriveModel` extends.
+    :class:`~chaindrive.dynamics.model.build.DriveModel` extends. Frozen, its arrays
+    read-only, its torsional model built (frozen too).
 
     Parameters
     ----------
@@ -480,6 +493,12 @@ class DriveParts:
     notes: tuple[str, ...] = ()
     trains: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
     note_quantities: tuple[Quantity, ...] = ()
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)  # frozen once built: read-only arrays
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        return rebuilt(self)  # unpickled: frozen again
 
 
 def assembled_parts(drive: Drive, geometry: GeometryResult, ring: RingParameters,

@@ -246,14 +246,14 @@ def drive_model(drive: Drive, geometry: GeometryResult, *,
     modes = model.torsional.modal()
     w_ref = reference_angular_frequency(modes)
     zs, zw, source = chain_damping(drive, geometry, ring, lookup)
-    linear = with_chain_dampers(model, zs, zw, w_ref)
+    model = with_chain_dampers(model, zs, zw, w_ref)
     missing = model_completeness(drive)
     if missing and drive.dynamics.require_complete_model:
         raise DesignError("dynamics.require_complete_model", "the dynamic model is incomplete: "
                           + "; ".join(missing) + " (give the [motor] table and what turns with "
                           "every driven sprocket, or set require_complete_model = false)")
     values = {f.name: getattr(model, f.name) for f in fields(model)}
-    values.update(linear=linear, span_damping_ratios=zs, damping_source=source,
+    values.update(span_damping_ratios=zs, damping_source=source,
                   reference_frequency_hz=w_ref / TWO_PI, missing=missing, modes=modes)
     return DriveModel(**values)
 

@@ -11,6 +11,7 @@ share of its strain energy).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -90,9 +91,9 @@ def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
 
 
 def with_chain_dampers(model: DriveParts, span_zeta: FloatArray, wrap_zeta: FloatArray,
-                       w_ref: float) -> LinearModel:
-    """The linear model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
-    docstring); the torsional model's elements get them too (set in place).
+                       w_ref: float) -> DriveParts:
+    """The model with the chain's dampers d = 2ζk/ω_ref on the spans and wraps (module
+    docstring): in its linear model and in a copy of its torsional model (both built, frozen).
 
     Parameters
     ----------
@@ -105,23 +106,24 @@ def with_chain_dampers(model: DriveParts, span_zeta: FloatArray, wrap_zeta: Floa
 
     Returns
     -------
-    LinearModel
-        The model's linear matrices with the dampers.
+    DriveParts
+        The model with the dampers (``linear`` and ``torsional`` replaced).
     """
-    lin, sys, t = model.linear, model.system, model.torsional
+    lin, sys = model.linear, model.system
     if w_ref <= 0:
-        return lin
+        return model
     d_span = 2.0 * span_zeta * lin.span_stiffness / w_ref
     kinds = np.array(sys.element_kinds)
     wraps = np.flatnonzero(kinds == "wrap")
     d_wrap = 2.0 * wrap_zeta * sys.element_stiffness[wraps] / w_ref
     Bw = sys.element_incidence[wraps] @ model.condensation
-    for name, d in zip(sys.span_names, d_span.tolist(), strict=True):
-        t.set_damping(name, d)
-    for k, d in zip(wraps.tolist(), d_wrap.tolist(), strict=True):
-        t.set_damping(sys.element_names[k], d)
-    return LinearModel(lin.mass, lin.stiffness_linear, lin.damping_linear + (Bw.T * d_wrap) @ Bw,
-                       lin.span_incidence, lin.span_stiffness, d_span, lin.span_tension_only)
+    dampers = dict(zip(sys.span_names, d_span.tolist(), strict=True))
+    dampers.update((sys.element_names[k], d) for k, d in
+                   zip(wraps.tolist(), d_wrap.tolist(), strict=True))
+    linear = LinearModel(lin.mass, lin.stiffness_linear,
+                         lin.damping_linear + (Bw.T * d_wrap) @ Bw, lin.span_incidence,
+                         lin.span_stiffness, d_span, lin.span_tension_only)
+    return replace(model, linear=linear, torsional=model.torsional.with_damping(dampers))
 
 
 def reference_angular_frequency(modes: TorsionalModes) -> float:

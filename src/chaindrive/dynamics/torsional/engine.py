@@ -36,9 +36,10 @@ eigensolver; no eigenvalue is ever zeroed by a round-off threshold.
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import FrozenInstanceError, dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -155,9 +156,16 @@ class TorsionalEngine:
     element created massless); shafts, meshes and spans create the nodes they name when new
     (massless until given an inertia); ground springs, torques and queries need an existing
     node. Every error is a DesignError naming the element.
+
+    The model is built (frozen) when its system is first assembled (:meth:`build`,
+    :meth:`system`, :meth:`modal`, :meth:`frequencies_hz`): from then on every ``add_*``,
+    :meth:`rename_node`, :meth:`set_damping` and every attribute assignment raises
+    :class:`dataclasses.FrozenInstanceError`, so that the system and modes computed from it
+    stay its own; :meth:`with_damping` gives a built copy with other dampers.
     """
 
     def __init__(self) -> None:
+        self._built = False
         self._index: dict[str, int] = {}
         self._inertia: list[float] = []
         self._given: list[bool] = []
@@ -173,6 +181,17 @@ class TorsionalEngine:
         self._elements: list[Element] = []
         self._names: set[str] = set()
         self._system: TorsionalSystem | None = None
+
+    def __setattr__(self, name: str, value: object) -> None:
+        if getattr(self, "_built", False):
+            raise FrozenInstanceError(f"cannot assign to {name!r}: the torsional model is built")
+        object.__setattr__(self, name, value)
+
+    def _unbuilt(self, what: str) -> None:
+        """Refuse a change to a built model."""
+        if self._built:
+            raise FrozenInstanceError(f"cannot {what}: the torsional model is built (frozen "
+                                      "since its system was assembled); build a new one")
 
     # -- construction -------------------------------------------------------------------
     def _node(self, name: str, create: bool, field: str) -> int:
@@ -222,6 +241,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add a node")
         i = self._node(name, True, name)
         if self._given[i]:
             raise DesignError(name, "the node already has an inertia")
@@ -245,6 +265,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add an inertia")
         i = self._node(name, False, name)
         self._inertia[i] += nonneg(name, inertia, "inertia [kg·m²]")
         self._given[i] = True
@@ -266,6 +287,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("rename a node")
         if new in self._index:
             raise DesignError(new, "a node of that name exists already")
         i = self._node(old, False, old)
@@ -299,6 +321,7 @@ class TorsionalEngine:
         ----------
         [Rao2011, ch. 6] (torsional spring and damper elements).
         """
+        self._unbuilt("add a shaft")
         name = self._element_name(name, f"shaft:{a}-{b}")
         ia, ib = self._index.get(a), self._index.get(b)  # the common case: both exist
         if ia is None or ib is None or a == b:
@@ -334,6 +357,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add a ground spring")
         name = self._element_name(name, f"ground:{node}")
         i = self._node(node, False, name)
         k = nonneg(name, stiffness, "stiffness [N·m/rad]")
@@ -367,6 +391,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add a gear mesh")
         name = self._element_name(name, f"mesh:{driver}-{driven}")
         _check_ratio(name, ratio)
         _check_efficiency(name, efficiency)
@@ -416,6 +441,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add a span")
         name = self._element_name(name, f"span:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
@@ -479,6 +505,7 @@ class TorsionalEngine:
         ----------
         [Rao2011, ch. 6] (spring and damper elements).
         """
+        self._unbuilt("add a link")
         name = self._element_name(name, f"{kind}:{a}-{b}")
         ra, rb = float(radius_a), float(radius_b)
         if not (math.isfinite(ra) and math.isfinite(rb) and ra != 0.0 and rb != 0.0):
@@ -506,6 +533,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("set a damping")
         for k, e in enumerate(self._elements):
             if e.name == element:
                 self._elements[k] = replace(e, damping=nonneg(element, damping, "damping"))
@@ -530,6 +558,7 @@ class TorsionalEngine:
         TorsionalEngine
             The model itself (calls chain).
         """
+        self._unbuilt("add a chain wrap")
         i = self._node(node, False, f"wrap:{node}")
         m = nonneg(f"wrap:{node}", mass, "wrapped chain mass [kg]")
         self._chain[i] += m * float(radius) ** 2
@@ -553,18 +582,64 @@ class TorsionalEngine:
         """Names of the nodes, in the order they were created."""
         return tuple(self._index)
 
+    def with_damping(self, damping: Mapping[str, float]) -> TorsionalEngine:
+        """A built copy of this model with the dampers of the named elements replaced (this
+        model is left as it is).
+
+        Parameters
+        ----------
+        damping : mapping
+            Element name → its damping coefficient [N·s/m for spans and links, N·m·s/rad for
+            shafts and ground springs].
+
+        Returns
+        -------
+        TorsionalEngine
+            The copy, built (its system assembled when first asked for).
+        """
+        where = {e.name: k for k, e in enumerate(self._elements)}
+        elements = list(self._elements)
+        for name, d in damping.items():
+            k = where.get(name)
+            if k is None:
+                raise DesignError(name, "no element of that name")
+            elements[k] = replace(elements[k], damping=nonneg(name, d, "damping"))
+        new = copy.copy(self)  # shares the rest: neither model changes it once built
+        object.__setattr__(new, "_elements", tuple(elements))
+        object.__setattr__(new, "_system", None)
+        object.__setattr__(new, "_built", True)
+        return new
+
     # -- results ------------------------------------------------------------------------
+    def build(self) -> TorsionalEngine:
+        """Assemble the system and freeze the model (class docstring).
+
+        Returns
+        -------
+        TorsionalEngine
+            The model itself, built.
+        """
+        if self._system is None:
+            system = _assemble(self)
+            for name in ("_inertia", "_given", "_chain", "_mass_pairs", "_relations", "_held",
+                         "_meshes", "_elements"):
+                object.__setattr__(self, name, tuple(getattr(self, name)))
+            object.__setattr__(self, "_names", frozenset(self._names))
+            object.__setattr__(self, "_system", system)
+            object.__setattr__(self, "_built", True)
+        return self
+
     def system(self) -> TorsionalSystem:
-        """The assembled :class:`TorsionalSystem` (cached until the model changes).
+        """The assembled :class:`TorsionalSystem`; builds (freezes) the model.
 
         Returns
         -------
         TorsionalSystem
             The matrices in reduced coordinates (module docstring).
         """
-        if self._system is None:
-            self._system = _assemble(self)
-        return self._system
+        system = self.build()._system
+        assert system is not None
+        return system
 
     def modal(self) -> TorsionalModes:
         """Undamped natural frequencies, shapes and strain-energy shares.

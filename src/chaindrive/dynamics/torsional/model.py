@@ -75,7 +75,7 @@ class TorsionalModel(TorsionalEngine):
         Returns
         -------
         TorsionalEngine
-            The model (its nodes, elements and modal analysis).
+            The model, built (frozen): its nodes, elements and modal analysis.
         """
         return drive_model(drive, geometry or contour_geometry(drive),
                            span_tensions=span_tensions).torsional
@@ -133,7 +133,8 @@ class TorsionalModel(TorsionalEngine):
         Returns
         -------
         TorsionalEngine
-            The model: the sprockets as nodes, the spans, the wrapped links and the trains.
+            The model, built (frozen): the sprockets as nodes, the spans, the wrapped links
+            and the trains.
 
         References
         ----------
@@ -173,6 +174,7 @@ class TorsionalModel(TorsionalEngine):
             if sprocket not in model.node_names:
                 raise DesignError(f"trains.{sprocket}", f"unknown sprocket; sprockets: {names}")
             _add_train(model, sprocket, train)
+        model.build()
         return model
 
 

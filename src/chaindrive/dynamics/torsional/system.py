@@ -20,10 +20,12 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._numeric import freeze_arrays, rebuilt
 from chaindrive.dynamics.precision import check_spread
 from chaindrive.dynamics.torsional.assembly import gram as _gram
 from chaindrive.dynamics.torsional.assembly import grams
@@ -125,6 +127,12 @@ class TorsionalSystem:
     element_columns: NDArray[np.intp]
     element_coefficients: FloatArray
     span_mask: NDArray[np.bool_]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)  # read-only arrays (writeable inputs copied)
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        return rebuilt(self)  # unpickled: frozen again
 
     @property
     def size(self) -> int:
@@ -399,6 +407,9 @@ class TorsionalModes:
     rigid_body: NDArray[np.bool_]
     system: TorsionalSystem
     modal_coordinates: FloatArray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self, copy=False)  # its arrays are the solver's own: frozen in place
 
     @property
     def node_names(self) -> tuple[str, ...]:

@@ -166,11 +166,7 @@ def model_startup(model: DriveModel, polygonal: PolygonalLaw | None, *, duration
     lin, mot, loads = model.linear, model.motor, model.loads
     m = float(model.contours)
     p = StartupProblem(
-        mass=lin.mass, stiffness_linear=lin.stiffness_linear,
-        damping_linear=lin.damping_linear, span_incidence=lin.span_incidence,
-        span_stiffness=lin.span_stiffness, span_damping=lin.span_damping,
-        span_tension_only=lin.span_tension_only,
-        pretension=np.full(lin.span_stiffness.size, pretension * m),
+        linear=lin, pretension=np.full(lin.span_stiffness.size, pretension * m),
         motor=(mot.coordinate, mot.gain, mot.efficiency, mot.law),
         load_coordinate=np.array([ld.coordinate for ld in loads], dtype=np.intp),
         load_gain=np.array([ld.gain for ld in loads]),

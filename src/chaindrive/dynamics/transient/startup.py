@@ -74,6 +74,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.dynamics.model.assembly import LinearModel
 from chaindrive.dynamics.motors import KlossMotor, ResistanceLaw
 from chaindrive.dynamics.transient.kernel_codes import (
     RESISTANCE_KINDS,
@@ -429,20 +430,11 @@ class StartupProblem:
 
     Parameters
     ----------
-    mass : ndarray
-        (N, N) mass matrix [kg or kg·m²].
-    stiffness_linear : ndarray
-        (N, N) stiffness of the elements that never go slack [N/m or N·m/rad].
-    damping_linear : ndarray
-        (N, N) their damping [N·s/m or N·m·s/rad].
-    span_incidence : ndarray
-        (S, N) elongation of every span from the coordinates [m per coordinate unit].
-    span_stiffness : ndarray
-        (S,) span stiffnesses [N/m].
-    span_damping : ndarray
-        (S,) span dampers [N·s/m].
-    span_tension_only : ndarray of bool
-        (S,) True for a span that carries tension only (goes slack).
+    linear : LinearModel
+        M, C, K of the elements that never go slack, the spans' incidence, stiffnesses,
+        dampers and which spans carry tension only
+        (:class:`~chaindrive.dynamics.model.assembly.LinearModel`); read through the
+        problem's properties of the same names (``mass``, ``span_stiffness``, …).
     pretension : ndarray
         (S,) pre-tension T₀ at rest [N].
     motor : tuple or None
@@ -479,13 +471,7 @@ class StartupProblem:
         The span forces reported are F/scale [-] (m contours: scale m).
     """
 
-    mass: FloatArray
-    stiffness_linear: FloatArray
-    damping_linear: FloatArray
-    span_incidence: FloatArray
-    span_stiffness: FloatArray
-    span_damping: FloatArray
-    span_tension_only: NDArray[np.bool_]
+    linear: LinearModel
     pretension: FloatArray
     motor: tuple[int, float, float, Callable[[float, float], float]] | None
     load_coordinate: NDArray[np.intp]
@@ -506,7 +492,42 @@ class StartupProblem:
     @property
     def size(self) -> int:
         """N coordinates."""
-        return int(self.mass.shape[0])
+        return self.linear.size
+
+    @property
+    def mass(self) -> FloatArray:
+        """(N, N) mass matrix [kg or kg·m²] (the linear model's)."""
+        return self.linear.mass
+
+    @property
+    def stiffness_linear(self) -> FloatArray:
+        """(N, N) stiffness of the elements that never go slack [N/m or N·m/rad]."""
+        return self.linear.stiffness_linear
+
+    @property
+    def damping_linear(self) -> FloatArray:
+        """(N, N) their damping [N·s/m or N·m·s/rad]."""
+        return self.linear.damping_linear
+
+    @property
+    def span_incidence(self) -> FloatArray:
+        """(S, N) span elongation per coordinate [-]."""
+        return self.linear.span_incidence
+
+    @property
+    def span_stiffness(self) -> FloatArray:
+        """(S,) span stiffnesses [N/m]."""
+        return self.linear.span_stiffness
+
+    @property
+    def span_damping(self) -> FloatArray:
+        """(S,) span dampers [N·s/m]."""
+        return self.linear.span_damping
+
+    @property
+    def span_tension_only(self) -> NDArray[np.bool_]:
+        """(S,) True for a span that carries tension only (goes slack)."""
+        return self.linear.span_tension_only
 
 
 def work_estimate(size: int, steps: int, patterns: int = 4) -> float:
@@ -581,10 +602,8 @@ class _Patterns:
         key = mask.tobytes()
         if key not in self.cache:
             p = self.p
-            B = p.span_incidence
-            K = p.stiffness_linear + (B.T * (p.span_stiffness * mask)) @ B
-            C = p.damping_linear + (B.T * (p.span_damping * mask)) @ B
-            P, G = zoh_matrices(p.mass, K, C, p.dt)
+            lin = p.linear
+            P, G = zoh_matrices(lin.mass, lin.stiffness(mask), lin.damping(mask), p.dt)
             self.cache[key] = (P, G)
         return self.cache[key]
 
