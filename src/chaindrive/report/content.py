@@ -366,6 +366,8 @@ class Report:
         When it was built (UTC).
     units : str
         The unit system, "SI" or "US".
+    kind : str
+        "full" (the report) or "summary" (the two-page sign-off sheet).
     """
 
     title: str
@@ -376,6 +378,7 @@ class Report:
     version: str = ""
     date: str = ""
     units: str = "SI"
+    kind: str = "full"
 
 
 def rows(items: Iterable[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:

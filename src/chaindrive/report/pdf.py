@@ -29,7 +29,7 @@ PREAMBLE = """
 #set page(paper: "a4", margin: (x: 16mm, top: 20mm, bottom: 18mm),
   header: context {{
     set text(size: 8pt, fill: luma(90))
-    if counter(page).get().first() > 1 [{drive} #h(1fr) chain drive report · chaindrive {version}]
+    if counter(page).get().first() > 1 [{drive} #h(1fr) {what} · chaindrive {version}]
   }},
   footer: context {{
     set text(size: 8pt, fill: luma(90))
@@ -42,6 +42,18 @@ PREAMBLE = """
 #show heading.where(level: 1): it => block(above: 1.3em, below: 0.7em,
   text(size: 13pt, weight: "bold", fill: rgb("#0b4f7c"), it.body))
 #show raw: set text(font: "DejaVu Sans Mono", size: 7.5pt)
+"""
+#: The sign-off sheet's tighter set-up, after :data:`PREAMBLE` (two pages hold it).
+SHEET_PREAMBLE = """
+#set page(margin: (x: 13mm, top: 14mm, bottom: 14mm))
+#set text(size: 8.6pt)
+#set par(leading: 0.45em)
+#set list(spacing: 0.45em)
+#show table: set text(size: 7.6pt)
+#set table(inset: (x: 3pt, y: 2pt))
+#set image(height: 6.4cm, fit: "contain")
+#show heading.where(level: 1): it => block(above: 0.9em, below: 0.5em,
+  text(size: 11.5pt, weight: "bold", fill: rgb("#0b4f7c"), it.body))
 """
 
 
@@ -221,11 +233,19 @@ def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     figures: dict[str, bytes] = {}
     out = [PREAMBLE.format(title=_s(report.title), version=report.version,
                            drive=f"#{_s(report.drive)}", date=report.date,
+                           what="sign-off sheet" if report.kind == "summary"
+                           else "chain drive report",
                            units="SI" if report.units == "SI" else "US customary")]
-    out.append(f"#text(size: 17pt, weight: \"bold\", {_s(report.title)})\n\n")
-    meta = ", ".join(f"{_t(k)}, {_t(v)}" for k, v in report.meta)
-    out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
-               f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
+    if report.kind == "summary":
+        out.append(SHEET_PREAMBLE)
+        out.append(f"#text(size: 14pt, weight: \"bold\", {_s(report.title)})\n\n")
+        meta = " · ".join(f"{k} {v}" for k, v in report.meta)
+        out.append(f"#text(size: 7pt, fill: luma(70), {_s(meta)})\n")
+    else:
+        out.append(f"#text(size: 17pt, weight: \"bold\", {_s(report.title)})\n\n")
+        meta = ", ".join(f"{_t(k)}, {_t(v)}" for k, v in report.meta)
+        out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
+                   f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
     for i, s in enumerate(report.sections):
         if i == 1:  # the verdict page alone: a new page unless page 1 ran over already
             out.append("#metadata(none) <chaindrive-page-one-end>\n#context if locate("
