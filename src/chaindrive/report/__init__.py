@@ -35,8 +35,8 @@ from chaindrive.report.content import (
     Verdict,
     register_section,
 )
-from chaindrive.report.html import render_html as _render_html
-from chaindrive.report.pdf import render_pdf as _render_pdf
+from chaindrive.report.html import render_html
+from chaindrive.report.pdf import render_pdf
 from chaindrive.report.sections import references_section, register_standard_sections
 from chaindrive.report.summary import sheet_sections
 from chaindrive.report.symbols import SYMBOLS
@@ -153,40 +153,6 @@ def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
                     sym = SYMBOLS[k]
                     parts += [sym.text, sym.meaning, sym.formula, sym.source]
     return "\n".join(parts)
-
-
-def render_html(report: Report) -> str:
-    """The report as one self-contained HTML document (:mod:`chaindrive.report.html`).
-
-    Parameters
-    ----------
-    report : Report
-        The built report.
-
-    Returns
-    -------
-    str
-        The HTML document, figures embedded.
-    """
-
-    return _render_html(report)
-
-
-def render_pdf(report: Report) -> bytes:
-    """The report as a PDF typeset by Typst (:mod:`chaindrive.report.pdf`).
-
-    Parameters
-    ----------
-    report : Report
-        The built report.
-
-    Returns
-    -------
-    bytes
-        The PDF file's bytes.
-    """
-
-    return _render_pdf(report)
 
 
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
