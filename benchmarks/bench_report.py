@@ -95,19 +95,21 @@ def main() -> None:
         trees: dict[str, str | None] = {"this tree": None}
         if args.against:
             trees[args.against] = args.against
-            commands.pop("report --summary")  # an earlier tree may not have it
+        # an earlier tree may not have the sheet: it runs in this tree only
+        names = {t: [c for c in commands if src is None or c != "report --summary"]
+                 for t, src in trees.items()}
         load_before = os.getloadavg()
         runs: dict[tuple[str, str], list[tuple[float, float]]] = {
-            (t, c): [] for t in trees for c in commands}
+            (t, c): [] for t in trees for c in names[t]}
         for _ in range(args.repeats):
             for tree, src in trees.items():
-                for name, cmd in commands.items():
-                    runs[tree, name].append(run_once(cmd, src))
+                for name in names[tree]:
+                    runs[tree, name].append(run_once(commands[name], src))
         load_after = os.getloadavg()
     print(f"{'tree':<24}{'command':<20}{'CPU s':>8}{'wall s':>8}{'× analyze (CPU)':>17}")
     for tree in trees:
         base = statistics.median(r[1] for r in runs[tree, "analyze"])
-        for name in commands:
+        for name in names[tree]:
             cpu = statistics.median(r[1] for r in runs[tree, name])
             wall = statistics.median(r[0] for r in runs[tree, name])
             print(f"{tree:<24}{name:<20}{cpu:>8.2f}{wall:>8.2f}{cpu / base:>17.2f}")

