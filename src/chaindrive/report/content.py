@@ -319,13 +319,20 @@ class ReportInput:
         return self.analysis.dynamics
 
 
+#: zlib level of the figures' PNG (1: fastest; the seed report's 12 figures encode in 0.07 s
+#: against 0.11 s at Pillow's default 6, and take 529 kB as RGB against 538 kB as RGBA at 6).
+PNG_COMPRESSION = 1
+
+
 def figure_png(fig: Figure, dpi: int) -> bytes:
     """A figure as PNG, drawn once.
 
     ``Figure.savefig`` draws a figure with a layout engine twice: once (without painting)
     for the layout, then again to paint. Drawing it once on an Agg canvas runs the
     constrained layout within that draw and paints the same pixels (checked on every figure
-    of the seed example's report) at about 15 % less CPU.
+    of the seed example's report) at about 15 % less CPU. An opaque figure is written as RGB
+    (no alpha channel) with fast deflate (:data:`PNG_COMPRESSION`): lossless, a third less
+    CPU to encode than Pillow's default, files no larger.
 
     Parameters
     ----------
@@ -348,8 +355,11 @@ def figure_png(fig: Figure, dpi: int) -> bytes:
     try:
         canvas = FigureCanvasAgg(fig)
         canvas.draw()
+        pixels = np.asarray(canvas.buffer_rgba())
+        if (pixels[..., 3] == 255).all():  # opaque (every figure of the package): RGB
+            pixels = pixels[..., :3]
         buf = io.BytesIO()
-        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
+        Image.fromarray(pixels).save(buf, format="png", compress_level=PNG_COMPRESSION)
     finally:
         fig.set_dpi(before)
     return buf.getvalue()
