@@ -1,7 +1,8 @@
 """Benchmark: the design report of the seed example against its analysis (target: the report
 at most 4× the analysis, in CPU time). Times whole commands, as a user runs them, in
 alternation round after round (a slow spell of the shared machine falls on all of them
-alike): ``chaindrive analyze SEED --json``, ``chaindrive report SEED -o x.pdf`` (the full
+alike): ``chaindrive analyze SEED --json``, ``chaindrive analyze SEED`` (its tables, as a
+user reads them), ``chaindrive report SEED -o x.pdf`` (the full
 report) and ``chaindrive report SEED --summary -o x.pdf`` (the two-page sign-off sheet) —
 the CPU time of each child process (user + system) and its wall time, with the machine's
 load average beside them (the 2-core machine is shared). Then the in-process split of the
@@ -89,6 +90,7 @@ def main() -> None:
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         commands = {"analyze": ["analyze", str(DESIGN), "--json"],
+                    "analyze (tables)": ["analyze", str(DESIGN)],
                     "report": ["report", str(DESIGN), "-o", f"{tmp}/full.pdf"],
                     "report --summary": ["report", str(DESIGN), "--summary", "-o",
                                          f"{tmp}/sheet.pdf"]}
@@ -117,10 +119,11 @@ def main() -> None:
           f"{os.cpu_count()} cores; medians of {args.repeats} runs")
     print("in process, CPU s:", ", ".join(f"{k} {v:.2f}" for k, v in
                                           split_in_process().items()))
-    base = statistics.median(r[1] for r in runs["this tree", "analyze"])
-    ratio = statistics.median(r[1] for r in runs["this tree", "report"]) / base
-    print(f"target: report ≤ {TARGET_RATIO:g}× analyze (CPU): "
-          f"{'MET' if ratio <= TARGET_RATIO else 'NOT MET'} ({ratio:.2f}×)")
+    report = statistics.median(r[1] for r in runs["this tree", "report"])
+    for base_name in ("analyze", "analyze (tables)"):
+        ratio = report / statistics.median(r[1] for r in runs["this tree", base_name])
+        print(f"target: report ≤ {TARGET_RATIO:g}× {base_name} (CPU): "
+              f"{'MET' if ratio <= TARGET_RATIO else 'NOT MET'} ({ratio:.2f}×)")
 
 
 if __name__ == "__main__":
