@@ -38,6 +38,7 @@ from chaindrive.report.content import (
     ReportInput,
     Table,
     Text,
+    TextKind,
     Verdict,
     plot_block,
     register_section,
@@ -256,18 +257,85 @@ def summary_section(inp: ReportInput) -> list[Block]:
     blocks += inp.define("margin")
     blocks.append(check_table(inp, checks, governing=True))
     warnings = [warning_text(w, inp.units) for w in a.warnings] + inp.notes
-    shown = warnings if len(warnings) <= FIRST_WARNINGS else warnings[:FIRST_WARNINGS - 1]
-    blocks.append(Text(f"Warnings ({len(warnings)})" if warnings else "No warnings.", "text"))
-    blocks += [Text(w, "warning") for w in shown]
-    if len(shown) < len(warnings):
-        blocks.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in the "
-                           "section Checks.", "note"))
-    rest = estimates(inp, shown)
-    if rest:
-        blocks.append(Text("The results rest on these defaults and estimates:", "text"))
-        blocks += [Text(e, "item") for e in rest]
+    shown = first_warnings(warnings, FIRST_WARNINGS)
+    blocks += warning_blocks(warnings, shown, "Warnings", "warning", "the section Checks")
+    blocks += rests_on(inp, shown)
     blocks.append(key_results(inp, "The design at a glance"))
     return blocks
+
+
+def first_warnings(warnings: Sequence[str], most: int) -> list[str]:
+    """The warnings a page shows: all when they are at most ``most``, else the first
+    ``most - 1`` (the last line then says how many more there are).
+
+    Parameters
+    ----------
+    warnings : sequence of str
+        Every warning, as the report words it.
+    most : int
+        How many lines the page gives them.
+
+    Returns
+    -------
+    list of str
+        The warnings shown.
+    """
+    return list(warnings) if len(warnings) <= most else list(warnings[:most - 1])
+
+
+def warning_blocks(warnings: Sequence[str], shown: Sequence[str], title: str,
+                   kind: TextKind, where: str) -> list[Block]:
+    """A count of the warnings, those ``shown`` and how many more are listed ``where``.
+
+    Parameters
+    ----------
+    warnings : sequence of str
+        Every warning of the part the page shows.
+    shown : sequence of str
+        Those the page shows (:func:`first_warnings`).
+    title : str
+        What they are called ("Warnings", "Other warnings").
+    kind : str
+        How each is set (a :class:`~chaindrive.report.content.Text` kind).
+    where : str
+        Where every one of them is listed.
+
+    Returns
+    -------
+    list of Block
+        The blocks.
+    """
+    if not warnings:
+        return [Text(f"No {title.lower()}.", "text")]
+    out: list[Block] = [Text(f"{title} ({len(warnings)})", "text"),
+                        *(Text(w, kind) for w in shown)]
+    if len(shown) < len(warnings):
+        out.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in "
+                        f"{where}.", "note"))
+    return out
+
+
+def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
+    """The defaults and estimates the results rest on (:func:`estimates`) as a list under
+    its heading; nothing when there are none.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    shown : collection of str
+        Warnings the page shows in full (an estimate among them is then one short line).
+
+    Returns
+    -------
+    list of Block
+        The blocks.
+    """
+    rest = estimates(inp, shown)
+    if not rest:
+        return []
+    return [Text("The results rest on these defaults and estimates:", "text"),
+            *(Text(e, "item") for e in rest)]
 
 
 def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table:

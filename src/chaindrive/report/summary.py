@@ -28,11 +28,13 @@ from chaindrive.report.content import (
 from chaindrive.report.sections import (
     ESTIMATE_CODES,
     check_cells,
-    estimates,
+    first_warnings,
     governing_checks,
     key_results,
     lubrication_text,
+    rests_on,
     verdict_of,
+    warning_blocks,
 )
 from chaindrive.report.symbols import SYMBOLS
 
@@ -115,10 +117,7 @@ def verdict_page(inp: ReportInput) -> list[Block]:
     table, notes = grouped_checks(inp, checks)
     blocks.append(table)
     blocks += [Text(n, "note") for n in notes]
-    rest = estimates(inp)
-    if rest:
-        blocks.append(Text("The results rest on these defaults and estimates:", "text"))
-        blocks += [Text(e, "item") for e in rest]
+    blocks += rests_on(inp)
     blocks.append(plot_block(contour_layout(a.geometry, units=inp.units),
                              "The drive to scale (tight span orange)", inp.dpi, "layout"))
     return blocks
@@ -181,15 +180,8 @@ def _other_warnings(inp: ReportInput) -> list[Block]:
     """The warnings that are not about a default or an estimate (those are on page 1)."""
     others = [warning_text(w, inp.units) for w in inp.analysis.warnings
               if w.code not in ESTIMATE_CODES] + inp.notes
-    if not others:
-        return [Text("No other warnings.", "text")]
-    shown = others if len(others) <= SHEET_WARNINGS else others[:SHEET_WARNINGS - 1]
-    out: list[Block] = [Text(f"Other warnings ({len(others)}):", "text"),
-                        *(Text(w, "item") for w in shown)]
-    if len(shown) < len(others):
-        out.append(Text(f"… and {len(others) - len(shown)} more, every one listed in the full "
-                        "report's section Checks.", "note"))
-    return out
+    return warning_blocks(others, first_warnings(others, SHEET_WARNINGS), "Other warnings",
+                          "item", "the full report's section Checks")
 
 
 def sheet_sections(inp: ReportInput) -> list[Section]:
