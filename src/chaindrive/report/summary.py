@@ -41,7 +41,7 @@ from chaindrive.report.symbols import SYMBOLS
 if TYPE_CHECKING:
     from chaindrive.checks import Check
 
-__all__ = ["SHEET_WARNINGS", "grouped_checks", "purchase_page", "sheet_sections", "verdict_page"]
+__all__ = ["SHEET_WARNINGS", "grouped_checks", "sheet_sections"]
 
 #: How many of the warnings that are not about a default or an estimate page 2 shows (the
 #: full report lists them all; the defaults and estimates are always all on page 1).
@@ -94,20 +94,9 @@ def grouped_checks(inp: ReportInput, checks: Sequence[Check]) -> tuple[Table, li
     return table, notes
 
 
-def verdict_page(inp: ReportInput) -> list[Block]:
+def _verdict_page(inp: ReportInput) -> list[Block]:
     """Page 1 of the sheet: the verdict, the governing checks with their margins, what the
-    results rest on and the drive to scale.
-
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The page's blocks.
-    """
+    results rest on and the drive to scale."""
     a = inp.analysis
     checks = a.checks()
     blocks: list[Block] = [verdict_of(inp, checks, where="the full report's section Checks")]
@@ -123,19 +112,9 @@ def verdict_page(inp: ReportInput) -> list[Block]:
     return blocks
 
 
-def purchase_page(inp: ReportInput) -> list[Block]:
-    """Page 2 of the sheet: the chain and the sprockets to buy, and the key results.
-
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The page's blocks.
-    """
+def _purchase_page(inp: ReportInput) -> list[Block]:
+    """Page 2 of the sheet: the chain and the sprockets to buy, the key results and the
+    other warnings."""
     a = inp.analysis
     d, g = a.drive, a.geometry
     spec = d.chain.spec
@@ -197,5 +176,5 @@ def sheet_sections(inp: ReportInput) -> list[Section]:
     list of Section
         The verdict page and the purchase page.
     """
-    return [Section("summary", "Verdict", tuple(verdict_page(inp))),
-            Section("purchase", "Chain and sprockets to buy", tuple(purchase_page(inp)))]
+    return [Section("summary", "Verdict", tuple(_verdict_page(inp))),
+            Section("purchase", "Chain and sprockets to buy", tuple(_purchase_page(inp)))]
