@@ -52,12 +52,13 @@ def test_figures_draw_any_name_as_written(name: str) -> None:
 
 @pytest.mark.parametrize("name", ["$\\frac{a}{$", "#set page(\"a5\") *b* _c_ @d <e> [f] \\",
                                   "<script>x</script> & $y$"])
-def test_a_report_renders_a_hostile_name_as_text(name: str) -> None:
+@pytest.mark.parametrize("summary", [False, True], ids=["full", "sheet"])
+def test_a_report_renders_a_hostile_name_as_text(name: str, summary: bool) -> None:
     from chaindrive.report import build_report, render_html, render_pdf
     from chaindrive.report.pdf import typst_source
 
     analysis = chaindrive.analyze(_renamed(name, drive_name=f"drive {name}"))
-    report = build_report(analysis, dpi=50)
+    report = build_report(analysis, dpi=50, summary=summary)
     page = render_html(report)
     assert html.escape(name) in page or html.escape(name, quote=False) in page
     assert "<script>x</script>" not in page

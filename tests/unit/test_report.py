@@ -28,7 +28,7 @@ from chaindrive.report import (
     write_report,
 )
 from chaindrive.report.content import ReportInput
-from chaindrive.report.sections import FIRST_WARNINGS, _estimates
+from chaindrive.report.sections import FIRST_WARNINGS, estimates
 
 ROOT = Path(__file__).parents[2]
 SEED = ROOT / "examples" / "seed_three_sprocket.toml"
@@ -227,9 +227,9 @@ def test_inertia_estimate_named_only_where_the_design_gives_none() -> None:
     [MultimassChainDrives, §3.1]): nothing is estimated. The Jindal drive gives neither an
     inertia nor a reduced mass: both bodies are estimated, and the report says so."""
     seed = chaindrive.analyze(chaindrive.load(SEED), response=False)
-    assert not any("Moments of inertia" in n for n in _estimates(ReportInput(seed)))
+    assert not any("Moments of inertia" in n for n in estimates(ReportInput(seed)))
     jindal = chaindrive.analyze(chaindrive.load(ROOT / "examples" / "two_sprocket_jindal.toml"),
                                 response=False)
-    notes = [n for n in _estimates(ReportInput(jindal)) if "Moments of inertia" in n]
+    notes = [n for n in estimates(ReportInput(jindal)) if "Moments of inertia" in n]
     names = ", ".join(s.name for s in jindal.drive.sprockets)
     assert len(notes) == 1 and f"of the bodies of {names} estimated" in notes[0]

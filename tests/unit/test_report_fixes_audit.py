@@ -22,7 +22,8 @@ from chaindrive.plotting.dynamics import crossing_label
 from chaindrive.report import Plot, Table, Text, build_report, report_text
 from chaindrive.report.content import ReportInput
 from chaindrive.report.pdf import page_map
-from chaindrive.report.sections import ESTIMATE_CODES, _estimates
+from chaindrive.report.sections import ESTIMATE_CODES
+from chaindrive.report.sections import estimates as rest_on
 from chaindrive.report.sections_dynamics import tooth_harmonics
 from chaindrive.report.sources import catalogue_estimates, readable_source
 
@@ -72,12 +73,12 @@ def test_every_estimate_warning_is_listed(name: str) -> None:
     sag, computed link stiffness, …) is in the list, in full or (shown in full among page 1's
     warnings) in one line."""
     a = _analysis(name, response=False)
-    items = _estimates(ReportInput(a))
+    items = rest_on(ReportInput(a))
     estimates = [w for w in a.warnings if w.code in ESTIMATE_CODES]
     assert estimates  # every example rests on an assumed sag or a computed link stiffness
     for w in estimates:
         assert any(w.message[1:] in i for i in items), w.message
-    short = _estimates(ReportInput(a), shown=[w.message for w in estimates])
+    short = rest_on(ReportInput(a), shown=[w.message for w in estimates])
     assert len(short) == len(items)
     assert sum("(the warning above)" in i for i in short) == len(estimates)
 
@@ -85,7 +86,7 @@ def test_every_estimate_warning_is_listed(name: str) -> None:
 def test_damping_by_the_material_pair_is_listed_a_given_one_is_not(seed) -> None:
     source = seed.drive_model.damping_source
     assert seed.drive.dynamics.damping_ratio is None and not source.startswith("given")
-    items = _estimates(ReportInput(seed))
+    items = rest_on(ReportInput(seed))
     line = [i for i in items if i.startswith("Damping ratio")]
     assert len(line) == 1 and fmt(seed.dynamics.damping_ratio) in line[0] and source in line[0]
     drive = seed.drive
@@ -93,14 +94,14 @@ def test_damping_by_the_material_pair_is_listed_a_given_one_is_not(seed) -> None
                                                                damping_ratio=0.05)),
                                response=False)
     assert given.drive_model.damping_source.startswith("given")
-    assert not any(i.startswith("Damping ratio") for i in _estimates(ReportInput(given)))
+    assert not any(i.startswith("Damping ratio") for i in rest_on(ReportInput(given)))
 
 
 def test_service_factor_listed_only_when_not_given(seed, jindal) -> None:
     assert seed.drive.service_factor is not None
-    assert not any("service_factor" in i for i in _estimates(ReportInput(seed)))
+    assert not any("service_factor" in i for i in rest_on(ReportInput(seed)))
     assert jindal.drive.service_factor is None and jindal.strength is not None
-    line = [i for i in _estimates(ReportInput(jindal)) if "service_factor" in i]
+    line = [i for i in rest_on(ReportInput(jindal)) if "service_factor" in i]
     assert len(line) == 1 and fmt(jindal.strength.operating_factor) in line[0]
     inputs = next(b for b in _blocks(build_report(jindal, dpi=20), "inputs")
                   if isinstance(b, Table) and b.caption == "Drive and chain")
@@ -111,7 +112,7 @@ def test_polymer_chain_data_are_called_estimates(polymer) -> None:
     spec = polymer.drive.chain.spec
     marked = catalogue_estimates(spec.source)
     assert marked == ("breaking load", "mass per length", "allowable load", "speed limit")
-    line = [i for i in _estimates(ReportInput(polymer)) if spec.designation in i]
+    line = [i for i in rest_on(ReportInput(polymer)) if spec.designation in i]
     assert len(line) == 1 and "estimates of the catalogue" in line[0]
     assert all(m in line[0].lower() for m in marked) and "[TsubakiGuide]" in line[0]
     inputs = next(b for b in _blocks(build_report(polymer, dpi=20), "inputs")

@@ -335,6 +335,10 @@ def report(
         "link-level model, slower)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
     units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
+    summary: Annotated[bool, typer.Option(
+        "--summary", help="the two-page sign-off sheet (verdict, governing checks, defaults "
+        "and estimates, the drive; the chain and sprockets to buy) instead of the full "
+        "report")] = False,
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -346,9 +350,10 @@ def report(
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         check_document(result.to_dict())  # the report shows these numbers
-        with progress_bar("report", total=len(SECTIONS) or None, quiet=as_json) as advance:
+        with progress_bar("report", total=None if summary else len(SECTIONS) or None,
+                          quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
-                                units=unit_system(units))
+                                units=unit_system(units), summary=summary)
     _say_written("report", path, as_json)
 
 

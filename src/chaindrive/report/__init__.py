@@ -35,9 +35,10 @@ from chaindrive.report.content import (
     Verdict,
     register_section,
 )
-from chaindrive.report.html import render_html as _render_html
-from chaindrive.report.pdf import render_pdf as _render_pdf
+from chaindrive.report.html import render_html
+from chaindrive.report.pdf import render_pdf
 from chaindrive.report.sections import references_section, register_standard_sections
+from chaindrive.report.summary import sheet_sections
 from chaindrive.report.symbols import SYMBOLS
 
 register_standard_sections()
@@ -59,8 +60,9 @@ FORMATS = (".html", ".htm", ".pdf")
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
-                 robust: RobustResult | None = None) -> Report:
-    """Build every registered section of the report of ``analysis``, then the references.
+                 robust: RobustResult | None = None, summary: bool = False) -> Report:
+    """Build every registered section of the report of ``analysis``, then the references;
+    or, with ``summary``, the two-page sign-off sheet (:mod:`chaindrive.report.summary`).
 
     Parameters
     ----------
@@ -79,6 +81,9 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     robust : RobustResult | None
         Its robust study (:class:`chaindrive.robust.study.RobustResult`: life curve,
         probabilities of failure, sensitivity).
+    summary : bool
+        True builds the sign-off sheet (verdict page and purchase page) instead of the full
+        report.
 
     Returns
     -------
@@ -88,6 +93,23 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
                       synthesis=synthesis, units=system, robust=robust)
+    built = sheet_sections(inp) if summary else _full_sections(inp, progress)
+    date = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    meta = [("chaindrive", chaindrive.__version__)]
+    if inp.source is not None:
+        meta += [("design file", inp.source.name), ("SHA-256 of the file", inp.source_hash or "")]
+    meta += [("generated", date), ("units", "SI (mm, N, kW, MPa)" if system == "SI"
+                                   else "US customary (in, lbf, hp, psi)")]
+    plots = tuple(b.key for s in built for b in s.blocks if isinstance(b, Plot))
+    title = "Chain drive sign-off sheet" if summary else "Chain drive report"
+    return Report(f"{title} — {analysis.drive.name}", tuple(meta), tuple(built),
+                  plots, drive=analysis.drive.name, version=chaindrive.__version__,
+                  date=date, units=system, kind="summary" if summary else "full")
+
+
+def _full_sections(inp: ReportInput, progress: Callable[[str], None] | None
+                   ) -> list[Section]:
+    """Every registered section that applies, then the references."""
     built: list[Section] = []
     for spec in list(SECTIONS):
         if progress is not None:
@@ -97,16 +119,7 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
             built.append(Section(spec.key, spec.title, tuple(blocks)))
     built.append(Section("references", "References",
                          tuple(references_section(inp, report_text(built)))))
-    date = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    meta = [("chaindrive", chaindrive.__version__)]
-    if inp.source is not None:
-        meta += [("design file", inp.source.name), ("SHA-256 of the file", inp.source_hash or "")]
-    meta += [("generated", date), ("units", "SI (mm, N, kW, MPa)" if system == "SI"
-                                   else "US customary (in, lbf, hp, psi)")]
-    plots = tuple(b.key for s in built for b in s.blocks if isinstance(b, Plot))
-    return Report(f"Chain drive report — {analysis.drive.name}", tuple(meta), tuple(built),
-                  plots, drive=analysis.drive.name, version=chaindrive.__version__,
-                  date=date, units=system)
+    return built
 
 
 def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
@@ -142,44 +155,10 @@ def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
     return "\n".join(parts)
 
 
-def render_html(report: Report) -> str:
-    """The report as one self-contained HTML document (:mod:`chaindrive.report.html`).
-
-    Parameters
-    ----------
-    report : Report
-        The built report.
-
-    Returns
-    -------
-    str
-        The HTML document, figures embedded.
-    """
-
-    return _render_html(report)
-
-
-def render_pdf(report: Report) -> bytes:
-    """The report as a PDF typeset by Typst (:mod:`chaindrive.report.pdf`).
-
-    Parameters
-    ----------
-    report : Report
-        The built report.
-
-    Returns
-    -------
-    bytes
-        The PDF file's bytes.
-    """
-
-    return _render_pdf(report)
-
-
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
-                 robust: RobustResult | None = None) -> Path:
+                 robust: RobustResult | None = None, summary: bool = False) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
     is written at once, after the whole report is built (complete or absent).
 
@@ -201,6 +180,8 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
         Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
     robust : RobustResult | None
         Its robust study (:class:`chaindrive.robust.study.RobustResult`).
+    summary : bool
+        True writes the two-page sign-off sheet instead of the full report.
 
     Returns
     -------
@@ -212,7 +193,7 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
-                          synthesis=synthesis, units=units, robust=robust)
+                          synthesis=synthesis, units=units, robust=robust, summary=summary)
     data = render_pdf(report) if suffix == ".pdf" else render_html(report).encode("utf-8")
     write_bytes(out, data)  # complete or absent, never half-written
     return out

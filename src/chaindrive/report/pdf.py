@@ -4,7 +4,9 @@
 The report becomes a Typst document (:func:`typst_source`): A4 pages with a header (drive,
 chaindrive version) and a footer (date, "page x of y"), the verdict on page 1, tables that
 break across pages with their header repeated, symbols and formulas in Typst math, figures
-as PNG files next to the source. Every section heading and the verdict carry a
+as PNG files next to the source. Typst sets it in the fonts it carries (Libertinus Serif,
+New Computer Modern, DejaVu Sans Mono) and does not scan the system's fonts: the same pages
+on every machine, and 60 ms less CPU a report. Every section heading and the verdict carry a
 ``<chaindrive-where>`` metadata with the page they land on, so that a test (or a reader of
 the source) can ask where each part is (:func:`page_map`).
 """
@@ -12,7 +14,8 @@ the source) can ask where each part is (:func:`page_map`).
 from __future__ import annotations
 
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Literal
 
@@ -29,7 +32,7 @@ PREAMBLE = """
 #set page(paper: "a4", margin: (x: 16mm, top: 20mm, bottom: 18mm),
   header: context {{
     set text(size: 8pt, fill: luma(90))
-    if counter(page).get().first() > 1 [{drive} #h(1fr) chain drive report · chaindrive {version}]
+    if counter(page).get().first() > 1 [{drive} #h(1fr) {what} · chaindrive {version}]
   }},
   footer: context {{
     set text(size: 8pt, fill: luma(90))
@@ -42,6 +45,18 @@ PREAMBLE = """
 #show heading.where(level: 1): it => block(above: 1.3em, below: 0.7em,
   text(size: 13pt, weight: "bold", fill: rgb("#0b4f7c"), it.body))
 #show raw: set text(font: "DejaVu Sans Mono", size: 7.5pt)
+"""
+#: The sign-off sheet's tighter set-up, after :data:`PREAMBLE` (two pages hold it).
+SHEET_PREAMBLE = """
+#set page(margin: (x: 13mm, top: 14mm, bottom: 14mm))
+#set text(size: 8.6pt)
+#set par(leading: 0.45em)
+#set list(spacing: 0.45em)
+#show table: set text(size: 7.6pt)
+#set table(inset: (x: 3pt, y: 2pt))
+#set image(height: 6.4cm, fit: "contain")
+#show heading.where(level: 1): it => block(above: 0.9em, below: 0.5em,
+  text(size: 11.5pt, weight: "bold", fill: rgb("#0b4f7c"), it.body))
 """
 
 
@@ -221,11 +236,19 @@ def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     figures: dict[str, bytes] = {}
     out = [PREAMBLE.format(title=_s(report.title), version=report.version,
                            drive=f"#{_s(report.drive)}", date=report.date,
+                           what="sign-off sheet" if report.kind == "summary"
+                           else "chain drive report",
                            units="SI" if report.units == "SI" else "US customary")]
-    out.append(f"#text(size: 17pt, weight: \"bold\", {_s(report.title)})\n\n")
-    meta = ", ".join(f"{_t(k)}, {_t(v)}" for k, v in report.meta)
-    out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
-               f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
+    if report.kind == "summary":
+        out.append(SHEET_PREAMBLE)
+        out.append(f"#text(size: 14pt, weight: \"bold\", {_s(report.title)})\n\n")
+        meta = " · ".join(f"{k} {v}" for k, v in report.meta)
+        out.append(f"#text(size: 7pt, fill: luma(70), {_s(meta)})\n")
+    else:
+        out.append(f"#text(size: 17pt, weight: \"bold\", {_s(report.title)})\n\n")
+        meta = ", ".join(f"{_t(k)}, {_t(v)}" for k, v in report.meta)
+        out.append("#text(size: 8pt, fill: luma(70), table(columns: 2, stroke: none, "
+                   f"inset: (x: 0pt, y: 1.5pt), column-gutter: 10pt, {meta}))\n")
     for i, s in enumerate(report.sections):
         if i == 1:  # the verdict page alone: a new page unless page 1 ran over already
             out.append("#metadata(none) <chaindrive-page-one-end>\n#context if locate("
@@ -235,24 +258,27 @@ def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     return "".join(out), figures
 
 
-def _staged(report: Report, tmp: str) -> tuple[Path, Path]:
-    """The Typst source and its figures written to ``tmp``: (main file, root)."""
+@contextmanager
+def _staged(report: Report) -> Iterator[dict[str, Any]]:
+    """The Typst source and its figures written to a temporary directory, for as long as
+    the context lasts: the keyword arguments of a Typst call on them (``input``, ``root``
+    and the fonts: Typst's own, not the system's)."""
     source, figures = typst_source(report)
-    root = Path(tmp)
-    for name, data in figures.items():
-        (root / name).write_bytes(data)
-    main = root / "report.typ"
-    main.write_text(source, encoding="utf-8")
-    return main, root
+    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
+        root = Path(tmp)
+        for name, data in figures.items():
+            (root / name).write_bytes(data)
+        main = root / "report.typ"
+        main.write_text(source, encoding="utf-8")
+        yield {"input": str(main), "root": str(root), "ignore_system_fonts": True}
 
 
 def _compile(report: Report, fmt_: Literal["pdf", "png"], ppi: float | None = None) -> Any:
     """Compile the report with Typst in a temporary directory."""
     import typst
 
-    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
-        main, root = _staged(report, tmp)
-        return typst.compile(str(main), root=str(root), format=fmt_, ppi=ppi)
+    with _staged(report) as where:
+        return typst.compile(**where, format=fmt_, ppi=ppi)
 
 
 def render_pdf(report: Report) -> bytes:
@@ -309,9 +335,8 @@ def page_map(report: Report) -> dict[str, int]:
 
     import typst
 
-    with tempfile.TemporaryDirectory(prefix="chaindrive-report-") as tmp:
-        main, root = _staged(report, tmp)
-        found = json.loads(typst.query(str(main), "<chaindrive-where>", root=str(root)))
+    with _staged(report) as where:
+        found = json.loads(typst.query(**where, selector="<chaindrive-where>"))
     return {item["value"]["key"]: int(item["value"]["page"]) for item in found}
 
 

@@ -38,6 +38,7 @@ from chaindrive.report.content import (
     ReportInput,
     Table,
     Text,
+    TextKind,
     Verdict,
     plot_block,
     register_section,
@@ -57,13 +58,29 @@ FIRST_WARNINGS = 5
 
 # --- page 1: the verdict -------------------------------------------------------------------------
 
-def _check_cells(c: Check, inp: ReportInput) -> tuple[Any, ...]:
-    """(check, subject, value, required, margin %, result, source) of a check."""
+def check_cells(c: Check, inp: ReportInput, *, with_note: bool = True) -> tuple[Any, ...]:
+    """(check, subject, value, required, margin %, result, source) of a check.
+
+    Parameters
+    ----------
+    c : Check
+        The check.
+    inp : ReportInput
+        The analysis and the report's settings.
+    with_note : bool
+        True adds the check's note to its name when it does not pass.
+
+    Returns
+    -------
+    tuple
+        The cells: name, subject, value with its unit, requirement, margin [%], result,
+        source.
+    """
     _, value, required, result, source = check_row(c, inp.units)
     unit = check_unit(c, inp.units)
     sep = "" if unit in ("°", "%", "") else " "
     shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
-    note = quantity_text(c.note, c.note_quantities, inp.units)
+    note = quantity_text(c.note, c.note_quantities, inp.units) if with_note else ""
     name = c.name + (f" ({note})" if note and not c.passed else "")
     return name, c.subject, shown, required, margin_percent(c), result, readable_source(source)
 
@@ -108,7 +125,7 @@ def _sentence(text: str) -> str:
     return text[:1].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
-def _estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
+def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     """What the results rest on that the design does not give (defaults and estimates), as
     the analysis says it: the damping source of its model, its warnings of estimated inputs
     (:data:`ESTIMATE_CODES`; one whose message is among ``shown`` in one short line), the
@@ -162,6 +179,64 @@ def _estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     return out
 
 
+def verdict_of(inp: ReportInput, checks: Sequence[Check], *,
+               where: str = "the section Checks") -> Verdict:
+    """The verdict of the checks: how many fail and the worst, or that all pass.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    checks : sequence of Check
+        Every check of the analysis.
+    where : str
+        Where the report lists every check (said when all pass).
+
+    Returns
+    -------
+    Verdict
+        The verdict block.
+    """
+    failed = [c for c in checks if not c.passed]
+    if failed:
+        first = worst(failed)
+        assert first is not None
+        return Verdict(False, f"The design FAILS {len(failed)} of {len(checks)} checks.",
+                       f"Worst: {check_cells(first, inp)[0]} on {first.subject}.")
+    return Verdict(True, f"The design passes all {len(checks)} checks.",
+                   "Each check is listed with its value, limit, margin and source in "
+                   f"{where}.")
+
+
+def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = False
+                ) -> Table:
+    """The table of checks with value, requirement, margin and result (failed rows
+    highlighted): every check, failed ones first, or only the governing ones
+    (:func:`governing_checks`).
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    checks : sequence of Check
+        Every check of the analysis.
+    governing : bool
+        True: only the governing checks; False: every check, the failed ones first.
+
+    Returns
+    -------
+    Table
+        The table.
+    """
+    shown = governing_checks(checks) if governing else sorted(checks, key=lambda c: c.passed)
+    cells = [check_cells(c, inp) for c in shown]
+    columns = ("check", "subject", "value", "required", "margin, %", "result", "source")
+    caption = ("Governing checks (those that fail, then the smallest margins)" if governing
+               else "Checks")
+    return Table(caption, columns, rows(cells),
+                 tuple(i for i, c in enumerate(shown) if not c.passed))
+
+
 def summary_section(inp: ReportInput) -> list[Block]:
     """Page 1: the verdict of every check, the governing checks, the warnings, what the
     results rest on, and the design at a glance.
@@ -178,62 +253,136 @@ def summary_section(inp: ReportInput) -> list[Block]:
     """
     a = inp.analysis
     checks = a.checks()
-    failed = [c for c in checks if not c.passed]
-    if failed:
-        first = worst(failed)
-        assert first is not None
-        verdict = Verdict(False, f"The design FAILS {len(failed)} of {len(checks)} checks.",
-                          f"Worst: {_check_cells(first, inp)[0]} on {first.subject}.")
-    else:
-        verdict = Verdict(True, f"The design passes all {len(checks)} checks.",
-                          "Each check is listed with its value, limit, margin and source in "
-                          "the section Checks.")
-    blocks: list[Block] = [verdict]
+    blocks: list[Block] = [verdict_of(inp, checks)]
     blocks += inp.define("margin")
-    gov = governing_checks(checks)
-    blocks.append(Table("Governing checks (those that fail, then the smallest margins)",
-                        ("check", "subject", "value", "required", "margin, %", "result",
-                         "source"), rows([_check_cells(c, inp) for c in gov]),
-                        tuple(i for i, c in enumerate(gov) if not c.passed)))
+    blocks.append(check_table(inp, checks, governing=True))
     warnings = [warning_text(w, inp.units) for w in a.warnings] + inp.notes
-    shown = warnings if len(warnings) <= FIRST_WARNINGS else warnings[:FIRST_WARNINGS - 1]
-    blocks.append(Text(f"Warnings ({len(warnings)})" if warnings else "No warnings.", "text"))
-    blocks += [Text(w, "warning") for w in shown]
-    if len(shown) < len(warnings):
-        blocks.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in the "
-                           "section Checks.", "note"))
-    estimates = _estimates(inp, shown)
-    if estimates:
-        blocks.append(Text("The results rest on these defaults and estimates:", "text"))
-        blocks += [Text(e, "item") for e in estimates]
-    blocks.append(_glance(inp))
+    shown = first_warnings(warnings, FIRST_WARNINGS)
+    blocks += warning_blocks(warnings, shown, "Warnings", "warning", "the section Checks")
+    blocks += rests_on(inp, shown)
+    blocks.append(key_results(inp, "The design at a glance"))
     return blocks
 
 
-def _glance(inp: ReportInput) -> Table:
-    """The design at a glance: chain, links, power, speeds, first natural frequency, K_D
-    and the dynamic safety factors, mass and cost."""
+def first_warnings(warnings: Sequence[str], most: int) -> list[str]:
+    """The warnings a page shows: all when they are at most ``most``, else the first
+    ``most - 1`` (the last line then says how many more there are).
+
+    Parameters
+    ----------
+    warnings : sequence of str
+        Every warning, as the report words it.
+    most : int
+        How many lines the page gives them.
+
+    Returns
+    -------
+    list of str
+        The warnings shown.
+    """
+    return list(warnings) if len(warnings) <= most else list(warnings[:most - 1])
+
+
+def warning_blocks(warnings: Sequence[str], shown: Sequence[str], title: str,
+                   kind: TextKind, where: str) -> list[Block]:
+    """A count of the warnings, those ``shown`` and how many more are listed ``where``.
+
+    Parameters
+    ----------
+    warnings : sequence of str
+        Every warning of the part the page shows.
+    shown : sequence of str
+        Those the page shows (:func:`first_warnings`).
+    title : str
+        What they are called ("Warnings", "Other warnings").
+    kind : str
+        How each is set (a :class:`~chaindrive.report.content.Text` kind).
+    where : str
+        Where every one of them is listed.
+
+    Returns
+    -------
+    list of Block
+        The blocks.
+    """
+    if not warnings:
+        return [Text(f"No {title.lower()}.", "text")]
+    out: list[Block] = [Text(f"{title} ({len(warnings)})", "text"),
+                        *(Text(w, kind) for w in shown)]
+    if len(shown) < len(warnings):
+        out.append(Text(f"… and {len(warnings) - len(shown)} more, every one listed in "
+                        f"{where}.", "note"))
+    return out
+
+
+def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
+    """The defaults and estimates the results rest on (:func:`estimates`) as a list under
+    its heading; nothing when there are none.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    shown : collection of str
+        Warnings the page shows in full (an estimate among them is then one short line).
+
+    Returns
+    -------
+    list of Block
+        The blocks.
+    """
+    rest = estimates(inp, shown)
+    if not rest:
+        return []
+    return [Text("The results rest on these defaults and estimates:", "text"),
+            *(Text(e, "item") for e in rest)]
+
+
+def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table:
+    """The design at a glance: chain, links, power, speeds, lowest natural frequency, K_D
+    and the dynamic safety factors, mass and cost.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    caption : str
+        The table's caption.
+    words : bool
+        True names the symbols beside the words (K_D, k₁, k₂, k₂min, [k]), for a page that
+        defines them in words rather than in a table of symbols.
+
+    Returns
+    -------
+    Table
+        The table (quantity, value, unit).
+    """
     a = inp.analysis
     d, g, k = a.drive, a.geometry, a.kinematics
     items: list[tuple[str, Any, str]] = [
         ("chain", d.chain.spec.designation, ""),
         ("links", g.links, ""),
         ("chain length", inp.val(g.chain_length, "length"), inp.unit("length")),
-        ("power", inp.val(d.power, "power"), inp.unit("power")),
-        ("driver speed", inp.val(d.driver.speed, "speed"), "rpm"),
-        ("chain speed", inp.val(k.chain_speed, "velocity"), inp.unit("velocity")),
-        ("tooth frequency", k.tooth_frequency, "Hz"),
+        ("power" + (" P" if words else ""), inp.val(d.power, "power"), inp.unit("power")),
+        ("driver speed" + (" n₁" if words else ""), inp.val(d.driver.speed, "speed"), "rpm"),
+        ("mean chain speed" + (" v" if words else ""), inp.val(k.chain_speed, "velocity"),
+         inp.unit("velocity")),
+        ("tooth frequency" + (" f_z (teeth of the driver a second)" if words else ""),
+         k.tooth_frequency, "Hz"),
         ("lowest natural frequency", a.dynamics.modal.first_elastic_frequency_hz, "Hz")]
     response = a.response
     if response is not None:
         s = response.strength_dict()
-        items += [("coefficient of dynamics", response.steady.coefficient_of_dynamics, ""),
-                  (f"dynamic safety: start-up, steady, run-up (allowable {fmt(s['allowable_k'])})",
-                   ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")), "")]
+        kd, ks = ("coefficient of dynamics K_D", "dynamic safety factors k₁ (start-up), "
+                  f"k₂ (steady), k₂min (run-up); allowable [k] = {fmt(s['allowable_k'])}") \
+            if words else ("coefficient of dynamics", "dynamic safety: start-up, steady, "
+                           f"run-up (allowable {fmt(s['allowable_k'])})")
+        items += [(kd, response.steady.coefficient_of_dynamics, ""),
+                  (ks, ", ".join(fmt(s[x]) for x in ("k1", "k2", "k2min")), "")]
     m = a.metrics
     items += [("mass of chain and sprockets", inp.val(m.mass_kg, "mass"), inp.unit("mass")),
               ("cost (estimate)", m.cost, m.cost_breakdown.currency)]
-    return Table("The design at a glance", ("quantity", "value", "unit"), rows(items))
+    return Table(caption, ("quantity", "value", "unit"), rows(items))
 
 
 # --- inputs ----------------------------------------------------------------------------------
@@ -464,13 +613,28 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
     return blocks
 
 
+def lubrication_text(inp: ReportInput) -> str:
+    """The lubrication regime at the chain speed, with its ANSI type when it has one.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+
+    Returns
+    -------
+    str
+        E.g. ``"drip (ANSI type II)"``.
+    """
+    lube = inp.analysis.lubrication
+    return lube.regime + ("" if lube.ansi_type is None else f" (ANSI type {lube.ansi_type})")
+
+
 def _lubrication_table(inp: ReportInput) -> Table:
     """The lubrication regime at the chain speed and the limits of the chain's pitch."""
     lube = inp.analysis.lubrication
     V = inp.unit("velocity")
-    items: list[tuple[str, Any, str]] = [
-        ("regime", lube.regime + ("" if lube.ansi_type is None
-                                  else f" (ANSI type {lube.ansi_type})"), "")]
+    items: list[tuple[str, Any, str]] = [("regime", lubrication_text(inp), "")]
     if lube.manual_max is not None and lube.drip_max is not None and lube.bath_max is not None:
         items += [("manual (brush, oil can) up to", inp.val(lube.manual_max, "velocity"), V),
                   ("drip up to", inp.val(lube.drip_max, "velocity"), V),
@@ -628,10 +792,7 @@ def checks_section(inp: ReportInput) -> list[Block]:
                        "check: m ≥ 0 passes, m < 0 fails; a check whose rule has no value "
                        "for this design (a table that stops) cannot be verified and counts "
                        "as a failure."))
-    blocks.append(Table("Checks", ("check", "subject", "value", "required", "margin, %",
-                                   "result", "source"),
-                        rows([_check_cells(c, inp) for c in checks]),
-                        tuple(i for i, c in enumerate(checks) if not c.passed)))
+    blocks.append(check_table(inp, checks))
     notes = [f"{c.name} ({c.subject}): {quantity_text(c.note, c.note_quantities, inp.units)}"
              for c in checks if c.note and c.passed]
     if notes:
