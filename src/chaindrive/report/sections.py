@@ -130,7 +130,21 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     the analysis says it: the damping source of its model, its warnings of estimated inputs
     (:data:`ESTIMATE_CODES`; one whose message is among ``shown`` in one short line), the
     estimates its catalogue row marks, a service factor the design leaves out and the
-    reading of K_D."""
+    reading of K_D.
+
+    Parameters
+    ----------
+    inp : ReportInput
+        The analysis and the report's settings.
+    shown : collection of str
+        Warning messages already shown in full elsewhere on the page (these get one short
+        line here).
+
+    Returns
+    -------
+    list of str
+        One sentence per default or estimate, with what to give instead.
+    """
     a = inp.analysis
     d = a.drive
     out = []

@@ -455,7 +455,7 @@ def tail_variance_share(values: NDArray[np.float64], fraction: float = 0.01) -> 
     Parameters
     ----------
     values : ndarray
-        The output over the states (non-finite values are left out).
+        The output over the states [its unit] (non-finite values are left out).
     fraction : float
         The share of the states counted [–], 0 < fraction ≤ 1.
 
