@@ -728,6 +728,54 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
     con.print(table)
 
 
+@app.command()
+def tension(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    span: Annotated[str, typer.Option("--span", help="the span, FROM-TO (e.g. S1-S2)")],
+    frequency: Annotated[str, typer.Option("--frequency", help="measured transverse "
+                                           "frequency of a sideways pluck, e.g. 23.4Hz")],
+    mode: Annotated[int, typer.Option("--mode", help="its mode number n", min=1)] = 1,
+    running: Annotated[bool, typer.Option(
+        "--running", help="measured with the chain running at the design speed")] = False,
+    frequency_tol: Annotated[str | None, typer.Option(
+        "--frequency-tolerance", help="± of the frequency (default 0 Hz, assumed)")] = None,
+    length_tol: Annotated[str | None, typer.Option(
+        "--length-tolerance", help="± of the span length (default 2 mm, assumed)")] = None,
+    mass_tol: Annotated[float | None, typer.Option(
+        "--mass-tolerance", help="± of the mass per metre in % (default 5, assumed)")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """A span's tension from its measured transverse frequency (stationary or running),
+    with its uncertainty and the frequency the design's pretension gives."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import print_tension
+    from chaindrive.identification import span_tension_reading
+    from chaindrive.units import parse_quantity
+
+    with user_errors():
+        f = parse_quantity(frequency, "frequency", "--frequency")
+        if not f > 0:
+            raise DesignError("--frequency", f"must be above 0 Hz, got {frequency!r}")
+        if mass_tol is not None and not mass_tol >= 0:
+            raise DesignError("--mass-tolerance", f"must be ≥ 0 %, got {mass_tol!r}")
+        assumed = tuple(a for a, given in (("frequency ± 0 Hz", frequency_tol),
+                                           ("span length ± 2 mm", length_tol),
+                                           ("mass per metre ± 5 %", mass_tol)) if given is None)
+        doc = span_tension_reading(
+            chaindrive.analyze(chaindrive.load(file), response=False), span, f, mode=mode,
+            running=running, assumed=assumed,
+            frequency_tolerance=parse_quantity(frequency_tol or "0 Hz", "frequency",
+                                               "--frequency-tolerance"),
+            length_tolerance=parse_quantity(length_tol or "2 mm", "length", "--length-tolerance"),
+            mass_tolerance=(5.0 if mass_tol is None else mass_tol) / 100.0).to_dict()
+    if as_json:
+        _write_json(doc)
+        return
+    check_document(doc)
+    print_tension(doc)
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 

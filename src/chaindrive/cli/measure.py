@@ -1,0 +1,71 @@
+"""Tables of ``chaindrive tension`` and ``chaindrive identify``: presenters of the JSON
+documents of :mod:`chaindrive.identification` (they compute nothing)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from chaindrive.cli.tables import console, escape, table
+from chaindrive.display import fmt
+
+__all__ = ["print_identification", "print_tension"]
+
+
+def _f(value: Any, digits: int = 4) -> str:
+    return "—" if value is None else escape(fmt(value, digits))
+
+
+def print_tension(doc: dict[str, Any]) -> None:
+    """Print the tension read from a span's frequency, its uncertainty and the design's
+    expected frequencies.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.SpanTensionReading.to_dict`.
+    """
+    con = console()
+    state = (f"running at {_f(doc['speed_m_s'])} m/s" if doc["speed_m_s"] > 0
+             else "stationary")
+    con.print(f"span {escape(doc['span'])}: L = {_f(doc['length_m'] * 1000)} mm, "
+              f"q = {_f(doc['mass_per_length_kg_m'])} kg/m, {state}, mode {doc['mode']}")
+    con.print(f"tension T = {_f(doc['tension_n'])} N ± {_f(doc['tension_std_n'], 2)} N "
+              "(standard uncertainty)")
+    by = doc["tension_std_by_input_n"]
+    con.print("  u(T) from " + ", ".join(f"{k.replace('_', ' ')} {_f(v, 2)} N"
+                                         for k, v in by.items()))
+    if doc["assumed"]:
+        con.print("  assumed: " + escape("; ".join(doc["assumed"])))
+    if doc["speed_m_s"] > 0:
+        con.print(f"  centrifugal part q v² = {_f(doc['centrifugal_tension_n'])} N")
+    con.print(f"  sag at this tension {_f(doc['sag_m'] * 1000)} mm; Irvine λ² = "
+              f"{_f(doc['irvine_lambda2'], 3)}: a pluck in the plane of the sag would ring "
+              f"{_f(doc['inplane_odd_mode_ratio'], 3)}× higher in an odd mode (read a sideways "
+              "pluck)")
+    rows = [["stationary, design pretension", _f(doc["design_pretension_n"]),
+             _f(doc["expected_frequency_standing_hz"])]]
+    if doc["expected_frequency_running_hz"] is not None:
+        rows.append(["running, design span tension", _f(doc["design_running_tension_n"]),
+                     _f(doc["expected_frequency_running_hz"])])
+    con.print(table(f"what the design expects (mode {doc['mode']})",
+                    ["state", "T N", "f Hz"], rows))
+
+
+def print_identification(doc: dict[str, Any]) -> None:
+    """Print the peaks of a measured record and what each is.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.Identification.to_dict`.
+    """
+    con = console()
+    for sig in doc["signals"]:
+        con.print(f"signal {escape(sig['name'])}: {sig['samples']} samples at "
+                  f"{_f(sig['sample_rate_hz'])} Hz, resolution {_f(sig['resolution_hz'], 3)} Hz")
+        rows = [[_f(p["frequency_hz"]), _f(p["prominence_db"], 3), escape(p["label"]),
+                 _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2)]
+                for p in sig["peaks"]]
+        con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %"], rows))
+    con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % or ± one frequency bin; "
+              f"prominence ≥ {_f(doc['prominence_db'], 3)} dB")

@@ -1,0 +1,20 @@
+"""From measurement to model: a span's tension from its measured transverse frequency, a
+measured vibration record's peaks matched to the model's frequencies, and the model's
+uncertain inputs calibrated to measured frequencies.
+
+Compute only: the command line reads the files and hands arrays in.
+
+Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
+(:mod:`.tension`, :mod:`.reading`).
+"""
+
+from chaindrive.identification.reading import SpanTensionReading, span_tension_reading
+from chaindrive.identification.tension import (
+    TensionEstimate,
+    expected_frequency,
+    span_tension_from_frequency,
+    string_tension,
+)
+
+__all__ = ["SpanTensionReading", "TensionEstimate", "expected_frequency",
+           "span_tension_from_frequency", "span_tension_reading", "string_tension"]

@@ -1,0 +1,47 @@
+"""``chaindrive tension`` and ``chaindrive identify`` on the command line: the figures of the
+compute functions, and bad input refused in one line with exit status 2, nothing written."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import EXAMPLES
+
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+
+SEED = str(EXAMPLES / "seed_three_sprocket.toml")
+
+
+def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
+                          text=True, check=False, cwd=cwd)
+
+
+def test_tension_json_inverts_the_design_running_frequency() -> None:
+    # the design's running frequency of S2-S3 read back gives the design's span tension
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "9.853664524265515 Hz",
+                  "--running", "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["tension_n"] == pytest.approx(doc["design_running_tension_n"], rel=1e-9)
+    assert doc["tension_std_n"] > 0
+    assert "mass per metre ± 5 %" in doc["assumed"]
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (("--span", "S9-S1", "--frequency", "5 Hz"), "--span: unknown span 'S9-S1'; allowed:"),
+    (("--span", "S1-S2", "--frequency", "0 Hz"), "--frequency: must be above 0 Hz"),
+    (("--span", "S1-S2", "--frequency", "5 mm"), "--frequency: '5 mm' is not a frequency"),
+    (("--span", "S1-S2", "--frequency", "5 Hz", "--mass-tolerance", "-1"),
+     "--mass-tolerance: must be ≥ 0"),
+])
+def test_tension_bad_input_is_one_line_exit_2(args: tuple[str, ...], message: str) -> None:
+    out = run_cli("tension", SEED, *args)
+    assert out.returncode == 2
+    assert out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr
