@@ -45,3 +45,41 @@ def test_tension_bad_input_is_one_line_exit_2(args: tuple[str, ...], message: st
     assert out.returncode == 2
     assert out.stdout == ""
     assert out.stderr.count("\n") == 1 and message in out.stderr
+
+
+def _record(path: Path, rows: int = 4096, fs: float = 1000.0, bad_time: bool = False) -> Path:
+    import numpy as np
+
+    t = np.arange(rows) / fs
+    if bad_time:
+        t[100] = t[99]
+    x = np.sin(2 * np.pi * 150.0 * t) + 0.05 * np.random.default_rng(3).standard_normal(rows)
+    lines = ["time_s,accel_m_s2"] + [f"{a!r},{b!r}" for a, b in zip(t.tolist(), x.tolist(), strict=True)]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_identify_labels_the_tooth_harmonic_and_writes_the_plot(tmp_path: Path) -> None:
+    rec = _record(tmp_path / "r.csv")
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"),
+                  "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    peaks = doc["signals"][0]["peaks"]
+    assert [p["label"] for p in peaks] == ["tooth x2"]   # 2 × 75 Hz tooth frequency
+    assert doc["prominence_db"] == 15.0 and doc["tolerance_percent"] == 5.0
+    assert (tmp_path / "s.svg").stat().st_size > 0
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    ((), "--record.time_s: not increasing at sample 101"),
+    (("--tolerance", "0"), "--tolerance: must lie between 0 and 100 %"),
+])
+def test_identify_bad_input_writes_nothing(tmp_path: Path, extra: tuple[str, ...],
+                                           message: str) -> None:
+    rec = _record(tmp_path / "r.csv", bad_time=not extra)
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"), *extra)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr
+    assert not (tmp_path / "s.svg").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]

@@ -776,6 +776,47 @@ def tension(
     print_tension(doc)
 
 
+@app.command()
+def identify(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    record: Annotated[Path, typer.Option("--record", help="measured record: CSV with a "
+                                         "time_s (or time_ms) column and signals, or WAV")],
+    tolerance: Annotated[float, typer.Option("--tolerance", help="match tolerance in % of "
+                                             "the model frequency (at least one bin)")] = 5.0,
+    prominence: Annotated[float, typer.Option("--prominence", help="least peak prominence "
+                                              "in dB")] = 15.0,
+    output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
+                                                "the model's frequencies (.svg, .png, .pdf)")]
+    = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Match a measured record's spectral peaks to the model: natural frequency (mode),
+    tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import print_identification, save_figure
+    from chaindrive.identification import identify as identify_record
+    from chaindrive.identification import model_lines
+    from chaindrive.io.record import read_record
+
+    with user_errors():
+        if output is not None and output.suffix.lower() not in (".svg", ".png", ".pdf"):
+            raise DesignError("--output", f"{str(output)!r}: allowed: a .svg, .png or .pdf file")
+        lines = model_lines(chaindrive.analyze(chaindrive.load(file), response=False))
+        result = identify_record(read_record(record), lines, tolerance=tolerance / 100.0,
+                                 prominence_db=prominence)
+        doc = result.to_dict()
+        check_document(doc)
+        if output is not None:
+            save_figure(result, output)
+    if as_json:
+        _write_json(doc)
+        return
+    print_identification(doc)
+    if output is not None:
+        print(f"spectrum written to {output}")
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 

@@ -3,12 +3,36 @@ documents of :mod:`chaindrive.identification` (they compute nothing)."""
 
 from __future__ import annotations
 
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from chaindrive.cli.tables import console, escape, table
 from chaindrive.display import fmt
+from chaindrive.io.atomic import atomic_path
 
-__all__ = ["print_identification", "print_tension"]
+if TYPE_CHECKING:
+    from chaindrive.identification import Identification
+
+__all__ = ["print_identification", "print_tension", "save_figure"]
+
+
+def save_figure(result: Identification, output: Path) -> None:
+    """Write the measured spectrum with the model's lines
+    (:func:`chaindrive.plotting.identification.measured_spectrum`) atomically.
+
+    Parameters
+    ----------
+    result : Identification
+        The matched record.
+    output : Path
+        ``.svg``, ``.png`` or ``.pdf``.
+    """
+    # lazy: matplotlib only when a figure is asked for
+    from chaindrive.plotting.identification import measured_spectrum
+
+    fig = measured_spectrum(result)
+    with atomic_path(output, field="--output") as tmp:
+        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
 
 
 def _f(value: Any, digits: int = 4) -> str:
@@ -64,8 +88,12 @@ def print_identification(doc: dict[str, Any]) -> None:
         con.print(f"signal {escape(sig['name'])}: {sig['samples']} samples at "
                   f"{_f(sig['sample_rate_hz'])} Hz, resolution {_f(sig['resolution_hz'], 3)} Hz")
         rows = [[_f(p["frequency_hz"]), _f(p["prominence_db"], 3), escape(p["label"]),
-                 _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2)]
+                 _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2),
+                 escape(", ".join(p["also_within_tolerance"]) or "—")]
                 for p in sig["peaks"]]
-        con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %"], rows))
-    con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % or ± one frequency bin; "
-              f"prominence ≥ {_f(doc['prominence_db'], 3)} dB")
+        con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %",
+                                  "also within tolerance"], rows))
+    con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % of the model frequency or "
+              f"± one frequency bin; prominence ≥ {_f(doc['prominence_db'], 3)} dB")
+    for note in doc["notes"]:
+        con.print(escape(note))

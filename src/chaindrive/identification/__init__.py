@@ -5,10 +5,12 @@ uncertain inputs calibrated to measured frequencies.
 Compute only: the command line reads the files and hands arrays in.
 
 Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
-(:mod:`.tension`, :mod:`.reading`).
+(:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
+(:mod:`.spectrum`).
 """
 
 from chaindrive.identification.reading import SpanTensionReading, span_tension_reading
+from chaindrive.identification.spectrum import Identification, identify, model_lines
 from chaindrive.identification.tension import (
     TensionEstimate,
     expected_frequency,
@@ -16,5 +18,6 @@ from chaindrive.identification.tension import (
     string_tension,
 )
 
-__all__ = ["SpanTensionReading", "TensionEstimate", "expected_frequency",
-           "span_tension_from_frequency", "span_tension_reading", "string_tension"]
+__all__ = ["Identification", "SpanTensionReading", "TensionEstimate", "expected_frequency",
+           "identify", "model_lines", "span_tension_from_frequency", "span_tension_reading",
+           "string_tension"]
