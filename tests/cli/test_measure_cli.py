@@ -83,3 +83,32 @@ def test_identify_bad_input_writes_nothing(tmp_path: Path, extra: tuple[str, ...
     assert out.stderr.count("\n") == 1 and message in out.stderr
     assert not (tmp_path / "s.svg").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
+
+
+def test_calibrate_writes_a_design_that_loads_with_the_fitted_stiffness(tmp_path: Path) -> None:
+    import chaindrive
+
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--natural", "1=62.3Hz", "--natural", "2=223Hz",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    lo, hi = doc["interval_95_n_per_m"]
+    assert lo < doc["fitted_n_per_m"] < hi
+    assert doc["assumed"] == ["each frequency ± 1 %"]
+    k = chaindrive.load(out_file).chain.link_stiffness
+    assert k == pytest.approx(doc["fitted_n_per_m"], rel=1e-9)
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (("--natural", "one=62Hz"), "--natural: 'one=62Hz'; allowed: MODE=FREQUENCY"),
+    (("--natural", "1=-5Hz"), "--natural: mode 1: frequency -5.0 Hz; allowed: above 0 Hz"),
+    (("--natural", "9=62Hz"), "--natural: mode 9; allowed: 1 to 5"),
+    ((), "--natural: give either --natural MODE=FREQUENCY or --record FILE"),
+])
+def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...],
+                                            message: str) -> None:
+    out = run_cli("calibrate", SEED, *args, "--write-calibrated", str(tmp_path / "c.toml"))
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr, out.stderr
+    assert list(tmp_path.iterdir()) == []

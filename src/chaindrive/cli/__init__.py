@@ -817,6 +817,49 @@ def identify(
         print(f"spectrum written to {output}")
 
 
+@app.command()
+def calibrate(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    natural: Annotated[list[str] | None, typer.Option(
+        "--natural", help="a measured natural frequency MODE=FREQUENCY, e.g. 1=62.3Hz "
+        "(repeat for more modes)")] = None,
+    record: Annotated[Path | None, typer.Option(
+        "--record", help="or a measured record (CSV/WAV): its peaks matched to the model's "
+        "natural frequencies")] = None,
+    tolerance: Annotated[str | None, typer.Option(
+        "--tolerance", help="± of each --natural frequency (default ±1 % of it, assumed)")]
+    = None,
+    write_calibrated: Annotated[Path | None, typer.Option(
+        "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Fit the chain's link stiffness to measured natural frequencies (least squares, 95 %
+    interval), re-run the checks and say which verdicts changed."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import measured_modes, print_calibration
+    from chaindrive.identification import calibrated_design
+    from chaindrive.io.design import drive_to_toml
+
+    with user_errors():
+        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
+            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
+                              ".toml file")
+        drive = chaindrive.load(file)
+        measured, assumed = measured_modes(drive, natural, record, tolerance)
+        result = calibrated_design(drive, measured)
+        doc = {**result.to_dict(), "assumed": assumed}
+        check_document(doc)
+        if write_calibrated is not None:
+            write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")
+    if as_json:
+        _write_json(doc)
+        return
+    print_calibration(doc)
+    if write_calibrated is not None:
+        print(f"calibrated design written to {write_calibrated}")
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 

@@ -11,9 +11,93 @@ from chaindrive.display import fmt
 from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
-    from chaindrive.identification import Identification
+    from chaindrive.identification import Identification, MeasuredMode
+    from chaindrive.model import Drive
 
-__all__ = ["print_identification", "print_tension", "save_figure"]
+__all__ = ["measured_modes", "print_calibration", "print_identification", "print_tension",
+           "save_figure"]
+
+
+def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
+                   tolerance: str | None) -> tuple[list[MeasuredMode], list[str]]:
+    """The measured natural frequencies of ``chaindrive calibrate``: from ``--natural
+    MODE=FREQUENCY`` (± ``--tolerance``, rectangular: u = a/√3), or from a record's peaks
+    matched to the model (:func:`chaindrive.identification.measured_natural_peaks`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (for the record's matching).
+    natural : list of str | None
+        ``["1=62.3Hz", …]``.
+    record : Path | None
+        A CSV or WAV record.
+    tolerance : str | None
+        ± of each --natural frequency (None: ±1 % of it, assumed).
+
+    Returns
+    -------
+    measured : list of MeasuredMode
+    assumed : list of str
+        What rests on an assumed value.
+    """
+    # lazy: the identification stack only for this command
+    import chaindrive
+    from chaindrive.errors import DesignError
+    from chaindrive.identification import (
+        MeasuredMode,
+        identify,
+        measured_natural_peaks,
+        model_lines,
+    )
+    from chaindrive.io.record import read_record
+    from chaindrive.units import parse_quantity
+
+    if (natural is None) == (record is None):
+        raise DesignError("--natural", "give either --natural MODE=FREQUENCY or --record FILE")
+    if record is not None:
+        lines = model_lines(chaindrive.analyze(drive, response=False))
+        found = measured_natural_peaks(identify(read_record(record), lines))
+        if not found:
+            raise DesignError("--record", "no peak within 5 % of a natural frequency of the "
+                              "model; give --natural MODE=FREQUENCY")
+        return found, []
+    out = []
+    for item in natural or []:
+        mode, sep, freq = item.partition("=")
+        if not sep or not mode.strip().isdigit() or int(mode) < 1:
+            raise DesignError("--natural", f"{item!r}; allowed: MODE=FREQUENCY such as 1=62.3Hz")
+        f = parse_quantity(freq, "frequency", "--natural")
+        a = (0.01 * f if tolerance is None
+             else parse_quantity(tolerance, "frequency", "--tolerance"))
+        out.append(MeasuredMode(int(mode), f, a / 3.0 ** 0.5))
+    return out, (["each frequency ± 1 %"] if tolerance is None else [])
+
+
+def print_calibration(doc: dict[str, Any]) -> None:
+    """Print the fitted link stiffness, its interval, the residuals and the changed verdicts.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.CalibratedDesign.to_dict` with ``assumed``.
+    """
+    con = console()
+    lo, hi = doc["interval_95_n_per_m"]
+    con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
+              f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m)")
+    con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
+    if doc["assumed"]:
+        con.print("assumed: " + escape("; ".join(doc["assumed"])))
+    con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
+                    [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2), _f(r["model_hz"]),
+                      _f(r["residual_hz"], 3)] for r in doc["residuals"]]))
+    if not doc["verdicts_changed"]:
+        con.print("no check changed its verdict")
+        return
+    con.print(table("verdicts changed", ["check", "subject", "before", "after"],
+                    [[escape(c["check"]), escape(c["subject"]), c["before"], c["after"]]
+                     for c in doc["verdicts_changed"]]))
 
 
 def save_figure(result: Identification, output: Path) -> None:

@@ -6,9 +6,15 @@ Compute only: the command line reads the files and hands arrays in.
 
 Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
 (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
-(:mod:`.spectrum`).
+(:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`).
 """
 
+from chaindrive.identification.calibration import (
+    CalibratedDesign,
+    MeasuredMode,
+    calibrated_design,
+    measured_natural_peaks,
+)
 from chaindrive.identification.reading import SpanTensionReading, span_tension_reading
 from chaindrive.identification.spectrum import Identification, identify, model_lines
 from chaindrive.identification.tension import (
@@ -18,6 +24,18 @@ from chaindrive.identification.tension import (
     string_tension,
 )
 
-__all__ = ["Identification", "SpanTensionReading", "TensionEstimate", "expected_frequency",
-           "identify", "model_lines", "span_tension_from_frequency", "span_tension_reading",
-           "string_tension"]
+__all__ = [
+    "CalibratedDesign",
+    "Identification",
+    "MeasuredMode",
+    "SpanTensionReading",
+    "TensionEstimate",
+    "calibrated_design",
+    "expected_frequency",
+    "identify",
+    "measured_natural_peaks",
+    "model_lines",
+    "span_tension_from_frequency",
+    "span_tension_reading",
+    "string_tension",
+]
