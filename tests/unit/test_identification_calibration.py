@@ -97,3 +97,16 @@ def test_verdict_changes_lists_only_changed_checks() -> None:
     assert verdict_changes(a, b) == [{"check": "resonance margin", "subject": "mode 1",
                                       "before": "fail", "after": "pass", "value_before": 2.0,
                                       "value_after": 12.0}]
+
+
+def test_an_interval_widens_when_the_measurements_disagree_beyond_their_uncertainty() -> None:
+    # two measurements of one f = c·sqrt(k): the fit is their mean F = 71 Hz; J_i = F/(2u),
+    # so σ² = 2u²/F² from (JᵀJ)⁻¹, χ² = Σ(F − f_i)²/u² = 200 with ν = 1: σ = sqrt(400)·u/F
+    c, u = 0.01, 0.1
+    cal = calibrate_link_stiffness(
+        _Drive(_Chain(1e6)),  # type: ignore[arg-type]
+        [MeasuredMode(1, 70.0, u), MeasuredMode(2, 72.0, u)], initial=1e6,
+        frequencies=lambda d: np.full(2, c * math.sqrt(d.chain.link_stiffness)))
+    assert cal.stiffness == pytest.approx((71.0 / c) ** 2, rel=1e-6)
+    assert cal.chi2_per_dof == pytest.approx(200.0, rel=1e-6)
+    assert cal.std_log == pytest.approx(20 * u / 71.0, rel=1e-3)
