@@ -112,3 +112,21 @@ def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...
     assert out.returncode == 2 and out.stdout == ""
     assert out.stderr.count("\n") == 1 and message in out.stderr, out.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_tension_writes_the_calibrated_sag_or_nothing(tmp_path: Path) -> None:
+    import chaindrive
+
+    good = tmp_path / "sag.toml"
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "5.1Hz",
+                  "--write-calibrated", str(good), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert chaindrive.load(good).chain.sag == pytest.approx(
+        doc["calibration"]["fitted_fraction"], rel=1e-12)
+    bad = tmp_path / "bad.toml"
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "9Hz", "--running",
+                  "--write-calibrated", str(bad))
+    assert out.returncode == 2 and out.stdout == ""
+    assert "--running: the sag is calibrated from a stationary span" in out.stderr
+    assert not bad.exists()

@@ -90,3 +90,38 @@ def test_bad_inputs_are_refused_by_name(kwargs: dict[str, float], field: str) ->
         string_tension(args["frequency"], args["length"], args["mass_per_length"],
                        int(args["mode"]), args["speed"])
     assert err.value.field == field
+
+
+@pytest.mark.parametrize("psi", [0.0, 0.3, -0.7])
+def test_the_sag_for_a_pretension_inverts_the_design_law(psi: float) -> None:
+    # F₀ = k_f q g a with k_f = cos ψ/(8s) + |sin ψ| (chaindrive.strength.loads.sag_tension)
+    from chaindrive.identification.reading import sag_for_pretension
+    from chaindrive.strength.loads import sag_tension
+
+    f0 = sag_tension(2.6, 0.68, psi, 0.017)
+    assert sag_for_pretension(f0, 0.68, 2.6, psi) == pytest.approx(0.017, rel=1e-12)
+    with pytest.raises(DesignError, match="no sag gives it"):
+        sag_for_pretension(0.5 * 2.6 * 9.80665 * 0.68 * abs(math.sin(psi)), 0.68, 2.6, psi)
+
+
+def test_a_stationary_reading_calibrates_the_installed_sag() -> None:
+    # the frequency the design expects at its own pretension gives back its sag (2 %); a
+    # calibrated design expects exactly the frequency read
+    import chaindrive
+    from chaindrive.identification import calibrated_sag, span_tension_reading
+    from tests.conftest import EXAMPLES
+
+    drive = chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
+    analysis = chaindrive.analyze(drive, response=False)
+    f_design = span_tension_reading(analysis, "S2-S3", 5.0).expected_standing
+    same = calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", f_design))
+    assert same.sag == pytest.approx(0.02, rel=1e-9) and same.changes == []
+    cal = calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 5.1))
+    lo, hi = cal.interval
+    assert lo < cal.sag < hi < 0.02
+    again = span_tension_reading(chaindrive.analyze(cal.drive, response=False), "S2-S3", 5.1)
+    assert again.expected_standing == pytest.approx(5.1, rel=1e-9)
+    with pytest.raises(DesignError, match="stationary span"):
+        calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 9.0, running=True))
+    with pytest.raises(DesignError, match=r"chain.sag: .* allowed: 0.001 to 0.1"):
+        calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 1.0))

@@ -743,17 +743,25 @@ def tension(
         "--length-tolerance", help="± of the span length (default 2 mm, assumed)")] = None,
     mass_tol: Annotated[float | None, typer.Option(
         "--mass-tolerance", help="± of the mass per metre in % (default 5, assumed)")] = None,
+    write_calibrated: Annotated[Path | None, typer.Option(
+        "--write-calibrated", help="write the design with the installed sag whose "
+        "pretension is the tension read (stationary only; TOML)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """A span's tension from its measured transverse frequency (stationary or running),
     with its uncertainty and the frequency the design's pretension gives."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.measure import print_tension
-    from chaindrive.identification import span_tension_reading
+    from chaindrive.cli.measure import print_sag, print_tension
+    from chaindrive.identification import calibrated_sag, span_tension_reading
+    from chaindrive.io.design import drive_to_toml
     from chaindrive.units import parse_quantity
 
     with user_errors():
+        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
+            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
+                              ".toml file")
+        drive = chaindrive.load(file)
         f = parse_quantity(frequency, "frequency", "--frequency")
         if not f > 0:
             raise DesignError("--frequency", f"must be above 0 Hz, got {frequency!r}")
@@ -762,18 +770,27 @@ def tension(
         assumed = tuple(a for a, given in (("frequency ± 0 Hz", frequency_tol),
                                            ("span length ± 2 mm", length_tol),
                                            ("mass per metre ± 5 %", mass_tol)) if given is None)
-        doc = span_tension_reading(
-            chaindrive.analyze(chaindrive.load(file), response=False), span, f, mode=mode,
+        reading = span_tension_reading(
+            chaindrive.analyze(drive, response=False), span, f, mode=mode,
             running=running, assumed=assumed,
             frequency_tolerance=parse_quantity(frequency_tol or "0 Hz", "frequency",
                                                "--frequency-tolerance"),
             length_tolerance=parse_quantity(length_tol or "2 mm", "length", "--length-tolerance"),
-            mass_tolerance=(5.0 if mass_tol is None else mass_tol) / 100.0).to_dict()
+            mass_tolerance=(5.0 if mass_tol is None else mass_tol) / 100.0)
+        doc = reading.to_dict()
+        if write_calibrated is not None:
+            sag = calibrated_sag(drive, reading)
+            doc["calibration"] = sag.to_dict()
+            check_document(doc)
+            write_text(write_calibrated, drive_to_toml(sag.drive), field="--write-calibrated")
     if as_json:
         _write_json(doc)
         return
     check_document(doc)
     print_tension(doc)
+    if write_calibrated is not None:
+        print_sag(doc["calibration"])
+        print(f"calibrated design written to {write_calibrated}")
 
 
 @app.command()

@@ -14,8 +14,8 @@ if TYPE_CHECKING:
     from chaindrive.identification import Identification, MeasuredMode
     from chaindrive.model import Drive
 
-__all__ = ["measured_modes", "print_calibration", "print_identification", "print_tension",
-           "save_figure"]
+__all__ = ["measured_modes", "print_calibration", "print_identification", "print_sag",
+           "print_tension", "save_figure"]
 
 
 def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
@@ -74,6 +74,31 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     return out, (["each frequency ± 1 %"] if tolerance is None else [])
 
 
+def _print_changes(changes: list[dict[str, Any]]) -> None:
+    con = console()
+    if not changes:
+        con.print("no check changed its verdict")
+        return
+    con.print(table("verdicts changed", ["check", "subject", "before", "after"],
+                    [[escape(c["check"]), escape(c["subject"]), c["before"], c["after"]]
+                     for c in changes]))
+
+
+def print_sag(doc: dict[str, Any]) -> None:
+    """Print the installed sag calibrated to the tension read and the changed verdicts.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.SagCalibration.to_dict`.
+    """
+    lo, hi = doc["interval_95_fraction"]
+    console().print(f"installed sag s = {_f(100 * doc['fitted_fraction'], 3)} % of the span, "
+                    f"95 % interval {_f(100 * lo, 3)} … {_f(100 * hi, 3)} % (design: "
+                    f"{_f(100 * doc['initial_fraction'], 3)} %)")
+    _print_changes(doc["verdicts_changed"])
+
+
 def print_calibration(doc: dict[str, Any]) -> None:
     """Print the fitted link stiffness, its interval, the residuals and the changed verdicts.
 
@@ -92,12 +117,7 @@ def print_calibration(doc: dict[str, Any]) -> None:
     con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
                     [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2), _f(r["model_hz"]),
                       _f(r["residual_hz"], 3)] for r in doc["residuals"]]))
-    if not doc["verdicts_changed"]:
-        con.print("no check changed its verdict")
-        return
-    con.print(table("verdicts changed", ["check", "subject", "before", "after"],
-                    [[escape(c["check"]), escape(c["subject"]), c["before"], c["after"]]
-                     for c in doc["verdicts_changed"]]))
+    _print_changes(doc["verdicts_changed"])
 
 
 def save_figure(result: Identification, output: Path) -> None:

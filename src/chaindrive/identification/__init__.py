@@ -15,7 +15,12 @@ from chaindrive.identification.calibration import (
     calibrated_design,
     measured_natural_peaks,
 )
-from chaindrive.identification.reading import SpanTensionReading, span_tension_reading
+from chaindrive.identification.reading import (
+    SagCalibration,
+    SpanTensionReading,
+    calibrated_sag,
+    span_tension_reading,
+)
 from chaindrive.identification.spectrum import Identification, identify, model_lines
 from chaindrive.identification.tension import (
     TensionEstimate,
@@ -28,9 +33,11 @@ __all__ = [
     "CalibratedDesign",
     "Identification",
     "MeasuredMode",
+    "SagCalibration",
     "SpanTensionReading",
     "TensionEstimate",
     "calibrated_design",
+    "calibrated_sag",
     "expected_frequency",
     "identify",
     "measured_natural_peaks",

@@ -3,11 +3,14 @@ level of :mod:`chaindrive.identification.tension`)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from chaindrive.dynamics.stiffness import GRAVITY
 from chaindrive.errors import DesignError
+from chaindrive.identification.calibration import verdict_changes
 from chaindrive.identification.tension import (
     TensionEstimate,
     expected_frequency,
@@ -17,8 +20,10 @@ from chaindrive.strength.loads import installed_sag_ratio, sag_tension
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
+    from chaindrive.model import Drive
 
-__all__ = ["SpanTensionReading", "rectangular_std", "span_index", "span_tension_reading"]
+__all__ = ["SagCalibration", "SpanTensionReading", "calibrated_sag", "rectangular_std",
+           "sag_for_pretension", "span_index", "span_tension_reading"]
 
 
 def rectangular_std(half_width: float) -> float:
@@ -184,3 +189,121 @@ def span_tension_reading(analysis: Analysis, span: str, frequency: float, *, mod
                                        float(analysis.kinematics.chain_speed))
     return SpanTensionReading(span, estimate, f0, expected_frequency(f0, sp.length, q, mode),
                               running_t, running_f, assumed)
+
+
+def sag_for_pretension(tension: float, length: float, mass_per_length: float,
+                       inclination: float) -> float:
+    """Installed sag s [-] (fraction of the span) whose pretension F₀ = k_f·q·g·a is T: the
+    inverse of k_f = cos ψ/(8s) + |sin ψ| (:func:`chaindrive.strength.loads.sag_factor`),
+    s = cos ψ / (8 (T/(q g a) − |sin ψ|)).
+
+    Parameters
+    ----------
+    tension : float
+        T [N] read from the stationary span.
+    length : float
+        Span length a [m].
+    mass_per_length : float
+        q [kg/m].
+    inclination : float
+        ψ [rad].
+
+    Returns
+    -------
+    float
+        s [-].
+
+    Raises
+    ------
+    DesignError
+        T at or below the weight component of the span q g a |sin ψ| (no sag gives it).
+
+    References
+    ----------
+    [ChainDesignRU, §8]; [Irvine1981, ch. 1].
+    """
+    weight = mass_per_length * GRAVITY * length
+    excess = tension / weight - abs(math.sin(inclination))
+    if excess <= 0:
+        raise DesignError("--frequency", f"the tension read, {tension:.4g} N, is not above the "
+                          f"span's weight component {weight * abs(math.sin(inclination)):.4g} N; "
+                          "no sag gives it")
+    return math.cos(inclination) / (8.0 * excess)
+
+
+@dataclass(frozen=True, slots=True)
+class SagCalibration:
+    """The design's installed sag calibrated to a tension read from a stationary span.
+
+    Parameters
+    ----------
+    initial : float
+        The design's installed sag s [-] before.
+    sag : float
+        The sag s [-] whose pretension is the tension read.
+    interval : tuple of float
+        s at T ± 1.96 u(T) [-] (95 %, normal approximation).
+    drive : Drive
+        The design with ``[chain] sag`` = s.
+    changes : list of dict
+        Checks whose verdict changed (:func:`chaindrive.identification.calibration.verdict_changes`).
+    """
+
+    initial: float
+    sag: float
+    interval: tuple[float, float]
+    drive: Drive
+    changes: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"parameter": "chain.sag", "initial_fraction": self.initial,
+                "fitted_fraction": self.sag, "interval_95_fraction": list(self.interval),
+                "verdicts_changed": self.changes}
+
+
+def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
+    """Set the design's installed sag to the one whose pretension is the tension read from a
+    stationary span (:func:`sag_for_pretension`), and re-run the checks.
+
+    The tension read is the span's mean along its length; the design's F₀ is the upper end's,
+    higher by about q g a |sin ψ|/2 on an inclined span (a difference left in the result).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design as loaded.
+    reading : SpanTensionReading
+        A stationary reading (:func:`span_tension_reading`) of the analysed design.
+
+    Returns
+    -------
+    SagCalibration
+
+    Raises
+    ------
+    DesignError
+        A running reading, or a sag outside the design file's range 0.001–0.1.
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    est = reading.estimate
+    if est.speed > 0:
+        raise DesignError("--running", "the sag is calibrated from a stationary span; measure "
+                          "with the chain at rest")
+    before = analyze(drive, response=False)
+    sp = before.geometry.spans[span_index(before, reading.span)]
+
+    def sag(t: float) -> float:
+        return sag_for_pretension(t, sp.length, est.mass_per_length, sp.inclination)
+
+    s = sag(est.tension)
+    if not 0.001 <= s <= 0.1:
+        raise DesignError("chain.sag", f"the tension read gives a sag of {s:.4g} of the span; "
+                          "allowed: 0.001 to 0.1")
+    lo = sag(est.tension + 1.96 * est.std)
+    hi = sag(max(est.tension - 1.96 * est.std, 1e-9))
+    calibrated = dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=s))
+    after = analyze(calibrated, response=False)
+    return SagCalibration(installed_sag_ratio(drive), s, (lo, hi), calibrated,
+                          verdict_changes(before.checks(), after.checks()))
