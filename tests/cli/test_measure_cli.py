@@ -62,8 +62,9 @@ def _record(path: Path, rows: int = 4096, fs: float = 1000.0, bad_time: bool = F
 def test_identify_labels_the_tooth_harmonic_and_writes_the_plot(tmp_path: Path) -> None:
     rec = _record(tmp_path / "r.csv")
     out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"),
-                  "--json")
+                  "--campbell", str(tmp_path / "c.png"), "--json")
     assert out.returncode == 0, out.stderr
+    assert (tmp_path / "c.png").read_bytes()[:4] == b"\x89PNG"
     doc = json.loads(out.stdout)
     peaks = doc["signals"][0]["peaks"]
     assert [p["label"] for p in peaks] == ["tooth x2"]   # 2 × 75 Hz tooth frequency

@@ -805,33 +805,40 @@ def identify(
     output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
                                                 "the model's frequencies (.svg, .png, .pdf)")]
     = None,
+    campbell: Annotated[Path | None, typer.Option(
+        "--campbell", help="Campbell diagram with the measured peaks at the design speed "
+        "(.svg, .png, .pdf)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Match a measured record's spectral peaks to the model: natural frequency (mode),
     tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.measure import print_identification, save_figure
+    from chaindrive.cli.measure import print_identification, save_campbell, save_figure
     from chaindrive.identification import identify as identify_record
     from chaindrive.identification import model_lines
     from chaindrive.io.record import read_record
 
     with user_errors():
-        if output is not None and output.suffix.lower() not in (".svg", ".png", ".pdf"):
-            raise DesignError("--output", f"{str(output)!r}: allowed: a .svg, .png or .pdf file")
-        lines = model_lines(chaindrive.analyze(chaindrive.load(file), response=False))
-        result = identify_record(read_record(record), lines, tolerance=tolerance / 100.0,
-                                 prominence_db=prominence)
+        for name, path in (("--output", output), ("--campbell", campbell)):
+            if path is not None and path.suffix.lower() not in (".svg", ".png", ".pdf"):
+                raise DesignError(name, f"{str(path)!r}: allowed: a .svg, .png or .pdf file")
+        analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        result = identify_record(read_record(record), model_lines(analysis),
+                                 tolerance=tolerance / 100.0, prominence_db=prominence)
         doc = result.to_dict()
         check_document(doc)
         if output is not None:
             save_figure(result, output)
+        if campbell is not None:
+            save_campbell(result, analysis, campbell)
     if as_json:
         _write_json(doc)
         return
     print_identification(doc)
-    if output is not None:
-        print(f"spectrum written to {output}")
+    for what, path in (("spectrum", output), ("Campbell diagram", campbell)):
+        if path is not None:
+            print(f"{what} written to {path}")
 
 
 @app.command()

@@ -11,11 +11,12 @@ from chaindrive.display import fmt
 from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
+    from chaindrive.analysis import Analysis
     from chaindrive.identification import Identification, MeasuredMode
     from chaindrive.model import Drive
 
 __all__ = ["measured_modes", "print_calibration", "print_identification", "print_sag",
-           "print_tension", "save_figure"]
+           "print_tension", "save_campbell", "save_figure"]
 
 
 def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
@@ -118,6 +119,38 @@ def print_calibration(doc: dict[str, Any]) -> None:
                     [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2), _f(r["model_hz"]),
                       _f(r["residual_hz"], 3)] for r in doc["residuals"]]))
     _print_changes(doc["verdicts_changed"])
+
+
+def save_campbell(result: Identification, analysis: Analysis, output: Path) -> None:
+    """Write the model's Campbell diagram with the measured peaks at the design speed
+    (:func:`chaindrive.plotting.identification.measured_campbell`) atomically.
+
+    Parameters
+    ----------
+    result : Identification
+        The matched record.
+    analysis : Analysis
+        The analysed design (its Campbell data and driver speed).
+    output : Path
+        ``.svg``, ``.png`` or ``.pdf``.
+
+    Raises
+    ------
+    DesignError
+        The design gives no driver speed (no Campbell data).
+    """
+    # lazy: matplotlib only when a figure is asked for
+    from chaindrive.display import RPM_PER_RAD_S
+    from chaindrive.errors import DesignError
+    from chaindrive.plotting.identification import measured_campbell
+
+    speed = analysis.drive.driver.speed
+    campbell = analysis.dynamics.campbell
+    if speed is None or campbell is None:
+        raise DesignError("--campbell", "the design gives no driver speed, so no Campbell data")
+    fig = measured_campbell(result, campbell, speed * RPM_PER_RAD_S)
+    with atomic_path(output, field="--campbell") as tmp:
+        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
 
 
 def save_figure(result: Identification, output: Path) -> None:

@@ -1,5 +1,6 @@
 """A measured spectrum with the model's frequencies overlaid ([Welch1967] spectrum; the
-lines of :func:`chaindrive.identification.model_lines`)."""
+lines of :func:`chaindrive.identification.model_lines`), and the model's Campbell diagram with
+the measured peaks at the record's speed."""
 
 from __future__ import annotations
 
@@ -13,9 +14,10 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
+    from chaindrive.dynamics.resonance import CampbellData
     from chaindrive.identification import Identification
 
-__all__ = ["measured_spectrum"]
+__all__ = ["measured_campbell", "measured_spectrum"]
 
 #: Line style of each kind of model line.
 _STYLE = {"natural": ("-", 0), "tooth": ("--", 1), "shaft": (":", 2), "parametric": ("-.", 3),
@@ -68,4 +70,47 @@ def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figu
     ax.set_ylabel("power spectral density [dB]")
     ax.legend(fontsize="x-small")
     finish(ax, f"Measured spectrum of {result.record} and the model's frequencies")
+    return fig
+
+
+def measured_campbell(result: Identification, campbell: CampbellData, operating_rpm: float, *,
+                      ax: Axes | None = None) -> Figure:
+    """The model's Campbell diagram (:func:`chaindrive.plotting.dynamics.campbell_diagram`)
+    with the measured peaks drawn at the speed the record was taken at: filled where a peak
+    matched a model line, open where it is unexplained; the frequency axis extended to show
+    every peak.
+
+    Parameters
+    ----------
+    result : Identification
+        :func:`chaindrive.identification.identify`.
+    campbell : CampbellData
+        The model's Campbell data.
+    operating_rpm : float
+        Driver speed of the record [rpm].
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
+
+    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
+    axes = fig.axes[0] if ax is None else ax
+    peaks = [p for sig in result.signals for p in sig.peaks]
+    matched = [p.frequency for p in peaks if p.line is not None]
+    alone = [p.frequency for p in peaks if p.line is None]
+    if matched:
+        axes.plot([operating_rpm] * len(matched), matched, "D", ms=5, color=CYCLE[3],
+                  label="measured peak (matched)")
+    if alone:
+        axes.plot([operating_rpm] * len(alone), alone, "D", ms=5, mfc="none", color=CYCLE[3],
+                  label="measured peak (unexplained)")
+    if peaks:
+        low, high = axes.get_ylim()
+        axes.set_ylim(low, max(high, 1.1 * max(p.frequency for p in peaks)))
+        axes.legend(fontsize="xx-small")
     return fig
