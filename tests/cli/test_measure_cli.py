@@ -131,3 +131,22 @@ def test_tension_writes_the_calibrated_sag_or_nothing(tmp_path: Path) -> None:
     assert out.returncode == 2 and out.stdout == ""
     assert "--running: the sag is calibrated from a stationary span" in out.stderr
     assert not bad.exists()
+
+
+def test_the_package_own_start_up_record_shows_the_tooth_orders(tmp_path: Path) -> None:
+    # a record produced by the whole-drive model (chaindrive simulate: the start-up at 300 rpm,
+    # 15 teeth, f_z = 75 Hz): the polygonal action excites the tooth frequency and its
+    # harmonics, so every peak is labelled a tooth order and lies within one bin or 1 % (the
+    # motor's slip: the drive runs a little below 300 rpm) of k·f_z
+    hist = tmp_path / "history.csv"
+    assert run_cli("simulate", SEED, "-o", str(hist)).returncode == 0
+    out = run_cli("identify", SEED, "--record", str(hist), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert len(doc["signals"]) == 6  # three span forces, three sprocket speeds
+    for sig in doc["signals"]:
+        assert sig["peaks"]
+        for p in sig["peaks"]:
+            assert p["kind"] == "tooth", (sig["name"], p)
+            k = round(p["frequency_hz"] / 75.0)
+            assert abs(p["frequency_hz"] - 75.0 * k) <= max(sig["resolution_hz"], 0.75 * k)

@@ -824,7 +824,8 @@ def identify(
             if path is not None and path.suffix.lower() not in (".svg", ".png", ".pdf"):
                 raise DesignError(name, f"{str(path)!r}: allowed: a .svg, .png or .pdf file")
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
-        result = identify_record(read_record(record), model_lines(analysis),
+        measured = read_record(record)
+        result = identify_record(measured, model_lines(analysis, measured.sample_rate / 2),
                                  tolerance=tolerance / 100.0, prominence_db=prominence)
         doc = result.to_dict()
         check_document(doc)

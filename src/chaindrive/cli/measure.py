@@ -57,8 +57,9 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     if (natural is None) == (record is None):
         raise DesignError("--natural", "give either --natural MODE=FREQUENCY or --record FILE")
     if record is not None:
-        lines = model_lines(chaindrive.analyze(drive, response=False))
-        found = measured_natural_peaks(identify(read_record(record), lines))
+        measured = read_record(record)
+        lines = model_lines(chaindrive.analyze(drive, response=False), measured.sample_rate / 2)
+        found = measured_natural_peaks(identify(measured, lines))
         if not found:
             raise DesignError("--record", "no peak within 5 % of a natural frequency of the "
                               "model; give --natural MODE=FREQUENCY")

@@ -10,9 +10,11 @@ the two lowest bins (the mean's leakage) are not peaks.
 Labelling: each peak is set against the model's lines — the natural frequencies of the
 whole-drive model (elastic modes), the working frequencies (tooth-order excitations and
 shaft speeds) and the spans' transverse frequencies (running, from the design's span
-tensions) — and takes the nearest line within the tolerance
-max(``tolerance`` · f_line, one frequency bin); other lines within the tolerance are listed
-beside it (the peak cannot tell them apart); no line within it: "unexplained".
+tensions) — and takes the nearest line within its tolerance: max(``tolerance`` · f_line, one
+frequency bin) for the model's natural and span frequencies, max(1 % · f_line, one bin) for
+the working frequencies, which follow from the speed alone; other lines within their
+tolerance are listed beside it (the peak cannot tell them apart); no line within it:
+"unexplained".
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks, welch
 
+from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
@@ -32,8 +35,8 @@ if TYPE_CHECKING:
     from chaindrive.io.record import Record
 
 __all__ = ["DEFAULT_PROMINENCE_DB", "DEFAULT_TOLERANCE", "Identification", "ModelLine", "Peak",
-           "SignalSpectrum", "identify", "label_peak", "model_lines", "segment_length",
-           "signal_spectrum", "spectral_peaks"]
+           "SignalSpectrum", "identify", "label_peak", "line_tolerance", "model_lines",
+           "segment_length", "signal_spectrum", "spectral_peaks"]
 
 #: Prominence a peak needs [dB]. A Welch estimate of K averaged segments scatters as χ² with
 #: 2K degrees of freedom [Welch1967]: for K ≈ 8 the 0.1 % and 99.9 % points lie −5.7 dB and
@@ -46,6 +49,13 @@ DEFAULT_PROMINENCE_DB = 15.0
 DEFAULT_TOLERANCE = 0.05
 #: Most peaks kept per signal, the most prominent first [-].
 MAX_PEAKS = 20
+#: Most tooth-frequency harmonics listed as model lines [-].
+MAX_HARMONICS = 100
+#: Relative tolerance of a working frequency (tooth orders, shaft speeds) [-]: they follow
+#: from the driver speed alone, which a motor holds to about its slip, ±1 % (an assumption).
+WORKING_TOLERANCE = 0.01
+#: Kinds of model line that are working frequencies.
+WORKING_KINDS = frozenset({"tooth", "shaft", "parametric"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,13 +81,17 @@ class ModelLine:
         return {"kind": self.kind, "label": self.label, "frequency_hz": self.frequency}
 
 
-def model_lines(analysis: Analysis) -> tuple[ModelLine, ...]:
+def model_lines(analysis: Analysis, max_frequency: float | None = None) -> tuple[ModelLine, ...]:
     """The model's frequencies a measured peak is set against.
 
     Parameters
     ----------
     analysis : Analysis
         The analysed design (its modal stage).
+    max_frequency : float | None
+        Highest frequency the record shows [Hz] (its Nyquist frequency): the tooth-frequency
+        harmonics are listed up to it (at most :data:`MAX_HARMONICS`); None: the analysis's
+        own harmonics.
 
     Returns
     -------
@@ -91,7 +105,15 @@ def model_lines(analysis: Analysis) -> tuple[ModelLine, ...]:
     elastic = [float(f) for f, rigid in zip(dyn.modal.frequencies_hz, dyn.modal.rigid_body,
                                             strict=True) if not rigid]
     lines += [ModelLine("natural", f"mode {k}", f) for k, f in enumerate(elastic, start=1)]
-    lines += [ModelLine(w.kind, w.label, float(w.frequency)) for w in dyn.working]
+    working = dyn.working
+    drive = analysis.drive
+    fz = analysis.kinematics.tooth_frequency
+    if max_frequency is not None and drive.driver.speed is not None and fz > 0:
+        harmonics = int(min(MAX_HARMONICS, max(1, math.floor(max_frequency / fz))))
+        working = working_frequencies(drive.driver.speed, drive.driver.teeth,
+                                      [s.teeth for s in drive.sprockets],
+                                      [s.name for s in drive.sprockets], harmonics)
+    lines += [ModelLine(w.kind, w.label, float(w.frequency)) for w in working]
     names = [f"{s.start_name}-{s.end_name}" for s in analysis.geometry.spans]
     st = dyn.span_transverse_hz
     for i in range(st.shape[0]):
@@ -157,10 +179,34 @@ class Peak:
         }
 
 
+def line_tolerance(line: ModelLine, tolerance: float, resolution: float) -> float:
+    """Half-width [Hz] of the match round a model line: max(``tolerance``·f, one bin) for a
+    natural or span transverse frequency (the model's, uncertain), max(
+    :data:`WORKING_TOLERANCE`·f, one bin) for a working frequency (known from the speed).
+
+    Parameters
+    ----------
+    line : ModelLine
+        The line.
+    tolerance : float
+        Relative tolerance of the model's frequencies [-].
+    resolution : float
+        One frequency bin [Hz].
+
+    Returns
+    -------
+    float
+        [Hz].
+    """
+    rel = WORKING_TOLERANCE if line.kind in WORKING_KINDS else tolerance
+    return max(rel * line.frequency, resolution)
+
+
 def label_peak(frequency: float, lines: tuple[ModelLine, ...], tolerance: float,
                resolution: float) -> tuple[ModelLine | None, float | None,
                                            tuple[ModelLine, ...]]:
-    """The model line a peak at f is, by the rule of the module docstring.
+    """The model line a peak at f is, by the rule of the module docstring
+    (:func:`line_tolerance`).
 
     Parameters
     ----------
@@ -169,7 +215,7 @@ def label_peak(frequency: float, lines: tuple[ModelLine, ...], tolerance: float,
     lines : tuple of ModelLine
         The model's lines.
     tolerance : float
-        Relative tolerance [-].
+        Relative tolerance of the model's frequencies [-].
     resolution : float
         One frequency bin [Hz].
 
@@ -182,8 +228,9 @@ def label_peak(frequency: float, lines: tuple[ModelLine, ...], tolerance: float,
     also : tuple of ModelLine
         The other lines within the tolerance, nearest first.
     """
-    near = sorted((abs(frequency - ln.frequency), ln) for ln in lines
-                  if abs(frequency - ln.frequency) <= max(tolerance * ln.frequency, resolution))
+    near = sorted(((abs(frequency - ln.frequency), ln) for ln in lines
+                   if abs(frequency - ln.frequency) <= line_tolerance(ln, tolerance, resolution)),
+                  key=lambda pair: pair[0])
     if not near:
         return None, None, ()
     best = near[0][1]
