@@ -72,6 +72,7 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "torsional_stiffness": ("[mass]*[length]**2/[time]**2", "N*m/rad", "1.9e5 N*m/rad"),
     "torsional_damping": ("[mass]*[length]**2/[time]", "N*m*s/rad", "20 N*m*s/rad"),
     "area": ("[length]**2", "m**2", "180 mm^2"),
+    "frequency": ("1/[time]", "Hz", "23.4 Hz"),
 }
 
 #: Longest text read as a quantity [characters].
@@ -108,6 +109,7 @@ EXACT_UNITS: dict[tuple[str, str], float] = {
     ("torsional_stiffness", "N*m/rad"): 1.0, ("torsional_stiffness", "kN*m/rad"): 1000.0,
     ("torsional_damping", "N*m*s/rad"): 1.0,
     ("area", "m^2"): 1.0, ("area", "mm^2"): 1e-06,
+    ("frequency", "Hz"): 1.0,
 }
 
 _NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", re.DOTALL)

@@ -61,6 +61,7 @@ PRESENTER_MAY_IMPORT = (
     "chaindrive.cost",                  # loading a price file
     "chaindrive.linklevel",             # its entry point simulate
     "chaindrive.linklevel.simulate",
+    "chaindrive.identification",        # its entry points (tension, identify, calibrate)
     *(f"{p}.*" for p in PRESENTERS), *PRESENTERS,
 )
 #: run-time imports of analysis functions by presenters that exist today: (presenter module,

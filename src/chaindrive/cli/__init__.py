@@ -735,6 +735,163 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
     con.print(table)
 
 
+@app.command()
+def tension(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    span: Annotated[str, typer.Option("--span", help="the span, FROM-TO (e.g. S1-S2)")],
+    frequency: Annotated[str, typer.Option("--frequency", help="measured transverse "
+                                           "frequency of a sideways pluck, e.g. 23.4Hz")],
+    mode: Annotated[int, typer.Option("--mode", help="its mode number n", min=1)] = 1,
+    running: Annotated[bool, typer.Option(
+        "--running", help="measured with the chain running at the design speed")] = False,
+    frequency_tol: Annotated[str | None, typer.Option(
+        "--frequency-tolerance", help="± of the frequency (default 0 Hz, assumed)")] = None,
+    length_tol: Annotated[str | None, typer.Option(
+        "--length-tolerance", help="± of the span length (default 2 mm, assumed)")] = None,
+    mass_tol: Annotated[float | None, typer.Option(
+        "--mass-tolerance", help="± of the mass per metre in % (default 5, assumed)")] = None,
+    write_calibrated: Annotated[Path | None, typer.Option(
+        "--write-calibrated", help="write the design with the installed sag whose "
+        "pretension is the tension read (stationary only; TOML)")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """A span's tension from its measured transverse frequency (stationary or running),
+    with its uncertainty and the frequency the design's pretension gives."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import print_sag, print_tension
+    from chaindrive.identification import calibrated_sag, span_tension_reading
+    from chaindrive.io.design import drive_to_toml
+    from chaindrive.units import parse_quantity
+
+    with user_errors():
+        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
+            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
+                              ".toml file")
+        drive = chaindrive.load(file)
+        f = parse_quantity(frequency, "frequency", "--frequency")
+        if not f > 0:
+            raise DesignError("--frequency", f"must be above 0 Hz, got {frequency!r}")
+        if mass_tol is not None and not mass_tol >= 0:
+            raise DesignError("--mass-tolerance", f"must be ≥ 0 %, got {mass_tol!r}")
+        assumed = tuple(a for a, given in (("frequency ± 0 Hz", frequency_tol),
+                                           ("span length ± 2 mm", length_tol),
+                                           ("mass per metre ± 5 %", mass_tol)) if given is None)
+        reading = span_tension_reading(
+            chaindrive.analyze(drive, response=False), span, f, mode=mode,
+            running=running, assumed=assumed,
+            frequency_tolerance=parse_quantity(frequency_tol or "0 Hz", "frequency",
+                                               "--frequency-tolerance"),
+            length_tolerance=parse_quantity(length_tol or "2 mm", "length", "--length-tolerance"),
+            mass_tolerance=(5.0 if mass_tol is None else mass_tol) / 100.0)
+        doc = reading.to_dict()
+        if write_calibrated is not None:
+            sag = calibrated_sag(drive, reading)
+            doc["calibration"] = sag.to_dict()
+            check_document(doc)
+            write_text(write_calibrated, drive_to_toml(sag.drive), field="--write-calibrated")
+    if as_json:
+        _write_json(doc)
+        return
+    check_document(doc)
+    print_tension(doc)
+    if write_calibrated is not None:
+        print_sag(doc["calibration"])
+        print(f"calibrated design written to {write_calibrated}")
+
+
+@app.command()
+def identify(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    record: Annotated[Path, typer.Option("--record", help="measured record: CSV with a "
+                                         "time_s (or time_ms) column and signals, or WAV")],
+    tolerance: Annotated[float, typer.Option("--tolerance", help="match tolerance in % of "
+                                             "the model frequency (at least one bin)")] = 5.0,
+    prominence: Annotated[float, typer.Option("--prominence", help="least peak prominence "
+                                              "in dB")] = 15.0,
+    output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
+                                                "the model's frequencies (.svg, .png, .pdf)")]
+    = None,
+    campbell: Annotated[Path | None, typer.Option(
+        "--campbell", help="Campbell diagram with the measured peaks at the design speed "
+        "(.svg, .png, .pdf)")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Match a measured record's spectral peaks to the model: natural frequency (mode),
+    tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import print_identification, save_campbell, save_figure
+    from chaindrive.identification import identify as identify_record
+    from chaindrive.identification import model_lines
+    from chaindrive.io.record import read_record
+
+    with user_errors():
+        for name, path in (("--output", output), ("--campbell", campbell)):
+            if path is not None and path.suffix.lower() not in (".svg", ".png", ".pdf"):
+                raise DesignError(name, f"{str(path)!r}: allowed: a .svg, .png or .pdf file")
+        analysis = chaindrive.analyze(chaindrive.load(file), response=False)
+        measured = read_record(record)
+        result = identify_record(measured, model_lines(analysis, measured.sample_rate / 2),
+                                 tolerance=tolerance / 100.0, prominence_db=prominence)
+        doc = result.to_dict()
+        check_document(doc)
+        if output is not None:
+            save_figure(result, output)
+        if campbell is not None:
+            save_campbell(result, analysis, campbell)
+    if as_json:
+        _write_json(doc)
+        return
+    print_identification(doc)
+    for what, path in (("spectrum", output), ("Campbell diagram", campbell)):
+        if path is not None:
+            print(f"{what} written to {path}")
+
+
+@app.command()
+def calibrate(
+    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    natural: Annotated[list[str] | None, typer.Option(
+        "--natural", help="a measured natural frequency MODE=FREQUENCY, e.g. 1=62.3Hz "
+        "(repeat for more modes)")] = None,
+    record: Annotated[Path | None, typer.Option(
+        "--record", help="or a measured record (CSV/WAV): its peaks matched to the model's "
+        "natural frequencies")] = None,
+    tolerance: Annotated[str | None, typer.Option(
+        "--tolerance", help="± of each --natural frequency (default ±1 % of it, assumed)")]
+    = None,
+    write_calibrated: Annotated[Path | None, typer.Option(
+        "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+) -> None:
+    """Fit the chain's link stiffness to measured natural frequencies (least squares, 95 %
+    interval), re-run the checks and say which verdicts changed."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import measured_modes, print_calibration
+    from chaindrive.identification import calibrated_design
+    from chaindrive.io.design import drive_to_toml
+
+    with user_errors():
+        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
+            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
+                              ".toml file")
+        drive = chaindrive.load(file)
+        measured, assumed = measured_modes(drive, natural, record, tolerance)
+        result = calibrated_design(drive, measured)
+        doc = {**result.to_dict(), "assumed": assumed}
+        check_document(doc)
+        if write_calibrated is not None:
+            write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")
+    if as_json:
+        _write_json(doc)
+        return
+    print_calibration(doc)
+    if write_calibrated is not None:
+        print(f"calibrated design written to {write_calibrated}")
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 

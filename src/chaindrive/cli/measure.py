@@ -1,0 +1,237 @@
+"""Tables of ``chaindrive tension`` and ``chaindrive identify``: presenters of the JSON
+documents of :mod:`chaindrive.identification` (they compute nothing)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from chaindrive.cli.tables import console, escape, table
+from chaindrive.display import fmt
+from chaindrive.io.atomic import atomic_path
+
+if TYPE_CHECKING:
+    from chaindrive.analysis import Analysis
+    from chaindrive.identification import Identification, MeasuredMode
+    from chaindrive.model import Drive
+
+__all__ = ["measured_modes", "print_calibration", "print_identification", "print_sag",
+           "print_tension", "save_campbell", "save_figure"]
+
+
+def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
+                   tolerance: str | None) -> tuple[list[MeasuredMode], list[str]]:
+    """The measured natural frequencies of ``chaindrive calibrate``: from ``--natural
+    MODE=FREQUENCY`` (± ``--tolerance``, rectangular: u = a/√3), or from a record's peaks
+    matched to the model (:func:`chaindrive.identification.measured_natural_peaks`).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design (for the record's matching).
+    natural : list of str | None
+        ``["1=62.3Hz", …]``.
+    record : Path | None
+        A CSV or WAV record.
+    tolerance : str | None
+        ± of each --natural frequency (None: ±1 % of it, assumed).
+
+    Returns
+    -------
+    measured : list of MeasuredMode
+    assumed : list of str
+        What rests on an assumed value.
+    """
+    # lazy: the identification stack only for this command
+    import chaindrive
+    from chaindrive.errors import DesignError
+    from chaindrive.identification import (
+        MeasuredMode,
+        identify,
+        measured_natural_peaks,
+        model_lines,
+    )
+    from chaindrive.io.record import read_record
+    from chaindrive.units import parse_quantity
+
+    if (natural is None) == (record is None):
+        raise DesignError("--natural", "give either --natural MODE=FREQUENCY or --record FILE")
+    if record is not None:
+        measured = read_record(record)
+        lines = model_lines(chaindrive.analyze(drive, response=False), measured.sample_rate / 2)
+        found = measured_natural_peaks(identify(measured, lines))
+        if not found:
+            raise DesignError("--record", "no peak within 5 % of a natural frequency of the "
+                              "model; give --natural MODE=FREQUENCY")
+        return found, []
+    out = []
+    for item in natural or []:
+        mode, sep, freq = item.partition("=")
+        if not sep or not mode.strip().isdigit() or int(mode) < 1:
+            raise DesignError("--natural", f"{item!r}; allowed: MODE=FREQUENCY such as 1=62.3Hz")
+        f = parse_quantity(freq, "frequency", "--natural")
+        a = (0.01 * f if tolerance is None
+             else parse_quantity(tolerance, "frequency", "--tolerance"))
+        out.append(MeasuredMode(int(mode), f, a / 3.0 ** 0.5))
+    return out, (["each frequency ± 1 %"] if tolerance is None else [])
+
+
+def _print_changes(changes: list[dict[str, Any]]) -> None:
+    con = console()
+    if not changes:
+        con.print("no check changed its verdict")
+        return
+    con.print(table("verdicts changed", ["check", "subject", "before", "after"],
+                    [[escape(c["check"]), escape(c["subject"]), c["before"], c["after"]]
+                     for c in changes]))
+
+
+def print_sag(doc: dict[str, Any]) -> None:
+    """Print the installed sag calibrated to the tension read and the changed verdicts.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.SagCalibration.to_dict`.
+    """
+    lo, hi = doc["interval_95_fraction"]
+    console().print(f"installed sag s = {_f(100 * doc['fitted_fraction'], 3)} % of the span, "
+                    f"95 % interval {_f(100 * lo, 3)} … {_f(100 * hi, 3)} % (design: "
+                    f"{_f(100 * doc['initial_fraction'], 3)} %)")
+    _print_changes(doc["verdicts_changed"])
+
+
+def print_calibration(doc: dict[str, Any]) -> None:
+    """Print the fitted link stiffness, its interval, the residuals and the changed verdicts.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.CalibratedDesign.to_dict` with ``assumed``.
+    """
+    con = console()
+    lo, hi = doc["interval_95_n_per_m"]
+    con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
+              f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m)")
+    con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
+    if doc["assumed"]:
+        con.print("assumed: " + escape("; ".join(doc["assumed"])))
+    con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
+                    [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2), _f(r["model_hz"]),
+                      _f(r["residual_hz"], 3)] for r in doc["residuals"]]))
+    _print_changes(doc["verdicts_changed"])
+
+
+def save_campbell(result: Identification, analysis: Analysis, output: Path) -> None:
+    """Write the model's Campbell diagram with the measured peaks at the design speed
+    (:func:`chaindrive.plotting.identification.measured_campbell`) atomically.
+
+    Parameters
+    ----------
+    result : Identification
+        The matched record.
+    analysis : Analysis
+        The analysed design (its Campbell data and driver speed).
+    output : Path
+        ``.svg``, ``.png`` or ``.pdf``.
+
+    Raises
+    ------
+    DesignError
+        The design gives no driver speed (no Campbell data).
+    """
+    # lazy: matplotlib only when a figure is asked for
+    from chaindrive.display import RPM_PER_RAD_S
+    from chaindrive.errors import DesignError
+    from chaindrive.plotting.identification import measured_campbell
+
+    speed = analysis.drive.driver.speed
+    campbell = analysis.dynamics.campbell
+    if speed is None or campbell is None:
+        raise DesignError("--campbell", "the design gives no driver speed, so no Campbell data")
+    fig = measured_campbell(result, campbell, speed * RPM_PER_RAD_S)
+    with atomic_path(output, field="--campbell") as tmp:
+        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
+
+
+def save_figure(result: Identification, output: Path) -> None:
+    """Write the measured spectrum with the model's lines
+    (:func:`chaindrive.plotting.identification.measured_spectrum`) atomically.
+
+    Parameters
+    ----------
+    result : Identification
+        The matched record.
+    output : Path
+        ``.svg``, ``.png`` or ``.pdf``.
+    """
+    # lazy: matplotlib only when a figure is asked for
+    from chaindrive.plotting.identification import measured_spectrum
+
+    fig = measured_spectrum(result)
+    with atomic_path(output, field="--output") as tmp:
+        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
+
+
+def _f(value: Any, digits: int = 4) -> str:
+    return "—" if value is None else escape(fmt(value, digits))
+
+
+def print_tension(doc: dict[str, Any]) -> None:
+    """Print the tension read from a span's frequency, its uncertainty and the design's
+    expected frequencies.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.SpanTensionReading.to_dict`.
+    """
+    con = console()
+    state = (f"running at {_f(doc['speed_m_s'])} m/s" if doc["speed_m_s"] > 0
+             else "stationary")
+    con.print(f"span {escape(doc['span'])}: L = {_f(doc['length_m'] * 1000)} mm, "
+              f"q = {_f(doc['mass_per_length_kg_m'])} kg/m, {state}, mode {doc['mode']}")
+    con.print(f"tension T = {_f(doc['tension_n'])} N ± {_f(doc['tension_std_n'], 2)} N "
+              "(standard uncertainty)")
+    by = doc["tension_std_by_input_n"]
+    con.print("  u(T) from " + ", ".join(f"{k.replace('_', ' ')} {_f(v, 2)} N"
+                                         for k, v in by.items()))
+    if doc["assumed"]:
+        con.print("  assumed: " + escape("; ".join(doc["assumed"])))
+    if doc["speed_m_s"] > 0:
+        con.print(f"  centrifugal part q v² = {_f(doc['centrifugal_tension_n'])} N")
+    con.print(f"  sag at this tension {_f(doc['sag_m'] * 1000)} mm; Irvine λ² = "
+              f"{_f(doc['irvine_lambda2'], 3)}: a pluck in the plane of the sag would ring "
+              f"{_f(doc['inplane_odd_mode_ratio'], 3)}× higher in an odd mode (read a sideways "
+              "pluck)")
+    rows = [["stationary, design pretension", _f(doc["design_pretension_n"]),
+             _f(doc["expected_frequency_standing_hz"])]]
+    if doc["expected_frequency_running_hz"] is not None:
+        rows.append(["running, design span tension", _f(doc["design_running_tension_n"]),
+                     _f(doc["expected_frequency_running_hz"])])
+    con.print(table(f"what the design expects (mode {doc['mode']})",
+                    ["state", "T N", "f Hz"], rows))
+
+
+def print_identification(doc: dict[str, Any]) -> None:
+    """Print the peaks of a measured record and what each is.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.Identification.to_dict`.
+    """
+    con = console()
+    for sig in doc["signals"]:
+        con.print(f"signal {escape(sig['name'])}: {sig['samples']} samples at "
+                  f"{_f(sig['sample_rate_hz'])} Hz, resolution {_f(sig['resolution_hz'], 3)} Hz")
+        rows = [[_f(p["frequency_hz"]), _f(p["prominence_db"], 3), escape(p["label"]),
+                 _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2),
+                 escape(", ".join(p["also_within_tolerance"]) or "—")]
+                for p in sig["peaks"]]
+        con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %",
+                                  "also within tolerance"], rows))
+    con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % of the model frequency or "
+              f"± one frequency bin; prominence ≥ {_f(doc['prominence_db'], 3)} dB")
+    for note in doc["notes"]:
+        con.print(escape(note))

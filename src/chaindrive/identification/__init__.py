@@ -1,0 +1,48 @@
+"""From measurement to model: a span's tension from its measured transverse frequency, a
+measured vibration record's peaks matched to the model's frequencies, and the model's
+uncertain inputs calibrated to measured frequencies.
+
+Compute only: the command line reads the files and hands arrays in.
+
+Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
+(:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
+(:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`).
+"""
+
+from chaindrive.identification.calibration import (
+    CalibratedDesign,
+    MeasuredMode,
+    calibrated_design,
+    measured_natural_peaks,
+)
+from chaindrive.identification.reading import (
+    SagCalibration,
+    SpanTensionReading,
+    calibrated_sag,
+    span_tension_reading,
+)
+from chaindrive.identification.spectrum import Identification, identify, model_lines
+from chaindrive.identification.tension import (
+    TensionEstimate,
+    expected_frequency,
+    span_tension_from_frequency,
+    string_tension,
+)
+
+__all__ = [
+    "CalibratedDesign",
+    "Identification",
+    "MeasuredMode",
+    "SagCalibration",
+    "SpanTensionReading",
+    "TensionEstimate",
+    "calibrated_design",
+    "calibrated_sag",
+    "expected_frequency",
+    "identify",
+    "measured_natural_peaks",
+    "model_lines",
+    "span_tension_from_frequency",
+    "span_tension_reading",
+    "string_tension",
+]

@@ -1,0 +1,310 @@
+"""The model's link stiffness calibrated to measured natural frequencies, with its interval.
+
+The uncertain input fitted is the axial stiffness of one link k_link (``[chain]
+link_stiffness``), on which the chain-governed natural frequencies of the whole-drive model
+rest. With θ = ln k_link and the measured natural frequencies f_i of elastic modes m_i with
+standard uncertainties u_i, the weighted residuals r_i(θ) = (f_model,m_i(θ) − f_i)/u_i are
+minimised by ``scipy.optimize.least_squares`` ([Virtanen2020]; trust-region reflective).
+The covariance of θ is (JᵀJ)⁻¹ at the optimum, J = ∂r/∂θ (the residuals are weighted by
+their stated uncertainties) [JCGM100, §5.1], multiplied by χ²/ν when that exceeds 1 (the
+measurements scatter more than their stated uncertainties allow; never narrowed below
+them); the 95 % interval is exp(θ ± 1.96 σ_θ) (normal approximation).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from chaindrive.errors import DesignError
+
+if TYPE_CHECKING:
+    from chaindrive.identification.spectrum import Identification
+    from chaindrive.model import Drive
+
+__all__ = ["CalibratedDesign", "Calibration", "MeasuredMode", "calibrate_link_stiffness",
+           "calibrated_design", "elastic_frequencies", "measured_natural_peaks",
+           "verdict_changes", "with_link_stiffness"]
+
+#: Two-sided 95 % point of the normal distribution [-].
+Z95 = 1.959963984540054
+
+
+@dataclass(frozen=True, slots=True)
+class MeasuredMode:
+    """A measured natural frequency of an elastic mode.
+
+    Parameters
+    ----------
+    mode : int
+        Elastic mode m [-], counted from 1 (the rigid-body motion not counted).
+    frequency : float
+        f [Hz].
+    std : float
+        Its standard uncertainty u [Hz], positive.
+    """
+
+    mode: int
+    frequency: float
+    std: float
+
+
+def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
+    """The elastic natural frequencies [Hz] of a drive's whole-drive model, lowest first.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    ndarray
+        f [Hz] of the elastic modes.
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    modal = analyze(drive, response=False).dynamics.modal
+    return np.asarray(modal.frequencies_hz, dtype=float)[~np.asarray(modal.rigid_body)]
+
+
+def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
+    """The design with ``[chain] link_stiffness`` set to k [N/m].
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    stiffness : float
+        k_link [N/m].
+
+    Returns
+    -------
+    Drive
+    """
+    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain,
+                                                                link_stiffness=stiffness))
+
+
+@dataclass(frozen=True, slots=True)
+class Calibration:
+    """The fitted link stiffness and how well it fits.
+
+    Parameters
+    ----------
+    initial : float
+        k_link of the design before the fit [N/m].
+    stiffness : float
+        Fitted k_link [N/m].
+    std_log : float
+        σ of ln k_link [-].
+    interval : tuple of float
+        95 % interval of k_link [N/m].
+    measured : tuple of MeasuredMode
+        The measurements fitted.
+    fitted_frequencies : tuple of float
+        The model's frequencies of those modes at the fitted k_link [Hz].
+    chi2_per_dof : float | None
+        χ²/ν of the weighted residuals [-] (None with as many measurements as parameters).
+    evaluations : int
+        Model evaluations of the fit [-].
+    """
+
+    initial: float
+    stiffness: float
+    std_log: float
+    interval: tuple[float, float]
+    measured: tuple[MeasuredMode, ...]
+    fitted_frequencies: tuple[float, ...]
+    chi2_per_dof: float | None
+    evaluations: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        return {
+            "parameter": "chain.link_stiffness",
+            "initial_n_per_m": self.initial,
+            "fitted_n_per_m": self.stiffness,
+            "std_of_log": self.std_log,
+            "interval_95_n_per_m": list(self.interval),
+            "residuals": [{"mode": m.mode, "measured_hz": m.frequency, "std_hz": m.std,
+                           "model_hz": f, "residual_hz": f - m.frequency}
+                          for m, f in zip(self.measured, self.fitted_frequencies, strict=True)],
+            "chi2_per_dof": self.chi2_per_dof,
+            "model_evaluations": self.evaluations,
+        }
+
+
+def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
+                             initial: float,
+                             frequencies: Callable[[Drive], np.ndarray[Any, np.dtype[np.float64]]]
+                             = elastic_frequencies) -> Calibration:
+    """Fit k_link to measured natural frequencies (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    measured : sequence of MeasuredMode
+        At least one; modes among the model's elastic modes.
+    initial : float
+        The design's k_link [N/m], the fit's start.
+    frequencies : callable
+        The model's elastic frequencies of a design [Hz] (:func:`elastic_frequencies`).
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    DesignError
+        No measurement, a mode the model does not have, a frequency or uncertainty that is
+        not positive.
+
+    References
+    ----------
+    [Virtanen2020]; [JCGM100, §5.1].
+    """
+    if not measured:
+        raise DesignError("--natural", "no measured natural frequency; allowed: one or more")
+    for m in measured:
+        if not (math.isfinite(m.frequency) and m.frequency > 0):
+            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
+                              "allowed: above 0 Hz")
+        if not (math.isfinite(m.std) and m.std > 0):
+            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
+                              "above 0 Hz")
+    modes = np.array([m.mode for m in measured]) - 1
+    f = np.array([m.frequency for m in measured])
+    u = np.array([m.std for m in measured])
+    n_model = frequencies(drive).size
+    bad = [int(k) + 1 for k in modes if not 0 <= k < n_model]
+    if bad:
+        raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
+                          "elastic modes)")
+    count = [0]
+
+    def residuals(theta: np.ndarray[Any, np.dtype[np.float64]]
+                  ) -> np.ndarray[Any, np.dtype[np.float64]]:
+        count[0] += 1
+        model = frequencies(with_link_stiffness(drive, math.exp(float(theta[0]))))
+        return np.asarray((model[modes] - f) / u, dtype=float)
+
+    fit = least_squares(residuals, x0=[math.log(initial)], method="trf", diff_step=[1e-4],
+                        x_scale=[1.0], xtol=1e-10, ftol=1e-10)
+    J = np.asarray(fit.jac, dtype=float)
+    dof = f.size - 1
+    chi2 = float(np.sum(fit.fun ** 2))
+    # the measurements scatter more than their stated uncertainties: widen by sqrt(χ²/ν)
+    cov = np.linalg.pinv(J.T @ J) * (max(1.0, chi2 / dof) if dof > 0 else 1.0)
+    sigma = float(math.sqrt(max(cov[0, 0], 0.0)))
+    theta = float(fit.x[0])
+    fitted = frequencies(with_link_stiffness(drive, math.exp(theta)))[modes]
+    return Calibration(initial, math.exp(theta), sigma,
+                       (math.exp(theta - Z95 * sigma), math.exp(theta + Z95 * sigma)),
+                       tuple(measured), tuple(float(x) for x in fitted),
+                       chi2 / dof if dof > 0 else None, count[0])
+
+
+def verdict_changes(before: Sequence[Any], after: Sequence[Any]) -> list[dict[str, Any]]:
+    """The checks whose verdict differs between two runs of the same design's checks.
+
+    Parameters
+    ----------
+    before, after : sequence of Check
+        :meth:`chaindrive.analysis.Analysis.checks` of the design and of the calibrated one
+        (the same checks in the same order).
+
+    Returns
+    -------
+    list of dict
+        ``{"check", "subject", "before", "after", "value_before", "value_after"}`` per
+        changed verdict.
+    """
+    return [{"check": a.name, "subject": a.subject, "before": a.status, "after": b.status,
+             "value_before": a.value, "value_after": b.value}
+            for a, b in zip(before, after, strict=False) if a.status != b.status]
+
+
+def measured_natural_peaks(result: Identification) -> list[MeasuredMode]:
+    """The peaks of a matched record labelled as natural frequencies, as measurements.
+
+    Each peak lies within ± half a frequency bin of its true frequency, taken as a
+    rectangular distribution: u = Δf / (2√3) [JCGM100, §4.3.7]. Where several signals show
+    the same mode, the most prominent peak is kept.
+
+    Parameters
+    ----------
+    result : Identification
+        :func:`chaindrive.identification.identify`.
+
+    Returns
+    -------
+    list of MeasuredMode
+        By mode.
+    """
+    best: dict[int, tuple[float, MeasuredMode]] = {}
+    for sig in result.signals:
+        for p in sig.peaks:
+            if p.line is None or p.line.kind != "natural":
+                continue
+            mode = int(p.line.label.split()[-1])
+            m = MeasuredMode(mode, p.frequency, sig.resolution / (2.0 * math.sqrt(3.0)))
+            if mode not in best or p.prominence_db > best[mode][0]:
+                best[mode] = (p.prominence_db, m)
+    return [best[k][1] for k in sorted(best)]
+
+
+@dataclass(frozen=True, slots=True)
+class CalibratedDesign:
+    """A design calibrated to measurements and what its checks say after.
+
+    Parameters
+    ----------
+    calibration : Calibration
+        The fit.
+    drive : Drive
+        The design with the fitted ``[chain] link_stiffness``.
+    changes : list of dict
+        Checks whose verdict changed (:func:`verdict_changes`).
+    """
+
+    calibration: Calibration
+    drive: Drive
+    changes: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {**self.calibration.to_dict(), "verdicts_changed": self.changes}
+
+
+def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode]) -> CalibratedDesign:
+    """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`) and
+    re-run the design's checks with it.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    measured : sequence of MeasuredMode
+        The measured natural frequencies.
+
+    Returns
+    -------
+    CalibratedDesign
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    before = analyze(drive, response=False)
+    cal = calibrate_link_stiffness(drive, measured,
+                                   initial=before.ring_parameters.link_stiffness_n_per_m)
+    calibrated = with_link_stiffness(drive, cal.stiffness)
+    after = analyze(calibrated, response=False)
+    return CalibratedDesign(cal, calibrated, verdict_changes(before.checks(), after.checks()))

@@ -1,0 +1,309 @@
+"""A span's tension read from its measured frequency, set beside the design's (the drive
+level of :mod:`chaindrive.identification.tension`)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from chaindrive.dynamics.stiffness import GRAVITY
+from chaindrive.errors import DesignError
+from chaindrive.identification.calibration import verdict_changes
+from chaindrive.identification.tension import (
+    TensionEstimate,
+    expected_frequency,
+    span_tension_from_frequency,
+)
+from chaindrive.strength.loads import installed_sag_ratio, sag_tension
+
+if TYPE_CHECKING:
+    from chaindrive.analysis import Analysis
+    from chaindrive.model import Drive
+
+__all__ = ["SagCalibration", "SpanTensionReading", "calibrated_sag", "rectangular_std",
+           "sag_for_pretension", "span_index", "span_tension_reading"]
+
+
+def rectangular_std(half_width: float) -> float:
+    """Standard uncertainty a/√3 [same unit] of a quantity known to lie within ±a
+    (rectangular distribution, [JCGM100, §4.3.7]).
+
+    Parameters
+    ----------
+    half_width : float
+        a [any unit], ≥ 0.
+
+    Returns
+    -------
+    float
+        u = a / √3.
+    """
+    return half_width / math.sqrt(3.0)
+
+
+def span_index(analysis: Analysis, span: str) -> int:
+    """Index of the span named ``FROM-TO`` (sprocket names) in the analysed contour.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysed design.
+    span : str
+        ``"S1-S2"``.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    DesignError
+        No span of that name (the message lists the spans).
+    """
+    names = [f"{s.start_name}-{s.end_name}" for s in analysis.geometry.spans]
+    if span not in names:
+        raise DesignError("--span", f"unknown span {span!r}; allowed: {', '.join(names)}")
+    return names.index(span)
+
+
+@dataclass(frozen=True, slots=True)
+class SpanTensionReading:
+    """A span's tension from its measured frequency, with what the design expects.
+
+    Parameters
+    ----------
+    span : str
+        ``FROM-TO``.
+    estimate : TensionEstimate
+        The tension read from the frequency.
+    pretension : float
+        The design's static (sag) pretension F_0 of the span [N] at its installed sag.
+    expected_standing : float
+        The frequency [Hz] of mode n of the stationary span at F_0.
+    running_tension : float | None
+        The design's span tension in operation [N] (None: the design gives no power).
+    expected_running : float | None
+        The frequency [Hz] of mode n of the running span at that tension.
+    assumed : tuple of str
+        The inputs that rest on an assumed value (named, with the value).
+    """
+
+    span: str
+    estimate: TensionEstimate
+    pretension: float
+    expected_standing: float
+    running_tension: float | None
+    expected_running: float | None
+    assumed: tuple[str, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        return {
+            "span": self.span,
+            **self.estimate.to_dict(),
+            "design_pretension_n": self.pretension,
+            "expected_frequency_standing_hz": self.expected_standing,
+            "design_running_tension_n": self.running_tension,
+            "expected_frequency_running_hz": self.expected_running,
+            "assumed": list(self.assumed),
+        }
+
+
+def span_tension_reading(analysis: Analysis, span: str, frequency: float, *, mode: int = 1,
+                         running: bool = False, frequency_tolerance: float = 0.0,
+                         length_tolerance: float = 0.002, mass_tolerance: float = 0.05,
+                         assumed: tuple[str, ...] = ()) -> SpanTensionReading:
+    """The tension of one span of a design from its measured transverse frequency.
+
+    The span's length, inclination and the chain's q and EA = k_link·p come from the
+    analysis; a running chain moves at the mean chain speed v̄. Tolerances are half-widths
+    of rectangular distributions (:func:`rectangular_std`). The expected frequencies are the
+    string law at the design's pretension F_0 ([ChainDesignRU, §8], stationary) and at its
+    span tension in operation (running).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysed design.
+    span : str
+        ``FROM-TO``.
+    frequency : float
+        Measured f [Hz].
+    mode : int
+        n [-].
+    running : bool
+        The chain was running at the design speed when measured.
+    frequency_tolerance : float
+        ±[Hz] of the measured frequency.
+    length_tolerance : float
+        ±[m] of the span length.
+    mass_tolerance : float
+        ± relative [-] of the mass per metre.
+    assumed : tuple of str
+        Which of the tolerances were not given (named in the result).
+
+    Returns
+    -------
+    SpanTensionReading
+
+    Raises
+    ------
+    DesignError
+        Unknown span, an input out of range, or ``running`` for a design without speed.
+
+    References
+    ----------
+    [Mote1965], [WickertMote1990], [JCGM100, §4.3.7, §5.1], [ChainDesignRU, §8].
+    """
+    i = span_index(analysis, span)
+    for name, value in (("--frequency-tolerance", frequency_tolerance),
+                        ("--length-tolerance", length_tolerance),
+                        ("--mass-tolerance", mass_tolerance)):
+        if not (math.isfinite(value) and value >= 0):
+            raise DesignError(name, f"must be ≥ 0, got {value!r}")
+    drive = analysis.drive
+    spec = drive.chain.spec
+    sp = analysis.geometry.spans[i]
+    ring = analysis.ring_parameters
+    speed = 0.0
+    if running:
+        if drive.driver.speed is None:
+            raise DesignError("--running", "the design gives no driver speed")
+        speed = float(analysis.kinematics.chain_speed)
+    q = spec.mass_per_length
+    estimate = span_tension_from_frequency(
+        frequency, sp.length, q, mode=mode, speed=speed,
+        frequency_std=rectangular_std(frequency_tolerance),
+        length_std=rectangular_std(length_tolerance),
+        mass_std=rectangular_std(mass_tolerance * q),
+        axial_stiffness=ring.link_stiffness_n_per_m * spec.pitch,
+        inclination=sp.inclination)
+    f0 = sag_tension(q, sp.length, sp.inclination, installed_sag_ratio(drive))
+    tensions = ring.span_tensions_n
+    running_t = None if tensions is None else float(tensions[i])
+    running_f = None
+    if running_t is not None and drive.driver.speed is not None:
+        running_f = expected_frequency(running_t, sp.length, q, mode,
+                                       float(analysis.kinematics.chain_speed))
+    return SpanTensionReading(span, estimate, f0, expected_frequency(f0, sp.length, q, mode),
+                              running_t, running_f, assumed)
+
+
+def sag_for_pretension(tension: float, length: float, mass_per_length: float,
+                       inclination: float) -> float:
+    """Installed sag s [-] (fraction of the span) whose pretension F₀ = k_f·q·g·a is T: the
+    inverse of k_f = cos ψ/(8s) + |sin ψ| (:func:`chaindrive.strength.loads.sag_factor`),
+    s = cos ψ / (8 (T/(q g a) − |sin ψ|)).
+
+    Parameters
+    ----------
+    tension : float
+        T [N] read from the stationary span.
+    length : float
+        Span length a [m].
+    mass_per_length : float
+        q [kg/m].
+    inclination : float
+        ψ [rad].
+
+    Returns
+    -------
+    float
+        s [-].
+
+    Raises
+    ------
+    DesignError
+        T at or below the weight component of the span q g a |sin ψ| (no sag gives it).
+
+    References
+    ----------
+    [ChainDesignRU, §8]; [Irvine1981, ch. 1].
+    """
+    weight = mass_per_length * GRAVITY * length
+    excess = tension / weight - abs(math.sin(inclination))
+    if excess <= 0:
+        raise DesignError("--frequency", f"the tension read, {tension:.4g} N, is not above the "
+                          f"span's weight component {weight * abs(math.sin(inclination)):.4g} N; "
+                          "no sag gives it")
+    return math.cos(inclination) / (8.0 * excess)
+
+
+@dataclass(frozen=True, slots=True)
+class SagCalibration:
+    """The design's installed sag calibrated to a tension read from a stationary span.
+
+    Parameters
+    ----------
+    initial : float
+        The design's installed sag s [-] before.
+    sag : float
+        The sag s [-] whose pretension is the tension read.
+    interval : tuple of float
+        s at T ± 1.96 u(T) [-] (95 %, normal approximation).
+    drive : Drive
+        The design with ``[chain] sag`` = s.
+    changes : list of dict
+        Checks whose verdict changed (:func:`chaindrive.identification.calibration.verdict_changes`).
+    """
+
+    initial: float
+    sag: float
+    interval: tuple[float, float]
+    drive: Drive
+    changes: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"parameter": "chain.sag", "initial_fraction": self.initial,
+                "fitted_fraction": self.sag, "interval_95_fraction": list(self.interval),
+                "verdicts_changed": self.changes}
+
+
+def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
+    """Set the design's installed sag to the one whose pretension is the tension read from a
+    stationary span (:func:`sag_for_pretension`), and re-run the checks.
+
+    The tension read is the span's mean along its length; the design's F₀ is the upper end's,
+    higher by about q g a |sin ψ|/2 on an inclined span (a difference left in the result).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design as loaded.
+    reading : SpanTensionReading
+        A stationary reading (:func:`span_tension_reading`) of the analysed design.
+
+    Returns
+    -------
+    SagCalibration
+
+    Raises
+    ------
+    DesignError
+        A running reading, or a sag outside the design file's range 0.001–0.1.
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    est = reading.estimate
+    if est.speed > 0:
+        raise DesignError("--running", "the sag is calibrated from a stationary span; measure "
+                          "with the chain at rest")
+    before = analyze(drive, response=False)
+    sp = before.geometry.spans[span_index(before, reading.span)]
+
+    def sag(t: float) -> float:
+        return sag_for_pretension(t, sp.length, est.mass_per_length, sp.inclination)
+
+    s = sag(est.tension)
+    if not 0.001 <= s <= 0.1:
+        raise DesignError("chain.sag", f"the tension read gives a sag of {s:.4g} of the span; "
+                          "allowed: 0.001 to 0.1")
+    lo = sag(est.tension + 1.96 * est.std)
+    hi = sag(max(est.tension - 1.96 * est.std, 1e-9))
+    calibrated = dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=s))
+    after = analyze(calibrated, response=False)
+    return SagCalibration(installed_sag_ratio(drive), s, (lo, hi), calibrated,
+                          verdict_changes(before.checks(), after.checks()))

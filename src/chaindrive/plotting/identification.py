@@ -1,0 +1,116 @@
+"""A measured spectrum with the model's frequencies overlaid ([Welch1967] spectrum; the
+lines of :func:`chaindrive.identification.model_lines`), and the model's Campbell diagram with
+the measured peaks at the record's speed."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from chaindrive.plotting._base import CYCLE, figure_axes, finish
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from chaindrive.dynamics.resonance import CampbellData
+    from chaindrive.identification import Identification
+
+__all__ = ["measured_campbell", "measured_spectrum"]
+
+#: Line style of each kind of model line.
+_STYLE = {"natural": ("-", 0), "tooth": ("--", 1), "shaft": (":", 2), "parametric": ("-.", 3),
+          "span transverse": ((0, (1, 3)), 4)}
+
+
+def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figure:
+    """Each signal's power spectral density [dB] against frequency [Hz], its peaks marked and
+    labelled, the model's lines within the plotted range drawn as vertical lines by kind,
+    with the matching tolerance shaded around the natural frequencies.
+
+    Parameters
+    ----------
+    result : Identification
+        :func:`chaindrive.identification.identify`.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    fig, ax = figure_axes(ax, (7.5, 4.2))
+    top = 0.0
+    for k, sig in enumerate(result.signals):
+        db = 10.0 * np.log10(np.maximum(sig.psd, 1e-300))
+        ax.plot(sig.frequencies, db, lw=0.8, color=CYCLE[k % len(CYCLE)], label=sig.name)
+        top = max(top, float(sig.frequencies[-1]))
+        for p in sig.peaks:
+            ax.plot([p.frequency], [p.level_db], "v", ms=4, color=CYCLE[k % len(CYCLE)])
+            ax.annotate("?" if p.line is None else p.line.label, (p.frequency, p.level_db),
+                        textcoords="offset points", xytext=(2, 4), fontsize="xx-small",
+                        rotation=60)
+    seen: set[str] = set()
+    for line in result.lines:
+        if line.frequency > top:
+            continue
+        style, c = _STYLE.get(line.kind, ("-", 5))
+        ax.axvline(line.frequency, ls=style, lw=0.7, color=CYCLE[c % len(CYCLE)], alpha=0.8,
+                   label=None if line.kind in seen else f"model: {line.kind}")
+        seen.add(line.kind)
+        if line.kind == "natural":
+            ax.axvspan(line.frequency * (1 - result.tolerance),
+                       line.frequency * (1 + result.tolerance), color=CYCLE[c % len(CYCLE)],
+                       alpha=0.08, lw=0)
+    low, high = ax.get_ylim()
+    ax.set_ylim(low, high + 0.15 * (high - low))  # room for the peaks' labels
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("power spectral density [dB]")
+    ax.legend(fontsize="x-small")
+    finish(ax, f"Measured spectrum of {result.record} and the model's frequencies")
+    return fig
+
+
+def measured_campbell(result: Identification, campbell: CampbellData, operating_rpm: float, *,
+                      ax: Axes | None = None) -> Figure:
+    """The model's Campbell diagram (:func:`chaindrive.plotting.dynamics.campbell_diagram`)
+    with the measured peaks drawn at the speed the record was taken at: filled where a peak
+    matched a model line, open where it is unexplained; the frequency axis extended to show
+    every peak.
+
+    Parameters
+    ----------
+    result : Identification
+        :func:`chaindrive.identification.identify`.
+    campbell : CampbellData
+        The model's Campbell data.
+    operating_rpm : float
+        Driver speed of the record [rpm].
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
+
+    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
+    axes = fig.axes[0] if ax is None else ax
+    peaks = [p for sig in result.signals for p in sig.peaks]
+    matched = [p.frequency for p in peaks if p.line is not None]
+    alone = [p.frequency for p in peaks if p.line is None]
+    if matched:
+        axes.plot([operating_rpm] * len(matched), matched, "D", ms=5, color=CYCLE[3],
+                  label="measured peak (matched)")
+    if alone:
+        axes.plot([operating_rpm] * len(alone), alone, "D", ms=5, mfc="none", color=CYCLE[3],
+                  label="measured peak (unexplained)")
+    if peaks:
+        low, high = axes.get_ylim()
+        axes.set_ylim(low, max(high, 1.1 * max(p.frequency for p in peaks)))
+        axes.legend(fontsize="xx-small")
+    return fig

@@ -1,0 +1,152 @@
+"""``chaindrive tension`` and ``chaindrive identify`` on the command line: the figures of the
+compute functions, and bad input refused in one line with exit status 2, nothing written."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import EXAMPLES
+
+pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+
+SEED = str(EXAMPLES / "seed_three_sprocket.toml")
+
+
+def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
+                          text=True, check=False, cwd=cwd)
+
+
+def test_tension_json_inverts_the_design_running_frequency() -> None:
+    # the design's running frequency of S2-S3 read back gives the design's span tension
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "9.853664524265515 Hz",
+                  "--running", "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["tension_n"] == pytest.approx(doc["design_running_tension_n"], rel=1e-9)
+    assert doc["tension_std_n"] > 0
+    assert "mass per metre ± 5 %" in doc["assumed"]
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (("--span", "S9-S1", "--frequency", "5 Hz"), "--span: unknown span 'S9-S1'; allowed:"),
+    (("--span", "S1-S2", "--frequency", "0 Hz"), "--frequency: must be above 0 Hz"),
+    (("--span", "S1-S2", "--frequency", "5 mm"), "--frequency: '5 mm' is not a frequency"),
+    (("--span", "S1-S2", "--frequency", "5 Hz", "--mass-tolerance", "-1"),
+     "--mass-tolerance: must be ≥ 0"),
+])
+def test_tension_bad_input_is_one_line_exit_2(args: tuple[str, ...], message: str) -> None:
+    out = run_cli("tension", SEED, *args)
+    assert out.returncode == 2
+    assert out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr
+
+
+def _record(path: Path, rows: int = 4096, fs: float = 1000.0, bad_time: bool = False) -> Path:
+    import numpy as np
+
+    t = np.arange(rows) / fs
+    if bad_time:
+        t[100] = t[99]
+    x = np.sin(2 * np.pi * 150.0 * t) + 0.05 * np.random.default_rng(3).standard_normal(rows)
+    lines = ["time_s,accel_m_s2"] + [f"{a!r},{b!r}" for a, b in zip(t.tolist(), x.tolist(), strict=True)]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_identify_labels_the_tooth_harmonic_and_writes_the_plot(tmp_path: Path) -> None:
+    rec = _record(tmp_path / "r.csv")
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"),
+                  "--campbell", str(tmp_path / "c.png"), "--json")
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "c.png").read_bytes()[:4] == b"\x89PNG"
+    doc = json.loads(out.stdout)
+    peaks = doc["signals"][0]["peaks"]
+    assert [p["label"] for p in peaks] == ["tooth x2"]   # 2 × 75 Hz tooth frequency
+    assert doc["prominence_db"] == 15.0 and doc["tolerance_percent"] == 5.0
+    assert (tmp_path / "s.svg").stat().st_size > 0
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    ((), "--record.time_s: not increasing at sample 101"),
+    (("--tolerance", "0"), "--tolerance: must lie between 0 and 100 %"),
+])
+def test_identify_bad_input_writes_nothing(tmp_path: Path, extra: tuple[str, ...],
+                                           message: str) -> None:
+    rec = _record(tmp_path / "r.csv", bad_time=not extra)
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"), *extra)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr
+    assert not (tmp_path / "s.svg").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
+
+
+def test_calibrate_writes_a_design_that_loads_with_the_fitted_stiffness(tmp_path: Path) -> None:
+    import chaindrive
+
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--natural", "1=62.3Hz", "--natural", "2=223Hz",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    lo, hi = doc["interval_95_n_per_m"]
+    assert lo < doc["fitted_n_per_m"] < hi
+    assert doc["assumed"] == ["each frequency ± 1 %"]
+    k = chaindrive.load(out_file).chain.link_stiffness
+    assert k == pytest.approx(doc["fitted_n_per_m"], rel=1e-9)
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (("--natural", "one=62Hz"), "--natural: 'one=62Hz'; allowed: MODE=FREQUENCY"),
+    (("--natural", "1=-5Hz"), "--natural: mode 1: frequency -5.0 Hz; allowed: above 0 Hz"),
+    (("--natural", "9=62Hz"), "--natural: mode 9; allowed: 1 to 5"),
+    ((), "--natural: give either --natural MODE=FREQUENCY or --record FILE"),
+])
+def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...],
+                                            message: str) -> None:
+    out = run_cli("calibrate", SEED, *args, "--write-calibrated", str(tmp_path / "c.toml"))
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr, out.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_tension_writes_the_calibrated_sag_or_nothing(tmp_path: Path) -> None:
+    import chaindrive
+
+    good = tmp_path / "sag.toml"
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "5.1Hz",
+                  "--write-calibrated", str(good), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert chaindrive.load(good).chain.sag == pytest.approx(
+        doc["calibration"]["fitted_fraction"], rel=1e-12)
+    bad = tmp_path / "bad.toml"
+    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "9Hz", "--running",
+                  "--write-calibrated", str(bad))
+    assert out.returncode == 2 and out.stdout == ""
+    assert "--running: the sag is calibrated from a stationary span" in out.stderr
+    assert not bad.exists()
+
+
+def test_the_package_own_start_up_record_shows_the_tooth_orders(tmp_path: Path) -> None:
+    # a record produced by the whole-drive model (chaindrive simulate: the start-up at 300 rpm,
+    # 15 teeth, f_z = 75 Hz): the polygonal action excites the tooth frequency and its
+    # harmonics, so every peak is labelled a tooth order and lies within one bin or 1 % (the
+    # motor's slip: the drive runs a little below 300 rpm) of k·f_z
+    hist = tmp_path / "history.csv"
+    assert run_cli("simulate", SEED, "-o", str(hist)).returncode == 0
+    out = run_cli("identify", SEED, "--record", str(hist), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert len(doc["signals"]) == 6  # three span forces, three sprocket speeds
+    for sig in doc["signals"]:
+        assert sig["peaks"]
+        for p in sig["peaks"]:
+            assert p["kind"] == "tooth", (sig["name"], p)
+            k = round(p["frequency_hz"] / 75.0)
+            assert abs(p["frequency_hz"] - 75.0 * k) <= max(sig["resolution_hz"], 0.75 * k)
