@@ -28,6 +28,7 @@ from chaindrive.app.views import (
     span_records,
     sprocket_records,
     strength_records,
+    tension_reading_records,
 )
 from chaindrive.display import (
     UnitSystem,
@@ -39,6 +40,7 @@ from chaindrive.display import (
     warning_text,
 )
 from chaindrive.errors import ChainDriveError
+from chaindrive.identification import span_tension_reading
 from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
 from chaindrive.plotting.robust import (
     life_curve_figure,
@@ -127,6 +129,42 @@ def tab_geometry(screen: Screen) -> None:
                                   kin.ratio_traces[tight.start]},
                            x_label="driver rotation within one tooth β [°]",
                            y_label="transmission ratio"), width="stretch")
+    _tension_tool(screen)
+
+
+def _tension_tool(screen: Screen) -> None:
+    """The span tension from a measured transverse frequency (``chaindrive tension``): a
+    fitter plucks a span, reads its frequency and sees the tension beside what the design
+    expects (docs/identification.md)."""
+    a = screen.outcome.analysis
+    if a is None:
+        return
+    with st.expander("Span tension from a measured frequency"):
+        names = [f"{s.start_name}-{s.end_name}" for s in a.geometry.spans]
+        c1, c2, c3, c4 = st.columns([2, 2, 1, 1])
+        span = c1.selectbox("span", names, key="tension.span")
+        freq = c2.number_input("measured frequency [Hz]", min_value=0.0, value=0.0,
+                               step=0.1, key="tension.frequency")
+        mode = int(c3.number_input("mode n", min_value=1, max_value=20, value=1,
+                                   key="tension.mode"))
+        running = c4.checkbox("running", key="tension.running",
+                              disabled=a.drive.driver.speed is None)
+        if freq <= 0.0:
+            st.caption("Pluck the span sideways, measure its frequency (a phone's spectrum "
+                       "app), enter it: the tension is read by the axially moving string law "
+                       "with its uncertainty from ±2 mm of span length and ±5 % of the "
+                       "chain's mass per metre (assumed; `chaindrive tension` sets them).")
+            return
+        try:
+            reading = span_tension_reading(a, span, float(freq), mode=mode, running=running,
+                                           assumed=("length ±2 mm", "mass per metre ±5 %"))
+        except ChainDriveError as exc:
+            st.error(plain(str(exc)))
+            return
+        st.dataframe(tension_reading_records(reading.to_dict(), _units()), hide_index=True,
+                     width="stretch")
+        st.caption("Assumed: span length ±2 mm, mass per metre ±5 % (rectangular); the sag's "
+                   "in-plane stiffening is not applied (a sideways pluck).")
 
 
 def tab_strength(screen: Screen) -> None:

@@ -587,6 +587,36 @@ def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
     return out
 
 
+def tension_reading_records(reading: dict[str, Any], units: UnitSystem = "SI"
+                            ) -> list[dict[str, Any]]:
+    """Rows (quantity, value, unit) of a span's tension read from its measured frequency
+    (:meth:`chaindrive.identification.SpanTensionReading.to_dict`).
+
+    Parameters
+    ----------
+    reading : dict
+        The reading's JSON document.
+    units : {"SI", "US"}
+        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+
+    Returns
+    -------
+    list of dict
+        One dict per quantity: ``quantity``, ``value`` (formatted), ``unit``; a quantity the
+        reading does not have (a design without power has no running tension) is left out.
+    """
+    out = []
+    for label, key in (("tension read", "tension_n"), ("± standard uncertainty", "tension_std_n"),
+                       ("design pretension F₀ (standing)", "design_pretension_n"),
+                       ("frequency expected at F₀ (standing)", "expected_frequency_standing_hz"),
+                       ("design tension in operation", "design_running_tension_n"),
+                       ("frequency expected in operation", "expected_frequency_running_hz")):
+        if reading.get(key) is not None:
+            value, unit = doc_value(key, reading[key], units)
+            out.append({"quantity": label, "value": fmt(value), "unit": unit})
+    return out
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Screen:
     """Everything the page redraws after an edit.
