@@ -33,15 +33,16 @@ def test_the_bounded_run_brings_back_the_comparison_and_figures(seed) -> None:
     view = bounded_link_level(seed, DURATION)
     here = chaindrive.analyze(seed, studies=("links",), lazy=True, link_duration_s=DURATION)
     expected = here.link_level_comparison.to_dict()
-    # the same numbers, to the round-off of the static state's linear solves (the worker runs
-    # its linear algebra on one thread, this process on the threads it has)
+    # the same numbers, to the round-off of the static state's linear solves and of the
+    # link-level eigen solve of f1 (≈1e-9 relative between the worker's one BLAS thread and
+    # this process's threads)
     assert len(view.comparison["rows"]) == len(expected["rows"])
     for got, want in zip(view.comparison["rows"], expected["rows"], strict=True):
         assert {k: v for k, v in got.items() if not isinstance(v, float)} == \
             {k: v for k, v in want.items() if not isinstance(v, float)}
         for k, v in want.items():
             if isinstance(v, float):
-                assert got[k] == pytest.approx(v, rel=1e-9, abs=1e-12), (want["quantity"], k)
+                assert got[k] == pytest.approx(v, rel=1e-7, abs=1e-12), (want["quantity"], k)
     assert view.comparison["duration_s"] == pytest.approx(DURATION, rel=0.2)
     assert view.time_step_s == here.link_level.dt
     assert view.frames_png.startswith(PNG) and view.tensions_png.startswith(PNG)
