@@ -28,9 +28,10 @@ if TYPE_CHECKING:
     from chaindrive.identification.spectrum import Identification
     from chaindrive.model import Drive
 
-__all__ = ["CalibratedDesign", "Calibration", "MeasuredMode", "calibrate_link_stiffness",
-           "calibrated_design", "elastic_frequencies", "measured_natural_peaks",
-           "verdict_changes", "with_link_stiffness"]
+__all__ = ["CalibratedDesign", "Calibration", "LogFit", "MeasuredMode",
+           "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
+           "fit_log_parameter", "measured_natural_peaks", "verdict_changes",
+           "with_link_stiffness"]
 
 #: Two-sided 95 % point of the normal distribution [-].
 Z95 = 1.959963984540054
@@ -189,28 +190,92 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     if bad:
         raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
                           "elastic modes)")
+    fit = fit_log_parameter(
+        lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
+    return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
+                       fit.fitted, fit.chi2_per_dof, fit.evaluations)
+
+
+@dataclass(frozen=True, slots=True)
+class LogFit:
+    """One positive parameter x fitted by weighted least squares in θ = ln x.
+
+    Parameters
+    ----------
+    value : float
+        Fitted x.
+    std_log : float
+        σ of ln x [-].
+    interval : tuple of float
+        95 % interval exp(θ ± 1.96 σ_θ).
+    fitted : tuple of float
+        The model's values at the fitted x.
+    chi2_per_dof : float | None
+        χ²/ν of the weighted residuals [-] (None with one measurement).
+    evaluations : int
+        Model evaluations [-].
+    """
+
+    value: float
+    std_log: float
+    interval: tuple[float, float]
+    fitted: tuple[float, ...]
+    chi2_per_dof: float | None
+    evaluations: int
+
+
+def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float64]]],
+                      measured: np.ndarray[Any, np.dtype[np.float64]],
+                      std: np.ndarray[Any, np.dtype[np.float64]], initial: float, *,
+                      upper: float = math.inf) -> LogFit:
+    """Fit one positive parameter x so a model's values match measured ones (module
+    docstring): r_i(θ) = (y_model,i(e^θ) − y_i)/u_i minimised by
+    ``scipy.optimize.least_squares`` ([Virtanen2020]), σ_θ² from (JᵀJ)⁻¹ × max(1, χ²/ν)
+    [JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ).
+
+    Parameters
+    ----------
+    model : callable
+        x → the model's values y_model (same order as ``measured``).
+    measured : ndarray
+        y_i.
+    std : ndarray
+        u_i, positive.
+    initial : float
+        x at the start, positive.
+    upper : float
+        x is kept below this bound (e.g. a damping ratio below 1).
+
+    Returns
+    -------
+    LogFit
+
+    References
+    ----------
+    [Virtanen2020]; [JCGM100, §5.1].
+    """
     count = [0]
 
     def residuals(theta: np.ndarray[Any, np.dtype[np.float64]]
                   ) -> np.ndarray[Any, np.dtype[np.float64]]:
         count[0] += 1
-        model = frequencies(with_link_stiffness(drive, math.exp(float(theta[0]))))
-        return np.asarray((model[modes] - f) / u, dtype=float)
+        return np.asarray((model(math.exp(float(theta[0]))) - measured) / std, dtype=float)
 
-    fit = least_squares(residuals, x0=[math.log(initial)], method="trf", diff_step=[1e-4],
-                        x_scale=[1.0], xtol=1e-10, ftol=1e-10)
+    hi = math.log(upper) if math.isfinite(upper) else np.inf
+    x0 = min(math.log(initial), hi - 1e-3) if math.isfinite(hi) else math.log(initial)
+    fit = least_squares(residuals, x0=[x0], bounds=([-np.inf], [hi]), method="trf",
+                        diff_step=[1e-4], x_scale=[1.0], xtol=1e-10, ftol=1e-10)
     J = np.asarray(fit.jac, dtype=float)
-    dof = f.size - 1
+    dof = measured.size - 1
     chi2 = float(np.sum(fit.fun ** 2))
     # the measurements scatter more than their stated uncertainties: widen by sqrt(χ²/ν)
     cov = np.linalg.pinv(J.T @ J) * (max(1.0, chi2 / dof) if dof > 0 else 1.0)
     sigma = float(math.sqrt(max(cov[0, 0], 0.0)))
     theta = float(fit.x[0])
-    fitted = frequencies(with_link_stiffness(drive, math.exp(theta)))[modes]
-    return Calibration(initial, math.exp(theta), sigma,
-                       (math.exp(theta - Z95 * sigma), math.exp(theta + Z95 * sigma)),
-                       tuple(measured), tuple(float(x) for x in fitted),
-                       chi2 / dof if dof > 0 else None, count[0])
+    fitted = model(math.exp(theta))
+    return LogFit(math.exp(theta), sigma,
+                  (math.exp(theta - Z95 * sigma), math.exp(theta + Z95 * sigma)),
+                  tuple(float(x) for x in fitted), chi2 / dof if dof > 0 else None, count[0])
 
 
 def verdict_changes(before: Sequence[Any], after: Sequence[Any]) -> list[dict[str, Any]]:
