@@ -25,6 +25,7 @@ from scipy.optimize import least_squares
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
+    from chaindrive.identification.damping import DampingCalibration, MeasuredDamping
     from chaindrive.identification.spectrum import Identification
     from chaindrive.model import Drive
 
@@ -333,43 +334,72 @@ class CalibratedDesign:
 
     Parameters
     ----------
-    calibration : Calibration
-        The fit.
+    calibration : Calibration | None
+        The link stiffness fit (None: no natural frequency measured).
     drive : Drive
-        The design with the fitted ``[chain] link_stiffness``.
+        The design with the fitted ``[chain] link_stiffness`` and ``[dynamics]
+        damping_ratio``.
     changes : list of dict
         Checks whose verdict changed (:func:`verdict_changes`).
+    damping : DampingCalibration | None
+        The damping ratio fit (None: no damping ratio measured).
     """
 
-    calibration: Calibration
+    calibration: Calibration | None
     drive: Drive
     changes: list[dict[str, Any]]
+    damping: DampingCalibration | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
-        return {**self.calibration.to_dict(), "verdicts_changed": self.changes}
+        """JSON-ready dict: the stiffness fit's keys (when fitted), ``damping`` and
+        ``verdicts_changed``."""
+        return {**(self.calibration.to_dict() if self.calibration is not None else {}),
+                "damping": self.damping.to_dict() if self.damping is not None else None,
+                "verdicts_changed": self.changes}
 
 
-def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode]) -> CalibratedDesign:
-    """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`) and
-    re-run the design's checks with it.
+def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
+                      damping: Sequence[MeasuredDamping] = ()) -> CalibratedDesign:
+    """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`), then
+    the chain's damping ratio to measured modal damping ratios
+    (:func:`chaindrive.identification.damping.calibrate_damping_ratio`, on the design with
+    the fitted stiffness), and re-run the design's checks with them.
 
     Parameters
     ----------
     drive : Drive
         The design.
     measured : sequence of MeasuredMode
-        The measured natural frequencies.
+        The measured natural frequencies (may be empty when ``damping`` is given).
+    damping : sequence of MeasuredDamping
+        The measured modal damping ratios (may be empty).
 
     Returns
     -------
     CalibratedDesign
+
+    Raises
+    ------
+    DesignError
+        Neither a natural frequency nor a damping ratio measured.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+    from chaindrive.identification.damping import calibrate_damping_ratio, with_damping_ratio
 
+    if not measured and not damping:
+        raise DesignError("--natural", "nothing measured; allowed: one or more natural "
+                          "frequencies or damping ratios")
     before = analyze(drive, response=False)
-    cal = calibrate_link_stiffness(drive, measured,
-                                   initial=before.ring_parameters.link_stiffness_n_per_m)
-    calibrated = with_link_stiffness(drive, cal.stiffness)
+    cal = None
+    calibrated = drive
+    if measured:
+        cal = calibrate_link_stiffness(drive, measured,
+                                       initial=before.ring_parameters.link_stiffness_n_per_m)
+        calibrated = with_link_stiffness(drive, cal.stiffness)
+    zeta = None
+    if damping:
+        zeta = calibrate_damping_ratio(calibrated, damping)
+        calibrated = with_damping_ratio(calibrated, zeta.ratio)
     after = analyze(calibrated, response=False)
-    return CalibratedDesign(cal, calibrated, verdict_changes(before.checks(), after.checks()))
+    return CalibratedDesign(cal, calibrated, verdict_changes(before.checks(), after.checks()),
+                            zeta)
