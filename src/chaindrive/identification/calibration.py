@@ -29,10 +29,10 @@ if TYPE_CHECKING:
     from chaindrive.identification.spectrum import Identification
     from chaindrive.model import Drive
 
-__all__ = ["CalibratedDesign", "Calibration", "LogFit", "MeasuredMode",
+__all__ = ["CalibratedDesign", "Calibration", "LogFit", "MassCalibration", "MeasuredMode",
            "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
-           "fit_log_parameter", "fit_log_parameters", "measured_natural_peaks", "verdict_changes",
-           "with_link_stiffness"]
+           "fit_log_parameter", "fit_log_parameters", "measured_natural_peaks",
+           "verdict_changes", "with_link_stiffness", "with_reduced_mass"]
 
 #: Two-sided 95 % point of the normal distribution [-].
 Z95 = 1.959963984540054
@@ -94,6 +94,63 @@ def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
                                                                 link_stiffness=stiffness))
 
 
+def with_reduced_mass(drive: Drive, sprocket: str, mass: float) -> Drive:
+    """The design with one sprocket's ``reduced_mass`` set to m [kg] (its ``inertia``
+    cleared: the two are alternatives).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    sprocket : str
+        The sprocket's name.
+    mass : float
+        m = J/R² [kg].
+
+    Returns
+    -------
+    Drive
+    """
+    return dataclasses.replace(drive, sprockets=tuple(
+        dataclasses.replace(s, reduced_mass=mass, inertia=None) if s.name == sprocket else s
+        for s in drive.sprockets))
+
+
+@dataclass(frozen=True, slots=True)
+class MassCalibration:
+    """A sprocket's reduced mass fitted jointly with the link stiffness.
+
+    Parameters
+    ----------
+    sprocket : str
+        The sprocket's name.
+    initial : float
+        Its reduced mass in the design [kg].
+    mass : float
+        Fitted [kg].
+    std_log : float
+        σ of ln m [-].
+    interval : tuple of float
+        95 % interval [kg] (marginal).
+    correlation : float
+        Correlation of ln m with ln k_link [-].
+    """
+
+    sprocket: str
+    initial: float
+    mass: float
+    std_log: float
+    interval: tuple[float, float]
+    correlation: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        return {"parameter": f"sprockets[{self.sprocket}].reduced_mass",
+                "initial_kg": self.initial, "fitted_kg": self.mass,
+                "std_of_log": self.std_log, "interval_95_kg": list(self.interval),
+                "correlation_with_link_stiffness": self.correlation}
+
+
 @dataclass(frozen=True, slots=True)
 class Calibration:
     """The fitted link stiffness and how well it fits.
@@ -116,6 +173,8 @@ class Calibration:
         χ²/ν of the weighted residuals [-] (None with as many measurements as parameters).
     evaluations : int
         Model evaluations of the fit [-].
+    mass : MassCalibration | None
+        The reduced mass fitted jointly (None: not fitted).
     """
 
     initial: float
@@ -126,10 +185,12 @@ class Calibration:
     fitted_frequencies: tuple[float, ...]
     chi2_per_dof: float | None
     evaluations: int
+    mass: MassCalibration | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (units in the keys)."""
         return {
+            "reduced_mass": self.mass.to_dict() if self.mass is not None else None,
             "parameter": "chain.link_stiffness",
             "initial_n_per_m": self.initial,
             "fitted_n_per_m": self.stiffness,
@@ -146,8 +207,10 @@ class Calibration:
 def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
                              initial: float,
                              frequencies: Callable[[Drive], np.ndarray[Any, np.dtype[np.float64]]]
-                             = elastic_frequencies) -> Calibration:
-    """Fit k_link to measured natural frequencies (module docstring).
+                             = elastic_frequencies,
+                             uncertain_mass: tuple[str, float] | None = None) -> Calibration:
+    """Fit k_link to measured natural frequencies (module docstring), and with it, when
+    asked, one sprocket's reduced mass (θ = (ln k_link, ln m), :func:`fit_log_parameters`).
 
     Parameters
     ----------
@@ -159,6 +222,9 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
         The design's k_link [N/m], the fit's start.
     frequencies : callable
         The model's elastic frequencies of a design [Hz] (:func:`elastic_frequencies`).
+    uncertain_mass : tuple of (str, float) | None
+        The sprocket whose reduced mass is fitted too and its design value [kg] (needs two
+        or more measured frequencies).
 
     Returns
     -------
@@ -168,7 +234,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     ------
     DesignError
         No measurement, a mode the model does not have, a frequency or uncertainty that is
-        not positive.
+        not positive; a reduced mass to fit with fewer than two frequencies.
 
     References
     ----------
@@ -191,10 +257,22 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     if bad:
         raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
                           "elastic modes)")
-    fit = fit_log_parameter(
-        lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
-    return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
-                       fit.fitted, fit.chi2_per_dof, fit.evaluations)
+    if uncertain_mass is None:
+        fit = fit_log_parameter(
+            lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
+        return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
+                           fit.fitted, fit.chi2_per_dof, fit.evaluations)
+    name, m0 = uncertain_mass
+    if f.size < 2:
+        raise DesignError("--uncertain-mass", f"{name}: {f.size} measured frequency; allowed: "
+                          "two or more to fit the link stiffness and a reduced mass")
+    k_fit, m_fit = fit_log_parameters(
+        lambda x: frequencies(with_reduced_mass(with_link_stiffness(drive, float(x[0])),
+                                                name, float(x[1])))[modes], f, u, [initial, m0])
+    mass = MassCalibration(name, m0, m_fit.value, m_fit.std_log, m_fit.interval,
+                           m_fit.correlation[0])
+    return Calibration(initial, k_fit.value, k_fit.std_log, k_fit.interval, tuple(measured),
+                       k_fit.fitted, k_fit.chi2_per_dof, k_fit.evaluations, mass)
 
 
 @dataclass(frozen=True, slots=True)
