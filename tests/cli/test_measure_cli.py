@@ -124,6 +124,22 @@ def test_calibrate_writes_the_fitted_damping_ratio(tmp_path: Path) -> None:
     assert 0.1 / ratio < z["fitted"] < 0.03
 
 
+def test_calibrate_writes_the_jointly_fitted_reduced_mass(tmp_path: Path) -> None:
+    import chaindrive
+
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--natural", "1=65.19Hz", "--natural", "2=212.9Hz",
+                  "--natural", "3=741.7Hz", "--tolerance", "0.2Hz", "--uncertain-mass", "S3",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    m = json.loads(out.stdout)["reduced_mass"]
+    assert m["parameter"] == "sprockets[S3].reduced_mass" and m["initial_kg"] == 2.0
+    lo, hi = m["interval_95_kg"]
+    assert lo < m["fitted_kg"] < hi
+    s3 = next(s for s in chaindrive.load(out_file).sprockets if s.name == "S3")
+    assert s3.reduced_mass == pytest.approx(m["fitted_kg"], rel=1e-9)
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (("--natural", "one=62Hz"), "--natural: 'one=62Hz'; allowed: MODE=FREQUENCY"),
     (("--natural", "1=-5Hz"), "--natural: mode 1: frequency -5.0 Hz; allowed: above 0 Hz"),
@@ -134,6 +150,12 @@ def test_calibrate_writes_the_fitted_damping_ratio(tmp_path: Path) -> None:
     (("--damping", "1=0.03", "--damping-tolerance", "-1"),
      "--damping-tolerance: -1.0; allowed: above 0 and below 1"),
     (("--damping", "9=0.03"), "--damping: mode 9; allowed: 1 to 5"),
+    (("--natural", "1=62Hz", "--natural", "2=223Hz", "--uncertain-mass", "S9"),
+     "--uncertain-mass: 'S9'; allowed: S1, S2, S3"),
+    (("--natural", "1=62Hz", "--uncertain-mass", "S3"),
+     "--uncertain-mass: S3: 1 measured frequency; allowed: two or more"),
+    (("--damping", "1=0.03", "--uncertain-mass", "S3"),
+     "--uncertain-mass: S3: no natural frequency measured"),
 ])
 def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...],
                                             message: str) -> None:

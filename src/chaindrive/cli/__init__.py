@@ -867,6 +867,9 @@ def calibrate(
     damping_tolerance: Annotated[float | None, typer.Option(
         "--damping-tolerance", help="± of each --damping ratio (default ±20 % of it, "
         "assumed)")] = None,
+    uncertain_mass: Annotated[str | None, typer.Option(
+        "--uncertain-mass", help="a sprocket whose reduced mass is uncertain: fitted with the "
+        "link stiffness (needs two or more natural frequencies)")] = None,
     write_calibrated: Annotated[Path | None, typer.Option(
         "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
@@ -888,7 +891,7 @@ def calibrate(
         measured, assumed = (([], []) if damping and natural is None and record is None
                               else measured_modes(drive, natural, record, tolerance))
         ratios, assumed_z = measured_dampings(damping, damping_tolerance)
-        result = calibrated_design(drive, measured, ratios)
+        result = calibrated_design(drive, measured, ratios, uncertain_mass)
         doc = {**result.to_dict(), "assumed": assumed + assumed_z}
         check_document(doc)
         if write_calibrated is not None:

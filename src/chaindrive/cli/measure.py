@@ -154,6 +154,12 @@ def print_calibration(doc: dict[str, Any]) -> None:
         lo, hi = doc["interval_95_n_per_m"]
         con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
                   f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m)")
+        m = doc["reduced_mass"]
+        if m is not None:
+            lo, hi = m["interval_95_kg"]
+            con.print(f"{escape(m['parameter'])} = {_f(m['fitted_kg'])} kg, 95 % interval "
+                      f"{_f(lo)} … {_f(hi)} kg (design: {_f(m['initial_kg'])} kg); correlation "
+                      f"with k_link {_f(m['correlation_with_link_stiffness'], 2)}")
         con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
         con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
                         [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2),

@@ -190,7 +190,6 @@ class Calibration:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (units in the keys)."""
         return {
-            "reduced_mass": self.mass.to_dict() if self.mass is not None else None,
             "parameter": "chain.link_stiffness",
             "initial_n_per_m": self.initial,
             "fitted_n_per_m": self.stiffness,
@@ -201,6 +200,7 @@ class Calibration:
                           for m, f in zip(self.measured, self.fitted_frequencies, strict=True)],
             "chi2_per_dof": self.chi2_per_dof,
             "model_evaluations": self.evaluations,
+            "reduced_mass": self.mass.to_dict() if self.mass is not None else None,
         }
 
 
@@ -475,7 +475,8 @@ class CalibratedDesign:
 
 
 def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
-                      damping: Sequence[MeasuredDamping] = ()) -> CalibratedDesign:
+                      damping: Sequence[MeasuredDamping] = (),
+                      uncertain_mass: str | None = None) -> CalibratedDesign:
     """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`), then
     the chain's damping ratio to measured modal damping ratios
     (:func:`chaindrive.identification.damping.calibrate_damping_ratio`, on the design with
@@ -489,6 +490,8 @@ def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
         The measured natural frequencies (may be empty when ``damping`` is given).
     damping : sequence of MeasuredDamping
         The measured modal damping ratios (may be empty).
+    uncertain_mass : str | None
+        A sprocket whose reduced mass is fitted jointly with the link stiffness.
 
     Returns
     -------
@@ -497,7 +500,8 @@ def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
     Raises
     ------
     DesignError
-        Neither a natural frequency nor a damping ratio measured.
+        Neither a natural frequency nor a damping ratio measured; an unknown sprocket, or
+        a reduced mass to fit without natural frequencies.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
     from chaindrive.identification.damping import calibrate_damping_ratio, with_damping_ratio
@@ -506,12 +510,24 @@ def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
         raise DesignError("--natural", "nothing measured; allowed: one or more natural "
                           "frequencies or damping ratios")
     before = analyze(drive, response=False)
+    names = [s.name for s in drive.sprockets]
+    if uncertain_mass is not None and uncertain_mass not in names:
+        raise DesignError("--uncertain-mass", f"{uncertain_mass!r}; allowed: "
+                          + ", ".join(names))
+    if uncertain_mass is not None and not measured:
+        raise DesignError("--uncertain-mass", f"{uncertain_mass}: no natural frequency "
+                          "measured; allowed: with two or more --natural or a --record")
+    mass = (None if uncertain_mass is None else
+            (uncertain_mass, float(before.ring_parameters.masses_kg[names.index(uncertain_mass)])))
     cal = None
     calibrated = drive
     if measured:
         cal = calibrate_link_stiffness(drive, measured,
-                                       initial=before.ring_parameters.link_stiffness_n_per_m)
+                                       initial=before.ring_parameters.link_stiffness_n_per_m,
+                                       uncertain_mass=mass)
         calibrated = with_link_stiffness(drive, cal.stiffness)
+        if cal.mass is not None:
+            calibrated = with_reduced_mass(calibrated, cal.mass.sprocket, cal.mass.mass)
     zeta = None
     if damping:
         zeta = calibrate_damping_ratio(calibrated, damping)
