@@ -14,7 +14,7 @@ The design's ``[dynamics] damping_ratio`` ζ_c sets the chain's dampers (every s
 wrap, :mod:`chaindrive.dynamics.model.damping`); the model's modal damping ratios follow
 from it. ζ_c is fitted so the model's modal ratios of the measured modes match the
 measured ones, by the one weighted least-squares fit of a positive parameter in its
-logarithm (:func:`chaindrive.identification.calibration.fit_log_parameter`), ζ_c kept
+logarithm (:func:`chaindrive.identification.fitting.fit_log_parameter`), ζ_c kept
 below 1.
 """
 
@@ -31,7 +31,7 @@ from scipy.signal import find_peaks
 from scipy.stats import linregress
 
 from chaindrive.errors import DesignError
-from chaindrive.identification.calibration import fit_log_parameter
+from chaindrive.identification.fitting import fit_log_parameter
 
 if TYPE_CHECKING:
     from chaindrive.model import Drive
