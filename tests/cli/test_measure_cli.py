@@ -101,11 +101,61 @@ def test_calibrate_writes_a_design_that_loads_with_the_fitted_stiffness(tmp_path
     assert k == pytest.approx(doc["fitted_n_per_m"], rel=1e-9)
 
 
+def test_calibrate_writes_the_fitted_damping_ratio(tmp_path: Path) -> None:
+    import chaindrive
+
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--damping", "1=0.03", "--damping", "2=0.1",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    z = doc["damping"]
+    lo, hi = z["interval_95"]
+    assert lo < z["fitted"] < hi and z["initial"] is None
+    assert "fitted_n_per_m" not in doc  # no natural frequency: the stiffness is not fitted
+    assert doc["assumed"] == ["each damping ratio ± 20 %"]
+    assert chaindrive.load(out_file).dynamics.damping_ratio == pytest.approx(z["fitted"],
+                                                                             rel=1e-9)
+    # the chain's dampers are stiffness-proportional, referred to mode 1, so the model's
+    # mode-2 ratio is f₂/f₁ (257.2/73.06 Hz on the seed drive) × its mode-1 ratio: 0.03 and
+    # 0.1 pull ζ to between 0.1/(f₂/f₁) and 0.03
+    ratio = z["residuals"][1]["model"] / z["residuals"][0]["model"]
+    assert ratio == pytest.approx(257.18 / 73.058, rel=1e-3)
+    assert 0.1 / ratio < z["fitted"] < 0.03
+
+
+def test_calibrate_writes_the_jointly_fitted_reduced_mass(tmp_path: Path) -> None:
+    import chaindrive
+
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--natural", "1=65.19Hz", "--natural", "2=212.9Hz",
+                  "--natural", "3=741.7Hz", "--tolerance", "0.2Hz", "--uncertain-mass", "S3",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    m = json.loads(out.stdout)["reduced_mass"]
+    assert m["parameter"] == "sprockets[S3].reduced_mass" and m["initial_kg"] == 2.0
+    lo, hi = m["interval_95_kg"]
+    assert lo < m["fitted_kg"] < hi
+    s3 = next(s for s in chaindrive.load(out_file).sprockets if s.name == "S3")
+    assert s3.reduced_mass == pytest.approx(m["fitted_kg"], rel=1e-9)
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (("--natural", "one=62Hz"), "--natural: 'one=62Hz'; allowed: MODE=FREQUENCY"),
     (("--natural", "1=-5Hz"), "--natural: mode 1: frequency -5.0 Hz; allowed: above 0 Hz"),
     (("--natural", "9=62Hz"), "--natural: mode 9; allowed: 1 to 5"),
     ((), "--natural: give either --natural MODE=FREQUENCY or --record FILE"),
+    (("--damping", "1=1.3"), "--damping: '1=1.3'; allowed: MODE=ZETA with ZETA above 0 and "
+     "below 1"),
+    (("--damping", "1=0.03", "--damping-tolerance", "-1"),
+     "--damping-tolerance: -1.0; allowed: above 0 and below 1"),
+    (("--damping", "9=0.03"), "--damping: mode 9; allowed: 1 to 5"),
+    (("--natural", "1=62Hz", "--natural", "2=223Hz", "--uncertain-mass", "S9"),
+     "--uncertain-mass: 'S9'; allowed: S1, S2, S3"),
+    (("--natural", "1=62Hz", "--uncertain-mass", "S3"),
+     "--uncertain-mass: S3: 1 measured frequency; allowed: two or more"),
+    (("--damping", "1=0.03", "--uncertain-mass", "S3"),
+     "--uncertain-mass: S3: no natural frequency measured"),
 ])
 def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...],
                                             message: str) -> None:

@@ -861,15 +861,25 @@ def calibrate(
     tolerance: Annotated[str | None, typer.Option(
         "--tolerance", help="± of each --natural frequency (default ±1 % of it, assumed)")]
     = None,
+    damping: Annotated[list[str] | None, typer.Option(
+        "--damping", help="a measured modal damping ratio MODE=ZETA, e.g. 1=0.03 (from a "
+        "logarithmic decrement or half-power bandwidth; repeat for more modes)")] = None,
+    damping_tolerance: Annotated[float | None, typer.Option(
+        "--damping-tolerance", help="± of each --damping ratio (default ±20 % of it, "
+        "assumed)")] = None,
+    uncertain_mass: Annotated[str | None, typer.Option(
+        "--uncertain-mass", help="a sprocket whose reduced mass is uncertain: fitted with the "
+        "link stiffness (needs two or more natural frequencies)")] = None,
     write_calibrated: Annotated[Path | None, typer.Option(
         "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
-    """Fit the chain's link stiffness to measured natural frequencies (least squares, 95 %
-    interval), re-run the checks and say which verdicts changed."""
+    """Fit the chain's link stiffness to measured natural frequencies and its damping ratio
+    to measured modal damping ratios (least squares, 95 % intervals), re-run the checks and
+    say which verdicts changed."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.measure import measured_modes, print_calibration
+    from chaindrive.cli.measure import measured_dampings, measured_modes, print_calibration
     from chaindrive.identification import calibrated_design
     from chaindrive.io.design import drive_to_toml
 
@@ -878,9 +888,11 @@ def calibrate(
             raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
                               ".toml file")
         drive = chaindrive.load(file)
-        measured, assumed = measured_modes(drive, natural, record, tolerance)
-        result = calibrated_design(drive, measured)
-        doc = {**result.to_dict(), "assumed": assumed}
+        measured, assumed = (([], []) if damping and natural is None and record is None
+                              else measured_modes(drive, natural, record, tolerance))
+        ratios, assumed_z = measured_dampings(damping, damping_tolerance)
+        result = calibrated_design(drive, measured, ratios, uncertain_mass)
+        doc = {**result.to_dict(), "assumed": assumed + assumed_z}
         check_document(doc)
         if write_calibrated is not None:
             write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")

@@ -3,6 +3,7 @@ documents of :mod:`chaindrive.identification` (they compute nothing)."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -12,10 +13,10 @@ from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
-    from chaindrive.identification import Identification, MeasuredMode
+    from chaindrive.identification import Identification, MeasuredDamping, MeasuredMode
     from chaindrive.model import Drive
 
-__all__ = ["measured_modes", "print_calibration", "print_identification", "print_sag",
+__all__ = ["measured_dampings", "measured_modes", "print_calibration", "print_identification", "print_sag",
            "print_tension", "save_campbell", "save_figure"]
 
 
@@ -76,6 +77,45 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     return out, (["each frequency ± 1 %"] if tolerance is None else [])
 
 
+def measured_dampings(damping: list[str] | None, tolerance: float | None
+                      ) -> tuple[list[MeasuredDamping], list[str]]:
+    """The measured modal damping ratios of ``chaindrive calibrate``: ``--damping MODE=ZETA``
+    ± ``--damping-tolerance`` (rectangular: u = a/√3 [JCGM100, §4.3.7]).
+
+    Parameters
+    ----------
+    damping : list of str | None
+        ``["1=0.03", …]``.
+    tolerance : float | None
+        ± of each ratio (None: ±20 % of it, assumed).
+
+    Returns
+    -------
+    measured : list of MeasuredDamping
+    assumed : list of str
+        What rests on an assumed value.
+    """
+    # lazy: the identification stack only for this command
+    from chaindrive.errors import DesignError
+    from chaindrive.identification import MeasuredDamping
+
+    if tolerance is not None and not (math.isfinite(tolerance) and 0 < tolerance < 1):
+        raise DesignError("--damping-tolerance", f"{tolerance!r}; allowed: above 0 and below 1")
+    out = []
+    for item in damping or []:
+        mode, sep, value = item.partition("=")
+        try:
+            zeta = float(value)
+        except ValueError:
+            zeta = math.nan
+        if not sep or not mode.strip().isdigit() or int(mode) < 1 or not 0 < zeta < 1:
+            raise DesignError("--damping", f"{item!r}; allowed: MODE=ZETA with ZETA above 0 "
+                              "and below 1, such as 1=0.03")
+        a = 0.2 * zeta if tolerance is None else tolerance
+        out.append(MeasuredDamping(int(mode), zeta, a / 3.0 ** 0.5))
+    return out, (["each damping ratio ± 20 %"] if out and tolerance is None else [])
+
+
 def _print_changes(changes: list[dict[str, Any]]) -> None:
     con = console()
     if not changes:
@@ -110,15 +150,34 @@ def print_calibration(doc: dict[str, Any]) -> None:
         :meth:`chaindrive.identification.CalibratedDesign.to_dict` with ``assumed``.
     """
     con = console()
-    lo, hi = doc["interval_95_n_per_m"]
-    con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
-              f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m)")
-    con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
+    if "fitted_n_per_m" in doc:
+        lo, hi = doc["interval_95_n_per_m"]
+        con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
+                  f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m)")
+        m = doc["reduced_mass"]
+        if m is not None:
+            lo, hi = m["interval_95_kg"]
+            con.print(f"{escape(m['parameter'])} = {_f(m['fitted_kg'])} kg, 95 % interval "
+                      f"{_f(lo)} … {_f(hi)} kg (design: {_f(m['initial_kg'])} kg); correlation "
+                      f"with k_link {_f(m['correlation_with_link_stiffness'], 2)}")
+        con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
+        con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
+                        [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2),
+                          _f(r["model_hz"]), _f(r["residual_hz"], 3)]
+                         for r in doc["residuals"]]))
+    z = doc.get("damping")
+    if z is not None:
+        lo, hi = z["interval_95"]
+        design = ("from the materials" if z["initial"] is None else _f(z["initial"], 3))
+        con.print(f"chain damping ratio ζ = {_f(z['fitted'], 3)}, 95 % interval "
+                  f"{_f(lo, 3)} … {_f(hi, 3)} (design: {design})")
+        con.print(f"χ²/ν = {_f(z['chi2_per_dof'], 3)}; {z['model_evaluations']} model runs")
+        con.print(table("damping residuals", ["mode", "measured ζ", "± ζ", "model ζ",
+                                              "residual"],
+                        [[r["mode"], _f(r["measured"], 3), _f(r["std"], 2), _f(r["model"], 3),
+                          _f(r["residual"], 2)] for r in z["residuals"]]))
     if doc["assumed"]:
         con.print("assumed: " + escape("; ".join(doc["assumed"])))
-    con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
-                    [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2), _f(r["model_hz"]),
-                      _f(r["residual_hz"], 3)] for r in doc["residuals"]]))
     _print_changes(doc["verdicts_changed"])
 
 

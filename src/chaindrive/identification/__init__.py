@@ -6,7 +6,7 @@ Compute only: the command line reads the files and hands arrays in.
 
 Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
 (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
-(:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`).
+(:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
 """
 
 from chaindrive.identification.calibration import (
@@ -14,6 +14,14 @@ from chaindrive.identification.calibration import (
     MeasuredMode,
     calibrated_design,
     measured_natural_peaks,
+)
+from chaindrive.identification.damping import (
+    DampingCalibration,
+    MeasuredDamping,
+    calibrate_damping_ratio,
+    free_decay_damping_ratio,
+    half_power_damping_ratio,
+    log_decrement_damping_ratio,
 )
 from chaindrive.identification.reading import (
     SagCalibration,
@@ -31,15 +39,21 @@ from chaindrive.identification.tension import (
 
 __all__ = [
     "CalibratedDesign",
+    "DampingCalibration",
     "Identification",
+    "MeasuredDamping",
     "MeasuredMode",
     "SagCalibration",
     "SpanTensionReading",
     "TensionEstimate",
+    "calibrate_damping_ratio",
     "calibrated_design",
     "calibrated_sag",
     "expected_frequency",
+    "free_decay_damping_ratio",
+    "half_power_damping_ratio",
     "identify",
+    "log_decrement_damping_ratio",
     "measured_natural_peaks",
     "model_lines",
     "span_tension_from_frequency",

@@ -20,21 +20,24 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from chaindrive.errors import DesignError
+from chaindrive.identification.damping import (
+    DampingCalibration,
+    MeasuredDamping,
+    calibrate_damping_ratio,
+    with_damping_ratio,
+)
+from chaindrive.identification.fitting import fit_log_parameter, fit_log_parameters
 
 if TYPE_CHECKING:
     from chaindrive.identification.spectrum import Identification
     from chaindrive.model import Drive
 
-__all__ = ["CalibratedDesign", "Calibration", "MeasuredMode", "calibrate_link_stiffness",
-           "calibrated_design", "elastic_frequencies", "measured_natural_peaks",
-           "verdict_changes", "with_link_stiffness"]
-
-#: Two-sided 95 % point of the normal distribution [-].
-Z95 = 1.959963984540054
-
+__all__ = ["CalibratedDesign", "Calibration", "MassCalibration", "MeasuredMode",
+           "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
+           "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
+           "with_reduced_mass"]
 
 @dataclass(frozen=True, slots=True)
 class MeasuredMode:
@@ -92,6 +95,63 @@ def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
                                                                 link_stiffness=stiffness))
 
 
+def with_reduced_mass(drive: Drive, sprocket: str, mass: float) -> Drive:
+    """The design with one sprocket's ``reduced_mass`` set to m [kg] (its ``inertia``
+    cleared: the two are alternatives).
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    sprocket : str
+        The sprocket's name.
+    mass : float
+        m = J/R² [kg].
+
+    Returns
+    -------
+    Drive
+    """
+    return dataclasses.replace(drive, sprockets=tuple(
+        dataclasses.replace(s, reduced_mass=mass, inertia=None) if s.name == sprocket else s
+        for s in drive.sprockets))
+
+
+@dataclass(frozen=True, slots=True)
+class MassCalibration:
+    """A sprocket's reduced mass fitted jointly with the link stiffness.
+
+    Parameters
+    ----------
+    sprocket : str
+        The sprocket's name.
+    initial : float
+        Its reduced mass in the design [kg].
+    mass : float
+        Fitted [kg].
+    std_log : float
+        σ of ln m [-].
+    interval : tuple of float
+        95 % interval [kg] (marginal).
+    correlation : float
+        Correlation of ln m with ln k_link [-].
+    """
+
+    sprocket: str
+    initial: float
+    mass: float
+    std_log: float
+    interval: tuple[float, float]
+    correlation: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        return {"parameter": f"sprockets[{self.sprocket}].reduced_mass",
+                "initial_kg": self.initial, "fitted_kg": self.mass,
+                "std_of_log": self.std_log, "interval_95_kg": list(self.interval),
+                "correlation_with_link_stiffness": self.correlation}
+
+
 @dataclass(frozen=True, slots=True)
 class Calibration:
     """The fitted link stiffness and how well it fits.
@@ -114,6 +174,8 @@ class Calibration:
         χ²/ν of the weighted residuals [-] (None with as many measurements as parameters).
     evaluations : int
         Model evaluations of the fit [-].
+    mass : MassCalibration | None
+        The reduced mass fitted jointly (None: not fitted).
     """
 
     initial: float
@@ -124,6 +186,7 @@ class Calibration:
     fitted_frequencies: tuple[float, ...]
     chi2_per_dof: float | None
     evaluations: int
+    mass: MassCalibration | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (units in the keys)."""
@@ -138,14 +201,17 @@ class Calibration:
                           for m, f in zip(self.measured, self.fitted_frequencies, strict=True)],
             "chi2_per_dof": self.chi2_per_dof,
             "model_evaluations": self.evaluations,
+            "reduced_mass": self.mass.to_dict() if self.mass is not None else None,
         }
 
 
 def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
                              initial: float,
                              frequencies: Callable[[Drive], np.ndarray[Any, np.dtype[np.float64]]]
-                             = elastic_frequencies) -> Calibration:
-    """Fit k_link to measured natural frequencies (module docstring).
+                             = elastic_frequencies,
+                             uncertain_mass: tuple[str, float] | None = None) -> Calibration:
+    """Fit k_link to measured natural frequencies (module docstring), and with it, when
+    asked, one sprocket's reduced mass (θ = (ln k_link, ln m), :func:`fit_log_parameters`).
 
     Parameters
     ----------
@@ -157,6 +223,9 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
         The design's k_link [N/m], the fit's start.
     frequencies : callable
         The model's elastic frequencies of a design [Hz] (:func:`elastic_frequencies`).
+    uncertain_mass : tuple of (str, float) | None
+        The sprocket whose reduced mass is fitted too and its design value [kg] (needs two
+        or more measured frequencies).
 
     Returns
     -------
@@ -166,7 +235,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     ------
     DesignError
         No measurement, a mode the model does not have, a frequency or uncertainty that is
-        not positive.
+        not positive; a reduced mass to fit with fewer than two frequencies.
 
     References
     ----------
@@ -189,28 +258,22 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     if bad:
         raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
                           "elastic modes)")
-    count = [0]
-
-    def residuals(theta: np.ndarray[Any, np.dtype[np.float64]]
-                  ) -> np.ndarray[Any, np.dtype[np.float64]]:
-        count[0] += 1
-        model = frequencies(with_link_stiffness(drive, math.exp(float(theta[0]))))
-        return np.asarray((model[modes] - f) / u, dtype=float)
-
-    fit = least_squares(residuals, x0=[math.log(initial)], method="trf", diff_step=[1e-4],
-                        x_scale=[1.0], xtol=1e-10, ftol=1e-10)
-    J = np.asarray(fit.jac, dtype=float)
-    dof = f.size - 1
-    chi2 = float(np.sum(fit.fun ** 2))
-    # the measurements scatter more than their stated uncertainties: widen by sqrt(χ²/ν)
-    cov = np.linalg.pinv(J.T @ J) * (max(1.0, chi2 / dof) if dof > 0 else 1.0)
-    sigma = float(math.sqrt(max(cov[0, 0], 0.0)))
-    theta = float(fit.x[0])
-    fitted = frequencies(with_link_stiffness(drive, math.exp(theta)))[modes]
-    return Calibration(initial, math.exp(theta), sigma,
-                       (math.exp(theta - Z95 * sigma), math.exp(theta + Z95 * sigma)),
-                       tuple(measured), tuple(float(x) for x in fitted),
-                       chi2 / dof if dof > 0 else None, count[0])
+    if uncertain_mass is None:
+        fit = fit_log_parameter(
+            lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
+        return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
+                           fit.fitted, fit.chi2_per_dof, fit.evaluations)
+    name, m0 = uncertain_mass
+    if f.size < 2:
+        raise DesignError("--uncertain-mass", f"{name}: {f.size} measured frequency; allowed: "
+                          "two or more to fit the link stiffness and a reduced mass")
+    k_fit, m_fit = fit_log_parameters(
+        lambda x: frequencies(with_reduced_mass(with_link_stiffness(drive, float(x[0])),
+                                                name, float(x[1])))[modes], f, u, [initial, m0])
+    mass = MassCalibration(name, m0, m_fit.value, m_fit.std_log, m_fit.interval,
+                           m_fit.correlation[0])
+    return Calibration(initial, k_fit.value, k_fit.std_log, k_fit.interval, tuple(measured),
+                       k_fit.fitted, k_fit.chi2_per_dof, k_fit.evaluations, mass)
 
 
 def verdict_changes(before: Sequence[Any], after: Sequence[Any]) -> list[dict[str, Any]]:
@@ -268,43 +331,87 @@ class CalibratedDesign:
 
     Parameters
     ----------
-    calibration : Calibration
-        The fit.
+    calibration : Calibration | None
+        The link stiffness fit (None: no natural frequency measured).
     drive : Drive
-        The design with the fitted ``[chain] link_stiffness``.
+        The design with the fitted ``[chain] link_stiffness`` and ``[dynamics]
+        damping_ratio``.
     changes : list of dict
         Checks whose verdict changed (:func:`verdict_changes`).
+    damping : DampingCalibration | None
+        The damping ratio fit (None: no damping ratio measured).
     """
 
-    calibration: Calibration
+    calibration: Calibration | None
     drive: Drive
     changes: list[dict[str, Any]]
+    damping: DampingCalibration | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
-        return {**self.calibration.to_dict(), "verdicts_changed": self.changes}
+        """JSON-ready dict: the stiffness fit's keys (when fitted), ``damping`` and
+        ``verdicts_changed``."""
+        return {**(self.calibration.to_dict() if self.calibration is not None else {}),
+                "damping": self.damping.to_dict() if self.damping is not None else None,
+                "verdicts_changed": self.changes}
 
 
-def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode]) -> CalibratedDesign:
-    """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`) and
-    re-run the design's checks with it.
+def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
+                      damping: Sequence[MeasuredDamping] = (),
+                      uncertain_mass: str | None = None) -> CalibratedDesign:
+    """Fit k_link to measured natural frequencies (:func:`calibrate_link_stiffness`), then
+    the chain's damping ratio to measured modal damping ratios
+    (:func:`chaindrive.identification.damping.calibrate_damping_ratio`, on the design with
+    the fitted stiffness), and re-run the design's checks with them.
 
     Parameters
     ----------
     drive : Drive
         The design.
     measured : sequence of MeasuredMode
-        The measured natural frequencies.
+        The measured natural frequencies (may be empty when ``damping`` is given).
+    damping : sequence of MeasuredDamping
+        The measured modal damping ratios (may be empty).
+    uncertain_mass : str | None
+        A sprocket whose reduced mass is fitted jointly with the link stiffness.
 
     Returns
     -------
     CalibratedDesign
+
+    Raises
+    ------
+    DesignError
+        Neither a natural frequency nor a damping ratio measured; an unknown sprocket, or
+        a reduced mass to fit without natural frequencies.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
+    if not measured and not damping:
+        raise DesignError("--natural", "nothing measured; allowed: one or more natural "
+                          "frequencies or damping ratios")
     before = analyze(drive, response=False)
-    cal = calibrate_link_stiffness(drive, measured,
-                                   initial=before.ring_parameters.link_stiffness_n_per_m)
-    calibrated = with_link_stiffness(drive, cal.stiffness)
+    names = [s.name for s in drive.sprockets]
+    if uncertain_mass is not None and uncertain_mass not in names:
+        raise DesignError("--uncertain-mass", f"{uncertain_mass!r}; allowed: "
+                          + ", ".join(names))
+    if uncertain_mass is not None and not measured:
+        raise DesignError("--uncertain-mass", f"{uncertain_mass}: no natural frequency "
+                          "measured; allowed: with two or more --natural or a --record")
+    mass = (None if uncertain_mass is None else
+            (uncertain_mass, float(before.ring_parameters.masses_kg[names.index(uncertain_mass)])))
+    cal = None
+    calibrated = drive
+    if measured:
+        cal = calibrate_link_stiffness(drive, measured,
+                                       initial=before.ring_parameters.link_stiffness_n_per_m,
+                                       uncertain_mass=mass)
+        calibrated = with_link_stiffness(drive, cal.stiffness)
+        if cal.mass is not None:
+            calibrated = with_reduced_mass(calibrated, cal.mass.sprocket, cal.mass.mass)
+    zeta = None
+    if damping:
+        zeta = calibrate_damping_ratio(calibrated, damping)
+        calibrated = with_damping_ratio(calibrated, zeta.ratio)
     after = analyze(calibrated, response=False)
-    return CalibratedDesign(cal, calibrated, verdict_changes(before.checks(), after.checks()))
+    return CalibratedDesign(cal, calibrated, verdict_changes(before.checks(), after.checks()),
+                            zeta)

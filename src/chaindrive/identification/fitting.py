@@ -1,0 +1,145 @@
+"""Positive model parameters fitted to measurements by weighted least squares in their
+logarithms, with their covariance and 95 % intervals.
+
+With θ = ln x and measurements y_i of standard uncertainty u_i, the weighted residuals
+r_i(θ) = (y_model,i(e^θ) − y_i)/u_i are minimised by ``scipy.optimize.least_squares``
+([Virtanen2020]; trust-region reflective). The covariance of θ is (JᵀJ)⁻¹ at the optimum,
+J = ∂r/∂θ [JCGM100, §5.1], multiplied by χ²/ν when that exceeds 1 (the measurements scatter
+more than their stated uncertainties allow; never narrowed below them); each 95 % interval
+is exp(θ_j ± 1.96 σ_j) (normal approximation, marginal).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.optimize import least_squares
+
+__all__ = ["Z95", "LogFit", "fit_log_parameter", "fit_log_parameters"]
+
+#: Two-sided 95 % point of the normal distribution [-].
+Z95 = 1.959963984540054
+
+
+@dataclass(frozen=True, slots=True)
+class LogFit:
+    """One positive parameter x fitted by weighted least squares in θ = ln x.
+
+    Parameters
+    ----------
+    value : float
+        Fitted x.
+    std_log : float
+        σ of ln x [-].
+    interval : tuple of float
+        95 % interval exp(θ ± 1.96 σ_θ).
+    fitted : tuple of float
+        The model's values at the fitted x.
+    chi2_per_dof : float | None
+        χ²/ν of the weighted residuals [-] (None with as many measurements as parameters).
+    evaluations : int
+        Model evaluations [-].
+    correlation : tuple of float
+        Correlation of ln x with each fitted parameter's logarithm [-] (itself: 1).
+    """
+
+    value: float
+    std_log: float
+    interval: tuple[float, float]
+    fitted: tuple[float, ...]
+    chi2_per_dof: float | None
+    evaluations: int
+    correlation: tuple[float, ...] = (1.0,)
+
+
+def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
+                                      np.ndarray[Any, np.dtype[np.float64]]],
+                       measured: np.ndarray[Any, np.dtype[np.float64]],
+                       std: np.ndarray[Any, np.dtype[np.float64]], initial: Sequence[float], *,
+                       upper: Sequence[float] | None = None
+                       ) -> tuple[LogFit, ...]:
+    """Fit positive parameters x so a model's values match measured ones (module
+    docstring): θ = ln x, r_i(θ) = (y_model,i(e^θ) − y_i)/u_i minimised by
+    ``scipy.optimize.least_squares`` ([Virtanen2020]), cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
+    [JCGM100, §5.1], each 95 % interval exp(θ_j ± 1.96 σ_j) (marginal).
+
+    Parameters
+    ----------
+    model : callable
+        x (ndarray) → the model's values y_model (same order as ``measured``).
+    measured : ndarray
+        y_i.
+    std : ndarray
+        u_i, positive.
+    initial : sequence of float
+        x at the start, positive.
+    upper : sequence of float | None
+        Each x is kept below its bound (None: unbounded).
+
+    Returns
+    -------
+    tuple of LogFit
+        One per parameter (the same ``fitted``, ``chi2_per_dof`` and ``evaluations``), with
+        the correlation of the estimates in :attr:`LogFit.correlation`.
+
+    References
+    ----------
+    [Virtanen2020]; [JCGM100, §5.1].
+    """
+    count = [0]
+    n = len(initial)
+
+    def residuals(theta: np.ndarray[Any, np.dtype[np.float64]]
+                  ) -> np.ndarray[Any, np.dtype[np.float64]]:
+        count[0] += 1
+        return np.asarray((model(np.exp(theta)) - measured) / std, dtype=float)
+
+    hi = np.full(n, np.inf) if upper is None else np.log(np.asarray(upper, dtype=float))
+    x0 = np.minimum(np.log(np.asarray(initial, dtype=float)), hi - 1e-3)
+    fit = least_squares(residuals, x0=x0, bounds=(np.full(n, -np.inf), hi), method="trf",
+                        diff_step=np.full(n, 1e-4), x_scale=np.ones(n), xtol=1e-10,
+                        ftol=1e-10)
+    J = np.asarray(fit.jac, dtype=float)
+    dof = measured.size - n
+    chi2 = float(np.sum(fit.fun ** 2))
+    # the measurements scatter more than their stated uncertainties: widen by sqrt(χ²/ν)
+    cov = np.linalg.pinv(J.T @ J) * (max(1.0, chi2 / dof) if dof > 0 else 1.0)
+    sigma = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    corr = cov / np.where(np.outer(sigma, sigma) > 0, np.outer(sigma, sigma), 1.0)
+    theta = np.asarray(fit.x, dtype=float)
+    fitted = tuple(float(x) for x in model(np.exp(theta)))
+    return tuple(LogFit(math.exp(t), float(s), (math.exp(t - Z95 * s), math.exp(t + Z95 * s)),
+                        fitted, chi2 / dof if dof > 0 else None, count[0],
+                        tuple(float(c) for c in corr[k]))
+                 for k, (t, s) in enumerate(zip(theta, sigma, strict=True)))
+
+
+def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float64]]],
+                      measured: np.ndarray[Any, np.dtype[np.float64]],
+                      std: np.ndarray[Any, np.dtype[np.float64]], initial: float, *,
+                      upper: float = math.inf) -> LogFit:
+    """One positive parameter fitted by :func:`fit_log_parameters`.
+
+    Parameters
+    ----------
+    model : callable
+        x → the model's values y_model (same order as ``measured``).
+    measured : ndarray
+        y_i.
+    std : ndarray
+        u_i, positive.
+    initial : float
+        x at the start, positive.
+    upper : float
+        x is kept below this bound (e.g. a damping ratio below 1).
+
+    Returns
+    -------
+    LogFit
+    """
+    return fit_log_parameters(lambda x: model(float(x[0])), measured, std, [initial],
+                              upper=None if math.isinf(upper) else [upper])[0]
