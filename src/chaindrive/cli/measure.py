@@ -87,7 +87,7 @@ def measured_dampings(damping: list[str] | None, tolerance: float | None
     damping : list of str | None
         ``["1=0.03", …]``.
     tolerance : float | None
-        ± of each ratio (None: ±20 % of it, assumed).
+        ± of each ratio [-] (None: ±20 % of it, assumed).
 
     Returns
     -------

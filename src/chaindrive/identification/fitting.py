@@ -32,13 +32,13 @@ class LogFit:
     Parameters
     ----------
     value : float
-        Fitted x.
+        Fitted x [the parameter's unit].
     std_log : float
         σ of ln x [-].
     interval : tuple of float
-        95 % interval exp(θ ± 1.96 σ_θ).
+        95 % interval exp(θ ± 1.96 σ_θ) [the parameter's unit].
     fitted : tuple of float
-        The model's values at the fitted x.
+        The model's values at the fitted x [the measurements' unit].
     chi2_per_dof : float | None
         χ²/ν of the weighted residuals [-] (None with as many measurements as parameters).
     evaluations : int
@@ -72,13 +72,13 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
     model : callable
         x (ndarray) → the model's values y_model (same order as ``measured``).
     measured : ndarray
-        y_i.
+        y_i [the measurements' unit].
     std : ndarray
-        u_i, positive.
+        u_i, positive [the measurements' unit].
     initial : sequence of float
-        x at the start, positive.
+        x at the start, positive [the parameter's unit].
     upper : sequence of float | None
-        Each x is kept below its bound (None: unbounded).
+        Each x is kept below its bound (None: unbounded) [the parameter's unit].
 
     Returns
     -------
@@ -129,13 +129,13 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
     model : callable
         x → the model's values y_model (same order as ``measured``).
     measured : ndarray
-        y_i.
+        y_i [the measurements' unit].
     std : ndarray
-        u_i, positive.
+        u_i, positive [the measurements' unit].
     initial : float
-        x at the start, positive.
+        x at the start, positive [the parameter's unit].
     upper : float
-        x is kept below this bound (e.g. a damping ratio below 1).
+        x is kept below this bound (e.g. a damping ratio below 1) [the parameter's unit].
 
     Returns
     -------
