@@ -73,8 +73,8 @@ def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
-    modal = analyze(drive, response=False).dynamics.modal
-    return np.asarray(modal.frequencies_hz, dtype=float)[~np.asarray(modal.rigid_body)]
+    return np.asarray(analyze(drive, response=False).dynamics.modal.elastic_frequencies_hz,
+                      dtype=float)
 
 
 def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
