@@ -14,12 +14,9 @@ Profiles: ``make test`` runs :data:`SHORT` cases, the same ones every time (dera
 
 from __future__ import annotations
 
-import contextlib
 import copy
-import io
 import json
 import os
-import signal
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -30,8 +27,8 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from chaindrive.catalog import find_chain
-from chaindrive.cli import run
 from tests.conftest import EXAMPLES
+from tests.property.cli_run import Overtime, run_in_time
 
 SHORT = 200
 EXAMPLES_N = int(os.environ.get("CHAINDRIVE_FUZZ_EXAMPLES", SHORT))
@@ -51,13 +48,6 @@ TEXTS = ["", " ", "x", "0", "-1", "1e999", "nan", "inf", "true", "\n", "a\nb", '
 HEADER = ("designation,pitch_mm,roller_diameter_mm,pin_diameter_mm,inner_width_mm,"
           "plate_depth_mm,transverse_pitch_mm,breaking_load_kN,mass_kg_m,strands")
 
-
-class Overtime(BaseException):
-    """A case ran past :data:`CASE_SECONDS` (a BaseException: the safety net lets it by)."""
-
-
-def _alarm(signum: int, frame: Any) -> None:
-    raise Overtime
 
 
 def _catalog_row(designation: str) -> list[str]:
@@ -198,29 +188,22 @@ def _check_case(tmp: Path, design: bytes, catalog: str | None, command: list[str
     path.write_bytes(design)
     before = sorted(p.name for p in work.iterdir())
     argv = [command[0], str(path), *[a.replace("OUT", str(work / "out")) for a in command[1:]]]
-    out, err = io.StringIO(), io.StringIO()
-    previous = signal.signal(signal.SIGALRM, _alarm)
-    signal.alarm(CASE_SECONDS)
     try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            status = run(argv)
+        status, stdout, stderr = run_in_time(argv, CASE_SECONDS)
     except Overtime:
         pytest.fail(f"{argv} ran past {CASE_SECONDS} s on:\n{design[:2000]!r}")
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
-    lines = err.getvalue().splitlines()
-    where = f"{argv}: status {status}, stderr {err.getvalue()[:600]!r}, design {design[:1500]!r}"
+    lines = stderr.splitlines()
+    where = f"{argv}: status {status}, stderr {stderr[:600]!r}, design {design[:1500]!r}"
     assert status in (0, 2), where
     event(f"{command[0]}: exit {status}")
     after = sorted(p.name for p in work.iterdir())
     if status == 2:
         assert len(lines) == 1 and lines[0].startswith("error: "), where
-        assert out.getvalue() == "", where
+        assert stdout == "", where
         assert after == before, where  # nothing written
         return
     if "--json" in command:
-        json.loads(out.getvalue(), parse_constant=_reject)  # finite JSON
+        json.loads(stdout, parse_constant=_reject)  # finite JSON
         assert lines == [], where
     else:
         written = work / Path(command[-1].replace("OUT", "out")).name

@@ -13,18 +13,14 @@ integrator's fault, docs/reliability.md §7a) now run to a finite result like th
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import shutil
-import signal
 from pathlib import Path
-from typing import Any
 
 import pytest
 
-from chaindrive.cli import run
 from tests.conftest import ROOT
+from tests.property.cli_run import Overtime, run_in_time
 
 CORPUS = ROOT / "tests" / "fixtures" / "fuzz_corpus"
 #: A case running longer than this breaks the promise of bounded time [s].
@@ -50,13 +46,6 @@ CASES = [
 ]
 
 
-class Overtime(BaseException):
-    """A case ran past :data:`CASE_SECONDS`."""
-
-
-def _alarm(signum: int, frame: Any) -> None:
-    raise Overtime
-
 
 @pytest.fixture(autouse=True)
 def _logs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -78,18 +67,11 @@ def _run_case(name: str, command: list[str], tmp_path: Path
     shutil.copy(CORPUS / f"{name}.toml", design)
     before = sorted(p.name for p in work.iterdir())
     argv = [command[0], str(design), *(a.replace("OUT", str(work / "out")) for a in command[1:])]
-    out, err = io.StringIO(), io.StringIO()
-    previous = signal.signal(signal.SIGALRM, _alarm)
-    signal.alarm(CASE_SECONDS)
     try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            status = run(argv)
+        status, stdout, stderr = run_in_time(argv, CASE_SECONDS)
     except Overtime:
         pytest.fail(f"{argv} ran past {CASE_SECONDS} s")
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
-    return status, out.getvalue(), err.getvalue(), before, sorted(
+    return status, stdout, stderr, before, sorted(
         p.name for p in work.iterdir()), work, argv
 
 
