@@ -880,6 +880,7 @@ def calibrate(
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.measure import measured_dampings, measured_modes, print_calibration
+    from chaindrive.cli.progress import spinner
     from chaindrive.identification import calibrated_design
     from chaindrive.io.design import drive_to_toml
 
@@ -891,7 +892,8 @@ def calibrate(
         measured, assumed = (([], []) if damping and natural is None and record is None
                               else measured_modes(drive, natural, record, tolerance))
         ratios, assumed_z = measured_dampings(damping, damping_tolerance)
-        result = calibrated_design(drive, measured, ratios, uncertain_mass)
+        with spinner("fitting the model to the measurements", quiet=as_json):
+            result = calibrated_design(drive, measured, ratios, uncertain_mass)
         doc = {**result.to_dict(), "assumed": assumed + assumed_z}
         check_document(doc)
         if write_calibrated is not None:
