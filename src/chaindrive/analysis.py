@@ -366,7 +366,7 @@ class Analysis:
         d = self.drive
         assert d.driver.speed is not None
         dyn = self.dynamics
-        return drive_sweep(self.drive_model, dyn.state, self._excitation,
+        return drive_sweep(self.drive_model, dyn.modal, self._excitation,
                            np.linspace(*SPEED_RANGE, AFC_POINTS) * d.driver.speed,
                            d.driver.teeth, dyn.modal.elastic_frequencies_hz)
 
@@ -436,7 +436,7 @@ class Analysis:
         if steady is not None and steady.coefficient_of_dynamics is not None:
             lo, hi = frequency_band_factors(u)
             factors = np.linspace(lo, hi, BAND_POINTS)
-            loads = span_loads_over(self.drive_model, dyn.state, self._excitation,
+            loads = span_loads_over(self.drive_model, dyn.modal, self._excitation,
                                     factors * steady.tooth_angular_frequency)
             sweep = (factors, np.sqrt(np.mean(loads**2, axis=1)))
         return uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances,

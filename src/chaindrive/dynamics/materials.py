@@ -115,7 +115,7 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
           span_tensions: Sequence[float] | None, duration: float, points: int) -> MaterialCase:
     d = with_materials(drive, chain_mat, sprocket_mat)
     model = drive_model(d, geometry, span_tensions=span_tensions)
-    modes, state = drive_modes(model)
+    modes = drive_modes(model)
     j = int(np.flatnonzero(~modes.rigid_body)[0])
     f1 = float(modes.frequencies_hz[j])
     w = d.driver.speed
@@ -129,7 +129,7 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
     # sweep the tooth frequency through 0.3 f1 … 1.5 f1: the first harmonic crosses f1
     ex = polygonal_excitation(geometry, d.driver.teeth * w)
     speeds = np.linspace(0.3 * f1, 1.5 * f1, points) * TWO_PI / d.driver.teeth
-    afc = drive_sweep(model, state, ex, speeds, d.driver.teeth, modes.elastic_frequencies_hz)
+    afc = drive_sweep(model, modes, ex, speeds, d.driver.teeth, modes.elastic_frequencies_hz)
     curve = afc.span_load.max(axis=1)
     k = int(np.argmax(curve))
     return MaterialCase(chain_mat, sprocket_mat, peak, f1, float(afc.tooth_frequencies_hz[k]),

@@ -22,8 +22,8 @@ from chaindrive.dynamics.model.assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
+    from chaindrive.dynamics.modes import Modes
     from chaindrive.dynamics.parameters import RingParameters
-    from chaindrive.dynamics.torsional.system import TorsionalModes
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material
 
@@ -126,14 +126,14 @@ def with_chain_dampers(model: DriveParts, span_zeta: FloatArray, wrap_zeta: Floa
     return replace(model, linear=linear, torsional=model.torsional.with_damping(dampers))
 
 
-def reference_angular_frequency(modes: TorsionalModes) -> float:
+def reference_angular_frequency(modes: Modes) -> float:
     """ω_ref [rad/s] of the chain's dampers: the first elastic mode in which the chain's
     elements (spans and wraps) hold at least :data:`CHAIN_MODE_SHARE` of the strain energy
     (else the first elastic mode; 0 without one).
 
     Parameters
     ----------
-    modes : TorsionalModes
+    modes : Modes
         The undamped modes of the assembled model.
 
     Returns
@@ -141,7 +141,7 @@ def reference_angular_frequency(modes: TorsionalModes) -> float:
     float
         ω_ref [rad/s].
     """
-    kinds = np.array(modes.system.element_kinds)
+    kinds = np.array(modes.element_kinds)
     chain = (kinds == "span") | (kinds == "wrap")
     shares = modes.strain_energy_shares[chain].sum(axis=0)
     elastic = np.flatnonzero(~modes.rigid_body)

@@ -29,13 +29,13 @@ from chaindrive.dynamics.torsional.engine import (
     nonneg,
     reducer_input_torque,
 )
-from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalSystem
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 
-__all__ = ["FloatArray", "TorsionalModel", "TorsionalModes", "TorsionalSystem", "TrainElement",
+__all__ = ["FloatArray", "TorsionalModel", "TorsionalSystem", "TrainElement",
            "reducer_input_torque"]
 
 
