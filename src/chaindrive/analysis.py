@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.checks import (
@@ -848,6 +849,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[Chain
         f"({', '.join(m.name for m in c.missed)}); {pick}") for c in own if not c.passed]
 
 
+@shared_parameters
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
             cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
             lazy: bool = False, link_duration_s: float | None = None) -> Analysis:
@@ -857,8 +859,7 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     response : bool
         False stops after the modal analysis (what an interactive page recomputes after
         every change).

@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import freeze_arrays
 from chaindrive.dynamics.resonance import (
     CampbellData,
@@ -509,6 +510,7 @@ class DriveDynamics:
         }
 
 
+@shared_parameters
 def model_dynamics(drive: Drive, geometry: GeometryResult, model: DriveModel, *,
                    harmonics: int = 3, transverse_modes: int = 3,
                    speed_range: tuple[float, float] | None = None,
@@ -517,10 +519,7 @@ def model_dynamics(drive: Drive, geometry: GeometryResult, model: DriveModel, *,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
     model : DriveModel
         Its whole-drive model.
     harmonics : int

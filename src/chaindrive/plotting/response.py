@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
 
@@ -75,6 +76,7 @@ def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
     return float(t[-1])
 
 
+@shared_parameters
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6,
                         units: UnitSystem = "SI") -> Figure:
@@ -90,8 +92,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     ----------
     startup : StartupResult
         The start-up.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
     max_lines : int
@@ -138,6 +139,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     return fig
 
 
+@shared_parameters
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
                    names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
     """Sprocket speeds [rpm] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), over
@@ -147,8 +149,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     ----------
     startup : StartupResult
         The start-up.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the sprockets (None: M1, M2, …).
     max_lines : int
@@ -207,6 +208,7 @@ def _legend(ax: Axes, curves: int,
         ax.legend(fontsize="x-small", loc=inside)
 
 
+@shared_parameters
 def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
                max_lines: int = 6, max_markers: int = 8,
                operating_hz: float | None = None,
@@ -224,8 +226,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     ----------
     afc : AfcResult
         The speed sweep.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
     max_lines : int
@@ -279,6 +280,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     return fig
 
 
+@shared_parameters
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None, units: UnitSystem = "SI") -> Figure:
     """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
@@ -289,8 +291,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     ----------
     steady : SteadyStateResult
         The steady state.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
     units : {"SI", "US"}

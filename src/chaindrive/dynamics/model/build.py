@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.model.assembly import (
     CHAIN_NODE,
@@ -180,6 +181,7 @@ class DriveModel(DriveParts):
 
 
 # --------------------------------------------------------------------------- completeness
+@shared_parameters
 def model_completeness(drive: Drive) -> tuple[str, ...]:
     """What the whole-drive model of ``drive`` lacks (empty when complete).
 
@@ -189,8 +191,7 @@ def model_completeness(drive: Drive) -> tuple[str, ...]:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
 from chaindrive.dynamics.model.assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
@@ -36,6 +37,7 @@ FloatArray = NDArray[np.float64]
 CHAIN_MODE_SHARE = 0.5
 
 
+@shared_parameters
 def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
                   lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
     """ζ of every span and of every sprocket's wrap [-], and where they come from: the
@@ -45,8 +47,7 @@ def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
     geometry : GeometryResult
         Its geometry (span lengths).
     ring : RingParameters
