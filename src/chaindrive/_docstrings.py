@@ -36,7 +36,8 @@ __all__ = ["PARAMETERS", "expand", "shared_parameters"]
 
 T = TypeVar("T")
 
-#: Name → numpydoc entry (first line ``name : type``, the description indented by four).
+#: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
+#: the description indented by four).
 PARAMETERS: Mapping[str, str] = MappingProxyType({
     "drive": "drive : Drive\n    The design.",
     "geometry": "geometry : GeometryResult\n    Its contour.",
@@ -49,6 +50,11 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter_array": "roller_diameter : float or array_like\n"
                              "    Roller diameter d1 [m].",
     "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",
+    "units": 'units : {"SI", "US"}\n'
+             "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).",
+    "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
+                   '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
+    "returns_figure": "Figure\n    The figure drawn into.",
 })
 
 _PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)%\((?P<name>\w+)\)s[ \t]*$", re.MULTILINE)

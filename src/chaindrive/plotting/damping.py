@@ -40,8 +40,7 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.8))
     factor, unit = scale("force", units)

@@ -42,8 +42,7 @@ def mode_shapes(modal: Modes, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     elastic = np.flatnonzero(~np.asarray(modal.rigid_body))[:modes]
@@ -223,8 +222,7 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 5.0))
     rpm = np.asarray(campbell.speeds_rpm)

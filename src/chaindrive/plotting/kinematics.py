@@ -36,8 +36,7 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     factor, unit = scale("velocity", units)
@@ -87,8 +86,7 @@ def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     drive = analysis.drive

@@ -100,8 +100,7 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, _figsize(geometry))
     MM, unit = scale("length", units)  # metres → the drawing's unit

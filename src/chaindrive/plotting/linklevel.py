@@ -109,8 +109,7 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (7.0, 4.0))
     k = _sample(result, time_s)
@@ -190,14 +189,11 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None,
     result : LinkLevelResult
         A link-level run.
     %(ax)s
-    units : {"SI", "US"}
-        Unit system of the link tensions: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     factor, unit = scale("force", units)
@@ -243,14 +239,11 @@ def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None
     times_s : sequence of float or None
         The instants [s] (None: :func:`frame_times`).
     %(ax)s
-    units : {"SI", "US"}
-        Unit system of the link tensions: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.4))
     factor, unit = scale("force", units)

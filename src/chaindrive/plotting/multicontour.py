@@ -36,8 +36,7 @@ def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     values = np.asarray(km, dtype=float).ravel()
     fig, ax = figure_axes(ax, (6.0, 3.4))

@@ -97,14 +97,11 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
         Labels of the spans (None: numbered).
     max_lines : int
         Spans drawn at most (those of the largest peaks) [-].
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     factor, unit = scale("force", units)
@@ -157,8 +154,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
@@ -238,14 +234,11 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     mode_numbers : sequence of int or None
         The number each elastic mode carries in the tables, in the order of
         ``afc.natural_frequencies_hz`` (None: the markers' own 1, 2, …).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 4.0))
     fz = np.asarray(afc.tooth_frequencies_hz)
@@ -294,14 +287,11 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     factor, unit = scale("force", units)
@@ -318,6 +308,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     return fig
 
 
+@shared_parameters
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None,
                              units: UnitSystem = "SI") -> Figure:
@@ -331,9 +322,7 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
         The steady state.
     names : sequence of str or None
         Labels of the masses (None: M1, M2, …).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
@@ -364,6 +353,7 @@ def _pair_label(case: MaterialCase) -> str:
     return f"{case.chain_material}\non {case.sprocket_material}"
 
 
+@shared_parameters
 def material_comparison_chart(cases: Sequence[MaterialCase], *,
                               units: UnitSystem = "SI") -> Figure:
     """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
@@ -375,9 +365,7 @@ def material_comparison_chart(cases: Sequence[MaterialCase], *,
     ----------
     cases : sequence of MaterialCase
         One per material pair.
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------

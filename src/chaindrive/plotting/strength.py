@@ -37,14 +37,11 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None,
     analysis : Analysis
         The analysis (its loads).
     %(ax)s
-    units : {"SI", "US"}
-        Unit system of the force axis: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     loads = _strength(analysis).loads
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
@@ -77,14 +74,11 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None,
     analysis : Analysis
         The analysis (its loads).
     %(ax)s
-    units : {"SI", "US"}
-        Unit system of the force axis: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     loads = _strength(analysis).loads
     names = [s.name for s in analysis.drive.sprockets]

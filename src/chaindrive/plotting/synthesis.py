@@ -28,8 +28,7 @@ def pareto_front(result: SynthesisResult, *, ax: Axes | None = None) -> Figure:
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
 
     References
     ----------
