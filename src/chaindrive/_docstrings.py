@@ -55,6 +55,14 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
     "returns_figure": "Figure\n    The figure drawn into.",
+    "inp": "inp : ReportInput\n    The analysis and the report's settings.",
+    # the whole Parameters and Returns sections of a report section's builder
+    "section": "Parameters\n----------\ninp : ReportInput\n"
+               "    The analysis and the report's settings.\n\nReturns\n-------\n"
+               "list of Block | None\n    The section's blocks (None: the section does not apply).",
+    "section_blocks": "Parameters\n----------\ninp : ReportInput\n"
+                      "    The analysis and the report's settings.\n\nReturns\n-------\n"
+                      "list of Block\n    The section's blocks.",
 })
 
 _PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)%\((?P<name>\w+)\)s[ \t]*$", re.MULTILINE)
@@ -81,7 +89,8 @@ def expand(doc: str) -> str:
     """
     def entry(m: re.Match[str]) -> str:
         indent = m.group("indent")
-        return "\n".join(indent + line for line in PARAMETERS[m.group("name")].splitlines())
+        return "\n".join(indent + line if line else ""
+                         for line in PARAMETERS[m.group("name")].splitlines())
 
     return _PLACEHOLDER.sub(entry, doc)
 
