@@ -769,9 +769,7 @@ def tension(
     from chaindrive.units import parse_quantity
 
     with user_errors():
-        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
-            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
-                              ".toml file")
+        check_toml_target(write_calibrated)
         drive = chaindrive.load(file)
         f = parse_quantity(frequency, "frequency", "--frequency")
         if not f > 0:
@@ -889,9 +887,7 @@ def calibrate(
     from chaindrive.io.design import drive_to_toml
 
     with user_errors():
-        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
-            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
-                              ".toml file")
+        check_toml_target(write_calibrated)
         drive = chaindrive.load(file)
         measured, assumed = (([], []) if damping and natural is None and record is None
                               else measured_modes(drive, natural, record, tolerance))
@@ -908,6 +904,23 @@ def calibrate(
     print_calibration(doc)
     if write_calibrated is not None:
         print(f"calibrated design written to {write_calibrated}")
+
+
+def check_toml_target(path: Path | None) -> None:
+    """Refuse a ``--write-calibrated`` file that is not TOML (before anything is computed).
+
+    Parameters
+    ----------
+    path : Path | None
+        The file asked for (None: none).
+
+    Raises
+    ------
+    DesignError
+        On ``--write-calibrated`` when the file does not end in ``.toml``.
+    """
+    if path is not None and path.suffix.lower() != ".toml":
+        raise DesignError("--write-calibrated", f"{str(path)!r}: allowed: a .toml file")
 
 
 def run(argv: list[str] | None = None) -> int:
