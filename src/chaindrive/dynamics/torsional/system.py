@@ -512,5 +512,7 @@ def _modal(system: TorsionalSystem) -> Modes:
     rigid = np.zeros(nm, dtype=bool)
     rigid[:nr] = True
     shapes = system.node_factor[:, None] * Q[system.node_dof]  # as Modes.shape_matrix
+    for a in (f, rigid, Q, shapes):  # the solver's own arrays: frozen in place, not copied
+        a.flags.writeable = False
     return Modes(frequencies_hz=f, rigid_body=rigid, shapes=shapes, system=system,
                  modal_coordinates=Q)
