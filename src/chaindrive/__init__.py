@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.model import Chain, ChainRequest, ChainSpec, Drive, Material, Sprocket
 
@@ -43,6 +44,7 @@ def load(path: str | Path) -> Drive:
     return load_drive(path)
 
 
+@shared_parameters
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
             cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
             lazy: bool = False, link_duration_s: float | None = None) -> Analysis:
@@ -50,8 +52,7 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     response : bool
         False stops after the modal analysis.
     limits : CheckLimits or None

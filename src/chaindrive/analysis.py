@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.checks import (
@@ -366,7 +367,7 @@ class Analysis:
         d = self.drive
         assert d.driver.speed is not None
         dyn = self.dynamics
-        return drive_sweep(self.drive_model, dyn.state, self._excitation,
+        return drive_sweep(self.drive_model, dyn.modal, self._excitation,
                            np.linspace(*SPEED_RANGE, AFC_POINTS) * d.driver.speed,
                            d.driver.teeth, dyn.modal.elastic_frequencies_hz)
 
@@ -436,7 +437,7 @@ class Analysis:
         if steady is not None and steady.coefficient_of_dynamics is not None:
             lo, hi = frequency_band_factors(u)
             factors = np.linspace(lo, hi, BAND_POINTS)
-            loads = span_loads_over(self.drive_model, dyn.state, self._excitation,
+            loads = span_loads_over(self.drive_model, dyn.modal, self._excitation,
                                     factors * steady.tooth_angular_frequency)
             sweep = (factors, np.sqrt(np.mean(loads**2, axis=1)))
         return uncertainty_bands(u, dyn.modal.elastic_frequencies_hz, dyn.resonances,
@@ -848,6 +849,7 @@ def named_chain_warnings(drive: Drive, selection: SelectionResult) -> list[Chain
         f"({', '.join(m.name for m in c.missed)}); {pick}") for c in own if not c.passed]
 
 
+@shared_parameters
 def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None = None,
             cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
             lazy: bool = False, link_duration_s: float | None = None) -> Analysis:
@@ -857,8 +859,7 @@ def analyze(drive: Drive, *, response: bool = True, limits: CheckLimits | None =
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     response : bool
         False stops after the modal analysis (what an interactive page recomputes after
         every change).

@@ -22,6 +22,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.errors import DesignError
 from chaindrive.io.design import read_toml
@@ -83,6 +84,7 @@ class CostModel:
 
         return get(self.material_per_kg) + get(self.manufacturing_per_kg)
 
+    @shared_parameters
     def sprocket_price(self, family: str, mass: float, teeth: int) -> float:
         """Price of one sprocket: mass × (material + manufacturing per kg) + teeth × the
         tooth-cutting price of its family.
@@ -93,8 +95,7 @@ class CostModel:
             Material family of the sprocket.
         mass : float
             Mass of the sprocket body [kg].
-        teeth : int
-            Number of teeth z [-].
+        %(teeth)s
 
         Returns
         -------

@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
@@ -124,15 +125,13 @@ def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
 # Polygonal speed variation
 # ---------------------------------------------------------------------------------------
 
+@shared_parameters
 def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """Largest chain speed v_max = R·ω, at β = 0.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     speed : float or array_like
         Angular speed ω [rad/s].
 
@@ -149,15 +148,13 @@ def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> Flo
     return _out(_radius(pitch, z) * np.asarray(speed, float))
 
 
+@shared_parameters
 def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """Smallest chain speed v_min = R·ω·cos(π/z), at β = ±π/z.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     speed : float or array_like
         Angular speed ω [rad/s].
 
@@ -287,16 +284,14 @@ def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
     return _out(np.asarray(wrap_phase(phase)) / _teeth(teeth))
 
 
+@shared_parameters
 def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                               phase: ArrayLike) -> FloatOrArray:
     """Chain speed along the span v = R·ω·cos β, β = wrap(ψ)/z.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     speed : float or array_like
         Angular speed ω [rad/s].
     phase : float or array_like
@@ -316,16 +311,14 @@ def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLi
     return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(beta))
 
 
+@shared_parameters
 def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                            phase: ArrayLike) -> FloatOrArray:
     """Speed of the span end across the span v' = R·ω·sin β.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     speed : float or array_like
         Angular speed ω [rad/s].
     phase : float or array_like
@@ -422,6 +415,7 @@ def instantaneous_ratio(teeth_driver: ArrayLike, teeth_driven: ArrayLike, phase:
 # Deviation of a terminal hinge from uniform motion: exact law and Fourier series
 # ---------------------------------------------------------------------------------------
 
+@shared_parameters
 def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
                              phase: ArrayLike) -> FloatOrArray:
     """Deviation δ [m] of the terminal hinge from uniform motion at the mean chain speed.
@@ -433,10 +427,7 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     phase : float or array_like
         Tooth phase ψ [rad].
 
@@ -455,16 +446,14 @@ def hinge_displacement_exact(pitch: ArrayLike, teeth: ArrayLike,
     return _out(_radius(p, z) * np.sin(psi / z) - p * psi / TWO_PI)
 
 
+@shared_parameters
 def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     """Largest deviation max δ, at cos β* = z sin(π/z)/π (where dδ/dψ = 0, i.e. where the
     instantaneous chain speed equals the mean speed).
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
 
     Returns
     -------
@@ -477,6 +466,7 @@ def hinge_displacement_peak(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     return _out(_radius(p, z) * np.sin(beta) - p * z * beta / TWO_PI)
 
 
+@shared_parameters
 def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonics: int,
                                     phase: ArrayLike = 0.0
                                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -489,10 +479,7 @@ def hinge_displacement_coefficients(pitch: ArrayLike, teeth: ArrayLike, harmonic
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     harmonics : int
         Number of harmonics N [-].
     phase : float or array_like
@@ -551,16 +538,14 @@ def hinge_displacement_fourier(pitch: ArrayLike, teeth: ArrayLike, phase: ArrayL
     return _out(np.sum(A * np.sin(k * psi), axis=-1))
 
 
+@shared_parameters
 def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                              phase: ArrayLike) -> FloatOrArray:
     """Speed deviation of the hinge dδ/dτ = v(τ) − v̄ = R ω cos β − z p ω/(2π).
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
     speed : float or array_like
         Angular speed ω [rad/s].
     phase : float or array_like
@@ -699,6 +684,7 @@ def tooth_phase_offsets(geometry: GeometryResult) -> NDArray[np.float64]:
     return out
 
 
+@shared_parameters
 def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257) -> KinematicsResult:
     """Kinematics of a contour: every sprocket's speed and direction, chain speed, tooth
     frequency and polygonal non-uniformity.
@@ -711,8 +697,7 @@ def drive_kinematics(drive: Drive, geometry: GeometryResult, samples: int = 257)
     ----------
     drive : Drive
         The design (the driver's speed is needed).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     samples : int
         Points over one tooth period of the driver [-].
 

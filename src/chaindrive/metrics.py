@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.cost import CostBreakdown, CostModel, cost_breakdown
 from chaindrive.dynamics.stiffness import plate_thickness
@@ -97,13 +98,13 @@ class DesignMetrics:
                 "chain_length_m": self.chain_length_m}
 
 
+@shared_parameters
 def sprocket_body_masses(drive: Drive) -> NDArray[np.float64]:
     """Mass of each sprocket body from its tooth count, the chain and its material.
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Literal
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 
 Role = Literal["driver", "driven", "idler"]
@@ -70,6 +71,7 @@ def estimated_columns(source: str) -> tuple[str, ...]:
     return tuple(c.strip() for c in columns.split("|") if c.strip())
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class ChainSpec:
     """One catalogue chain (all strands together), SI units.
@@ -82,8 +84,7 @@ class ChainSpec:
         ``"ISO 606"``, ``"ANSI"`` or ``"GOST 13568"`` ([ISO606], [ANSI-B29.1], [GOST13568]).
     series : str
         ``"A"``, ``"B"`` (ISO 606) or ``"ПР"`` (GOST).
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     strands : int
         Number of strands (rows), 1 to 8 [-].
     roller_diameter : float

@@ -45,6 +45,7 @@ PRESENTER_MAY_IMPORT = (
     "chaindrive.io.*",
     "chaindrive.errors",
     "chaindrive.units",
+    "chaindrive._docstrings",           # the shared docstring entries (no computation)
     "chaindrive.display",
     "chaindrive.model",                 # the data
     "chaindrive.catalog",               # listing the catalogue

@@ -298,3 +298,20 @@ def test_command_rule_skips_only_commands() -> None:
     assert skipped == {c.callback for c in cli.app.registered_commands}
     assert cli.run not in skipped and cli.main not in skipped
     assert cli.analyze in skipped
+
+
+def test_shared_parameter_entries_are_written_out_at_import() -> None:
+    # a line ``%(name)s`` becomes the entry of chaindrive._docstrings.PARAMETERS, indented as
+    # the line; a ``%`` elsewhere stays; an unknown name fails at once
+    from chaindrive._docstrings import expand
+    from chaindrive.kinematics import max_chain_speed
+
+    doc = "x.\n\n    Parameters\n    ----------\n        %(pitch)s\n    5 %(pitch)s stays\n"
+    assert expand(doc) == ("x.\n\n    Parameters\n    ----------\n"
+                           "        pitch : float\n            Chain pitch p [m].\n"
+                           "    5 %(pitch)s stays\n")
+    with pytest.raises(KeyError):
+        expand("    %(no_such_entry)s")
+    assert "%(" not in (max_chain_speed.__doc__ or "")
+    assert "    pitch : float or array_like\n        Chain pitch p [m]." in (
+        max_chain_speed.__doc__ or "")

@@ -95,12 +95,14 @@ def test_ring_model_is_frozen() -> None:
     assert ring.names == ("a", "b")
 
 
-def test_ring_and_whole_drive_return_the_one_modal_result(seed_model: DriveModel) -> None:
+def test_ring_torsional_and_whole_drive_return_the_one_modal_result(
+        seed_model: DriveModel) -> None:
     from chaindrive.dynamics.modes import Modes, drive_modes
 
     ring = RingModel([1.0, 2.0, 3.0], [1e5, 2e5, 3e5], damping_ratio=0.06).modal()
-    drive, state = drive_modes(seed_model)
-    for modes in (ring, drive):
+    drive = drive_modes(seed_model)
+    torsional = seed_model.modal()
+    for modes in (ring, drive, torsional):
         assert isinstance(modes, Modes)
         assert not modes.shapes.flags.writeable
         with pytest.raises(FrozenInstanceError):
@@ -109,7 +111,15 @@ def test_ring_and_whole_drive_return_the_one_modal_result(seed_model: DriveModel
     assert ring.modal_damping_ratios.tolist() == [0.0, 0.06, 0.06]
     assert ring.damped_frequencies_hz[1] == pytest.approx(ring.frequencies_hz[1] *
                                                           (1 - 0.06**2) ** 0.5, rel=1e-15)
-    assert drive.torsional is not None and ring.torsional is None
-    assert not drive.torsional.modal_coordinates.flags.writeable  # the other two results
-    assert not state.right.flags.writeable
+    assert drive.system is not None and ring.system is None
+    assert drive.modal_coordinates is not None and drive.right is not None
+    assert not drive.modal_coordinates.flags.writeable
+    assert not drive.right.flags.writeable  # the complex modes of the damped model
+    # the undamped torsional analysis gives no damped fields; the drive's adds them to the
+    # same frequencies and shapes of every node
+    assert torsional.damped_frequencies_hz.size == 0 and torsional.eigenvalues is None
+    assert_array_equal(drive.frequencies_hz, torsional.frequencies_hz)
+    assert_array_equal(drive.shape_matrix, torsional.shapes)
+    assert drive.governing == tuple(torsional.governing_element(j)
+                                    for j in range(torsional.frequencies_hz.size))
     assert drive.partial_frequencies_hz.size == 0 and ring.partial_frequencies_hz.size == 3

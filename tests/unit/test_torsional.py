@@ -27,7 +27,7 @@ def test_springs_in_series_through_a_gear() -> None:
     k_eq = 1 / (1 / 1.88e5 + 3.0**2 / 5.0e4)
     assert_allclose(modes.frequencies_hz, [math.sqrt(k_eq / 400) / (2 * math.pi)], rtol=1e-12)
     # wheel turns 3× slower and the other way (external pair)
-    shapes = modes.shapes
+    shapes = modes.node_shapes
     assert_allclose(shapes["wheel"][0], -shapes["pinion"][0] / 3, rtol=1e-12)
     assert modes.governing_element(0) == "ground:wheel"
     json.dumps(modes.to_dict())
@@ -180,7 +180,7 @@ def test_frequencies_without_shapes_and_an_inside_sprocket() -> None:
                                                    "stiffness": 4e4, "damping": 1.0}]})
     assert_allclose(t.frequencies_hz(), t.modal().frequencies_hz, rtol=1e-12)
     modes = t.modal()
-    assert modes.rigid_body[0] and modes.shapes["b"][0] * modes.shapes["a"][0] < 0  # turns back
+    assert modes.rigid_body[0] and modes.node_shapes["b"][0] * modes.node_shapes["a"][0] < 0  # turns back
     rigid = (TorsionalModel.from_contour(["a", "b", "c", "d"], J, R, c, senses=[1, -1, 1, 1])
              .frequencies_hz())
     ring = RingModel(np.array(J) / np.array(R) ** 2, c).modal().frequencies_hz

@@ -39,7 +39,7 @@ def _first(a: chaindrive.analysis.Analysis, drive: chaindrive.Drive) -> tuple[fl
     """(f₁, damped f₁) [Hz] of ``drive`` on the contour of analysis ``a`` (its own static
     span tensions: a lighter chain sags at a lower tension)."""
     model = drive_model(drive, a.geometry)
-    modes, _ = drive_modes(model)
+    modes = drive_modes(model)
     j = int(np.flatnonzero(~modes.rigid_body)[0])
     return float(modes.frequencies_hz[j]), float(modes.damped_frequencies_hz[j])
 

@@ -56,6 +56,10 @@ DPI_RANGE = (50, 600)
 #: the address printed would be wrong), 65535 is the largest port number.
 PORT_RANGE = (1, 65535)
 UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
+# the argument and options many commands take, declared once (typer reads the Annotated alias)
+DesignFile = Annotated[Path, typer.Argument(help="design file (TOML)")]
+JsonFlag = Annotated[bool, typer.Option("--json", help="print one JSON document")]
+UnitsOption = Annotated[str, typer.Option("--units", help=UNITS_HELP)]
 # Lazy imports: the commands import inside their bodies only what each runs, so that
 # ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
 # ``python -X importtime``, cumulative: chaindrive.analysis ≈0.15 s, chaindrive.report ≈0.5 s
@@ -104,12 +108,12 @@ def _say_written(what: str, path: Path, as_json: bool) -> None:
 
 @app.command()
 def analyze(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    file: DesignFile,
+    as_json: JsonFlag = False,
     quick: Annotated[bool, typer.Option(
         "--quick", help="stop after the modal analysis (no start-up, steady state or sweep)")]
     = False,
-    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
+    units: UnitsOption = "SI",
 ) -> None:
     """Analyse a drive: geometry, speeds, chain, strength, modes and dynamic response.
 
@@ -132,15 +136,15 @@ def analyze(
 
 @app.command()
 def select(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     method: Annotated[str | None, typer.Option(
         help='"Kэ" or "rating" for every chain (default: each chain by its own method)')] = None,
     strands: Annotated[int | None, typer.Option(help="fix the number of strands (1 to 8)",
                                                 min=1, max=8)] = None,
     top: Annotated[int, typer.Option(help="show the first N ranked candidates", min=1,
                                      max=10_000)] = 10,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
-    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
+    as_json: JsonFlag = False,
+    units: UnitsOption = "SI",
 ) -> None:
     """Rank the family's chains by every check; the first is the one selected."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -160,7 +164,7 @@ def select(
 
 @app.command()
 def simulate(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     output: Annotated[Path, typer.Option("-o", "--output", help="history.csv")]
     = Path("history.csv"),
     model: Annotated[str, typer.Option(
@@ -169,7 +173,7 @@ def simulate(
     duration: Annotated[str | None, typer.Option(
         "--duration", help="simulated time of the link-level run, e.g. 0.5s (default: the "
         "design's start-up duration, at most 10 s)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
     units: Annotated[str, typer.Option("--units", help=UNITS_HELP + "; the CSV stays SI, "
                                        "its columns named with their units")] = "SI",
 ) -> None:
@@ -253,9 +257,9 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
 
 @app.command()
 def afc(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     output: Annotated[Path, typer.Option("-o", "--output", help="afc.csv")] = Path("afc.csv"),
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """Amplitude–frequency characteristic: dynamic load of every span against the speed."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -309,7 +313,7 @@ def _write_csv(path: Path, header: list[str], rows: NDArray[np.float64]) -> None
 
 @app.command()
 def schema(
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """Print every field of a design file with its unit, default and allowed values."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -324,7 +328,7 @@ def schema(
 
 @app.command()
 def report(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     output: Annotated[Path, typer.Option("-o", "--output", help="report.html or report.pdf")]
     = Path("report.html"),
     dpi: Annotated[int, typer.Option(help=f"resolution of the figures ({DPI_RANGE[0]} to "
@@ -333,8 +337,8 @@ def report(
     study: Annotated[list[str] | None, typer.Option(
         "--study", help="add a comparative study: material-pairs, hinge-friction, links (the "
         "link-level model, slower)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
-    units: Annotated[str, typer.Option("--units", help=UNITS_HELP)] = "SI",
+    as_json: JsonFlag = False,
+    units: UnitsOption = "SI",
     summary: Annotated[bool, typer.Option(
         "--summary", help="the two-page sign-off sheet (verdict, governing checks, defaults "
         "and estimates, the drive; the chain and sprockets to buy) instead of the full "
@@ -359,13 +363,13 @@ def report(
 
 @app.command()
 def draw(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     output: Annotated[Path, typer.Option("-o", "--output", help="layout.dxf, layout.svg or "
                                          "layout.pdf")]
     = Path("layout.dxf"),
     sprocket: Annotated[str | None, typer.Option(
         "--sprocket", help="draw this sprocket alone (its manufacturing drawing)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """Write the drawing: the dimensioned layout and each sprocket's manufacturing drawing,
     or one sprocket alone (DXF, SVG or PDF, mm; each on an ISO 5457 sheet at its scale)."""
@@ -383,7 +387,7 @@ def draw(
 @app.command()
 def optimize(
     file: Annotated[Path, typer.Argument(help="design file (TOML) with an [optimize] table")],
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
     out: Annotated[Path | None, typer.Option("--out", help="directory for the Pareto designs "
                                              "(one TOML each) and the plot of the front")] = None,
     scheduler: Annotated[str | None, typer.Option(
@@ -502,7 +506,7 @@ def _write_pareto(result: SynthesisResult, file: Path, out: Path) -> tuple[list[
 @app.command()
 def robust(
     file: Annotated[Path, typer.Argument(help="design file (TOML), its [uncertainty] table")],
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
     samples: Annotated[int | None, typer.Option(
         "--samples", help="states of the probabilities (default: [uncertainty] samples)")] = None,
     seed: Annotated[int | None, typer.Option("--seed", help="seed of the Sobol scrambling")]
@@ -608,7 +612,7 @@ def catalog(
     = None,
     file: Annotated[list[Path] | None, typer.Option("--file", help="a catalogue of your own")]
     = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """List the chain and material catalogue, or show one entry."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -737,7 +741,7 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
 
 @app.command()
 def tension(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     span: Annotated[str, typer.Option("--span", help="the span, FROM-TO (e.g. S1-S2)")],
     frequency: Annotated[str, typer.Option("--frequency", help="measured transverse "
                                            "frequency of a sideways pluck, e.g. 23.4Hz")],
@@ -753,7 +757,7 @@ def tension(
     write_calibrated: Annotated[Path | None, typer.Option(
         "--write-calibrated", help="write the design with the installed sag whose "
         "pretension is the tension read (stationary only; TOML)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """A span's tension from its measured transverse frequency (stationary or running),
     with its uncertainty and the frequency the design's pretension gives."""
@@ -765,9 +769,7 @@ def tension(
     from chaindrive.units import parse_quantity
 
     with user_errors():
-        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
-            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
-                              ".toml file")
+        check_toml_target(write_calibrated)
         drive = chaindrive.load(file)
         f = parse_quantity(frequency, "frequency", "--frequency")
         if not f > 0:
@@ -802,7 +804,7 @@ def tension(
 
 @app.command()
 def identify(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     record: Annotated[Path, typer.Option("--record", help="measured record: CSV with a "
                                          "time_s (or time_ms) column and signals, or WAV")],
     tolerance: Annotated[float, typer.Option("--tolerance", help="match tolerance in % of "
@@ -815,7 +817,7 @@ def identify(
     campbell: Annotated[Path | None, typer.Option(
         "--campbell", help="Campbell diagram with the measured peaks at the design speed "
         "(.svg, .png, .pdf)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """Match a measured record's spectral peaks to the model: natural frequency (mode),
     tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
@@ -851,7 +853,7 @@ def identify(
 
 @app.command()
 def calibrate(
-    file: Annotated[Path, typer.Argument(help="design file (TOML)")],
+    file: DesignFile,
     natural: Annotated[list[str] | None, typer.Option(
         "--natural", help="a measured natural frequency MODE=FREQUENCY, e.g. 1=62.3Hz "
         "(repeat for more modes)")] = None,
@@ -872,7 +874,7 @@ def calibrate(
         "link stiffness (needs two or more natural frequencies)")] = None,
     write_calibrated: Annotated[Path | None, typer.Option(
         "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
+    as_json: JsonFlag = False,
 ) -> None:
     """Fit the chain's link stiffness to measured natural frequencies and its damping ratio
     to measured modal damping ratios (least squares, 95 % intervals), re-run the checks and
@@ -885,9 +887,7 @@ def calibrate(
     from chaindrive.io.design import drive_to_toml
 
     with user_errors():
-        if write_calibrated is not None and write_calibrated.suffix.lower() != ".toml":
-            raise DesignError("--write-calibrated", f"{str(write_calibrated)!r}: allowed: a "
-                              ".toml file")
+        check_toml_target(write_calibrated)
         drive = chaindrive.load(file)
         measured, assumed = (([], []) if damping and natural is None and record is None
                               else measured_modes(drive, natural, record, tolerance))
@@ -904,6 +904,23 @@ def calibrate(
     print_calibration(doc)
     if write_calibrated is not None:
         print(f"calibrated design written to {write_calibrated}")
+
+
+def check_toml_target(path: Path | None) -> None:
+    """Refuse a ``--write-calibrated`` file that is not TOML (before anything is computed).
+
+    Parameters
+    ----------
+    path : Path | None
+        The file asked for (None: none).
+
+    Raises
+    ------
+    DesignError
+        On ``--write-calibrated`` when the file does not end in ``.toml``.
+    """
+    if path is not None and path.suffix.lower() != ".toml":
+        raise DesignError("--write-calibrated", f"{str(path)!r}: allowed: a .toml file")
 
 
 def run(argv: list[str] | None = None) -> int:

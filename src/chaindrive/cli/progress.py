@@ -14,7 +14,10 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    from rich.progress import Progress, ProgressColumn
 
 T = TypeVar("T")
 
@@ -37,6 +40,23 @@ def progress_enabled(quiet: bool = False) -> bool:
 
 def _no_progress(label: str | None = None) -> None:
     """What ``advance`` is when no bar is drawn."""
+
+
+def _bar(count: ProgressColumn, *, remaining: bool) -> Progress:
+    """The one bar of the CLI on stderr, cleared when done: description, bar, ``count``, the
+    elapsed time and (``remaining``) an estimate of the time left."""
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    return Progress(TextColumn("{task.description}"), BarColumn(), count, TimeElapsedColumn(),
+                    *([TimeRemainingColumn()] if remaining else []),
+                    console=Console(stderr=True), transient=True)
 
 
 @contextmanager
@@ -63,19 +83,10 @@ def progress_bar(description: str, total: int | None = None, *,
     if not progress_enabled(quiet):
         yield _no_progress
         return
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+    from rich.progress import TextColumn
 
     # the estimate of what is left only where the steps are counted
-    columns = [TextColumn("{task.description}"), BarColumn(), TextColumn("{task.fields[step]}"),
-               TimeElapsedColumn(), *([TimeRemainingColumn()] if total else [])]
-    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
+    with _bar(TextColumn("{task.fields[step]}"), remaining=bool(total)) as bar:
         task = bar.add_task(description, total=total, step="")
 
         def advance(label: str | None = None) -> None:
@@ -106,18 +117,9 @@ def step_progress(description: str, *, quiet: bool = False
     if not progress_enabled(quiet):
         yield _no_steps
         return
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+    from rich.progress import TextColumn
 
-    with Progress(TextColumn("{task.description}"), BarColumn(),
-                  TextColumn("{task.percentage:>3.0f} %"), TimeElapsedColumn(),
-                  TimeRemainingColumn(), console=Console(stderr=True), transient=True) as bar:
+    with _bar(TextColumn("{task.percentage:>3.0f} %"), remaining=True) as bar:
         task = bar.add_task(description, total=None)
 
         def update(done: int, total: int) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import UNVERIFIED
 from chaindrive.display import (
     UnitSystem,
@@ -121,6 +122,7 @@ def _q(doc: dict[str, Any], key: str, units: UnitSystem, digits: int = 4) -> str
     return fmt(value, digits) if value is None or not unit else f"{fmt(value, digits)} {unit}"
 
 
+@shared_parameters
 def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSystem = "SI",
                    *, quick: bool = False) -> None:
     """Readable tables of an analysis document (values in ``units``) on stdout.
@@ -131,8 +133,7 @@ def print_analysis(doc: dict[str, Any], checks: Sequence[Check], units: UnitSyst
         The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
     checks : sequence of Check
         Its checks (:meth:`chaindrive.analysis.Analysis.checks`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
     quick : bool
         True for an analysis without the dynamic response: the verdict says which checks it
         leaves out.
@@ -211,6 +212,7 @@ QUICK_LEFT_OUT = ("quick: the dynamic response and its checks k1, k2 and k2min w
                   "computed")
 
 
+@shared_parameters
 def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI",
                  left_out: str = "") -> None:
     """The verdict and the table of checks, failed and unverifiable ones first; the margin
@@ -223,8 +225,7 @@ def print_checks(con: Console, checks: Sequence[Check], units: UnitSystem = "SI"
         Where to print (rich).
     checks : sequence of Check
         The checks of the analysis.
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
     left_out : str
         What the analysis left unchecked ("": nothing).
     """
@@ -402,6 +403,7 @@ def _lubrication(lube: dict[str, Any], units: UnitSystem) -> str:
     return line + f"; source: {escape(lube['source'])}"
 
 
+@shared_parameters
 def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     """The chain selected and the ranked candidates, on stdout.
 
@@ -409,8 +411,7 @@ def print_selection(doc: dict[str, Any], units: UnitSystem = "SI") -> None:
     ----------
     doc : dict
         The selection's JSON document (:meth:`chaindrive.strength.selection.SelectionResult.to_dict`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
     """
     con = console()
     if doc["chain"] is not None:

@@ -64,6 +64,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.kinematics import hinge_displacement_coefficients
 from chaindrive.units import TWO_PI
@@ -176,6 +177,7 @@ def path_positions(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArr
     return s_start, s_end
 
 
+@shared_parameters
 def polygonal_span_elongation(pitch: float, teeth_start: ArrayLike, teeth_end: ArrayLike,
                               s_start: ArrayLike, s_end: ArrayLike,
                               harmonics: int = 10) -> NDArray[np.complex128]:
@@ -186,8 +188,7 @@ def polygonal_span_elongation(pitch: float, teeth_start: ArrayLike, teeth_end: A
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     teeth_start, teeth_end : array_like
         (n,) teeth of the sprocket at the start and at the end of each span [-].
     s_start, s_end : array_like

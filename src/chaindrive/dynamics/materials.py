@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.excitation import polygonal_excitation
 from chaindrive.dynamics.frequency.response import drive_sweep
@@ -83,6 +84,7 @@ class MaterialCase:
                 "resonance_amplitude_n": self.resonance_amplitude_n}
 
 
+@shared_parameters
 def with_materials(drive: Drive, chain_material: str, sprocket_material: str) -> Drive:
     """The drive with its chain and all its sprockets of other materials (module docstring:
     the chain's mass per length scales with the density, a measured link stiffness with the
@@ -90,8 +92,7 @@ def with_materials(drive: Drive, chain_material: str, sprocket_material: str) ->
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
     chain_material, sprocket_material : str
         Catalogue names.
 
@@ -115,7 +116,7 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
           span_tensions: Sequence[float] | None, duration: float, points: int) -> MaterialCase:
     d = with_materials(drive, chain_mat, sprocket_mat)
     model = drive_model(d, geometry, span_tensions=span_tensions)
-    modes, state = drive_modes(model)
+    modes = drive_modes(model)
     j = int(np.flatnonzero(~modes.rigid_body)[0])
     f1 = float(modes.frequencies_hz[j])
     w = d.driver.speed
@@ -129,13 +130,14 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
     # sweep the tooth frequency through 0.3 f1 … 1.5 f1: the first harmonic crosses f1
     ex = polygonal_excitation(geometry, d.driver.teeth * w)
     speeds = np.linspace(0.3 * f1, 1.5 * f1, points) * TWO_PI / d.driver.teeth
-    afc = drive_sweep(model, state, ex, speeds, d.driver.teeth, modes.elastic_frequencies_hz)
+    afc = drive_sweep(model, modes, ex, speeds, d.driver.teeth, modes.elastic_frequencies_hz)
     curve = afc.span_load.max(axis=1)
     k = int(np.argmax(curve))
     return MaterialCase(chain_mat, sprocket_mat, peak, f1, float(afc.tooth_frequencies_hz[k]),
                         float(curve[k]), float(modes.damped_frequencies_hz[j]))
 
 
+@shared_parameters
 def material_comparison(drive: Drive, geometry: GeometryResult, *,
                         span_tensions: Sequence[float] | None = None, metal: str = "steel",
                         polymer: str = "PA6-GF30", duration: float = 0.3,
@@ -147,8 +149,7 @@ def material_comparison(drive: Drive, geometry: GeometryResult, *,
     ----------
     drive : Drive
         The drive (its power and driver speed).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     span_tensions : sequence of float | None
         Static span tensions of one contour [N] (the sag stiffness).
     metal, polymer : str

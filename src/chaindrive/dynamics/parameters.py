@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import loss_factor, series_loss_factor
 from chaindrive.dynamics.stiffness import (
@@ -98,15 +99,13 @@ class RingParameters:
         }
 
 
+@shared_parameters
 def static_span_tensions(drive: Drive, geometry: GeometryResult) -> NDArray[np.float64] | None:
     """Static span tensions from :func:`chaindrive.strength.loads.loads_of`.
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
 
     Returns
     -------
@@ -154,6 +153,7 @@ def sprocket_inertia(sprocket: Sprocket, pitch_radius: float, spec: ChainSpec,
                                      transverse_pitch=spec.transverse_pitch).moment_of_inertia
 
 
+@shared_parameters
 def chain_link_stiffness(drive: Drive, youngs_modulus: float, *,
                          reference_modulus: float | None = None) -> float:
     """Axial stiffness k_link [N/m] of one link of the drive's chain.
@@ -165,8 +165,7 @@ def chain_link_stiffness(drive: Drive, youngs_modulus: float, *,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
     youngs_modulus : float
         Young's modulus E of the chain material in the state computed [Pa].
     reference_modulus : float or None
@@ -187,6 +186,7 @@ def chain_link_stiffness(drive: Drive, youngs_modulus: float, *,
     return given * (youngs_modulus / reference_modulus if reference_modulus else 1.0)
 
 
+@shared_parameters
 def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
                           span_tensions: Sequence[float] | None = None,
                           link_stiffness: float | None = None,
@@ -203,8 +203,7 @@ def drive_ring_parameters(drive: Drive, geometry: GeometryResult, *,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
     geometry : GeometryResult
         Its built contour (same sprocket order).
     span_tensions : sequence of float or None

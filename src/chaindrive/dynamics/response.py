@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.excitation import (
     SpanExcitation,
     chain_error_excitation,
@@ -59,6 +60,7 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
     return driver.speed, driver.speed * driver.teeth / z
 
 
+@shared_parameters
 def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
     """Pre-tension T₀ [N] of the spans at rest: the sag tension of the span leaving the driver
     at the installed sag (:func:`chaindrive.strength.loads.sag_tension`,
@@ -66,10 +68,7 @@ def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
 
     Returns
     -------
@@ -81,6 +80,7 @@ def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
                              installed_sag_ratio(drive)))
 
 
+@shared_parameters
 def disturbance_excitations(drive: Drive, geometry: GeometryResult, *,
                             eccentricity: Sequence[float] | None = None,
                             pitch_scatter: float = 0.0, accumulated_error: float = 0.0
@@ -93,8 +93,7 @@ def disturbance_excitations(drive: Drive, geometry: GeometryResult, *,
     ----------
     drive : Drive
         The drive (the driver's speed).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     eccentricity : sequence of float | None
         ε of every sprocket [m].
     pitch_scatter : float

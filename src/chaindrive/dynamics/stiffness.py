@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as out_value
 from chaindrive.errors import DesignError
@@ -143,6 +144,7 @@ def link_stiffness(spec: ChainSpec, youngs_modulus: float) -> float:
     return spec.strands / (plates + pin)
 
 
+@shared_parameters
 def chain_span_stiffness(link_k: ArrayLike, span_length: ArrayLike,
                          pitch: float) -> NDArray[np.float64]:
     """Stiffness c = k_link · p / L [N/m] of a span of length L (L/p links in series);
@@ -154,8 +156,7 @@ def chain_span_stiffness(link_k: ArrayLike, span_length: ArrayLike,
         Stiffness of one link k_link [N/m].
     span_length : array_like
         Span length L [m].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
 
     Returns
     -------

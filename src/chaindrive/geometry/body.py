@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.geometry.iso606 import iso606_tooth_width, multi_strand_width
@@ -69,6 +70,7 @@ class PolymericProportions:
         return {f"{k}_mm": float(v) / _MM for k, v in asdict(self).items()}
 
 
+@shared_parameters
 def polymeric_sprocket_proportions(pitch: float, teeth: int,
                                    inner_width: float) -> PolymericProportions:
     """Polymeric sprocket proportions from t, z and the chain inner width B_in.
@@ -81,8 +83,7 @@ def polymeric_sprocket_proportions(pitch: float, teeth: int,
     ----------
     pitch : float
         Chain pitch t [m].
-    teeth : int
-        Number of teeth z [-].
+    %(teeth)s
     inner_width : float
         Chain inner width B_in [m].
 
@@ -159,6 +160,7 @@ def annulus_mass_and_inertia(outer_diameter: ArrayLike, inner_diameter: ArrayLik
     return _out(m), _out(m * (Do**2 + Di**2) / 8)
 
 
+@shared_parameters
 def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, density: float,
                               polymeric: bool, hole_count: int = 6,
                               hole_diameter_ratio: float = 0.5, strands: int = 1,
@@ -181,10 +183,8 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
-    teeth : int
-        Number of teeth z [-].
+    %(pitch)s
+    %(teeth)s
     inner_width : float
         Chain inner width B_in [m].
     density : float

@@ -57,6 +57,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import (
     ChainDriveWarning,
     ConvergenceError,
@@ -200,6 +201,7 @@ def _solve_ccw(centres: NDArray[np.float64], radii: NDArray[np.float64], teeth: 
     return Layout(normals, lengths, wraps, tight)
 
 
+@shared_parameters
 def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
                  inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float,
                  prefer: int = 1) -> tuple[Layout, int]:
@@ -215,8 +217,7 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
         (n,) True for a sprocket on the inside of the contour.
     teeth : numpy.ndarray
         (n,) numbers of teeth z [-].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     prefer : int
         The orientation tried first: +1 counter-clockwise, −1 clockwise (it decides only a
         contour that closes both ways, e.g. two sprockets on the outside).
@@ -246,6 +247,7 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
     )
 
 
+@shared_parameters
 def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
                      inside: NDArray[np.bool_], teeth: NDArray[np.int_], pitch: float) -> float:
     """Tight chain length L_p = Σ ℓ_k/p + Σ z_i θ_i/(2π), eq. (3), of a layout.
@@ -260,8 +262,7 @@ def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64
         (n,) True for a sprocket on the inside of the contour.
     teeth : numpy.ndarray
         (n,) numbers of teeth z [-].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
 
     Returns
     -------
@@ -279,6 +280,7 @@ def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64
 # --- two-sprocket closed forms -------------------------------------------------------------
 
 
+@shared_parameters
 def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: int) -> float:
     """Tight length of a two-sprocket drive, exact on the pitch polygons, eq. (4).
 
@@ -288,8 +290,7 @@ def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: 
     ----------
     center_distance : float
         Centre distance a [m].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     z1, z2 : int
         Teeth of the two sprockets [-].
 
@@ -303,6 +304,7 @@ def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: 
     return 2.0 * center_distance * math.cos(gamma) / pitch + (z1 + z2) / 2 + (z2 - z1) * gamma / math.pi
 
 
+@shared_parameters
 def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z2: int) -> float:
     """Chain length by the ISO 10823 / textbook approximation
     L_p = 2a/p + (z₁ + z₂)/2 + ((z₂ − z₁)/(2π))²·p/a.
@@ -311,8 +313,7 @@ def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z
     ----------
     center_distance : float
         Centre distance a [m].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     z1, z2 : int
         Teeth of the two sprockets [-].
 
@@ -330,6 +331,7 @@ def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z
             + ((z2 - z1) / TWO_PI) ** 2 * pitch / center_distance)
 
 
+@shared_parameters
 def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z2: int) -> float:
     """Centre distance for a number of links, the inverse of the ISO 10823 approximation
     a = p/4·[ (L_p − (z₁+z₂)/2) + √((L_p − (z₁+z₂)/2)² − 8((z₂−z₁)/(2π))²) ].
@@ -338,8 +340,7 @@ def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z
     ----------
     links : float
         Chain length L_p [pitches].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     z1, z2 : int
         Teeth of the two sprockets [-].
 
@@ -364,6 +365,7 @@ def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z
     return pitch / 4.0 * (b + math.sqrt(disc))
 
 
+@shared_parameters
 def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: int) -> float:
     """Centre distance at which ``links`` fit exactly: eq. (4) solved for a.
 
@@ -371,8 +373,7 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
     ----------
     links : float
         Chain length L_p [pitches].
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     z1, z2 : int
         Teeth of the two sprockets [-].
 
@@ -783,6 +784,7 @@ def driver_rotation(geometry: GeometryResult, driver_index: int) -> str:
     return "ccw" if geometry.sprockets[driver_index].turn > 0 else "cw"
 
 
+@shared_parameters
 def in_travel_order(drive: Drive) -> Drive:
     """The drive with its sprockets listed in the order the chain runs round them when the
     driver turns as ``drive.rotation`` says.
@@ -796,8 +798,7 @@ def in_travel_order(drive: Drive) -> Drive:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

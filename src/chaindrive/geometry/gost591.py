@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
@@ -35,6 +36,7 @@ GOST591_K_TABLE: tuple[tuple[float, float], ...] = (
 GOST591_LAMBDA_MIN = 1.40
 
 
+@shared_parameters
 def engagement_characteristic(pitch: ArrayLike, roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 engagement characteristic λ = t/d1.
 
@@ -42,8 +44,7 @@ def engagement_characteristic(pitch: ArrayLike, roller_diameter: ArrayLike) -> F
     ----------
     pitch : float or array_like
         Chain pitch t [m].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -90,6 +91,7 @@ def gost591_tooth_height_coefficient(lam: ArrayLike) -> FloatOrArray:
     return _out(values[np.minimum(index, len(values) - 1)])
 
 
+@shared_parameters
 def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
                          roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 tip diameter De = t·(K + ctg(180°/z)) (not rounded; the standard gives De
@@ -101,8 +103,7 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
         Chain pitch t [m].
     teeth : int or array_like
         Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -118,13 +119,13 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
     return _out(p * (K + 1.0 / np.tan(np.pi / z)))
 
 
+@shared_parameters
 def gost591_seating_radius(roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 root (seating) radius r = 0.5025·d1 + 0.05 mm.
 
     Parameters
     ----------
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -138,6 +139,7 @@ def gost591_seating_radius(roller_diameter: ArrayLike) -> FloatOrArray:
     return _out(0.5025 * _positive("roller_diameter", roller_diameter) + 0.05 * _MM)
 
 
+@shared_parameters
 def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
                           roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 root diameter Di = dд − 2r.
@@ -148,8 +150,7 @@ def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
         Chain pitch t [m].
     teeth : int or array_like
         Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -164,6 +165,7 @@ def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
     return _out(d - 2 * np.asarray(gost591_seating_radius(roller_diameter)))
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class Gost591ToothForm:
     """GOST 591-69 tooth profile of one sprocket [GOST591], [Anuriev, vol. 2, ch. 5].
@@ -172,8 +174,7 @@ class Gost591ToothForm:
     ----------
     pitch : float
         Chain pitch t [m].
-    teeth : int
-        Number of teeth z [-].
+    %(teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     lam : float
@@ -240,6 +241,7 @@ class Gost591ToothForm:
         return _dict_with_units(self, lengths, angles)
 
 
+@shared_parameters
 def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
                        inner_width: float) -> Gost591ToothForm:
     """GOST 591-69 tooth profile of a sprocket.
@@ -248,8 +250,7 @@ def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
     ----------
     pitch : float
         Chain pitch t [m].
-    teeth : int
-        Number of teeth z [-].
+    %(teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     inner_width : float

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
@@ -29,18 +30,15 @@ __all__ = ["ToothForm", "iso606_flank_radius_range", "iso606_root_diameter",
            "multi_strand_width"]
 
 
+@shared_parameters
 def iso606_tip_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
                               roller_diameter: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """ISO 606 tip diameter limits da,max = d + 1.25·p − d1, da,min = d + p·(1 − 1.6/z) − d1.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(pitch_teeth_array)s
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -57,18 +55,15 @@ def iso606_tip_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
     return _out(d + p * (1.0 - 1.6 / z) - d1), _out(d + 1.25 * p - d1)
 
 
+@shared_parameters
 def iso606_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
                          roller_diameter: ArrayLike) -> FloatOrArray:
     """ISO 606 root diameter df = d − d1.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(pitch_teeth_array)s
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -83,6 +78,7 @@ def iso606_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
     return _out(np.asarray(pitch_diameter(pitch, teeth)) - d1)
 
 
+@shared_parameters
 def iso606_seating_radius_range(roller_diameter: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """ISO 606 roller-seating radius limits ri,min = 0.505·d1, ri,max = 0.505·d1 + 0.069·d1^(1/3).
 
@@ -90,8 +86,7 @@ def iso606_seating_radius_range(roller_diameter: ArrayLike) -> tuple[FloatOrArra
 
     Parameters
     ----------
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -106,6 +101,7 @@ def iso606_seating_radius_range(roller_diameter: ArrayLike) -> tuple[FloatOrArra
     return _out(0.505 * d1_mm * _MM), _out((0.505 * d1_mm + 0.069 * np.cbrt(d1_mm)) * _MM)
 
 
+@shared_parameters
 def iso606_root_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
                                roller_diameter: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """Root diameter of the two tooth-gap forms, Df = d − 2·ri (the smaller with ri,max).
@@ -114,12 +110,8 @@ def iso606_root_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(pitch_teeth_array)s
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -135,6 +127,7 @@ def iso606_root_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
     return _out(d - 2 * np.asarray(ri_max)), _out(d - 2 * np.asarray(ri_min))
 
 
+@shared_parameters
 def iso606_flank_radius_range(teeth: ArrayLike,
                               roller_diameter: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """ISO 606 tooth-flank radius limits re,min = 0.12·d1·(z + 2), re,max = 0.008·d1·(z² + 180).
@@ -143,8 +136,7 @@ def iso606_flank_radius_range(teeth: ArrayLike,
     ----------
     teeth : int or array_like
         Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(roller_diameter_array)s
 
     Returns
     -------
@@ -294,6 +286,7 @@ def multi_strand_width(tooth_width: ArrayLike, transverse_pitch: ArrayLike,
                 + np.asarray(tooth_width, dtype=float))
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class ToothForm:
     """ISO 606 tooth-form limits of one sprocket [ISO606].
@@ -303,10 +296,8 @@ class ToothForm:
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
-    teeth : int
-        Number of teeth z [-].
+    %(pitch)s
+    %(teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     pitch_diameter : float
@@ -367,16 +358,15 @@ class ToothForm:
         return _dict_with_units(self, lengths, angles)
 
 
+@shared_parameters
 def iso606_tooth_form(pitch: float, teeth: int, roller_diameter: float, inner_width: float,
                       strands: int = 1) -> ToothForm:
     """All ISO 606 tooth-form limits of a sprocket (the functions above, scalar inputs).
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
-    teeth : int
-        Number of teeth z [-].
+    %(pitch)s
+    %(teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     inner_width : float

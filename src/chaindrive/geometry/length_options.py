@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry, round_links, tight_pitches_of
 from chaindrive.geometry.results import GeometryResult
@@ -114,13 +115,13 @@ def _option(drive: Drive, rounding: str, links: int,
                         None if g.adjusted is None else g.adjustment, sag)
 
 
+@shared_parameters
 def tight_pitches_as_designed(drive: Drive) -> float:
     """Tight length at the sprocket positions of the design (no take-up).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
@@ -116,15 +117,13 @@ def dict_with_units(obj: DataclassInstance, lengths: tuple[str, ...],
 # Pitch circle
 # ---------------------------------------------------------------------------------------
 
+@shared_parameters
 def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     """Pitch diameter d = p / sin(π/z).
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
 
     Returns
     -------
@@ -138,15 +137,13 @@ def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     return _out(_positive("pitch", pitch) / np.sin(np.pi / _teeth(teeth)))
 
 
+@shared_parameters
 def pitch_radius(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     """Pitch radius R = p / (2 sin(π/z)): radius of the hinge centres.
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_teeth_array)s
 
     Returns
     -------

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import (
@@ -384,13 +385,13 @@ class SprocketProfile:
 BORE_RATIO = 0.19
 
 
+@shared_parameters
 def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
     """The profile of every sprocket of a drive.
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------
@@ -417,14 +418,14 @@ def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
     return tuple(out)
 
 
+@shared_parameters
 def hub_limit_diameter(pitch: float, teeth: int, plate_depth: float) -> float:
     """ISO 606 absolute maximum shroud (hub) diameter d_g [m]: the largest hub that the inner
     plates of the chain clear, d_g = p·cot(180°/z) − 1.04·h₂ − 0.76 mm [ISO606].
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     teeth : int
         Number of teeth z.
     plate_depth : float

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveWarning
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class SprocketGeometry:
     """One sprocket of the built contour.
@@ -15,8 +17,7 @@ class SprocketGeometry:
     ----------
     name : str
         The sprocket.
-    teeth : int
-        Number of teeth z [-].
+    %(teeth)s
     side : str
         "outside" or "inside" of the contour.
     x, y : float
@@ -93,14 +94,14 @@ class SpanGeometry:
     tight: bool
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class GeometryResult:
     """The contour: sprockets, spans, length and links.
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     sprockets : tuple of SprocketGeometry
         In contour order.
     spans : tuple of SpanGeometry

@@ -15,6 +15,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
 from chaindrive.errors import DesignError
@@ -81,6 +82,7 @@ def _check_form(form: str) -> None:
                           f"got {form!r}")
 
 
+@shared_parameters
 def tip_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
                  form: Literal["ISO 606", "GOST 591"] = "ISO 606") -> FloatOrArray:
     """Tip (outside) diameter by the chosen tooth form.
@@ -91,12 +93,8 @@ def tip_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(pitch_teeth_array)s
+    %(roller_diameter_array)s
     form : {"ISO 606", "GOST 591"}
         The tooth form.
 
@@ -116,6 +114,7 @@ def tip_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
     return _out(0.5 * (np.asarray(lo) + np.asarray(hi)))
 
 
+@shared_parameters
 def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
                   form: Literal["ISO 606", "GOST 591"] = "ISO 606") -> FloatOrArray:
     """Root diameter by the chosen tooth form: ISO 606 df = d − d1 (nominal); GOST 591
@@ -123,12 +122,8 @@ def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch p [m].
-    teeth : int or array_like
-        Number of teeth z [-].
-    roller_diameter : float or array_like
-        Roller diameter d1 [m].
+    %(pitch_teeth_array)s
+    %(roller_diameter_array)s
     form : {"ISO 606", "GOST 591"}
         The tooth form.
 
@@ -147,6 +142,7 @@ def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike
     return iso606_root_diameter(pitch, teeth, roller_diameter)
 
 
+@shared_parameters
 def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter: float,
                      inner_width: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Seating radius r_i [m] and seating half-angle α [rad] of every sprocket.
@@ -159,8 +155,7 @@ def seating_geometry(form: str, pitch: float, teeth: ArrayLike, roller_diameter:
     ----------
     form : str
         ``"ISO 606"`` or ``"GOST 591"``.
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
     teeth : array_like
         (n,) teeth z [-].
     roller_diameter : float

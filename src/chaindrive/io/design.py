@@ -20,6 +20,7 @@ from typing import Any
 import tomli_w
 
 from chaindrive import catalog
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.geometry.contour import in_travel_order
 from chaindrive.io.limits import MAX_DESIGN_BYTES, check_file_size, shown_key
@@ -1118,6 +1119,7 @@ def _q(value: float, factor: float, unit: str) -> str:
     return f"{value * factor:.12g} {unit}"
 
 
+@shared_parameters
 def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     """The tables of a design file of ``drive`` (lengths in mm, speeds in rpm): what
     :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
@@ -1125,8 +1127,7 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
 
     Returns
     -------
@@ -1244,13 +1245,13 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
     return _fields_table(d, DYNAMICS_FIELDS, units)
 
 
+@shared_parameters
 def drive_to_toml(drive: Drive) -> str:
     """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`).
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
 
     Returns
     -------

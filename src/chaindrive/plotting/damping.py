@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem, fmt
 from chaindrive.plotting._base import CYCLE, figure_axes, finish, scale
 from chaindrive.units import TWO_PI
@@ -19,6 +20,7 @@ if TYPE_CHECKING:
     from chaindrive.dynamics.damping import HingeFrictionResult
 
 
+@shared_parameters
 def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
                             ax: Axes | None = None, units: UnitSystem = "SI") -> Figure:
     """ψ = 6πfd₂/(ȳ₀aK_aF) ([ChainHingeDissipation, eq. 14]) against ȳ₀, one curve per tension F₀ [N].
@@ -31,16 +33,14 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
     ----------
     results : sequence of HingeFrictionResult
         Results over a grid of (F₀, ȳ₀).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     units : {"SI", "US"}
         Unit system of the tensions F₀ in the legend: N (SI) or lbf (US)
         (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.8))
     factor, unit = scale("force", units)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import fmt
 from chaindrive.plotting._base import CYCLE, GREY, TIGHT, figure_axes, finish
 
@@ -19,6 +20,7 @@ if TYPE_CHECKING:
     from chaindrive.dynamics import CampbellData, Modes
 
 
+@shared_parameters
 def mode_shapes(modal: Modes, *, ax: Axes | None = None,
                 names: Sequence[str] | None = None, modes: int = 4) -> Figure:
     """Mode shapes X^(j) of the first ``modes`` elastic modes as signed lines along the
@@ -32,8 +34,7 @@ def mode_shapes(modal: Modes, *, ax: Axes | None = None,
     ----------
     modal : Modes
         The ring's modes.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the masses (None: M1, M2, …).
     modes : int
@@ -41,8 +42,7 @@ def mode_shapes(modal: Modes, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     elastic = np.flatnonzero(~np.asarray(modal.rigid_body))[:modes]
@@ -180,6 +180,7 @@ def _tag_offsets(points: Sequence[tuple[float, float]],
     return out
 
 
+@shared_parameters
 def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
                      operating_rpm: float | None = None, max_lines: int = 8,
                      band_percent: float | None = None, window: float = 0.3,
@@ -202,8 +203,7 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
     ----------
     campbell : CampbellData
         The Campbell data.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     operating_rpm : float or None
         Operating driver speed [rpm] (None: not drawn).
     max_lines : int
@@ -222,8 +222,7 @@ def campbell_diagram(campbell: CampbellData, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 5.0))
     rpm = np.asarray(campbell.speeds_rpm)

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, figure_axes, finish, scale
 
@@ -17,6 +18,7 @@ if TYPE_CHECKING:
     from chaindrive.kinematics import KinematicsResult
 
 
+@shared_parameters
 def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None,
                 units: UnitSystem = "SI") -> Figure:
     """Instantaneous chain speed v = R₁ω₁cos β [m/s, or ft/min with ``units="US"``] over one tooth period of
@@ -27,16 +29,14 @@ def chain_speed(kinematics: KinematicsResult, *, ax: Axes | None = None,
     ----------
     kinematics : KinematicsResult
         The drive's kinematics (speed traces of the tight span).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     units : {"SI", "US"}
         Unit system of the speed axis: m/s (SI) or ft/min (US)
         (:data:`chaindrive.display.QUANTITIES`, kind ``"velocity"``).
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     factor, unit = scale("velocity", units)
@@ -71,6 +71,7 @@ def ratio_pair(analysis: Analysis) -> tuple[int, int]:
     return analysis.drive.driver_index, tight.start
 
 
+@shared_parameters
 def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     """Instantaneous ratio i = ω₁/ω₂ over one tooth period for the sprocket at the far end
     of the tight span ([ChainNonUniformity]: i = R₂cos γ / (R₁cos β)), as computed by
@@ -81,13 +82,11 @@ def transmission_ratio(analysis: Analysis, *, ax: Axes | None = None) -> Figure:
     ----------
     analysis : Analysis
         The analysis (its kinematics and geometry).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     drive = analysis.drive

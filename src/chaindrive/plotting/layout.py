@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem
 from chaindrive.plotting._base import CHAIN, GREY, PITCH, TIGHT, figure_axes, finish, scale
 
@@ -79,6 +80,7 @@ def _below_xlabel(ax: Axes) -> Transform:
     return ax.transAxes + ScaledTranslation(0.0, -0.5, ax.figure.dpi_scale_trans)
 
 
+@shared_parameters
 def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
                    labels: bool = True, units: UnitSystem = "SI") -> Figure:
     """The contour of a drive to scale [mm, or in with ``units="US"``]: tip circles (grey discs), pitch
@@ -89,8 +91,7 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
     ----------
     geometry : GeometryResult
         The contour.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     labels : bool
         True writes the sprocket names and tooth counts.
     units : {"SI", "US"}
@@ -99,8 +100,7 @@ def contour_layout(geometry: GeometryResult, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, _figsize(geometry))
     MM, unit = scale("length", units)  # metres → the drawing's unit

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem
 from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, new_figure, scale
 from chaindrive.units import TWO_PI
@@ -85,6 +86,7 @@ def _circle(centre: tuple[float, float], radius: float, color: str, alpha: float
                   linestyle="--" if dashed else "-", linewidth=0.8)
 
 
+@shared_parameters
 def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axes | None = None,
                 magnify: float = 1.0, units: UnitSystem = "SI") -> Figure:
     """The chain at the recorded instant nearest ``time_s`` [s] (None: the last): sprockets
@@ -98,8 +100,7 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
         A link-level run.
     time_s : float or None
         The instant [s] (None: the last recorded one).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     magnify : float
         Scale of the transverse deviations of the free rollers [-].
     units : {"SI", "US"}
@@ -108,8 +109,7 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (7.0, 4.0))
     k = _sample(result, time_s)
@@ -178,6 +178,7 @@ def _colorbar(fig: Figure, ax: Axes, vmax: float, axes: list[Axes] | None = None
                  shrink=0.8)
 
 
+@shared_parameters
 def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None,
                 units: UnitSystem = "SI") -> Figure:
     """Mean contact force [N, or lbf with ``units="US"``] on the rollers at each place of every sprocket's
@@ -187,16 +188,12 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None,
     ----------
     result : LinkLevelResult
         A link-level run.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-    units : {"SI", "US"}
-        Unit system of the link tensions: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(ax)s
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     factor, unit = scale("force", units)
@@ -229,6 +226,7 @@ def frame_times(result: LinkLevelResult, count: int = 4) -> list[float]:
     return [end * (k + 1) / count for k in range(count)]
 
 
+@shared_parameters
 def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None = None, *,
                         ax: Axes | None = None, units: UnitSystem = "SI") -> Figure:
     """The tension of every link along the chain [N, or lbf with ``units="US"``] at recorded instants (None:
@@ -240,16 +238,12 @@ def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None
         A link-level run.
     times_s : sequence of float or None
         The instants [s] (None: :func:`frame_times`).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-    units : {"SI", "US"}
-        Unit system of the link tensions: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(ax)s
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.4))
     factor, unit = scale("force", units)

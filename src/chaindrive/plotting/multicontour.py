@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.plotting._base import CHAIN, GREY, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -14,6 +15,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
+@shared_parameters
 def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05,
                     bins: int = 40) -> Figure:
     """Histogram (density) of Monte-Carlo samples of the contour factor K_m ([Lyashuk]
@@ -26,8 +28,7 @@ def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05
     ----------
     km : array_like
         Samples of K_m [-].
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     risk : float
         Probability that K_m at risk is exceeded [-].
     bins : int
@@ -35,8 +36,7 @@ def km_distribution(km: ArrayLike, *, ax: Axes | None = None, risk: float = 0.05
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     values = np.asarray(km, dtype=float).ravel()
     fig, ax = figure_axes(ax, (6.0, 3.4))

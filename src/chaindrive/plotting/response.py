@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
 from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
 
@@ -75,6 +76,7 @@ def _zoom_end(t: NDArray[np.float64], transient: float) -> float:
     return float(t[-1])
 
 
+@shared_parameters
 def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
                         names: Sequence[str] | None = None, max_lines: int = 6,
                         units: UnitSystem = "SI") -> Figure:
@@ -90,20 +92,16 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     ----------
     startup : StartupResult
         The start-up.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
     max_lines : int
         Spans drawn at most (those of the largest peaks) [-].
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     factor, unit = scale("force", units)
@@ -138,6 +136,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     return fig
 
 
+@shared_parameters
 def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
                    names: Sequence[str] | None = None, max_lines: int = 6) -> Figure:
     """Sprocket speeds [rpm] during the start-up against time [ms] ([MultimassChainDrives, Fig. 2]), over
@@ -147,8 +146,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
     ----------
     startup : StartupResult
         The start-up.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the sprockets (None: M1, M2, …).
     max_lines : int
@@ -156,8 +154,7 @@ def startup_speeds(startup: StartupResult, *, ax: Axes | None = None,
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 3.6))
     t = np.asarray(startup.times) * 1e3
@@ -207,6 +204,7 @@ def _legend(ax: Axes, curves: int,
         ax.legend(fontsize="x-small", loc=inside)
 
 
+@shared_parameters
 def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] | None = None,
                max_lines: int = 6, max_markers: int = 8,
                operating_hz: float | None = None,
@@ -224,8 +222,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     ----------
     afc : AfcResult
         The speed sweep.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
     max_lines : int
@@ -237,14 +234,11 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     mode_numbers : sequence of int or None
         The number each elastic mode carries in the tables, in the order of
         ``afc.natural_frequencies_hz`` (None: the markers' own 1, 2, …).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.4, 4.0))
     fz = np.asarray(afc.tooth_frequencies_hz)
@@ -279,6 +273,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     return fig
 
 
+@shared_parameters
 def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
                  names: Sequence[str] | None = None, units: UnitSystem = "SI") -> Figure:
     """Steady dynamic load of each span under the polygonal effect ([MultimassChainDrives, §3.3]): peak
@@ -289,18 +284,14 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     ----------
     steady : SteadyStateResult
         The steady state.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
     names : sequence of str or None
         Labels of the spans (None: numbered).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     fig, ax = figure_axes(ax, (6.0, 3.4))
     factor, unit = scale("force", units)
@@ -317,6 +308,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     return fig
 
 
+@shared_parameters
 def inertia_and_irregularity(steady: SteadyStateResult, *,
                              names: Sequence[str] | None = None,
                              units: UnitSystem = "SI") -> Figure:
@@ -330,9 +322,7 @@ def inertia_and_irregularity(steady: SteadyStateResult, *,
         The steady state.
     names : sequence of str or None
         Labels of the masses (None: M1, M2, …).
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------
@@ -363,6 +353,7 @@ def _pair_label(case: MaterialCase) -> str:
     return f"{case.chain_material}\non {case.sprocket_material}"
 
 
+@shared_parameters
 def material_comparison_chart(cases: Sequence[MaterialCase], *,
                               units: UnitSystem = "SI") -> Figure:
     """The material pairs side by side ([MultimassChainDrives, Fig. 2–3, Table 1]): start-up peak span force
@@ -374,9 +365,7 @@ def material_comparison_chart(cases: Sequence[MaterialCase], *,
     ----------
     cases : sequence of MaterialCase
         One per material pair.
-    units : {"SI", "US"}
-        Unit system of the forces: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(units_force)s
 
     Returns
     -------

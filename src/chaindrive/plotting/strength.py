@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem
 from chaindrive.errors import DesignError
 from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish, scale
@@ -24,6 +25,7 @@ def _strength(analysis: Analysis) -> StrengthResult:
     return analysis.strength
 
 
+@shared_parameters
 def span_tensions(analysis: Analysis, *, ax: Axes | None = None,
                   units: UnitSystem = "SI") -> Figure:
     """Static tension of each span [N, or lbf with ``units="US"``] (tight span red): F_t + F_0 + F_v on the
@@ -34,16 +36,12 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None,
     ----------
     analysis : Analysis
         The analysis (its loads).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-    units : {"SI", "US"}
-        Unit system of the force axis: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(ax)s
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     loads = _strength(analysis).loads
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
@@ -65,6 +63,7 @@ def _bars(ax: Axes | None, names: list[str], values: Any, colours: Any, ylabel: 
     return fig
 
 
+@shared_parameters
 def shaft_loads(analysis: Analysis, *, ax: Axes | None = None,
                 units: UnitSystem = "SI") -> Figure:
     """Magnitude of the load on each shaft [N, or lbf with ``units="US"``] (vector sum of the two span
@@ -74,16 +73,12 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None,
     ----------
     analysis : Analysis
         The analysis (its loads).
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-    units : {"SI", "US"}
-        Unit system of the force axis: N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).
+    %(ax)s
+    %(units_force)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
     """
     loads = _strength(analysis).loads
     names = [s.name for s in analysis.drive.sprockets]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.plotting._base import CHAIN, TIGHT, figure_axes, finish
 
 if TYPE_CHECKING:
@@ -13,6 +14,7 @@ if TYPE_CHECKING:
     from chaindrive.synthesis.solve import SynthesisResult
 
 
+@shared_parameters
 def pareto_front(result: SynthesisResult, *, ax: Axes | None = None) -> Figure:
     """Scatter of the Pareto set of a :class:`chaindrive.synthesis.solve.SynthesisResult`:
     the first two objectives on the axes, the third (if any) as colour, the start design
@@ -22,13 +24,11 @@ def pareto_front(result: SynthesisResult, *, ax: Axes | None = None) -> Figure:
     ----------
     result : SynthesisResult
         An optimisation run.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
+    %(ax)s
 
     Returns
     -------
-    Figure
-        The figure drawn into.
+    %(returns_figure)s
 
     References
     ----------

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.plotting.robust import (
     life_curve_figure,
     probability_figure,
@@ -70,19 +71,12 @@ def _sobol_summary(sens: dict[str, Any]) -> str:
     return text
 
 
+@shared_parameters
 def robust_section(inp: ReportInput) -> list[Block] | None:
     """Life curve, probabilities of failure and sensitivity indices (None without a robust
     study).
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     result = inp.robust

@@ -12,6 +12,7 @@ import math
 from collections.abc import Collection, Sequence
 from typing import TYPE_CHECKING, Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import worst
 from chaindrive.display import (
     candidate_verdict,
@@ -58,6 +59,7 @@ FIRST_WARNINGS = 5
 
 # --- page 1: the verdict -------------------------------------------------------------------------
 
+@shared_parameters
 def check_cells(c: Check, inp: ReportInput, *, with_note: bool = True) -> tuple[Any, ...]:
     """(check, subject, value, required, margin %, result, source) of a check.
 
@@ -65,8 +67,7 @@ def check_cells(c: Check, inp: ReportInput, *, with_note: bool = True) -> tuple[
     ----------
     c : Check
         The check.
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     with_note : bool
         True adds the check's note to its name when it does not pass.
 
@@ -125,6 +126,7 @@ def _sentence(text: str) -> str:
     return text[:1].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
+@shared_parameters
 def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     """What the results rest on that the design does not give (defaults and estimates), as
     the analysis says it: the damping source of its model, its warnings of estimated inputs
@@ -134,8 +136,7 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     shown : collection of str
         Warning messages already shown in full elsewhere on the page (these get one short
         line here).
@@ -193,14 +194,14 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     return out
 
 
+@shared_parameters
 def verdict_of(inp: ReportInput, checks: Sequence[Check], *,
                where: str = "the section Checks") -> Verdict:
     """The verdict of the checks: how many fail and the worst, or that all pass.
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     checks : sequence of Check
         Every check of the analysis.
     where : str
@@ -222,6 +223,7 @@ def verdict_of(inp: ReportInput, checks: Sequence[Check], *,
                    f"{where}.")
 
 
+@shared_parameters
 def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = False
                 ) -> Table:
     """The table of checks with value, requirement, margin and result (failed rows
@@ -230,8 +232,7 @@ def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = 
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     checks : sequence of Check
         Every check of the analysis.
     governing : bool
@@ -251,19 +252,12 @@ def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = 
                  tuple(i for i, c in enumerate(shown) if not c.passed))
 
 
+@shared_parameters
 def summary_section(inp: ReportInput) -> list[Block]:
     """Page 1: the verdict of every check, the governing checks, the warnings, what the
     results rest on, and the design at a glance.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The section's blocks.
+    %(section_blocks)s
     """
     a = inp.analysis
     checks = a.checks()
@@ -329,14 +323,14 @@ def warning_blocks(warnings: Sequence[str], shown: Sequence[str], title: str,
     return out
 
 
+@shared_parameters
 def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
     """The defaults and estimates the results rest on (:func:`estimates`) as a list under
     its heading; nothing when there are none.
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     shown : collection of str
         Warnings the page shows in full (an estimate among them is then one short line).
 
@@ -352,14 +346,14 @@ def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
             *(Text(e, "item") for e in rest)]
 
 
+@shared_parameters
 def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table:
     """The design at a glance: chain, links, power, speeds, lowest natural frequency, K_D
     and the dynamic safety factors, mass and cost.
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     caption : str
         The table's caption.
     words : bool
@@ -401,18 +395,11 @@ def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table
 
 # --- inputs ----------------------------------------------------------------------------------
 
+@shared_parameters
 def inputs_section(inp: ReportInput) -> list[Block]:
     """The design as read, in the report's units.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The section's blocks.
+    %(section_blocks)s
     """
     d = inp.analysis.drive
     duty = inp.analysis.duty_summary()
@@ -516,18 +503,11 @@ def _motor_and_trains(inp: ReportInput) -> list[Block]:
 
 # --- geometry and kinematics -----------------------------------------------------------------
 
+@shared_parameters
 def geometry_section(inp: ReportInput) -> list[Block]:
     """Contour summary, sprockets, spans and the layout to scale.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The section's blocks.
+    %(section_blocks)s
     """
 
     a = inp.analysis
@@ -586,18 +566,11 @@ def _length_options_table(inp: ReportInput) -> Table:
                        for o in lc.options]))
 
 
+@shared_parameters
 def kinematics_section(inp: ReportInput) -> list[Block]:
     """Speeds and the polygonal non-uniformity [ChainNonUniformity].
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The section's blocks.
+    %(section_blocks)s
     """
 
     k = inp.analysis.kinematics
@@ -627,13 +600,13 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
     return blocks
 
 
+@shared_parameters
 def lubrication_text(inp: ReportInput) -> str:
     """The lubrication regime at the chain speed, with its ANSI type when it has one.
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
 
     Returns
     -------
@@ -663,18 +636,11 @@ def _lubrication_table(inp: ReportInput) -> Table:
 
 # --- selection and strength -------------------------------------------------------------------
 
+@shared_parameters
 def selection_section(inp: ReportInput) -> list[Block] | None:
     """The chain a method of the family selects, with the ranked candidates.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
     sel = inp.analysis.selection
     if sel is None:
@@ -703,18 +669,11 @@ def selection_section(inp: ReportInput) -> list[Block] | None:
                          c["governing"]) for c in cands]))]
 
 
+@shared_parameters
 def strength_section(inp: ReportInput) -> list[Block] | None:
     """Loads round the contour and static strength.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     st = inp.analysis.strength
@@ -760,18 +719,11 @@ def strength_section(inp: ReportInput) -> list[Block] | None:
     return blocks
 
 
+@shared_parameters
 def contours_section(inp: ReportInput) -> list[Block] | None:
     """Multi-contour drives: the load share of the most loaded contour [Lyashuk].
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
     part = inp.analysis.contours
     if part is None:
@@ -786,19 +738,12 @@ def contours_section(inp: ReportInput) -> list[Block] | None:
 
 # --- checks, design file, references ----------------------------------------------------------
 
+@shared_parameters
 def checks_section(inp: ReportInput) -> list[Block]:
     """Every check of the analysis with its value, limit, margin (≥ 0 passes) and source;
     failed rows highlighted.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block
-        The section's blocks.
+    %(section_blocks)s
     """
     checks = sorted(inp.analysis.checks(), key=lambda c: c.passed)
     blocks = inp.define("margin")
@@ -818,19 +763,12 @@ def checks_section(inp: ReportInput) -> list[Block]:
     return blocks
 
 
+@shared_parameters
 def design_file_section(inp: ReportInput) -> list[Block] | None:
     """The design file as given, with its SHA-256 (absent when the report is built from an
     object).
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
     if inp.source_bytes is None:
         return None
@@ -839,13 +777,13 @@ def design_file_section(inp: ReportInput) -> list[Block] | None:
             Text(inp.source_bytes.decode("utf-8", errors="replace"), "code")]
 
 
+@shared_parameters
 def references_section(inp: ReportInput, cited: str) -> list[Block]:
     """The bibliography: every source the report cites (``cited`` is the report's text).
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     cited : str
         The report's text (:func:`chaindrive.report.report_text`), searched for keys of
         docs/references.md in square brackets.

@@ -9,6 +9,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import constraint_row, show, unit_header
 from chaindrive.plotting import (
     absorption_vs_amplitude,
@@ -47,14 +48,14 @@ def _elastic_modes(inp: ReportInput) -> list[int]:
     return [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
 
 
+@shared_parameters
 def tooth_harmonics(inp: ReportInput) -> str:
     """The harmonics of the tooth frequency among the working frequencies of the resonance
     table, as the analysis lists them ("1–3"; "" when it lists none).
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
 
     Returns
     -------
@@ -69,6 +70,7 @@ def tooth_harmonics(inp: ReportInput) -> str:
     return ", ".join(str(k) for k in ks)
 
 
+@shared_parameters
 def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], tuple[int, ...]]:
     """Rows of the resonance table of the ring modes (``kind`` "ring") or of the spans'
     parametric resonances ("span"): working frequency, f_w, natural frequency, mode or span,
@@ -76,8 +78,7 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     kind : str
         "ring" (the ring modes) or "span" (the spans' parametric resonances).
 
@@ -106,20 +107,13 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
     return out, tuple(inside)
 
 
+@shared_parameters
 def dynamics_section(inp: ReportInput) -> list[Block] | None:
     """The ring model [MultimassChainDrives, §3.1–3.3]: masses and branches, natural
     frequencies, signed mode shapes along the contour, the resonance tables of the ring and
     of the spans, and the Campbell diagram zoomed to the crossings near the working speed.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     a = inp.analysis
@@ -216,19 +210,12 @@ def _k_rows(inp: ReportInput) -> list[tuple[str, str, Any, str, Any, str]]:
     return out
 
 
+@shared_parameters
 def response_section(inp: ReportInput) -> list[Block] | None:
     """The dynamic response [MultimassChainDrives, §3.3, §3.6]: the two-stage check, K_D,
     the loads per span and per mass, the start-up, the AFC.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     a = inp.analysis
@@ -325,19 +312,12 @@ def _span_table(inp: ReportInput, spans: list[str]) -> Table:
                  rows(zip(spans, *(v for _, v in cols), strict=True)))
 
 
+@shared_parameters
 def materials_section(inp: ReportInput) -> list[Block] | None:
     """The four chain/sprocket material pairs on this layout ([MultimassChainDrives], Fig.
     2–3, Table 1), only when the analysis ran that study.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     cases = inp.analysis.material_pairs
@@ -359,19 +339,12 @@ def materials_section(inp: ReportInput) -> list[Block] | None:
     ]
 
 
+@shared_parameters
 def damping_section(inp: ReportInput) -> list[Block] | None:
     """The hinge-friction damping model [ChainHingeDissipation] for its reference chain,
     only when the analysis ran that study.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     results = inp.analysis.hinge_friction
@@ -407,20 +380,13 @@ def _comparison_rows(inp: ReportInput) -> list[tuple[Any, ...]]:
     return out
 
 
+@shared_parameters
 def links_section(inp: ReportInput) -> list[Block] | None:
     """The link-level model of the drive beside the whole-drive model ([Pedersen2004],
     [Pedersen2005]), only when the analysis ran that study: the table of the quantities
     both give, frames of the chain, link tension along it and the tooth loads.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     a = inp.analysis
@@ -468,19 +434,12 @@ def links_section(inp: ReportInput) -> list[Block] | None:
     return blocks
 
 
+@shared_parameters
 def synthesis_section(inp: ReportInput) -> list[Block] | None:
     """The optimisation that chose this design: the Pareto set and its front, and why
     designs were rejected.
 
-    Parameters
-    ----------
-    inp : ReportInput
-        The analysis and the report's settings.
-
-    Returns
-    -------
-    list of Block | None
-        The section's blocks (None: the section does not apply).
+    %(section)s
     """
 
     result = inp.synthesis

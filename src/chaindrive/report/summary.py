@@ -14,6 +14,7 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import check_row, quantity_text, warning_text
 from chaindrive.plotting import contour_layout
 from chaindrive.report.content import (
@@ -54,6 +55,7 @@ def _words(key: str) -> str:
     return f"{s.meaning} {s.text}"
 
 
+@shared_parameters
 def grouped_checks(inp: ReportInput, checks: Sequence[Check]) -> tuple[Table, list[str]]:
     """The governing checks (:func:`~chaindrive.report.sections.governing_checks`) with the
     checks of one name and result on one row (their subjects and values listed), and the
@@ -61,8 +63,7 @@ def grouped_checks(inp: ReportInput, checks: Sequence[Check]) -> tuple[Table, li
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
     checks : sequence of Check
         Every check of the analysis.
 
@@ -163,13 +164,13 @@ def _other_warnings(inp: ReportInput) -> list[Block]:
                           "item", "the full report's section Checks")
 
 
+@shared_parameters
 def sheet_sections(inp: ReportInput) -> list[Section]:
     """The two sections of the sign-off sheet, one a page.
 
     Parameters
     ----------
-    inp : ReportInput
-        The analysis and the report's settings.
+    %(inp)s
 
     Returns
     -------

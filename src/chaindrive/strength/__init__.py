@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveWarning, DesignError, Quantities, Quantity
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
@@ -115,6 +116,7 @@ class StrengthResult:
         }
 
 
+@shared_parameters
 def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: float | None = None,
                 dynamic_factor: float = 1.0, service_factor: float | None = None,
                 elongation: float = BASIS_ELONGATION, sag_ratio: float | None = None,
@@ -133,8 +135,7 @@ def strength_of(drive: Drive, geometry: GeometryResult, *, operating_factor: flo
     ----------
     drive : Drive
         The design (power and driver speed needed).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     operating_factor : float or None
         Kэ for p = F_t·Kэ/A [-] (default: the drive's service factor,
         :func:`~chaindrive.strength.duty.service_factor_for`).

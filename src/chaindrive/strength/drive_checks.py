@@ -31,6 +31,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.kinematics import mean_chain_speed
 from chaindrive.model import ChainSpec, Drive
@@ -84,6 +85,7 @@ class CheckSettings:
     method: str | None = None
 
 
+@shared_parameters
 def settings_for(drive: Drive, *, service_factor: float | None = None,
                  design_factor: float | None = None, operating_factor: float | None = None,
                  dynamic_factor: float | None = None, required_life_h: float | None = None,
@@ -94,8 +96,7 @@ def settings_for(drive: Drive, *, service_factor: float | None = None,
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     service_factor, design_factor, operating_factor, dynamic_factor : float or None
         K_s, n_d, Kэ, kд [-] (None: the default).
     required_life_h : float or None
@@ -242,6 +243,7 @@ def _polymer_checks(drive: Drive, loads: _Forces, s: CheckSettings) -> list[ck.C
                            linear=True)]
 
 
+@shared_parameters
 def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     """Teeth in mesh of every sprocket, the wrap of the driver and of the small loaded sprocket
     (the others have no wrap limit: a check that cannot fail is not listed), and the longest
@@ -249,10 +251,7 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
 
     Returns
     -------
@@ -272,6 +271,7 @@ def geometry_checks(drive: Drive, geometry: GeometryResult) -> list[ck.Check]:
     return out
 
 
+@shared_parameters
 def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
                  loads: LoadsResult | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method.
@@ -280,8 +280,7 @@ def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings
     ----------
     drive : Drive
         The design (power and driver speed given).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
     loads : LoadsResult or None
@@ -303,6 +302,7 @@ def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings
     return _rating_checks(drive, geometry, forces, s)
 
 
+@shared_parameters
 def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings | None = None,
                loads: LoadsResult | None = None) -> tuple[ck.Check, ...]:
     """Every check of a drive: its chain's and its layout's.
@@ -311,8 +311,7 @@ def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings |
     ----------
     drive : Drive
         The design (power and driver speed given).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     settings : CheckSettings or None
         What the checks are held to (None: :func:`settings_for` the drive).
     loads : LoadsResult or None
@@ -326,6 +325,7 @@ def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings |
     return (*chain_checks(drive, geometry, settings, loads), *geometry_checks(drive, geometry))
 
 
+@shared_parameters
 def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
                           loads: LoadsResult | None = None,
                           required_life_h: float | None = None) -> tuple[ck.Check, ...]:
@@ -337,8 +337,7 @@ def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
     ----------
     drive : Drive
         The design (power and driver speed given).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     km : float
         K_m, the number of contours the power is divided by for the most loaded one [-]
         (the contours' compatibility factor, or the chain's contour count).

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveWarning
 from chaindrive.model import DRIVEN_DUTIES, DRIVER_DUTIES, ChainSpec, Drive
 from chaindrive.strength import iso10823, ke_method, ratings
@@ -129,6 +130,7 @@ def _from_classes(driver: str, driven: str, spec: ChainSpec) -> float:
     return iso10823.service_factor(DRIVEN_ROWS[driven], DRIVER_COLUMNS[driver])
 
 
+@shared_parameters
 def service_factor_for(drive: Drive, spec: ChainSpec | None = None) -> ServiceFactor:
     """The service factor of a drive: given, from its duty classes, or the default 1.0.
 
@@ -136,8 +138,7 @@ def service_factor_for(drive: Drive, spec: ChainSpec | None = None) -> ServiceFa
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     spec : ChainSpec or None
         The chain whose method's table is read (None: the design's chain).
 
@@ -166,13 +167,13 @@ def service_factor_for(drive: Drive, spec: ChainSpec | None = None) -> ServiceFa
     return ServiceFactor(_from_classes(driver, driven, spec), "duty classes", table, note)
 
 
+@shared_parameters
 def required_life_h(drive: Drive) -> float | None:
     """The required wear life of the design in hours (None: the rating method's basis).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------
@@ -182,13 +183,13 @@ def required_life_h(drive: Drive) -> float | None:
     return None if drive.required_life is None else drive.required_life / SECONDS_PER_HOUR
 
 
+@shared_parameters
 def duty_warnings(drive: Drive) -> list[ChainDriveWarning]:
     """Say when the service factor is the default 1.0 or a class was assumed.
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.geometry.results import GeometryResult, SpanGeometry
@@ -49,6 +50,7 @@ G = 9.80665  # standard gravity [m/s²]
 SHARE_TOLERANCE = 1e-6
 
 
+@shared_parameters
 def power_shares(drive: Drive) -> NDArray[np.float64]:
     """Fraction of the drive power taken off at each sprocket.
 
@@ -56,8 +58,7 @@ def power_shares(drive: Drive) -> NDArray[np.float64]:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------
@@ -428,14 +429,14 @@ def _tight_and_slack(drive: Drive, geometry: GeometryResult) -> tuple[int, int]:
     return tight, slack
 
 
+@shared_parameters
 def installed_sag_ratio(drive: Drive) -> float:
     """Sag of the slack span of the new chain as installed, as a fraction of its length [-]:
     the design's ``[chain] sag``, else :data:`DEFAULT_SAG_RATIO`.
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------
@@ -445,6 +446,7 @@ def installed_sag_ratio(drive: Drive) -> float:
     return DEFAULT_SAG_RATIO if drive.chain.sag is None else drive.chain.sag
 
 
+@shared_parameters
 def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None = None,
              shaft_load_factor: float = 1.0) -> LoadsResult:
     """Static loads round the contour of a drive.
@@ -457,8 +459,7 @@ def loads_of(drive: Drive, geometry: GeometryResult, *, sag_ratio: float | None 
     ----------
     drive : Drive
         The design (power [W] and the driver's speed [rad/s] needed).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     sag_ratio : float | None
         Sag of the slack span as a fraction of its length [-]; None: the design's installed
         sag (``[chain] sag``), else :data:`DEFAULT_SAG_RATIO` (the textbook k_f = 6).

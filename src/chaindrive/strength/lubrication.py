@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.model import ChainSpec
 from chaindrive.strength import iso10823
 
@@ -88,13 +89,13 @@ def _table() -> list[tuple[float, float, float]]:
     return sorted(rows)
 
 
+@shared_parameters
 def speed_limits(pitch: float) -> tuple[float, float, str]:
     """Drip (type A) and bath/disc (type B) upper chain speeds for a pitch.
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
 
     Returns
     -------

@@ -35,6 +35,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import Check
 from chaindrive.errors import DesignError, Quantities, Quantity
 from chaindrive.geometry.contour import contour_geometry
@@ -252,6 +253,7 @@ def _movable(drive: Drive, near: int | None) -> Iterator[int]:
             yield i
 
 
+@shared_parameters
 def span_limit_text(failed: Check, pitch: float) -> tuple[str, tuple[Quantity, ...]]:
     """The closed form of the span-length limit: ℓ ≤ 80·p, how much shorter the span must
     be, or that it needs support.
@@ -260,8 +262,7 @@ def span_limit_text(failed: Check, pitch: float) -> tuple[str, tuple[Quantity, .
     ----------
     failed : Check
         The failed span-length check (value and limit in pitches).
-    pitch : float
-        Chain pitch p [m].
+    %(pitch)s
 
     Returns
     -------
@@ -277,6 +278,7 @@ def span_limit_text(failed: Check, pitch: float) -> tuple[str, tuple[Quantity, .
     return text, q.items
 
 
+@shared_parameters
 def layout_remedies(drive: Drive, geometry: GeometryResult, failed: Check) -> tuple[Remedy, ...]:
     """The remedies of one failed layout check (module docstring): a change of teeth first
     (when the check is about an idler), then the least move of each sprocket that may move,
@@ -286,8 +288,7 @@ def layout_remedies(drive: Drive, geometry: GeometryResult, failed: Check) -> tu
     ----------
     drive : Drive
         The drive with the chain, laid out as the selection lays it out (its link rounding).
-    geometry : GeometryResult
-        Its contour.
+    %(geometry)s
     failed : Check
         The failed layout check.
 

@@ -39,6 +39,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import chains
 from chaindrive.checks import RESONANCE_BAND_PERCENT
 from chaindrive.errors import UNIT_KINDS, DesignError, Quantities, Quantity
@@ -523,6 +524,7 @@ def rank_key(c: Candidate) -> tuple[bool, float, float, float, float, float, flo
             c.pitch, float(c.strands))
 
 
+@shared_parameters
 def estimated_links(drive: Drive, pitch: float) -> float:
     """Chain length before the geometry is built: perimeter of the centre polygon / p plus
     the mean tooth count (for two sprockets 2a/p + (z1 + z2)/2, [Shigley2015, Eq. 17-34]
@@ -530,10 +532,8 @@ def estimated_links(drive: Drive, pitch: float) -> float:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
-    pitch : float
-        Chain pitch p [m].
+    %(drive)s
+    %(pitch)s
 
     Returns
     -------
@@ -570,6 +570,7 @@ def _family(catalog: Sequence[ChainSpec], standard: str, series: str | None,
     return family
 
 
+@shared_parameters
 def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
               settings: CheckSettings,
               layout_checks: tuple[ck.Check, ...] | None = None) -> Candidate:
@@ -578,8 +579,7 @@ def candidate(drive: Drive, spec: ChainSpec, geometry: GeometryResult | str,
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     spec : ChainSpec
         The chain.
     geometry : GeometryResult or str
@@ -928,6 +928,7 @@ def _first(family: Sequence[ChainSpec], key: tuple[float, float]) -> ChainSpec:
     return next(s for s in family if (s.pitch, s.roller_diameter) == key)
 
 
+@shared_parameters
 def select_chain(drive: Drive, *, standard: str | None = None, series: str | None = None,
                  strands: int | None = None, method: str | None = None,
                  service_factor: float | None = None, design_factor: float = 1.0,
@@ -938,8 +939,7 @@ def select_chain(drive: Drive, *, standard: str | None = None, series: str | Non
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     standard, series : str or None
         The family.
     strands : int or None

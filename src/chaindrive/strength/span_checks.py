@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.checks import Check, judged
 from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.model import ChainSpec, Drive
@@ -64,14 +65,14 @@ def _guide(drive: Drive, index: int, share: float) -> bool:
     return not drive.sprockets[index].adjustable and share > 0.0
 
 
+@shared_parameters
 def idler_warnings(drive: Drive, loads: LoadsResult) -> list[ChainDriveWarning]:
     """Say the shaft load of every fixed idler that guides the chain on a loaded span
     (module docstring).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     loads : LoadsResult
         Its static loads.
 

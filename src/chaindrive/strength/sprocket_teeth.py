@@ -38,6 +38,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check, judged
 from chaindrive.errors import Quantities
@@ -192,16 +193,14 @@ class ToothLoad:
     width: float
 
 
+@shared_parameters
 def tooth_loads(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
                 indices: tuple[int, ...]) -> tuple[ToothLoad, ...]:
     """The most loaded tooth of each of the given sprockets (module docstring).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
     loads : LoadsResult
         Its span tensions [N].
     indices : tuple of int
@@ -241,6 +240,7 @@ def tooth_loads(drive: Drive, geometry: GeometryResult, loads: LoadsResult,
     return tuple(out)
 
 
+@shared_parameters
 def polymer_tooth_checks(drive: Drive, geometry: GeometryResult,
                          loads: LoadsResult) -> tuple[Check, ...]:
     """Root bending stress and contact pressure of the most loaded tooth of every polymer
@@ -249,10 +249,7 @@ def polymer_tooth_checks(drive: Drive, geometry: GeometryResult,
 
     Parameters
     ----------
-    drive : Drive
-        The design.
-    geometry : GeometryResult
-        Its contour.
+    %(drive_geometry)s
     loads : LoadsResult
         Its span tensions [N].
 

@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive.dynamics.frequency.afc import AfcResult, local_maxima, peak_over_period
 from chaindrive.dynamics.frequency.quality import coefficient_of_dynamics
 from chaindrive.dynamics.frequency.steady import SteadyStateResult
-from chaindrive.dynamics.modes import StateModes
+from chaindrive.dynamics.modes import Modes
 from chaindrive.errors import DesignError
 from chaindrive.strength.safety import steady_safety_factor
 from chaindrive.units import TWO_PI
@@ -153,7 +153,7 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
         nominal_force=nominal_force)
 
 
-def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcitation,
+def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
                     tooth_angular_frequencies: ArrayLike, samples: int = 64,
                     block: int = 128) -> FloatArray:
     """Peak span force of one contour over a tooth period [N], (speeds, S), at every tooth
@@ -163,8 +163,8 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
     ----------
     model : DriveModel
         The model.
-    state : StateModes
-        Its complex elastic modes (:func:`chaindrive.dynamics.modes.drive_modes`).
+    modes : Modes
+        Its modes with their complex elastic ones (:func:`chaindrive.dynamics.modes.drive_modes`).
     excitation : SpanExcitation
         Span elongation amplitudes and their orders (whole harmonics).
     tooth_angular_frequencies : array_like
@@ -181,11 +181,11 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
     """
     lin = model.linear
     B = lin.span_incidence
-    e = state.basis.shape[1]
-    BPhi = B @ state.basis                                           # (S, E)
-    P = state.left[:, e:] @ BPhi.T                                   # (2E, S)
-    BV = BPhi @ state.right[:e, :]                                    # (S, 2E)
-    lam = state.eigenvalues
+    lam, right, left, basis = modes.complex_modes()
+    e = basis.shape[1]
+    BPhi = B @ basis                                                 # (S, E)
+    P = left[:, e:] @ BPhi.T                                         # (2E, S)
+    BV = BPhi @ right[:e, :]                                         # (S, 2E)
     D = excitation.elongation                                        # (K, S)
     orders = excitation.orders
     wz = np.asarray(tooth_angular_frequencies, dtype=float)
@@ -206,7 +206,7 @@ def span_loads_over(model: DriveModel, state: StateModes, excitation: SpanExcita
     return out
 
 
-def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation,
+def drive_sweep(model: DriveModel, modes: Modes, excitation: SpanExcitation,
                 driver_speeds: ArrayLike, driver_teeth: int,
                 natural_frequencies_hz: ArrayLike, samples: int = 64) -> AfcResult:
     """Amplitude–frequency characteristic of the whole model over ``driver_speeds`` [rad/s]
@@ -214,7 +214,7 @@ def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation
 
     Parameters
     ----------
-    model, state : the model and its complex elastic modes.
+    model, modes : the model and its modes (with the complex elastic ones).
     excitation : SpanExcitation
         The excitation at any speed (only its amplitudes and orders are used).
     driver_speeds : array_like
@@ -234,7 +234,7 @@ def drive_sweep(model: DriveModel, state: StateModes, excitation: SpanExcitation
     if speeds.ndim != 1 or speeds.size < 1 or np.any(speeds <= 0):
         raise DesignError("driver_speeds", "need a 1-D array of positive speeds [rad/s]")
     wz = speeds * driver_teeth
-    load = span_loads_over(model, state, excitation, wz, samples)
+    load = span_loads_over(model, modes, excitation, wz, samples)
     fz_hz = wz / TWO_PI
     nat = np.asarray(natural_frequencies_hz, dtype=float)
     lo, hi = fz_hz.min(), fz_hz.max()

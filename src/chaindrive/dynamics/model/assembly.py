@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import freeze_arrays, read_only, rebuilt
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque
@@ -323,13 +324,13 @@ def _add_element(t: TorsionalEngine, tr: _Train, k: int, e: TrainElement,
     tr.nodes.append(new)
 
 
+@shared_parameters
 def kloss_parameters(drive: Drive) -> tuple[float, float]:
     """(λ = M_k/M_r, s_k) of the motor's Kloss law: ``[motor]`` over ``[dynamics]``.
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------
@@ -343,6 +344,7 @@ def kloss_parameters(drive: Drive) -> tuple[float, float]:
     return lam, sk
 
 
+@shared_parameters
 def motor_rating(drive: Drive) -> tuple[float | None, float | None]:
     """(rated power [W], rated speed [rad/s]) of the motor as the model places it:
     ``[motor] rated_power`` else the drive's power; ``[motor] rated_speed`` else the driver's
@@ -351,8 +353,7 @@ def motor_rating(drive: Drive) -> tuple[float | None, float | None]:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.model.assembly import (
     CHAIN_NODE,
@@ -60,9 +61,9 @@ from chaindrive.dynamics.model.damping import (
     reference_angular_frequency,
     with_chain_dampers,
 )
+from chaindrive.dynamics.modes import Modes
 from chaindrive.dynamics.parameters import RingParameters, drive_ring_parameters
 from chaindrive.dynamics.ring import RingModel
-from chaindrive.dynamics.torsional.system import TorsionalModes
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.units import TWO_PI
 
@@ -97,25 +98,25 @@ class DriveModel(DriveParts):
     ----------
     missing : tuple of str
         What makes the model incomplete (empty: complete).
-    modes : TorsionalModes | None
+    modes : Modes | None
         The modal analysis done while building (None: computed on demand).
     """
 
     missing: tuple[str, ...] = ()
-    modes: TorsionalModes | None = None
+    modes: Modes | None = None
 
     @property
     def complete(self) -> bool:
         """True when the driver carries its motor and every driven sprocket its machine."""
         return not self.missing
 
-    def modal(self) -> TorsionalModes:
+    def modal(self) -> Modes:
         """Undamped natural frequencies and shapes (:meth:`TorsionalEngine.modal`, computed
         when the model was built).
 
         Returns
         -------
-        TorsionalModes
+        Modes
             Frequencies [Hz], shapes [rad] and strain-energy shares [-].
         """
         return self.modes if self.modes is not None else self.torsional.modal()
@@ -180,6 +181,7 @@ class DriveModel(DriveParts):
 
 
 # --------------------------------------------------------------------------- completeness
+@shared_parameters
 def model_completeness(drive: Drive) -> tuple[str, ...]:
     """What the whole-drive model of ``drive`` lacks (empty when complete).
 
@@ -189,8 +191,7 @@ def model_completeness(drive: Drive) -> tuple[str, ...]:
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
 
     Returns
     -------

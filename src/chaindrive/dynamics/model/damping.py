@@ -17,13 +17,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.damping import pair_damping_ratio, span_hinge_damping_ratios
 from chaindrive.dynamics.model.assembly import DriveParts, LinearModel
 from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
+    from chaindrive.dynamics.modes import Modes
     from chaindrive.dynamics.parameters import RingParameters
-    from chaindrive.dynamics.torsional.system import TorsionalModes
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, Material
 
@@ -36,6 +37,7 @@ FloatArray = NDArray[np.float64]
 CHAIN_MODE_SHARE = 0.5
 
 
+@shared_parameters
 def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
                   lookup: Callable[[str], Material]) -> tuple[FloatArray, FloatArray, str]:
     """ζ of every span and of every sprocket's wrap [-], and where they come from: the
@@ -45,8 +47,7 @@ def chain_damping(drive: Drive, geometry: GeometryResult, ring: RingParameters,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
+    %(drive)s
     geometry : GeometryResult
         Its geometry (span lengths).
     ring : RingParameters
@@ -126,14 +127,14 @@ def with_chain_dampers(model: DriveParts, span_zeta: FloatArray, wrap_zeta: Floa
     return replace(model, linear=linear, torsional=model.torsional.with_damping(dampers))
 
 
-def reference_angular_frequency(modes: TorsionalModes) -> float:
+def reference_angular_frequency(modes: Modes) -> float:
     """ω_ref [rad/s] of the chain's dampers: the first elastic mode in which the chain's
     elements (spans and wraps) hold at least :data:`CHAIN_MODE_SHARE` of the strain energy
     (else the first elastic mode; 0 without one).
 
     Parameters
     ----------
-    modes : TorsionalModes
+    modes : Modes
         The undamped modes of the assembled model.
 
     Returns
@@ -141,7 +142,7 @@ def reference_angular_frequency(modes: TorsionalModes) -> float:
     float
         ω_ref [rad/s].
     """
-    kinds = np.array(modes.system.element_kinds)
+    kinds = np.array(modes.element_kinds)
     chain = (kinds == "span") | (kinds == "wrap")
     shares = modes.strain_energy_shares[chain].sum(axis=0)
     elastic = np.flatnonzero(~modes.rigid_body)

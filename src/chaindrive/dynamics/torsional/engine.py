@@ -44,6 +44,7 @@ from dataclasses import FrozenInstanceError, dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive.dynamics.modes import Modes
 from chaindrive.dynamics.torsional.assembly import (
     RATIO_RTOL,
     WeightedUnion,
@@ -53,7 +54,7 @@ from chaindrive.dynamics.torsional.assembly import (
     kinematic_groups,
     rigid_motions,
 )
-from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalSystem
 from chaindrive.errors import DesignError
 
 __all__ = ["RATIO_RTOL", "Element", "TorsionalEngine", "reducer_input_torque"]
@@ -641,13 +642,14 @@ class TorsionalEngine:
         assert system is not None
         return system
 
-    def modal(self) -> TorsionalModes:
+    def modal(self) -> Modes:
         """Undamped natural frequencies, shapes and strain-energy shares.
 
         Returns
         -------
-        TorsionalModes
-            Frequencies [Hz], mass-normalised shapes and strain-energy shares [-].
+        Modes
+            Frequencies [Hz], mass-normalised shapes of every node [rad] and strain-energy
+            shares [-] (no damped fields: an undamped analysis).
 
         References
         ----------

@@ -21,6 +21,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.model.build import drive_model
 from chaindrive.dynamics.torsional.engine import (
     FloatArray,
@@ -29,13 +30,13 @@ from chaindrive.dynamics.torsional.engine import (
     nonneg,
     reducer_input_torque,
 )
-from chaindrive.dynamics.torsional.system import TorsionalModes, TorsionalSystem
+from chaindrive.dynamics.torsional.system import TorsionalSystem
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import Drive
 
-__all__ = ["FloatArray", "TorsionalModel", "TorsionalModes", "TorsionalSystem", "TrainElement",
+__all__ = ["FloatArray", "TorsionalModel", "TorsionalSystem", "TrainElement",
            "reducer_input_torque"]
 
 
@@ -57,6 +58,7 @@ class TorsionalModel(TorsionalEngine):
     the modal analysis), with builders from plain data and from a design."""
 
     @classmethod
+    @shared_parameters
     def from_drive(cls, drive: Drive, geometry: GeometryResult | None = None, *,
                    span_tensions: Sequence[float] | None = None) -> TorsionalEngine:
         """The whole-drive model of a design: its contour with the chain's own mass, the
@@ -65,8 +67,7 @@ class TorsionalModel(TorsionalEngine):
 
         Parameters
         ----------
-        drive : Drive
-            The design.
+        %(drive)s
         geometry : GeometryResult | None
             Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
         span_tensions : sequence of float | None

@@ -1,7 +1,7 @@
 """The assembled torsional system of a drive train and its undamped modes: the matrices of a
 :class:`chaindrive.dynamics.torsional.engine.TorsionalEngine` in reduced coordinates
 (:class:`TorsionalSystem`) and the natural frequencies and mode shapes solved from them
-(:class:`TorsionalModes`), docs/torsional.md.
+(:class:`chaindrive.dynamics.modes.Modes`), docs/torsional.md.
 
 The reduced mass matrix is diagonal up to the chain's consistent-mass coupling; the modes
 come from the symmetric eigenproblem of M^{-1/2} K M^{-1/2} [Rao2011, ch. 6] after the
@@ -19,13 +19,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._numeric import freeze_arrays, rebuilt
+from chaindrive.dynamics.modes import Modes
 from chaindrive.dynamics.precision import check_spread
 from chaindrive.dynamics.torsional.assembly import gram as _gram
 from chaindrive.dynamics.torsional.assembly import grams
@@ -33,7 +33,7 @@ from chaindrive.dynamics.torsional.blas_threads import small_problem_threads
 from chaindrive.errors import DesignError
 from chaindrive.units import TWO_PI
 
-__all__ = ["TorsionalModes", "TorsionalSystem"]
+__all__ = ["TorsionalSystem"]
 
 FloatArray = NDArray[np.float64]
 
@@ -192,13 +192,13 @@ class TorsionalSystem:
             element_columns=self.element_columns,
             element_coefficients=self.element_coefficients, span_mask=span)
 
-    def modal(self) -> TorsionalModes:
+    def modal(self) -> Modes:
         """Undamped natural frequencies, shapes and strain-energy shares (as
         :meth:`TorsionalEngine.modal`).
 
         Returns
         -------
-        TorsionalModes
+        Modes
             Frequencies [Hz], mass-normalised shapes and strain-energy shares [-].
 
         References
@@ -377,137 +377,6 @@ def _condensation(K: FloatArray, massless: NDArray[np.bool_], names: Sequence[st
     return np.linalg.solve(L.T, Y)
 
 
-@dataclass(frozen=True, slots=True, eq=False)
-class TorsionalModes:
-    """Undamped natural frequencies and mode shapes of a :class:`TorsionalEngine`.
-
-    Parameters
-    ----------
-    frequencies_hz : ndarray
-        (n,) natural frequencies f_j [Hz], ascending; rigid-body modes exactly 0, first.
-    rigid_body : ndarray of bool
-        (n,) True for rigid-body modes.
-    system : TorsionalSystem
-        The assembled system.
-    modal_coordinates : ndarray
-        (size, n) reduced coordinates q of each mode, mass-normalised (qᵀ M q = 1 [kg·m²];
-        massless coordinates recovered statically) [rad].
-
-    Derived on access (so that a modal analysis costs little more than LAPACK):
-    ``shape_matrix`` (nodes, n) angles φ [rad] of every node, ``shapes`` by node name,
-    ``strain_energy_shares`` (elements, n) share of each element in the strain energy of each
-    mode (columns sum to 1; 0 for rigid-body modes), ``participation`` by element name.
-
-    References
-    ----------
-    [Rao2011, ch. 6] (modal analysis, mass-normalised modes).
-    """
-
-    frequencies_hz: FloatArray
-    rigid_body: NDArray[np.bool_]
-    system: TorsionalSystem
-    modal_coordinates: FloatArray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self, copy=False)  # its arrays are the solver's own: frozen in place
-
-    @property
-    def node_names(self) -> tuple[str, ...]:
-        """Node names, rows of ``shape_matrix``."""
-        return self.system.node_names
-
-    @property
-    def element_names(self) -> tuple[str, ...]:
-        """Element names, rows of ``strain_energy_shares``."""
-        return self.system.element_names
-
-    @property
-    def shape_matrix(self) -> FloatArray:
-        """(nodes, n) angle of every node in each mode [rad] (mass-normalised)."""
-        s = self.system
-        return s.node_factor[:, None] * self.modal_coordinates[s.node_dof]
-
-    @property
-    def strain_energy_shares(self) -> FloatArray:
-        """(elements, n) share of each element in the strain energy ½ k e² of each mode."""
-        s = self.system
-        strain = s.element_incidence @ self.modal_coordinates
-        energy = s.element_stiffness[:, None] * strain * strain
-        total = energy.sum(axis=0)
-        shares = np.divide(energy, total, out=np.zeros_like(energy), where=total > 0.0)
-        shares[:, self.rigid_body] = 0.0
-        return np.asarray(shares, dtype=np.float64)
-
-    @property
-    def angular_frequencies_rad_s(self) -> FloatArray:
-        """ω_j = 2π f_j [rad/s]."""
-        return self.frequencies_hz * TWO_PI
-
-    @property
-    def shapes(self) -> Mapping[str, FloatArray]:
-        """Node name → its angle in every mode [rad] (a row of ``shape_matrix``)."""
-        return MappingProxyType(dict(zip(self.system.node_names, self.shape_matrix,
-                                         strict=True)))
-
-    @property
-    def participation(self) -> Mapping[str, FloatArray]:
-        """Element name → its strain-energy share in every mode (which element governs)."""
-        return MappingProxyType(dict(zip(self.system.element_names, self.strain_energy_shares,
-                                         strict=True)))
-
-    @property
-    def elastic_frequencies_hz(self) -> FloatArray:
-        """The elastic (non rigid-body) natural frequencies [Hz], ascending."""
-        return self.frequencies_hz[~self.rigid_body]
-
-    @property
-    def first_elastic_frequency_hz(self) -> float:
-        """The lowest elastic natural frequency [Hz] (nan if none)."""
-        f = self.elastic_frequencies_hz
-        return float(f[0]) if f.size else math.nan
-
-    def governing_element(self, mode: int) -> str:
-        """Name of the element with the largest strain-energy share in ``mode``.
-
-        Parameters
-        ----------
-        mode : int
-            Index of the mode (0 the lowest).
-
-        Returns
-        -------
-        str
-            The element's name ("" for a rigid-body mode or a model without elements).
-        """
-        if self.rigid_body[mode] or not self.system.element_names:
-            return ""
-        return self.system.element_names[int(np.argmax(self.strain_energy_shares[:, mode]))]
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict; ``mode_shapes[node][j]`` is the node's angle in mode j.
-
-        Returns
-        -------
-        dict
-            Frequencies (``natural_frequencies_hz``, ``natural_frequencies_rad_s``), the
-            rigid-body flags, the shapes [rad], the strain-energy shares [-] and the
-            governing element of each mode.
-        """
-        shares = self.strain_energy_shares
-        governing = ["" if r or not self.system.element_names else
-                     self.system.element_names[int(np.argmax(shares[:, j]))]
-                     for j, r in enumerate(self.rigid_body.tolist())]
-        return {
-            "natural_frequencies_hz": self.frequencies_hz.tolist(),
-            "natural_frequencies_rad_s": self.angular_frequencies_rad_s.tolist(),
-            "rigid_body_modes": self.rigid_body.tolist(),
-            "mode_shapes": {n: row.tolist() for n, row in self.shapes.items()},
-            "strain_energy_shares": dict(zip(self.system.element_names, shares.tolist(),
-                                             strict=True)),
-            "governing_elements": governing,
-        }
-
-
 def _deflated_eigh(A: FloatArray, W: FloatArray,
                    vectors: bool = True) -> tuple[FloatArray, FloatArray]:
     """Eigenpairs of the symmetric A on the orthogonal complement of the orthonormal columns
@@ -620,7 +489,7 @@ def _frequencies(system: TorsionalSystem) -> FloatArray:
     return f
 
 
-def _modal(system: TorsionalSystem) -> TorsionalModes:
+def _modal(system: TorsionalSystem) -> Modes:
     """Modes of the assembled system (module docstring: condensation, rigid-body modes)."""
     A, scaling, U, X, massed = _scaled_problem(system)
     nm, nr = int(A.shape[0]), int(U.shape[1])
@@ -642,4 +511,8 @@ def _modal(system: TorsionalSystem) -> TorsionalModes:
     f[nr:] = np.sqrt(np.maximum(lam, 0.0)) / TWO_PI
     rigid = np.zeros(nm, dtype=bool)
     rigid[:nr] = True
-    return TorsionalModes(frequencies_hz=f, rigid_body=rigid, system=system, modal_coordinates=Q)
+    shapes = system.node_factor[:, None] * Q[system.node_dof]  # as Modes.shape_matrix
+    for a in (f, rigid, Q, shapes):  # the solver's own arrays: frozen in place, not copied
+        a.flags.writeable = False
+    return Modes(frequencies_hz=f, rigid_body=rigid, shapes=shapes, system=system,
+                 modal_coordinates=Q)

@@ -37,16 +37,16 @@ from chaindrive.errors import DesignError
 
 if TYPE_CHECKING:
     from chaindrive.dynamics.model.build import DriveModel
-    from chaindrive.dynamics.torsional.model import TorsionalModes
+    from chaindrive.dynamics.modes import Modes
 
 __all__ = ["affordable_duration", "model_startup", "startup_step"]
 
 
 
-def _step_body(model: DriveModel, modes: TorsionalModes, f_ref: float) -> tuple[str, str]:
+def _step_body(model: DriveModel, modes: Modes, f_ref: float) -> tuple[str, str]:
     """(design field, description) of the body that moves most in the mode at ``f_ref``."""
     j = int(np.argmin(np.abs(modes.frequencies_hz - f_ref)))
-    sys = modes.system
+    sys = model.system
     kinetic = sys.node_inertia_kg_m2 * modes.shape_matrix[:, j] ** 2
     node = sys.node_names[int(np.argmax(kinetic))]
     element = modes.governing_element(j)
@@ -63,7 +63,7 @@ def _step_body(model: DriveModel, modes: TorsionalModes, f_ref: float) -> tuple[
 
 
 def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
-                 modes: TorsionalModes | None = None) -> tuple[float, int]:
+                 modes: Modes | None = None) -> tuple[float, int]:
     """(Δt [s], steps) of a start-up of ``duration`` [s] (module docstring); DesignError when
     the work would exceed the budget.
 
@@ -75,7 +75,7 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
         f_z [Hz].
     duration : float
         [s].
-    modes : TorsionalModes | None
+    modes : Modes | None
         Its modes (None: computed when a refusal needs them).
 
     Returns

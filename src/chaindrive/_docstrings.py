@@ -1,0 +1,115 @@
+"""The numpydoc parameter entries many docstrings share, written once.
+
+A docstring names a shared entry by a line that holds only ``%(name)s``; the decorator
+:func:`shared_parameters` replaces that line, when the module is imported, by the entry of
+:data:`PARAMETERS` of that name, indented as the line was. The idea is SciPy's
+``scipy._lib.doccer`` and pandas' ``@doc``, kept to whole lines: a ``%`` anywhere else in a
+docstring is left alone, and an unknown name fails at import (KeyError), never silently.
+``help()``, :func:`inspect.getdoc`, numpydoc and the docstring tests read the expanded text.
+
+Put the decorator directly above ``def`` (under ``@property`` or ``@staticmethod``, which
+copy the docstring when they wrap the function) and above ``@dataclass`` on a class (which,
+with ``slots=True``, makes a new class)::
+
+    @shared_parameters
+    def loads_of(drive: Drive, geometry: GeometryResult) -> Loads:
+        \"\"\"Static loads of a drive.
+
+        Parameters
+        ----------
+        %(drive_geometry)s
+
+        Returns
+        -------
+        Loads
+        \"\"\"
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import TypeVar
+
+__all__ = ["PARAMETERS", "expand", "shared_parameters"]
+
+T = TypeVar("T")
+
+#: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
+#: the description indented by four).
+PARAMETERS: Mapping[str, str] = MappingProxyType({
+    "drive": "drive : Drive\n    The design.",
+    "geometry": "geometry : GeometryResult\n    Its contour.",
+    "drive_geometry": "drive : Drive\n    The design.\ngeometry : GeometryResult\n"
+                      "    Its contour.",
+    "pitch": "pitch : float\n    Chain pitch p [m].",
+    "teeth": "teeth : int\n    Number of teeth z [-].",
+    "pitch_teeth_array": "pitch : float or array_like\n    Chain pitch p [m].\n"
+                         "teeth : int or array_like\n    Number of teeth z [-].",
+    "roller_diameter_array": "roller_diameter : float or array_like\n"
+                             "    Roller diameter d1 [m].",
+    "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",
+    "units": 'units : {"SI", "US"}\n'
+             "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).",
+    "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
+                   '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
+    "returns_figure": "Figure\n    The figure drawn into.",
+    "inp": "inp : ReportInput\n    The analysis and the report's settings.",
+    # the whole Parameters and Returns sections of a report section's builder
+    "section": "Parameters\n----------\ninp : ReportInput\n"
+               "    The analysis and the report's settings.\n\nReturns\n-------\n"
+               "list of Block | None\n    The section's blocks (None: the section does not apply).",
+    "section_blocks": "Parameters\n----------\ninp : ReportInput\n"
+                      "    The analysis and the report's settings.\n\nReturns\n-------\n"
+                      "list of Block\n    The section's blocks.",
+})
+
+_PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)%\((?P<name>\w+)\)s[ \t]*$", re.MULTILINE)
+
+
+def expand(doc: str) -> str:
+    """``doc`` with every line ``%(name)s`` replaced by the entry ``name`` of
+    :data:`PARAMETERS`, indented as the line.
+
+    Parameters
+    ----------
+    doc : str
+        A docstring as written (its lines indented as in the source).
+
+    Returns
+    -------
+    str
+        The docstring with the shared entries written out.
+
+    Raises
+    ------
+    KeyError
+        A placeholder names no entry of :data:`PARAMETERS`.
+    """
+    def entry(m: re.Match[str]) -> str:
+        indent = m.group("indent")
+        return "\n".join(indent + line if line else ""
+                         for line in PARAMETERS[m.group("name")].splitlines())
+
+    return _PLACEHOLDER.sub(entry, doc)
+
+
+def shared_parameters(obj: T) -> T:
+    """Decorator: expand the shared parameter entries of ``obj``'s docstring (module
+    docstring); ``obj`` is returned itself, its type unchanged.
+
+    Parameters
+    ----------
+    obj : function or class
+        What the docstring belongs to.
+
+    Returns
+    -------
+    function or class
+        ``obj``, its ``__doc__`` expanded (unchanged without a docstring, as under ``-OO``).
+    """
+    doc = getattr(obj, "__doc__", None)
+    if doc:
+        obj.__doc__ = expand(doc)
+    return obj
