@@ -24,9 +24,11 @@ from chaindrive.identification.damping import (
     log_decrement_damping_ratio,
 )
 from chaindrive.identification.reading import (
+    RecordPeak,
     SagCalibration,
     SpanTensionReading,
     calibrated_sag,
+    record_peak,
     span_tension_reading,
 )
 from chaindrive.identification.spectrum import Identification, identify, model_lines
@@ -43,6 +45,7 @@ __all__ = [
     "Identification",
     "MeasuredDamping",
     "MeasuredMode",
+    "RecordPeak",
     "SagCalibration",
     "SpanTensionReading",
     "TensionEstimate",
@@ -56,6 +59,7 @@ __all__ = [
     "log_decrement_damping_ratio",
     "measured_natural_peaks",
     "model_lines",
+    "record_peak",
     "span_tension_from_frequency",
     "span_tension_reading",
     "string_tension",
