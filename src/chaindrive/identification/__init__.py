@@ -4,8 +4,8 @@ uncertain inputs calibrated to measured frequencies.
 
 Compute only: the command line reads the files and hands arrays in.
 
-Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
-(:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
+Entry points: :func:`span_tension_from_frequency`, :func:`span_tension_reading` and
+:func:`record_peak` (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
 (:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
 """
 
