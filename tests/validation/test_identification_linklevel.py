@@ -16,8 +16,9 @@ the requirement and fail; should they pass, the strict mark fails them and the d
 revised). The link-level model's first mode along the chain rests on the pre-tension, not on
 the links' elasticity: by Rayleigh's quotient the sensitivity of its frequency to the link
 stiffness is d ln f/d ln k = e/2 [FoxKapoor1968], e the share of the mode's strain energy
-stored in stretching the links, and its share of the links' stiffness-proportional damping
-ζ = ζ_c (ω/ω_ref) e. The tests below measure e (about 2 %), check the sensitivity against
+stored in stretching the links, and the links' dampers c = β k_link, β = 2ζ_c/ω_ref, give it
+ζ = βω e/2 = ζ_c (ω/ω_ref) e (proportional damping, ζ = βω/2 [Inman2014, ch. 4], on the
+links' share of the stiffness). The tests below measure e (about 2 %), check the sensitivity against
 it, and that the frequency moves with the pre-tension instead (docs/identification.md §4).
 """
 
