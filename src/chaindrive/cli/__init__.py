@@ -743,13 +743,18 @@ def _print_records(doc: list[dict[str, Any]], title: str) -> None:
 def tension(
     file: DesignFile,
     span: Annotated[str, typer.Option("--span", help="the span, FROM-TO (e.g. S1-S2)")],
-    frequency: Annotated[str, typer.Option("--frequency", help="measured transverse "
-                                           "frequency of a sideways pluck, e.g. 23.4Hz")],
+    frequency: Annotated[str | None, typer.Option(
+        "--frequency", help="measured transverse frequency of a sideways pluck, e.g. "
+        "23.4Hz")] = None,
+    record: Annotated[Path | None, typer.Option(
+        "--record", help="or a record of the pluck (CSV/WAV): its most prominent peak, "
+        "± half a bin")] = None,
     mode: Annotated[int, typer.Option("--mode", help="its mode number n", min=1)] = 1,
     running: Annotated[bool, typer.Option(
         "--running", help="measured with the chain running at the design speed")] = False,
     frequency_tol: Annotated[str | None, typer.Option(
-        "--frequency-tolerance", help="± of the frequency (default 0 Hz, assumed)")] = None,
+        "--frequency-tolerance", help="± of the frequency (default 0 Hz, assumed; with "
+        "--record half the spectrum's bin)")] = None,
     length_tol: Annotated[str | None, typer.Option(
         "--length-tolerance", help="± of the span length (default 2 mm, assumed)")] = None,
     mass_tol: Annotated[float | None, typer.Option(
@@ -764,29 +769,39 @@ def tension(
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.measure import print_sag, print_tension
-    from chaindrive.identification import calibrated_sag, span_tension_reading
+    from chaindrive.identification import calibrated_sag, record_peak, span_tension_reading
     from chaindrive.io.design import drive_to_toml
+    from chaindrive.io.record import read_record
     from chaindrive.units import parse_quantity
 
     with user_errors():
         check_toml_target(write_calibrated)
+        if (frequency is None) == (record is None):
+            raise DesignError("--frequency", "give either --frequency F or --record FILE")
         drive = chaindrive.load(file)
-        f = parse_quantity(frequency, "frequency", "--frequency")
-        if not f > 0:
-            raise DesignError("--frequency", f"must be above 0 Hz, got {frequency!r}")
+        peak = None if record is None else record_peak(read_record(record))
+        if peak is not None:
+            f = peak.frequency
+        else:
+            f = parse_quantity(str(frequency), "frequency", "--frequency")
+            if not f > 0:
+                raise DesignError("--frequency", f"must be above 0 Hz, got {frequency!r}")
         if mass_tol is not None and not mass_tol >= 0:
             raise DesignError("--mass-tolerance", f"must be ≥ 0 %, got {mass_tol!r}")
-        assumed = tuple(a for a, given in (("frequency ± 0 Hz", frequency_tol),
+        assumed = tuple(a for a, given in (("frequency ± 0 Hz", frequency_tol or peak),
                                            ("span length ± 2 mm", length_tol),
                                            ("mass per metre ± 5 %", mass_tol)) if given is None)
+        f_tol = (parse_quantity(frequency_tol, "frequency", "--frequency-tolerance")
+                 if frequency_tol is not None else
+                 0.5 * peak.resolution if peak is not None else 0.0)
         reading = span_tension_reading(
             chaindrive.analyze(drive, response=False), span, f, mode=mode,
-            running=running, assumed=assumed,
-            frequency_tolerance=parse_quantity(frequency_tol or "0 Hz", "frequency",
-                                               "--frequency-tolerance"),
+            running=running, assumed=assumed, frequency_tolerance=f_tol,
             length_tolerance=parse_quantity(length_tol or "2 mm", "length", "--length-tolerance"),
             mass_tolerance=(5.0 if mass_tol is None else mass_tol) / 100.0)
         doc = reading.to_dict()
+        if peak is not None:
+            doc["record"] = peak.to_dict()
         if write_calibrated is not None:
             sag = calibrated_sag(drive, reading)
             doc["calibration"] = sag.to_dict()

@@ -250,6 +250,11 @@ def print_tension(doc: dict[str, Any]) -> None:
              else "stationary")
     con.print(f"span {escape(doc['span'])}: L = {_f(doc['length_m'] * 1000)} mm, "
               f"q = {_f(doc['mass_per_length_kg_m'])} kg/m, {state}, mode {doc['mode']}")
+    if doc.get("record") is not None:
+        rec = doc["record"]
+        con.print(f"frequency read from the record's signal {escape(rec['signal'])}: "
+                  f"{_f(rec['frequency_hz'])} Hz ± {_f(rec['resolution_hz'] / 2, 2)} Hz (half a "
+                  f"bin; prominence {_f(rec['prominence_db'], 2)} dB)")
     con.print(f"tension T = {_f(doc['tension_n'])} N ± {_f(doc['tension_std_n'], 2)} N "
               "(standard uncertainty)")
     by = doc["tension_std_by_input_n"]

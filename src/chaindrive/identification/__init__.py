@@ -4,8 +4,8 @@ uncertain inputs calibrated to measured frequencies.
 
 Compute only: the command line reads the files and hands arrays in.
 
-Entry points: :func:`span_tension_from_frequency` and :func:`span_tension_reading`
-(:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
+Entry points: :func:`span_tension_from_frequency`, :func:`span_tension_reading` and
+:func:`record_peak` (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
 (:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
 """
 
@@ -24,9 +24,11 @@ from chaindrive.identification.damping import (
     log_decrement_damping_ratio,
 )
 from chaindrive.identification.reading import (
+    RecordPeak,
     SagCalibration,
     SpanTensionReading,
     calibrated_sag,
+    record_peak,
     span_tension_reading,
 )
 from chaindrive.identification.spectrum import Identification, identify, model_lines
@@ -43,6 +45,7 @@ __all__ = [
     "Identification",
     "MeasuredDamping",
     "MeasuredMode",
+    "RecordPeak",
     "SagCalibration",
     "SpanTensionReading",
     "TensionEstimate",
@@ -56,6 +59,7 @@ __all__ = [
     "log_decrement_damping_ratio",
     "measured_natural_peaks",
     "model_lines",
+    "record_peak",
     "span_tension_from_frequency",
     "span_tension_reading",
     "string_tension",

@@ -8,9 +8,12 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from chaindrive.dynamics.stiffness import GRAVITY
 from chaindrive.errors import DesignError
 from chaindrive.identification.calibration import verdict_changes
+from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.identification.tension import (
     TensionEstimate,
     expected_frequency,
@@ -20,10 +23,87 @@ from chaindrive.strength.loads import installed_sag_ratio, sag_tension
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
+    from chaindrive.io.record import Record
     from chaindrive.model import Drive
 
-__all__ = ["SagCalibration", "SpanTensionReading", "calibrated_sag", "rectangular_std",
-           "sag_for_pretension", "span_index", "span_tension_reading"]
+__all__ = [
+    "RecordPeak",
+    "SagCalibration",
+    "SpanTensionReading",
+    "calibrated_sag",
+    "record_peak",
+    "rectangular_std",
+    "sag_for_pretension",
+    "span_index",
+    "span_tension_reading",
+]
+
+#: Least prominence [dB] of the peak a pluck's record is read at (the spectrum's, section 2 of
+#: docs/identification.md: noise alone makes steps of about 10 dB in an 8-segment Welch
+#: estimate).
+PLUCK_PROMINENCE_DB = 15.0
+
+
+@dataclass(frozen=True, slots=True)
+class RecordPeak:
+    """The peak a record of a pluck rings at.
+
+    Parameters
+    ----------
+    signal : str
+        The signal it was read from.
+    frequency : float
+        f [Hz] (the spectrum's peak, refined by a parabola through three bins).
+    resolution : float
+        The spectrum's bin Δf [Hz]; the peak lies within ± Δf/2 of the true frequency.
+    prominence_db : float
+        Its prominence [dB].
+    """
+
+    signal: str
+    frequency: float
+    resolution: float
+    prominence_db: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        return {"signal": self.signal, "frequency_hz": self.frequency,
+                "resolution_hz": self.resolution, "prominence_db": self.prominence_db}
+
+
+def record_peak(record: Record, *, prominence_db: float = PLUCK_PROMINENCE_DB) -> RecordPeak:
+    """The most prominent peak of a record of a pluck, over all its signals: each signal's
+    Welch spectrum and peaks as ``chaindrive identify`` finds them
+    (:func:`chaindrive.identification.spectrum.signal_spectrum`,
+    :func:`~chaindrive.identification.spectrum.spectral_peaks`; [Welch1967],
+    [Virtanen2020]).
+
+    Parameters
+    ----------
+    record : Record
+        The record (:func:`chaindrive.io.record.read_record`).
+    prominence_db : float
+        Least prominence of a peak [dB].
+
+    Returns
+    -------
+    RecordPeak
+
+    Raises
+    ------
+    DesignError
+        No signal has a peak of that prominence.
+    """
+    best: RecordPeak | None = None
+    for name, values in record.signals.items():
+        f, psd, segment = signal_spectrum(np.asarray(values, dtype=float), record.sample_rate)
+        for freq, _level, prominence in spectral_peaks(f, psd, prominence_db):
+            if best is None or prominence > best.prominence_db:
+                best = RecordPeak(name, freq, record.sample_rate / segment, prominence)
+    if best is None:
+        raise DesignError("--record", f"{record.name}: no peak {prominence_db:g} dB above its "
+                          "surroundings; allowed: a record of a pluck that rings")
+    return best
 
 
 def rectangular_std(half_width: float) -> float:
