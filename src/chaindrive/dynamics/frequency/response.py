@@ -14,6 +14,12 @@ thousands of speeds with the complex modes of the elastic part computed once
 (:mod:`chaindrive.dynamics.modes`): X = Φ y, (y, ẏ) = V (iω − Λ)⁻¹ V⁻¹ [0; Φᵀ f] — exact for
 any damping matrix, a handful of broadcast products for the whole sweep.
 
+**Maxima of the sweep** (F₂max of every span, what k₂min needs) without the whole curve
+(:func:`span_load_maxima`): per harmonic k the response is a sum of simple poles in W = kω_z,
+Q(W) = D_k − Σ_m BV_m (a1_km + r_km/(iW − λ_m)), so its change over a run of speeds is bounded
+in closed form by the distance of each pole to the run [Rao2011, §6.15] (partial fractions of
+the receptance); runs whose bound stays below the largest load found are not computed.
+
 **Irregularity of rotation** from the speed history: Δ = (ω_max − ω_min)/ω_mean over a tooth
 period, for every sprocket and every rotor of the trains; for one harmonic of amplitude x_n
 (chain displacement at sprocket n) it is 2 x_n z_n / R̄_n [MultimassChainDrives, §3.3].
@@ -276,10 +282,10 @@ def span_load_maxima(model: DriveModel, state: StateModes, excitation: SpanExcit
     """The largest peak span force of every span over the speeds [N], (S,): the maxima over
     the speeds of :func:`span_loads_over`, found without computing every speed.
 
-    Branch and bound over the (sorted) speeds: the speeds are cut into runs of ``first``;
-    the loads are computed at the middle speed of each run, and a run whose upper bound lies
-    below the largest load found so far for every span is dropped; the others are split at
-    their middle and bounded again. The bound of a run is the peak at its middle plus
+    Branch and bound [LandDoig1960] over the (sorted) speeds: the speeds are cut into runs
+    of ``first``; the loads are computed at the middle speed of each run, and a run whose
+    upper bound lies below the largest load found so far for every span is dropped; the
+    others are split at their middle and bounded again. The bound of a run is the peak at its middle plus
     Σ_k of the bound of |F_k(W) − F_k(W₀)| over it (every sample of the trace moves by at
     most that; :meth:`_SpanModal.variation`). The maxima are those of the whole grid: every
     dropped speed is bounded below the maximum (by :data:`BOUND_MARGIN`, which covers the
