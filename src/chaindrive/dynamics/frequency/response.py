@@ -225,10 +225,12 @@ class _SpanModal:
         k, lam = self.orders, self.eigenvalues
         Wl, W0, Wh = low[:, None] * k, centre[:, None] * k, high[:, None] * k   # (b, K)
         h = np.maximum(W0 - Wl, Wh - W0)[..., None]                           # (b, K, 1)
-        gap = np.maximum(0.0, np.maximum(Wl[..., None] - lam.imag, lam.imag - Wh[..., None]))
-        dist2 = lam.real**2 + gap * gap                                       # (b, K, 2E)
+        nu, s2 = lam.imag, lam.real**2
+        gap = np.maximum(0.0, np.maximum(Wl[..., None] - nu, nu - Wh[..., None]))
+        dist2 = s2 + gap * gap                                                # (b, K, 2E)
+        off = W0[..., None] - nu                                              # |iW₀ − λ|² − σ²
         with np.errstate(divide="ignore", invalid="ignore"):
-            near = 1.0 / np.sqrt(dist2) + 1.0 / np.abs(1j * W0[..., None] - lam)
+            near = 1.0 / np.sqrt(dist2) + 1.0 / np.sqrt(s2 + off * off)
             weight = self.residues * np.minimum(h / dist2, near)
         dq = weight @ np.abs(self.BVT)                                        # (b, K, S)
         q0 = np.abs(F) * self.contours / np.abs(cd)
@@ -323,8 +325,10 @@ def span_load_maxima(model: DriveModel, state: StateModes, excitation: SpanExcit
         F, cd = modal.forces(wz[mid])
         peak = peak_over_period(F, modal.orders, samples)                   # (b, S)
         best = np.maximum(best, peak.max(axis=0))
+        wide = hi > lo                                  # a run of one speed is computed
+        lo, hi, mid, F, cd, peak = lo[wide], hi[wide], mid[wide], F[wide], cd[wide], peak[wide]
         bound = peak + modal.variation(F, cd, wz[lo], wz[mid], wz[hi]).sum(axis=1)
-        split = (hi > lo) & ~np.all(bound < best * (1.0 - BOUND_MARGIN), axis=1)
+        split = ~np.all(bound < best * (1.0 - BOUND_MARGIN), axis=1)
         lo, hi, mid = lo[split], hi[split], mid[split]
         lo, hi = np.concatenate([lo, mid + 1]), np.concatenate([mid - 1, hi])
         lo, hi = lo[lo <= hi], hi[lo <= hi]
