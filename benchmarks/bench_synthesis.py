@@ -8,14 +8,23 @@
 3. pymoo NSGA-II against Optuna's NSGA-II sampler on the 8-sprocket problem
    (examples/eight_sprocket_optimize.toml): the same budget, three seeds; hypervolume of the
    feasible front (objectives normalised by the start design, reference point 1.1) and time.
+4. With ``--against TREE``: ``chaindrive optimize examples/eight_sprocket_optimize.toml
+   --json`` of this tree and of another source tree (TREE/src on PYTHONPATH, the same
+   interpreter), one BLAS thread, run in alternation ``--runs`` times each (3 by default):
+   designs/s of the search (evaluations over the search's seconds), the CPU time of the
+   command, their medians and the ratio, the load average before and after, and whether
+   the two Pareto sets are equal. Only this comparison runs with ``--against``.
 
-Run: .venv/bin/python benchmarks/bench_synthesis.py [--quick]
+Run: .venv/bin/python benchmarks/bench_synthesis.py [--quick] [--against TREE [--runs N]]
 """
 
 from __future__ import annotations
 
+import json
 import os
+import resource
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -98,7 +107,53 @@ def compare_solvers(population: int, generations: int, seeds: tuple[int, ...]) -
               f"time {statistics.mean(secs):.2f} s, front size {statistics.mean(fronts):.1f}")
 
 
+def optimize_run(tree: Path) -> tuple[float, float, list[object]]:
+    """(designs/s of the search, CPU s of the command, Pareto set) of ``chaindrive optimize``
+    on the 8-sprocket problem with ``tree``/src first on the path, one BLAS thread."""
+    env = {**os.environ, "PYTHONPATH": str(tree / "src"), "OPENBLAS_NUM_THREADS": "1",
+           "MKL_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run([sys.executable, "-m", "chaindrive", "optimize",
+                           str(EXAMPLES / "eight_sprocket_optimize.toml"), "--json"],
+                          env=env, capture_output=True, text=True, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    doc = json.loads(done.stdout)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return doc["evaluations"] / doc["seconds"], cpu, doc["pareto"]
+
+
+def compare_trees(other: Path, runs: int) -> None:
+    """Designs/s of ``optimize`` here and in ``other``, in alternation (module docstring)."""
+    trees = {"this tree": ROOT, "other": other}
+    rate: dict[str, list[float]] = {k: [] for k in trees}
+    cpu: dict[str, list[float]] = {k: [] for k in trees}
+    fronts: dict[str, list[object]] = {}
+    load0 = os.getloadavg()
+    for _ in range(runs):
+        for name, tree in trees.items():
+            r, c, front = optimize_run(tree)
+            rate[name].append(r)
+            cpu[name].append(c)
+            fronts[name] = front
+    load1 = os.getloadavg()
+    print(f"optimize examples/eight_sprocket_optimize.toml, one BLAS thread, {runs} runs each "
+          f"in alternation; load average {load0[0]:.2f} before, {load1[0]:.2f} after")
+    for name, tree in trees.items():
+        print(f"  {name:10s} {tree}: designs/s {statistics.median(rate[name]):6.1f} "
+              f"(runs {', '.join(f'{v:.1f}' for v in rate[name])}), command CPU "
+              f"{statistics.median(cpu[name]):.2f} s")
+    here, there = statistics.median(rate["this tree"]), statistics.median(rate["other"])
+    print(f"  ratio (this/other): designs/s {here / there:.2f}, "
+          f"CPU {statistics.median(cpu['other']) / statistics.median(cpu['this tree']):.2f}; "
+          f"same Pareto set: {fronts['this tree'] == fronts['other']}")
+
+
 def main() -> None:
+    if "--against" in sys.argv:
+        args = sys.argv[sys.argv.index("--against") + 1:]
+        runs = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 3
+        compare_trees(Path(args[0]).resolve(), runs)
+        return
     quick = "--quick" in sys.argv
     print(f"cores {os.cpu_count()}, load average {os.getloadavg()[0]:.2f} (other work skews it)")
     print("designs evaluated per second, one core (geometry + strength + modal + steady):")

@@ -40,6 +40,7 @@ from chaindrive.dynamics.frequency.response import (
     drive_steady,
     drive_sweep,
     frequency_band_factors,
+    span_load_maxima,
     span_loads_over,
     uncertainty_bands,
 )
@@ -134,6 +135,12 @@ class Analysis:
         Simulated time of the link-level run of the study "links" [s], within
         :data:`chaindrive.linklevel.DURATION` (None: the design's start-up duration, at
         most the upper bound of that range).
+    sweep_curve : bool
+        The checks read the speed sweep's per-span maxima (F₂max, for k₂min) from its whole
+        curve (:attr:`afc`); False finds the same maxima by a bounded search of the sweep's
+        speeds (:func:`~chaindrive.dynamics.frequency.response.span_load_maxima`) without
+        the curve — the optimiser's screening of the designs it ranks. :attr:`afc` is the
+        whole curve either way when it is read.
 
     Attributes are the stages: ``selection``, ``drive`` (with the selected chain, the
     sprockets where the take-up put them), ``geometry``, ``kinematics``, ``strength``,
@@ -144,7 +151,8 @@ class Analysis:
     def __init__(self, design: Drive, *, response: bool = True,
                  limits: CheckLimits | None = None,
                  cost_model: CostModel | None = None, studies: tuple[str, ...] = (),
-                 startup: bool = True, link_duration_s: float | None = None) -> None:
+                 startup: bool = True, link_duration_s: float | None = None,
+                 sweep_curve: bool = True) -> None:
         unknown = sorted(set(studies) - set(STUDIES))
         if unknown:
             raise DesignError("studies", f"unknown {', '.join(unknown)} (known: "
@@ -159,6 +167,7 @@ class Analysis:
         self.design = in_travel_order(design)  # the order the driver's rotation runs the chain
         self.with_response = response
         self.with_startup = startup
+        self.sweep_curve = sweep_curve
         self.studies = tuple(studies)
         self.limits = limits or CheckLimits()
         self._cost_model = cost_model
@@ -372,15 +381,32 @@ class Analysis:
                            d.driver.teeth, dyn.modal.elastic_frequencies_hz)
 
     @cached_property
+    def _sweep_maxima(self) -> NDArray[np.float64] | None:
+        """F₂max: the largest dynamic load of every span over the speed sweep [N] (the
+        :attr:`afc`'s ``max_span_load``, or the same maxima by a bounded search of its speeds
+        when the analysis was asked for no curve)."""
+        if not self._responds:
+            return None
+        if self.sweep_curve or "afc" in self.__dict__:
+            afc = self.afc
+            return None if afc is None else afc.max_span_load
+        d = self.drive
+        assert d.driver.speed is not None
+        return span_load_maxima(self.drive_model, self.dynamics.modal, self._excitation,
+                                np.linspace(*SPEED_RANGE, AFC_POINTS) * d.driver.speed
+                                * d.driver.teeth)
+
+    @cached_property
     def steady(self) -> SteadyStateResult | None:
         """Steady polygonal response at the nominal speed, K_D, k₂ and k₂min."""
-        if not self._responds or self.afc is None or self._static is None:
+        resonance_loads = self._sweep_maxima
+        if resonance_loads is None or self._static is None:
             return None
         return drive_steady(self.drive_model, self._excitation,
                             nominal_force=self._nominal_force,
                             breaking_load=self.drive.chain.spec.breaking_load,
                             operating_forces=self._static.loads.span_tensions,
-                            resonance_loads=self.afc.max_span_load)
+                            resonance_loads=resonance_loads)
 
     @cached_property
     def runup(self) -> RunUp | None:

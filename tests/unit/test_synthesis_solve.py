@@ -137,6 +137,39 @@ def test_same_seed_same_pareto_set(problem) -> None:
                                                            b.constraint_report]
 
 
+def test_screening_by_the_sweep_maxima_keeps_the_search(problem, monkeypatch) -> None:
+    """The search screens designs by the speed sweep's maxima alone (a bounded search of its
+    speeds); with the whole sweep for every design instead, as before, the same seed gives
+    every design the same constraint values (k₂min among them), hence the same search and
+    the same Pareto set."""
+    from chaindrive.synthesis import evaluation
+
+    whole, evaluate = evaluation.analysis_of, evaluation.evaluate_drive
+    runs: list[list[dict[str, float]]] = []
+
+    def recorded(*args, **kwargs):  # type: ignore[no-untyped-def]
+        ev = evaluate(*args, **kwargs)
+        runs[-1].append(ev.constraints)
+        return ev
+
+    def full_sweep(*args, **kwargs):  # type: ignore[no-untyped-def]
+        return whole(*args, **{**kwargs, "sweep_curve": True})
+
+    monkeypatch.setattr(evaluation, "evaluate_drive", recorded)
+    runs.append([])
+    screened = solve(problem, population=4, generations=2, seed=3).to_dict()
+    monkeypatch.setattr(evaluation, "analysis_of", full_sweep)
+    runs.append([])
+    before = solve(problem, population=4, generations=2, seed=3).to_dict()
+    assert sum("k2min" in c for c in runs[0]) >= 4
+    assert len(runs[0]) == len(runs[1])
+    for a, b in zip(*runs, strict=True):
+        assert a.keys() == b.keys() and list(a.values()) == pytest.approx(list(b.values()),
+                                                                          rel=1e-12)
+    screened.pop("seconds"), before.pop("seconds")
+    assert screened == before
+
+
 def test_pymoo_backend_runs_and_is_reproducible(problem) -> None:
     a = solve(problem, method="nsga2", population=4, generations=2, seed=2)
     b = solve(problem, method="nsga2", population=4, generations=2, seed=2)

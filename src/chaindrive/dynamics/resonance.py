@@ -282,16 +282,15 @@ class CampbellData:
 
 def _crossings(speeds: NDArray[np.float64], line: NDArray[np.float64],
                natural: NDArray[np.float64]) -> list[tuple[int, float]]:
-    out = []
-    for j in range(natural.shape[1]):
-        g = line - natural[:, j]
-        idx = np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) <= 0)
-        for i in idx:
-            if g[i] == g[i + 1]:
-                continue
-            s = speeds[i] - g[i] * (speeds[i + 1] - speeds[i]) / (g[i + 1] - g[i])
-            out.append((j, float(s)))
-    return out
+    """(column j, speed) where ``line`` crosses column j of ``natural`` (S, E), by linear
+    interpolation between the speeds; by column, then by speed."""
+    g = (np.reshape(line, (-1, 1)) - natural).T                         # (E, S)
+    j, i = np.nonzero(np.sign(g[:, :-1]) * np.sign(g[:, 1:]) <= 0)
+    a, b = g[j, i], g[j, i + 1]
+    keep = a != b
+    j, i, a, b = j[keep], i[keep], a[keep], b[keep]
+    s = speeds[i] - a * (speeds[i + 1] - speeds[i]) / (b - a)
+    return list(zip(j.tolist(), s.tolist(), strict=True))
 
 
 def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,

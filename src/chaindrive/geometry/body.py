@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import asdict, dataclass
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -160,6 +161,7 @@ def annulus_mass_and_inertia(outer_diameter: ArrayLike, inner_diameter: ArrayLik
     return _out(m), _out(m * (Do**2 + Di**2) / 8)
 
 
+@lru_cache(maxsize=1024)  # a search meets the same sprockets again (and drive model and metrics)
 @shared_parameters
 def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, density: float,
                               polymeric: bool, hole_count: int = 6,
@@ -180,6 +182,9 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
       0.19·tz/π (the paper's bore proportion, so both models share the bore). A hub, if any,
       should be added by the user as an extra inertia. A multi-strand steel sprocket is
       :func:`multi_strand_width` thick.
+
+    The result of each set of arguments is kept (the last 1024): a drive's model and its
+    metrics ask for the same bodies, and a search for the same sprockets design after design.
 
     Parameters
     ----------

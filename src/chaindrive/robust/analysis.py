@@ -152,7 +152,9 @@ class PerturbedAnalysis(Analysis):
         Chain length the take-up absorbs before the chain is shortened by two links [m]
         (None: it follows the chain without limit).
     response : bool
-        Compute the dynamic response (K_D, k₂, k₂min); False stops after the modes.
+        Compute the dynamic response (K_D, k₂, k₂min); False stops after the modes. k₂min
+        reads the speed sweep's maxima from a bounded search of its speeds, without the
+        curve (``Analysis(sweep_curve=False)``: the same maxima).
     """
 
     def __init__(self, nominal: Analysis, perturbation: Perturbation, *,
@@ -160,7 +162,7 @@ class PerturbedAnalysis(Analysis):
                  take_up_capacity: float | None = None, response: bool = True) -> None:
         removed = removed_links(nominal, perturbation.elongation, take_up_capacity)
         super().__init__(perturbed_design(nominal, perturbation, removed), response=response,
-                         limits=nominal.limits, startup=False)
+                         limits=nominal.limits, startup=False, sweep_curve=False)
         self.nominal = nominal
         self.perturbation = perturbation
         self.links_removed = removed

@@ -133,7 +133,7 @@ def constraint_names(analysis: Analysis, settings: Constraints) -> tuple[str, ..
 
 def analysis_of(drive: Drive, settings: Constraints,
                 cost_model: CostModel | None = None,
-                robust: RobustSettings | None = None) -> Analysis:
+                robust: RobustSettings | None = None, *, sweep_curve: bool = True) -> Analysis:
     """The lazy analysis of a design with the limits the problem sets.
 
     Parameters
@@ -147,6 +147,9 @@ def analysis_of(drive: Drive, settings: Constraints,
     robust : RobustSettings or None
         Robust settings: the analysis is a
         :class:`~chaindrive.robust.synthesis.RobustAnalysis` (its uncertainty model too).
+    sweep_curve : bool
+        False: the checks read the speed sweep's maxima from a bounded search of its speeds,
+        not from the whole curve (the same maxima; ``Analysis(sweep_curve=...)``).
 
     Returns
     -------
@@ -155,9 +158,10 @@ def analysis_of(drive: Drive, settings: Constraints,
     """
     if robust is not None:
         return RobustAnalysis(drive, robust=robust, limits=check_limits(settings),
-                              cost_model=cost_model, startup=settings.startup_safety)
+                              cost_model=cost_model, startup=settings.startup_safety,
+                              sweep_curve=sweep_curve)
     return Analysis(drive, limits=check_limits(settings), cost_model=cost_model,
-                    startup=settings.startup_safety)
+                    startup=settings.startup_safety, sweep_curve=sweep_curve)
 
 
 @dataclass(frozen=True, slots=True)
@@ -272,7 +276,10 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
     :attr:`Evaluation.unverified` with why; one that cannot be verified on any design
     (:func:`unverifiable_for_any_design`) is named there and constrains nothing. Without the
     start-up (``startup_safety = false``) k₁ is still a constraint where ``analyze`` could not
-    verify it whatever the start-up gives: on an incomplete dynamic model.
+    verify it whatever the start-up gives: on an incomplete dynamic model. The search's
+    designs are screened without the speed sweep's curve: its maxima (k₂min) come from a
+    bounded search of its speeds, the same maxima (``Analysis(sweep_curve=False)``); a
+    design judged by every check gets the whole sweep, as ``analyze`` computes it.
 
     Parameters
     ----------
@@ -303,7 +310,7 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
     """
     if every_check:
         settings = replace(settings, startup_safety=True)
-    a = analysis_of(drive, settings, cost_model, robust)
+    a = analysis_of(drive, settings, cost_model, robust, sweep_curve=every_check)
     unverified: dict[str, str] = {}
     try:
         obj = {n: float(OBJECTIVES[n].value(a)) for n in objectives}

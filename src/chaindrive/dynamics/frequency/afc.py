@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -81,15 +82,24 @@ class AfcResult:
         }
 
 
+@lru_cache(maxsize=16)
+def _trace_basis(orders: tuple[float, ...], samples: int) -> NDArray[np.float64]:
+    """[cos kθ; sin kθ] (2K, T) on ``samples`` points θ of one period (kept: a search asks
+    for the same orders and samples design after design; read-only)."""
+    theta = np.linspace(0.0, TWO_PI, samples, endpoint=False)
+    kt = np.outer(np.asarray(orders, dtype=float), theta)
+    E = np.concatenate([np.cos(kt), np.sin(kt)])
+    E.flags.writeable = False
+    return E
+
+
 def peak_over_period(F: NDArray[np.complex128], orders: NDArray[np.float64], samples: int,
                       block: int = 128) -> NDArray[np.float64]:
     """max over one tooth period of |Σ_k Re(F_k e^{i k θ})|, θ on ``samples`` points, for
     every (speed, span): F (S, K, n) → (S, n). The trace of ``block`` speeds at a time is one
     real matrix product [Re F, −Im F]·[cos kθ; sin kθ] (it stays in cache)."""
     S, K, n = F.shape
-    theta = np.linspace(0.0, TWO_PI, samples, endpoint=False)
-    kt = np.outer(orders, theta)
-    E = np.concatenate([np.cos(kt), np.sin(kt)])                   # (2K, T)
+    E = _trace_basis(tuple(orders.tolist()), int(samples))          # (2K, T)
     A = np.concatenate([F.real, -F.imag], axis=1).transpose(0, 2, 1)  # (S, n, 2K)
     load = np.empty((S, n))
     for a in range(0, S, block):

@@ -14,6 +14,12 @@ thousands of speeds with the complex modes of the elastic part computed once
 (:mod:`chaindrive.dynamics.modes`): X = Φ y, (y, ẏ) = V (iω − Λ)⁻¹ V⁻¹ [0; Φᵀ f] — exact for
 any damping matrix, a handful of broadcast products for the whole sweep.
 
+**Maxima of the sweep** (F₂max of every span, what k₂min needs) without the whole curve
+(:func:`span_load_maxima`): per harmonic k the response is a sum of simple poles in W = kω_z,
+Q(W) = D_k − Σ_m BV_m (a1_km + r_km/(iW − λ_m)), so its change over a run of speeds is bounded
+in closed form by the distance of each pole to the run [Rao2011, §6.15] (partial fractions of
+the receptance); runs whose bound stays below the largest load found are not computed.
+
 **Irregularity of rotation** from the speed history: Δ = (ω_max − ω_min)/ω_mean over a tooth
 period, for every sprocket and every rotor of the trains; for one harmonic of amplitude x_n
 (chain displacement at sprocket n) it is 2 x_n z_n / R̄_n [MultimassChainDrives, §3.3].
@@ -48,8 +54,8 @@ if TYPE_CHECKING:
     from chaindrive.dynamics.model.build import DriveModel
     from chaindrive.dynamics.resonance import Resonance
 
-__all__ = ["Bands", "drive_steady", "drive_sweep", "frequency_band_factors", "span_loads_over",
-           "uncertainty_bands"]
+__all__ = ["Bands", "drive_steady", "drive_sweep", "frequency_band_factors",
+           "span_load_maxima", "span_loads_over", "uncertainty_bands"]
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -153,6 +159,85 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
         nominal_force=nominal_force)
 
 
+@dataclass(frozen=True, slots=True)
+class _SpanModal:
+    """The speed-independent factors of the span forces by complex modes (module docstring):
+    with P = V⁻¹-rows of the velocities times (BΦ)ᵀ (2E, S) and BV = BΦ times the
+    displacement rows of V (S, 2E), a harmonic k at W = k ω_z gives
+
+        Q(W) = D_k − Σ_m BV_m (a0_km + iW a1_km)/(iW − λ_m),   F = (c + iW d_s) Q / m,
+
+    a0 = (c D) Pᵀ, a1 = (d_s D) Pᵀ (K, 2E); a0 + iW a1 = a1 (iW − λ) + r with
+    r = a0 + λ a1, so Q(W) − Q(W₀) = −Σ_m BV_m r_km (1/(iW − λ_m) − 1/(iW₀ − λ_m))."""
+
+    D: ComplexArray          # (K, S) span elongation amplitudes [m]
+    orders: FloatArray       # (K,) harmonic orders [-]
+    stiffness: FloatArray    # (S,) c [N/m]
+    damping: FloatArray      # (S,) d_s [N·s/m]
+    PT: ComplexArray         # (S, 2E)
+    BVT: ComplexArray        # (2E, S)
+    eigenvalues: ComplexArray  # (2E,) λ [1/s]
+    residues: FloatArray     # (K, 2E) |r| [N/m · m]
+    contours: int
+
+    @classmethod
+    def of(cls, model: DriveModel, modes: Modes, excitation: SpanExcitation
+           ) -> _SpanModal:
+        """The factors of a model, its complex modes and an excitation."""
+        lin = model.linear
+        lam, right, left, basis = modes.complex_modes()
+        e = basis.shape[1]
+        BPhi = lin.span_incidence @ basis                                # (S, E)
+        P = left[:, e:] @ BPhi.T                                         # (2E, S)
+        BV = BPhi @ right[:e, :]                                         # (S, 2E)
+        PT, BVT = np.ascontiguousarray(P.T), np.ascontiguousarray(BV.T)
+        D = excitation.elongation
+        r = (lin.span_stiffness * D) @ PT + lam * ((lin.span_damping * D) @ PT)
+        return cls(D, excitation.orders, lin.span_stiffness, lin.span_damping, PT, BVT, lam,
+                   np.abs(r), model.contours)
+
+    def forces(self, wz: FloatArray) -> tuple[ComplexArray, ComplexArray]:
+        """(F (b, K, S) [N] of one contour, c + iW d_s (b, K, S) [N/m]) at the tooth
+        frequencies ``wz`` (b,) [rad/s]."""
+        D, ns = self.D, self.D.shape[1]
+        W = wz[:, None] * self.orders[None, :]                        # (b, K)
+        cd = self.stiffness + 1j * W[..., None] * self.damping          # (b, K, S)
+        CD = (cd * D).reshape(-1, ns)
+        G = -(CD @ self.PT)                                            # (b·K, 2E)
+        G /= (1j * W.reshape(-1, 1)) - self.eigenvalues
+        F = (G @ self.BVT).reshape(cd.shape)
+        F += D
+        F *= cd
+        F /= self.contours                                             # (b, K, S)
+        return F, cd
+
+    def variation(self, F: ComplexArray, cd: ComplexArray, low: FloatArray,
+                  centre: FloatArray, high: FloatArray) -> FloatArray:
+        """Upper bound of |F_k(W) − F_k(W₀)| [N] for ω_z in [low, high] (b,) about the
+        centre (b,) where F, cd were computed: (b, K, S).
+
+        Each modal term varies by at most |BV_m r_km| · min(h/δ², 1/δ + 1/|iW₀ − λ_m|),
+        h the largest |W − W₀|, δ the least |iW − λ_m| on the interval (the derivative
+        of 1/(iW − λ) is bounded by 1/δ²; or each end by the triangle inequality); then
+        F(W) − F(W₀) = [(cd(W) − cd(W₀)) Q(W) + cd(W₀)(Q(W) − Q(W₀))]/m with
+        |cd(W) − cd(W₀)| ≤ h d_s and |Q(W)| ≤ |Q(W₀)| + the bound of its variation.
+        """
+        k, lam = self.orders, self.eigenvalues
+        Wl, W0, Wh = low[:, None] * k, centre[:, None] * k, high[:, None] * k   # (b, K)
+        h = np.maximum(W0 - Wl, Wh - W0)[..., None]                           # (b, K, 1)
+        nu, s2 = lam.imag, lam.real**2
+        gap = np.maximum(0.0, np.maximum(Wl[..., None] - nu, nu - Wh[..., None]))
+        dist2 = s2 + gap * gap                                                # (b, K, 2E)
+        off = W0[..., None] - nu                                              # |iW₀ − λ|² − σ²
+        with np.errstate(divide="ignore", invalid="ignore"):
+            near = 1.0 / np.sqrt(dist2) + 1.0 / np.sqrt(s2 + off * off)
+            weight = self.residues * np.minimum(h / dist2, near)
+        dq = weight @ np.abs(self.BVT)                                        # (b, K, S)
+        q0 = np.abs(F) * self.contours / np.abs(cd)
+        return np.asarray((h * self.damping * (q0 + dq) + np.abs(cd) * dq) / self.contours,
+                          dtype=np.float64)
+
+
 def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
                     tooth_angular_frequencies: ArrayLike, samples: int = 64,
                     block: int = 128) -> FloatArray:
@@ -179,31 +264,75 @@ def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
     ndarray
         (speeds, S) [N].
     """
-    lin = model.linear
-    B = lin.span_incidence
-    lam, right, left, basis = modes.complex_modes()
-    e = basis.shape[1]
-    BPhi = B @ basis                                                 # (S, E)
-    P = left[:, e:] @ BPhi.T                                         # (2E, S)
-    BV = BPhi @ right[:e, :]                                         # (S, 2E)
-    D = excitation.elongation                                        # (K, S)
-    orders = excitation.orders
+    modal = _SpanModal.of(model, modes, excitation)
     wz = np.asarray(tooth_angular_frequencies, dtype=float)
-    out = np.empty((wz.size, D.shape[1]))
-    ns = D.shape[1]
-    PT, BVT = np.ascontiguousarray(P.T), np.ascontiguousarray(BV.T)
+    out = np.empty((wz.size, modal.D.shape[1]))
     for a in range(0, wz.size, block):
-        W = wz[a:a + block, None] * orders[None, :]                  # (b, K)
-        cd = lin.span_stiffness + 1j * W[..., None] * lin.span_damping  # (b, K, S)
-        CD = (cd * D).reshape(-1, ns)
-        G = -(CD @ PT)                                               # (b·K, 2E)
-        G /= (1j * W.reshape(-1, 1)) - lam
-        F = (G @ BVT).reshape(cd.shape)
-        F += D
-        F *= cd
-        F /= model.contours                                          # (b, K, S)
-        out[a:a + block] = peak_over_period(F, orders, samples)
+        out[a:a + block] = peak_over_period(modal.forces(wz[a:a + block])[0], modal.orders,
+                                            samples)
     return out
+
+
+#: relative margin by which a bound must lie below the largest load found to drop speeds
+#: (covers the rounding of the loads; a load within it would change the maximum by less)
+BOUND_MARGIN = 1e-9
+
+
+def span_load_maxima(model: DriveModel, modes: Modes, excitation: SpanExcitation,
+                     tooth_angular_frequencies: ArrayLike, samples: int = 64,
+                     first: int = 128) -> FloatArray:
+    """The largest peak span force of every span over the speeds [N], (S,): the maxima over
+    the speeds of :func:`span_loads_over`, found without computing every speed.
+
+    Branch and bound [LandDoig1960] over the (sorted) speeds: the speeds are cut into runs
+    of ``first``; the loads are computed at the middle speed of each run, and a run whose
+    upper bound lies below the largest load found so far for every span is dropped; the
+    others are split at their middle and bounded again. The bound of a run is the peak at its middle plus
+    Σ_k of the bound of |F_k(W) − F_k(W₀)| over it (every sample of the trace moves by at
+    most that; :meth:`_SpanModal.variation`). The maxima are those of the whole grid: every
+    dropped speed is bounded below the maximum (by :data:`BOUND_MARGIN`, which covers the
+    rounding), every other one is computed as :func:`span_loads_over` computes it.
+
+    Parameters
+    ----------
+    model : DriveModel
+        The model.
+    modes : Modes
+        Its modes (their complex elastic modes are read).
+    excitation : SpanExcitation
+        Span elongation amplitudes and their orders (whole harmonics).
+    tooth_angular_frequencies : array_like
+        ω_z of every speed [rad/s], ascending.
+    samples : int
+        Samples per tooth period for the peak.
+    first : int
+        Speeds per run of the first pass.
+
+    Returns
+    -------
+    ndarray
+        (S,) [N].
+    """
+    modal = _SpanModal.of(model, modes, excitation)
+    wz = np.asarray(tooth_angular_frequencies, dtype=float)
+    if wz.ndim != 1 or wz.size < 1 or np.any(np.diff(wz) < 0):
+        raise DesignError("tooth_angular_frequencies", "need an ascending 1-D array [rad/s]")
+    lo = np.arange(0, wz.size, max(int(first), 1))
+    hi = np.minimum(lo + max(int(first), 1) - 1, wz.size - 1)
+    best = np.zeros(modal.D.shape[1])
+    while lo.size:
+        mid = (lo + hi) // 2
+        F, cd = modal.forces(wz[mid])
+        peak = peak_over_period(F, modal.orders, samples)                   # (b, S)
+        best = np.maximum(best, peak.max(axis=0))
+        wide = hi > lo                                  # a run of one speed is computed
+        lo, hi, mid, F, cd, peak = lo[wide], hi[wide], mid[wide], F[wide], cd[wide], peak[wide]
+        bound = peak + modal.variation(F, cd, wz[lo], wz[mid], wz[hi]).sum(axis=1)
+        split = ~np.all(bound < best * (1.0 - BOUND_MARGIN), axis=1)
+        lo, hi, mid = lo[split], hi[split], mid[split]
+        lo, hi = np.concatenate([lo, mid + 1]), np.concatenate([mid - 1, hi])
+        lo, hi = lo[lo <= hi], hi[lo <= hi]
+    return best
 
 
 def drive_sweep(model: DriveModel, modes: Modes, excitation: SpanExcitation,
