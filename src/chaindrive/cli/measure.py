@@ -236,6 +236,12 @@ def _f(value: Any, digits: int = 4) -> str:
     return "—" if value is None else escape(fmt(value, digits))
 
 
+def _zeta(peak: dict[str, Any]) -> str:
+    """A peak's half-power damping ratio, or "not resolved"."""
+    z = peak.get("damping_ratio_half_power")
+    return "not resolved" if z is None else _f(z, 3)
+
+
 def print_tension(doc: dict[str, Any]) -> None:
     """Print the tension read from a span's frequency, its uncertainty and the design's
     expected frequencies.
@@ -286,11 +292,14 @@ def print_identification(doc: dict[str, Any]) -> None:
                   f"{_f(sig['sample_rate_hz'])} Hz, resolution {_f(sig['resolution_hz'], 3)} Hz")
         rows = [[_f(p["frequency_hz"]), _f(p["prominence_db"], 3), escape(p["label"]),
                  _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2),
-                 escape(", ".join(p["also_within_tolerance"]) or "—")]
+                 escape(", ".join(p["also_within_tolerance"]) or "—"), _zeta(p)]
                 for p in sig["peaks"]]
         con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %",
-                                  "also within tolerance"], rows))
+                                  "also within tolerance", "ζ half-power"], rows))
     con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % of the model frequency or "
               f"± one frequency bin; prominence ≥ {_f(doc['prominence_db'], 3)} dB")
+    con.print("ζ half-power: (f₂ − f₁)/(2 f) from a spectrum whose half-power band spans ≥ 8 "
+              "bins, 16 or more segments averaged; \"not resolved\": it does not (a forced "
+              "line, or a record too short for that ζ; the JSON gives the reason)")
     for note in doc["notes"]:
         con.print(escape(note))

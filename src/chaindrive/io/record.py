@@ -23,7 +23,8 @@ from numpy.typing import NDArray
 
 from chaindrive.errors import DesignError
 
-__all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays"]
+__all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays",
+           "speed_unit", "take_column"]
 
 #: Fewest samples of a record [-]: a spectrum of fewer than 64 points resolves nothing.
 MIN_SAMPLES = 64
@@ -32,6 +33,12 @@ SPACING_TOLERANCE = 0.01
 #: Time column names → factor to seconds.
 _TIME = re.compile(r"^\s*(time|t)\s*(?:_|\[|\()\s*(s|ms)\s*[\])]?\s*$", re.IGNORECASE)
 _FIELD = "--record"
+#: Speed column units → factor to rad/s (the unit ends the column's name: ``speed_rpm``,
+#: ``n [rpm]``, ``omega_rad_s``, ``n (rev/s)``, ``f_hz``).
+_SPEED = re.compile(r"(?:_|\[|\(|\s)\s*(rpm|rad/s|rad_s|rev/s|rev_s|hz)\s*[\])]?\s*$",
+                    re.IGNORECASE)
+_SPEED_FACTOR = {"rpm": 2.0 * math.pi / 60.0, "rad/s": 1.0, "rad_s": 1.0,
+                 "rev/s": 2.0 * math.pi, "rev_s": 2.0 * math.pi, "hz": 2.0 * math.pi}
 
 
 @dataclass(frozen=True, slots=True)
@@ -104,6 +111,67 @@ def record_from_arrays(name: str, time: NDArray[np.float64],
         if values.shape != t.shape or not np.all(np.isfinite(values)):
             raise DesignError(f"{_FIELD}.{key}", "a sample missing or not a finite number")
     return Record(name, 1.0 / step, {k: np.asarray(v, dtype=float) for k, v in signals.items()})
+
+
+def take_column(record: Record, column: str, option: str) -> tuple[Record, NDArray[np.float64]]:
+    """The record without one of its signals, and that signal.
+
+    Parameters
+    ----------
+    record : Record
+        The record.
+    column : str
+        The signal's name.
+    option : str
+        The option that named it, for messages.
+
+    Returns
+    -------
+    rest : Record
+        The other signals.
+    values : ndarray
+        The column's samples [its unit].
+
+    Raises
+    ------
+    DesignError
+        No such column, or no other signal left.
+    """
+    if column not in record.signals:
+        raise DesignError(option, f"no column {column!r} in {record.name}; allowed: "
+                          f"{', '.join(record.signals)}")
+    rest = {k: v for k, v in record.signals.items() if k != column}
+    if not rest:
+        raise DesignError(option, f"{column!r} is the only signal of {record.name}; allowed: "
+                          "a record with a signal beside it")
+    return Record(record.name, record.sample_rate, rest), record.signals[column]
+
+
+def speed_unit(column: str) -> float:
+    """Factor from a speed column's unit, read from the end of its name, to rad/s (a unit is
+    never guessed).
+
+    Parameters
+    ----------
+    column : str
+        ``speed_rpm``, ``n [rpm]``, ``omega_rad_s``, ``n_rev_s``, ``n_hz`` (revolutions per
+        second) …
+
+    Returns
+    -------
+    float
+        [rad/s per the column's unit].
+
+    Raises
+    ------
+    DesignError
+        No unit recognised at the end of the name.
+    """
+    match = _SPEED.search(column)
+    if match is None:
+        raise DesignError("--speed", f"{column!r} names no unit; allowed: a name ending in "
+                          "_rpm, _rad_s, _rev_s or _hz (revolutions per second), or [rpm]")
+    return _SPEED_FACTOR[match.group(1).lower()]
 
 
 def _number(text: str, row: int, column: str) -> float:
