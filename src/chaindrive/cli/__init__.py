@@ -809,42 +809,68 @@ def identify(
                                              "the model frequency (at least one bin)")] = 5.0,
     prominence: Annotated[float, typer.Option("--prominence", help="least peak prominence "
                                               "in dB")] = 15.0,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="the record's driver speed column, its unit ending its name "
+        "(speed_rpm, omega_rad_s, n_hz): order spectrum and run-up map")] = None,
+    tacho: Annotated[str | None, typer.Option(
+        "--tacho", help="or the record's driver tacho column (pulses)")] = None,
+    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                        "revolution", min=1)] = 1,
     output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
                                                 "the model's frequencies (.svg, .png, .pdf)")]
     = None,
+    orders: Annotated[Path | None, typer.Option(
+        "--orders", help="order spectrum plot with the shaft and tooth orders (needs --speed "
+        "or --tacho; .svg, .png, .pdf)")] = None,
     campbell: Annotated[Path | None, typer.Option(
-        "--campbell", help="Campbell diagram with the measured peaks at the design speed "
-        "(.svg, .png, .pdf)")] = None,
+        "--campbell", help="Campbell diagram with the measured peaks at the design speed, or "
+        "over the run-up with --speed/--tacho (.svg, .png, .pdf)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON document")] = False,
 ) -> None:
     """Match a measured record's spectral peaks to the model: natural frequency (mode),
-    tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
+    tooth-order excitation, shaft speed, span transverse frequency, or unexplained; each
+    peak's half-power damping ratio; with a speed or tacho column, the order spectrum and
+    the run-up map."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.measure import print_identification, save_campbell, save_figure
-    from chaindrive.identification import identify as identify_record
-    from chaindrive.identification import model_lines
+    from chaindrive.cli.measure import (
+        print_identification,
+        print_orders,
+        save_campbell,
+        save_figure,
+        save_orders,
+    )
+    from chaindrive.identification import identify_record
     from chaindrive.io.record import read_record
 
     with user_errors():
-        for name, path in (("--output", output), ("--campbell", campbell)):
+        for name, path in (("--output", output), ("--campbell", campbell),
+                           ("--orders", orders)):
             if path is not None and path.suffix.lower() not in (".svg", ".png", ".pdf"):
                 raise DesignError(name, f"{str(path)!r}: allowed: a .svg, .png or .pdf file")
+        if orders is not None and speed is None and tacho is None:
+            raise DesignError("--orders", "needs the record's speed or tacho column "
+                              "(--speed or --tacho)")
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
-        measured = read_record(record)
-        result = identify_record(measured, model_lines(analysis, measured.sample_rate / 2),
-                                 tolerance=tolerance / 100.0, prominence_db=prominence)
+        result = identify_record(read_record(record), analysis, speed=speed, tacho=tacho,
+                                 pulses_per_revolution=pulses, tolerance=tolerance / 100.0,
+                                 prominence_db=prominence)
         doc = result.to_dict()
         check_document(doc)
         if output is not None:
-            save_figure(result, output)
+            save_figure(result.spectrum, output)
+        if orders is not None and result.orders is not None:
+            save_orders(result.orders, orders)
         if campbell is not None:
-            save_campbell(result, analysis, campbell)
+            save_campbell(result.spectrum, analysis, campbell, result.orders)
     if as_json:
         _write_json(doc)
         return
     print_identification(doc)
-    for what, path in (("spectrum", output), ("Campbell diagram", campbell)):
+    if doc["orders"] is not None:
+        print_orders(doc["orders"])
+    for what, path in (("spectrum", output), ("order spectrum", orders),
+                       ("Campbell diagram", campbell)):
         if path is not None:
             print(f"{what} written to {path}")
 

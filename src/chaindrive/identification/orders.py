@@ -32,6 +32,7 @@ f·60/n (n in rpm); a tooth order as points on its ray f = k z₁ n/60.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -49,7 +50,9 @@ from chaindrive.identification.spectrum import (
     DEFAULT_TOLERANCE,
     MAX_HARMONICS,
     WORKING_KINDS,
+    Identification,
     ModelLine,
+    identify,
     label_peak,
     model_lines,
     signal_spectrum,
@@ -60,9 +63,10 @@ if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
     from chaindrive.io.record import Record
 
-__all__ = ["MIN_SPEED_FRACTION", "OrderPeak", "OrderTracking", "RunupPoint", "SignalOrders",
-           "angle_from_speed", "angle_from_tacho", "order_lines", "resampled_by_angle",
-           "slice_length", "track_orders"]
+__all__ = ["MIN_SPEED_FRACTION", "OrderPeak", "OrderTracking", "RecordIdentification",
+           "RunupPoint", "SignalOrders", "angle_from_speed", "angle_from_tacho",
+           "identify_record", "order_lines", "resampled_by_angle", "slice_length",
+           "swept_spectrum", "track_orders"]
 
 #: Lowest speed used, as a fraction of the record's top speed [-]: below it a revolution
 #: spans so many samples that the resampled record would grow by more than 1/fraction; a
@@ -93,8 +97,8 @@ def angle_from_speed(speed: NDArray[np.float64], sample_rate: float) -> NDArray[
     ndarray
         θ at each sample [rad], from 0.
     """
-    return np.asarray(cumulative_trapezoid(speed, dx=1.0 / sample_rate, initial=0.0),
-                      dtype=float)
+    return np.asarray(cumulative_trapezoid(speed, dx=1.0 / sample_rate, initial=0),
+                      dtype=np.float64)
 
 
 def angle_from_tacho(pulses: NDArray[np.float64], sample_rate: float,
@@ -174,7 +178,7 @@ def resampled_by_angle(values: NDArray[np.float64], time: NDArray[np.float64],
     ----------
     [Brandt2011]; [Virtanen2020].
     """
-    steps = int(math.floor((angle[-1] - angle[0]) * per_revolution / TWO_PI)) + 1
+    steps = math.floor((angle[-1] - angle[0]) * per_revolution / TWO_PI) + 1
     theta = angle[0] + TWO_PI * np.arange(steps) / per_revolution
     at = np.interp(theta, angle, time)
     return np.asarray(CubicSpline(time, values)(at), dtype=float)
@@ -515,7 +519,7 @@ def track_orders(record: Record, analysis: Analysis, reference: str, *,
                           f"{stop - start} samples at {MIN_SPEED_FRACTION:.0%} of the top "
                           f"speed or above; allowed: at least {MIN_REVOLUTIONS:g} and 64")
     n_min = float(np.min(speed_used)) / TWO_PI
-    per_rev = int(math.ceil(fs / n_min))
+    per_rev = math.ceil(fs / n_min)
     t = np.arange(start, stop) / fs
     n_max = float(np.max(speed_used)) / TWO_PI
     max_order = fs / (2.0 * n_max)
@@ -552,3 +556,121 @@ def track_orders(record: Record, analysis: Analysis, reference: str, *,
     return OrderTracking(record.name, reference, rpm, (stop - start) / fs, lines, fixed,
                          tuple(spectra), tuple(points), width / fs, df, tolerance,
                          prominence_db, notes)
+
+
+@dataclass(frozen=True, slots=True)
+class RecordIdentification:
+    """A record matched to the model: its spectra, and its order tracking when a speed or
+    tacho column gives the driver's angle.
+
+    Parameters
+    ----------
+    spectrum : Identification
+        The frequency spectra and their labelled peaks.
+    orders : OrderTracking | None
+        The order spectra and run-up map (None: no speed or tacho column named).
+    """
+
+    spectrum: Identification
+    orders: OrderTracking | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: the spectrum's document with ``orders`` (null without a speed)."""
+        return {**self.spectrum.to_dict(),
+                "orders": None if self.orders is None else self.orders.to_dict()}
+
+
+def identify_record(record: Record, analysis: Analysis, *, speed: str | None = None,
+                    tacho: str | None = None, pulses_per_revolution: int = 1,
+                    tolerance: float = DEFAULT_TOLERANCE,
+                    prominence_db: float = DEFAULT_PROMINENCE_DB) -> RecordIdentification:
+    """The entry point of ``chaindrive identify`` and the page: the record's spectra matched
+    to the model's lines up to its Nyquist frequency
+    (:func:`chaindrive.identification.spectrum.identify`), and, with a speed column (its
+    unit ending its name, :func:`chaindrive.io.record.speed_unit`) or a tacho column
+    (``pulses_per_revolution`` rising edges per driver revolution), its order tracking
+    (:func:`track_orders`). The speed or tacho column is not itself a signal.
+
+    Parameters
+    ----------
+    record : Record
+        The measured record.
+    analysis : Analysis
+        The analysed design.
+    speed : str | None
+        The driver speed column.
+    tacho : str | None
+        The driver tacho column.
+    pulses_per_revolution : int
+        Tacho pulses per driver revolution [-].
+    tolerance : float
+        Relative tolerance of the model's natural and span frequencies [-].
+    prominence_db : float
+        Least prominence of a peak [dB].
+
+    Returns
+    -------
+    RecordIdentification
+
+    Raises
+    ------
+    DesignError
+        Both a speed and a tacho column, an unknown column, a speed column without its unit,
+        or what :func:`track_orders` and :func:`identify` refuse.
+    """
+    from chaindrive.io.record import speed_unit, take_column  # the column names' units
+
+    if speed is not None and tacho is not None:
+        raise DesignError("--tacho", "give a speed column or a tacho column, not both")
+    column = speed if speed is not None else tacho
+    if column is None:
+        spectrum = identify(record, model_lines(analysis, record.sample_rate / 2.0),
+                            tolerance=tolerance, prominence_db=prominence_db)
+        return RecordIdentification(spectrum, None)
+    option = "--speed" if speed is not None else "--tacho"
+    rest, values = take_column(record, column, option)
+    if speed is not None:
+        omega, theta = values * speed_unit(column), None
+    else:
+        theta, omega = angle_from_tacho(values, record.sample_rate, pulses_per_revolution)
+    spectrum = identify(rest, model_lines(analysis, rest.sample_rate / 2.0),
+                        tolerance=tolerance, prominence_db=prominence_db)
+    tracking = track_orders(rest, analysis, column, speed=omega, angle=theta,
+                            tolerance=tolerance, prominence_db=prominence_db)
+    return RecordIdentification(swept_spectrum(spectrum, tracking), tracking)
+
+
+def swept_spectrum(spectrum: Identification, tracking: OrderTracking) -> Identification:
+    """The frequency spectra of a run-up with no half-power ratio for a peak that lies
+    where a shaft or tooth order sweeps (o·n_min … o·n_max): its width is the sweep's, not
+    a damping; and a note that the working frequencies are the design speed's.
+
+    Parameters
+    ----------
+    spectrum : Identification
+        The record's frequency spectra.
+    tracking : OrderTracking
+        Its order tracking.
+
+    Returns
+    -------
+    Identification
+    """
+    lo, hi = (r / RPM_PER_REV_S for r in tracking.speed_range_rpm)
+    signals = []
+    for sig in spectrum.signals:
+        peaks = []
+        for p in sig.peaks:
+            sweep = next((ln.label for ln in tracking.lines
+                          if ln.frequency * lo <= p.frequency <= ln.frequency * hi), None)
+            if sweep is not None and p.damping_ratio is not None:
+                p = dataclasses.replace(p, damping_ratio=None, damping_reason=(
+                    f"{sweep} sweeps this frequency over the run-up: the peak's width is "
+                    "the sweep's, not a damping"))
+            peaks.append(p)
+        signals.append(dataclasses.replace(sig, peaks=tuple(peaks)))
+    note = (f"a run-up from {tracking.speed_range_rpm[0]:.4g} to "
+            f"{tracking.speed_range_rpm[1]:.4g} rpm: the working frequencies listed are the "
+            "design speed's; the orders and the run-up map follow the speed")
+    return dataclasses.replace(spectrum, signals=tuple(signals),
+                               notes=(*spectrum.notes, note))
