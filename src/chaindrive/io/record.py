@@ -13,6 +13,7 @@ the file's sample rate (:func:`scipy.io.wavfile.read`).
 from __future__ import annotations
 
 import csv
+import io
 import math
 import re
 from dataclasses import dataclass
@@ -24,7 +25,7 @@ from numpy.typing import NDArray
 from chaindrive.errors import DesignError
 
 __all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays",
-           "speed_unit", "take_column"]
+           "record_from_csv_bytes", "speed_unit", "take_column"]
 
 #: Fewest samples of a record [-]: a spectrum of fewer than 64 points resolves nothing.
 MIN_SAMPLES = 64
@@ -189,8 +190,38 @@ def _number(text: str, row: int, column: str) -> float:
 def _read_csv(path: Path) -> Record:
     with path.open(newline="", encoding="utf-8-sig") as handle:
         rows = list(csv.reader(handle))
+    return _csv_record(path.name, rows)
+
+
+def record_from_csv_bytes(name: str, data: bytes) -> Record:
+    """A CSV record from its bytes (an upload), read as :func:`read_record` reads a file.
+
+    Parameters
+    ----------
+    name : str
+        The file's name.
+    data : bytes
+        Its content (UTF-8).
+
+    Returns
+    -------
+    Record
+
+    Raises
+    ------
+    DesignError
+        Not UTF-8, or not a record as described in the module docstring.
+    """
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise DesignError(_FIELD, f"{name} is not UTF-8 text; allowed: a CSV file") from None
+    return _csv_record(name, list(csv.reader(io.StringIO(text, newline=""))))
+
+
+def _csv_record(name: str, rows: list[list[str]]) -> Record:
     if not rows:
-        raise DesignError(_FIELD, f"{path.name} is empty; allowed: a header row and samples")
+        raise DesignError(_FIELD, f"{name} is empty; allowed: a header row and samples")
     header = [h.strip() for h in rows[0]]
     times = [(i, m) for i, h in enumerate(header) if (m := _TIME.match(h))]
     if len(times) != 1:
@@ -207,7 +238,7 @@ def _read_csv(path: Path) -> Record:
                        for n, r in enumerate(data, start=2)], dtype=float).reshape(
                            len(data), len(header))
     signals = {h: values[:, j] for j, h in enumerate(header) if j != col}
-    return record_from_arrays(path.name, values[:, col] * factor, signals, header[col])
+    return record_from_arrays(name, values[:, col] * factor, signals, header[col])
 
 
 def _read_wav(path: Path) -> Record:
