@@ -137,6 +137,19 @@ def test_identify_a_bad_speed_writes_nothing(tmp_path: Path, extra: tuple[str, .
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
 
 
+def test_report_with_a_record_has_its_section_and_a_speed_needs_a_record(
+        tmp_path: Path) -> None:
+    rec = _runup(tmp_path / "r.csv")
+    out = run_cli("report", SEED, "--record", str(rec), "--speed", "speed_rpm", "--dpi", "50",
+                  "-o", str(tmp_path / "r.html"))
+    assert out.returncode == 0, out.stderr
+    page = (tmp_path / "r.html").read_text(encoding="utf-8")
+    assert "Measured record and the model" in page and "Order peaks of accel_m_s2" in page
+    bad = run_cli("report", SEED, "--speed", "speed_rpm", "-o", str(tmp_path / "x.html"))
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1
+    assert "--speed: needs --record" in bad.stderr and not (tmp_path / "x.html").exists()
+
+
 def test_calibrate_writes_a_design_that_loads_with_the_fitted_stiffness(tmp_path: Path) -> None:
     import chaindrive
 

@@ -339,6 +339,15 @@ def report(
         "--summary", help="the two-page sign-off sheet (verdict, governing checks, defaults "
         "and estimates, the drive; the chain and sprockets to buy) instead of the full "
         "report")] = False,
+    record: Annotated[Path | None, typer.Option(
+        "--record", help="a measured record (CSV/WAV) matched to the model in its own "
+        "section, as `chaindrive identify` matches it")] = None,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="the record's driver speed column (a run-up: its orders)")] = None,
+    tacho: Annotated[str | None, typer.Option(
+        "--tacho", help="or the record's driver tacho column")] = None,
+    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                        "revolution", min=1)] = 1,
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -347,13 +356,24 @@ def report(
     from chaindrive.report import SECTIONS, write_report
 
     with user_errors():
+        if record is None and (speed is not None or tacho is not None):
+            raise DesignError("--speed", "needs --record (the record whose speed it is)")
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         check_document(result.to_dict())  # the report shows these numbers
+        identification = None
+        if record is not None:
+            from chaindrive.identification import identify_record
+            from chaindrive.io.record import read_record
+
+            identification = identify_record(read_record(record), result, speed=speed,
+                                             tacho=tacho, pulses_per_revolution=pulses)
+            check_document(identification.to_dict())
         with progress_bar("report", total=None if summary else len(SECTIONS) or None,
                           quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
-                                units=unit_system(units), summary=summary)
+                                units=unit_system(units), summary=summary,
+                                identification=identification)
     _say_written("report", path, as_json)
 
 
