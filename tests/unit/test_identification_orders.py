@@ -23,7 +23,7 @@ from scipy.signal import lfilter
 import chaindrive
 from chaindrive.analysis import Analysis
 from chaindrive.errors import DesignError
-from chaindrive.identification.orders import angle_from_tacho, track_orders
+from chaindrive.identification.orders import angle_from_tacho, identify_record, track_orders
 from chaindrive.identification.spectrum import HALF_POWER_BINS, peak_damping_ratio
 from chaindrive.io.record import Record, record_from_arrays, speed_unit, take_column
 from tests.conftest import EXAMPLES
@@ -153,3 +153,21 @@ def test_a_forced_line_has_no_damping_ratio() -> None:
     ratio, bins, why = peak_damping_ratio(x, fs, 75.0)
     assert ratio is None and why is not None and "too few bins" not in why
     assert "needed" in why and bins is not None and bins < HALF_POWER_BINS
+
+
+def test_a_tacho_column_and_a_swept_peak_through_the_entry_point(seed: Analysis) -> None:
+    t, _, theta, x = _runup()
+    record = record_from_arrays("runup", t, {"tacho": (np.sin(2 * theta) > 0).astype(float),
+                                             "a": x})
+    result = identify_record(record, seed, tacho="tacho", pulses_per_revolution=2)
+    assert [s.name for s in result.spectrum.signals] == ["a"]   # the tacho is no signal
+    assert result.orders is not None
+    sig = result.orders.signals[0]
+    assert any(p.line is not None and p.line.label == "tooth x1"
+               and abs(p.order - 15.0) < sig.resolution for p in sig.peaks)
+    # the frequency spectrum's peaks inside the tooth order's sweep 15·(100 … 250)/60 Hz
+    # = 25 … 62.5 Hz carry no half-power ratio: their width is the sweep's
+    swept = [p for p in result.spectrum.signals[0].peaks if 25.0 <= p.frequency <= 62.5]
+    assert swept and all(p.damping_ratio is None for p in swept)
+    with pytest.raises(DesignError, match="not both"):
+        identify_record(record, seed, speed="tacho", tacho="tacho")
