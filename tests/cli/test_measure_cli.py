@@ -86,6 +86,70 @@ def test_identify_bad_input_writes_nothing(tmp_path: Path, extra: tuple[str, ...
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
 
 
+def _runup(path: Path) -> Path:
+    """A run-up of the seed drive's driver (z₁ = 15) from 100 to 250 rpm in 8 s at 1 kHz:
+    the tooth order sin(15 θ) and a fixed line at 73.06 Hz (the model's mode 1)."""
+    import numpy as np
+
+    fs = 1000.0
+    t = np.arange(8000) / fs
+    rpm = 100.0 + 150.0 * t / 8.0
+    theta = 2 * np.pi * (100.0 * t + 150.0 * t**2 / 16.0) / 60.0
+    x = np.sin(15 * theta) + 0.5 * np.sin(2 * np.pi * 73.06 * t)
+    rows = [f"{a:.4f},{b:.4f},{c:.5f}" for a, b, c in zip(t, rpm, x, strict=True)]
+    path.write_text("time_s,speed_rpm,accel_m_s2\n" + "\n".join(rows) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+def test_identify_a_run_up_gives_its_orders_and_run_up_map(tmp_path: Path) -> None:
+    rec = _runup(tmp_path / "r.csv")
+    out = run_cli("identify", SEED, "--record", str(rec), "--speed", "speed_rpm", "--orders",
+                  str(tmp_path / "o.svg"), "--campbell", str(tmp_path / "c.svg"), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert [s["name"] for s in doc["signals"]] == ["accel_m_s2"]   # the speed is no signal
+    orders = doc["orders"]
+    assert orders["speed_range_rpm"] == pytest.approx([100.0, 250.0], abs=0.1)
+    tooth = [p for p in orders["signals"][0]["peaks"] if p["label"] == "tooth x1"]
+    assert len(tooth) == 1
+    assert tooth[0]["order"] == pytest.approx(15.0, abs=orders["signals"][0]["resolution_orders"])
+    fixed = [p for p in orders["runup_points"] if p["label"] == "mode 1"]
+    assert len(fixed) >= 16
+    for p in fixed:                                   # the order of a fixed line: f·60/n
+        assert p["order"] == pytest.approx(73.06 * 60.0 / p["speed_rpm"],
+                                           abs=orders["runup_resolution_hz"] * 60 / p["speed_rpm"])
+    assert (tmp_path / "o.svg").stat().st_size > 0 and (tmp_path / "c.svg").stat().st_size > 0
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    (("--speed", "speed"), "--speed: no column 'speed'"),
+    (("--orders", "x.svg"), "--orders: needs the record's speed or tacho column"),
+    (("--speed", "speed_rpm", "--tacho", "speed_rpm"), "--tacho: give a speed column or"),
+])
+def test_identify_a_bad_speed_writes_nothing(tmp_path: Path, extra: tuple[str, ...],
+                                             message: str) -> None:
+    rec = _runup(tmp_path / "r.csv")
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"), *extra,
+                  cwd=tmp_path)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and message in out.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
+
+
+def test_report_with_a_record_has_its_section_and_a_speed_needs_a_record(
+        tmp_path: Path) -> None:
+    rec = _runup(tmp_path / "r.csv")
+    out = run_cli("report", SEED, "--record", str(rec), "--speed", "speed_rpm", "--dpi", "50",
+                  "-o", str(tmp_path / "r.html"))
+    assert out.returncode == 0, out.stderr
+    page = (tmp_path / "r.html").read_text(encoding="utf-8")
+    assert "Measured record and the model" in page and "Order peaks of accel_m_s2" in page
+    bad = run_cli("report", SEED, "--speed", "speed_rpm", "-o", str(tmp_path / "x.html"))
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1
+    assert "--speed: needs --record" in bad.stderr and not (tmp_path / "x.html").exists()
+
+
 def test_calibrate_writes_a_design_that_loads_with_the_fitted_stiffness(tmp_path: Path) -> None:
     import chaindrive
 

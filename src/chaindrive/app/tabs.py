@@ -18,6 +18,7 @@ from chaindrive.app import runs
 from chaindrive.app.state import design_to_toml
 from chaindrive.app.views import (
     Screen,
+    identification_records,
     length_option_records,
     line_chart_svg,
     lubrication_records,
@@ -40,8 +41,15 @@ from chaindrive.display import (
     warning_text,
 )
 from chaindrive.errors import ChainDriveError
-from chaindrive.identification import span_tension_reading
+from chaindrive.identification import identify_record, span_tension_reading
+from chaindrive.io.record import record_from_csv_bytes
 from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
+from chaindrive.plotting.identification import (
+    measured_campbell,
+    measured_spectrum,
+    order_spectrum,
+    runup_campbell,
+)
 from chaindrive.plotting.robust import (
     life_curve_figure,
     probability_figure,
@@ -130,6 +138,7 @@ def tab_geometry(screen: Screen) -> None:
                            x_label="driver rotation within one tooth β [°]",
                            y_label="transmission ratio"), width="stretch")
     _tension_tool(screen)
+    _identify_tool(screen)
 
 
 def _tension_tool(screen: Screen) -> None:
@@ -225,6 +234,73 @@ def tab_modes(screen: Screen) -> None:
                 a.dynamics.campbell, operating_rpm=rpm, band_percent=band))
         names = [s.name for s in a.drive.sprockets]
         _png(f"{id(a)}-modes", lambda: mode_shapes(a.dynamics.modal, names=names))
+
+
+#: Largest record the page reads [bytes] (Streamlit's upload limit is the same).
+MAX_RECORD_BYTES = 1024 * 1024
+
+
+def _identify_tool(screen: Screen) -> None:
+    """A measured record matched to the model (``chaindrive identify``): upload a CSV, pick
+    the driver speed column of a run-up if it has one, and read the spectrum with the
+    model's frequencies, the peaks' labels and half-power damping ratios, and for a run-up
+    the order spectrum and the Campbell diagram with the measured points
+    (docs/identification.md)."""
+    a = screen.outcome.analysis
+    if a is None:
+        return
+    with st.expander("Identify a measured record"):
+        upload = st.file_uploader("record (CSV: a time_s or time_ms column and signals)",
+                                  type=["csv"], key="ident.record")
+        if upload is None:
+            st.caption("A vibration record of the built drive (acceleration, speed, force …; "
+                       "each column's unit in its name): its peaks are set against the "
+                       "model's natural, working and span frequencies. A run-up with a driver "
+                       "speed column (speed_rpm, omega_rad_s) also gives its order spectrum.")
+            return
+        data = upload.getvalue()
+        if len(data) > MAX_RECORD_BYTES:
+            st.error(f"{plain(upload.name)}: {len(data):,} bytes; the page reads records of at "
+                     f"most {MAX_RECORD_BYTES:,} bytes (use `chaindrive identify` for more)")
+            return
+        try:
+            record = record_from_csv_bytes(upload.name, data)
+        except ChainDriveError as exc:
+            st.error(plain(str(exc)))
+            return
+        speed = st.selectbox("driver speed column (a run-up)", ["none", *record.signals],
+                             key="ident.speed")
+        key = (id(a), hash(data), speed)
+        store = st.session_state.setdefault("ident", {})
+        if key not in store:
+            store.clear()
+            try:
+                store[key] = identify_record(record, a,
+                                             speed=None if speed == "none" else speed)
+            except ChainDriveError as exc:
+                st.error(plain(str(exc)))
+                return
+        result = store[key]
+        doc = result.to_dict()
+        st.dataframe(identification_records(doc), hide_index=True, width="stretch")
+        for note in doc["notes"]:
+            st.caption(plain(note))
+        st.caption("ζ half-power: (f₂ − f₁)/(2 f) where the half-power band spans 8 bins or "
+                   "more with 16 segments or more averaged; otherwise not resolved (a forced "
+                   "line, or a record too short). Matching tolerance ±5 % of a natural or "
+                   "span frequency, ±1 % of a working frequency, at least one bin.")
+        c1, c2 = st.columns(2)
+        with c1:
+            _png(f"{key}-spectrum", lambda: measured_spectrum(result.spectrum))
+            if result.orders is not None:
+                _png(f"{key}-orders", lambda: order_spectrum(result.orders))
+        with c2:
+            campbell = a.dynamics.campbell
+            rpm = screen.document["drive"]["driver_speed_rpm"] if screen.document else None
+            if campbell is not None and rpm is not None:
+                _png(f"{key}-campbell", lambda: (
+                    measured_campbell(result.spectrum, campbell, rpm) if result.orders is None
+                    else runup_campbell(result.orders, campbell, rpm)))
 
 
 def _full(screen: Screen, label: str, button: str) -> Any:

@@ -617,6 +617,34 @@ def tension_reading_records(reading: dict[str, Any], units: UnitSystem = "SI"
     return out
 
 
+def identification_records(doc: dict[str, Any]) -> list[dict[str, str]]:
+    """Rows of the peaks of a measured record and what each is, as ``chaindrive identify``
+    prints them (:meth:`chaindrive.identification.RecordIdentification.to_dict`).
+
+    Parameters
+    ----------
+    doc : dict
+        The identification's JSON document.
+
+    Returns
+    -------
+    list of dict
+        One per peak: ``signal``, ``f [Hz]``, ``prominence [dB]``, ``is``, ``model f [Hz]``,
+        ``Δ [%]``, ``also within tolerance``, ``ζ half-power`` ("not resolved" with no ratio).
+    """
+    def text(value: Any, digits: int = 4) -> str:
+        return "—" if value is None else fmt(value, digits)
+
+    return [{"signal": sig["name"], "f [Hz]": text(p["frequency_hz"]),
+             "prominence [dB]": text(p["prominence_db"], 3), "is": p["label"],
+             "model f [Hz]": text(p["model_frequency_hz"]),
+             "Δ [%]": text(p["deviation_percent"], 2),
+             "also within tolerance": ", ".join(p["also_within_tolerance"]) or "—",
+             "ζ half-power": ("not resolved" if p["damping_ratio_half_power"] is None
+                              else text(p["damping_ratio_half_power"], 3))}
+            for sig in doc["signals"] for p in sig["peaks"]]
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Screen:
     """Everything the page redraws after an edit.

@@ -343,6 +343,15 @@ def report(
         "--summary", help="the two-page sign-off sheet (verdict, governing checks, defaults "
         "and estimates, the drive; the chain and sprockets to buy) instead of the full "
         "report")] = False,
+    record: Annotated[Path | None, typer.Option(
+        "--record", help="a measured record (CSV/WAV) matched to the model in its own "
+        "section, as `chaindrive identify` matches it")] = None,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="the record's driver speed column (a run-up: its orders)")] = None,
+    tacho: Annotated[str | None, typer.Option(
+        "--tacho", help="or the record's driver tacho column")] = None,
+    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                        "revolution", min=1)] = 1,
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -351,13 +360,25 @@ def report(
     from chaindrive.report import SECTIONS, write_report
 
     with user_errors():
+        if record is None and (speed is not None or tacho is not None):
+            raise DesignError("--speed", "needs --record (the record whose speed it is)")
         studies = tuple(s.replace("-", "_") for s in study or ())
         result = chaindrive.analyze(chaindrive.load(file), studies=studies)
         check_document(result.to_dict())  # the report shows these numbers
+        identification = None
+        if record is not None:
+            # lazy: the record's reading and identification only when a record is given
+            from chaindrive.identification import identify_record
+            from chaindrive.io.record import read_record
+
+            identification = identify_record(read_record(record), result, speed=speed,
+                                             tacho=tacho, pulses_per_revolution=pulses)
+            check_document(identification.to_dict())
         with progress_bar("report", total=None if summary else len(SECTIONS) or None,
                           quiet=as_json) as advance:
             path = write_report(result, output, source=file, dpi=dpi, progress=advance,
-                                units=unit_system(units), summary=summary)
+                                units=unit_system(units), summary=summary,
+                                identification=identification)
     _say_written("report", path, as_json)
 
 
@@ -826,42 +847,68 @@ def identify(
                                              "the model frequency (at least one bin)")] = 5.0,
     prominence: Annotated[float, typer.Option("--prominence", help="least peak prominence "
                                               "in dB")] = 15.0,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="the record's driver speed column, its unit ending its name "
+        "(speed_rpm, omega_rad_s, n_hz): order spectrum and run-up map")] = None,
+    tacho: Annotated[str | None, typer.Option(
+        "--tacho", help="or the record's driver tacho column (pulses)")] = None,
+    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                        "revolution", min=1)] = 1,
     output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
                                                 "the model's frequencies (.svg, .png, .pdf)")]
     = None,
+    orders: Annotated[Path | None, typer.Option(
+        "--orders", help="order spectrum plot with the shaft and tooth orders (needs --speed "
+        "or --tacho; .svg, .png, .pdf)")] = None,
     campbell: Annotated[Path | None, typer.Option(
-        "--campbell", help="Campbell diagram with the measured peaks at the design speed "
-        "(.svg, .png, .pdf)")] = None,
+        "--campbell", help="Campbell diagram with the measured peaks at the design speed, or "
+        "over the run-up with --speed/--tacho (.svg, .png, .pdf)")] = None,
     as_json: JsonFlag = False,
 ) -> None:
     """Match a measured record's spectral peaks to the model: natural frequency (mode),
-    tooth-order excitation, shaft speed, span transverse frequency, or unexplained."""
+    tooth-order excitation, shaft speed, span transverse frequency, or unexplained; each
+    peak's half-power damping ratio; with a speed or tacho column, the order spectrum and
+    the run-up map."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
-    from chaindrive.cli.measure import print_identification, save_campbell, save_figure
-    from chaindrive.identification import identify as identify_record
-    from chaindrive.identification import model_lines
+    from chaindrive.cli.measure import (
+        print_identification,
+        print_orders,
+        save_campbell,
+        save_figure,
+        save_orders,
+    )
+    from chaindrive.identification import identify_record
     from chaindrive.io.record import read_record
 
     with user_errors():
-        for name, path in (("--output", output), ("--campbell", campbell)):
+        for name, path in (("--output", output), ("--campbell", campbell),
+                           ("--orders", orders)):
             if path is not None and path.suffix.lower() not in (".svg", ".png", ".pdf"):
                 raise DesignError(name, f"{str(path)!r}: allowed: a .svg, .png or .pdf file")
+        if orders is not None and speed is None and tacho is None:
+            raise DesignError("--orders", "needs the record's speed or tacho column "
+                              "(--speed or --tacho)")
         analysis = chaindrive.analyze(chaindrive.load(file), response=False)
-        measured = read_record(record)
-        result = identify_record(measured, model_lines(analysis, measured.sample_rate / 2),
-                                 tolerance=tolerance / 100.0, prominence_db=prominence)
+        result = identify_record(read_record(record), analysis, speed=speed, tacho=tacho,
+                                 pulses_per_revolution=pulses, tolerance=tolerance / 100.0,
+                                 prominence_db=prominence)
         doc = result.to_dict()
         check_document(doc)
         if output is not None:
-            save_figure(result, output)
+            save_figure(result.spectrum, output)
+        if orders is not None and result.orders is not None:
+            save_orders(result.orders, orders)
         if campbell is not None:
-            save_campbell(result, analysis, campbell)
+            save_campbell(result.spectrum, analysis, campbell, result.orders)
     if as_json:
         _write_json(doc)
         return
     print_identification(doc)
-    for what, path in (("spectrum", output), ("Campbell diagram", campbell)):
+    if doc["orders"] is not None:
+        print_orders(doc["orders"])
+    for what, path in (("spectrum", output), ("order spectrum", orders),
+                       ("Campbell diagram", campbell)):
         if path is not None:
             print(f"{what} written to {path}")
 

@@ -13,11 +13,17 @@ from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
-    from chaindrive.identification import Identification, MeasuredDamping, MeasuredMode
+    from chaindrive.identification import (
+        Identification,
+        MeasuredDamping,
+        MeasuredMode,
+        OrderTracking,
+    )
     from chaindrive.model import Drive
 
-__all__ = ["measured_dampings", "measured_modes", "print_calibration", "print_identification", "print_sag",
-           "print_tension", "save_campbell", "save_figure"]
+__all__ = ["measured_dampings", "measured_modes", "print_calibration", "print_identification",
+           "print_orders", "print_sag", "print_tension", "save_campbell", "save_figure",
+           "save_orders"]
 
 
 def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
@@ -181,9 +187,12 @@ def print_calibration(doc: dict[str, Any]) -> None:
     _print_changes(doc["verdicts_changed"])
 
 
-def save_campbell(result: Identification, analysis: Analysis, output: Path) -> None:
+def save_campbell(result: Identification, analysis: Analysis, output: Path,
+                  tracking: OrderTracking | None = None) -> None:
     """Write the model's Campbell diagram with the measured peaks at the design speed
-    (:func:`chaindrive.plotting.identification.measured_campbell`) atomically.
+    (:func:`chaindrive.plotting.identification.measured_campbell`), or with the run-up map's
+    points at their speeds (:func:`chaindrive.plotting.identification.runup_campbell`),
+    atomically.
 
     Parameters
     ----------
@@ -193,6 +202,8 @@ def save_campbell(result: Identification, analysis: Analysis, output: Path) -> N
         The analysed design (its Campbell data and driver speed).
     output : Path
         ``.svg``, ``.png`` or ``.pdf``.
+    tracking : OrderTracking | None
+        The record's order tracking (None: a record at the design speed).
 
     Raises
     ------
@@ -202,14 +213,34 @@ def save_campbell(result: Identification, analysis: Analysis, output: Path) -> N
     # lazy: matplotlib only when a figure is asked for
     from chaindrive.display import RPM_PER_RAD_S
     from chaindrive.errors import DesignError
-    from chaindrive.plotting.identification import measured_campbell
+    from chaindrive.plotting.identification import measured_campbell, runup_campbell
 
     speed = analysis.drive.driver.speed
     campbell = analysis.dynamics.campbell
     if speed is None or campbell is None:
         raise DesignError("--campbell", "the design gives no driver speed, so no Campbell data")
-    fig = measured_campbell(result, campbell, speed * RPM_PER_RAD_S)
+    fig = (measured_campbell(result, campbell, speed * RPM_PER_RAD_S) if tracking is None
+           else runup_campbell(tracking, campbell, speed * RPM_PER_RAD_S))
     with atomic_path(output, field="--campbell") as tmp:
+        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
+
+
+def save_orders(tracking: OrderTracking, output: Path) -> None:
+    """Write the order spectrum with the shaft and tooth orders
+    (:func:`chaindrive.plotting.identification.order_spectrum`) atomically.
+
+    Parameters
+    ----------
+    tracking : OrderTracking
+        The record's order tracking.
+    output : Path
+        ``.svg``, ``.png`` or ``.pdf``.
+    """
+    # lazy: matplotlib only when a figure is asked for
+    from chaindrive.plotting.identification import order_spectrum
+
+    fig = order_spectrum(tracking)
+    with atomic_path(output, field="--orders") as tmp:
         fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
 
 
@@ -234,6 +265,12 @@ def save_figure(result: Identification, output: Path) -> None:
 
 def _f(value: Any, digits: int = 4) -> str:
     return "—" if value is None else escape(fmt(value, digits))
+
+
+def _zeta(peak: dict[str, Any]) -> str:
+    """A peak's half-power damping ratio, or "not resolved"."""
+    z = peak.get("damping_ratio_half_power")
+    return "not resolved" if z is None else _f(z, 3)
 
 
 def print_tension(doc: dict[str, Any]) -> None:
@@ -291,11 +328,53 @@ def print_identification(doc: dict[str, Any]) -> None:
                   f"{_f(sig['sample_rate_hz'])} Hz, resolution {_f(sig['resolution_hz'], 3)} Hz")
         rows = [[_f(p["frequency_hz"]), _f(p["prominence_db"], 3), escape(p["label"]),
                  _f(p["model_frequency_hz"]), _f(p["deviation_percent"], 2),
-                 escape(", ".join(p["also_within_tolerance"]) or "—")]
+                 escape(", ".join(p["also_within_tolerance"]) or "—"), _zeta(p)]
                 for p in sig["peaks"]]
         con.print(table("peaks", ["f Hz", "prominence dB", "is", "model f Hz", "Δ %",
-                                  "also within tolerance"], rows))
+                                  "also within tolerance", "ζ half-power"], rows))
     con.print(f"tolerance: ±{_f(doc['tolerance_percent'], 3)} % of the model frequency or "
               f"± one frequency bin; prominence ≥ {_f(doc['prominence_db'], 3)} dB")
+    con.print("ζ half-power: (f₂ − f₁)/(2 f) from a spectrum whose half-power band spans ≥ 8 "
+              "bins, 16 or more segments averaged; \"not resolved\": it does not (a forced "
+              "line, or a record too short for that ζ; the JSON gives the reason)")
+    for note in doc["notes"]:
+        con.print(escape(note))
+
+
+def print_orders(doc: dict[str, Any]) -> None:
+    """Print a run-up record's order peaks and its run-up map, grouped by what each is.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.OrderTracking.to_dict`.
+    """
+    con = console()
+    lo, hi = doc["speed_range_rpm"]
+    con.print(f"orders: driver angle from {escape(doc['angle_from'])}, {_f(lo)} to {_f(hi)} "
+              f"rpm over {_f(doc['duration_s'])} s")
+    for sig in doc["signals"]:
+        con.print(f"signal {escape(sig['name'])}: {_f(sig['revolutions'])} revolutions, "
+                  f"{sig['samples_per_revolution']} samples per revolution, resolution "
+                  f"{_f(sig['resolution_orders'], 3)} orders")
+        rows = [[_f(p["order"]), _f(p["prominence_db"], 3), escape(p["label"]),
+                 _f(p["model_order"]), _f(p["deviation_percent"], 2),
+                 escape(", ".join(p["fixed_lines_sweeping_this_order"]) or "—")]
+                for p in sig["peaks"]]
+        con.print(table("order peaks", ["order", "prominence dB", "is", "model order", "Δ %",
+                                        "fixed lines sweeping this order"], rows))
+    groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
+    for p in doc["runup_points"]:
+        groups.setdefault((p["signal"], p["label"]), []).append(p)
+    rows = []
+    for (signal, label), pts in sorted(groups.items(), key=lambda g: (g[0][0], -len(g[1]))):
+        rpm = [p["speed_rpm"] for p in pts]
+        f = [p["frequency_hz"] for p in pts]
+        o = [p["order"] for p in pts]
+        rows.append([escape(signal), escape(label), str(len(pts)), f"{_f(min(rpm))}–{_f(max(rpm))}",
+                     f"{_f(min(f))}–{_f(max(f))}", f"{_f(min(o), 3)}–{_f(max(o), 3)}"])
+    con.print(table(f"run-up map (slices of {_f(doc['runup_slice_s'], 3)} s, bins of "
+                    f"{_f(doc['runup_resolution_hz'], 3)} Hz)",
+                    ["signal", "is", "points", "rpm", "f Hz", "order"], rows))
     for note in doc["notes"]:
         con.print(escape(note))

@@ -6,7 +6,8 @@ Compute only: the command line reads the files and hands arrays in.
 
 Entry points: :func:`span_tension_from_frequency`, :func:`span_tension_reading` and
 :func:`record_peak` (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
-(:mod:`.spectrum`); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
+(:mod:`.spectrum`); :func:`identify_record` and :func:`track_orders` (:mod:`.orders`, order
+tracking of a run-up); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
 """
 
 from chaindrive.identification.calibration import (
@@ -22,6 +23,12 @@ from chaindrive.identification.damping import (
     free_decay_damping_ratio,
     half_power_damping_ratio,
     log_decrement_damping_ratio,
+)
+from chaindrive.identification.orders import (
+    OrderTracking,
+    RecordIdentification,
+    identify_record,
+    track_orders,
 )
 from chaindrive.identification.reading import (
     RecordPeak,
@@ -45,6 +52,8 @@ __all__ = [
     "Identification",
     "MeasuredDamping",
     "MeasuredMode",
+    "OrderTracking",
+    "RecordIdentification",
     "RecordPeak",
     "SagCalibration",
     "SpanTensionReading",
@@ -56,6 +65,7 @@ __all__ = [
     "free_decay_damping_ratio",
     "half_power_damping_ratio",
     "identify",
+    "identify_record",
     "log_decrement_damping_ratio",
     "measured_natural_peaks",
     "model_lines",
@@ -63,4 +73,5 @@ __all__ = [
     "span_tension_from_frequency",
     "span_tension_reading",
     "string_tension",
+    "track_orders",
 ]

@@ -15,6 +15,13 @@ frequency bin) for the model's natural and span frequencies, max(1 % · f_line, 
 the working frequencies, which follow from the speed alone; other lines within their
 tolerance are listed beside it (the peak cannot tell them apart); no line within it:
 "unexplained".
+
+Damping: each peak's half-power damping ratio ζ ≈ (f₂ − f₁)/(2 f_n) ([Ewins2000, ch. 4];
+:func:`chaindrive.identification.damping.half_power_damping_ratio`) read from a Welch
+spectrum of the signal whose segment is fitted to the peak (:func:`peak_damping_ratio`):
+the half-power band must span at least :data:`HALF_POWER_BINS` bins, with at least
+:data:`HALF_POWER_AVERAGES` segments averaged; otherwise the ratio is not given and the
+reason is.
 """
 
 from __future__ import annotations
@@ -29,6 +36,7 @@ from scipy.signal import find_peaks, welch
 
 from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.errors import DesignError
+from chaindrive.identification.damping import half_power_damping_ratio
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -36,7 +44,7 @@ if TYPE_CHECKING:
 
 __all__ = ["DEFAULT_PROMINENCE_DB", "DEFAULT_TOLERANCE", "Identification", "ModelLine", "Peak",
            "SignalSpectrum", "identify", "label_peak", "line_tolerance", "model_lines",
-           "segment_length", "signal_spectrum", "spectral_peaks"]
+           "peak_damping_ratio", "segment_length", "signal_spectrum", "spectral_peaks"]
 
 #: Prominence a peak needs [dB]. A Welch estimate of K averaged segments scatters as χ² with
 #: 2K degrees of freedom [Welch1967]: for K ≈ 8 the 0.1 % and 99.9 % points lie −5.7 dB and
@@ -56,6 +64,17 @@ MAX_HARMONICS = 100
 WORKING_TOLERANCE = 0.01
 #: Kinds of model line that are working frequencies.
 WORKING_KINDS = frozenset({"tooth", "shaft", "parametric"})
+#: Fewest frequency bins the half-power band 2ζf_n must span for its ζ to be given [-]. A
+#: Hann window widens any line to 1.44 bins at half power [Harris1978], so a band of a few
+#: bins is mostly the window's; from 8 bins on, the test's single-mode records (ζ = 0.05,
+#: 0.1) read ζ within a few per cent on average (docs/identification.md §2). A choice.
+HALF_POWER_BINS = 8
+#: Fewest Welch segments averaged for a half-power reading [-]: each bin of an average of K
+#: segments scatters by about 1/√K [Welch1967], and the half-power points are read from single
+#: bins; 16 keep that scatter near 25 % of the power (≈ 1 dB). A choice.
+HALF_POWER_AVERAGES = 16
+#: Most refinements of the segment length for a half-power reading [-].
+_HALF_POWER_STEPS = 8
 
 
 @dataclass(frozen=True, slots=True)
@@ -157,6 +176,12 @@ class Peak:
         (f − f_line)/f_line [-].
     also : tuple of ModelLine
         Other lines within the tolerance.
+    damping_ratio : float | None
+        Half-power damping ratio ζ [-] (:func:`peak_damping_ratio`); None: not resolvable.
+    damping_reason : str | None
+        Why ζ is not given (None when it is).
+    damping_bins : float | None
+        Bins the half-power band spans in the spectrum ζ was read from [-].
     """
 
     frequency: float
@@ -165,6 +190,9 @@ class Peak:
     line: ModelLine | None
     deviation: float | None
     also: tuple[ModelLine, ...] = ()
+    damping_ratio: float | None = None
+    damping_reason: str | None = None
+    damping_bins: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -176,6 +204,9 @@ class Peak:
             "model_frequency_hz": None if self.line is None else self.line.frequency,
             "deviation_percent": None if self.deviation is None else 100.0 * self.deviation,
             "also_within_tolerance": [line.label for line in self.also],
+            "damping_ratio_half_power": self.damping_ratio,
+            "damping_ratio_half_power_bins": self.damping_bins,
+            "damping_ratio_half_power_not_given": self.damping_reason,
         }
 
 
@@ -342,6 +373,73 @@ def spectral_peaks(frequencies: NDArray[np.float64], psd: NDArray[np.float64],
     return out
 
 
+def peak_damping_ratio(values: NDArray[np.float64], sample_rate: float, frequency: float
+                       ) -> tuple[float | None, float | None, str | None]:
+    """Half-power damping ratio of the peak of a signal at f_n, read from a Welch spectrum
+    whose segment is fitted to the peak (module docstring).
+
+    The first reading is taken from 64-sample segments (coarse: the window widens the peak,
+    so ζ comes out high); while the band spans fewer than :data:`HALF_POWER_BINS` bins
+    (at most :data:`_HALF_POWER_STEPS` times) the segment becomes the shortest power of two
+    whose bin f_s/N is at most 2ζf_n/:data:`HALF_POWER_BINS` at the last reading (at least
+    twice the last) and ζ is read again. The segment may not exceed the record divided by
+    :data:`HALF_POWER_AVERAGES`. A Hann-windowed Welch spectrum suits a mode driven by
+    broadband excitation; a single free decay is read with
+    :func:`chaindrive.identification.damping.free_decay_damping_ratio` instead.
+
+    Parameters
+    ----------
+    values : ndarray
+        The samples [signal unit].
+    sample_rate : float
+        f_s [Hz].
+    frequency : float
+        The peak's f_n [Hz].
+
+    Returns
+    -------
+    ratio : float | None
+        ζ ≈ (f₂ − f₁)/(2 f_n) [-] ([Ewins2000, ch. 4]); None when not resolvable.
+    bins : float | None
+        Bins the half-power band spans in the last spectrum [-] (None: no band found).
+    reason : str | None
+        Why ζ is not given (None when it is).
+
+    References
+    ----------
+    [Ewins2000, ch. 4]; [Welch1967]; [Harris1978].
+    """
+    longest = values.size // HALF_POWER_AVERAGES
+    nper = min(64, longest)
+    if nper < 16:
+        return None, None, "record too short for a half-power reading"
+    zeta: float | None = None
+    bins: float | None = None
+    for _ in range(_HALF_POWER_STEPS + 1):
+        f, p = welch(values, fs=sample_rate, window="hann", nperseg=nper,
+                     noverlap=nper // 2, detrend="constant", scaling="density")
+        try:
+            zeta = half_power_damping_ratio(np.asarray(f, dtype=float),
+                                            np.asarray(p, dtype=float), frequency)
+        except DesignError:
+            return None, None, "the power does not fall to half on both sides of the peak"
+        bins = 2.0 * zeta * frequency * nper / sample_rate
+        if bins >= HALF_POWER_BINS:
+            break
+        need = max(2 * nper, 2 ** math.ceil(math.log2(HALF_POWER_BINS * sample_rate
+                                                      / (2.0 * zeta * frequency))))
+        if need > longest:
+            seconds = need * HALF_POWER_AVERAGES / sample_rate
+            return None, bins, (f"the half-power band spans {bins:.3g} bins of "
+                                f"{sample_rate / nper:.3g} Hz; {HALF_POWER_BINS} are needed, "
+                                f"in a record {HALF_POWER_AVERAGES} segments long ({seconds:.3g}"
+                                " s at this ζ): a forced line, or a record too short")
+        nper = need
+    else:
+        return None, bins, "the half-power band did not settle"
+    return zeta, bins, None
+
+
 @dataclass(frozen=True, slots=True)
 class Identification:
     """A measured record matched to the model.
@@ -404,7 +502,7 @@ def identify(record: Record, lines: tuple[ModelLine, ...], *,
 
     References
     ----------
-    [Welch1967]; [Virtanen2020].
+    [Welch1967]; [Virtanen2020]; [Ewins2000, ch. 4].
     """
     if not (0 < tolerance < 1):
         raise DesignError("--tolerance", f"must lie between 0 and 100 %, got "
@@ -419,7 +517,8 @@ def identify(record: Record, lines: tuple[ModelLine, ...], *,
         peaks = []
         for fp, level, pr in spectral_peaks(f, p, prominence_db):
             line, dev, also = label_peak(fp, lines, tolerance, df)
-            peaks.append(Peak(fp, level, pr, line, dev, also))
+            zeta, bins, why = peak_damping_ratio(values, record.sample_rate, fp)
+            peaks.append(Peak(fp, level, pr, line, dev, also, zeta, why, bins))
         out.append(SignalSpectrum(name, int(values.size), record.sample_rate, nper, f, p,
                                   tuple(peaks)))
     above = [ln.label for ln in lines if ln.frequency >= nyquist]

@@ -13,6 +13,7 @@ the file's sample rate (:func:`scipy.io.wavfile.read`).
 from __future__ import annotations
 
 import csv
+import io
 import math
 import re
 from dataclasses import dataclass
@@ -23,7 +24,8 @@ from numpy.typing import NDArray
 
 from chaindrive.errors import DesignError
 
-__all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays"]
+__all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays",
+           "record_from_csv_bytes", "speed_unit", "take_column"]
 
 #: Fewest samples of a record [-]: a spectrum of fewer than 64 points resolves nothing.
 MIN_SAMPLES = 64
@@ -32,6 +34,12 @@ SPACING_TOLERANCE = 0.01
 #: Time column names → factor to seconds.
 _TIME = re.compile(r"^\s*(time|t)\s*(?:_|\[|\()\s*(s|ms)\s*[\])]?\s*$", re.IGNORECASE)
 _FIELD = "--record"
+#: Speed column units → factor to rad/s (the unit ends the column's name: ``speed_rpm``,
+#: ``n [rpm]``, ``omega_rad_s``, ``n (rev/s)``, ``f_hz``).
+_SPEED = re.compile(r"(?:_|\[|\(|\s)\s*(rpm|rad/s|rad_s|rev/s|rev_s|hz)\s*[\])]?\s*$",
+                    re.IGNORECASE)
+_SPEED_FACTOR = {"rpm": 2.0 * math.pi / 60.0, "rad/s": 1.0, "rad_s": 1.0,
+                 "rev/s": 2.0 * math.pi, "rev_s": 2.0 * math.pi, "hz": 2.0 * math.pi}
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,6 +114,67 @@ def record_from_arrays(name: str, time: NDArray[np.float64],
     return Record(name, 1.0 / step, {k: np.asarray(v, dtype=float) for k, v in signals.items()})
 
 
+def take_column(record: Record, column: str, option: str) -> tuple[Record, NDArray[np.float64]]:
+    """The record without one of its signals, and that signal.
+
+    Parameters
+    ----------
+    record : Record
+        The record.
+    column : str
+        The signal's name.
+    option : str
+        The option that named it, for messages.
+
+    Returns
+    -------
+    rest : Record
+        The other signals.
+    values : ndarray
+        The column's samples [its unit].
+
+    Raises
+    ------
+    DesignError
+        No such column, or no other signal left.
+    """
+    if column not in record.signals:
+        raise DesignError(option, f"no column {column!r} in {record.name}; allowed: "
+                          f"{', '.join(record.signals)}")
+    rest = {k: v for k, v in record.signals.items() if k != column}
+    if not rest:
+        raise DesignError(option, f"{column!r} is the only signal of {record.name}; allowed: "
+                          "a record with a signal beside it")
+    return Record(record.name, record.sample_rate, rest), record.signals[column]
+
+
+def speed_unit(column: str) -> float:
+    """Factor from a speed column's unit, read from the end of its name, to rad/s (a unit is
+    never guessed).
+
+    Parameters
+    ----------
+    column : str
+        ``speed_rpm``, ``n [rpm]``, ``omega_rad_s``, ``n_rev_s``, ``n_hz`` (revolutions per
+        second) …
+
+    Returns
+    -------
+    float
+        [rad/s per the column's unit].
+
+    Raises
+    ------
+    DesignError
+        No unit recognised at the end of the name.
+    """
+    match = _SPEED.search(column)
+    if match is None:
+        raise DesignError("--speed", f"{column!r} names no unit; allowed: a name ending in "
+                          "_rpm, _rad_s, _rev_s or _hz (revolutions per second), or [rpm]")
+    return _SPEED_FACTOR[match.group(1).lower()]
+
+
 def _number(text: str, row: int, column: str) -> float:
     try:
         value = float(text)
@@ -121,8 +190,38 @@ def _number(text: str, row: int, column: str) -> float:
 def _read_csv(path: Path) -> Record:
     with path.open(newline="", encoding="utf-8-sig") as handle:
         rows = list(csv.reader(handle))
+    return _csv_record(path.name, rows)
+
+
+def record_from_csv_bytes(name: str, data: bytes) -> Record:
+    """A CSV record from its bytes (an upload), read as :func:`read_record` reads a file.
+
+    Parameters
+    ----------
+    name : str
+        The file's name.
+    data : bytes
+        Its content (UTF-8).
+
+    Returns
+    -------
+    Record
+
+    Raises
+    ------
+    DesignError
+        Not UTF-8, or not a record as described in the module docstring.
+    """
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise DesignError(_FIELD, f"{name} is not UTF-8 text; allowed: a CSV file") from None
+    return _csv_record(name, list(csv.reader(io.StringIO(text, newline=""))))
+
+
+def _csv_record(name: str, rows: list[list[str]]) -> Record:
     if not rows:
-        raise DesignError(_FIELD, f"{path.name} is empty; allowed: a header row and samples")
+        raise DesignError(_FIELD, f"{name} is empty; allowed: a header row and samples")
     header = [h.strip() for h in rows[0]]
     times = [(i, m) for i, h in enumerate(header) if (m := _TIME.match(h))]
     if len(times) != 1:
@@ -139,7 +238,7 @@ def _read_csv(path: Path) -> Record:
                        for n, r in enumerate(data, start=2)], dtype=float).reshape(
                            len(data), len(header))
     signals = {h: values[:, j] for j, h in enumerate(header) if j != col}
-    return record_from_arrays(path.name, values[:, col] * factor, signals, header[col])
+    return record_from_arrays(name, values[:, col] * factor, signals, header[col])
 
 
 def _read_wav(path: Path) -> Record:

@@ -1,6 +1,8 @@
 """A measured spectrum with the model's frequencies overlaid ([Welch1967] spectrum; the
 lines of :func:`chaindrive.identification.model_lines`), and the model's Campbell diagram with
-the measured peaks at the record's speed."""
+the measured peaks at the record's speed; for a run-up record, its order spectrum with the
+shaft and tooth orders and the bands of orders the model's fixed lines sweep, and the
+Campbell diagram with the run-up map's points over the record's speeds ([Brandt2011])."""
 
 from __future__ import annotations
 
@@ -15,9 +17,9 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from chaindrive.dynamics.resonance import CampbellData
-    from chaindrive.identification import Identification
+    from chaindrive.identification import Identification, OrderTracking
 
-__all__ = ["measured_campbell", "measured_spectrum"]
+__all__ = ["measured_campbell", "measured_spectrum", "order_spectrum", "runup_campbell"]
 
 #: Line style of each kind of model line.
 _STYLE = {"natural": ("-", 0), "tooth": ("--", 1), "shaft": (":", 2), "parametric": ("-.", 3),
@@ -112,5 +114,104 @@ def measured_campbell(result: Identification, campbell: CampbellData, operating_
     if peaks:
         low, high = axes.get_ylim()
         axes.set_ylim(low, max(high, 1.1 * max(p.frequency for p in peaks)))
+        axes.legend(fontsize="xx-small")
+    return fig
+
+
+def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure:
+    """Each signal's order spectrum [dB] against the driver order, its peaks marked and
+    labelled, the shaft and tooth orders as vertical lines, and shaded the band of orders
+    f/n_max … f/n_min each natural frequency of the model sweeps over the record's speeds.
+
+    Parameters
+    ----------
+    tracking : OrderTracking
+        :func:`chaindrive.identification.track_orders`.
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    fig, ax = figure_axes(ax, (7.5, 4.2))
+    top = 0.0
+    for k, sig in enumerate(tracking.signals):
+        db = 10.0 * np.log10(np.maximum(sig.psd, 1e-300))
+        ax.plot(sig.orders, db, lw=0.8, color=CYCLE[k % len(CYCLE)], label=sig.name)
+        top = max(top, float(sig.orders[-1]))
+        for p in sig.peaks:
+            ax.plot([p.order], [p.level_db], "v", ms=4, color=CYCLE[k % len(CYCLE)])
+            ax.annotate("?" if p.line is None else p.line.label, (p.order, p.level_db),
+                        textcoords="offset points", xytext=(2, 4), fontsize="xx-small",
+                        rotation=60)
+    seen: set[str] = set()
+    for line in tracking.lines:
+        if line.frequency > top:
+            continue
+        style, c = _STYLE.get(line.kind, ("-", 5))
+        ax.axvline(line.frequency, ls=style, lw=0.7, color=CYCLE[c % len(CYCLE)], alpha=0.8,
+                   label=None if line.kind in seen else f"model: {line.kind} order")
+        seen.add(line.kind)
+    lo, hi = (r / 60.0 for r in tracking.speed_range_rpm)
+    first = True
+    for line in tracking.natural:
+        if line.kind != "natural" or line.frequency / hi > top:
+            continue
+        ax.axvspan(line.frequency / hi, min(line.frequency / lo, top), color=CYCLE[0],
+                   alpha=0.06, lw=0,
+                   label="natural frequency swept over the run-up" if first else None)
+        first = False
+    low, high = ax.get_ylim()
+    ax.set_ylim(low, high + 0.15 * (high - low))
+    ax.set_xlim(0.0, top)
+    ax.set_xlabel("order [cycles per driver revolution]")
+    ax.set_ylabel("spectral density [dB per order]")
+    ax.legend(fontsize="x-small")
+    finish(ax, f"Order spectrum of {tracking.record}, "
+               f"{tracking.speed_range_rpm[0]:.0f}–{tracking.speed_range_rpm[1]:.0f} rpm")
+    return fig
+
+
+def runup_campbell(tracking: OrderTracking, campbell: CampbellData, operating_rpm: float, *,
+                   ax: Axes | None = None) -> Figure:
+    """The model's Campbell diagram (:func:`chaindrive.plotting.dynamics.campbell_diagram`)
+    with the run-up map's points at their slices' speeds: filled where a point matched a
+    model line, open where it is unexplained; the axes extended to show every point.
+
+    Parameters
+    ----------
+    tracking : OrderTracking
+        :func:`chaindrive.identification.track_orders`.
+    campbell : CampbellData
+        The model's Campbell data.
+    operating_rpm : float
+        The design's driver speed [rpm].
+    ax : Axes or None
+        Axes to draw into (None: a new figure).
+
+    Returns
+    -------
+    Figure
+        The figure drawn into.
+    """
+    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
+
+    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
+    axes = fig.axes[0] if ax is None else ax
+    pts = tracking.points
+    for matched, face, label in ((True, None, "measured (matched)"),
+                                 (False, "none", "measured (unexplained)")):
+        chosen = [p for p in pts if (p.line is not None) == matched]
+        if chosen:
+            axes.plot([p.speed_rpm for p in chosen], [p.frequency for p in chosen], "D", ms=3,
+                      mfc=face, color=CYCLE[3], label=label)
+    if pts:
+        low, high = axes.get_ylim()
+        axes.set_ylim(low, max(high, 1.05 * max(p.frequency for p in pts)))
+        left, right = axes.get_xlim()
+        axes.set_xlim(min(left, 0.95 * tracking.speed_range_rpm[0]),
+                      max(right, 1.05 * tracking.speed_range_rpm[1]))
         axes.legend(fontsize="xx-small")
     return fig

@@ -47,6 +47,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from chaindrive.analysis import Analysis
+    from chaindrive.identification import RecordIdentification
     from chaindrive.robust.study import RobustResult
     from chaindrive.synthesis.solve import SynthesisResult
 
@@ -60,7 +61,8 @@ FORMATS = (".html", ".htm", ".pdf")
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
-                 robust: RobustResult | None = None, summary: bool = False) -> Report:
+                 robust: RobustResult | None = None, summary: bool = False,
+                 identification: RecordIdentification | None = None) -> Report:
     """Build every registered section of the report of ``analysis``, then the references;
     or, with ``summary``, the two-page sign-off sheet (:mod:`chaindrive.report.summary`).
 
@@ -84,6 +86,8 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     summary : bool
         True builds the sign-off sheet (verdict page and purchase page) instead of the full
         report.
+    identification : RecordIdentification | None
+        A measured record matched to the model (its section: peaks, spectrum, orders).
 
     Returns
     -------
@@ -92,7 +96,8 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     system: UnitSystem = unit_system(units)
     register_standard_sections()
     inp = ReportInput(analysis, source=None if source is None else Path(source), dpi=dpi,
-                      synthesis=synthesis, units=system, robust=robust)
+                      synthesis=synthesis, units=system, robust=robust,
+                      identification=identification)
     built = sheet_sections(inp) if summary else _full_sections(inp, progress)
     date = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     meta = [("chaindrive", chaindrive.__version__)]
@@ -158,7 +163,8 @@ def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
-                 robust: RobustResult | None = None, summary: bool = False) -> Path:
+                 robust: RobustResult | None = None, summary: bool = False,
+                 identification: RecordIdentification | None = None) -> Path:
     """Build the report and write it as HTML or PDF (by the suffix of ``path``); the file
     is written at once, after the whole report is built (complete or absent).
 
@@ -182,6 +188,8 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
         Its robust study (:class:`chaindrive.robust.study.RobustResult`).
     summary : bool
         True writes the two-page sign-off sheet instead of the full report.
+    identification : RecordIdentification | None
+        A measured record matched to the model (its section: peaks, spectrum, orders).
 
     Returns
     -------
@@ -193,7 +201,8 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
     if suffix not in FORMATS:
         raise DesignError("output", f"must end in .html or .pdf, got {out.name!r}")
     report = build_report(analysis, source=source, dpi=dpi, progress=progress,
-                          synthesis=synthesis, units=units, robust=robust, summary=summary)
+                          synthesis=synthesis, units=units, robust=robust, summary=summary,
+                          identification=identification)
     data = render_pdf(report) if suffix == ".pdf" else render_html(report).encode("utf-8")
     write_bytes(out, data)  # complete or absent, never half-written
     return out

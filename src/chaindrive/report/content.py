@@ -25,6 +25,7 @@ if TYPE_CHECKING:
 
     from chaindrive.analysis import Analysis
     from chaindrive.dynamics.modes import DriveDynamics
+    from chaindrive.identification import RecordIdentification
     from chaindrive.robust.study import RobustResult
     from chaindrive.synthesis.solve import SynthesisResult
 
@@ -216,17 +217,21 @@ class ReportInput:
         The report's unit system, "SI" or "US".
     robust : RobustResult | None
         The design's robust study.
+    identification : RecordIdentification | None
+        A measured record matched to the model.
     """
 
     def __init__(self, analysis: Analysis, *, source: Path | None = None, dpi: int = 110,
                  synthesis: SynthesisResult | None = None, units: UnitSystem = "SI",
-                 robust: RobustResult | None = None) -> None:
+                 robust: RobustResult | None = None,
+                 identification: RecordIdentification | None = None) -> None:
         self.analysis = analysis
         self.source = source
         self.dpi = dpi
         self.synthesis = synthesis
         self.units: UnitSystem = units
         self.robust = robust
+        self.identification = identification
         self.notes: list[str] = []
         self.defined: set[str] = set()
 

@@ -45,6 +45,7 @@ from chaindrive.report.content import (
     register_section,
     rows,
 )
+from chaindrive.report.identification import identification_section
 from chaindrive.report.robust import robust_section
 from chaindrive.report.sources import catalogue_estimates, estimate_note, readable_source
 
@@ -816,5 +817,6 @@ def register_standard_sections() -> None:
             ("checks", "Checks", checks_section),
             ("synthesis", "Optimal synthesis", dyn.synthesis_section),
             ("robust", "Life and reliability", robust_section),
+            ("identification", "Measured record and the model", identification_section),
             ("design_file", "Design file", design_file_section)):
         register_section(key, title, build)
