@@ -211,10 +211,12 @@ def _solve_small(A: Any, b: Any) -> None:
 
 
 @_njit
-def _advance(y: Any, w: Any, t: float, dt: float, se: Any, Phi: Any, GB: Any, GL: Any,
-             y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
-    """One step: y' = Φ y + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces s held (GB = Γ(−Bᵀ),
-    GL = Γ[:, L], both per pattern); the law forces on the coordinates L linearly implicit
+def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB: Any,
+             GL: Any, y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
+    """One step: y' = Φ y + g₀ + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces held: their
+    pre-tension part g₀ = Γ(−Bᵀ) T₀ (a constant of the pattern) and the rest s (GB =
+    Γ(−Bᵀ), GL = Γ[:, L], all per pattern; the product skipped while s = 0: no polygonal
+    excitation and no slack change); the law forces on the coordinates L linearly implicit
     on their mean speeds w over the step (lA, lb work arrays of the laws' linear system)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
     n = w.size
@@ -228,9 +230,12 @@ def _advance(y: Any, w: Any, t: float, dt: float, se: Any, Phi: Any, GB: Any, GL
     m = lcols.size
     for a in range(m):
         lb[a] = fl[lcols[a]]
-    y_new[:] = 0.0
+    y_new[:] = g0
     _matvec_add(Phi, y, y_new)
-    _matvec_add(GB, se, y_new)
+    for i in range(se.size):
+        if se[i] != 0.0:
+            _matvec_add(GB, se, y_new)
+            break
     _matvec_add(GL, lb, y_new)
     if m == 0:
         return
@@ -288,14 +293,16 @@ def _span_force(y: Any, F: Any, Bs: tuple, c: Any, ds: Any, T0: Any, poly: bool,
 
 @_njit
 def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float, rec: int,
-               masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any, ds: Any,
+               masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any,
+               ds: Any,
                tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
                states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
     y (2N,) state, w (N,) the mean speeds over the previous step, span_prev (S,) the held
-    span forces of the previous step, state = [step, slack count, pattern index] (all
-    updated in place); Φ_s, Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, GBs,
+    span forces of the previous step, state = [step, slack count, pattern index, pattern of
+    the previous step] (all updated in place); Φ_s, Γ_s(−Bᵀ)T₀ (the pre-tension's part, T₀
+    of the spans s holds), Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, G0s, GBs,
     GLs (L = ``lcols``, the coordinates of the laws); forces (R, S) and states (R, 2N)
     filled at every ``rec``-th step, fmax (S,) the largest span forces. Returns < steps when
     a step needs a slack pattern not among the first ``npat``: it is written into ``need``
@@ -316,14 +323,20 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
     lb = np.empty(lcols.size)
     y_new = np.empty(2 * n)
     F = np.empty(ns)
-    p = state[2]
+    p, pp = state[2], state[3]
     for k in range(state[0], steps):
         t = k * dt
         mask = masks[p]
+        prev = masks[pp]
         _span_part(mask, c, ds, T0, poly, d, dd, span)
         for i in range(ns):
-            se[i] = 1.5 * span[i] - 0.5 * span_prev[i]
-        _advance(y, w, t, dt, se, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA, lb)
+            # (3 s_k − s_{k−1})/2 less its pre-tension part T₀ (in g₀), the parts of T₀ in
+            # s_k and s_{k−1} taken out first: exactly 0 without polygonal excitation
+            now = T0[i] if mask[i] else 0.0
+            was = T0[i] if prev[i] else 0.0
+            se[i] = 1.5 * (span[i] - now) - 0.5 * (span_prev[i] - was) + 0.5 * (now - was)
+        _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
+                 lA, lb)
         _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
         for i in range(ns):
@@ -332,15 +345,19 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
         if changed:
             q = _find(masks, npat, need)
             if q < 0:
-                state[0], state[2] = k, p
+                state[0], state[2], state[3] = k, p, pp
                 return k
             p = q
-            _span_part(masks[p], c, ds, T0, poly, d, dd, span)
-            _advance(y, w, t, dt, span, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA,
-                     lb)
+            mask = masks[p]
+            _span_part(mask, c, ds, T0, poly, d, dd, span)
+            for i in range(ns):
+                se[i] = span[i] - (T0[i] if mask[i] else 0.0)
+            _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
+                     lA, lb)
             _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
+        pp = p
         span_prev[:] = span
         for i in range(n):
             w[i] = (y_new[i] - y[i]) / dt
@@ -359,13 +376,14 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
                 forces[r, i] = F[i]
             for i in range(2 * n):
                 states[r, i] = y[i]
-    state[0], state[2] = steps, p
+    state[0], state[2], state[3] = steps, p, pp
     return steps
 
 
 @_njit
 def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float,
-                    rec: int, masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any,
+                    rec: int, masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int,
+                    B: Any,
                     c: Any, ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
                     mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
                     lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
@@ -373,7 +391,8 @@ def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: 
                     states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
     (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, GBs, GLs, npat, B,
+    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, G0s, GBs, GLs, npat,
+                      B,
                       c, ds, tonly, T0,
                       (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
                       poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
@@ -383,7 +402,7 @@ def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
 FLAT_SIGNATURE = (
     "i8(f8[::1], f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1],"
-    " f8[:, :, ::1], f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8,"
+    " f8[:, ::1], f8[:, :, ::1], f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8,"
     " f8, f8, i8, f8[::1], i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1,"
     " f8[::1], f8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1],"
     " f8[:, ::1], f8[::1], b1[::1], i8[::1])"
