@@ -19,7 +19,9 @@ times (``time.process_time``), best and median over rounds run in alternation.
 checkout of the code before a change, with its own ahead-of-time build) as a third
 contender: a child process with that tree on its path builds the same problem and runs its
 kernel once per round when asked, in alternation with the two others (its CPU time measured
-in the child around the solve alone).
+in the child around the solve alone). Both trees' kernels also run the start-up as the
+analysis integrates it (slack spans, polygonal excitation, the analysis's duration): the
+"analysis" rows.
 """
 
 from __future__ import annotations
@@ -46,9 +48,10 @@ from chaindrive.io.design import load_drive
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def startup_problem(path: Path) -> StartupProblem:
+def startup_problem(path: Path, linearised: bool = True) -> StartupProblem:
     """The StartupProblem the analysis builds for the design (caught on its way to the
-    solver), linearised: every span taut, no polygonal excitation, 1 s."""
+    solver), linearised: every span taut, no polygonal excitation, 1 s (``linearised``
+    False: as the analysis integrates it)."""
     caught: list[StartupProblem] = []
     solve = drive_startup.solve_startup
 
@@ -62,6 +65,8 @@ def startup_problem(path: Path) -> StartupProblem:
     finally:
         drive_startup.solve_startup = solve
     p = caught[-1]
+    if not linearised:
+        return p
     steps = round(1.0 / p.dt)
     taut = replace(p.linear, span_tension_only=np.zeros_like(p.span_tension_only))
     return replace(p, linear=taut, polygonal=None, steps=steps,
@@ -167,10 +172,11 @@ class OtherTree:
         assert self.proc.stdout is not None
         self.proc.stdout.readline()  # "ready" once the problem is built and run once
 
-    def run(self) -> tuple[float, tuple[np.ndarray, np.ndarray]]:
-        """(CPU s, (peak span forces, final speeds)) of one solve in the child."""
+    def run(self, what: str = "linearised") -> tuple[float, tuple[np.ndarray, np.ndarray]]:
+        """(CPU s, (peak span forces, final speeds)) of one solve in the child: of the
+        linearised problem, or ``what`` = "analysis": of the analysis's own."""
         assert self.proc.stdin is not None and self.proc.stdout is not None
-        self.proc.stdin.write("run\n")
+        self.proc.stdin.write(what + "\n")
         self.proc.stdin.flush()
         out = json.loads(self.proc.stdout.readline())
         return out["cpu"], (np.array(out["fmax"]), np.array(out["speeds"]))
@@ -183,12 +189,14 @@ class OtherTree:
 
 def serve(design: Path) -> None:
     """Child of ``--against``: solve the design's problem once per line "run" on stdin."""
-    solve = kernel_solver(startup_problem(design))
-    solve()
+    solvers = {"linearised": kernel_solver(startup_problem(design)),
+               "analysis": kernel_solver(startup_problem(design, linearised=False))}
+    for solve in solvers.values():
+        solve()
     print("ready", flush=True)
-    for _ in sys.stdin:
+    for line in sys.stdin:
         t0 = time.process_time()
-        fmax, speeds = solve()
+        fmax, speeds = solvers[line.strip()]()
         cpu = time.process_time() - t0
         print(json.dumps({"cpu": cpu, "fmax": fmax.tolist(), "speeds": speeds.tolist()}),
               flush=True)
@@ -214,20 +222,25 @@ def compare(path: Path, rounds: int = 5, against: Path | None = None) -> None:
         return
     rtol, e_lsoda = chosen
     print(f"  LSODA at the same accuracy: rtol {rtol:g} (error {e_lsoda:.2e})")
-    fns: dict[str, Callable[[], object]] = {"kernel": kernel, "lsoda": lambda: lsoda(rtol)}
+    fns: dict[str, Callable[[], object]] = {"kernel": kernel, "lsoda": lambda: lsoda(rtol),
+                                            "analysis": kernel_solver(startup_problem(
+                                                path, linearised=False))}
     other = OtherTree(against, path) if against is not None else None
-    t: dict[str, list[float]] = {k: [] for k in ("kernel", "other", "lsoda")}
+    t: dict[str, list[float]] = {k: [] for k in ("kernel", "other", "lsoda", "analysis",
+                                                 "other analysis")}
     try:
         for _ in range(rounds):
             for k, fn in fns.items():
                 t0 = time.process_time()
                 fn()
                 t[k].append(time.process_time() - t0)
-            if other is not None:
-                cpu, result = other.run()
-                t["other"].append(cpu)
+                if other is not None and k != "lsoda":
+                    cpu, result = other.run("linearised" if k == "kernel" else k)
+                    t["other" if k == "kernel" else "other " + k].append(cpu)
+                    if k == "kernel":
+                        e_other = error(result, ref)
         if other is not None:
-            print(f"  kernel of {against}: error {error(result, ref):.2e}")
+            print(f"  kernel of {against}: error {e_other:.2e}")
     finally:
         if other is not None:
             other.close()
@@ -242,7 +255,9 @@ def compare(path: Path, rounds: int = 5, against: Path | None = None) -> None:
         print(f"  LSODA / kernel of {against}: "
               f"{statistics.median(t['lsoda']) / statistics.median(t['other']):.2f}; "
               f"that kernel / this one: "
-              f"{statistics.median(t['other']) / statistics.median(t['kernel']):.2f}")
+              f"{statistics.median(t['other']) / statistics.median(t['kernel']):.2f}; "
+              "the analysis's own start-up (slack spans, polygonal excitation): "
+              f"{statistics.median(t['other analysis']) / statistics.median(t['analysis']):.2f}")
 
 
 def main(argv: list[str]) -> None:

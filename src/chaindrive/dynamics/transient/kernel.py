@@ -67,9 +67,12 @@ def _njit(fn: _Kernel) -> _Kernel:
 @_njit
 def _laws(t: float, v: Any, out: Any, mk: int, mgain: float, meff: float, mkind: int, mp: Any,
           lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float) -> None:
-    """Generalised forces of the motor and the loads at the coordinate speeds v."""
-    for i in range(out.size):
-        out[i] = 0.0
+    """Generalised forces of the motor and the loads at the coordinate speeds v, written on
+    their coordinates (``out`` elsewhere left as it is)."""
+    for j in range(lk.size):
+        out[lk[j]] = 0.0
+    if mk >= 0:
+        out[mk] = 0.0
     for j in range(lk.size):
         r = lgain[j] * v[lk[j]] / lwn[j]
         if lkind[j] == RESISTANCE_LINEAR:
@@ -219,15 +222,15 @@ def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB
     excitation and no slack change); the law forces on the coordinates L linearly implicit
     on their mean speeds w over the step (lA, lb work arrays of the laws' linear system)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
-    n = w.size
     fl, f2, hv, vh = work[0], work[1], work[2], work[3]
     th = t + 0.5 * dt
     _laws(th, w, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
-    for i in range(n):
+    m = lcols.size
+    for a in range(m):
+        i = lcols[a]
         hv[i] = 1e-6 * (1.0 + abs(w[i]))
         vh[i] = w[i] + hv[i]
     _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
-    m = lcols.size
     for a in range(m):
         lb[a] = fl[lcols[a]]
     y_new[:] = g0
@@ -299,7 +302,8 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
                states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
-    y (2N,) state, w (N,) the mean speeds over the previous step, span_prev (S,) the held
+    y (2N,) state, w (N,) the mean speeds over the previous step (of the law coordinates
+    L = ``lcols``; the others are not read), span_prev (S,) the held
     span forces of the previous step, state = [step, slack count, pattern index, pattern of
     the previous step] (all updated in place); Φ_s, Γ_s(−Bᵀ)T₀ (the pre-tension's part, T₀
     of the spans s holds), Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, G0s, GBs,
@@ -359,7 +363,8 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
         mask = masks[p]
         pp = p
         span_prev[:] = span
-        for i in range(n):
+        for a in range(lcols.size):
+            i = lcols[a]
             w[i] = (y_new[i] - y[i]) / dt
         y[:] = y_new
         d, d_new = d_new, d
