@@ -124,12 +124,32 @@ def _polygonal(y: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, p
 
 @(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
 def _matvec_add(A: Any, y: Any, out: Any) -> None:
-    """out += A @ y (sums reassociated so that they run in SIMD lanes)."""
-    for i in range(A.shape[0]):
+    """out += A @ y (sums reassociated so that they run in SIMD lanes; four rows at a time,
+    each y[j] loaded once for the four)."""
+    m, n = A.shape[0], A.shape[1]
+    i = 0
+    while i + 4 <= m:
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        a3 = 0.0
+        for j in range(n):
+            yj = y[j]
+            a0 += A[i, j] * yj
+            a1 += A[i + 1, j] * yj
+            a2 += A[i + 2, j] * yj
+            a3 += A[i + 3, j] * yj
+        out[i] += a0
+        out[i + 1] += a1
+        out[i + 2] += a2
+        out[i + 3] += a3
+        i += 4
+    while i < m:
         acc = 0.0
-        for j in range(A.shape[1]):
+        for j in range(n):
             acc += A[i, j] * y[j]
         out[i] += acc
+        i += 1
 
 
 @_njit
