@@ -1,5 +1,5 @@
 """The start-up kernel against SciPy's LSODA on the same linearised model, side by side.
-Run: .venv/bin/python benchmarks/bench_startup_lsoda.py [design.toml ...]
+Run: .venv/bin/python benchmarks/bench_startup_lsoda.py [--rounds N] [--against SRC] [design.toml ...]
 
 The model: the whole-drive model the analysis integrates for the start-up of a bundled
 example (default: examples/twenty_four_sprocket.toml), linearised in its chain — every span
@@ -14,11 +14,22 @@ Jacobian, its right-hand side one matrix product. Accuracy is measured against a
 (LSODA at rtol 1e-11) on the largest span forces and the final speeds; LSODA's tolerance is the
 loosest of 1e-3 … 1e-9 whose error is at most the kernel's ("the same accuracy"). Times are CPU
 times (``time.process_time``), best and median over rounds run in alternation.
+
+``--against SRC`` adds the kernel of another source tree (its ``src`` directory, e.g. a
+checkout of the code before a change, with its own ahead-of-time build) as a third
+contender: a child process with that tree on its path builds the same problem and runs its
+kernel once per round when asked, in alternation with the two others (its CPU time measured
+in the child around the solve alone). Both trees' kernels also run the start-up as the
+analysis integrates it (slack spans, polygonal excitation, the analysis's duration): the
+"analysis" rows.
 """
 
 from __future__ import annotations
 
+import json
+import os
 import statistics
+import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -37,9 +48,10 @@ from chaindrive.io.design import load_drive
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def startup_problem(path: Path) -> StartupProblem:
+def startup_problem(path: Path, linearised: bool = True) -> StartupProblem:
     """The StartupProblem the analysis builds for the design (caught on its way to the
-    solver), linearised: every span taut, no polygonal excitation, 1 s."""
+    solver), linearised: every span taut, no polygonal excitation, 1 s (``linearised``
+    False: as the analysis integrates it)."""
     caught: list[StartupProblem] = []
     solve = drive_startup.solve_startup
 
@@ -53,9 +65,12 @@ def startup_problem(path: Path) -> StartupProblem:
     finally:
         drive_startup.solve_startup = solve
     p = caught[-1]
+    if not linearised:
+        return p
     steps = round(1.0 / p.dt)
-    return replace(p, span_tension_only=np.zeros_like(p.span_tension_only), polygonal=None,
-                   steps=steps, record_every=max(1, steps // 2000))
+    taut = replace(p.linear, span_tension_only=np.zeros_like(p.span_tension_only))
+    return replace(p, linear=taut, polygonal=None, steps=steps,
+                   record_every=max(1, steps // 2000))
 
 
 def lsoda_solver(p: StartupProblem) -> Callable[[float], tuple[np.ndarray, np.ndarray]]:
@@ -146,7 +161,48 @@ def cpu_times(fns: dict[str, Callable[[], object]], rounds: int) -> dict[str, li
     return out
 
 
-def compare(path: Path, rounds: int = 5) -> None:
+class OtherTree:
+    """The kernel of another source tree in a child process (``--against``)."""
+
+    def __init__(self, src: Path, design: Path) -> None:
+        env = {**os.environ, "PYTHONPATH": str(src)}
+        self.proc = subprocess.Popen([sys.executable, __file__, "--serve", str(design)],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                                     env=env)
+        assert self.proc.stdout is not None
+        self.proc.stdout.readline()  # "ready" once the problem is built and run once
+
+    def run(self, what: str = "linearised") -> tuple[float, tuple[np.ndarray, np.ndarray]]:
+        """(CPU s, (peak span forces, final speeds)) of one solve in the child: of the
+        linearised problem, or ``what`` = "analysis": of the analysis's own."""
+        assert self.proc.stdin is not None and self.proc.stdout is not None
+        self.proc.stdin.write(what + "\n")
+        self.proc.stdin.flush()
+        out = json.loads(self.proc.stdout.readline())
+        return out["cpu"], (np.array(out["fmax"]), np.array(out["speeds"]))
+
+    def close(self) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.close()
+        self.proc.wait()
+
+
+def serve(design: Path) -> None:
+    """Child of ``--against``: solve the design's problem once per line "run" on stdin."""
+    solvers = {"linearised": kernel_solver(startup_problem(design)),
+               "analysis": kernel_solver(startup_problem(design, linearised=False))}
+    for solve in solvers.values():
+        solve()
+    print("ready", flush=True)
+    for line in sys.stdin:
+        t0 = time.process_time()
+        fmax, speeds = solvers[line.strip()]()
+        cpu = time.process_time() - t0
+        print(json.dumps({"cpu": cpu, "fmax": fmax.tolist(), "speeds": speeds.tolist()}),
+              flush=True)
+
+
+def compare(path: Path, rounds: int = 5, against: Path | None = None) -> None:
     p = startup_problem(path)
     lsoda, kernel = lsoda_solver(p), kernel_solver(p)
     ref = lsoda(1e-11)
@@ -166,17 +222,62 @@ def compare(path: Path, rounds: int = 5) -> None:
         return
     rtol, e_lsoda = chosen
     print(f"  LSODA at the same accuracy: rtol {rtol:g} (error {e_lsoda:.2e})")
-    t = cpu_times({"kernel": kernel, "lsoda": lambda: lsoda(rtol)}, rounds)
+    fns: dict[str, Callable[[], object]] = {"kernel": kernel, "lsoda": lambda: lsoda(rtol),
+                                            "analysis": kernel_solver(startup_problem(
+                                                path, linearised=False))}
+    other = OtherTree(against, path) if against is not None else None
+    t: dict[str, list[float]] = {k: [] for k in ("kernel", "other", "lsoda", "analysis",
+                                                 "other analysis")}
+    try:
+        for _ in range(rounds):
+            for k, fn in fns.items():
+                t0 = time.process_time()
+                fn()
+                t[k].append(time.process_time() - t0)
+                if other is not None and k != "lsoda":
+                    cpu, result = other.run("linearised" if k == "kernel" else k)
+                    t["other" if k == "kernel" else "other " + k].append(cpu)
+                    if k == "kernel":
+                        e_other = error(result, ref)
+        if other is not None:
+            print(f"  kernel of {against}: error {e_other:.2e}")
+    finally:
+        if other is not None:
+            other.close()
     for k, v in t.items():
-        print(f"  {k:7s} CPU best {min(v) * 1e3:7.1f} ms, "
-              f"median {statistics.median(v) * 1e3:7.1f} ms")
+        if v:
+            print(f"  {k:7s} CPU best {min(v) * 1e3:7.1f} ms, "
+                  f"median {statistics.median(v) * 1e3:7.1f} ms "
+                  f"({statistics.median(v) / p.steps * 1e6:.2f} µs per kernel step)")
     ratio = statistics.median(t["lsoda"]) / statistics.median(t["kernel"])
     print(f"  LSODA / kernel (median CPU): {ratio:.2f}")
+    if t["other"]:
+        print(f"  LSODA / kernel of {against}: "
+              f"{statistics.median(t['lsoda']) / statistics.median(t['other']):.2f}; "
+              f"that kernel / this one: "
+              f"{statistics.median(t['other']) / statistics.median(t['kernel']):.2f}; "
+              "the analysis's own start-up (slack spans, polygonal excitation): "
+              f"{statistics.median(t['other analysis']) / statistics.median(t['analysis']):.2f}")
+
+
+def main(argv: list[str]) -> None:
+    if argv[:1] == ["--serve"]:
+        serve(Path(argv[1]))
+        return
+    rounds, against, names = 5, None, []
+    it = iter(argv)
+    for arg in it:
+        if arg == "--rounds":
+            rounds = int(next(it))
+        elif arg == "--against":
+            against = Path(next(it)).resolve()
+        else:
+            names.append(arg)
+    print(f"load average {os.getloadavg()[0]:.2f} (2 cores)")
+    for arg in names or ["twenty_four_sprocket.toml"]:
+        compare(Path(arg) if Path(arg).exists() else ROOT / "examples" / arg, rounds, against)
+    print(f"load average {os.getloadavg()[0]:.2f} (2 cores)")
 
 
 if __name__ == "__main__":
-    import os
-
-    print(f"load average {os.getloadavg()[0]:.2f} (2 cores)")
-    for arg in sys.argv[1:] or ["twenty_four_sprocket.toml"]:
-        compare(Path(arg) if Path(arg).exists() else ROOT / "examples" / arg)
+    main(sys.argv[1:])

@@ -18,6 +18,7 @@ from chaindrive.dynamics.checks import startup_safety_check
 from chaindrive.dynamics.frequency.steady import span_incidence
 from chaindrive.dynamics.model.assembly import LinearModel
 from chaindrive.dynamics.motors import ConstantTorque, KlossMotor, RampTorque, ResistanceLaw
+from chaindrive.dynamics.transient import startup as startup_module
 from chaindrive.dynamics.transient.kernel import HAVE_NUMBA
 from chaindrive.dynamics.transient.startup import (
     PolygonalLaw,
@@ -28,7 +29,7 @@ from chaindrive.dynamics.transient.startup import (
     solve_startup,
     transient_times,
 )
-from chaindrive.dynamics.transient.zoh import expm, zoh_matrices
+from chaindrive.dynamics.transient.zoh import expm, expm_input, zoh_matrices
 from chaindrive.dynamics.warnings import startup_warnings
 from chaindrive.errors import DesignError
 
@@ -123,6 +124,51 @@ def test_transition_matrix_against_the_modal_closed_form() -> None:
 
 
 
+def test_block_exponential_is_the_closed_form() -> None:
+    # expm([[a, e], [0, 0]]) = [[e^a, (e^a − 1)/a · e], [0, 1]] for a scalar a (the zero-order
+    # hold of ẋ = a x + e u, Van Loan 1978); a = −40 takes the scaling-and-squaring branch
+    for a in (-0.3, -40.0, 2.5):
+        P, G = expm_input(np.array([[a]]), np.array([[1.7]]))
+        assert_allclose(P[0, 0], math.exp(a), rtol=1e-13)
+        assert_allclose(G[0, 0], math.expm1(a) / a * 1.7, rtol=1e-13)
+    # a matrix: the blocks of the full block exponential (checked against closed forms above)
+    rng = np.random.default_rng(3)
+    A, E = rng.normal(size=(8, 8)) * 3.0, rng.normal(size=(8, 4))
+    Z = np.zeros((12, 12))
+    Z[:8, :8], Z[:8, 8:] = A, E
+    full = expm(Z)
+    P, G = expm_input(A, E)
+    assert_allclose(P, full[:8, :8], rtol=0, atol=1e-12 * np.abs(full).max())
+    assert_allclose(G, full[:8, 8:], rtol=0, atol=1e-12 * np.abs(full).max())
+
+
+@pytest.mark.parametrize("backend", ["numpy", "auto"])
+def test_linear_laws_taken_into_the_transition_are_the_law_step(
+        backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    # a linear machine law f = −g M (g w/ω_n)/η on the mean speed w of its coordinate over the
+    # step, solved once per slack pattern as a damper (Woodbury) or at every step in the laws'
+    # linear system: the same linearly implicit step, so the same start-up to round-off
+    n = 4
+    m, c, R = np.array([0.5, 0.6, 0.4, 0.3]), np.array([1e6, 2e6, 1.5e6, 1.2e6]), np.full(4, .06)
+    others = np.arange(1, n)
+    p = StartupProblem(
+        linear=LinearModel(np.diag(m), np.zeros((n, n)), np.zeros((n, n)), span_incidence(n),
+                           c, 5e-5 * c, np.ones(n, dtype=bool)),
+        pretension=np.full(n, 30.0), motor=(0, 1.0 / 0.06, 0.97, KlossMotor(3000.0, 26.0)),
+        load_coordinate=others, load_gain=1.0 / R[others], load_efficiency=np.array([.9, .8, .95]),
+        load_torque=np.array([20.0, 35.0, 10.0]), load_speed=np.array([20.0, 15.0, 25.0]),
+        load_kind=("linear", "linear", "linear"), breakaway=0.01, polygonal=None,
+        travel_coordinate=np.arange(n), travel_gain=np.ones(n), dt=2e-5, steps=4000)
+    _, F, S, fmax, _ = solve_startup(p, backend)  # type: ignore[arg-type]  # a str from parametrize
+    monkeypatch.setattr(startup_module, "_linear_laws",
+                        lambda q: (q, (np.zeros(0, dtype=np.intp), np.zeros(0))))
+    _, F0, S0, fmax0, _ = solve_startup(p, backend)  # type: ignore[arg-type]
+    assert (F0 == 0).any()  # spans went slack: more than one pattern
+    assert_allclose(fmax, fmax0, rtol=1e-9)
+    assert_allclose(F, F0, rtol=0, atol=1e-9 * fmax0.max())
+    assert_allclose(S[:, n:], S0[:, n:], rtol=0, atol=1e-9 * np.abs(S0[:, n:]).max())
+
+
 def test_nonlinear_startup_matches_tight_reference() -> None:
     # slack spans + Kloss motor + linear resistance against LSODA (rtol 1e-8)
     m, c, R = np.array([0.5, 0.6, 0.4]), np.array([1e6, 2e6, 1.5e6]), np.array([.05, .08, .06])
@@ -214,6 +260,17 @@ def test_ahead_of_time_kernel_is_built_and_current(monkeypatch: pytest.MonkeyPat
     assert _startup_aot.source_digest() == kernel_build.source_digest()
     assert kernel_build.compiled_kernel() is _startup_aot.run_kernel_flat
     monkeypatch.setattr(kernel_build, "source_digest", lambda: -1)
+    kernel_build.compiled_kernel.cache_clear()
+    try:
+        assert kernel_build.compiled_kernel() is None
+    finally:
+        kernel_build.compiled_kernel.cache_clear()
+    # built for this processor: on another one (another model or instruction set) the digest
+    # differs and the module is not used
+    monkeypatch.undo()
+    digest = kernel_build.source_digest()
+    monkeypatch.setattr(kernel_build, "processor", lambda: "x86_64|another processor|sse2")
+    assert kernel_build.source_digest() != digest
     kernel_build.compiled_kernel.cache_clear()
     try:
         assert kernel_build.compiled_kernel() is None

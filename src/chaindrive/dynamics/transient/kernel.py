@@ -67,9 +67,12 @@ def _njit(fn: _Kernel) -> _Kernel:
 @_njit
 def _laws(t: float, v: Any, out: Any, mk: int, mgain: float, meff: float, mkind: int, mp: Any,
           lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float) -> None:
-    """Generalised forces of the motor and the loads at the coordinate speeds v."""
-    for i in range(out.size):
-        out[i] = 0.0
+    """Generalised forces of the motor and the loads at the coordinate speeds v, written on
+    their coordinates (``out`` elsewhere left as it is)."""
+    for j in range(lk.size):
+        out[lk[j]] = 0.0
+    if mk >= 0:
+        out[mk] = 0.0
     for j in range(lk.size):
         r = lgain[j] * v[lk[j]] / lwn[j]
         if lkind[j] == RESISTANCE_LINEAR:
@@ -121,12 +124,32 @@ def _polygonal(y: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, p
 
 @(numba.njit(cache=True, fastmath={"reassoc"}) if HAVE_NUMBA else (lambda f: f))
 def _matvec_add(A: Any, y: Any, out: Any) -> None:
-    """out += A @ y (sums reassociated so that they run in SIMD lanes)."""
-    for i in range(A.shape[0]):
+    """out += A @ y (sums reassociated so that they run in SIMD lanes; four rows at a time,
+    each y[j] loaded once for the four)."""
+    m, n = A.shape[0], A.shape[1]
+    i = 0
+    while i + 4 <= m:
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        a3 = 0.0
+        for j in range(n):
+            yj = y[j]
+            a0 += A[i, j] * yj
+            a1 += A[i + 1, j] * yj
+            a2 += A[i + 2, j] * yj
+            a3 += A[i + 3, j] * yj
+        out[i] += a0
+        out[i + 1] += a1
+        out[i + 2] += a2
+        out[i + 3] += a3
+        i += 4
+    while i < m:
         acc = 0.0
-        for j in range(A.shape[1]):
+        for j in range(n):
             acc += A[i, j] * y[j]
         out[i] += acc
+        i += 1
 
 
 @_njit
@@ -211,26 +234,31 @@ def _solve_small(A: Any, b: Any) -> None:
 
 
 @_njit
-def _advance(y: Any, w: Any, t: float, dt: float, se: Any, Phi: Any, GB: Any, GL: Any,
-             y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
-    """One step: y' = Φ y + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces s held (GB = Γ(−Bᵀ),
-    GL = Γ[:, L], both per pattern); the law forces on the coordinates L linearly implicit
+def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB: Any,
+             GL: Any, y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
+    """One step: y' = Φ y + g₀ + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces held: their
+    pre-tension part g₀ = Γ(−Bᵀ) T₀ (a constant of the pattern) and the rest s (GB =
+    Γ(−Bᵀ), GL = Γ[:, L], all per pattern; the product skipped while s = 0: no polygonal
+    excitation and no slack change); the law forces on the coordinates L linearly implicit
     on their mean speeds w over the step (lA, lb work arrays of the laws' linear system)."""
     mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
-    n = w.size
     fl, f2, hv, vh = work[0], work[1], work[2], work[3]
     th = t + 0.5 * dt
     _laws(th, w, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
-    for i in range(n):
+    m = lcols.size
+    for a in range(m):
+        i = lcols[a]
         hv[i] = 1e-6 * (1.0 + abs(w[i]))
         vh[i] = w[i] + hv[i]
     _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
-    m = lcols.size
     for a in range(m):
         lb[a] = fl[lcols[a]]
-    y_new[:] = 0.0
+    y_new[:] = g0
     _matvec_add(Phi, y, y_new)
-    _matvec_add(GB, se, y_new)
+    for i in range(se.size):
+        if se[i] != 0.0:
+            _matvec_add(GB, se, y_new)
+            break
     _matvec_add(GL, lb, y_new)
     if m == 0:
         return
@@ -288,14 +316,17 @@ def _span_force(y: Any, F: Any, Bs: tuple, c: Any, ds: Any, T0: Any, poly: bool,
 
 @_njit
 def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float, rec: int,
-               masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any, ds: Any,
+               masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any,
+               ds: Any,
                tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
                states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
-    y (2N,) state, w (N,) the mean speeds over the previous step, span_prev (S,) the held
-    span forces of the previous step, state = [step, slack count, pattern index] (all
-    updated in place); Φ_s, Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, GBs,
+    y (2N,) state, w (N,) the mean speeds over the previous step (of the law coordinates
+    L = ``lcols``; the others are not read), span_prev (S,) the held
+    span forces of the previous step, state = [step, slack count, pattern index, pattern of
+    the previous step] (all updated in place); Φ_s, Γ_s(−Bᵀ)T₀ (the pre-tension's part, T₀
+    of the spans s holds), Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, G0s, GBs,
     GLs (L = ``lcols``, the coordinates of the laws); forces (R, S) and states (R, 2N)
     filled at every ``rec``-th step, fmax (S,) the largest span forces. Returns < steps when
     a step needs a slack pattern not among the first ``npat``: it is written into ``need``
@@ -316,14 +347,20 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
     lb = np.empty(lcols.size)
     y_new = np.empty(2 * n)
     F = np.empty(ns)
-    p = state[2]
+    p, pp = state[2], state[3]
     for k in range(state[0], steps):
         t = k * dt
         mask = masks[p]
+        prev = masks[pp]
         _span_part(mask, c, ds, T0, poly, d, dd, span)
         for i in range(ns):
-            se[i] = 1.5 * span[i] - 0.5 * span_prev[i]
-        _advance(y, w, t, dt, se, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA, lb)
+            # (3 s_k − s_{k−1})/2 less its pre-tension part T₀ (in g₀), the parts of T₀ in
+            # s_k and s_{k−1} taken out first: exactly 0 without polygonal excitation
+            now = T0[i] if mask[i] else 0.0
+            was = T0[i] if prev[i] else 0.0
+            se[i] = 1.5 * (span[i] - now) - 0.5 * (span_prev[i] - was) + 0.5 * (now - was)
+        _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
+                 lA, lb)
         _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
         changed = False
         for i in range(ns):
@@ -332,17 +369,22 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
         if changed:
             q = _find(masks, npat, need)
             if q < 0:
-                state[0], state[2] = k, p
+                state[0], state[2], state[3] = k, p, pp
                 return k
             p = q
-            _span_part(masks[p], c, ds, T0, poly, d, dd, span)
-            _advance(y, w, t, dt, span, Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols, lA,
-                     lb)
+            mask = masks[p]
+            _span_part(mask, c, ds, T0, poly, d, dd, span)
+            for i in range(ns):
+                se[i] = span[i] - (T0[i] if mask[i] else 0.0)
+            _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
+                     lA, lb)
             _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
             state[1] += 1
         mask = masks[p]
+        pp = p
         span_prev[:] = span
-        for i in range(n):
+        for a in range(lcols.size):
+            i = lcols[a]
             w[i] = (y_new[i] - y[i]) / dt
         y[:] = y_new
         d, d_new = d_new, d
@@ -359,13 +401,14 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
                 forces[r, i] = F[i]
             for i in range(2 * n):
                 states[r, i] = y[i]
-    state[0], state[2] = steps, p
+    state[0], state[2], state[3] = steps, p, pp
     return steps
 
 
 @_njit
 def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float,
-                    rec: int, masks: Any, Phis: Any, GBs: Any, GLs: Any, npat: int, B: Any,
+                    rec: int, masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int,
+                    B: Any,
                     c: Any, ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
                     mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
                     lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
@@ -373,7 +416,8 @@ def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: 
                     states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
     (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, GBs, GLs, npat, B,
+    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, G0s, GBs, GLs, npat,
+                      B,
                       c, ds, tonly, T0,
                       (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
                       poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
@@ -383,7 +427,7 @@ def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
 FLAT_SIGNATURE = (
     "i8(f8[::1], f8[::1], f8[::1], i8[::1], i8, f8, i8, b1[:, ::1], f8[:, :, ::1],"
-    " f8[:, :, ::1], f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8,"
+    " f8[:, ::1], f8[:, :, ::1], f8[:, :, ::1], i8, f8[:, ::1], f8[::1], f8[::1], b1[::1], f8[::1], i8,"
     " f8, f8, i8, f8[::1], i8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8[::1], f8, b1,"
     " f8[::1], f8[::1], f8[::1], f8[::1], i8[::1], f8[::1], f8, f8, f8[::1], f8[:, ::1],"
     " f8[:, ::1], f8[::1], b1[::1], i8[::1])"

@@ -10,9 +10,17 @@ source once, ahead of time, with numba's ``numba.pycc`` into the extension modul
 documents that such modules do not need numba at run time).
 
 The module also exports ``source_digest()``: a digest of ``kernel.py`` and
-``kernel_codes.py`` as they were at the build. :func:`compiled_kernel` uses the module only
-while the digest still matches the sources, so an edited kernel is never run from a stale
-build (it falls back to numba's just-in-time compilation until rebuilt).
+``kernel_codes.py`` as they were at the build, and of the processor it was built on.
+:func:`compiled_kernel` uses the module only while the digest still matches the sources and
+the processor, so an edited kernel is never run from a stale build (it falls back to
+numba's just-in-time compilation until rebuilt).
+
+The build targets the processor it runs on (``target_cpu = "host"``: its vector
+instructions, as numba's just-in-time compilation does), not numba.pycc's default generic
+x86-64 (two-lane SSE2): the dense products of the step ran 1.4× slower in the generic build
+(docs/performance.md). Such a module may not run on another processor (an instruction it
+lacks), hence the processor in the digest: built on one machine and moved to another, the
+module is not used.
 
 ``make`` runs the build after installing; it needs a C compiler (numba.pycc links with the
 platform compiler). Without one the build reports why and the package works as before.
@@ -28,25 +36,54 @@ from functools import cache
 from pathlib import Path
 from typing import Any, cast
 
-__all__ = ["MODULE", "build", "compiled_kernel", "source_digest"]
+__all__ = ["MODULE", "build", "compiled_kernel", "processor", "source_digest"]
 
 MODULE = "_startup_aot"
 _HERE = Path(__file__).resolve().parent
 _SOURCES = ("kernel.py", "kernel_codes.py")
 
 
+def processor() -> str:
+    """The processor's model and instruction-set extensions as the system reports them (the
+    first ``model name`` and ``flags`` of /proc/cpuinfo on Linux, after the machine type;
+    elsewhere the machine type alone).
+
+    Returns
+    -------
+    str
+        A description that differs between processors whose code may differ.
+    """
+    import platform  # platform.machine() is os.uname(); platform.processor() would run uname
+
+    found: dict[str, str] = {}
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                key = key.strip()
+                if key in ("model name", "flags") and key not in found:
+                    found[key] = value.strip()
+                    if len(found) == 2:
+                        break
+    except OSError:
+        pass
+    return "|".join([platform.machine(), found.get("model name", ""), found.get("flags", "")])
+
+
 def source_digest() -> int:
-    """The fingerprint of the kernel's sources: first 7 bytes of the SHA-256 of the source
-    files, as a non-negative int64.
+    """The fingerprint of the kernel's sources and of the processor (:func:`processor`): the
+    first 7 bytes of their SHA-256, as a non-negative int64.
 
     Returns
     -------
     int
-        The digest; a compiled module built from other sources carries another one.
+        The digest; a compiled module built from other sources or on another processor
+        carries another one.
     """
     h = hashlib.sha256()
     for name in _SOURCES:
         h.update((_HERE / name).read_bytes())
+    h.update(processor().encode())
     return int.from_bytes(h.digest()[:7], "big")
 
 
@@ -90,6 +127,7 @@ def build(output_dir: Path | None = None) -> Path:
     cc = CC(MODULE)
     cc.output_dir = str(output_dir or _HERE)
     cc.verbose = False
+    cc.target_cpu = "host"  # this processor's vector instructions (module docstring)
 
     @cc.export("source_digest", "i8()")
     def _digest() -> int:
