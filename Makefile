@@ -20,7 +20,7 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 
 # The start-up kernel compiled ahead of time (numba.pycc, needs a C compiler; without one
 # the build says why and numba compiles the kernel on first use instead). After an install.
-KERNEL := src/chaindrive/dynamics/transient/kernel.py src/chaindrive/dynamics/transient/kernel_codes.py
+KERNEL := src/chaindrive/dynamics/transient/kernel.py src/chaindrive/dynamics/transient/kernel_codes.py src/chaindrive/dynamics/transient/kernel_build.py
 
 $(VENV)/.kernel: $(KERNEL) | $(BIN)/python
 	$(BIN)/python -m chaindrive.dynamics.transient.kernel_build
