@@ -58,6 +58,7 @@ from chaindrive.identification.spectrum import (
     signal_spectrum,
     spectral_peaks,
 )
+from chaindrive.units import RPM_PER_RAD_S, TWO_PI
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -78,8 +79,6 @@ MAX_SLICE_PEAKS = 10
 MIN_SLICES = 16
 #: Fewest revolutions of a record for an order spectrum [-].
 MIN_REVOLUTIONS = 4.0
-TWO_PI = 2.0 * math.pi
-RPM_PER_REV_S = 60.0
 
 
 def angle_from_speed(speed: NDArray[np.float64], sample_rate: float) -> NDArray[np.float64]:
@@ -358,7 +357,7 @@ class RunupPoint:
     @property
     def order(self) -> float:
         """f·60/n: cycles per driver revolution [-]."""
-        return self.frequency * RPM_PER_REV_S / self.speed_rpm
+        return self.frequency * TWO_PI * RPM_PER_RAD_S / self.speed_rpm
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -544,10 +543,10 @@ def track_orders(record: Record, analysis: Analysis, reference: str, *,
         at = _lines_at(analysis, fixed, w, fs / 2.0)
         for name, values in record.signals.items():
             found, df = _slice_peaks(values[start + k:start + k + width], fs, prominence_db)
-            points += [RunupPoint(name, w * RPM_PER_REV_S / TWO_PI, f, level,
+            points += [RunupPoint(name, w * RPM_PER_RAD_S, f, level,
                                   *label_peak(f, at, tolerance, df)) for f, level in found]
-    rpm = (float(np.min(speed_used)) * RPM_PER_REV_S / TWO_PI,
-           float(np.max(speed_used)) * RPM_PER_REV_S / TWO_PI)
+    rpm = (float(np.min(speed_used)) * RPM_PER_RAD_S,
+           float(np.max(speed_used)) * RPM_PER_RAD_S)
     notes = (f"the stretch at {MIN_SPEED_FRACTION:.0%} of the top speed or above is used "
              f"({(stop - start) / fs:.4g} s of {next(iter(record.signals.values())).size / fs:.4g}"
              " s)",
@@ -656,7 +655,7 @@ def swept_spectrum(spectrum: Identification, tracking: OrderTracking) -> Identif
     -------
     Identification
     """
-    lo, hi = (r / RPM_PER_REV_S for r in tracking.speed_range_rpm)
+    lo, hi = (r / (TWO_PI * RPM_PER_RAD_S) for r in tracking.speed_range_rpm)
     signals = []
     for sig in spectrum.signals:
         peaks = []
