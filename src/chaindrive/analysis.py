@@ -532,6 +532,7 @@ class Analysis:
         comparison, result = self.link_level_comparison, self.link_level
         if comparison is None or result is None:
             return None
+        # lazy: the link-level package imports numba (≈0.75 s); only its study needs it
         from chaindrive.linklevel.compare import governing_loads
 
         steady, startup = self.steady, self.startup if self.with_startup else None
