@@ -13,12 +13,17 @@ apart"). Run: OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linklevel_peer
    1000 N; the static penetration gives the effective stiffness against ours, k_c. Exudyn
    adds a contact for every triangle the roller overlaps; in the nearly conformal seat
    (r_i − r = 0.14 mm) a loaded roller overlaps many chords.
+5. Against exudyn (``--peer [t_end_s]``, 50 ms by default: about 8 min of exudyn per run):
+   exudyn at Δt/4 against itself at Δt/8, ours at Δt, Δt/4, Δt/16, Δt/64 and ours with
+   its contact stiffness k_c × 1, 3, 6, 10 against exudyn at Δt/4 (tight and slack span
+   correlations over the first 20 ms and over the run).
 """
 
 from __future__ import annotations
 
 import math
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -155,6 +160,47 @@ def exudyn_seat() -> None:
                   f"stiffness {force / delta / kc:5.2f} k_c")
 
 
+def against_exudyn(t_end: float) -> None:
+    import _exudyn_chain as peer
+    from chaindrive.linklevel.equilibrium import span_probes
+    from chaindrive.linklevel.simulate import initial_state
+
+    drive, geometry, model, m1 = _setup()
+    state = initial_state(drive, geometry, model, "steady")
+    base = _run(drive, geometry, model, m1, t_end)
+    probes = [int(i) for i in span_probes(base.geometry, state.positions)]
+    m2 = m1 * 25 / 15
+    torques = np.array([model.turn[0] * m1, -model.turn[1] * m2])
+    _, fine = peer.run_loaded(model, state, base.dt / 4, t_end, torques, probes)
+    _, finer = peer.run_loaded(model, state, base.dt / 8, t_end, torques, probes)
+    te = fine[:, 0]
+
+    def corr(times, forces, k: int, until: float) -> float:
+        on = te <= until
+        return float(np.corrcoef(np.interp(te[on], times, forces), fine[on, 1 + k])[0, 1])
+
+    print(f"5. against exudyn over {t_end * 1e3:g} ms (tight, slack: first 20 ms / whole run)")
+    for k, name in enumerate(base.span_names):
+        print(f"   exudyn Δt/8 against Δt/4, span {name}: "
+              f"{corr(finer[:, 0], finer[:, 1 + k], k, t_end):.4f}")
+    runs = {f"ours Δt/{d}": _run(drive, geometry, model, m1, t_end, base.dt / d)
+            for d in (4, 16, 64)}
+    runs = {"ours Δt": base, **runs}
+    for f in (3.0, 6.0, 10.0):
+        stiffer = replace(model, contact_stiffness=model.contact_stiffness * f,
+                          contact_damping=model.contact_damping * math.sqrt(f))
+        runs[f"ours {f:g} k_c"] = _run(drive, geometry, stiffer, m1, t_end)
+    for label, r in runs.items():
+        cells = [f"{corr(r.times, r.span_forces[:, k], k, 0.02):.3f} / "
+                 f"{corr(r.times, r.span_forces[:, k], k, t_end):.3f}" for k in range(2)]
+        print(f"   {label:14s} " + ", ".join(f"span {n}: {c}" for n, c in
+                                          zip(r.span_names, cells, strict=True)))
+
+
 if __name__ == "__main__":
-    step_and_sampling()
-    exudyn_seat()
+    if "--peer" in sys.argv:
+        rest = sys.argv[sys.argv.index("--peer") + 1:]
+        against_exudyn(float(rest[0]) if rest else 0.05)
+    else:
+        step_and_sampling()
+        exudyn_seat()
