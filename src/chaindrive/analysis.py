@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from chaindrive._docstrings import shared_parameters
-from chaindrive.checks import Check, CheckLimits, judged
+from chaindrive.checks import LINK_LEVEL, WHOLE_DRIVE, Check, CheckLimits, judged
 from chaindrive.cost import CostModel, default_cost_model
 from chaindrive.dynamics.checks import (
     disturbed_safety_check,
@@ -68,7 +68,7 @@ from chaindrive.dynamics.transient.runup import (
 )
 from chaindrive.dynamics.transient.startup import StartupResult, startup_progress
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
-from chaindrive.errors import ChainDriveWarning, DesignError
+from chaindrive.errors import ChainDriveWarning, DesignError, Quantities
 from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_travel_order
 from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
@@ -87,12 +87,16 @@ from chaindrive.strength.drive_checks import geometry_checks, loaded_contour_che
 from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
 from chaindrive.strength.loads import peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
+from chaindrive.strength.safety import steady_safety_factor
 from chaindrive.strength.selection import ResonanceProbe, banded_resonance_check, rank_chains
 from chaindrive.strength.span_checks import fatigue_check, idler_checks, idler_warnings
 from chaindrive.units import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
+    from chaindrive.linklevel.compare import GoverningLoads
     from chaindrive.multicontour.drive import ContourCheck
 
 #: ``startup_progress(callback)``: the start-ups :func:`analyze` integrates within it report
@@ -547,6 +551,25 @@ class Analysis:
             link_first_frequency_hz=link_f1)
 
     @cached_property
+    def governing_loads(self) -> GoverningLoads | None:
+        """The span loads the dynamic checks take with the link-level model run beside the
+        whole-drive model: per span the larger, where the link-level's is comparable
+        (:func:`chaindrive.linklevel.compare.governing_loads`; docs/linklevel.md §6); None
+        without the link-level run."""
+        comparison, result = self.link_level_comparison, self.link_level
+        if comparison is None or result is None:
+            return None
+        # lazy: the link-level package imports numba (≈0.75 s); only its study needs it
+        from chaindrive.linklevel.compare import governing_loads
+
+        steady, startup = self.steady, self.startup if self.with_startup else None
+        return governing_loads(
+            result, settled=comparison.settled,
+            ring_span_dynamic_load=None if steady is None else steady.span_dynamic_load,
+            ring_startup_peak=None if startup is None else startup.max_span_force,
+            trains=tuple(name for name, train in self.drive_model.trains.items() if train))
+
+    @cached_property
     def published(self) -> tuple[str, tuple[tuple[str, float, float | None, str], ...]] | None:
         """The printed figures of a published example beside this analysis' own
         (:func:`chaindrive.dynamics.published.published_comparison`): (source, rows of
@@ -652,20 +675,60 @@ class Analysis:
             out.append(start)
         if self.with_response and self._responds:
             k = self.limits.allowable_dynamic_safety
+            gov = self.governing_loads
+            q_break = self.drive.chain.spec.breaking_load
             if self.drive.dynamics.transient and self.with_startup:
-                out.append(startup_safety_check(self.startup, k,
-                                                missing=self.drive_model.missing,
-                                                runup=self.runup))
+                startup = self.startup
+                largest = None if gov is None else gov.largest_startup()
+                if startup is not None and largest is not None and largest[1] == LINK_LEVEL:
+                    # the link-level run's larger start-up peak: k₁ = Q/F₁max of it
+                    startup = replace(startup, k1=q_break / largest[0])
+                check = startup_safety_check(startup, k, missing=self.drive_model.missing,
+                                             runup=self.runup)
+                if gov is not None and gov.startup_ring is not None:
+                    check = _governed(check, gov.startup_note)
+                out.append(check)
             steady = self.steady
-            out.append(dynamic_safety_check("k2", None if steady is None else steady.k2, k))
-            out.append(dynamic_safety_check("k2min", None if steady is None else steady.k2_min,
-                                            k))
+            k2, worst = self._governing_k2()
+            check = dynamic_safety_check("k2", k2, k)
+            if gov is not None and worst is not None and gov.steady_ring is not None:
+                check = _governed(check, lambda q: gov.steady_note(worst, q))
+            out.append(check)
+            check = dynamic_safety_check("k2min", None if steady is None else steady.k2_min, k)
+            if gov is not None and check.value is not None:
+                check = replace(check, governing_model=WHOLE_DRIVE, note=_joined(
+                    check.note, "the whole-drive model's resonance loads govern: the "
+                    "link-level run has no speed sweep through the resonances"))
+            out.append(check)
             if steady is not None and self.disturbances and self._static is not None:
-                out.append(disturbed_safety_check(
-                    self.drive.chain.spec.breaking_load, self._static.loads.span_tensions,
-                    steady.span_dynamic_load,
-                    {n: r.span_dynamic_load for n, r in self.disturbances.items()}, k))
+                polygonal = (steady.span_dynamic_load if gov is None
+                             or gov.steady_dynamic is None else gov.steady_dynamic)
+                disturbed = {n: r.span_dynamic_load for n, r in self.disturbances.items()}
+                check = disturbed_safety_check(q_break, self._static.loads.span_tensions,
+                                               polygonal, disturbed, k)
+                if gov is not None and gov.steady_ring is not None:
+                    total = np.asarray(self._static.loads.span_tensions, float) + polygonal
+                    total = total + sum((np.asarray(v, float) for v in disturbed.values()),
+                                        np.zeros_like(total))
+                    span = int(np.argmax(total))
+                    check = _governed(check, lambda q: gov.steady_note(span, q))
+                out.append(check)
         return tuple(out)
+
+    def _governing_k2(self) -> tuple[float | None, int | None]:
+        """k₂ = min_i Q/(F_R,i + F₂,i) [MultimassChainDrives, §3.6] with the governing
+        F₂,i (:attr:`governing_loads`; the whole-drive model's without the link-level run)
+        and the span that decides it (None, None without the steady response)."""
+        steady, st, gov = self.steady, self._static, self.governing_loads
+        if steady is None:
+            return None, None
+        if gov is None or gov.steady_dynamic is None or st is None or steady.k2 is None:
+            return steady.k2, None
+        total = np.asarray(st.loads.span_tensions, float) + gov.steady_dynamic
+        span = int(np.argmax(total))
+        return (steady_safety_factor(self.drive.chain.spec.breaking_load,
+                                     float(st.loads.span_tensions[span]),
+                                     float(gov.steady_dynamic[span])), span)
 
     @cached_property
     def _span_checks(self) -> tuple[Check, ...]:
@@ -678,10 +741,23 @@ class Analysis:
         if self.with_response and self._responds:
             steady = self.steady
             startup = self.startup if self.with_startup else None
-            steady_peak = (None if steady is None else float(np.max(
-                np.asarray(st.loads.span_tensions) + steady.span_dynamic_load)))
-            startup_peak = None if startup is None else float(np.max(startup.max_span_force))
-            out.append(fatigue_check(self.drive.chain.spec, steady_peak, startup_peak))
+            gov = self.governing_loads
+            dynamic = (None if steady is None else steady.span_dynamic_load
+                       if gov is None or gov.steady_dynamic is None else gov.steady_dynamic)
+            steady_total = (None if dynamic is None
+                            else np.asarray(st.loads.span_tensions, float) + dynamic)
+            steady_peak = None if steady_total is None else float(np.max(steady_total))
+            startup_peak = (None if startup is None else float(np.max(
+                startup.max_span_force if gov is None or gov.startup_peak is None
+                else gov.startup_peak)))
+            check = fatigue_check(self.drive.chain.spec, steady_peak, startup_peak)
+            if gov is not None and check.value is not None:
+                if check.value == startup_peak and gov.startup_ring is not None:
+                    check = _governed(check, gov.startup_note)
+                elif steady_total is not None and gov.steady_ring is not None:
+                    span = int(np.argmax(steady_total))
+                    check = _governed(check, lambda q: gov.steady_note(span, q))
+            out.append(check)
         return tuple(out)
 
     def checks(self) -> tuple[Check, ...]:
@@ -798,6 +874,34 @@ class Analysis:
             out["link_level"] = {**self.link_level.to_dict(),
                                  "dynamics_comparison": comparison.pop("rows"), **comparison}
         return out
+
+
+def _joined(note: str, sentence: str) -> str:
+    """``note`` and ``sentence`` as one note ("; " between them when both are given)."""
+    return f"{note}; {sentence}" if note else sentence
+
+
+def _governed(check: Check, said: Callable[[Quantities], tuple[str, str]]) -> Check:
+    """``check`` with the model whose load it takes and the note saying so.
+
+    Parameters
+    ----------
+    check : Check
+        A check resting on a dynamic load.
+    said : callable
+        said(q) → (governing model, sentence), recording the sentence's forces in ``q``
+        (:class:`~chaindrive.linklevel.compare.GoverningLoads`).
+
+    Returns
+    -------
+    Check
+        With :attr:`~chaindrive.checks.Check.governing_model` and the sentence added to its
+        note (its numbers to its ``note_quantities``).
+    """
+    q = Quantities()
+    model, sentence = said(q)
+    return replace(check, governing_model=model, note=_joined(check.note, sentence),
+                   note_quantities=(*check.note_quantities, *q.items))
 
 
 def drive_summary(drive: Drive) -> dict[str, Any]:

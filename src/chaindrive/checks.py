@@ -23,7 +23,8 @@ from typing import Any, Literal
 
 from chaindrive.errors import Quantity
 
-__all__ = ["ALLOWABLE_DYNAMIC_SAFETY", "FAIL", "PASS", "RESONANCE_BAND_PERCENT", "UNVERIFIED",
+__all__ = ["ALLOWABLE_DYNAMIC_SAFETY", "FAIL", "LINK_LEVEL", "PASS", "RESONANCE_BAND_PERCENT",
+           "UNVERIFIED", "WHOLE_DRIVE",
            "Check", "CheckLimits", "Kind", "Status", "judged", "verdict", "worst"]
 
 Status = Literal["pass", "fail", "cannot be verified"]
@@ -38,6 +39,10 @@ UNVERIFIED_VIOLATION = 1.0
 ALLOWABLE_DYNAMIC_SAFETY = 2.5
 #: Least distance of a working frequency from a natural frequency [%] [API684].
 RESONANCE_BAND_PERCENT = 10.0
+#: The models a check resting on a dynamic load may take it from
+#: (:attr:`Check.governing_model`): the whole-drive (ring) model and the link-level model.
+WHOLE_DRIVE = "whole_drive"
+LINK_LEVEL = "link_level"
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,6 +79,11 @@ class Check:
         The numbers with units that ``note`` writes (SI;
         :class:`chaindrive.errors.Quantities`), for a presenter to write in another unit
         system (:func:`chaindrive.display.quantity_text`).
+    governing_model : str or None
+        For a check resting on a dynamic load when both the whole-drive and the link-level
+        model were run, the model whose load it takes (``"whole_drive"`` or
+        ``"link_level"``, :data:`WHOLE_DRIVE`, :data:`LINK_LEVEL`; the note says why); None
+        otherwise.
     """
 
     name: str
@@ -89,6 +99,7 @@ class Check:
     part: str = ""
     item: str = ""
     note_quantities: tuple[Quantity, ...] = ()
+    governing_model: str | None = None
 
     @property
     def key(self) -> str:
@@ -143,7 +154,8 @@ class Check:
                 "unit": self.unit, "kind": self.kind, "status": self.status,
                 "margin_fraction": None if margin is None or math.isinf(margin) else margin,
                 "source": self.source, "note": self.note, "part": self.part,
-                "note_quantities": [q.to_dict() for q in self.note_quantities]}
+                "note_quantities": [q.to_dict() for q in self.note_quantities],
+                "governing_model": self.governing_model}
 
 
 def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:

@@ -143,3 +143,17 @@ def test_report_section_defines_its_symbols_and_typesets(asked) -> None:
                     assert key in defined or not _occurs(sym, text), (section.key, sym, text)
     assert INTERNAL.search(typst_source(report)[0]) is None
     assert render_pdf(report)[:4] == b"%PDF"
+
+
+def test_unsettled_run_leaves_the_steady_checks_to_the_whole_drive_model(asked) -> None:
+    """50 ms from rest: the link-level steady loads still hold the start-up, so k₂ keeps the
+    whole-drive model's value and says why; every check resting on a dynamic load names its
+    model (docs/linklevel.md §6)."""
+    k2 = asked.check("k2")
+    assert k2.value == asked.steady.k2
+    assert k2.governing_model == "whole_drive"
+    assert "not at its nominal speed" in k2.note
+    governed = {c.key: c.governing_model for c in asked.checks() if c.governing_model}
+    assert set(governed) >= {"k1", "k2", "k2min", "fatigue"}
+    plain = chaindrive.analyze(asked.design, lazy=True)
+    assert all(c.governing_model is None for c in plain.checks())

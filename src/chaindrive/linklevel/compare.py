@@ -19,15 +19,19 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from chaindrive.errors import DesignError
+from chaindrive.checks import LINK_LEVEL, WHOLE_DRIVE
+from chaindrive.errors import DesignError, Quantities
 from chaindrive.io.limits import Range
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
     from chaindrive.linklevel.result import LinkLevelResult
 
-__all__ = ["DURATION", "SETTLED_SPEED", "ModelComparison", "checked_duration",
+__all__ = ["DURATION", "LINK_LEVEL", "MODEL_NAMES", "SETTLED_SPEED", "WHOLE_DRIVE",
+           "GoverningLoads", "ModelComparison", "checked_duration", "governing_loads",
            "model_comparison"]
 
 #: Simulated time of a link-level run asked for from the command line, the report or the
@@ -200,3 +204,184 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
     settled = math.isfinite(speed) and abs(speed / nominal_speed - 1.0) <= SETTLED_SPEED
     return ModelComparison(tuple(rows), settled, float(result.steady_from),
                            float(result.times[-1]))
+
+
+#: How a note names each model.
+MODEL_NAMES = {WHOLE_DRIVE: "whole-drive model", LINK_LEVEL: "link-level model"}
+
+
+@dataclass(frozen=True, slots=True)
+class GoverningLoads:
+    """The span loads the dynamic checks take when the link-level model was run beside the
+    whole-drive model: of each span's load the larger (docs/linklevel.md §6), unless the
+    link-level's is not comparable (then the whole-drive model's, and the reason).
+
+    Parameters
+    ----------
+    startup_peak : ndarray | None
+        (n,) F₁max,i of the start-up from rest [N] the checks take (None: the whole-drive
+        model ran no start-up).
+    startup_models : tuple of str
+        (n,) per span the model it comes from (:data:`WHOLE_DRIVE` or :data:`LINK_LEVEL`).
+    startup_link : ndarray
+        (n,) the link-level run's F₁max,i [N] (for the notes).
+    startup_ring : ndarray | None
+        (n,) the whole-drive model's F₁max,i [N].
+    startup_reason : str
+        Why the link-level start-up peaks are not taken ("" when they are comparable).
+    steady_dynamic : ndarray | None
+        (n,) F₂,i of steady motion [N] the checks take (None: no steady response).
+    steady_models : tuple of str
+        (n,) per span the model it comes from.
+    steady_link : ndarray
+        (n,) the link-level run's F₂,i over its closing half [N].
+    steady_ring : ndarray | None
+        (n,) the whole-drive model's F₂,i [N].
+    steady_reason : str
+        Why the link-level steady loads are not taken ("" when they are comparable).
+    span_names : tuple of str
+        (n,) the spans ("S1-S2").
+    """
+
+    startup_peak: NDArray[np.float64] | None
+    startup_models: tuple[str, ...]
+    startup_link: NDArray[np.float64]
+    startup_ring: NDArray[np.float64] | None
+    startup_reason: str
+    steady_dynamic: NDArray[np.float64] | None
+    steady_models: tuple[str, ...]
+    steady_link: NDArray[np.float64]
+    steady_ring: NDArray[np.float64] | None
+    steady_reason: str
+    span_names: tuple[str, ...]
+
+    def largest_startup(self) -> tuple[float, str] | None:
+        """(the largest F₁max [N] the checks take, the model it comes from); None without a
+        whole-drive start-up."""
+        if self.startup_peak is None:
+            return None
+        i = int(np.argmax(self.startup_peak))
+        return float(self.startup_peak[i]), self.startup_models[i]
+
+    def startup_note(self, q: Quantities) -> tuple[str, str]:
+        """(governing model, the note's sentence) of a check on the start-up's largest span
+        force (k₁, fatigue in start-up); ``q`` records the note's forces.
+
+        Parameters
+        ----------
+        q : Quantities
+            The note's numbers with units (:class:`chaindrive.errors.Quantities`).
+
+        Returns
+        -------
+        tuple of str
+            The governing model and the sentence saying which and why.
+        """
+        assert self.startup_ring is not None  # a check on the start-up has one
+        ring, link = float(np.max(self.startup_ring)), float(np.max(self.startup_link))
+        return _said(WHOLE_DRIVE if self.startup_reason or ring >= link else LINK_LEVEL,
+                     "largest start-up span force", ring, link, self.startup_reason, q)
+
+    def steady_note(self, span: int, q: Quantities) -> tuple[str, str]:
+        """(governing model, the note's sentence) of a check on the steady dynamic load of
+        span ``span`` (k₂, k₂ with disturbances, fatigue in steady running).
+
+        Parameters
+        ----------
+        span : int
+            The span whose load decides the check [-].
+        q : Quantities
+            The note's numbers with units.
+
+        Returns
+        -------
+        tuple of str
+            The governing model and the sentence saying which and why.
+        """
+        assert self.steady_ring is not None
+        return _said(self.steady_models[span], f"steady dynamic load of span {self.span_names[span]}",
+                     float(self.steady_ring[span]), float(self.steady_link[span]),
+                     self.steady_reason, q)
+
+
+def _said(model: str, what: str, ring: float, link: float, reason: str,
+          q: Quantities) -> tuple[str, str]:
+    """(model, sentence): which model's ``what`` the check takes, both values, and
+    ``reason`` when the link-level's is not comparable."""
+    if reason:
+        return WHOLE_DRIVE, (f"the whole-drive model's {what} {q(ring, 'force')} governs: the "
+                             f"link-level model's ({q(link, 'force')}) is not comparable, "
+                             f"{reason}")
+    other = LINK_LEVEL if model == WHOLE_DRIVE else WHOLE_DRIVE
+    mine, theirs = (ring, link) if model == WHOLE_DRIVE else (link, ring)
+    return model, (f"the {MODEL_NAMES[model]}'s {what} {q(mine, 'force')} governs, the "
+                   f"larger of the two models' ({MODEL_NAMES[other]} {q(theirs, 'force')})")
+
+
+def governing_loads(result: LinkLevelResult, *, settled: bool,
+                    ring_span_dynamic_load: NDArray[np.float64] | None,
+                    ring_startup_peak: NDArray[np.float64] | None,
+                    trains: Sequence[str]) -> GoverningLoads:
+    """The span loads the dynamic checks take with both models run: per span the larger of
+    the whole-drive model's and the link-level run's, where the link-level's is comparable
+    (docs/linklevel.md §6, "Which model governs a check").
+
+    The link-level loads are not comparable, and the whole-drive model's are kept, when the
+    whole-drive model carries torsional trains (motor, gear stages, couplings, machines) the
+    link-level model leaves out (its sprockets turn alone: a drive without its machines);
+    its steady loads besides when the run had not settled by its closing half (they still
+    hold the start-up).
+
+    Parameters
+    ----------
+    result : LinkLevelResult
+        The link-level start-up from rest, its spans in the order of the whole-drive model's.
+    settled : bool
+        The run's closing half is steady motion (:attr:`ModelComparison.settled`).
+    ring_span_dynamic_load : ndarray | None
+        F₂,i of the whole-drive model's steady response [N] (None: none).
+    ring_startup_peak : ndarray | None
+        F₁max,i of the whole-drive model's start-up [N] (None: none).
+    trains : sequence of str
+        The sprockets that carry a train in the whole-drive model.
+
+    Returns
+    -------
+    GoverningLoads
+        The loads the checks take, the model of each and the reasons.
+    """
+    why_trains = (f"as its sprockets {', '.join(trains)} turn without the trains (motor, "
+                  "gear stages, couplings, machines) the whole-drive model gives them"
+                  if trains else "")
+    startup_reason = why_trains
+    steady_reason = why_trains or ("" if settled else
+                                   "as the driver was not at its nominal speed over the "
+                                   "closing half of the run (its loads still hold the "
+                                   "start-up)")
+    link_peak = np.asarray(result.peak_span_force, dtype=float)
+    link_fd = np.asarray(result.span_dynamic_load, dtype=float)
+    peak, peak_models = _larger(ring_startup_peak, link_peak, startup_reason)
+    fd, fd_models = _larger(ring_span_dynamic_load, link_fd, steady_reason)
+    return GoverningLoads(
+        peak, peak_models, link_peak,
+        None if ring_startup_peak is None else np.asarray(ring_startup_peak, dtype=float),
+        startup_reason, fd, fd_models, link_fd,
+        None if ring_span_dynamic_load is None else np.asarray(ring_span_dynamic_load,
+                                                                dtype=float),
+        steady_reason, tuple(result.span_names))
+
+
+def _larger(ring: NDArray[np.float64] | None, link: NDArray[np.float64], reason: str
+            ) -> tuple[NDArray[np.float64] | None, tuple[str, ...]]:
+    """Per span the larger load and its model; the whole-drive model's when ``reason``
+    says the link-level's is not comparable; (None, ()) without the whole-drive's."""
+    if ring is None:
+        return None, ()
+    ring = np.asarray(ring, dtype=float)
+    if ring.shape != link.shape:
+        raise ValueError(f"{ring.size} spans of the whole-drive model against {link.size} of "
+                         "the link-level run")
+    if reason:
+        return ring.copy(), (WHOLE_DRIVE,) * ring.size
+    return np.maximum(ring, link), tuple(WHOLE_DRIVE if r >= k else LINK_LEVEL
+                                         for r, k in zip(ring, link, strict=True))

@@ -64,7 +64,7 @@ from chaindrive.dynamics.transient.kernel_codes import (  # the start-up kernel'
 E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
     :mod:`chaindrive.dynamics.transient.startup`: constant, ramp, Kloss)."""
@@ -76,7 +76,7 @@ def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     return float(mp[0] * s * mp[1] / (s * s + mp[1] * mp[1]))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> float:
     """Moment of resistance [N·m] at forward speed w [rad/s] (ResistanceLaw kinds)."""
     r = w / wn
@@ -89,7 +89,7 @@ def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> 
     return 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any) -> None:
     """cand[r] = the sprocket whose reach circle holds roller r, else −1. A roller that
     comes within reach of sprocket s from outside every reach is armed for an engagement
@@ -111,7 +111,7 @@ def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any) -> None:
             eng[r, 0] = -1.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any) -> None:
     """Engagement impacts: an armed roller's first contact opens a window of win[s] steps
     (one tooth period at the nominal speed) over which its peak contact force is kept; a
@@ -141,7 +141,7 @@ def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any)
             eng[r, 0] = -1.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, ri: float,
                  ah: float, Ra: float) -> tuple[float, float, float, int]:
     """(δ [m], n_x, n_y, gap) of a roller centred at (px, py) relative to the sprocket
@@ -164,19 +164,64 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
         else:
             nx, ny = er_x, er_y
     else:
-        sg = 1.0 if theta > 0 else -1.0
-        ca, sa = math.cos(ah), sg * math.sin(ah)
-        fx = -ca * er_x - sa * er_y  # flank normal into the tooth: ca(−e_r) + sa e_t
-        fy = -ca * er_y + sa * er_x
-        d_gap = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
-        nx, ny = -fx, -fy
+        d, nx, ny = _flank(px, py, wx, wy, er_x, er_y, 1.0 if theta > 0 else -1.0, R, rr, ri,
+                           math.cos(ah), math.sin(ah), Ra)
+        return d, nx, ny, j
     d_tip = Ra + rr - rho_c
     if d_tip < d_gap:
         return d_tip, px / rho_c, py / rho_c, j
     return d_gap, nx, ny, j
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
+def _flank(px: float, py: float, wx: float, wy: float, gx: float, gy: float, sg: float,
+           R: float, rr: float, ri: float, ca: float, sa: float, Ra: float
+           ) -> tuple[float, float, float]:
+    """(δ [m], n_x, n_y) of a roller beyond the seating arc on side ``sg`` (±1) of the gap
+    whose centre direction is (gx, gy): centre p (from the sprocket centre), w = p − R g.
+
+    The tooth there is the tip disc |x| ≤ R_a on the tooth's side of the flank line (through
+    the arc's end P_α = R g + r_i f, normal f into the tooth, running outwards along u to
+    the corner C = P_α + L u on the tip circle). Inside the tooth δ = r − (its distance to
+    the nearer face); outside, δ = r − the distance to the nearest point of the tooth: the
+    foot on the flank while it lies below the corner, the tip circle's nearest point while
+    it lies on the tooth's side of the flank, else the corner C itself — a roller clear of
+    the corner is not pushed by the flank line extended beyond the tooth.
+    """
+    fx = -ca * gx - sg * sa * gy  # flank normal into the tooth: ca(−g) + sg sa t
+    fy = -ca * gy + sg * sa * gx
+    ux, uy = sg * fy, -sg * fx  # along the flank, outwards (u·g = sa > 0)
+    ex, ey = wx - ri * fx, wy - ri * fy  # from P_α
+    h = ex * fx + ey * fy  # into the tooth (> 0: p on the tooth's side)
+    along = ex * ux + ey * uy
+    rc = math.sqrt(px * px + py * py)
+    d_flank = h + rr
+    d_tip = Ra + rr - rc
+    if h >= 0.0 and rc <= Ra:  # centre inside the tooth: the nearer face
+        if d_tip < d_flank:
+            return d_tip, px / rc, py / rc
+        return d_flank, -fx, -fy
+    # the corner's distance along the flank: |P_α + L u| = R_a, P_α·u = R sa
+    pu = R * sa
+    L = -pu + math.sqrt(max(pu * pu - (R * R - 2.0 * R * ri * ca + ri * ri - Ra * Ra), 0.0))
+    flank_ok = h < 0.0 and along <= L
+    tip_ok = False
+    if rc > Ra:  # the tip circle's nearest point on the tooth's side of the flank?
+        qx, qy = px * Ra / rc - R * gx - ri * fx, py * Ra / rc - R * gy - ri * fy
+        tip_ok = qx * fx + qy * fy >= 0.0
+    if flank_ok and (not tip_ok or d_flank <= d_tip):
+        return d_flank, -fx, -fy
+    if tip_ok:
+        return d_tip, px / rc, py / rc
+    cx = px - (R * gx + ri * fx + L * ux)  # from the corner C to the centre
+    cy = py - (R * gy + ri * fy + L * uy)
+    dc = math.sqrt(cx * cx + cy * cy)
+    if dc <= 1e-15:
+        return rr, -fx, -fy
+    return rr - dc, cx / dc, cy / dc
+
+
+@numba.njit(cache=True, error_model="numpy")
 def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
            thd: Any, invl: Any, gd: Any) -> None:
     """Elastic tensions T, unit vectors (ux, uy), angular speeds thd, inverse lengths
@@ -184,23 +229,30 @@ def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy:
     loop vectorises)."""
     N = x.shape[0]
     last = N - 1
-    for i in range(N):
-        b = i + 1 if i < last else 0
-        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
-        dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
-        l2 = dx * dx + dy * dy
-        ell = math.sqrt(l2)
-        inv = 1.0 / ell
-        e = ell - L0[i]
-        T[i] = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
-        thd[i] = (dx * dvy - dy * dvx) * inv * inv
-        gd[i] = (dx * dvx + dy * dvy) * inv
-        invl[i] = inv
-        ux[i] = dx * inv
-        uy[i] = dy * inv
+    for i in range(last):  # links 0 … N−2 (i → i+1): a loop without a branch vectorises
+        _link(x, v, L0, k, clear, T, ux, uy, thd, invl, gd, i, i + 1)
+    _link(x, v, L0, k, clear, T, ux, uy, thd, invl, gd, last, 0)  # the closing link
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _link(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
+          thd: Any, invl: Any, gd: Any, i: int, b: int) -> None:
+    """Link i from roller i to roller b: its entries of :func:`_links`."""
+    dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+    dvx, dvy = v[b, 0] - v[i, 0], v[b, 1] - v[i, 1]
+    l2 = dx * dx + dy * dy
+    ell = math.sqrt(l2)
+    inv = 1.0 / ell
+    e = ell - L0[i]
+    T[i] = k * (e - min(max(e, -clear), clear))  # zero inside the clearance band
+    thd[i] = (dx * dvy - dy * dvx) * inv * inv
+    gd[i] = (dx * dvx + dy * dvy) * inv
+    invl[i] = inv
+    ux[i] = dx * inv
+    uy[i] = dy * inv
+
+
+@numba.njit(cache=True, error_model="numpy")
 def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
     """Hinge friction moment M_r at every roller r on its leading link r (−M_r on the
     trailing link r−1), module docstring; returns the power dissipated [W]."""
@@ -220,7 +272,7 @@ def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
     return diss
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
     """Forces of the links on the rollers into f: link i pulls its ends together with T_i
     along u_i and turns with the net moment M_i − M_{i+1} of its two hinges, the force pair
@@ -240,7 +292,7 @@ def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
         px, py = cx, cy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any, z: Any,
                    cp: Any) -> None:
     """Solve the tridiagonal system with diagonal (b0, diag, …, diag, bl) and off-diagonals
@@ -300,7 +352,7 @@ def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any,
             z[jb] = dn_y
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: Any,
                      rhs: Any, zz: Any, cp: Any, oo: Any) -> None:
     """v ← v + h·f with the link dampers taken implicitly (backward Euler in the axial
@@ -343,7 +395,7 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         gx, gy = px, py
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
                ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
     """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
@@ -360,11 +412,8 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
         else:
             nx, ny = gx, gy
     else:
-        s = sa if wt > 0.0 else -sa
-        fx = -ca * gx - s * gy
-        fy = -ca * gy + s * gx
-        d = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
-        nx, ny = -fx, -fy
+        return _flank(px, py, wx, wy, gx, gy, 1.0 if wt > 0.0 else -1.0, R, rr, ri, ca, sa,
+                      Ra)
     lim = Ra + rr - d  # the tip disc governs when |p| > R_a + r − δ_gap
     rc2 = px * px + py * py
     if lim < 0.0 or rc2 > lim * lim:
@@ -373,9 +422,9 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
     return d, nx, ny
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
-              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any) -> float:
+              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any) -> float:
     """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
     Fc [N], sprocket Sc and gap Gc of every roller (Gc ≥ 0 also serves as the guess of the
     next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
@@ -383,12 +432,11 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
 
     spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z, R sin(π/z); trig rows:
     cos α, sin α, tan α;
-    gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame.
+    gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame; cth,
+    sth: work arrays (n,) for the cosine and sine of the sprockets' angles.
     """
     diss = 0.0
     ns = th.size if th.size < spr.shape[1] else spr.shape[1]
-    cth = np.empty(spr.shape[1])
-    sth = np.empty(spr.shape[1])
     for s in range(ns):
         cth[s] = math.cos(th[s])
         sth[s] = math.sin(th[s])
@@ -451,7 +499,7 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
     return diss
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any,
                 mkind: int,
                 mp: Any, mdof: int, msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float,
@@ -479,7 +527,7 @@ def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, C
             energy[E_LOAD] += mr * w[i] * dt
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float,
                record_every: int, m: float, gx: float, gy: float, L0: Any, k: float, c: float,
                clear: float, mu_r: float, cmax: float, spr: Any, trig: Any, gtab: Any,
@@ -520,6 +568,8 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     Fc = np.zeros(N)
     Sc = np.full(N, -1, dtype=np.int64)
     Gc = np.full(N, -1, dtype=np.int64)
+    cth = np.empty(spr.shape[1])  # cos and sin of the sprockets' angles (_contacts)
+    sth = np.empty(spr.shape[1])
     row = 0
     for step in range(steps + 1):
         t = t0 + step * dt
@@ -536,7 +586,8 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
         for i in range(N):
             Tf[i] = T[i] - kt * gd[i]
         _link_forces(f, Tf, ux, uy, invl, M)
-        p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
+        p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc, cth,
+                              sth)
         if step < steps:
             _engagements(t, Fc, eng, win, events, count)
             _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
@@ -572,7 +623,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             th[i] += dt * w[i]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx: float,
                   gy: float, spr: Any, trig: Any, gtab: Any, reach: Any, f: Any, tq: Any,
                   T: Any, tr: Any) -> None:
@@ -609,7 +660,7 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
     _links(x, v, L0, k, clear, T, ux, uy, thd, invl, gd)
     _link_forces(f, T, ux, uy, invl, M)
     before = f.copy()
-    _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc)
+    _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc, np.empty(n), np.empty(n))
     for r in range(N):
         s = Sc[r]
         tr[r] = 0.0

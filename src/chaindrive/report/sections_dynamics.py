@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from chaindrive._docstrings import shared_parameters
-from chaindrive.display import constraint_row, show, unit_header
+from chaindrive.display import check_row, constraint_row, quantity_text, show, unit_header
 from chaindrive.plotting import (
     absorption_vs_amplitude,
     afc_curves,
@@ -380,6 +380,20 @@ def _comparison_rows(inp: ReportInput) -> list[tuple[Any, ...]]:
     return out
 
 
+def _governed_rows(inp: ReportInput) -> list[tuple[Any, ...]]:
+    """(check, subject, value, governing model, its note) of every check that took its load
+    from one of the two models (:attr:`chaindrive.checks.Check.governing_model`)."""
+    names = {"whole_drive": "whole-drive model", "link_level": "link-level model"}
+    out: list[tuple[Any, ...]] = []
+    for c in inp.analysis.checks():
+        if c.governing_model is None:
+            continue
+        _, value, _, _, _ = check_row(c, inp.units)
+        out.append((c.name, c.subject, value, names[c.governing_model],
+                    quantity_text(c.note, c.note_quantities, inp.units)))
+    return out
+
+
 @shared_parameters
 def links_section(inp: ReportInput) -> list[Block] | None:
     """The link-level model of the drive beside the whole-drive model ([Pedersen2004],
@@ -415,12 +429,17 @@ def links_section(inp: ReportInput) -> list[Block] | None:
         "Where the two differ: the link-level model carries the roller–tooth engagement "
         "impacts and the chain's own mass moving along the spans, which the whole-drive "
         "model's smooth polygonal excitation leaves out; its steady dynamic loads are then "
-        "the larger [BinderCovert1948]. Of each load the larger governs (column 'governs'); "
-        "the verdict's checks still take the whole-drive model's. Its first natural "
+        "the larger [BinderCovert1948]. Of each load the larger governs (column 'governs'), "
+        "and the verdict's checks that rest on a dynamic load take it (the table below), "
+        "except where the link-level model's load is not comparable. Its first natural "
         "frequency is the first mode along the chain of its linearisation about the static "
         "state; where it differs from the whole-drive model's, docs/linklevel.md §6 says "
         "which is right. Its impact forces rest on an estimated roller–tooth "
         "stiffness (ISO 6336-1 gear value [ISO6336-1])."))
+    governed = _governed_rows(inp)
+    if governed:
+        blocks.append(Table("Which model's load each check takes",
+                            ("check", "subject", "value", "governs", "why"), rows(governed)))
     times = frame_times(result)
     blocks += [
         plot_block(chain_frames(result, times, units=inp.units), "The chain at four instants of the run, "
