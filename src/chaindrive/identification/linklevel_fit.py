@@ -1,0 +1,326 @@
+"""The link stiffness or the installed sag fitted to a measured natural frequency with the
+link-level model as the forward model.
+
+A tap test of a stationary drive rings at the link-level model's first mode along the chain
+(:func:`chaindrive.linklevel.modes.linear_modes`: the undamped model linearised about its
+static state at the pre-tension T₀ of the design's sag, every sprocket free, no motor). That
+mode rests mostly on T₀ through the spans' sag and the sprockets' polygons, little on the
+links' elasticity (docs/identification.md §4), so a record of it is fitted with this model,
+not with the whole-drive model's modes at the running tensions.
+
+One parameter x is fitted — ``[chain] link_stiffness`` k_link or ``[chain] sag`` s (which
+sets T₀ = k_f q g a, k_f = cos ψ/(8s) + |sin ψ| [ChainDesignRU, §8]) — the other inputs held
+at the design's. The least squares is that of the whole-drive calibration
+(:func:`chaindrive.identification.fitting.fit_log_parameter`): θ = ln x, r_i = (f_model,i(θ) −
+f_i)/u_i, ``scipy.optimize.least_squares`` [Virtanen2020], cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
+[JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ). With it the sensitivity d ln f/d ln x
+of each fitted frequency is reported (by Rayleigh's quotient, d ln f/d ln k = e/2, e the
+share of the mode's strain energy in the links [FoxKapoor1968]); a parameter whose 95 %
+interval spans more than a factor :data:`POORLY_IDENTIFIED_RATIO` is flagged as poorly
+identified by the record: the interval is then a linearisation about a nearly flat model
+and says no more than that the record does not fix the parameter.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+
+from chaindrive.errors import DesignError
+from chaindrive.identification.calibration import (
+    MeasuredMode,
+    verdict_changes,
+    with_link_stiffness,
+)
+from chaindrive.identification.fitting import fit_log_parameter
+
+if TYPE_CHECKING:
+    from chaindrive.model import Drive
+
+__all__ = ["LINK_STIFFNESS_RANGE", "POORLY_IDENTIFIED_RATIO", "SAG_RANGE", "LinkLevelCalibration",
+           "LinkLevelDesign", "calibrate_link_level", "calibrated_design_link_level",
+           "link_level_modes_along_chain", "with_sag"]
+
+#: A 95 % interval wider than this ratio (upper/lower) marks the parameter as poorly
+#: identified by the record [-] (a choice: a factor 2 in k_link or s).
+POORLY_IDENTIFIED_RATIO = 2.0
+#: The fitted k_link is kept within these multiples of the design's [-]: the range over which
+#: the link-level static state is found on the seed drive (at 3 × the design's stiffness its
+#: pre-tension is not reached); a fit ending on a bound says so.
+LINK_STIFFNESS_RANGE = (0.1, 2.5)
+#: The fitted sag is kept within the design file's range of ``[chain] sag`` [-].
+SAG_RANGE = (0.001, 0.1)
+
+Parameter = Literal["link_stiffness", "sag"]
+
+
+def with_sag(drive: Drive, sag: float) -> Drive:
+    """The design with ``[chain] sag`` set to s [-].
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    sag : float
+        s, the installed sag of the slack span as a fraction of its length [-].
+
+    Returns
+    -------
+    Drive
+    """
+    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
+
+
+def link_level_modes_along_chain(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
+    """The link-level model's natural frequencies of its modes along the chain [Hz], lowest
+    first: those of :func:`chaindrive.linklevel.modes.linear_modes` with more than half
+    their kinetic energy along the chain and in the sprockets' turning.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+
+    Returns
+    -------
+    ndarray
+        f [Hz].
+
+    Raises
+    ------
+    ChainDriveError
+        The link-level model refuses the design or finds no static state.
+    """
+    from chaindrive.linklevel.modes import LONGITUDINAL, linear_modes  # lazy: heavy
+
+    modes = linear_modes(drive)
+    return np.asarray(modes.frequencies_hz[modes.longitudinal_fraction > LONGITUDINAL],
+                      dtype=float)
+
+
+@dataclass(frozen=True, slots=True)
+class LinkLevelCalibration:
+    """One parameter fitted with the link-level model (module docstring).
+
+    Parameters
+    ----------
+    parameter : str
+        ``"link_stiffness"`` [N/m] or ``"sag"`` [-].
+    initial : float
+        The design's value.
+    value : float
+        Fitted.
+    std_log : float
+        σ of its logarithm [-].
+    interval : tuple of float
+        95 % interval.
+    bounds : tuple of float
+        The range the fit was kept within.
+    measured : tuple of MeasuredMode
+        The measurements (mode m: the m-th mode along the chain).
+    fitted_frequencies : tuple of float
+        The link-level model's frequencies of those modes at the fitted value [Hz].
+    sensitivities : tuple of float
+        d ln f/d ln x of each at the fitted value [-].
+    chi2_per_dof : float | None
+        χ²/ν [-] (None with one measurement).
+    evaluations : int
+        Model evaluations [-].
+    pretension : float
+        T₀ of the fitted design [N].
+    """
+
+    parameter: str
+    initial: float
+    value: float
+    std_log: float
+    interval: tuple[float, float]
+    bounds: tuple[float, float]
+    measured: tuple[MeasuredMode, ...]
+    fitted_frequencies: tuple[float, ...]
+    sensitivities: tuple[float, ...]
+    chi2_per_dof: float | None
+    evaluations: int
+    pretension: float
+
+    @property
+    def interval_ratio(self) -> float:
+        """Upper over lower end of the 95 % interval [-]."""
+        return self.interval[1] / self.interval[0]
+
+    @property
+    def poorly_identified(self) -> bool:
+        """The 95 % interval spans more than :data:`POORLY_IDENTIFIED_RATIO`."""
+        return self.interval_ratio > POORLY_IDENTIFIED_RATIO
+
+    @property
+    def at_bound(self) -> bool:
+        """The fit ended within 0.1 % of a bound of :attr:`bounds`."""
+        return (self.value <= self.bounds[0] * 1.001 or self.value >= self.bounds[1] / 1.001)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (units in the keys)."""
+        unit = "n_per_m" if self.parameter == "link_stiffness" else "fraction"
+        return {
+            "model": "link-level",
+            "parameter": f"chain.{self.parameter}",
+            f"initial_{unit}": self.initial,
+            f"fitted_{unit}": self.value,
+            "std_of_log": self.std_log,
+            f"interval_95_{unit}": list(self.interval),
+            "interval_95_ratio": self.interval_ratio,
+            "poorly_identified": self.poorly_identified,
+            f"bounds_{unit}": list(self.bounds),
+            "at_bound": self.at_bound,
+            "residuals": [{"mode": m.mode, "measured_hz": m.frequency, "std_hz": m.std,
+                           "model_hz": f, "residual_hz": f - m.frequency,
+                           "log_sensitivity": s}
+                          for m, f, s in zip(self.measured, self.fitted_frequencies,
+                                             self.sensitivities, strict=True)],
+            "chi2_per_dof": self.chi2_per_dof,
+            "model_evaluations": self.evaluations,
+            "fitted_pretension_n": self.pretension,
+        }
+
+
+def _checked(measured: Sequence[MeasuredMode]) -> None:
+    """Refuse what the link-level fit cannot take (one line per error)."""
+    if not measured:
+        raise DesignError("--natural", "no measured natural frequency; allowed: one or more")
+    for m in measured:
+        if m.mode != 1:
+            raise DesignError("--natural", f"mode {m.mode} with --model links; allowed: 1 (the "
+                              "link-level model's first mode along the chain; the higher ones "
+                              "change order with the link stiffness)")
+        if not (math.isfinite(m.frequency) and m.frequency > 0):
+            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
+                              "allowed: above 0 Hz")
+        if not (math.isfinite(m.std) and m.std > 0):
+            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
+                              "above 0 Hz")
+
+
+def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
+                         parameter: Parameter = "link_stiffness") -> LinkLevelCalibration:
+    """Fit k_link or the sag s to measured frequencies of the link-level model's modes along
+    the chain (module docstring), the other inputs held at the design's.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    measured : sequence of MeasuredMode
+        Mode 1 (the first mode along the chain), one or more readings.
+    parameter : {"link_stiffness", "sag"}
+        What is fitted.
+
+    Returns
+    -------
+    LinkLevelCalibration
+
+    Raises
+    ------
+    DesignError
+        No measurement, a mode other than 1, a frequency or uncertainty not positive, an
+        unknown parameter.
+    ChainDriveError
+        The link-level model refuses the design or finds no static state.
+
+    References
+    ----------
+    [Virtanen2020]; [JCGM100, §5.1]; [FoxKapoor1968].
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+    from chaindrive.linklevel.model import build_model
+    from chaindrive.strength.loads import installed_sag_ratio
+
+    _checked(measured)
+    f = np.array([m.frequency for m in measured])
+    u = np.array([m.std for m in measured])
+    modes = np.array([m.mode for m in measured]) - 1
+    if parameter == "link_stiffness":
+        x0 = analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
+        bounds = (LINK_STIFFNESS_RANGE[0] * x0, LINK_STIFFNESS_RANGE[1] * x0)
+
+        def design(x: float) -> Drive:
+            return with_link_stiffness(drive, x)
+    elif parameter == "sag":
+        x0 = installed_sag_ratio(drive)
+        bounds = SAG_RANGE
+
+        def design(x: float) -> Drive:
+            return with_sag(drive, x)
+    else:
+        raise DesignError("--parameter", f"{parameter!r}; allowed: link_stiffness, sag")
+    link_level_modes_along_chain(drive)  # the design as given: refused here, not mid-fit
+
+    def model(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
+        return np.asarray(link_level_modes_along_chain(design(x))[modes], dtype=float)
+
+    fit = fit_log_parameter(model, f, u, x0, lower=bounds[0], upper=bounds[1])
+    fitted = design(fit.value)
+    from chaindrive.geometry.contour import contour_geometry
+    from chaindrive.linklevel.equilibrium import installed_geometry
+
+    geometry, _ = installed_geometry(fitted, contour_geometry(fitted))
+    pretension = float(build_model(fitted, geometry).pretension)
+    return LinkLevelCalibration(parameter, float(x0), fit.value, fit.std_log, fit.interval,
+                                (float(bounds[0]), float(bounds[1])), tuple(measured),
+                                fit.fitted, fit.log_slopes, fit.chi2_per_dof, fit.evaluations,
+                                pretension)
+
+
+@dataclass(frozen=True, slots=True)
+class LinkLevelDesign:
+    """A design calibrated with the link-level model and what its checks say after.
+
+    Parameters
+    ----------
+    calibration : LinkLevelCalibration
+        The fit.
+    drive : Drive
+        The design with the fitted parameter.
+    changes : list of dict
+        Checks whose verdict changed (:func:`~chaindrive.identification.calibration.verdict_changes`).
+    """
+
+    calibration: LinkLevelCalibration
+    drive: Drive
+    changes: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: the fit's keys and ``verdicts_changed``."""
+        return {**self.calibration.to_dict(), "verdicts_changed": self.changes}
+
+
+def calibrated_design_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
+                                 parameter: Parameter = "link_stiffness") -> LinkLevelDesign:
+    """Fit k_link or the sag with the link-level model (:func:`calibrate_link_level`) and
+    re-run the design's checks with the fitted value.
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    measured : sequence of MeasuredMode
+        Mode 1 (the first mode along the chain).
+    parameter : {"link_stiffness", "sag"}
+        What is fitted.
+
+    Returns
+    -------
+    LinkLevelDesign
+    """
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    cal = calibrate_link_level(drive, measured, parameter=parameter)
+    fitted = (with_link_stiffness(drive, cal.value) if parameter == "link_stiffness"
+              else with_sag(drive, cal.value))
+    before = analyze(drive, response=False).checks()
+    after = analyze(fitted, response=False).checks()
+    return LinkLevelDesign(cal, fitted, verdict_changes(before, after))
