@@ -257,6 +257,8 @@ def print_link_level_calibration(doc: dict[str, Any]) -> None:
         con.print(f"[bold]poorly identified by this record[/bold]: the 95 % interval spans a "
                   f"factor {_f(doc['interval_95_ratio'], 3)}; the frequency hardly depends on "
                   "this parameter")
+    for held in doc["held_from_default"]:
+        con.print(f"held at {escape(held)}")
     if doc["at_bound"]:
         lo_b, hi_b = doc[f"bounds_{unit}"]
         con.print(f"the fit ended on a bound of its range {_f(lo_b)} … {_f(hi_b)}: the "

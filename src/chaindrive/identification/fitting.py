@@ -66,7 +66,8 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
                        measured: np.ndarray[Any, np.dtype[np.float64]],
                        std: np.ndarray[Any, np.dtype[np.float64]], initial: Sequence[float], *,
                        upper: Sequence[float] | None = None,
-                       lower: Sequence[float] | None = None) -> tuple[LogFit, ...]:
+                       lower: Sequence[float] | None = None,
+                       log_step: float | None = None) -> tuple[LogFit, ...]:
     """Fit positive parameters x so a model's values match measured ones (module
     docstring): θ = ln x, r_i(θ) = (y_model,i(e^θ) − y_i)/u_i minimised by
     ``scipy.optimize.least_squares`` ([Virtanen2020]), cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
@@ -86,6 +87,10 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
         Each x is kept below its bound (None: unbounded) [the parameter's unit].
     lower : sequence of float | None
         Each x is kept above its bound (None: unbounded), positive [the parameter's unit].
+    log_step : float | None
+        The Jacobian by central differences θ ± h with this h [-] (a secant over x·e^±h,
+        for a model whose values are not smooth on the scale of ``least_squares``' own
+        steps); None: ``least_squares``' forward differences (relative step 1e-4).
 
     Returns
     -------
@@ -108,7 +113,14 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
     hi = np.full(n, np.inf) if upper is None else np.log(np.asarray(upper, dtype=float))
     lo = np.full(n, -np.inf) if lower is None else np.log(np.asarray(lower, dtype=float))
     x0 = np.maximum(np.minimum(np.log(np.asarray(initial, dtype=float)), hi - 1e-3), lo + 1e-3)
+    def secant(theta: np.ndarray[Any, np.dtype[np.float64]]
+               ) -> np.ndarray[Any, np.dtype[np.float64]]:
+        h = float(log_step or 0.0)
+        return np.column_stack([(residuals(theta + h * e) - residuals(theta - h * e)) / (2 * h)
+                                for e in np.eye(n)])
+
     fit = least_squares(residuals, x0=x0, bounds=(lo, hi), method="trf",
+                        jac="2-point" if log_step is None else secant,
                         diff_step=np.full(n, 1e-4), x_scale=np.ones(n), xtol=1e-10,
                         ftol=1e-10)
     J = np.asarray(fit.jac, dtype=float)
@@ -132,7 +144,8 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
 def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float64]]],
                       measured: np.ndarray[Any, np.dtype[np.float64]],
                       std: np.ndarray[Any, np.dtype[np.float64]], initial: float, *,
-                      upper: float = math.inf, lower: float = 0.0) -> LogFit:
+                      upper: float = math.inf, lower: float = 0.0,
+                      log_step: float | None = None) -> LogFit:
     """One positive parameter fitted by :func:`fit_log_parameters`.
 
     Parameters
@@ -149,6 +162,8 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
         x is kept below this bound (e.g. a damping ratio below 1) [the parameter's unit].
     lower : float
         x is kept above this bound (0: unbounded) [the parameter's unit].
+    log_step : float | None
+        Central-difference step in ln x of the Jacobian (None: ``least_squares``' own).
 
     Returns
     -------
@@ -156,4 +171,4 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
     """
     return fit_log_parameters(lambda x: model(float(x[0])), measured, std, [initial],
                               upper=None if math.isinf(upper) else [upper],
-                              lower=None if lower <= 0.0 else [lower])[0]
+                              lower=None if lower <= 0.0 else [lower], log_step=log_step)[0]

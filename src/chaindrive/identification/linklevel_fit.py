@@ -42,17 +42,25 @@ from chaindrive.identification.fitting import fit_log_parameter
 if TYPE_CHECKING:
     from chaindrive.model import Drive
 
-__all__ = ["LINK_STIFFNESS_RANGE", "POORLY_IDENTIFIED_RATIO", "SAG_RANGE", "LinkLevelCalibration",
+__all__ = ["LINK_STIFFNESS_RANGE", "LOG_STEP", "POORLY_IDENTIFIED_RATIO", "SAG_RANGE", "LinkLevelCalibration",
            "LinkLevelDesign", "calibrate_link_level", "calibrated_design_link_level",
            "link_level_modes_along_chain", "with_sag"]
 
 #: A 95 % interval wider than this ratio (upper/lower) marks the parameter as poorly
 #: identified by the record [-] (a choice: a factor 2 in k_link or s).
 POORLY_IDENTIFIED_RATIO = 2.0
-#: The fitted k_link is kept within these multiples of the design's [-]: the range over which
-#: the link-level static state is found on the seed drive (at 3 × the design's stiffness its
-#: pre-tension is not reached); a fit ending on a bound says so.
-LINK_STIFFNESS_RANGE = (0.1, 2.5)
+#: The fitted k_link is kept within these multiples of the design's [-]: with the Jacobian's
+#: ±10 % (:data:`LOG_STEP`), within 0.1–2.5 ×, where the link-level static state is found on
+#: the seed drive (at 3 × the design's stiffness its pre-tension is not reached); a fit
+#: ending on a bound says so.
+LINK_STIFFNESS_RANGE = (0.1, 2.5 / 1.1)
+#: The Jacobian's central-difference step in ln x [-]: a secant over ±10 % of x. The
+#: first mode along the chain veers past the spans' transverse modes beside it, where which
+#: mode counts as "along the chain" (more than half its kinetic energy) changes, so its
+#: frequency steps by up to 2–3 Hz over a change of 0.01 % in k_link; least_squares' own step
+#: (1e-4 of ln k) read one such step as a slope of 290 on the seed drive (one noise seed in
+#: twenty) where the secant reads 0.007.
+LOG_STEP = math.log(1.1)
 #: The fitted sag is kept within the design file's range of ``[chain] sag`` [-].
 SAG_RANGE = (0.001, 0.1)
 
@@ -133,6 +141,8 @@ class LinkLevelCalibration:
         Model evaluations [-].
     pretension : float
         T₀ of the fitted design [N].
+    held : tuple of str
+        The input held that rests on a default or an estimate (the design gives none).
     """
 
     parameter: str
@@ -147,6 +157,7 @@ class LinkLevelCalibration:
     chi2_per_dof: float | None
     evaluations: int
     pretension: float
+    held: tuple[str, ...] = ()
 
     @property
     def interval_ratio(self) -> float:
@@ -185,6 +196,7 @@ class LinkLevelCalibration:
             "chi2_per_dof": self.chi2_per_dof,
             "model_evaluations": self.evaluations,
             "fitted_pretension_n": self.pretension,
+            "held_from_default": list(self.held),
         }
 
 
@@ -243,8 +255,12 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     f = np.array([m.frequency for m in measured])
     u = np.array([m.std for m in measured])
     modes = np.array([m.mode for m in measured]) - 1
+    k0 = analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
     if parameter == "link_stiffness":
-        x0 = analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
+        x0 = k0
+        held = (() if drive.chain.sag is not None else
+                (f"the installed sag {100 * installed_sag_ratio(drive):g} % (the default; "
+                 "the design gives none)",))
         bounds = (LINK_STIFFNESS_RANGE[0] * x0, LINK_STIFFNESS_RANGE[1] * x0)
 
         def design(x: float) -> Drive:
@@ -252,6 +268,9 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     elif parameter == "sag":
         x0 = installed_sag_ratio(drive)
         bounds = SAG_RANGE
+        held = (() if drive.chain.link_stiffness is not None else
+                (f"the link stiffness {k0:.4g} N/m (computed from its plates and pins; the design "
+                 "gives none)",))
 
         def design(x: float) -> Drive:
             return with_sag(drive, x)
@@ -262,7 +281,8 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     def model(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
         return np.asarray(link_level_modes_along_chain(design(x))[modes], dtype=float)
 
-    fit = fit_log_parameter(model, f, u, x0, lower=bounds[0], upper=bounds[1])
+    fit = fit_log_parameter(model, f, u, x0, lower=bounds[0], upper=bounds[1],
+                            log_step=LOG_STEP)
     fitted = design(fit.value)
     from chaindrive.geometry.contour import contour_geometry
     from chaindrive.linklevel.equilibrium import installed_geometry
@@ -272,7 +292,7 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     return LinkLevelCalibration(parameter, float(x0), fit.value, fit.std_log, fit.interval,
                                 (float(bounds[0]), float(bounds[1])), tuple(measured),
                                 fit.fitted, fit.log_slopes, fit.chi2_per_dof, fit.evaluations,
-                                pretension)
+                                pretension, held)
 
 
 @dataclass(frozen=True, slots=True)
