@@ -298,11 +298,11 @@ def test_calibrate_with_the_link_level_model_writes_the_fitted_sag(tmp_path: Pat
 
 def test_calibrate_with_the_link_level_model_refuses_a_design_it_cannot_settle(
         tmp_path: Path) -> None:
-    # at 4 × its link stiffness the seed drive's link-level static state is not found: one
-    # line, exit 2, nothing written
+    # at 4 × its link stiffness (2.04e9 N/m) the seed drive's link-level static state is not
+    # found: one line, exit 2, nothing written
     design = tmp_path / "stiff.toml"
     design.write_text(Path(SEED).read_text(encoding="utf-8").replace(
-        "strands = 1", "strands = 1\nlink_stiffness = \"2.0e9 N/m\"", 1), encoding="utf-8")
+        "strands = 1", "strands = 1\nlink_stiffness = \"2.04e9 N/m\"", 1), encoding="utf-8")
     out = run_cli("calibrate", str(design), "--model", "links", "--natural", "1=80Hz",
                   "--write-calibrated", str(tmp_path / "c.toml"))
     assert out.returncode == 2 and out.stdout == ""

@@ -72,6 +72,7 @@ def _natural_modes(natural: list[str], tolerance: str | None
                    ) -> tuple[list[MeasuredMode], list[str]]:
     """``--natural MODE=FREQUENCY`` ± ``--tolerance`` (rectangular: u = a/√3), and what is
     assumed."""
+    # lazy: the identification stack only for this command
     from chaindrive.errors import DesignError
     from chaindrive.identification import MeasuredMode
     from chaindrive.units import parse_quantity

@@ -163,7 +163,7 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
     lower : float
         x is kept above this bound (0: unbounded) [the parameter's unit].
     log_step : float | None
-        Central-difference step in ln x of the Jacobian (None: ``least_squares``' own).
+        Central-difference step in ln x of the Jacobian [-] (None: ``least_squares``' own).
 
     Returns
     -------

@@ -54,8 +54,8 @@ __all__ = ["GRID_POINTS", "LINK_STIFFNESS_RANGE", "LOG_STEP", "OTHER_STATE",
 POORLY_IDENTIFIED_RATIO = 2.0
 #: The fitted k_link is kept within these multiples of the design's [-] (the grid of
 #: :data:`GRID_POINTS` spans them): where the link-level static state is found on the seed
-#: drive (at 3 × the design's stiffness its pre-tension is not reached); a fit ending on a
-#: bound says so.
+#: drive (at 4 × the design's stiffness, 2.04e9 N/m, its pre-tension is not reached); a fit
+#: ending on a bound says so.
 LINK_STIFFNESS_RANGE = (0.1, 2.5)
 #: The Jacobian's central-difference step in ln x [-]: a secant over ±10 % of x. The
 #: first mode along the chain veers past the spans' transverse modes beside it, where which
@@ -136,15 +136,15 @@ class LinkLevelCalibration:
     parameter : str
         ``"link_stiffness"`` [N/m] or ``"sag"`` [-].
     initial : float
-        The design's value.
+        The design's value [N/m] or [-].
     value : float
-        Fitted.
+        Fitted [N/m] or [-].
     std_log : float
         σ of its logarithm [-].
     interval : tuple of float
-        95 % interval.
+        95 % interval [N/m] or [-].
     bounds : tuple of float
-        The range the fit was kept within.
+        The range the fit was kept within [N/m] or [-].
     measured : tuple of MeasuredMode
         The measurements (mode m: the m-th mode along the chain).
     fitted_frequencies : tuple of float
@@ -216,6 +216,15 @@ class LinkLevelCalibration:
         }
 
 
+def _run_or_nan(drive: Drive, modes: np.ndarray[Any, np.dtype[np.int64]]
+                ) -> np.ndarray[Any, np.dtype[np.float64]]:
+    """The link-level frequencies of ``modes`` [Hz], NaN where no static state is found."""
+    try:
+        return np.asarray(link_level_modes_along_chain(drive)[modes], dtype=float)
+    except ConvergenceError:
+        return np.full(modes.size, np.nan)
+
+
 def _stiffness_surrogate(design: Callable[[float], Drive], bounds: tuple[float, float],
                          modes: np.ndarray[Any, np.dtype[np.int64]]
                          ) -> Callable[[float], np.ndarray[Any, np.dtype[np.float64]]]:
@@ -225,14 +234,14 @@ def _stiffness_surrogate(design: Callable[[float], Drive], bounds: tuple[float, 
     lies more than :data:`OTHER_STATE` from the grid's median left out (another static
     state)."""
     grid = np.linspace(math.log(bounds[0]), math.log(bounds[1]), GRID_POINTS)
-    runs = np.log(np.vstack([link_level_modes_along_chain(design(math.exp(t)))[modes]
-                             for t in grid]))
+    runs = np.log(np.vstack([_run_or_nan(design(math.exp(t)), modes) for t in grid]))
     curves = []
     for j in range(runs.shape[1]):
-        keep = np.abs(runs[:, j] - np.median(runs[:, j])) <= OTHER_STATE
+        found = np.isfinite(runs[:, j])
+        keep = found & (np.abs(runs[:, j] - np.median(runs[found, j])) <= OTHER_STATE)
         if keep.sum() < 4:
             raise ConvergenceError(
-                f"the link-level model settles in another static state at {int((~keep).sum())} "
+                f"the link-level model finds no static state or another at {int((~keep).sum())} "
                 f"of {GRID_POINTS} link stiffnesses between {bounds[0]:.4g} and {bounds[1]:.4g} "
                 "N/m; its frequency cannot be fitted")
         curves.append(PchipInterpolator(grid[keep], runs[keep, j], extrapolate=True))
@@ -290,7 +299,10 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     ----------
     [Virtanen2020]; [JCGM100, §5.1]; [FoxKapoor1968].
     """
-    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+    # lazy: analysis imports the whole pipeline, the link-level model numba's kernels
+    from chaindrive.analysis import analyze
+    from chaindrive.geometry.contour import contour_geometry
+    from chaindrive.linklevel.equilibrium import installed_geometry
     from chaindrive.linklevel.model import build_model
     from chaindrive.strength.loads import installed_sag_ratio
 
@@ -329,9 +341,6 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     fit = fit_log_parameter(model, f, u, x0, lower=bounds[0], upper=bounds[1],
                             log_step=LOG_STEP)
     fitted = design(fit.value)
-    from chaindrive.geometry.contour import contour_geometry
-    from chaindrive.linklevel.equilibrium import installed_geometry
-
     geometry, _ = installed_geometry(fitted, contour_geometry(fitted))
     pretension = float(build_model(fitted, geometry).pretension)
     return LinkLevelCalibration(parameter, float(x0), fit.value, fit.std_log, fit.interval,
