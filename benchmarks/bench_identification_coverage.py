@@ -1,7 +1,7 @@
 """Coverage of the identification's 95 % intervals over noise seeds: how often each interval
 holds the value the record was made with (docs/identification.md §3–4).
 
-Four records, each repeated over noise seeds 0–19 (the signal itself is made once):
+Six records, each repeated over noise seeds 0–19 (the signal itself is made once):
 
 * ``sines``: the whole-drive model's first two elastic frequencies at 0.4 × the seed's link
   stiffness as sines with white noise (tests/unit/test_identification_calibration.py) →
