@@ -13,7 +13,9 @@ sets T₀ = k_f q g a, k_f = cos ψ/(8s) + |sin ψ| [ChainDesignRU, §8]) — th
 at the design's. The least squares is that of the whole-drive calibration
 (:func:`chaindrive.identification.fitting.fit_log_parameter`): θ = ln x, r_i = (f_model,i(θ) −
 f_i)/u_i, ``scipy.optimize.least_squares`` [Virtanen2020], cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
-[JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ). With it the sensitivity d ln f/d ln x
+[JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ), J a secant over ±10 % of x
+(:data:`LOG_STEP`); for k_link the model's frequency is interpolated through runs on a grid
+(:data:`GRID_POINTS`). With it the sensitivity d ln f/d ln x
 of each fitted frequency is reported (by Rayleigh's quotient, d ln f/d ln k = e/2, e the
 share of the mode's strain energy in the links [FoxKapoor1968]); a parameter whose 95 %
 interval spans more than a factor :data:`POORLY_IDENTIFIED_RATIO` is flagged as poorly
@@ -57,22 +59,19 @@ POORLY_IDENTIFIED_RATIO = 2.0
 #: drive (at 4 × the design's stiffness, 2.04e9 N/m, its pre-tension is not reached); a fit
 #: ending on a bound says so.
 LINK_STIFFNESS_RANGE = (0.1, 2.5)
-#: The Jacobian's central-difference step in ln x [-]: a secant over ±10 % of x. The
-#: first mode along the chain veers past the spans' transverse modes beside it, where which
-#: mode counts as "along the chain" (more than half its kinetic energy) changes, so its
-#: frequency steps by up to 2–3 Hz over a change of 0.01 % in k_link; least_squares' own step
-#: (1e-4 of ln k) read one such step as a slope of 290 on the seed drive (one noise seed in
-#: twenty) where the secant reads 0.007.
+#: The Jacobian's central-difference step in ln x [-]: a secant over ±10 % of x, a slope of
+#: the model over the scale a record can resolve rather than over least_squares' own step
+#: (1e-4 of ln x), which reads the model's finest irregularities (:data:`GRID_POINTS`).
 LOG_STEP = math.log(1.1)
 #: Runs of the link-level model on a log-spaced grid of k_link over its range, through which
-#: ln f is interpolated by a monotone cubic in ln k [-]. The static state the link-level model finds is
-#: not the same at every k_link: at some (on the seed drive round 4.3–5.3e8 N/m, e.g. at
-#: 4.498e8 but not at 4.489e8 N/m) it settles in another, with no mode along the chain below
-#: 100 Hz (the first at 120 Hz); fitted run by run, a step or a secant landing there read
-#: slopes of −3 to 290 where the model's is 0.007, and intervals 1 % wide that missed the
-#: truth. f moves by about 1 % per doubling of k_link, smoothly between the states, so the
-#: interpolation through the grid stands for the model; a fit of the sag (slope −0.3) takes
-#: single runs.
+#: ln f is interpolated by a monotone cubic in ln k [-]. The static state the link-level
+#: model finds is not the same at every k_link: at some (on the seed drive at 4.498e8 but
+#: not at 4.489e8 N/m; secants about 3.4e8 and 4.1e8 N/m reached others) it settles in
+#: another, with no mode along the chain below 100 Hz (the first at 120 Hz); fitted run by
+#: run, a step or a secant landing there read slopes of −3 to 290 where the model's is
+#: 0.007, and intervals 1 % wide that missed the truth. f moves by about 1 % per doubling of
+#: k_link, smoothly between the states, so the interpolation through the grid stands for the
+#: model; a fit of the sag (slope −0.3) takes single runs.
 GRID_POINTS = 9
 #: A grid run whose ln f lies farther than this from the grid's median is another static
 #: state and left out [-] (f moves by under 5 % over the whole range of k_link).
