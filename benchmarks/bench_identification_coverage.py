@@ -1,7 +1,7 @@
 """Coverage of the identification's 95 % intervals over noise seeds: how often each interval
 holds the value the record was made with (docs/identification.md §3–4).
 
-Four records, each repeated over noise seeds 0–19 (the signal itself is made once):
+Six records, each repeated over noise seeds 0–19 (the signal itself is made once):
 
 * ``sines``: the whole-drive model's first two elastic frequencies at 0.4 × the seed's link
   stiffness as sines with white noise (tests/unit/test_identification_calibration.py) →
@@ -12,7 +12,12 @@ Four records, each repeated over noise seeds 0–19 (the signal itself is made o
   noise a tenth of the RMS (tests/validation/test_identification_linklevel.py) →
   ``calibrate_link_stiffness``;
 * ``links-zeta``: the same tap test damped, 0.5 s, noise 1 % of the peak → the logarithmic
-  decrement → ``calibrate_damping_ratio``, against the links' ζ_c.
+  decrement → ``calibrate_damping_ratio``, against the links' ζ_c;
+* ``linkmodel-k``: the small tap (0.2 rad/s) of the same drive, undamped, 2 s, noise a tenth
+  of the RMS → ``record_peak`` → ``calibrate_link_level`` (the link-level model as the
+  forward model) for the link stiffness, from the design's;
+* ``linkmodel-sag``: the same small tap at a sag of 1.5 % → ``calibrate_link_level`` for the
+  sag, from the design (its 2 % and its link stiffness, twice the record's).
 
 ``--only context`` prints what the link-level records are set against: the first elastic
 frequency of the whole-drive model at the design's power and at 1 W (the spans at their
@@ -41,8 +46,14 @@ import numpy as np
 from scipy.signal import detrend
 from scipy.stats import beta
 from tests.conftest import EXAMPLES
-from tests.unit.test_identification_sag_record import TRUE_SAG, pluck_record
-from tests.validation.test_identification_linklevel import K_SCALE, _s3_speed
+from tests.unit.test_identification_sag_record import TRUE_SAG as PLUCK_SAG
+from tests.unit.test_identification_sag_record import pluck_record
+from tests.validation.test_identification_linklevel import (
+    K_SCALE,
+    SMALL_TAP,
+    TRUE_SAG,
+    _s3_speed,
+)
 
 import chaindrive
 from chaindrive.identification import (
@@ -59,6 +70,7 @@ from chaindrive.identification.calibration import (
     with_link_stiffness,
 )
 from chaindrive.identification.damping import calibrate_damping_ratio
+from chaindrive.identification.linklevel_fit import calibrate_link_level, with_sag
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.io.record import record_from_arrays
 
@@ -102,7 +114,7 @@ def sag(drive: chaindrive.Drive) -> tuple[float, Callable[[int], Trial]]:
         s = calibrated_sag(drive, reading)
         return s.sag, *s.interval
 
-    return TRUE_SAG, trial
+    return PLUCK_SAG, trial
 
 
 def links_k(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int], Trial]]:
@@ -138,6 +150,32 @@ def links_zeta(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int
         return fit.ratio, *fit.interval
 
     return zeta_c, trial
+
+
+def linkmodel(drive: chaindrive.Drive, k0: float, parameter: str
+              ) -> tuple[float, Callable[[int], Trial]]:
+    """The small tap fitted with the link-level model (module docstring); prints each
+    seed's fit, sensitivity and CPU."""
+    known = with_link_stiffness(drive, K_SCALE * k0)
+    true_value = K_SCALE * k0 if parameter == "link_stiffness" else TRUE_SAG
+    _fs, t, w = _s3_speed(known if parameter == "link_stiffness" else with_sag(known, TRUE_SAG),
+                          2.0, damping=False, tap=SMALL_TAP)
+    x0 = w - w.mean()
+
+    def trial(seed: int) -> Trial:
+        x = x0 + 0.1 * float(np.std(x0)) * np.random.default_rng(seed).standard_normal(x0.size)
+        peak = record_peak(record_from_arrays("tap", t, {"speed_S3_rad_s": x}))
+        cpu = time.process_time()
+        cal = calibrate_link_level(
+            drive, [MeasuredMode(1, peak.frequency, peak.resolution / (2 * math.sqrt(3)))],
+            parameter="sag" if parameter == "sag" else "link_stiffness")
+        print(f"  seed {seed}: peak {peak.frequency:.3f} Hz; fitted {cal.value:.5g} "
+              f"({cal.interval[0]:.4g} … {cal.interval[1]:.4g}, ratio {cal.interval_ratio:.3g}); "
+              f"d ln f/d ln x {cal.sensitivities[0]:.4f}; {cal.evaluations} runs; "
+              f"CPU {time.process_time() - cpu:.1f} s", flush=True)
+        return cal.value, *cal.interval
+
+    return true_value, trial
 
 
 def context(drive: chaindrive.Drive, k0: float) -> None:
@@ -177,7 +215,8 @@ def context(drive: chaindrive.Drive, k0: float) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=20)
-    parser.add_argument("--only", choices=["sines", "sag", "links-k", "links-zeta", "context"])
+    parser.add_argument("--only", choices=["sines", "sag", "links-k", "links-zeta",
+                                           "linkmodel-k", "linkmodel-sag", "context"])
     args = parser.parse_args()
     drive = chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
     k0 = chaindrive.analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
@@ -186,7 +225,9 @@ def main() -> None:
         return
     cases: dict[str, Callable[[], tuple[float, Callable[[int], Trial]]]] = {
         "sines": lambda: sines(drive, k0), "sag": lambda: sag(drive),
-        "links-k": lambda: links_k(drive, k0), "links-zeta": lambda: links_zeta(drive, k0)}
+        "links-k": lambda: links_k(drive, k0), "links-zeta": lambda: links_zeta(drive, k0),
+        "linkmodel-k": lambda: linkmodel(drive, k0, "link_stiffness"),
+        "linkmodel-sag": lambda: linkmodel(drive, k0, "sag")}
     for name, make in cases.items():
         if args.only and name != args.only:
             continue

@@ -220,6 +220,14 @@ def test_calibrate_writes_the_jointly_fitted_reduced_mass(tmp_path: Path) -> Non
      "--uncertain-mass: S3: 1 measured frequency; allowed: two or more"),
     (("--damping", "1=0.03", "--uncertain-mass", "S3"),
      "--uncertain-mass: S3: no natural frequency measured"),
+    (("--natural", "1=62Hz", "--parameter", "sag"), "--parameter: 'sag' with --model ring"),
+    (("--model", "beads", "--natural", "1=80Hz"), "--model: 'beads'; allowed: ring, links"),
+    (("--model", "links", "--natural", "2=80Hz"),
+     "--natural: mode 2 with --model links; allowed: 1"),
+    (("--model", "links", "--natural", "1=80Hz", "--damping", "1=0.03"),
+     "--damping: not with --model links"),
+    (("--model", "links", "--natural", "1=80Hz", "--parameter", "pitch"),
+     "--parameter: 'pitch'; allowed: link_stiffness, sag"),
 ])
 def test_calibrate_bad_input_writes_nothing(tmp_path: Path, args: tuple[str, ...],
                                             message: str) -> None:
@@ -264,3 +272,39 @@ def test_the_package_own_start_up_record_shows_the_tooth_orders(tmp_path: Path) 
             assert p["kind"] == "tooth", (sig["name"], p)
             k = round(p["frequency_hz"] / 75.0)
             assert abs(p["frequency_hz"] - 75.0 * k) <= max(sig["resolution_hz"], 0.75 * k)
+
+
+def test_calibrate_with_the_link_level_model_writes_the_fitted_sag(tmp_path: Path) -> None:
+    import chaindrive
+
+    # a tap test's first mode along the chain at 80 Hz (the design's, at a sag of 2 %: 76.09
+    # Hz) fitted with the link-level model: a smaller sag, the model's frequency at it the
+    # measured one (one measurement, no residual), well identified
+    out_file = tmp_path / "cal.toml"
+    out = run_cli("calibrate", SEED, "--model", "links", "--parameter", "sag",
+                  "--natural", "1=80Hz", "--tolerance", "1Hz",
+                  "--write-calibrated", str(out_file), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["model"] == "link-level" and doc["parameter"] == "chain.sag"
+    lo, hi = doc["interval_95_fraction"]
+    assert lo < doc["fitted_fraction"] < hi < doc["initial_fraction"] == 0.02
+    assert doc["residuals"][0]["model_hz"] == pytest.approx(80.0, abs=1e-3)
+    assert not doc["poorly_identified"] and doc["chi2_per_dof"] is None
+    assert doc["assumed"] == []
+    assert chaindrive.load(out_file).chain.sag == pytest.approx(doc["fitted_fraction"],
+                                                                rel=1e-9)
+
+
+def test_calibrate_with_the_link_level_model_refuses_a_design_it_cannot_settle(
+        tmp_path: Path) -> None:
+    # at 4 × its link stiffness (2.04e9 N/m) the seed drive's link-level static state is not
+    # found: one line, exit 2, nothing written
+    design = tmp_path / "stiff.toml"
+    design.write_text(Path(SEED).read_text(encoding="utf-8").replace(
+        "strands = 1", "strands = 1\nlink_stiffness = \"2.04e9 N/m\"", 1), encoding="utf-8")
+    out = run_cli("calibrate", str(design), "--model", "links", "--natural", "1=80Hz",
+                  "--write-calibrated", str(tmp_path / "c.toml"))
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and "link-level static state" in out.stderr, out.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["stiff.toml"]

@@ -11,8 +11,9 @@ labelled the first elastic mode, and the whole-drive model's link stiffness fitt
 free decay gives the mode's damping ratio (logarithmic decrement [Inman2014, ch. 1]), to
 which the chain's damping ratio is fitted (``calibrate_damping_ratio``).
 
-Neither is recovered within its interval (the two ``xfail(strict=True)`` tests: they state
-the requirement and fail; should they pass, the strict mark fails them and the docs must be
+Neither is recovered within its interval: the whole-drive fit of the stiffness lands 3.6 ×
+the truth (a measured fact, tested as such), and the damping ratio's requirement stays an
+``xfail(strict=True)`` test (should it pass, the strict mark fails it and the docs must be
 revised). The link-level model's first mode along the chain rests on the pre-tension, not on
 the links' elasticity: by Rayleigh's quotient the sensitivity of its frequency to the link
 stiffness is d ln f/d ln k = e/2 [FoxKapoor1968], e the share of the mode's strain energy
@@ -20,6 +21,12 @@ stored in stretching the links, and the links' dampers c = β k_link, β = 2ζ_c
 ζ = βω e/2 = ζ_c (ω/ω_ref) e (proportional damping, ζ = βω/2 [Inman2014, ch. 4], on the
 links' share of the stiffness). The tests below measure e (about 2 %), check the sensitivity against
 it, and that the frequency moves with the pre-tension instead (docs/identification.md §4).
+
+Fitted with the model that made the record — the link-level model linearised about its static
+state (``calibrate_link_level``) — a small tap (0.2 rad/s, where the run rings within 0.3 %
+of the linearisation) gives the link stiffness inside its 95 % interval, an interval that
+spans a factor of thousands and is flagged as poorly identified, and the installed sag
+(a record at 1.5 %, the design's 2 %) inside an interval ±9 % wide.
 """
 
 from __future__ import annotations
@@ -43,6 +50,11 @@ from chaindrive.identification.calibration import (
     with_link_stiffness,
 )
 from chaindrive.identification.damping import calibrate_damping_ratio
+from chaindrive.identification.linklevel_fit import (
+    POORLY_IDENTIFIED_RATIO,
+    calibrate_link_level,
+    with_sag,
+)
 from chaindrive.io.record import record_from_arrays
 from chaindrive.linklevel import simulate
 from chaindrive.linklevel.equilibrium import Balance, installed_geometry, kernel_tables
@@ -58,6 +70,11 @@ NOISE_SEED = 7
 TAP = 1.0
 #: Sample rate of the records [Hz] (the run records at the nearest whole number of steps).
 RATE = 4000.0
+#: The small tap of the records fitted with the link-level model [rad/s]: its run rings
+#: within 0.3 % of the linearisation (the tap of 1 rad/s, 1.4 % above it).
+SMALL_TAP = 0.2
+#: The installed sag of the record fitted for the sag (the design's: 2 %) [-].
+TRUE_SAG = 0.015
 
 
 @pytest.fixture(scope="module")
@@ -67,12 +84,12 @@ def seed() -> dict[str, Any]:
     return {"drive": drive, "k0": k0, "true": with_link_stiffness(drive, K_SCALE * k0)}
 
 
-def _s3_speed(drive: chaindrive.Drive, duration: float, *, damping: bool
+def _s3_speed(drive: chaindrive.Drive, duration: float, *, damping: bool, tap: float = TAP
               ) -> tuple[float, np.ndarray[Any, np.dtype[np.float64]],
                          np.ndarray[Any, np.dtype[np.float64]]]:
     """(sample rate [Hz], time [s], S3's speed [rad/s]) of the link-level tap test."""
     run = simulate(drive, duration, motor=False, initial_speed="rest", damping=damping,
-                   kick_rad_s=[0.0, 0.0, TAP], sample_rate_hz=RATE)
+                   kick_rad_s=[0.0, 0.0, tap], sample_rate_hz=RATE)
     names, table = run.history()
     t = table[:, 0]
     return 1.0 / float(np.median(np.diff(t))), t, table[:, names.index("speed_S3_rad_s")]
@@ -140,14 +157,58 @@ def test_the_tap_record_rings_at_the_link_level_first_mode_along_the_chain(
     assert abs(peak.frequency - linearised["true"]["f"]) < peak.resolution
 
 
-@pytest.mark.xfail(strict=True, reason="the link-level first mode along the chain rests on the "
-                   "pre-tension, not on the link stiffness (docs/identification.md §4)")
-def test_the_whole_drive_calibration_recovers_the_link_level_stiffness(
+def test_the_whole_drive_calibration_misses_the_link_level_stiffness(
         seed: dict[str, Any], tap_record: dict[str, Any]) -> None:
+    # a measured fact, not the requirement: the whole-drive model's first elastic mode (at
+    # the running tensions) is not the tap test's mode; its fit lands 3.65 × the truth and
+    # its interval lies wholly above it (docs/identification.md §4)
     m = MeasuredMode(1, tap_record["peak"].frequency, tap_record["std"])
     cal = calibrate_link_stiffness(seed["drive"], [m], initial=seed["k0"])
+    true = K_SCALE * seed["k0"]
+    assert cal.interval[0] > 2.0 * true
+    assert cal.stiffness / true > 3.0
+
+
+def _small_tap(drive: chaindrive.Drive, seeds: tuple[int, ...]) -> list[MeasuredMode]:
+    """2 s of the undamped small tap test, S3's speed with white noise of a tenth of its RMS
+    (each seed), its most prominent peak taken as mode 1 ± half a bin (rectangular)."""
+    _fs, t, w = _s3_speed(drive, 2.0, damping=False, tap=SMALL_TAP)
+    x0 = w - w.mean()
+    out = []
+    for noise in seeds:
+        x = x0 + 0.1 * float(np.std(x0)) * np.random.default_rng(noise).standard_normal(x0.size)
+        peak = record_peak(record_from_arrays("tap", t, {"speed_S3_rad_s": x}))
+        out.append(MeasuredMode(1, peak.frequency, peak.resolution / (2.0 * math.sqrt(3.0))))
+    return out
+
+
+def test_the_link_level_calibration_holds_the_link_stiffness_in_a_wide_interval(
+        seed: dict[str, Any]) -> None:
+    # the design (its link stiffness twice the record's) fitted to the record
+    (m,) = _small_tap(seed["true"], (NOISE_SEED,))
+    cal = calibrate_link_level(seed["drive"], [m], parameter="link_stiffness")
+    true = K_SCALE * seed["k0"]
     lo, hi = cal.interval
-    assert lo < K_SCALE * seed["k0"] < hi
+    assert lo < true < hi
+    # the record says little: d ln f/d ln k is below 0.02 (Rayleigh: e/2, e ≈ 1–3 %), so
+    # the interval spans far more than a factor 2 and the fit says so
+    (slope,) = cal.sensitivities
+    assert 0.0 < slope < 0.02
+    assert cal.poorly_identified and cal.interval_ratio > 100 * POORLY_IDENTIFIED_RATIO
+    # one measurement, not widened: σ(ln k) = u / (f · d ln f/d ln k) [JCGM100, §5.1]
+    assert cal.std_log == pytest.approx(m.std / (cal.fitted_frequencies[0] * slope), rel=1e-6)
+
+
+def test_the_link_level_calibration_recovers_the_sag(seed: dict[str, Any]) -> None:
+    # the record at a sag of 1.5 %, fitted from the design (its 2 %, and its link stiffness,
+    # twice the record's: the frequency moves by 0.7 % with it, the sag by about 2 %)
+    for m in _small_tap(with_sag(seed["true"], TRUE_SAG), (0, NOISE_SEED)):
+        cal = calibrate_link_level(seed["drive"], [m], parameter="sag")
+        lo, hi = cal.interval
+        assert lo < TRUE_SAG < hi
+        assert not cal.poorly_identified and cal.interval_ratio < 1.3
+        # the mode rests on T₀ ∝ 1/s: d ln f/d ln s ≈ −0.3 (+23 % at 2 T₀ measured)
+        assert -0.4 < cal.sensitivities[0] < -0.2
 
 
 def test_the_link_level_first_mode_stores_little_strain_energy_in_the_links(

@@ -936,11 +936,19 @@ def calibrate(
         "link stiffness (needs two or more natural frequencies)")] = None,
     write_calibrated: Annotated[Path | None, typer.Option(
         "--write-calibrated", help="write the calibrated design file (TOML)")] = None,
+    model: Annotated[str, typer.Option(
+        "--model", help="the forward model: 'ring' (the whole-drive model's elastic modes "
+        "at the running state) or 'links' (the link-level model's first mode along the "
+        "chain at rest: a tap test of a stationary drive; mode 1 only)")] = "ring",
+    parameter: Annotated[str, typer.Option(
+        "--parameter", help="with --model links: what is fitted, 'link_stiffness' or 'sag'")]
+    = "link_stiffness",
     as_json: JsonFlag = False,
 ) -> None:
     """Fit the chain's link stiffness to measured natural frequencies and its damping ratio
     to measured modal damping ratios (least squares, 95 % intervals), re-run the checks and
-    say which verdicts changed."""
+    say which verdicts changed; with --model links, the link stiffness or the sag to a tap
+    test's first mode along the chain."""
     # lazy: only what this command runs (see "Lazy imports" above)
     import chaindrive
     from chaindrive.cli.measure import measured_dampings, measured_modes, print_calibration
@@ -948,7 +956,17 @@ def calibrate(
     from chaindrive.identification import calibrated_design
     from chaindrive.io.design import drive_to_toml
 
+    if model not in ("ring", "links"):
+        with user_errors():
+            raise DesignError("--model", f"{model!r}; allowed: ring, links")
+    if model == "links":
+        _calibrate_links(file, natural, record, tolerance, parameter, write_calibrated,
+                         as_json, damping=bool(damping), uncertain_mass=uncertain_mass)
+        return
     with user_errors():
+        if parameter != "link_stiffness":
+            raise DesignError("--parameter", f"{parameter!r} with --model ring; allowed: "
+                              "link_stiffness (sag: with --model links, or chaindrive tension)")
         check_toml_target(write_calibrated)
         drive = chaindrive.load(file)
         measured, assumed = (([], []) if damping and natural is None and record is None
@@ -964,6 +982,45 @@ def calibrate(
         _write_json(doc)
         return
     print_calibration(doc)
+    if write_calibrated is not None:
+        print(f"calibrated design written to {write_calibrated}")
+
+
+def _calibrate_links(file: Path, natural: list[str] | None, record: Path | None,
+                     tolerance: str | None, parameter: str, write_calibrated: Path | None,
+                     as_json: bool, *, damping: bool, uncertain_mass: str | None) -> None:
+    """``chaindrive calibrate --model links``: the link stiffness or the sag fitted with the
+    link-level model (:func:`chaindrive.identification.calibrated_design_link_level`)."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    import chaindrive
+    from chaindrive.cli.measure import measured_tap_modes, print_link_level_calibration
+    from chaindrive.cli.progress import spinner
+    from chaindrive.identification import calibrated_design_link_level
+    from chaindrive.io.design import drive_to_toml
+
+    with user_errors():
+        if damping:
+            raise DesignError("--damping", "not with --model links; allowed: with --model "
+                              "ring (the link-level damping is not fitted)")
+        if uncertain_mass is not None:
+            raise DesignError("--uncertain-mass", "not with --model links; allowed: with "
+                              "--model ring")
+        if parameter not in ("link_stiffness", "sag"):
+            raise DesignError("--parameter", f"{parameter!r}; allowed: link_stiffness, sag")
+        check_toml_target(write_calibrated)
+        drive = chaindrive.load(file)
+        measured, assumed = measured_tap_modes(natural, record, tolerance)
+        with spinner("fitting the link-level model to the measurement", quiet=as_json):
+            result = calibrated_design_link_level(
+                drive, measured, parameter="sag" if parameter == "sag" else "link_stiffness")
+        doc = {**result.to_dict(), "assumed": assumed}
+        check_document(doc)
+        if write_calibrated is not None:
+            write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")
+    if as_json:
+        _write_json(doc)
+        return
+    print_link_level_calibration(doc)
     if write_calibrated is not None:
         print(f"calibrated design written to {write_calibrated}")
 

@@ -21,9 +21,9 @@ if TYPE_CHECKING:
     )
     from chaindrive.model import Drive
 
-__all__ = ["measured_dampings", "measured_modes", "print_calibration", "print_identification",
-           "print_orders", "print_sag", "print_tension", "save_campbell", "save_figure",
-           "save_orders"]
+__all__ = ["measured_dampings", "measured_modes", "measured_tap_modes", "print_calibration",
+           "print_identification", "print_link_level_calibration", "print_orders", "print_sag",
+           "print_tension", "save_campbell", "save_figure", "save_orders"]
 
 
 def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
@@ -52,14 +52,8 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     # lazy: the identification stack only for this command
     import chaindrive
     from chaindrive.errors import DesignError
-    from chaindrive.identification import (
-        MeasuredMode,
-        identify,
-        measured_natural_peaks,
-        model_lines,
-    )
+    from chaindrive.identification import identify, measured_natural_peaks, model_lines
     from chaindrive.io.record import read_record
-    from chaindrive.units import parse_quantity
 
     if (natural is None) == (record is None):
         raise DesignError("--natural", "give either --natural MODE=FREQUENCY or --record FILE")
@@ -71,8 +65,20 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
             raise DesignError("--record", "no peak within 5 % of a natural frequency of the "
                               "model; give --natural MODE=FREQUENCY")
         return found, []
+    return _natural_modes(natural or [], tolerance)
+
+
+def _natural_modes(natural: list[str], tolerance: str | None
+                   ) -> tuple[list[MeasuredMode], list[str]]:
+    """``--natural MODE=FREQUENCY`` ± ``--tolerance`` (rectangular: u = a/√3), and what is
+    assumed."""
+    # lazy: the identification stack only for this command
+    from chaindrive.errors import DesignError
+    from chaindrive.identification import MeasuredMode
+    from chaindrive.units import parse_quantity
+
     out = []
-    for item in natural or []:
+    for item in natural:
         mode, sep, freq = item.partition("=")
         if not sep or not mode.strip().isdigit() or int(mode) < 1:
             raise DesignError("--natural", f"{item!r}; allowed: MODE=FREQUENCY such as 1=62.3Hz")
@@ -81,6 +87,41 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
              else parse_quantity(tolerance, "frequency", "--tolerance"))
         out.append(MeasuredMode(int(mode), f, a / 3.0 ** 0.5))
     return out, (["each frequency ± 1 %"] if tolerance is None else [])
+
+
+def measured_tap_modes(natural: list[str] | None, record: Path | None, tolerance: str | None
+                       ) -> tuple[list[MeasuredMode], list[str]]:
+    """The measured first mode along the chain of ``chaindrive calibrate --model links``:
+    from ``--natural 1=FREQUENCY`` (± ``--tolerance``, rectangular: u = a/√3), or a record's
+    most prominent peak over all its signals (:func:`chaindrive.identification.record_peak`,
+    ± half a bin, rectangular: u = Δf/(2√3) [JCGM100, §4.3.7]), taken as mode 1.
+
+    Parameters
+    ----------
+    natural : list of str | None
+        ``["1=76.1Hz"]``.
+    record : Path | None
+        A CSV or WAV record of the tap test.
+    tolerance : str | None
+        ± of the --natural frequency (None: ±1 % of it, assumed).
+
+    Returns
+    -------
+    measured : list of MeasuredMode
+    assumed : list of str
+        What rests on an assumed value.
+    """
+    # lazy: the identification stack only for this command
+    from chaindrive.errors import DesignError
+    from chaindrive.identification import MeasuredMode, record_peak
+    from chaindrive.io.record import read_record
+
+    if (natural is None) == (record is None):
+        raise DesignError("--natural", "give either --natural 1=FREQUENCY or --record FILE")
+    if record is not None:
+        peak = record_peak(read_record(record))
+        return [MeasuredMode(1, peak.frequency, peak.resolution / (2.0 * math.sqrt(3.0)))], []
+    return _natural_modes(natural or [], tolerance)
 
 
 def measured_dampings(damping: list[str] | None, tolerance: float | None
@@ -182,6 +223,52 @@ def print_calibration(doc: dict[str, Any]) -> None:
                                               "residual"],
                         [[r["mode"], _f(r["measured"], 3), _f(r["std"], 2), _f(r["model"], 3),
                           _f(r["residual"], 2)] for r in z["residuals"]]))
+    if doc["assumed"]:
+        con.print("assumed: " + escape("; ".join(doc["assumed"])))
+    _print_changes(doc["verdicts_changed"])
+
+
+def print_link_level_calibration(doc: dict[str, Any]) -> None:
+    """Print the parameter fitted with the link-level model, its interval, its sensitivity,
+    whether the record identifies it, the residuals and the changed verdicts.
+
+    Parameters
+    ----------
+    doc : dict
+        :meth:`chaindrive.identification.LinkLevelDesign.to_dict` with ``assumed``.
+    """
+    con = console()
+    stiffness = doc["parameter"] == "chain.link_stiffness"
+    unit = "n_per_m" if stiffness else "fraction"
+    lo, hi = doc[f"interval_95_{unit}"]
+    if stiffness:
+        con.print(f"link stiffness k_link = {_f(doc['fitted_n_per_m'])} N/m, 95 % interval "
+                  f"{_f(lo)} … {_f(hi)} N/m (design: {_f(doc['initial_n_per_m'])} N/m; "
+                  "link-level model, first mode along the chain at rest)")
+    else:
+        con.print(f"installed sag s = {_f(100 * doc['fitted_fraction'])} %, 95 % interval "
+                  f"{_f(100 * lo)} … {_f(100 * hi)} % (design: "
+                  f"{_f(100 * doc['initial_fraction'])} %; pre-tension T₀ = "
+                  f"{_f(doc['fitted_pretension_n'])} N; link-level model, first mode along "
+                  "the chain at rest)")
+    for r in doc["residuals"]:
+        con.print(f"sensitivity d ln f/d ln {'k' if stiffness else 's'} = "
+                  f"{_f(r['log_sensitivity'], 3)} (mode {r['mode']})")
+    if doc["poorly_identified"]:
+        con.print(f"[bold]poorly identified by this record[/bold]: the 95 % interval spans a "
+                  f"factor {_f(doc['interval_95_ratio'], 3)}; the frequency hardly depends on "
+                  "this parameter")
+    for held in doc["held_from_default"]:
+        con.print(f"held at {escape(held)}")
+    if doc["at_bound"]:
+        lo_b, hi_b = doc[f"bounds_{unit}"]
+        con.print(f"the fit ended on a bound of its range {_f(lo_b)} … {_f(hi_b)}: the "
+                  "measured frequency lies beyond what the model reaches in it")
+    con.print(f"χ²/ν = {_f(doc['chi2_per_dof'], 3)}; {doc['model_evaluations']} model runs")
+    con.print(table("residuals", ["mode", "measured Hz", "± Hz", "model Hz", "residual Hz"],
+                    [[r["mode"], _f(r["measured_hz"]), _f(r["std_hz"], 2),
+                      _f(r["model_hz"]), _f(r["residual_hz"], 3)]
+                     for r in doc["residuals"]]))
     if doc["assumed"]:
         con.print("assumed: " + escape("; ".join(doc["assumed"])))
     _print_changes(doc["verdicts_changed"])

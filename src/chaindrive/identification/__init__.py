@@ -7,7 +7,9 @@ Compute only: the command line reads the files and hands arrays in.
 Entry points: :func:`span_tension_from_frequency`, :func:`span_tension_reading` and
 :func:`record_peak` (:mod:`.tension`, :mod:`.reading`); :func:`model_lines` and :func:`identify`
 (:mod:`.spectrum`); :func:`identify_record` and :func:`track_orders` (:mod:`.orders`, order
-tracking of a run-up); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`).
+tracking of a run-up); :func:`calibrated_design` (:mod:`.calibration`, :mod:`.damping`);
+:func:`calibrated_design_link_level` (:mod:`.linklevel_fit`: a tap test fitted with the
+link-level model).
 """
 
 from chaindrive.identification.calibration import (
@@ -23,6 +25,12 @@ from chaindrive.identification.damping import (
     free_decay_damping_ratio,
     half_power_damping_ratio,
     log_decrement_damping_ratio,
+)
+from chaindrive.identification.linklevel_fit import (
+    LinkLevelCalibration,
+    LinkLevelDesign,
+    calibrate_link_level,
+    calibrated_design_link_level,
 )
 from chaindrive.identification.orders import (
     OrderTracking,
@@ -50,6 +58,8 @@ __all__ = [
     "CalibratedDesign",
     "DampingCalibration",
     "Identification",
+    "LinkLevelCalibration",
+    "LinkLevelDesign",
     "MeasuredDamping",
     "MeasuredMode",
     "OrderTracking",
@@ -59,7 +69,9 @@ __all__ = [
     "SpanTensionReading",
     "TensionEstimate",
     "calibrate_damping_ratio",
+    "calibrate_link_level",
     "calibrated_design",
+    "calibrated_design_link_level",
     "calibrated_sag",
     "expected_frequency",
     "free_decay_damping_ratio",

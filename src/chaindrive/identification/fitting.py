@@ -45,6 +45,10 @@ class LogFit:
         Model evaluations [-].
     correlation : tuple of float
         Correlation of ln x with each fitted parameter's logarithm [-] (itself: 1).
+    log_slopes : tuple of float
+        d ln y_model,i / d ln x of each model value at the fit [-] (J_i u_i / y_model,i, from
+        the fit's own finite-difference Jacobian): how strongly each measurement depends on
+        x.
     """
 
     value: float
@@ -54,14 +58,16 @@ class LogFit:
     chi2_per_dof: float | None
     evaluations: int
     correlation: tuple[float, ...] = (1.0,)
+    log_slopes: tuple[float, ...] = ()
 
 
 def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
                                       np.ndarray[Any, np.dtype[np.float64]]],
                        measured: np.ndarray[Any, np.dtype[np.float64]],
                        std: np.ndarray[Any, np.dtype[np.float64]], initial: Sequence[float], *,
-                       upper: Sequence[float] | None = None
-                       ) -> tuple[LogFit, ...]:
+                       upper: Sequence[float] | None = None,
+                       lower: Sequence[float] | None = None,
+                       log_step: float | None = None) -> tuple[LogFit, ...]:
     """Fit positive parameters x so a model's values match measured ones (module
     docstring): θ = ln x, r_i(θ) = (y_model,i(e^θ) − y_i)/u_i minimised by
     ``scipy.optimize.least_squares`` ([Virtanen2020]), cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
@@ -79,6 +85,12 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
         x at the start, positive [the parameter's unit].
     upper : sequence of float | None
         Each x is kept below its bound (None: unbounded) [the parameter's unit].
+    lower : sequence of float | None
+        Each x is kept above its bound (None: unbounded), positive [the parameter's unit].
+    log_step : float | None
+        The Jacobian by central differences θ ± h with this h [-] (a secant over x·e^±h,
+        for a model whose values are not smooth on the scale of ``least_squares``' own
+        steps); None: ``least_squares``' forward differences (relative step 1e-4).
 
     Returns
     -------
@@ -99,8 +111,16 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
         return np.asarray((model(np.exp(theta)) - measured) / std, dtype=float)
 
     hi = np.full(n, np.inf) if upper is None else np.log(np.asarray(upper, dtype=float))
-    x0 = np.minimum(np.log(np.asarray(initial, dtype=float)), hi - 1e-3)
-    fit = least_squares(residuals, x0=x0, bounds=(np.full(n, -np.inf), hi), method="trf",
+    lo = np.full(n, -np.inf) if lower is None else np.log(np.asarray(lower, dtype=float))
+    x0 = np.maximum(np.minimum(np.log(np.asarray(initial, dtype=float)), hi - 1e-3), lo + 1e-3)
+    def secant(theta: np.ndarray[Any, np.dtype[np.float64]]
+               ) -> np.ndarray[Any, np.dtype[np.float64]]:
+        h = float(log_step or 0.0)
+        return np.column_stack([(residuals(theta + h * e) - residuals(theta - h * e)) / (2 * h)
+                                for e in np.eye(n)])
+
+    fit = least_squares(residuals, x0=x0, bounds=(lo, hi), method="trf",
+                        jac="2-point" if log_step is None else secant,
                         diff_step=np.full(n, 1e-4), x_scale=np.ones(n), xtol=1e-10,
                         ftol=1e-10)
     J = np.asarray(fit.jac, dtype=float)
@@ -111,17 +131,21 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
     sigma = np.sqrt(np.maximum(np.diag(cov), 0.0))
     corr = cov / np.where(np.outer(sigma, sigma) > 0, np.outer(sigma, sigma), 1.0)
     theta = np.asarray(fit.x, dtype=float)
-    fitted = tuple(float(x) for x in model(np.exp(theta)))
+    y = model(np.exp(theta))
+    fitted = tuple(float(x) for x in y)
+    slopes = J * std[:, None] / np.where(y != 0, y, 1.0)[:, None]  # d ln y_i / dθ_k
     return tuple(LogFit(math.exp(t), float(s), (math.exp(t - Z95 * s), math.exp(t + Z95 * s)),
                         fitted, chi2 / dof if dof > 0 else None, count[0],
-                        tuple(float(c) for c in corr[k]))
+                        tuple(float(c) for c in corr[k]),
+                        tuple(float(v) for v in slopes[:, k]))
                  for k, (t, s) in enumerate(zip(theta, sigma, strict=True)))
 
 
 def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float64]]],
                       measured: np.ndarray[Any, np.dtype[np.float64]],
                       std: np.ndarray[Any, np.dtype[np.float64]], initial: float, *,
-                      upper: float = math.inf) -> LogFit:
+                      upper: float = math.inf, lower: float = 0.0,
+                      log_step: float | None = None) -> LogFit:
     """One positive parameter fitted by :func:`fit_log_parameters`.
 
     Parameters
@@ -136,10 +160,15 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
         x at the start, positive [the parameter's unit].
     upper : float
         x is kept below this bound (e.g. a damping ratio below 1) [the parameter's unit].
+    lower : float
+        x is kept above this bound (0: unbounded) [the parameter's unit].
+    log_step : float | None
+        Central-difference step in ln x of the Jacobian [-] (None: ``least_squares``' own).
 
     Returns
     -------
     LogFit
     """
     return fit_log_parameters(lambda x: model(float(x[0])), measured, std, [initial],
-                              upper=None if math.isinf(upper) else [upper])[0]
+                              upper=None if math.isinf(upper) else [upper],
+                              lower=None if lower <= 0.0 else [lower], log_step=log_step)[0]
