@@ -74,6 +74,9 @@ class Check:
         The numbers with units that ``note`` writes (SI;
         :class:`chaindrive.errors.Quantities`), for a presenter to write in another unit
         system (:func:`chaindrive.display.quantity_text`).
+    limit_estimated : bool
+        The limit is an estimate, not a published value (the note says from what): every
+        presenter writes "estimate" next to it, the JSON carries ``limit_estimated``.
     """
 
     name: str
@@ -89,6 +92,7 @@ class Check:
     part: str = ""
     item: str = ""
     note_quantities: tuple[Quantity, ...] = ()
+    limit_estimated: bool = False
 
     @property
     def key(self) -> str:
@@ -142,6 +146,7 @@ class Check:
                 "value": self.shown(self.value), "limit": self.shown(self.limit),
                 "unit": self.unit, "kind": self.kind, "status": self.status,
                 "margin_fraction": None if margin is None or math.isinf(margin) else margin,
+                "limit_estimated": self.limit_estimated,
                 "source": self.source, "note": self.note, "part": self.part,
                 "note_quantities": [q.to_dict() for q in self.note_quantities]}
 
@@ -172,7 +177,8 @@ def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
 
 def judged(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
            source: str, unit: str = "", scale: float = 1.0, note: str = "", part: str = "",
-           item: str = "", note_quantities: tuple[Quantity, ...] = ()) -> Check:
+           item: str = "", note_quantities: tuple[Quantity, ...] = (),
+           limit_estimated: bool = False) -> Check:
     """A :class:`Check` with its verdict decided by :func:`verdict`.
 
     Parameters
@@ -189,6 +195,8 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         Factor from SI to ``unit`` [unit/SI].
     note_quantities : tuple of Quantity
         The numbers with units ``note`` writes (:class:`Check`).
+    limit_estimated : bool
+        The limit is an estimate (:class:`Check`).
 
     Returns
     -------
@@ -196,7 +204,7 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         The check with its status.
     """
     return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
-                 unit, scale, note, part, item, tuple(note_quantities))
+                 unit, scale, note, part, item, tuple(note_quantities), limit_estimated)
 
 
 def worst(checks: Sequence[Check]) -> Check | None:
