@@ -28,8 +28,8 @@ of the span F_R,i + F_2,i (:mod:`chaindrive.dynamics.steady`), and the peak at s
 
 The packaged catalogues carry no such value (the standard's table could not be consulted).
 For a steel roller chain the check then holds the force to an estimate said as such next to
-the number: "the fatigue strength of the chain lies, by its specification and quality, at
-15–20 % of the breaking force" [IwisFatigue], so
+the number. A chain maker puts a roller chain's fatigue strength at 15–20 % of its breaking
+force, depending on the chain's specification and quality [IwisFatigue], so
 
     F_D,est = 0.15·Q
 
