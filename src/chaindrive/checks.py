@@ -84,6 +84,9 @@ class Check:
         model were run, the model whose load it takes (``"whole_drive"`` or
         ``"link_level"``, :data:`WHOLE_DRIVE`, :data:`LINK_LEVEL`; the note says why); None
         otherwise.
+    limit_estimated : bool
+        The limit is an estimate, not a published value (the note says from what): every
+        presenter writes "estimate" next to it, the JSON carries ``limit_estimated``.
     """
 
     name: str
@@ -100,6 +103,7 @@ class Check:
     item: str = ""
     note_quantities: tuple[Quantity, ...] = ()
     governing_model: str | None = None
+    limit_estimated: bool = False
 
     @property
     def key(self) -> str:
@@ -153,6 +157,7 @@ class Check:
                 "value": self.shown(self.value), "limit": self.shown(self.limit),
                 "unit": self.unit, "kind": self.kind, "status": self.status,
                 "margin_fraction": None if margin is None or math.isinf(margin) else margin,
+                "limit_estimated": self.limit_estimated,
                 "source": self.source, "note": self.note, "part": self.part,
                 "note_quantities": [q.to_dict() for q in self.note_quantities],
                 "governing_model": self.governing_model}
@@ -184,7 +189,8 @@ def verdict(value: float | None, limit: float | None, kind: Kind) -> Status:
 
 def judged(name: str, subject: str, value: float | None, limit: float | None, kind: Kind,
            source: str, unit: str = "", scale: float = 1.0, note: str = "", part: str = "",
-           item: str = "", note_quantities: tuple[Quantity, ...] = ()) -> Check:
+           item: str = "", note_quantities: tuple[Quantity, ...] = (),
+           limit_estimated: bool = False) -> Check:
     """A :class:`Check` with its verdict decided by :func:`verdict`.
 
     Parameters
@@ -201,6 +207,8 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         Factor from SI to ``unit`` [unit/SI].
     note_quantities : tuple of Quantity
         The numbers with units ``note`` writes (:class:`Check`).
+    limit_estimated : bool
+        The limit is an estimate (:class:`Check`).
 
     Returns
     -------
@@ -208,7 +216,8 @@ def judged(name: str, subject: str, value: float | None, limit: float | None, ki
         The check with its status.
     """
     return Check(name, subject, value, limit, kind, verdict(value, limit, kind), source,
-                 unit, scale, note, part, item, tuple(note_quantities))
+                 unit, scale, note, part, item, tuple(note_quantities),
+                 limit_estimated=limit_estimated)
 
 
 def worst(checks: Sequence[Check]) -> Check | None:

@@ -621,7 +621,8 @@ def check_row(check: Check, system: UnitSystem = "SI"
         The check's value in the unit read [:func:`check_unit`]; None when it cannot be
         computed.
     required : str
-        The limit with its sense and unit (``"≤ 28 MPa"``), "—" without a limit.
+        The limit with its sense and unit (``"≤ 28 MPa"``), "—" without a limit; followed by
+        "(estimate)" when the limit is an estimate (:attr:`Check.limit_estimated`).
     result : str
         :func:`result_word`.
     source : str
@@ -632,6 +633,8 @@ def check_row(check: Check, system: UnitSystem = "SI"
     sep = "" if unit in ("°", "%", "") else " "
     limit = None if check.limit is None else check.limit * factor
     required = "—" if limit is None else f"{sym} {fmt(limit)}{sep}{unit}"
+    if limit is not None and check.limit_estimated:
+        required += " (estimate)"
     note = quantity_text(check.note, check.note_quantities, system)
     label = f"{check.name}: {check.subject}" + (f" ({note})" if note else "")
     value = None if check.value is None else check.value * factor

@@ -40,6 +40,13 @@ the centre table goes below the contour or beside it. A sprocket's drawing is th
 with its diameters, the section to its right and the notes below both or beside them (a
 polymeric body's section to the left); the title block sits in the frame's lower right
 corner.
+
+Signs: a TEXT writes the diameter, plus-minus and degree signs as the DXF control codes %%c,
+%%p, %%d (:data:`DXF_CODES`), which every CAD program draws with the text style's font — the
+style Standard's shape font "txt" has no glyph for the Unicode signs. The SVG draws them as
+the glyphs (ezdxf's SVG backend, even-odd fill); the PDF fills every contour by its true
+nesting (:func:`filled_path_orientation`), since the matplotlib backend of the add-on nests
+contours by their bounding boxes and fills one of the two counters of Ø.
 """
 
 from __future__ import annotations
@@ -75,9 +82,12 @@ if TYPE_CHECKING:  # ezdxf is imported where a drawing is made
     from chaindrive.geometry.workshop import SprocketWorkshop
 
 __all__ = [
+    "DXF_CODES",
     "FORMATS",
     "LAYERS",
     "drawing_document",
+    "dxf_text",
+    "filled_path_orientation",
     "layout_document",
     "outline_mm",
     "pdf_bytes",
@@ -96,6 +106,13 @@ LAYERS = {"OUTLINE": 7, "BORE": 7, "HUB": 8, "PITCH": 3, "TIP": 8, "CHAIN": 5, "
 PAPER_TEXT = 3.5
 LAYOUT_TEXT = 2.5
 FORMATS = (".dxf", ".svg", ".pdf")
+#: The signs a TEXT entity writes as DXF control codes (diameter %%c, plus-minus %%p, degree
+#: %%d): every CAD program draws these with the font of the text style, also the shape font
+#: "txt" of the style Standard, which has no glyph for the Unicode signs (a viewer shows "?").
+DXF_CODES = {"Ø": "%%c", "±": "%%p", "°": "%%d"}
+#: Largest deviation of a flattened curve from the curve [mm], for the nesting test of the
+#: PDF's filled contours (a twentieth of the smallest text's stroke).
+FLATTENING_MM = 0.005
 
 Box = tuple[float, float, float, float]  # x0, y0, x1, y1 [mm]
 Point = tuple[float, float]
@@ -280,12 +297,32 @@ def _text_box(text: str, at: tuple[float, float], height: float,
     return x0, base - descent, x0 + width, base + height
 
 
+def dxf_text(text: str) -> str:
+    """The content of a TEXT entity: ``text`` with the signs of :data:`DXF_CODES` written as
+    their control codes (a CAD program, and ezdxf's ``plain_text()``, shows the sign).
+
+    Parameters
+    ----------
+    text : str
+        The text as read (``"Bore Ø32.0 H7"``).
+
+    Returns
+    -------
+    str
+        The text as the DXF stores it (``"Bore %%c32.0 H7"``).
+    """
+    for sign, code in DXF_CODES.items():
+        text = text.replace(sign, code)
+    return text
+
+
 def _text(msp: Modelspace, text: str, at: tuple[float, float], height: float,
           align: str = "MIDDLE_LEFT", layer: str = "TEXT") -> Box:
-    """Draw a TEXT; returns its box [mm] (:func:`_text_box`)."""
+    """Draw a TEXT (its signs as DXF control codes, :func:`dxf_text`); returns its box [mm]
+    (:func:`_text_box`)."""
     from ezdxf.enums import TextEntityAlignment
 
-    entity: Text = msp.add_text(text, height=height, dxfattribs={"layer": layer})
+    entity: Text = msp.add_text(dxf_text(text), height=height, dxfattribs={"layer": layer})
     entity.set_placement(at, align=TextEntityAlignment[align])
     return _text_box(text, at, height, align)
 
@@ -1303,6 +1340,69 @@ def _page(doc: Drawing, page_width_mm: float) -> tuple[float, float, tuple[float
     return page_width_mm, page_width_mm * h / max(w, 1e-9), None
 
 
+def filled_path_orientation(contours: Sequence[NDArray[np.float64]]) -> list[bool]:
+    """The orientation each contour of a filled shape takes so that a non-zero fill shows the
+    even-odd rule: counter-clockwise (True) for a contour inside an even number of the
+    others, clockwise (False) for one inside an odd number (a hole, an island in a hole …).
+
+    A contour's depth counts the others that contain its first vertex (a point-in-polygon
+    test, after a bounding-box test), not the others whose bounding box holds its box: the
+    two counters of Ø lie side by side with overlapping boxes.
+
+    Parameters
+    ----------
+    contours : sequence of ndarray
+        Closed polygons (N, 2) [drawing units, one for all], not crossing one another (the
+        contours of glyphs and hatch boundaries).
+
+    Returns
+    -------
+    list of bool
+        True (counter-clockwise) or False (clockwise), one per contour.
+    """
+    from matplotlib.path import Path as MplPath
+
+    boxes = np.array([(*c.min(axis=0), *c.max(axis=0)) for c in contours])
+    shapes = [MplPath(c) for c in contours]
+    out = []
+    for i, c in enumerate(contours):
+        x, y = c[0]
+        around = np.flatnonzero((boxes[:, 0] <= x) & (x <= boxes[:, 2])
+                                & (boxes[:, 1] <= y) & (y <= boxes[:, 3]))
+        depth = sum(1 for j in around if j != i and shapes[j].contains_point((x, y)))
+        out.append(depth % 2 == 0)
+    return out
+
+
+def _pdf_backend(ax: Any) -> Any:
+    """ezdxf's matplotlib backend on ``ax``, filling each contour by its true nesting
+    (:func:`filled_path_orientation`): the add-on nests contours by their bounding boxes,
+    which fills a counter of a glyph such as Ø (its two counters' boxes overlap)."""
+    from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
+    from ezdxf.npshapes import to_matplotlib_path
+    from matplotlib.patches import PathPatch
+
+    class _Backend(MatplotlibBackend):
+        def draw_filled_paths(self, paths: Iterable[Any], properties: Any) -> None:
+            contours = [p for path in paths for p in path.sub_paths() if len(p) > 0]
+            polygons = [np.array([(v.x, v.y) for v in p.flattening(FLATTENING_MM)])
+                        for p in contours]
+            kept = [(c, g) for c, g in zip(contours, polygons, strict=True) if len(g) >= 3]
+            if not kept:
+                return
+            for (c, _), ccw in zip(kept, filled_path_orientation([g for _, g in kept]),
+                                   strict=True):
+                if ccw:
+                    c.counter_clockwise()
+                else:
+                    c.clockwise()
+            self.ax.add_patch(PathPatch(to_matplotlib_path([c for c, _ in kept]),
+                                        color=properties.color, linewidth=0, fill=True,
+                                        zorder=self._get_z()))
+
+    return _Backend(ax)
+
+
 def pdf_bytes(doc: Drawing, page_width_mm: float = 420.0) -> bytes:
     """The modelspace of ``doc`` as a one-page PDF (ezdxf drawing add-on, matplotlib): a
     document on one standard sheet on a page of that sheet's size, the sheet filling it (so
@@ -1325,14 +1425,13 @@ def pdf_bytes(doc: Drawing, page_width_mm: float = 420.0) -> bytes:
     # matplotlib and the add-on load only when a PDF is asked for (import time of `draw`)
     import matplotlib.figure
     from ezdxf.addons.drawing import Frontend, RenderContext, config
-    from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
 
     pw, ph, edge = _page(doc, page_width_mm)
     fig = matplotlib.figure.Figure(figsize=(pw / 25.4, ph / 25.4))
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     cfg = config.Configuration(background_policy=config.BackgroundPolicy.WHITE,
                                color_policy=config.ColorPolicy.COLOR)
-    Frontend(RenderContext(doc), MatplotlibBackend(ax), config=cfg).draw_layout(
+    Frontend(RenderContext(doc), _pdf_backend(ax), config=cfg).draw_layout(
         doc.modelspace(), finalize=True)
     if edge is not None:
         ax.set_xlim(edge[0], edge[2])

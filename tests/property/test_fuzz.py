@@ -39,7 +39,7 @@ CASE_SECONDS = 120
 
 DESIGNS = {name: tomllib.loads((EXAMPLES / f"{name}.toml").read_text(encoding="utf-8"))
            for name in ("seed_three_sprocket", "two_sprocket_jindal", "twenty_four_sprocket",
-                        "eight_sprocket")}
+                        "eight_sprocket", "reduction_drive_bhandari")}
 UNITS = ["mm", "m", "km", "in", "ft", "parsec", "rpm", "RPM", "1/min", "min⁻¹", "Hz", "rad/s",
          "kW", "kw", "W", "hp", "kg*m^2", "kg", "N", "lbf", "deg", "rad", "s", "ms", "h",
          "m/s", "", "furlongz", "mm**2", "1/s", "°", "mm mm", "%", "**", "kg*m^2*s"]

@@ -75,7 +75,7 @@ def test_layout_reads_back(example: Path, tmp_path: Path) -> None:
                 and math.isclose(c.dxf.center.y, s.y * MM, abs_tol=1e-6)]
         assert len(hits) == 1
         np.testing.assert_allclose(2 * hits[0].dxf.radius, s.pitch_diameter * MM, rtol=1e-12)
-    texts = " ".join(t.dxf.text for t in msp.query("TEXT"))
+    texts = " ".join(t.plain_text() for t in msp.query("TEXT"))
     assert a.drive.name in texts and a.drive.chain.spec.designation in texts
     assert f"{a.geometry.links} (length" in texts and "chaindrive" in texts
     assert "_mm" not in texts and "_deg" not in texts  # labels, not keys
@@ -223,7 +223,7 @@ def test_sprocket_drawing_labels_and_limits(tmp_path: Path) -> None:
     diameters carry the limits of ISO 606, the root one inside its own limits."""
     a = _analysis("two_sprocket_jindal")
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "d.dxf", sprocket="driver"))
-    texts = [t.dxf.text for t in doc.modelspace().query("TEXT")]
+    texts = [t.plain_text() for t in doc.modelspace().query("TEXT")]
     joined = " ".join(texts)
     form = a.profiles[0].form
     assert "Root diameter df = " in joined and "_mm" not in joined
@@ -243,7 +243,7 @@ def test_polymeric_body_and_svg(tmp_path: Path) -> None:
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "p.dxf"))
     body = doc.modelspace().query("*[layer=='BODY']")
     assert len(body.query("LWPOLYLINE")) == 2 and len(body.query("CIRCLE")) == 8
-    texts = " ".join(t.dxf.text for t in doc.modelspace().query("TEXT"))
+    texts = " ".join(t.plain_text() for t in doc.modelspace().query("TEXT"))
     assert "mass = " in texts and "inertia = " in texts
     svg = write_drawing(a, tmp_path / "p.svg").read_text()
     assert svg.lstrip().startswith("<?xml") and "<svg" in svg

@@ -82,7 +82,7 @@ def _box(entity: ezdxf.entities.DXFGraphic) -> tuple[float, float, float, float]
 def _texts(doc: Drawing) -> list[tuple[str, tuple[float, float, float, float]]]:
     """(text, box) of every TEXT of the modelspace and every text of a dimension."""
     msp = doc.modelspace()
-    out = [(t.dxf.text, _box(t)) for t in msp.query("TEXT")]
+    out = [(t.plain_text(), _box(t)) for t in msp.query("TEXT")]
     for dim in msp.query("DIMENSION"):
         out += [(m.text, _box(m)) for m in dim.get_geometry_block().query("MTEXT")]
     return out
@@ -186,7 +186,7 @@ def test_root_diameter_text_is_the_analysis_value(example: str) -> None:
     a = _analysis(example)
     expected = [s["root_diameter_mm"] for s in geometry_dict(a.geometry)["sprockets"]]
     doc = _layout(example)
-    notes = [t.dxf.text for t in doc.modelspace().query("TEXT")]
+    notes = [t.plain_text() for t in doc.modelspace().query("TEXT")]
     pattern = re.compile(r"^Root diameter (df|Di) = ([0-9.]+) \((d − d1|d − 2 r)\)")
     stated = [m for m in map(pattern.match, notes) if m]
     assert [float(m[2]) for m in stated] == pytest.approx(expected, abs=6e-4)
@@ -215,7 +215,7 @@ def test_sprocket_alone_states_the_same_root_diameter(tmp_path: Path) -> None:
     not the 91.166 … 91.483 of d − 2 ri."""
     a = _analysis("eight_sprocket")
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "m.dxf", sprocket="M"))
-    notes = [t.dxf.text for t in doc.modelspace().query("TEXT")]
+    notes = [t.plain_text() for t in doc.modelspace().query("TEXT")]
     line = next(n for n in notes if n.startswith("Root diameter"))
     assert line.startswith("Root diameter df = 91.604 (d − d1), deviations 0 / −0.25: "
                            "91.354 … 91.604")
@@ -263,7 +263,7 @@ def test_the_faults_are_found() -> None:
     sprocket, drawn over the Jindal example's drawing on purpose)."""
     doc = drawing_document(_analysis("two_sprocket_jindal"))
     msp = doc.modelspace()
-    note = next(t for t in msp.query("TEXT") if t.dxf.text.startswith("Pitch diameter"))
+    note = next(t for t in msp.query("TEXT") if t.plain_text().startswith("Pitch diameter"))
     msp.add_text("Pitch diameter", height=note.dxf.height).set_placement(
         note.dxf.insert, align=note.get_align_enum())
     frame = next(p for p in msp.query("LWPOLYLINE[layer=='FRAME']"))

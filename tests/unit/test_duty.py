@@ -195,14 +195,40 @@ def test_idler_on_the_tight_span_fails_with_its_shaft_load():
 def test_fatigue_check_against_the_catalogue_strength():
     spec = find_chain("ISO 606 08B-1")
     assert spec.fatigue_strength is None  # the packaged catalogue has none
-    unknown = fatigue_check(spec, 900.0, 1200.0)
-    assert unknown.status == UNVERIFIED and "no fatigue strength in the catalogue" in unknown.note
-    assert unknown.value == 1200.0 and unknown.part == "chain"
     given = replace(spec, fatigue_strength=1500.0)
-    assert fatigue_check(given, 900.0, 1200.0).status == PASS
+    ok = fatigue_check(given, 900.0, 1200.0)
+    assert ok.status == PASS and not ok.limit_estimated and ok.value == 1200.0
+    assert ok.part == "chain" and "IwisFatigue" not in ok.source
     worse = fatigue_check(given, 1600.0, 1200.0)
     assert worse.status == FAIL and worse.value == 1600.0 and "steady running" in worse.note
     assert worse.margin_fraction == pytest.approx(1500.0 / 1600.0 - 1.0)
+
+
+def test_fatigue_check_without_a_catalogue_strength_holds_to_the_estimate_and_says_so():
+    # no fatigue strength in the catalogue: the limit is the low end of the maker's range,
+    # fatigue strength 15-20 % of the breaking force [IwisFatigue], on the catalogue's minimum
+    # breaking load Q (08B-1: 17.8 kN, [ISO606])
+    spec = find_chain("ISO 606 08B-1")
+    q = spec.breaking_load
+    assert q == pytest.approx(17.8e3)
+    below = fatigue_check(spec, 0.10 * q, 0.12 * q)
+    assert below.status == PASS and below.limit == pytest.approx(0.15 * q)
+    assert below.limit_estimated and below.to_dict()["limit_estimated"] is True
+    assert "estimate" in below.note and "[IwisFatigue]" in below.source
+    assert "inside the band" not in below.note
+    band = fatigue_check(spec, 0.10 * q, 0.18 * q)  # between 15 and 20 %: not decided
+    assert band.status == FAIL and "inside the band of the estimate" in band.note
+    beyond = fatigue_check(spec, 0.21 * q, 0.10 * q)  # above 20 %: fails over the whole band
+    assert beyond.status == FAIL and "inside the band" not in beyond.note
+    assert beyond.margin_fraction == pytest.approx(0.15 / 0.21 - 1.0)
+
+
+def test_fatigue_check_of_a_polymer_chain_cannot_be_verified():
+    # the maker's 15-20 % rule is for steel chains: a polymer chain has no estimate
+    spec = find_chain("polymer PA66-GF30 16B-1")
+    unknown = fatigue_check(spec, 300.0, 400.0)
+    assert unknown.status == UNVERIFIED and unknown.limit is None
+    assert "no fatigue strength in the catalogue" in unknown.note and not unknown.limit_estimated
 
 
 def test_schema_shows_the_duty_fields_with_allowed_values_and_example_machines():

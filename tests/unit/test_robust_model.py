@@ -98,8 +98,8 @@ def test_nominal_state_is_the_analysis(eight) -> None:
 def test_life_curve_of_a_fixed_centre_drive() -> None:
     """The seed contour as drawn fails the checks its analysis fails (teeth in mesh on the
     idler S3 and S3 on the tight span, the resonance margin: the whole-drive model's
-    f₁ = 73.06 Hz lies 2.7 % below the 75 Hz tooth frequency, docs/dynamics.md §7; fatigue
-    cannot be verified, no fatigue strength in the catalogue); those are left out of the
+    f₁ = 73.06 Hz lies 2.7 % below the 75 Hz tooth frequency, docs/dynamics.md §7); those
+    are left out of the
     first failure, so the chain's life ends at the replacement rule of a fixed-centre drive,
     1.5 % [DiamondChainWear]."""
     nominal = nominal_analysis(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"))
@@ -107,12 +107,11 @@ def test_life_curve_of_a_fixed_centre_drive() -> None:
     life = life_curve(nominal, model, points=7)
     assert model.fixed_centres and life.allowable_elongation == 0.015
     assert life.failing_when_new == tuple(c.key for c in nominal.checks() if not c.passed)
-    # and its polymer sprockets' teeth (no confirmed allowable stress) and its chain's fatigue
-    # (no fatigue strength in the catalogue) cannot be verified
+    # and its polymer sprockets' teeth (no confirmed allowable stress) cannot be verified; its
+    # chain's fatigue passes against the estimate 15 % of the breaking load [IwisFatigue]
     teeth = {f"{n}[{s}]" for s in ("S1", "S2", "S3")
              for n in ("tooth_root_stress", "tooth_contact_pressure")}
-    assert set(life.failing_when_new) == {"teeth_in_mesh[S3]", "resonance_margin", "fatigue",
-                                          *teeth}
+    assert set(life.failing_when_new) == {"teeth_in_mesh[S3]", "resonance_margin", *teeth}
     assert life.first_failure == "chain_elongation"
     assert life.first_failure_elongation == life.life_elongation == 0.015
     sag = [s.sag_ratio for s in life.states]
@@ -150,8 +149,9 @@ def test_seed_kd_tail_is_the_tooth_frequency_resonance_of_a_new_chain() -> None:
 
 def test_life_curve_bisects_the_first_failure(tmp_path: Path) -> None:
     """The conveyor example turning the other way (counter-clockwise: its tensioner T then
-    sits on the span into the driver) passes every check when new but two (that tensioner,
-    and fatigue, which cannot be verified without a fatigue strength in the catalogue); the
+    sits on the span into the driver) passes every check when new but that tensioner (its
+    fatigue passes: the study runs no start-up, and the steady span forces stay below the
+    estimated fatigue strength); the
     wear lowers its first natural frequency into the resonance band (the analysis's rule
     [MultimassChainDrives, §3.2]) before the replacement rule: the bisection brackets the
     flip of the check."""
@@ -162,7 +162,7 @@ def test_life_curve_bisects_the_first_failure(tmp_path: Path) -> None:
     nominal = nominal_analysis(chaindrive.load(tmp_path / "ccw.toml"))
     model = uncertainty_model(nominal, UncertaintySettings())
     life = life_curve(nominal, model, points=5)
-    assert set(life.failing_when_new) == {"idler_on_slack_span[T]", "fatigue"}
+    assert set(life.failing_when_new) == {"idler_on_slack_span[T]"}
     eps = life.first_failure_elongation
     assert eps is not None and life.first_failure == "resonance_margin"
     assert 0 < eps < life.allowable_elongation and life.life_elongation == eps

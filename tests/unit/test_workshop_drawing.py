@@ -58,7 +58,7 @@ def _sheet(msp: ezdxf.layouts.Modelspace) -> tuple[str, int, tuple[float, float,
                    key=lambda b: -(b[2] - b[0]))
     assert len(edges) == 2  # the trimmed edge and the frame
     x0, y0, x1, y1 = edges[0]
-    texts = [t.dxf.text for t in msp.query("TEXT")]
+    texts = [t.plain_text() for t in msp.query("TEXT")]
     n = next(int(t[2:]) for t in texts if t.startswith("1:"))
     assert n in SCALES
     size = (round((x1 - x0) / n, 6), round((y1 - y0) / n, 6))
@@ -87,7 +87,7 @@ def test_iso606_sprocket_drawing_reads_back(tmp_path: Path) -> None:
     sheet, n, edge = _sheet(msp)
     assert sheet in ("A4", "A3")
     _inside(msp, edge)
-    texts = [t.dxf.text for t in msp.query("TEXT")]
+    texts = [t.plain_text() for t in msp.query("TEXT")]
     joined = "\n".join(texts)
     # ISO 7200 title block: one closed frame 180 mm wide on paper, its fields and values
     (block,) = [p for p in msp.query("LWPOLYLINE[layer=='FRAME']") if p.closed]
@@ -153,7 +153,7 @@ def test_no_keyway_and_even_teeth(tmp_path: Path) -> None:
     a = _analysis("two_sprocket_jindal", index=1, bore=0.040, keyway=False, bore_fit="H8")
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "driven.dxf", sprocket="driven"))
     msp = doc.modelspace()
-    joined = "\n".join(t.dxf.text for t in msp.query("TEXT"))
+    joined = "\n".join(t.plain_text() for t in msp.query("TEXT"))
     assert not msp.query("*[layer=='KEYWAY']")
     assert "No keyway (keyway = false in the design)" in joined
     assert "Bore Ø40.0 H8 (+0.039 / 0)" in joined  # IT8 over 30 up to 50 mm: 39 µm
@@ -168,7 +168,7 @@ def test_gost591_chamfer(tmp_path: Path) -> None:
     a = _analysis("seed_three_sprocket", material="steel")
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "s1.dxf", sprocket="S1"))
     msp = doc.modelspace()
-    joined = "\n".join(t.dxf.text for t in msp.query("TEXT"))
+    joined = "\n".join(t.plain_text() for t in msp.query("TEXT"))
     d1 = a.drive.chain.spec.roller_diameter * MM
     assert f"r3 = {1.7 * d1:.2f} (1.7 d1)" in joined and f"f = {0.2 * d1:.2f}" in joined
     upper = max(msp.query("LWPOLYLINE[layer=='SECTION']"), key=lambda s: _box(s)[3])
@@ -187,7 +187,7 @@ def test_layout_on_a_standard_sheet(example: str) -> None:
     sheet, n, edge = _sheet(msp)
     assert sheet in ("A4", "A3") and n > 1  # these drives are longer than an A3 sheet
     _inside(msp, edge)
-    texts = [t.dxf.text for t in msp.query("TEXT")]
+    texts = [t.plain_text() for t in msp.query("TEXT")]
     assert "Layout" in texts and f"1:{n}" in texts and sheet in texts
 
 

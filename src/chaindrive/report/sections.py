@@ -132,8 +132,8 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     """What the results rest on that the design does not give (defaults and estimates), as
     the analysis says it: the damping source of its model, its warnings of estimated inputs
     (:data:`ESTIMATE_CODES`; one whose message is among ``shown`` in one short line), the
-    estimates its catalogue row marks, a service factor the design leaves out and the
-    reading of K_D.
+    estimates its catalogue row marks, a fatigue strength estimated for want of a catalogue
+    value, a service factor the design leaves out and the reading of K_D.
 
     Parameters
     ----------
@@ -189,6 +189,15 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
             f"{', '.join(estimated)} of the chain {spec.designation}: estimates of the "
             f"catalogue{f' ({how})' if how else ''}, not a maker's data sheet; give the "
             "maker's values in a catalogue file of your own"))
+    for c in a.checks():
+        if c.name == "fatigue" and c.limit_estimated and c.limit is not None:
+            out.append(f"Fatigue strength of the chain {spec.designation} estimated as "
+                       f"{fmt(inp.val(c.limit, 'force_k'))} {inp.unit('force_k')}, "
+                       f"{fmt(100 * c.limit / spec.breaking_load)} % of its minimum breaking "
+                       "load (the low end of a roller chain's fatigue strength as a maker "
+                       "states it [IwisFatigue]), no published value in the catalogue: give "
+                       "the maker's or the standard's fatigue strength in a catalogue file of "
+                       "your own (column fatigue_strength_kN).")
     if a.response is not None:
         out.append("Coefficient of dynamics from the root mean square of the spans' dynamic "
                    "loads: the reading of [MultimassChainDrives, §3.3] this package uses.")

@@ -23,10 +23,23 @@ test of [ISO15654]; manufacturers' selectors judge the chain against it. The lar
 the chain's spans carry — in steady running the static tension plus the steady dynamic load
 of the span F_R,i + F_2,i (:mod:`chaindrive.dynamics.steady`), and the peak at start-up
 (:mod:`chaindrive.dynamics.startup`) — is held to the chain's fatigue strength
-(:attr:`chaindrive.model.ChainSpec.fatigue_strength`). The packaged catalogues carry no
-fatigue strength (the values of the standard's table were not available), so the check
-says "cannot be verified" unless a catalogue of the designer's own gives the column
-``fatigue_strength_kN``.
+(:attr:`chaindrive.model.ChainSpec.fatigue_strength`) where the catalogue gives it (column
+``fatigue_strength_kN``, the standard's minimum or the maker's value).
+
+The packaged catalogues carry no such value (the standard's table could not be consulted).
+For a steel roller chain the check then holds the force to an estimate said as such next to
+the number. A chain maker puts a roller chain's fatigue strength at 15–20 % of its breaking
+force, depending on the chain's specification and quality [IwisFatigue], so
+
+    F_D,est = 0.15·Q
+
+with Q the catalogue's minimum breaking load of the whole chain — the low end of the maker's
+range, on the standard's minimum breaking load (the same maker's rule of thumb, a safety
+factor of 7 on the breaking force, is 14.3 %). A force between 0.15·Q and 0.20·Q lies inside
+the band of the estimate: the check fails against the low end and its note says the margin
+lies inside the band (fatigue possible, not decided); above 0.20·Q it fails over the whole
+band. A chain that is not steel (the polymer catalogue) has no such rule: "cannot be
+verified".
 """
 
 from __future__ import annotations
@@ -39,11 +52,15 @@ from chaindrive.errors import ChainDriveWarning, Quantities
 from chaindrive.model import ChainSpec, Drive
 from chaindrive.strength.loads import LoadsResult
 
-__all__ = ["SHARE_TOLERANCE", "fatigue_check", "idler_checks", "idler_warnings"]
+__all__ = ["FATIGUE_FRACTION_HIGH", "FATIGUE_FRACTION_LOW", "SHARE_TOLERANCE",
+           "estimated_fatigue_strength", "fatigue_check", "idler_checks", "idler_warnings"]
 
 #: Share of the peripheral force below which a span counts as slack [-] (round-off of the
 #: tension balance).
 SHARE_TOLERANCE = 1e-9
+#: Fatigue strength of a steel roller chain as a fraction of its breaking force, the low and
+#: the high end of the maker's range [-] [IwisFatigue].
+FATIGUE_FRACTION_LOW, FATIGUE_FRACTION_HIGH = 0.15, 0.20
 
 
 def _idler_states(drive: Drive, loads: LoadsResult) -> list[tuple[int, float]]:
@@ -144,9 +161,32 @@ def idler_checks(drive: Drive, loads: LoadsResult) -> list[Check]:
     return out
 
 
+def estimated_fatigue_strength(spec: ChainSpec) -> float | None:
+    """The estimate of a steel chain's fatigue strength, F_D,est = 0.15·Q (module docstring).
+
+    Parameters
+    ----------
+    spec : ChainSpec
+        The chain (its minimum breaking load Q [N] and material).
+
+    Returns
+    -------
+    float or None
+        F_D,est [N]; None for a chain that is not steel (no such rule for it).
+
+    References
+    ----------
+    [IwisFatigue] (fatigue strength 15–20 % of the breaking force).
+    """
+    if spec.material != "steel":
+        return None
+    return FATIGUE_FRACTION_LOW * spec.breaking_load
+
+
 def fatigue_check(spec: ChainSpec, steady_peak: float | None,
                   startup_peak: float | None) -> Check:
-    """The largest span force ≤ the chain's fatigue strength (module docstring).
+    """The largest span force ≤ the chain's fatigue strength, or ≤ its estimate
+    :func:`estimated_fatigue_strength` when the catalogue gives none (module docstring).
 
     Parameters
     ----------
@@ -160,29 +200,44 @@ def fatigue_check(spec: ChainSpec, steady_peak: float | None,
     Returns
     -------
     Check
-        "fatigue" [N]; "cannot be verified" when the catalogue gives no fatigue strength or
+        "fatigue" [N], ``limit_estimated`` when the limit is the estimate; "cannot be
+        verified" when neither the catalogue nor the estimate gives a fatigue strength, or
         no span force was computed.
 
     References
     ----------
-    [ISO606] (minimum dynamic strength); [ISO15654] (its test).
+    [ISO606] (minimum dynamic strength); [ISO15654] (its test); [IwisFatigue] (the estimate).
     """
     peaks: Sequence[tuple[str, float]] = [
         (k, v) for k, v in (("steady running", steady_peak), ("start-up", startup_peak))
         if v is not None]
     q = Quantities()
+    estimate = None if spec.fatigue_strength is not None else estimated_fatigue_strength(spec)
+    limit = spec.fatigue_strength if estimate is None else estimate
+    source = "[ISO606]; [ISO15654]" + ("" if estimate is None else "; [IwisFatigue]")
     if not peaks:
-        return judged("fatigue", spec.designation, None, spec.fatigue_strength, "max",
-                      "[ISO606]; [ISO15654]", "N", note="no span forces of the dynamic "
-                      "response (run the analysis with the response)", part="chain")
+        return judged("fatigue", spec.designation, None, limit, "max", source, "N",
+                      note="no span forces of the dynamic response (run the analysis with "
+                      "the response)", part="chain", limit_estimated=estimate is not None)
     where, value = max(peaks, key=lambda kv: kv[1])
     shown = ", ".join(f"{k} {q(v, 'force', '.4g')}" for k, v in peaks)
-    if spec.fatigue_strength is None:
+    if limit is None:
         note = (f"cannot be verified: no fatigue strength in the catalogue for "
-                f"{spec.designation} (catalogue column fatigue_strength_kN); largest span "
-                f"force {shown}")
+                f"{spec.designation} (catalogue column fatigue_strength_kN) and no estimate "
+                f"for a {spec.material} chain; largest span force {shown}")
+    elif estimate is not None:
+        high = FATIGUE_FRACTION_HIGH * spec.breaking_load
+        low_pc, high_pc = 100 * FATIGUE_FRACTION_LOW, 100 * FATIGUE_FRACTION_HIGH
+        note = (f"limit an estimate: {low_pc:g} % of the minimum breaking load "
+                f"{q(spec.breaking_load, 'force', '.5g')} (a chain's fatigue strength is "
+                f"{low_pc:g}–{high_pc:g} % of it [IwisFatigue]); no published fatigue strength "
+                f"in the catalogue (column fatigue_strength_kN); largest span force in "
+                f"{where}: {shown}")
+        if limit < value <= high:
+            note += (f"; inside the band of the estimate (up to {q(high, 'force', '.5g')}): "
+                     "fatigue possible, not decided")
     else:
         note = f"largest span force in {where}; {shown}"
-    return judged("fatigue", spec.designation, value, spec.fatigue_strength, "max",
-                  "[ISO606]; [ISO15654]", "N", note=note, part="chain",
-                  note_quantities=q.items)
+    return judged("fatigue", spec.designation, value, limit, "max", source, "N", note=note,
+                  part="chain", note_quantities=q.items,
+                  limit_estimated=estimate is not None)

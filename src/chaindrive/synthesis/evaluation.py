@@ -64,7 +64,9 @@ def check_limits(settings: Constraints) -> CheckLimits:
 
 def unverifiable_for_any_design(check: Check) -> bool:
     """Whether a check cannot be verified on any design of a search: the fatigue check of a
-    chain whose catalogue gives no fatigue strength (no variable of the search supplies it).
+    chain whose catalogue gives no fatigue strength and that has no estimate of it (a chain
+    not of steel, :func:`chaindrive.strength.span_checks.estimated_fatigue_strength`; no
+    variable of the search supplies it).
     Such a check neither constrains nor ranks the designs; each design names it among its
     unverified checks (:attr:`Evaluation.unverified`), so a result never reads as verified
     where it is not.
@@ -77,7 +79,7 @@ def unverifiable_for_any_design(check: Check) -> bool:
     Returns
     -------
     bool
-        True for the fatigue check without a fatigue strength.
+        True for the fatigue check without a fatigue strength or its estimate.
     """
     return check.name == "fatigue" and check.limit is None
 
@@ -87,8 +89,8 @@ def constrained(check: Check, settings: Constraints) -> bool:
     check, except the chain's strength checks when ``static_safety = false``, the speed
     limit when ``speed_limit = false`` and k₁ unless ``startup_safety = true`` (it needs a
     time integration per design). Not a constraint: the fatigue check of a chain without a
-    fatigue strength in the catalogue (:func:`unverifiable_for_any_design`), which every
-    design names among its unverified checks instead.
+    fatigue strength in the catalogue or an estimate of it (:func:`unverifiable_for_any_design`),
+    which every design names among its unverified checks instead.
 
     Parameters
     ----------
