@@ -198,8 +198,14 @@ def test_an_interrupted_study_prints_one_line(tmp_path: Path, delay: float) -> N
     exit 130 (it printed 76 lines with worker tracebacks 3 times in 10)."""
     db = tmp_path / "i.db"
     env = {**os.environ, "CHAINDRIVE_LOG_DIR": str(tmp_path / "logs")}
+    # a long search (its 10 generations end within 6 s on an idle machine): still running
+    # when the signal comes, however fast the evaluations become
+    long = tmp_path / "long.toml"
+    text = OPTIMIZE.read_text()
+    assert "generations = 10\n" in text
+    long.write_text(text.replace("generations = 10\n", "generations = 400\n"))
     proc = subprocess.Popen(
-        [sys.executable, "-m", "chaindrive", "optimize", str(OPTIMIZE), "--db",
+        [sys.executable, "-m", "chaindrive", "optimize", str(long), "--db",
          f"sqlite:///{db}"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
         cwd=tmp_path, start_new_session=True, text=True)
     deadline = time.monotonic() + 120
