@@ -41,11 +41,15 @@ from chaindrive.robust.study import nominal_analysis
 from chaindrive.robust.uncertainty import uncertainty_model, uncertainty_settings
 
 
-def evaluate(name: str, n_max: int, store: Path, chunk: int = 256) -> None:
-    """Evaluate the design of ``n_max`` base points in chunks, stored after each."""
+def evaluate(name: str, n_max: int, store: Path, seed: int | None = None,
+             chunk: int = 256) -> None:
+    """Evaluate the design of ``n_max`` base points in chunks, stored after each (``seed``:
+    the scrambling of the design, None: the example's)."""
     import tomllib
 
     data = tomllib.loads(examples.text(name))
+    if seed is not None:
+        data.setdefault("uncertainty", {})["seed"] = seed
     nominal = nominal_analysis(drive_from_mapping(data))
     model = uncertainty_model(nominal, uncertainty_settings(data.get("uncertainty")))
     problem = _saltelli_problem(model)
@@ -95,11 +99,13 @@ def main() -> None:
     parser.add_argument("example", help="a bundled example's name")
     parser.add_argument("--n-max", type=int, default=1024, help="largest base N")
     parser.add_argument("--store", type=Path, default=None, help="pickle of the states")
+    parser.add_argument("--seed", type=int, default=None,
+                        help="scrambling seed of the design (default: the example's)")
     parser.add_argument("--analyse-only", action="store_true")
     a = parser.parse_args()
     store = a.store or Path(f"sobol_convergence_{a.example}.pkl")
     if not a.analyse_only:
-        evaluate(a.example, a.n_max, store)
+        evaluate(a.example, a.n_max, store, a.seed)
     analyse(store)
 
 
