@@ -1,5 +1,5 @@
 """Where the long tails of a robust study's metrics come from: the figures of docs/robust.md
-("Why the seed's K_D, k₂ and f₁ indices do not converge").
+("Why the seed's K_D, k₂ and f₁ indices converge slowly").
 
 Reads the states that ``benchmarks/robust_sobol_convergence.py`` stored (``--store``), rebuilds
 the example's uncertainty model and Saltelli design (same seed, same rows) and prints:

@@ -85,6 +85,7 @@ def test_grouped_linear_indices_and_ties_against_the_variance_shares() -> None:
     assert r.tied("y") == [sorted(["g1", "g2"], key=lambda g: -idx[g].total_raw)]
     d = r.to_dict()["metrics"]["y"]
     assert d["rank"] == [1, 1, 3] and d["tied"] == r.tied("y")
+    assert r.to_dict()["estimator"].startswith("Janon et al. 2014")
 
 
 def test_adaptive_sample_doubles_and_stops_at_the_budget() -> None:

@@ -66,7 +66,7 @@ from chaindrive.robust.sampling import (
 )
 from chaindrive.robust.uncertainty import UncertaintyModel
 
-__all__ = ["BOOTSTRAP_RESAMPLES", "FEW_STATES_SHARE", "MIN_STOP_BASE", "SENSITIVITY_BUDGET",
+__all__ = ["BOOTSTRAP_RESAMPLES", "ESTIMATOR", "FEW_STATES_SHARE", "MIN_STOP_BASE", "SENSITIVITY_BUDGET",
            "SENSITIVITY_METRICS", "TARGET_HALF_WIDTH", "GroupIndex", "SensitivityResult", "Step",
            "grouped_indices", "janon_closed_index", "pick_freeze_indices", "ranks", "sensitivity",
            "tail_variance_share"]
@@ -85,8 +85,11 @@ TARGET_HALF_WIDTH = 0.1
 #: Evaluations the adaptive sample may spend [–] (the default of ``[uncertainty]
 #: sensitivity_budget``).
 SENSITIVITY_BUDGET = 8192
-#: Base points from which the stopping test is applied [–].
+#: Base points from which the stopping test is applied [–] (module docstring).
 MIN_STOP_BASE = 256
+#: How the indices and their intervals are estimated (the JSON's ``estimator``).
+ESTIMATOR = ("Janon et al. 2014 on the Saltelli design's pick-freeze pairs (S1; S_T = 1 − "
+             "closed index of the other groups), bootstrap of the base points")
 
 #: Evaluates (S, d) variable rows [SI] to metric name → (S,) values (nan: not available).
 RowEvaluator = Callable[[NDArray[np.float64]], Mapping[str, NDArray[np.float64]]]
@@ -274,9 +277,9 @@ class SensitivityResult:
                 for _, v in sorted(by_rank.items()) if len(v) > 1]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (nan as None); ``first_order``/``total`` are the clipped values,
-        ``*_raw`` the estimators', ``*_outside`` the flags, ``rank`` and ``tied`` the
-        ranking by S_T."""
+        """JSON-ready dict (nan as None); ``estimator`` names the estimator
+        (:data:`ESTIMATOR`), ``first_order``/``total`` are the clipped values, ``*_raw`` the
+        estimators', ``*_outside`` the flags, ``rank`` and ``tied`` the ranking by S_T."""
         def clean(values: Sequence[float]) -> list[float | None]:
             return [v if math.isfinite(v) else None for v in values]
 
@@ -307,7 +310,8 @@ class SensitivityResult:
                 entry |= {"first_order": clean(self.first_order[m]),
                           "total": clean(self.total[m]), "rank": None, "tied": []}
             metrics[m] = entry
-        return {"groups": list(self.groups), "path": "full", "base_samples": self.base_samples,
+        return {"groups": list(self.groups), "path": "full", "estimator": ESTIMATOR,
+                "base_samples": self.base_samples,
                 "evaluations": self.evaluations, "unbuilt": self.unbuilt,
                 "confidence": self.confidence, "target_half_width": self.target,
                 "budget_evaluations": self.budget, "converged": self.converged,
