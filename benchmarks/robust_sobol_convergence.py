@@ -6,7 +6,8 @@ a scrambled Sobol sequence, so its first N·(G + 2) rows are the design of every
 power-of-two N: the adaptive sample of :func:`chaindrive.robust.sensitivity.grouped_indices`
 sees exactly these prefixes); the indices and their 95 % bootstrap half-widths are then
 estimated on each prefix, N = 32, 64, …, by the package's own estimator
-(:func:`chaindrive.robust.sensitivity._analyse`, SALib).
+(:func:`chaindrive.robust.sensitivity._analyse`: Janon et al.'s, with its bootstrap). Jansen's
+estimator on the same states: ``benchmarks/robust_sobol_replicates.py <store>``.
 
     python benchmarks/robust_sobol_convergence.py seed_three_sprocket --n-max 1024
 
