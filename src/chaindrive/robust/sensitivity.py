@@ -26,9 +26,9 @@ the largest S_T) has an interval no wider than ± ``target`` (0.1), or the next 
 would exceed the budget of evaluations; the result says which (``converged``,
 ``budget_hit``) and keeps the widths at every N. The stopping test starts at
 :data:`MIN_STOP_BASE` base points: on the seed drive the bootstrap intervals of N = 128 held
-the N = 256 mean of K_D's and k₂'s leading S_T in only 4 to 5 of 9 independent scramblings,
-those of N = 256 in all 9 (docs/robust.md) — a bootstrap cannot see tail states the sample
-does not hold yet.
+the N = 256 mean of k₂'s and f₁'s leading S_T in only 5 and 6 of 9 independent
+scramblings, those of N = 256 in all 9 (docs/robust.md) — a bootstrap cannot see tail states
+the sample does not hold yet (a choice of this package from that measurement).
 
 **Reading the indices.** An index is a share of the variance, in [0, 1]; the estimators can
 leave that range on a finite sample. A value outside by no more than its interval half-width
