@@ -1,5 +1,5 @@
 """Where the long tails of a robust study's metrics come from: the figures of docs/robust.md
-("Why the seed's K_D, k₂ and f₁ indices do not converge").
+("Why the seed's K_D, k₂ and f₁ indices converge slowly").
 
 Reads the states that ``benchmarks/robust_sobol_convergence.py`` stored (``--store``), rebuilds
 the example's uncertainty model and Saltelli design (same seed, same rows) and prints:
@@ -8,7 +8,8 @@ the example's uncertainty model and Saltelli design (same seed, same rows) and p
   detuning and K_D;
 * every metric's distribution over the states (median, 99th percentile, largest, kurtosis)
   and the share of its sum of squared deviations Σ(y − ȳ)² held by the 1 % and 0.1 % of the
-  states farthest from the mean (what Jansen's S_T estimator averages);
+  states farthest from the mean (what Jansen's S_T estimator averages, SALib's and the
+  package's before Janon et al.'s);
 * the states with the largest K_D: f₁, f₂, life fraction, elongation, sag ratio;
 * how many states lie within 5 % and 10 % of f_z, and how early in the life;
 * the leading S_T of K_D, k₂ and f₁ at the full N with the base points whose block holds a

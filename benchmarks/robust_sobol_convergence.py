@@ -6,7 +6,8 @@ a scrambled Sobol sequence, so its first N·(G + 2) rows are the design of every
 power-of-two N: the adaptive sample of :func:`chaindrive.robust.sensitivity.grouped_indices`
 sees exactly these prefixes); the indices and their 95 % bootstrap half-widths are then
 estimated on each prefix, N = 32, 64, …, by the package's own estimator
-(:func:`chaindrive.robust.sensitivity._analyse`, SALib).
+(:func:`chaindrive.robust.sensitivity._analyse`: Janon et al.'s, with its bootstrap). Jansen's
+estimator on the same states: ``benchmarks/robust_sobol_replicates.py <store>``.
 
     python benchmarks/robust_sobol_convergence.py seed_three_sprocket --n-max 1024
 
@@ -41,11 +42,15 @@ from chaindrive.robust.study import nominal_analysis
 from chaindrive.robust.uncertainty import uncertainty_model, uncertainty_settings
 
 
-def evaluate(name: str, n_max: int, store: Path, chunk: int = 256) -> None:
-    """Evaluate the design of ``n_max`` base points in chunks, stored after each."""
+def evaluate(name: str, n_max: int, store: Path, seed: int | None = None,
+             chunk: int = 256) -> None:
+    """Evaluate the design of ``n_max`` base points in chunks, stored after each (``seed``:
+    the scrambling of the design, None: the example's)."""
     import tomllib
 
     data = tomllib.loads(examples.text(name))
+    if seed is not None:
+        data.setdefault("uncertainty", {})["seed"] = seed
     nominal = nominal_analysis(drive_from_mapping(data))
     model = uncertainty_model(nominal, uncertainty_settings(data.get("uncertainty")))
     problem = _saltelli_problem(model)
@@ -95,11 +100,13 @@ def main() -> None:
     parser.add_argument("example", help="a bundled example's name")
     parser.add_argument("--n-max", type=int, default=1024, help="largest base N")
     parser.add_argument("--store", type=Path, default=None, help="pickle of the states")
+    parser.add_argument("--seed", type=int, default=None,
+                        help="scrambling seed of the design (default: the example's)")
     parser.add_argument("--analyse-only", action="store_true")
     a = parser.parse_args()
     store = a.store or Path(f"sobol_convergence_{a.example}.pkl")
     if not a.analyse_only:
-        evaluate(a.example, a.n_max, store)
+        evaluate(a.example, a.n_max, store, a.seed)
     analyse(store)
 
 

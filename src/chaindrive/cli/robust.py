@@ -148,7 +148,8 @@ def _sensitivity_lines(sens: dict[str, Any]) -> list[str]:
     else:
         verdict = widest
     lines = [f"Sobol sample: N = {sizes} base points, {sens['evaluations']} states "
-             f"({sens['confidence']:.0%} bootstrap intervals); {verdict}"]
+             f"({sens['confidence']:.0%} bootstrap intervals, Janon et al.'s estimator); "
+             f"{verdict}"]
     wide = [f"{metric} ±{m['leading_half_width']:.2f}" + _tail_note(m)
             for metric, m in sens["metrics"].items()
             if m["leading_half_width"] is not None and not m["converged"]]

@@ -53,7 +53,8 @@ def _sobol_summary(sens: dict[str, Any]) -> str:
     """The Sobol sample in words: its size, whether it converged, what cannot be ranked."""
     sizes = " → ".join(str(h["base_samples"]) for h in sens["history"])
     text = (f"Saltelli sample grown N = {sizes} base points ({sens['evaluations']} states on "
-            f"the full path) [Saltelli2010], [Herman2017]; ")
+            f"the full path) [Saltelli2010], [Herman2017], indices by Janon et al.'s "
+            "estimator [Janon2014]; ")
     if sens["converged"]:
         text += (f"every metric's leading S_T is within ±{sens['target_half_width']:g}.")
     else:
