@@ -639,7 +639,7 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
         return [f"Tooth form GOST 591-69, z = {form.teeth}, λ = p/d1 = {form.lam:.3f}, "
                 f"K = {form.K:g}",
                 f"Pitch diameter d = {d(form.pitch_diameter * MM, 3)}",
-                f"Tip diameter De = {d(form.tip_diameter * MM, 1)} (to 0.1 mm)",
+                f"Tip diameter da = De = {d(form.tip_diameter * MM, 1)} (to 0.1 mm)",
                 f"Root diameter Di = {d(form.root_diameter * MM, 3)} (d − 2 r)",
                 f"Seating radius r = {d(form.seating_radius * MM, 3)}",
                 f"Joining radius r1 = {d(form.joining_radius * MM, 3)}",
@@ -682,9 +682,9 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
 def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
                     notes_right: bool = False) -> Box:
     """The drawing of sprocket ``index`` with its centre at the origin: the face view with
-    its diameters and the keyway, the axial section A–A to its right, the notes below both
-    (or to their right) and, for a polymeric body, its section to the left; returns the box
-    it takes [mm]."""
+    its diameters and the keyway (and a polymeric body's circles), the axial section A–A to
+    its right (the metal or polymeric body, :func:`_axial_section`), the notes below both (or
+    to their right); returns the box it takes [mm]."""
     from ezdxf import bbox
 
     g = analysis.geometry.sprockets[index]
@@ -726,36 +726,22 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     ext = bbox.extents(dims)
     face = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra),
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
-    boxes = [face]
-    if profile.body is None:
-        boxes.append(_axial_section(msp, w, ra, root, face[2] + 3 * h, h))
+    section = _axial_section(msp, w, ra, root, face[2] + 3 * h, h, profile.body)
     lines = [*tooth_form_lines(profile), *workshop_lines(w, profile.body is not None)]
     if profile.body is not None:
-        body_lines, section = _polymer_body(msp, profile, profile.body, face, h)
-        lines += body_lines
-        boxes.append(section)
-    views = _union(boxes)
+        lines += _polymer_body(msp, profile, profile.body)
+    views = _union([face, section])
     corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
     notes = _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)
     return _union([views, notes])
 
 
-def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float, left: float,
-                   h: float) -> Box:
-    """The axial section A–A of a metal sprocket, its left edge at ``left`` and its axis on
-    y = 0: the rim to the root circle, a tooth per strand with its chamfer (an arc tangent to
-    the tooth's side), the hub and the bore (through the keyway above the axis), hatched;
-    dimensioned with the width, the tooth width, the hub length and diameter; returns its
-    box [mm]."""
-    from ezdxf import bbox
-
-    face, overall = w.face_width * MM, w.overall_width * MM
-    pt = w.transverse_pitch * MM
-    hub_len, hub_r = w.hub_length * MM, w.hub_diameter * MM / 2
-    reach = max(hub_len, overall) / 2
-    cx = left + reach
-    bore_r = w.bore * MM / 2
-    top_bore = (w.keyway.over_bore * MM - bore_r) if w.keyway is not None else bore_r
+def _teeth(w: SprocketWorkshop, ra: float, root: float, x_left: float) -> list[Point]:
+    """The teeth of the axial section from (``x_left``, root) to the last strand's right side
+    at the root [mm]: a tooth per strand of the face width, its tip chamfered by an arc of
+    the chamfer radius tangent to the tooth's side, the chamfer depth below the tip ([ISO606]
+    bf1, ba, rx; [GOST591] b, r3, f)."""
+    face, pt = w.face_width * MM, w.transverse_pitch * MM
     rad, depth = w.chamfer_radius * MM, min(w.chamfer_depth * MM, ra - root)
 
     def tooth(x0: float) -> list[Point]:
@@ -767,13 +753,46 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
         down = [(2 * x0 + face - x, y) for x, y in reversed(up)]
         return up + down
 
+    return [p for k in range(w.strands) for p in tooth(x_left + k * pt)]
+
+
+def _body_side(w: SprocketWorkshop, root: float,
+               body: PolymericProportions | None) -> list[Point]:
+    """The left side of the section's body from the bore up to the rim's root, as (distance
+    left of the mid-plane, radius) [mm], radius −1 marking the bore: a metal sprocket's hub
+    and its rim of the overall width; a polymeric body's hub, web and rim
+    [MultimassChainDrives, §3.4]."""
+    if body is None:
+        hub_len, hub_r = w.hub_length * MM / 2, w.hub_diameter * MM / 2
+        return [(hub_len, -1.0), (hub_len, hub_r), (w.overall_width * MM / 2, hub_r)]
+    hub_len, hub_r = body.hub_length * MM / 2, body.hub_outer_diameter * MM / 2
+    web, rim = body.web_thickness * MM / 2, body.rim_width * MM / 2
+    rim_r = body.rim_inner_diameter * MM / 2
+    return [(hub_len, -1.0), (hub_len, hub_r), (web, hub_r), (web, rim_r), (rim, rim_r),
+            (rim, root)]
+
+
+def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float, left: float,
+                   h: float, body: PolymericProportions | None = None) -> Box:
+    """The axial section A–A of a sprocket, its left edge at ``left`` and its axis on y = 0:
+    the body (a metal hub and rim, or a polymeric ``body``'s hub, web and rim) to the root
+    circle, the teeth with their chamfer (:func:`_teeth`) and the bore (through the keyway
+    above the axis), two closed halves hatched; dimensioned with the tooth width, the hub
+    length and diameter, the overall width of several strands and d + t2; returns its box
+    [mm]."""
+    from ezdxf import bbox
+
+    overall = w.overall_width * MM
+    side = _body_side(w, root, body)
+    hub_len, hub_r = 2 * side[0][0], side[1][1]
+    reach = max(a for a, _ in [*side, (overall / 2, 0.0)])
+    cx = left + reach
+    bore_r = w.bore * MM / 2
+    top_bore = (w.keyway.over_bore * MM - bore_r) if w.keyway is not None else bore_r
+    depth = min(w.chamfer_depth * MM, ra - root)
     inner = -1.0  # marks the bore's radius, set per half below
-    outline: list[Point] = [(cx - hub_len / 2, inner), (cx - hub_len / 2, hub_r),
-                            (cx - overall / 2, hub_r)]
-    for k in range(w.strands):
-        outline += tooth(cx - overall / 2 + k * pt)
-    outline += [(cx + overall / 2, hub_r), (cx + hub_len / 2, hub_r),
-                (cx + hub_len / 2, inner)]
+    outline = ([(cx - a, r) for a, r in side] + _teeth(w, ra, root, cx - overall / 2)
+               + [(cx + a, r) for a, r in reversed(side)])
     for sign, radius in ((1.0, top_bore), (-1.0, bore_r)):
         poly = _ordered([(x, sign * (radius if y == inner else y)) for x, y in outline])
         msp.add_lwpolyline(poly, close=True, dxfattribs={"layer": "SECTION"})
@@ -784,7 +803,8 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
     override = _dim_override(0.8 * h)
     x_tooth = cx - overall / 2
     wanted: list[tuple[Point, Point, float, int, str]] = [
-        ((x_tooth, ra - depth), (x_tooth + face, ra - depth), ra + 1.5 * h, 0, "<>"),
+        ((x_tooth, ra - depth), (x_tooth + w.face_width * MM, ra - depth), ra + 1.5 * h, 0,
+         "<>"),
         ((cx - hub_len / 2, -hub_r), (cx + hub_len / 2, -hub_r), -ra - 1.5 * h, 0, "<>"),
         ((cx + hub_len / 2, -hub_r), (cx + hub_len / 2, hub_r), cx + reach + 1.5 * h, 90,
          "%%c<>")]
@@ -869,7 +889,7 @@ def workshop_lines(w: SprocketWorkshop, polymeric: bool = False) -> list[str]:
                      f"(body model: 0.33/0.19 of the bore, 3 face widths), at most dg = "
                      f"{d(w.hub_limit * MM, 1)}")
     if w.standard == "GOST 591":
-        lines.append(f"Section A–A: face width b = {d(w.face_width * MM, 2)}, tooth chamfer "
+        lines.append(f"Section A–A: face width bf1 = b = {d(w.face_width * MM, 2)}, tooth chamfer "
                      f"r3 = {d(w.chamfer_radius * MM, 2)} (1.7 d1) about centres h3 = 0.8 d1 "
                      f"below the tip, f = {d(w.chamfer_width * MM, 2)} at the tip (GOST 591)")
     else:
@@ -907,11 +927,11 @@ def _limits_text(profile: SprocketProfile, w: SprocketWorkshop) -> tuple[str, st
             f"%%c{dimension(iso.root_diameter * MM, 2)} {_root_tolerance(profile)}")
 
 
-def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProportions,
-                  face: Box, h: float) -> tuple[list[str], Box]:
-    """Face-view circles and, left of the face view's box ``face``, the axial half-section
-    of a polymeric body [MultimassChainDrives, §3.4]; returns the text lines (mass, inertia,
-    proportions) and the section's box."""
+def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProportions
+                  ) -> list[str]:
+    """Face-view circles of a polymeric body (hub, rim and six lightening holes)
+    [MultimassChainDrives, §3.4]; returns the text lines (mass, inertia, proportions). Its
+    section is :func:`_axial_section`'s."""
     centre = (0.0, 0.0)
     for d in (p.hub_outer_diameter, p.rim_inner_diameter):
         msp.add_circle(centre, d / 2 * MM, dxfattribs={"layer": "BODY"})
@@ -921,28 +941,6 @@ def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProport
         msp.add_circle((p.hole_circle_diameter / 2 * MM * math.cos(a),
                         p.hole_circle_diameter / 2 * MM * math.sin(a)), hole / 2,
                        dxfattribs={"layer": "BODY"})
-    d = profile.form.pitch_diameter
-    half = [(-p.hub_length / 2, p.bore_diameter / 2), (p.hub_length / 2, p.bore_diameter / 2),
-            (p.hub_length / 2, p.hub_outer_diameter / 2),
-            (p.web_thickness / 2, p.hub_outer_diameter / 2),
-            (p.web_thickness / 2, p.rim_inner_diameter / 2),
-            (p.rim_width / 2, p.rim_inner_diameter / 2), (p.rim_width / 2, d / 2),
-            (-p.rim_width / 2, d / 2), (-p.rim_width / 2, p.rim_inner_diameter / 2),
-            (-p.web_thickness / 2, p.rim_inner_diameter / 2),
-            (-p.web_thickness / 2, p.hub_outer_diameter / 2),
-            (-p.hub_length / 2, p.hub_outer_diameter / 2)]
-    label = "Section A–A"
-    at_top = d / 2 * MM + h
-    label_w = _box_size(_text_box(label, (0.0, 0.0), 0.8 * h, "BOTTOM_CENTER"))[0]
-    reach = max(p.hub_length * MM, max(abs(a) for a, _ in half) * MM)  # the centre line
-    x0 = min(face[0] - 2 * h - reach, face[0] - 2 * h - label_w / 2)
-    for sign in (1.0, -1.0):
-        msp.add_lwpolyline([(x0 + a * MM, sign * r * MM) for a, r in half], close=True,
-                           dxfattribs={"layer": "BODY"})
-    msp.add_line((x0 - p.hub_length * MM, 0.0), (x0 + p.hub_length * MM, 0.0),
-                 dxfattribs={"layer": "CENTER"})
-    text = _text(msp, label, (x0, at_top), 0.8 * h, "BOTTOM_CENTER")
-    section = _union([(x0 - reach, -d / 2 * MM, x0 + reach, d / 2 * MM), text])
     lines = [f"Polymeric body: mass = {profile.mass.mass:.4g} kg, inertia = "
              f"{profile.mass.moment_of_inertia:.4g} kg·m²",
              f"Hub Ø {dimension(p.hub_outer_diameter * MM, 1)} × "
@@ -951,7 +949,7 @@ def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProport
              f"{dimension(p.rim_width * MM, 1)} wide",
              f"Six lightening holes Ø {dimension(hole, 1)} on Ø "
              f"{dimension(p.hole_circle_diameter * MM, 1)}"]
-    return lines, section
+    return lines
 
 
 def _index_of(analysis: Analysis, name: str) -> int:

@@ -242,7 +242,19 @@ def test_polymeric_body_and_svg(tmp_path: Path) -> None:
     a = chaindrive.analyze(d, response=False)
     doc = ezdxf.readfile(write_drawing(a, tmp_path / "p.dxf"))
     body = doc.modelspace().query("*[layer=='BODY']")
-    assert len(body.query("LWPOLYLINE")) == 2 and len(body.query("CIRCLE")) == 8
+    assert len(body.query("CIRCLE")) == 8  # face view: hub, rim and six lightening holes
+    # its section: two closed hatched halves whose widths are the body's hub, web and rim
+    p = a.profiles[1].body
+    assert p is not None
+    one = ezdxf.readfile(write_drawing(a, tmp_path / "d.dxf", sprocket="driven")).modelspace()
+    halves = one.query("LWPOLYLINE[layer=='SECTION']")
+    assert len(halves) == 2 and all(s.closed for s in halves)
+    assert len(one.query("HATCH[layer=='HATCH']")) == 2
+    xs = [x for x, *_ in halves[0].get_points()]
+    mid = (max(xs) + min(xs)) / 2
+    widths = [2 * abs(x - mid) for x in xs]
+    for width in (p.hub_length, p.web_thickness, p.rim_width):
+        assert min(abs(v - width * MM) for v in widths) < 1e-6, width
     texts = " ".join(t.plain_text() for t in doc.modelspace().query("TEXT"))
     assert "mass = " in texts and "inertia = " in texts
     svg = write_drawing(a, tmp_path / "p.svg").read_text()

@@ -218,3 +218,34 @@ def test_a_bore_too_large_for_the_hub_is_refused(tmp_path: Path) -> None:
     with pytest.raises(DesignError, match=r"sprockets\[0\]\.bore.*no hub wall"):
         write_drawing(a, tmp_path / "x.dxf", sprocket="driver")
     assert not (tmp_path / "x.dxf").exists()
+
+
+@pytest.mark.parametrize("example", sorted(p.stem for p in EXAMPLES.glob("*.toml")))
+def test_every_example_sprocket_drawing_has_every_item(example: str, tmp_path: Path) -> None:
+    """Each bundled example's first sprocket, read back from its DXF: a standard sheet with
+    the ISO 7200 title block, the front view (outline, bore, keyway or the note that there is
+    none), the axial section (two hatched halves), the bore fit, the measurement over pins,
+    the tip diameter inside its range, the material note and ISO 2768's general tolerances."""
+    a = chaindrive.analyze(chaindrive.load(EXAMPLES / f"{example}.toml"), response=False)
+    first = a.drive.sprockets[0]
+    doc = ezdxf.readfile(write_drawing(a, tmp_path / "s.dxf", sprocket=first.name))
+    msp = doc.modelspace()
+    sheet, _, edge = _sheet(msp)
+    assert sheet in SHEETS.values()
+    _inside(msp, edge)
+    texts = [t.plain_text() for t in msp.query("TEXT")]
+    joined = "\n".join(texts)
+    for label in ("Title", "Drawing number", "Material", "Scale", "Sheet size",
+                  "Date of issue", "Created by", "Checked by", "Approved by", "Legal owner"):
+        assert label in texts, label
+    assert len(msp.query("LWPOLYLINE[layer=='OUTLINE']")) == 1
+    assert len(msp.query("CIRCLE[layer=='BORE']")) == 1
+    assert (len(msp.query("LWPOLYLINE[layer=='KEYWAY']")) == 1
+            or "no keyway" in joined.lower())
+    sections = msp.query("LWPOLYLINE[layer=='SECTION']")
+    assert len(sections) == 2 and all(s.closed for s in sections)
+    assert len(msp.query("HATCH[layer=='HATCH']")) == 2
+    assert "Bore Ø" in joined and "face width bf1 = " in joined
+    assert "Measurement over pins MR = " in joined and "Tip diameter da = " in joined
+    assert "General tolerances ISO 2768-m" in texts
+    assert any(t.startswith("Sprocket ") and f"z = {first.teeth}" in t for t in texts)
