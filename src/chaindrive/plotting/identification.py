@@ -6,11 +6,13 @@ Campbell diagram with the run-up map's points over the record's speeds ([Brandt2
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from chaindrive.plotting._base import CYCLE, figure_axes, finish
+from chaindrive.units import RAD_S_PER_RPM, TWO_PI
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -24,6 +26,39 @@ __all__ = ["measured_campbell", "measured_spectrum", "order_spectrum", "runup_ca
 #: Line style of each kind of model line.
 _STYLE = {"natural": ("-", 0), "tooth": ("--", 1), "shaft": (":", 2), "parametric": ("-.", 3),
           "span transverse": ((0, (1, 3)), 4)}
+
+
+def _traces(ax: Axes, signals: list[tuple[str, Any, Any, list[tuple[float, float, Any]]]]
+            ) -> float:
+    """Draw each signal's spectral density [dB] (name, x, psd, peaks as (x, level [dB],
+    matched line or None)), its peaks marked and labelled; returns the largest x drawn."""
+    top = 0.0
+    for k, (name, x, psd, peaks) in enumerate(signals):
+        colour = CYCLE[k % len(CYCLE)]
+        ax.plot(x, 10.0 * np.log10(np.maximum(psd, 1e-300)), lw=0.8, color=colour, label=name)
+        top = max(top, float(x[-1]))
+        for px, level, line in peaks:
+            ax.plot([px], [level], "v", ms=4, color=colour)
+            ax.annotate("?" if line is None else line.label, (px, level),
+                        textcoords="offset points", xytext=(2, 4), fontsize="xx-small",
+                        rotation=60)
+    return top
+
+
+def _model_lines(ax: Axes, lines: Sequence[Any], top: float, suffix: str) -> list[Any]:
+    """Draw the model's lines up to ``top`` as vertical lines styled by kind (one legend
+    entry a kind, "model: <kind><suffix>"); returns the lines drawn."""
+    seen: set[str] = set()
+    drawn = []
+    for line in lines:
+        if line.frequency > top:
+            continue
+        style, c = _STYLE.get(line.kind, ("-", 5))
+        ax.axvline(line.frequency, ls=style, lw=0.7, color=CYCLE[c % len(CYCLE)], alpha=0.8,
+                   label=None if line.kind in seen else f"model: {line.kind}{suffix}")
+        seen.add(line.kind)
+        drawn.append(line)
+    return drawn
 
 
 def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figure:
@@ -44,25 +79,12 @@ def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figu
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (7.5, 4.2))
-    top = 0.0
-    for k, sig in enumerate(result.signals):
-        db = 10.0 * np.log10(np.maximum(sig.psd, 1e-300))
-        ax.plot(sig.frequencies, db, lw=0.8, color=CYCLE[k % len(CYCLE)], label=sig.name)
-        top = max(top, float(sig.frequencies[-1]))
-        for p in sig.peaks:
-            ax.plot([p.frequency], [p.level_db], "v", ms=4, color=CYCLE[k % len(CYCLE)])
-            ax.annotate("?" if p.line is None else p.line.label, (p.frequency, p.level_db),
-                        textcoords="offset points", xytext=(2, 4), fontsize="xx-small",
-                        rotation=60)
-    seen: set[str] = set()
-    for line in result.lines:
-        if line.frequency > top:
-            continue
-        style, c = _STYLE.get(line.kind, ("-", 5))
-        ax.axvline(line.frequency, ls=style, lw=0.7, color=CYCLE[c % len(CYCLE)], alpha=0.8,
-                   label=None if line.kind in seen else f"model: {line.kind}")
-        seen.add(line.kind)
+    top = _traces(ax, [(s.name, s.frequencies, s.psd, [(p.frequency, p.level_db, p.line)
+                                                        for p in s.peaks])
+                       for s in result.signals])
+    for line in _model_lines(ax, result.lines, top, ""):
         if line.kind == "natural":
+            c = _STYLE.get(line.kind, ("-", 5))[1]
             ax.axvspan(line.frequency * (1 - result.tolerance),
                        line.frequency * (1 + result.tolerance), color=CYCLE[c % len(CYCLE)],
                        alpha=0.08, lw=0)
@@ -136,25 +158,11 @@ def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure
         The figure drawn into.
     """
     fig, ax = figure_axes(ax, (7.5, 4.2))
-    top = 0.0
-    for k, sig in enumerate(tracking.signals):
-        db = 10.0 * np.log10(np.maximum(sig.psd, 1e-300))
-        ax.plot(sig.orders, db, lw=0.8, color=CYCLE[k % len(CYCLE)], label=sig.name)
-        top = max(top, float(sig.orders[-1]))
-        for p in sig.peaks:
-            ax.plot([p.order], [p.level_db], "v", ms=4, color=CYCLE[k % len(CYCLE)])
-            ax.annotate("?" if p.line is None else p.line.label, (p.order, p.level_db),
-                        textcoords="offset points", xytext=(2, 4), fontsize="xx-small",
-                        rotation=60)
-    seen: set[str] = set()
-    for line in tracking.lines:
-        if line.frequency > top:
-            continue
-        style, c = _STYLE.get(line.kind, ("-", 5))
-        ax.axvline(line.frequency, ls=style, lw=0.7, color=CYCLE[c % len(CYCLE)], alpha=0.8,
-                   label=None if line.kind in seen else f"model: {line.kind} order")
-        seen.add(line.kind)
-    lo, hi = (r / 60.0 for r in tracking.speed_range_rpm)
+    top = _traces(ax, [(s.name, s.orders, s.psd, [(p.order, p.level_db, p.line)
+                                                    for p in s.peaks])
+                       for s in tracking.signals])
+    _model_lines(ax, tracking.lines, top, " order")
+    lo, hi = (r * RAD_S_PER_RPM / TWO_PI for r in tracking.speed_range_rpm)  # rev/s
     first = True
     for line in tracking.natural:
         if line.kind != "natural" or line.frequency / hi > top:
