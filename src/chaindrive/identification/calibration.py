@@ -37,7 +37,7 @@ if TYPE_CHECKING:
 __all__ = ["CalibratedDesign", "Calibration", "MassCalibration", "MeasuredMode",
            "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
            "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
-           "with_reduced_mass"]
+           "with_reduced_mass", "with_sag"]
 
 @dataclass(frozen=True, slots=True)
 class MeasuredMode:
@@ -93,6 +93,23 @@ def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
     """
     return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain,
                                                                 link_stiffness=stiffness))
+
+
+def with_sag(drive: Drive, sag: float) -> Drive:
+    """The design with ``[chain] sag`` set to s [-].
+
+    Parameters
+    ----------
+    drive : Drive
+        The design.
+    sag : float
+        s, the installed sag of the slack span as a fraction of its length [-].
+
+    Returns
+    -------
+    Drive
+    """
+    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
 
 
 def with_reduced_mass(drive: Drive, sprocket: str, mass: float) -> Drive:

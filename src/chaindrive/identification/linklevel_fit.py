@@ -25,7 +25,6 @@ and says no more than that the record does not fix the parameter.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -39,6 +38,7 @@ from chaindrive.identification.calibration import (
     MeasuredMode,
     verdict_changes,
     with_link_stiffness,
+    with_sag,
 )
 from chaindrive.identification.fitting import fit_log_parameter
 
@@ -80,23 +80,6 @@ OTHER_STATE = 0.1
 SAG_RANGE = (0.001, 0.1)
 
 Parameter = Literal["link_stiffness", "sag"]
-
-
-def with_sag(drive: Drive, sag: float) -> Drive:
-    """The design with ``[chain] sag`` set to s [-].
-
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-    sag : float
-        s, the installed sag of the slack span as a fraction of its length [-].
-
-    Returns
-    -------
-    Drive
-    """
-    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
 
 
 def link_level_modes_along_chain(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:

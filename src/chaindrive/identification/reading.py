@@ -3,7 +3,6 @@ level of :mod:`chaindrive.identification.tension`)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -12,7 +11,7 @@ import numpy as np
 
 from chaindrive.dynamics.stiffness import GRAVITY
 from chaindrive.errors import DesignError
-from chaindrive.identification.calibration import verdict_changes
+from chaindrive.identification.calibration import verdict_changes, with_sag
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.identification.tension import (
     TensionEstimate,
@@ -383,7 +382,7 @@ def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
                           "allowed: 0.001 to 0.1")
     lo = sag(est.tension + 1.96 * est.std)
     hi = sag(max(est.tension - 1.96 * est.std, 1e-9))
-    calibrated = dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=s))
+    calibrated = with_sag(drive, s)
     after = analyze(calibrated, response=False)
     return SagCalibration(installed_sag_ratio(drive), s, (lo, hi), calibrated,
                           verdict_changes(before.checks(), after.checks()))
