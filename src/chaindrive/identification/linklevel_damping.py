@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from scipy.signal import detrend
 
+from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.identification.damping import (
     MeasuredDamping,
@@ -237,8 +238,7 @@ def decay_curve(drive: Drive, test: TapTest, *, parameter: Parameter = "damping_
         An unknown parameter, or a grid value out of range.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
-    from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
-    from chaindrive.linklevel.model import HINGE_FRICTION
+    from chaindrive.linklevel.model import HINGE_FRICTION  # lazy: the package loads numba's kernels
 
     zeta_c = float(np.mean(analyze(drive, response=False).dynamics.model.span_damping_ratios))
     zeta_src = ("given ([dynamics] damping_ratio)" if drive.dynamics.damping_ratio is not None
