@@ -26,6 +26,12 @@ from chaindrive.identification.damping import (
     half_power_damping_ratio,
     log_decrement_damping_ratio,
 )
+from chaindrive.identification.linklevel_damping import (
+    LinkLevelDampingCalibration,
+    TapTest,
+    calibrate_link_level_damping,
+    decay_of_signal,
+)
 from chaindrive.identification.linklevel_fit import (
     LinkLevelCalibration,
     LinkLevelDesign,
@@ -59,6 +65,7 @@ __all__ = [
     "DampingCalibration",
     "Identification",
     "LinkLevelCalibration",
+    "LinkLevelDampingCalibration",
     "LinkLevelDesign",
     "MeasuredDamping",
     "MeasuredMode",
@@ -67,12 +74,15 @@ __all__ = [
     "RecordPeak",
     "SagCalibration",
     "SpanTensionReading",
+    "TapTest",
     "TensionEstimate",
     "calibrate_damping_ratio",
     "calibrate_link_level",
+    "calibrate_link_level_damping",
     "calibrated_design",
     "calibrated_design_link_level",
     "calibrated_sag",
+    "decay_of_signal",
     "expected_frequency",
     "free_decay_damping_ratio",
     "half_power_damping_ratio",
