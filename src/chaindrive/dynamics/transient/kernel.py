@@ -23,7 +23,7 @@ result does not depend on the interruption). The state (q, q̇) and the span for
 every ``rec`` steps; the largest force of every span is tracked at every step.
 
 numba is optional: :data:`HAVE_NUMBA` is False when it is not importable and the caller
-falls back to the NumPy loop. :func:`run_kernel_flat` is the entry point with plain arguments
+falls back to the NumPy loop. :func:`run_kernel_flat` is the entry point, with plain arguments,
 that :mod:`chaindrive.dynamics.transient.kernel_build` compiles ahead of time.
 """
 
@@ -64,7 +64,14 @@ def _njit(fn: _Kernel) -> _Kernel:
     return cast(_Kernel, numba.njit(cache=True, fastmath=False)(fn)) if HAVE_NUMBA else fn
 
 
-@_njit
+def _inline(fn: _Kernel) -> _Kernel:
+    """:func:`_njit`, inlined into its callers at numba's intermediate representation (a
+    helper of the step: no call, no passing of its arrays)."""
+    return cast(_Kernel, numba.njit(cache=True, fastmath=False, inline="always")(fn)) \
+        if HAVE_NUMBA else fn
+
+
+@_inline
 def _laws(t: float, v: Any, out: Any, mk: int, mgain: float, meff: float, mkind: int, mp: Any,
           lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float) -> None:
     """Generalised forces of the motor and the loads at the coordinate speeds v, written on
@@ -97,7 +104,7 @@ def _laws(t: float, v: Any, out: Any, mk: int, mgain: float, meff: float, mkind:
     out[mk] += mgain * meff * torque
 
 
-@_njit
+@_inline
 def _polygonal(y: Any, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any,
                pgain: Any, pk: float, plin: float, pd0: Any) -> None:
     """Polygonal elongation d and its rate ḋ of every span (exact hinge law, d(0) removed)."""
@@ -166,7 +173,7 @@ def _find(masks: Any, npat: int, mask: Any) -> int:
     return -1
 
 
-@_njit
+@_inline
 def _span_part(mask: Any, c: Any, ds: Any, T0: Any, poly: bool, d: Any, dd: Any,
                span: Any) -> None:
     """span = the pre-tension and polygonal span forces [N] of the spans in ``mask`` (0 for
@@ -233,23 +240,24 @@ def _solve_small(A: Any, b: Any) -> None:
         b[k] = acc / A[k, k]
 
 
-@_njit
+@_inline
 def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB: Any,
-             GL: Any, y_new: Any, lw: tuple, work: Any, lcols: Any, lA: Any, lb: Any) -> None:
+             GL: Any, y_new: Any, mk: int, mgain: float, meff: float, mkind: int, mp: Any,
+             lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float,
+             fl: Any, f2: Any, vh: Any, lcols: Any, lA: Any, lb: Any) -> None:
     """One step: y' = Φ y + g₀ + Γ(−Bᵀ) s + Γ[:, L] f_L with the span forces held: their
     pre-tension part g₀ = Γ(−Bᵀ) T₀ (a constant of the pattern) and the rest s (GB =
     Γ(−Bᵀ), GL = Γ[:, L], all per pattern; the product skipped while s = 0: no polygonal
     excitation and no slack change); the law forces on the coordinates L linearly implicit
-    on their mean speeds w over the step (lA, lb work arrays of the laws' linear system)."""
-    mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk = lw
-    fl, f2, hv, vh = work[0], work[1], work[2], work[3]
+    on their mean speeds w over the step (lA, lb work arrays of the laws' linear system; the
+    laws as in :func:`_laws`; fl, f2, vh (N,) work arrays). At most 29 arguments: CPython
+    passes more as one tuple, which numba's inlining refuses."""
     th = t + 0.5 * dt
     _laws(th, w, fl, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     m = lcols.size
     for a in range(m):
         i = lcols[a]
-        hv[i] = 1e-6 * (1.0 + abs(w[i]))
-        vh[i] = w[i] + hv[i]
+        vh[i] = w[i] + 1e-6 * (1.0 + abs(w[i]))
     _laws(th, vh, f2, mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk)
     for a in range(m):
         lb[a] = fl[lcols[a]]
@@ -266,7 +274,7 @@ def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB
     am = -1
     for a in range(m):
         i = lcols[a]
-        J = (f2[i] - fl[i]) / hv[i]
+        J = (f2[i] - fl[i]) / (1e-6 * (1.0 + abs(w[i])))
         gii = GL[i, a] / dt
         if gii > 0.0 and 0.5 / gii < J:
             J = 0.5 / gii
@@ -291,14 +299,13 @@ def _advance(y: Any, w: Any, t: float, dt: float, se: Any, g0: Any, Phi: Any, GB
     _matvec_add(GL, lb, y_new)
 
 
-@_njit
-def _span_force(y: Any, F: Any, Bs: tuple, c: Any, ds: Any, T0: Any, poly: bool, d: Any,
-                dd: Any, pg: tuple) -> None:
-    """Span forces [N] before the slack rule at the state y (Bs: the incidence's nonzeros,
-    :func:`_sparse_rows`); the polygonal elongations at y are left in d, ḋ (the next step's
-    explicit part uses them)."""
-    pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
-    bptr, bidx, bval = Bs
+@_inline
+def _span_force(y: Any, F: Any, bptr: Any, bidx: Any, bval: Any, c: Any, ds: Any, T0: Any,
+                poly: bool, d: Any, dd: Any, pz: Any, pR: Any, ps: Any, psign: Any, pidx: Any,
+                pgain: Any, pk: float, plin: float, pd0: Any) -> None:
+    """Span forces [N] before the slack rule at the state y (bptr, bidx, bval: the
+    incidence's nonzeros, :func:`_sparse_rows`); the polygonal elongations at y are left in
+    d, ḋ (the next step's explicit part uses them)."""
     n = y.size // 2
     if poly:
         _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
@@ -315,11 +322,13 @@ def _span_force(y: Any, F: Any, Bs: tuple, c: Any, ds: Any, T0: Any, poly: bool,
 
 
 @_njit
-def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float, rec: int,
-               masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int, B: Any, c: Any,
-               ds: Any,
-               tonly: Any, T0: Any, lw: tuple, poly: bool, pg: tuple, forces: Any,
-               states: Any, fmax: Any, need: Any, lcols: Any) -> int:
+def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float,
+                    rec: int, masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int,
+                    B: Any, c: Any, ds: Any, tonly: Any, T0: Any, mk: int,
+                    mgain: float, meff: float, mkind: int, mp: Any, lk: Any, lgain: Any,
+                    leff: Any, lkind: Any, lM: Any, lwn: Any, brk: float, poly: bool, pz: Any,
+                    pR: Any, ps: Any, psign: Any, pidx: Any, pgain: Any, pk: float, plin: float,
+                    pd0: Any, forces: Any, states: Any, fmax: Any, need: Any, lcols: Any) -> int:
     """Advance from step state[0] to ``steps``; returns the step reached.
 
     y (2N,) state, w (N,) the mean speeds over the previous step (of the law coordinates
@@ -327,31 +336,37 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
     span forces of the previous step, state = [step, slack count, pattern index, pattern of
     the previous step] (all updated in place); Φ_s, Γ_s(−Bᵀ)T₀ (the pre-tension's part, T₀
     of the spans s holds), Γ_s(−Bᵀ) and Γ_s[:, L] of the patterns stacked in Phis, G0s, GBs,
-    GLs (L = ``lcols``, the coordinates of the laws); forces (R, S) and states (R, 2N)
-    filled at every ``rec``-th step, fmax (S,) the largest span forces. Returns < steps when
-    a step needs a slack pattern not among the first ``npat``: it is written into ``need``
-    and nothing of that step is kept.
+    GLs (L = ``lcols``, the coordinates of the laws); the spans (incidence B, stiffnesses c,
+    dampers ds, which carry tension only, pre-tensions T₀); the motor (mk … mp) and the
+    loads (lk … brk) as in :func:`_laws`; the polygonal law (poly … pd0) as in
+    :func:`_polygonal`; forces (R, S) and states (R, 2N) filled at every ``rec``-th step,
+    fmax (S,) the largest span forces. Returns < steps when a step needs a slack pattern not
+    among the first ``npat``: it is written into ``need`` and nothing of that step is kept.
+    One fixed signature (:data:`FLAT_SIGNATURE`) for the ahead-of-time build.
+
+    The pattern's arrays are taken out of the stacks when the pattern changes, not at every
+    step: every array view numba makes counts a reference up and down (an atomic operation
+    each), which on a model of 4 coordinates cost as much as the step's arithmetic.
     """
     ns = c.size
     n = w.size
-    Bs = _sparse_rows(B)
+    bptr, bidx, bval = _sparse_rows(B)
     d, dd = np.zeros(ns), np.zeros(ns)
     d_new, dd_new = np.zeros(ns), np.zeros(ns)
     if poly:
-        pz, pR, ps, psign, pidx, pgain, pk, plin, pd0 = pg
         _polygonal(y, d, dd, pz, pR, ps, psign, pidx, pgain, pk, plin, pd0)
     se = np.empty(ns)
     span = np.empty(ns)
-    work = np.empty((4, n))
+    fl, f2, vh = np.empty(n), np.empty(n), np.empty(n)
     lA = np.empty((lcols.size, lcols.size))
     lb = np.empty(lcols.size)
     y_new = np.empty(2 * n)
     F = np.empty(ns)
     p, pp = state[2], state[3]
+    mask, prev = masks[p], masks[pp]
+    g0, Phi, GB, GL = G0s[p], Phis[p], GBs[p], GLs[p]
     for k in range(state[0], steps):
         t = k * dt
-        mask = masks[p]
-        prev = masks[pp]
         _span_part(mask, c, ds, T0, poly, d, dd, span)
         for i in range(ns):
             # (3 s_k − s_{k−1})/2 less its pre-tension part T₀ (in g₀), the parts of T₀ in
@@ -359,9 +374,10 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
             now = T0[i] if mask[i] else 0.0
             was = T0[i] if prev[i] else 0.0
             se[i] = 1.5 * (span[i] - now) - 0.5 * (span_prev[i] - was) + 0.5 * (now - was)
-        _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
-                 lA, lb)
-        _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
+        _advance(y, w, t, dt, se, g0, Phi, GB, GL, y_new, mk, mgain, meff, mkind, mp, lk, lgain,
+                 leff, lkind, lM, lwn, brk, fl, f2, vh, lcols, lA, lb)
+        _span_force(y_new, F, bptr, bidx, bval, c, ds, T0, poly, d_new, dd_new, pz, pR, ps,
+                    psign, pidx, pgain, pk, plin, pd0)
         changed = False
         for i in range(ns):
             need[i] = (F[i] > 0 or not tonly[i]) and c[i] > 0
@@ -373,22 +389,27 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
                 return k
             p = q
             mask = masks[p]
+            g0, Phi, GB, GL = G0s[p], Phis[p], GBs[p], GLs[p]
             _span_part(mask, c, ds, T0, poly, d, dd, span)
             for i in range(ns):
                 se[i] = span[i] - (T0[i] if mask[i] else 0.0)
-            _advance(y, w, t, dt, se, G0s[p], Phis[p], GBs[p], GLs[p], y_new, lw, work, lcols,
-                     lA, lb)
-            _span_force(y_new, F, Bs, c, ds, T0, poly, d_new, dd_new, pg)
+            _advance(y, w, t, dt, se, g0, Phi, GB, GL, y_new, mk, mgain, meff, mkind, mp, lk,
+                     lgain, leff, lkind, lM, lwn, brk, fl, f2, vh, lcols, lA, lb)
+            _span_force(y_new, F, bptr, bidx, bval, c, ds, T0, poly, d_new, dd_new, pz, pR,
+                        ps, psign, pidx, pgain, pk, plin, pd0)
             state[1] += 1
-        mask = masks[p]
-        pp = p
-        span_prev[:] = span
+        if pp != p:
+            pp = p
+            prev = masks[pp]
+        for i in range(ns):
+            span_prev[i] = span[i]
+            d[i] = d_new[i]
+            dd[i] = dd_new[i]
         for a in range(lcols.size):
             i = lcols[a]
             w[i] = (y_new[i] - y[i]) / dt
-        y[:] = y_new
-        d, d_new = d_new, d
-        dd, dd_new = dd_new, dd
+        for i in range(2 * n):
+            y[i] = y_new[i]
         for i in range(ns):
             f = F[i] if mask[i] else 0.0
             f = max(f, 0.0) if tonly[i] else f
@@ -403,25 +424,6 @@ def run_kernel(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float
                 states[r, i] = y[i]
     state[0], state[2], state[3] = steps, p, pp
     return steps
-
-
-@_njit
-def run_kernel_flat(y: Any, w: Any, span_prev: Any, state: Any, steps: int, dt: float,
-                    rec: int, masks: Any, Phis: Any, G0s: Any, GBs: Any, GLs: Any, npat: int,
-                    B: Any,
-                    c: Any, ds: Any, tonly: Any, T0: Any, mk: int, mgain: float, meff: float,
-                    mkind: int, mp: Any, lk: Any, lgain: Any, leff: Any, lkind: Any, lM: Any,
-                    lwn: Any, brk: float, poly: bool, pz: Any, pR: Any, ps: Any, psign: Any,
-                    pidx: Any, pgain: Any, pk: float, plin: float, pd0: Any, forces: Any,
-                    states: Any, fmax: Any, need: Any, lcols: Any) -> int:
-    """:func:`run_kernel` with the law and polygonal tuples spread out: one fixed signature
-    (:data:`FLAT_SIGNATURE`) for the ahead-of-time build."""
-    return run_kernel(y, w, span_prev, state, steps, dt, rec, masks, Phis, G0s, GBs, GLs, npat,
-                      B,
-                      c, ds, tonly, T0,
-                      (mk, mgain, meff, mkind, mp, lk, lgain, leff, lkind, lM, lwn, brk),
-                      poly, (pz, pR, ps, psign, pidx, pgain, pk, plin, pd0), forces, states,
-                      fmax, need, lcols)
 
 
 #: numba signature of :func:`run_kernel_flat` (C-contiguous float64/int64/bool arrays).
