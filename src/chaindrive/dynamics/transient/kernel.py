@@ -8,7 +8,7 @@ and load laws acting on the mean speed of their own coordinate over the step, li
 implicit and coupled through the step's response (one small linear solve over the law
 coordinates; the stability argument is in :mod:`chaindrive.dynamics.transient.startup`); a
 step that changes the slack pattern redone once with the new pattern. Written on plain arrays so that numba
-compiles it (``@njit(cache=True)``).
+compiles it (``@njit(cache=True)``), the step in one loop (:func:`run_kernel_flat` says why).
 
 Laws are codes and parameter arrays (:mod:`chaindrive.dynamics.transient.kernel_codes`): the motor acts
 on coordinate ``mk`` with gain g and efficiency η (torque g·η·T(t, g q̇)); every load l on
