@@ -12,7 +12,8 @@ Contenders: the start-up kernel (``solve_startup``, its ahead-of-time build, at 
 the accuracy rule) and ``scipy.integrate.solve_ivp(method="LSODA")`` with the analytic
 Jacobian, its right-hand side one matrix product. Accuracy is measured against a reference
 (LSODA at rtol 1e-11) on the largest span forces and the final speeds; LSODA's tolerance is the
-loosest of 1e-3 … 1e-9 whose error is at most the kernel's ("the same accuracy"). Times are CPU
+loosest of 1e-3 … 1e-10 whose error is at most the kernel's ("the same accuracy"; where none
+is, LSODA is timed at 1e-10, less accurate than the kernel). Times are CPU
 times (``time.process_time``), best and median over rounds run in alternation.
 
 ``--against SRC`` adds the kernel of another source tree (its ``src`` directory, e.g. a
@@ -208,7 +209,7 @@ def compare(path: Path, rounds: int = 5, against: Path | None = None) -> None:
     ref = lsoda(1e-11)
     e_kernel = error(kernel(), ref)
     chosen = None
-    for rtol in (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9):
+    for rtol in (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
         e = error(lsoda(rtol), ref)
         if e <= e_kernel:
             chosen = rtol, e
@@ -218,10 +219,14 @@ def compare(path: Path, rounds: int = 5, against: Path | None = None) -> None:
     print(f"  kernel error {e_kernel:.2e} (peak span forces, final speeds; against LSODA "
           "rtol 1e-11)")
     if chosen is None:
-        print("  LSODA does not reach the kernel's accuracy at rtol 1e-9")
-        return
-    rtol, e_lsoda = chosen
-    print(f"  LSODA at the same accuracy: rtol {rtol:g} (error {e_lsoda:.2e})")
+        # timed at its tightest tolerance all the same: less accurate than the kernel there,
+        # so the ratio understates the kernel's lead
+        print(f"  LSODA does not reach the kernel's accuracy at rtol 1e-10 (its error "
+              f"{e:.2e}); timed at rtol 1e-10, less accurate than the kernel")
+        chosen = 1e-10, e
+    else:
+        print(f"  LSODA at the same accuracy: rtol {chosen[0]:g} (error {chosen[1]:.2e})")
+    rtol = chosen[0]
     fns: dict[str, Callable[[], object]] = {"kernel": kernel, "lsoda": lambda: lsoda(rtol),
                                             "analysis": kernel_solver(startup_problem(
                                                 path, linearised=False))}
