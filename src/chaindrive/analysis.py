@@ -68,7 +68,7 @@ from chaindrive.dynamics.transient.runup import (
 )
 from chaindrive.dynamics.transient.startup import StartupResult, startup_progress
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
-from chaindrive.errors import ChainDriveWarning, DesignError, Quantities
+from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, Quantities
 from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_travel_order
 from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
@@ -96,7 +96,8 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
-    from chaindrive.linklevel.compare import GoverningLoads
+    from chaindrive.linklevel.compare import GoverningLoads, ModeAgreement
+    from chaindrive.linklevel.modes import LinearModes
     from chaindrive.multicontour.drive import ContourCheck
 
 #: ``startup_progress(callback)``: the start-ups :func:`analyze` integrates within it report
@@ -537,7 +538,8 @@ class Analysis:
         from chaindrive.linklevel import model_comparison
         from chaindrive.linklevel.modes import linear_modes
 
-        link_f1 = linear_modes(self._contour_drive, geometry=self.geometry).first_longitudinal_hz
+        link_modes = linear_modes(self._contour_drive, geometry=self.geometry)
+        link_f1 = link_modes.first_longitudinal_hz
         steady, startup = self.steady, self.startup
         assert self.drive.driver.speed is not None  # _responds
         f1 = self.dynamics.modal.first_elastic_frequency_hz
@@ -548,7 +550,19 @@ class Analysis:
             ring_kd=None if steady is None else steady.coefficient_of_dynamics,
             ring_startup_peak=None if startup is None else startup.max_span_force,
             first_frequency_hz=f1 if math.isfinite(f1) else None,
-            link_first_frequency_hz=link_f1)
+            link_first_frequency_hz=link_f1,
+            modes=self._mode_agreement(link_modes))
+
+    def _mode_agreement(self, at_rest: LinearModes) -> ModeAgreement:
+        """The two models' first frequencies along the chain at the link-level's loaded
+        static state (docs/linklevel.md §6), at its state at rest (``at_rest``) when the
+        loaded state is not reached."""
+        from chaindrive.linklevel.compare import mode_agreement
+
+        try:
+            return mode_agreement(self._contour_drive, geometry=self.geometry, loaded=True)
+        except ConvergenceError:
+            return mode_agreement(self._contour_drive, geometry=self.geometry, modes=at_rest)
 
     @cached_property
     def governing_loads(self) -> GoverningLoads | None:
