@@ -21,12 +21,12 @@ sideways only by the load pressing it in — the whole-drive model's wrap spring
 bending stiffness [ISO6336-1] in a ladder [Naji1983]) has no such softness.
 
 Strain (``strain_shares``): the tangent stiffness of a link of stiffness k, tension T,
-length ℓ and direction t is k t tᵀ + (T/ℓ)(I − t tᵀ) on the relative displacement Δu of
-its rollers, so a mode's strain energy uᵀKu splits into the links' stretch k (t·Δu)², the
+length ℓ and direction t is k t tᵀ + (T/ℓ)(I − t tᵀ) on the relative displacement Δu of its
+rollers, so a mode's strain energy uᵀKu splits into the links' stretch k (t·Δu)², the
 tension's (T/ℓ)|Δu − t(t·Δu)|² (the string and sag stiffness: what turns a span's end
-displacement into sag change) and the contacts' (the remainder) [Irvine1981, ch. 2] — the same three parts as the whole-drive
-model's span spring (links, their Dischinger–Ernst sag factor [Ernst1965]) and wrap spring
-(teeth, [Naji1983]).
+displacement into sag change) and the contacts' (the remainder) [Irvine1981, ch. 2] — the
+same three parts as the whole-drive model's span spring (links, their Dischinger–Ernst sag
+factor [Ernst1965]) and wrap spring (teeth, [Naji1983]).
 
 **Loaded state** (``loaded=True``): the driven sprockets carry their moments of resistance
 (their power shares of P at the nominal speeds, as the run's), the driver is held and the
