@@ -78,6 +78,10 @@ PAIRED_MODES = 3
 STRING_MODES = 6
 #: Two modes have the same shape on the sprockets' turns when their MAC is at least this.
 SAME_SHAPE = 0.8
+#: The spans' transverse motion takes part in a mode along the chain when its link-level
+#: form holds this much more of its strain energy in the tension than the whole-drive
+#: model's in its sag factor [-] (an explanation's threshold; it decides no check).
+SPAN_COUPLING = 0.1
 
 
 def checked_duration(value: float, field: str = "link_duration_s") -> float:
@@ -532,6 +536,8 @@ class ModeAgreement:
     transverse : tuple of TransverseMode
         The lowest :data:`STRING_MODES` transverse link-level modes against their spans'
         strings.
+    counterpart_strain : tuple of float
+        The counterpart's strain energy in (links, tension, contacts) [-].
     first_seat_hz : float or None
         The link-level's first seat mode (along the chain, held by the contacts) [Hz].
     lowest_string_hz : float
@@ -550,6 +556,7 @@ class ModeAgreement:
     whole_strain: tuple[float, ...]
     pairs: tuple[ModePair, ...]
     transverse: tuple[TransverseMode, ...]
+    counterpart_strain: tuple[float, ...]
     first_seat_hz: float | None
     lowest_string_hz: float
     chain_mass_ratio: float
@@ -579,15 +586,19 @@ class ModeAgreement:
     def verdict(self) -> tuple[str, str]:
         """(the model whose first frequency along the chain is right, why), the why one of
         ``"shared"`` (they agree: the whole-drive model's f₁, which its checks take,
-        stands), ``"sag"`` (the whole-drive f₁ holds most of its strain energy in its spans'
-        sag factor and lies above the spans' first transverse frequency, where that static
-        factor does not hold: the link-level, which carries the spans' mass, is right),
+        stands), ``"sag"`` (the whole-drive f₁ lies above the spans' first transverse
+        frequency and holds most of its strain energy in its spans' static sag factor, or
+        its link-level counterpart holds :data:`SPAN_COUPLING` more of its own in the
+        tension: there the spans' transverse motion, with its mass, takes part
+        [Starossek1991], which the static factor cannot carry: the link-level is right),
         ``"seats"`` (its counterpart lies above the link-level's first seat mode: the
         wrapped chain rides on the seats the whole-drive model's wrap spring stiffens) or
         ``"unexplained"`` (docs/linklevel.md §6)."""
         if self.agrees:
             return WHOLE_DRIVE, "shared"
-        if self.whole_strain[1] > 0.5 and self.whole_drive_hz > self.lowest_string_hz:
+        if self.whole_drive_hz > self.lowest_string_hz and (
+                self.whole_strain[1] > 0.5
+                or self.counterpart_strain[1] - self.whole_strain[1] > SPAN_COUPLING):
             return LINK_LEVEL, "sag"
         c = self.counterpart
         if (c is not None and c.link_level_hz is not None and self.first_seat_hz is not None
@@ -613,6 +624,8 @@ class ModeAgreement:
                                                     self.link_strain, strict=True)),
                 "whole_drive_strain_share": dict(zip(("links", "sag", "wraps"),
                                                      self.whole_strain, strict=True)),
+                "counterpart_strain_share": dict(zip(("links", "tension", "contacts"),
+                                                     self.counterpart_strain, strict=True)),
                 "pairs": [{"whole_drive_hz": p.whole_drive_hz, "link_level_hz": p.link_level_hz,
                            "mac": p.mac} for p in self.pairs],
                 "transverse": [{"frequency_hz": t.frequency_hz, "span": t.span,
@@ -682,12 +695,15 @@ def mode_agreement(drive: Drive, *, geometry: GeometryResult | None = None,
     first_mac = (None if first is None or not elastic.size
                  else mac(turns[:, elastic[0]], modes.sprocket_turns[:, first]))
     pairs = []
+    counterpart_strain: tuple[float, ...] = (math.nan,) * 3
     for j in elastic[:PAIRED_MODES]:
         band = links[(modes.frequencies_hz[links] >= 0.5 * f_whole[j])
                      & (modes.frequencies_hz[links] <= 2.0 * f_whole[j])]
         macs = [mac(turns[:, j], modes.sprocket_turns[:, m]) for m in band]
         best = int(band[int(np.nanargmax(macs))]) if band.size and np.any(
             np.isfinite(macs)) else None
+        if j == elastic[0] and best is not None:
+            counterpart_strain = tuple(float(v) for v in modes.strain_shares[best])
         pairs.append(ModePair(float(f_whole[j]),
                               None if best is None else float(modes.frequencies_hz[best]),
                               None if best is None else float(np.nanmax(macs))))
@@ -723,6 +739,7 @@ def mode_agreement(drive: Drive, *, geometry: GeometryResult | None = None,
         link_level_hz=f1_link, first_mac=first_mac,
         below=0 if first is None else first, link_strain=link_strain,
         whole_strain=whole_strain, pairs=tuple(pairs), transverse=tuple(transverse),
+        counterpart_strain=counterpart_strain,
         first_seat_hz=None if seat is None else float(modes.frequencies_hz[seat]),
         lowest_string_hz=min(f for f in strings if f > 0) if any(strings) else math.nan,
         chain_mass_ratio=float(chain_mass / np.sum(model.ring.masses_kg)))
