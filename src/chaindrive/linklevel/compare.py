@@ -76,6 +76,10 @@ LOAD_TOLERANCE = 0.15
 PAIRED_MODES = 3
 #: Transverse link-level modes set against the string (the lowest ones).
 STRING_MODES = 6
+#: The row of :class:`ModelComparison` with both models' first frequency along the chain at
+#: one tension state (:func:`mode_agreement`).
+SAME_STATE_F1 = ("first natural frequency along the chain, both models at the link-level's "
+                 "static state (its counterpart by MAC)")
 #: Two modes have the same shape on the sprockets' turns when their MAC is at least this.
 SAME_SHAPE = 0.8
 #: The spans' transverse motion takes part in a mode along the chain when its link-level
@@ -136,8 +140,10 @@ class ModelComparison:
 
     @property
     def governing(self) -> tuple[str | None, ...]:
-        """Per row, the model whose value governs (:func:`governing_model`)."""
-        return tuple(governing_model(row) for row in self.rows)
+        """Per row, the model whose value governs (:func:`governing_model`; the row of the
+        two models' first frequencies at one state: the verdict of :attr:`modes`)."""
+        return tuple(self.modes.verdict[0] if self.modes is not None and row[0] == SAME_STATE_F1
+                     else governing_model(row) for row in self.rows)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: the rows as records (with the governing model, ``"whole_drive"``,
@@ -242,6 +248,10 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
              ("first natural frequency", first_frequency_hz, link_first_frequency_hz, "Hz"),
              ("largest roller–tooth impact force", None,
               float(impacts.max()) if impacts.size else None, "N")]
+    if modes is not None:
+        c = modes.counterpart
+        rows.append((SAME_STATE_F1, modes.whole_drive_hz,
+                     None if c is None else c.link_level_hz, "Hz"))
     late = result.times >= result.steady_from
     speed = float(np.mean(np.abs(result.sprocket_speeds[late, result.model.driver])))
     settled = math.isfinite(speed) and abs(speed / nominal_speed - 1.0) <= SETTLED_SPEED
