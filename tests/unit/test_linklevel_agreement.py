@@ -20,6 +20,7 @@ Closed forms:
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 
@@ -143,3 +144,17 @@ def test_eight_sprockets_loaded_first_frequencies_agree():
     assert agree.agrees, agree.pairs
     assert agree.counterpart.mac > 0.9
     assert agree.first_seat_hz < agree.counterpart.link_level_hz
+
+
+def test_a_whole_drive_mode_without_counterpart_is_said_so_in_strict_json():
+    """The conveyor at rest: its whole-drive f₁ (14.0 Hz) is a sag mode with no link-level
+    mode of its shape within half to twice its frequency; the record says none (null, not
+    NaN) and names the link-level model as right for the sag."""
+    drive = load_drive(EXAMPLES / "conveyor_five_sprocket.toml")
+    agree = mode_agreement(drive)
+    out = json.loads(json.dumps(agree.to_dict(), allow_nan=False))
+    assert out["state"] == "rest"
+    assert out["link_level_counterpart_hz"] is None and out["within_tolerance"] is False
+    assert (out["governing"], out["reason"]) == ("link_level", "sag")
+    assert out["whole_drive_strain_share"]["sag"] > 0.5
+    assert out["whole_drive_first_hz"] > out["lowest_string_hz"]

@@ -250,7 +250,7 @@ def model_comparison(result: LinkLevelResult, *, nominal_speed: float,
               float(impacts.max()) if impacts.size else None, "N")]
     if modes is not None:
         c = modes.counterpart
-        rows.append((SAME_STATE_F1, modes.whole_drive_hz,
+        rows.append((SAME_STATE_F1, _num(modes.whole_drive_hz),
                      None if c is None else c.link_level_hz, "Hz"))
     late = result.times >= result.steady_from
     speed = float(np.mean(np.abs(result.sprocket_speeds[late, result.model.driver])))
@@ -622,27 +622,37 @@ class ModeAgreement:
         governing, reason = self.verdict
         return {"state": "loaded" if self.loaded else "rest",
                 "span_tension_n": list(self.span_tensions_n),
-                "whole_drive_first_hz": self.whole_drive_hz,
+                "whole_drive_first_hz": _num(self.whole_drive_hz),
                 "link_level_counterpart_hz": None if c is None else c.link_level_hz,
                 "counterpart_mac": None if c is None else c.mac,
                 "deviation": self.deviation, "within_tolerance": self.agrees,
                 "tolerance": FREQUENCY_TOLERANCE, "governing": governing, "reason": reason,
                 "link_level_first_along_chain_hz": self.link_level_hz,
-                "first_mac": self.first_mac, "transverse_modes_below": self.below,
+                "first_mac": _num(self.first_mac), "transverse_modes_below": self.below,
                 "link_level_first_seat_hz": self.first_seat_hz,
-                "link_level_strain_share": dict(zip(("links", "tension", "contacts"),
-                                                    self.link_strain, strict=True)),
-                "whole_drive_strain_share": dict(zip(("links", "sag", "wraps"),
-                                                     self.whole_strain, strict=True)),
-                "counterpart_strain_share": dict(zip(("links", "tension", "contacts"),
-                                                     self.counterpart_strain, strict=True)),
+                "link_level_strain_share": _shares(("links", "tension", "contacts"),
+                                                   self.link_strain),
+                "whole_drive_strain_share": _shares(("links", "sag", "wraps"),
+                                                    self.whole_strain),
+                "counterpart_strain_share": _shares(("links", "tension", "contacts"),
+                                                    self.counterpart_strain),
                 "pairs": [{"whole_drive_hz": p.whole_drive_hz, "link_level_hz": p.link_level_hz,
-                           "mac": p.mac} for p in self.pairs],
+                           "mac": _num(p.mac)} for p in self.pairs],
                 "transverse": [{"frequency_hz": t.frequency_hz, "span": t.span,
                                 "half_waves": t.half_waves, "string_hz": t.string_hz,
-                                "ratio": t.ratio} for t in self.transverse],
-                "lowest_string_hz": self.lowest_string_hz,
+                                "ratio": _num(t.ratio)} for t in self.transverse],
+                "lowest_string_hz": _num(self.lowest_string_hz),
                 "chain_mass_ratio": self.chain_mass_ratio}
+
+
+def _num(value: float | None) -> float | None:
+    """``value`` for JSON: None for a value not computed (None or nan)."""
+    return value if value is not None and math.isfinite(value) else None
+
+
+def _shares(names: tuple[str, ...], values: tuple[float, ...]) -> dict[str, float | None]:
+    """Strain-energy shares by part, JSON-ready (None for a share not computed)."""
+    return {k: _num(v) for k, v in zip(names, values, strict=True)}
 
 
 def _bare(drive: Drive) -> Drive:
