@@ -1,5 +1,5 @@
 """The link-level model against the whole-drive model on every bundled example, like with
-like: the figures of docs/linklevel.md §6 ("Agreement on every bundled example").
+like: the figures of docs/linklevel.md §6 ("Agreement, like with like").
 Run (one BLAS thread): OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linklevel_agreement.py [NAME …]
 
 Per example (the first contour of a drive with several):
