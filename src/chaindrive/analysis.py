@@ -68,7 +68,7 @@ from chaindrive.dynamics.transient.runup import (
 )
 from chaindrive.dynamics.transient.startup import StartupResult, startup_progress
 from chaindrive.dynamics.warnings import dynamics_warnings, startup_warnings
-from chaindrive.errors import ChainDriveWarning, ConvergenceError, DesignError, Quantities
+from chaindrive.errors import ChainDriveWarning, DesignError, Quantities
 from chaindrive.geometry.contour import contour_geometry, driver_rotation, in_travel_order
 from chaindrive.geometry.length_options import LengthChoice, length_options
 from chaindrive.geometry.profile import SprocketProfile, sprocket_profiles
@@ -96,8 +96,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from chaindrive.linklevel import LinkLevelResult, ModelComparison
-    from chaindrive.linklevel.compare import GoverningLoads, ModeAgreement
-    from chaindrive.linklevel.modes import LinearModes
+    from chaindrive.linklevel.compare import GoverningLoads
     from chaindrive.multicontour.drive import ContourCheck
 
 #: ``startup_progress(callback)``: the start-ups :func:`analyze` integrates within it report
@@ -536,10 +535,11 @@ class Analysis:
         # lazy: the link-level package imports numba (≈0.75 s, -X importtime); only its studies need
         # it
         from chaindrive.linklevel import model_comparison
-        from chaindrive.linklevel.modes import linear_modes
+        from chaindrive.linklevel.compare import mode_agreement
+        from chaindrive.linklevel.modes import rest_and_loaded_modes
 
-        link_modes = linear_modes(self._contour_drive, geometry=self.geometry)
-        link_f1 = link_modes.first_longitudinal_hz
+        at_rest, loaded = rest_and_loaded_modes(self._contour_drive, geometry=self.geometry)
+        link_f1 = at_rest.first_longitudinal_hz
         steady, startup = self.steady, self.startup
         assert self.drive.driver.speed is not None  # _responds
         f1 = self.dynamics.modal.first_elastic_frequency_hz
@@ -551,18 +551,9 @@ class Analysis:
             ring_startup_peak=None if startup is None else startup.max_span_force,
             first_frequency_hz=f1 if math.isfinite(f1) else None,
             link_first_frequency_hz=link_f1,
-            modes=self._mode_agreement(link_modes))
-
-    def _mode_agreement(self, at_rest: LinearModes) -> ModeAgreement:
-        """The two models' first frequencies along the chain at the link-level's loaded
-        static state (docs/linklevel.md §6), at its state at rest (``at_rest``) when the
-        loaded state is not reached."""
-        from chaindrive.linklevel.compare import mode_agreement
-
-        try:
-            return mode_agreement(self._contour_drive, geometry=self.geometry, loaded=True)
-        except ConvergenceError:
-            return mode_agreement(self._contour_drive, geometry=self.geometry, modes=at_rest)
+            # both models at the link-level's loaded state (at rest when it is not reached)
+            modes=mode_agreement(self._contour_drive, geometry=self.geometry,
+                                 modes=at_rest if loaded is None else loaded))
 
     @cached_property
     def governing_loads(self) -> GoverningLoads | None:

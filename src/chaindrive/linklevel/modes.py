@@ -53,6 +53,7 @@ from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.equilibrium import (
     FORCE_TOLERANCE,
     Balance,
+    Equilibrium,
     installed_geometry,
     kernel_tables,
     span_probes,
@@ -67,7 +68,8 @@ if TYPE_CHECKING:
     from chaindrive.linklevel.model import LinkLevelModel
     from chaindrive.model import Drive
 
-__all__ = ["CONTACT", "LONGITUDINAL", "STRAIN_PARTS", "LinearModes", "linear_modes"]
+__all__ = ["CONTACT", "LONGITUDINAL", "STRAIN_PARTS", "LinearModes", "linear_modes",
+           "rest_and_loaded_modes"]
 
 #: A mode counts as longitudinal when more than this fraction of its kinetic energy is in
 #: motion along the chain and sprocket turning [-].
@@ -220,12 +222,13 @@ def _relaxed(bal: _LoadedBalance, model: LinkLevelModel, x: NDArray[np.float64],
 
 
 def _loaded_state(drive: Drive, model: LinkLevelModel, geometry: GeometryResult,
-                  x: NDArray[np.float64], th: NDArray[np.float64], rest: float, ref: int
-                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+                  eq: Equilibrium) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
     """(x, θ, ℓ₀) of the loaded static state (module docstring), from the state at rest:
     dynamic relaxation under the full loads with the chain's length kept, then Newton's
     method with the reference span held at the tension the relaxation left it."""
     n = model.centres.shape[0]
+    x, th, rest = eq.positions, eq.angles[:n].copy(), eq.rest_length
+    ref = int(span_probes(geometry, x)[eq.reference_span])
     assert drive.power is not None and drive.driver.speed is not None
     z = np.array([s.teeth for s in drive.sprockets], dtype=float)
     moments = np.asarray(power_shares(drive), dtype=float) * drive.power / (
@@ -318,19 +321,63 @@ def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
     [Golub2013, §8.7] (symmetric-definite eigenproblem); [Irvine1981, ch. 2] (the tension's
     stiffness of a span); [Dennis1996] (the loaded state's Newton iteration).
     """
+    geometry, model, eq = _rest_state(drive, geometry, model)
+    if not loaded:
+        return _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length, count,
+                            loaded=False)
+    x, th, rest = _loaded_state(drive, model, geometry, eq)
+    return _modes_about(model, geometry, x, th, rest, count, loaded=True)
+
+
+def rest_and_loaded_modes(drive: Drive, *, geometry: GeometryResult | None = None,
+                          count: int = 100000) -> tuple[LinearModes, LinearModes | None]:
+    """The modes about the state at rest and about the loaded state (:func:`linear_modes`),
+    the static state at rest solved once; None for the loaded ones when that state is not
+    reached.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (with a power and a driver speed).
+    geometry : GeometryResult or None
+        Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
+    count : int
+        Number of modes kept [-].
+
+    Returns
+    -------
+    tuple of (LinearModes, LinearModes or None)
+        At rest and loaded.
+    """
+    geometry, model, eq = _rest_state(drive, geometry, None)
+    rest = _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length, count,
+                        loaded=False)
+    try:
+        x, th, length = _loaded_state(drive, model, geometry, eq)
+    except ConvergenceError:
+        return rest, None
+    return rest, _modes_about(model, geometry, x, th, length, count, loaded=True)
+
+
+def _rest_state(drive: Drive, geometry: GeometryResult | None, model: LinkLevelModel | None
+                ) -> tuple[GeometryResult, LinkLevelModel, Equilibrium]:
+    """(installed contour, model, static state at rest at T₀)."""
     geometry, take_up = installed_geometry(drive, geometry or contour_geometry(drive))
     if model is None:
         model = build_model(drive, geometry)
     dt = COURANT * 2.0 / (2.0 * math.pi * model.highest_frequency_hz)
     _, eq = equilibrium_state(drive, geometry, model, dt, take_up)
+    return geometry, model, eq
+
+
+def _modes_about(model: LinkLevelModel, geometry: GeometryResult, x: NDArray[np.float64],
+                 angles: NDArray[np.float64], rest: float, count: int, *, loaded: bool
+                 ) -> LinearModes:
+    """The modes about the static state (x, θ, ℓ₀) (module docstring)."""
     n = model.centres.shape[0]
-    x, th, rest = eq.positions, eq.angles[:n].copy(), eq.rest_length
+    th = angles[:n].copy()
     N = x.shape[0]
     probes = span_probes(geometry, x)
-    if loaded:
-        x, th, rest = _loaded_state(drive, model, geometry, x, th, rest,
-                                    int(probes[eq.reference_span]))
-        probes = span_probes(geometry, x)
     bal = Balance(model, kernel_tables(model), np.arange(n, dtype=np.int64), N, 0)
     r0 = bal(x, th, rest)
     tension = bal.T.copy()
