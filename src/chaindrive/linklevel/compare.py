@@ -130,6 +130,9 @@ class ModelComparison:
         Where that closing half starts [s].
     duration_s : float
         The run's duration [s].
+    modes : ModeAgreement or None
+        Both models' first frequencies along the chain at one tension state
+        (:func:`mode_agreement`; None: not computed).
     """
 
     rows: tuple[Row, ...]
@@ -448,7 +451,7 @@ def mac(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
     Parameters
     ----------
     a, b : ndarray
-        (n,) the two shapes on the same coordinates.
+        (n,) the two shapes on the same coordinates [any unit, the same for both].
 
     Returns
     -------

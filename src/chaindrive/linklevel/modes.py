@@ -111,10 +111,10 @@ class LinearModes:
         the chain's travel is positive on every sprocket), mass-normalised [rad·kg^-1/2].
     span : ndarray of int
         (k,) the span holding most of a transverse mode's kinetic energy (−1 for the
-        longitudinal family).
+        longitudinal family) [-].
     half_waves : ndarray of int
         (k,) half-waves n of a transverse mode along that span (0 for the longitudinal
-        family).
+        family) [-].
     span_tensions_n : ndarray
         (spans,) the static state's tension at each span's middle [N].
     span_lengths_m : ndarray
@@ -158,11 +158,33 @@ class LinearModes:
                      for a, c in zip(self.longitudinal, self.strain_shares[:, 2], strict=True))
 
     def first_of(self, family: str) -> int | None:
-        """Index of the lowest mode of ``family`` (None: none)."""
+        """Index of the lowest mode of ``family`` (None: none).
+
+        Parameters
+        ----------
+        family : str
+            ``"transverse"``, ``"seat"`` or ``"longitudinal_torsional"`` (:attr:`family`).
+
+        Returns
+        -------
+        int or None
+            The mode's index [-].
+        """
         return next((i for i, f in enumerate(self.family) if f == family), None)
 
     def to_dict(self, count: int | None = None) -> dict[str, Any]:
-        """JSON-ready (SI, units in the keys): the lowest ``count`` modes (None: all)."""
+        """JSON-ready (SI, units in the keys).
+
+        Parameters
+        ----------
+        count : int or None
+            The lowest modes written [-] (None: all).
+
+        Returns
+        -------
+        dict
+            The record.
+        """
         k = slice(None, count)
         return {"state": "loaded" if self.loaded else "rest",
                 "frequencies_hz": self.frequencies_hz[k].tolist(),
