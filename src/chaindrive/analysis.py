@@ -535,9 +535,11 @@ class Analysis:
         # lazy: the link-level package imports numba (≈0.75 s, -X importtime); only its studies need
         # it
         from chaindrive.linklevel import model_comparison
-        from chaindrive.linklevel.modes import linear_modes
+        from chaindrive.linklevel.compare import mode_agreement
+        from chaindrive.linklevel.modes import rest_and_loaded_modes
 
-        link_f1 = linear_modes(self._contour_drive, geometry=self.geometry).first_longitudinal_hz
+        at_rest, loaded = rest_and_loaded_modes(self._contour_drive, geometry=self.geometry)
+        link_f1 = at_rest.first_longitudinal_hz
         steady, startup = self.steady, self.startup
         assert self.drive.driver.speed is not None  # _responds
         f1 = self.dynamics.modal.first_elastic_frequency_hz
@@ -548,7 +550,10 @@ class Analysis:
             ring_kd=None if steady is None else steady.coefficient_of_dynamics,
             ring_startup_peak=None if startup is None else startup.max_span_force,
             first_frequency_hz=f1 if math.isfinite(f1) else None,
-            link_first_frequency_hz=link_f1)
+            link_first_frequency_hz=link_f1,
+            # both models at the link-level's loaded state (at rest when it is not reached)
+            modes=mode_agreement(self._contour_drive, geometry=self.geometry,
+                                 modes=at_rest if loaded is None else loaded))
 
     @cached_property
     def governing_loads(self) -> GoverningLoads | None:
