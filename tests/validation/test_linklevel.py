@@ -272,11 +272,13 @@ def test_ring_model_frequency_against_link_level(name):
     """Ring model [MultimassChainDrives] vs link-level, first natural frequency: the
     link-level's first mode along the chain, from its linearisation about the static state
     (chaindrive.linklevel.linear_modes), lies below the ring's first (measured ratio 0.44 on
-    the bare seed contour, 0.47 on the eight-sprocket one: band 0.35–0.85), because the ring
-    leaves out the chain's own mass; the ring with the chain's mass added by Rayleigh's
-    estimate (a third of each span to its ends) comes closer but stays above it (measured
-    180 against 142 Hz and 201 against 137 Hz), as Rayleigh's quotient bounds the
-    fundamental from above [Rao2011, ch. 2]. docs/linklevel.md §6."""
+    the bare seed contour, 0.47 on the eight-sprocket one: band 0.35–0.85). The ring leaves
+    out the chain's own mass, but that is not the whole gap: the ring with the chain's mass
+    added by Rayleigh's estimate (a third of each span to its ends, an upper bound on the
+    fundamental [Rao2011, ch. 2]) stays above it (measured 180 against 142 Hz and 201 against
+    137 Hz), because the link-level mode is a seat mode, most of its strain in the rollers'
+    seat contacts, a compliance neither ring has (docs/linklevel.md §6, "Agreement, like with
+    like")."""
     drive = _load(name)
     geometry = contour_geometry(drive)
     first = linear_modes(drive, geometry=geometry).first_longitudinal_hz
