@@ -276,8 +276,8 @@ def test_ring_model_frequency_against_link_level(name):
     out the chain's own mass, but that is not the whole gap: the ring with the chain's mass
     added by Rayleigh's estimate (a third of each span to its ends, an upper bound on the
     fundamental [Rao2011, ch. 2]) stays above it (measured 180 against 142 Hz and 201 against
-    137 Hz), because the link-level mode is a seat mode, most of its strain in the rollers'
-    seat contacts, a compliance neither ring has (docs/linklevel.md §6, "Agreement, like with
+    140 Hz), because the link-level mode is a seat mode, 99 % and 94 % of its strain in the
+    rollers' seat contacts, a compliance neither ring has (docs/linklevel.md §6, "Agreement, like with
     like")."""
     drive = _load(name)
     geometry = contour_geometry(drive)
