@@ -36,6 +36,12 @@ __all__ = ["PARAMETERS", "expand", "shared_parameters"]
 
 T = TypeVar("T")
 
+_UNITS = ('units : {"SI", "US"}\n'
+          "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).")
+_DOCUMENT = ("document : dict\n"
+             "    The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).")
+_ROWS = "list of dict\n    One dict per row: column header (with its unit) → cell."
+
 #: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
 #: the description indented by four).
 PARAMETERS: Mapping[str, str] = MappingProxyType({
@@ -50,8 +56,7 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter_array": "roller_diameter : float or array_like\n"
                              "    Roller diameter d1 [m].",
     "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",
-    "units": 'units : {"SI", "US"}\n'
-             "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).",
+    "units": _UNITS,
     "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
     "returns_figure": "Figure\n    The figure drawn into.",
@@ -63,6 +68,22 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "section_blocks": "Parameters\n----------\ninp : ReportInput\n"
                       "    The analysis and the report's settings.\n\nReturns\n-------\n"
                       "list of Block\n    The section's blocks.",
+    # presenters (app/, cli/, report/, display.py)
+    "document": _DOCUMENT,
+    "returns_rows": _ROWS,
+    # the whole Parameters and Returns sections of a table's rows from the document
+    "rows_document_units": f"Parameters\n----------\n{_DOCUMENT}\n{_UNITS}\n\n"
+                           f"Returns\n-------\n{_ROWS}",
+    # the Parameters section of a page's screen of the design
+    "params_design_catalogs": "Parameters\n----------\ndesign : dict\n"
+                              "    The design mapping (what a TOML design file loads to).\n"
+                              "catalogs : dict of str to Path | None\n    The catalogues "
+                              "uploaded in the session (name → file), the only files\n"
+                              "    ``chain.catalog`` may name "
+                              "(:func:`chaindrive.io.design.drive_from_mapping`).",
+    "check": "check : Check\n    A pass/fail rule (:class:`chaindrive.checks.Check`), value "
+             "and limit in SI.",
+    "system": 'system : {"SI", "US"}\n    The output unit system (:data:`UNIT_SYSTEMS`).',
 })
 
 _PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)%\((?P<name>\w+)\)s[ \t]*$", re.MULTILINE)
