@@ -515,10 +515,7 @@ def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
     """Rows of the chain length options: each whole link count around the tight length as
     designed, laid out (:func:`chaindrive.geometry.length_options.length_options`).
 
-    Parameters
-    ----------
-    %(document)s
-    %(units)s
+    %(params_document_units)s
 
     Returns
     -------
@@ -547,10 +544,7 @@ def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
     """Rows (quantity, value, unit) of the lubrication advice at the chain speed
     (:func:`chaindrive.strength.lubrication.lubrication_advice`).
 
-    Parameters
-    ----------
-    %(document)s
-    %(units)s
+    %(params_document_units)s
 
     Returns
     -------

@@ -17,7 +17,7 @@ from chaindrive.checks import worst
 from chaindrive.display import (
     candidate_verdict,
     check_row,
-    check_unit,
+    check_value_text,
     finding_lines,
     fmt,
     margin_percent,
@@ -78,10 +78,8 @@ def check_cells(c: Check, inp: ReportInput, *, with_note: bool = True) -> tuple[
         The cells: name, subject, value with its unit, requirement, margin [%], result,
         source.
     """
-    _, value, required, result, source = check_row(c, inp.units)
-    unit = check_unit(c, inp.units)
-    sep = "" if unit in ("°", "%", "") else " "
-    shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
+    _, _, required, result, source = check_row(c, inp.units)
+    shown = check_value_text(c, inp.units)
     note = quantity_text(c.note, c.note_quantities, inp.units) if with_note else ""
     name = c.name + (f" ({note})" if note and not c.passed else "")
     return name, c.subject, shown, required, margin_percent(c), result, readable_source(source)
