@@ -93,10 +93,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     startup : StartupResult
         The start-up.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
-    max_lines : int
-        Spans drawn at most (those of the largest peaks) [-].
+    %(span_curves)s
     %(units_force)s
 
     Returns
@@ -223,10 +220,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     afc : AfcResult
         The speed sweep.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
-    max_lines : int
-        Spans drawn at most (those of the largest peaks) [-].
+    %(span_curves)s
     max_markers : int
         Resonance lines labelled at most [-].
     operating_hz : float or None
@@ -285,8 +279,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     steady : SteadyStateResult
         The steady state.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
+    %(span_names)s
     %(units_force)s
 
     Returns
