@@ -51,6 +51,7 @@ _ROWS = "list of dict\n    One dict per row: column header (with its unit) → c
 #: the description indented by four).
 PARAMETERS: Mapping[str, str] = MappingProxyType({
     "drive": "drive : Drive\n    The design.",
+    "params_drive": "Parameters\n----------\ndrive : Drive\n    The design.",
     "geometry": "geometry : GeometryResult\n    Its contour.",
     "drive_geometry": "drive : Drive\n    The design.\ngeometry : GeometryResult\n"
                       "    Its contour.",
@@ -66,6 +67,8 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
     "returns_figure": "Figure\n    The figure drawn into.",
     "inp": "inp : ReportInput\n    The analysis and the report's settings.",
+    "params_inp": "Parameters\n----------\ninp : ReportInput\n"
+                  "    The analysis and the report's settings.",
     # the whole Parameters and Returns sections of a report section's builder
     "section": "Parameters\n----------\ninp : ReportInput\n"
                "    The analysis and the report's settings.\n\nReturns\n-------\n"

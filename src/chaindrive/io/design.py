@@ -1125,9 +1125,7 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
     written by its designation.
 
-    Parameters
-    ----------
-    %(drive)s
+    %(params_drive)s
 
     Returns
     -------
@@ -1249,9 +1247,7 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
 def drive_to_toml(drive: Drive) -> str:
     """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`).
 
-    Parameters
-    ----------
-    %(drive)s
+    %(params_drive)s
 
     Returns
     -------

@@ -133,9 +133,7 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     estimates its catalogue row marks, a fatigue strength estimated for want of a catalogue
     value, a service factor the design leaves out and the reading of K_D.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     shown : collection of str
         Warning messages already shown in full elsewhere on the page (these get one short
         line here).
@@ -207,9 +205,7 @@ def verdict_of(inp: ReportInput, checks: Sequence[Check], *,
                where: str = "the section Checks") -> Verdict:
     """The verdict of the checks: how many fail and the worst, or that all pass.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     checks : sequence of Check
         Every check of the analysis.
     where : str
@@ -238,9 +234,7 @@ def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = 
     highlighted): every check, failed ones first, or only the governing ones
     (:func:`governing_checks`).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     checks : sequence of Check
         Every check of the analysis.
     governing : bool
@@ -336,9 +330,7 @@ def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
     """The defaults and estimates the results rest on (:func:`estimates`) as a list under
     its heading; nothing when there are none.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     shown : collection of str
         Warnings the page shows in full (an estimate among them is then one short line).
 
@@ -359,9 +351,7 @@ def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table
     """The design at a glance: chain, links, power, speeds, lowest natural frequency, K_D
     and the dynamic safety factors, mass and cost.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     caption : str
         The table's caption.
     words : bool
@@ -612,9 +602,7 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
 def lubrication_text(inp: ReportInput) -> str:
     """The lubrication regime at the chain speed, with its ANSI type when it has one.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
 
     Returns
     -------
@@ -789,9 +777,7 @@ def design_file_section(inp: ReportInput) -> list[Block] | None:
 def references_section(inp: ReportInput, cited: str) -> list[Block]:
     """The bibliography: every source the report cites (``cited`` is the report's text).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     cited : str
         The report's text (:func:`chaindrive.report.report_text`), searched for keys of
         docs/references.md in square brackets.
