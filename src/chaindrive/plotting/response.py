@@ -20,7 +20,17 @@ from numpy.typing import NDArray
 
 from chaindrive._docstrings import shared_parameters
 from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
+from chaindrive.plotting._base import (
+    CHAIN,
+    CYCLE,
+    GREY,
+    TIGHT,
+    figure_axes,
+    finish,
+    force_axes,
+    new_figure,
+    scale,
+)
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -100,8 +110,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 3.6))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.4, 3.6), units)
     t = np.asarray(startup.times) * 1e3
     F = np.asarray(startup.span_forces) * factor
     labels = _labels(F.shape[1], names, "span ")
@@ -234,9 +243,8 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 4.0))
+    fig, ax, factor, unit = force_axes(ax, (6.4, 4.0), units)
     fz = np.asarray(afc.tooth_frequencies_hz)
-    factor, unit = scale("force", units)
     F = np.asarray(afc.span_load) * factor
     _curves(ax, fz, F, _labels(F.shape[1], names, "span "), max_lines)
     trans = ax.get_xaxis_transform()
@@ -286,8 +294,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.0, 3.4))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.0, 3.4), units)
     peak = np.asarray(steady.span_dynamic_load) * factor
     amp = np.asarray(steady.span_load_amplitude) * factor
     labels = _labels(peak.size, names, "span ")
