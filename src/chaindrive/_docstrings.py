@@ -136,6 +136,7 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     # the Parameters section of a progress indicator of the command line (cli/progress.py)
     "params_progress": "Parameters\n----------\ndescription : str\n    What runs.\n"
                        "quiet : bool\n    True in ``--json`` mode (nothing is drawn).",
+    # the design file of chaindrive.load
     "design_path": "path : str or pathlib.Path\n    The design file.",
     # the whole Parameters and Returns sections of the page's full analysis (app/runs.py)
     "drive_analysis": "Parameters\n----------\ndrive : Drive\n    The design.\n\nReturns\n"
@@ -145,9 +146,8 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     # the Parameters section of an uploaded file's reader (app/uploads.py)
     "params_upload": "Parameters\n----------\nname : str\n    The file's name as uploaded.\n"
                      "data : bytes\n    Its content.",
-    "check": _CHECK,
+    # the unit system of display.py, and the Parameters section of a presenter of one check
     "system": _SYSTEM,
-    # the Parameters section of a presenter of one check (display.py)
     "params_check": f"Parameters\n----------\n{_CHECK}",
     "params_check_system": f"Parameters\n----------\n{_CHECK}\n{_SYSTEM}",
 })
