@@ -146,6 +146,9 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     # the Parameters section of an uploaded file's reader (app/uploads.py)
     "params_upload": "Parameters\n----------\nname : str\n    The file's name as uploaded.\n"
                      "data : bytes\n    Its content.",
+    # the Returns sections of the readers of a record and of a TOML text (io/)
+    "returns_record": "Returns\n-------\nRecord\n    The record, sampled evenly.",
+    "returns_toml": "Returns\n-------\ndict\n    The mapping the TOML text loads to.",
     # the unit system of display.py, and the Parameters section of a presenter of one check
     "system": _SYSTEM,
     "params_check": f"Parameters\n----------\n{_CHECK}",
