@@ -60,6 +60,8 @@ UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
 DesignFile = Annotated[Path, typer.Argument(help="design file (TOML)")]
 JsonFlag = Annotated[bool, typer.Option("--json", help="print one JSON document")]
 UnitsOption = Annotated[str, typer.Option("--units", help=UNITS_HELP)]
+PulsesOption = Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                           "revolution", min=1)]
 # Lazy imports: the commands import inside their bodies only what each runs, so that
 # ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
 # ``python -X importtime``, cumulative: chaindrive.analysis ≈0.15 s, chaindrive.report ≈0.5 s
@@ -350,8 +352,7 @@ def report(
         "--speed", help="the record's driver speed column (a run-up: its orders)")] = None,
     tacho: Annotated[str | None, typer.Option(
         "--tacho", help="or the record's driver tacho column")] = None,
-    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
-                                        "revolution", min=1)] = 1,
+    pulses: PulsesOption = 1,
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -852,8 +853,7 @@ def identify(
         "(speed_rpm, omega_rad_s, n_hz): order spectrum and run-up map")] = None,
     tacho: Annotated[str | None, typer.Option(
         "--tacho", help="or the record's driver tacho column (pulses)")] = None,
-    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
-                                        "revolution", min=1)] = 1,
+    pulses: PulsesOption = 1,
     output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
                                                 "the model's frequencies (.svg, .png, .pdf)")]
     = None,
