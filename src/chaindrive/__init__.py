@@ -25,13 +25,13 @@ __all__ = ["Chain", "ChainDriveError", "ChainRequest", "ChainSpec", "DesignError
 __version__ = "0.1.0"
 
 
+@shared_parameters
 def load(path: str | Path) -> Drive:
     """Read a TOML design file into a validated :class:`Drive`.
 
     Parameters
     ----------
-    path : str or pathlib.Path
-        The design file.
+    %(design_path)s
 
     Returns
     -------

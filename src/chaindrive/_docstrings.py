@@ -36,10 +36,22 @@ __all__ = ["PARAMETERS", "expand", "shared_parameters"]
 
 T = TypeVar("T")
 
+_UNITS = ('units : {"SI", "US"}\n'
+          "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).")
+_DOCUMENT = ("document : dict\n"
+             "    The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).")
+_CHECK = ("check : Check\n"
+          "    A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.")
+_SYSTEM = 'system : {"SI", "US"}\n    The output unit system (:data:`UNIT_SYSTEMS`).'
+_SCREEN = ("screen : Screen\n    The quick screen of the design on the page (its analysis and "
+           "JSON document).")
+_ROWS = "list of dict\n    One dict per row: column header (with its unit) → cell."
+
 #: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
 #: the description indented by four).
 PARAMETERS: Mapping[str, str] = MappingProxyType({
     "drive": "drive : Drive\n    The design.",
+    "params_drive": "Parameters\n----------\ndrive : Drive\n    The design.",
     "geometry": "geometry : GeometryResult\n    Its contour.",
     "drive_geometry": "drive : Drive\n    The design.\ngeometry : GeometryResult\n"
                       "    Its contour.",
@@ -50,12 +62,13 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter_array": "roller_diameter : float or array_like\n"
                              "    Roller diameter d1 [m].",
     "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",
-    "units": 'units : {"SI", "US"}\n'
-             "    The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).",
+    "units": _UNITS,
     "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
     "returns_figure": "Figure\n    The figure drawn into.",
     "inp": "inp : ReportInput\n    The analysis and the report's settings.",
+    "params_inp": "Parameters\n----------\ninp : ReportInput\n"
+                  "    The analysis and the report's settings.",
     # the whole Parameters and Returns sections of a report section's builder
     "section": "Parameters\n----------\ninp : ReportInput\n"
                "    The analysis and the report's settings.\n\nReturns\n-------\n"
@@ -63,6 +76,83 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "section_blocks": "Parameters\n----------\ninp : ReportInput\n"
                       "    The analysis and the report's settings.\n\nReturns\n-------\n"
                       "list of Block\n    The section's blocks.",
+    # presenters (app/, cli/, report/, display.py)
+    "document": _DOCUMENT,
+    "returns_rows": _ROWS,
+    # the Parameters section of a table's rows from the document (app/views.py), and with
+    # its Returns section
+    "params_document_units": f"Parameters\n----------\n{_DOCUMENT}\n{_UNITS}",
+    "rows_document_units": f"Parameters\n----------\n{_DOCUMENT}\n{_UNITS}\n\n"
+                           f"Returns\n-------\n{_ROWS}",
+    # the Parameters section of a page's screen of the design
+    "params_design_catalogs": "Parameters\n----------\ndesign : dict\n"
+                              "    The design mapping (what a TOML design file loads to).\n"
+                              "catalogs : dict of str to Path | None\n    The catalogues "
+                              "uploaded in the session (name → file), the only files\n"
+                              "    ``chain.catalog`` may name "
+                              "(:func:`chaindrive.io.design.drive_from_mapping`).",
+    # the Parameters section of a tab of the page (app/tabs.py)
+    "params_screen": f"Parameters\n----------\n{_SCREEN}",
+    "params_screen_design": f"Parameters\n----------\n{_SCREEN}\ndesign : dict\n"
+                            "    The design mapping of the form (what the TOML download "
+                            "writes).",
+    # the Parameters section of a bounded run of the page's screens (app/runs.py)
+    "params_form_catalogs": "Parameters\n----------\ndesign : dict\n"
+                            "    The design mapping of the form.\n"
+                            "catalogs : dict of str to Path | None\n"
+                            "    The session's uploaded catalogues.",
+    # the report's renderers and builders (report/)
+    "params_report": "Parameters\n----------\nreport : Report\n    The built report.",
+    "report_options": "source : str | Path | None\n    The design file (echoed at the end, its "
+                      "SHA-256 in the header).\ndpi : int\n    Resolution of the figures "
+                      "[1/in].\nprogress : callable | None\n    Called with each section's "
+                      "title before it is built (e.g. a progress bar).\nsynthesis : "
+                      "SynthesisResult | None\n    The optimisation that chose this design "
+                      "(its Pareto set and front).\nunits : str\n    Output unit system, "
+                      '"SI" or "US" (:mod:`chaindrive.display`).',
+    # the whole Parameters and Returns sections of a plot of the static loads
+    "loads_figure": "Parameters\n----------\nanalysis : Analysis\n    The analysis (its loads)."
+                    "\nax : Axes or None\n    Axes to draw into (None: a new figure).\n"
+                    'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
+                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).\n\n'
+                    "Returns\n-------\nFigure\n    The figure drawn into.",
+    # the Parameters section of a name checked against the valid ones (errors.py)
+    "params_name_choices": "Parameters\n----------\nname : str\n    What the user wrote.\n"
+                           "choices : iterable of str\n    The valid names.",
+    # the Parameters section of a bundled design's accessor (examples/)
+    "params_example": "Parameters\n----------\nname : str\n    One of :func:`names`.",
+    # the Parameters section of a plausibility check of a design (io/plausible.py)
+    "params_drive_read": "Parameters\n----------\ndrive : Drive\n    The design as read.",
+    # the span curves of a plot of the dynamic response (plotting/)
+    "span_names": "names : sequence of str or None\n    Labels of the spans (None: numbered).",
+    "span_curves": "names : sequence of str or None\n    Labels of the spans (None: numbered).\n"
+                   "max_lines : int\n    Spans drawn at most (those of the largest peaks) [-].",
+    # the Parameters sections of the drawing's documents and pages (drawing.py)
+    "params_drawing_analysis": "Parameters\n----------\nanalysis : Analysis\n"
+                               "    The analysis of the design (geometry, sprocket profiles).",
+    "params_dxf_page": "Parameters\n----------\ndoc : ezdxf.document.Drawing\n"
+                       "    A DXF document.\npage_width_mm : float\n"
+                       "    Width of the page of a document of several sheets [mm].",
+    # the Parameters section of a progress indicator of the command line (cli/progress.py)
+    "params_progress": "Parameters\n----------\ndescription : str\n    What runs.\n"
+                       "quiet : bool\n    True in ``--json`` mode (nothing is drawn).",
+    # the design file of chaindrive.load
+    "design_path": "path : str or pathlib.Path\n    The design file.",
+    # the whole Parameters and Returns sections of the page's full analysis (app/runs.py)
+    "drive_analysis": "Parameters\n----------\ndrive : Drive\n    The design.\n\nReturns\n"
+                      "-------\nAnalysis",
+    # the Parameters section of a reader of one cell of the page's form (app/state.py)
+    "params_cell": "Parameters\n----------\nvalue : object\n    A cell of the form.",
+    # the Parameters section of an uploaded file's reader (app/uploads.py)
+    "params_upload": "Parameters\n----------\nname : str\n    The file's name as uploaded.\n"
+                     "data : bytes\n    Its content.",
+    # the Returns sections of the readers of a record and of a TOML text (io/)
+    "returns_record": "Returns\n-------\nRecord\n    The record, sampled evenly.",
+    "returns_toml": "Returns\n-------\ndict\n    The mapping the TOML text loads to.",
+    # the unit system of display.py, and the Parameters section of a presenter of one check
+    "system": _SYSTEM,
+    "params_check": f"Parameters\n----------\n{_CHECK}",
+    "params_check_system": f"Parameters\n----------\n{_CHECK}\n{_SYSTEM}",
 })
 
 _PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)%\((?P<name>\w+)\)s[ \t]*$", re.MULTILINE)

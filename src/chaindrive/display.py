@@ -26,6 +26,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveWarning, DesignError, Quantity
 from chaindrive.units import DEG_PER_RAD, RAD_PER_DEG, RPM_PER_RAD_S
 
@@ -43,6 +44,7 @@ __all__ = [
     "check_row",
     "check_unit",
     "check_value",
+    "check_value_text",
     "clean",
     "constraint_row",
     "convert",
@@ -155,6 +157,7 @@ def unit_system(name: str | None) -> UnitSystem:
     return key  # type: ignore[return-value]
 
 
+@shared_parameters
 def unit_of(kind: str, system: UnitSystem = "SI") -> str:
     """The unit a kind of quantity (a key of :data:`QUANTITIES`) is read in.
 
@@ -162,8 +165,7 @@ def unit_of(kind: str, system: UnitSystem = "SI") -> str:
     ----------
     kind : str
         A kind of quantity: ``"length"``, ``"force"``, ``"power"`` … (:data:`QUANTITIES`).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -179,6 +181,7 @@ def unit_of(kind: str, system: UnitSystem = "SI") -> str:
 RESOLUTION: dict[str, float] = {"length": 1e-6}
 
 
+@shared_parameters
 def convert(value: float | None, kind: str, system: UnitSystem = "SI"
             ) -> tuple[float | None, str]:
     """An SI value in the unit ``system`` reads ``kind`` in: (value, unit); a magnitude below
@@ -190,8 +193,7 @@ def convert(value: float | None, kind: str, system: UnitSystem = "SI"
         The value in SI [SI unit of ``kind``: m, N, W, Pa, rad/s …]; None for a missing one.
     kind : str
         Its kind of quantity (a key of :data:`QUANTITIES`).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -212,6 +214,7 @@ def convert(value: float | None, kind: str, system: UnitSystem = "SI"
     return value * shown.factor, shown.unit
 
 
+@shared_parameters
 def show(value: float | None, kind: str, system: UnitSystem = "SI", digits: int = 4) -> str:
     """An SI value as text with its unit (``"122.2 mm"``, ``"4.811 in"``).
 
@@ -221,8 +224,7 @@ def show(value: float | None, kind: str, system: UnitSystem = "SI", digits: int 
         The value in SI [SI unit of ``kind``]; None is shown as "—".
     kind : str
         Its kind of quantity (a key of :data:`QUANTITIES`).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
     digits : int
         Significant digits (:func:`fmt`).
 
@@ -256,6 +258,7 @@ def doc_quantity(key: str) -> tuple[str, float] | None:
     return None
 
 
+@shared_parameters
 def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str]:
     """A value of the JSON document (in the unit its key names) in ``system``: (value,
     unit); values of keys without a unit suffix, and non-numbers, come back unchanged with
@@ -267,8 +270,7 @@ def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str
         The value's key in the JSON document; its suffix names the unit (``_mm``, ``_n`` …).
     value : object
         The value as the document holds it (a number in the key's unit, or anything else).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -286,6 +288,7 @@ def doc_value(key: str, value: Any, system: UnitSystem = "SI") -> tuple[Any, str
     return convert(float(value) * to_si, kind, system)
 
 
+@shared_parameters
 def header(label: str, key: str, system: UnitSystem = "SI") -> str:
     """A column header ``label, unit`` for a key of the JSON document (``label`` alone when
     the key carries no unit).
@@ -296,8 +299,7 @@ def header(label: str, key: str, system: UnitSystem = "SI") -> str:
         The column's name for people.
     key : str
         The key of the JSON document the column shows.
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -462,6 +464,7 @@ def _quantity(q: Quantity | Mapping[str, Any]) -> Quantity:
     return Quantity(*q)
 
 
+@shared_parameters
 def quantity_text(text: str, quantities: Iterable[Quantity | Mapping[str, Any]] | None,
                   system: UnitSystem = "SI") -> str:
     """A text written in SI (a warning, a note) with each of its quantities written in the
@@ -479,8 +482,7 @@ def quantity_text(text: str, quantities: Iterable[Quantity | Mapping[str, Any]] 
         The text as the computing module wrote it (SI).
     quantities : iterable of Quantity or of their JSON dicts, or None
         The numbers with units it writes (``text``, ``value_si``, ``kind`` in a dict).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -508,6 +510,7 @@ def quantity_text(text: str, quantities: Iterable[Quantity | Mapping[str, Any]] 
     return "".join(out) + text[pos:]
 
 
+@shared_parameters
 def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
                  system: UnitSystem = "SI") -> str:
     """The text of a warning as a presenter shows it: its message with the numbers with
@@ -519,8 +522,7 @@ def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
         The warning (:class:`chaindrive.errors.ChainDriveWarning`) or its JSON dict
         (:meth:`~chaindrive.errors.ChainDriveWarning.to_dict`: ``message``,
         ``quantities``).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -566,6 +568,7 @@ def candidate_verdict(candidate: Mapping[str, Any]) -> str:
     return "; ".join(words) or "pass"
 
 
+@shared_parameters
 def finding_lines(selection: Mapping[str, Any] | None, system: UnitSystem = "SI"
                   ) -> list[tuple[str, str]]:
     """The findings beside a selection's choice as a presenter shows them: (kind, text), the
@@ -576,8 +579,7 @@ def finding_lines(selection: Mapping[str, Any] | None, system: UnitSystem = "SI"
     selection : dict or None
         The selection's JSON document
         (:meth:`chaindrive.strength.selection.SelectionResult.to_dict`).
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -600,18 +602,14 @@ def _check_display(check: Check, system: UnitSystem) -> tuple[float, str]:
     return shown.factor, shown.unit
 
 
+@shared_parameters
 def check_row(check: Check, system: UnitSystem = "SI"
               ) -> tuple[str, float | None, str, str, str]:
     """A check as shown: (what, value, required, result, source), value and limit in the
     unit the check is read in (``system``), and the result ``pass``, ``FAIL`` or ``CANNOT BE
     VERIFIED``.
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(params_check_system)s
 
     Returns
     -------
@@ -641,15 +639,11 @@ def check_row(check: Check, system: UnitSystem = "SI"
     return label, value, required, result_word(check), check.source
 
 
+@shared_parameters
 def check_unit(check: Check, system: UnitSystem = "SI") -> str:
     """The unit a check's value and limit are shown in (``system``).
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(params_check_system)s
 
     Returns
     -------
@@ -659,17 +653,14 @@ def check_unit(check: Check, system: UnitSystem = "SI") -> str:
     return _check_display(check, system)[1]
 
 
+@shared_parameters
 def check_value(check: Check, value: float | None, system: UnitSystem = "SI") -> float | None:
     """A value of a check (its value or limit, SI) in the unit it is shown in.
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    %(params_check)s
     value : float or None
         The check's value or limit in SI [SI unit of the check].
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(system)s
 
     Returns
     -------
@@ -679,13 +670,11 @@ def check_value(check: Check, value: float | None, system: UnitSystem = "SI") ->
     return None if value is None else value * _check_display(check, system)[0]
 
 
+@shared_parameters
 def result_word(check: Check) -> str:
     """``pass``, ``FAIL`` or ``CANNOT BE VERIFIED``.
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    %(params_check)s
 
     Returns
     -------
@@ -697,14 +686,12 @@ def result_word(check: Check) -> str:
     return "FAIL" if check.status == "fail" else "CANNOT BE VERIFIED"
 
 
+@shared_parameters
 def margin_percent(check: Check) -> float | None:
     """The check's margin (:attr:`chaindrive.checks.Check.margin_fraction`) in per cent:
     ≥ 0 when it passes, < 0 when it fails; None when it cannot be verified or is unlimited.
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
+    %(params_check)s
 
     Returns
     -------
@@ -715,27 +702,39 @@ def margin_percent(check: Check) -> float | None:
     return None if m is None or math.isinf(m) else 100.0 * m
 
 
+@shared_parameters
 def check_line(check: Check, system: UnitSystem = "SI") -> str:
     """A check in one line, the way every presenter writes a failed one:
     ``FAIL: hinge pressure: GOST … = 31 MPa (required ≤ 28 MPa)``.
 
-    Parameters
-    ----------
-    check : Check
-        A pass/fail rule (:class:`chaindrive.checks.Check`), value and limit in SI.
-    system : {"SI", "US"}
-        The output unit system (:data:`UNIT_SYSTEMS`).
+    %(params_check_system)s
 
     Returns
     -------
     str
         The line.
     """
-    label, value, required, result, _ = check_row(check, system)
+    label, _, required, result, _ = check_row(check, system)
+    return f"{result}: {label} = {check_value_text(check, system)} (required {required})"
+
+
+@shared_parameters
+def check_value_text(check: Check, system: UnitSystem = "SI") -> str:
+    """The check's value with its unit as every presenter writes it (``31 MPa``, ``2.5°``).
+
+    %(params_check_system)s
+
+    Returns
+    -------
+    str
+        The value in the unit read [:func:`check_unit`] and the unit's symbol; ``—`` when
+        it cannot be computed.
+    """
+    value = check_value(check, check.value, system)
+    if value is None:
+        return fmt(value)
     unit = check_unit(check, system)
-    sep = "" if unit in ("°", "%", "") else " "
-    shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
-    return f"{result}: {label} = {shown} (required {required})"
+    return f"{fmt(value)}{'' if unit in ('°', '%', '') else ' '}{unit}"
 
 
 def dimension(value: float, decimals: int = 2) -> str:

@@ -64,6 +64,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import chaindrive
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import dimension
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
@@ -1172,15 +1173,13 @@ def _place_layout(msp: Modelspace, analysis: Analysis) -> tuple[Box, str, int]:
     return _frame(msp, box, sheet, n, values), sheet, n
 
 
+@shared_parameters
 def sprocket_document(analysis: Analysis, name: str) -> Drawing:
     """The manufacturing drawing of the sprocket ``name`` alone on a standard sheet (ezdxf
     document, mm): ISO 5457 A4 or A3, the largest ISO 5455 scale 1:N at which it fits, the
     ISO 7200 title block.
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis of the design (geometry, sprocket profiles).
+    %(params_drawing_analysis)s
     name : str
         The sprocket's name.
 
@@ -1196,15 +1195,13 @@ def sprocket_document(analysis: Analysis, name: str) -> Drawing:
     return doc
 
 
+@shared_parameters
 def layout_document(analysis: Analysis) -> Drawing:
     """The layout drawing alone on a standard sheet (ezdxf document, mm): ISO 5457 A4 or A3
     (A2 … A0 when nothing smaller holds it at 1:1000), the largest ISO 5455 scale at which
     it fits, the ISO 7200 title block.
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis of the design (geometry, sprocket profiles).
+    %(params_drawing_analysis)s
 
     Returns
     -------
@@ -1217,14 +1214,12 @@ def layout_document(analysis: Analysis) -> Drawing:
     return doc
 
 
+@shared_parameters
 def drawing_document(analysis: Analysis) -> Drawing:
     """The layout on its sheet and, to its right, every sprocket's manufacturing drawing on
     its own sheet (ezdxf document, mm; each sheet at its own scale).
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis of the design (geometry, sprocket profiles).
+    %(params_drawing_analysis)s
 
     Returns
     -------
@@ -1245,16 +1240,14 @@ def drawing_document(analysis: Analysis) -> Drawing:
     return doc
 
 
+@shared_parameters
 def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None = None
                   ) -> Path:
     """Write the drawing as DXF or SVG (by the suffix of ``path``): the layout with every
     sprocket, or with ``sprocket`` the manufacturing drawing of that sprocket alone. The
     file is written at once, after the whole drawing is made.
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis of the design (geometry, sprocket profiles).
+    %(params_drawing_analysis)s
     path : str or Path
         The file to write; its suffix ``.dxf`` or ``.svg`` chooses the format.
     sprocket : str or None
@@ -1290,18 +1283,14 @@ def write_drawing(analysis: Analysis, path: str | Path, *, sprocket: str | None 
     return out
 
 
+@shared_parameters
 def svg_string(doc: Drawing, page_width_mm: float = 420.0) -> str:
     """The modelspace of ``doc`` as SVG (ezdxf drawing add-on) on a white page: a document
     on one standard sheet on a page of that sheet's size (the drawing at its scale, true
     to size when printed 1:1); otherwise a page ``page_width_mm`` wide (A3 by default),
     scaled to fit. The DXF stays 1:1.
 
-    Parameters
-    ----------
-    doc : ezdxf.document.Drawing
-        A DXF document.
-    page_width_mm : float
-        Width of the page of a document of several sheets [mm].
+    %(params_dxf_page)s
 
     Returns
     -------
@@ -1401,17 +1390,13 @@ def _pdf_backend(ax: Any) -> Any:
     return _Backend(ax)
 
 
+@shared_parameters
 def pdf_bytes(doc: Drawing, page_width_mm: float = 420.0) -> bytes:
     """The modelspace of ``doc`` as a one-page PDF (ezdxf drawing add-on, matplotlib): a
     document on one standard sheet on a page of that sheet's size, the sheet filling it (so
     the drawing prints at its scale); otherwise a page ``page_width_mm`` wide.
 
-    Parameters
-    ----------
-    doc : ezdxf.document.Drawing
-        A DXF document.
-    page_width_mm : float
-        Width of the page of a document of several sheets [mm].
+    %(params_dxf_page)s
 
     Returns
     -------

@@ -10,6 +10,8 @@ import difflib
 from collections.abc import Iterable
 from typing import Any, NamedTuple
 
+from chaindrive._docstrings import shared_parameters
+
 
 class ChainDriveError(Exception):
     """Base class of every error chaindrive raises for a user's input."""
@@ -183,15 +185,11 @@ class ChainDriveWarning(UserWarning):
                 "quantities": [q.to_dict() for q in self.quantities]}
 
 
+@shared_parameters
 def closest(name: str, choices: Iterable[str]) -> str | None:
     """The choice closest to ``name`` (case-insensitive difflib ratio ≥ 0.5).
 
-    Parameters
-    ----------
-    name : str
-        What the user wrote.
-    choices : iterable of str
-        The valid names.
+    %(params_name_choices)s
 
     Returns
     -------
@@ -204,15 +202,11 @@ def closest(name: str, choices: Iterable[str]) -> str | None:
     return lowered[match[0]] if match else None
 
 
+@shared_parameters
 def did_you_mean(name: str, choices: Iterable[str]) -> str:
     """The hint of an error message for a misspelt name.
 
-    Parameters
-    ----------
-    name : str
-        What the user wrote.
-    choices : iterable of str
-        The valid names.
+    %(params_name_choices)s
 
     Returns
     -------

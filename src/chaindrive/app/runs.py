@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import chaindrive
+from chaindrive._docstrings import shared_parameters
 from chaindrive.app.state import Location, Outcome
 from chaindrive.app.views import Screen, recompute, screens
 from chaindrive.app.worker import (
@@ -78,20 +79,14 @@ def missing(feature: str) -> str | None:
     return None if not absent else f"not available yet (needs {', '.join(absent)})"
 
 
+@shared_parameters
 def full_analysis(drive: Drive) -> Analysis:
     """Every analysis of the drive, with the dynamic response the page leaves out of its
     interactive loop: start-up transient, steady state, AFC sweep and the two-stage check
     (:func:`chaindrive.analyze` with the design's ``[dynamics]`` settings — the same
     numbers as ``chaindrive analyze``).
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
-    Analysis
+    %(drive_analysis)s
 
     Raises
     ------
@@ -269,16 +264,12 @@ def full_report(drive: Drive, fmt: str = "html", units: str = "SI") -> bytes:
     return report_bytes(full_analysis(drive), fmt, units=units)
 
 
+@shared_parameters
 def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
     """:func:`chaindrive.app.views.recompute` in a bounded run; a run past its limit is shown
     as the design's message (never raises).
 
-    Parameters
-    ----------
-    design : dict
-        The design mapping of the form.
-    catalogs : dict of str to Path | None
-        The session's uploaded catalogues.
+    %(params_form_catalogs)s
 
     Returns
     -------
@@ -288,18 +279,14 @@ def bounded_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = No
     return _bounded(recompute, design, catalogs)
 
 
+@shared_parameters
 def bounded_screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
                     ) -> Generator[Screen, None, None]:
     """:func:`chaindrive.app.views.screens` in one bounded run: the quick screen as soon as
     the child has it, then the complete one; a failure, or a run past its limit, is the
     last screen, as the design's message (never raises).
 
-    Parameters
-    ----------
-    design : dict
-        The design mapping of the form.
-    catalogs : dict of str to Path | None
-        The session's uploaded catalogues.
+    %(params_form_catalogs)s
 
     Returns
     -------
@@ -335,18 +322,12 @@ def _failed(exc: Exception) -> Screen:
                           message=f"the analysis failed unexpectedly ({exc})"[:300]))
 
 
+@shared_parameters
 def bounded_full_analysis(drive: Drive) -> Analysis:
     """:func:`full_analysis` in a bounded run (raises its ChainDriveError, or
     RunLimitError).
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
-    Analysis
+    %(drive_analysis)s
     """
     return run_bounded(full_analysis, drive, seconds=FULL_SECONDS,
                        what="the dynamic analysis")

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import chaindrive
 from chaindrive import examples
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import analyze
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping, parse_toml
@@ -280,13 +281,11 @@ def form_from_design(data: Mapping[str, Any]) -> DesignForm:
 
 # --- form → design mapping ------------------------------------------------------------------
 
+@shared_parameters
 def is_empty(value: Any) -> bool:
     """True for an empty cell: None, NaN (pandas' missing value) or blank text.
 
-    Parameters
-    ----------
-    value : object
-        A cell of the form.
+    %(params_cell)s
 
     Returns
     -------
@@ -307,14 +306,12 @@ def is_empty(value: Any) -> bool:
         return False
 
 
+@shared_parameters
 def plain(value: Any) -> Any:
     """A cell as plain Python: numpy/pandas scalars unwrapped, whole floats of int columns
     left as floats (the caller decides).
 
-    Parameters
-    ----------
-    value : object
-        A cell of the form.
+    %(params_cell)s
 
     Returns
     -------

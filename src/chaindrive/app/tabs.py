@@ -7,13 +7,15 @@ browser's own charts. Numbers and units come from :mod:`chaindrive.display` thro
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import streamlit as st
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.app import runs
 from chaindrive.app.state import design_to_toml
 from chaindrive.app.views import (
@@ -64,6 +66,18 @@ TABS = ("Sprockets & spans", "Selection & strength", "Modes & Campbell", "Start-
         "Link-level model", "Multi-contour", "Life & reliability", "Report & files")
 
 
+@contextmanager
+def _errors_shown() -> Iterator[None]:
+    """Run the block; a ChainDriveError it raises is shown as its sentence, anything else as
+    :data:`UNEXPECTED` (the page never shows a traceback)."""
+    try:
+        yield
+    except ChainDriveError as exc:
+        st.error(str(exc))
+    except Exception as exc:
+        st.error(UNEXPECTED.format(type(exc).__name__))
+
+
 def _units() -> UnitSystem:
     return st.session_state.get("units", "SI")  # type: ignore[no-any-return]
 
@@ -98,13 +112,11 @@ def _spans(screen: Screen) -> list[str]:
     return [f"{s.start_name}→{s.end_name}" for s in screen.outcome.analysis.geometry.spans]
 
 
+@shared_parameters
 def tab_geometry(screen: Screen) -> None:
     """Sprockets and spans; chain speed and ratio over a tooth period (small SVG charts).
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
     doc, units = screen.document or {}, _units()
     st.dataframe(sprocket_records(doc, units), hide_index=True, width="stretch")
@@ -176,13 +188,11 @@ def _tension_tool(screen: Screen) -> None:
                    "in-plane stiffening is not applied (a sideways pluck).")
 
 
+@shared_parameters
 def tab_strength(screen: Screen) -> None:
     """The chain selection and the loads and static strength, as tables with units.
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
     import pandas as pd
 
@@ -208,14 +218,12 @@ def tab_strength(screen: Screen) -> None:
     c2.bar_chart(frame, x="span", y=force, horizontal=len(frame) > 8, height=320)
 
 
+@shared_parameters
 def tab_modes(screen: Screen) -> None:
     """Natural frequencies, the resonance table, the Campbell diagram and the mode shapes
     (figures drawn when the tab is opened).
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
     doc = screen.document or {}
     a = screen.outcome.analysis
@@ -303,13 +311,20 @@ def _identify_tool(screen: Screen) -> None:
                     else runup_campbell(result.orders, campbell, rpm)))
 
 
-def _full(screen: Screen, label: str, button: str) -> Any:
-    """The full analysis of the design on screen (run on demand, kept per design), or None
-    until the user asks for it (the reason is shown when it cannot run)."""
-    reason = runs.missing("response")
+def _available(feature: str, label: str) -> bool:
+    """Whether the on-demand ``feature`` (a key of :data:`chaindrive.app.runs.NEEDS`) can
+    run in this installation; when it cannot, the reason is shown after ``label``."""
+    reason = runs.missing(feature)
     if reason is not None:
         st.info(f"{label}: {reason}.")
-        return None
+    return reason is None
+
+
+def _full(screen: Screen, label: str, button: str, draw: Callable[[Any], None]) -> None:
+    """``draw`` the full analysis of the design on screen (run on demand, kept per design);
+    until the user asks for it, or when it cannot run, what is missing is shown instead."""
+    if not _available("response", label):
+        return
     drive = screen.outcome.drive
     store = st.session_state.setdefault("full", {})
     key = id(screen)
@@ -327,30 +342,38 @@ def _full(screen: Screen, label: str, button: str) -> Any:
     result = store.get(key)
     if isinstance(result, Exception):
         st.error(str(result))
-        return None
-    if result is None:
+    elif result is None:
         st.caption("Runs on demand (a second or so); the results are for the design as it "
                    "is now, with the settings of its [dynamics] table.")
-        return None
-    if result.response is None:
+    elif result.response is None:
         st.info("No dynamic response: it needs the power of the drive and the driver speed.")
-        return None
-    return result
+    else:
+        draw(result)
 
 
+def _span_force_chart(full: Any, forces: Any, x: Any, x_label: str, y_label: str) -> None:
+    """A line chart of the span forces [N] (one column per span of the full analysis
+    ``full``, one row per ``x``), in the page's force unit."""
+    import pandas as pd
+
+    names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
+    factor, force = convert(1.0, "force", _units())
+    frame = pd.DataFrame(forces * (factor or 1.0), columns=names,
+                         index=pd.Index(x, name=x_label))
+    st.line_chart(frame, x_label=x_label, y_label=f"{y_label} [{force}]")
+
+
+@shared_parameters
 def tab_startup(screen: Screen) -> None:
     """The start-up transient, on demand.
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
-    import pandas as pd
+    _full(screen, "Start-up", "Run the start-up simulation", _startup)
 
-    full = _full(screen, "Start-up", "Run the start-up simulation")
-    if full is None:
-        return
+
+def _startup(full: Any) -> None:
+    """The start-up transient of the full analysis ``full``: its figures and span forces."""
     result = full.response.startup
     if result is None:
         st.info("The start-up is switched off (transient = false in [dynamics]).")
@@ -376,35 +399,26 @@ def tab_startup(screen: Screen) -> None:
     for w in full.warnings:
         if w.code.startswith("dynamics.startup"):
             st.warning(plain(warning_text(w, _units())))
-    names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
     step = max(1, len(result.times) // 1500)
-    frame = pd.DataFrame(result.span_forces[::step] * (factor or 1.0), columns=names,
-                         index=pd.Index(result.times[::step], name="time [s]"))
-    st.line_chart(frame, x_label="time [s]", y_label=f"span force [{force}]")
+    _span_force_chart(full, result.span_forces[::step], result.times[::step], "time [s]",
+                      "span force")
 
 
+@shared_parameters
 def tab_afc(screen: Screen) -> None:
     """The amplitude–frequency characteristic and the dynamic safety factors, on demand.
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
-    import pandas as pd
+    _full(screen, "AFC", "Run the AFC sweep", _afc)
 
-    full = _full(screen, "AFC", "Run the AFC sweep")
-    if full is None:
-        return
+
+def _afc(full: Any) -> None:
+    """The AFC and the dynamic safety factors of the full analysis ``full``."""
     response = full.response
     afc = response.afc
-    names = [f"{s.start_name}→{s.end_name}" for s in full.geometry.spans]
-    factor, force = convert(1.0, "force", _units())
-    frame = pd.DataFrame(afc.span_load * (factor or 1.0), columns=names,
-                         index=pd.Index(afc.driver_speeds * RPM_PER_RAD_S,
-                                        name="driver speed [rpm]"))
-    st.line_chart(frame, x_label="driver speed [rpm]",
-                  y_label=f"peak dynamic span load [{force}]")
+    _span_force_chart(full, afc.span_load, afc.driver_speeds * RPM_PER_RAD_S,
+                      "driver speed [rpm]", "peak dynamic span load")
     s = response.strength_dict()
     c = st.columns(4)
     c[0].metric("K_D", fmt(response.steady.coefficient_of_dynamics))
@@ -426,18 +440,14 @@ def _comparison_records(doc: dict[str, Any], units: UnitSystem) -> list[dict[str
     return out
 
 
+@shared_parameters
 def tab_links(screen: Screen) -> None:
     """The link-level model beside the whole-drive model, run on request in a bounded child
     process (it is slower than the ring: seconds per simulated second on large contours).
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
-    reason = runs.missing("links")
-    if reason is not None:
-        st.info(f"Link-level model: {reason}.")
+    if not _available("links", "Link-level model"):
         return
     drive = screen.outcome.drive
     store = st.session_state.setdefault("links", {})
@@ -479,13 +489,11 @@ def tab_links(screen: Screen) -> None:
     st.image(view.tensions_png, width="stretch")
 
 
+@shared_parameters
 def tab_contours(screen: Screen) -> None:
     """The load share of identical contours side by side [Lyashuk].
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
+    %(params_screen)s
     """
     a = screen.outcome.analysis
     if a.contours is None:
@@ -517,9 +525,7 @@ def tab_robust(screen: Screen) -> None:
     screen : Screen
         The quick screen of the design on the page.
     """
-    reason = runs.missing("robust")
-    if reason is not None:
-        st.info(f"Life and reliability: {reason}.")
+    if not _available("robust", "Life and reliability"):
         return
     store = st.session_state.setdefault("robust", {})
     key = id(screen)
@@ -565,15 +571,11 @@ def _build(kind: str, screen: Screen) -> bytes:
         return runs.bounded_report(screen.outcome.drive, kind.rsplit("_", 1)[1], _units())
 
 
+@shared_parameters
 def tab_files(screen: Screen, design: dict[str, Any]) -> None:
     """Downloads: the design (TOML), the report (PDF, HTML) and the drawing (SVG, DXF).
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
-    design : dict
-        The design mapping of the form (what the TOML download writes).
+    %(params_screen_design)s
     """
     a = screen.outcome.analysis
     store = st.session_state.setdefault("files", {})
@@ -584,33 +586,23 @@ def tab_files(screen: Screen, design: dict[str, Any]) -> None:
                            on_click="ignore")
     for col, (kind, (label, suffix, mime)) in zip(cols[1:], DOWNLOADS.items(), strict=True):
         with col:
-            reason = runs.missing(kind)
-            if reason is not None:
-                st.info(f"The {label}: {reason}.")
+            if not _available(kind, f"The {label}"):
                 continue
             key = (kind, id(a), _units())
             if key not in store and st.button(f"Build {label}", key=f"build_{kind}"):
-                try:
+                with _errors_shown():
                     store[key] = _build(kind, screen)
-                except ChainDriveError as exc:
-                    st.error(str(exc))
-                except Exception as exc:
-                    st.error(UNEXPECTED.format(type(exc).__name__))
             if key in store:
                 st.download_button(f"Download {label}", store[key],
                                    file_name=file_name(suffix), mime=mime,
                                    key=f"dl_{kind}", type="primary", on_click="ignore")
 
 
+@shared_parameters
 def tabs(screen: Screen, design: dict[str, Any]) -> None:
     """The result tabs; only the open one is drawn, an error in it is shown in it.
 
-    Parameters
-    ----------
-    screen : Screen
-        The quick screen of the design on the page (its analysis and JSON document).
-    design : dict
-        The design mapping of the form (what the TOML download writes).
+    %(params_screen_design)s
     """
     shows = (lambda: tab_geometry(screen), lambda: tab_strength(screen),
              lambda: tab_modes(screen), lambda: tab_startup(screen), lambda: tab_afc(screen),
@@ -620,10 +612,5 @@ def tabs(screen: Screen, design: dict[str, Any]) -> None:
     for tab, show in zip(st.tabs(list(TABS), key="tabs", on_change="rerun"), shows,
                          strict=True):
         if tab.open:
-            with tab:
-                try:
-                    show()
-                except ChainDriveError as exc:
-                    st.error(str(exc))
-                except Exception as exc:
-                    st.error(UNEXPECTED.format(type(exc).__name__))
+            with tab, _errors_shown():
+                show()

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from chaindrive import catalog
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
 from chaindrive.io.limits import shown_key
@@ -62,15 +63,11 @@ def _checked(name: str, data: bytes, suffixes: tuple[str, ...]) -> str:
     return shown
 
 
+@shared_parameters
 def design_text(name: str, data: bytes) -> str:
     """The text of an uploaded design file.
 
-    Parameters
-    ----------
-    name : str
-        The file's name as uploaded.
-    data : bytes
-        Its content.
+    %(params_upload)s
 
     Returns
     -------
@@ -104,16 +101,12 @@ class Uploads:
 
     content: dict[str, bytes] = field(default_factory=dict)
 
+    @shared_parameters
     def add(self, name: str, data: bytes) -> str:
         """Accept a catalogue upload (size, suffix, UTF-8 and content checked — a malformed
         file is refused now with the catalogue reader's line).
 
-        Parameters
-        ----------
-        name : str
-            The file's name as uploaded.
-        data : bytes
-            Its content.
+        %(params_upload)s
 
         Returns
         -------

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.app.state import Location, Outcome, locate
 from chaindrive.display import (
@@ -306,6 +307,7 @@ def headline(analysis: Analysis) -> dict[str, Any]:
     }
 
 
+@shared_parameters
 def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
     """The checks of the analysis (:meth:`chaindrive.analysis.Analysis.checks`), as shown,
     with the margin of :mod:`chaindrive.checks` in per cent (≥ 0 passes).
@@ -314,8 +316,7 @@ def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
     ----------
     analysis : Analysis
         The design's analysis.
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
 
     Returns
     -------
@@ -328,6 +329,7 @@ def checks(analysis: Analysis, units: UnitSystem = "SI") -> list[Check]:
             for c in analysis.checks()]
 
 
+@shared_parameters
 def check_records(items: list[Check]) -> list[dict[str, Any]]:
     """Rows of the checks table (failed first), numbers by the presenters' one rule.
 
@@ -338,8 +340,7 @@ def check_records(items: list[Check]) -> list[dict[str, Any]]:
 
     Returns
     -------
-    list of dict
-        One dict per row: column header (with its unit) → cell.
+    %(returns_rows)s
     """
     ordered = sorted(items, key=lambda c: c.passed)
     return [{"check": c.name, "value": None if c.value is None else clean(c.value),
@@ -359,21 +360,12 @@ def _row(item: dict[str, Any], cols: tuple[tuple[str, str], ...], units: UnitSys
     return out
 
 
+@shared_parameters
 def sprocket_records(document: dict[str, Any], units: UnitSystem = "SI"
                      ) -> list[dict[str, Any]]:
     """Rows of the geometry-and-speed table of the sprockets.
 
-    Parameters
-    ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
-
-    Returns
-    -------
-    list of dict
-        One dict per row: column header (with its unit) → cell.
+    %(rows_document_units)s
     """
     speeds = {s["name"]: s for s in document["kinematics"]["sprockets"]}
     cols = (("name", "name"), ("teeth", "teeth"), ("x", "x_mm"), ("y", "y_mm"),
@@ -385,20 +377,11 @@ def sprocket_records(document: dict[str, Any], units: UnitSystem = "SI"
             for s in document["geometry"]["sprockets"]]
 
 
+@shared_parameters
 def span_records(document: dict[str, Any], units: UnitSystem = "SI") -> list[dict[str, Any]]:
     """Rows of the span table (with the static tensions when the strength part exists).
 
-    Parameters
-    ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
-
-    Returns
-    -------
-    list of dict
-        One dict per row: column header (with its unit) → cell.
+    %(rows_document_units)s
     """
     st = document.get("strength") or {}
     tensions = st.get("span_tensions_n") or [None] * len(document["geometry"]["spans"])
@@ -408,6 +391,7 @@ def span_records(document: dict[str, Any], units: UnitSystem = "SI") -> list[dic
             for s, t in zip(document["geometry"]["spans"], tensions, strict=True)]
 
 
+@shared_parameters
 def resonance_records(document: dict[str, Any], spans: list[str] | None = None
                       ) -> list[dict[str, Any]]:
     """Rows of the resonance table: working frequency, the nearest natural one (a ring mode,
@@ -417,15 +401,13 @@ def resonance_records(document: dict[str, Any], spans: list[str] | None = None
 
     Parameters
     ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    %(document)s
     spans : list of str | None
         Span names in the geometry's order (None: spans named by number).
 
     Returns
     -------
-    list of dict
-        One dict per row: column header (with its unit) → cell.
+    %(returns_rows)s
     """
     out = []
     for r in document["dynamics"].get("resonances") or []:
@@ -439,14 +421,14 @@ def resonance_records(document: dict[str, Any], spans: list[str] | None = None
     return out
 
 
+@shared_parameters
 def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
     """Rows of the natural-frequency table (elastic modes; ``rigid_body_modes`` is one flag
     per mode).
 
     Parameters
     ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
+    %(document)s
 
     Returns
     -------
@@ -462,6 +444,17 @@ def modal_records(document: dict[str, Any]) -> list[dict[str, Any]]:
             if not rigid[j]]
 
 
+def _quantity_rows(rows: tuple[tuple[str, str], ...], part: dict[str, Any], units: UnitSystem,
+                   *, present_only: bool = False) -> list[dict[str, Any]]:
+    """Rows (quantity, value, unit) of the (label, key) ``rows`` of a document part, each
+    value formatted in the unit of ``units`` (``present_only``: a key that is None left
+    out)."""
+    return [{"quantity": label, "value": fmt(value), "unit": unit}
+            for label, key in rows if not (present_only and part.get(key) is None)
+            for value, unit in (doc_value(key, part.get(key), units),)]
+
+
+@shared_parameters
 def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
                      ) -> list[dict[str, Any]]:
     """Rows (quantity, value, unit) of the loads and static strength.
@@ -470,8 +463,7 @@ def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
     ----------
     strength : dict
         The ``strength`` part of the analysis's JSON document.
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
 
     Returns
     -------
@@ -487,13 +479,10 @@ def strength_records(strength: dict[str, Any], units: UnitSystem = "SI"
             ("static safety factor s", "safety_factor_static"),
             ("allowable static safety factor [s]", "allowable_safety_factor"),
             ("rated power P_r", "rated_power_w"), ("wear life L_h", "wear_life_h"))
-    out = []
-    for label, key in rows:
-        value, unit = doc_value(key, strength.get(key), units)
-        out.append({"quantity": label, "value": fmt(value), "unit": unit})
-    return out
+    return _quantity_rows(rows, strength, units)
 
 
+@shared_parameters
 def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: int = 12
                       ) -> list[dict[str, Any]]:
     """Rows of the ranked candidates of the chain selection.
@@ -502,15 +491,13 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
     ----------
     selection : dict
         The ``selection`` part of the analysis's JSON document.
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
     top : int
         How many candidates to show, the best first.
 
     Returns
     -------
-    list of dict
-        One dict per row: column header (with its unit) → cell.
+    %(returns_rows)s
     """
     mass = header("mass", "mass_kg_m", units)
     return [{"chain": c["chain"], "method": c["method"], "strands": c["strands"],
@@ -522,17 +509,13 @@ def selection_records(selection: dict[str, Any], units: UnitSystem = "SI", top: 
             for c in selection["candidates"][:top]]
 
 
+@shared_parameters
 def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
                           ) -> list[dict[str, Any]]:
     """Rows of the chain length options: each whole link count around the tight length as
     designed, laid out (:func:`chaindrive.geometry.length_options.length_options`).
 
-    Parameters
-    ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(params_document_units)s
 
     Returns
     -------
@@ -555,17 +538,13 @@ def length_option_records(document: dict[str, Any], units: UnitSystem = "SI"
     return [{k: NOT_APPLICABLE if v is None else v for k, v in r.items()} for r in rows]
 
 
+@shared_parameters
 def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
                         ) -> list[dict[str, Any]]:
     """Rows (quantity, value, unit) of the lubrication advice at the chain speed
     (:func:`chaindrive.strength.lubrication.lubrication_advice`).
 
-    Parameters
-    ----------
-    document : dict
-        The analysis's JSON document (:meth:`chaindrive.analysis.Analysis.to_dict`).
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(params_document_units)s
 
     Returns
     -------
@@ -577,16 +556,13 @@ def lubrication_records(document: dict[str, Any], units: UnitSystem = "SI"
     lube = document["lubrication"]
     regime = lube["regime"] + ("" if lube["ansi_type"] is None
                                else f" (ANSI type {lube['ansi_type']})")
-    out = [{"quantity": "regime", "value": regime, "unit": ""}]
-    for label, key in (("chain speed", "chain_speed_m_s"), ("manual up to", "manual_max_m_s"),
-                       ("drip up to", "drip_max_m_s"),
-                       ("oil bath or slinger disc up to", "bath_max_m_s")):
-        if lube[key] is not None:
-            value, unit = doc_value(key, lube[key], units)
-            out.append({"quantity": label, "value": fmt(value), "unit": unit})
-    return out
+    rows = (("chain speed", "chain_speed_m_s"), ("manual up to", "manual_max_m_s"),
+            ("drip up to", "drip_max_m_s"), ("oil bath or slinger disc up to", "bath_max_m_s"))
+    return [{"quantity": "regime", "value": regime, "unit": ""},
+            *_quantity_rows(rows, lube, units, present_only=True)]
 
 
+@shared_parameters
 def tension_reading_records(reading: dict[str, Any], units: UnitSystem = "SI"
                             ) -> list[dict[str, Any]]:
     """Rows (quantity, value, unit) of a span's tension read from its measured frequency
@@ -596,8 +572,7 @@ def tension_reading_records(reading: dict[str, Any], units: UnitSystem = "SI"
     ----------
     reading : dict
         The reading's JSON document.
-    units : {"SI", "US"}
-        The output unit system (:data:`chaindrive.display.UNIT_SYSTEMS`).
+    %(units)s
 
     Returns
     -------
@@ -605,16 +580,12 @@ def tension_reading_records(reading: dict[str, Any], units: UnitSystem = "SI"
         One dict per quantity: ``quantity``, ``value`` (formatted), ``unit``; a quantity the
         reading does not have (a design without power has no running tension) is left out.
     """
-    out = []
-    for label, key in (("tension read", "tension_n"), ("± standard uncertainty", "tension_std_n"),
-                       ("design pretension F₀ (standing)", "design_pretension_n"),
-                       ("frequency expected at F₀ (standing)", "expected_frequency_standing_hz"),
-                       ("design tension in operation", "design_running_tension_n"),
-                       ("frequency expected in operation", "expected_frequency_running_hz")):
-        if reading.get(key) is not None:
-            value, unit = doc_value(key, reading[key], units)
-            out.append({"quantity": label, "value": fmt(value), "unit": unit})
-    return out
+    rows = (("tension read", "tension_n"), ("± standard uncertainty", "tension_std_n"),
+            ("design pretension F₀ (standing)", "design_pretension_n"),
+            ("frequency expected at F₀ (standing)", "expected_frequency_standing_hz"),
+            ("design tension in operation", "design_running_tension_n"),
+            ("frequency expected in operation", "expected_frequency_running_hz"))
+    return _quantity_rows(rows, reading, units, present_only=True)
 
 
 def identification_records(doc: dict[str, Any]) -> list[dict[str, str]]:
@@ -682,6 +653,7 @@ def _failure(drive: Any, exc: Exception, names: list[str]) -> Screen:
                                   "please report it with the design file"))
 
 
+@shared_parameters
 def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
     """Validate the design mapping and compute what is on screen at once: the contour,
     the headline numbers and every check (geometry, kinematics, strength, modes) — the
@@ -690,13 +662,7 @@ def quick_screen(design: dict[str, Any], catalogs: dict[str, Path] | None = None
     only files ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
     Never raises for a bad design.
 
-    Parameters
-    ----------
-    design : dict
-        The design mapping (what a TOML design file loads to).
-    catalogs : dict of str to Path | None
-        The catalogues uploaded in the session (name → file), the only files
-        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+    %(params_design_catalogs)s
 
     Returns
     -------
@@ -742,18 +708,13 @@ def complete(screen: Screen) -> Screen:
     return replace(screen, document=document)
 
 
+@shared_parameters
 def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -> Screen:
     """Everything the page shows after an edit (:func:`quick_screen` then :func:`complete`;
     timed by ``benchmarks/bench_app_recompute.py``); ``catalogs`` as for
     :func:`quick_screen`.
 
-    Parameters
-    ----------
-    design : dict
-        The design mapping (what a TOML design file loads to).
-    catalogs : dict of str to Path | None
-        The catalogues uploaded in the session (name → file), the only files
-        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+    %(params_design_catalogs)s
 
     Returns
     -------
@@ -763,6 +724,7 @@ def recompute(design: dict[str, Any], catalogs: dict[str, Path] | None = None) -
     return complete(quick_screen(design, catalogs))
 
 
+@shared_parameters
 def screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
             ) -> Iterator[Screen]:
     """The screens of :func:`recompute` one after the other, each as soon as it is ready:
@@ -770,13 +732,7 @@ def screens(design: dict[str, Any], catalogs: dict[str, Path] | None = None
     that analysis with its document (:func:`complete`: the quick part is not computed
     twice).
 
-    Parameters
-    ----------
-    design : dict
-        The design mapping (what a TOML design file loads to).
-    catalogs : dict of str to Path | None
-        The catalogues uploaded in the session (name → file), the only files
-        ``chain.catalog`` may name (:func:`chaindrive.io.design.drive_from_mapping`).
+    %(params_design_catalogs)s
 
     Yields
     ------

@@ -60,6 +60,8 @@ UNITS_HELP = "units of the tables: SI (mm, N, kW, MPa) or US (in, lbf, hp, psi)"
 DesignFile = Annotated[Path, typer.Argument(help="design file (TOML)")]
 JsonFlag = Annotated[bool, typer.Option("--json", help="print one JSON document")]
 UnitsOption = Annotated[str, typer.Option("--units", help=UNITS_HELP)]
+PulsesOption = Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
+                                           "revolution", min=1)]
 # Lazy imports: the commands import inside their bodies only what each runs, so that
 # ``--help``, ``schema`` and ``catalog`` start without the heavy stacks (measured with
 # ``python -X importtime``, cumulative: chaindrive.analysis ≈0.15 s, chaindrive.report ≈0.5 s
@@ -350,8 +352,7 @@ def report(
         "--speed", help="the record's driver speed column (a run-up: its orders)")] = None,
     tacho: Annotated[str | None, typer.Option(
         "--tacho", help="or the record's driver tacho column")] = None,
-    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
-                                        "revolution", min=1)] = 1,
+    pulses: PulsesOption = 1,
 ) -> None:
     """Write the design report: the verdict first, then inputs, results and checks."""
     # lazy: only what this command runs (see "Lazy imports" above)
@@ -852,8 +853,7 @@ def identify(
         "(speed_rpm, omega_rad_s, n_hz): order spectrum and run-up map")] = None,
     tacho: Annotated[str | None, typer.Option(
         "--tacho", help="or the record's driver tacho column (pulses)")] = None,
-    pulses: Annotated[int, typer.Option("--pulses-per-rev", help="tacho pulses per driver "
-                                        "revolution", min=1)] = 1,
+    pulses: PulsesOption = 1,
     output: Annotated[Path | None, typer.Option("-o", "--output", help="spectrum plot with "
                                                 "the model's frequencies (.svg, .png, .pdf)")]
     = None,
@@ -954,7 +954,6 @@ def calibrate(
     from chaindrive.cli.measure import measured_dampings, measured_modes, print_calibration
     from chaindrive.cli.progress import spinner
     from chaindrive.identification import calibrated_design
-    from chaindrive.io.design import drive_to_toml
 
     if model not in ("ring", "links"):
         with user_errors():
@@ -974,14 +973,25 @@ def calibrate(
         ratios, assumed_z = measured_dampings(damping, damping_tolerance)
         with spinner("fitting the model to the measurements", quiet=as_json):
             result = calibrated_design(drive, measured, ratios, uncertain_mass)
-        doc = {**result.to_dict(), "assumed": assumed + assumed_z}
+    _calibration_out(result, assumed + assumed_z, write_calibrated, as_json, print_calibration)
+
+
+def _calibration_out(result: Any, assumed: list[str], write_calibrated: Path | None,
+                     as_json: bool, show: Callable[[dict[str, Any]], None]) -> None:
+    """What ``chaindrive calibrate`` writes of a fit: its JSON document with the assumed
+    inputs (``--json``) or ``show`` of it, and the calibrated design file when asked."""
+    # lazy: only what this command runs (see "Lazy imports" above)
+    from chaindrive.io.design import drive_to_toml
+
+    with user_errors():
+        doc = {**result.to_dict(), "assumed": assumed}
         check_document(doc)
         if write_calibrated is not None:
             write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")
     if as_json:
         _write_json(doc)
         return
-    print_calibration(doc)
+    show(doc)
     if write_calibrated is not None:
         print(f"calibrated design written to {write_calibrated}")
 
@@ -996,7 +1006,6 @@ def _calibrate_links(file: Path, natural: list[str] | None, record: Path | None,
     from chaindrive.cli.measure import measured_tap_modes, print_link_level_calibration
     from chaindrive.cli.progress import spinner
     from chaindrive.identification import calibrated_design_link_level
-    from chaindrive.io.design import drive_to_toml
 
     with user_errors():
         if damping:
@@ -1013,16 +1022,7 @@ def _calibrate_links(file: Path, natural: list[str] | None, record: Path | None,
         with spinner("fitting the link-level model to the measurement", quiet=as_json):
             result = calibrated_design_link_level(
                 drive, measured, parameter="sag" if parameter == "sag" else "link_stiffness")
-        doc = {**result.to_dict(), "assumed": assumed}
-        check_document(doc)
-        if write_calibrated is not None:
-            write_text(write_calibrated, drive_to_toml(result.drive), field="--write-calibrated")
-    if as_json:
-        _write_json(doc)
-        return
-    print_link_level_calibration(doc)
-    if write_calibrated is not None:
-        print(f"calibrated design written to {write_calibrated}")
+    _calibration_out(result, assumed, write_calibrated, as_json, print_link_level_calibration)
 
 
 def check_toml_target(path: Path | None) -> None:

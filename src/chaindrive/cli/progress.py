@@ -16,6 +16,8 @@ from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, TypeVar
 
+from chaindrive._docstrings import shared_parameters
+
 if TYPE_CHECKING:
     from rich.progress import Progress, ProgressColumn
 
@@ -95,6 +97,7 @@ def progress_bar(description: str, total: int | None = None, *,
         yield advance
 
 
+@shared_parameters
 @contextmanager
 def step_progress(description: str, *, quiet: bool = False
                   ) -> Iterator[Callable[[int, int], None]]:
@@ -102,12 +105,7 @@ def step_progress(description: str, *, quiet: bool = False
     (a start-up: its time steps): a bar with the elapsed time and an estimate of what is
     left; same rules as :func:`progress_bar`.
 
-    Parameters
-    ----------
-    description : str
-        What runs.
-    quiet : bool
-        True in ``--json`` mode (no bar).
+    %(params_progress)s
 
     Yields
     ------
@@ -160,17 +158,13 @@ def track(items: Iterable[T], description: str, total: int | None = None, *,
             advance(None)
 
 
+@shared_parameters
 @contextmanager
 def spinner(description: str, *, quiet: bool = False) -> Iterator[None]:
     """An indeterminate indicator (a spinner with the elapsed time) for one long call, such
     as an analysis with the start-up transient; same rules as :func:`progress_bar`.
 
-    Parameters
-    ----------
-    description : str
-        What runs.
-    quiet : bool
-        True in ``--json`` mode (no spinner).
+    %(params_progress)s
 
     Yields
     ------

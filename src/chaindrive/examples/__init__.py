@@ -13,6 +13,7 @@ from __future__ import annotations
 from importlib import resources
 from importlib.abc import Traversable
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.io.design import drive_from_mapping, parse_toml
 from chaindrive.model import Drive
@@ -37,13 +38,11 @@ def names() -> tuple[str, ...]:
     return tuple(sorted(_files()))
 
 
+@shared_parameters
 def text(name: str) -> str:
     """The TOML text of a bundled design.
 
-    Parameters
-    ----------
-    name : str
-        One of :func:`names`.
+    %(params_example)s
 
     Returns
     -------
@@ -62,13 +61,11 @@ def text(name: str) -> str:
     return files[name].read_text(encoding="utf-8")
 
 
+@shared_parameters
 def load(name: str) -> Drive:
     """The validated drive of a bundled design.
 
-    Parameters
-    ----------
-    name : str
-        One of :func:`names`.
+    %(params_example)s
 
     Returns
     -------

@@ -1032,6 +1032,7 @@ def parse_train(data: Any, path: str) -> tuple[TrainElement, ...]:
     return tuple(out)
 
 
+@shared_parameters
 def parse_toml(text: str, name: str) -> dict[str, Any]:
     """The mapping of a TOML text.
 
@@ -1042,9 +1043,7 @@ def parse_toml(text: str, name: str) -> dict[str, Any]:
     name : str
         Where it comes from, for the message.
 
-    Returns
-    -------
-    dict
+    %(returns_toml)s
 
     Raises
     ------
@@ -1064,6 +1063,7 @@ def parse_toml(text: str, name: str) -> dict[str, Any]:
         raise DesignError(where, "arrays or tables are nested too deeply to read") from None
 
 
+@shared_parameters
 def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
     """The mapping of a TOML file.
 
@@ -1074,9 +1074,7 @@ def read_toml(path: str | Path, what: str = "design file") -> dict[str, Any]:
     what : str
         What kind of file is expected, for the message.
 
-    Returns
-    -------
-    dict
+    %(returns_toml)s
 
     Raises
     ------
@@ -1125,9 +1123,7 @@ def drive_to_mapping(drive: Drive) -> dict[str, Any]:
     :func:`drive_from_mapping` reads back to the same drive. A chain that was selected is
     written by its designation.
 
-    Parameters
-    ----------
-    %(drive)s
+    %(params_drive)s
 
     Returns
     -------
@@ -1249,9 +1245,7 @@ def _dynamics_table(d: DynamicsSettings) -> dict[str, Any]:
 def drive_to_toml(drive: Drive) -> str:
     """A design file of ``drive`` (TOML written by tomli-w from :func:`drive_to_mapping`).
 
-    Parameters
-    ----------
-    %(drive)s
+    %(params_drive)s
 
     Returns
     -------

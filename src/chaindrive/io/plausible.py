@@ -4,6 +4,7 @@ motor whose rotor inertia is left to the estimate must lie within the estimate's
 
 from __future__ import annotations
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.model.assembly import kloss_parameters, motor_rating
 from chaindrive.dynamics.motor_inertia import estimated_rotor_inertia
@@ -18,6 +19,7 @@ __all__ = ["check_inertias", "check_motor_estimate"]
 
 
 
+@shared_parameters
 def check_inertias(drive: Drive) -> None:
     """Refuse a sprocket whose given inertia is below :data:`MIN_INERTIA_SHARE` of the
     inertia of its own plate.
@@ -30,10 +32,7 @@ def check_inertias(drive: Drive) -> None:
     make the ring's highest natural frequency, and with it the start-up's step count, grow
     as 1/√J.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design as read.
+    %(params_drive_read)s
 
     Raises
     ------
@@ -61,6 +60,7 @@ def _power_text(watts: float) -> str:
     return f"{watts:.4g} W" if watts < 1e3 else f"{watts / 1e3:.4g} kW"
 
 
+@shared_parameters
 def check_motor_estimate(drive: Drive) -> None:
     """Refuse a ``[motor]`` without ``rotor_inertia`` whose inertia cannot be estimated,
     naming the field the user wrote.
@@ -74,10 +74,7 @@ def check_motor_estimate(drive: Drive) -> None:
     the synchronous speed the Kloss law's (:attr:`KlossMotor.synchronous_speed`), and the
     range errors the estimate's own, re-addressed to the field the designer wrote.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design as read.
+    %(params_drive_read)s
 
     Raises
     ------

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 
 __all__ = ["MIN_SAMPLES", "SPACING_TOLERANCE", "Record", "read_record", "record_from_arrays",
@@ -61,6 +62,7 @@ class Record:
     signals: dict[str, NDArray[np.float64]]
 
 
+@shared_parameters
 def record_from_arrays(name: str, time: NDArray[np.float64],
                        signals: dict[str, NDArray[np.float64]],
                        time_field: str = "time_s") -> Record:
@@ -77,9 +79,7 @@ def record_from_arrays(name: str, time: NDArray[np.float64],
     time_field : str
         The time column's name, for messages.
 
-    Returns
-    -------
-    Record
+    %(returns_record)s
 
     Raises
     ------
@@ -193,6 +193,7 @@ def _read_csv(path: Path) -> Record:
     return _csv_record(path.name, rows)
 
 
+@shared_parameters
 def record_from_csv_bytes(name: str, data: bytes) -> Record:
     """A CSV record from its bytes (an upload), read as :func:`read_record` reads a file.
 
@@ -203,9 +204,7 @@ def record_from_csv_bytes(name: str, data: bytes) -> Record:
     data : bytes
         Its content (UTF-8).
 
-    Returns
-    -------
-    Record
+    %(returns_record)s
 
     Raises
     ------
@@ -256,6 +255,7 @@ def _read_wav(path: Path) -> Record:
     return record_from_arrays(path.name, t, signals)
 
 
+@shared_parameters
 def read_record(path: str | Path) -> Record:
     """Read a CSV or WAV record (module docstring).
 
@@ -264,9 +264,7 @@ def read_record(path: str | Path) -> Record:
     path : str | Path
         ``*.csv`` or ``*.wav``.
 
-    Returns
-    -------
-    Record
+    %(returns_record)s
 
     Raises
     ------

@@ -71,6 +71,30 @@ def figure_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.0)
     return fig, fig.add_subplot()
 
 
+def force_axes(ax: Axes | None, figsize: tuple[float, float], units: UnitSystem
+               ) -> tuple[Figure, Axes, float, str]:
+    """The figure and axes to draw forces into (:func:`figure_axes`), with the factor and
+    unit the forces are shown in (:func:`scale`, kind ``"force"``).
+
+    Parameters
+    ----------
+    ax, figsize : Axes or None, tuple of float
+        As for :func:`figure_axes`: the axes to draw into (None: a new figure), the size of
+        a new figure (width, height) [in].
+    units : {"SI", "US"}
+        Unit system of the forces: N (SI) or lbf (US).
+
+    Returns
+    -------
+    tuple of (Figure, Axes, float, str)
+        The figure and axes of :func:`figure_axes`, the factor from N to the unit shown
+        [unit / N] and the unit's symbol (``"N"`` or ``"lbf"``).
+    """
+    fig, ax = figure_axes(ax, figsize)
+    factor, unit = scale("force", units)
+    return fig, ax, factor, unit
+
+
 def finish(ax: Axes, title: str | None = None, *, grid: bool = True) -> None:
     """Common finishing: title, light grid.
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem, fmt
-from chaindrive.plotting._base import CYCLE, figure_axes, finish, scale
+from chaindrive.plotting._base import CYCLE, finish, force_axes
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
@@ -42,8 +42,7 @@ def absorption_vs_amplitude(results: Sequence[HingeFrictionResult], *,
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.0, 3.8))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.0, 3.8), units)
     tensions = sorted({r.tension for r in results})
     for k, f0 in enumerate(tensions):
         rows = sorted((r for r in results if r.tension == f0), key=lambda r: r.relative_amplitude)

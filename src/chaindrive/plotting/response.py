@@ -20,7 +20,17 @@ from numpy.typing import NDArray
 
 from chaindrive._docstrings import shared_parameters
 from chaindrive.display import RPM_PER_RAD_S, UnitSystem, fmt
-from chaindrive.plotting._base import CHAIN, CYCLE, GREY, TIGHT, figure_axes, finish, new_figure, scale
+from chaindrive.plotting._base import (
+    CHAIN,
+    CYCLE,
+    GREY,
+    TIGHT,
+    figure_axes,
+    finish,
+    force_axes,
+    new_figure,
+    scale,
+)
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -93,18 +103,14 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
     startup : StartupResult
         The start-up.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
-    max_lines : int
-        Spans drawn at most (those of the largest peaks) [-].
+    %(span_curves)s
     %(units_force)s
 
     Returns
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 3.6))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.4, 3.6), units)
     t = np.asarray(startup.times) * 1e3
     F = np.asarray(startup.span_forces) * factor
     labels = _labels(F.shape[1], names, "span ")
@@ -223,10 +229,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     afc : AfcResult
         The speed sweep.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
-    max_lines : int
-        Spans drawn at most (those of the largest peaks) [-].
+    %(span_curves)s
     max_markers : int
         Resonance lines labelled at most [-].
     operating_hz : float or None
@@ -240,9 +243,8 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 4.0))
+    fig, ax, factor, unit = force_axes(ax, (6.4, 4.0), units)
     fz = np.asarray(afc.tooth_frequencies_hz)
-    factor, unit = scale("force", units)
     F = np.asarray(afc.span_load) * factor
     _curves(ax, fz, F, _labels(F.shape[1], names, "span "), max_lines)
     trans = ax.get_xaxis_transform()
@@ -285,16 +287,14 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
     steady : SteadyStateResult
         The steady state.
     %(ax)s
-    names : sequence of str or None
-        Labels of the spans (None: numbered).
+    %(span_names)s
     %(units_force)s
 
     Returns
     -------
     %(returns_figure)s
     """
-    fig, ax = figure_axes(ax, (6.0, 3.4))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.0, 3.4), units)
     peak = np.asarray(steady.span_dynamic_load) * factor
     amp = np.asarray(steady.span_load_amplitude) * factor
     labels = _labels(peak.size, names, "span ")

@@ -32,16 +32,7 @@ def span_tensions(analysis: Analysis, *, ax: Axes | None = None,
     tight span, F_0 + F_v on the slack one, stepping at each driven sprocket
     (:mod:`chaindrive.strength.loads`).
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis (its loads).
-    %(ax)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(loads_figure)s
     """
     loads = _strength(analysis).loads
     names = [f"{s.start_name}→{s.end_name}" for s in analysis.geometry.spans]
@@ -69,16 +60,7 @@ def shaft_loads(analysis: Analysis, *, ax: Axes | None = None,
     """Magnitude of the load on each shaft [N, or lbf with ``units="US"``] (vector sum of the two span
     tensions meeting at the sprocket, :func:`chaindrive.strength.loads.shaft_load_vectors`).
 
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis (its loads).
-    %(ax)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(loads_figure)s
     """
     loads = _strength(analysis).loads
     names = [s.name for s in analysis.drive.sprockets]

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import chaindrive
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem, unit_system
 from chaindrive.errors import DesignError
 from chaindrive.io.atomic import write_bytes
@@ -58,6 +59,7 @@ __all__ = ["SECTIONS", "Block", "Definitions", "Plot", "Report", "ReportInput", 
 FORMATS = (".html", ".htm", ".pdf")
 
 
+@shared_parameters
 def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: int = 110,
                  progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
@@ -70,16 +72,7 @@ def build_report(analysis: Analysis, *, source: str | Path | None = None, dpi: i
     ----------
     analysis : Analysis
         The analysed design (the report reads it and computes nothing).
-    source : str | Path | None
-        The design file (echoed at the end, its SHA-256 in the header).
-    dpi : int
-        Resolution of the figures [1/in].
-    progress : callable | None
-        Called with each section's title before it is built (e.g. a progress bar).
-    synthesis : SynthesisResult | None
-        The optimisation that chose this design (its Pareto set and front).
-    units : str
-        Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
+    %(report_options)s
     robust : RobustResult | None
         Its robust study (:class:`chaindrive.robust.study.RobustResult`: life curve,
         probabilities of failure, sensitivity).
@@ -160,6 +153,7 @@ def report_text(sections: list[Section] | tuple[Section, ...]) -> str:
     return "\n".join(parts)
 
 
+@shared_parameters
 def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | None = None,
                  dpi: int = 110, progress: Callable[[str], None] | None = None,
                  synthesis: SynthesisResult | None = None, units: str = "SI",
@@ -174,16 +168,7 @@ def write_report(analysis: Analysis, path: str | Path, *, source: str | Path | N
         The analysed design (the report reads it and computes nothing).
     path : str | Path
         The file to write: ``.html``/``.htm`` or ``.pdf``.
-    source : str | Path | None
-        The design file (echoed at the end, its SHA-256 in the header).
-    dpi : int
-        Resolution of the figures [1/in].
-    progress : callable | None
-        Called with each section's title before it is built (e.g. a progress bar).
-    synthesis : SynthesisResult | None
-        The optimisation that chose this design (its Pareto set and front).
-    units : str
-        Output unit system, "SI" or "US" (:mod:`chaindrive.display`).
+    %(report_options)s
     robust : RobustResult | None
         Its robust study (:class:`chaindrive.robust.study.RobustResult`).
     summary : bool

@@ -7,6 +7,7 @@ import base64
 import re
 from html import escape
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import exponent_parts, fmt, unit_of
 from chaindrive.report.content import Block, Definitions, Plot, Report, Table, Text, Verdict
 from chaindrive.report.symbols import SYMBOLS, Symbol
@@ -213,13 +214,11 @@ def _blocks_html(blocks: tuple[Block, ...]) -> str:
     return "\n".join(out)
 
 
+@shared_parameters
 def render_html(report: Report) -> str:
     """The whole report as one HTML document.
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
 
     Returns
     -------

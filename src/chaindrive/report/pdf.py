@@ -19,6 +19,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Literal
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.display import exponent_parts, fmt
 from chaindrive.report.content import Block, Definitions, Plot, Report, Table, Text, Verdict
 from chaindrive.report.html import symbol_unit
@@ -220,13 +221,11 @@ def _section_typst(blocks: Sequence[Block], figures: dict[str, bytes]) -> list[s
     return out
 
 
+@shared_parameters
 def typst_source(report: Report) -> tuple[str, dict[str, bytes]]:
     """The Typst source of the report and its figures.
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
 
     Returns
     -------
@@ -281,13 +280,11 @@ def _compile(report: Report, fmt_: Literal["pdf", "png"], ppi: float | None = No
         return typst.compile(**where, format=fmt_, ppi=ppi)
 
 
+@shared_parameters
 def render_pdf(report: Report) -> bytes:
     """The report as PDF, typeset by Typst.
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
 
     Returns
     -------
@@ -299,13 +296,11 @@ def render_pdf(report: Report) -> bytes:
     return data
 
 
+@shared_parameters
 def render_png_pages(report: Report, ppi: float = 60.0) -> list[bytes]:
     """Every page of the report as a PNG (what the PDF shows, page by page).
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
     ppi : float
         Resolution of the images [px/in].
 
@@ -318,13 +313,11 @@ def render_png_pages(report: Report, ppi: float = 60.0) -> list[bytes]:
     return list(pages) if isinstance(pages, list) else [pages]
 
 
+@shared_parameters
 def page_map(report: Report) -> dict[str, int]:
     """The page each section (by key) and the verdict (``"verdict"``) land on.
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
 
     Returns
     -------
@@ -340,14 +333,12 @@ def page_map(report: Report) -> dict[str, int]:
     return {item["value"]["key"]: int(item["value"]["page"]) for item in found}
 
 
+@shared_parameters
 def write_pdf(report: Report, path: Path) -> None:
     """Write the report as a PDF file at ``path`` (a plain write; the atomic one is
     :func:`chaindrive.report.write_report`).
 
-    Parameters
-    ----------
-    report : Report
-        The built report.
+    %(params_report)s
     path : Path
         The file to write.
     """

@@ -17,7 +17,7 @@ from chaindrive.checks import worst
 from chaindrive.display import (
     candidate_verdict,
     check_row,
-    check_unit,
+    check_value_text,
     finding_lines,
     fmt,
     margin_percent,
@@ -78,10 +78,8 @@ def check_cells(c: Check, inp: ReportInput, *, with_note: bool = True) -> tuple[
         The cells: name, subject, value with its unit, requirement, margin [%], result,
         source.
     """
-    _, value, required, result, source = check_row(c, inp.units)
-    unit = check_unit(c, inp.units)
-    sep = "" if unit in ("°", "%", "") else " "
-    shown = fmt(value) if value is None else f"{fmt(value)}{sep}{unit}"
+    _, _, required, result, source = check_row(c, inp.units)
+    shown = check_value_text(c, inp.units)
     note = quantity_text(c.note, c.note_quantities, inp.units) if with_note else ""
     name = c.name + (f" ({note})" if note and not c.passed else "")
     return name, c.subject, shown, required, margin_percent(c), result, readable_source(source)
@@ -135,9 +133,7 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     estimates its catalogue row marks, a fatigue strength estimated for want of a catalogue
     value, a service factor the design leaves out and the reading of K_D.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     shown : collection of str
         Warning messages already shown in full elsewhere on the page (these get one short
         line here).
@@ -209,9 +205,7 @@ def verdict_of(inp: ReportInput, checks: Sequence[Check], *,
                where: str = "the section Checks") -> Verdict:
     """The verdict of the checks: how many fail and the worst, or that all pass.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     checks : sequence of Check
         Every check of the analysis.
     where : str
@@ -240,9 +234,7 @@ def check_table(inp: ReportInput, checks: Sequence[Check], *, governing: bool = 
     highlighted): every check, failed ones first, or only the governing ones
     (:func:`governing_checks`).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     checks : sequence of Check
         Every check of the analysis.
     governing : bool
@@ -338,9 +330,7 @@ def rests_on(inp: ReportInput, shown: Collection[str] = ()) -> list[Block]:
     """The defaults and estimates the results rest on (:func:`estimates`) as a list under
     its heading; nothing when there are none.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     shown : collection of str
         Warnings the page shows in full (an estimate among them is then one short line).
 
@@ -361,9 +351,7 @@ def key_results(inp: ReportInput, caption: str, *, words: bool = False) -> Table
     """The design at a glance: chain, links, power, speeds, lowest natural frequency, K_D
     and the dynamic safety factors, mass and cost.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     caption : str
         The table's caption.
     words : bool
@@ -614,9 +602,7 @@ def kinematics_section(inp: ReportInput) -> list[Block]:
 def lubrication_text(inp: ReportInput) -> str:
     """The lubrication regime at the chain speed, with its ANSI type when it has one.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
 
     Returns
     -------
@@ -791,9 +777,7 @@ def design_file_section(inp: ReportInput) -> list[Block] | None:
 def references_section(inp: ReportInput, cited: str) -> list[Block]:
     """The bibliography: every source the report cites (``cited`` is the report's text).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     cited : str
         The report's text (:func:`chaindrive.report.report_text`), searched for keys of
         docs/references.md in square brackets.

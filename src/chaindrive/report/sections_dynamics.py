@@ -53,9 +53,7 @@ def tooth_harmonics(inp: ReportInput) -> str:
     """The harmonics of the tooth frequency among the working frequencies of the resonance
     table, as the analysis lists them ("1–3"; "" when it lists none).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
 
     Returns
     -------
@@ -76,9 +74,7 @@ def resonance_rows(inp: ReportInput, kind: str) -> tuple[list[tuple[Any, ...]], 
     parametric resonances ("span"): working frequency, f_w, natural frequency, mode or span,
     detuning Δ ≥ 0, below/above; and the rows inside the band (highlighted).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     kind : str
         "ring" (the ring modes) or "span" (the spans' parametric resonances).
 

@@ -61,9 +61,7 @@ def grouped_checks(inp: ReportInput, checks: Sequence[Check]) -> tuple[Table, li
     checks of one name and result on one row (their subjects and values listed), and the
     note of the first of each row that does not pass (why it fails or cannot be verified).
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
     checks : sequence of Check
         Every check of the analysis.
 
@@ -168,9 +166,7 @@ def _other_warnings(inp: ReportInput) -> list[Block]:
 def sheet_sections(inp: ReportInput) -> list[Section]:
     """The two sections of the sign-off sheet, one a page.
 
-    Parameters
-    ----------
-    %(inp)s
+    %(params_inp)s
 
     Returns
     -------
