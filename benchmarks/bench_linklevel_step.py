@@ -16,7 +16,7 @@ Without an argument, this tree's kernel alone.
 
 from __future__ import annotations
 
-import importlib.util
+import importlib
 import os
 import sys
 import time
@@ -73,11 +73,9 @@ def run(kern: Any, a0: list[Any], steps: int) -> tuple[float, np.ndarray]:
 def main() -> None:
     kernels: dict[str, Any] = {"this tree": kernel}
     if len(sys.argv) > 1:
-        spec = importlib.util.spec_from_file_location("kernel_other", sys.argv[1])
-        assert spec is not None and spec.loader is not None
-        other = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(other)
-        kernels = {"other": other, "this tree": kernel}
+        path = Path(sys.argv[1]).resolve()  # imported by name: numba's cache needs one
+        sys.path.insert(0, str(path.parent))
+        kernels = {"other": importlib.import_module(path.stem), "this tree": kernel}
     drives = (("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml"), 40_000),
               ("12B 15/25", _two_sprocket(85, 300.0, 1000.0), 30_000),
               ("24 sprockets", load_drive(EXAMPLES / "twenty_four_sprocket.toml"), 6_000))

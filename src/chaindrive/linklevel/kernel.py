@@ -235,21 +235,16 @@ def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
     T_i u_i − (M_i − M_{i+1})/ℓ_i · u⊥_i."""
     N = T.size
     last = N - 1
-    for i in range(last):  # link i's start share s_i into T·u (no carried state: vectorises)
-        mnet = (M[i] - M[i + 1]) * invl[i]
-        fx = T[i] * ux[i] + mnet * uy[i]
-        fy = T[i] * uy[i] - mnet * ux[i]
-        f[i, 0] += fx
-        f[i, 1] += fy
-        f[i + 1, 0] -= fx
-        f[i + 1, 1] -= fy
     mnet = (M[last] - M[0]) * invl[last]
-    fx = T[last] * ux[last] + mnet * uy[last]
-    fy = T[last] * uy[last] - mnet * ux[last]
-    f[last, 0] += fx
-    f[last, 1] += fy
-    f[0, 0] -= fx
-    f[0, 1] -= fy
+    px = T[last] * ux[last] + mnet * uy[last]
+    py = T[last] * uy[last] - mnet * ux[last]
+    for i in range(N):
+        mnet = (M[i] - M[i + 1 if i < last else 0]) * invl[i]
+        cx = T[i] * ux[i] + mnet * uy[i]
+        cy = T[i] * uy[i] - mnet * ux[i]
+        f[i, 0] += cx - px
+        f[i, 1] += cy - py
+        px, py = cx, cy
 
 
 #: Rescaling of the continuants in :func:`_twisted_solve`: past _BIG they are multiplied by
@@ -271,9 +266,10 @@ def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any,
     principal minors) q_j = b_j q_{j−1} − e_{j−1}² q_{j−2}, q_{−1} = 1, q_{−2} = 0
     [Usmani1994], and the eliminated right-hand sides d′_j as
     D_j = d′_j q_j = d_j q_{j−1} − e_{j−1} D_{j−1}: recurrences of one multiply-add each, so
-    that the step-to-step chain holds no division (the one reciprocal 1/q_j a row is off
-    it, in a loop of its own). q_j grows by at least 1 + h_c a row (the matrix is diagonally dominant) and is
-    rescaled by an exact power of two past 2²⁰⁰, with the D's and Z's that scale with it."""
+    that the row-to-row chain holds no division (the reciprocals 1/q_j follow in a loop of
+    their own, which vectorises). q_j grows by at least 1 + h_c a row (the matrix is
+    diagonally dominant) and is rescaled by an exact power of two past 2²⁰⁰, together with
+    the D's and Z's that scale with it."""
     n = d.size
     last = n - 1
     k = n // 2
@@ -360,10 +356,9 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
     :func:`_twisted_solve`); then v′_r = v*_r + h_c (g_r u_r − g_{r−1} u_{r−1}).
     Unconditionally stable for any damping. Needs N ≥ 3 links."""
     N = v.shape[0]
-    vf = v.reshape(2 * N)  # C-contiguous (N, 2): one flat loop that vectorises
-    ff = f.reshape(2 * N)
-    for i in range(2 * N):
-        vf[i] += h * ff[i]
+    for r in range(N):
+        v[r, 0] += h * f[r, 0]
+        v[r, 1] += h * f[r, 1]
     if hc == 0.0:
         for i in range(N):
             g[i] = 0.0
@@ -425,42 +420,8 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _listed(cand: Any, rollers: Any, Fc: Any, Sc: Any, Gc: Any) -> int:
-    """The rollers within reach of a sprocket (cand ≥ 0) into rollers[:count]; returns
-    count. The contact force, sprocket and gap of every other roller are cleared (Fc = 0,
-    Sc = Gc = −1), as :func:`_contacts` leaves them while no search changes cand."""
-    count = 0
-    for r in range(cand.size):
-        if cand[r] >= 0:
-            rollers[count] = r
-            count += 1
-        else:
-            Fc[r] = 0.0
-            Sc[r] = -1
-            Gc[r] = -1
-    return count
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _turned(c: float, s: float, a: float) -> tuple[float, float]:
-    """(cos(θ + a), sin(θ + a)) from c = cos θ, s = sin θ and a small turn a [rad]
-    (|a| ≤ :data:`_TURN_MAX`): the rotation by a with cos a and sin a to their Taylor
-    terms of order 8 and 9, whose remainders a¹⁰/10! and a¹¹/11! lie below 10⁻¹⁶ there."""
-    a2 = a * a
-    ca = 1.0 - a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0)))
-    sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0 * (1.0 - a2 / 72.0))))
-    return c * ca - s * sa, s * ca + c * sa
-
-
-#: Largest turn of a sprocket in one step [rad] that :func:`_turned` follows (0.01¹⁰/10! is
-#: 3·10⁻²⁷); a larger one takes the sprocket's cosine and sine afresh.
-_TURN_MAX = 0.01
-
-
-@numba.njit(cache=True, error_model="numpy")
 def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
-              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any,
-              rollers: Any = None, nr: int = -1, angles_ready: bool = False) -> float:
+              trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any) -> float:
     """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
     Fc [N], sprocket Sc and gap Gc of every roller (Gc ≥ 0 also serves as the guess of the
     next step: the nearest of gaps Gc−1, Gc, Gc+1 by distance, which on one pitch circle is
@@ -469,20 +430,14 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
     spr rows: cx, cy, z, R, r_roller, r_i, α, R_a, k_c, c_c, 2π/z, R sin(π/z); trig rows:
     cos α, sin α, tan α;
     gtab[s, j] = (cos, sin) of 2πj/z_s, the gap directions in the sprocket's frame; cth,
-    sth: work arrays (n,) for the cosine and sine of the sprockets' angles (filled by the
-    caller when ``angles_ready``); rollers[:nr]: the rollers to visit, those with
-    cand ≥ 0 (nr < 0: every roller; the others' Fc, Sc, Gc are then left as they are,
-    :func:`_listed` clears them when they leave).
+    sth: work arrays (n,) for the cosine and sine of the sprockets' angles.
     """
     diss = 0.0
-    if not angles_ready:
-        ns = th.size if th.size < spr.shape[1] else spr.shape[1]
-        for s in range(ns):
-            cth[s] = math.cos(th[s])
-            sth[s] = math.sin(th[s])
-    count = x.shape[0] if nr < 0 or rollers is None else nr
-    for idx in range(count):
-        r = idx if nr < 0 or rollers is None else rollers[idx]
+    ns = th.size if th.size < spr.shape[1] else spr.shape[1]
+    for s in range(ns):
+        cth[s] = math.cos(th[s])
+        sth[s] = math.sin(th[s])
+    for r in range(x.shape[0]):
         s = cand[r]
         Fc[r] = 0.0
         Sc[r] = -1
@@ -610,20 +565,13 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     Fc = np.zeros(N)
     Sc = np.full(N, -1, dtype=np.int64)
     Gc = np.full(N, -1, dtype=np.int64)
-    ns = min(D, spr.shape[1])
     cth = np.empty(spr.shape[1])  # cos and sin of the sprockets' angles (_contacts)
     sth = np.empty(spr.shape[1])
-    rollers = np.empty(N, dtype=np.int64)  # the rollers within reach (_listed)
-    nr = 0
     row = 0
     for step in range(steps + 1):
         t = t0 + step * dt
         if step % search_every == 0:
             _search(x, spr[0], spr[1], reach, cand, eng)
-            nr = _listed(cand, rollers, Fc, Sc, Gc)
-            for i in range(ns):  # afresh at every search; turned in between
-                cth[i] = math.cos(th[i])
-                sth[i] = math.sin(th[i])
         for r in range(N):
             f[r, 0] = m * gx
             f[r, 1] = m * gy
@@ -636,7 +584,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             Tf[i] = T[i] - kt * gd[i]
         _link_forces(f, Tf, ux, uy, invl, M)
         p_contact = _contacts(x, v, f, th, w, tq, cand, spr, trig, gtab, Fc, Sc, Gc, cth,
-                              sth, rollers, nr, True)
+                              sth)
         if step < steps:
             _engagements(t, Fc, eng, win, events, count)
             _rotational(t, th, th0, w, tq, J, Kt, Ct, mkind, mp, mdof, msign, rkind, rM, rwn,
@@ -669,14 +617,7 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
             x[r, 1] += dt * v[r, 1]
         for i in range(D):
             w[i] = (w[i] + dt * tq[i] / J[i]) * relax
-            turn = dt * w[i]
-            th[i] += turn
-            if i < ns:
-                if abs(turn) <= _TURN_MAX:
-                    cth[i], sth[i] = _turned(cth[i], sth[i], turn)
-                else:
-                    cth[i] = math.cos(th[i])
-                    sth[i] = math.sin(th[i])
+            th[i] += dt * w[i]
 
 
 @numba.njit(cache=True, error_model="numpy")
