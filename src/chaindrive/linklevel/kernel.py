@@ -247,86 +247,48 @@ def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
         px, py = cx, cy
 
 
-#: Rescaling of the continuants in :func:`_twisted_solve`: past _BIG they are multiplied by
-#: _SCALE (a power of two: exact), far below overflow for any growth factor 1 + 2h_c.
-_BIG = 2.0**200
-_SCALE = 2.0**-200
-
-
 @numba.njit(cache=True, error_model="numpy")
 def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any, z: Any,
-                   cp: Any, qq: Any) -> None:
+                   cp: Any) -> None:
     """Solve the tridiagonal system with diagonal (b0, diag, …, diag, bl) and off-diagonals
-    e_i = −h_c·o_i (entries (i, i+1) and (i+1, i)) for the right-hand sides d and z in place,
-    by the twisted (two-sided) factorisation: eliminated from both ends towards the middle row
-    and substituted back outwards ([Press2007, §2.4] applied from both ends), so that the two
-    halves' dependency chains run side by side. cp, qq: work arrays.
-
-    The elimination's pivots p_j = q_j/q_{j−1} are carried as the continuants (the leading
-    principal minors) q_j = b_j q_{j−1} − e_{j−1}² q_{j−2}, q_{−1} = 1, q_{−2} = 0
-    [Usmani1994], and the eliminated right-hand sides d′_j as
-    D_j = d′_j q_j = d_j q_{j−1} − e_{j−1} D_{j−1}: recurrences of one multiply-add each, so
-    that the row-to-row chain holds no division (the reciprocals 1/q_j follow in a loop of
-    their own, which vectorises). q_j grows by at least 1 + h_c a row (the matrix is
-    diagonally dominant) and is rescaled by an exact power of two past 2²⁰⁰, together with
-    the D's and Z's that scale with it."""
+    −h_c·o_i (entries (i, i+1) and (i+1, i)) for the right-hand sides d and z in place, by
+    the twisted (two-sided) factorisation: eliminated from both ends towards the middle row
+    and substituted back outwards ([Press2007, §2.4] applied from both ends), so that the
+    two halves' dependency chains run side by side. cp: work array."""
     n = d.size
     last = n - 1
     k = n // 2
-    q1, q2 = 1.0, 0.0  # top: q_{j−1}, q_{j−2}
-    dq, zq = 0.0, 0.0  # top: D_{j−1}, Z_{j−1}
-    r1, r2 = 1.0, 0.0  # bottom: r_{j+1}, r_{j+2}
-    dr, zr = 0.0, 0.0  # bottom: D″_{j+1}, Z″_{j+1}
+    cprev, dprev, zprev = 0.0, 0.0, 0.0  # top: c′_{j−1}, d′_{j−1}, z′_{j−1}
+    anext, dnext, znext = 0.0, 0.0, 0.0  # bottom: a″_{j+1}, d″_{j+1}, z″_{j+1}
     for t in range(k):
-        j = t  # top row j: sub-diagonal e_{j−1}, super-diagonal e_j
+        j = t  # top row j: sub-diagonal −h_c o_{j−1}, super-diagonal −h_c o_j
         a = -hc * o[j - 1] if j > 0 else 0.0
-        q = (b0 if j == 0 else diag) * q1 - (a * a) * q2
-        dn = d[j] * q1 - a * dq
-        zn = z[j] * q1 - a * zq
-        cp[j] = -hc * o[j] * q1  # c′_j = e_j q_{j−1}/q_j, divided below
-        qq[j] = q
-        d[j] = dn
-        z[j] = zn
-        q2, q1, dq, zq = q1, q, dn, zn
-        if q > _BIG:
-            q1 *= _SCALE
-            q2 *= _SCALE
-            dq *= _SCALE
-            zq *= _SCALE
-        jb = last - t  # bottom row jb, below the middle row k
+        inv = 1.0 / ((b0 if j == 0 else diag) - a * cprev)
+        cprev = -hc * o[j] * inv
+        dprev = (d[j] - a * dprev) * inv
+        zprev = (z[j] - a * zprev) * inv
+        cp[j] = cprev
+        d[j] = dprev
+        z[j] = zprev
+        jb = last - t  # bottom row jb, above the middle row k
         if jb > k:
             c = -hc * o[jb] if jb < last else 0.0
-            r = (bl if jb == last else diag) * r1 - (c * c) * r2
-            dn = d[jb] * r1 - c * dr
-            zn = z[jb] * r1 - c * zr
-            cp[jb] = -hc * o[jb - 1] * r1
-            qq[jb] = r
-            d[jb] = dn
-            z[jb] = zn
-            r2, r1, dr, zr = r1, r, dn, zn
-            if r > _BIG:
-                r1 *= _SCALE
-                r2 *= _SCALE
-                dr *= _SCALE
-                zr *= _SCALE
-    qq[k] = 1.0
-    for j in range(n):  # the divisions, off the chain (a loop that vectorises)
-        rq = 1.0 / qq[j]
-        cp[j] *= rq
-        d[j] *= rq
-        z[j] *= rq
+            inv = 1.0 / ((bl if jb == last else diag) - c * anext)
+            anext = -hc * o[jb - 1] * inv
+            dnext = (d[jb] - c * dnext) * inv
+            znext = (z[jb] - c * znext) * inv
+            cp[jb] = anext
+            d[jb] = dnext
+            z[jb] = znext
     a = -hc * o[k - 1] if k > 0 else 0.0
     c = -hc * o[k] if k < last else 0.0
     bk = b0 if k == 0 else (bl if k == last else diag)
-    cleft = cp[k - 1] if k > 0 else 0.0
-    dleft = d[k - 1] if k > 0 else 0.0
-    zleft = z[k - 1] if k > 0 else 0.0
     aright = cp[k + 1] if k < last else 0.0
     dright = d[k + 1] if k < last else 0.0
     zright = z[k + 1] if k < last else 0.0
-    inv = 1.0 / (bk - a * cleft - c * aright)
-    xk = (d[k] - a * dleft - c * dright) * inv
-    yk = (z[k] - a * zleft - c * zright) * inv
+    inv = 1.0 / (bk - a * cprev - c * aright)
+    xk = (d[k] - a * dprev - c * dright) * inv
+    yk = (z[k] - a * zprev - c * zright) * inv
     d[k] = xk
     z[k] = yk
     up_x, up_y, dn_x, dn_y = xk, yk, xk, yk
@@ -374,19 +336,18 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
     gamma = -diag
     zz[0] = gamma
     zz[last] = corner
-    _twisted_solve(hc, oo, diag - gamma, diag - corner * corner / gamma, diag, rhs, zz, cp,
-                   g)  # g: work array until the rates are written
+    _twisted_solve(hc, oo, diag - gamma, diag - corner * corner / gamma, diag, rhs, zz, cp)
     fac = (rhs[0] + corner * rhs[last] / gamma) / (1.0 + zz[0] + corner * zz[last] / gamma)
-    for i in range(N):
-        g[i] = rhs[i] - fac * zz[i]
-    for i in range(N):  # hc·g_i u_i into cp, oo (free now)
-        cp[i] = hc * g[i] * ux[i]
-        oo[i] = hc * g[i] * uy[i]
-    v[0, 0] += cp[0] - cp[last]
-    v[0, 1] += oo[0] - oo[last]
-    for r in range(1, N):  # no carried dependency: vectorises
-        v[r, 0] += cp[r] - cp[r - 1]
-        v[r, 1] += oo[r] - oo[r - 1]
+    ga = rhs[last] - fac * zz[last]
+    g[last] = ga
+    gx, gy = ga * ux[last], ga * uy[last]
+    for r in range(N):
+        gr = rhs[r] - fac * zz[r]
+        g[r] = gr
+        px, py = gr * ux[r], gr * uy[r]
+        v[r, 0] += hc * (px - gx)
+        v[r, 1] += hc * (py - gy)
+        gx, gy = px, py
 
 
 @numba.njit(cache=True, error_model="numpy")
