@@ -32,11 +32,21 @@ def test_implicit_damper_solves_backward_euler_exactly():
         _check_damper_solve(rng, n)
 
 
-def _check_damper_solve(rng: np.random.Generator, n: int) -> None:
+def test_implicit_damper_solve_holds_for_long_heavily_damped_chains():
+    """A long chain of heavily damped links (h_c = 50, the seed's is about 19; 80 and 401
+    links, the elimination from both ends meeting after 40 and 200 rows) against the dense
+    backward-Euler step (closed form)."""
+    rng = np.random.default_rng(5)
+    for n in (80, 401):
+        _check_damper_solve(rng, n, hc=50.0, tol=1e-11)
+
+
+def _check_damper_solve(rng: np.random.Generator, n: int, hc: float = 1.7,
+                        tol: float = 1e-13) -> None:
     v, f = rng.normal(size=(n, 2)), rng.normal(size=(n, 2))
     angle = rng.uniform(0.0, 2 * math.pi, n)
     ux, uy = np.cos(angle), np.sin(angle)
-    h, hc = 0.2, 1.7
+    h = 0.2
     out, g = v.copy(), np.zeros(n)
     _velocity_update(out, f, h, hc, ux, uy, g, np.empty(n), np.empty(n), np.empty(n),
                      np.empty(n))
@@ -46,8 +56,8 @@ def _check_damper_solve(rng: np.random.Generator, n: int) -> None:
         A[i, 2 * b:2 * b + 2] += (ux[i], uy[i])
         A[i, 2 * i:2 * i + 2] -= (ux[i], uy[i])
     dense = np.linalg.solve(np.eye(2 * n) + hc * A.T @ A, (v + h * f).ravel())
-    np.testing.assert_allclose(out.ravel(), dense, atol=1e-13)
-    np.testing.assert_allclose(g, A @ dense, atol=1e-13)
+    np.testing.assert_allclose(out.ravel(), dense, atol=tol)
+    np.testing.assert_allclose(g, A @ dense, atol=tol)
 
 
 def test_penetration_of_a_roller_in_its_gap():
