@@ -45,6 +45,9 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                       "    Its contour.",
     "pitch": "pitch : float\n    Chain pitch p [m].",
     "teeth": "teeth : int\n    Number of teeth z [-].",
+    # compute side (dynamics/, geometry/, kinematics, strength/, synthesis/, ...)
+    "node_dof_factor": "node_dof : ndarray\n    (nodes,) coordinate of each node [-].\n"
+                       "factor : ndarray\n    (nodes,) φ_node / q [-].",
     "pitch_teeth_array": "pitch : float or array_like\n    Chain pitch p [m].\n"
                          "teeth : int or array_like\n    Number of teeth z [-].",
     "roller_diameter_array": "roller_diameter : float or array_like\n"
