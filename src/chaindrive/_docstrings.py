@@ -48,6 +48,27 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     # compute side (dynamics/, geometry/, kinematics, strength/, synthesis/, ...)
     "node_dof_factor": "node_dof : ndarray\n    (nodes,) coordinate of each node [-].\n"
                        "factor : ndarray\n    (nodes,) φ_node / q [-].",
+    "teeth_array": "teeth : int or array_like\n    Number of teeth z [-].",
+    "pitch_t_array": "pitch : float or array_like\n    Chain pitch t [m].",
+    "chain": "chain : ChainSpec\n    The chain.",
+    "risk": "risk : float\n    The risk level [-].",
+    "c4": "c4 : float\n    C₄ [-].",
+    "max_clearance": "max_clearance : float\n    z_max [m].",
+    "samples_rng": "n : int\n    Samples [-].\nrng : numpy.random.Generator or int or None\n"
+                   "    A generator or the seed of one.",
+    "links": "links : float\n    Chain length L_p [pitches].",
+    "drive_power": "drive : Drive\n    The design (power and driver speed given).",
+    "small_sprocket": "teeth : int\n    Teeth of the small sprocket [-].",
+    "driver_teeth": "driver_teeth : int\n    Teeth z_1 of the driver [-].",
+    "sprocket_names": "names : sequence of str or None\n"
+                      "    Names of the sprockets (None: S1, S2, …).",
+    "harmonics": "harmonics : int\n    Harmonics of the tooth frequency [-].",
+    "contour_geometry": "geometry : GeometryResult\n"
+                        "    The contour's geometry (spans in ring order, wraps, pitch).",
+    "tooth_angular_frequency": "tooth_angular_frequency : float\n"
+                               "    Tooth frequency ω_z = z₁ω₁ [rad/s].",
+    "check_settings": "settings : CheckSettings or None\n"
+                      "    What the checks are held to (None: :func:`settings_for` the drive).",
     "pitch_teeth_array": "pitch : float or array_like\n    Chain pitch p [m].\n"
                          "teeth : int or array_like\n    Number of teeth z [-].",
     "roller_diameter_array": "roller_diameter : float or array_like\n"

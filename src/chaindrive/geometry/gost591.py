@@ -42,8 +42,7 @@ def engagement_characteristic(pitch: ArrayLike, roller_diameter: ArrayLike) -> F
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
+    %(pitch_t_array)s
     %(roller_diameter_array)s
 
     Returns
@@ -99,10 +98,8 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_t_array)s
+    %(teeth_array)s
     %(roller_diameter_array)s
 
     Returns
@@ -146,10 +143,8 @@ def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_t_array)s
+    %(teeth_array)s
     %(roller_diameter_array)s
 
     Returns

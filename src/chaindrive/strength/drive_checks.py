@@ -278,11 +278,9 @@ def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings
 
     Parameters
     ----------
-    drive : Drive
-        The design (power and driver speed given).
+    %(drive_power)s
     %(geometry)s
-    settings : CheckSettings or None
-        What the checks are held to (None: :func:`settings_for` the drive).
+    %(check_settings)s
     loads : LoadsResult or None
         The strength stage's loads of this drive (:func:`~chaindrive.strength.loads.loads_of`),
         read for v, F_t, F_0 and F_v; None: those four computed here.
@@ -309,11 +307,9 @@ def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings |
 
     Parameters
     ----------
-    drive : Drive
-        The design (power and driver speed given).
+    %(drive_power)s
     %(geometry)s
-    settings : CheckSettings or None
-        What the checks are held to (None: :func:`settings_for` the drive).
+    %(check_settings)s
     loads : LoadsResult or None
         The strength stage's loads of this drive, as :func:`chain_checks` reads them.
 
@@ -335,8 +331,7 @@ def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
 
     Parameters
     ----------
-    drive : Drive
-        The design (power and driver speed given).
+    %(drive_power)s
     %(geometry)s
     km : float
         K_m, the number of contours the power is divided by for the most loaded one [-]
