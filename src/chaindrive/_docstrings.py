@@ -69,6 +69,12 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                                "    Tooth frequency ω_z = z₁ω₁ [rad/s].",
     "check_settings": "settings : CheckSettings or None\n"
                       "    What the checks are held to (None: :func:`settings_for` the drive).",
+    # the whole Parameters section and the Returns type of a matrix with some spans slack
+    "span_active_matrix": "Parameters\n----------\nspan_active : array_like | None\n"
+                          "    (spans,) 1 for a span that carries, 0 for a slack one [-] "
+                          "(None: all carry).\n\nReturns\n-------\nndarray",
+    "active_matrix": "Parameters\n----------\nactive : ndarray of bool | None\n"
+                     "    (S,) the spans that carry (None: all).\n\nReturns\n-------\nndarray",
     "pitch_teeth_array": "pitch : float or array_like\n    Chain pitch p [m].\n"
                          "teeth : int or array_like\n    Number of teeth z [-].",
     "roller_diameter_array": "roller_diameter : float or array_like\n"
