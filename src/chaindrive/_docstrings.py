@@ -46,6 +46,18 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "pitch": "pitch : float\n    Chain pitch p [m].",
     "teeth": "teeth : int\n    Number of teeth z [-].",
     # compute side (dynamics/, geometry/, kinematics, strength/, synthesis/, ...)
+    # the Parameters section of a function of the design alone, and the Returns heading
+    "drive_returns": "Parameters\n----------\ndrive : Drive\n    The design.\n\nReturns\n-------",
+    "pitch_teeth_returns": "Parameters\n----------\npitch : float or array_like\n"
+                           "    Chain pitch p [m].\nteeth : int or array_like\n"
+                           "    Number of teeth z [-].\n\nReturns\n-------",
+    "pitch_teeth_roller_returns": "Parameters\n----------\npitch : float or array_like\n"
+                                  "    Chain pitch p [m].\nteeth : int or array_like\n"
+                                  "    Number of teeth z [-].\n"
+                                  "roller_diameter : float or array_like\n"
+                                  "    Roller diameter d1 [m].\n\nReturns\n-------",
+    "teeth_returns": "Parameters\n----------\nteeth : int or array_like\n"
+                     "    Number of teeth z [-].\n\nReturns\n-------",
     "node_dof_factor": "node_dof : ndarray\n    (nodes,) coordinate of each node [-].\n"
                        "factor : ndarray\n    (nodes,) φ_node / q [-].",
     "teeth_array": "teeth : int or array_like\n    Number of teeth z [-].",

@@ -796,12 +796,7 @@ def in_travel_order(drive: Drive) -> Drive:
     layout takes the orientation of the rotation, :func:`travel_orientation`). Without a
     rotation the drive is returned as it is.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     Drive
         The same drive, its sprockets in the order of travel.
 

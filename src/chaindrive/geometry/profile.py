@@ -389,12 +389,7 @@ BORE_RATIO = 0.19
 def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
     """The profile of every sprocket of a drive.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of SprocketProfile
         In contour order.
     """

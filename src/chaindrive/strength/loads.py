@@ -56,12 +56,7 @@ def power_shares(drive: Drive) -> NDArray[np.float64]:
 
     Driven sprockets without ``power_share`` split what the others leave equally.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     numpy.ndarray
         (n,) share of each sprocket [-], 0 for the driver and idlers.
 
@@ -434,12 +429,7 @@ def installed_sag_ratio(drive: Drive) -> float:
     """Sag of the slack span of the new chain as installed, as a fraction of its length [-]:
     the design's ``[chain] sag``, else :data:`DEFAULT_SAG_RATIO`.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     float
         s = f/ℓ [-].
     """

@@ -372,12 +372,7 @@ def verify_mapping(problem: Problem, design: Mapping[str, Any],
 def base_ratios(drive: Drive) -> list[float]:
     """The ratio of every sprocket to the driver.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     list of float
         z_i/z_driver [-].
     """

@@ -53,12 +53,7 @@ BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
 def design_mapping(drive: Drive) -> dict[str, Any]:
     """The dictionary a design file of a drive loads to.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     dict
         :func:`chaindrive.io.design.drive_to_mapping` of it.
     """

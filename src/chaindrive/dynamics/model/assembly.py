@@ -318,12 +318,7 @@ def _add_element(t: TorsionalEngine, tr: _Train, k: int, e: TrainElement,
 def kloss_parameters(drive: Drive) -> tuple[float, float]:
     """(λ = M_k/M_r, s_k) of the motor's Kloss law: ``[motor]`` over ``[dynamics]``.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of float
         Breakdown ratio [-] and critical slip [-].
     """
@@ -341,12 +336,7 @@ def motor_rating(drive: Drive) -> tuple[float | None, float | None]:
     speed times the ratios of the gear stages on its train (the motor's own speed). None where
     neither is given.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of float or None
     """
     m, driver = drive.motor, drive.driver
