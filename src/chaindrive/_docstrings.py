@@ -79,8 +79,19 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                         "    The contour's geometry (spans in ring order, wraps, pitch).",
     "tooth_angular_frequency": "tooth_angular_frequency : float\n"
                                "    Tooth frequency ω_z = z₁ω₁ [rad/s].",
-    "check_settings": "settings : CheckSettings or None\n"
-                      "    What the checks are held to (None: :func:`settings_for` the drive).",
+    "probe_returns": "Parameters\n----------\nprobe : ResonanceProbe\n    The check and its band.\n"
+                     "band_percent : float\n    The least detuning required [%].\n\nReturns\n-------",
+    "selection_catalog": "design_factor : float\n    n_d [-].\ncatalog : sequence of ChainSpec or None\n"
+                         "    The chains to choose from.\nextra_files : sequence of str\n"
+                         "    The user's catalogue files.",
+    # the last parameter and the Returns section of a tooth-gap wall
+    "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"
+                    "    (k, 2) points of the wall, x along the tangent, y radial outward [m].",
+    # the Parameters heading and the first three parameters of a drive's checks
+    "checks_params": "Parameters\n----------\ndrive : Drive\n"
+                     "    The design (power and driver speed given).\n"
+                     "geometry : GeometryResult\n    Its contour.\nsettings : CheckSettings or None\n"
+                     "    What the checks are held to (None: :func:`settings_for` the drive).",
     # the whole Parameters section and the Returns type of a matrix with some spans slack
     "span_active_matrix": "Parameters\n----------\nspan_active : array_like | None\n"
                           "    (spans,) 1 for a span that carries, 0 for a slack one [-] "

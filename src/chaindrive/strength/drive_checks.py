@@ -276,11 +276,7 @@ def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings
                  loads: LoadsResult | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method.
 
-    Parameters
-    ----------
-    %(drive_power)s
-    %(geometry)s
-    %(check_settings)s
+    %(checks_params)s
     loads : LoadsResult or None
         The strength stage's loads of this drive (:func:`~chaindrive.strength.loads.loads_of`),
         read for v, F_t, F_0 and F_v; None: those four computed here.
@@ -305,11 +301,7 @@ def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings |
                loads: LoadsResult | None = None) -> tuple[ck.Check, ...]:
     """Every check of a drive: its chain's and its layout's.
 
-    Parameters
-    ----------
-    %(drive_power)s
-    %(geometry)s
-    %(check_settings)s
+    %(checks_params)s
     loads : LoadsResult or None
         The strength stage's loads of this drive, as :func:`chain_checks` reads them.
 
