@@ -84,6 +84,14 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "selection_catalog": "design_factor : float\n    n_d [-].\ncatalog : sequence of ChainSpec or None\n"
                          "    The chains to choose from.\nextra_files : sequence of str\n"
                          "    The user's catalogue files.",
+    "hinge_force_returns": "Parameters\n----------\ntension : array_like\n"
+                           "    Static span tension F_0 [N].\nrelative_amplitude : array_like\n"
+                           "    ȳ_0 [-].\ncoefficients : HingeFrictionCoefficients\n"
+                           "    The chain's F_max fit (default: the paper's ПР-12,7-1820-1).\n\n"
+                           "Returns\n-------",
+    "pitch_p_returns": "Parameters\n----------\npitch : float\n    p [m].\n\nReturns\n-------",
+    "roller_diameter_returns": "Parameters\n----------\nroller_diameter : float or array_like\n"
+                               "    Roller diameter d1 [m].\n\nReturns\n-------",
     # the last parameter and the Returns section of a tooth-gap wall
     "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"
                     "    (k, 2) points of the wall, x along the tangent, y radial outward [m].",

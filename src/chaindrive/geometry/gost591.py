@@ -120,12 +120,7 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
 def gost591_seating_radius(roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 root (seating) radius r = 0.5025·d1 + 0.05 mm.
 
-    Parameters
-    ----------
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(roller_diameter_returns)s
     float or numpy.ndarray
         r [m].
 

@@ -72,12 +72,7 @@ def iso606_seating_radius_range(roller_diameter: ArrayLike) -> tuple[FloatOrArra
 
     The standard writes d1 and ri in mm; the constant is applied in mm here.
 
-    Parameters
-    ----------
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(roller_diameter_returns)s
     tuple of float or numpy.ndarray
         (ri,min, ri,max) [m].
 
