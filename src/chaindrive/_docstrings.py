@@ -92,6 +92,7 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "pitch_p_returns": "Parameters\n----------\npitch : float\n    p [m].\n\nReturns\n-------",
     "roller_diameter_returns": "Parameters\n----------\nroller_diameter : float or array_like\n"
                                "    Roller diameter d1 [m].\n\nReturns\n-------",
+    "pitch_t_teeth": "pitch : float\n    Chain pitch t [m].\nteeth : int\n    Number of teeth z [-].",
     # the last parameter and the Returns section of a tooth-gap wall
     "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"
                     "    (k, 2) points of the wall, x along the tangent, y radial outward [m].",

@@ -162,9 +162,7 @@ class Gost591ToothForm:
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch t [m].
-    %(teeth)s
+    %(pitch_t_teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     lam : float
@@ -238,9 +236,7 @@ def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch t [m].
-    %(teeth)s
+    %(pitch_t_teeth)s
     roller_diameter : float
         Roller diameter d1 [m].
     inner_width : float
