@@ -93,6 +93,12 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter_returns": "Parameters\n----------\nroller_diameter : float or array_like\n"
                                "    Roller diameter d1 [m].\n\nReturns\n-------",
     "pitch_t_teeth": "pitch : float\n    Chain pitch t [m].\nteeth : int\n    Number of teeth z [-].",
+    "study": "study : str\n    The study's name.",
+    "roller_diameter": "roller_diameter : float\n    Roller diameter d1 [m].",
+    "drive_model": "model : DriveModel\n    The model.",
+    "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
+    "design_path": "path : str\n    A ``sprockets[2].x``-style path.",
+    "geometry_the_contour": "geometry : GeometryResult\n    The contour.",
     # the last parameter and the Returns section of a tooth-gap wall
     "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"
                     "    (k, 2) points of the wall, x along the tangent, y radial outward [m].",

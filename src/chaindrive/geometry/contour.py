@@ -766,13 +766,13 @@ def travel_orientation(drive: Drive) -> int:
     return -turn if drive.driver.side == "inside" else turn
 
 
+@shared_parameters
 def driver_rotation(geometry: GeometryResult, driver_index: int) -> str:
     """The driver's direction of rotation in a laid-out contour.
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour.
+    %(geometry_the_contour)s
     driver_index : int
         Index of the driver.
 

@@ -163,8 +163,7 @@ class Gost591ToothForm:
     Parameters
     ----------
     %(pitch_t_teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     lam : float
         λ = t/d1 [-].
     K : float
@@ -237,8 +236,7 @@ def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
     Parameters
     ----------
     %(pitch_t_teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     inner_width : float
         Chain inner width Bвн [m] (single-row rim width only: multi-row is not confirmed).
 

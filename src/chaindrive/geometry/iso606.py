@@ -270,8 +270,7 @@ class ToothForm:
     ----------
     %(pitch)s
     %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     pitch_diameter : float
         d = p/sin(π/z) [m].
     tip_diameter_min, tip_diameter_max, tip_diameter_mean : float
@@ -339,8 +338,7 @@ def iso606_tooth_form(pitch: float, teeth: int, roller_diameter: float, inner_wi
     ----------
     %(pitch)s
     %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     inner_width : float
         Chain inner width b1 [m].
     strands : int

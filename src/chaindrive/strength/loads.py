@@ -239,6 +239,7 @@ def span_tensions(slack_index: int, sprocket_forces: NDArray[np.float64],
     return tensions
 
 
+@shared_parameters
 def shaft_load_vectors(geometry: GeometryResult, tensions: NDArray[np.float64],
                        centrifugal: float = 0.0, load_factor: float = 1.0) -> NDArray[np.float64]:
     """Shaft load vector on each sprocket.
@@ -250,8 +251,7 @@ def shaft_load_vectors(geometry: GeometryResult, tensions: NDArray[np.float64],
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour.
+    %(geometry_the_contour)s
     tensions : numpy.ndarray
         (n,) span tensions [N].
     centrifugal : float
