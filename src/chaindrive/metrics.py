@@ -102,12 +102,7 @@ class DesignMetrics:
 def sprocket_body_masses(drive: Drive) -> NDArray[np.float64]:
     """Mass of each sprocket body from its tooth count, the chain and its material.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     numpy.ndarray
         (n,) mass of each sprocket body [kg]
         (:func:`chaindrive.geometry.sprocket.sprocket_body`).

@@ -19,6 +19,7 @@ A :class:`Drive` is what every analysis reads. It is built from a design file by
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Literal
 
@@ -69,6 +70,35 @@ def estimated_columns(source: str) -> tuple[str, ...]:
         return ()
     columns = tail.strip().partition(" (")[0]
     return tuple(c.strip() for c in columns.split("|") if c.strip())
+
+
+# --- the checks of the dataclasses' fields (first failure raised, in the order given) ---
+
+def _positive(v: float) -> bool:
+    return math.isfinite(v) and v > 0
+
+
+def _not_negative(v: float) -> bool:
+    return math.isfinite(v) and v >= 0
+
+
+def _check_choice(field: str, value: object, allowed: tuple[str, ...]) -> None:
+    """Refuse a ``value`` that is not one of ``allowed``, naming ``field``."""
+    if value not in allowed:
+        raise DesignError(field, f"must be one of {', '.join(allowed)}, got {value!r}")
+
+
+def _check_ranges(where: str, owner: object,
+                  ranges: tuple[tuple[str, Callable[[float], bool], str, str], ...]) -> None:
+    """Refuse the first field of ``owner`` that is given (not None) and fails its test.
+
+    Each row of ``ranges`` is (field, test, what is allowed, unit written after the value);
+    the error names ``<where>.<field>``.
+    """
+    for name, ok, allowed, unit in ranges:
+        value = getattr(owner, name)
+        if value is not None and not ok(value):
+            raise DesignError(f"{where}.{name}", f"{allowed}, got {value!r}{unit}")
 
 
 @shared_parameters
@@ -387,13 +417,9 @@ class TrainElement:
 
     def __post_init__(self) -> None:
         where = f"train[{self.name or self.kind}]"
-        if self.kind not in TRAIN_KINDS:
-            raise DesignError(f"{where}.kind", f"must be one of {', '.join(TRAIN_KINDS)}, "
-                              f"got {self.kind!r}")
-        for key in ("inertia", "damping"):
-            v = getattr(self, key)
-            if not (math.isfinite(v) and v >= 0):
-                raise DesignError(f"{where}.{key}", f"must be finite and ≥ 0, got {v!r}")
+        _check_choice(f"{where}.kind", self.kind, TRAIN_KINDS)
+        _check_ranges(where, self, tuple((key, _not_negative, "must be finite and ≥ 0", "")
+                                         for key in ("inertia", "damping")))
         if self.kind == "ground":
             if self.stiffness is None or not (math.isfinite(self.stiffness) and self.stiffness > 0):
                 raise DesignError(f"{where}.stiffness", f"a ground spring needs a stiffness > 0, "
@@ -510,11 +536,8 @@ class Sprocket:
                 and abs(self.bearings[1] - self.bearings[0]) >= 1e-3):
             raise DesignError(f"{where}.bearings", "must be two finite positions at least 1 mm "
                               f"apart, got {self.bearings!r} m")
-        if self.bore is not None and not (math.isfinite(self.bore) and self.bore > 0):
-            raise DesignError(f"{where}.bore", f"must be positive, got {self.bore!r} m")
-        if self.bore_fit not in BORE_FITS:
-            raise DesignError(f"{where}.bore_fit", f"must be one of {', '.join(BORE_FITS)}, "
-                              f"got {self.bore_fit!r}")
+        _check_ranges(where, self, (("bore", _positive, "must be positive", " m"),))
+        _check_choice(f"{where}.bore_fit", self.bore_fit, BORE_FITS)
         if self.reduced_mass is not None:
             if not (math.isfinite(self.reduced_mass) and self.reduced_mass > 0):
                 raise DesignError(f"{where}.reduced_mass", f"must be positive, got "
@@ -525,30 +548,24 @@ class Sprocket:
         if len(self.train) > MAX_TRAIN_ELEMENTS:
             raise DesignError(f"{where}.train", f"at most {MAX_TRAIN_ELEMENTS} elements, got "
                               f"{len(self.train)}")
-        if self.load is not None and self.load not in LOAD_LAWS:
-            raise DesignError(f"{where}.load", f"must be one of {', '.join(LOAD_LAWS)}, got "
-                              f"{self.load!r}")
+        if self.load is not None:
+            _check_choice(f"{where}.load", self.load, LOAD_LAWS)
         if (not isinstance(self.teeth, int) or isinstance(self.teeth, bool)
                 or not MIN_TEETH <= self.teeth <= MAX_TEETH):
             raise DesignError(
                 f"{where}.teeth",
                 f"must be a whole number from {MIN_TEETH} to {MAX_TEETH}, got {self.teeth!r}",
             )
-        if self.role not in ROLES:
-            raise DesignError(f"{where}.role", f"must be one of {', '.join(ROLES)}, got {self.role!r}")
-        if self.side not in SIDES:
-            raise DesignError(f"{where}.side", f"must be one of {', '.join(SIDES)}, got {self.side!r}")
+        _check_choice(f"{where}.role", self.role, ROLES)
+        _check_choice(f"{where}.side", self.side, SIDES)
         for name in ("x", "y"):
             if not math.isfinite(getattr(self, name)):
                 raise DesignError(f"{where}.{name}", f"must be finite, got {getattr(self, name)!r}")
-        if self.speed is not None and not (math.isfinite(self.speed) and self.speed > 0):
-            raise DesignError(f"{where}.speed", f"must be positive, got {self.speed!r} rad/s")
-        if self.inertia is not None and not (math.isfinite(self.inertia) and self.inertia > 0):
-            raise DesignError(f"{where}.inertia", f"must be positive, got {self.inertia!r} kg·m²")
-        if not (math.isfinite(self.flywheel) and self.flywheel >= 0):
-            raise DesignError(f"{where}.flywheel", f"must be ≥ 0, got {self.flywheel!r} kg·m²")
-        if self.power_share is not None and not 0 <= self.power_share <= 1:
-            raise DesignError(f"{where}.power_share", f"must be from 0 to 1, got {self.power_share!r}")
+        _check_ranges(where, self, (
+            ("speed", _positive, "must be positive", " rad/s"),
+            ("inertia", _positive, "must be positive", " kg·m²"),
+            ("flywheel", _not_negative, "must be ≥ 0", " kg·m²"),
+            ("power_share", lambda v: 0 <= v <= 1, "must be from 0 to 1", "")))
 
     def moved_to(self, x: float, y: float) -> Sprocket:
         """A copy of this sprocket at a new centre (used by the take-up).
@@ -615,18 +632,13 @@ class Motor:
     torque: float | None = None
 
     def __post_init__(self) -> None:
-        if self.law is not None and self.law not in MOTORS:
-            raise DesignError("motor.law", f"must be one of {', '.join(MOTORS)}, got {self.law!r}")
-        for key in ("rated_power", "rated_speed", "rotor_inertia", "ramp_time", "torque"):
-            v = getattr(self, key)
-            if v is not None and not (math.isfinite(v) and v > 0):
-                raise DesignError(f"motor.{key}", f"must be positive, got {v!r}")
-        if self.breakdown_ratio is not None and not 1 < self.breakdown_ratio <= 5:
-            raise DesignError("motor.breakdown_ratio", f"must be in (1, 5], got "
-                              f"{self.breakdown_ratio!r}")
-        if self.critical_slip is not None and not 0 < self.critical_slip < 1:
-            raise DesignError("motor.critical_slip", f"must be in (0, 1), got "
-                              f"{self.critical_slip!r}")
+        if self.law is not None:
+            _check_choice("motor.law", self.law, MOTORS)
+        _check_ranges("motor", self, (
+            *((key, _positive, "must be positive", "")
+              for key in ("rated_power", "rated_speed", "rotor_inertia", "ramp_time", "torque")),
+            ("breakdown_ratio", lambda v: 1 < v <= 5, "must be in (1, 5]", ""),
+            ("critical_slip", lambda v: 0 < v < 1, "must be in (0, 1)", "")))
 
 
 @dataclass(frozen=True, slots=True)
@@ -703,24 +715,13 @@ class DynamicsSettings:
     require_complete_model: bool = False
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.uncertainty < 0.5:
-            raise DesignError("dynamics.uncertainty", f"must be from 0 to below 0.5, got "
-                              f"{self.uncertainty!r}")
-        if self.startup_duration is not None and not 0.0 < self.startup_duration <= 60.0:
-            raise DesignError("dynamics.startup_duration", f"must be in (0, 60] s, got "
-                              f"{self.startup_duration!r}")
-        if not 0.0 < self.hinge_amplitude <= 0.1:
-            raise DesignError("dynamics.hinge_amplitude", f"must be in (0, 0.1], got "
-                              f"{self.hinge_amplitude!r}")
-        if self.damping_ratio is not None and not 0.0 <= self.damping_ratio < 1.0:
-            raise DesignError("dynamics.damping_ratio",
-                              f"must be from 0 to below 1, got {self.damping_ratio!r}")
-        if self.motor not in MOTORS:
-            raise DesignError("dynamics.motor", f"must be one of {', '.join(MOTORS)}, "
-                              f"got {self.motor!r}")
-        if self.resistance not in RESISTANCES:
-            raise DesignError("dynamics.resistance", f"must be one of {', '.join(RESISTANCES)}, "
-                              f"got {self.resistance!r}")
+        _check_ranges("dynamics", self, (
+            ("uncertainty", lambda v: 0.0 <= v < 0.5, "must be from 0 to below 0.5", ""),
+            ("startup_duration", lambda v: 0.0 < v <= 60.0, "must be in (0, 60] s", ""),
+            ("hinge_amplitude", lambda v: 0.0 < v <= 0.1, "must be in (0, 0.1]", ""),
+            ("damping_ratio", lambda v: 0.0 <= v < 1.0, "must be from 0 to below 1", "")))
+        _check_choice("dynamics.motor", self.motor, MOTORS)
+        _check_choice("dynamics.resistance", self.resistance, RESISTANCES)
 
 
 @dataclass(frozen=True, slots=True)

@@ -192,11 +192,19 @@ def _material_index(stamps: tuple[tuple[str, int], ...]) -> _Index[Material]:
     return _build_index(entries, _material_names, material_key, lambda m: m.name)
 
 
-def _not_found(what: str, index: _Index[ChainSpec] | _Index[Material], key: str, field: str,
-               hint: str) -> CatalogError:
-    best = closest(key, index.display)
+def _entry(index: _Index[Entry], key: Callable[[str], str], name: object, example: str,
+           what: str, field: str, hint: str) -> Entry:
+    """The entry called ``name``, or a CatalogError on ``field``: ``name`` is not a non-empty
+    string (``example`` says what is), or it is not in the catalogue (naming ``what`` and the
+    nearest name, ``hint`` when none is near)."""
+    if not isinstance(name, str) or not name.strip():
+        raise CatalogError(field, f"must be {example}, got {name!r}")
+    k = key(name)
+    if k in index.by_key:
+        return index.by_key[k]
+    best = closest(k, index.display)
     suggestion = f"; did you mean '{index.display[best]}'?" if best else f"; {hint}"
-    return CatalogError(field, f"{what} is not in the catalogue{suggestion}")
+    raise CatalogError(field, f"{what} is not in the catalogue{suggestion}")
 
 
 # --------------------------------------------------------------------------- public API
@@ -244,15 +252,9 @@ def find_chain(designation: str, extra_files: Sequence[PathLike] = (), *,
     CatalogError
         On ``field``, suggesting the nearest name.
     """
-    if not isinstance(designation, str) or not designation.strip():
-        raise CatalogError(field, f"must be a chain designation such as 'ISO 606 16B-1', "
-                                  f"got {designation!r}")
-    index = _chain_index(_file_stamps(extra_files))
-    key = designation_key(designation)
-    if key in index.by_key:
-        return index.by_key[key]
-    raise _not_found(repr(designation), index, key, field,
-                     "run `chaindrive catalog` to list the chains")
+    return _entry(_chain_index(_file_stamps(extra_files)), designation_key, designation,
+                  "a chain designation such as 'ISO 606 16B-1'", repr(designation), field,
+                  "run `chaindrive catalog` to list the chains")
 
 
 _STANDARD_ALIASES = {"ISO": "ISO 606", "ISO606": "ISO 606", "GOST": "GOST 13568",
@@ -336,11 +338,6 @@ def find_material(name: str, extra_files: Sequence[PathLike] = (), *,
     CatalogError
         On ``field``, suggesting the nearest name.
     """
-    if not isinstance(name, str) or not name.strip():
-        raise CatalogError(field, f"must be a material name such as 'steel 45', got {name!r}")
-    index = _material_index(_file_stamps(extra_files))
-    key = material_key(name)
-    if key in index.by_key:
-        return index.by_key[key]
-    raise _not_found(f"material {name!r}", index, key, field,
-                     "run `chaindrive catalog` to list the materials")
+    return _entry(_material_index(_file_stamps(extra_files)), material_key, name,
+                  "a material name such as 'steel 45'", f"material {name!r}", field,
+                  "run `chaindrive catalog` to list the materials")

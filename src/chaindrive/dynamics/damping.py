@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 
 __all__ = [
@@ -300,22 +301,13 @@ def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -
     return 8.0 / 3.0 * _positive("span_length", span_length) * y * y
 
 
+@shared_parameters
 def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
                       coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                       ) -> NDArray[np.float64]:
     """Largest span force F_max [N] during the vibration (empirical fit).
 
-    Parameters
-    ----------
-    tension : array_like
-        Static span tension F_0 [N].
-    relative_amplitude : array_like
-        ȳ_0 [-].
-    coefficients : HingeFrictionCoefficients
-        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
-
-    Returns
-    -------
+    %(hinge_force_returns)s
     ndarray
         F_max [N].
 
@@ -329,22 +321,13 @@ def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
     return k.k1 + k.k2 * y + k.k3 * F0 + k.k4 * y * y + k.k5 * y * F0 + k.k6 * F0 * F0
 
 
+@shared_parameters
 def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
                         coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
                         ) -> NDArray[np.float64]:
     """K_aF = F_a / F_0 = (F_max − F_0) / F_0 [-].
 
-    Parameters
-    ----------
-    tension : array_like
-        Static span tension F_0 [N].
-    relative_amplitude : array_like
-        ȳ_0 [-].
-    coefficients : HingeFrictionCoefficients
-        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
-
-    Returns
-    -------
+    %(hinge_force_returns)s
     ndarray
         K_aF [-].
 

@@ -146,6 +146,7 @@ class SpanExcitation:
                 "amplitude_mm": (np.abs(self.elongation) * 1e3).tolist()}
 
 
+@shared_parameters
 def path_positions(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Positions s_start, s_end [pitches] of the tangent points of every span along the chain:
     s_start,0 = 0; s_end,i = s_start,i + L_i/p; s_start,i+1 = s_end,i + z_{i+1}θ_{i+1}/2π
@@ -153,8 +154,7 @@ def path_positions(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArr
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour's geometry (spans in ring order, wraps, pitch).
+    %(contour_geometry)s
 
     Returns
     -------
@@ -220,6 +220,7 @@ def _teeth_by_span(geometry: GeometryResult) -> tuple[NDArray[np.float64], NDArr
     return z[starts], z[ends]
 
 
+@shared_parameters
 def polygonal_excitation(geometry: GeometryResult, tooth_angular_frequency: float,
                          harmonics: int = 10) -> SpanExcitation:
     """Polygonal excitation of every span of a contour at the tooth frequency ω_z = z₁ω₁.
@@ -229,10 +230,8 @@ def polygonal_excitation(geometry: GeometryResult, tooth_angular_frequency: floa
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour's geometry (spans in ring order, wraps, pitch).
-    tooth_angular_frequency : float
-        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    %(contour_geometry)s
+    %(tooth_angular_frequency)s
     harmonics : int
         Harmonics N kept [-] (default 10, practically exact by [MultimassChainDrives]).
 
@@ -252,6 +251,7 @@ def polygonal_excitation(geometry: GeometryResult, tooth_angular_frequency: floa
     return SpanExcitation(orders * tooth_angular_frequency, D, orders, "polygonal")
 
 
+@shared_parameters
 def eccentricity_excitation(geometry: GeometryResult, tooth_angular_frequency: float,
                             eccentricity: ArrayLike, phase: ArrayLike | None = None
                             ) -> SpanExcitation:
@@ -262,10 +262,8 @@ def eccentricity_excitation(geometry: GeometryResult, tooth_angular_frequency: f
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour's geometry (spans in ring order, wraps, pitch).
-    tooth_angular_frequency : float
-        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    %(contour_geometry)s
+    %(tooth_angular_frequency)s
     eccentricity : array_like
         (n,) eccentricity ε_j of every sprocket [m] (0: none).
     phase : array_like or None
@@ -319,6 +317,7 @@ def hinge_position_errors(links: int, pitch_errors: ArrayLike | None = None,
     return a
 
 
+@shared_parameters
 def chain_error_excitation(geometry: GeometryResult, tooth_angular_frequency: float, *,
                            pitch_errors: ArrayLike | None = None, pitch_scatter: float = 0.0,
                            accumulated_error: float = 0.0, harmonics: int = 20,
@@ -328,10 +327,8 @@ def chain_error_excitation(geometry: GeometryResult, tooth_angular_frequency: fl
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour's geometry (spans in ring order, wraps, pitch).
-    tooth_angular_frequency : float
-        Tooth frequency ω_z = z₁ω₁ [rad/s].
+    %(contour_geometry)s
+    %(tooth_angular_frequency)s
     pitch_errors : array_like or None
         (links,) error of every pitch [m] (None: drawn from ``pitch_scatter``, or 0).
     pitch_scatter : float

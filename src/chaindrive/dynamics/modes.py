@@ -422,6 +422,7 @@ def drive_modes(model: DriveModel) -> Modes:
                    right=right, left=left, basis=basis)
 
 
+@shared_parameters
 def inertia_modes_batch(model: DriveModel, added_inertia: NDArray[np.float64]
                         ) -> tuple[FloatArray, FloatArray]:
     """Elastic frequencies and the sprockets' largest normalised amplitude per mode of B
@@ -429,8 +430,7 @@ def inertia_modes_batch(model: DriveModel, added_inertia: NDArray[np.float64]
 
     Parameters
     ----------
-    model : DriveModel
-        The model.
+    %(drive_model)s
     added_inertia : ndarray
         (B, n) inertia added on every sprocket's shaft [kg·m²].
 

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.transverse import span_transverse_frequencies
 from chaindrive.errors import ChainDriveWarning, DesignError
 from chaindrive.kinematics import mean_chain_speed, tooth_frequency
@@ -38,6 +39,7 @@ __all__ = ["CampbellData", "Resonance", "WorkingFrequency", "campbell_data",
 
 
 
+@shared_parameters
 def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
                       teeth: Sequence[int]) -> NDArray[np.float64]:
     """Rotation frequencies f_i = ω_1 z_1 / (2π z_i) [Hz] of every shaft (the same chain speed
@@ -47,8 +49,7 @@ def shaft_frequencies(driver_speed: ArrayLike, driver_teeth: int,
     ----------
     driver_speed : array_like
         Driver speed ω_1 [rad/s] (a scalar or an array of S speeds).
-    driver_teeth : int
-        Teeth z_1 of the driver [-].
+    %(driver_teeth)s
     teeth : sequence of int
         Teeth z_i of every sprocket [-].
 
@@ -89,6 +90,7 @@ class WorkingFrequency:
                 "harmonic": self.harmonic}
 
 
+@shared_parameters
 def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[int],
                         names: Sequence[str] | None = None,
                         harmonics: int = 3) -> tuple[WorkingFrequency, ...]:
@@ -98,12 +100,10 @@ def working_frequencies(driver_speed: float, driver_teeth: int, teeth: Sequence[
     ----------
     driver_speed : float
         Driver speed ω_1 [rad/s].
-    driver_teeth : int
-        Teeth z_1 of the driver [-].
+    %(driver_teeth)s
     teeth : sequence of int
         Teeth z_i of all sprockets [-].
-    names : sequence of str or None
-        Names of the sprockets (None: S1, S2, …).
+    %(sprocket_names)s
     harmonics : int
         Harmonics of the tooth frequency [-], at least 1.
 
@@ -293,6 +293,7 @@ def _crossings(speeds: NDArray[np.float64], line: NDArray[np.float64],
     return list(zip(j.tolist(), s.tolist(), strict=True))
 
 
+@shared_parameters
 def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
                   teeth: Sequence[int], names: Sequence[str] | None = None, harmonics: int = 3,
                   span_lengths: ArrayLike | None = None, span_tensions: ArrayLike | None = None,
@@ -310,14 +311,11 @@ def campbell_data(modal: Modes, driver_speeds: ArrayLike, driver_teeth: int,
         The modes.
     driver_speeds : array_like
         (S,) driver speeds ω_1 [rad/s].
-    driver_teeth : int
-        Teeth z_1 of the driver [-].
+    %(driver_teeth)s
     teeth : sequence of int
         Teeth z_i of every sprocket [-].
-    names : sequence of str or None
-        Names of the sprockets (None: S1, S2, …).
-    harmonics : int
-        Harmonics of the tooth frequency [-].
+    %(sprocket_names)s
+    %(harmonics)s
     span_lengths : array_like or None
         (spans,) span lengths [m].
     span_tensions : array_like or None

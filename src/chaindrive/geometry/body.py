@@ -82,9 +82,7 @@ def polymeric_sprocket_proportions(pitch: float, teeth: int,
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch t [m].
-    %(teeth)s
+    %(pitch_t_teeth)s
     inner_width : float
         Chain inner width B_in [m].
 

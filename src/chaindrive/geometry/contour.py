@@ -766,13 +766,13 @@ def travel_orientation(drive: Drive) -> int:
     return -turn if drive.driver.side == "inside" else turn
 
 
+@shared_parameters
 def driver_rotation(geometry: GeometryResult, driver_index: int) -> str:
     """The driver's direction of rotation in a laid-out contour.
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour.
+    %(geometry_the_contour)s
     driver_index : int
         Index of the driver.
 
@@ -796,12 +796,7 @@ def in_travel_order(drive: Drive) -> Drive:
     layout takes the orientation of the rotation, :func:`travel_orientation`). Without a
     rotation the drive is returned as it is.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     Drive
         The same drive, its sprockets in the order of travel.
 

@@ -42,8 +42,7 @@ def engagement_characteristic(pitch: ArrayLike, roller_diameter: ArrayLike) -> F
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
+    %(pitch_t_array)s
     %(roller_diameter_array)s
 
     Returns
@@ -99,10 +98,8 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_t_array)s
+    %(teeth_array)s
     %(roller_diameter_array)s
 
     Returns
@@ -123,12 +120,7 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
 def gost591_seating_radius(roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 root (seating) radius r = 0.5025·d1 + 0.05 mm.
 
-    Parameters
-    ----------
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(roller_diameter_returns)s
     float or numpy.ndarray
         r [m].
 
@@ -146,10 +138,8 @@ def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
 
     Parameters
     ----------
-    pitch : float or array_like
-        Chain pitch t [m].
-    teeth : int or array_like
-        Number of teeth z [-].
+    %(pitch_t_array)s
+    %(teeth_array)s
     %(roller_diameter_array)s
 
     Returns
@@ -172,11 +162,8 @@ class Gost591ToothForm:
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch t [m].
-    %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(pitch_t_teeth)s
+    %(roller_diameter)s
     lam : float
         λ = t/d1 [-].
     K : float
@@ -248,11 +235,8 @@ def gost591_tooth_form(pitch: float, teeth: int, roller_diameter: float,
 
     Parameters
     ----------
-    pitch : float
-        Chain pitch t [m].
-    %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(pitch_t_teeth)s
+    %(roller_diameter)s
     inner_width : float
         Chain inner width Bвн [m] (single-row rim width only: multi-row is not confirmed).
 

@@ -35,13 +35,7 @@ def iso606_tip_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
                               roller_diameter: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """ISO 606 tip diameter limits da,max = d + 1.25·p − d1, da,min = d + p·(1 − 1.6/z) − d1.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(pitch_teeth_roller_returns)s
     tuple of float or numpy.ndarray
         (da,min, da,max) [m].
 
@@ -60,13 +54,7 @@ def iso606_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
                          roller_diameter: ArrayLike) -> FloatOrArray:
     """ISO 606 root diameter df = d − d1.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(pitch_teeth_roller_returns)s
     float or numpy.ndarray
         df [m].
 
@@ -84,12 +72,7 @@ def iso606_seating_radius_range(roller_diameter: ArrayLike) -> tuple[FloatOrArra
 
     The standard writes d1 and ri in mm; the constant is applied in mm here.
 
-    Parameters
-    ----------
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(roller_diameter_returns)s
     tuple of float or numpy.ndarray
         (ri,min, ri,max) [m].
 
@@ -108,13 +91,7 @@ def iso606_root_diameter_range(pitch: ArrayLike, teeth: ArrayLike,
 
     The nominal ISO 606 df = d − d1 lies just above this range (ri,min = 0.505 d1 > d1/2).
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    %(roller_diameter_array)s
-
-    Returns
-    -------
+    %(pitch_teeth_roller_returns)s
     tuple of float or numpy.ndarray
         (Df,min, Df,max) [m].
 
@@ -151,16 +128,11 @@ def iso606_flank_radius_range(teeth: ArrayLike,
     return _out(0.12 * d1 * (z + 2)), _out(0.008 * d1 * (z**2 + 180))
 
 
+@shared_parameters
 def iso606_seating_angle_range(teeth: ArrayLike) -> tuple[FloatOrArray, FloatOrArray]:
     """ISO 606 roller-seating angle limits α,min = 120° − 90°/z, α,max = 140° − 90°/z.
 
-    Parameters
-    ----------
-    teeth : int or array_like
-        Number of teeth z [-].
-
-    Returns
-    -------
+    %(teeth_returns)s
     tuple of float or numpy.ndarray
         (α,min, α,max) [rad].
 
@@ -298,8 +270,7 @@ class ToothForm:
     ----------
     %(pitch)s
     %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     pitch_diameter : float
         d = p/sin(π/z) [m].
     tip_diameter_min, tip_diameter_max, tip_diameter_mean : float
@@ -367,8 +338,7 @@ def iso606_tooth_form(pitch: float, teeth: int, roller_diameter: float, inner_wi
     ----------
     %(pitch)s
     %(teeth)s
-    roller_diameter : float
-        Roller diameter d1 [m].
+    %(roller_diameter)s
     inner_width : float
         Chain inner width b1 [m].
     strands : int

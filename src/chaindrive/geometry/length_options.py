@@ -119,12 +119,7 @@ def _option(drive: Drive, rounding: str, links: int,
 def tight_pitches_as_designed(drive: Drive) -> float:
     """Tight length at the sprocket positions of the design (no take-up).
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     float
         L_p [pitches] (:func:`chaindrive.geometry.contour.tight_pitches_of`).
     """

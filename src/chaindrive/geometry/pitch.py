@@ -121,12 +121,7 @@ def dict_with_units(obj: DataclassInstance, lengths: tuple[str, ...],
 def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     """Pitch diameter d = p / sin(π/z).
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-
-    Returns
-    -------
+    %(pitch_teeth_returns)s
     float or numpy.ndarray
         d [m].
 
@@ -141,12 +136,7 @@ def pitch_diameter(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
 def pitch_radius(pitch: ArrayLike, teeth: ArrayLike) -> FloatOrArray:
     """Pitch radius R = p / (2 sin(π/z)): radius of the hinge centres.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-
-    Returns
-    -------
+    %(pitch_teeth_returns)s
     float or numpy.ndarray
         R [m].
 

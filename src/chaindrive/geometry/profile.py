@@ -66,6 +66,7 @@ def _arc(centre: NDArray[np.float64], radius: float, a0: float, a1: float,
     return centre + radius * np.column_stack([np.cos(t), np.sin(t)])
 
 
+@shared_parameters
 def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.float64]:
     """The left wall (x < 0) of a GOST 591-69 tooth gap in the seat frame.
 
@@ -75,13 +76,7 @@ def gost591_gap_wall(form: Gost591ToothForm, samples: int = 10) -> NDArray[np.fl
     ----------
     form : Gost591ToothForm
         The tooth profile (dimensions [m], angles [rad]).
-    samples : int
-        Points per arc [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        (k, 2) points of the wall, x along the tangent, y radial outward [m].
+    %(wall_returns)s
 
     References
     ----------
@@ -185,6 +180,7 @@ def iso606_drawn_seating_radius(form: ToothForm) -> float:
     return 0.5 * (d - root)
 
 
+@shared_parameters
 def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
     """The left wall of an ISO 606 tooth gap in the seat frame, between the two tooth-gap
     forms: the means of their flank radius and seating angle, the seating radius of
@@ -196,13 +192,7 @@ def iso606_gap_wall(form: ToothForm, samples: int = 10) -> NDArray[np.float64]:
     ----------
     form : ToothForm
         The tooth-form limits (dimensions [m], angles [rad]).
-    samples : int
-        Points per arc [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        (k, 2) points of the wall, x along the tangent, y radial outward [m].
+    %(wall_returns)s
 
     References
     ----------
@@ -389,12 +379,7 @@ BORE_RATIO = 0.19
 def sprocket_profiles(drive: Drive) -> tuple[SprocketProfile, ...]:
     """The profile of every sprocket of a drive.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of SprocketProfile
         In contour order.
     """

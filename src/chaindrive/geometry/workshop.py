@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from importlib import resources
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.geometry.profile import IT11_UM, SprocketProfile
 from chaindrive.geometry.sprocket import Gost591ToothForm, ToothForm
@@ -235,19 +236,14 @@ def chosen_tip_diameter(tip_min: float, tip_max: float) -> tuple[float, float, f
     return da, 0.0, -it11
 
 
+@shared_parameters
 def iso606_chamfer(pitch: float) -> tuple[float, float, float]:
     """ISO 606 tooth chamfer of the axial section: side relief b_a (the mean of
     0.10·p … 0.15·p), side radius r_x = p, and the radial depth of the chamfer when the arc
     r_x is tangent to the tooth side and takes b_a off it at the tip:
     h = √(r_x² − (r_x − b_a)²).
 
-    Parameters
-    ----------
-    pitch : float
-        p [m].
-
-    Returns
-    -------
+    %(pitch_p_returns)s
     tuple of float
         (b_a, r_x, h) [m].
 

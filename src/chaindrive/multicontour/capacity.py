@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.multicontour.clearance import (
     check_positive,
@@ -112,16 +113,15 @@ def allowable_pressure_multicontour(allowable_pressure: ArrayLike,
     return out
 
 
+@shared_parameters
 def contour_factor_at_risk(c4: float, max_clearance: float, span_deformation: float,
                            risk: float = 0.05) -> float:
     """K_m at a risk level: eq. 16 at the (1 − risk) quantile of |ΔL₃|.
 
     Parameters
     ----------
-    c4 : float
-        C₄ [-].
-    max_clearance : float
-        z_max [m].
+    %(c4)s
+    %(max_clearance)s
     span_deformation : float
         Δ_y [m].
     risk : float
@@ -266,6 +266,7 @@ def contour_factor_compatibility(extra_lengths: ArrayLike, allowable_deformation
     return k
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class LoadSharingSimulation:
     """Monte-Carlo of m contours with random keyed-joint clearances, at capacity load.
@@ -276,8 +277,7 @@ class LoadSharingSimulation:
         m [-].
     samples : int
         n [-].
-    risk : float
-        The risk level [-].
+    %(risk)s
     km_mean, km_at_risk : float
         Mean and risk-quantile (lower tail) of K, the effective number of contours [-].
     max_share_mean, max_share_at_risk : float
@@ -305,6 +305,7 @@ class LoadSharingSimulation:
                                            self.km_percentiles, strict=True))}
 
 
+@shared_parameters
 def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int | None = None,
                           *, c4: float, max_clearance: float, allowable_deformation: float,
                           deformation_exponent: float = 1.0, risk: float = 0.05,
@@ -320,20 +321,14 @@ def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int 
     ----------
     contours : int
         m, 2 to 24 [-].
-    n : int
-        Samples [-].
-    rng : numpy.random.Generator or int or None
-        A generator or the seed of one.
-    c4 : float
-        C₄ [-].
-    max_clearance : float
-        z_max [m].
+    %(samples_rng)s
+    %(c4)s
+    %(max_clearance)s
     allowable_deformation : float
         Δ_a [m].
     deformation_exponent : float
         x [-].
-    risk : float
-        The risk level [-].
+    %(risk)s
     truncated : bool
         Clearances restricted to [0, z_max].
 
@@ -369,6 +364,7 @@ def simulate_load_sharing(contours: int, n: int, rng: np.random.Generator | int 
     )
 
 
+@shared_parameters
 def contour_factor_linear_at_risk(c4: float, max_clearance: float,
                                   allowable_deformation: float, risk: float = 0.05) -> float:
     """K = max(1, 2 − q/Δ_a) for m = 2, q the (1 − risk) quantile of |ΔL₃| (eq. 14).
@@ -377,14 +373,11 @@ def contour_factor_linear_at_risk(c4: float, max_clearance: float,
 
     Parameters
     ----------
-    c4 : float
-        C₄ [-].
-    max_clearance : float
-        z_max [m].
+    %(c4)s
+    %(max_clearance)s
     allowable_deformation : float
         Δ_a [m].
-    risk : float
-        The risk level [-].
+    %(risk)s
 
     Returns
     -------

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.multicontour.capacity import contour_factor_at_risk
 from chaindrive.multicontour.clearance import sample_clearances
@@ -42,6 +43,7 @@ PRELIMINARY_SHEAR = 20e6
 SAMPLES = 20_000
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class ContourCheck:
     """The multi-contour check.
@@ -50,12 +52,10 @@ class ContourCheck:
     ----------
     contours : int
         m [-].
-    risk : float
-        The risk level [-].
+    %(risk)s
     joint : KeyedJoint
         The driving joint.
-    c4 : float
-        C₄ [-].
+    %(c4)s
     span_deformation : float
         Δ_y [m].
     km : float
@@ -131,6 +131,7 @@ def most_loaded_share(slacks: NDArray[np.float64], stretch: float) -> NDArray[np
     return share
 
 
+@shared_parameters
 def contour_check(contours: int, torque: float, pitch_radius: float, peripheral_force: float,
                   span_stiffness: float, *, risk: float = 0.05, fit: str = "normal",
                   samples: int = SAMPLES, seed: int = 0) -> ContourCheck:
@@ -148,8 +149,7 @@ def contour_check(contours: int, torque: float, pitch_radius: float, peripheral_
         F_t of the whole drive [N].
     span_stiffness : float
         c of one contour's tight span [N/m].
-    risk : float
-        The risk level [-].
+    %(risk)s
     fit : str
         The keyway fit (:func:`chaindrive.multicontour.joints.keyway_max_clearance`).
     samples : int

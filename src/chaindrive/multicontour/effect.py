@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius
 from chaindrive.multicontour.capacity import contour_factor_km
@@ -43,16 +44,11 @@ CONCLUSION_TEETH_LIMIT = 40
 DEFAULT_PITCHES: tuple[float, ...] = tuple(p * 1e-3 for p in ISO606_A_TENSILE_KN)
 
 
+@shared_parameters
 def chain_tensile_strength(pitch: float) -> float:
     """Minimum tensile strength of an ISO 606 A-series simplex chain.
 
-    Parameters
-    ----------
-    pitch : float
-        p [m].
-
-    Returns
-    -------
+    %(pitch_p_returns)s
     float
         Q [N] (the table, else 86.2 N/mm²·p²).
 

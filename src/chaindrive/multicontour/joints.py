@@ -157,7 +157,7 @@ def key_corner_angle(key_width: float, shaft_radius: float, key_height: float) -
     ----------
     [Lyashuk, eq. 3].
     """
-    return math.asin(key_width / math.hypot(key_width, 2.0 * shaft_radius + key_height))
+    return math.asin(key_width / (2.0 * key_corner_radius(shaft_radius, key_width, key_height)))
 
 
 def sprocket_turn_angle(key_width: float, shaft_radius: float, key_height: float,
@@ -184,7 +184,7 @@ def sprocket_turn_angle(key_width: float, shaft_radius: float, key_height: float
     ----------
     [Lyashuk, eq. 4] (α = δ − β).
     """
-    root = math.hypot(key_width, 2.0 * shaft_radius + key_height)
+    root = 2.0 * key_corner_radius(shaft_radius, key_width, key_height)
     ratio = (2.0 * np.asarray(keyway_width, dtype=float) - key_width) / root
     if np.any(ratio > 1.0):
         raise DesignError("clearance", "is too large for the joint: (2L − b) exceeds "

@@ -276,13 +276,7 @@ def chain_checks(drive: Drive, geometry: GeometryResult, settings: CheckSettings
                  loads: LoadsResult | None = None) -> list[ck.Check]:
     """The checks of the chain itself (strength, speed, life) by its method.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design (power and driver speed given).
-    %(geometry)s
-    settings : CheckSettings or None
-        What the checks are held to (None: :func:`settings_for` the drive).
+    %(checks_params)s
     loads : LoadsResult or None
         The strength stage's loads of this drive (:func:`~chaindrive.strength.loads.loads_of`),
         read for v, F_t, F_0 and F_v; None: those four computed here.
@@ -307,13 +301,7 @@ def checks_for(drive: Drive, geometry: GeometryResult, settings: CheckSettings |
                loads: LoadsResult | None = None) -> tuple[ck.Check, ...]:
     """Every check of a drive: its chain's and its layout's.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design (power and driver speed given).
-    %(geometry)s
-    settings : CheckSettings or None
-        What the checks are held to (None: :func:`settings_for` the drive).
+    %(checks_params)s
     loads : LoadsResult or None
         The strength stage's loads of this drive, as :func:`chain_checks` reads them.
 
@@ -335,8 +323,7 @@ def loaded_contour_checks(drive: Drive, geometry: GeometryResult, km: float,
 
     Parameters
     ----------
-    drive : Drive
-        The design (power and driver speed given).
+    %(drive_power)s
     %(geometry)s
     km : float
         K_m, the number of contours the power is divided by for the most loaded one [-]

@@ -171,12 +171,7 @@ def service_factor_for(drive: Drive, spec: ChainSpec | None = None) -> ServiceFa
 def required_life_h(drive: Drive) -> float | None:
     """The required wear life of the design in hours (None: the rating method's basis).
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     float or None
         ``[drive] required_life`` [h], or None when it is not given.
     """
@@ -187,12 +182,7 @@ def required_life_h(drive: Drive) -> float | None:
 def duty_warnings(drive: Drive) -> list[ChainDriveWarning]:
     """Say when the service factor is the default 1.0 or a class was assumed.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     list of ChainDriveWarning
         One warning when the factor rests on a default, none otherwise.
     """

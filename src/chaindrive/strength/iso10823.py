@@ -30,6 +30,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray, float_or_array
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
@@ -229,6 +230,7 @@ def link_plate_rating_hp(teeth: float, speed_rpm: ArrayLike, pitch_in: float,
                           * pitch_in ** (3.0 - 0.07 * pitch_in))
 
 
+@shared_parameters
 def roller_bush_rating_hp(teeth: float, speed_rpm: ArrayLike, pitch_in: float,
                           kr: float, links: float = 100.0, life_h: float = 15000.0
                           ) -> FloatOrArray:
@@ -248,8 +250,7 @@ def roller_bush_rating_hp(teeth: float, speed_rpm: ArrayLike, pitch_in: float,
         p [in].
     kr : float
         Roller constant K_r [-] (:func:`roller_constant`).
-    links : float
-        Chain length L_p [pitches].
+    %(links)s
     life_h : float
         Life h [h].
 
@@ -296,6 +297,7 @@ def roller_constant(chain: ChainSpec) -> float:
     return float(aca["kr_standard"])
 
 
+@shared_parameters
 def aca_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 100.0,
                life_h: float = 15000.0) -> tuple[float, str]:
     """Single-strand ACA rating min(H1, H2) and the governing envelope.
@@ -304,10 +306,8 @@ def aca_rating(chain: ChainSpec, teeth: int, speed: float, *, links: float = 100
 
     Parameters
     ----------
-    chain : ChainSpec
-        The chain.
-    teeth : int
-        Teeth of the small sprocket [-].
+    %(chain)s
+    %(small_sprocket)s
     speed : float
         Speed of the small sprocket [rad/s].
     links : float

@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.catalog import bearing_area_estimate, row_factor
 from chaindrive.errors import DesignError, did_you_mean
 from chaindrive.model import ChainSpec
@@ -369,6 +370,7 @@ def pitch_estimate(torque: float, operating: float, teeth: int, allowable: float
     return float(t_mm) * 1e-3
 
 
+@shared_parameters
 def bearing_area(chain: ChainSpec) -> tuple[float, bool]:
     """Projected bearing area A of the whole chain and whether it was estimated.
 
@@ -378,8 +380,7 @@ def bearing_area(chain: ChainSpec) -> tuple[float, bool]:
 
     Parameters
     ----------
-    chain : ChainSpec
-        The chain.
+    %(chain)s
 
     Returns
     -------

@@ -56,12 +56,7 @@ def power_shares(drive: Drive) -> NDArray[np.float64]:
 
     Driven sprockets without ``power_share`` split what the others leave equally.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     numpy.ndarray
         (n,) share of each sprocket [-], 0 for the driver and idlers.
 
@@ -244,6 +239,7 @@ def span_tensions(slack_index: int, sprocket_forces: NDArray[np.float64],
     return tensions
 
 
+@shared_parameters
 def shaft_load_vectors(geometry: GeometryResult, tensions: NDArray[np.float64],
                        centrifugal: float = 0.0, load_factor: float = 1.0) -> NDArray[np.float64]:
     """Shaft load vector on each sprocket.
@@ -255,8 +251,7 @@ def shaft_load_vectors(geometry: GeometryResult, tensions: NDArray[np.float64],
 
     Parameters
     ----------
-    geometry : GeometryResult
-        The contour.
+    %(geometry_the_contour)s
     tensions : numpy.ndarray
         (n,) span tensions [N].
     centrifugal : float
@@ -434,12 +429,7 @@ def installed_sag_ratio(drive: Drive) -> float:
     """Sag of the slack span of the new chain as installed, as a fraction of its length [-]:
     the design's ``[chain] sag``, else :data:`DEFAULT_SAG_RATIO`.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     float
         s = f/ℓ [-].
     """

@@ -126,13 +126,13 @@ def speed_limits(pitch: float) -> tuple[float, float, str]:
     return interp(1), interp(2), note
 
 
+@shared_parameters
 def lubrication_advice(chain: ChainSpec, speed: float) -> LubricationAdvice:
     """The lubrication regime of a chain at a chain speed (module docstring).
 
     Parameters
     ----------
-    chain : ChainSpec
-        The chain.
+    %(chain)s
     speed : float
         Chain speed [m/s].
 

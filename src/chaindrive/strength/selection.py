@@ -634,6 +634,7 @@ def _unlinked(drive: Drive) -> Drive:
     return replace(drive, chain=replace(drive.chain, links=None, request=None))
 
 
+@shared_parameters
 def resonance_verdict(probe: ResonanceProbe, band_percent: float) -> str:
     """The resonance check against its own band.
 
@@ -644,15 +645,7 @@ def resonance_verdict(probe: ResonanceProbe, band_percent: float) -> str:
     (highest detuning < limit): a resonance the uncertainty does not explain away. A check
     that fails at the nominal values only is inside its band: it cannot decide.
 
-    Parameters
-    ----------
-    probe : ResonanceProbe
-        The check and its band.
-    band_percent : float
-        The least detuning required [%].
-
-    Returns
-    -------
+    %(probe_returns)s
     str
         :data:`RESONANCE_PASS` (also when there is no working frequency),
         :data:`INSIDE_BAND` or :data:`BEYOND_BAND`.
@@ -664,20 +657,13 @@ def resonance_verdict(probe: ResonanceProbe, band_percent: float) -> str:
     return INSIDE_BAND
 
 
+@shared_parameters
 def banded_resonance_check(probe: ResonanceProbe, band_percent: float) -> ck.Check | None:
     """The resonance check with its band in the note when it fails: inside its band (fails
     at the nominal values only — a resonance possible, not decided) or beyond it
     (:func:`resonance_verdict`).
 
-    Parameters
-    ----------
-    probe : ResonanceProbe
-        The check and its band.
-    band_percent : float
-        The least detuning required [%].
-
-    Returns
-    -------
+    %(probe_returns)s
     Check or None
         The check (None when there is no working frequency).
     """
@@ -846,6 +832,7 @@ def _findings(drive: Drive, ranked: Sequence[Candidate],
     return tuple(out)
 
 
+@shared_parameters
 def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None = None,
                 strands: int | None = None, method: str | None = None,
                 service_factor: float | None = None, design_factor: float = 1.0,
@@ -878,12 +865,7 @@ def rank_chains(drive: Drive, *, standard: str | None = None, series: str | None
         "Kэ" or "rating" to force one on every chain.
     service_factor, operating_factor : float or None
         K_s, Kэ [-] (default ``drive.service_factor`` or 1).
-    design_factor : float
-        n_d [-].
-    catalog : sequence of ChainSpec or None
-        The chains to choose from.
-    extra_files : sequence of str
-        The user's catalogue files.
+    %(selection_catalog)s
     resonance : callable or None
         ChainSpec → :class:`ResonanceProbe` of the drive with that chain (None: no dynamic
         check).
@@ -948,12 +930,7 @@ def select_chain(drive: Drive, *, standard: str | None = None, series: str | Non
         Force a method.
     service_factor, operating_factor : float or None
         K_s, Kэ [-].
-    design_factor : float
-        n_d [-].
-    catalog : sequence of ChainSpec or None
-        The chains to choose from.
-    extra_files : sequence of str
-        The user's catalogue files.
+    %(selection_catalog)s
 
     Returns
     -------

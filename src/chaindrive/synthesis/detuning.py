@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.dynamics.modes import Modes, inertia_modes_batch
 from chaindrive.dynamics.resonance import working_frequencies
@@ -41,14 +42,14 @@ BAND = 0.10
 PENALTY = 1e4
 
 
+@shared_parameters
 def ring_modes_batch(masses: NDArray[np.float64], stiffness: NDArray[np.float64]
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Elastic frequencies and largest normalised amplitude per mode of B closed rings.
 
     Parameters
     ----------
-    masses : numpy.ndarray
-        (B, n) reduced masses [kg].
+    %(batch_masses)s
     stiffness : numpy.ndarray
         (B, n) branch stiffnesses [N/m], branch k between masses k and k+1.
 
@@ -106,6 +107,7 @@ ModesBatch = Callable[[NDArray[np.float64], NDArray[np.float64]],
                       tuple[NDArray[np.float64], NDArray[np.float64]]]
 
 
+@shared_parameters
 def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float64],
                        working_hz: ArrayLike, band: float = BAND + 0.01,
                        damping: float = 0.06, modes: ModesBatch | None = None
@@ -114,8 +116,7 @@ def detuning_objective(masses: NDArray[np.float64], stiffness: NDArray[np.float6
 
     Parameters
     ----------
-    masses : numpy.ndarray
-        (B, n) reduced masses [kg].
+    %(batch_masses)s
     stiffness : numpy.ndarray
         (B, n) branch stiffnesses [N/m].
     working_hz : float or array_like

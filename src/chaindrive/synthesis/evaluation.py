@@ -18,6 +18,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.checks import (
     RESONANCE_BAND_PERCENT,
@@ -133,6 +134,7 @@ def constraint_names(analysis: Analysis, settings: Constraints) -> tuple[str, ..
     return tuple(c.key for c in analysis.checks() if constrained(c, settings))
 
 
+@shared_parameters
 def analysis_of(drive: Drive, settings: Constraints,
                 cost_model: CostModel | None = None,
                 robust: RobustSettings | None = None, *, sweep_curve: bool = True) -> Analysis:
@@ -140,8 +142,7 @@ def analysis_of(drive: Drive, settings: Constraints,
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     settings : Constraints
         The problem's constraints (k₁, a start-up per design, only when they ask for it).
     cost_model : CostModel or None
@@ -265,6 +266,7 @@ def _startup_unverifiable(a: Analysis) -> str | None:
             "the drive's")
 
 
+@shared_parameters
 def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraints, *,
                    base_ratios: Sequence[float] | None = None, ratio_tolerance: float = 0.03,
                    cost_model: CostModel | None = None,
@@ -285,8 +287,7 @@ def evaluate_drive(drive: Drive, objectives: Sequence[str], settings: Constraint
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    %(drive)s
     objectives : sequence of str
         Names of the objectives.
     settings : Constraints
@@ -367,16 +368,11 @@ def verify_mapping(problem: Problem, design: Mapping[str, Any],
                           robust=problem.robust, every_check=True)
 
 
+@shared_parameters
 def base_ratios(drive: Drive) -> list[float]:
     """The ratio of every sprocket to the driver.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     list of float
         z_i/z_driver [-].
     """

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.cost import default_cost_model
 from chaindrive.errors import DesignError
 from chaindrive.io.design import drive_to_mapping
@@ -48,16 +49,11 @@ BatchEvaluator = Callable[[Problem, Sequence[Sequence[float]]],
                           list[tuple[Evaluation, dict[str, Any] | None]]]
 
 
+@shared_parameters
 def design_mapping(drive: Drive) -> dict[str, Any]:
     """The dictionary a design file of a drive loads to.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     dict
         :func:`chaindrive.io.design.drive_to_mapping` of it.
     """

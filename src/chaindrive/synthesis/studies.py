@@ -68,6 +68,7 @@ from sqlalchemy import (
 )
 from sqlalchemy.exc import DBAPIError, IntegrityError
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ChainDriveError, DesignError
 from chaindrive.io.design import drive_from_mapping
 from chaindrive.synthesis.evaluation import Evaluation, evaluate_drive, evaluate_vector
@@ -213,13 +214,13 @@ class StudyStore:
                            f"({_reason(exc)}); the evaluations stored before stay in it: "
                            "remove the cause and run the same command again to resume")
 
+    @shared_parameters
     def keys(self, study: str, among: Iterable[str] | None = None) -> set[str]:
         """Keys already stored for ``study``: all of them, or those of ``among``.
 
         Parameters
         ----------
-        study : str
-            The study's name.
+        %(study)s
         among : iterable of str or None
             Keys to look up (None: every key of the study).
 
@@ -233,13 +234,13 @@ class StudyStore:
         with self.engine.connect() as con:
             return {r[0] for r in con.execute(select(EVALUATIONS.c.key).where(where))}
 
+    @shared_parameters
     def put(self, study: str, key: str, inputs: Any, result: Any) -> bool:
         """Store one evaluation.
 
         Parameters
         ----------
-        study : str
-            The study's name.
+        %(study)s
         key : str
             The evaluation's key (:func:`input_key`).
         inputs, result : object
@@ -259,13 +260,13 @@ class StudyStore:
             return False
         return True
 
+    @shared_parameters
     def put_many(self, study: str, rows: Sequence[tuple[str, Any, Any]]) -> int:
         """Store rows in one transaction, skipping stored keys.
 
         Parameters
         ----------
-        study : str
-            The study's name.
+        %(study)s
         rows : sequence of (str, object, object)
             (key, inputs, result) of each evaluation.
 
@@ -293,13 +294,13 @@ class StudyStore:
             self._created = None  # holds evaluations now: kept for a resume
         return len(fresh)
 
+    @shared_parameters
     def get(self, study: str, keys: Iterable[str]) -> dict[str, Any]:
         """Stored results by key.
 
         Parameters
         ----------
-        study : str
-            The study's name.
+        %(study)s
         keys : iterable of str
             Keys to look up.
 
@@ -317,13 +318,13 @@ class StudyStore:
                 out.update({k: json.loads(r) for k, r in rows})
         return out
 
+    @shared_parameters
     def count(self, study: str) -> int:
         """Number of evaluations stored for ``study``.
 
         Parameters
         ----------
-        study : str
-            The study's name.
+        %(study)s
 
         Returns
         -------
@@ -336,14 +337,14 @@ class StudyStore:
         self.engine.dispose()
 
 
+@shared_parameters
 @dataclass(frozen=True, slots=True)
 class StudyResult:
     """The outcome of :func:`run_study`.
 
     Parameters
     ----------
-    study : str
-        The study's name.
+    %(study)s
     results : tuple
         The results, in the order of the inputs.
     computed : int
@@ -711,6 +712,7 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
 _PATH = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?")
 
 
+@shared_parameters
 def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
     """Set a value in a design mapping (in place).
 
@@ -718,8 +720,7 @@ def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
     ----------
     mapping : dict
         The design mapping.
-    path : str
-        A ``sprockets[2].x``-style path.
+    %(design_path)s
     value : object
         The new value.
     """
@@ -746,6 +747,7 @@ def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
             node = node[int(index)]
 
 
+@shared_parameters
 def get_path(mapping: Mapping[str, Any], path: str) -> Any:
     """The value at a path of a design mapping.
 
@@ -753,8 +755,7 @@ def get_path(mapping: Mapping[str, Any], path: str) -> Any:
     ----------
     mapping : Mapping
         The design mapping.
-    path : str
-        A ``sprockets[2].x``-style path.
+    %(design_path)s
 
     Returns
     -------

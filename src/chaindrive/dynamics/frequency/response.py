@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.frequency.afc import AfcResult, local_maxima, peak_over_period
 from chaindrive.dynamics.frequency.quality import coefficient_of_dynamics
 from chaindrive.dynamics.frequency.steady import SteadyStateResult
@@ -79,6 +80,7 @@ def _traces(amplitudes: ComplexArray, w: FloatArray, times: FloatArray) -> Float
     return np.asarray((np.exp(1j * np.outer(times, w)) @ amplitudes).real, dtype=np.float64)
 
 
+@shared_parameters
 def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int = 128,
                  nominal_force: float | None = None, breaking_load: float | None = None,
                  operating_forces: ArrayLike | None = None,
@@ -87,8 +89,7 @@ def drive_steady(model: DriveModel, excitation: SpanExcitation, *, samples: int 
 
     Parameters
     ----------
-    model : DriveModel
-        The model.
+    %(drive_model)s
     excitation : SpanExcitation
         Harmonics of the span elongations (its orders with respect to the tooth frequency).
     samples : int
@@ -238,6 +239,7 @@ class _SpanModal:
                           dtype=np.float64)
 
 
+@shared_parameters
 def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
                     tooth_angular_frequencies: ArrayLike, samples: int = 64,
                     block: int = 128) -> FloatArray:
@@ -246,8 +248,7 @@ def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
 
     Parameters
     ----------
-    model : DriveModel
-        The model.
+    %(drive_model)s
     modes : Modes
         Its modes with their complex elastic ones (:func:`chaindrive.dynamics.modes.drive_modes`).
     excitation : SpanExcitation
@@ -278,6 +279,7 @@ def span_loads_over(model: DriveModel, modes: Modes, excitation: SpanExcitation,
 BOUND_MARGIN = 1e-9
 
 
+@shared_parameters
 def span_load_maxima(model: DriveModel, modes: Modes, excitation: SpanExcitation,
                      tooth_angular_frequencies: ArrayLike, samples: int = 64,
                      first: int = 128) -> FloatArray:
@@ -295,8 +297,7 @@ def span_load_maxima(model: DriveModel, modes: Modes, excitation: SpanExcitation
 
     Parameters
     ----------
-    model : DriveModel
-        The model.
+    %(drive_model)s
     modes : Modes
         Its modes (their complex elastic modes are read).
     excitation : SpanExcitation

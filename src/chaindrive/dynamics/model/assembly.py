@@ -133,39 +133,29 @@ class LinearModel:
         """Number of coordinates N."""
         return int(self.mass.shape[0])
 
+    @shared_parameters
     def stiffness(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
         """K [N·m/rad] with the spans ``active`` carrying.
 
-        Parameters
-        ----------
-        active : ndarray of bool | None
-            (S,) the spans that carry (None: all).
-
-        Returns
-        -------
-        ndarray
+        %(active_matrix)s
             (N, N) K = K_lin + Bᵀ diag(c·a) B [N·m/rad].
         """
-        c = self.span_stiffness if active is None else self.span_stiffness * active
-        B = self.span_incidence
-        return self.stiffness_linear + (B.T * c) @ B
+        return self.stiffness_linear + self._span_term(self.span_stiffness, active)
 
+    @shared_parameters
     def damping(self, active: NDArray[np.bool_] | None = None) -> FloatArray:
         """C [N·m·s/rad] with the spans ``active`` carrying.
 
-        Parameters
-        ----------
-        active : ndarray of bool | None
-            (S,) the spans that carry (None: all).
-
-        Returns
-        -------
-        ndarray
+        %(active_matrix)s
             (N, N) C = C_lin + Bᵀ diag(d·a) B [N·m·s/rad].
         """
-        d = self.span_damping if active is None else self.span_damping * active
+        return self.damping_linear + self._span_term(self.span_damping, active)
+
+    def _span_term(self, values: FloatArray, active: NDArray[np.bool_] | None) -> FloatArray:
+        """Bᵀ diag(w) B, w = ``values``·``active`` (all spans when ``active`` is None)."""
+        w = values if active is None else values * active
         B = self.span_incidence
-        return self.damping_linear + (B.T * d) @ B
+        return (B.T * w) @ B
 
     def scaled(self, stiffness: float = 1.0, inertia: float = 1.0) -> LinearModel:
         """The same model with every stiffness and every inertia scaled, the dampers by
@@ -328,12 +318,7 @@ def _add_element(t: TorsionalEngine, tr: _Train, k: int, e: TrainElement,
 def kloss_parameters(drive: Drive) -> tuple[float, float]:
     """(λ = M_k/M_r, s_k) of the motor's Kloss law: ``[motor]`` over ``[dynamics]``.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of float
         Breakdown ratio [-] and critical slip [-].
     """
@@ -351,12 +336,7 @@ def motor_rating(drive: Drive) -> tuple[float | None, float | None]:
     speed times the ratios of the gear stages on its train (the motor's own speed). None where
     neither is given.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of float or None
     """
     m, driver = drive.motor, drive.driver

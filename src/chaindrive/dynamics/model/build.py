@@ -189,12 +189,7 @@ def model_completeness(drive: Drive) -> tuple[str, ...]:
     ``reduced_mass`` holding everything on its shaft; a driven sprocket needs what it drives:
     a train, or its ``inertia`` or ``reduced_mass``. Idlers need nothing.
 
-    Parameters
-    ----------
-    %(drive)s
-
-    Returns
-    -------
+    %(drive_returns)s
     tuple of str
         One phrase per gap.
     """

@@ -16,6 +16,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
+
 __all__ = ["RATIO_RTOL", "WeightedUnion", "gear_coordinates", "gram", "grams", "incidence",
            "kinematic_groups", "rigid_motions"]
 
@@ -48,16 +50,7 @@ class WeightedUnion:
         tuple of int and float
             (root, w) with x_i = w·x_root [-].
         """
-        parent, weight = self.parent, self.weight
-        w = 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:  # compress: point i at its grandparent
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            w *= weight[i]
-            i = parent[i]
-        return i, w
+        return _find(self.parent, self.weight, i)
 
     def relate(self, a: int, b: int, w_ab: float) -> bool:
         """Impose x_b = w_ab·x_a.
@@ -74,14 +67,35 @@ class WeightedUnion:
         bool
             False if it contradicts the relations already there.
         """
-        ra, fa = self.find(a)
-        rb, fb = self.find(b)
-        if ra == rb:
-            return abs(fb - w_ab * fa) <= RATIO_RTOL * max(abs(fb), abs(w_ab * fa))
-        self.parent[rb] = ra
-        self.weight[rb] = w_ab * fa / fb
-        self.joined = True
-        return True
+        joined = _relate(self.parent, self.weight, a, b, w_ab)
+        self.joined = self.joined or joined is True
+        return joined is not False
+
+
+def _find(parent: list[int], weight: list[float], i: int) -> tuple[int, float]:
+    """(root, w) of coordinate ``i`` with x_i = w·x_root, halving the path on the way."""
+    w = 1.0
+    while parent[i] != i:
+        p = parent[i]
+        if parent[p] != p:  # compress: point i at its grandparent
+            weight[i] *= weight[p]
+            parent[i] = parent[p]
+        w *= weight[i]
+        i = parent[i]
+    return i, w
+
+
+def _relate(parent: list[int], weight: list[float], a: int, b: int,
+            w_ab: float) -> bool | None:
+    """Impose x_b = w_ab·x_a: True when it joined two trees, None when it agrees with the
+    relations already there, False when it contradicts them."""
+    ra, fa = _find(parent, weight, a)
+    rb, fb = _find(parent, weight, b)
+    if ra == rb:
+        return None if abs(fb - w_ab * fa) <= RATIO_RTOL * max(abs(fb), abs(w_ab * fa)) else False
+    parent[rb] = ra
+    weight[rb] = w_ab * fa / fb
+    return True
 
 
 def gear_coordinates(gears: WeightedUnion, n_nodes: int) -> tuple[IndexArray, FloatArray, int]:
@@ -116,8 +130,8 @@ def kinematic_groups(n_nodes: int, relations: Sequence[tuple[int, int, float]],
                      held: Sequence[bool]) -> tuple[IndexArray, FloatArray, NDArray[np.bool_]]:
     """The groups of strain-free motion of the stiff elements and meshes.
 
-    The union–find of :class:`WeightedUnion` (path halving), written out in one loop: the
-    same products in the same order, at a third of the cost of its method calls.
+    The union–find of :class:`WeightedUnion` (path halving) over the relations in the order
+    recorded.
 
     Parameters
     ----------
@@ -135,50 +149,19 @@ def kinematic_groups(n_nodes: int, relations: Sequence[tuple[int, int, float]],
         (nodes,) True at the roots of groups without a strain-free motion (a ground spring, or
         a loop whose ratios disagree).
     """
-    parent = list(range(n_nodes))
-    weight = [1.0] * n_nodes
+    parent, weight = list(range(n_nodes)), [1.0] * n_nodes
     held_nodes = list(held)
     for a, b, w_ab in relations:
-        i, fa = a, 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            fa *= weight[i]
-            i = parent[i]
-        ra = i
-        i, fb = b, 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            fb *= weight[i]
-            i = parent[i]
-        if ra != i:
-            parent[i] = ra
-            weight[i] = w_ab * fa / fb
-        elif not abs(fb - w_ab * fa) <= RATIO_RTOL * max(abs(fb), abs(w_ab * fa)):
+        if _relate(parent, weight, a, b, w_ab) is False:
             held_nodes[a] = True
-    roots = [0] * n_nodes
-    ws = [1.0] * n_nodes
-    for j in range(n_nodes):
-        i, f = j, 1.0
-        while parent[i] != i:
-            p = parent[i]
-            if parent[p] != p:
-                weight[i] *= weight[p]
-                parent[i] = parent[p]
-            f *= weight[i]
-            i = parent[i]
-        roots[j], ws[j] = i, f
-    root = np.array(roots, dtype=np.intp)
+    found = [_find(parent, weight, j) for j in range(n_nodes)]
+    root = np.array([r for r, _ in found], dtype=np.intp)
     held_root = np.zeros(n_nodes, dtype=bool)
     held_root[root[np.array(held_nodes, dtype=bool)]] = True
-    return root, np.array(ws), held_root
+    return root, np.array([w for _, w in found], dtype=np.float64), held_root
 
 
+@shared_parameters
 def rigid_motions(node_dof: IndexArray, factor: FloatArray, kin_root: IndexArray,
                   kin_w: FloatArray, held_root: NDArray[np.bool_], n: int) -> FloatArray:
     """One exact strain-free motion per free group (no ground spring, no mismatched loop), in
@@ -186,10 +169,7 @@ def rigid_motions(node_dof: IndexArray, factor: FloatArray, kin_root: IndexArray
 
     Parameters
     ----------
-    node_dof : ndarray
-        (nodes,) coordinate of each node [-].
-    factor : ndarray
-        (nodes,) φ_node / q [-].
+    %(node_dof_factor)s
     kin_root : ndarray
         (nodes,) root of each node's group [-] (:func:`kinematic_groups`).
     kin_w : ndarray
@@ -215,6 +195,7 @@ def rigid_motions(node_dof: IndexArray, factor: FloatArray, kin_root: IndexArray
     return rigid
 
 
+@shared_parameters
 def incidence(node_dof: IndexArray, factor: FloatArray, a: IndexArray, b: IndexArray,
               coef_a: FloatArray, coef_b: FloatArray,
               n: int) -> tuple[FloatArray, IndexArray, FloatArray]:
@@ -223,10 +204,7 @@ def incidence(node_dof: IndexArray, factor: FloatArray, a: IndexArray, b: IndexA
 
     Parameters
     ----------
-    node_dof : ndarray
-        (nodes,) coordinate of each node [-].
-    factor : ndarray
-        (nodes,) φ_node / q [-].
+    %(node_dof_factor)s
     a, b : ndarray
         (elements,) the two end nodes [-] (b < 0: an element to the ground).
     coef_a, coef_b : ndarray

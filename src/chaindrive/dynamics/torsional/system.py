@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import freeze_arrays, rebuilt
 from chaindrive.dynamics.modes import Modes
 from chaindrive.dynamics.precision import check_spread
@@ -256,42 +257,28 @@ class TorsionalSystem:
         """True when M is not diagonal (a span carries a consistent chain mass)."""
         return bool(self.mass_coupling.any())
 
+    @shared_parameters
     def stiffness_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """K with the spans flagged in ``span_active`` carrying [N·m/rad].
 
-        Parameters
-        ----------
-        span_active : array_like | None
-            (spans,) 1 for a span that carries, 0 for a slack one [-] (None: all carry).
-
-        Returns
-        -------
-        ndarray
+        %(span_active_matrix)s
             (size, size) K = K_lin + Bᵀ diag(c·a) B [N·m/rad].
         """
-        c = self.span_stiffness_n_per_m if span_active is None else \
-            self.span_stiffness_n_per_m * np.asarray(span_active, dtype=float)
-        return self.stiffness_linear + self._span_gram(c)
+        return self.stiffness_linear + self._span_gram(self.span_stiffness_n_per_m, span_active)
 
+    @shared_parameters
     def damping_matrix(self, span_active: ArrayLike | None = None) -> FloatArray:
         """C with the spans flagged in ``span_active`` carrying [N·m·s/rad].
 
-        Parameters
-        ----------
-        span_active : array_like | None
-            (spans,) 1 for a span that carries, 0 for a slack one [-] (None: all carry).
-
-        Returns
-        -------
-        ndarray
+        %(span_active_matrix)s
             (size, size) C = C_lin + Bᵀ diag(d·a) B [N·m·s/rad].
         """
-        d = self.span_damping_n_s_per_m if span_active is None else \
-            self.span_damping_n_s_per_m * np.asarray(span_active, dtype=float)
-        return self.damping_linear + self._span_gram(d)
+        return self.damping_linear + self._span_gram(self.span_damping_n_s_per_m, span_active)
 
-    def _span_gram(self, weights: FloatArray) -> FloatArray:
-        """Bᵀ diag(w) B of the spans, by scatter."""
+    def _span_gram(self, values: FloatArray, span_active: ArrayLike | None) -> FloatArray:
+        """Bᵀ diag(w) B of the spans, by scatter, w = ``values``·``span_active``."""
+        weights = values if span_active is None else values * np.asarray(span_active,
+                                                                          dtype=float)
         span = self.span_mask
         return _gram(self.element_columns[span], self.element_coefficients[span], weights,
                      self.size)
