@@ -109,7 +109,7 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter": "roller_diameter : float\n    Roller diameter d1 [m].",
     "drive_model": "model : DriveModel\n    The model.",
     "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
-    "design_path": "path : str\n    A ``sprockets[2].x``-style path.",
+    "field_path": "path : str\n    A ``sprockets[2].x``-style path.",
     "geometry_the_contour": "geometry : GeometryResult\n    The contour.",
     # the last parameter and the Returns section of a tooth-gap wall
     "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"

@@ -720,7 +720,7 @@ def set_path(mapping: dict[str, Any], path: str, value: Any) -> None:
     ----------
     mapping : dict
         The design mapping.
-    %(design_path)s
+    %(field_path)s
     value : object
         The new value.
     """
@@ -755,7 +755,7 @@ def get_path(mapping: Mapping[str, Any], path: str) -> Any:
     ----------
     mapping : Mapping
         The design mapping.
-    %(design_path)s
+    %(field_path)s
 
     Returns
     -------
