@@ -1,38 +1,58 @@
 r"""Static equilibrium of the link-level model at the installed pre-tension: the state every
-run starts from.
+run starts from, solved as a set of equations, not relaxed.
 
 The whole-drive model takes the spans at the pre-tension T₀ of the installed sag
 (:func:`chaindrive.dynamics.response.startup_pretension`). The link-level chain holds it only
 if it is installed: its rollers seated in the gaps (a roller centred on the pitch circle
 clears the seat by r_i − r, some 0.1 mm, and a 0.1–0.4 µm link stretch cannot hold T₀
-across that) and its spans stretched or hung to T₀. Three steps build that state.
+across that) and its spans stretched or hung to T₀. The static state solves the balance of
+every roller (gravity, link springs, roller–tooth contacts: the kernel's own forces at
+rest, :func:`chaindrive.linklevel.kernel.static_forces`) and every free sprocket (contact
+torques; the driver is held, which fixes the free turning of the chain round its loop, and
+the torque it takes is reported), with the reference link — the middle of the span leaving
+the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' common rest length
+ℓ₀ [m].
 
-1. Installed contour (:func:`installed_geometry`). A contour whose slack is not the slack
-   of the installed sag — a fixed-centre design with chain slack left over, or a tight
-   take-up — is taken up to the installed sag by the project's own take-up
+1. Installed contour and placement (:func:`installed_geometry`). A contour whose slack is
+   not the slack of the installed sag — a fixed-centre design with chain slack left over,
+   or a tight take-up — is taken up to the installed sag by the project's own take-up
    (:func:`chaindrive.geometry.contour.contour_geometry` with the design's adjustable
    sprocket, else the sprocket the slack span runs onto, and ``[chain] sag`` the installed
-   sag ratio): the chain installed as the whole-drive model assumes. The chain is assembled
-   on it (:func:`chaindrive.linklevel.assembly.assemble_chain`, with gravity the slack hung
-   in a sag).
-2. Pseudo-transient continuation ([Kelley1998]): from the assembled chain, the model's own
-   kernel steps in pseudo-time with no motor, no loads, the driver held and a
-   mass-proportional damping η = 2ω_s (ω_s the first transverse mode of the longest span at
-   T₀, so every mode decays at least as e^{−ω_s t}) over 8/ω_s: the rollers drop into their
-   seats and the spans take their shape. A secant iteration on the links' common rest
-   length ℓ₀ (started from the assembled loop less the length c·θ the seats take on each
-   wrap, over N, less T₀/k) brings the reference link — the middle of the span leaving the
-   driver — to T₀ within 10⁻³.
-3. Newton's method ([Dennis1996, §6.3], backtracking line search; Jacobian by finite
-   differences grouped over rollers three links apart, [Curtis1974]) on the static balance
-   of every roller (gravity, link springs, roller–tooth contacts) and every free sprocket
-   (contact torques; the driver is held, which fixes the free turning of the chain round its
-   loop, and the torque it takes is reported), bordered with the reference tension = T₀ in
-   the unknown ℓ₀: the residual falls to 10⁻⁶ T₀. Where Newton stops short (a contact
-   changing state on the way), the best state so far is settled again and polished again,
-   three rounds at most; the best state is kept and its residual reported.
+   sag ratio): the chain installed as the whole-drive model assumes. The chain is placed on
+   it kinematically (:func:`chaindrive.linklevel.assembly.assemble_chain`: every roller on a
+   wrap at the centre of its seating arc, one pitch apart, the sprockets turned under them;
+   with gravity the slack hung in a sag), ℓ₀ = p − T₀/k.
+2. The balance of forces is the stationarity of the potential energy V
+   (:func:`potential_energy`; the contact force is work-conjugate to its penetration), and a
+   static state that can be installed is a minimum of it. With the rest length let free
+   under a constant pull T̄ — Φ = V + T̄·N·ℓ₀, whose stationarity in ℓ₀ puts the mean link
+   tension at T̄, as a hanging-weight tensioner would — the minimum of Φ is found from the
+   placement by the trust-region Newton method in its Levenberg–Marquardt form
+   ([Nocedal2006, ch. 4]: each step the minimiser of the quadratic model within a trust
+   radius, (∇²Φ + μI)p = −∇Φ with the shift μ grown or shrunk by the ratio of actual to
+   predicted decrease, :func:`_minimum`): globally convergent to a point where ∇Φ = 0 with
+   ∇²Φ positive semi-definite, whatever the contacts do on the way; the Hessian −∂F/∂x by finite differences (step 1 nm) grouped
+   over rollers three links apart (a roller's force depends on its own position and its two
+   neighbours', [Curtis1974]), symmetrised. A secant on T̄ (started at T₀, the reference
+   carrying the pull up to hydrostatic and polygon offsets) brings the reference link to
+   T₀, each minimisation starting from the last.
+3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
+   unknown ℓ₀ ([Dennis1996, §6.3], backtracking line search), polishes the last minimum to
+   the force tolerance: Φ's round-off (some 10⁻¹⁸ J against link energies of 10⁻⁵ J) stops
+   the trust region near 10⁻⁵ N, where Newton converges quadratically.
 
-ℓ₀ stays within microns of p − T₀/k: the chain keeps the sprockets' pitch.
+Tolerances, consistent with each other (all as fractions of T₀, so in N once multiplied by
+it): the minimisations stop at ‖∇Φ‖₂ ≤ :data:`MINIMUM_TOLERANCE` T₀ = 10⁻⁵ T₀; the
+reference tension they leave is accurate to about that, so the secant on T̄ stops at
+|T_ref − T₀| ≤ :data:`TENSION_TOLERANCE` T₀ = 10⁻⁴ T₀, ten times coarser; the Newton
+polish aims at the largest force component ≤ :data:`FORCE_TOLERANCE` T₀ = 10⁻⁶ T₀ (10⁴
+times the forces' own round-off, k·ε·|x| ≈ 10⁻⁸ N). The state is accepted when its largest
+residual force is within the minimisation's tolerance and T_ref within the secant's; the
+residual (largest component and 2-norm, N) is reported. The solve runs with the linear
+algebra held to one thread (``threadpoolctl``), so that its arithmetic, and so its result,
+does not depend on the machine's BLAS threads. It refuses (:class:`ConvergenceError`) a
+chain whose links cannot carry T₀ at a positive rest length, and a state that none of the
+steps reaches, with the reference tension and the force left.
 
 With gravity the tension along a chain hanging over freely turning wheels is hydrostatic,
 T(y) = T_ref + q g (y − y_ref) ([Irvine1981, ch. 1]: dT/ds = q g dy/ds for a cable under its
@@ -47,12 +67,15 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
+import numba
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg import cho_factor, cho_solve
+from threadpoolctl import threadpool_limits
 
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
-from chaindrive.linklevel.kernel import run_kernel, static_forces
+from chaindrive.linklevel.kernel import _gap_local, static_forces
 from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.units import TWO_PI
 
@@ -68,20 +91,26 @@ __all__ = [
     "KernelTables",
     "installed_geometry",
     "kernel_tables",
+    "potential_energy",
     "span_probes",
     "static_equilibrium",
 ]
 
-#: Largest residual force on a roller at the solved equilibrium, as a fraction of T₀ [-].
+#: Largest residual force component the Newton polish aims at, as a fraction of T₀ [-].
 FORCE_TOLERANCE = 1e-6
+#: ‖∇Φ‖₂ at which a trust-region minimisation stops, as a fraction of T₀ [-].
+MINIMUM_TOLERANCE = 1e-5
+#: |T_ref − T₀| at which the secant on the pull stops, as a fraction of T₀ [-].
+TENSION_TOLERANCE = 1e-4
 _NEWTON_STEPS = 20
-#: Rounds of settling and Newton polish at most [-].
-_POLISH_ROUNDS = 3
-_SECANT_STEPS = 8
-#: Decay of the settling: e^{−8} of every mode's amplitude (η/2 = ω_s its rate) [-].
-_SETTLE_DECAYS = 8.0
-#: The settled reference tension is within this fraction of T₀ [-].
-_TENSION_SETTLED = 1e-3
+#: Trust-region steps of one minimisation at most [-].
+_TRUST_STEPS = 2000
+#: Steps refused in a row at which a minimisation has reached Φ's round-off [-].
+_REJECTIONS = 30
+#: The first shift μ as a fraction of the Hessian's largest diagonal entry [-].
+_SHIFT_START = 1e-6
+#: Secant steps on the pull at most [-].
+_PULL_STEPS = 12
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -212,11 +241,17 @@ class Equilibrium:
     reference_span : int
         The span leaving the driver [-].
     residual_force : float
-        Largest residual force on a roller [N].
+        Largest residual component (roller force, sprocket torque over its pitch radius) [N].
+    residual_norm : float
+        2-norm of the residual forces [N].
     driver_torque : float
         Torque the held driver takes [N·m].
     take_up : str or None
         The sprocket moved to install the chain (None: none).
+    iterations : int
+        Trust-region steps of the minimisations, all pulls [-].
+    pulls : int
+        Minimisations (secant steps on the pull) [-].
     """
 
     positions: NDArray[np.float64]
@@ -226,8 +261,11 @@ class Equilibrium:
     target: float
     reference_span: int
     residual_force: float
+    residual_norm: float
     driver_torque: float
     take_up: str | None
+    iterations: int
+    pulls: int
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI, units in the keys)."""
@@ -236,6 +274,10 @@ class Equilibrium:
                 "span_tension_n": self.span_tensions.tolist(),
                 "rest_length_m": self.rest_length,
                 "residual_force_n": self.residual_force,
+                "residual_force_norm_n": self.residual_norm,
+                "reference_tension_error_n": float(self.span_tensions[self.reference_span])
+                - self.target,
+                "solver_iterations": self.iterations, "solver_pulls": self.pulls,
                 "driver_holding_torque_n_m": self.driver_torque,
                 "take_up_sprocket": self.take_up}
 
@@ -387,37 +429,156 @@ class Balance:
         return x, th, rest, worst
 
 
-def _settle(model: LinkLevelModel, tables: KernelTables, x: NDArray[np.float64],
-            th: NDArray[np.float64], rest: float, dt: float, duration: float, eta: float
-            ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Pseudo-time steps of the model's own kernel at rest (no motor, no loads, the driver
-    held, mass-proportional damping η) from (x, θ) over ``duration`` [s]."""
-    N, n = x.shape[0], model.centres.shape[0]
-    x, th = x.copy(), th.copy()
-    v, w = np.zeros_like(x), np.zeros(n)
-    J = model.inertias.copy()
-    J[model.driver] = 1e30
-    steps = max(1, math.ceil(duration / dt))
-    rec = (np.empty((2, N, 2)), np.empty((2, n)), np.empty((2, n)), np.empty((2, N)),
-           np.empty((2, N)), np.empty((2, N), dtype=np.int64), np.empty((2, N), dtype=np.int64))
-    d = x[:, None, :] - model.centres[None, :, :]
-    inside = np.hypot(d[..., 0], d[..., 1]) < tables.reach[None, :]
-    cand = np.where(inside.any(axis=1), inside.argmax(axis=1), -1).astype(np.int64)
-    cmax = model.roller_mass * model.pitch**2 / 2.0 / (4.0 * dt)
-    run_kernel(x, v, th, w, 0.0, steps, dt, steps, model.roller_mass, float(model.gravity[0]),
-               float(model.gravity[1]), np.full(N, rest), model.link_stiffness,
-               model.link_damping, model.clearance, model.hinge_friction * model.pin_radius,
-               cmax, tables.spr, tables.trig, tables.gtab, tables.reach, 1, np.ones(n), J,
-               np.zeros((0, 0)), np.zeros((0, 0)), 0, np.zeros(3), model.driver, 1.0, 0,
-               np.zeros(n), np.ones(n), 1.0, np.ones(n), *rec, np.zeros(6), cand,
-               np.full((N, 4), -1.0), np.zeros((1, 4)), np.zeros(1, dtype=np.int64), eta)
-    return x, th
+
+@numba.njit(cache=True, error_model="numpy")
+def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: float, m: float,
+                     gx: float, gy: float, spr: Any, trig: Any, reach: Any) -> float:
+    """Potential energy [J] of the chain at rest whose gradient is minus the forces of
+    :func:`chaindrive.linklevel.kernel.static_forces`: the links ½k·s² (s the elongation
+    outside the clearance band), gravity −m g·u (u the rollers' displacements from a fixed
+    placement, so that the sum stays small against its round-off) and the roller–tooth
+    contacts ½k_c·δ² for δ > 0 (δ of the gap nearest by angle, as the static forces take
+    it; the contact force is work-conjugate to δ, :mod:`chaindrive.linklevel.kernel`).
+
+    Parameters
+    ----------
+    x : ndarray
+        (N, 2) roller centres [m].
+    u : ndarray
+        (N, 2) their displacements from the placement [m].
+    th : ndarray
+        (n,) sprocket angles [rad].
+    rest : float
+        Rest length ℓ₀ of the links [m].
+    k, clear, m, gx, gy : float
+        Link stiffness [N/m], clearance [m], roller mass [kg], gravity [m/s²].
+    spr, trig, reach : ndarray
+        The kernel's sprocket tables (:class:`KernelTables`).
+
+    Returns
+    -------
+    float
+        The energy [J].
+    """
+    N = x.shape[0]
+    n = spr.shape[1]
+    e = 0.0
+    for i in range(N):
+        b = i + 1 if i < N - 1 else 0
+        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+        s = math.sqrt(dx * dx + dy * dy) - rest
+        s -= min(max(s, -clear), clear)
+        e += 0.5 * k * s * s - m * (gx * u[i, 0] + gy * u[i, 1])
+        for q in range(n):
+            px, py = x[i, 0] - spr[0, q], x[i, 1] - spr[1, q]
+            if px * px + py * py < reach[q] * reach[q]:
+                c, sn = math.cos(th[q]), math.sin(th[q])
+                step = spr[10, q]
+                j = math.floor(math.atan2(py * c - px * sn, px * c + py * sn) / step + 0.5)
+                d = _gap_local(px, py, math.cos(th[q] + j * step), math.sin(th[q] + j * step),
+                               spr[3, q], spr[4, q], spr[5, q], trig[0, q], trig[1, q],
+                               trig[2, q], spr[7, q])[0]
+                if d > 0.0:
+                    e += 0.5 * spr[8, q] * d * d
+                break
+    return e
+
+
+class _Tensioned:
+    """The chain's potential energy with its rest length let free under a constant pull:
+    Φ(u, R_sθ_s, w) = V(x₀ + u, θ, ℓ₀ + w/N) + T̄·w, w the change of the loop's rest length
+    [m] (module docstring, step 2), with its gradient [N] and its Hessian [N/m] (from
+    :meth:`Balance.jacobian`, symmetrised)."""
+
+    def __init__(self, model: LinkLevelModel, tables: KernelTables, bal: Balance,
+                 x0: NDArray[np.float64], th0: NDArray[np.float64], rest0: float) -> None:
+        self.model, self.tables, self.bal = model, tables, bal
+        self.x0, self.th0, self.rest0 = x0, th0, rest0
+        self.N = x0.shape[0]
+        self.pull = model.pretension
+
+    def state(self, z: NDArray[np.float64]
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+        """(x [m], θ [rad], ℓ₀ [m]) of the unknowns z."""
+        N, free = self.N, self.bal.free
+        x = self.x0 + z[:2 * N].reshape(N, 2)
+        th = self.th0.copy()
+        th[free] += z[2 * N:-1] / self.bal.radius
+        return x, th, self.rest0 + float(z[-1]) / N
+
+    def value(self, z: NDArray[np.float64]) -> float:
+        """Φ [J]."""
+        m, t = self.model, self.tables
+        x, th, rest = self.state(z)
+        return float(potential_energy(
+            x, z[:2 * self.N].reshape(self.N, 2), th, rest, m.link_stiffness, m.clearance,
+            m.roller_mass, float(m.gravity[0]), float(m.gravity[1]), t.spr, t.trig,
+            t.reach)) + self.pull * float(z[-1])
+
+    def gradient(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        """∇Φ [N]: minus the roller forces and the sprocket torques over R, T̄ − mean T."""
+        r = self.bal(*self.state(z))
+        return np.concatenate([-r[:-1], [self.pull - float(self.bal.T.mean())]])
+
+    def hessian(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        """∇²Φ [N/m]."""
+        x, th, rest = self.state(z)
+        J = self.bal.jacobian(x, th, rest, self.bal(x, th, rest))
+        N, m = self.N, self.model
+        H = np.empty_like(J)
+        H[:-1, :-1] = -J[:-1, :-1]
+        H[:-1, -1] = -J[:-1, -1] / N
+        H[-1, :-1] = H[:-1, -1]
+        stretched = np.count_nonzero(np.abs(self.bal.T) > 0.0)
+        H[-1, -1] = m.link_stiffness * stretched / N**2
+        return 0.5 * (H + H.T)
+
+
+def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
+    """The local minimum of Φ nearest the placement by the trust-region Newton method in its
+    Levenberg–Marquardt form ([Nocedal2006, §4.3, Theorem 4.1]: the step that minimises the
+    quadratic model within a radius solves (∇²Φ + μI)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μI
+    positive semi-definite): μ is raised while the shifted Hessian is not positive definite
+    (its Cholesky factorisation fails) or the step's actual decrease of Φ is below a quarter
+    of the predicted one, and lowered after a step whose ratio exceeds three quarters
+    ([Nocedal2006, Algorithm 4.1]'s ratio test). Stops at ‖∇Φ‖₂ ≤ tol [N], or where Φ's
+    round-off hides the decrease (:data:`_REJECTIONS` steps refused in a row), or after
+    :data:`_TRUST_STEPS` steps; returns the unknowns and the steps taken."""
+    z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
+    f, g = phi.value(z), phi.gradient(z)
+    eye = np.eye(z.size)
+    mu = -1.0
+    for step in range(_TRUST_STEPS):
+        if float(np.linalg.norm(g)) <= tol:
+            return z, step
+        H = phi.hessian(z)
+        if mu < 0.0:
+            mu = _SHIFT_START * float(np.abs(np.diag(H)).max())
+        refused = 0
+        while True:
+            try:
+                p = -cho_solve(cho_factor(H + mu * eye), g)
+            except np.linalg.LinAlgError:  # not positive definite: a larger shift
+                mu = 4.0 * mu
+                continue
+            predicted = -float(g @ p + 0.5 * p @ (H @ p))
+            fn = phi.value(z + p)
+            ratio = (f - fn) / predicted if predicted > 0.0 else -1.0
+            if ratio > 0.25:
+                z, f, g = z + p, fn, phi.gradient(z + p)
+                if ratio > 0.75:
+                    mu *= 0.25
+                break
+            mu *= 4.0
+            refused += 1
+            if refused >= _REJECTIONS:
+                return z, step
+    return z, _TRUST_STEPS
 
 
 def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
-                       reference_span: int, dt: float, take_up: str | None = None
-                       ) -> Equilibrium:
-    """Solve the static state at the installed pre-tension (module docstring, step 3).
+                       reference_span: int, take_up: str | None = None) -> Equilibrium:
+    """Solve the static state at the installed pre-tension (module docstring, steps 2–3).
 
     Parameters
     ----------
@@ -426,89 +587,84 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
     geometry : GeometryResult
         The installed contour.
     asm : Assembly
-        The chain assembled on it.
+        The chain assembled on it (the placement the solve starts from).
     reference_span : int
         The span whose middle carries T₀ (the span leaving the driver) [-].
-    dt : float
-        Time step of the pseudo-time steps [s].
     take_up : str or None
         The sprocket moved to install the chain (recorded only).
 
     Returns
     -------
     Equilibrium
-        The solved state.
+        The solved state and its residual.
 
     Raises
     ------
     ConvergenceError
-        When the tension cannot be brought to T₀.
+        When the chain has no static state at T₀ (one line, with the reason).
 
     References
     ----------
-    [Kelley1998] (pseudo-transient continuation); [Dennis1996] (Newton with line search);
-    [Curtis1974] (grouped differences); [Irvine1981, ch. 1] (hydrostatic tension).
+    [Nocedal2006] (trust-region Newton); [Dennis1996] (Newton's method); [Curtis1974] (grouped
+    differences); [Irvine1981, ch. 1] (hydrostatic tension).
     """
+    t0 = model.pretension
+    rest = model.pitch - t0 / model.link_stiffness
+    if not (math.isfinite(t0) and t0 > 0.0 and rest > 0.0):
+        raise ConvergenceError(
+            f"the link-level static state does not exist: T₀ = {t0:.4g} N on links of "
+            f"stiffness {model.link_stiffness:.4g} N/m and pitch {model.pitch:.4g} m leaves "
+            f"them a rest length of {rest:.4g} m (must be positive)")
+    with threadpool_limits(limits=1):  # the same arithmetic whatever the machine's BLAS
+        return _solve(model, geometry, asm, reference_span, take_up, rest)
+
+
+def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
+           reference_span: int, take_up: str | None, rest: float) -> Equilibrium:
+    """:func:`static_equilibrium` inside its thread limit."""
     tables = kernel_tables(model)
     n = model.centres.shape[0]
     free = (np.array([i for i in range(n) if i != model.driver], dtype=np.int64)
             if model.torsional is None else np.zeros(0, dtype=np.int64))
     t0 = model.pretension
-    tol = FORCE_TOLERANCE * t0
-    # the slowest mode the settling must damp: the longest span's first transverse mode
-    longest = max(sp.length for sp in geometry.spans)
-    omega = math.pi / longest * math.sqrt(t0 * model.pitch / model.roller_mass)
-    eta, duration = 2.0 * omega, _SETTLE_DECAYS / omega
     x, th = asm.positions.copy(), asm.angles.copy()
-    # ℓ₀: the assembled loop less what the rollers give up dropping into their seats
-    # (c = r_i − r on the pitch line over each wrap angle), shared by the N links, at T₀
-    lengths = np.hypot(*(np.roll(x, -1, axis=0) - x).T)
-    drop = sum(float(model.seating_radii[i] - model.roller_radius) * sg.wrap_angle
-               for i, sg in enumerate(geometry.sprockets))
-    rest = (float(lengths.sum()) - drop) / x.shape[0] - t0 / model.link_stiffness
-    bal = Balance(model, tables, free, x.shape[0], 0)
-    history: list[tuple[float, float]] = []
-    for _ in range(_SECANT_STEPS):
-        x, th = _settle(model, tables, x, th, rest, dt, duration, eta)
-        bal.ref = int(span_probes(geometry, x)[reference_span])
-        bal(x, th, rest)
-        error = float(bal.T[bal.ref]) - t0
-        history.append((rest, error))
-        if abs(error) <= _TENSION_SETTLED * t0:
+    ref = int(span_probes(geometry, x)[reference_span])
+    bal = Balance(model, tables, free, x.shape[0], ref)
+    phi = _Tensioned(model, tables, bal, x, th, rest)
+    iterations, history = 0, []
+    for _ in range(_PULL_STEPS):  # the secant on the pull T̄ that puts T₀ on the reference
+        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
+        iterations += nit
+        x, th, rest = phi.state(z)
+        error = float(bal(x, th, rest)[-1])
+        history.append((phi.pull, error))
+        if abs(error) <= TENSION_TOLERANCE * t0:
             break
-        if len(history) == 1:  # a straight chain's stiffness per link: the smallest step
-            rest -= error / model.link_stiffness
+        if len(history) == 1:
+            phi.pull -= error  # the reference carries the pull up to small offsets
         else:
-            (r0, e0), (r1, e1) = history[-2], history[-1]
-            rest = r1 - e1 * (r1 - r0) / (e1 - e0) if e1 != e0 else r1
-        duration = 0.5 * _SETTLE_DECAYS / omega
-    def merit(r: NDArray[np.float64]) -> float:
-        """Largest residual force, infinite unless the reference span is at T₀."""
-        return float(np.abs(r[:-1]).max()) if abs(r[-1]) <= _TENSION_SETTLED * t0 \
-            else math.inf
-
-    best = (merit(bal(x, th, rest)), x, th, rest)
-    for _ in range(_POLISH_ROUNDS):
-        xs, ths, rests, worst = bal.solve(x, th, rest, tol)
-        score = merit(bal(xs, ths, rests))
-        if score < best[0]:
-            best = (score, xs, ths, rests)
-        if worst <= tol:
-            break
-        # Newton stopped short (a contact changing state on the way): settle further
-        # from the best state and polish again (the bordered Newton restores T₀)
-        x, th = _settle(model, tables, best[1], best[2], best[3], dt,
-                        _SETTLE_DECAYS / omega, eta)
-        rest = best[3]
-    _, x, th, rest = best
-    res = bal(x, th, rest)
-    worst = float(np.abs(res[:-1]).max())
-    if abs(res[-1]) > _TENSION_SETTLED * t0:
+            (p0, e0), (p1, e1) = history[-2], history[-1]
+            phi.pull = p1 - e1 * (p1 - p0) / (e1 - e0) if e1 != e0 else p1 - e1
+        phi.x0, phi.th0, phi.rest0 = x, th, rest  # the next minimisation starts here
+    else:
         raise ConvergenceError(
             f"the link-level static state did not reach the pre-tension: reference span at "
-            f"{res[-1] + t0:.4g} N against T₀ = {t0:.4g} N")
+            f"{error + t0:.4g} N against T₀ = {t0:.4g} N after {_PULL_STEPS} pulls")
+    before = float(np.abs(bal(x, th, rest)).max())
+    xs, ths, rests, worst = bal.solve(x, th, rest, FORCE_TOLERANCE * t0)
+    if worst < before:  # the polish kept only where it improved on the minimum
+        x, th, rest = xs, ths, rests
+    r = bal(x, th, rest)
+    if abs(r[-1]) > TENSION_TOLERANCE * t0 or np.abs(r[:-1]).max() > MINIMUM_TOLERANCE * t0:
+        raise ConvergenceError(
+            f"the link-level static state was not found: reference span at "
+            f"{r[-1] + t0:.4g} N against T₀ = {t0:.4g} N, largest force left "
+            f"{np.abs(r[:-1]).max():.3g} N")
     probes = span_probes(geometry, x)
     return Equilibrium(positions=x, angles=th, rest_length=float(rest),
                        span_tensions=bal.T[probes].copy(), target=t0,
-                       reference_span=reference_span, residual_force=worst,
-                       driver_torque=float(bal.tq[model.driver]), take_up=take_up)
+                       reference_span=reference_span,
+                       residual_force=float(np.abs(r[:-1]).max()),
+                       residual_norm=float(np.linalg.norm(r[:-1])),
+                       driver_torque=float(bal.tq[model.driver]), take_up=take_up,
+                       iterations=iterations, pulls=len(history))

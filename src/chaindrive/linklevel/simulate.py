@@ -339,7 +339,7 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
     asm = assemble_chain(geometry, drive.driver_index, hang=bool(model.gravity[1] != 0.0))
     reference = next((k for k, sp in enumerate(geometry.spans)
                       if sp.start == drive.driver_index), 0)
-    return asm, static_equilibrium(model, geometry, asm, reference, dt, take_up)
+    return asm, static_equilibrium(model, geometry, asm, reference, take_up)
 
 
 State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
