@@ -107,8 +107,8 @@ _NEWTON_STEPS = 20
 _TRUST_STEPS = 2000
 #: Steps refused in a row at which a minimisation has reached Φ's round-off [-].
 _REJECTIONS = 30
-#: The first shift μ as a fraction of the Hessian's largest diagonal entry [-].
-_SHIFT_START = 1e-6
+#: The first shift μ, in units of the Hessian's diagonal [-].
+_SHIFT_START = 1e-3
 #: Secant steps on the pull at most [-].
 _PULL_STEPS = 12
 
@@ -537,8 +537,10 @@ class _Tensioned:
 def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     """The local minimum of Φ nearest the placement by the trust-region Newton method in its
     Levenberg–Marquardt form ([Nocedal2006, §4.3, Theorem 4.1]: the step that minimises the
-    quadratic model within a radius solves (∇²Φ + μI)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μI
-    positive semi-definite): μ is raised while the shifted Hessian is not positive definite
+    quadratic model within a radius solves (∇²Φ + μD)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μD
+    positive semi-definite, D = diag|∇²Φ| the scaling of the elliptical trust region of
+    [Nocedal2006, §4.5], so that the rollers' soft transverse directions and their stiff
+    ones along the links take steps of their own sizes): μ is raised while the shifted Hessian is not positive definite
     (its Cholesky factorisation fails) or the step's actual decrease of Φ is below a quarter
     of the predicted one, and lowered after a step whose ratio exceeds three quarters
     ([Nocedal2006, Algorithm 4.1]'s ratio test). Stops at ‖∇Φ‖₂ ≤ tol [N], or where Φ's
@@ -546,18 +548,17 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     :data:`_TRUST_STEPS` steps; returns the unknowns and the steps taken."""
     z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
     f, g = phi.value(z), phi.gradient(z)
-    eye = np.eye(z.size)
-    mu = -1.0
+    mu = _SHIFT_START
     for step in range(_TRUST_STEPS):
         if float(np.linalg.norm(g)) <= tol:
             return z, step
         H = phi.hessian(z)
-        if mu < 0.0:
-            mu = _SHIFT_START * float(np.abs(np.diag(H)).max())
+        scale = np.abs(np.diag(H))  # the elliptical trust region of [Nocedal2006, §4.5]
+        scale = np.diag(np.maximum(scale, 1e-12 * float(scale.max())))
         refused = 0
         while True:
             try:
-                p = -cho_solve(cho_factor(H + mu * eye), g)
+                p = -cho_solve(cho_factor(H + mu * scale), g)
             except np.linalg.LinAlgError:  # not positive definite: a larger shift
                 mu = 4.0 * mu
                 continue
