@@ -71,6 +71,8 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import cho_factor, cho_solve
+from scipy.sparse import csc_matrix, diags
+from scipy.sparse.linalg import splu
 from threadpoolctl import threadpool_limits
 
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
@@ -342,38 +344,67 @@ class Balance:
         ndarray
             The Jacobian [N/m].
         """
+        return self.sparse_jacobian(x, th, rest, r0).toarray()
+
+    def sparse_jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
+                        r0: NDArray[np.float64]) -> csc_matrix:
+        """:meth:`jacobian` as a sparse matrix (its entries gathered without the dense
+        array) [N/m]."""
         N, nf = x.shape[0], self.free.size
         h = 1e-9
         size = 2 * N + nf + 1
-        J = np.zeros((size, size))
+        rows: list[NDArray[np.int64]] = []
+        cols: list[NDArray[np.int64]] = []
+        vals: list[NDArray[np.float64]] = []
         self(x, th, rest)
         tr0, t0 = self.tr.copy(), self.T.copy()
         sc = self._sprocket_of(x)
-        row_of = {int(s): 2 * N + k for k, s in enumerate(self.free)}
+        row_of = np.full(self.model.centres.shape[0] + 1, -1, dtype=np.int64)
+        row_of[self.free] = 2 * N + np.arange(nf)
+        torque_row = row_of[sc]  # sc = −1 (no sprocket) reads the last entry, −1
         base = N - N % 3
         groups = [np.arange(g, base, 3) for g in range(3)] + [np.array([r]) for r in
                                                              range(base, N)]
         ref, ref_next = self.ref, (self.ref + 1) % N
         for members in groups:
+            # the rows of each member's own force and its two neighbours', both components
+            near = (members[:, None] + np.array([-1, 0, 1])[None, :]) % N
+            force_rows = (2 * near[:, :, None] + np.arange(2)[None, None, :]).reshape(
+                members.size, 6)
+            held = torque_row[members] >= 0
+            at_ref = (members == ref) | (members == ref_next)
             for c in range(2):
                 xp = x.copy()
                 xp[members, c] += h
                 d = (self(xp, th, rest) - r0) / h
                 dtr, dT = (self.tr - tr0) / h, (self.T - t0) / h
-                for r in members:
-                    col = 2 * r + c
-                    for q in ((r - 1) % N, r, (r + 1) % N):
-                        J[2 * q:2 * q + 2, col] = d[2 * q:2 * q + 2]
-                    if int(sc[r]) in row_of:
-                        J[row_of[int(sc[r])], col] = dtr[r] / self.model.pitch_radii[sc[r]]
-                    if r in (ref, ref_next):
-                        J[-1, col] = dT[ref]
+                col = 2 * members + c
+                rows.append(force_rows.ravel())
+                cols.append(np.repeat(col, 6))
+                vals.append(d[force_rows].ravel())
+                rows.append(torque_row[members[held]])
+                cols.append(col[held])
+                vals.append(dtr[members[held]] / self.model.pitch_radii[sc[members[held]]])
+                rows.append(np.full(int(at_ref.sum()), size - 1))
+                cols.append(col[at_ref])
+                vals.append(np.full(int(at_ref.sum()), dT[ref]))
         for k, s in enumerate(self.free):
             tp = th.copy()
             tp[s] += h / self.radius[k]
-            J[:, 2 * N + k] = (self(x, tp, rest) - r0) / h
-        J[:, -1] = (self(x, th, rest + h) - r0) / h
-        return J
+            self._dense_column(rows, cols, vals, (self(x, tp, rest) - r0) / h, 2 * N + k)
+        self._dense_column(rows, cols, vals, (self(x, th, rest + h) - r0) / h, size - 1)
+        return csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(size, size))
+
+    @staticmethod
+    def _dense_column(rows: list[NDArray[np.int64]], cols: list[NDArray[np.int64]],
+                      vals: list[NDArray[np.float64]], column: NDArray[np.float64],
+                      index: int) -> None:
+        """Append the nonzero entries of a column computed whole."""
+        nz = np.flatnonzero(column)
+        rows.append(nz)
+        cols.append(np.full(nz.size, index))
+        vals.append(column[nz])
 
     def _sprocket_of(self, x: NDArray[np.float64]) -> NDArray[np.int64]:
         """The sprocket whose reach holds each roller (−1: none)."""
@@ -520,18 +551,38 @@ class _Tensioned:
         r = self.bal(*self.state(z))
         return np.concatenate([-r[:-1], [self.pull - float(self.bal.T.mean())]])
 
-    def hessian(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
-        """∇²Φ [N/m]."""
+    def hessian(self, z: NDArray[np.float64]) -> csc_matrix:
+        """∇²Φ [N/m], sparse."""
         x, th, rest = self.state(z)
-        J = self.bal.jacobian(x, th, rest, self.bal(x, th, rest))
-        N, m = self.N, self.model
-        H = np.empty_like(J)
-        H[:-1, :-1] = -J[:-1, :-1]
-        H[:-1, -1] = -J[:-1, -1] / N
-        H[-1, :-1] = H[:-1, -1]
+        J = self.bal.sparse_jacobian(x, th, rest, self.bal(x, th, rest)).tocoo()
+        N, m, last = self.N, self.model, J.shape[0] - 1
+        inner = (J.row < last) & (J.col < last)
+        side = (J.col == last) & (J.row < last)  # the column of w = N·Δℓ₀, ∂F/∂ℓ₀/N
         stretched = np.count_nonzero(np.abs(self.bal.T) > 0.0)
-        H[-1, -1] = m.link_stiffness * stretched / N**2
+        # the tension row is replaced by the pull's, ∂(T̄ − mean T)/∂(x, w): the side
+        # column transposed and k·(stretched links)/N² on the diagonal
+        rows = np.concatenate([J.row[inner], J.row[side], np.full(side.sum(), last), [last]])
+        cols = np.concatenate([J.col[inner], J.col[side], J.row[side], [last]])
+        vals = np.concatenate([-J.data[inner], -J.data[side] / N, -J.data[side] / N,
+                               [m.link_stiffness * stretched / N**2]])
+        H = csc_matrix((vals, (rows, cols)), shape=J.shape)
         return 0.5 * (H + H.T)
+
+
+def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """−A⁻¹b for a symmetric A that is positive definite, else None: A is sparse (a roller
+    couples to its two neighbours, the sprockets to their wraps, ℓ₀ to all), so it is
+    factorised by SuperLU with a fill-reducing symmetric ordering and diagonal pivots,
+    PᵀAP = LDLᵀ in effect, whose pivots D are all positive exactly when A is (Sylvester's
+    law of inertia, [Golub2013, §4.2 and §8.1]); where SuperLU left the diagonal, Cholesky."""
+    lu = splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    if np.array_equal(lu.perm_r, lu.perm_c):
+        return None if np.any(lu.U.diagonal() <= 0.0) else -lu.solve(b)
+    try:
+        return np.asarray(-cho_solve(cho_factor(A.toarray()), b), dtype=float)
+    except np.linalg.LinAlgError:
+        return None
 
 
 def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
@@ -553,13 +604,12 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
         if float(np.linalg.norm(g)) <= tol:
             return z, step
         H = phi.hessian(z)
-        scale = np.abs(np.diag(H))  # the elliptical trust region of [Nocedal2006, §4.5]
-        scale = np.diag(np.maximum(scale, 1e-12 * float(scale.max())))
+        scale = np.abs(H.diagonal())  # the elliptical trust region of [Nocedal2006, §4.5]
+        scale = np.maximum(scale, 1e-12 * float(scale.max()))
         refused = 0
         while True:
-            try:
-                p = -cho_solve(cho_factor(H + mu * scale), g)
-            except np.linalg.LinAlgError:  # not positive definite: a larger shift
+            p = _definite_solve(csc_matrix(H + diags(mu * scale)), g)
+            if p is None:  # not positive definite: a larger shift
                 mu = 4.0 * mu
                 continue
             predicted = -float(g @ p + 0.5 * p @ (H @ p))
