@@ -259,7 +259,7 @@ def test_potential_energy_is_the_potential_of_the_static_forces(seed):
     def energy(xx, tt):
         return potential_energy(xx, xx - x, tt, float(rest[0]), m.link_stiffness, m.clearance,
                                 m.roller_mass, float(m.gravity[0]), float(m.gravity[1]),
-                                t.spr, t.trig, t.reach)
+                                t.spr, t.reach)
 
     h, scale = 1e-9, float(np.abs(f).max())
     for i in range(N):

@@ -28,14 +28,16 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    under a constant pull T̄ — Φ = V + T̄·N·ℓ₀, whose stationarity in ℓ₀ puts the mean link
    tension at T̄, as a hanging-weight tensioner would — the minimum of Φ is found from the
    placement by the trust-region Newton method in its Levenberg–Marquardt form
-   ([Nocedal2006, ch. 4]: each step the minimiser of the quadratic model within a trust
-   radius, (∇²Φ + μI)p = −∇Φ with the shift μ grown or shrunk by the ratio of actual to
-   predicted decrease, :func:`_minimum`): globally convergent to a point where ∇Φ = 0 with
-   ∇²Φ positive semi-definite, whatever the contacts do on the way; the Hessian −∂F/∂x by finite differences (step 1 nm) grouped
-   over rollers three links apart (a roller's force depends on its own position and its two
-   neighbours', [Curtis1974]), symmetrised. A secant on T̄ (started at T₀, the reference
-   carrying the pull up to hydrostatic and polygon offsets) brings the reference link to
-   T₀, each minimisation starting from the last.
+   ([Nocedal2006, ch. 4], :func:`_minimum`: each step the minimiser of the quadratic model
+   within an elliptical trust region, (∇²Φ + μD)p = −∇Φ, the shift μ grown or shrunk by the
+   ratio of actual to predicted decrease): it converges from any start to a point where
+   ∇Φ = 0 and ∇²Φ is positive semi-definite, whatever the contacts do on the way. The
+   Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
+   links apart (a roller's force depends on its own position and its two neighbours',
+   [Curtis1974]), symmetrised and kept sparse; the shifted Hessian is factorised by SuperLU
+   with diagonal pivots (:func:`_definite_solve`). A secant on T̄ (started at T₀, the
+   reference carrying the pull up to hydrostatic and polygon offsets) brings the reference
+   link to T₀, each minimisation starting from the last.
 3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
    unknown ℓ₀ ([Dennis1996, §6.3], backtracking line search), polishes the last minimum to
    the force tolerance: Φ's round-off (some 10⁻¹⁸ J against link energies of 10⁻⁵ J) stops
@@ -77,7 +79,7 @@ from threadpoolctl import threadpool_limits
 
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
-from chaindrive.linklevel.kernel import _gap_local, static_forces
+from chaindrive.linklevel.kernel import penetration, static_forces
 from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.units import TWO_PI
 
@@ -463,7 +465,7 @@ class Balance:
 
 @numba.njit(cache=True, error_model="numpy")
 def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: float, m: float,
-                     gx: float, gy: float, spr: Any, trig: Any, reach: Any) -> float:
+                     gx: float, gy: float, spr: Any, reach: Any) -> float:
     """Potential energy [J] of the chain at rest whose gradient is minus the forces of
     :func:`chaindrive.linklevel.kernel.static_forces`: the links ½k·s² (s the elongation
     outside the clearance band), gravity −m g·u (u the rollers' displacements from a fixed
@@ -483,7 +485,7 @@ def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: floa
         Rest length ℓ₀ of the links [m].
     k, clear, m, gx, gy : float
         Link stiffness [N/m], clearance [m], roller mass [kg], gravity [m/s²].
-    spr, trig, reach : ndarray
+    spr, reach : ndarray
         The kernel's sprocket tables (:class:`KernelTables`).
 
     Returns
@@ -503,12 +505,8 @@ def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: floa
         for q in range(n):
             px, py = x[i, 0] - spr[0, q], x[i, 1] - spr[1, q]
             if px * px + py * py < reach[q] * reach[q]:
-                c, sn = math.cos(th[q]), math.sin(th[q])
-                step = spr[10, q]
-                j = math.floor(math.atan2(py * c - px * sn, px * c + py * sn) / step + 0.5)
-                d = _gap_local(px, py, math.cos(th[q] + j * step), math.sin(th[q] + j * step),
-                               spr[3, q], spr[4, q], spr[5, q], trig[0, q], trig[1, q],
-                               trig[2, q], spr[7, q])[0]
+                d = penetration(px, py, th[q], spr[2, q], spr[3, q], spr[4, q], spr[5, q],
+                                spr[6, q], spr[7, q])[0]
                 if d > 0.0:
                     e += 0.5 * spr[8, q] * d * d
                 break
@@ -543,7 +541,7 @@ class _Tensioned:
         x, th, rest = self.state(z)
         return float(potential_energy(
             x, z[:2 * self.N].reshape(self.N, 2), th, rest, m.link_stiffness, m.clearance,
-            m.roller_mass, float(m.gravity[0]), float(m.gravity[1]), t.spr, t.trig,
+            m.roller_mass, float(m.gravity[0]), float(m.gravity[1]), t.spr,
             t.reach)) + self.pull * float(z[-1])
 
     def gradient(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -566,7 +564,7 @@ class _Tensioned:
         vals = np.concatenate([-J.data[inner], -J.data[side] / N, -J.data[side] / N,
                                [m.link_stiffness * stretched / N**2]])
         H = csc_matrix((vals, (rows, cols)), shape=J.shape)
-        return 0.5 * (H + H.T)
+        return csc_matrix(0.5 * (H + H.T))
 
 
 def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64] | None:
@@ -587,16 +585,30 @@ def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64
 
 def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     """The local minimum of Φ nearest the placement by the trust-region Newton method in its
-    Levenberg–Marquardt form ([Nocedal2006, §4.3, Theorem 4.1]: the step that minimises the
-    quadratic model within a radius solves (∇²Φ + μD)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μD
-    positive semi-definite, D = diag|∇²Φ| the scaling of the elliptical trust region of
-    [Nocedal2006, §4.5], so that the rollers' soft transverse directions and their stiff
-    ones along the links take steps of their own sizes): μ is raised while the shifted Hessian is not positive definite
-    (its Cholesky factorisation fails) or the step's actual decrease of Φ is below a quarter
-    of the predicted one, and lowered after a step whose ratio exceeds three quarters
-    ([Nocedal2006, Algorithm 4.1]'s ratio test). Stops at ‖∇Φ‖₂ ≤ tol [N], or where Φ's
-    round-off hides the decrease (:data:`_REJECTIONS` steps refused in a row), or after
-    :data:`_TRUST_STEPS` steps; returns the unknowns and the steps taken."""
+    Levenberg–Marquardt form.
+
+    The step that minimises the quadratic model within a radius solves
+    (∇²Φ + μD)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μD positive semi-definite
+    ([Nocedal2006, §4.3, Theorem 4.1]), D = diag|∇²Φ| the scaling of the elliptical trust
+    region ([Nocedal2006, §4.5]), so that the rollers' soft transverse directions and their
+    stiff ones along the links take steps of their own sizes. μ is raised fourfold while the
+    shifted Hessian is not positive definite (:func:`_definite_solve`) or the step's actual
+    decrease of Φ is below a quarter of the predicted one, and lowered fourfold after a step
+    whose ratio exceeds three quarters (the ratio test of [Nocedal2006, Algorithm 4.1]).
+
+    Parameters
+    ----------
+    phi : _Tensioned
+        The energy with its pull.
+    tol : float
+        ‖∇Φ‖₂ at which it stops [N].
+
+    Returns
+    -------
+    tuple of (ndarray, int)
+        The unknowns and the steps taken: at ‖∇Φ‖₂ ≤ tol, or where Φ's round-off hides the
+        decrease (:data:`_REJECTIONS` steps refused in a row), or after :data:`_TRUST_STEPS`.
+    """
     z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
     f, g = phi.value(z), phi.gradient(z)
     mu = _SHIFT_START
