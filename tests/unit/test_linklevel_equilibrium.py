@@ -304,6 +304,7 @@ def test_static_solve_reports_its_residual_and_is_deterministic(seed):
     assert out["residual_force_n"] <= MINIMUM_TOLERANCE * t0
     assert abs(out["reference_tension_error_n"]) <= TENSION_TOLERANCE * t0
     assert out["solver_iterations"] >= 1 and out["solver_pulls"] >= 1
+    assert out["converged"] is True
 
 
 def test_links_that_cannot_carry_the_pretension_are_refused(seed):
