@@ -29,8 +29,8 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    tension at T̄, as a hanging-weight tensioner would — the minimum of Φ is found from the
    placement by the trust-region Newton method in its Levenberg–Marquardt form
    ([Nocedal2006, ch. 4], :func:`_minimum`: each step the minimiser of the quadratic model
-   within an elliptical trust region, (∇²Φ + μD)p = −∇Φ, the shift μ grown or shrunk by the
-   ratio of actual to predicted decrease): it converges from any start to a point where
+   within a trust region, (∇²Φ + μI)p = −∇Φ, the shift μ grown or shrunk by the ratio of
+   actual to predicted decrease): it converges from any start to a point where
    ∇Φ = 0 and ∇²Φ is positive semi-definite, whatever the contacts do on the way. The
    Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
    links apart (a roller's force depends on its own position and its two neighbours',
@@ -119,8 +119,8 @@ _NEWTON_STEPS = 20
 _TRUST_STEPS = 2000
 #: Steps refused in a row at which a minimisation has reached Φ's round-off [-].
 _REJECTIONS = 30
-#: The first shift μ, in units of the Hessian's diagonal [-].
-_SHIFT_START = 1e-3
+#: The first shift μ as a fraction of the Hessian's largest diagonal entry [-].
+_SHIFT_START = 1e-6
 #: Secant steps on the pull at most [-].
 _PULL_STEPS = 12
 
@@ -601,10 +601,11 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     Levenberg–Marquardt form.
 
     The step that minimises the quadratic model within a radius solves
-    (∇²Φ + μD)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μD positive semi-definite
-    ([Nocedal2006, §4.3, Theorem 4.1]), D = diag|∇²Φ| the scaling of the elliptical trust
-    region ([Nocedal2006, §4.5]), so that the rollers' soft transverse directions and their
-    stiff ones along the links take steps of their own sizes. μ is raised fourfold while the
+    (∇²Φ + μI)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μI positive semi-definite
+    ([Nocedal2006, §4.3, Theorem 4.1]); μ starts at :data:`_SHIFT_START` times the
+    Hessian's largest diagonal entry (a link's or a contact's stiffness). (The elliptical
+    region D = diag|∇²Φ| of [Nocedal2006, §4.5] was tried: it left the conveyor and the
+    24-sprocket drive short of the tolerance.) μ is raised fourfold while the
     shifted Hessian is not positive definite (:func:`_definite_solve`) or the step's actual
     decrease of Φ is below a quarter of the predicted one, and lowered fourfold after a step
     whose ratio exceeds three quarters (the ratio test of [Nocedal2006, Algorithm 4.1]).
@@ -624,16 +625,16 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     """
     z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
     f, g = phi.value(z), phi.gradient(z)
-    mu = _SHIFT_START
+    mu = -1.0
     for step in range(_TRUST_STEPS):
         if float(np.linalg.norm(g)) <= tol:
             return z, step
         H = phi.hessian(z)
-        scale = np.abs(H.diagonal())  # the elliptical trust region of [Nocedal2006, §4.5]
-        scale = np.maximum(scale, 1e-12 * float(scale.max()))
+        if mu < 0.0:
+            mu = _SHIFT_START * float(np.abs(H.diagonal()).max())
         refused = 0
         while True:
-            p = _definite_solve(csc_matrix(H + diags(mu * scale)), g)
+            p = _definite_solve(csc_matrix(H + diags(np.full(z.size, mu))), g)
             if p is None:  # not positive definite: a larger shift
                 mu = 4.0 * mu
                 continue
@@ -677,7 +678,8 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
     Raises
     ------
     ConvergenceError
-        When the chain has no static state at T₀ (one line, with the reason).
+        When no static state at T₀ exists (links that cannot carry it) or none is found
+        within the module's bounds (one line, with the reason).
 
     References
     ----------
