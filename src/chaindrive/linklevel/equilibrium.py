@@ -30,8 +30,9 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    placement by the trust-region Newton method in its Levenberg–Marquardt form
    ([Nocedal2006, ch. 4], :func:`_minimum`: each step the minimiser of the quadratic model
    within a trust region, (∇²Φ + μI)p = −∇Φ, the shift μ grown or shrunk by the ratio of
-   actual to predicted decrease): it converges from any start to a point where
-   ∇Φ = 0 and ∇²Φ is positive semi-definite, whatever the contacts do on the way. The
+   actual to predicted decrease): for a twice differentiable Φ it converges from any start
+   to a point where ∇Φ = 0 and ∇²Φ is positive semi-definite; the contacts make this Φ only
+   once differentiable, so that is the method's footing, not a proof. The
    Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
    links apart (a roller's force depends on its own position and its two neighbours',
    [Curtis1974]), symmetrised and kept sparse; the shifted Hessian is factorised by SuperLU
