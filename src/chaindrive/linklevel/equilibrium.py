@@ -725,17 +725,15 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
             (p0, e0), (p1, e1) = history[-2], history[-1]
             phi.pull = p1 - e1 * (p1 - p0) / (e1 - e0) if e1 != e0 else p1 - e1
         phi.x0, phi.th0, phi.rest0 = x, th, rest  # the next minimisation starts here
-    else:
-        raise ConvergenceError(
-            f"the link-level static state did not reach the pre-tension: reference span at "
-            f"{error + t0:.4g} N against T₀ = {t0:.4g} N after {_PULL_STEPS} pulls")
-    for _ in range(_POLISH_ROUNDS):  # polish; where it stops short, minimise again from it
+    # (a secant left short, its minimisations short of their tolerance, hands the reference
+    # tension to the bordered polish, which holds it at T₀ exactly)
+    for round_ in range(_POLISH_ROUNDS + 1):  # polish; short of it, minimise again from it
         before = float(np.abs(bal(x, th, rest)).max())
         xs, ths, rests, worst = bal.solve(x, th, rest, FORCE_TOLERANCE * t0)
         if worst < before:  # the polish kept only where it improved on the minimum
             x, th, rest = xs, ths, rests
         r = bal(x, th, rest)
-        if float(np.abs(r[:-1]).max()) <= MINIMUM_TOLERANCE * t0:
+        if float(np.abs(r[:-1]).max()) <= MINIMUM_TOLERANCE * t0 or round_ == _POLISH_ROUNDS:
             break
         phi.x0, phi.th0, phi.rest0 = x, th, rest
         z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
