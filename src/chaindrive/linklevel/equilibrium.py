@@ -52,8 +52,8 @@ polish aims at the largest force component ≤ :data:`FORCE_TOLERANCE` T₀ = 10
 times the forces' own round-off, k·ε·|x| ≈ 10⁻⁸ N). Where the polish stops short, the
 state is minimised again from it and polished again (three rounds at most). The state is
 converged when its largest residual force is within the minimisation's tolerance and T_ref
-within the secant's; one that stops short but within :data:`ACCEPTED_RESIDUAL` T₀ = 10⁻² T₀
-is kept with ``converged`` false; the residual (largest component and 2-norm, N) is
+within the secant's; one that stops short but has both within :data:`ACCEPTED_RESIDUAL`
+T₀ = 10⁻² T₀ is kept with ``converged`` false; the residual (largest component and 2-norm, N) is
 reported either way. The solve runs with the linear
 algebra held to one thread (``threadpoolctl``), so that its arithmetic, and so its result,
 does not depend on the machine's BLAS threads. It refuses (:class:`ConvergenceError`) a
@@ -110,8 +110,9 @@ FORCE_TOLERANCE = 1e-6
 MINIMUM_TOLERANCE = 1e-5
 #: |T_ref − T₀| at which the secant on the pull stops, as a fraction of T₀ [-].
 TENSION_TOLERANCE = 1e-4
-#: Largest residual force of a state kept although the solve stopped short of
-#: MINIMUM_TOLERANCE (``converged`` false, the residual reported), as a fraction of T₀ [-].
+#: Largest residual force and reference tension error of a state kept although the solve
+#: stopped short of MINIMUM_TOLERANCE or TENSION_TOLERANCE (``converged`` false, the
+#: residual and the error reported), as a fraction of T₀ [-].
 ACCEPTED_RESIDUAL = 1e-2
 #: Rounds of Newton polish and renewed minimisation at most [-].
 _POLISH_ROUNDS = 3
@@ -266,7 +267,8 @@ class Equilibrium:
     pulls : int
         Minimisations (secant steps on the pull) [-].
     converged : bool
-        Whether the residual is within :data:`MINIMUM_TOLERANCE` T₀ (else within
+        Whether the residual is within :data:`MINIMUM_TOLERANCE` T₀ and the reference
+        tension within :data:`TENSION_TOLERANCE` T₀ (else both within
         :data:`ACCEPTED_RESIDUAL` T₀, the state kept and its residual reported).
     """
 
@@ -736,12 +738,13 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
         if float(np.abs(r[:-1]).max()) <= MINIMUM_TOLERANCE * t0 or round_ == _POLISH_ROUNDS:
             break
         phi.x0, phi.th0, phi.rest0 = x, th, rest
+        phi.pull -= float(r[-1])  # one more secant-like step towards T₀ on the reference
         z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
         iterations += nit
         x, th, rest = phi.state(z)
     r = bal(x, th, rest)
     left = float(np.abs(r[:-1]).max())
-    if abs(r[-1]) > TENSION_TOLERANCE * t0 or left > ACCEPTED_RESIDUAL * t0:
+    if max(abs(float(r[-1])), left) > ACCEPTED_RESIDUAL * t0:
         raise ConvergenceError(
             f"the link-level static state was not found: reference span at "
             f"{r[-1] + t0:.4g} N against T₀ = {t0:.4g} N, largest force left {left:.3g} N")
@@ -753,4 +756,5 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
                        residual_norm=float(np.linalg.norm(r[:-1])),
                        driver_torque=float(bal.tq[model.driver]), take_up=take_up,
                        iterations=iterations, pulls=len(history),
-                       converged=left <= MINIMUM_TOLERANCE * t0)
+                       converged=left <= MINIMUM_TOLERANCE * t0
+                       and abs(float(r[-1])) <= TENSION_TOLERANCE * t0)
