@@ -5,7 +5,7 @@
 
 Per drive: links, T₀, the span tensions at the state against T₀, the residual (largest
 component and 2-norm, N), the rest length against p − T₀/k, the trust-region steps and the
-minimisations (pulls), and the CPU time of the solve (``time.process_time``; the machine's
+minimisations (pulls), whether it converged, and the CPU time of the solve (``time.process_time``; the machine's
 2 cores are shared, so the time scatters from run to run).
 """
 
@@ -60,7 +60,8 @@ def main(names: list[str]) -> None:
               f" reference off by {eq.span_tensions[eq.reference_span] - t0:.1e} N; residual "
               f"{eq.residual_force:.1e} N (norm {eq.residual_norm:.1e} N); rest length "
               f"{(eq.rest_length - (model.pitch - t0 / model.link_stiffness)) * 1e6:+.3f} µm "
-              f"from p - T0/k; {eq.iterations} steps, {eq.pulls} pulls; {cpu:.1f} s CPU",
+              f"from p - T0/k; {eq.iterations} steps, {eq.pulls} pulls; converged "
+              f"{eq.converged}; {cpu:.1f} s CPU",
               flush=True)
 
 
