@@ -5,8 +5,9 @@
 
 Per drive: links, T₀, the span tensions at the state against T₀, the residual (largest
 component and 2-norm, N), the rest length against p − T₀/k, the trust-region steps and the
-minimisations (pulls), whether it converged, and the CPU time of the solve (``time.process_time``; the machine's
-2 cores are shared, so the time scatters from run to run).
+minimisations (pulls), whether it converged, and the CPU time of the solve
+(``time.process_time``; the machine's 2 cores are shared, so the time scatters from run to
+run).
 """
 
 from __future__ import annotations
