@@ -116,6 +116,7 @@ TENSION_TOLERANCE = 1e-4
 ACCEPTED_RESIDUAL = 1e-2
 #: Rounds of Newton polish and renewed minimisation at most [-].
 _POLISH_ROUNDS = 3
+#: Steps of one bordered Newton polish at most [-].
 _NEWTON_STEPS = 20
 #: Trust-region steps of one minimisation at most [-].
 _TRUST_STEPS = 2000
