@@ -1,6 +1,5 @@
-"""Why the loaded peer's tension histories part (docs/linklevel.md §4; the tip-corner
-contacts of point 3 are those the corner rule of §1, not in the model, would remove).
-Run: OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linklevel_peer_diagnosis.py
+"""Why the loaded peer's tension histories parted (docs/linklevel.md §4, "What kept them
+apart"). Run: OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linklevel_peer_diagnosis.py
 
 1. Our step: the loaded drive of benchmarks/bench_linklevel_peer_loaded.py over 20 ms at
    Δt/4 and Δt/16 against Δt/64 (correlation of the middle-link tension histories).

@@ -296,15 +296,18 @@ def test_calibrate_with_the_link_level_model_writes_the_fitted_sag(tmp_path: Pat
                                                                 rel=1e-9)
 
 
-def test_calibrate_with_the_link_level_model_refuses_a_design_it_cannot_settle(
-        tmp_path: Path) -> None:
-    # at 4 × its link stiffness (2.04e9 N/m) the seed drive's link-level static state is not
-    # found: one line, exit 2, nothing written
+def test_calibrate_with_the_link_level_model_solves_a_stiff_chain(tmp_path: Path) -> None:
+    # at 4 × its link stiffness (2.04e9 N/m) the seed drive's link-level static state is
+    # solved at every stiffness the fit tries (up to 5.1e9 N/m; whether the relaxation it
+    # replaced settled there depended on the BLAS threads): the fit runs, says the record
+    # hardly depends on k (a chain's first mode along it rests on its sagging spans) and
+    # writes the design
     design = tmp_path / "stiff.toml"
     design.write_text(Path(SEED).read_text(encoding="utf-8").replace(
         "strands = 1", "strands = 1\nlink_stiffness = \"2.04e9 N/m\"", 1), encoding="utf-8")
     out = run_cli("calibrate", str(design), "--model", "links", "--natural", "1=80Hz",
-                  "--write-calibrated", str(tmp_path / "c.toml"))
-    assert out.returncode == 2 and out.stdout == ""
-    assert out.stderr.count("\n") == 1 and "link-level static state" in out.stderr, out.stderr
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["stiff.toml"]
+                  "--write-calibrated", str(tmp_path / "c.toml"), "--json")
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["model"] == "link-level" and doc["poorly_identified"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.toml", "stiff.toml"]

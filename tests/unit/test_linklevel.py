@@ -91,6 +91,37 @@ def test_penetration_of_a_roller_in_its_gap():
     assert d == pytest.approx(0.0001, abs=1e-9)
 
 
+def test_penetration_at_the_tooth_tip_corner():
+    """A roller beyond the corner where the flank meets the tip circle touches the corner
+    point, not the flank line extended past the tooth: δ = r − |p − C| (closed form), with
+    the normal from C through the centre; a roller 1 mm clear of the corner is clear of the
+    tooth (the extended flank line would press it), and the two kernels agree."""
+    z, R, rr, ri, alpha, Ra = 15, 0.0611, 0.00794, 0.00803, math.radians(51.0), 0.0665
+    th = 0.3
+    g = np.array([math.cos(th), math.sin(th)])
+    t = np.array([-g[1], g[0]])
+    f = -math.cos(alpha) * g + math.sin(alpha) * t  # flank normal into the tooth (+α side)
+    u = np.array([f[1], -f[0]])  # along the flank, outwards
+    assert u @ g > 0
+    p_alpha = R * g + ri * f
+    b, c = p_alpha @ u, p_alpha @ p_alpha - Ra * Ra
+    corner = p_alpha + (-b + math.sqrt(b * b - c)) * u
+    assert np.hypot(*corner) == pytest.approx(Ra)
+    outward = -f + corner / Ra  # between the flank's and the tip's outward normals
+    outward /= np.hypot(*outward)
+    for clearance in (-2e-6, 1e-3):  # 2 µm into the corner; 1 mm clear of it
+        p = corner + (rr + clearance) * outward
+        d, nx, ny, _ = penetration(*p, th, z, R, rr, ri, alpha, Ra)
+        assert d == pytest.approx(-clearance, abs=1e-12)
+        assert (nx, ny) == pytest.approx(tuple(outward))
+        gx, gy = math.cos(th), math.sin(th)
+        same = _gap_local(*p, gx, gy, R, rr, ri, math.cos(alpha), math.sin(alpha),
+                          math.tan(alpha), Ra)
+        assert same == pytest.approx((d, nx, ny))
+        # the flank line extended past the corner would have put the roller into the tooth
+        assert (p - p_alpha) @ f + rr > 0
+
+
 def test_assembly_seats_rollers_one_pitch_apart(jindal):
     """Every link of the assembled chain is one pitch long but those of the closing span
     (misfit shared, µm), and the rollers on each wrap sit on gap centres."""

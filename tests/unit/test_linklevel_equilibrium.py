@@ -232,3 +232,93 @@ def test_linearised_first_mode_along_the_chain_is_a_seat_mode(seed_modes):
     # the transverse span modes come first and are not it
     assert seed_modes.frequencies_hz[0] < 0.2 * seed_modes.frequencies_hz[k]
     assert seed_modes.longitudinal_fraction[0] < 0.1
+
+
+def test_potential_energy_is_the_potential_of_the_static_forces(seed):
+    """The solve minimises the potential energy, so its gradient must be minus the kernel's
+    static forces (links, gravity, contacts with the tip-corner rule) and torques: central
+    differences of V (step 1 nm, 1 µrad) against static_forces on a state with rollers
+    pressed into their teeth, within 10⁻⁵ of the largest force."""
+    from chaindrive.linklevel.equilibrium import potential_energy
+
+    drive, geometry = seed
+    m = build_model(drive, geometry)
+    t = kernel_tables(m)
+    r = simulate(drive, 0.002, geometry=geometry, model=m, initial_speed="working")
+    x = np.ascontiguousarray(r.positions[-1])
+    th = np.ascontiguousarray(r.angles[-1, :m.centres.shape[0]])
+    assert np.count_nonzero(r.contact_forces[-1] > 0) > 10  # contacts in the sample
+    N, n = x.shape[0], m.centres.shape[0]
+    rest = np.full(N, m.pitch - m.pretension / m.link_stiffness)
+    f, tq, T, tr = np.empty((N, 2)), np.empty(n), np.empty(N), np.empty(N)
+    static_forces(x, th, rest, m.link_stiffness, m.clearance, m.roller_mass,
+                  float(m.gravity[0]), float(m.gravity[1]), t.spr, t.trig, t.gtab, t.reach,
+                  f, tq, T, tr)
+
+    def energy(xx, tt):
+        return potential_energy(xx, xx - x, tt, float(rest[0]), m.link_stiffness, m.clearance,
+                                m.roller_mass, float(m.gravity[0]), float(m.gravity[1]),
+                                t.spr, t.reach)
+
+    h, scale = 1e-9, float(np.abs(f).max())
+    for i in range(N):
+        for c in range(2):
+            xp, xm = x.copy(), x.copy()
+            xp[i, c] += h
+            xm[i, c] -= h
+            assert -(energy(xp, th) - energy(xm, th)) / (2 * h) == pytest.approx(
+                f[i, c], abs=1e-5 * scale)
+    for s in range(n):
+        tp, tm = th.copy(), th.copy()
+        tp[s] += 1e-6
+        tm[s] -= 1e-6
+        assert -(energy(x, tp) - energy(x, tm)) / 2e-6 == pytest.approx(
+            tq[s], abs=1e-5 * scale * m.pitch_radii[s])
+
+
+def test_static_solve_reports_its_residual_and_is_deterministic(seed):
+    """The static state's residual is reported (largest component and norm, N) within the
+    module's tolerances, the reference span at T₀ to 10⁻⁴ T₀, and the solve gives the same
+    state bit for bit whatever the BLAS threads outside it (it holds them to one)."""
+    from threadpoolctl import threadpool_limits
+
+    from chaindrive.linklevel.equilibrium import (
+        MINIMUM_TOLERANCE,
+        TENSION_TOLERANCE,
+    )
+    from chaindrive.linklevel.simulate import equilibrium_state
+
+    drive, geometry = seed
+    installed, moved = installed_geometry(drive, geometry)
+    model = build_model(drive, installed)
+    states = []
+    for threads in (1, 2):
+        with threadpool_limits(limits=threads):
+            states.append(equilibrium_state(drive, installed, model, 1e-6, moved)[1])
+    a, b = states
+    assert np.array_equal(a.positions, b.positions) and a.rest_length == b.rest_length
+    out = a.to_dict()
+    t0 = model.pretension
+    assert 0 <= out["residual_force_n"] <= out["residual_force_norm_n"]
+    assert out["residual_force_n"] <= MINIMUM_TOLERANCE * t0
+    assert abs(out["reference_tension_error_n"]) <= TENSION_TOLERANCE * t0
+    assert out["solver_iterations"] >= 1 and out["solver_pulls"] >= 1
+    assert out["converged"] is True
+
+
+def test_links_that_cannot_carry_the_pretension_are_refused(seed):
+    """A link stiffness at which T₀ would stretch a link by more than its pitch leaves no
+    positive rest length: no static state exists, one line says why."""
+    from dataclasses import replace
+
+    from chaindrive.errors import ConvergenceError
+    from chaindrive.linklevel.assembly import assemble_chain
+    from chaindrive.linklevel.equilibrium import static_equilibrium
+
+    drive, geometry = seed
+    installed, _ = installed_geometry(drive, geometry)
+    model = build_model(drive, installed)
+    soft = replace(model, link_stiffness=0.5 * model.pretension / model.pitch)
+    with pytest.raises(ConvergenceError, match="rest length") as err:
+        static_equilibrium(soft, installed, assemble_chain(installed, drive.driver_index), 0)
+    assert "\n" not in str(err.value)

@@ -92,7 +92,7 @@ def test_report_says_which_model_each_check_takes(seed) -> None:
 
 
 def test_conveyor_keeps_the_whole_drive_loads_and_says_why(conveyor) -> None:
-    """The conveyor's link-level start-up peak is the larger (measured 13 106 N against
+    """The conveyor's link-level start-up peak is the larger (measured 13 703 N against
     12 259 N) but its sprockets turn without the motor, reducer and drums: every check keeps
     the whole-drive model's load and names the trains it lacks."""
     ring = float(np.max(conveyor.startup.max_span_force))

@@ -1,38 +1,64 @@
 r"""Static equilibrium of the link-level model at the installed pre-tension: the state every
-run starts from.
+run starts from, solved as a set of equations, not relaxed.
 
 The whole-drive model takes the spans at the pre-tension T₀ of the installed sag
 (:func:`chaindrive.dynamics.response.startup_pretension`). The link-level chain holds it only
 if it is installed: its rollers seated in the gaps (a roller centred on the pitch circle
 clears the seat by r_i − r, some 0.1 mm, and a 0.1–0.4 µm link stretch cannot hold T₀
-across that) and its spans stretched or hung to T₀. Three steps build that state.
+across that) and its spans stretched or hung to T₀. The static state solves the balance of
+every roller (gravity, link springs, roller–tooth contacts: the kernel's own forces at
+rest, :func:`chaindrive.linklevel.kernel.static_forces`) and every free sprocket (contact
+torques; the driver is held, which fixes the free turning of the chain round its loop, and
+the torque it takes is reported), with the reference link — the middle of the span leaving
+the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' common rest length
+ℓ₀ [m].
 
-1. Installed contour (:func:`installed_geometry`). A contour whose slack is not the slack
-   of the installed sag — a fixed-centre design with chain slack left over, or a tight
-   take-up — is taken up to the installed sag by the project's own take-up
+1. Installed contour and placement (:func:`installed_geometry`). A contour whose slack is
+   not the slack of the installed sag — a fixed-centre design with chain slack left over,
+   or a tight take-up — is taken up to the installed sag by the project's own take-up
    (:func:`chaindrive.geometry.contour.contour_geometry` with the design's adjustable
    sprocket, else the sprocket the slack span runs onto, and ``[chain] sag`` the installed
-   sag ratio): the chain installed as the whole-drive model assumes. The chain is assembled
-   on it (:func:`chaindrive.linklevel.assembly.assemble_chain`, with gravity the slack hung
-   in a sag).
-2. Pseudo-transient continuation ([Kelley1998]): from the assembled chain, the model's own
-   kernel steps in pseudo-time with no motor, no loads, the driver held and a
-   mass-proportional damping η = 2ω_s (ω_s the first transverse mode of the longest span at
-   T₀, so every mode decays at least as e^{−ω_s t}) over 8/ω_s: the rollers drop into their
-   seats and the spans take their shape. A secant iteration on the links' common rest
-   length ℓ₀ (started from the assembled loop less the length c·θ the seats take on each
-   wrap, over N, less T₀/k) brings the reference link — the middle of the span leaving the
-   driver — to T₀ within 10⁻³.
-3. Newton's method ([Dennis1996, §6.3], backtracking line search; Jacobian by finite
-   differences grouped over rollers three links apart, [Curtis1974]) on the static balance
-   of every roller (gravity, link springs, roller–tooth contacts) and every free sprocket
-   (contact torques; the driver is held, which fixes the free turning of the chain round its
-   loop, and the torque it takes is reported), bordered with the reference tension = T₀ in
-   the unknown ℓ₀: the residual falls to 10⁻⁶ T₀. Where Newton stops short (a contact
-   changing state on the way), the best state so far is settled again and polished again,
-   three rounds at most; the best state is kept and its residual reported.
+   sag ratio): the chain installed as the whole-drive model assumes. The chain is placed on
+   it kinematically (:func:`chaindrive.linklevel.assembly.assemble_chain`: every roller on a
+   wrap at the centre of its seating arc, one pitch apart, the sprockets turned under them;
+   with gravity the slack hung in a sag), ℓ₀ = p − T₀/k.
+2. The balance of forces is the stationarity of the potential energy V
+   (:func:`potential_energy`; the contact force is work-conjugate to its penetration), and a
+   static state that can be installed is a minimum of it. With the rest length let free
+   under a constant pull T̄ — Φ = V + T̄·N·ℓ₀, whose stationarity in ℓ₀ puts the mean link
+   tension at T̄, as a hanging-weight tensioner would — the minimum of Φ is found from the
+   placement by the trust-region Newton method in its Levenberg–Marquardt form
+   ([Nocedal2006, ch. 4], :func:`_minimum`: each step the minimiser of the quadratic model
+   within a trust region, (∇²Φ + μI)p = −∇Φ, the shift μ grown or shrunk by the ratio of
+   actual to predicted decrease): for a twice differentiable Φ it converges from any start
+   to a point where ∇Φ = 0 and ∇²Φ is positive semi-definite; the contacts make this Φ only
+   once differentiable, so that is the method's footing, not a proof. The
+   Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
+   links apart (a roller's force depends on its own position and its two neighbours',
+   [Curtis1974]), symmetrised and kept sparse; the shifted Hessian is factorised by SuperLU
+   with diagonal pivots (:func:`_definite_solve`). A secant on T̄ (started at T₀, the
+   reference carrying the pull up to hydrostatic and polygon offsets) brings the reference
+   link to T₀, each minimisation starting from the last.
+3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
+   unknown ℓ₀ ([Dennis1996, §6.3], backtracking line search), polishes the last minimum to
+   the force tolerance: Φ's round-off (some 10⁻¹⁸ J against link energies of 10⁻⁵ J) stops
+   the trust region near 10⁻⁵ N, where Newton converges quadratically.
 
-ℓ₀ stays within microns of p − T₀/k: the chain keeps the sprockets' pitch.
+Tolerances, consistent with each other (all as fractions of T₀, so in N once multiplied by
+it): the minimisations stop at ‖∇Φ‖₂ ≤ :data:`MINIMUM_TOLERANCE` T₀ = 10⁻⁵ T₀; the
+reference tension they leave is accurate to about that, so the secant on T̄ stops at
+|T_ref − T₀| ≤ :data:`TENSION_TOLERANCE` T₀ = 10⁻⁴ T₀, ten times coarser; the Newton
+polish aims at the largest force component ≤ :data:`FORCE_TOLERANCE` T₀ = 10⁻⁶ T₀ (10⁴
+times the forces' own round-off, k·ε·|x| ≈ 10⁻⁸ N). Where the polish stops short, the
+state is minimised again from it and polished again (three rounds at most). The state is
+converged when its largest residual force is within the minimisation's tolerance and T_ref
+within the secant's; one that stops short but has both within :data:`ACCEPTED_RESIDUAL`
+T₀ = 10⁻² T₀ is kept with ``converged`` false; the residual (largest component and 2-norm, N) is
+reported either way. The solve runs with the linear
+algebra held to one thread (``threadpoolctl``), so that its arithmetic, and so its result,
+does not depend on the machine's BLAS threads. It refuses (:class:`ConvergenceError`) a
+chain whose links cannot carry T₀ at a positive rest length, and a state that none of the
+steps brings within those bounds, with the reference tension and the force left.
 
 With gravity the tension along a chain hanging over freely turning wheels is hydrostatic,
 T(y) = T_ref + q g (y − y_ref) ([Irvine1981, ch. 1]: dT/ds = q g dy/ds for a cable under its
@@ -47,12 +73,17 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
+import numba
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg import cho_factor, cho_solve
+from scipy.sparse import csc_matrix, diags
+from scipy.sparse.linalg import splu
+from threadpoolctl import threadpool_limits
 
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
-from chaindrive.linklevel.kernel import run_kernel, static_forces
+from chaindrive.linklevel.kernel import penetration, static_forces
 from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.units import TWO_PI
 
@@ -68,20 +99,33 @@ __all__ = [
     "KernelTables",
     "installed_geometry",
     "kernel_tables",
+    "potential_energy",
     "span_probes",
     "static_equilibrium",
 ]
 
-#: Largest residual force on a roller at the solved equilibrium, as a fraction of T₀ [-].
+#: Largest residual force component the Newton polish aims at, as a fraction of T₀ [-].
 FORCE_TOLERANCE = 1e-6
-_NEWTON_STEPS = 20
-#: Rounds of settling and Newton polish at most [-].
+#: ‖∇Φ‖₂ at which a trust-region minimisation stops, as a fraction of T₀ [-].
+MINIMUM_TOLERANCE = 1e-5
+#: |T_ref − T₀| at which the secant on the pull stops, as a fraction of T₀ [-].
+TENSION_TOLERANCE = 1e-4
+#: Largest residual force and reference tension error of a state kept although the solve
+#: stopped short of MINIMUM_TOLERANCE or TENSION_TOLERANCE (``converged`` false, the
+#: residual and the error reported), as a fraction of T₀ [-].
+ACCEPTED_RESIDUAL = 1e-2
+#: Rounds of Newton polish and renewed minimisation at most [-].
 _POLISH_ROUNDS = 3
-_SECANT_STEPS = 8
-#: Decay of the settling: e^{−8} of every mode's amplitude (η/2 = ω_s its rate) [-].
-_SETTLE_DECAYS = 8.0
-#: The settled reference tension is within this fraction of T₀ [-].
-_TENSION_SETTLED = 1e-3
+#: Steps of one bordered Newton polish at most [-].
+_NEWTON_STEPS = 20
+#: Trust-region steps of one minimisation at most [-].
+_TRUST_STEPS = 2000
+#: Steps refused in a row at which a minimisation has reached Φ's round-off [-].
+_REJECTIONS = 30
+#: The first shift μ as a fraction of the Hessian's largest diagonal entry [-].
+_SHIFT_START = 1e-6
+#: Secant steps on the pull at most [-].
+_PULL_STEPS = 12
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -212,11 +256,21 @@ class Equilibrium:
     reference_span : int
         The span leaving the driver [-].
     residual_force : float
-        Largest residual force on a roller [N].
+        Largest residual component (roller force, sprocket torque over its pitch radius) [N].
+    residual_norm : float
+        2-norm of the residual forces [N].
     driver_torque : float
         Torque the held driver takes [N·m].
     take_up : str or None
         The sprocket moved to install the chain (None: none).
+    iterations : int
+        Trust-region steps of the minimisations, all pulls [-].
+    pulls : int
+        Minimisations (secant steps on the pull) [-].
+    converged : bool
+        Whether the residual is within :data:`MINIMUM_TOLERANCE` T₀ and the reference
+        tension within :data:`TENSION_TOLERANCE` T₀ (else both within
+        :data:`ACCEPTED_RESIDUAL` T₀, the state kept and its residual reported).
     """
 
     positions: NDArray[np.float64]
@@ -226,8 +280,12 @@ class Equilibrium:
     target: float
     reference_span: int
     residual_force: float
+    residual_norm: float
     driver_torque: float
     take_up: str | None
+    iterations: int
+    pulls: int
+    converged: bool
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI, units in the keys)."""
@@ -236,6 +294,11 @@ class Equilibrium:
                 "span_tension_n": self.span_tensions.tolist(),
                 "rest_length_m": self.rest_length,
                 "residual_force_n": self.residual_force,
+                "residual_force_norm_n": self.residual_norm,
+                "reference_tension_error_n": float(self.span_tensions[self.reference_span])
+                - self.target,
+                "solver_iterations": self.iterations, "solver_pulls": self.pulls,
+                "converged": self.converged,
                 "driver_holding_torque_n_m": self.driver_torque,
                 "take_up_sprocket": self.take_up}
 
@@ -300,38 +363,67 @@ class Balance:
         ndarray
             The Jacobian [N/m].
         """
+        return self.sparse_jacobian(x, th, rest, r0).toarray()
+
+    def sparse_jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
+                        r0: NDArray[np.float64]) -> csc_matrix:
+        """:meth:`jacobian` as a sparse matrix (its entries gathered without the dense
+        array) [N/m]."""
         N, nf = x.shape[0], self.free.size
         h = 1e-9
         size = 2 * N + nf + 1
-        J = np.zeros((size, size))
+        rows: list[NDArray[np.int64]] = []
+        cols: list[NDArray[np.int64]] = []
+        vals: list[NDArray[np.float64]] = []
         self(x, th, rest)
         tr0, t0 = self.tr.copy(), self.T.copy()
         sc = self._sprocket_of(x)
-        row_of = {int(s): 2 * N + k for k, s in enumerate(self.free)}
+        row_of = np.full(self.model.centres.shape[0] + 1, -1, dtype=np.int64)
+        row_of[self.free] = 2 * N + np.arange(nf)
+        torque_row = row_of[sc]  # sc = −1 (no sprocket) reads the last entry, −1
         base = N - N % 3
         groups = [np.arange(g, base, 3) for g in range(3)] + [np.array([r]) for r in
                                                              range(base, N)]
         ref, ref_next = self.ref, (self.ref + 1) % N
         for members in groups:
+            # the rows of each member's own force and its two neighbours', both components
+            near = (members[:, None] + np.array([-1, 0, 1])[None, :]) % N
+            force_rows = (2 * near[:, :, None] + np.arange(2)[None, None, :]).reshape(
+                members.size, 6)
+            held = torque_row[members] >= 0
+            at_ref = (members == ref) | (members == ref_next)
             for c in range(2):
                 xp = x.copy()
                 xp[members, c] += h
                 d = (self(xp, th, rest) - r0) / h
                 dtr, dT = (self.tr - tr0) / h, (self.T - t0) / h
-                for r in members:
-                    col = 2 * r + c
-                    for q in ((r - 1) % N, r, (r + 1) % N):
-                        J[2 * q:2 * q + 2, col] = d[2 * q:2 * q + 2]
-                    if int(sc[r]) in row_of:
-                        J[row_of[int(sc[r])], col] = dtr[r] / self.model.pitch_radii[sc[r]]
-                    if r in (ref, ref_next):
-                        J[-1, col] = dT[ref]
+                col = 2 * members + c
+                rows.append(force_rows.ravel())
+                cols.append(np.repeat(col, 6))
+                vals.append(d[force_rows].ravel())
+                rows.append(torque_row[members[held]])
+                cols.append(col[held])
+                vals.append(dtr[members[held]] / self.model.pitch_radii[sc[members[held]]])
+                rows.append(np.full(int(at_ref.sum()), size - 1))
+                cols.append(col[at_ref])
+                vals.append(np.full(int(at_ref.sum()), dT[ref]))
         for k, s in enumerate(self.free):
             tp = th.copy()
             tp[s] += h / self.radius[k]
-            J[:, 2 * N + k] = (self(x, tp, rest) - r0) / h
-        J[:, -1] = (self(x, th, rest + h) - r0) / h
-        return J
+            self._dense_column(rows, cols, vals, (self(x, tp, rest) - r0) / h, 2 * N + k)
+        self._dense_column(rows, cols, vals, (self(x, th, rest + h) - r0) / h, size - 1)
+        return csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(size, size))
+
+    @staticmethod
+    def _dense_column(rows: list[NDArray[np.int64]], cols: list[NDArray[np.int64]],
+                      vals: list[NDArray[np.float64]], column: NDArray[np.float64],
+                      index: int) -> None:
+        """Append the nonzero entries of a column computed whole."""
+        nz = np.flatnonzero(column)
+        rows.append(nz)
+        cols.append(np.full(nz.size, index))
+        vals.append(column[nz])
 
     def _sprocket_of(self, x: NDArray[np.float64]) -> NDArray[np.int64]:
         """The sprocket whose reach holds each roller (−1: none)."""
@@ -387,37 +479,187 @@ class Balance:
         return x, th, rest, worst
 
 
-def _settle(model: LinkLevelModel, tables: KernelTables, x: NDArray[np.float64],
-            th: NDArray[np.float64], rest: float, dt: float, duration: float, eta: float
-            ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Pseudo-time steps of the model's own kernel at rest (no motor, no loads, the driver
-    held, mass-proportional damping η) from (x, θ) over ``duration`` [s]."""
-    N, n = x.shape[0], model.centres.shape[0]
-    x, th = x.copy(), th.copy()
-    v, w = np.zeros_like(x), np.zeros(n)
-    J = model.inertias.copy()
-    J[model.driver] = 1e30
-    steps = max(1, math.ceil(duration / dt))
-    rec = (np.empty((2, N, 2)), np.empty((2, n)), np.empty((2, n)), np.empty((2, N)),
-           np.empty((2, N)), np.empty((2, N), dtype=np.int64), np.empty((2, N), dtype=np.int64))
-    d = x[:, None, :] - model.centres[None, :, :]
-    inside = np.hypot(d[..., 0], d[..., 1]) < tables.reach[None, :]
-    cand = np.where(inside.any(axis=1), inside.argmax(axis=1), -1).astype(np.int64)
-    cmax = model.roller_mass * model.pitch**2 / 2.0 / (4.0 * dt)
-    run_kernel(x, v, th, w, 0.0, steps, dt, steps, model.roller_mass, float(model.gravity[0]),
-               float(model.gravity[1]), np.full(N, rest), model.link_stiffness,
-               model.link_damping, model.clearance, model.hinge_friction * model.pin_radius,
-               cmax, tables.spr, tables.trig, tables.gtab, tables.reach, 1, np.ones(n), J,
-               np.zeros((0, 0)), np.zeros((0, 0)), 0, np.zeros(3), model.driver, 1.0, 0,
-               np.zeros(n), np.ones(n), 1.0, np.ones(n), *rec, np.zeros(6), cand,
-               np.full((N, 4), -1.0), np.zeros((1, 4)), np.zeros(1, dtype=np.int64), eta)
-    return x, th
+
+@numba.njit(cache=True, error_model="numpy")
+def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: float, m: float,
+                     gx: float, gy: float, spr: Any, reach: Any) -> float:
+    """Potential energy [J] of the chain at rest whose gradient is minus the forces of
+    :func:`chaindrive.linklevel.kernel.static_forces`: the links ½k·s² (s the elongation
+    outside the clearance band), gravity −m g·u (u the rollers' displacements from a fixed
+    placement, so that the sum stays small against its round-off) and the roller–tooth
+    contacts ½k_c·δ² for δ > 0 (δ of the gap nearest by angle, as the static forces take
+    it; the contact force is work-conjugate to δ, :mod:`chaindrive.linklevel.kernel`).
+
+    Parameters
+    ----------
+    x : ndarray
+        (N, 2) roller centres [m].
+    u : ndarray
+        (N, 2) their displacements from the placement [m].
+    th : ndarray
+        (n,) sprocket angles [rad].
+    rest : float
+        Rest length ℓ₀ of the links [m].
+    k, clear, m, gx, gy : float
+        Link stiffness [N/m], clearance [m], roller mass [kg], gravity [m/s²].
+    spr, reach : ndarray
+        The kernel's sprocket tables (:class:`KernelTables`).
+
+    Returns
+    -------
+    float
+        The energy [J].
+    """
+    N = x.shape[0]
+    n = spr.shape[1]
+    e = 0.0
+    for i in range(N):
+        b = i + 1 if i < N - 1 else 0
+        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+        s = math.sqrt(dx * dx + dy * dy) - rest
+        s -= min(max(s, -clear), clear)
+        e += 0.5 * k * s * s - m * (gx * u[i, 0] + gy * u[i, 1])
+        for q in range(n):
+            px, py = x[i, 0] - spr[0, q], x[i, 1] - spr[1, q]
+            if px * px + py * py < reach[q] * reach[q]:
+                d = penetration(px, py, th[q], spr[2, q], spr[3, q], spr[4, q], spr[5, q],
+                                spr[6, q], spr[7, q])[0]
+                if d > 0.0:
+                    e += 0.5 * spr[8, q] * d * d
+                break
+    return e
+
+
+class _Tensioned:
+    """The chain's potential energy with its rest length let free under a constant pull:
+    Φ(u, R_sθ_s, w) = V(x₀ + u, θ, ℓ₀ + w/N) + T̄·w, w the change of the loop's rest length
+    [m] (module docstring, step 2), with its gradient [N] and its Hessian [N/m] (from
+    :meth:`Balance.jacobian`, symmetrised)."""
+
+    def __init__(self, model: LinkLevelModel, tables: KernelTables, bal: Balance,
+                 x0: NDArray[np.float64], th0: NDArray[np.float64], rest0: float) -> None:
+        self.model, self.tables, self.bal = model, tables, bal
+        self.x0, self.th0, self.rest0 = x0, th0, rest0
+        self.N = x0.shape[0]
+        self.pull = model.pretension
+
+    def state(self, z: NDArray[np.float64]
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+        """(x [m], θ [rad], ℓ₀ [m]) of the unknowns z."""
+        N, free = self.N, self.bal.free
+        x = self.x0 + z[:2 * N].reshape(N, 2)
+        th = self.th0.copy()
+        th[free] += z[2 * N:-1] / self.bal.radius
+        return x, th, self.rest0 + float(z[-1]) / N
+
+    def value(self, z: NDArray[np.float64]) -> float:
+        """Φ [J]."""
+        m, t = self.model, self.tables
+        x, th, rest = self.state(z)
+        return float(potential_energy(
+            x, z[:2 * self.N].reshape(self.N, 2), th, rest, m.link_stiffness, m.clearance,
+            m.roller_mass, float(m.gravity[0]), float(m.gravity[1]), t.spr,
+            t.reach)) + self.pull * float(z[-1])
+
+    def gradient(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        """∇Φ [N]: minus the roller forces and the sprocket torques over R, T̄ − mean T."""
+        r = self.bal(*self.state(z))
+        return np.concatenate([-r[:-1], [self.pull - float(self.bal.T.mean())]])
+
+    def hessian(self, z: NDArray[np.float64]) -> csc_matrix:
+        """∇²Φ [N/m], sparse."""
+        x, th, rest = self.state(z)
+        J = self.bal.sparse_jacobian(x, th, rest, self.bal(x, th, rest)).tocoo()
+        N, m, last = self.N, self.model, J.shape[0] - 1
+        inner = (J.row < last) & (J.col < last)
+        side = (J.col == last) & (J.row < last)  # the column of w = N·Δℓ₀, ∂F/∂ℓ₀/N
+        stretched = np.count_nonzero(np.abs(self.bal.T) > 0.0)
+        # the tension row is replaced by the pull's, ∂(T̄ − mean T)/∂(x, w): the side
+        # column transposed and k·(stretched links)/N² on the diagonal
+        rows = np.concatenate([J.row[inner], J.row[side], np.full(side.sum(), last), [last]])
+        cols = np.concatenate([J.col[inner], J.col[side], J.row[side], [last]])
+        vals = np.concatenate([-J.data[inner], -J.data[side] / N, -J.data[side] / N,
+                               [m.link_stiffness * stretched / N**2]])
+        H = csc_matrix((vals, (rows, cols)), shape=J.shape)
+        return csc_matrix(0.5 * (H + H.T))
+
+
+def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """−A⁻¹b for a symmetric A that is positive definite, else None: A is sparse (a roller
+    couples to its two neighbours, the sprockets to their wraps, ℓ₀ to all), so it is
+    factorised by SuperLU with a fill-reducing symmetric ordering and diagonal pivots,
+    PᵀAP = LDLᵀ in effect, whose pivots D are all positive exactly when A is (Sylvester's
+    law of inertia, [Golub2013, §4.2 and §8.1]); where SuperLU left the diagonal, Cholesky."""
+    lu = splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    if np.array_equal(lu.perm_r, lu.perm_c):
+        return None if np.any(lu.U.diagonal() <= 0.0) else -lu.solve(b)
+    try:
+        return np.asarray(-cho_solve(cho_factor(A.toarray()), b), dtype=float)
+    except np.linalg.LinAlgError:
+        return None
+
+
+def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
+    """The local minimum of Φ nearest the placement by the trust-region Newton method in its
+    Levenberg–Marquardt form.
+
+    The step that minimises the quadratic model within a radius solves
+    (∇²Φ + μI)p = −∇Φ for some μ ≥ 0 with ∇²Φ + μI positive semi-definite
+    ([Nocedal2006, §4.3, Theorem 4.1]); μ starts at :data:`_SHIFT_START` times the
+    Hessian's largest diagonal entry (a link's or a contact's stiffness). (The elliptical
+    region D = diag|∇²Φ| of [Nocedal2006, §4.5] was tried: it left the conveyor and the
+    24-sprocket drive short of the tolerance.) μ is raised fourfold while the
+    shifted Hessian is not positive definite (:func:`_definite_solve`) or the step's actual
+    decrease of Φ is below a quarter of the predicted one, and lowered fourfold after a step
+    whose ratio exceeds three quarters (the ratio test of [Nocedal2006, Algorithm 4.1]).
+
+    Parameters
+    ----------
+    phi : _Tensioned
+        The energy with its pull.
+    tol : float
+        ‖∇Φ‖₂ at which it stops [N].
+
+    Returns
+    -------
+    tuple of (ndarray, int)
+        The unknowns and the steps taken: at ‖∇Φ‖₂ ≤ tol, or where Φ's round-off hides the
+        decrease (:data:`_REJECTIONS` steps refused in a row), or after :data:`_TRUST_STEPS`.
+    """
+    z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
+    f, g = phi.value(z), phi.gradient(z)
+    mu = -1.0
+    for step in range(_TRUST_STEPS):
+        if float(np.linalg.norm(g)) <= tol:
+            return z, step
+        H = phi.hessian(z)
+        if mu < 0.0:
+            mu = _SHIFT_START * float(np.abs(H.diagonal()).max())
+        refused = 0
+        while True:
+            p = _definite_solve(csc_matrix(H + diags(np.full(z.size, mu))), g)
+            if p is None:  # not positive definite: a larger shift
+                mu = 4.0 * mu
+                continue
+            predicted = -float(g @ p + 0.5 * p @ (H @ p))
+            fn = phi.value(z + p)
+            ratio = (f - fn) / predicted if predicted > 0.0 else -1.0
+            if ratio > 0.25:
+                z, f, g = z + p, fn, phi.gradient(z + p)
+                if ratio > 0.75:
+                    mu *= 0.25
+                break
+            mu *= 4.0
+            refused += 1
+            if refused >= _REJECTIONS:
+                return z, step
+    return z, _TRUST_STEPS
 
 
 def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
-                       reference_span: int, dt: float, take_up: str | None = None
-                       ) -> Equilibrium:
-    """Solve the static state at the installed pre-tension (module docstring, step 3).
+                       reference_span: int, take_up: str | None = None) -> Equilibrium:
+    """Solve the static state at the installed pre-tension (module docstring, steps 2–3).
 
     Parameters
     ----------
@@ -426,89 +668,94 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
     geometry : GeometryResult
         The installed contour.
     asm : Assembly
-        The chain assembled on it.
+        The chain assembled on it (the placement the solve starts from).
     reference_span : int
         The span whose middle carries T₀ (the span leaving the driver) [-].
-    dt : float
-        Time step of the pseudo-time steps [s].
     take_up : str or None
         The sprocket moved to install the chain (recorded only).
 
     Returns
     -------
     Equilibrium
-        The solved state.
+        The solved state and its residual.
 
     Raises
     ------
     ConvergenceError
-        When the tension cannot be brought to T₀.
+        When no static state at T₀ exists (links that cannot carry it) or none is found
+        within the module's bounds (one line, with the reason).
 
     References
     ----------
-    [Kelley1998] (pseudo-transient continuation); [Dennis1996] (Newton with line search);
-    [Curtis1974] (grouped differences); [Irvine1981, ch. 1] (hydrostatic tension).
+    [Nocedal2006] (trust-region Newton); [Dennis1996] (Newton's method); [Curtis1974] (grouped
+    differences); [Irvine1981, ch. 1] (hydrostatic tension).
     """
+    t0 = model.pretension
+    rest = model.pitch - t0 / model.link_stiffness
+    if not (math.isfinite(t0) and t0 > 0.0 and rest > 0.0):
+        raise ConvergenceError(
+            f"the link-level static state does not exist: T₀ = {t0:.4g} N on links of "
+            f"stiffness {model.link_stiffness:.4g} N/m and pitch {model.pitch:.4g} m leaves "
+            f"them a rest length of {rest:.4g} m (must be positive)")
+    with threadpool_limits(limits=1):  # the same arithmetic whatever the machine's BLAS
+        return _solve(model, geometry, asm, reference_span, take_up, rest)
+
+
+def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
+           reference_span: int, take_up: str | None, rest: float) -> Equilibrium:
+    """:func:`static_equilibrium` inside its thread limit."""
     tables = kernel_tables(model)
     n = model.centres.shape[0]
     free = (np.array([i for i in range(n) if i != model.driver], dtype=np.int64)
             if model.torsional is None else np.zeros(0, dtype=np.int64))
     t0 = model.pretension
-    tol = FORCE_TOLERANCE * t0
-    # the slowest mode the settling must damp: the longest span's first transverse mode
-    longest = max(sp.length for sp in geometry.spans)
-    omega = math.pi / longest * math.sqrt(t0 * model.pitch / model.roller_mass)
-    eta, duration = 2.0 * omega, _SETTLE_DECAYS / omega
     x, th = asm.positions.copy(), asm.angles.copy()
-    # ℓ₀: the assembled loop less what the rollers give up dropping into their seats
-    # (c = r_i − r on the pitch line over each wrap angle), shared by the N links, at T₀
-    lengths = np.hypot(*(np.roll(x, -1, axis=0) - x).T)
-    drop = sum(float(model.seating_radii[i] - model.roller_radius) * sg.wrap_angle
-               for i, sg in enumerate(geometry.sprockets))
-    rest = (float(lengths.sum()) - drop) / x.shape[0] - t0 / model.link_stiffness
-    bal = Balance(model, tables, free, x.shape[0], 0)
-    history: list[tuple[float, float]] = []
-    for _ in range(_SECANT_STEPS):
-        x, th = _settle(model, tables, x, th, rest, dt, duration, eta)
-        bal.ref = int(span_probes(geometry, x)[reference_span])
-        bal(x, th, rest)
-        error = float(bal.T[bal.ref]) - t0
-        history.append((rest, error))
-        if abs(error) <= _TENSION_SETTLED * t0:
+    ref = int(span_probes(geometry, x)[reference_span])
+    bal = Balance(model, tables, free, x.shape[0], ref)
+    phi = _Tensioned(model, tables, bal, x, th, rest)
+    iterations, history = 0, []
+    for _ in range(_PULL_STEPS):  # the secant on the pull T̄ that puts T₀ on the reference
+        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
+        iterations += nit
+        x, th, rest = phi.state(z)
+        error = float(bal(x, th, rest)[-1])
+        history.append((phi.pull, error))
+        if abs(error) <= TENSION_TOLERANCE * t0:
             break
-        if len(history) == 1:  # a straight chain's stiffness per link: the smallest step
-            rest -= error / model.link_stiffness
+        if len(history) == 1:
+            phi.pull -= error  # the reference carries the pull up to small offsets
         else:
-            (r0, e0), (r1, e1) = history[-2], history[-1]
-            rest = r1 - e1 * (r1 - r0) / (e1 - e0) if e1 != e0 else r1
-        duration = 0.5 * _SETTLE_DECAYS / omega
-    def merit(r: NDArray[np.float64]) -> float:
-        """Largest residual force, infinite unless the reference span is at T₀."""
-        return float(np.abs(r[:-1]).max()) if abs(r[-1]) <= _TENSION_SETTLED * t0 \
-            else math.inf
-
-    best = (merit(bal(x, th, rest)), x, th, rest)
-    for _ in range(_POLISH_ROUNDS):
-        xs, ths, rests, worst = bal.solve(x, th, rest, tol)
-        score = merit(bal(xs, ths, rests))
-        if score < best[0]:
-            best = (score, xs, ths, rests)
-        if worst <= tol:
+            (p0, e0), (p1, e1) = history[-2], history[-1]
+            phi.pull = p1 - e1 * (p1 - p0) / (e1 - e0) if e1 != e0 else p1 - e1
+        phi.x0, phi.th0, phi.rest0 = x, th, rest  # the next minimisation starts here
+    # (a secant left short, its minimisations short of their tolerance, hands the reference
+    # tension to the bordered polish, which holds it at T₀ exactly)
+    for round_ in range(_POLISH_ROUNDS + 1):  # polish; short of it, minimise again from it
+        before = float(np.abs(bal(x, th, rest)).max())
+        xs, ths, rests, worst = bal.solve(x, th, rest, FORCE_TOLERANCE * t0)
+        if worst < before:  # the polish kept only where it improved on the minimum
+            x, th, rest = xs, ths, rests
+        r = bal(x, th, rest)
+        if float(np.abs(r[:-1]).max()) <= MINIMUM_TOLERANCE * t0 or round_ == _POLISH_ROUNDS:
             break
-        # Newton stopped short (a contact changing state on the way): settle further
-        # from the best state and polish again (the bordered Newton restores T₀)
-        x, th = _settle(model, tables, best[1], best[2], best[3], dt,
-                        _SETTLE_DECAYS / omega, eta)
-        rest = best[3]
-    _, x, th, rest = best
-    res = bal(x, th, rest)
-    worst = float(np.abs(res[:-1]).max())
-    if abs(res[-1]) > _TENSION_SETTLED * t0:
+        phi.x0, phi.th0, phi.rest0 = x, th, rest
+        phi.pull -= float(r[-1])  # one more secant-like step towards T₀ on the reference
+        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
+        iterations += nit
+        x, th, rest = phi.state(z)
+    r = bal(x, th, rest)
+    left = float(np.abs(r[:-1]).max())
+    if max(abs(float(r[-1])), left) > ACCEPTED_RESIDUAL * t0:
         raise ConvergenceError(
-            f"the link-level static state did not reach the pre-tension: reference span at "
-            f"{res[-1] + t0:.4g} N against T₀ = {t0:.4g} N")
+            f"the link-level static state was not found: reference span at "
+            f"{r[-1] + t0:.4g} N against T₀ = {t0:.4g} N, largest force left {left:.3g} N")
     probes = span_probes(geometry, x)
     return Equilibrium(positions=x, angles=th, rest_length=float(rest),
                        span_tensions=bal.T[probes].copy(), target=t0,
-                       reference_span=reference_span, residual_force=worst,
-                       driver_torque=float(bal.tq[model.driver]), take_up=take_up)
+                       reference_span=reference_span,
+                       residual_force=float(np.abs(r[:-1]).max()),
+                       residual_norm=float(np.linalg.norm(r[:-1])),
+                       driver_torque=float(bal.tq[model.driver]), take_up=take_up,
+                       iterations=iterations, pulls=len(history),
+                       converged=left <= MINIMUM_TOLERANCE * t0
+                       and abs(float(r[-1])) <= TENSION_TOLERANCE * t0)

@@ -164,16 +164,61 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
         else:
             nx, ny = er_x, er_y
     else:
-        sg = 1.0 if theta > 0 else -1.0
-        ca, sa = math.cos(ah), sg * math.sin(ah)
-        fx = -ca * er_x - sa * er_y  # flank normal into the tooth: ca(−e_r) + sa e_t
-        fy = -ca * er_y + sa * er_x
-        d_gap = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
-        nx, ny = -fx, -fy
+        d, nx, ny = _flank(px, py, wx, wy, er_x, er_y, 1.0 if theta > 0 else -1.0, R, rr, ri,
+                           math.cos(ah), math.sin(ah), Ra)
+        return d, nx, ny, j
     d_tip = Ra + rr - rho_c
     if d_tip < d_gap:
         return d_tip, px / rho_c, py / rho_c, j
     return d_gap, nx, ny, j
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _flank(px: float, py: float, wx: float, wy: float, gx: float, gy: float, sg: float,
+           R: float, rr: float, ri: float, ca: float, sa: float, Ra: float
+           ) -> tuple[float, float, float]:
+    """(δ [m], n_x, n_y) of a roller beyond the seating arc on side ``sg`` (±1) of the gap
+    whose centre direction is (gx, gy): centre p (from the sprocket centre), w = p − R g.
+
+    The tooth there is the tip disc |x| ≤ R_a on the tooth's side of the flank line (through
+    the arc's end P_α = R g + r_i f, normal f into the tooth, running outwards along u to
+    the corner C = P_α + L u on the tip circle). Inside the tooth δ = r − (its distance to
+    the nearer face); outside, δ = r − the distance to the nearest point of the tooth: the
+    foot on the flank while it lies below the corner, the tip circle's nearest point while
+    it lies on the tooth's side of the flank, else the corner C itself — a roller clear of
+    the corner is not pushed by the flank line extended beyond the tooth.
+    """
+    fx = -ca * gx - sg * sa * gy  # flank normal into the tooth: ca(−g) + sg sa t
+    fy = -ca * gy + sg * sa * gx
+    ux, uy = sg * fy, -sg * fx  # along the flank, outwards (u·g = sa > 0)
+    ex, ey = wx - ri * fx, wy - ri * fy  # from P_α
+    h = ex * fx + ey * fy  # into the tooth (> 0: p on the tooth's side)
+    along = ex * ux + ey * uy
+    rc = math.sqrt(px * px + py * py)
+    d_flank = h + rr
+    d_tip = Ra + rr - rc
+    if h >= 0.0 and rc <= Ra:  # centre inside the tooth: the nearer face
+        if d_tip < d_flank:
+            return d_tip, px / rc, py / rc
+        return d_flank, -fx, -fy
+    # the corner's distance along the flank: |P_α + L u| = R_a, P_α·u = R sa
+    pu = R * sa
+    L = -pu + math.sqrt(max(pu * pu - (R * R - 2.0 * R * ri * ca + ri * ri - Ra * Ra), 0.0))
+    flank_ok = h < 0.0 and along <= L
+    tip_ok = False
+    if rc > Ra:  # the tip circle's nearest point on the tooth's side of the flank?
+        qx, qy = px * Ra / rc - R * gx - ri * fx, py * Ra / rc - R * gy - ri * fy
+        tip_ok = qx * fx + qy * fy >= 0.0
+    if flank_ok and (not tip_ok or d_flank <= d_tip):
+        return d_flank, -fx, -fy
+    if tip_ok:
+        return d_tip, px / rc, py / rc
+    cx = px - (R * gx + ri * fx + L * ux)  # from the corner C to the centre
+    cy = py - (R * gy + ri * fy + L * uy)
+    dc = math.sqrt(cx * cx + cy * cy)
+    if dc <= 1e-15:
+        return rr, -fx, -fy
+    return rr - dc, cx / dc, cy / dc
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -367,11 +412,8 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
         else:
             nx, ny = gx, gy
     else:
-        s = sa if wt > 0.0 else -sa
-        fx = -ca * gx - s * gy
-        fy = -ca * gy + s * gx
-        d = (wx - ri * fx) * fx + (wy - ri * fy) * fy + rr
-        nx, ny = -fx, -fy
+        return _flank(px, py, wx, wy, gx, gy, 1.0 if wt > 0.0 else -1.0, R, rr, ri, ca, sa,
+                      Ra)
     lim = Ra + rr - d  # the tip disc governs when |p| > R_a + r − δ_gap
     rc2 = px * px + py * py
     if lim < 0.0 or rc2 > lim * lim:

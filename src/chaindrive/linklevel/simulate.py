@@ -327,7 +327,8 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
     model : LinkLevelModel
         The link-level model.
     dt : float
-        Time step [s].
+        Time step of the run [s]; the static state, solved rather than stepped, does not
+        depend on it (kept for the callers that pass it).
     take_up : str or None
         The sprocket that took up the slack (None: none).
 
@@ -339,7 +340,7 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
     asm = assemble_chain(geometry, drive.driver_index, hang=bool(model.gravity[1] != 0.0))
     reference = next((k for k, sp in enumerate(geometry.spans)
                       if sp.start == drive.driver_index), 0)
-    return asm, static_equilibrium(model, geometry, asm, reference, dt, take_up)
+    return asm, static_equilibrium(model, geometry, asm, reference, take_up)
 
 
 State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
@@ -425,7 +426,8 @@ def initial_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
     start : {"rest", "steady"}
         ``"rest"`` (a start-up) or ``"steady"`` (every body moving at its mean speed).
     dt_s : float or None
-        Time step of the settling [s] (None: :func:`simulate`'s default).
+        Time step of the run [s] (None: :func:`simulate`'s default); the static state does
+        not depend on it.
 
     Returns
     -------
