@@ -206,8 +206,8 @@ def test_span_transverse_frequency_is_the_moving_string():
     equal for a signal whose frequency follows the tension: a signal's mean frequency is
     its instantaneous frequency weighted by the squared amplitude [Cohen1995, ch. 1].
     Why not the peak against the law at the mean tension: the run is not stationary —
-    the span's swing grows from 1 to up to 5 mm and the span's mean tension over 0.4 s
-    shifts by up to 13 % (3110 → 2700 N) at a time round-off decides. Measured on the
+    the span's swing grows from 1 to up to 5 mm and its tension, averaged over 0.1 s,
+    drops by up to 16 % (3135 → 2633 N) at a time round-off decides. Measured on the
     default run, the step ×(1 ± 10⁻¹²), ×(1 ± 10⁻⁹), ×(1 + 10⁻⁶), the kick ×(1 + 10⁻¹²) and
     a kernel whose contact gap is summed in another order (8 runs): the peak against the
     law at the mean tension −2.5 to −0.5 %; this estimator −0.7 to +0.3 % (the
