@@ -134,8 +134,9 @@ def _load(path: Path) -> tuple[tuple[str, ...], dict[str, Arr]]:
 
 
 def _study(designs: list[dict[str, Arr]], groups: int, n_max: int
-           ) -> tuple[int, dict[str, tuple[tuple[float, ...], ...]]]:
-    """Replay the adaptive stop on R stored designs: (stopping N per replicate, result)."""
+           ) -> tuple[int, bool, dict[str, tuple[tuple[float, ...], ...]]]:
+    """Replay the adaptive stop on R stored designs: (stopping N per replicate, converged,
+    result)."""
     per = groups + 2
     n = 32
     while True:
@@ -144,7 +145,27 @@ def _study(designs: list[dict[str, Arr]], groups: int, n_max: int
         widths = [_leading_half_width(r[1], r[3]) for r in result.values()]
         ok = all(w <= TARGET_HALF_WIDTH for w in widths if math.isfinite(w))
         if (ok and n * len(designs) >= MIN_STOP_BASE) or 2 * n > n_max:
-            return n, result
+            return n, ok, result
+        n *= 2
+
+
+def table(designs: list[dict[str, Arr]], groups: tuple[str, ...], n_max: int) -> None:
+    """The indices of one study (the first R designs) at every N per replicate."""
+    per = len(groups) + 2
+    n = 32
+    print(f"one study (the first {REPLICATES} designs): leading S_T ± half-width "
+          "[Student-t part / bootstrap part] per metric")
+    while n <= n_max:
+        outputs = {m: [d[m][:n * per] for d in designs[:REPLICATES]] for m in designs[0]}
+        result = _analyse({"groups": list(groups)}, outputs, 0.95, 0)
+        cells = []
+        for m, r in result.items():
+            if not all(math.isfinite(v) for v in r[1]):
+                continue
+            k = int(np.argmax(r[1]))
+            cells.append(f"{m} {groups[k]} {r[1][k]:.3f} ± {r[3][k]:.3f} "
+                         f"[{r[5][k]:.3f}/{r[7][k]:.3f}]")
+        print(f"    N = {n} per replicate ({n * REPLICATES * per} states): " + "; ".join(cells))
         n *= 2
 
 
@@ -160,6 +181,8 @@ def stores(paths: list[Path], subsets: int) -> None:
                for _, m in loaded]
     print(f"{len(designs)} stored designs of N = {n_max} ({n_max * per} states each); groups "
           f"{', '.join(groups)}")
+    if len(designs) >= REPLICATES:
+        table(designs, groups, n_max)
     reference: dict[str, tuple[float, ...]] = {}
     for m in designs[0]:
         y = np.concatenate([d[m] for d in designs])
@@ -183,9 +206,11 @@ def stores(paths: list[Path], subsets: int) -> None:
         held_all = {m: 0 for m in reference}
         half = {m: [] for m in reference}
         stop: list[int] = []
+        converged = 0
         for s in chosen:
-            n, result = _study([designs[k] for k in s], g, n_max)
+            n, ok, result = _study([designs[k] for k in s], g, n_max)
             stop.append(n)
+            converged += ok
             for m, ref in reference.items():
                 est, conf = np.array(result[m][1]), np.array(result[m][3])
                 lead = int(np.argmax(ref))
@@ -193,8 +218,8 @@ def stores(paths: list[Path], subsets: int) -> None:
                 held_all[m] += int(np.sum(np.abs(est - np.array(ref)) <= conf))
                 half[m].append(float(conf[int(np.argmax(est))]))
         n, c = np.unique(stop, return_counts=True)
-        print(f"{label}: {len(chosen)} of R = {REPLICATES}; stopped at N per replicate "
-              f"{dict(zip(n.tolist(), c.tolist(), strict=True))}")
+        print(f"{label}: {len(chosen)} of R = {REPLICATES} designs; stopped at N per replicate "
+              f"{dict(zip(n.tolist(), c.tolist(), strict=True))}, converged {converged}")
         for m in reference:
             print(f"    {m:26s} leading S_T held {held[m]}/{len(chosen)}, every group's "
                   f"{held_all[m]}/{g * len(chosen)}; half-width median ±"
