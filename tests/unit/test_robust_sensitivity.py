@@ -138,6 +138,8 @@ def test_indices_outside_the_unit_interval_are_clipped_and_flagged() -> None:
     # a (0.85…0.95) is clearly above c (0…0.6) and b (0.05…0.15); b and c overlap
     assert [a.rank, b.rank, c.rank] == [1, 2, 2] and r.tied("m") == [["c", "b"]]
     assert ranks([0.5, 0.5], [0.0, 0.0]) == [1, 1]
+    # two groups that do not act: estimates of round-off size with no width are one rank
+    assert ranks([0.9, 2e-17, -3e-17], [0.1, 0.0, 0.0]) == [1, 2, 2]
 
 
 def test_intervals_are_reproducible() -> None:

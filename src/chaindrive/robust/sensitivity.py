@@ -85,7 +85,7 @@ from chaindrive.robust.sampling import (
 from chaindrive.robust.uncertainty import UncertaintyModel
 
 __all__ = ["BOOTSTRAP_RESAMPLES", "ESTIMATOR", "FEW_STATES_SHARE", "INTERVAL", "MIN_STOP_BASE",
-           "REPLICATES", "SENSITIVITY_BUDGET", "SENSITIVITY_METRICS", "TARGET_HALF_WIDTH",
+           "RANK_TOLERANCE", "REPLICATES", "SENSITIVITY_BUDGET", "SENSITIVITY_METRICS", "TARGET_HALF_WIDTH",
            "GroupIndex", "SensitivityResult", "Step", "grouped_indices", "janon_closed_index",
            "pick_freeze_indices", "ranks", "replicate_indices", "replicate_seeds", "sensitivity",
            "tail_variance_share"]
@@ -385,9 +385,15 @@ def _outside(v: float, half: float) -> bool:
     return math.isfinite(v) and (v < -half or v > 1.0 + half)
 
 
+#: Gap between two intervals below which they are taken to touch [–]: round-off of an index
+#: (a group that does not act has an estimate of ±1e-16 with a half-width of 0).
+RANK_TOLERANCE = 1e-9
+
+
 def ranks(values: Sequence[float], half_widths: Sequence[float]) -> list[int]:
     """Rank of each value: 1 + the number of values whose interval [v − h, v + h] lies
-    entirely above its own (values that cannot be told apart share a rank).
+    entirely above its own by more than :data:`RANK_TOLERANCE` (values that cannot be told
+    apart share a rank).
 
     Parameters
     ----------
@@ -401,7 +407,8 @@ def ranks(values: Sequence[float], half_widths: Sequence[float]) -> list[int]:
     """
     lo = [v - h for v, h in zip(values, half_widths, strict=True)]
     hi = [v + h for v, h in zip(values, half_widths, strict=True)]
-    return [1 + sum(lo[j] > hi[k] for j in range(len(values))) for k in range(len(values))]
+    return [1 + sum(lo[j] > hi[k] + RANK_TOLERANCE for j in range(len(values)))
+            for k in range(len(values))]
 
 
 def _saltelli_problem(model: UncertaintyModel) -> dict[str, Any]:
