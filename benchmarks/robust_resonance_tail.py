@@ -105,7 +105,7 @@ def main() -> None:
     per = len(model.groups) + 2
     near = (np.abs(f1 / f_z - 1) < 0.10)[:n_max * per].reshape(n_max, per).any(axis=1)
     rows = (np.flatnonzero(~near)[:, None] * per + np.arange(per)).ravel()
-    keep = _analyse(_saltelli_problem(model), {k: metrics[k][rows] for k in
+    keep = _analyse(_saltelli_problem(model), {k: [metrics[k][rows]] for k in
                     ("coefficient_of_dynamics", "k2", "f1_hz")}, 0.95, 0)
     print(f"\nwithout the {near.sum()} of {n_max} base points whose block has a state within "
           "10 % of f_z (illustration only), leading S_T:")

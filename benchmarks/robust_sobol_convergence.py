@@ -6,7 +6,9 @@ a scrambled Sobol sequence, so its first N·(G + 2) rows are the design of every
 power-of-two N: the adaptive sample of :func:`chaindrive.robust.sensitivity.grouped_indices`
 sees exactly these prefixes); the indices and their 95 % bootstrap half-widths are then
 estimated on each prefix, N = 32, 64, …, by the package's own estimator
-(:func:`chaindrive.robust.sensitivity._analyse`: Janon et al.'s, with its bootstrap). Jansen's
+(:func:`chaindrive.robust.sensitivity._analyse` on one design: Janon et al.'s, with its
+bootstrap — the package's intervals now come from eight independently scrambled designs:
+``robust_sobol_coverage.py``). Jansen's
 estimator on the same states: ``benchmarks/robust_sobol_replicates.py <store>``.
 
     python benchmarks/robust_sobol_convergence.py seed_three_sprocket --n-max 1024
@@ -77,7 +79,7 @@ def analyse(store: Path) -> None:
                for m in SENSITIVITY_METRICS}
     n = 32
     while n * per <= len(out):
-        r = _analyse(problem, {m: v[:n * per] for m, v in metrics.items()}, 0.95, 0)
+        r = _analyse(problem, {m: [v[:n * per]] for m, v in metrics.items()}, 0.95, 0)
         widths = {m: _leading_half_width(x[1], x[3]) for m, x in r.items()}
         finite = {m: w for m, w in widths.items() if math.isfinite(w)}
         worst = max(finite, key=lambda m: finite[m])

@@ -43,8 +43,16 @@ def test_document_is_json_and_complete(result) -> None:
     assert doc["reliability"]["averaged_over"][0].startswith("the life: wear elongation uniform")
     sens = doc["sensitivity"]
     assert sens["evaluations"] == sens["base_samples"] * (len(sens["groups"]) + 2)
-    # N = 4 (32 states); 8 would need 64 > the budget of 48: said so, not converged
-    assert (sens["base_samples"], sens["budget_hit"], sens["converged"]) == (4, True, False)
+    # 8 replicates of N = 4 (256 states, the first N whatever the budget); N = 8 would need
+    # 512 > the budget of 48: said so, not converged
+    assert (sens["base_samples"], sens["base_samples_per_replicate"], sens["replicates"],
+            sens["budget_hit"], sens["converged"]) == (32, 4, 8, True, False)
+    assert sens["interval"].startswith("Student-t across independently scrambled replicates")
+    for m in sens["metrics"].values():
+        if m["rank"] is not None:   # the interval is the wider of its two parts
+            assert all(h == pytest.approx(max(b, t if t is not None else 0.0))
+                       for h, t, b in zip(m["total_conf"], m["total_conf_replicates"],
+                                          m["total_conf_bootstrap"], strict=True))
     assert sens["held_at_nominal"] == doc["reliability"]["held_at_nominal"]
     for m in sens["metrics"].values():
         if m["rank"] is not None:

@@ -138,7 +138,8 @@ def _sensitivity_lines(sens: dict[str, Any]) -> list[str]:
     widest = (f"widest leading S_T ± {last['widest_leading_half_width']:.3f} "
               f"({last['metric']})" if last and last["widest_leading_half_width"] is not None
               else "no metric varies")
-    sizes = " → ".join(str(h["base_samples"]) for h in sens["history"])
+    sizes = " → ".join(str(h.get("base_samples_per_replicate", h["base_samples"]))
+                       for h in sens["history"])
     if sens["converged"]:
         verdict = (f"converged: every metric's leading S_T within ±{sens['target_half_width']:g}"
                    f" ({widest})")
@@ -147,8 +148,10 @@ def _sensitivity_lines(sens: dict[str, Any]) -> list[str]:
                    f"S_T was within ±{sens['target_half_width']:g}: {widest}; rank with care")
     else:
         verdict = widest
-    lines = [f"Sobol sample: N = {sizes} base points, {sens['evaluations']} states "
-             f"({sens['confidence']:.0%} bootstrap intervals, Janon et al.'s estimator); "
+    lines = [f"Sobol sample: {sens.get('replicates', 1)} independently scrambled Saltelli "
+             f"designs of N = {sizes} base points each, {sens['evaluations']} states "
+             f"(Janon et al.'s estimator on the pooled designs; {sens['confidence']:.0%} "
+             "intervals: Student-t across the designs, or the pooled bootstrap where wider); "
              f"{verdict}"]
     wide = [f"{metric} ±{m['leading_half_width']:.2f}" + _tail_note(m)
             for metric, m in sens["metrics"].items()

@@ -550,12 +550,13 @@ UNCERTAINTY_FIELDS: tuple[Field, ...] = (
     Field("wear_states", "int", "wear states of the batched modal path over the life "
           "(midpoint rule in the life fraction)", default=8, minimum=1, maximum=64,
           reason="64 midpoints resolve the life fraction to 1.6 %"),
-    Field("sensitivity_samples", "int", "base samples N of the Sobol sensitivity indices "
-          "(N·(groups + 2) evaluations)", default=32, minimum=4, maximum=1 << 16,
+    Field("sensitivity_samples", "int", "first base samples N of each of the 8 independently "
+          "scrambled Saltelli designs of the Sobol sensitivity indices (8·N·(groups + 2) "
+          "evaluations)", default=32, minimum=4, maximum=1 << 16,
           reason="[Saltelli2010]: N of some tens to thousands; 2^16 bounds the work"),
     Field("sensitivity_budget", "int", "evaluations the Sobol sample may grow to (N doubles "
           "from sensitivity_samples until every metric's leading total index is within "
-          "sensitivity_target)", default=8192, minimum=16, maximum=1 << 20,
+          "sensitivity_target)", default=16384, minimum=16, maximum=1 << 20,
           reason="16 is the least design of two groups; 2^20 states bound the work of a study"),
     Field("sensitivity_target", "float", "half-width of the interval of every metric's "
           "leading total Sobol index at which the sample stops growing", default=0.1,

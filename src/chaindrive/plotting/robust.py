@@ -131,7 +131,7 @@ def probability_figure(result: ReliabilityResult, *, ax: Axes | None = None,
 
 def sensitivity_figure(result: SensitivityResult, *, ax: Axes | None = None) -> Figure:
     """Total Sobol indices ST of every group for each metric (grouped bars, with their
-    bootstrap intervals).
+    intervals).
 
     Parameters
     ----------

@@ -51,10 +51,12 @@ def _index(m: dict[str, Any], k: int) -> str:
 
 def _sobol_summary(sens: dict[str, Any]) -> str:
     """The Sobol sample in words: its size, whether it converged, what cannot be ranked."""
-    sizes = " → ".join(str(h["base_samples"]) for h in sens["history"])
-    text = (f"Saltelli sample grown N = {sizes} base points ({sens['evaluations']} states on "
-            f"the full path) [Saltelli2010], [Herman2017], indices by Janon et al.'s "
-            "estimator [Janon2014]; ")
+    sizes = " → ".join(str(h.get("base_samples_per_replicate", h["base_samples"]))
+                       for h in sens["history"])
+    text = (f"{sens.get('replicates', 1)} independently scrambled Saltelli samples grown "
+            f"N = {sizes} base points each ({sens['evaluations']} states on the full path) "
+            "[Saltelli2010], [Herman2017], indices by Janon et al.'s estimator on the pooled "
+            "samples [Janon2014], intervals Student-t across the samples [Owen2013]; ")
     if sens["converged"]:
         text += (f"every metric's leading S_T is within ±{sens['target_half_width']:g}.")
     else:

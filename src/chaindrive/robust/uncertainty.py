@@ -112,7 +112,7 @@ class UncertaintySettings:
     wear_states : int
         Wear states of the modal path over the life [–].
     sensitivity_samples : int
-        First base samples N of the Sobol indices [–].
+        First base samples N of each replicate design of the Sobol indices [–].
     sensitivity_budget : int
         Evaluations the Sobol sample may grow to [–].
     sensitivity_target : float
@@ -137,7 +137,7 @@ class UncertaintySettings:
     take_up_capacity: float | None = None
     wear_states: int = 8
     sensitivity_samples: int = 32
-    sensitivity_budget: int = 8192
+    sensitivity_budget: int = 16384
     sensitivity_target: float = 0.1
 
     def __post_init__(self) -> None:
