@@ -372,7 +372,24 @@ class Balance:
     def sparse_jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
                         r0: NDArray[np.float64]) -> csc_matrix:
         """:meth:`jacobian` as a sparse matrix (its entries gathered without the dense
-        array) [N/m]."""
+        array).
+
+        Parameters
+        ----------
+        x : ndarray
+            (N, 2) roller positions [m].
+        th : ndarray
+            (n,) sprocket angles [rad].
+        rest : float
+            Rest length of the links [m].
+        r0 : ndarray
+            The residual at (x, θ, ℓ₀) [N].
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            The Jacobian [N/m].
+        """
         N, nf = x.shape[0], self.free.size
         h = 1e-9
         size = 2 * N + nf + 1
