@@ -50,6 +50,10 @@ _ROWS = "list of dict\n    One dict per row: column header (with its unit) → c
 #: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
 #: the description indented by four).
 PARAMETERS: Mapping[str, str] = MappingProxyType({
+    # a point of the link-level static balance (linklevel/equilibrium.py)
+    "balance_point": "x : ndarray\n    (N, 2) roller positions [m].\nth : ndarray\n    (n,) "
+                     "sprocket angles [rad].\nrest : float\n    Rest length of the links "
+                     "[m].\nr0 : ndarray\n    The residual at (x, θ, ℓ₀) [N].",
     "drive": "drive : Drive\n    The design.",
     "params_drive": "Parameters\n----------\ndrive : Drive\n    The design.",
     "geometry": "geometry : GeometryResult\n    Its contour.",

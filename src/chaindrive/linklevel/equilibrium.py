@@ -85,6 +85,7 @@ from scipy.sparse import csc_matrix, diags
 from scipy.sparse.linalg import splu
 from threadpoolctl import threadpool_limits
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
 from chaindrive.linklevel.kernel import penetration, static_forces
@@ -347,20 +348,14 @@ class Balance:
         return np.concatenate([self.f.ravel(), self.tq[self.free] / self.radius,
                                [self.T[self.ref] - m.pretension]])
 
+    @shared_parameters
     def jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
                  r0: NDArray[np.float64]) -> NDArray[np.float64]:
         """d residual / d (x, R_s θ_s, ℓ₀) by forward differences of step h = 1 nm.
 
         Parameters
         ----------
-        x : ndarray
-            (N, 2) roller positions [m].
-        th : ndarray
-            (n,) sprocket angles [rad].
-        rest : float
-            Rest length of the links [m].
-        r0 : ndarray
-            The residual at (x, θ, ℓ₀) [N].
+        %(balance_point)s
 
         Returns
         -------
@@ -369,6 +364,7 @@ class Balance:
         """
         return self.sparse_jacobian(x, th, rest, r0).toarray()
 
+    @shared_parameters
     def sparse_jacobian(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
                         r0: NDArray[np.float64]) -> csc_matrix:
         """:meth:`jacobian` as a sparse matrix (its entries gathered without the dense
@@ -376,14 +372,7 @@ class Balance:
 
         Parameters
         ----------
-        x : ndarray
-            (N, 2) roller positions [m].
-        th : ndarray
-            (n,) sprocket angles [rad].
-        rest : float
-            Rest length of the links [m].
-        r0 : ndarray
-            The residual at (x, θ, ℓ₀) [N].
+        %(balance_point)s
 
         Returns
         -------
