@@ -255,6 +255,11 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     print(f"link-level model, {result.times[-1]:.3f} s simulated: max span force "
           f"{result.peak_span_force.max():.1f} N, K_D = {_fmt(kd)}; histories written to "
           f"{output}")
+    eq = result.equilibrium
+    if not eq.get("converged", True):
+        print(f"note: the static state the run starts from stopped short of its tolerance "
+              f"(largest force left {eq['residual_force_n']:.3g} N, reference span "
+              f"{eq['reference_tension_error_n']:+.3g} N off T0); these figures rest on it")
 
 
 @app.command()
