@@ -115,6 +115,25 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
     "field_path": "path : str\n    A ``sprockets[2].x``-style path.",
     "geometry_the_contour": "geometry : GeometryResult\n    The contour.",
+    "centres_signed_radii": "Parameters\n----------\ncentres : numpy.ndarray\n"
+                            "    (n, 2) sprocket centres [m].\nradii : numpy.ndarray\n"
+                            "    (n,) signed pitch radii [m] (negative on the inside of the "
+                            "contour).",
+    # the inputs of a contour's layout, and of the two-sprocket closed forms (geometry/contour.py)
+    "layout_inputs": "centres : numpy.ndarray\n    (n, 2) sprocket centres [m].\n"
+                     "radii_abs : numpy.ndarray\n    (n,) pitch radii R [m].\n"
+                     "inside : numpy.ndarray\n    (n,) True for a sprocket on the inside of "
+                     "the contour.\nteeth : numpy.ndarray\n    (n,) numbers of teeth z [-].\n"
+                     "pitch : float\n    Chain pitch p [m].",
+    "two_sprocket_links": "center_distance : float\n    Centre distance a [m].\npitch : float\n"
+                          "    Chain pitch p [m].\nz1, z2 : int\n    Teeth of the two sprockets "
+                          "[-].\n\nReturns\n-------\nfloat\n    L_p [pitches] (not rounded).",
+    "two_sprocket_center_distance": "links : float\n    Chain length L_p [pitches].\n"
+                                    "pitch : float\n    Chain pitch p [m].\nz1, z2 : int\n"
+                                    "    Teeth of the two sprockets [-].\n\nReturns\n-------\n"
+                                    "float\n    Centre distance a [m].\n\nRaises\n------\n"
+                                    "GeometryError\n    On ``chain.links`` when the links are "
+                                    "too few for the sprockets.",
     # the last parameter and the Returns section of a tooth-gap wall
     "wall_returns": "samples : int\n    Points per arc [-].\n\nReturns\n-------\nnumpy.ndarray\n"
                     "    (k, 2) points of the wall, x along the tangent, y radial outward [m].",
@@ -131,12 +150,42 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                      "    (S,) the spans that carry (None: all).\n\nReturns\n-------\nndarray",
     "pitch_teeth_array": "pitch : float or array_like\n    Chain pitch p [m].\n"
                          "teeth : int or array_like\n    Number of teeth z [-].",
+    # the Parameters section and the Returns type of a diameter by the tooth form
+    "tooth_form_diameter_returns": "Parameters\n----------\npitch : float or array_like\n"
+                                   "    Chain pitch p [m].\nteeth : int or array_like\n"
+                                   "    Number of teeth z [-].\nroller_diameter : float or "
+                                   "array_like\n    Roller diameter d1 [m].\nform : {\"ISO 606\", "
+                                   "\"GOST 591\"}\n    The tooth form.\n\nReturns\n-------\n"
+                                   "float or numpy.ndarray",
+    # the whole Parameters section and the Returns type of a speed of the chain (kinematics.py)
+    "pitch_teeth_speed_returns": "Parameters\n----------\npitch : float or array_like\n"
+                                 "    Chain pitch p [m].\nteeth : int or array_like\n"
+                                 "    Number of teeth z [-].\nspeed : float or array_like\n"
+                                 "    Angular speed ω [rad/s].\n\nReturns\n-------\n"
+                                 "float or numpy.ndarray",
+    "pitch_teeth_speed_phase_returns": "Parameters\n----------\npitch : float or array_like\n"
+                                       "    Chain pitch p [m].\nteeth : int or array_like\n"
+                                       "    Number of teeth z [-].\nspeed : float or "
+                                       "array_like\n    Angular speed ω [rad/s].\nphase : "
+                                       "float or array_like\n    Tooth phase ψ [rad].\n\n"
+                                       "Returns\n-------\nfloat or numpy.ndarray",
     "roller_diameter_array": "roller_diameter : float or array_like\n"
                              "    Roller diameter d1 [m].",
     "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",
     "units": _UNITS,
     "units_force": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf (US)\n'
                    '    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).',
+    "ax_returns_figure": "ax : Axes or None\n    Axes to draw into (None: a new figure).\n\n"
+                         "Returns\n-------\nFigure\n    The figure drawn into.",
+    "campbell": "campbell : CampbellData\n    The model's Campbell data.",
+    # the drawing of a link-level state (plotting/linklevel.py)
+    "magnify_units": "magnify : float\n    Scale of the transverse deviations of the free rollers "
+                     "[-].\nunits : {\"SI\", \"US\"}\n    Unit system: positions in m (SI) or ft "
+                     "(US), link tensions in N (SI) or lbf (US)\n    (:data:`chaindrive.display."
+                     "QUANTITIES`, kinds ``\"distance\"`` and ``\"force\"``).",
+    "units_force_figure": 'units : {"SI", "US"}\n    Unit system of the forces: N (SI) or lbf '
+                          '(US)\n    (:data:`chaindrive.display.QUANTITIES`, kind ``"force"``).'
+                          "\n\nReturns\n-------\nFigure\n    The figure drawn into.",
     "returns_figure": "Figure\n    The figure drawn into.",
     "inp": "inp : ReportInput\n    The analysis and the report's settings.",
     "params_inp": "Parameters\n----------\ninp : ReportInput\n"
@@ -205,6 +254,9 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "params_dxf_page": "Parameters\n----------\ndoc : ezdxf.document.Drawing\n"
                        "    A DXF document.\npage_width_mm : float\n"
                        "    Width of the page of a document of several sheets [mm].",
+    # the Returns section of the measured frequencies a command reads (cli/measure.py)
+    "measured_modes_assumed": "Returns\n-------\nmeasured : list of MeasuredMode\n"
+                              "assumed : list of str\n    What rests on an assumed value.",
     # the Parameters section of a progress indicator of the command line (cli/progress.py)
     "params_progress": "Parameters\n----------\ndescription : str\n    What runs.\n"
                        "quiet : bool\n    True in ``--json`` mode (nothing is drawn).",

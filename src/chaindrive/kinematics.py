@@ -129,15 +129,7 @@ def mean_driven_speed(teeth_driver: ArrayLike, speed_driver: ArrayLike,
 def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """Largest chain speed v_max = R·ω, at β = 0.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    speed : float or array_like
-        Angular speed ω [rad/s].
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_teeth_speed_returns)s
         v_max [m/s].
 
     References
@@ -152,15 +144,7 @@ def max_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> Flo
 def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> FloatOrArray:
     """Smallest chain speed v_min = R·ω·cos(π/z), at β = ±π/z.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    speed : float or array_like
-        Angular speed ω [rad/s].
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_teeth_speed_returns)s
         v_min [m/s].
 
     References
@@ -168,7 +152,7 @@ def min_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike) -> Flo
     [ChainNonUniformity].
     """
     z = _teeth(teeth)
-    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(np.pi / z))
+    return _out(np.asarray(max_chain_speed(pitch, z, speed)) * np.cos(np.pi / z))
 
 
 def speed_variation_percent(teeth: ArrayLike) -> FloatOrArray:
@@ -285,6 +269,31 @@ def articulation_angle(teeth: ArrayLike, phase: ArrayLike) -> FloatOrArray:
 
 
 @shared_parameters
+def _rim_speed_and_angle(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
+                         phase: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Speed R·ω of the pitch circle and angle β = wrap(ψ)/z of the hinge that drives the span.
+
+    Parameters
+    ----------
+    %(pitch_teeth_array)s
+    speed : float or array_like
+        Angular speed ω [rad/s].
+    phase : float or array_like
+        Tooth phase ψ [rad].
+
+    Returns
+    -------
+    rim_speed : numpy.ndarray
+        R·ω [m/s].
+    beta : numpy.ndarray
+        β [rad].
+    """
+    z = _teeth(teeth)
+    rim_speed = np.asarray(max_chain_speed(pitch, z, speed), dtype=float)
+    return rim_speed, np.asarray(articulation_angle(z, phase), dtype=float)
+
+
+@shared_parameters
 def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                               phase: ArrayLike) -> FloatOrArray:
     """Chain speed along the span v = R·ω·cos β, β = wrap(ψ)/z.
@@ -306,9 +315,8 @@ def instantaneous_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLi
     ----------
     [ChainNonUniformity, eq. 6].
     """
-    z = _teeth(teeth)
-    beta = np.asarray(articulation_angle(z, phase))
-    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.cos(beta))
+    rim_speed, beta = _rim_speed_and_angle(pitch, teeth, speed, phase)
+    return _out(rim_speed * np.cos(beta))
 
 
 @shared_parameters
@@ -316,26 +324,15 @@ def transverse_chain_speed(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
                            phase: ArrayLike) -> FloatOrArray:
     """Speed of the span end across the span v' = R·ω·sin β.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    speed : float or array_like
-        Angular speed ω [rad/s].
-    phase : float or array_like
-        Tooth phase ψ [rad].
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_teeth_speed_phase_returns)s
         v' [m/s].
 
     References
     ----------
     [ChainNonUniformity].
     """
-    z = _teeth(teeth)
-    beta = np.asarray(articulation_angle(z, phase))
-    return _out(_radius(pitch, z) * np.asarray(speed, float) * np.sin(beta))
+    rim_speed, beta = _rim_speed_and_angle(pitch, teeth, speed, phase)
+    return _out(rim_speed * np.sin(beta))
 
 
 def instantaneous_driven_speed(pitch: ArrayLike, teeth_driver: ArrayLike,
@@ -543,17 +540,7 @@ def hinge_velocity_deviation(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLik
                              phase: ArrayLike) -> FloatOrArray:
     """Speed deviation of the hinge dδ/dτ = v(τ) − v̄ = R ω cos β − z p ω/(2π).
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    speed : float or array_like
-        Angular speed ω [rad/s].
-    phase : float or array_like
-        Tooth phase ψ [rad].
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_teeth_speed_phase_returns)s
         dδ/dτ [m/s].
     """
     z = _teeth(teeth)

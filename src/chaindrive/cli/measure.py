@@ -7,11 +7,14 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.cli.tables import console, escape, table
 from chaindrive.display import fmt
 from chaindrive.io.atomic import atomic_path
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from chaindrive.analysis import Analysis
     from chaindrive.identification import (
         Identification,
@@ -26,6 +29,25 @@ __all__ = ["measured_dampings", "measured_modes", "measured_tap_modes", "print_c
            "print_tension", "save_campbell", "save_figure", "save_orders"]
 
 
+def _check_one_source(natural: list[str] | None, record: Path | None, mode: str) -> None:
+    """Raise the error of ``--natural`` unless exactly one of it and ``--record`` is given
+    (``mode``: how the hint names the mode, ``"MODE"`` or ``"1"``)."""
+    from chaindrive.errors import DesignError  # lazy, as the commands' imports
+
+    if (natural is None) == (record is None):
+        raise DesignError("--natural", f"give either --natural {mode}=FREQUENCY or --record FILE")
+
+
+def _mode_and_value(item: str) -> tuple[int | None, str]:
+    """The mode number (None unless a whole number ≥ 1 stands before an ``=``) and the text
+    after the ``=`` of a ``MODE=VALUE`` item."""
+    mode, sep, value = item.partition("=")
+    if not sep or not mode.strip().isdigit() or int(mode) < 1:
+        return None, value
+    return int(mode), value
+
+
+@shared_parameters
 def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
                    tolerance: str | None) -> tuple[list[MeasuredMode], list[str]]:
     """The measured natural frequencies of ``chaindrive calibrate``: from ``--natural
@@ -43,11 +65,7 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     tolerance : str | None
         ± of each --natural frequency (None: ±1 % of it, assumed).
 
-    Returns
-    -------
-    measured : list of MeasuredMode
-    assumed : list of str
-        What rests on an assumed value.
+    %(measured_modes_assumed)s
     """
     # lazy: the identification stack only for this command
     import chaindrive
@@ -55,8 +73,7 @@ def measured_modes(drive: Drive, natural: list[str] | None, record: Path | None,
     from chaindrive.identification import identify, measured_natural_peaks, model_lines
     from chaindrive.io.record import read_record
 
-    if (natural is None) == (record is None):
-        raise DesignError("--natural", "give either --natural MODE=FREQUENCY or --record FILE")
+    _check_one_source(natural, record, "MODE")
     if record is not None:
         measured = read_record(record)
         lines = model_lines(chaindrive.analyze(drive, response=False), measured.sample_rate / 2)
@@ -79,16 +96,17 @@ def _natural_modes(natural: list[str], tolerance: str | None
 
     out = []
     for item in natural:
-        mode, sep, freq = item.partition("=")
-        if not sep or not mode.strip().isdigit() or int(mode) < 1:
+        mode, freq = _mode_and_value(item)
+        if mode is None:
             raise DesignError("--natural", f"{item!r}; allowed: MODE=FREQUENCY such as 1=62.3Hz")
         f = parse_quantity(freq, "frequency", "--natural")
         a = (0.01 * f if tolerance is None
              else parse_quantity(tolerance, "frequency", "--tolerance"))
-        out.append(MeasuredMode(int(mode), f, a / 3.0 ** 0.5))
+        out.append(MeasuredMode(mode, f, a / 3.0 ** 0.5))
     return out, (["each frequency ± 1 %"] if tolerance is None else [])
 
 
+@shared_parameters
 def measured_tap_modes(natural: list[str] | None, record: Path | None, tolerance: str | None
                        ) -> tuple[list[MeasuredMode], list[str]]:
     """The measured first mode along the chain of ``chaindrive calibrate --model links``:
@@ -105,19 +123,13 @@ def measured_tap_modes(natural: list[str] | None, record: Path | None, tolerance
     tolerance : str | None
         ± of the --natural frequency (None: ±1 % of it, assumed).
 
-    Returns
-    -------
-    measured : list of MeasuredMode
-    assumed : list of str
-        What rests on an assumed value.
+    %(measured_modes_assumed)s
     """
     # lazy: the identification stack only for this command
-    from chaindrive.errors import DesignError
     from chaindrive.identification import MeasuredMode, record_peak
     from chaindrive.io.record import read_record
 
-    if (natural is None) == (record is None):
-        raise DesignError("--natural", "give either --natural 1=FREQUENCY or --record FILE")
+    _check_one_source(natural, record, "1")
     if record is not None:
         peak = record_peak(read_record(record))
         return [MeasuredMode(1, peak.frequency, peak.resolution / (2.0 * math.sqrt(3.0)))], []
@@ -150,16 +162,16 @@ def measured_dampings(damping: list[str] | None, tolerance: float | None
         raise DesignError("--damping-tolerance", f"{tolerance!r}; allowed: above 0 and below 1")
     out = []
     for item in damping or []:
-        mode, sep, value = item.partition("=")
+        mode, value = _mode_and_value(item)
         try:
             zeta = float(value)
         except ValueError:
             zeta = math.nan
-        if not sep or not mode.strip().isdigit() or int(mode) < 1 or not 0 < zeta < 1:
+        if mode is None or not 0 < zeta < 1:
             raise DesignError("--damping", f"{item!r}; allowed: MODE=ZETA with ZETA above 0 "
                               "and below 1, such as 1=0.03")
         a = 0.2 * zeta if tolerance is None else tolerance
-        out.append(MeasuredDamping(int(mode), zeta, a / 3.0 ** 0.5))
+        out.append(MeasuredDamping(mode, zeta, a / 3.0 ** 0.5))
     return out, (["each damping ratio ± 20 %"] if out and tolerance is None else [])
 
 
@@ -308,8 +320,7 @@ def save_campbell(result: Identification, analysis: Analysis, output: Path,
         raise DesignError("--campbell", "the design gives no driver speed, so no Campbell data")
     fig = (measured_campbell(result, campbell, speed * RPM_PER_RAD_S) if tracking is None
            else runup_campbell(tracking, campbell, speed * RPM_PER_RAD_S))
-    with atomic_path(output, field="--campbell") as tmp:
-        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
+    _save(fig, output, "--campbell")
 
 
 def save_orders(tracking: OrderTracking, output: Path) -> None:
@@ -326,9 +337,7 @@ def save_orders(tracking: OrderTracking, output: Path) -> None:
     # lazy: matplotlib only when a figure is asked for
     from chaindrive.plotting.identification import order_spectrum
 
-    fig = order_spectrum(tracking)
-    with atomic_path(output, field="--orders") as tmp:
-        fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
+    _save(order_spectrum(tracking), output, "--orders")
 
 
 def save_figure(result: Identification, output: Path) -> None:
@@ -345,8 +354,13 @@ def save_figure(result: Identification, output: Path) -> None:
     # lazy: matplotlib only when a figure is asked for
     from chaindrive.plotting.identification import measured_spectrum
 
-    fig = measured_spectrum(result)
-    with atomic_path(output, field="--output") as tmp:
+    _save(measured_spectrum(result), output, "--output")
+
+
+def _save(fig: Figure, output: Path, field: str) -> None:
+    """Write ``fig`` atomically to ``output`` in the format its suffix names, at 120 dpi
+    (``field``: the option named by an error)."""
+    with atomic_path(output, field=field) as tmp:
         fig.savefig(tmp, format=output.suffix.lower().lstrip("."), dpi=120)
 
 

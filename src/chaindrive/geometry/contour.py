@@ -107,15 +107,11 @@ def _radii(pitch: float, teeth: NDArray[np.int_] | list[int]) -> NDArray[np.floa
     return np.atleast_1d(np.asarray(pitch_radius(pitch, teeth), dtype=float))
 
 
+@shared_parameters
 def span_normals(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
     """Unit normals of the tangent spans k → k+1 (eq. 2 of the module docstring).
 
-    Parameters
-    ----------
-    centres : numpy.ndarray
-        (n, 2) sprocket centres [m].
-    radii : numpy.ndarray
-        (n,) signed pitch radii [m] (negative on the inside of the contour).
+    %(centres_signed_radii)s
 
     Returns
     -------
@@ -145,15 +141,11 @@ def span_normals(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> ND
     return normals
 
 
+@shared_parameters
 def span_lengths(centres: NDArray[np.float64], radii: NDArray[np.float64]) -> NDArray[np.float64]:
     """Tangent span lengths ℓ = √(L² − (r_i − r_j)²) for spans k → k+1.
 
-    Parameters
-    ----------
-    centres : numpy.ndarray
-        (n, 2) sprocket centres [m].
-    radii : numpy.ndarray
-        (n,) signed pitch radii [m].
+    %(centres_signed_radii)s
 
     Returns
     -------
@@ -209,15 +201,7 @@ def solve_layout(centres: NDArray[np.float64], radii_abs: NDArray[np.float64],
 
     Parameters
     ----------
-    centres : numpy.ndarray
-        (n, 2) sprocket centres [m].
-    radii_abs : numpy.ndarray
-        (n,) pitch radii R [m].
-    inside : numpy.ndarray
-        (n,) True for a sprocket on the inside of the contour.
-    teeth : numpy.ndarray
-        (n,) numbers of teeth z [-].
-    %(pitch)s
+    %(layout_inputs)s
     prefer : int
         The orientation tried first: +1 counter-clockwise, −1 clockwise (it decides only a
         contour that closes both ways, e.g. two sprockets on the outside).
@@ -254,15 +238,7 @@ def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64
 
     Parameters
     ----------
-    centres : numpy.ndarray
-        (n, 2) sprocket centres [m].
-    radii_abs : numpy.ndarray
-        (n,) pitch radii R [m].
-    inside : numpy.ndarray
-        (n,) True for a sprocket on the inside of the contour.
-    teeth : numpy.ndarray
-        (n,) numbers of teeth z [-].
-    %(pitch)s
+    %(layout_inputs)s
 
     Returns
     -------
@@ -280,6 +256,11 @@ def tight_pitches_of(centres: NDArray[np.float64], radii_abs: NDArray[np.float64
 # --- two-sprocket closed forms -------------------------------------------------------------
 
 
+def _too_few_links(links: float, z1: int, z2: int) -> GeometryError:
+    """The error of a chain of ``links`` too short to go round sprockets of z1 and z2 teeth."""
+    return GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
+
+
 @shared_parameters
 def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: int) -> float:
     """Tight length of a two-sprocket drive, exact on the pitch polygons, eq. (4).
@@ -288,16 +269,7 @@ def two_sprocket_links_exact(center_distance: float, pitch: float, z1: int, z2: 
 
     Parameters
     ----------
-    center_distance : float
-        Centre distance a [m].
-    %(pitch)s
-    z1, z2 : int
-        Teeth of the two sprockets [-].
-
-    Returns
-    -------
-    float
-        L_p [pitches] (not rounded).
+    %(two_sprocket_links)s
     """
     r1, r2 = _radii(pitch, [z1, z2])
     gamma = math.asin((r2 - r1) / center_distance)
@@ -311,16 +283,7 @@ def two_sprocket_links_iso10823(center_distance: float, pitch: float, z1: int, z
 
     Parameters
     ----------
-    center_distance : float
-        Centre distance a [m].
-    %(pitch)s
-    z1, z2 : int
-        Teeth of the two sprockets [-].
-
-    Returns
-    -------
-    float
-        L_p [pitches] (not rounded).
+    %(two_sprocket_links)s
 
     References
     ----------
@@ -338,21 +301,7 @@ def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z
 
     Parameters
     ----------
-    links : float
-        Chain length L_p [pitches].
-    %(pitch)s
-    z1, z2 : int
-        Teeth of the two sprockets [-].
-
-    Returns
-    -------
-    float
-        Centre distance a [m].
-
-    Raises
-    ------
-    GeometryError
-        On ``chain.links`` when the links are too few for the sprockets.
+    %(two_sprocket_center_distance)s
 
     References
     ----------
@@ -361,7 +310,7 @@ def two_sprocket_center_distance_iso10823(links: float, pitch: float, z1: int, z
     b = links - (z1 + z2) / 2
     disc = b * b - 8.0 * ((z2 - z1) / TWO_PI) ** 2
     if disc < 0:
-        raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
+        raise _too_few_links(links, z1, z2)
     return pitch / 4.0 * (b + math.sqrt(disc))
 
 
@@ -371,21 +320,7 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
 
     Parameters
     ----------
-    links : float
-        Chain length L_p [pitches].
-    %(pitch)s
-    z1, z2 : int
-        Teeth of the two sprockets [-].
-
-    Returns
-    -------
-    float
-        Centre distance a [m].
-
-    Raises
-    ------
-    GeometryError
-        On ``chain.links`` when the links are too few for the sprockets.
+    %(two_sprocket_center_distance)s
     """
     r1, r2 = _radii(pitch, [z1, z2])
     a_min = abs(r2 - r1) * (1 + 1e-12) + 1e-12
@@ -396,7 +331,7 @@ def two_sprocket_center_distance_exact(links: float, pitch: float, z1: int, z2: 
 
     f_min, f_max = excess(a_min), excess(a_max)
     if f_min > 0:
-        raise GeometryError("chain.links", f"{links} links are too few for z1 = {z1}, z2 = {z2}")
+        raise _too_few_links(links, z1, z2)
     return bracketed_root(excess, a_min, a_max, f_min, f_max, xtol=1e-14)
 
 

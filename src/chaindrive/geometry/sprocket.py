@@ -10,6 +10,7 @@ Sources: [ISO606], [DIN8196], [GOST591], [ChainNonUniformity], [Bhandari2010, Ex
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -82,6 +83,27 @@ def _check_form(form: str) -> None:
                           f"got {form!r}")
 
 
+def _iso606_mean_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
+                              roller_diameter: ArrayLike) -> FloatOrArray:
+    """ISO 606 tip diameter: the mean (da,min + da,max)/2 of its limits [m]."""
+    lo, hi = iso606_tip_diameter_range(pitch, teeth, roller_diameter)
+    return _out(0.5 * (np.asarray(lo) + np.asarray(hi)))
+
+
+#: a diameter of the tooth form [m] of (pitch, teeth, roller_diameter), by the form's name
+_DiameterFormula = Callable[[ArrayLike, ArrayLike, ArrayLike], FloatOrArray]
+_TIP_DIAMETER: dict[str, _DiameterFormula] = {"ISO 606": _iso606_mean_tip_diameter,
+                                              "GOST 591": gost591_tip_diameter}
+_ROOT_DIAMETER: dict[str, _DiameterFormula] = {"ISO 606": iso606_root_diameter,
+                                               "GOST 591": gost591_root_diameter}
+
+
+def _of_form(form: str, formulas: dict[str, _DiameterFormula]) -> _DiameterFormula:
+    """The formula of ``formulas`` for the tooth form ``form`` (checked first)."""
+    _check_form(form)
+    return formulas[form]
+
+
 @shared_parameters
 def tip_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
                  form: Literal["ISO 606", "GOST 591"] = "ISO 606") -> FloatOrArray:
@@ -91,27 +113,14 @@ def tip_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike,
     [Bhandari2010, Example 14.5] reports; any value in the range is standard. GOST 591:
     De = t·(K + ctg(180°/z)).
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    %(roller_diameter_array)s
-    form : {"ISO 606", "GOST 591"}
-        The tooth form.
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(tooth_form_diameter_returns)s
         Tip diameter [m].
 
     References
     ----------
     [ISO606]; [GOST591].
     """
-    _check_form(form)
-    if form == "GOST 591":
-        return gost591_tip_diameter(pitch, teeth, roller_diameter)
-    lo, hi = iso606_tip_diameter_range(pitch, teeth, roller_diameter)
-    return _out(0.5 * (np.asarray(lo) + np.asarray(hi)))
+    return _of_form(form, _TIP_DIAMETER)(pitch, teeth, roller_diameter)
 
 
 @shared_parameters
@@ -120,26 +129,14 @@ def root_diameter(pitch: ArrayLike, teeth: ArrayLike, roller_diameter: ArrayLike
     """Root diameter by the chosen tooth form: ISO 606 df = d − d1 (nominal); GOST 591
     Di = dд − 2r.
 
-    Parameters
-    ----------
-    %(pitch_teeth_array)s
-    %(roller_diameter_array)s
-    form : {"ISO 606", "GOST 591"}
-        The tooth form.
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(tooth_form_diameter_returns)s
         Root diameter [m].
 
     References
     ----------
     [ISO606]; [GOST591].
     """
-    _check_form(form)
-    if form == "GOST 591":
-        return gost591_root_diameter(pitch, teeth, roller_diameter)
-    return iso606_root_diameter(pitch, teeth, roller_diameter)
+    return _of_form(form, _ROOT_DIAMETER)(pitch, teeth, roller_diameter)
 
 
 @shared_parameters

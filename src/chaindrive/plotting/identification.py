@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.plotting._base import CYCLE, figure_axes, finish
 from chaindrive.units import RAD_S_PER_RPM, TWO_PI
 
@@ -61,6 +62,23 @@ def _model_lines(ax: Axes, lines: Sequence[Any], top: float, suffix: str) -> lis
     return drawn
 
 
+def _room_for_labels(ax: Axes) -> None:
+    """Raise the top of ``ax``'s y axis by 15 % of its span: room for the peaks' labels."""
+    low, high = ax.get_ylim()
+    ax.set_ylim(low, high + 0.15 * (high - low))
+
+
+def _campbell_axes(campbell: CampbellData, operating_rpm: float,
+                   ax: Axes | None) -> tuple[Figure, Axes]:
+    """The model's Campbell diagram drawn at ``operating_rpm`` [rpm] into ``ax`` (None: a new
+    figure), and the axes it is drawn in."""
+    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
+
+    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
+    return fig, fig.axes[0] if ax is None else ax
+
+
+@shared_parameters
 def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figure:
     """Each signal's power spectral density [dB] against frequency [Hz], its peaks marked and
     labelled, the model's lines within the plotted range drawn as vertical lines by kind,
@@ -70,13 +88,7 @@ def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figu
     ----------
     result : Identification
         :func:`chaindrive.identification.identify`.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-
-    Returns
-    -------
-    Figure
-        The figure drawn into.
+    %(ax_returns_figure)s
     """
     fig, ax = figure_axes(ax, (7.5, 4.2))
     top = _traces(ax, [(s.name, s.frequencies, s.psd, [(p.frequency, p.level_db, p.line)
@@ -88,8 +100,7 @@ def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figu
             ax.axvspan(line.frequency * (1 - result.tolerance),
                        line.frequency * (1 + result.tolerance), color=CYCLE[c % len(CYCLE)],
                        alpha=0.08, lw=0)
-    low, high = ax.get_ylim()
-    ax.set_ylim(low, high + 0.15 * (high - low))  # room for the peaks' labels
+    _room_for_labels(ax)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("power spectral density [dB]")
     ax.legend(fontsize="x-small")
@@ -97,6 +108,7 @@ def measured_spectrum(result: Identification, *, ax: Axes | None = None) -> Figu
     return fig
 
 
+@shared_parameters
 def measured_campbell(result: Identification, campbell: CampbellData, operating_rpm: float, *,
                       ax: Axes | None = None) -> Figure:
     """The model's Campbell diagram (:func:`chaindrive.plotting.dynamics.campbell_diagram`)
@@ -108,22 +120,12 @@ def measured_campbell(result: Identification, campbell: CampbellData, operating_
     ----------
     result : Identification
         :func:`chaindrive.identification.identify`.
-    campbell : CampbellData
-        The model's Campbell data.
+    %(campbell)s
     operating_rpm : float
         Driver speed of the record [rpm].
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-
-    Returns
-    -------
-    Figure
-        The figure drawn into.
+    %(ax_returns_figure)s
     """
-    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
-
-    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
-    axes = fig.axes[0] if ax is None else ax
+    fig, axes = _campbell_axes(campbell, operating_rpm, ax)
     peaks = [p for sig in result.signals for p in sig.peaks]
     matched = [p.frequency for p in peaks if p.line is not None]
     alone = [p.frequency for p in peaks if p.line is None]
@@ -140,6 +142,7 @@ def measured_campbell(result: Identification, campbell: CampbellData, operating_
     return fig
 
 
+@shared_parameters
 def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure:
     """Each signal's order spectrum [dB] against the driver order, its peaks marked and
     labelled, the shaft and tooth orders as vertical lines, and shaded the band of orders
@@ -149,13 +152,7 @@ def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure
     ----------
     tracking : OrderTracking
         :func:`chaindrive.identification.track_orders`.
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-
-    Returns
-    -------
-    Figure
-        The figure drawn into.
+    %(ax_returns_figure)s
     """
     fig, ax = figure_axes(ax, (7.5, 4.2))
     top = _traces(ax, [(s.name, s.orders, s.psd, [(p.order, p.level_db, p.line)
@@ -171,8 +168,7 @@ def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure
                    alpha=0.06, lw=0,
                    label="natural frequency swept over the run-up" if first else None)
         first = False
-    low, high = ax.get_ylim()
-    ax.set_ylim(low, high + 0.15 * (high - low))
+    _room_for_labels(ax)
     ax.set_xlim(0.0, top)
     ax.set_xlabel("order [cycles per driver revolution]")
     ax.set_ylabel("spectral density [dB per order]")
@@ -182,6 +178,7 @@ def order_spectrum(tracking: OrderTracking, *, ax: Axes | None = None) -> Figure
     return fig
 
 
+@shared_parameters
 def runup_campbell(tracking: OrderTracking, campbell: CampbellData, operating_rpm: float, *,
                    ax: Axes | None = None) -> Figure:
     """The model's Campbell diagram (:func:`chaindrive.plotting.dynamics.campbell_diagram`)
@@ -192,22 +189,12 @@ def runup_campbell(tracking: OrderTracking, campbell: CampbellData, operating_rp
     ----------
     tracking : OrderTracking
         :func:`chaindrive.identification.track_orders`.
-    campbell : CampbellData
-        The model's Campbell data.
+    %(campbell)s
     operating_rpm : float
         The design's driver speed [rpm].
-    ax : Axes or None
-        Axes to draw into (None: a new figure).
-
-    Returns
-    -------
-    Figure
-        The figure drawn into.
+    %(ax_returns_figure)s
     """
-    from chaindrive.plotting.dynamics import campbell_diagram  # lazy: as the package does
-
-    fig = campbell_diagram(campbell, ax=ax, operating_rpm=operating_rpm)
-    axes = fig.axes[0] if ax is None else ax
+    fig, axes = _campbell_axes(campbell, operating_rpm, ax)
     pts = tracking.points
     for matched, face, label in ((True, None, "measured (matched)"),
                                  (False, "none", "measured (unexplained)")):

@@ -12,7 +12,7 @@ import numpy as np
 
 from chaindrive._docstrings import shared_parameters
 from chaindrive.display import UnitSystem
-from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, new_figure, scale
+from chaindrive.plotting._base import CYCLE, GREY, figure_axes, finish, force_axes, new_figure, scale
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
@@ -101,11 +101,7 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     time_s : float or None
         The instant [s] (None: the last recorded one).
     %(ax)s
-    magnify : float
-        Scale of the transverse deviations of the free rollers [-].
-    units : {"SI", "US"}
-        Unit system: positions in m (SI) or ft (US), link tensions in N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kinds ``"distance"`` and ``"force"``).
+    %(magnify_units)s
 
     Returns
     -------
@@ -121,6 +117,7 @@ def chain_frame(result: LinkLevelResult, time_s: float | None = None, *, ax: Axe
     return fig
 
 
+@shared_parameters
 def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
                  columns: int | None = None, magnify: float = 1.0,
                  units: UnitSystem = "SI") -> Figure:
@@ -136,11 +133,7 @@ def chain_frames(result: LinkLevelResult, times_s: Sequence[float], *,
     columns : int or None
         Axes per row [-] (None: one column for a contour more than twice as wide as high,
         else two).
-    magnify : float
-        Scale of the transverse deviations of the free rollers [-].
-    units : {"SI", "US"}
-        Unit system: positions in m (SI) or ft (US), link tensions in N (SI) or lbf (US)
-        (:data:`chaindrive.display.QUANTITIES`, kinds ``"distance"`` and ``"force"``).
+    %(magnify_units)s
 
     Returns
     -------
@@ -189,14 +182,9 @@ def tooth_loads(result: LinkLevelResult, *, ax: Axes | None = None,
     result : LinkLevelResult
         A link-level run.
     %(ax)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(units_force_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 3.6))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.4, 3.6), units)
     for i, (name, loads) in enumerate(zip(result.names, result.tooth_loads, strict=True)):
         ax.plot(np.arange(loads.size), loads * factor, "o-", color=CYCLE[i % len(CYCLE)], label=name,
                 markersize=3)
@@ -239,14 +227,9 @@ def tension_along_chain(result: LinkLevelResult, times_s: Sequence[float] | None
     times_s : sequence of float or None
         The instants [s] (None: :func:`frame_times`).
     %(ax)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(units_force_figure)s
     """
-    fig, ax = figure_axes(ax, (6.4, 3.4))
-    factor, unit = scale("force", units)
+    fig, ax, factor, unit = force_axes(ax, (6.4, 3.4), units)
     times = frame_times(result) if times_s is None else list(times_s)
     links = np.arange(result.link_tensions.shape[1])
     for j, t in enumerate(times):

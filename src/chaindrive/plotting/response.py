@@ -104,11 +104,7 @@ def startup_oscillogram(startup: StartupResult, *, ax: Axes | None = None,
         The start-up.
     %(ax)s
     %(span_curves)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(units_force_figure)s
     """
     fig, ax, factor, unit = force_axes(ax, (6.4, 3.6), units)
     t = np.asarray(startup.times) * 1e3
@@ -237,11 +233,7 @@ def afc_curves(afc: AfcResult, *, ax: Axes | None = None, names: Sequence[str] |
     mode_numbers : sequence of int or None
         The number each elastic mode carries in the tables, in the order of
         ``afc.natural_frequencies_hz`` (None: the markers' own 1, 2, …).
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(units_force_figure)s
     """
     fig, ax, factor, unit = force_axes(ax, (6.4, 4.0), units)
     fz = np.asarray(afc.tooth_frequencies_hz)
@@ -288,11 +280,7 @@ def steady_loads(steady: SteadyStateResult, *, ax: Axes | None = None,
         The steady state.
     %(ax)s
     %(span_names)s
-    %(units_force)s
-
-    Returns
-    -------
-    %(returns_figure)s
+    %(units_force_figure)s
     """
     fig, ax, factor, unit = force_axes(ax, (6.0, 3.4), units)
     peak = np.asarray(steady.span_dynamic_load) * factor
