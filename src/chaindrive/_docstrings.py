@@ -169,6 +169,12 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                                        "array_like\n    Angular speed ω [rad/s].\nphase : "
                                        "float or array_like\n    Tooth phase ψ [rad].\n\n"
                                        "Returns\n-------\nfloat or numpy.ndarray",
+    # the whole Parameters section and the Returns type of a GOST 591 diameter
+    "pitch_t_teeth_roller_returns": "Parameters\n----------\npitch : float or array_like\n"
+                                    "    Chain pitch t [m].\nteeth : int or array_like\n"
+                                    "    Number of teeth z [-].\nroller_diameter : float or "
+                                    "array_like\n    Roller diameter d1 [m].\n\nReturns\n"
+                                    "-------\nfloat or numpy.ndarray",
     "roller_diameter_array": "roller_diameter : float or array_like\n"
                              "    Roller diameter d1 [m].",
     "ax": "ax : Axes or None\n    Axes to draw into (None: a new figure).",

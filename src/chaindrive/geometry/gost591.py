@@ -96,15 +96,7 @@ def gost591_tip_diameter(pitch: ArrayLike, teeth: ArrayLike,
     """GOST 591-69 tip diameter De = t·(K + ctg(180°/z)) (not rounded; the standard gives De
     to 0.1 mm).
 
-    Parameters
-    ----------
-    %(pitch_t_array)s
-    %(teeth_array)s
-    %(roller_diameter_array)s
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_t_teeth_roller_returns)s
         De [m].
 
     References
@@ -136,15 +128,7 @@ def gost591_root_diameter(pitch: ArrayLike, teeth: ArrayLike,
                           roller_diameter: ArrayLike) -> FloatOrArray:
     """GOST 591-69 root diameter Di = dд − 2r.
 
-    Parameters
-    ----------
-    %(pitch_t_array)s
-    %(teeth_array)s
-    %(roller_diameter_array)s
-
-    Returns
-    -------
-    float or numpy.ndarray
+    %(pitch_t_teeth_roller_returns)s
         Di [m].
 
     References
