@@ -45,6 +45,10 @@ _CHECK = ("check : Check\n"
 _SYSTEM = 'system : {"SI", "US"}\n    The output unit system (:data:`UNIT_SYSTEMS`).'
 _SCREEN = ("screen : Screen\n    The quick screen of the design on the page (its analysis and "
            "JSON document).")
+_PITCH_TEETH_SPEED = ("pitch : float or array_like\n    Chain pitch p [m].\nteeth : int or "
+                      "array_like\n    Number of teeth z [-].\nspeed : float or array_like\n"
+                      "    Angular speed ω [rad/s].")
+_PITCH_TEETH_SPEED_PHASE = f"{_PITCH_TEETH_SPEED}\nphase : float or array_like\n    Tooth phase ψ [rad]."
 _ROWS = "list of dict\n    One dict per row: column header (with its unit) → cell."
 
 #: Name → numpydoc entry (first line ``name : type`` — or the type alone in ``Returns`` —,
@@ -158,16 +162,10 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
                                    "\"GOST 591\"}\n    The tooth form.\n\nReturns\n-------\n"
                                    "float or numpy.ndarray",
     # the whole Parameters section and the Returns type of a speed of the chain (kinematics.py)
-    "pitch_teeth_speed_returns": "Parameters\n----------\npitch : float or array_like\n"
-                                 "    Chain pitch p [m].\nteeth : int or array_like\n"
-                                 "    Number of teeth z [-].\nspeed : float or array_like\n"
-                                 "    Angular speed ω [rad/s].\n\nReturns\n-------\n"
-                                 "float or numpy.ndarray",
-    "pitch_teeth_speed_phase_returns": "Parameters\n----------\npitch : float or array_like\n"
-                                       "    Chain pitch p [m].\nteeth : int or array_like\n"
-                                       "    Number of teeth z [-].\nspeed : float or "
-                                       "array_like\n    Angular speed ω [rad/s].\nphase : "
-                                       "float or array_like\n    Tooth phase ψ [rad].\n\n"
+    "pitch_teeth_speed_returns": f"Parameters\n----------\n{_PITCH_TEETH_SPEED}\n\nReturns\n"
+                                 "-------\nfloat or numpy.ndarray",
+    "pitch_teeth_speed_phase": _PITCH_TEETH_SPEED_PHASE,
+    "pitch_teeth_speed_phase_returns": f"Parameters\n----------\n{_PITCH_TEETH_SPEED_PHASE}\n\n"
                                        "Returns\n-------\nfloat or numpy.ndarray",
     # the whole Parameters section and the Returns type of a GOST 591 diameter
     "pitch_t_teeth_roller_returns": "Parameters\n----------\npitch : float or array_like\n"

@@ -275,11 +275,7 @@ def _rim_speed_and_angle(pitch: ArrayLike, teeth: ArrayLike, speed: ArrayLike,
 
     Parameters
     ----------
-    %(pitch_teeth_array)s
-    speed : float or array_like
-        Angular speed ω [rad/s].
-    phase : float or array_like
-        Tooth phase ψ [rad].
+    %(pitch_teeth_speed_phase)s
 
     Returns
     -------
