@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.identification.damping import (
     DampingCalibration,
@@ -35,8 +36,8 @@ if TYPE_CHECKING:
     from chaindrive.model import Drive
 
 __all__ = ["CalibratedDesign", "Calibration", "MassCalibration", "MeasuredMode",
-           "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
-           "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
+           "calibrate_link_stiffness", "calibrated_design", "check_measured_mode",
+           "elastic_frequencies", "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
            "with_reduced_mass", "with_sag"]
 
 @dataclass(frozen=True, slots=True)
@@ -58,16 +59,33 @@ class MeasuredMode:
     std: float
 
 
-def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
-    """The elastic natural frequencies [Hz] of a drive's whole-drive model, lowest first.
+def check_measured_mode(m: MeasuredMode) -> None:
+    """Refuse a measured natural frequency or uncertainty that is not positive (one line
+    naming the ``--natural`` option, the mode and the value).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    m : MeasuredMode
+        One measurement.
 
-    Returns
-    -------
+    Raises
+    ------
+    DesignError
+        The frequency or its uncertainty is not a positive number.
+    """
+    if not (math.isfinite(m.frequency) and m.frequency > 0):
+        raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
+                          "allowed: above 0 Hz")
+    if not (math.isfinite(m.std) and m.std > 0):
+        raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
+                          "above 0 Hz")
+
+
+@shared_parameters
+def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
+    """The elastic natural frequencies [Hz] of a drive's whole-drive model, lowest first.
+
+    %(drive_returns)s
     ndarray
         f [Hz] of the elastic modes.
     """
@@ -261,12 +279,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     if not measured:
         raise DesignError("--natural", "no measured natural frequency; allowed: one or more")
     for m in measured:
-        if not (math.isfinite(m.frequency) and m.frequency > 0):
-            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
-                              "allowed: above 0 Hz")
-        if not (math.isfinite(m.std) and m.std > 0):
-            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
-                              "above 0 Hz")
+        check_measured_mode(m)
     modes = np.array([m.mode for m in measured]) - 1
     f = np.array([m.frequency for m in measured])
     u = np.array([m.std for m in measured])

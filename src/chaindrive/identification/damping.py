@@ -30,6 +30,7 @@ import numpy as np
 from scipy.signal import find_peaks
 from scipy.stats import linregress
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.identification.fitting import fit_log_parameter
 
@@ -205,17 +206,12 @@ def with_damping_ratio(drive: Drive, ratio: float) -> Drive:
                                                                    damping_ratio=ratio))
 
 
+@shared_parameters
 def elastic_damping_ratios(drive: Drive) -> FloatArray:
     """The modal damping ratios [-] of the elastic modes of a drive's whole-drive model,
     lowest frequency first.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     ndarray
         ζ of the elastic modes [-].
     """

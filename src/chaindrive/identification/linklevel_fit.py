@@ -33,9 +33,11 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ConvergenceError, DesignError
 from chaindrive.identification.calibration import (
     MeasuredMode,
+    check_measured_mode,
     verdict_changes,
     with_link_stiffness,
     with_sag,
@@ -82,18 +84,13 @@ SAG_RANGE = (0.001, 0.1)
 Parameter = Literal["link_stiffness", "sag"]
 
 
+@shared_parameters
 def link_level_modes_along_chain(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
     """The link-level model's natural frequencies of its modes along the chain [Hz], lowest
     first: those of :func:`chaindrive.linklevel.modes.linear_modes` with more than half
     their kinetic energy along the chain and in the sprockets' turning.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     ndarray
         f [Hz].
 
@@ -243,12 +240,7 @@ def _checked(measured: Sequence[MeasuredMode]) -> None:
             raise DesignError("--natural", f"mode {m.mode} with --model links; allowed: 1 (the "
                               "link-level model's first mode along the chain; the higher ones "
                               "change order with the link stiffness)")
-        if not (math.isfinite(m.frequency) and m.frequency > 0):
-            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
-                              "allowed: above 0 Hz")
-        if not (math.isfinite(m.std) and m.std > 0):
-            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
-                              "above 0 Hz")
+        check_measured_mode(m)
 
 
 def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
