@@ -29,7 +29,11 @@ from chaindrive.identification.damping import (
     calibrate_damping_ratio,
     with_damping_ratio,
 )
-from chaindrive.identification.fitting import fit_log_parameter, fit_log_parameters
+from chaindrive.identification.fitting import (
+    fit_log_parameter,
+    fit_log_parameters,
+    model_mode_indices,
+)
 
 if TYPE_CHECKING:
     from chaindrive.identification.spectrum import Identification
@@ -280,14 +284,10 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
         raise DesignError("--natural", "no measured natural frequency; allowed: one or more")
     for m in measured:
         check_measured_mode(m)
-    modes = np.array([m.mode for m in measured]) - 1
+    modes = model_mode_indices([m.mode for m in measured], frequencies(drive).size,
+                               "--natural")
     f = np.array([m.frequency for m in measured])
     u = np.array([m.std for m in measured])
-    n_model = frequencies(drive).size
-    bad = [int(k) + 1 for k in modes if not 0 <= k < n_model]
-    if bad:
-        raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
-                          "elastic modes)")
     if uncertain_mass is None:
         fit = fit_log_parameter(
             lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
