@@ -139,7 +139,8 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "params_check_key_returns": "Parameters\n----------\nkey : str\n    The check's key "
                                 "(:attr:`chaindrive.checks.Check.key`).\n\nReturns\n-------",
     "params_metric_returns": "Parameters\n----------\nmetric : str\n    A metric of the "
-                             "result.\n\nReturns\n-------",
+                             "result (a name of :data:`SENSITIVITY_METRICS`).\n\nReturns\n"
+                             "-------",
     "params_design_path_returns": "Parameters\n----------\npath : str or pathlib.Path\n    "
                                   "The design file (TOML).\n\nReturns\n-------",
     # a worn chain on a sprocket (robust/wear.py)

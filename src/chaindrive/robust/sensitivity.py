@@ -266,16 +266,11 @@ class SensitivityResult:
                            _outside(s1[k], c1[k]), _outside(st[k], ct[k]), rank[k])
                 for k, g in enumerate(self.groups)]
 
+    @shared_parameters
     def ranking(self, metric: str) -> list[tuple[str, float]]:
         """Groups by decreasing total index of ``metric``.
 
-        Parameters
-        ----------
-        metric : str
-            A name of :data:`SENSITIVITY_METRICS`.
-
-        Returns
-        -------
+        %(params_metric_returns)s
         list of (str, float)
             (group, total Sobol index S_T [-] clipped to [0, 1]), the largest first; groups
             without a finite index are left out.
