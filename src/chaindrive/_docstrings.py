@@ -114,7 +114,8 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "drive_model": "model : DriveModel\n    The model.",
     "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
     # the robust study (robust/): a state's model under S sets of modal factors, the drive
-    # as drawn with its uncertainty model, the bootstrap of the Sobol indices
+    # as drawn with its uncertainty model, the bootstrap of the Sobol indices, the batched
+    # modal frequencies, a check's key and a sensitivity metric, the design file read
     "params_modal_factors": "Parameters\n----------\nstate : Analysis\n    The analysis of one "
                             "geometric state (factors 1, reference temperature).\ninertia : "
                             "ndarray\n    (S, n) factors on the sprockets' inertias [–].\nlink : "
