@@ -41,8 +41,8 @@ if TYPE_CHECKING:
 
 __all__ = ["CalibratedDesign", "Calibration", "MassCalibration", "MeasuredMode",
            "calibrate_link_stiffness", "calibrated_design", "check_measured_mode",
-           "elastic_frequencies", "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
-           "with_reduced_mass", "with_sag"]
+           "elastic_frequencies", "measured_natural_peaks", "verdict_changes", "with_chain",
+           "with_reduced_mass"]
 
 @dataclass(frozen=True, slots=True)
 class MeasuredMode:
@@ -99,39 +99,23 @@ def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
                       dtype=float)
 
 
-def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
-    """The design with ``[chain] link_stiffness`` set to k [N/m].
+def with_chain(drive: Drive, **values: float) -> Drive:
+    """The design with fields of its ``[chain]`` table set: ``link_stiffness`` k_link [N/m],
+    ``sag`` s, the installed sag of the slack span as a fraction of its length [-], …
 
     Parameters
     ----------
     drive : Drive
         The design.
-    stiffness : float
-        k_link [N/m].
+    **values : float
+        Field name of ``[chain]`` → its value [SI].
 
     Returns
     -------
     Drive
     """
-    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain,
-                                                                link_stiffness=stiffness))
-
-
-def with_sag(drive: Drive, sag: float) -> Drive:
-    """The design with ``[chain] sag`` set to s [-].
-
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-    sag : float
-        s, the installed sag of the slack span as a fraction of its length [-].
-
-    Returns
-    -------
-    Drive
-    """
-    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
+    changes: dict[str, Any] = dict(values)  # Any: mypy checks ** against every field
+    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, **changes))
 
 
 def with_reduced_mass(drive: Drive, sprocket: str, mass: float) -> Drive:
@@ -290,7 +274,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     u = np.array([m.std for m in measured])
     if uncertain_mass is None:
         fit = fit_log_parameter(
-            lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
+            lambda k: frequencies(with_chain(drive, link_stiffness=k))[modes], f, u, initial)
         return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
                            fit.fitted, fit.chi2_per_dof, fit.evaluations)
     name, m0 = uncertain_mass
@@ -298,7 +282,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
         raise DesignError("--uncertain-mass", f"{name}: {f.size} measured frequency; allowed: "
                           "two or more to fit the link stiffness and a reduced mass")
     k_fit, m_fit = fit_log_parameters(
-        lambda x: frequencies(with_reduced_mass(with_link_stiffness(drive, float(x[0])),
+        lambda x: frequencies(with_reduced_mass(with_chain(drive, link_stiffness=float(x[0])),
                                                 name, float(x[1])))[modes], f, u, [initial, m0])
     mass = MassCalibration(name, m0, m_fit.value, m_fit.std_log, m_fit.interval,
                            m_fit.correlation[0])
@@ -435,7 +419,7 @@ def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
         cal = calibrate_link_stiffness(drive, measured,
                                        initial=before.ring_parameters.link_stiffness_n_per_m,
                                        uncertain_mass=mass)
-        calibrated = with_link_stiffness(drive, cal.stiffness)
+        calibrated = with_chain(drive, link_stiffness=cal.stiffness)
         if cal.mass is not None:
             calibrated = with_reduced_mass(calibrated, cal.mass.sprocket, cal.mass.mass)
     zeta = None

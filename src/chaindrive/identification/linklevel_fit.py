@@ -39,8 +39,7 @@ from chaindrive.identification.calibration import (
     MeasuredMode,
     check_measured_mode,
     verdict_changes,
-    with_link_stiffness,
-    with_sag,
+    with_chain,
 )
 from chaindrive.identification.fitting import fit_log_parameter
 
@@ -51,7 +50,7 @@ __all__ = ["GRID_POINTS", "LINK_STIFFNESS_RANGE", "LOG_STEP", "OTHER_STATE",
            "POORLY_IDENTIFIED_RATIO",
            "SAG_RANGE", "LinkLevelCalibration",
            "LinkLevelDesign", "calibrate_link_level", "calibrated_design_link_level",
-           "link_level_modes_along_chain", "with_sag"]
+           "link_level_modes_along_chain"]
 
 #: A 95 % interval wider than this ratio (upper/lower) marks the parameter as poorly
 #: identified by the record [-] (a choice: a factor 2 in k_link or s).
@@ -291,20 +290,18 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
                 (f"the installed sag {100 * installed_sag_ratio(drive):g} % (the default; "
                  "the design gives none)",))
         bounds = (LINK_STIFFNESS_RANGE[0] * x0, LINK_STIFFNESS_RANGE[1] * x0)
-
-        def design(x: float) -> Drive:
-            return with_link_stiffness(drive, x)
     elif parameter == "sag":
         x0 = installed_sag_ratio(drive)
         bounds = SAG_RANGE
         held = (() if drive.chain.link_stiffness is not None else
                 (f"the link stiffness {k0:.4g} N/m (computed from its plates and pins; the design "
                  "gives none)",))
-
-        def design(x: float) -> Drive:
-            return with_sag(drive, x)
     else:
         raise DesignError("--parameter", f"{parameter!r}; allowed: link_stiffness, sag")
+
+    def design(x: float) -> Drive:
+        return with_chain(drive, **{parameter: x})
+
     link_level_modes_along_chain(drive)  # the design as given: refused here, not mid-fit
 
     def runs(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
@@ -368,8 +365,7 @@ def calibrated_design_link_level(drive: Drive, measured: Sequence[MeasuredMode],
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
     cal = calibrate_link_level(drive, measured, parameter=parameter)
-    fitted = (with_link_stiffness(drive, cal.value) if parameter == "link_stiffness"
-              else with_sag(drive, cal.value))
+    fitted = with_chain(drive, **{parameter: cal.value})
     before = analyze(drive, response=False).checks()
     after = analyze(fitted, response=False).checks()
     return LinkLevelDesign(cal, fitted, verdict_changes(before, after))
