@@ -67,10 +67,10 @@ from chaindrive.identification.calibration import (
     MeasuredMode,
     calibrate_link_stiffness,
     elastic_frequencies,
-    with_link_stiffness,
+    with_chain,
 )
 from chaindrive.identification.damping import calibrate_damping_ratio
-from chaindrive.identification.linklevel_fit import calibrate_link_level, with_sag
+from chaindrive.identification.linklevel_fit import calibrate_link_level
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.io.record import record_from_arrays
 
@@ -86,7 +86,7 @@ def clopper_pearson(hits: int, n: int) -> tuple[float, float]:
 
 def sines(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int], Trial]]:
     true = 0.4 * k0
-    f_true = elastic_frequencies(with_link_stiffness(drive, true))[:2]
+    f_true = elastic_frequencies(with_chain(drive, link_stiffness=true))[:2]
     fs = 1000.0
     t = np.arange(0.0, 20.0, 1.0 / fs)
 
@@ -118,7 +118,7 @@ def sag(drive: chaindrive.Drive) -> tuple[float, Callable[[int], Trial]]:
 
 
 def links_k(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int], Trial]]:
-    true = with_link_stiffness(drive, K_SCALE * k0)
+    true = with_chain(drive, link_stiffness=K_SCALE * k0)
     _fs, t, w = _s3_speed(true, 2.0, damping=False)
     x0 = w - w.mean()
 
@@ -134,7 +134,7 @@ def links_k(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int], 
 
 
 def links_zeta(drive: chaindrive.Drive, k0: float) -> tuple[float, Callable[[int], Trial]]:
-    true = with_link_stiffness(drive, K_SCALE * k0)
+    true = with_chain(drive, link_stiffness=K_SCALE * k0)
     zeta_c = float(np.mean(chaindrive.analyze(true, response=False).dynamics.model
                            .span_damping_ratios))
     fs, _t, w = _s3_speed(true, 0.5, damping=True)
@@ -156,9 +156,9 @@ def linkmodel(drive: chaindrive.Drive, k0: float, parameter: str
               ) -> tuple[float, Callable[[int], Trial]]:
     """The small tap fitted with the link-level model (module docstring); prints each
     seed's fit, sensitivity and CPU."""
-    known = with_link_stiffness(drive, K_SCALE * k0)
+    known = with_chain(drive, link_stiffness=K_SCALE * k0)
     true_value = K_SCALE * k0 if parameter == "link_stiffness" else TRUE_SAG
-    _fs, t, w = _s3_speed(known if parameter == "link_stiffness" else with_sag(known, TRUE_SAG),
+    _fs, t, w = _s3_speed(known if parameter == "link_stiffness" else with_chain(known, sag=TRUE_SAG),
                           2.0, damping=False, tap=SMALL_TAP)
     x0 = w - w.mean()
 
@@ -183,7 +183,7 @@ def context(drive: chaindrive.Drive, k0: float) -> None:
     from chaindrive.linklevel.modes import linear_modes
 
     for scale in (0.25, 0.5, 1.0, 2.0):
-        d = with_link_stiffness(drive, scale * k0)
+        d = with_chain(drive, link_stiffness=scale * k0)
         running = elastic_frequencies(d)[0]
         still = elastic_frequencies(dataclasses.replace(d, power=1.0))[0]
         links = linear_modes(d, count=200).first_longitudinal_hz
@@ -196,7 +196,7 @@ def context(drive: chaindrive.Drive, k0: float) -> None:
     from chaindrive.linklevel.equilibrium import installed_geometry
     from chaindrive.linklevel.model import build_model
 
-    true = with_link_stiffness(drive, K_SCALE * k0)
+    true = with_chain(drive, link_stiffness=K_SCALE * k0)
     geometry = installed_geometry(true, contour_geometry(true))[0]
     for label, hinge, contact, damped in (
             ("every damper (links, contacts, hinge friction 0.1)", 0.1, 0.06, True),

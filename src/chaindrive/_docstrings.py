@@ -117,6 +117,59 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter": "roller_diameter : float\n    Roller diameter d1 [m].",
     "drive_model": "model : DriveModel\n    The model.",
     "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
+    # the robust study (robust/): a state's model under S sets of modal factors, the drive
+    # as drawn with its uncertainty model, the bootstrap of the Sobol indices, the batched
+    # modal frequencies, a check's key and a sensitivity metric, the design file read
+    "params_modal_factors": "Parameters\n----------\nstate : Analysis\n    The analysis of one "
+                            "geometric state (factors 1, reference temperature).\ninertia : "
+                            "ndarray\n    (S, n) factors on the sprockets' inertias [–].\nlink : "
+                            "ndarray\n    (S,) factors on the link stiffness [–].\ntemperature : "
+                            "ndarray\n    (S,) temperatures of the polymer parts [°C].",
+    "params_nominal_wear": "Parameters\n----------\nnominal : Analysis\n    The analysis of the "
+                           "drive as drawn.\nmodel : UncertaintyModel\n    Its model (allowable "
+                           "elongation, take-up capacity).",
+    "nominal_modal_returns": "Parameters\n----------\nnominal : Analysis\n    The analysis of "
+                             "the drive as drawn.\nmodel : UncertaintyModel\n    Its uncertainty "
+                             "model (its modal variables are sampled).\n\nReturns\n-------",
+    "sobol_bootstrap_returns": "groups : int\n    G [–].\nconfidence : float\n    Level of the "
+                               "intervals, c [–].\nseed : int\n    Seed of the resampling.\n"
+                               "resamples : int\n    Bootstrap resamples [–].\n\nReturns\n"
+                               "-------\ntuple",
+    "params_system_inertia": "Parameters\n----------\nsystem : TorsionalSystem\n    The system "
+                             "the variants share.\nnode_inertia : ndarray\n    (S, nodes) J of "
+                             "every node [kg·m²]; a node of the system with J = 0 must keep it.",
+    "elastic_frequencies_returns": "Returns\n-------\nndarray\n    (S, E) [Hz], E = massed "
+                                   "coordinates − rigid-body motions.\n\nReferences\n"
+                                   "----------\n[Guyan1965], [Rao2011, ch. 6]",
+    "params_check_key_returns": "Parameters\n----------\nkey : str\n    The check's key "
+                                "(:attr:`chaindrive.checks.Check.key`).\n\nReturns\n-------",
+    "params_metric_returns": "Parameters\n----------\nmetric : str\n    A metric of the "
+                             "result (a name of :data:`SENSITIVITY_METRICS`).\n\nReturns\n"
+                             "-------",
+    "params_design_path_returns": "Parameters\n----------\npath : str or pathlib.Path\n    "
+                                  "The design file (TOML).\n\nReturns\n-------",
+    # a worn chain on a sprocket (robust/wear.py)
+    "worn_pitch_teeth_returns": "Parameters\n----------\npitch : array_like\n    Nominal chain "
+                                "pitch p [m].\nteeth : array_like\n    Teeth z [–].\n"
+                                "elongation : array_like\n    Wear elongation ε [–].\n\n"
+                                "Returns\n-------\nndarray",
+    # the model and the tooth frequency a start-up's step is chosen from
+    # (dynamics/transient/drive_startup.py)
+    "params_model_tooth_frequency": "Parameters\n----------\nmodel : DriveModel\n    The "
+                                    "model.\ntooth_frequency_hz : float\n    f_z [Hz].",
+    # the match of a spectrum's peak to the model's lines (identification/spectrum.py)
+    "tolerance_resolution_returns": "tolerance : float\n    Relative tolerance of the model's "
+                                    "frequencies [-].\nresolution : float\n    One frequency "
+                                    "bin [Hz].\n\nReturns\n-------",
+    "params_samples_rate": "Parameters\n----------\nvalues : ndarray\n    The samples [signal "
+                           "unit].\nsample_rate : float\n    f_s [Hz].",
+    # the last parameters and the Returns heading of a span's hinge-friction energies
+    # (dynamics/damping.py)
+    "amplitude_tension_fit_returns": "relative_amplitude : array_like\n    ȳ_0 [-].\ntension : "
+                                     "array_like\n    Static span tension F_0 [N].\n"
+                                     "coefficients : HingeFrictionCoefficients\n    The chain's "
+                                     "F_max fit (default: the paper's ПР-12,7-1820-1).\n\n"
+                                     "Returns\n-------",
     "field_path": "path : str\n    A ``sprockets[2].x``-style path.",
     "geometry_the_contour": "geometry : GeometryResult\n    The contour.",
     "centres_signed_radii": "Parameters\n----------\ncentres : numpy.ndarray\n"

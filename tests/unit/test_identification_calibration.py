@@ -22,7 +22,7 @@ from chaindrive.identification.calibration import (
     calibrate_link_stiffness,
     elastic_frequencies,
     verdict_changes,
-    with_link_stiffness,
+    with_chain,
     with_reduced_mass,
 )
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
@@ -37,7 +37,7 @@ def drive() -> chaindrive.Drive:
 def test_a_known_stiffness_is_recovered_within_its_interval(drive: chaindrive.Drive) -> None:
     k0 = chaindrive.analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
     true = 0.4 * k0
-    f_true = elastic_frequencies(with_link_stiffness(drive, true))[:2]
+    f_true = elastic_frequencies(with_chain(drive, link_stiffness=true))[:2]
     fs = 1000.0
     t = np.arange(0.0, 20.0, 1.0 / fs)
     rng = np.random.default_rng(11)
@@ -122,7 +122,7 @@ def test_a_known_stiffness_and_reduced_mass_are_recovered_jointly(
     # +2.0σ on modes 1–2 and misses: a single draw is the test, the coverage is in the docs)
     k0 = chaindrive.analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
     k_true, m_true = 0.5 * k0, 1.3 * 2.0
-    f_true = elastic_frequencies(with_reduced_mass(with_link_stiffness(drive, k_true), "S3",
+    f_true = elastic_frequencies(with_reduced_mass(with_chain(drive, link_stiffness=k_true), "S3",
                                                    m_true))[:3]
     u = 1e-3 * f_true
     f = f_true + u * np.random.default_rng(0).standard_normal(3)

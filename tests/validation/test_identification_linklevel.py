@@ -51,7 +51,7 @@ from chaindrive.identification.calibration import (
     MeasuredMode,
     calibrate_link_stiffness,
     elastic_frequencies,
-    with_link_stiffness,
+    with_chain,
 )
 from chaindrive.identification.damping import calibrate_damping_ratio
 from chaindrive.identification.linklevel_damping import (
@@ -66,7 +66,6 @@ from chaindrive.identification.linklevel_damping import (
 from chaindrive.identification.linklevel_fit import (
     POORLY_IDENTIFIED_RATIO,
     calibrate_link_level,
-    with_sag,
 )
 from chaindrive.io.record import record_from_arrays
 from chaindrive.linklevel import simulate
@@ -94,7 +93,7 @@ TRUE_SAG = 0.015
 def seed() -> dict[str, Any]:
     drive = chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
     k0 = chaindrive.analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
-    return {"drive": drive, "k0": k0, "true": with_link_stiffness(drive, K_SCALE * k0)}
+    return {"drive": drive, "k0": k0, "true": with_chain(drive, link_stiffness=K_SCALE * k0)}
 
 
 def _s3_speed(drive: chaindrive.Drive, duration: float, *, damping: bool, tap: float = TAP
@@ -215,7 +214,7 @@ def test_the_link_level_calibration_holds_the_link_stiffness_in_a_wide_interval(
 def test_the_link_level_calibration_recovers_the_sag(seed: dict[str, Any]) -> None:
     # the record at a sag of 1.5 %, fitted from the design (its 2 %, and its link stiffness,
     # twice the record's: the frequency moves by 0.7 % with it, the sag by about 2 %)
-    for m in _small_tap(with_sag(seed["true"], TRUE_SAG), (0, NOISE_SEED)):
+    for m in _small_tap(with_chain(seed["true"], sag=TRUE_SAG), (0, NOISE_SEED)):
         cal = calibrate_link_level(seed["drive"], [m], parameter="sag")
         lo, hi = cal.interval
         assert lo < TRUE_SAG < hi

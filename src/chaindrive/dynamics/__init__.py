@@ -13,8 +13,9 @@ Low-level API::
 
 from __future__ import annotations
 
-import importlib
 from typing import Any
+
+from chaindrive._lazy import lazy_attribute
 
 #: Public name → the submodule that defines it. The submodules are imported on first use
 #: (PEP 562), so that ``import chaindrive.dynamics`` does not pull in the time-domain solvers
@@ -57,12 +58,7 @@ _WHERE: dict[str, str] = {
 
 def __getattr__(name: str) -> Any:
     """Import the submodule that defines ``name`` on first use (PEP 562)."""
-    module = _WHERE.get(name)
-    if module is None:
-        raise AttributeError(f"module 'chaindrive.dynamics' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"chaindrive.dynamics.{module}"), name)
-    globals()[name] = value
-    return value
+    return lazy_attribute(__name__, _WHERE, name)
 
 
 def __dir__() -> list[str]:

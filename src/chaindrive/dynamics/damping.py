@@ -339,6 +339,7 @@ def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
     return (max_dynamic_force(F0, relative_amplitude, coefficients) - F0) / F0
 
 
+@shared_parameters
 def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
                          tension: ArrayLike,
                          coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
@@ -349,15 +350,7 @@ def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
     ----------
     span_length : array_like
         Span length a [m].
-    relative_amplitude : array_like
-        ȳ_0 [-].
-    tension : array_like
-        Static span tension F_0 [N].
-    coefficients : HingeFrictionCoefficients
-        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
-
-    Returns
-    -------
+    %(amplitude_tension_fit_returns)s
     ndarray
         E [J].
 
@@ -370,6 +363,7 @@ def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
     return 0.5 * k_af * F0 * span_elongation_max(span_length, relative_amplitude)
 
 
+@shared_parameters
 def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_length: ArrayLike,
                            relative_amplitude: ArrayLike, tension: ArrayLike,
                            coefficients: HingeFrictionCoefficients = PR_12_7_1820_1,
@@ -384,15 +378,7 @@ def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_le
         Pin diameter d_2 [m].
     span_length : array_like
         Span length a = t (z − 1) [m].
-    relative_amplitude : array_like
-        ȳ_0 [-].
-    tension : array_like
-        Static span tension F_0 [N].
-    coefficients : HingeFrictionCoefficients
-        The chain's F_max fit (default: the paper's ПР-12,7-1820-1).
-
-    Returns
-    -------
+    %(amplitude_tension_fit_returns)s
     ndarray
         ψ [-].
 

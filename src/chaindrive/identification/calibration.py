@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.identification.damping import (
     DampingCalibration,
@@ -28,16 +29,20 @@ from chaindrive.identification.damping import (
     calibrate_damping_ratio,
     with_damping_ratio,
 )
-from chaindrive.identification.fitting import fit_log_parameter, fit_log_parameters
+from chaindrive.identification.fitting import (
+    fit_log_parameter,
+    fit_log_parameters,
+    model_mode_indices,
+)
 
 if TYPE_CHECKING:
     from chaindrive.identification.spectrum import Identification
     from chaindrive.model import Drive
 
 __all__ = ["CalibratedDesign", "Calibration", "MassCalibration", "MeasuredMode",
-           "calibrate_link_stiffness", "calibrated_design", "elastic_frequencies",
-           "measured_natural_peaks", "verdict_changes", "with_link_stiffness",
-           "with_reduced_mass", "with_sag"]
+           "calibrate_link_stiffness", "calibrated_design", "check_measured_mode",
+           "elastic_frequencies", "measured_natural_peaks", "verdict_changes", "with_chain",
+           "with_reduced_mass"]
 
 @dataclass(frozen=True, slots=True)
 class MeasuredMode:
@@ -58,16 +63,33 @@ class MeasuredMode:
     std: float
 
 
-def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
-    """The elastic natural frequencies [Hz] of a drive's whole-drive model, lowest first.
+def check_measured_mode(m: MeasuredMode) -> None:
+    """Refuse a measured natural frequency or uncertainty that is not positive (one line
+    naming the ``--natural`` option, the mode and the value).
 
     Parameters
     ----------
-    drive : Drive
-        The design.
+    m : MeasuredMode
+        One measurement.
 
-    Returns
-    -------
+    Raises
+    ------
+    DesignError
+        The frequency or its uncertainty is not a positive number.
+    """
+    if not (math.isfinite(m.frequency) and m.frequency > 0):
+        raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
+                          "allowed: above 0 Hz")
+    if not (math.isfinite(m.std) and m.std > 0):
+        raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
+                          "above 0 Hz")
+
+
+@shared_parameters
+def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
+    """The elastic natural frequencies [Hz] of a drive's whole-drive model, lowest first.
+
+    %(drive_returns)s
     ndarray
         f [Hz] of the elastic modes.
     """
@@ -77,39 +99,23 @@ def elastic_frequencies(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
                       dtype=float)
 
 
-def with_link_stiffness(drive: Drive, stiffness: float) -> Drive:
-    """The design with ``[chain] link_stiffness`` set to k [N/m].
+def with_chain(drive: Drive, **values: float) -> Drive:
+    """The design with fields of its ``[chain]`` table set: ``link_stiffness`` k_link [N/m],
+    ``sag`` s, the installed sag of the slack span as a fraction of its length [-], …
 
     Parameters
     ----------
     drive : Drive
         The design.
-    stiffness : float
-        k_link [N/m].
+    **values : float
+        Field name of ``[chain]`` → its value [SI].
 
     Returns
     -------
     Drive
     """
-    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain,
-                                                                link_stiffness=stiffness))
-
-
-def with_sag(drive: Drive, sag: float) -> Drive:
-    """The design with ``[chain] sag`` set to s [-].
-
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-    sag : float
-        s, the installed sag of the slack span as a fraction of its length [-].
-
-    Returns
-    -------
-    Drive
-    """
-    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, sag=sag))
+    changes: dict[str, Any] = dict(values)  # Any: mypy checks ** against every field
+    return dataclasses.replace(drive, chain=dataclasses.replace(drive.chain, **changes))
 
 
 def with_reduced_mass(drive: Drive, sprocket: str, mass: float) -> Drive:
@@ -261,23 +267,14 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
     if not measured:
         raise DesignError("--natural", "no measured natural frequency; allowed: one or more")
     for m in measured:
-        if not (math.isfinite(m.frequency) and m.frequency > 0):
-            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
-                              "allowed: above 0 Hz")
-        if not (math.isfinite(m.std) and m.std > 0):
-            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
-                              "above 0 Hz")
-    modes = np.array([m.mode for m in measured]) - 1
+        check_measured_mode(m)
+    modes = model_mode_indices([m.mode for m in measured], frequencies(drive).size,
+                               "--natural")
     f = np.array([m.frequency for m in measured])
     u = np.array([m.std for m in measured])
-    n_model = frequencies(drive).size
-    bad = [int(k) + 1 for k in modes if not 0 <= k < n_model]
-    if bad:
-        raise DesignError("--natural", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
-                          "elastic modes)")
     if uncertain_mass is None:
         fit = fit_log_parameter(
-            lambda k: frequencies(with_link_stiffness(drive, k))[modes], f, u, initial)
+            lambda k: frequencies(with_chain(drive, link_stiffness=k))[modes], f, u, initial)
         return Calibration(initial, fit.value, fit.std_log, fit.interval, tuple(measured),
                            fit.fitted, fit.chi2_per_dof, fit.evaluations)
     name, m0 = uncertain_mass
@@ -285,7 +282,7 @@ def calibrate_link_stiffness(drive: Drive, measured: Sequence[MeasuredMode], *,
         raise DesignError("--uncertain-mass", f"{name}: {f.size} measured frequency; allowed: "
                           "two or more to fit the link stiffness and a reduced mass")
     k_fit, m_fit = fit_log_parameters(
-        lambda x: frequencies(with_reduced_mass(with_link_stiffness(drive, float(x[0])),
+        lambda x: frequencies(with_reduced_mass(with_chain(drive, link_stiffness=float(x[0])),
                                                 name, float(x[1])))[modes], f, u, [initial, m0])
     mass = MassCalibration(name, m0, m_fit.value, m_fit.std_log, m_fit.interval,
                            m_fit.correlation[0])
@@ -422,7 +419,7 @@ def calibrated_design(drive: Drive, measured: Sequence[MeasuredMode],
         cal = calibrate_link_stiffness(drive, measured,
                                        initial=before.ring_parameters.link_stiffness_n_per_m,
                                        uncertain_mass=mass)
-        calibrated = with_link_stiffness(drive, cal.stiffness)
+        calibrated = with_chain(drive, link_stiffness=cal.stiffness)
         if cal.mass is not None:
             calibrated = with_reduced_mass(calibrated, cal.mass.sprocket, cal.mass.mass)
     zeta = None

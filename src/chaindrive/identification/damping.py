@@ -30,8 +30,9 @@ import numpy as np
 from scipy.signal import find_peaks
 from scipy.stats import linregress
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
-from chaindrive.identification.fitting import fit_log_parameter
+from chaindrive.identification.fitting import fit_log_parameter, model_mode_indices
 
 if TYPE_CHECKING:
     from chaindrive.model import Drive
@@ -205,17 +206,12 @@ def with_damping_ratio(drive: Drive, ratio: float) -> Drive:
                                                                    damping_ratio=ratio))
 
 
+@shared_parameters
 def elastic_damping_ratios(drive: Drive) -> FloatArray:
     """The modal damping ratios [-] of the elastic modes of a drive's whole-drive model,
     lowest frequency first.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     ndarray
         ζ of the elastic modes [-].
     """
@@ -312,16 +308,12 @@ def calibrate_damping_ratio(drive: Drive, measured: Sequence[MeasuredDamping], *
         if not (math.isfinite(m.std) and m.std > 0):
             raise DesignError("--damping", f"mode {m.mode}: uncertainty {m.std!r}; allowed: "
                               "above 0")
-    modes = np.array([m.mode for m in measured]) - 1
     z = np.array([m.ratio for m in measured])
     u = np.array([m.std for m in measured])
     initial = drive.dynamics.damping_ratio
     start = initial if initial else float(z[0])
-    n_model = ratios(with_damping_ratio(drive, start)).size
-    bad = [int(k) + 1 for k in modes if not 0 <= k < n_model]
-    if bad:
-        raise DesignError("--damping", f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
-                          "elastic modes)")
+    modes = model_mode_indices([m.mode for m in measured],
+                               ratios(with_damping_ratio(drive, start)).size, "--damping")
     fit = fit_log_parameter(lambda c: ratios(with_damping_ratio(drive, c))[modes], z, u,
                             start, upper=ZETA_LIMIT)
     return DampingCalibration(initial, fit.value, fit.std_log,

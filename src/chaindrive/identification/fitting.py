@@ -19,7 +19,9 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
-__all__ = ["Z95", "LogFit", "fit_log_parameter", "fit_log_parameters"]
+from chaindrive.errors import DesignError
+
+__all__ = ["Z95", "LogFit", "fit_log_parameter", "fit_log_parameters", "model_mode_indices"]
 
 #: Two-sided 95 % point of the normal distribution [-].
 Z95 = 1.959963984540054
@@ -172,3 +174,34 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
     return fit_log_parameters(lambda x: model(float(x[0])), measured, std, [initial],
                               upper=None if math.isinf(upper) else [upper],
                               lower=None if lower <= 0.0 else [lower], log_step=log_step)[0]
+
+
+def model_mode_indices(modes: Sequence[int], n_model: int, option: str
+                       ) -> np.ndarray[Any, np.dtype[np.int64]]:
+    """The model's indices of measured elastic modes m, counted from 1 (index m − 1).
+
+    Parameters
+    ----------
+    modes : sequence of int
+        The measured modes m [-].
+    n_model : int
+        Elastic modes the model has [-].
+    option : str
+        The command-line option the measurements came from (named in the error).
+
+    Returns
+    -------
+    ndarray
+        m − 1 of each [-].
+
+    Raises
+    ------
+    DesignError
+        A mode the model does not have (the first such one is named).
+    """
+    index = np.array(modes) - 1
+    bad = [int(k) + 1 for k in index if not 0 <= k < n_model]
+    if bad:
+        raise DesignError(option, f"mode {bad[0]}; allowed: 1 to {n_model} (the model's "
+                          "elastic modes)")
+    return index

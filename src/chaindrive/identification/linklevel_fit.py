@@ -33,12 +33,13 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ConvergenceError, DesignError
 from chaindrive.identification.calibration import (
     MeasuredMode,
+    check_measured_mode,
     verdict_changes,
-    with_link_stiffness,
-    with_sag,
+    with_chain,
 )
 from chaindrive.identification.fitting import fit_log_parameter
 
@@ -49,7 +50,7 @@ __all__ = ["GRID_POINTS", "LINK_STIFFNESS_RANGE", "LOG_STEP", "OTHER_STATE",
            "POORLY_IDENTIFIED_RATIO",
            "SAG_RANGE", "LinkLevelCalibration",
            "LinkLevelDesign", "calibrate_link_level", "calibrated_design_link_level",
-           "link_level_modes_along_chain", "with_sag"]
+           "link_level_modes_along_chain"]
 
 #: A 95 % interval wider than this ratio (upper/lower) marks the parameter as poorly
 #: identified by the record [-] (a choice: a factor 2 in k_link or s).
@@ -82,18 +83,13 @@ SAG_RANGE = (0.001, 0.1)
 Parameter = Literal["link_stiffness", "sag"]
 
 
+@shared_parameters
 def link_level_modes_along_chain(drive: Drive) -> np.ndarray[Any, np.dtype[np.float64]]:
     """The link-level model's natural frequencies of its modes along the chain [Hz], lowest
     first: those of :func:`chaindrive.linklevel.modes.linear_modes` with more than half
     their kinetic energy along the chain and in the sprockets' turning.
 
-    Parameters
-    ----------
-    drive : Drive
-        The design.
-
-    Returns
-    -------
+    %(drive_returns)s
     ndarray
         f [Hz].
 
@@ -243,12 +239,7 @@ def _checked(measured: Sequence[MeasuredMode]) -> None:
             raise DesignError("--natural", f"mode {m.mode} with --model links; allowed: 1 (the "
                               "link-level model's first mode along the chain; the higher ones "
                               "change order with the link stiffness)")
-        if not (math.isfinite(m.frequency) and m.frequency > 0):
-            raise DesignError("--natural", f"mode {m.mode}: frequency {m.frequency!r} Hz; "
-                              "allowed: above 0 Hz")
-        if not (math.isfinite(m.std) and m.std > 0):
-            raise DesignError("--natural", f"mode {m.mode}: uncertainty {m.std!r} Hz; allowed: "
-                              "above 0 Hz")
+        check_measured_mode(m)
 
 
 def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
@@ -299,20 +290,18 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
                 (f"the installed sag {100 * installed_sag_ratio(drive):g} % (the default; "
                  "the design gives none)",))
         bounds = (LINK_STIFFNESS_RANGE[0] * x0, LINK_STIFFNESS_RANGE[1] * x0)
-
-        def design(x: float) -> Drive:
-            return with_link_stiffness(drive, x)
     elif parameter == "sag":
         x0 = installed_sag_ratio(drive)
         bounds = SAG_RANGE
         held = (() if drive.chain.link_stiffness is not None else
                 (f"the link stiffness {k0:.4g} N/m (computed from its plates and pins; the design "
                  "gives none)",))
-
-        def design(x: float) -> Drive:
-            return with_sag(drive, x)
     else:
         raise DesignError("--parameter", f"{parameter!r}; allowed: link_stiffness, sag")
+
+    def design(x: float) -> Drive:
+        return with_chain(drive, **{parameter: x})
+
     link_level_modes_along_chain(drive)  # the design as given: refused here, not mid-fit
 
     def runs(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
@@ -376,8 +365,7 @@ def calibrated_design_link_level(drive: Drive, measured: Sequence[MeasuredMode],
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
     cal = calibrate_link_level(drive, measured, parameter=parameter)
-    fitted = (with_link_stiffness(drive, cal.value) if parameter == "link_stiffness"
-              else with_sag(drive, cal.value))
+    fitted = with_chain(drive, **{parameter: cal.value})
     before = analyze(drive, response=False).checks()
     after = analyze(fitted, response=False).checks()
     return LinkLevelDesign(cal, fitted, verdict_changes(before, after))

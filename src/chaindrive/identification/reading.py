@@ -11,7 +11,7 @@ import numpy as np
 
 from chaindrive.dynamics.stiffness import GRAVITY
 from chaindrive.errors import DesignError
-from chaindrive.identification.calibration import verdict_changes, with_sag
+from chaindrive.identification.calibration import verdict_changes, with_chain
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.identification.tension import (
     TensionEstimate,
@@ -382,7 +382,7 @@ def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
                           "allowed: 0.001 to 0.1")
     lo = sag(est.tension + 1.96 * est.std)
     hi = sag(max(est.tension - 1.96 * est.std, 1e-9))
-    calibrated = with_sag(drive, s)
+    calibrated = with_chain(drive, sag=s)
     after = analyze(calibrated, response=False)
     return SagCalibration(installed_sag_ratio(drive), s, (lo, hi), calibrated,
                           verdict_changes(before.checks(), after.checks()))

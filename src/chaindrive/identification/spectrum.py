@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks, welch
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.resonance import working_frequencies
 from chaindrive.errors import DesignError
 from chaindrive.identification.damping import half_power_damping_ratio
@@ -210,6 +211,7 @@ class Peak:
         }
 
 
+@shared_parameters
 def line_tolerance(line: ModelLine, tolerance: float, resolution: float) -> float:
     """Half-width [Hz] of the match round a model line: max(``tolerance``·f, one bin) for a
     natural or span transverse frequency (the model's, uncertain), max(
@@ -219,13 +221,7 @@ def line_tolerance(line: ModelLine, tolerance: float, resolution: float) -> floa
     ----------
     line : ModelLine
         The line.
-    tolerance : float
-        Relative tolerance of the model's frequencies [-].
-    resolution : float
-        One frequency bin [Hz].
-
-    Returns
-    -------
+    %(tolerance_resolution_returns)s
     float
         [Hz].
     """
@@ -233,6 +229,7 @@ def line_tolerance(line: ModelLine, tolerance: float, resolution: float) -> floa
     return max(rel * line.frequency, resolution)
 
 
+@shared_parameters
 def label_peak(frequency: float, lines: tuple[ModelLine, ...], tolerance: float,
                resolution: float) -> tuple[ModelLine | None, float | None,
                                            tuple[ModelLine, ...]]:
@@ -245,13 +242,7 @@ def label_peak(frequency: float, lines: tuple[ModelLine, ...], tolerance: float,
         The peak's f [Hz].
     lines : tuple of ModelLine
         The model's lines.
-    tolerance : float
-        Relative tolerance of the model's frequencies [-].
-    resolution : float
-        One frequency bin [Hz].
-
-    Returns
-    -------
+    %(tolerance_resolution_returns)s
     line : ModelLine | None
         The nearest line within the tolerance, or None.
     deviation : float | None
@@ -310,16 +301,12 @@ class SignalSpectrum:
                 "resolution_hz": self.resolution, "peaks": [p.to_dict() for p in self.peaks]}
 
 
+@shared_parameters
 def signal_spectrum(values: NDArray[np.float64], sample_rate: float
                     ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """Welch spectrum of one signal (module docstring).
 
-    Parameters
-    ----------
-    values : ndarray
-        The samples [signal unit].
-    sample_rate : float
-        f_s [Hz].
+    %(params_samples_rate)s
 
     Returns
     -------
@@ -373,6 +360,7 @@ def spectral_peaks(frequencies: NDArray[np.float64], psd: NDArray[np.float64],
     return out
 
 
+@shared_parameters
 def peak_damping_ratio(values: NDArray[np.float64], sample_rate: float, frequency: float
                        ) -> tuple[float | None, float | None, str | None]:
     """Half-power damping ratio of the peak of a signal at f_n, read from a Welch spectrum
@@ -387,12 +375,7 @@ def peak_damping_ratio(values: NDArray[np.float64], sample_rate: float, frequenc
     broadband excitation; a single free decay is read with
     :func:`chaindrive.identification.damping.free_decay_damping_ratio` instead.
 
-    Parameters
-    ----------
-    values : ndarray
-        The samples [signal unit].
-    sample_rate : float
-        f_s [Hz].
+    %(params_samples_rate)s
     frequency : float
         The peak's f_n [Hz].
 

@@ -19,8 +19,9 @@ in process or on Dask; it imports the synthesis package, so it is not imported h
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING, Any
+
+from chaindrive._lazy import lazy_attribute
 
 if TYPE_CHECKING:
     from chaindrive.robust.analysis import PerturbedAnalysis, nominal_analysis
@@ -53,12 +54,7 @@ _HOME = {
 
 def __getattr__(name: str) -> Any:
     """The package's names, imported from their submodule on first use."""
-    home = _HOME.get(name)
-    if home is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{home}"), name)
-    globals()[name] = value
-    return value
+    return lazy_attribute(__name__, _HOME, name)
 
 
 __all__ = [

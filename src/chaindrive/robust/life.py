@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.errors import ChainDriveError
 from chaindrive.robust.analysis import PerturbedAnalysis, first_elastic_hz
@@ -96,15 +97,11 @@ def _value(x: float | None) -> float:
     return math.nan if x is None else float(x)
 
 
+@shared_parameters
 def wear_state(nominal: Analysis, model: UncertaintyModel, elongation: float) -> WearState:
     """The drive at the elongation ε with the nominal tolerances.
 
-    Parameters
-    ----------
-    nominal : Analysis
-        The analysis of the drive as drawn.
-    model : UncertaintyModel
-        Its model (allowable elongation, take-up capacity).
+    %(params_nominal_wear)s
     elongation : float
         ε [–].
 
@@ -221,16 +218,12 @@ def _failing(nominal: Analysis, model: UncertaintyModel, eps: float,
         return ["buildable"]
 
 
+@shared_parameters
 def life_curve(nominal: Analysis, model: UncertaintyModel, *, points: int = 13,
                extent: float = 1.25) -> LifeCurve:
     """The life curve of the drive (module docstring).
 
-    Parameters
-    ----------
-    nominal : Analysis
-        The analysis of the drive as drawn.
-    model : UncertaintyModel
-        Its model (allowable elongation, take-up capacity).
+    %(params_nominal_wear)s
     points : int
         Grid points from new to ``extent`` × the allowable elongation [–].
     extent : float

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.sparse import csr_matrix
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.dynamics.resonance import working_frequencies
@@ -126,22 +127,14 @@ def _chain_elements(system: TorsionalSystem, n: int) -> tuple[NDArray[np.intp],
     return spans, wraps
 
 
+@shared_parameters
 def batch_system_values(state: Analysis, inertia: FloatArray, link: FloatArray,
                         temperature: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Node inertias and element stiffnesses of a state's whole-drive model under S sets of
     modal factors (module docstring): the values
     :meth:`~chaindrive.dynamics.torsional.system.TorsionalSystem.updated` takes.
 
-    Parameters
-    ----------
-    state : Analysis
-        The analysis of one geometric state (factors 1, reference temperature).
-    inertia : ndarray
-        (S, n) factors on the sprockets' inertias [–].
-    link : ndarray
-        (S,) factors on the link stiffness [–].
-    temperature : ndarray
-        (S,) temperatures of the polymer parts [°C].
+    %(params_modal_factors)s
 
     Returns
     -------
@@ -166,6 +159,7 @@ def batch_system_values(state: Analysis, inertia: FloatArray, link: FloatArray,
     return J, k
 
 
+@shared_parameters
 def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
                               element_stiffness: FloatArray) -> FloatArray:
     """Elastic natural frequencies (S, E) [Hz], ascending, of S variants of one torsional
@@ -175,49 +169,26 @@ def batch_elastic_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
     M = L Lᵀ and one :func:`numpy.linalg.eigvalsh` of L⁻¹ K L⁻ᵀ; the r lowest eigenvalues (r
     rigid-body motions of the graph) are dropped [Rao2011, ch. 6].
 
-    Parameters
-    ----------
-    system : TorsionalSystem
-        The system the variants share.
-    node_inertia : ndarray
-        (S, nodes) J of every node [kg·m²]; a node of the system with J = 0 must keep it.
+    %(params_system_inertia)s
     element_stiffness : ndarray
         (S, elements) k of every element [N·m/rad or N/m].
 
-    Returns
-    -------
-    ndarray
-        (S, E) [Hz], E = massed coordinates − rigid-body motions.
-
-    References
-    ----------
-    [Guyan1965], [Rao2011, ch. 6]
+    %(elastic_frequencies_returns)s
     """
     return stacked_frequencies(system, node_inertia,
                                _stacked_stiffness(system.element_incidence, element_stiffness))
 
 
+@shared_parameters
 def stacked_frequencies(system: TorsionalSystem, node_inertia: FloatArray,
                         stiffness: FloatArray) -> FloatArray:
     """:func:`batch_elastic_frequencies` of stiffness matrices already stacked.
 
-    Parameters
-    ----------
-    system : TorsionalSystem
-        The system the variants share.
-    node_inertia : ndarray
-        (S, nodes) J of every node [kg·m²]; a node of the system with J = 0 must keep it.
+    %(params_system_inertia)s
     stiffness : ndarray
         (S, N, N) K_s = Bᵀ diag(k_s) B in the system's coordinates [N·m/rad].
 
-    Returns
-    -------
-    ndarray
-        (S, E) [Hz], E = massed coordinates − rigid-body motions.
-
-    References
-    ----------
-    [Guyan1965], [Rao2011, ch. 6]
+    %(elastic_frequencies_returns)s
     """
     K, massed = _condensed(system, stiffness)
     mass = _coordinate_mass(system, node_inertia)[:, massed]
@@ -459,6 +430,7 @@ class StackedState:
     excitation: tuple[FloatArray, FloatArray, float]
 
 
+@shared_parameters
 def stacked_state(state: Analysis, inertia: FloatArray, link: FloatArray,
                   temperature: FloatArray) -> StackedState:
     """A state's model under S sets of modal factors, stacked once
@@ -466,16 +438,7 @@ def stacked_state(state: Analysis, inertia: FloatArray, link: FloatArray,
     [Guyan1965] and normalised by the masses that no added inertia changes, the factor
     R = L_ff⁻¹ of :func:`_mass_normalised`).
 
-    Parameters
-    ----------
-    state : Analysis
-        The analysis of one geometric state (factors 1, reference temperature).
-    inertia : ndarray
-        (S, n) factors on the sprockets' inertias [–].
-    link : ndarray
-        (S,) factors on the link stiffness [–].
-    temperature : ndarray
-        (S,) temperatures of the polymer parts [°C].
+    %(params_modal_factors)s
 
     Returns
     -------

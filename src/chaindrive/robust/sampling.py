@@ -46,6 +46,7 @@ from scipy.stats import beta as beta_dist
 from scipy.stats import qmc
 from scipy.stats import t as t_dist
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.checks import Check
@@ -242,16 +243,11 @@ class StateOutcome:
     metrics: dict[str, float]
     error: str | None = None
 
+    @shared_parameters
     def failed(self, key: str) -> bool:
         """Whether check ``key`` failed (a state that cannot be built fails every check).
 
-        Parameters
-        ----------
-        key : str
-            The check's key (:attr:`chaindrive.checks.Check.key`).
-
-        Returns
-        -------
+        %(params_check_key_returns)s
         bool
             True when it failed or could not be verified in this state.
         """
@@ -494,16 +490,11 @@ class ReliabilityResult:
         """States evaluated: the sampled points × the wear states of the modal path [–]."""
         return self.samples * max(1, len(self.states))
 
+    @shared_parameters
     def probability(self, key: str) -> CheckProbability | None:
         """The entry of check ``key``.
 
-        Parameters
-        ----------
-        key : str
-            The check's key (:attr:`chaindrive.checks.Check.key`).
-
-        Returns
-        -------
+        %(params_check_key_returns)s
         CheckProbability | None
             Its probability of failure with the interval (None when no state had it).
         """
@@ -763,19 +754,12 @@ class ModalBasis:
     averaged_over: tuple[str, ...] = ()
 
 
+@shared_parameters
 def modal_basis(nominal: Analysis, model: UncertaintyModel) -> ModalBasis:
     """Everything of the batched modal path that the sprockets' added inertias leave
     unchanged: the geometric states, their models and stiffness matrices under the samples.
 
-    Parameters
-    ----------
-    nominal : Analysis
-        The analysis of the drive as drawn.
-    model : UncertaintyModel
-        Its uncertainty model (its modal variables are sampled).
-
-    Returns
-    -------
+    %(nominal_modal_returns)s
     ModalBasis
     """
     s = model.settings
@@ -836,18 +820,11 @@ def basis_reliability(basis: ModalBasis, added_inertia: NDArray[np.float64] | No
                              basis.names, basis.held_at_nominal, basis.averaged_over)
 
 
+@shared_parameters
 def modal_reliability(nominal: Analysis, model: UncertaintyModel) -> ReliabilityResult:
     """The resonance check and f₁ by the batched modal path (module docstring).
 
-    Parameters
-    ----------
-    nominal : Analysis
-        The analysis of the drive as drawn.
-    model : UncertaintyModel
-        Its uncertainty model (its modal variables are sampled).
-
-    Returns
-    -------
+    %(nominal_modal_returns)s
     ReliabilityResult
         With the one check ``resonance_margin``.
     """

@@ -75,6 +75,7 @@ from numpy.typing import NDArray
 from SALib.sample import sobol as sobol_sample
 from scipy.stats import norm, t
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.robust.sampling import (
     StateEvaluator,
@@ -247,16 +248,11 @@ class SensitivityResult:
     first_order_conf_bootstrap: dict[str, tuple[float, ...]] = field(default_factory=dict)
     total_conf_bootstrap: dict[str, tuple[float, ...]] = field(default_factory=dict)
 
+    @shared_parameters
     def indices(self, metric: str) -> list[GroupIndex]:
         """The indices of ``metric`` as reported, in the order of :attr:`groups`.
 
-        Parameters
-        ----------
-        metric : str
-            A metric of the result.
-
-        Returns
-        -------
+        %(params_metric_returns)s
         list of GroupIndex
             Clipped values, intervals, flags and ranks (empty for a metric without
             variance).
@@ -270,16 +266,11 @@ class SensitivityResult:
                            _outside(s1[k], c1[k]), _outside(st[k], ct[k]), rank[k])
                 for k, g in enumerate(self.groups)]
 
+    @shared_parameters
     def ranking(self, metric: str) -> list[tuple[str, float]]:
         """Groups by decreasing total index of ``metric``.
 
-        Parameters
-        ----------
-        metric : str
-            A name of :data:`SENSITIVITY_METRICS`.
-
-        Returns
-        -------
+        %(params_metric_returns)s
         list of (str, float)
             (group, total Sobol index S_T [-] clipped to [0, 1]), the largest first; groups
             without a finite index are left out.
@@ -287,30 +278,20 @@ class SensitivityResult:
         return [(i.group, i.total) for i in sorted(self.indices(metric),
                                                    key=lambda i: -i.total_raw)]
 
+    @shared_parameters
     def leading_half_width(self, metric: str) -> float:
         """The interval half-width of the leading S_T of ``metric`` [–] (nan: no variance).
 
-        Parameters
-        ----------
-        metric : str
-            A metric of the result.
-
-        Returns
-        -------
+        %(params_metric_returns)s
         float
         """
         return _leading_half_width(self.total[metric], self.total_conf[metric])
 
+    @shared_parameters
     def tied(self, metric: str) -> list[list[str]]:
         """Sets of two or more groups whose S_T cannot be told apart (one rank).
 
-        Parameters
-        ----------
-        metric : str
-            A metric of the result.
-
-        Returns
-        -------
+        %(params_metric_returns)s
         list of list of str
             Each set's groups, by decreasing S_T; the sets by rank.
         """
@@ -468,6 +449,7 @@ def janon_closed_index(y: NDArray[np.float64], y_shared: NDArray[np.float64]
         return np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), np.nan)
 
 
+@shared_parameters
 def pick_freeze_indices(y: NDArray[np.float64], groups: int, confidence: float, seed: int,
                         resamples: int = BOOTSTRAP_RESAMPLES
                         ) -> tuple[tuple[float, ...], ...]:
@@ -484,18 +466,7 @@ def pick_freeze_indices(y: NDArray[np.float64], groups: int, confidence: float, 
     ----------
     y : ndarray
         (N·(G + 2),) outputs in the design's order [any unit].
-    groups : int
-        G [–].
-    confidence : float
-        Level of the intervals [–].
-    seed : int
-        Seed of the resampling.
-    resamples : int
-        Bootstrap resamples [–].
-
-    Returns
-    -------
-    tuple
+    %(sobol_bootstrap_returns)s
         (S1, S_T, S1 half-width, S_T half-width), each a (G,) tuple [–].
 
     References
@@ -538,6 +509,7 @@ def replicate_seeds(seed: int, replicates: int) -> list[int]:
     return [int(c.generate_state(1)[0]) for c in np.random.SeedSequence(seed).spawn(replicates)]
 
 
+@shared_parameters
 def replicate_indices(ys: Sequence[NDArray[np.float64]], groups: int, confidence: float,
                       seed: int, resamples: int = BOOTSTRAP_RESAMPLES
                       ) -> tuple[tuple[float, ...], ...]:
@@ -567,18 +539,7 @@ def replicate_indices(ys: Sequence[NDArray[np.float64]], groups: int, confidence
     ys : sequence of ndarray
         Per replicate, (N·(G + 2),) outputs in the design's order [any unit, the same for
         all].
-    groups : int
-        G [–].
-    confidence : float
-        Level of the intervals, c [–].
-    seed : int
-        Seed of the resampling.
-    resamples : int
-        Bootstrap resamples [–].
-
-    Returns
-    -------
-    tuple
+    %(sobol_bootstrap_returns)s
         (S1, S_T, S1 half-width, S_T half-width, S1 and S_T Student-t parts, S1 and S_T
         bootstrap parts), each a (G,) tuple [–].
 

@@ -23,9 +23,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.errors import ChainDriveError
-from chaindrive.io.design import drive_from_mapping, drive_to_mapping, load_drive, read_toml
+from chaindrive.io.design import drive_from_mapping, drive_to_mapping, load_drive
 from chaindrive.model import Drive
 from chaindrive.robust.analysis import PerturbedAnalysis, nominal_analysis
 from chaindrive.robust.life import LifeCurve, life_curve
@@ -44,6 +45,7 @@ from chaindrive.robust.sensitivity import SensitivityResult, sensitivity
 from chaindrive.robust.uncertainty import (
     UncertaintyModel,
     UncertaintySettings,
+    load_uncertainty,
     uncertainty_model,
     uncertainty_settings,
 )
@@ -55,22 +57,16 @@ __all__ = ["DaskOptions", "RobustResult", "StudyProgress", "dask_states", "load_
            "without_flywheels"]
 
 
+@shared_parameters
 def load_robust(path: str | Path) -> tuple[Analysis, UncertaintySettings]:
     """The nominal analysis of a design file and its ``[uncertainty]`` table.
 
-    Parameters
-    ----------
-    path : str | Path
-        The design file (TOML).
-
-    Returns
-    -------
+    %(params_design_path_returns)s
     tuple of (Analysis, UncertaintySettings)
         The nominal analysis (:func:`~chaindrive.robust.analysis.nominal_analysis`) and the
         settings (defaults when the file has no ``[uncertainty]`` table).
     """
-    return nominal_analysis(load_drive(path)), uncertainty_settings(
-        read_toml(path).get("uncertainty"))
+    return nominal_analysis(load_drive(path)), load_uncertainty(path)
 
 
 def _design_of(nominal: Analysis) -> Drive:

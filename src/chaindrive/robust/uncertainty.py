@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ndtri
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.analysis import Analysis
 from chaindrive.catalog import find_material
 from chaindrive.errors import DesignError
@@ -178,16 +179,11 @@ def uncertainty_settings(table: Mapping[str, Any] | None) -> UncertaintySettings
     return UncertaintySettings(**parse_section(table or {}, UNCERTAINTY_FIELDS, "uncertainty"))
 
 
+@shared_parameters
 def load_uncertainty(path: str | Path) -> UncertaintySettings:
     """The ``[uncertainty]`` table of a design file (defaults when it has none).
 
-    Parameters
-    ----------
-    path : str | Path
-        The design file (TOML).
-
-    Returns
-    -------
+    %(params_design_path_returns)s
     UncertaintySettings
         The validated settings.
     """

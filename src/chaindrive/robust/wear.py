@@ -45,6 +45,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.geometry.contour import bracketed_root
 from chaindrive.geometry.sprocket import iso606_tip_diameter_range, pitch_radius
@@ -110,22 +111,13 @@ def allowable_elongation(largest_teeth: int, *, fixed_centres: bool = False,
     return limit
 
 
+@shared_parameters
 def elongated_pitch_radius(pitch: ArrayLike, teeth: ArrayLike,
                            elongation: ArrayLike) -> NDArray[np.float64]:
-    """Pitch radius R' = p(1 + ε)/(2 sin(π/z)) of a worn chain on a sprocket [m] (eq. 1).
+    """Pitch radius R' = p(1 + ε)/(2 sin(π/z)) of a worn chain on a sprocket [m] (eq. 1), p
+    the sprocket's nominal pitch.
 
-    Parameters
-    ----------
-    pitch : array_like
-        Nominal chain pitch p [m] (the sprocket's).
-    teeth : array_like
-        Teeth z [–].
-    elongation : array_like
-        Wear elongation ε [–].
-
-    Returns
-    -------
-    ndarray
+    %(worn_pitch_teeth_returns)s
         R' [m].
 
     References
@@ -136,21 +128,11 @@ def elongated_pitch_radius(pitch: ArrayLike, teeth: ArrayLike,
     return np.asarray(pitch_radius(pitch, teeth), dtype=float) * (1.0 + eps)
 
 
+@shared_parameters
 def roller_lift(pitch: ArrayLike, teeth: ArrayLike, elongation: ArrayLike) -> NDArray[np.float64]:
     """Rise ΔR = ε·p/(2 sin(π/z)) of the roller centres of a worn chain on a sprocket [m].
 
-    Parameters
-    ----------
-    pitch : array_like
-        Nominal chain pitch p [m].
-    teeth : array_like
-        Teeth z [–].
-    elongation : array_like
-        Wear elongation ε [–].
-
-    Returns
-    -------
-    ndarray
+    %(worn_pitch_teeth_returns)s
         ΔR [m] (eq. 1 less the nominal radius).
 
     References

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.transient.startup import (
     MAX_RECORDS,
     STEPS_PER_PERIOD,
@@ -62,17 +63,13 @@ def _step_body(model: DriveModel, modes: Modes, f_ref: float) -> tuple[str, str]
     return field, f"{node} (mode at {f_ref:.4g} Hz, governed by {element})"
 
 
+@shared_parameters
 def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
                  modes: Modes | None = None) -> tuple[float, int]:
     """(Δt [s], steps) of a start-up of ``duration`` [s] (module docstring); DesignError when
     the work would exceed the budget.
 
-    Parameters
-    ----------
-    model : DriveModel
-        The model.
-    tooth_frequency_hz : float
-        f_z [Hz].
+    %(params_model_tooth_frequency)s
     duration : float
         [s].
     modes : Modes | None
@@ -97,17 +94,13 @@ def startup_step(model: DriveModel, tooth_frequency_hz: float, duration: float,
     return dt, steps
 
 
+@shared_parameters
 def affordable_duration(model: DriveModel, tooth_frequency_hz: float) -> float:
     """The longest start-up [s] whose work stays within
     :data:`~chaindrive.dynamics.transient.startup.WORK_BUDGET` at the step of :func:`startup_step`
     (0 when not even one step does).
 
-    Parameters
-    ----------
-    model : DriveModel
-        The model.
-    tooth_frequency_hz : float
-        f_z [Hz].
+    %(params_model_tooth_frequency)s
 
     Returns
     -------

@@ -53,16 +53,7 @@ def expm(A: FloatArray) -> FloatArray:
     n = A.shape[0]
     norm = float(np.abs(A).sum(axis=0).max()) if n else 0.0
     s = max(0, math.ceil(math.log2(norm / _THETA13))) if norm > _THETA13 else 0
-    A = A / 2.0**s
-    b = _B13
-    eye = np.eye(n)
-    A2 = A @ A
-    A4 = A2 @ A2
-    A6 = A4 @ A2
-    U = A @ (A6 @ (b[13] * A6 + b[11] * A4 + b[9] * A2)
-             + b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * eye)
-    V = A6 @ (b[12] * A6 + b[10] * A4 + b[8] * A2) + b[6] * A6 + b[4] * A4 + b[2] * A2 \
-        + b[0] * eye
+    U, V = _padé13_parts(A / 2.0**s)
     R = np.linalg.solve(V - U, V + U)
     for _ in range(s):
         R = R @ R
