@@ -173,7 +173,7 @@ def ansi_pressure_angles(teeth: int) -> tuple[float, float]:
 
     References
     ----------
-    [ANSI-B29.1] (the tooth form table, reproduced in [Oberg2016]).
+    [ANSI-B29.1] (the tooth form table, reproduced in [Oberg2016]); [Kidd1999] (35° − 120°/N).
     """
     return math.radians(17.0 - 64.0 / teeth), math.radians(35.0 - 120.0 / teeth)
 
