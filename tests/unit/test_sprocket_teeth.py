@@ -18,9 +18,13 @@ import pytest
 import chaindrive
 from chaindrive.checks import UNVERIFIED
 from chaindrive.strength.sprocket_teeth import (
+    ansi_pressure_angles,
+    binder_tooth_factors,
     flank_limit_factors,
+    iso606_pressure_angle_range,
     root_bending_stress,
     seat_contact_pressure,
+    seating_pressure_angle,
 )
 
 EXAMPLES = Path(chaindrive.__file__).parent / "examples"
@@ -53,6 +57,51 @@ def test_flank_limit_factors_are_the_rollers_equilibrium(teeth: int, alpha_deg: 
     if teeth == 15:
         assert q == pytest.approx(math.cos(math.radians(74)) / math.cos(math.radians(50)))
         assert q == pytest.approx(0.4288, abs=5e-5)
+
+
+@pytest.mark.parametrize("teeth", [9, 15, 25, 60])
+@pytest.mark.parametrize("phi_deg", [8.0, 16.0, 27.0])
+def test_binder_factors_are_the_rollers_equilibrium_in_his_convention(
+        teeth: int, phi_deg: float) -> None:
+    """[Binder1956]: sin φ/sin(φ + 2β) and sin 2β/sin(φ + 2β) equal the roller's
+    equilibrium built from the pressure angle itself: the tooth's force along the line at
+    φ from the centre line of the link carrying T_(k−1), turned towards the sprocket's
+    centre; the other link at the interior angle π − 2β of the pitch polygon."""
+    phi, half = math.radians(phi_deg), math.pi / teeth
+    back = np.array([-math.cos(half), -math.sin(half)])   # towards roller k − 1
+    ahead = np.array([math.cos(half), -math.sin(half)])   # towards roller k + 1
+    line = np.array([-math.cos(half + phi), -math.sin(half + phi)])  # roller → tooth
+    t_out, force = np.linalg.solve(np.column_stack([ahead, -line]), -back)
+    q, per_tension = binder_tooth_factors(teeth, phi)
+    assert force > 0
+    assert q == pytest.approx(t_out, rel=1e-12)
+    assert per_tension == pytest.approx(force, rel=1e-12)
+
+
+@pytest.mark.parametrize("teeth", [9, 15, 25, 60])
+def test_seating_pressure_angle_reproduces_the_published_ansi_pressure_angle(
+        teeth: int) -> None:
+    """[ANSI-B29.1] as reproduced in [Oberg2016]: the ANSI seating curve ends at
+    A = 35° + 60°/N off the pitch circle's tangent (seat half-angle from the inward radial
+    90° − A), and the form's published pressure angle for new chain is 35° − 120°/N. The
+    conversion of a seat's half-angle into Binder's pressure angle (measured from the link's
+    centre line) gives the published figure from the published seat."""
+    seat_half = math.radians(90.0 - (35.0 + 60.0 / teeth))
+    _, new_chain = ansi_pressure_angles(teeth)
+    assert seating_pressure_angle(teeth, seat_half) == pytest.approx(new_chain, rel=1e-12)
+    assert math.degrees(new_chain) == pytest.approx(35.0 - 120.0 / teeth, rel=1e-12)
+
+
+@pytest.mark.parametrize("teeth", [15, 25])
+def test_iso606_pressure_angle_band(teeth: int) -> None:
+    """[ISO606] seating angles 120° − 90°/z … 140° − 90°/z as Binder's pressure angle
+    90° − α/2 − 180°/z: 20° − 135°/z … 30° − 135°/z (11° … 21° for z = 15); the
+    link-level model's mean seat (65° − 45°/z) lies in the middle."""
+    low, high = iso606_pressure_angle_range(teeth)
+    assert math.degrees(low) == pytest.approx(20.0 - 135.0 / teeth, rel=1e-12)
+    assert math.degrees(high) == pytest.approx(30.0 - 135.0 / teeth, rel=1e-12)
+    mean = seating_pressure_angle(teeth, math.radians(65.0 - 45.0 / teeth))
+    assert mean == pytest.approx(0.5 * (low + high), rel=1e-12)
 
 
 def test_seat_contact_pressure_is_hertz_line_contact() -> None:

@@ -23,6 +23,7 @@ from chaindrive.kinematics import instantaneous_chain_speed
 from chaindrive.linklevel import build_model, linear_modes, simulate
 from chaindrive.linklevel.model import seating_geometry
 from chaindrive.model import Chain, Drive, Sprocket
+from chaindrive.strength.sprocket_teeth import binder_tooth_factors, iso606_pressure_angle_range
 from tests.conftest import EXAMPLES
 
 
@@ -163,7 +164,9 @@ def test_slow_running_tight_span_carries_pretension_plus_peripheral_force(slow_r
 
 def test_quasi_static_tooth_loads_decay_geometrically(slow_run):
     """[Naji1983]: on the driver the link tension falls from tooth to tooth by the constant
-    ratio of the rigid model (flank-limit equilibrium); within 4 % for the 2nd–5th links of
+    ratio of the rigid model (flank-limit equilibrium) at the model's own seat (the mean of
+    the ISO 606 limits) — a consistency check; the published law at the published tooth-form
+    angles is the next test's. Within 4 % for the 2nd–5th links of
     the wrap (the first is the transition from the span). The driven sprocket's wrap, read
     from its leaving end, decays by the same kind of ratio (its own z): within 4 %."""
     drive, geometry, r = slow_run
@@ -177,6 +180,34 @@ def test_quasi_static_tooth_loads_decay_geometrically(slow_run):
         tensions = (_wrap_tensions if index == 0 else _wrap_tensions_reversed)(r, geometry, index)
         ratios = tensions[2:5] / tensions[1:4]
         np.testing.assert_allclose(ratios, expected, rtol=0.04)
+
+
+def test_quasi_static_wrap_ratios_lie_in_binders_band_for_the_iso606_tooth_form(slow_run):
+    """[Binder1956]: the rigid chain's link tension falls from tooth to tooth as
+    T_k/T_(k−1) = sin φ/sin(φ + 2β), 2β = 360°/z, φ the pressure angle measured from the
+    link's centre line (the convention of the ANSI tooth form's published pressure angles
+    [ANSI-B29.1]). ISO 606 gives a band of seating curves, not one: its seating angles
+    120° − 90°/z … 140° − 90°/z [ISO606] put the roller at the seat's end at φ from
+    20° − 135°/z to 30° − 135°/z, so the published law bounds the ratio between
+    sin φ_min/sin(φ_min + 2β) and sin φ_max/sin(φ_max + 2β) — 0.333 … 0.507 for z = 15,
+    0.520 … 0.662 for z = 25. The 2nd–4th ratios of the wrap (the first is the transition
+    from the span) on the driver, and on the driven from its tight end, lie inside their
+    sprocket's band; the bands discriminate: each sprocket's ratios lie outside the other
+    tooth count's band."""
+    drive, geometry, r = slow_run
+    bands, measured = [], []
+    for index in (0, 1):
+        z = drive.sprockets[index].teeth
+        low, high = iso606_pressure_angle_range(z)
+        band = (binder_tooth_factors(z, low)[0], binder_tooth_factors(z, high)[0])
+        tensions = (_wrap_tensions if index == 0 else _wrap_tensions_reversed)(r, geometry, index)
+        ratios = tensions[2:5] / tensions[1:4]
+        assert np.all((ratios > band[0]) & (ratios < band[1])), (z, ratios, band)
+        bands.append(band)
+        measured.append(ratios)
+    for index in (0, 1):
+        low, high = bands[1 - index]
+        assert np.all((measured[index] < low) | (measured[index] > high))
 
 
 def _wrap_tensions_reversed(result, geometry, index: int) -> np.ndarray:

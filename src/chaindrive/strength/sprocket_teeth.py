@@ -10,9 +10,14 @@ may fail first, at the tooth root or at the flank, so every polymer sprocket get
   (articulation angle 2π/z) and the flank normal at the seating half-angle α from the
   inward radial, the tension falls from link to link by q = cos(α + π/z)/cos(α − π/z) and
   the tooth under the first seated roller carries P₁ = T₀·sin(2π/z)/cos(α − π/z), T₀ the
-  tension of the span running onto the wrap. The first tooth is the most loaded (q < 1);
-  T₀ is the larger tension of the sprocket's two spans, the design's service factor K_A
-  applied to it as to the nominal force of a plastic gear [VDI2736, Part 2].
+  tension of the span running onto the wrap. This is Binder's law [Binder1956]
+  T_k/T_(k−1) = sin φ/sin(φ + 2π/z) written with the seat's half-angle: his pressure angle
+  φ, between the tooth force's line of action and the link's centre line, is
+  φ = π/2 − α − π/z (the convention of the ANSI tooth form's published pressure angles
+  [ANSI-B29.1], which it reproduces from their seating angle: :func:`seating_pressure_angle`).
+  The first tooth is the most loaded (q < 1); T₀ is the larger tension of the sprocket's
+  two spans, the design's service factor K_A applied to it as to the nominal force of a
+  plastic gear [VDI2736, Part 2].
 * **root bending stress** (a Lewis-type cantilever; the reading is ours): the tooth is a
   cantilever on the chord between the bottoms of its two seats, s = 2·(R − r_i)·sin(π/z),
   of the rim width b of the polymeric proportions b ≈ 0.85·B_in
@@ -43,14 +48,16 @@ from chaindrive.catalog import find_material
 from chaindrive.checks import Check, judged
 from chaindrive.errors import Quantities
 from chaindrive.geometry.body import polymeric_sprocket_proportions
+from chaindrive.geometry.iso606 import iso606_seating_angle_range
 from chaindrive.geometry.results import GeometryResult
 from chaindrive.geometry.sprocket import seating_geometry
 from chaindrive.model import Drive, Material
 from chaindrive.strength.loads import LoadsResult
 
-__all__ = ["METAL_POISSON", "POLYMER_POISSON_BOUND", "ToothLoad", "flank_limit_factors",
+__all__ = ["METAL_POISSON", "POLYMER_POISSON_BOUND", "ToothLoad", "ansi_pressure_angles",
+           "binder_tooth_factors", "flank_limit_factors", "iso606_pressure_angle_range",
            "polymer_tooth_checks", "root_bending_stress", "seat_contact_pressure",
-           "tooth_loads"]
+           "seating_pressure_angle", "tooth_loads"]
 
 #: Poisson ratio of a metal roller or sprocket [-] (steel) [Roark2012].
 METAL_POISSON = 0.3
@@ -63,12 +70,121 @@ _ROARK_LINE = 0.798
 _SOURCE = "[VDI2736, Part 2]"
 
 
+def binder_tooth_factors(teeth: int, pressure_angle: float) -> tuple[float, float]:
+    """Binder's tension ratio from tooth to tooth and load of a tooth per entering tension:
+    a rigid roller chain on a rigid sprocket, every seated roller bearing on its flank.
+
+    T_k/T_(k−1) = sin φ/sin(φ + 2β) and P_k/T_(k−1) = sin 2β/sin(φ + 2β), 2β = 2π/z the
+    articulation angle (Lami's theorem for the roller's two link tensions and the flank's
+    force), so T_k = T₀·(sin φ/sin(φ + 2β))^k along the wrap from its tight end.
+
+    Parameters
+    ----------
+    teeth : int
+        z [-].
+    pressure_angle : float
+        Binder's pressure angle φ: the angle between the line of action of the tooth's
+        force on the roller (the flank normal through the roller's centre) and the centre
+        line of the link that carries the larger tension [rad].
+
+    Returns
+    -------
+    tuple of float
+        (T_k/T_(k−1), P_k/T_(k−1)) [-].
+
+    References
+    ----------
+    [Binder1956] (the law and its pressure angle); [Naji1983, §2.1] (the same rigid-chain
+    equilibrium, written with the flank's contact point).
+    """
+    articulation = 2.0 * math.pi / teeth
+    ahead = math.sin(pressure_angle + articulation)
+    return math.sin(pressure_angle) / ahead, math.sin(articulation) / ahead
+
+
+def seating_pressure_angle(teeth: int, half_angle: float) -> float:
+    """Binder's pressure angle of a roller at the end of its seating curve.
+
+    φ = π/2 − α − π/z: the flank normal there lies at the seating half-angle α from the
+    inward radial, the link's centre line (a side of the pitch polygon) at π/2 − π/z.
+    With the ANSI seat's end at A = 35° + 60°/N off the pitch circle's tangent
+    (α = 90° − A) it gives 35° − 120°/N, the ANSI pressure angle for new chain.
+
+    Parameters
+    ----------
+    teeth : int
+        z [-].
+    half_angle : float
+        Seating half-angle α: the flank normal from the inward radial [rad].
+
+    Returns
+    -------
+    float
+        φ [rad].
+
+    References
+    ----------
+    [Binder1956] (φ from the link's centre line); [ANSI-B29.1] (the tooth form whose
+    published pressure angle it reproduces).
+    """
+    return 0.5 * math.pi - half_angle - math.pi / teeth
+
+
+def iso606_pressure_angle_range(teeth: int) -> tuple[float, float]:
+    """Binder's pressure angle at the ends of the ISO 606 band of seating curves.
+
+    φ = 90° − α_s/2 − 180°/z for the full seating angle α_s between its limits
+    120° − 90°/z and 140° − 90°/z: φ from 20° − 135°/z (the maximum seating angle, the
+    minimum tooth-gap form) to 30° − 135°/z (the minimum seating angle).
+
+    Parameters
+    ----------
+    teeth : int
+        z [-].
+
+    Returns
+    -------
+    tuple of float
+        (φ_min, φ_max) [rad].
+
+    References
+    ----------
+    [ISO606] (the seating angle limits); [Binder1956] (the pressure angle).
+    """
+    low, high = iso606_seating_angle_range(teeth)
+    return (seating_pressure_angle(teeth, 0.5 * float(high)),
+            seating_pressure_angle(teeth, 0.5 * float(low)))
+
+
+def ansi_pressure_angles(teeth: int) -> tuple[float, float]:
+    """The pressure angles the ANSI (ASME B29.1) tooth form publishes: 17° − 64°/N
+    (minimum, the roller at the top of the working curve) and 35° − 120°/N (new chain,
+    the roller at the end of the seating curve).
+
+    Parameters
+    ----------
+    teeth : int
+        N [-].
+
+    Returns
+    -------
+    tuple of float
+        (φ_min, φ_new) [rad].
+
+    References
+    ----------
+    [ANSI-B29.1] (the tooth form table, reproduced in [Oberg2016]); [Kidd1999] (35° − 120°/N).
+    """
+    return math.radians(17.0 - 64.0 / teeth), math.radians(35.0 - 120.0 / teeth)
+
+
 def flank_limit_factors(teeth: int, half_angle: float) -> tuple[float, float]:
     """Tension ratio from link to link and load of a tooth per entering tension, for a rigid
-    roller chain on a rigid sprocket with every roller on its flank.
+    roller chain on a rigid sprocket with every roller on its flank at the end of its seat.
 
-    q = cos(α + π/z)/cos(α − π/z) and P/T = sin(2π/z)/cos(α − π/z) (Lami's theorem for the
-    roller's two link tensions and the flank's normal force).
+    q = cos(α + π/z)/cos(α − π/z) and P/T = sin(2π/z)/cos(α − π/z): Binder's law
+    (:func:`binder_tooth_factors`) at the pressure angle of the seat's end
+    (:func:`seating_pressure_angle`).
 
     Parameters
     ----------
@@ -84,11 +200,9 @@ def flank_limit_factors(teeth: int, half_angle: float) -> tuple[float, float]:
 
     References
     ----------
-    [Naji1983, §2.1] (rigid chain, rigid stationary sprocket).
+    [Naji1983, §2.1] (rigid chain, rigid stationary sprocket); [Binder1956].
     """
-    s = math.pi / teeth
-    return math.cos(half_angle + s) / math.cos(half_angle - s), \
-        math.sin(2 * s) / math.cos(half_angle - s)
+    return binder_tooth_factors(teeth, seating_pressure_angle(teeth, half_angle))
 
 
 def root_bending_stress(load: float, half_angle: float, seating_radius: float,
