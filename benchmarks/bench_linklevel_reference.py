@@ -13,9 +13,11 @@ Run (one BLAS thread): OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_linkl
 4. Speed: CPU seconds per simulated second at working speed (seed, 128 links; the 12B
    15/25 drive; the 24-sprocket example, 744 links), the static state's solve apart, link
    springs explicit and implicit.
-5. Step limit (``steps``): the explicit link springs at 1–4× the default step (the implicit
-   dampers keep them stable there), 0.3 s at working speed and power with the run at Δt/2:
-   the changes of K_D, F_D, peaks and means and the energy balance (seed, 12B 15/25).
+5. Step limit (``steps [seed|12B|eight …]``): 1–4× the default step, link springs explicit
+   (the implicit dampers keep them stable there) and implicit, the hinge friction implicit
+   above the default step, 0.3 s at working speed and power with the run at Δt/2: the
+   changes of K_D, F_D, peaks and means and the energy balance (seed, 12B 15/25, the
+   eight-sprocket example).
 6. What moves the energy balance at a larger step (``hinge``): the seed at Δt and 2Δt with
    and without the hinge friction and the contact dampers; the step convergence without the
    hinge friction at Δt.
@@ -132,22 +134,31 @@ def speed() -> None:
 
 
 def step_limit() -> None:
-    print("5. explicit link springs at larger steps, 0.3 s at working speed and power")
-    for name, drive in (("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml")),
-                        ("12B 15/25", _two_sprocket(85, 300.0, 1000.0))):
+    print("5. larger steps, 0.3 s at working speed and power, the run repeated at dt/2 "
+          f"(load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)")
+    which = sys.argv[2:] or ["seed", "12B", "eight"]
+    drives = {"seed": lambda: load_drive(EXAMPLES / "seed_three_sprocket.toml"),
+              "12B": lambda: _two_sprocket(85, 300.0, 1000.0),
+              "eight": lambda: load_drive(EXAMPLES / "eight_sprocket.toml")}
+    for name in which:
+        drive = drives[name]()
         geometry = contour_geometry(drive)
         model = build_model(drive, geometry)
         base = simulate(drive, 0.001, geometry=geometry, model=model).dt
-        for f in (1.0, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0):
-            r = simulate(drive, 0.3, geometry=geometry, model=model, initial_speed="working",
-                         dt_s=base * f, check_step=True)
-            c = r.convergence
-            print(f"   {name:9s} dt = {f:4.2f}·default ({r.dt * 1e6:5.2f} µs): K_D "
-                  f"{r.coefficient_of_dynamics:.3f}; changes at dt/2: K_D "
-                  f"{c['coefficient_of_dynamics_change']:.2%}, F_D "
-                  f"{c['span_dynamic_load_change']:.2%}, peaks "
-                  f"{c['peak_span_force_change']:.2%}, means {c['span_mean_force_change']:.2%}; "
-                  f"energy balance {r.energy['drift_fraction']:+.1e}", flush=True)
+        for implicit in (False, True):
+            for f in (1.0, 1.25, 1.5, 2.0, 3.0, 4.0):
+                r = simulate(drive, 0.3, geometry=geometry, model=model,
+                             initial_speed="working", dt_s=base * f, check_step=True,
+                             implicit_links=implicit)
+                c = r.convergence
+                print(f"   {name:5s} {'implicit' if implicit else 'explicit'} springs, dt = "
+                      f"{f:4.2f}·default ({r.dt * 1e6:5.2f} µs): K_D "
+                      f"{r.coefficient_of_dynamics:.3f}; changes at dt/2: K_D "
+                      f"{c['coefficient_of_dynamics_change']:.2%}, F_D "
+                      f"{c['span_dynamic_load_change']:.2%}, peaks "
+                      f"{c['peak_span_force_change']:.2%}, means "
+                      f"{c['span_mean_force_change']:.2%}; energy balance "
+                      f"{r.energy['drift_fraction']:+.1e}", flush=True)
 
 
 def hinge() -> None:
@@ -181,5 +192,6 @@ def hinge() -> None:
 if __name__ == "__main__":
     parts = {"static": static_state, "energy": energy, "convergence": convergence,
              "speed": speed, "steps": step_limit, "hinge": hinge}
-    for key in sys.argv[1:] or list(parts):
+    keys = sys.argv[1:] or list(parts)
+    for key in keys if keys[0] != "steps" else ["steps"]:
         parts[key]()

@@ -10,10 +10,12 @@ taken implicitly (the kernel's θ = 1/4, the implicit–explicit partition of
 [HughesLiu1978]): the step is then stable below 2/ω of the explicit part alone, a roller on
 one tooth, ω² = k_c/m. The accuracy, not the stability, bounds it: :func:`default_step`
 resolves the roller's oscillation on a tooth and the regularised hinge friction, which
-leaves twice the explicit step on the seed's polymer sprockets and none on steel ones; even
-there K_D and the span loads move by several per cent when the step halves
-(docs/linklevel.md §2), against 0.2 % for the explicit step. A joint clearance (a dead
-band, no tangent stiffness inside it) keeps the explicit step.
+leaves twice the explicit step on the seed's polymer sprockets and none on steel ones; there
+K_D and the peaks move by 1–2 % when the step halves, the span dynamic loads by 4 %
+(docs/linklevel.md §2), against 0.05–0.6 % for the explicit step. Above the explicit step
+the hinge friction is taken implicitly (:func:`hinge_implicit`): taken explicitly its
+regularised law is stable up to that step exactly. A joint clearance (a dead band, no
+tangent stiffness inside it) keeps the explicit step.
 """
 
 from __future__ import annotations
@@ -61,7 +63,7 @@ if TYPE_CHECKING:
     from chaindrive.model import Drive
 
 __all__ = ["COURANT", "InitialState", "default_step", "equilibrium_state",
-           "hinge_regularisation", "initial_state", "simulate", "undamped"]
+           "hinge_implicit", "hinge_regularisation", "initial_state", "simulate", "undamped"]
 
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
@@ -184,7 +186,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
         ``"constant"``; None: none) with their power shares at the nominal speeds (none
         when ``motor`` is False).
     dt_s : float or None
-        Time step [s] (None: :func:`default_step`).
+        Time step [s] (None: :func:`default_step`); above the explicit step the hinge
+        friction is taken implicitly (:func:`hinge_implicit`).
     sample_rate_hz : float or None
         Rate of the recorded history [Hz] (None: about 10× the whole-drive model's reference
         frequency, at least 1 kHz).
@@ -498,7 +501,7 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
     tables = kernel_tables(model)
     spr, trig, gtab, reach = tables.spr, tables.trig, tables.gtab, tables.reach
     win = np.maximum(1.0, np.round(TWO_PI / (model.teeth * np.abs(omega)) / dt))
-    cmax = hinge_regularisation(model, dt)
+    cmax = hinge_regularisation(model)
     search = max(1, min(SEARCH_EVERY, int(0.25 * model.pitch / (SEARCH_SPEED * dt))))
     rows = steps // every + 1
     rec = (np.empty((rows, N, 2)), np.empty((rows, J.size)), np.empty((rows, J.size)),
@@ -515,7 +518,8 @@ def _run(drive: Drive, geometry: GeometryResult, model: LinkLevelModel, asm: Ass
                float(model.gravity[1]), L0, model.link_stiffness, model.link_damping,
                model.clearance, model.hinge_friction * model.pin_radius, cmax, spr, trig, gtab, reach,
                search, win, J, K, C, mkind, mp, mdof, msign, rkind, rM, rwn, rbrk,
-               rsign, *rec, energy, cand, eng, events, count, 0.0, theta)
+               rsign, *rec, energy, cand, eng, events, count, 0.0, theta,
+               hinge_implicit(model, dt))
     times = np.arange(rows, dtype=np.float64) * every * dt
     kernel_args = (L0, spr, J, K, th0)
     e_start = state_energy(model, x0, v0, th0, w0, *kernel_args)
@@ -538,6 +542,11 @@ def default_step(model: LinkLevelModel, implicit: bool = False) -> float:
     (the regularised hinge friction's relaxation time I/c_max = 4Δt_e in two steps,
     :func:`hinge_regularisation`), and never below Δt_e.
 
+    The explicit Δt_e stays the default although, with the hinge friction implicit above
+    it, K_D and the peak span forces hold the 2 % step-halving rule up to 1.5Δt_e on the
+    seed, the 12B 15/25 drive and the eight-sprocket example: the implicit hinge solve
+    costs more a step than the 1.5× step saves (docs/linklevel.md §3).
+
     Parameters
     ----------
     model : LinkLevelModel
@@ -557,13 +566,34 @@ def default_step(model: LinkLevelModel, implicit: bool = False) -> float:
     return max(explicit, min(contact, HINGE_STEPS * explicit))
 
 
-def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
+def hinge_regularisation(model: LinkLevelModel) -> float:
     """Viscous coefficient [N·m·s/rad] of the regularised Coulomb hinge friction below its
     sliding limit: a link's inertia I = m p²/2 over 4Δt_e, Δt_e the explicit step
-    (:func:`default_step` with explicit link springs), whatever the step of the run — so
-    that the friction law does not change with the step or the integrator — and over Δt
-    itself only for a step above 4Δt_e (the law's relaxation time I/c_max: a quarter of the
-    explicit limit 2/Δt on its rate there).
+    (:func:`default_step` with explicit link springs), c_max = m p²/(8Δt_e), whatever the
+    step of the run — so that the friction law does not change with the step or the
+    integrator. Taken explicitly it is stable up to Δt_e exactly (:func:`hinge_implicit`);
+    above, the kernel takes it implicitly.
+
+    Parameters
+    ----------
+    model : LinkLevelModel
+        The parameters.
+
+    Returns
+    -------
+    float
+        c_max [N·m·s/rad].
+    """
+    return model.roller_mass * model.pitch**2 / 2.0 / (4.0 * default_step(model, False))
+
+
+def hinge_implicit(model: LinkLevelModel, dt: float) -> bool:
+    """Whether a run at step ``dt`` [s] takes the viscous hinges implicitly: when the
+    explicit hinge friction would be unstable, Δt·c_max·λ_max/m > 2 with λ_max = 16/p² the
+    zigzag mode of a straight span (the fourth difference (1, −4, 6, −4, 1)/p² of the
+    hinges' relative rates, forward Euler on a viscous law [Hairer2006]), i.e. Δt >
+    m p²/(8 c_max) = Δt_e (:func:`hinge_regularisation`). At and below Δt_e the explicit
+    law (cheaper by about 2.4 µs a step at 128 links, docs/linklevel.md §3).
 
     Parameters
     ----------
@@ -574,11 +604,11 @@ def hinge_regularisation(model: LinkLevelModel, dt: float) -> float:
 
     Returns
     -------
-    float
-        c_max [N·m·s/rad].
+    bool
+        True above the explicit hinge friction's stability limit.
     """
-    explicit = default_step(model, False)
-    return model.roller_mass * model.pitch**2 / 2.0 / (4.0 * max(explicit, dt / 4.0))
+    limit = model.roller_mass * model.pitch**2 / (8.0 * hinge_regularisation(model))
+    return dt > limit * (1.0 + 1e-9)  # Δt_e itself (rounding of the two expressions) explicit
 
 
 def duration_events(model: LinkLevelModel, omega: NDArray[np.float64], duration: float) -> float:
