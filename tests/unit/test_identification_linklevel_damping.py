@@ -6,6 +6,7 @@ slope dζ/d ln x — the first-order propagation of u through the slope [JCGM100
 from __future__ import annotations
 
 import math
+from statistics import NormalDist
 
 import numpy as np
 import pytest
@@ -28,7 +29,7 @@ def test_a_reading_linear_in_ln_x_gives_the_propagated_interval(truth: float, u:
     fit = fit_decay_curve(_curve(a + b * np.log(GRID)),
                           MeasuredDamping(1, a + b * math.log(truth), u))
     assert fit.value == pytest.approx(truth, rel=1e-9)
-    half = 1.96 * u / b
+    half = NormalDist().inv_cdf(0.975) * u / b  # the two-sided 95 % normal quantile
     assert fit.interval[0] == pytest.approx(truth * math.exp(-half), rel=1e-9)
     assert fit.interval[1] == pytest.approx(truth * math.exp(half), rel=1e-9)
     assert fit.identified
@@ -52,8 +53,8 @@ def test_a_reading_that_levels_off_bounds_one_side_only() -> None:
     z = np.minimum(0.021, 0.021 + 0.01 * np.log(GRID / knee))
     fit = fit_decay_curve(_curve(z), MeasuredDamping(1, 0.0205, 0.001))
     assert fit.open_above and not fit.open_below
-    assert fit.interval[0] == pytest.approx(knee * math.exp((0.0205 - 1.96e-3 - 0.021) / 0.01),
-                                            rel=1e-9)
+    low = 0.0205 - NormalDist().inv_cdf(0.975) * 1e-3  # the reading less its 95 % half-width
+    assert fit.interval[0] == pytest.approx(knee * math.exp((low - 0.021) / 0.01), rel=1e-9)
     assert fit.value == pytest.approx(knee * math.exp(-0.05), rel=1e-9)
 
 

@@ -50,11 +50,12 @@ from chaindrive.identification.damping import (
     free_decay_damping_ratio,
     with_damping_ratio,
 )
+from chaindrive.identification.fitting import Z95
 
 if TYPE_CHECKING:
     from chaindrive.model import Drive
 
-__all__ = ["DAMPING_RATIO_RANGE", "GRID_POINTS", "HINGE_FRICTION_RANGE", "Z_95",
+__all__ = ["DAMPING_RATIO_RANGE", "GRID_POINTS", "HINGE_FRICTION_RANGE",
            "DecayCurve", "LinkLevelDampingCalibration", "TapTest",
            "calibrate_link_level_damping", "decay_curve", "decay_of_signal",
            "fit_decay_curve", "tap_decay"]
@@ -62,8 +63,6 @@ __all__ = ["DAMPING_RATIO_RANGE", "GRID_POINTS", "HINGE_FRICTION_RANGE", "Z_95",
 FloatArray = np.ndarray[Any, np.dtype[np.float64]]
 Parameter = Literal["damping_ratio", "hinge_friction"]
 
-#: Two-sided 95 % quantile of the normal distribution [-].
-Z_95 = 1.96
 #: Runs of the link-level tap test on a log-spaced grid of the fitted input [-] (0.5 s of
 #: CPU each for 0.5 s of the seed drive's tap).
 GRID_POINTS = 13
@@ -405,7 +404,7 @@ def fit_decay_curve(curve: DecayCurve, measured: MeasuredDamping
         raise DesignError("grid", f"{int(ok.sum())} of {curve.grid.size} runs read a decay; "
                           "allowed: 2 or more")
     lx, r = np.log(curve.grid[ok]), curve.ratios[ok] - measured.ratio
-    pieces = _band_pieces(lx, r, Z_95 * measured.std)
+    pieces = _band_pieces(lx, r, Z95 * measured.std)
     if not pieces:
         raise DesignError("decay", f"ζ = {measured.ratio:.4g} ± {measured.std:.2g}: the model "
                           f"reads {np.nanmin(curve.ratios):.4g} to {np.nanmax(curve.ratios):.4g} "
