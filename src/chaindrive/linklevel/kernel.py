@@ -173,7 +173,7 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
     return d_gap, nx, ny, j
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _flank(px: float, py: float, wx: float, wy: float, gx: float, gy: float, sg: float,
            R: float, rr: float, ri: float, ca: float, sa: float, Ra: float
            ) -> tuple[float, float, float]:
@@ -395,7 +395,7 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         gx, gy = px, py
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
                ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
     """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
@@ -422,7 +422,7 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
     return d, nx, ny
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
               trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any) -> float:
     """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
