@@ -100,8 +100,9 @@ def _time_velocity(n, x, v0, L0, k, clear, h, hc):
 
 @numba.njit
 def _time_search(n, x, cx, cy, reach, cand, eng):
+    xs, free = np.zeros(x.shape), np.full(x.shape[0], -1.0)
     for _ in range(n):
-        kern._search(x, cx, cy, reach, cand, eng)
+        kern._search(x, cx, cy, reach, cand, eng, xs, free)
     return cand.sum()
 
 
