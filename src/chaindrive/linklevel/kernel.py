@@ -633,10 +633,11 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
         if step == steps:
             break
         relax = 1.0 / (1.0 + dt * eta)
-        for r in range(N):
-            if eta > 0.0:
+        if eta > 0.0:
+            for r in range(N):
                 v[r, 0] *= relax
                 v[r, 1] *= relax
+        for r in range(N):  # (without a branch inside, the loop vectorises)
             x[r, 0] += dt * v[r, 0]
             x[r, 1] += dt * v[r, 1]
         for i in range(D):
