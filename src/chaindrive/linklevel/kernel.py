@@ -693,9 +693,9 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
 
 def compiled() -> bool:
     """Whether the kernel's compiled code is in numba's cache, so that a run starts at once;
-    False when the first run will compile it (about 10 s on an idle core of the project
-    machine — 11.8 s for a 0.05 s seed run against 1.5 s with the cache — and minutes on a
-    busy one). Read from the cache index numba keeps beside this module (or under
+    False when the first run will compile it (about 15 s on an idle core of the project
+    machine — 17.6 s for a 0.05 s seed run against 1.3 s with the cache, load average 3 —
+    and minutes on a busy one). Read from the cache index numba keeps beside this module (or under
     ``NUMBA_CACHE_DIR``); where numba's cache cannot be inspected, False (a message too many
     rather than a silent wait).
 
