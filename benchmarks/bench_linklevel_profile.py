@@ -100,8 +100,10 @@ def _time_velocity(n, x, v0, L0, k, clear, h, hc):
 
 @numba.njit
 def _time_search(n, x, cx, cy, reach, cand, eng):
+    xs, free = np.zeros(x.shape), np.empty(x.shape[0])
     for _ in range(n):
-        kern._search(x, cx, cy, reach, cand, eng)
+        free[:] = -1.0  # every roller tested (in a run most have moved too little to be)
+        kern._search(x, cx, cy, reach, cand, eng, xs, free)
     return cand.sum()
 
 
@@ -135,7 +137,7 @@ def main() -> None:
         "contacts": _per_call(_time_contacts, x, v, th, w, cand.copy(), spr, trig, gtab),
         "implicit dampers (velocity update)": _per_call(_time_velocity, x, v, L0, k, clear,
                                                         dt / m, dt * c / m),
-        f"contact search (every {search} steps)": _per_call(
+        f"contact search (every {search} steps, all tested)": _per_call(
             _time_search, x, spr[0].copy(), spr[1].copy(), reach, cand.copy(), eng.copy(),
             calls=CALLS // search) / search,
         "engagement windows": _per_call(_time_engagements, np.zeros(N), eng.copy(), win,

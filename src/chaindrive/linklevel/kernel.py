@@ -96,19 +96,38 @@ def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> 
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any) -> None:
-    """cand[r] = the sprocket whose reach circle holds roller r, else −1. A roller that
+def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, xs: Any,
+            free: Any) -> None:
+    """cand[r] = the first sprocket whose reach circle holds roller r, else −1. A roller that
     comes within reach of sprocket s from outside every reach is armed for an engagement
-    (eng[r] = (s, −1, 0)); one that leaves every reach before touching is disarmed."""
+    (eng[r] = (s, −1, 0)); one that leaves every reach before touching is disarmed.
+
+    A roller is tested against the reach circles only once it has moved away from where it
+    was last tested (xs[r]) by the distance from there to the nearest circle that decides
+    its answer (those of sprockets up to its own, or all when it was in none), less 1 nm:
+    closer, no circle can have been crossed, so its answer stands. free[r] holds the square
+    of that distance (−1: test it; the 1 nm dwarfs the round-off of the squared distances,
+    ~10⁻¹⁷ m at these sizes, so the answer is the one a test would give)."""
     for r in range(x.shape[0]):
         old = cand[r]
-        cand[r] = -1
-        for s in range(cx.size):
-            dx = x[r, 0] - cx[s]
-            dy = x[r, 1] - cy[s]
-            if dx * dx + dy * dy < reach[s] * reach[s]:
-                cand[r] = s
-                break
+        ex = x[r, 0] - xs[r, 0]
+        ey = x[r, 1] - xs[r, 1]
+        if not ex * ex + ey * ey < free[r]:  # (a NaN position is tested)
+            new = -1
+            margin = math.inf
+            for s in range(cx.size):
+                dx = x[r, 0] - cx[s]
+                dy = x[r, 1] - cy[s]
+                d2 = dx * dx + dy * dy
+                margin = min(margin, abs(math.sqrt(d2) - reach[s]))
+                if d2 < reach[s] * reach[s]:
+                    new = s
+                    break
+            margin -= 1e-9
+            free[r] = margin * margin if margin > 0.0 else -1.0
+            xs[r, 0] = x[r, 0]
+            xs[r, 1] = x[r, 1]
+            cand[r] = new
         if old == -1 and cand[r] >= 0 and eng[r, 0] < 0:
             eng[r, 0] = cand[r]
             eng[r, 1] = -1.0
@@ -179,7 +198,7 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
     return d_gap, nx, ny, j
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _flank(px: float, py: float, wx: float, wy: float, gx: float, gy: float, sg: float,
            R: float, rr: float, ri: float, ca: float, sa: float, Ra: float
            ) -> tuple[float, float, float]:
@@ -583,7 +602,7 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         gx, gy = px, py
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
                ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
     """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
@@ -610,7 +629,7 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
     return d, nx, ny
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", inline="always")
 def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
               trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any) -> float:
     """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
@@ -765,11 +784,13 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
     Gc = np.full(N, -1, dtype=np.int64)
     cth = np.empty(spr.shape[1])  # cos and sin of the sprockets' angles (_contacts)
     sth = np.empty(spr.shape[1])
+    xs = np.zeros((N, 2))  # where each roller was last tested against the reach circles
+    free = np.full(N, -1.0)  # and the square of how far it may go untested (_search)
     row = 0
     for step in range(steps + 1):
         t = t0 + step * dt
         if step % search_every == 0:
-            _search(x, spr[0], spr[1], reach, cand, eng)
+            _search(x, spr[0], spr[1], reach, cand, eng, xs, free)
         for r in range(N):
             f[r, 0] = m * gx
             f[r, 1] = m * gy
@@ -815,10 +836,11 @@ def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float
         if step == steps:
             break
         relax = 1.0 / (1.0 + dt * eta)
-        for r in range(N):
-            if eta > 0.0:
+        if eta > 0.0:
+            for r in range(N):
                 v[r, 0] *= relax
                 v[r, 1] *= relax
+        for r in range(N):  # (without a branch inside, the loop vectorises)
             x[r, 0] += dt * v[r, 0]
             x[r, 1] += dt * v[r, 1]
         for i in range(D):
@@ -874,9 +896,9 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
 
 def compiled() -> bool:
     """Whether the kernel's compiled code is in numba's cache, so that a run starts at once;
-    False when the first run will compile it (about 10 s on an idle core of the project
-    machine — 11.8 s for a 0.05 s seed run against 1.5 s with the cache — and minutes on a
-    busy one). Read from the cache index numba keeps beside this module (or under
+    False when the first run will compile it (about 15 s on an idle core of the project
+    machine — 17.6 s for a 0.05 s seed run against 1.3 s with the cache, load average 3 —
+    and minutes on a busy one). Read from the cache index numba keeps beside this module (or under
     ``NUMBA_CACHE_DIR``); where numba's cache cannot be inspected, False (a message too many
     rather than a silent wait).
 
