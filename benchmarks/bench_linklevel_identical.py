@@ -17,6 +17,7 @@ energy terms, the contact candidates, the engagement windows and events — is c
 from __future__ import annotations
 
 import importlib
+import inspect
 import sys
 from pathlib import Path
 from typing import Any
@@ -57,6 +58,8 @@ def main() -> int:
     path = Path(sys.argv[1]).resolve()  # imported by name: numba's cache needs one
     sys.path.insert(0, str(path.parent))
     other = importlib.import_module(path.stem)
+    # an older kernel takes fewer trailing arguments (the implicit hinge switch came later)
+    n = len(inspect.signature(other.run_kernel.py_func).parameters)
     drives = (("seed", load_drive(EXAMPLES / "seed_three_sprocket.toml"), 20_000),
               ("12B 15/25", _two_sprocket(85, 300.0, 1000.0), 20_000),
               ("24 sprockets", load_drive(EXAMPLES / "twenty_four_sprocket.toml"), 4_000))
@@ -65,7 +68,7 @@ def main() -> int:
         a0 = kernel_arguments(drive)
         for variant, kw in VARIANTS:
             a, b = arguments(a0, steps, **kw), arguments(a0, steps, **kw)
-            other.run_kernel(*a)
+            other.run_kernel(*a[:n])
             kernel.run_kernel(*b)
             apart = [i for i, (p, q) in enumerate(zip(a, b, strict=True))
                      if isinstance(p, np.ndarray) and not np.array_equal(p, q, equal_nan=True)]
