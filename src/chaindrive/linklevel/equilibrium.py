@@ -131,6 +131,9 @@ _REJECTIONS = 30
 _SHIFT_START = 1e-6
 #: Secant steps on the pull at most [-].
 _PULL_STEPS = 12
+#: The continuation in the contact stiffness: the fractions of k_c at which Φ is minimised,
+#: each from the last, before the solve at k_c itself (module docstring, step 2) [-].
+CONTACT_CONTINUATION = (1e-3, 1e-2, 1e-1)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -667,6 +670,42 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     return z, _TRUST_STEPS
 
 
+def _followed(phi: _Tensioned, tol: float
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64], float, int, int]:
+    """The minimum of Φ followed from a soft contact to the real one: Φ at ``phi``'s pull
+    minimised (:func:`_minimum`) with the contact stiffness k_c scaled by each fraction of
+    :data:`CONTACT_CONTINUATION` in turn and then at k_c itself, each minimisation from the
+    last (a continuation in the contact stiffness, [Nocedal2006, §11.3]; module
+    docstring, step 2).
+
+    Parameters
+    ----------
+    phi : _Tensioned
+        The energy at the real k_c with its pull and the state to start from.
+    tol : float
+        ‖∇Φ‖₂ at which each minimisation stops [N].
+
+    Returns
+    -------
+    tuple of (ndarray, ndarray, float, int, int)
+        Positions [m], angles [rad] and rest length [m] of the minimum, the trust-region
+        steps of all the minimisations and those of the last, at k_c [-].
+    """
+    x, th, rest, steps, nit = phi.x0, phi.th0, phi.rest0, 0, 0
+    for fraction in (*CONTACT_CONTINUATION, 1.0):
+        spr = phi.tables.spr.copy()
+        spr[8] *= fraction
+        soft = replace(phi.tables, spr=spr)
+        stage = _Tensioned(phi.model, soft,
+                           Balance(phi.model, soft, phi.bal.free, phi.N, phi.bal.ref),
+                           x, th, rest)
+        stage.pull = phi.pull
+        z, nit = _minimum(stage, tol)
+        steps += nit
+        x, th, rest = stage.state(z)
+    return x, th, rest, steps, nit
+
+
 def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
                        reference_span: int, take_up: str | None = None) -> Equilibrium:
     """Solve the static state at the installed pre-tension (module docstring, steps 2–3).
@@ -725,9 +764,8 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
     phi = _Tensioned(model, tables, bal, x, th, rest)
     iterations, history = 0, []
     for _ in range(_PULL_STEPS):  # the secant on the pull T̄ that puts T₀ on the reference
-        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
-        iterations += nit
-        x, th, rest = phi.state(z)
+        x, th, rest, steps, nit = _followed(phi, MINIMUM_TOLERANCE * t0)
+        iterations += steps
         error = float(bal(x, th, rest)[-1])
         history.append((phi.pull, error))
         if abs(error) <= TENSION_TOLERANCE * t0:
@@ -754,9 +792,8 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
             break  # the last minimisation stopped at its cap: another would stop there too
         phi.x0, phi.th0, phi.rest0 = x, th, rest
         phi.pull -= float(r[-1])  # one more secant-like step towards T₀ on the reference
-        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
-        iterations += nit
-        x, th, rest = phi.state(z)
+        x, th, rest, steps, nit = _followed(phi, MINIMUM_TOLERANCE * t0)
+        iterations += steps
     r = bal(x, th, rest)
     left = float(np.abs(r[:-1]).max())
     if max(abs(float(r[-1])), left) > ACCEPTED_RESIDUAL * t0:
