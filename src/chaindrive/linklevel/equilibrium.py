@@ -36,7 +36,18 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
    links apart (a roller's force depends on its own position and its two neighbours',
    [Curtis1974]), symmetrised and kept sparse; the shifted Hessian is factorised by SuperLU
-   with diagonal pivots (:func:`_definite_solve`). A secant on T̄ (started at T₀, the
+   with diagonal pivots (:func:`_definite_solve`). Every minimisation is followed from a
+   soft contact to the real one (:func:`_followed`): Φ minimised with the contact
+   stiffness k_c scaled by 10⁻³, 10⁻², 10⁻¹ (:data:`CONTACT_CONTINUATION`) and then 1,
+   each from the last — a continuation in k_c ([Nocedal2006, §11.3]). Without it a drive
+   with long slack spans at a low T₀ creeps: the spans' sag together with the free
+   sprockets' turns is some 10⁷ times softer than the links and contacts (19 N/m against
+   1.4·10⁹ N/m on the 24-sprocket example), and a roller grazing its seat, whose stiffness
+   jumps between 0 and k_c across δ = 0, drives the shift μ to 10⁴–10⁷ N/m, so that each
+   step moves the sag by λ/(λ + μ) ≈ 10⁻⁶–10⁻³ of its Newton step (docs/linklevel.md §1).
+   With a soft contact the jump is of the sag's order and the sag settles in tens of
+   steps; the stiffer stages then move the seats by nanometres, in directions as stiff as
+   the shift. A secant on T̄ (started at T₀, the
    reference carrying the pull up to hydrostatic and polygon offsets) brings the reference
    link to T₀, each minimisation starting from the last.
 3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
@@ -53,8 +64,7 @@ times the forces' own round-off, k·ε·|x| ≈ 10⁻⁸ N). Where the polish st
 state is minimised again from it and polished again (three rounds at most). A minimisation
 that stops at its step cap (:data:`_TRUST_STEPS`) reads the reference tension with its own
 scatter: the secant then stops once T_ref is within :data:`ACCEPTED_RESIDUAL` T₀ and no
-renewed minimisation is tried (on the 24-sprocket example this cut the solve from 202 to
-about 46 s of CPU, 0.02 → 0.12 N left, neither converged). The state is
+renewed minimisation is tried. The state is
 converged when its largest residual force is within the minimisation's tolerance and T_ref
 within the secant's; one that stops short but has both within :data:`ACCEPTED_RESIDUAL`
 T₀ = 10⁻² T₀ is kept with ``converged`` false; the residual (largest component and 2-norm, N) is
@@ -736,8 +746,8 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
 
     References
     ----------
-    [Nocedal2006] (trust-region Newton); [Dennis1996] (Newton's method); [Curtis1974] (grouped
-    differences); [Irvine1981, ch. 1] (hydrostatic tension).
+    [Nocedal2006] (trust-region Newton, §11.3 continuation); [Dennis1996] (Newton's method);
+    [Curtis1974] (grouped differences); [Irvine1981, ch. 1] (hydrostatic tension).
     """
     t0 = model.pretension
     rest = model.pitch - t0 / model.link_stiffness
