@@ -59,6 +59,7 @@ __all__ = [
     "result_word",
     "show",
     "shown_value",
+    "static_state_note",
     "unit_header",
     "unit_of",
     "unit_system",
@@ -532,6 +533,39 @@ def warning_text(warning: ChainDriveWarning | Mapping[str, Any],
     if isinstance(warning, ChainDriveWarning):
         return quantity_text(warning.message, warning.quantities, system)
     return quantity_text(str(warning["message"]), warning.get("quantities"), system)
+
+
+@shared_parameters
+def static_state_note(equilibrium: Mapping[str, Any], system: UnitSystem = "SI",
+                      figures: str = "these figures") -> str | None:
+    """The sentence every presenter shows beside the link-level figures when the static
+    state the run starts from stopped short of its tolerance (``converged`` false in
+    :meth:`chaindrive.linklevel.equilibrium.Equilibrium.to_dict`): the largest force left
+    and the reference span's offset from T₀, as the record carries them; None when it
+    converged (or carries no ``converged``).
+
+    Parameters
+    ----------
+    equilibrium : mapping
+        The static state's record (``converged``, ``residual_force_n``,
+        ``reference_tension_error_n`` [N]).
+    %(system)s
+    figures : str
+        What rests on that state, as the sentence names it.
+
+    Returns
+    -------
+    str or None
+        The sentence, forces in ``system``'s unit; None for a converged state.
+    """
+    if equilibrium.get("converged", True):
+        return None
+    offset = float(equilibrium["reference_tension_error_n"])
+    return ("The static state the link-level run starts from stopped short of its "
+            "tolerance: largest force left "
+            f"{show(float(equilibrium['residual_force_n']), 'force', system, 3)}, reference "
+            f"span {'+' if offset > 0 else ''}{show(offset, 'force', system, 3)} off T₀; "
+            f"{figures} rest on that state.")
 
 
 def candidate_verdict(candidate: Mapping[str, Any]) -> str:

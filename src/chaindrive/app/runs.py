@@ -389,12 +389,17 @@ class LinkLevelView:
         The frames of the chain (PNG).
     tensions_png : bytes
         The link tension along the chain (PNG).
+    equilibrium : dict
+        The static state the run started from
+        (:meth:`chaindrive.linklevel.equilibrium.Equilibrium.to_dict`: ``converged``, its
+        residual and the reference span's offset from T₀, SI).
     """
 
     comparison: dict[str, Any]
     time_step_s: float
     frames_png: bytes
     tensions_png: bytes
+    equilibrium: dict[str, Any]
 
 
 def link_level_view(drive: Drive, duration_s: float | None = None) -> LinkLevelView:
@@ -425,7 +430,8 @@ def link_level_view(drive: Drive, duration_s: float | None = None) -> LinkLevelV
     times = frame_times(result)
     return LinkLevelView(comparison.to_dict(), result.dt,
                          figure_png(chain_frames(result, times), dpi=90),
-                         figure_png(tension_along_chain(result, times), dpi=90))
+                         figure_png(tension_along_chain(result, times), dpi=90),
+                         dict(result.equilibrium))
 
 
 def bounded_link_level(drive: Drive, duration_s: float | None = None) -> LinkLevelView:

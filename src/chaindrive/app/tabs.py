@@ -40,6 +40,7 @@ from chaindrive.display import (
     fmt,
     header,
     quantity_text,
+    static_state_note,
     warning_text,
 )
 from chaindrive.errors import ChainDriveError
@@ -481,6 +482,9 @@ def tab_links(screen: Screen) -> None:
     st.write(f"Start-up from rest over {fmt(doc['duration_s'])} s (step "
              f"{fmt(view.time_step_s * 1e6)} µs); steady quantities over the closing half, "
              f"from t = {fmt(doc['steady_from_s'])} s.")
+    stopped = static_state_note(view.equilibrium, _units())
+    if stopped is not None:
+        st.warning(stopped)
     if not doc["settled"]:
         st.warning("The driver had not reached its nominal speed by then: the link-level "
                    "steady quantities still hold the start-up; run longer for steady ones.")

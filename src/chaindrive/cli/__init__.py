@@ -23,7 +23,7 @@ import typer
 from chaindrive.cli import tables
 from chaindrive.cli.safety import EXIT_USER_ERROR, exit_on_signal, guarded, one_line
 from chaindrive.cli.threads import limit_blas_threads
-from chaindrive.display import RPM_PER_RAD_S, convert, fmt, unit_system
+from chaindrive.display import RPM_PER_RAD_S, convert, fmt, static_state_note, unit_system
 from chaindrive.errors import ChainDriveError, DesignError, did_you_mean
 from chaindrive.io.atomic import atomic_directory, write_text
 from chaindrive.io.finite import check_document, check_rows
@@ -255,11 +255,9 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     print(f"link-level model, {result.times[-1]:.3f} s simulated: max span force "
           f"{result.peak_span_force.max():.1f} N, K_D = {_fmt(kd)}; histories written to "
           f"{output}")
-    eq = result.equilibrium
-    if not eq.get("converged", True):
-        print(f"note: the static state the run starts from stopped short of its tolerance "
-              f"(largest force left {eq['residual_force_n']:.3g} N, reference span "
-              f"{eq['reference_tension_error_n']:+.3g} N off T0); these figures rest on it")
+    note = static_state_note(result.equilibrium)
+    if note is not None:
+        print(f"note: {note}")
 
 
 @app.command()

@@ -36,7 +36,18 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    Hessian −∂F/∂x is taken by finite differences (step 1 nm) grouped over rollers three
    links apart (a roller's force depends on its own position and its two neighbours',
    [Curtis1974]), symmetrised and kept sparse; the shifted Hessian is factorised by SuperLU
-   with diagonal pivots (:func:`_definite_solve`). A secant on T̄ (started at T₀, the
+   with diagonal pivots (:func:`_definite_solve`). Every minimisation is followed from a
+   soft contact to the real one (:func:`_followed`): Φ minimised with the contact
+   stiffness k_c scaled by 10⁻³, 10⁻², 10⁻¹ (:data:`CONTACT_CONTINUATION`) and then 1,
+   each from the last — a continuation in k_c ([Nocedal2006, §11.3]). Without it a drive
+   with long slack spans at a low T₀ creeps: the spans' sag together with the free
+   sprockets' turns is some 10⁷ times softer than the links and contacts (19 N/m against
+   1.4·10⁹ N/m on the 24-sprocket example), and a roller grazing its seat, whose stiffness
+   jumps between 0 and k_c across δ = 0, drives the shift μ to 10⁴–10⁷ N/m, so that each
+   step moves the sag by λ/(λ + μ) ≈ 10⁻⁶–10⁻³ of its Newton step (docs/linklevel.md §1).
+   With a soft contact the jump is of the sag's order and the sag settles in tens of
+   steps; the stiffer stages then move the seats by nanometres, in directions as stiff as
+   the shift. A secant on T̄ (started at T₀, the
    reference carrying the pull up to hydrostatic and polygon offsets) brings the reference
    link to T₀, each minimisation starting from the last.
 3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
@@ -53,8 +64,7 @@ times the forces' own round-off, k·ε·|x| ≈ 10⁻⁸ N). Where the polish st
 state is minimised again from it and polished again (three rounds at most). A minimisation
 that stops at its step cap (:data:`_TRUST_STEPS`) reads the reference tension with its own
 scatter: the secant then stops once T_ref is within :data:`ACCEPTED_RESIDUAL` T₀ and no
-renewed minimisation is tried (on the 24-sprocket example this cut the solve from 202 to
-about 46 s of CPU, 0.02 → 0.12 N left, neither converged). The state is
+renewed minimisation is tried. The state is
 converged when its largest residual force is within the minimisation's tolerance and T_ref
 within the secant's; one that stops short but has both within :data:`ACCEPTED_RESIDUAL`
 T₀ = 10⁻² T₀ is kept with ``converged`` false; the residual (largest component and 2-norm, N) is
@@ -131,6 +141,9 @@ _REJECTIONS = 30
 _SHIFT_START = 1e-6
 #: Secant steps on the pull at most [-].
 _PULL_STEPS = 12
+#: The continuation in the contact stiffness: the fractions of k_c at which Φ is minimised,
+#: each from the last, before the solve at k_c itself (module docstring, step 2) [-].
+CONTACT_CONTINUATION = (1e-3, 1e-2, 1e-1)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -667,6 +680,42 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
     return z, _TRUST_STEPS
 
 
+def _followed(phi: _Tensioned, tol: float
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64], float, int, int]:
+    """The minimum of Φ followed from a soft contact to the real one: Φ at ``phi``'s pull
+    minimised (:func:`_minimum`) with the contact stiffness k_c scaled by each fraction of
+    :data:`CONTACT_CONTINUATION` in turn and then at k_c itself, each minimisation from the
+    last (a continuation in the contact stiffness, [Nocedal2006, §11.3]; module
+    docstring, step 2).
+
+    Parameters
+    ----------
+    phi : _Tensioned
+        The energy at the real k_c with its pull and the state to start from.
+    tol : float
+        ‖∇Φ‖₂ at which each minimisation stops [N].
+
+    Returns
+    -------
+    tuple of (ndarray, ndarray, float, int, int)
+        Positions [m], angles [rad] and rest length [m] of the minimum, the trust-region
+        steps of all the minimisations and those of the last, at k_c [-].
+    """
+    x, th, rest, steps, nit = phi.x0, phi.th0, phi.rest0, 0, 0
+    for fraction in (*CONTACT_CONTINUATION, 1.0):
+        spr = phi.tables.spr.copy()
+        spr[8] *= fraction
+        soft = replace(phi.tables, spr=spr)
+        stage = _Tensioned(phi.model, soft,
+                           Balance(phi.model, soft, phi.bal.free, phi.N, phi.bal.ref),
+                           x, th, rest)
+        stage.pull = phi.pull
+        z, nit = _minimum(stage, tol)
+        steps += nit
+        x, th, rest = stage.state(z)
+    return x, th, rest, steps, nit
+
+
 def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
                        reference_span: int, take_up: str | None = None) -> Equilibrium:
     """Solve the static state at the installed pre-tension (module docstring, steps 2–3).
@@ -697,8 +746,8 @@ def static_equilibrium(model: LinkLevelModel, geometry: GeometryResult, asm: Ass
 
     References
     ----------
-    [Nocedal2006] (trust-region Newton); [Dennis1996] (Newton's method); [Curtis1974] (grouped
-    differences); [Irvine1981, ch. 1] (hydrostatic tension).
+    [Nocedal2006] (trust-region Newton, §11.3 continuation); [Dennis1996] (Newton's method);
+    [Curtis1974] (grouped differences); [Irvine1981, ch. 1] (hydrostatic tension).
     """
     t0 = model.pretension
     rest = model.pitch - t0 / model.link_stiffness
@@ -725,9 +774,8 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
     phi = _Tensioned(model, tables, bal, x, th, rest)
     iterations, history = 0, []
     for _ in range(_PULL_STEPS):  # the secant on the pull T̄ that puts T₀ on the reference
-        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
-        iterations += nit
-        x, th, rest = phi.state(z)
+        x, th, rest, steps, nit = _followed(phi, MINIMUM_TOLERANCE * t0)
+        iterations += steps
         error = float(bal(x, th, rest)[-1])
         history.append((phi.pull, error))
         if abs(error) <= TENSION_TOLERANCE * t0:
@@ -754,9 +802,8 @@ def _solve(model: LinkLevelModel, geometry: GeometryResult, asm: Assembly,
             break  # the last minimisation stopped at its cap: another would stop there too
         phi.x0, phi.th0, phi.rest0 = x, th, rest
         phi.pull -= float(r[-1])  # one more secant-like step towards T₀ on the reference
-        z, nit = _minimum(phi, MINIMUM_TOLERANCE * t0)
-        iterations += nit
-        x, th, rest = phi.state(z)
+        x, th, rest, steps, nit = _followed(phi, MINIMUM_TOLERANCE * t0)
+        iterations += steps
     r = bal(x, th, rest)
     left = float(np.abs(r[:-1]).max())
     if max(abs(float(r[-1])), left) > ACCEPTED_RESIDUAL * t0:

@@ -22,6 +22,7 @@ from chaindrive.display import (
     fmt,
     margin_percent,
     quantity_text,
+    static_state_note,
     warning_text,
 )
 from chaindrive.plotting import (
@@ -131,7 +132,8 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
     the analysis says it: the damping source of its model, its warnings of estimated inputs
     (:data:`ESTIMATE_CODES`; one whose message is among ``shown`` in one short line), the
     estimates its catalogue row marks, a fatigue strength estimated for want of a catalogue
-    value, a service factor the design leaves out and the reading of K_D.
+    value, a service factor the design leaves out, a link-level static state that stopped
+    short of its tolerance when a check takes its load from that run, and the reading of K_D.
 
     %(params_inp)s
     shown : collection of str
@@ -194,6 +196,12 @@ def estimates(inp: ReportInput, shown: Collection[str] = ()) -> list[str]:
                        "states it [IwisFatigue]), no published value in the catalogue: give "
                        "the maker's or the standard's fatigue strength in a catalogue file of "
                        "your own (column fatigue_strength_kN).")
+    governed = [c.name for c in a.checks() if c.governing_model == "link_level"]
+    stopped = (None if not governed or a.link_level is None else static_state_note(
+        a.link_level.equilibrium, inp.units,
+        f"the link-level loads the checks {', '.join(dict.fromkeys(governed))} take"))
+    if stopped is not None:
+        out.append(stopped)
     if a.response is not None:
         out.append("Coefficient of dynamics from the root mean square of the spans' dynamic "
                    "loads: the reading of [MultimassChainDrives, §3.3] this package uses.")

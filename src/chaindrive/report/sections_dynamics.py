@@ -10,7 +10,14 @@ from collections.abc import Sequence
 from typing import Any
 
 from chaindrive._docstrings import shared_parameters
-from chaindrive.display import check_row, constraint_row, quantity_text, show, unit_header
+from chaindrive.display import (
+    check_row,
+    constraint_row,
+    quantity_text,
+    show,
+    static_state_note,
+    unit_header,
+)
 from chaindrive.plotting import (
     absorption_vs_amplitude,
     afc_curves,
@@ -413,6 +420,9 @@ def links_section(inp: ReportInput) -> list[Block] | None:
         f"{comparison.duration_s:.3g} s (step {result.dt * 1e6:.3g} µs); the steady "
         f"quantities are taken over its closing half, from t = {comparison.steady_from_s:.3g} "
         "s, the start-up peaks over the whole run.", "note"))
+    stopped = static_state_note(result.equilibrium, inp.units)
+    if stopped is not None:
+        blocks.append(Text(stopped, "warning"))
     if not comparison.settled:
         blocks.append(Text(
             "The driver had not reached its nominal speed by then: the link-level steady "
