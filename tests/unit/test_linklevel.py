@@ -3,7 +3,9 @@ solve, the roller–gap penetration, the assembly, inputs, outputs and the plott
 
 from __future__ import annotations
 
+import importlib
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -22,11 +24,45 @@ from chaindrive.linklevel.kernel import (
 )
 from tests.conftest import EXAMPLES
 
+# the module (the package's ``simulate`` is the function of the same name)
+simulate_module = importlib.import_module("chaindrive.linklevel.simulate")
+
 
 @pytest.fixture(scope="module")
 def jindal():
     drive = load_drive(EXAMPLES / "two_sprocket_jindal.toml")
     return drive, contour_geometry(drive)
+
+
+@pytest.fixture(scope="module")
+def solved_once():
+    """The static state of :func:`simulate` solved once per model for this module's runs.
+
+    Every run that takes this fixture simulates the Jindal drive with the default model, so
+    its static state (:func:`chaindrive.linklevel.simulate.equilibrium_state`, about 8 s of
+    CPU each time; a pure function of its inputs, which the run copies before stepping) is
+    the same: it is solved on the first run and handed back to the others, keyed on the
+    drive, the pickled model and the take-up. The tests read the inputs' checks, the
+    output keys and the figures, none of which depends on solving it again."""
+    solve = simulate_module.equilibrium_state
+    states: dict[tuple[int, bytes, str | None], object] = {}
+
+    def once(drive, geometry, model, dt, take_up):
+        key = (id(drive), pickle.dumps(model), take_up)
+        if key not in states:
+            states[key] = solve(drive, geometry, model, dt, take_up)
+        return states[key]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(simulate_module, "equilibrium_state", once)
+        yield
+
+
+@pytest.fixture(scope="module")
+def steady_run(jindal, solved_once):
+    """One 5 ms run from working speed: its outputs and its figures (frames up to 4 ms)."""
+    drive, geometry = jindal
+    return simulate(drive, 0.005, geometry=geometry, start="steady")
 
 
 def test_implicit_damper_solves_backward_euler_exactly():
@@ -201,7 +237,7 @@ def test_sagging_polygon_has_equal_chords_and_sags_down():
     ({"motor": lambda t, w: 1.0}, "motor"),
     ({"resistance": "cubic"}, "resistance"),
 ])
-def test_bad_input_names_its_field(jindal, kwargs, field):
+def test_bad_input_names_its_field(jindal, solved_once, kwargs, field):
     drive, geometry = jindal
     run = {"duration_s": 0.001, "geometry": geometry} | kwargs
     with pytest.raises(DesignError) as err:
@@ -209,10 +245,10 @@ def test_bad_input_names_its_field(jindal, kwargs, field):
     assert err.value.field == field
 
 
-def test_result_dict_and_history(jindal):
+def test_result_dict_and_history(jindal, steady_run):
     """Outputs carry their unit in the key; the history is a (times × columns) table."""
-    drive, geometry = jindal
-    r = simulate(drive, 0.005, geometry=geometry, start="steady")
+    _, geometry = jindal
+    r = steady_run
     out = r.to_dict(include_history=True)
     for key in ("span_dynamic_load_n", "peak_span_force_n", "time_step_s", "nominal_force_n",
                 "energy_residual_j", "closing_misfit_m"):
@@ -242,11 +278,10 @@ def test_attached_torsional_system_keeps_the_energy_balance(jindal):
     assert r.speeds[-1, 2] * model.turn[1] > 0.5 * r.sprocket_speeds[-1, 1] > 0
 
 
-def test_plotting_draws_frames_and_tooth_loads(jindal):
+def test_plotting_draws_frames_and_tooth_loads(steady_run):
     from chaindrive.plotting.linklevel import chain_frame, chain_frames, tooth_loads
 
-    drive, geometry = jindal
-    r = simulate(drive, 0.004, geometry=geometry, start="steady")
+    r = steady_run
     assert chain_frame(r, magnify=10).axes
     assert len(chain_frames(r, [0.0, 0.002, 0.004], columns=2).axes) >= 3
     assert tooth_loads(r).axes[0].get_lines()
