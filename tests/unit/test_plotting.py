@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import subprocess
 import sys
 from pathlib import Path
 
@@ -32,7 +33,12 @@ def _rendered(fig) -> bool:
 
 
 def test_importing_plotting_loads_no_pyplot() -> None:
-    assert "matplotlib.pyplot" not in sys.modules
+    """Importing the plotting package leaves pyplot (its global figure state) unloaded; run
+    in a fresh interpreter, since another test in the same process may have loaded it."""
+    code = "import sys, chaindrive.plotting; print('matplotlib.pyplot' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_drive_figures_build(analysis) -> None:
