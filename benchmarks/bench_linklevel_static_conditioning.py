@@ -15,6 +15,7 @@ length taken and ‖∇Φ‖₂ after it). CPU time by ``time.process_time``, on
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -51,35 +52,15 @@ def _energy(name: str) -> tuple[eqm._Tensioned, object]:
 
 
 def _lm_steps(phi: eqm._Tensioned, steps: int) -> tuple[np.ndarray, float]:
-    """``steps`` steps of the minimisation (``equilibrium._minimum``), printed; the unknowns
-    and the shift reached."""
-    z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
-    f, g = phi.value(z), phi.gradient(z)
-    mu, mus = -1.0, []
-    for step in range(steps):
-        H = phi.hessian(z)
-        if mu < 0.0:
-            mu = eqm._SHIFT_START * float(np.abs(H.diagonal()).max())
-        ratio = -1.0
-        for _ in range(eqm._REJECTIONS):
-            p = eqm._definite_solve(csc_matrix(H + diags(np.full(z.size, mu))), g)
-            if p is None:
-                mu *= 4.0
-                continue
-            predicted = -float(g @ p + 0.5 * p @ (H @ p))
-            fn = phi.value(z + p)
-            ratio = (f - fn) / predicted if predicted > 0.0 else -1.0
-            if ratio > 0.25:
-                z, f, g = z + p, fn, phi.gradient(z + p)
-                mu *= 0.25 if ratio > 0.75 else 1.0
-                break
-            mu *= 4.0
-        mus.append(mu)
-        if step % 50 == 0 or step == steps - 1:
-            print(f"step {step}: |grad| {np.linalg.norm(g):.3e} N, largest "
-                  f"{np.abs(g[:-1]).max():.3e} N, mu {mu:.3e} N/m, ratio {ratio:.3f}",
-                  flush=True)
-    print("mu over the steps, 5/50/95 %:", np.percentile(mus, [5, 50, 95]))
+    """``steps`` steps of the minimisation (``equilibrium._minimum``, no tolerance), the
+    gradient left and the shifts printed; the unknowns and the shift reached."""
+    mus: list[float] = []
+    z, taken = eqm._minimum(phi, 0.0, steps, mus)
+    g, mu = phi.gradient(z), (mus[-1] if mus else math.nan)
+    print(f"{taken} steps: |grad| {np.linalg.norm(g):.3e} N, largest "
+          f"{np.abs(g[:-1]).max():.3e} N, mu {mu:.3e} N/m", flush=True)
+    if mus:
+        print("mu over the steps, 5/50/95 %:", np.percentile(mus, [5, 50, 95]))
     return z, mu
 
 

@@ -623,7 +623,8 @@ def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64
         return None
 
 
-def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
+def _minimum(phi: _Tensioned, tol: float, steps: int = _TRUST_STEPS,
+             shifts: list[float] | None = None) -> tuple[NDArray[np.float64], int]:
     """The local minimum of Φ nearest the placement by the trust-region Newton method in its
     Levenberg–Marquardt form.
 
@@ -643,17 +644,22 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
         The energy with its pull.
     tol : float
         ‖∇Φ‖₂ at which it stops [N].
+    steps : int, optional
+        The step cap [-].
+    shifts : list of float, optional
+        When given, μ after each step is appended to it [N/m] (the conditioning study of
+        benchmarks/bench_linklevel_static_conditioning.py).
 
     Returns
     -------
     tuple of (ndarray, int)
         The unknowns and the steps taken: at ‖∇Φ‖₂ ≤ tol, or where Φ's round-off hides the
-        decrease (:data:`_REJECTIONS` steps refused in a row), or after :data:`_TRUST_STEPS`.
+        decrease (:data:`_REJECTIONS` steps refused in a row), or after ``steps``.
     """
     z = np.zeros(2 * phi.N + phi.bal.free.size + 1)
     f, g = phi.value(z), phi.gradient(z)
     mu = -1.0
-    for step in range(_TRUST_STEPS):
+    for step in range(steps):
         if float(np.linalg.norm(g)) <= tol:
             return z, step
         H = phi.hessian(z)
@@ -677,7 +683,9 @@ def _minimum(phi: _Tensioned, tol: float) -> tuple[NDArray[np.float64], int]:
             refused += 1
             if refused >= _REJECTIONS:
                 return z, step
-    return z, _TRUST_STEPS
+        if shifts is not None:
+            shifts.append(mu)
+    return z, steps
 
 
 def _followed(phi: _Tensioned, tol: float
