@@ -29,7 +29,7 @@ from chaindrive.io.design import load_drive
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_linklevel_reference import EXAMPLES, _two_sprocket
-from bench_linklevel_step import kernel_arguments
+from bench_linklevel_step import fresh_arguments, kernel_arguments
 
 VARIANTS = (("as run", {}), ("implicit springs", {"theta": 0.25}),
             ("settling (eta)", {"eta": 300.0, "theta": 0.0}))
@@ -37,16 +37,9 @@ VARIANTS = (("as run", {}), ("implicit springs", {"theta": 0.25}),
 
 def arguments(a0: list[Any], steps: int, eta: float | None = None,
               theta: float | None = None) -> list[Any]:
-    """A fresh copy of the run_kernel arguments a0 for ``steps`` steps (records zeroed)."""
-    a = [np.array(z, copy=True) if isinstance(z, np.ndarray) else z for z in a0]
-    N, D, every = a0[0].shape[0], a0[2].size, a0[7]
-    a[5] = steps
-    rows = steps // every + 1
-    a[35:42] = [np.zeros((rows, N, 2)), np.zeros((rows, D)), np.zeros((rows, D)),
-                np.zeros((rows, N)), np.zeros((rows, N)), np.zeros((rows, N), dtype=np.int64),
-                np.zeros((rows, N), dtype=np.int64)]
-    a[42] = np.zeros(6)
-    a[45], a[46] = np.zeros((100_000, 4)), np.zeros(1, dtype=np.int64)
+    """A fresh copy of the run_kernel arguments a0 for ``steps`` steps (records zeroed), with
+    the settling rate η and the springs' implicitness θ when given."""
+    a = fresh_arguments(a0, steps)
     if eta is not None:
         a[47] = eta
     if theta is not None:

@@ -53,19 +53,24 @@ def kernel_arguments(drive: Any) -> list[Any]:
     return list(captured[-1])
 
 
-def run(kern: Any, a0: list[Any], steps: int) -> tuple[float, np.ndarray]:
-    """(CPU seconds per step, final positions) of ``steps`` steps of ``kern`` from a0."""
-    a = list(a0)
+def fresh_arguments(a0: list[Any], steps: int) -> list[Any]:
+    """A copy of the run_kernel arguments a0 for ``steps`` steps: every array copied, the
+    records, the energy terms and the engagement events zeroed."""
+    a = [np.array(z, copy=True) if isinstance(z, np.ndarray) else z for z in a0]
     N, D, every = a0[0].shape[0], a0[2].size, a0[7]
-    a[0:4] = [a0[0].copy(), a0[1].copy(), a0[2].copy(), a0[3].copy()]
     a[5] = steps
     rows = steps // every + 1
-    a[35:42] = [np.empty((rows, N, 2)), np.empty((rows, D)), np.empty((rows, D)),
-                np.empty((rows, N)), np.empty((rows, N)), np.empty((rows, N), dtype=np.int64),
-                np.empty((rows, N), dtype=np.int64)]
+    a[35:42] = [np.zeros((rows, N, 2)), np.zeros((rows, D)), np.zeros((rows, D)),
+                np.zeros((rows, N)), np.zeros((rows, N)), np.zeros((rows, N), dtype=np.int64),
+                np.zeros((rows, N), dtype=np.int64)]
     a[42] = np.zeros(6)
-    a[43], a[44] = a0[43].copy(), a0[44].copy()
     a[45], a[46] = np.zeros((100_000, 4)), np.zeros(1, dtype=np.int64)
+    return a
+
+
+def run(kern: Any, a0: list[Any], steps: int) -> tuple[float, np.ndarray]:
+    """(CPU seconds per step, final positions) of ``steps`` steps of ``kern`` from a0."""
+    a = fresh_arguments(a0, steps)
     n = len(inspect.signature(kern.run_kernel.py_func).parameters)  # an older kernel: fewer
     t = time.process_time()
     kern.run_kernel(*a[:n])
