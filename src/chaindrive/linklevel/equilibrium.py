@@ -87,7 +87,6 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
-import numba
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import cho_factor, cho_solve
@@ -98,7 +97,7 @@ from threadpoolctl import threadpool_limits
 from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import ConvergenceError, DesignError, GeometryError
 from chaindrive.geometry.contour import contour_geometry
-from chaindrive.linklevel.kernel import penetration, static_forces
+from chaindrive.linklevel.kernel import potential_energy, static_forces
 from chaindrive.strength.loads import installed_sag_ratio
 from chaindrive.units import TWO_PI
 
@@ -501,56 +500,6 @@ class Balance:
             worst = float(np.abs(r).max())
         return x, th, rest, worst
 
-
-
-@numba.njit(cache=True, error_model="numpy")
-def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: float, m: float,
-                     gx: float, gy: float, spr: Any, reach: Any) -> float:
-    """Potential energy [J] of the chain at rest whose gradient is minus the forces of
-    :func:`chaindrive.linklevel.kernel.static_forces`: the links ½k·s² (s the elongation
-    outside the clearance band), gravity −m g·u (u the rollers' displacements from a fixed
-    placement, so that the sum stays small against its round-off) and the roller–tooth
-    contacts ½k_c·δ² for δ > 0 (δ of the gap nearest by angle, as the static forces take
-    it; the contact force is work-conjugate to δ, :mod:`chaindrive.linklevel.kernel`).
-
-    Parameters
-    ----------
-    x : ndarray
-        (N, 2) roller centres [m].
-    u : ndarray
-        (N, 2) their displacements from the placement [m].
-    th : ndarray
-        (n,) sprocket angles [rad].
-    rest : float
-        Rest length ℓ₀ of the links [m].
-    k, clear, m, gx, gy : float
-        Link stiffness [N/m], clearance [m], roller mass [kg], gravity [m/s²].
-    spr, reach : ndarray
-        The kernel's sprocket tables (:class:`KernelTables`).
-
-    Returns
-    -------
-    float
-        The energy [J].
-    """
-    N = x.shape[0]
-    n = spr.shape[1]
-    e = 0.0
-    for i in range(N):
-        b = i + 1 if i < N - 1 else 0
-        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
-        s = math.sqrt(dx * dx + dy * dy) - rest
-        s -= min(max(s, -clear), clear)
-        e += 0.5 * k * s * s - m * (gx * u[i, 0] + gy * u[i, 1])
-        for q in range(n):
-            px, py = x[i, 0] - spr[0, q], x[i, 1] - spr[1, q]
-            if px * px + py * py < reach[q] * reach[q]:
-                d = penetration(px, py, th[q], spr[2, q], spr[3, q], spr[4, q], spr[5, q],
-                                spr[6, q], spr[7, q])[0]
-                if d > 0.0:
-                    e += 0.5 * spr[8, q] * d * d
-                break
-    return e
 
 
 class _Tensioned:

@@ -65,12 +65,22 @@ from chaindrive.dynamics.transient.kernel_codes import (  # the start-up kernel'
     RESISTANCE_QUADRATIC,
 )
 
+#: The floating-point liberties the step loop is compiled with (LLVM's fast-math flags, as
+#: numba passes them): fused multiply-add, a division by a reused divisor taken as a
+#: multiplication by its reciprocal, sums reassociated (so that they vectorise), the sign of
+#: zero ignored. NaN and infinity keep their IEEE meaning and the library functions (square
+#: root, sine, cosine) stay exact to their last bit. Each changes a result by an ulp or so a
+#: step; docs/linklevel.md §3 gives the speed and the convergence figures with them. The
+#: static balance (:func:`static_forces`) and the link forces it shares are compiled
+#: without them: its Hessian is taken by finite differences, which round-off reaches.
+FAST = {"contract", "arcp", "reassoc", "nsz"}
+
 #: Energy accumulators (indices of ``energy``): work of the motor, of the resistance
 #: laws, dissipated in link dampers, contact dampers, hinge friction, torsional dampers.
 E_MOTOR, E_LOAD, E_LINK, E_CONTACT, E_HINGE, E_TORSION = 0, 1, 2, 3, 4, 5
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     """Motor torque [N·m] at time t [s] and forward speed w [rad/s] (laws of
     :mod:`chaindrive.dynamics.transient.startup`: constant, ramp, Kloss)."""
@@ -82,7 +92,7 @@ def _motor_torque(t: float, w: float, kind: int, mp: Any) -> float:
     return float(mp[0] * s * mp[1] / (s * s + mp[1] * mp[1]))
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> float:
     """Moment of resistance [N·m] at forward speed w [rad/s] (ResistanceLaw kinds)."""
     r = w / wn
@@ -95,7 +105,7 @@ def _resistance_torque(w: float, kind: int, M: float, wn: float, brk: float) -> 
     return 0.0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, xs: Any,
             free: Any) -> None:
     """cand[r] = the first sprocket whose reach circle holds roller r, else −1. A roller that
@@ -136,7 +146,7 @@ def _search(x: Any, cx: Any, cy: Any, reach: Any, cand: Any, eng: Any, xs: Any,
             eng[r, 0] = -1.0
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _engagements(t: float, Fc: Any, eng: Any, win: Any, events: Any, count: Any) -> None:
     """Engagement impacts: an armed roller's first contact opens a window of win[s] steps
     (one tooth period at the nominal speed) over which its peak contact force is kept; a
@@ -198,7 +208,7 @@ def penetration(px: float, py: float, th: float, z: float, R: float, rr: float, 
     return d_gap, nx, ny, j
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST, inline="always")
 def _flank(px: float, py: float, wx: float, wy: float, gx: float, gy: float, sg: float,
            R: float, rr: float, ri: float, ca: float, sa: float, Ra: float
            ) -> tuple[float, float, float]:
@@ -259,7 +269,7 @@ def _links(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy:
     _link(x, v, L0, k, clear, T, ux, uy, thd, invl, gd, last, 0)  # the closing link
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST, inline="always")
 def _link(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: Any,
           thd: Any, invl: Any, gd: Any, i: int, b: int) -> None:
     """Link i from roller i to roller b: its entries of :func:`_links`."""
@@ -277,7 +287,7 @@ def _link(x: Any, v: Any, L0: Any, k: float, clear: float, T: Any, ux: Any, uy: 
     uy[i] = dy * inv
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
     """Hinge friction moment M_r at every roller r on its leading link r (−M_r on the
     trailing link r−1), module docstring; returns the power dissipated [W]."""
@@ -297,7 +307,7 @@ def _hinge_moments(T: Any, thd: Any, mu_r: float, cmax: float, M: Any) -> float:
     return diss
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _hinge_linearised(T: Any, thd: Any, mu_r: float, cmax: float, M: Any, cv: Any) -> int:
     """The regularised Coulomb hinge friction at every roller r (module docstring),
     linearised about the relative angular speed ω_rel at the start of the step: a hinge
@@ -324,7 +334,7 @@ def _hinge_linearised(T: Any, thd: Any, mu_r: float, cmax: float, M: Any, cv: An
     return count
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _hinge_solve(v: Any, f: Any, h: float, ux: Any, uy: Any, invl: Any, M: Any, cv: Any,
                  count: int, wk: Any) -> float:
     r"""The viscous hinges' moments taken implicitly (backward Euler at the new rates, the
@@ -389,7 +399,7 @@ def _hinge_solve(v: Any, f: Any, h: float, ux: Any, uy: Any, invl: Any, M: Any, 
     return diss
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _hinge_system(h: float, q: Any, oo: Any, cv: Any, w: Any, wk: Any) -> None:
     """Assemble and solve the cyclic pentadiagonal system of :func:`_hinge_solve`: the
     scaling s = C^{1/2} into wk[4], the solution y into wk[5] (wk[6:14] work)."""
@@ -499,7 +509,7 @@ def _link_forces(f: Any, T: Any, ux: Any, uy: Any, invl: Any, M: Any) -> None:
         px, py = cx, cy
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any, z: Any,
                    cp: Any) -> None:
     """Solve the tridiagonal system with diagonal (b0, diag, …, diag, bl) and off-diagonals
@@ -559,7 +569,7 @@ def _twisted_solve(hc: float, o: Any, b0: float, bl: float, diag: float, d: Any,
             z[jb] = dn_y
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: Any,
                      rhs: Any, zz: Any, cp: Any, oo: Any) -> None:
     """v ← v + h·f with the link dampers taken implicitly (backward Euler in the axial
@@ -602,7 +612,7 @@ def _velocity_update(v: Any, f: Any, h: float, hc: float, ux: Any, uy: Any, g: A
         gx, gy = px, py
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST, inline="always")
 def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, ri: float,
                ca: float, sa: float, ta: float, Ra: float) -> tuple[float, float, float]:
     """(δ [m], n_x, n_y) of a roller centred at (px, py) (relative to the sprocket centre) in
@@ -629,7 +639,7 @@ def _gap_local(px: float, py: float, gx: float, gy: float, R: float, rr: float, 
     return d, nx, ny
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST, inline="always")
 def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: Any,
               trig: Any, gtab: Any, Fc: Any, Sc: Any, Gc: Any, cth: Any, sth: Any) -> float:
     """Roller–tooth contact forces into f and the sprocket torques tq; the contact force
@@ -706,7 +716,7 @@ def _contacts(x: Any, v: Any, f: Any, th: Any, w: Any, tq: Any, cand: Any, spr: 
     return diss
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, Ct: Any,
                 mkind: int,
                 mp: Any, mdof: int, msign: float, rkind: int, rM: Any, rwn: Any, rbrk: float,
@@ -734,7 +744,7 @@ def _rotational(t: float, th: Any, th0: Any, w: Any, tq: Any, J: Any, Kt: Any, C
             energy[E_LOAD] += mr * w[i] * dt
 
 
-@numba.njit(cache=True, error_model="numpy")
+@numba.njit(cache=True, error_model="numpy", fastmath=FAST)
 def run_kernel(x: Any, v: Any, th: Any, w: Any, t0: float, steps: int, dt: float,
                record_every: int, m: float, gx: float, gy: float, L0: Any, k: float, c: float,
                clear: float, mu_r: float, cmax: float, spr: Any, trig: Any, gtab: Any,
@@ -894,6 +904,58 @@ def static_forces(x: Any, th: Any, L0: Any, k: float, clear: float, m: float, gx
             tr[r] = -(px * (f[r, 1] - before[r, 1]) - py * (f[r, 0] - before[r, 0]))
 
 
+@numba.njit(cache=True, error_model="numpy")
+def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: float, m: float,
+                     gx: float, gy: float, spr: Any, reach: Any) -> float:
+    """Potential energy [J] of the chain at rest whose gradient is minus the forces of
+    :func:`static_forces`: the links ½k·s² (s the elongation
+    outside the clearance band), gravity −m g·u (u the rollers' displacements from a fixed
+    placement, so that the sum stays small against its round-off) and the roller–tooth
+    contacts ½k_c·δ² for δ > 0 (δ of the gap nearest by angle, as the static forces take
+    it; the contact force is work-conjugate to δ, module docstring). It stands here, beside
+    the static forces, so that numba's cache, kept per source file, recompiles it with them.
+
+    Parameters
+    ----------
+    x : ndarray
+        (N, 2) roller centres [m].
+    u : ndarray
+        (N, 2) their displacements from the placement [m].
+    th : ndarray
+        (n,) sprocket angles [rad].
+    rest : float
+        Rest length ℓ₀ of the links [m].
+    k, clear, m, gx, gy : float
+        Link stiffness [N/m], clearance [m], roller mass [kg], gravity [m/s²].
+    spr, reach : ndarray
+        The kernel's sprocket tables
+        (:class:`chaindrive.linklevel.equilibrium.KernelTables`).
+
+    Returns
+    -------
+    float
+        The energy [J].
+    """
+    N = x.shape[0]
+    n = spr.shape[1]
+    e = 0.0
+    for i in range(N):
+        b = i + 1 if i < N - 1 else 0
+        dx, dy = x[b, 0] - x[i, 0], x[b, 1] - x[i, 1]
+        s = math.sqrt(dx * dx + dy * dy) - rest
+        s -= min(max(s, -clear), clear)
+        e += 0.5 * k * s * s - m * (gx * u[i, 0] + gy * u[i, 1])
+        for q in range(n):
+            px, py = x[i, 0] - spr[0, q], x[i, 1] - spr[1, q]
+            if px * px + py * py < reach[q] * reach[q]:
+                d = penetration(px, py, th[q], spr[2, q], spr[3, q], spr[4, q], spr[5, q],
+                                spr[6, q], spr[7, q])[0]
+                if d > 0.0:
+                    e += 0.5 * spr[8, q] * d * d
+                break
+    return e
+
+
 def compiled() -> bool:
     """Whether the kernel's compiled code is in numba's cache, so that a run starts at once;
     False when the first run will compile it (about 15 s on an idle core of the project
@@ -905,12 +967,13 @@ def compiled() -> bool:
     Returns
     -------
     bool
-        True when the cache of the step loop and of the static balance is present.
+        True when the cache of the step loop and of the static balance (its forces and
+        its energy) is present.
     """
     import os
 
     try:
-        dispatchers: tuple[Any, ...] = (run_kernel, static_forces)
+        dispatchers: tuple[Any, ...] = (run_kernel, static_forces, potential_energy)
         return all(os.path.exists(f._cache._cache_file._index_path)  # numba's cache index
                    for f in dispatchers)
     except AttributeError:
