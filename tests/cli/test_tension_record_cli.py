@@ -18,10 +18,12 @@ from tests.conftest import EXAMPLES
 pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
 
 SEED = str(EXAMPLES / "seed_three_sprocket.toml")
-#: Pretension [N] of S2-S3 at a sag of 1.5 % (k_f q g a, [ChainDesignRU, §8]; the seed's
-#: 683.3 mm span at ψ = 0.024 rad, q = 2.6 kg/m), and its string frequency [Hz].
-F0_N = 145.55449088633324
-F1_HZ = 5.475316384775652
+#: Pretension [N] of the chain at a sag of 1.5 % of its slack span S1-S2 (k_f q g a,
+#: k_f = cos ψ/(8s) + |sin ψ| [ChainDesignRU, §8]; the seed's 1363.4 mm span at
+#: ψ = 0.0295 rad, q = 2.6 kg/m), which S2-S3 carries at rest too, and the string frequency
+#: (1/2L) sqrt(F₀/q) [Hz] of S2-S3 (683.3 mm) at it.
+F0_N = 290.59260115160936
+F1_HZ = 7.736395985104492
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
@@ -57,6 +59,7 @@ def test_tension_from_a_record_gives_back_the_sag_it_was_made_with(tmp_path: Pat
         2 * doc["tension_n"] / doc["frequency_hz"] * u_f, rel=1e-3)
     assert doc["assumed"] == []
     lo, hi = doc["calibration"]["interval_95_fraction"]
+    assert doc["calibration"]["sag_span"] == "S1-S2"
     assert lo < 0.015 < hi
     assert abs(doc["tension_n"] - F0_N) < 1.96 * doc["tension_std_n"]
     assert chaindrive.load(out_file).chain.sag == pytest.approx(

@@ -1,12 +1,15 @@
 """The installed sag recovered within its interval from a noisy record of a sideways pluck.
 
-Forward: a known sag s of the seed drive's span S2-S3 gives its pretension F₀ = k_f q g a,
-k_f = cos ψ/(8s) + |sin ψ| ([ChainDesignRU, §8]), and the span rings sideways at the string's
-f₁ = (1/2L) sqrt(F₀/q) ([WickertMote1990], v = 0). The record: a decaying sine at f₁ with white
-noise of a stated seed. Back: its most prominent Welch peak ([Welch1967]) ± half a bin
-(rectangular, [JCGM100, §4.3.7]) → the tension (``span_tension_reading``, the span's length
-and mass per metre taken as exact, as the record was made with them) → the sag
-(``calibrated_sag``, its 95 % interval from T ± 1.96 u(T)).
+Forward: a known sag s of the seed drive's slack span S1-S2 (the span the design's sag is
+of) gives the chain its pretension F₀ = k_f q g a, k_f = cos ψ/(8s) + |sin ψ|, a and ψ of
+S1-S2 ([ChainDesignRU, §8]), which every span carries at rest; the span S2-S3, of length L,
+rings sideways at the string's f₁ = (1/2L) sqrt(F₀/q) ([WickertMote1990], v = 0). The
+record: a decaying sine at f₁ with white noise of a stated seed. Back: its most prominent
+Welch peak ([Welch1967]) ± half a bin (rectangular, [JCGM100, §4.3.7]) → the tension
+(``span_tension_reading``, the span's length and mass per metre taken as exact, as the
+record was made with them) → the sag
+(``calibrated_sag``: the sag of S1-S2 that gives that pretension, its 95 % interval from
+T ± 1.96 u(T)).
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from chaindrive.identification import (
     span_tension_reading,
 )
 from chaindrive.io.record import Record, record_from_arrays
-from chaindrive.strength.loads import sag_tension
+from chaindrive.strength.loads import sag_span, sag_tension
 from tests.conftest import EXAMPLES
 
 #: The sag the record is made with [-] (the design's is 0.02).
@@ -40,11 +43,14 @@ def seed() -> dict[str, Any]:
 
 
 def pluck_record(analysis: chaindrive.Analysis, sag: float, noise_seed: int) -> Record:
-    """20 s at 200 Hz of a sideways pluck of S2-S3 at the sag's pretension: 1 mm decaying
-    at 0.05 /s, white noise of 0.3 mm (seed ``noise_seed``)."""
+    """20 s at 200 Hz of a sideways pluck of S2-S3 at the pretension of the slack span's
+    sag: 1 mm decaying at 0.05 /s, white noise of 0.3 mm (seed ``noise_seed``)."""
     sp = analysis.geometry.spans[1]
+    slack = sag_span(analysis.drive, analysis.geometry)
+    assert (slack.start_name, slack.end_name) == ("S1", "S2")
     q = analysis.drive.chain.spec.mass_per_length
-    f = expected_frequency(sag_tension(q, sp.length, sp.inclination, sag), sp.length, q, 1)
+    f0 = sag_tension(q, slack.length, slack.inclination, sag)
+    f = expected_frequency(f0, sp.length, q, 1)
     t = np.arange(0.0, 20.0, 1.0 / 200.0)
     x = (1e-3 * np.exp(-0.05 * t) * np.sin(2 * np.pi * f * t)
          + 3e-4 * np.random.default_rng(noise_seed).standard_normal(t.size))

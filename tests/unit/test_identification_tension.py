@@ -118,10 +118,38 @@ def test_a_stationary_reading_calibrates_the_installed_sag() -> None:
     assert same.sag == pytest.approx(0.02, rel=1e-9) and same.changes == []
     cal = calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 5.1))
     lo, hi = cal.interval
-    assert lo < cal.sag < hi < 0.02
+    assert 0.02 < lo < cal.sag < hi  # 5.1 Hz is below the design's 6.70 Hz: a lower tension
     again = span_tension_reading(chaindrive.analyze(cal.drive, response=False), "S2-S3", 5.1)
     assert again.expected_standing == pytest.approx(5.1, rel=1e-9)
     with pytest.raises(DesignError, match="stationary span"):
         calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 9.0, running=True))
     with pytest.raises(DesignError, match=r"chain.sag: .* allowed: 0.001 to 0.1"):
         calibrated_sag(drive, span_tension_reading(analysis, "S2-S3", 1.0))
+
+
+@pytest.mark.parametrize("span", ["S1-S2", "S2-S3", "S3-S1"])
+def test_the_calibrated_design_carries_the_tension_read_whichever_span_is_measured(
+        span: str) -> None:
+    # At rest every span carries the pretension F₀, the sag tension of the slack span
+    # (S1-S2, the span leaving the driver) at the design's sag [ChainDesignRU, §8]: the
+    # reading's design pretension is the analysis's F₀ for every span, and the design
+    # calibrated to a tension read on any span has that tension as its own F₀ (the static
+    # loads' sag tension and the tension the dynamics start from).
+    import chaindrive
+    from chaindrive.dynamics.response import startup_pretension
+    from chaindrive.identification import calibrated_sag, span_tension_reading
+    from tests.conftest import EXAMPLES
+
+    drive = chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
+    analysis = chaindrive.analyze(drive, response=False)
+    assert analysis.strength is not None
+    f0 = analysis.strength.loads.sag_tension
+    reading = span_tension_reading(analysis, span, 6.0)
+    assert reading.pretension == pytest.approx(f0, rel=1e-12)
+    cal = calibrated_sag(drive, reading)
+    assert cal.span == "S1-S2"
+    after = chaindrive.analyze(cal.drive, response=False)
+    assert after.strength is not None
+    assert after.strength.loads.sag_tension == pytest.approx(reading.estimate.tension, rel=1e-9)
+    assert startup_pretension(cal.drive, after.geometry) == pytest.approx(
+        reading.estimate.tension, rel=1e-9)

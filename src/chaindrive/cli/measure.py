@@ -194,7 +194,8 @@ def print_sag(doc: dict[str, Any]) -> None:
         :meth:`chaindrive.identification.SagCalibration.to_dict`.
     """
     lo, hi = doc["interval_95_fraction"]
-    console().print(f"installed sag s = {_f(100 * doc['fitted_fraction'], 3)} % of the span, "
+    console().print(f"installed sag s = {_f(100 * doc['fitted_fraction'], 3)} % of the slack "
+                    f"span {doc['sag_span']} (the span the design's sag is of), "
                     f"95 % interval {_f(100 * lo, 3)} … {_f(100 * hi, 3)} % (design: "
                     f"{_f(100 * doc['initial_fraction'], 3)} %)")
     _print_changes(doc["verdicts_changed"])

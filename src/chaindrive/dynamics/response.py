@@ -38,7 +38,7 @@ from chaindrive.dynamics.transient.startup import (
     StartupResult,
 )
 from chaindrive.errors import DesignError
-from chaindrive.strength.loads import installed_sag_ratio, sag_tension
+from chaindrive.strength.loads import installed_pretension
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -62,9 +62,9 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
 
 @shared_parameters
 def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
-    """Pre-tension T₀ [N] of the spans at rest: the sag tension of the span leaving the driver
-    at the installed sag (:func:`chaindrive.strength.loads.sag_tension`,
-    :func:`chaindrive.strength.loads.installed_sag_ratio`), the F₀ of the static loads.
+    """Pre-tension T₀ [N] of the spans at rest, the F₀ of the static loads
+    (:func:`chaindrive.strength.loads.installed_pretension`: the sag tension of the span
+    leaving the driver at the installed sag).
 
     Parameters
     ----------
@@ -75,9 +75,7 @@ def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
     float
         T₀ [N].
     """
-    slack = next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
-    return float(sag_tension(drive.chain.spec.mass_per_length, slack.length, slack.inclination,
-                             installed_sag_ratio(drive)))
+    return installed_pretension(drive, geometry)
 
 
 @shared_parameters

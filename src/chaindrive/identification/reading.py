@@ -12,13 +12,14 @@ import numpy as np
 from chaindrive.dynamics.stiffness import GRAVITY
 from chaindrive.errors import DesignError
 from chaindrive.identification.calibration import verdict_changes, with_chain
+from chaindrive.identification.fitting import Z95
 from chaindrive.identification.spectrum import signal_spectrum, spectral_peaks
 from chaindrive.identification.tension import (
     TensionEstimate,
     expected_frequency,
     span_tension_from_frequency,
 )
-from chaindrive.strength.loads import installed_sag_ratio, sag_tension
+from chaindrive.strength.loads import installed_pretension, installed_sag_ratio, sag_span
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -158,7 +159,9 @@ class SpanTensionReading:
     estimate : TensionEstimate
         The tension read from the frequency.
     pretension : float
-        The design's static (sag) pretension F_0 of the span [N] at its installed sag.
+        The design's pretension F_0 [N]: the sag tension of its slack span at the installed
+        sag, which every span carries at rest
+        (:func:`chaindrive.strength.loads.installed_pretension`).
     expected_standing : float
         The frequency [Hz] of mode n of the stationary span at F_0.
     running_tension : float | None
@@ -199,8 +202,10 @@ def span_tension_reading(analysis: Analysis, span: str, frequency: float, *, mod
     The span's length, inclination and the chain's q and EA = k_link·p come from the
     analysis; a running chain moves at the mean chain speed v̄. Tolerances are half-widths
     of rectangular distributions (:func:`rectangular_std`). The expected frequencies are the
-    string law at the design's pretension F_0 ([ChainDesignRU, §8], stationary) and at its
-    span tension in operation (running).
+    string law at the design's pretension F_0 — the sag tension of the span whose sag the
+    design gives, which the chain carries in every span at rest ([ChainDesignRU, §8],
+    :func:`chaindrive.strength.loads.installed_pretension`; stationary) — and at the span's
+    tension in operation (running).
 
     Parameters
     ----------
@@ -259,7 +264,7 @@ def span_tension_reading(analysis: Analysis, span: str, frequency: float, *, mod
         mass_std=rectangular_std(mass_tolerance * q),
         axial_stiffness=ring.link_stiffness_n_per_m * spec.pitch,
         inclination=sp.inclination)
-    f0 = sag_tension(q, sp.length, sp.inclination, installed_sag_ratio(drive))
+    f0 = installed_pretension(drive, analysis.geometry)
     tensions = ring.span_tensions_n
     running_t = None if tensions is None else float(tensions[i])
     running_f = None
@@ -319,13 +324,15 @@ class SagCalibration:
     initial : float
         The design's installed sag s [-] before.
     sag : float
-        The sag s [-] whose pretension is the tension read.
+        The sag s [-] of the slack span whose pretension is the tension read.
     interval : tuple of float
-        s at T ± 1.96 u(T) [-] (95 %, normal approximation).
+        s at T ± z₉₅ u(T) [-] (95 %, normal approximation, :data:`chaindrive.identification.fitting.Z95`).
     drive : Drive
         The design with ``[chain] sag`` = s.
     changes : list of dict
         Checks whose verdict changed (:func:`chaindrive.identification.calibration.verdict_changes`).
+    span : str
+        ``FROM-TO`` of the span whose sag s is (:func:`chaindrive.strength.loads.sag_span`).
     """
 
     initial: float
@@ -333,20 +340,27 @@ class SagCalibration:
     interval: tuple[float, float]
     drive: Drive
     changes: list[dict[str, Any]]
+    span: str
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
-        return {"parameter": "chain.sag", "initial_fraction": self.initial,
+        return {"parameter": "chain.sag", "sag_span": self.span,
+                "initial_fraction": self.initial,
                 "fitted_fraction": self.sag, "interval_95_fraction": list(self.interval),
                 "verdicts_changed": self.changes}
 
 
 def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
     """Set the design's installed sag to the one whose pretension is the tension read from a
-    stationary span (:func:`sag_for_pretension`), and re-run the checks.
+    stationary span, and re-run the checks.
 
-    The tension read is the span's mean along its length; the design's F₀ is the upper end's,
-    higher by about q g a |sin ψ|/2 on an inclined span (a difference left in the result).
+    At rest every span carries the pretension F₀, and the design's ``[chain] sag`` is that of
+    its slack span (:func:`chaindrive.strength.loads.sag_span`), whose sag tension F₀ is
+    (:func:`chaindrive.strength.loads.installed_pretension`): the sag is the one that gives
+    the slack span the tension read (:func:`sag_for_pretension` on that span's length and
+    inclination), whichever span was measured. The tension read is the measured span's mean
+    along its length; the change of the tension with height along the chain, q g Δy, is
+    left out, as in the design's static loads.
 
     Parameters
     ----------
@@ -371,18 +385,20 @@ def calibrated_sag(drive: Drive, reading: SpanTensionReading) -> SagCalibration:
         raise DesignError("--running", "the sag is calibrated from a stationary span; measure "
                           "with the chain at rest")
     before = analyze(drive, response=False)
-    sp = before.geometry.spans[span_index(before, reading.span)]
+    span_index(before, reading.span)  # the span read is one of this design's
+    sp = sag_span(drive, before.geometry)
 
     def sag(t: float) -> float:
         return sag_for_pretension(t, sp.length, est.mass_per_length, sp.inclination)
 
     s = sag(est.tension)
     if not 0.001 <= s <= 0.1:
-        raise DesignError("chain.sag", f"the tension read gives a sag of {s:.4g} of the span; "
-                          "allowed: 0.001 to 0.1")
-    lo = sag(est.tension + 1.96 * est.std)
-    hi = sag(max(est.tension - 1.96 * est.std, 1e-9))
+        raise DesignError("chain.sag", f"the tension read gives a sag of {s:.4g} of the slack "
+                          "span; allowed: 0.001 to 0.1")
+    lo = sag(est.tension + Z95 * est.std)
+    hi = sag(max(est.tension - Z95 * est.std, 1e-9))
     calibrated = with_chain(drive, sag=s)
     after = analyze(calibrated, response=False)
     return SagCalibration(installed_sag_ratio(drive), s, (lo, hi), calibrated,
-                          verdict_changes(before.checks(), after.checks()))
+                          verdict_changes(before.checks(), after.checks()),
+                          f"{sp.start_name}-{sp.end_name}")

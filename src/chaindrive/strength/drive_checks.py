@@ -43,9 +43,8 @@ from chaindrive.strength.loads import (
     LoadsResult,
     centrifugal_tension,
     hinge_pressure,
-    installed_sag_ratio,
+    installed_pretension,
     peripheral_force,
-    sag_tension,
     small_sprocket,
 )
 from chaindrive.strength.safety import static_safety_factor
@@ -140,10 +139,7 @@ def _forces(drive: Drive, geometry: GeometryResult, loads: LoadsResult | None = 
     spec, driver = drive.chain.spec, drive.driver
     assert drive.power is not None and driver.speed is not None
     v = float(mean_chain_speed(spec.pitch, driver.teeth, driver.speed))
-    slack = next(sp for sp in geometry.spans if sp.start == drive.driver_index)
-    return _Forces(v, peripheral_force(drive.power, v),
-                   sag_tension(spec.mass_per_length, slack.length, slack.inclination,
-                               installed_sag_ratio(drive)),
+    return _Forces(v, peripheral_force(drive.power, v), installed_pretension(drive, geometry),
                    centrifugal_tension(spec.mass_per_length, v))
 
 

@@ -35,11 +35,13 @@ __all__ = [
     "bearing_loads",
     "centrifugal_tension",
     "hinge_pressure",
+    "installed_pretension",
     "installed_sag_ratio",
     "loads_of",
     "peripheral_force",
     "power_shares",
     "sag_factor",
+    "sag_span",
     "sag_tension",
     "shaft_load_vectors",
     "small_sprocket",
@@ -434,6 +436,48 @@ def installed_sag_ratio(drive: Drive) -> float:
         s = f/ℓ [-].
     """
     return DEFAULT_SAG_RATIO if drive.chain.sag is None else drive.chain.sag
+
+
+@shared_parameters
+def sag_span(drive: Drive, geometry: GeometryResult) -> SpanGeometry:
+    """The span whose sag the design's ``[chain] sag`` gives: the span leaving the driver,
+    the slack span in operation (the first span where none leaves it).
+
+    Parameters
+    ----------
+    %(drive_geometry)s
+
+    Returns
+    -------
+    SpanGeometry
+        That span.
+    """
+    return next((s for s in geometry.spans if s.start == drive.driver_index), geometry.spans[0])
+
+
+@shared_parameters
+def installed_pretension(drive: Drive, geometry: GeometryResult) -> float:
+    """Pre-tension F₀ = k_f·q·g·a [N] of the chain as installed: the sag tension
+    (:func:`sag_tension`) of :func:`sag_span` at the installed sag
+    (:func:`installed_sag_ratio`). At rest every span carries it (the tension's change
+    with height along the chain, q·g·Δy, left out as in the static loads).
+
+    Parameters
+    ----------
+    %(drive_geometry)s
+
+    Returns
+    -------
+    float
+        F₀ [N].
+
+    References
+    ----------
+    [ChainDesignRU, §8].
+    """
+    span = sag_span(drive, geometry)
+    return sag_tension(drive.chain.spec.mass_per_length, span.length, span.inclination,
+                       installed_sag_ratio(drive))
 
 
 @shared_parameters
