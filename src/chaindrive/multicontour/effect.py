@@ -21,7 +21,11 @@ from chaindrive._docstrings import shared_parameters
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import pitch_radius
 from chaindrive.multicontour.capacity import contour_factor_km
-from chaindrive.multicontour.clearance import half_normal_quantile, length_difference_stats
+from chaindrive.multicontour.clearance import (
+    check_positive,
+    half_normal_quantile,
+    length_difference_stats,
+)
 from chaindrive.multicontour.joints import (
     PARALLEL_KEYS_MM,
     KeyedJoint,
@@ -236,8 +240,7 @@ def effect_map(pitches: tuple[float, ...] = DEFAULT_PITCHES,
         raise DesignError("risk", f"must be between 0 and 1, got {risk!r}")
     for name, value in (("span_length", span_length), ("working_strain", working_strain),
                         ("strength_ratio", strength_ratio), ("allowable_shear", allowable_shear)):
-        if not (math.isfinite(value) and value > 0):
-            raise DesignError(name, f"must be a positive number, got {value!r}")
+        check_positive(name, value)
     shape = (len(pitches), len(teeth))
     cells = np.array([[_cell(p, z, contours=contours, strength_ratio=strength_ratio,
                              allowable_shear=allowable_shear, fit=fit, c4_form=c4_form)

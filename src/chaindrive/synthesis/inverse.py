@@ -236,6 +236,30 @@ def _initial(vec: NDArray, unknown: NDArray, initial: ArrayLike | None, m: NDArr
     return p0 / scale if kind == "masses" else p0 * scale
 
 
+def _all_known(values: ArrayLike, field: str, solving_for: str) -> NDArray[np.float64]:
+    """The fixed side of :func:`masses_for_spectrum` / :func:`stiffnesses_for_spectrum` as
+    floats; DesignError on ``field`` when any of it is unknown (nan).
+
+    Parameters
+    ----------
+    values : array_like
+        (n,) the masses [kg] or branch stiffnesses [N/m] held fixed.
+    field : str
+        Their name, for the error.
+    solving_for : str
+        What the caller solves for ("masses" or "stiffnesses"), for the error.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) the values [kg or N/m].
+    """
+    v = np.asarray(values, dtype=float)
+    if np.any(np.isnan(v)):
+        raise DesignError(field, f"must all be known when solving for {solving_for}")
+    return v
+
+
 def masses_for_spectrum(stiffness: ArrayLike, frequencies_hz: ArrayLike,
                         known_masses: ArrayLike, *, modes: Sequence[int] | None = None,
                         initial: ArrayLike | None = None) -> NDArray[np.float64]:
@@ -259,9 +283,7 @@ def masses_for_spectrum(stiffness: ArrayLike, frequencies_hz: ArrayLike,
     numpy.ndarray
         (n,) masses [kg].
     """
-    c = np.asarray(stiffness, dtype=float)
-    if np.any(np.isnan(c)):
-        raise DesignError("stiffness", "must all be known when solving for masses")
+    c = _all_known(stiffness, "stiffness", "masses")
     return solve_inverse(known_masses, c, frequencies_hz, modes=modes, initial=initial)[0]
 
 
@@ -288,7 +310,5 @@ def stiffnesses_for_spectrum(masses: ArrayLike, frequencies_hz: ArrayLike,
     numpy.ndarray
         (n,) stiffnesses [N/m].
     """
-    m = np.asarray(masses, dtype=float)
-    if np.any(np.isnan(m)):
-        raise DesignError("masses", "must all be known when solving for stiffnesses")
+    m = _all_known(masses, "masses", "stiffnesses")
     return solve_inverse(m, known_stiffness, frequencies_hz, modes=modes, initial=initial)[1]

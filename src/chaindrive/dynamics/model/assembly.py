@@ -561,24 +561,10 @@ def _condensed(system: TorsionalSystem, notes: list[str]
     n = system.size
     K = system.stiffness_linear
     C = system.damping_linear
-    if massless.any():
-        massed = ~massless
-        K00 = K[np.ix_(massless, massless)]
-        try:
-            X = np.linalg.solve(K00, K[np.ix_(massless, massed)])
-        except np.linalg.LinAlgError:
-            free = [nm for nm, k in zip(system.node_names, system.node_dof, strict=True)
-                    if massless[k]]
-            raise DesignError("train", f"massless node(s) among {free} are held by no spring: "
-                              "give them an inertia") from None
-        T = np.zeros((n, int(massed.sum())))
-        T[massed] = np.eye(T.shape[1])
-        T[massless] = -X
-        if np.any(C[massless]):
-            notes.append("dampers on massless nodes are condensed with their static shape "
-                         "(approximate)")
-    else:
-        T = np.eye(n)
+    T = system.condensation_basis(K, "train")
+    if np.any(C[massless]):
+        notes.append("dampers on massless nodes are condensed with their static shape "
+                     "(approximate)")
     index = np.full(n, -1, dtype=np.intp)
     index[~massless] = np.arange(int((~massless).sum()))
     M = T.T @ system.mass_matrix() @ T

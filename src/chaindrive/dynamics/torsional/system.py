@@ -342,23 +342,56 @@ class TorsionalSystem:
             names = [n for n, k in zip(self.node_names, self.node_dof, strict=True) if massless[k]]
             raise DesignError("damping", f"a damper acts on the massless node(s) {names}: "
                               "give them an inertia or keep them as first-order states")
-        X = _condensation(K, massless, self.node_names, self.node_dof)
+        T = self.condensation_basis(K)
+        return T, T.T @ self.mass_matrix() @ T, T.T @ K @ T, T.T @ C @ T
+
+    def condensation_basis(self, stiffness: FloatArray, field: str = "inertia") -> FloatArray:
+        """T of the static condensation q = T q_m of the massless coordinates (mass 0) under
+        ``stiffness``: the massed rows the identity, the massless rows −K_00⁻¹ K_0m (0 the
+        massless, m the massed coordinates; exact for undamped motion).
+
+        Parameters
+        ----------
+        stiffness : ndarray
+            (size, size) the stiffness K that holds the massless coordinates [N·m/rad].
+        field : str
+            The field a DesignError names when K_00 is singular.
+
+        Returns
+        -------
+        ndarray
+            T (size, m) [-] (the identity when no coordinate is massless).
+
+        Raises
+        ------
+        DesignError
+            On ``field``: a massless node is held by no spring of ``stiffness``.
+
+        References
+        ----------
+        [Guyan1965].
+        """
+        massless = self.mass <= 0.0
+        if not massless.any():
+            return np.eye(self.size)
+        X = _condensation(stiffness, massless, self.node_names, self.node_dof, field)
         T = np.zeros((self.size, int((~massless).sum())))
         T[~massless] = np.eye(T.shape[1])
         T[massless] = -X
-        return T, T.T @ self.mass_matrix() @ T, T.T @ K @ T, T.T @ C @ T
+        return T
 
 
 def _condensation(K: FloatArray, massless: NDArray[np.bool_], names: Sequence[str],
-                  node_dof: NDArray[np.intp]) -> FloatArray:
-    """X = K_00⁻¹ K_0m (massless rows 0, massed columns m); DesignError if K_00 is singular."""
+                  node_dof: NDArray[np.intp], field: str = "inertia") -> FloatArray:
+    """X = K_00⁻¹ K_0m (massless rows 0, massed columns m); DesignError on ``field`` if K_00
+    is singular."""
     m = ~massless
     K00 = K[np.ix_(massless, massless)]
     try:
         L = np.linalg.cholesky(K00)
     except np.linalg.LinAlgError:
         free = [n for n, k in zip(names, node_dof, strict=True) if massless[k]]
-        raise DesignError("inertia", f"massless node(s) among {free} are not held by any "
+        raise DesignError(field, f"massless node(s) among {free} are not held by any "
                           "spring (singular stiffness): give them an inertia or a spring") from None
     Y = np.linalg.solve(L, K[np.ix_(massless, m)])
     return np.linalg.solve(L.T, Y)
