@@ -5,23 +5,19 @@ from __future__ import annotations
 
 import csv
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from chaindrive.display import fmt
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 SEED = EXAMPLES / "seed_three_sprocket.toml"
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
-                          text=True, check=False)
+#: The command run in this process: what these tests assert (what it prints and writes, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
 
 
 @pytest.fixture(scope="module")
