@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import io
 import math
+import subprocess
+from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
@@ -17,6 +20,23 @@ SHARED = ROOT.parent / "shared"
 # Property tests run the same examples on every machine (reproducible CI).
 settings.register_profile("chaindrive", derandomize=True, deadline=None)
 settings.load_profile("chaindrive")
+
+
+def cli_in_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """A command line run in this process: its exit status and what it printed.
+
+    It calls :func:`chaindrive.cli.run`, the function the ``chaindrive`` script runs (the
+    script adds only the handling of a signal that comes before or after the command), so a
+    test of what a command prints, writes and returns gets the same answer as from a
+    subprocess without starting and importing a new interpreter. Tests of the process itself
+    (signals, an installed script) keep their subprocess.
+    """
+    from chaindrive.cli import run
+
+    out, err = io.StringIO(), io.StringIO()
+    with redirect_stdout(out), redirect_stderr(err):
+        status = run(list(args))
+    return subprocess.CompletedProcess(list(args), status, out.getvalue(), err.getvalue())
 
 
 def rpm(n: float) -> float:

@@ -3,22 +3,18 @@ and nothing on stdout (nothing written half-way)."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 GOOD = (EXAMPLES / "seed_three_sprocket.toml").read_text(encoding="utf-8")
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
-                          text=True, check=False)
+#: The command run in this process: what these tests assert (what it prints and writes, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
 
 
 def sprocket(name: str, teeth: object = 17, x: str = '"0 mm"', y: str = '"0 mm"',

@@ -4,22 +4,20 @@ and a mistake in ``[uncertainty]`` as one line naming the field (exit status 2).
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, cli_in_process
 
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+pytestmark = pytest.mark.concurrency  # the Dask study starts a local cluster
 
 SEED = (EXAMPLES / "seed_three_sprocket.toml").read_text(encoding="utf-8")
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
-                          text=True, check=False)
+#: The command run in this process: what these tests assert (the JSON document, the tables,
+#: the one-line mistakes and their status) is the command's, not the process's.
+run_cli = cli_in_process
 
 
 def test_robust_json_and_report(tmp_path: Path) -> None:

@@ -28,10 +28,17 @@ distributed = pytest.importorskip("distributed")
 OPTIMIZE = EXAMPLES / "eight_sprocket_optimize.toml"
 
 
+#: Environment of the workers: a file; the evaluations are slow while it exists.
+_SLOW_WHILE = "CHAINDRIVE_TEST_SLOW_WHILE"
+
+
 def _slow_square(inputs: dict) -> dict:
-    """Squares ``x`` in a quarter of a second (a study that is still running when its
-    workers are lost)."""
-    time.sleep(0.25)
+    """Squares ``x``: in a quarter of a second while the file ``$CHAINDRIVE_TEST_SLOW_WHILE``
+    exists (a study that is still running when its workers are lost), at once after it is
+    gone (the resume, whose speed is not what it is tested for)."""
+    flag = os.environ.get(_SLOW_WHILE)
+    if flag is None or Path(flag).exists():
+        time.sleep(0.25)
     return {"square": inputs["x"] ** 2}
 
 
@@ -45,11 +52,19 @@ def test_a_study_whose_workers_are_lost_stops_within_its_timeout_and_resumes(
         tmp_path: Path) -> None:
     """An external scheduler (its address given, as ``--scheduler``) whose workers all go:
     Dask waits for ever; the study stops ``lost_after`` seconds after the last worker left,
-    keeps what finished, and a rerun with workers back computes only the rest."""
+    keeps what finished, and a rerun with workers back computes only the rest.
+
+    The evaluations take 0.25 s each until the workers are lost (about 9 s of work left
+    then: the study is still running, however loaded the machine), and no time in the
+    rerun: what it asserts (only the rest computed, every result right) does not depend on
+    how long each takes, and 37 sleeps of 0.25 s made most of the test's 15 s."""
     url = f"sqlite:///{tmp_path / 'lost.db'}"
     inputs = [{"x": k} for k in range(40)]
+    slow = tmp_path / "slow"
+    slow.touch()
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
-                                  dashboard_address=":0") as cluster:
+                                  dashboard_address=":0",
+                                  env={_SLOW_WHILE: str(slow)}) as cluster:
         def lose_workers() -> None:
             watcher = StudyStore(url)
             deadline = time.monotonic() + 60
@@ -73,6 +88,7 @@ def test_a_study_whose_workers_are_lost_stops_within_its_timeout_and_resumes(
         assert waited < 40  # stopped, not waiting for ever (2 s timeout, loaded machine)
         stored = StudyStore(url).count("lost")
         assert 3 <= stored < len(inputs)
+        slow.unlink()  # the rerun's evaluations are quick
         cluster.scale(1)  # workers back: the same study resumes
         result = run_study(_slow_square, inputs, study="lost", db=url,
                            scheduler=cluster.scheduler_address, progress=False)

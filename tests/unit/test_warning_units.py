@@ -15,8 +15,6 @@ from __future__ import annotations
 import json
 import pickle
 import re
-import subprocess
-import sys
 from dataclasses import replace
 
 import pytest
@@ -28,7 +26,7 @@ from chaindrive.app.views import plain
 from chaindrive.display import QUANTITIES, Shown, check_row, quantity_text, warning_text
 from chaindrive.dynamics.checks import disturbed_safety_check
 from chaindrive.errors import MESSAGE_UNITS, ChainDriveWarning, Quantities, Quantity
-from tests.conftest import EXAMPLES, two_sprocket
+from tests.conftest import EXAMPLES, cli_in_process, two_sprocket
 
 IN = 0.0254  # m [NIST-SP811]
 LBF = 4.4482216152605  # N [NIST-SP811]
@@ -210,13 +208,16 @@ def test_disturbance_check_note_in_us() -> None:
 
 
 def _cli(*args: str) -> str:
-    proc = subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
-                          text=True, check=False, env={"COLUMNS": "200", "PATH": "/usr/bin"})
+    """What the command prints, run in this process (:func:`tests.conftest.cli_in_process`:
+    the same command as the script's, without a new interpreter per call) with the terminal
+    width the subprocess had (``COLUMNS=200``)."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("COLUMNS", "200")
+        proc = cli_in_process(*args)
     assert proc.returncode == 0, proc.stderr
     return proc.stdout
 
 
-@pytest.mark.concurrency  # runs the command in a subprocess
 def test_cli_analyze_prints_the_slack_warning_in_inches() -> None:
     """``analyze --units us`` prints the seed's slack warning in inches: the slack, the
     slack span and the sag of its own ``--json`` document divided by 25.4 mm; SI prints the
@@ -236,7 +237,6 @@ def test_cli_analyze_prints_the_slack_warning_in_inches() -> None:
     assert f"warning: {w['message']}" in si
 
 
-@pytest.mark.concurrency  # runs the command in a subprocess
 def test_cli_select_prints_the_shortfall_in_us_units() -> None:
     """``select --units us`` of the polymer chain writes the speed limit it misses in ft/min,
     as the check table does."""

@@ -478,7 +478,9 @@ class _Watchdog:
     Dask's nanny restarts a lost worker, but gives up when the new one is lost again while
     it starts: the cluster then shrinks, and with no worker left a study would wait for
     ever. Every ``period`` seconds the watchdog re-creates the workers whose nanny closed
-    (seen once, gone now); workers still starting are left alone.
+    (seen once, gone now) or failed to start (the cluster lists a worker only once its start
+    ended, and one killed while it started may never have been seen running); workers still
+    starting are left alone.
     """
 
     def __init__(self, cluster: LocalCluster, period: float = 1.0) -> None:
@@ -497,7 +499,8 @@ class _Watchdog:
         running = {k for k, w in workers.items()
                    if getattr(w.status, "name", "") not in ("closed", "failed", "closing")}
         self._seen |= running
-        gone = [k for k in list(self.cluster.worker_spec) if k in self._seen and k not in running]
+        gone = [k for k in list(self.cluster.worker_spec)
+                if k not in running and (k in self._seen or k in workers)]
         if not gone:
             return False
         for name in gone:
