@@ -15,10 +15,11 @@ import time
 from pathlib import Path
 
 from chaindrive.analysis import analyze
-from chaindrive.dynamics.response import polygonal_law, startup_pretension
+from chaindrive.dynamics.response import polygonal_law
 from chaindrive.dynamics.transient.drive_startup import model_startup
 from chaindrive.io.design import load_drive
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.strength.loads import installed_pretension
 
 
 def best(fn, repeats: int = 7):
@@ -39,7 +40,7 @@ def nonlinear_case() -> None:
     a = analyze(d)
     model, g = a.drive_model, a.geometry
     f_z = float(tooth_frequency(d.driver.teeth, d.driver.speed))
-    t0 = startup_pretension(d, g)
+    t0 = installed_pretension(d, g)
 
     def run(duration: float, poly: bool, backend: str = "auto"):
         return model_startup(model, polygonal_law(g) if poly else None, duration=duration,

@@ -55,7 +55,6 @@ from chaindrive.dynamics.response import (
     DynamicResponse,
     disturbance_excitations,
     polygonal_law,
-    startup_pretension,
 )
 from chaindrive.dynamics.transient.drive_startup import affordable_duration, model_startup
 from chaindrive.dynamics.transient.runup import (
@@ -85,7 +84,7 @@ from chaindrive.strength import (
 )
 from chaindrive.strength.drive_checks import geometry_checks, loaded_contour_checks
 from chaindrive.strength.duty import duty_warnings, required_life_h, service_factor_for
-from chaindrive.strength.loads import peripheral_force
+from chaindrive.strength.loads import installed_pretension, peripheral_force
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
 from chaindrive.strength.safety import steady_safety_factor
 from chaindrive.strength.selection import ResonanceProbe, banded_resonance_check, rank_chains
@@ -434,7 +433,7 @@ class Analysis:
         durations: tuple[float, ...] = (s.startup_duration,) if s.startup_duration else \
             startup_durations(self.runup, min(LONGEST_STARTUP,
                                               affordable_duration(self.drive_model, f_z)))
-        polygonal, pretension = polygonal_law(self.geometry), startup_pretension(d, self.geometry)
+        polygonal, pretension = polygonal_law(self.geometry), installed_pretension(d, self.geometry)
         record = None
         for duration in durations:
             record = model_startup(self.drive_model, polygonal, duration=duration,

@@ -136,8 +136,8 @@ def test_the_calibrated_design_carries_the_tension_read_whichever_span_is_measur
     # calibrated to a tension read on any span has that tension as its own F₀ (the static
     # loads' sag tension and the tension the dynamics start from).
     import chaindrive
-    from chaindrive.dynamics.response import startup_pretension
     from chaindrive.identification import calibrated_sag, span_tension_reading
+    from chaindrive.strength.loads import installed_pretension
     from tests.conftest import EXAMPLES
 
     drive = chaindrive.load(EXAMPLES / "seed_three_sprocket.toml")
@@ -151,5 +151,5 @@ def test_the_calibrated_design_carries_the_tension_read_whichever_span_is_measur
     after = chaindrive.analyze(cal.drive, response=False)
     assert after.strength is not None
     assert after.strength.loads.sag_tension == pytest.approx(reading.estimate.tension, rel=1e-9)
-    assert startup_pretension(cal.drive, after.geometry) == pytest.approx(
+    assert installed_pretension(cal.drive, after.geometry) == pytest.approx(
         reading.estimate.tension, rel=1e-9)

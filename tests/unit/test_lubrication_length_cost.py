@@ -173,12 +173,12 @@ def test_an_assumed_sag_is_said_where_the_spans_follow_it():
 def test_start_up_and_link_level_pretension_follow_the_installed_sag(sag):
     """The spans at rest carry the F₀ of the static loads (k_f from the installed sag, 2 % when
     not given) in the ring start-up and in the link-level model alike: one pre-tension."""
-    from chaindrive.dynamics.response import startup_pretension
     from chaindrive.linklevel.model import build_model
     from chaindrive.strength import strength_of
+    from chaindrive.strength.loads import installed_pretension
 
     drive = replace(_two(), chain=replace(_two().chain, sag=sag))
     g = contour_geometry(drive)
     f0 = strength_of(drive, g).loads.sag_tension
-    assert startup_pretension(drive, g) == pytest.approx(f0, rel=1e-12)
+    assert installed_pretension(drive, g) == pytest.approx(f0, rel=1e-12)
     assert build_model(drive, g).pretension == pytest.approx(f0, rel=1e-12)

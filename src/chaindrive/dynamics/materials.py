@@ -28,9 +28,10 @@ from chaindrive.dynamics.excitation import polygonal_excitation
 from chaindrive.dynamics.frequency.response import drive_sweep
 from chaindrive.dynamics.model.build import drive_model
 from chaindrive.dynamics.modes import drive_modes
-from chaindrive.dynamics.response import polygonal_law, startup_pretension
+from chaindrive.dynamics.response import polygonal_law
 from chaindrive.dynamics.transient.drive_startup import model_startup
 from chaindrive.kinematics import tooth_frequency
+from chaindrive.strength.loads import installed_pretension
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
@@ -125,7 +126,7 @@ def _case(drive: Drive, geometry: GeometryResult, chain_mat: str, sprocket_mat: 
     peak = math.nan
     if duration > 0 and d.power is not None:
         st = model_startup(model, polygonal_law(geometry), duration=duration,
-                           pretension=startup_pretension(d, geometry), tooth_frequency_hz=fz)
+                           pretension=installed_pretension(d, geometry), tooth_frequency_hz=fz)
         peak = float(st.max_span_force.max())
     # sweep the tooth frequency through 0.3 f1 … 1.5 f1: the first harmonic crosses f1
     ex = polygonal_excitation(geometry, d.driver.teeth * w)

@@ -38,7 +38,6 @@ from chaindrive.dynamics.transient.startup import (
     StartupResult,
 )
 from chaindrive.errors import DesignError
-from chaindrive.strength.loads import installed_pretension
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -46,8 +45,7 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive, DynamicsSettings
 
-__all__ = ["DynamicResponse", "disturbance_excitations", "motor_of", "polygonal_law",
-           "startup_pretension"]
+__all__ = ["DynamicResponse", "disturbance_excitations", "motor_of", "polygonal_law"]
 
 
 
@@ -58,24 +56,6 @@ def _speeds(drive: Drive) -> tuple[float, NDArray[np.float64]]:
         raise DesignError(f"sprockets[{driver.name}].speed", "the driver needs a speed")
     z = np.array([s.teeth for s in drive.sprockets], float)
     return driver.speed, driver.speed * driver.teeth / z
-
-
-@shared_parameters
-def startup_pretension(drive: Drive, geometry: GeometryResult) -> float:
-    """Pre-tension T₀ [N] of the spans at rest, the F₀ of the static loads
-    (:func:`chaindrive.strength.loads.installed_pretension`: the sag tension of the span
-    leaving the driver at the installed sag).
-
-    Parameters
-    ----------
-    %(drive_geometry)s
-
-    Returns
-    -------
-    float
-        T₀ [N].
-    """
-    return installed_pretension(drive, geometry)
 
 
 @shared_parameters

@@ -2,7 +2,7 @@ r"""Static equilibrium of the link-level model at the installed pre-tension: the
 run starts from, solved as a set of equations, not relaxed.
 
 The whole-drive model takes the spans at the pre-tension T₀ of the installed sag
-(:func:`chaindrive.dynamics.response.startup_pretension`). The link-level chain holds it only
+(:func:`chaindrive.strength.loads.installed_pretension`). The link-level chain holds it only
 if it is installed: its rollers seated in the gaps (a roller centred on the pitch circle
 clears the seat by r_i − r, some 0.1 mm, and a 0.1–0.4 µm link stretch cannot hold T₀
 across that) and its spans stretched or hung to T₀. The static state solves the balance of

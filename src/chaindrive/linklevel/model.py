@@ -32,7 +32,7 @@
   :func:`chaindrive.geometry.sprocket.sprocket_mass_and_inertia`); an optional linear
   torsional system (:class:`TorsionalAttachment`) can be coupled to them.
 * Pre-tension T₀: the ring model's start-up pre-tension, the sag tension of the span leaving
-  the driver at the installed sag (:func:`chaindrive.dynamics.response.startup_pretension`).
+  the driver at the installed sag (:func:`chaindrive.strength.loads.installed_pretension`).
 """
 
 from __future__ import annotations
@@ -49,7 +49,6 @@ from chaindrive.catalog import find_material
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.dynamics.model.build import DriveModel, drive_model
 from chaindrive.dynamics.parameters import drive_ring_parameters
-from chaindrive.dynamics.response import startup_pretension
 from chaindrive.dynamics.stiffness import (
     GRAVITY,
     tooth_contact_width,
@@ -57,6 +56,7 @@ from chaindrive.dynamics.stiffness import (
 )
 from chaindrive.errors import DesignError
 from chaindrive.geometry.sprocket import seating_geometry, tip_diameter
+from chaindrive.strength.loads import installed_pretension
 from chaindrive.units import TWO_PI
 
 if TYPE_CHECKING:
@@ -248,7 +248,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
     contact_damping_ratio : float
         Damping ratio ζ_c of the roller–tooth contact [-].
     pretension : float or None
-        Pre-tension T₀ [N] (None: :func:`chaindrive.dynamics.response.startup_pretension`).
+        Pre-tension T₀ [N] (None: :func:`chaindrive.strength.loads.installed_pretension`).
     gravity : float
         Acceleration of gravity g [m/s²] (acting along −y).
     damping_ratio : float or None
@@ -294,7 +294,7 @@ def build_model(drive: Drive, geometry: GeometryResult, *,
                                          form=drive.tooth_form), dtype=float)
     zeta = (float(np.mean(dynamics.span_damping_ratios)) if damping_ratio is None
             else float(damping_ratio))
-    t0 = startup_pretension(drive, geometry) if pretension is None else float(pretension)
+    t0 = installed_pretension(drive, geometry) if pretension is None else float(pretension)
     return LinkLevelModel(
         names=tuple(s.name for s in drive.sprockets), links=geometry.links, pitch=spec.pitch,
         roller_mass=m, roller_radius=0.5 * spec.roller_diameter, link_stiffness=k_link,
