@@ -3,12 +3,10 @@
 
 from __future__ import annotations
 
-import contextlib
-import io
 import signal
 from typing import Any
 
-from chaindrive.cli import run
+from tests.conftest import cli_in_process
 
 
 class Overtime(BaseException):
@@ -21,15 +19,13 @@ def _alarm(signum: int, frame: Any) -> None:
 
 
 def run_in_time(argv: list[str], seconds: int) -> tuple[int, str, str]:
-    """(exit status, stdout, stderr) of ``chaindrive <argv>``; :class:`Overtime` past
-    ``seconds`` [s]."""
-    out, err = io.StringIO(), io.StringIO()
+    """(exit status, stdout, stderr) of ``chaindrive <argv>`` run in this process
+    (:func:`tests.conftest.cli_in_process`); :class:`Overtime` past ``seconds`` [s]."""
     previous = signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(seconds)
     try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            status = run(argv)
+        proc = cli_in_process(*argv)
     finally:
         signal.alarm(0)
         signal.signal(signal.SIGALRM, previous)
-    return status, out.getvalue(), err.getvalue()
+    return proc.returncode, proc.stdout, proc.stderr
