@@ -10,6 +10,9 @@ import difflib
 from collections.abc import Iterable
 from typing import Any, NamedTuple
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from chaindrive._docstrings import shared_parameters
 
 
@@ -215,3 +218,32 @@ def did_you_mean(name: str, choices: Iterable[str]) -> str:
     """
     best = closest(name, choices)
     return f"; did you mean '{best}'?" if best else ""
+
+
+def positive(name: str, value: ArrayLike, kind: str = "") -> NDArray[np.float64]:
+    """Values as float64, refusing any that is not finite or not above zero.
+
+    Parameters
+    ----------
+    name : str
+        The field an error names.
+    value : float or array_like
+        The values [SI unit of the field].
+    kind : str, optional
+        What the values are ("length"), for the message; empty: "must be positive".
+
+    Returns
+    -------
+    numpy.ndarray
+        The values as float64.
+
+    Raises
+    ------
+    DesignError
+        On ``name`` when a value is not finite or ≤ 0.
+    """
+    arr = np.asarray(value, dtype=float)
+    if np.any(~np.isfinite(arr)) or np.any(arr <= 0):
+        what = f"a positive {kind}" if kind else "positive"
+        raise DesignError(name, f"must be {what}, got {value!r}")
+    return arr

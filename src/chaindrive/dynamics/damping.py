@@ -31,7 +31,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from chaindrive._docstrings import shared_parameters
-from chaindrive.errors import DesignError
+from chaindrive.errors import DesignError, positive
+from chaindrive.geometry.sag import slack_for_sag
 
 __all__ = [
     "DEFAULT_DAMPING_RATIO",
@@ -217,13 +218,6 @@ PR_12_7_1820_1 = HingeFrictionCoefficients(
 )
 
 
-def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
-    a = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(a)) or np.any(a <= 0):
-        raise DesignError(name, f"must be positive, got {value!r}")
-    return a
-
-
 def hinge_rotation_sum(relative_amplitude: ArrayLike) -> NDArray[np.float64]:
     """Total rotation of the pins in their bushes per quarter period, Σφ = 4π ȳ_0 [rad].
 
@@ -241,7 +235,7 @@ def hinge_rotation_sum(relative_amplitude: ArrayLike) -> NDArray[np.float64]:
     ----------
     [ChainHingeDissipation, eq. 6].
     """
-    return 4.0 * math.pi * _positive("relative_amplitude", relative_amplitude)
+    return 4.0 * math.pi * positive("relative_amplitude", relative_amplitude)
 
 
 def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_diameter: ArrayLike,
@@ -271,9 +265,9 @@ def dissipated_energy_per_cycle(friction: ArrayLike, tension: ArrayLike, pin_dia
     ----------
     [ChainHingeDissipation, eqs. 7–8] (with ȳ_0 = y_0/a).
     """
-    f = _positive("friction", friction)
-    y_rel = _positive("amplitude", amplitude) / _positive("span_length", span_length)
-    return 8.0 * math.pi * f * _positive("tension", tension) * _positive(
+    f = positive("friction", friction)
+    y_rel = positive("amplitude", amplitude) / positive("span_length", span_length)
+    return 8.0 * math.pi * f * positive("tension", tension) * positive(
         "pin_diameter", pin_diameter) * y_rel
 
 
@@ -295,10 +289,11 @@ def span_elongation_max(span_length: ArrayLike, relative_amplitude: ArrayLike) -
 
     References
     ----------
-    [ChainHingeDissipation, eq. 10].
+    [ChainHingeDissipation, eq. 10]: the extra length of a parabolic span of sag ȳ_0·a,
+    :func:`chaindrive.geometry.sag.slack_for_sag` ([Irvine1981, ch. 1]).
     """
-    y = _positive("relative_amplitude", relative_amplitude)
-    return 8.0 / 3.0 * _positive("span_length", span_length) * y * y
+    return slack_for_sag(positive("span_length", span_length),
+                         positive("relative_amplitude", relative_amplitude))
 
 
 @shared_parameters
@@ -315,8 +310,8 @@ def max_dynamic_force(tension: ArrayLike, relative_amplitude: ArrayLike,
     ----------
     [ChainHingeDissipation, eq. 11].
     """
-    F0 = _positive("tension", tension)
-    y = _positive("relative_amplitude", relative_amplitude)
+    F0 = positive("tension", tension)
+    y = positive("relative_amplitude", relative_amplitude)
     k = coefficients
     return k.k1 + k.k2 * y + k.k3 * F0 + k.k4 * y * y + k.k5 * y * F0 + k.k6 * F0 * F0
 
@@ -335,7 +330,7 @@ def dynamic_load_factor(tension: ArrayLike, relative_amplitude: ArrayLike,
     ----------
     [ChainHingeDissipation, eq. 13].
     """
-    F0 = _positive("tension", tension)
+    F0 = positive("tension", tension)
     return (max_dynamic_force(F0, relative_amplitude, coefficients) - F0) / F0
 
 
@@ -358,7 +353,7 @@ def max_potential_energy(span_length: ArrayLike, relative_amplitude: ArrayLike,
     ----------
     [ChainHingeDissipation, eqs. 9, 12].
     """
-    F0 = _positive("tension", tension)
+    F0 = positive("tension", tension)
     k_af = dynamic_load_factor(F0, relative_amplitude, coefficients)
     return 0.5 * k_af * F0 * span_elongation_max(span_length, relative_amplitude)
 
@@ -386,12 +381,12 @@ def absorption_coefficient(friction: ArrayLike, pin_diameter: ArrayLike, span_le
     ----------
     [ChainHingeDissipation, eq. 14].
     """
-    y = _positive("relative_amplitude", relative_amplitude)
+    y = positive("relative_amplitude", relative_amplitude)
     k_af = dynamic_load_factor(tension, y, coefficients)
     if np.any(k_af <= 0):
         raise DesignError("coefficients", "the F_max fit gives F_max ≤ F_0 (K_aF ≤ 0) here")
-    return (6.0 * math.pi * _positive("friction", friction) * _positive("pin_diameter", pin_diameter)
-            / (y * _positive("span_length", span_length) * k_af))
+    return (6.0 * math.pi * positive("friction", friction) * positive("pin_diameter", pin_diameter)
+            / (y * positive("span_length", span_length) * k_af))
 
 
 def equivalent_damping_ratio(absorption: ArrayLike) -> NDArray[np.float64]:

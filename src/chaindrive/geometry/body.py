@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
+from chaindrive.errors import positive
 from chaindrive.geometry.iso606 import iso606_tooth_width, multi_strand_width
 from chaindrive.geometry.pitch import MM as _MM
 from chaindrive.geometry.pitch import approximate_pitch_diameter, pitch_diameter
@@ -212,7 +213,7 @@ def sprocket_mass_and_inertia(pitch: float, teeth: int, inner_width: float, dens
     ----------
     [MultimassChainDrives, §3.4]; [ISO606].
     """
-    rho = float(_positive("density", density))
+    rho = float(positive("density", density))
     d = float(pitch_diameter(pitch, teeth))
     prop = polymeric_sprocket_proportions(pitch, teeth, inner_width)
     if not polymeric:

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from chaindrive._docstrings import shared_parameters
 from chaindrive._numeric import FloatOrArray
 from chaindrive._numeric import float_or_array as _out
-from chaindrive.errors import DesignError
+from chaindrive.errors import DesignError, positive
 
 if TYPE_CHECKING:
     from _typeshed import DataclassInstance
@@ -56,7 +56,8 @@ _teeth = teeth_array
 
 
 def positive_length(name: str, value: ArrayLike) -> NDArray[np.float64]:
-    """Lengths as floats, refusing anything not finite or not positive.
+    """Lengths [m] as float64, refusing any not finite or not above zero
+    (:func:`chaindrive.errors.positive`, named as a length).
 
     Parameters
     ----------
@@ -69,16 +70,8 @@ def positive_length(name: str, value: ArrayLike) -> NDArray[np.float64]:
     -------
     numpy.ndarray
         The lengths as float64 [m].
-
-    Raises
-    ------
-    DesignError
-        On ``name`` when a length is not finite or ≤ 0.
     """
-    arr = np.asarray(value, dtype=float)
-    if np.any(~np.isfinite(arr)) or np.any(arr <= 0):
-        raise DesignError(name, f"must be a positive length, got {value!r}")
-    return arr
+    return positive(name, value, "length")
 
 
 _positive = positive_length

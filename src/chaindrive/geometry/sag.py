@@ -14,25 +14,31 @@ k_f = 6 of a horizontal drive [ChainDesignRU, §8]); textbooks reduce the centre
 from __future__ import annotations
 
 import math
+from typing import TypeVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+_F = TypeVar("_F", float, NDArray[np.float64])
 
 DEFAULT_SAG_RATIO = 0.02
 """Installed sag of the slack span as a fraction of its length, assumed when a design gives
 none [-] (chains are installed with about 1–3 %, [DiamondChainTension])."""
 
 
-def slack_for_sag(span: float, sag_fraction: float) -> float:
+def slack_for_sag(span: _F, sag_fraction: _F) -> _F:
     """Extra chain length ΔL = (8/3)·s²·ℓ that makes a span of chord ℓ sag by s·ℓ.
 
     Parameters
     ----------
-    span : float
+    span : float or ndarray
         Chord ℓ of the span [m].
-    sag_fraction : float
+    sag_fraction : float or ndarray
         Mid-span sag as a fraction s of the chord [-].
 
     Returns
     -------
-    float
+    float or ndarray
         ΔL [m].
 
     References
