@@ -97,3 +97,11 @@ def test_mass_scales_geometrically() -> None:
         b = sp.sprocket_mass_and_inertia(2 * 15.875 * MM, 21, 2 * 9.65 * MM, 1000.0, polymeric)
         assert_allclose(b.mass / a.mass, 8.0, rtol=1e-12)
         assert_allclose(b.moment_of_inertia / a.moment_of_inertia, 32.0, rtol=1e-12)
+
+
+def test_a_body_density_that_is_not_positive_is_refused_as_a_density() -> None:
+    # the density is checked as a positive value, not as "a positive length" (the message
+    # names the field and what is allowed)
+    with pytest.raises(DesignError, match=r"density: must be positive, got -7800") as err:
+        sp.sprocket_mass_and_inertia(0.0254, 17, 0.0156, -7800.0, polymeric=False)
+    assert "length" not in str(err.value)
