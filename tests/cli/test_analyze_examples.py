@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import subprocess
 import sys
 
@@ -13,9 +12,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import chaindrive
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 # the drives the issue asks for (eight_sprocket_optimize.toml is the 8-sprocket drive with an
 # [optimize] table, tested with the synthesis)
@@ -29,7 +26,9 @@ def test_examples_are_the_ones_the_issues_ask_for() -> None:
     assert sizes == [2, 2, 3, 3, 5, 8, 24]
 
 
-def test_the_demo_drive_passes_every_check_with_nothing_unverified() -> None:
+@pytest.mark.concurrency  # its first command runs the entry point itself, in a subprocess
+def test_the_demo_drive_passes_every_check_with_nothing_unverified(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     # the demo's passing example: Bhandari example 14.7's chain and sprockets with a motor and
     # a driven machine, every input of the dynamic model given, so k1 and the fatigue check
     # are verdicts; the one limit resting on an estimate says so
@@ -50,16 +49,18 @@ def test_the_demo_drive_passes_every_check_with_nothing_unverified() -> None:
     assert fatigue["limit"] == pytest.approx(0.15 * 22.2e3)
     assert "inside the band" not in fatigue["note"]
     assert all(c["limit_estimated"] is False for k, c in checks.items() if k != "fatigue")
-    text = subprocess.run([sys.executable, "-m", "chaindrive", "analyze", str(path)],
-                          capture_output=True, text=True, check=True,
-                          env={**os.environ, "COLUMNS": "200"}).stdout
+    monkeypatch.setenv("COLUMNS", "200")
+    table = cli_in_process("analyze", str(path))  # the text output, run in this process
+    assert table.returncode == 0, table.stderr
+    text = table.stdout
     assert f"all {len(checks)} checks pass" in text and "(estimate)" in text
 
 
 @pytest.mark.parametrize("path", EXAMPLE_FILES, ids=lambda p: p.stem)
 def test_json_document_has_the_required_keys(path) -> None:  # type: ignore[no-untyped-def]
-    proc = subprocess.run([sys.executable, "-m", "chaindrive", "analyze", str(path), "--json"],
-                          capture_output=True, text=True, check=True)
+    # the command run in this process: the document is the command's, not the process's
+    proc = cli_in_process("analyze", str(path), "--json")
+    assert proc.returncode == 0, proc.stderr
     doc = json.loads(proc.stdout)
     g, k = doc["geometry"], doc["kinematics"]
     for key in ("links", "chain_length_mm", "tight_length_mm", "center_distance_mm",

@@ -10,16 +10,20 @@ import sys
 import pytest
 
 from chaindrive.io.design import SECTIONS
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, cli_in_process
 
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+#: The command run in this process: what these tests assert (what it prints, its JSON, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+def run_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """The command run as ``python -m chaindrive`` in a new interpreter (the entry point)."""
     return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
                           text=True, check=False)
 
 
+@pytest.mark.concurrency  # its last command runs the entry point itself, in a subprocess
 def test_schema_lists_every_field_with_unit_default_and_range() -> None:
     proc = run_cli("schema", "--json")
     assert proc.returncode == 0
@@ -29,7 +33,7 @@ def test_schema_lists_every_field_with_unit_default_and_range() -> None:
     assert teeth["allowed"] == "a whole number from 6 to 150"
     speed = next(f for f in doc["sprockets"] if f["field"] == "speed")
     assert speed["si_unit"] == "rad/s" and speed["example"] == "300 rpm"
-    assert run_cli("schema").returncode == 0
+    assert run_process("schema").returncode == 0
 
 
 def test_catalog_lists_shows_and_refuses() -> None:

@@ -10,21 +10,26 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 SEED = str(EXAMPLES / "seed_three_sprocket.toml")
 
 
-def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+#: The command run in this process: what these tests assert (what it prints and writes, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
+
+
+def run_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """The command run as ``python -m chaindrive`` in a new interpreter (the entry point)."""
     return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
-                          text=True, check=False, cwd=cwd)
+                          text=True, check=False)
 
 
+@pytest.mark.concurrency  # the one run of the entry point itself, in a subprocess
 def test_tension_json_inverts_the_design_running_frequency() -> None:
     # the design's running frequency of S2-S3 read back gives the design's span tension
-    out = run_cli("tension", SEED, "--span", "S2-S3", "--frequency", "9.853664524265515 Hz",
+    out = run_process("tension", SEED, "--span", "S2-S3", "--frequency", "9.853664524265515 Hz",
                   "--running", "--json")
     assert out.returncode == 0, out.stderr
     doc = json.loads(out.stdout)
@@ -128,10 +133,11 @@ def test_identify_a_run_up_gives_its_orders_and_run_up_map(tmp_path: Path) -> No
     (("--speed", "speed_rpm", "--tacho", "speed_rpm"), "--tacho: give a speed column or"),
 ])
 def test_identify_a_bad_speed_writes_nothing(tmp_path: Path, extra: tuple[str, ...],
-                                             message: str) -> None:
+                                             message: str,
+                                             monkeypatch: pytest.MonkeyPatch) -> None:
     rec = _runup(tmp_path / "r.csv")
-    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"), *extra,
-                  cwd=tmp_path)
+    monkeypatch.chdir(tmp_path)  # a relative output name lands in tmp_path
+    out = run_cli("identify", SEED, "--record", str(rec), "-o", str(tmp_path / "s.svg"), *extra)
     assert out.returncode == 2 and out.stdout == ""
     assert out.stderr.count("\n") == 1 and message in out.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]

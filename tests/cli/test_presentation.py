@@ -14,14 +14,28 @@ from pathlib import Path
 import pytest
 
 from chaindrive.display import fmt
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 SEED = EXAMPLES / "seed_three_sprocket.toml"
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+@pytest.fixture(autouse=True)
+def wide_plain_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
+    """200 columns and no colour asked for, as in a clean environment with ``COLUMNS=200``
+    (rich and typer read these when a command makes its console)."""
+    monkeypatch.setenv("COLUMNS", "200")
+    for name in ("FORCE_COLOR", "TTY_COMPATIBLE", "TTY_INTERACTIVE", "TERMINAL_WIDTH"):
+        monkeypatch.delenv(name, raising=False)
+
+
+#: The command run in this process: what these tests assert (what it prints, its exit
+#: status) is the command's, not the process's.
+run_cli = cli_in_process
+
+
+def run_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """The command run as ``python -m chaindrive`` in a new interpreter with a clean
+    environment of 200 columns (the entry point)."""
     return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
                           text=True, check=False, env={"COLUMNS": "200", "PATH": "/usr/bin"})
 
@@ -39,8 +53,9 @@ def test_schema_by_section_with_titles_articles_and_examples() -> None:
     assert "2400 h" not in duration and "1 s" in duration
 
 
+@pytest.mark.concurrency  # the entry point itself, in a subprocess (a cheap command: --help)
 def test_help_names_the_optimize_table() -> None:
-    proc = run_cli("optimize", "--help")
+    proc = run_process("optimize", "--help")
     assert proc.returncode == 0
     assert "with an [optimize] table" in " ".join(proc.stdout.split())
 

@@ -14,9 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 SEED = EXAMPLES / "seed_three_sprocket.toml"
 #: The seed contour: sprockets S1, S2, S3 and its spans, 128 links [MultimassChainDrives].
@@ -25,7 +23,13 @@ SPANS = ("S1-S2", "S2-S3", "S3-S1")
 LINKS = 128
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+#: The command run in this process: what these tests assert (what it prints and writes, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
+
+
+def run_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """The command run as ``python -m chaindrive`` in a new interpreter (the entry point)."""
     return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
                           text=True, check=False)
 
@@ -71,12 +75,14 @@ def test_bad_duration_is_one_line_exit_2(duration: str, says: str, tmp_path: Pat
     assert proc.stderr.count("\n") == 1 and not out.exists()
 
 
+@pytest.mark.concurrency  # the entry point itself, in a subprocess
 def test_unknown_model_is_one_line_exit_2() -> None:
-    proc = run_cli("simulate", str(SEED), "--model", "beams")
+    proc = run_process("simulate", str(SEED), "--model", "beams")
     assert proc.returncode == 2 and proc.stderr.startswith("error: --model:")
     assert proc.stderr.count("\n") == 1
 
 
+@pytest.mark.concurrency  # numba reads NUMBA_CACHE_DIR when it starts: a new interpreter
 def test_a_cold_kernel_cache_is_said_before_the_first_run(tmp_path) -> None:
     """With numba's cache empty (a fresh NUMBA_CACHE_DIR) the kernel is not compiled, so the
     command says the first run compiles; with the package's cache it is (docs/linklevel.md)."""

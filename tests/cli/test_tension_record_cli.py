@@ -8,14 +8,13 @@ import json
 import math
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from tests.conftest import EXAMPLES
-
-pytestmark = pytest.mark.concurrency  # each test runs the command in a subprocess
+from tests.conftest import EXAMPLES, cli_in_process
 
 SEED = str(EXAMPLES / "seed_three_sprocket.toml")
 #: Pretension [N] of the chain at a sag of 1.5 % of its slack span S1-S2 (k_f q g a,
@@ -26,7 +25,13 @@ F0_N = 290.59260115160936
 F1_HZ = 7.736395985104492
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+#: The command run in this process: what these tests assert (what it prints and writes, its
+#: exit status) is the command's, not the process's.
+run_cli = cli_in_process
+
+
+def run_process(*args: str) -> subprocess.CompletedProcess[str]:
+    """The command run as ``python -m chaindrive`` in a new interpreter (the entry point)."""
     return subprocess.run([sys.executable, "-m", "chaindrive", *args], capture_output=True,
                           text=True, check=False)
 
@@ -66,15 +71,18 @@ def test_tension_from_a_record_gives_back_the_sag_it_was_made_with(tmp_path: Pat
         doc["calibration"]["fitted_fraction"], rel=1e-12)
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (("--span", "S2-S3"), "--frequency: give either --frequency F or --record FILE"),
+@pytest.mark.parametrize(("args", "message", "runner"), [
+    # one case through the entry point itself, in a subprocess
+    pytest.param(("--span", "S2-S3"), "--frequency: give either --frequency F or --record FILE",
+                 run_process, marks=pytest.mark.concurrency),
     (("--span", "S2-S3", "--frequency", "5Hz", "--record", "r.csv"),
-     "--frequency: give either --frequency F or --record FILE"),
-    (("--span", "S2-S3", "--record", "missing.csv"), "--record: no such file"),
+     "--frequency: give either --frequency F or --record FILE", run_cli),
+    (("--span", "S2-S3", "--record", "missing.csv"), "--record: no such file", run_cli),
 ])
-def test_tension_record_bad_input_is_one_line_exit_2(tmp_path: Path, args: tuple[str, ...],
-                                                     message: str) -> None:
-    out = run_cli("tension", SEED, *args, "--write-calibrated", str(tmp_path / "c.toml"))
+def test_tension_record_bad_input_is_one_line_exit_2(
+        tmp_path: Path, args: tuple[str, ...], message: str,
+        runner: Callable[..., subprocess.CompletedProcess[str]]) -> None:
+    out = runner("tension", SEED, *args, "--write-calibrated", str(tmp_path / "c.toml"))
     assert out.returncode == 2 and out.stdout == ""
     assert out.stderr.count("\n") == 1 and message in out.stderr, out.stderr
     assert list(tmp_path.iterdir()) == []
