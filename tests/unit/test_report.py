@@ -193,15 +193,21 @@ def _body(html: str) -> str:
     return html[:html.index('<section id="references">')]
 
 
-def test_no_response_no_section(seed_analysis) -> None:
-    html = render_html(build_report(chaindrive.analyze(seed_analysis.design, response=False),
+@pytest.fixture(scope="module")
+def quick_html(seed_analysis) -> str:
+    """The report of the seed analysed without the response and without studies: one
+    render serves the two tests of what such a report leaves out."""
+    return render_html(build_report(chaindrive.analyze(seed_analysis.design, response=False),
                                     dpi=30))
+
+
+def test_no_response_no_section(quick_html: str) -> None:
+    html = quick_html
     assert 'id="response"' not in html and "k₁" not in _body(html)
 
 
-def test_studies_only_when_asked(seed_analysis) -> None:
-    quick = chaindrive.analyze(seed_analysis.design, response=False)
-    html = _body(render_html(build_report(quick, dpi=30)))
+def test_studies_only_when_asked(seed_analysis, quick_html: str) -> None:
+    html = _body(quick_html)
     assert 'id="materials"' not in html and 'id="damping"' not in html
     assert "Absorption coefficient" not in html and "ψ" not in html
     asked = chaindrive.analyze(seed_analysis.design, response=False,

@@ -60,6 +60,22 @@ def eight() -> chaindrive.analysis.Analysis:
     return _analysis("eight_sprocket", response=False)
 
 
+# one report per analysis serves every test that reads it (a Report is only read)
+@pytest.fixture(scope="module")
+def seed_report(seed) -> chaindrive.report.Report:
+    return build_report(seed, dpi=20)
+
+
+@pytest.fixture(scope="module")
+def jindal_report(jindal) -> chaindrive.report.Report:
+    return build_report(jindal, dpi=20)
+
+
+@pytest.fixture(scope="module")
+def polymer_report(polymer) -> chaindrive.report.Report:
+    return build_report(polymer, dpi=20)
+
+
 def _blocks(report: chaindrive.report.Report, key: str) -> tuple[object, ...]:
     return next(s for s in report.sections if s.key == key).blocks
 
@@ -97,25 +113,25 @@ def test_damping_by_the_material_pair_is_listed_a_given_one_is_not(seed) -> None
     assert not any(i.startswith("Damping ratio") for i in rest_on(ReportInput(given)))
 
 
-def test_service_factor_listed_only_when_not_given(seed, jindal) -> None:
+def test_service_factor_listed_only_when_not_given(seed, jindal, jindal_report) -> None:
     assert seed.drive.service_factor is not None
     assert not any("service_factor" in i for i in rest_on(ReportInput(seed)))
     assert jindal.drive.service_factor is None and jindal.strength is not None
     line = [i for i in rest_on(ReportInput(jindal)) if "service_factor" in i]
     assert len(line) == 1 and fmt(jindal.strength.operating_factor) in line[0]
-    inputs = next(b for b in _blocks(build_report(jindal, dpi=20), "inputs")
+    inputs = next(b for b in _blocks(jindal_report, "inputs")
                   if isinstance(b, Table) and b.caption == "Drive and chain")
     assert ("service factor", "K_s", "1 (default)", "") in inputs.rows
 
 
-def test_polymer_chain_data_are_called_estimates(polymer) -> None:
+def test_polymer_chain_data_are_called_estimates(polymer, polymer_report) -> None:
     spec = polymer.drive.chain.spec
     marked = catalogue_estimates(spec.source)
     assert marked == ("breaking load", "mass per length", "allowable load", "speed limit")
     line = [i for i in rest_on(ReportInput(polymer)) if spec.designation in i]
     assert len(line) == 1 and "estimates of the catalogue" in line[0]
     assert all(m in line[0].lower() for m in marked) and "[TsubakiGuide]" in line[0]
-    inputs = next(b for b in _blocks(build_report(polymer, dpi=20), "inputs")
+    inputs = next(b for b in _blocks(polymer_report, "inputs")
                   if isinstance(b, Table) and b.caption == "Drive and chain")
     labels = [r[0] for r in inputs.rows]
     assert {"breaking load (estimate)", "mass per length (estimate)",
@@ -135,8 +151,8 @@ def test_readable_source_is_short_and_keeps_the_citations() -> None:
     assert catalogue_estimates("dims, Q, q: GOST 13568-97 Table 1") == ()
 
 
-def test_polymer_check_sources_in_the_report(polymer) -> None:
-    report = build_report(polymer, dpi=20)
+def test_polymer_check_sources_in_the_report(polymer, polymer_report) -> None:
+    report = polymer_report
     cells = [str(v) for s in report.sections for b in s.blocks if isinstance(b, Table)
              for r in b.rows for v in r]
     assert not any("ESTIMATED:" in c for c in cells)
@@ -165,12 +181,11 @@ def _legend_texts(fig) -> list[str]:
     return [t.get_text() for t in legend.get_texts()]
 
 
-def test_campbell_of_the_report_names_mode_1_and_spans(seed, eight) -> None:
+def test_campbell_of_the_report_names_mode_1_and_spans(seed, eight, seed_report) -> None:
     """The seed's tooth frequency crosses the first elastic mode (73.1 Hz, mode 1 of the
     tables) near the working speed; the eight-sprocket drive's parametric zone is named by
     its span (T→D5), never by an index."""
-    for a in (seed, eight):
-        report = build_report(a, dpi=20)
+    for a, report in ((seed, seed_report), (eight, build_report(eight, dpi=20))):
         modal = a.dynamics.modal
         elastic = [j for j in range(len(modal.frequencies_hz)) if not modal.rigid_body[j]]
         spans = [f"{s.start_name}→{s.end_name}" for s in a.geometry.spans]
@@ -204,13 +219,13 @@ def test_afc_labels_take_the_table_numbers(seed) -> None:
 
 # --- 5. F₁max by the tables' rule -------------------------------------------------------------
 
-def test_startup_figure_writes_f1max_as_the_table(jindal) -> None:
+def test_startup_figure_writes_f1max_as_the_table(jindal, jindal_report) -> None:
     startup = jindal.response.startup
     fig = plotting.startup_oscillogram(startup)
     fig.canvas.draw()
     peak = float(startup.max_span_force.max())
     assert any(f"F₁max = {fmt(peak)} N" in t.get_text() for t in fig.axes[0].texts)
-    report = build_report(jindal, dpi=20)
+    report = jindal_report
     loads = next(b for b in _blocks(report, "response")
                  if isinstance(b, Table) and b.caption == "Dynamic loads")
     row = next(r for r in loads.rows if r[1] == "F₁max")
@@ -219,7 +234,7 @@ def test_startup_figure_writes_f1max_as_the_table(jindal) -> None:
 
 # --- 6. the ratio figure names its pair -------------------------------------------------------
 
-def test_ratio_figure_names_the_pair(seed) -> None:
+def test_ratio_figure_names_the_pair(seed, seed_report) -> None:
     i, j = plotting.ratio_pair(seed)
     a, b = seed.drive.sprockets[i], seed.drive.sprockets[j]
     assert (a.name, b.name) == ("S1", "S3")  # the tight span S3→S1 ends on the driver
@@ -228,7 +243,7 @@ def test_ratio_figure_names_the_pair(seed) -> None:
     assert "ω(S1) / ω(S3)" in texts
     assert f"z(S3) / z(S1) = {b.teeth}/{a.teeth} = {fmt(b.teeth / a.teeth)}" in texts
     assert fig.axes[0].get_ylabel() == "ratio ω(S1) / ω(S3)"
-    report = build_report(seed, dpi=20)
+    report = seed_report
     caption = next(b.caption for b in _blocks(report, "kinematics")
                    if isinstance(b, Plot) and b.key == "ratio")
     assert "ω(S1)/ω(S3)" in caption and "S3" in caption
@@ -236,8 +251,8 @@ def test_ratio_figure_names_the_pair(seed) -> None:
 
 # --- 7. cosmetics ----------------------------------------------------------------------------
 
-def test_glance_unit_column_holds_units_and_captions_say_orange(seed) -> None:
-    report = build_report(seed, dpi=20)
+def test_glance_unit_column_holds_units_and_captions_say_orange(seed, seed_report) -> None:
+    report = seed_report
     glance = next(b for b in _blocks(report, "summary")
                   if isinstance(b, Table) and b.caption == "The design at a glance")
     assert not any("allowable" in str(r[2]) for r in glance.rows)
@@ -247,21 +262,21 @@ def test_glance_unit_column_holds_units_and_captions_say_orange(seed) -> None:
     assert "tight span red" not in text and "tight span orange" in text
 
 
-def test_no_nearly_empty_page_after_the_verdict(jindal) -> None:
+def test_no_nearly_empty_page_after_the_verdict(jindal_report) -> None:
     """Page 1 of the Jindal report runs over: the rest of the summary and the inputs share
     page 2 (a forced page break used to leave the rest alone there); a verdict that fits
     page 1 still stands alone on it."""
-    report = build_report(jindal, dpi=20)
+    report = jindal_report
     where = page_map(report)
     assert where["summary"] == 1 and where["inputs"] == 2
 
 
 # --- 8. which tooth harmonics the resonance check covers -------------------------------------
 
-def test_resonance_section_says_its_harmonics(seed) -> None:
+def test_resonance_section_says_its_harmonics(seed, seed_report) -> None:
     ks = sorted(w.harmonic for w in seed.dynamics.working if w.kind == "tooth")
     assert ks == [1, 2, 3] and tooth_harmonics(ReportInput(seed)) == "1–3"
-    report = build_report(seed, dpi=20)
+    report = seed_report
     texts = [b.text for b in _blocks(report, "dynamics") if isinstance(b, Text)]
     assert any("harmonics 1–3 of the tooth frequency" in t
                and f"the {seed.drive.dynamics.harmonics} harmonics" in t for t in texts)
