@@ -37,6 +37,12 @@ def asked(seed):
     return chaindrive.analyze(seed, studies=("links",), link_duration_s=DURATION)
 
 
+@pytest.fixture(scope="module")
+def asked_report(asked):
+    """The report of ``asked`` (frozen sections and blocks: the tests only read it)."""
+    return build_report(asked, dpi=30)
+
+
 def test_link_level_only_when_asked(seed) -> None:
     plain = chaindrive.analyze(seed, lazy=True)
     assert plain.link_level is None and plain.link_level_comparison is None
@@ -98,10 +104,10 @@ def test_duration_is_bounded(seed) -> None:
         chaindrive.analyze(seed, studies=("link",), lazy=True)
 
 
-def test_report_section_only_on_request(seed, asked) -> None:
+def test_report_section_only_on_request(seed, asked, asked_report) -> None:
     """The section "Link-level model" with its table and three figures when the study ran;
     absent from the report of the same design without it."""
-    report = build_report(asked, dpi=30)
+    report = asked_report
     keys = [s.key for s in report.sections]
     assert keys.index("response") < keys.index("links") < keys.index("checks")
     section = next(s for s in report.sections if s.key == "links")
@@ -119,7 +125,7 @@ def test_report_section_only_on_request(seed, asked) -> None:
     assert 'id="links"' not in render_html(build_report(plain, dpi=30))
 
 
-def test_report_section_defines_its_symbols_and_typesets(asked) -> None:
+def test_report_section_defines_its_symbols_and_typesets(asked_report) -> None:
     """The rule of tests/unit/test_report_pdf.py on a report with the study: no glossary
     symbol before its definition, no internal reference, and Typst sets the PDF."""
     from chaindrive.report import Definitions, render_pdf
@@ -127,7 +133,7 @@ def test_report_section_defines_its_symbols_and_typesets(asked) -> None:
     from chaindrive.report.symbols import SYMBOLS
     from tests.unit.test_report_pdf import INTERNAL, _occurs, _words
 
-    report = build_report(asked, dpi=30)
+    report = asked_report
     distinctive = {k: s.text for k, s in SYMBOLS.items()
                    if len(s.text) > 1 or not s.text.isascii()}
     defined: set[str] = set()
