@@ -106,11 +106,21 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
     """
     count = [0]
     n = len(initial)
+    # the model's values at each θ it was run at: least_squares may ask again for a θ it has
+    # (and the values at the θ it ends on are read after), the model is run once per θ
+    runs: dict[bytes, np.ndarray[Any, np.dtype[np.float64]]] = {}
+
+    def model_at(theta: np.ndarray[Any, np.dtype[np.float64]]
+                 ) -> np.ndarray[Any, np.dtype[np.float64]]:
+        key = np.asarray(theta, dtype=float).tobytes()
+        if key not in runs:
+            runs[key] = np.array(model(np.exp(theta)), dtype=float)
+        return runs[key].copy()
 
     def residuals(theta: np.ndarray[Any, np.dtype[np.float64]]
                   ) -> np.ndarray[Any, np.dtype[np.float64]]:
         count[0] += 1
-        return np.asarray((model(np.exp(theta)) - measured) / std, dtype=float)
+        return np.asarray((model_at(theta) - measured) / std, dtype=float)
 
     hi = np.full(n, np.inf) if upper is None else np.log(np.asarray(upper, dtype=float))
     lo = np.full(n, -np.inf) if lower is None else np.log(np.asarray(lower, dtype=float))
@@ -133,7 +143,7 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
     sigma = np.sqrt(np.maximum(np.diag(cov), 0.0))
     corr = cov / np.where(np.outer(sigma, sigma) > 0, np.outer(sigma, sigma), 1.0)
     theta = np.asarray(fit.x, dtype=float)
-    y = model(np.exp(theta))
+    y = model_at(theta)
     fitted = tuple(float(x) for x in y)
     slopes = J * std[:, None] / np.where(y != 0, y, 1.0)[:, None]  # d ln y_i / dθ_k
     return tuple(LogFit(math.exp(t), float(s), (math.exp(t - Z95 * s), math.exp(t + Z95 * s)),
