@@ -7,8 +7,10 @@ static state at working speed.
 Closed form both must meet: the tight span's mean carries T₀ + F_t (the span load of a
 loaded drive [MultimassChainDrives, §3.3]); the two histories must agree beyond their means
 — correlated above 0.99 and differing by less than a fifth of their own fluctuation
-(measured over 10 ms: correlation 0.9986, RMS difference 0.056 of the fluctuation; over
-20 ms 0.9967 and 0.081; docs/linklevel.md §4).
+(measured over 10 ms: correlation 0.9980, RMS difference 0.065 of the fluctuation with the
+peer's seating arcs in 100 chords, the benchmark's setting, 0.9986 and 0.055 with 200, 0.9989
+and 0.052 with 400; over 20 ms at 200: 0.9967 and 0.081; docs/linklevel.md §4, "The peer's
+discretisation").
 """
 
 from __future__ import annotations
