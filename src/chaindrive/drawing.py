@@ -253,6 +253,24 @@ class _Sheet:
         return _union([*self.boxes, *map(_disc_box, self.discs), *map(_segment_box, self.lines)])
 
 
+@dataclass(frozen=True)
+class _Arrangements:
+    """A drawing made on ``msp`` but for its last part (the notes of a sprocket, the centre
+    table of a layout), which goes below it or to its right: ``last(msp, right)`` draws that
+    part there (``msp`` None: draws nothing) and returns the box of the whole drawing [mm]."""
+
+    msp: Modelspace
+    last: Callable[[Modelspace | None, bool], Box]
+
+    def box(self, right: bool) -> Box:
+        """The box [mm] the drawing takes with its last part to the right (or below)."""
+        return self.last(None, right)
+
+    def finish(self, right: bool) -> Box:
+        """Draw the last part to the right (or below); returns the drawing's box [mm]."""
+        return self.last(self.msp, right)
+
+
 # --- texts ------------------------------------------------------------------------------------
 
 @functools.lru_cache(maxsize=8)
@@ -317,20 +335,23 @@ def dxf_text(text: str) -> str:
     return text
 
 
-def _text(msp: Modelspace, text: str, at: tuple[float, float], height: float,
+def _text(msp: Modelspace | None, text: str, at: tuple[float, float], height: float,
           align: str = "MIDDLE_LEFT", layer: str = "TEXT") -> Box:
     """Draw a TEXT (its signs as DXF control codes, :func:`dxf_text`); returns its box [mm]
-    (:func:`_text_box`)."""
-    from ezdxf.enums import TextEntityAlignment
+    (:func:`_text_box`). With ``msp`` None nothing is drawn: the box of the text it would
+    draw."""
+    if msp is not None:
+        from ezdxf.enums import TextEntityAlignment
 
-    entity: Text = msp.add_text(dxf_text(text), height=height, dxfattribs={"layer": layer})
-    entity.set_placement(at, align=TextEntityAlignment[align])
+        entity: Text = msp.add_text(dxf_text(text), height=height, dxfattribs={"layer": layer})
+        entity.set_placement(at, align=TextEntityAlignment[align])
     return _text_box(text, at, height, align)
 
 
-def _text_lines(msp: Modelspace, lines: Sequence[str], top_left: Point, height: float,
+def _text_lines(msp: Modelspace | None, lines: Sequence[str], top_left: Point, height: float,
                 spacing: float) -> Box:
-    """Lines of text, left-aligned, the first one's top at ``top_left``; returns the box."""
+    """Lines of text, left-aligned, the first one's top at ``top_left``; returns the box
+    (``msp`` None: draws nothing, the box they would take)."""
     x, y = top_left
     return _union(_text(msp, line, (x, y - 0.5 * height - spacing * i), height)
                   for i, line in enumerate(lines))
@@ -557,9 +578,9 @@ def _box_size(b: Box) -> tuple[float, float]:
     return b[2] - b[0], b[3] - b[1]
 
 
-def _centre_table(msp: Modelspace, analysis: Analysis, top_left: Point, h: float) -> Box:
+def _centre_table(msp: Modelspace | None, analysis: Analysis, top_left: Point, h: float) -> Box:
     """The sprockets' centres and pitch diameters as text lines below ``top_left`` [mm];
-    returns their box."""
+    returns their box (``msp`` None: draws nothing, the box they would take)."""
     lines = [f"{s.name}: z = {s.teeth}, x = {dimension(s.x * MM)}, y = {dimension(s.y * MM)}, "
              f"d = {dimension(s.pitch_diameter * MM)}" for s in analysis.geometry.sprockets]
     head = _text(msp, "Sprocket centres (mm): name, teeth, x, y, pitch diameter",
@@ -568,19 +589,22 @@ def _centre_table(msp: Modelspace, analysis: Analysis, top_left: Point, h: float
     return _union([head, rest]) if lines else head
 
 
-def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float,
-                  table_right: bool = False) -> Box:
-    """The layout with its dimensions and the centre table below it (or to its right);
-    returns its box [mm]."""
+def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float) -> _Arrangements:
+    """The layout with its dimensions; the centre table, drawn last, goes below it (or to
+    its right) as the returned :class:`_Arrangements` is told, which gives both boxes [mm]
+    first."""
     sheet = _Sheet(gap=0.3 * h)
     _layout_entities(msp, analysis, sheet)
     _wrap_dimensions(msp, analysis, h, sheet)
     _centre_distances(msp, analysis, h, sheet)
     _sprocket_names(msp, analysis, h, sheet)
     x0, y0, x1, y1 = box = sheet.extents()
-    table = _centre_table(msp, analysis, (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h),
-                          h)
-    return _union([box, table])
+
+    def table(m: Modelspace | None, table_right: bool) -> Box:
+        corner = (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h)
+        return _union([box, _centre_table(m, analysis, corner, h)])
+
+    return _Arrangements(msp, table)
 
 
 def _layout_title(analysis: Analysis) -> dict[str, str]:
@@ -680,12 +704,13 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
             "maximum form (ri max, re min, α min)."]
 
 
-def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
-                    notes_right: bool = False) -> Box:
+def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float
+                    ) -> _Arrangements:
     """The drawing of sprocket ``index`` with its centre at the origin: the face view with
     its diameters and the keyway (and a polymeric body's circles), the axial section A–A to
-    its right (the metal or polymeric body, :func:`_axial_section`), the notes below both (or
-    to their right); returns the box it takes [mm]."""
+    its right (the metal or polymeric body, :func:`_axial_section`); the notes, drawn last,
+    go below both (or to their right) as the returned :class:`_Arrangements` is told, which
+    gives both boxes [mm] first."""
     from ezdxf import bbox
 
     g = analysis.geometry.sprockets[index]
@@ -732,9 +757,12 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     if profile.body is not None:
         lines += _polymer_body(msp, profile, profile.body)
     views = _union([face, section])
-    corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
-    notes = _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)
-    return _union([views, notes])
+
+    def notes(m: Modelspace | None, notes_right: bool) -> Box:
+        corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
+        return _union([views, _text_lines(m, lines, corner, 0.75 * h, 1.5 * h)])
+
+    return _Arrangements(msp, notes)
 
 
 def _teeth(w: SprocketWorkshop, ra: float, root: float, x_left: float) -> list[Point]:
@@ -1101,28 +1129,28 @@ def _fits(content: Box, sheet: str, n: int) -> bool:
     return True
 
 
-_Build = Callable[["Modelspace", float, bool], Box]
+_Build = Callable[["Modelspace", float], _Arrangements]
 
 
 def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
-              text: float = PAPER_TEXT) -> tuple[str, int, bool]:
-    """The sheet, scale and arrangement of a drawing made by ``build(msp, text height,
-    notes to the right)``: from the largest ISO 5455 scale at which an object of ``size``
-    [mm] could fit the largest sheet, the first scale, then the first sheet, then the first
-    arrangement (notes below, notes to the right) at which the drawing made with text
-    3.5 mm high on paper fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`)."""
+              text: float = PAPER_TEXT) -> tuple[str, int, bool, _Arrangements]:
+    """The sheet, scale and arrangement of a drawing made by ``build(msp, text height)``:
+    from the largest ISO 5455 scale at which an object of ``size`` [mm] could fit the
+    largest sheet, the first scale, then the first sheet, then the first arrangement (notes
+    below, notes to the right) at which the drawing made with text 3.5 mm high on paper
+    fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`); with the drawing at that
+    scale, made on a new document, its last part not yet drawn. One drawing per scale tried
+    gives the boxes of both arrangements."""
     room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
     for n in ISO5455_SCALES:
         if size / n > room:
             continue
-        boxes = []
-        for right in (False, True):
-            trial = _new_document()
-            boxes.append(build(trial.modelspace(), text * n, right))
+        made = build(_new_document().modelspace(), text * n)
+        boxes = (made.box(False), made.box(True))
         for sheet in sheets:
             for right in (False, True):
                 if _fits(boxes[right], sheet, n):
-                    return sheet, n, right
+                    return sheet, n, right, made
     if sheets[-1] != "A0":
         return _on_sheet(build, size, ("A2", "A1", "A0"), text)
     raise DesignError("drawing", "does not fit A0 at 1:1000")
@@ -1149,28 +1177,38 @@ def _common_values() -> dict[str, str]:
             "date": _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d"), "revision": "A  1/1"}
 
 
-def _place_sprocket(msp: Modelspace, analysis: Analysis, index: int
-                    ) -> tuple[Box, str, int]:
-    """The framed drawing of sprocket ``index`` on its sheet; returns the sheet's box, the
-    sheet and 1:N."""
+def _place_sprocket(analysis: Analysis, index: int, msp: Modelspace | None = None
+                    ) -> tuple[Modelspace, Box, str, int]:
+    """The framed drawing of sprocket ``index`` on its sheet, drawn on ``msp`` or (None) on
+    the new document its sheet and scale were chosen with; returns the modelspace drawn on,
+    the sheet's box, the sheet and 1:N."""
     tip = analysis.geometry.sprockets[index].tip_diameter * MM
-    sheet, n, right = _on_sheet(lambda m, h, r: _sprocket_sheet(m, analysis, index, h, r),
-                                1.6 * tip, ("A4", "A3"))
-    box = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n, right)
+    sheet, n, right, made = _on_sheet(lambda m, h: _sprocket_sheet(m, analysis, index, h),
+                                      1.6 * tip, ("A4", "A3"))
+    if msp is not None:
+        made = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n)
+    box = made.finish(right)
     values = {**_common_values(), **_sprocket_values(analysis, index)}
-    return _frame(msp, box, sheet, n, values), sheet, n
+    return made.msp, _frame(made.msp, box, sheet, n, values), sheet, n
 
 
-def _place_layout(msp: Modelspace, analysis: Analysis) -> tuple[Box, str, int]:
-    """The framed layout on its sheet; returns the sheet's box, the sheet and 1:N."""
+def _place_layout(analysis: Analysis) -> tuple[Modelspace, Box, str, int]:
+    """The framed layout on its sheet, drawn on the new document its sheet and scale were
+    chosen with; returns its modelspace, the sheet's box, the sheet and 1:N."""
     g = analysis.geometry.sprockets
     r = max(s.tip_diameter for s in g) / 2 * MM
     size = max(np.ptp([s.x for s in g]), np.ptp([s.y for s in g])) * MM + 2 * r
-    sheet, n, right = _on_sheet(lambda m, h, r: _layout_sheet(m, analysis, h, r), float(size),
-                                ("A4", "A3"), LAYOUT_TEXT)
-    box = _layout_sheet(msp, analysis, LAYOUT_TEXT * n, right)
+    sheet, n, right, made = _on_sheet(lambda m, h: _layout_sheet(m, analysis, h), float(size),
+                                      ("A4", "A3"), LAYOUT_TEXT)
+    box = made.finish(right)
     values = {**_common_values(), **_layout_title(analysis), "type": "Layout"}
-    return _frame(msp, box, sheet, n, values), sheet, n
+    return made.msp, _frame(made.msp, box, sheet, n, values), sheet, n
+
+
+def _document(msp: Modelspace) -> Drawing:
+    """The document of a modelspace."""
+    assert msp.doc is not None  # a modelspace of _new_document
+    return msp.doc
 
 
 @shared_parameters
@@ -1189,8 +1227,8 @@ def sprocket_document(analysis: Analysis, name: str) -> Drawing:
         The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
     """
     i = _index_of(analysis, name)
-    doc = _new_document()
-    _, sheet, n = _place_sprocket(doc.modelspace(), analysis, i)
+    msp, _, sheet, n = _place_sprocket(analysis, i)
+    doc = _document(msp)
     _sheet_record(doc, sheet, n)
     return doc
 
@@ -1208,8 +1246,8 @@ def layout_document(analysis: Analysis) -> Drawing:
     ezdxf.document.Drawing
         The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
     """
-    doc = _new_document()
-    _, sheet, n = _place_layout(doc.modelspace(), analysis)
+    msp, _, sheet, n = _place_layout(analysis)
+    doc = _document(msp)
     _sheet_record(doc, sheet, n)
     return doc
 
@@ -1226,18 +1264,16 @@ def drawing_document(analysis: Analysis) -> Drawing:
     ezdxf.document.Drawing
         The DXF document, drawn 1:1 in mm.
     """
-    doc = _new_document()
-    msp = doc.modelspace()
-    layout, _, _ = _place_layout(msp, analysis)
+    msp, layout, _, _ = _place_layout(analysis)
     x = layout[2] + 20.0
     for i in range(len(analysis.geometry.sprockets)):
         start = len(msp)
-        box, _, _ = _place_sprocket(msp, analysis, i)
+        _, box, _, _ = _place_sprocket(analysis, i, msp)
         dx, dy = x - box[0], layout[3] - box[3]
         for e in list(msp)[start:]:
             e.translate(dx, dy, 0.0)
         x += box[2] - box[0] + 20.0
-    return doc
+    return _document(msp)
 
 
 @shared_parameters
