@@ -417,12 +417,19 @@ def _layout_entities(msp: Modelspace, analysis: Analysis, sheet: _Sheet) -> None
         start, end = (a0, a1) if s.turn > 0 else (a1, a0)  # DXF arcs run counter-clockwise
         if s.wrap_angle > 1e-9:
             msp.add_arc(c, s.pitch_radius * MM, start, end, dxfattribs={"layer": "CHAIN"})
-        sheet.discs.append((c[0], c[1], s.tip_diameter / 2 * MM))
-    for sp in analysis.geometry.spans:
-        a = (sp.start_point[0] * MM, sp.start_point[1] * MM)
-        b = (sp.end_point[0] * MM, sp.end_point[1] * MM)
+    discs, spans = _layout_outline(analysis)
+    sheet.discs.extend(discs)
+    for a, b in spans:
         msp.add_line(a, b, dxfattribs={"layer": "CHAIN"})
         sheet.lines.append((a, b))
+
+
+def _layout_outline(analysis: Analysis) -> tuple[list[Disc], list[Segment]]:
+    """The sprockets' tip circles and the chain's spans [mm]."""
+    discs = [(s.x * MM, s.y * MM, s.tip_diameter / 2 * MM) for s in analysis.geometry.sprockets]
+    spans = [((sp.start_point[0] * MM, sp.start_point[1] * MM),
+              (sp.end_point[0] * MM, sp.end_point[1] * MM)) for sp in analysis.geometry.spans]
+    return discs, spans
 
 
 def _tangent_angles(s: SprocketGeometry) -> tuple[float, float]:
@@ -598,13 +605,26 @@ def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float) -> _Arrangement
     _wrap_dimensions(msp, analysis, h, sheet)
     _centre_distances(msp, analysis, h, sheet)
     _sprocket_names(msp, analysis, h, sheet)
-    x0, y0, x1, y1 = box = sheet.extents()
+    box = sheet.extents()
+    return _Arrangements(msp, lambda m, right: _with_table(m, analysis, box, h, right))
 
-    def table(m: Modelspace | None, table_right: bool) -> Box:
-        corner = (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h)
-        return _union([box, _centre_table(m, analysis, corner, h)])
 
-    return _Arrangements(msp, table)
+def _with_table(msp: Modelspace | None, analysis: Analysis, box: Box, h: float,
+                table_right: bool) -> Box:
+    """Draw the centre table below the layout of box ``box`` [mm] (or to its right);
+    returns the box of both (``msp`` None: draws nothing)."""
+    x0, y0, x1, y1 = box
+    corner = (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h)
+    return _union([box, _centre_table(msp, analysis, corner, h)])
+
+
+def _layout_least(analysis: Analysis, h: float) -> tuple[Box, Box]:
+    """Boxes [mm] the layout drawn with text ``h`` high takes at least, the table below it
+    and to its right, known before it is drawn: the tip circles and the chain's spans (the
+    dimensions and names only add to them) and the table beside them."""
+    discs, spans = _layout_outline(analysis)
+    box = _union([*map(_disc_box, discs), *map(_segment_box, spans)])
+    return _with_table(None, analysis, box, h, False), _with_table(None, analysis, box, h, True)
 
 
 def _layout_title(analysis: Analysis) -> dict[str, str]:
@@ -719,8 +739,7 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float
     origin = (0.0, 0.0)
     pts = outline_mm(profile)
     msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
-    ra = float(np.max(np.hypot(pts[:, 0], pts[:, 1])))
-    root = float(np.min(np.hypot(pts[:, 0], pts[:, 1])))
+    ra, root = _tip_and_root(profile)
     bore = w.bore * MM
     hub = w.hub_diameter * MM
     msp.add_circle(origin, bore / 2, dxfattribs={"layer": "BORE"})
@@ -753,16 +772,50 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float
     face = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra),
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
     section = _axial_section(msp, w, ra, root, face[2] + 3 * h, h, profile.body)
+    if profile.body is not None:
+        _polymer_body(msp, profile.body)
+    lines = _notes(profile, w)
+    views = _union([face, section])
+    return _Arrangements(msp, lambda m, right: _with_notes(m, views, lines, h, right))
+
+
+def _tip_and_root(profile: SprocketProfile) -> tuple[float, float]:
+    """Tip and root radius [mm] of the drawn outline."""
+    pts = outline_mm(profile)
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    return float(np.max(r)), float(np.min(r))
+
+
+def _notes(profile: SprocketProfile, w: SprocketWorkshop) -> list[str]:
+    """The notes of a sprocket's drawing: tooth form, workshop data, a polymeric body."""
     lines = [*tooth_form_lines(profile), *workshop_lines(w, profile.body is not None)]
     if profile.body is not None:
-        lines += _polymer_body(msp, profile, profile.body)
-    views = _union([face, section])
+        lines += _polymer_body_lines(profile, profile.body)
+    return lines
 
-    def notes(m: Modelspace | None, notes_right: bool) -> Box:
-        corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
-        return _union([views, _text_lines(m, lines, corner, 0.75 * h, 1.5 * h)])
 
-    return _Arrangements(msp, notes)
+def _with_notes(msp: Modelspace | None, views: Box, lines: Sequence[str], h: float,
+                notes_right: bool) -> Box:
+    """Draw the notes below the views of box ``views`` [mm] (or to their right); returns
+    the box of both (``msp`` None: draws nothing)."""
+    corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
+    return _union([views, _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)])
+
+
+def _sprocket_least(analysis: Analysis, index: int, h: float) -> tuple[Box, Box]:
+    """Boxes [mm] the drawing of sprocket ``index`` with text ``h`` high takes at least,
+    the notes below and to the right, known before it is drawn: the face view's square of
+    ±1.1 tip radii (its dimensions only add to it), the section's body and its label with
+    the section as far left as it can be, and the notes beside them."""
+    profile = analysis.profiles[index]
+    w = analysis.workshop(index)
+    ra, root = _tip_and_root(profile)
+    reach = _section_reach(w, root, profile.body)
+    cx = 1.1 * ra + 3 * h + reach
+    views = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra), (cx - reach, -ra, cx + reach, ra),
+                    _text_box("A–A", _section_label_at(w, ra, cx, h), 0.8 * h, "BOTTOM_CENTER")])
+    lines = _notes(profile, w)
+    return _with_notes(None, views, lines, h, False), _with_notes(None, views, lines, h, True)
 
 
 def _teeth(w: SprocketWorkshop, ra: float, root: float, x_left: float) -> list[Point]:
@@ -814,7 +867,7 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
     overall = w.overall_width * MM
     side = _body_side(w, root, body)
     hub_len, hub_r = 2 * side[0][0], side[1][1]
-    reach = max(a for a, _ in [*side, (overall / 2, 0.0)])
+    reach = _section_reach(w, root, body)
     cx = left + reach
     bore_r = w.bore * MM / 2
     top_bore = (w.keyway.over_bore * MM - bore_r) if w.keyway is not None else bore_r
@@ -851,11 +904,23 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
                                  dxfattribs={"layer": "DIM"})
         dim.render()
         dims.append(dim.dimension)
-    label = _text(msp, "A–A", (cx, ra + (6.5 if w.strands > 1 else 4.0) * h), 0.8 * h,
-                  "BOTTOM_CENTER")
+    label = _text(msp, "A–A", _section_label_at(w, ra, cx, h), 0.8 * h, "BOTTOM_CENTER")
     ext = bbox.extents(dims)
     return _union([(cx - reach, -ra, cx + reach, ra), label,
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
+
+
+def _section_reach(w: SprocketWorkshop, root: float, body: PolymericProportions | None
+                   ) -> float:
+    """Half the width [mm] of the axial section's body and teeth."""
+    side = _body_side(w, root, body)
+    return max(a for a, _ in [*side, (w.overall_width * MM / 2, 0.0)])
+
+
+def _section_label_at(w: SprocketWorkshop, ra: float, cx: float, h: float) -> Point:
+    """Where the label A–A of a section centred at ``cx`` stands [mm] (its bottom centre),
+    above the dimensions over the teeth."""
+    return cx, ra + (6.5 if w.strands > 1 else 4.0) * h
 
 
 def _ordered(points: list[Point]) -> list[Point]:
@@ -956,20 +1021,30 @@ def _limits_text(profile: SprocketProfile, w: SprocketWorkshop) -> tuple[str, st
             f"%%c{dimension(iso.root_diameter * MM, 2)} {_root_tolerance(profile)}")
 
 
-def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProportions
-                  ) -> list[str]:
+def _polymer_body(msp: Modelspace, p: PolymericProportions) -> None:
     """Face-view circles of a polymeric body (hub, rim and six lightening holes)
-    [MultimassChainDrives, §3.4]; returns the text lines (mass, inertia, proportions). Its
-    section is :func:`_axial_section`'s."""
+    [MultimassChainDrives, §3.4]; its notes are :func:`_polymer_body_lines`, its section
+    :func:`_axial_section`'s."""
     centre = (0.0, 0.0)
     for d in (p.hub_outer_diameter, p.rim_inner_diameter):
         msp.add_circle(centre, d / 2 * MM, dxfattribs={"layer": "BODY"})
-    hole = 0.5 * (p.rim_inner_diameter - p.hub_outer_diameter) / 2 * MM
+    hole = _lightening_hole(p)
     for k in range(6):
         a = TWO_PI * k / 6
         msp.add_circle((p.hole_circle_diameter / 2 * MM * math.cos(a),
                         p.hole_circle_diameter / 2 * MM * math.sin(a)), hole / 2,
                        dxfattribs={"layer": "BODY"})
+
+
+def _lightening_hole(p: PolymericProportions) -> float:
+    """Diameter [mm] of the lightening holes: half the web between hub and rim."""
+    return 0.5 * (p.rim_inner_diameter - p.hub_outer_diameter) / 2 * MM
+
+
+def _polymer_body_lines(profile: SprocketProfile, p: PolymericProportions) -> list[str]:
+    """The notes of a polymeric body: mass, inertia, proportions [MultimassChainDrives,
+    §3.4]."""
+    hole = _lightening_hole(p)
     lines = [f"Polymeric body: mass = {profile.mass.mass:.4g} kg, inertia = "
              f"{profile.mass.moment_of_inertia:.4g} kg·m²",
              f"Hub Ø {dimension(p.hub_outer_diameter * MM, 1)} × "
@@ -1132,18 +1207,21 @@ def _fits(content: Box, sheet: str, n: int) -> bool:
 _Build = Callable[["Modelspace", float], _Arrangements]
 
 
-def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
-              text: float = PAPER_TEXT) -> tuple[str, int, bool, _Arrangements]:
+def _on_sheet(build: _Build, least: Callable[[float], tuple[Box, Box]], size: float,
+              sheets: tuple[str, ...], text: float = PAPER_TEXT
+              ) -> tuple[str, int, bool, _Arrangements]:
     """The sheet, scale and arrangement of a drawing made by ``build(msp, text height)``:
     from the largest ISO 5455 scale at which an object of ``size`` [mm] could fit the
     largest sheet, the first scale, then the first sheet, then the first arrangement (notes
     below, notes to the right) at which the drawing made with text 3.5 mm high on paper
     fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`); with the drawing at that
     scale, made on a new document, its last part not yet drawn. One drawing per scale tried
-    gives the boxes of both arrangements."""
+    gives the boxes of both arrangements; a scale at which ``least(text height)``, boxes
+    the drawing takes at least each way, fits no sheet is passed over without drawing."""
     room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
     for n in ISO5455_SCALES:
-        if size / n > room:
+        if size / n > room or not any(_fits(_grow(b, -1e-6), sheet, n)
+                                      for b in least(text * n) for sheet in sheets):
             continue
         made = build(_new_document().modelspace(), text * n)
         boxes = (made.box(False), made.box(True))
@@ -1152,7 +1230,7 @@ def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
                 if _fits(boxes[right], sheet, n):
                     return sheet, n, right, made
     if sheets[-1] != "A0":
-        return _on_sheet(build, size, ("A2", "A1", "A0"), text)
+        return _on_sheet(build, least, size, ("A2", "A1", "A0"), text)
     raise DesignError("drawing", "does not fit A0 at 1:1000")
 
 
@@ -1184,6 +1262,7 @@ def _place_sprocket(analysis: Analysis, index: int, msp: Modelspace | None = Non
     the sheet's box, the sheet and 1:N."""
     tip = analysis.geometry.sprockets[index].tip_diameter * MM
     sheet, n, right, made = _on_sheet(lambda m, h: _sprocket_sheet(m, analysis, index, h),
+                                      lambda h: _sprocket_least(analysis, index, h),
                                       1.6 * tip, ("A4", "A3"))
     if msp is not None:
         made = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n)
@@ -1198,7 +1277,8 @@ def _place_layout(analysis: Analysis) -> tuple[Modelspace, Box, str, int]:
     g = analysis.geometry.sprockets
     r = max(s.tip_diameter for s in g) / 2 * MM
     size = max(np.ptp([s.x for s in g]), np.ptp([s.y for s in g])) * MM + 2 * r
-    sheet, n, right, made = _on_sheet(lambda m, h: _layout_sheet(m, analysis, h), float(size),
+    sheet, n, right, made = _on_sheet(lambda m, h: _layout_sheet(m, analysis, h),
+                                      lambda h: _layout_least(analysis, h), float(size),
                                       ("A4", "A3"), LAYOUT_TEXT)
     box = made.finish(right)
     values = {**_common_values(), **_layout_title(analysis), "type": "Layout"}
