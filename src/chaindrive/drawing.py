@@ -283,6 +283,13 @@ def _font(name: str) -> AbstractFont:
 _FONT = "txt"  # the font of the style "Standard" of ezdxf.new(setup=True): what TEXT uses
 
 
+@functools.lru_cache(maxsize=4096)
+def _text_width(text: str) -> float:
+    """Width of ``text`` in the drawings' font at cap height 1 (ezdxf's measure of the font;
+    a sheet's texts are measured again at each scale tried)."""
+    return _font(_FONT).text_width(text)
+
+
 def _text_box(text: str, at: tuple[float, float], height: float,
              align: str = "MIDDLE_LEFT") -> Box:
     """The box [mm] a TEXT entity of the drawings takes (style Standard): its width as ezdxf
@@ -308,7 +315,7 @@ def _text_box(text: str, at: tuple[float, float], height: float,
         (x0, y0, x1, y1) [mm].
     """
     font = _font(_FONT)
-    width = font.text_width(text) * height
+    width = _text_width(text) * height
     descent = font.measurements.descender_height * height
     vertical, _, horizontal = align.rpartition("_")  # "LEFT": on the baseline
     x0 = at[0] - {"LEFT": 0.0, "CENTER": 0.5, "RIGHT": 1.0}.get(horizontal, 0.0) * width
