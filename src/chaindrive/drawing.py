@@ -253,6 +253,24 @@ class _Sheet:
         return _union([*self.boxes, *map(_disc_box, self.discs), *map(_segment_box, self.lines)])
 
 
+@dataclass(frozen=True)
+class _Arrangements:
+    """A drawing made on ``msp`` but for its last part (the notes of a sprocket, the centre
+    table of a layout), which goes below it or to its right: ``last(msp, right)`` draws that
+    part there (``msp`` None: draws nothing) and returns the box of the whole drawing [mm]."""
+
+    msp: Modelspace
+    last: Callable[[Modelspace | None, bool], Box]
+
+    def box(self, right: bool) -> Box:
+        """The box [mm] the drawing takes with its last part to the right (or below)."""
+        return self.last(None, right)
+
+    def finish(self, right: bool) -> Box:
+        """Draw the last part to the right (or below); returns the drawing's box [mm]."""
+        return self.last(self.msp, right)
+
+
 # --- texts ------------------------------------------------------------------------------------
 
 @functools.lru_cache(maxsize=8)
@@ -263,6 +281,13 @@ def _font(name: str) -> AbstractFont:
 
 
 _FONT = "txt"  # the font of the style "Standard" of ezdxf.new(setup=True): what TEXT uses
+
+
+@functools.lru_cache(maxsize=4096)
+def _text_width(text: str) -> float:
+    """Width of ``text`` in the drawings' font at cap height 1 (ezdxf's measure of the font;
+    a sheet's texts are measured again at each scale tried)."""
+    return _font(_FONT).text_width(text)
 
 
 def _text_box(text: str, at: tuple[float, float], height: float,
@@ -290,7 +315,7 @@ def _text_box(text: str, at: tuple[float, float], height: float,
         (x0, y0, x1, y1) [mm].
     """
     font = _font(_FONT)
-    width = font.text_width(text) * height
+    width = _text_width(text) * height
     descent = font.measurements.descender_height * height
     vertical, _, horizontal = align.rpartition("_")  # "LEFT": on the baseline
     x0 = at[0] - {"LEFT": 0.0, "CENTER": 0.5, "RIGHT": 1.0}.get(horizontal, 0.0) * width
@@ -317,20 +342,23 @@ def dxf_text(text: str) -> str:
     return text
 
 
-def _text(msp: Modelspace, text: str, at: tuple[float, float], height: float,
+def _text(msp: Modelspace | None, text: str, at: tuple[float, float], height: float,
           align: str = "MIDDLE_LEFT", layer: str = "TEXT") -> Box:
     """Draw a TEXT (its signs as DXF control codes, :func:`dxf_text`); returns its box [mm]
-    (:func:`_text_box`)."""
-    from ezdxf.enums import TextEntityAlignment
+    (:func:`_text_box`). With ``msp`` None nothing is drawn: the box of the text it would
+    draw."""
+    if msp is not None:
+        from ezdxf.enums import TextEntityAlignment
 
-    entity: Text = msp.add_text(dxf_text(text), height=height, dxfattribs={"layer": layer})
-    entity.set_placement(at, align=TextEntityAlignment[align])
+        entity: Text = msp.add_text(dxf_text(text), height=height, dxfattribs={"layer": layer})
+        entity.set_placement(at, align=TextEntityAlignment[align])
     return _text_box(text, at, height, align)
 
 
-def _text_lines(msp: Modelspace, lines: Sequence[str], top_left: Point, height: float,
+def _text_lines(msp: Modelspace | None, lines: Sequence[str], top_left: Point, height: float,
                 spacing: float) -> Box:
-    """Lines of text, left-aligned, the first one's top at ``top_left``; returns the box."""
+    """Lines of text, left-aligned, the first one's top at ``top_left``; returns the box
+    (``msp`` None: draws nothing, the box they would take)."""
     x, y = top_left
     return _union(_text(msp, line, (x, y - 0.5 * height - spacing * i), height)
                   for i, line in enumerate(lines))
@@ -396,12 +424,19 @@ def _layout_entities(msp: Modelspace, analysis: Analysis, sheet: _Sheet) -> None
         start, end = (a0, a1) if s.turn > 0 else (a1, a0)  # DXF arcs run counter-clockwise
         if s.wrap_angle > 1e-9:
             msp.add_arc(c, s.pitch_radius * MM, start, end, dxfattribs={"layer": "CHAIN"})
-        sheet.discs.append((c[0], c[1], s.tip_diameter / 2 * MM))
-    for sp in analysis.geometry.spans:
-        a = (sp.start_point[0] * MM, sp.start_point[1] * MM)
-        b = (sp.end_point[0] * MM, sp.end_point[1] * MM)
+    discs, spans = _layout_outline(analysis)
+    sheet.discs.extend(discs)
+    for a, b in spans:
         msp.add_line(a, b, dxfattribs={"layer": "CHAIN"})
         sheet.lines.append((a, b))
+
+
+def _layout_outline(analysis: Analysis) -> tuple[list[Disc], list[Segment]]:
+    """The sprockets' tip circles and the chain's spans [mm]."""
+    discs = [(s.x * MM, s.y * MM, s.tip_diameter / 2 * MM) for s in analysis.geometry.sprockets]
+    spans = [((sp.start_point[0] * MM, sp.start_point[1] * MM),
+              (sp.end_point[0] * MM, sp.end_point[1] * MM)) for sp in analysis.geometry.spans]
+    return discs, spans
 
 
 def _tangent_angles(s: SprocketGeometry) -> tuple[float, float]:
@@ -557,9 +592,9 @@ def _box_size(b: Box) -> tuple[float, float]:
     return b[2] - b[0], b[3] - b[1]
 
 
-def _centre_table(msp: Modelspace, analysis: Analysis, top_left: Point, h: float) -> Box:
+def _centre_table(msp: Modelspace | None, analysis: Analysis, top_left: Point, h: float) -> Box:
     """The sprockets' centres and pitch diameters as text lines below ``top_left`` [mm];
-    returns their box."""
+    returns their box (``msp`` None: draws nothing, the box they would take)."""
     lines = [f"{s.name}: z = {s.teeth}, x = {dimension(s.x * MM)}, y = {dimension(s.y * MM)}, "
              f"d = {dimension(s.pitch_diameter * MM)}" for s in analysis.geometry.sprockets]
     head = _text(msp, "Sprocket centres (mm): name, teeth, x, y, pitch diameter",
@@ -568,19 +603,35 @@ def _centre_table(msp: Modelspace, analysis: Analysis, top_left: Point, h: float
     return _union([head, rest]) if lines else head
 
 
-def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float,
-                  table_right: bool = False) -> Box:
-    """The layout with its dimensions and the centre table below it (or to its right);
-    returns its box [mm]."""
+def _layout_sheet(msp: Modelspace, analysis: Analysis, h: float) -> _Arrangements:
+    """The layout with its dimensions; the centre table, drawn last, goes below it (or to
+    its right) as the returned :class:`_Arrangements` is told, which gives both boxes [mm]
+    first."""
     sheet = _Sheet(gap=0.3 * h)
     _layout_entities(msp, analysis, sheet)
     _wrap_dimensions(msp, analysis, h, sheet)
     _centre_distances(msp, analysis, h, sheet)
     _sprocket_names(msp, analysis, h, sheet)
-    x0, y0, x1, y1 = box = sheet.extents()
-    table = _centre_table(msp, analysis, (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h),
-                          h)
-    return _union([box, table])
+    box = sheet.extents()
+    return _Arrangements(msp, lambda m, right: _with_table(m, analysis, box, h, right))
+
+
+def _with_table(msp: Modelspace | None, analysis: Analysis, box: Box, h: float,
+                table_right: bool) -> Box:
+    """Draw the centre table below the layout of box ``box`` [mm] (or to its right);
+    returns the box of both (``msp`` None: draws nothing)."""
+    x0, y0, x1, y1 = box
+    corner = (x1 + 2 * h, y1) if table_right else (x0, y0 - 2 * h)
+    return _union([box, _centre_table(msp, analysis, corner, h)])
+
+
+def _layout_least(analysis: Analysis, h: float) -> tuple[Box, Box]:
+    """Boxes [mm] the layout drawn with text ``h`` high takes at least, the table below it
+    and to its right, known before it is drawn: the tip circles and the chain's spans (the
+    dimensions and names only add to them) and the table beside them."""
+    discs, spans = _layout_outline(analysis)
+    box = _union([*map(_disc_box, discs), *map(_segment_box, spans)])
+    return _with_table(None, analysis, box, h, False), _with_table(None, analysis, box, h, True)
 
 
 def _layout_title(analysis: Analysis) -> dict[str, str]:
@@ -680,12 +731,13 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
             "maximum form (ri max, re min, α min)."]
 
 
-def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
-                    notes_right: bool = False) -> Box:
+def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float
+                    ) -> _Arrangements:
     """The drawing of sprocket ``index`` with its centre at the origin: the face view with
     its diameters and the keyway (and a polymeric body's circles), the axial section A–A to
-    its right (the metal or polymeric body, :func:`_axial_section`), the notes below both (or
-    to their right); returns the box it takes [mm]."""
+    its right (the metal or polymeric body, :func:`_axial_section`); the notes, drawn last,
+    go below both (or to their right) as the returned :class:`_Arrangements` is told, which
+    gives both boxes [mm] first."""
     from ezdxf import bbox
 
     g = analysis.geometry.sprockets[index]
@@ -694,8 +746,7 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     origin = (0.0, 0.0)
     pts = outline_mm(profile)
     msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
-    ra = float(np.max(np.hypot(pts[:, 0], pts[:, 1])))
-    root = float(np.min(np.hypot(pts[:, 0], pts[:, 1])))
+    ra, root = _tip_and_root(profile)
     bore = w.bore * MM
     hub = w.hub_diameter * MM
     msp.add_circle(origin, bore / 2, dxfattribs={"layer": "BORE"})
@@ -728,13 +779,50 @@ def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
     face = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra),
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
     section = _axial_section(msp, w, ra, root, face[2] + 3 * h, h, profile.body)
+    if profile.body is not None:
+        _polymer_body(msp, profile.body)
+    lines = _notes(profile, w)
+    views = _union([face, section])
+    return _Arrangements(msp, lambda m, right: _with_notes(m, views, lines, h, right))
+
+
+def _tip_and_root(profile: SprocketProfile) -> tuple[float, float]:
+    """Tip and root radius [mm] of the drawn outline."""
+    pts = outline_mm(profile)
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    return float(np.max(r)), float(np.min(r))
+
+
+def _notes(profile: SprocketProfile, w: SprocketWorkshop) -> list[str]:
+    """The notes of a sprocket's drawing: tooth form, workshop data, a polymeric body."""
     lines = [*tooth_form_lines(profile), *workshop_lines(w, profile.body is not None)]
     if profile.body is not None:
-        lines += _polymer_body(msp, profile, profile.body)
-    views = _union([face, section])
+        lines += _polymer_body_lines(profile, profile.body)
+    return lines
+
+
+def _with_notes(msp: Modelspace | None, views: Box, lines: Sequence[str], h: float,
+                notes_right: bool) -> Box:
+    """Draw the notes below the views of box ``views`` [mm] (or to their right); returns
+    the box of both (``msp`` None: draws nothing)."""
     corner = (views[2] + 3 * h, views[3]) if notes_right else (views[0], views[1] - 1.5 * h)
-    notes = _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)
-    return _union([views, notes])
+    return _union([views, _text_lines(msp, lines, corner, 0.75 * h, 1.5 * h)])
+
+
+def _sprocket_least(analysis: Analysis, index: int, h: float) -> tuple[Box, Box]:
+    """Boxes [mm] the drawing of sprocket ``index`` with text ``h`` high takes at least,
+    the notes below and to the right, known before it is drawn: the face view's square of
+    ±1.1 tip radii (its dimensions only add to it), the section's body and its label with
+    the section as far left as it can be, and the notes beside them."""
+    profile = analysis.profiles[index]
+    w = analysis.workshop(index)
+    ra, root = _tip_and_root(profile)
+    reach = _section_reach(w, root, profile.body)
+    cx = 1.1 * ra + 3 * h + reach
+    views = _union([(-1.1 * ra, -1.1 * ra, 1.1 * ra, 1.1 * ra), (cx - reach, -ra, cx + reach, ra),
+                    _text_box("A–A", _section_label_at(w, ra, cx, h), 0.8 * h, "BOTTOM_CENTER")])
+    lines = _notes(profile, w)
+    return _with_notes(None, views, lines, h, False), _with_notes(None, views, lines, h, True)
 
 
 def _teeth(w: SprocketWorkshop, ra: float, root: float, x_left: float) -> list[Point]:
@@ -786,7 +874,7 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
     overall = w.overall_width * MM
     side = _body_side(w, root, body)
     hub_len, hub_r = 2 * side[0][0], side[1][1]
-    reach = max(a for a, _ in [*side, (overall / 2, 0.0)])
+    reach = _section_reach(w, root, body)
     cx = left + reach
     bore_r = w.bore * MM / 2
     top_bore = (w.keyway.over_bore * MM - bore_r) if w.keyway is not None else bore_r
@@ -823,11 +911,23 @@ def _axial_section(msp: Modelspace, w: SprocketWorkshop, ra: float, root: float,
                                  dxfattribs={"layer": "DIM"})
         dim.render()
         dims.append(dim.dimension)
-    label = _text(msp, "A–A", (cx, ra + (6.5 if w.strands > 1 else 4.0) * h), 0.8 * h,
-                  "BOTTOM_CENTER")
+    label = _text(msp, "A–A", _section_label_at(w, ra, cx, h), 0.8 * h, "BOTTOM_CENTER")
     ext = bbox.extents(dims)
     return _union([(cx - reach, -ra, cx + reach, ra), label,
                    (ext.extmin.x, ext.extmin.y, ext.extmax.x, ext.extmax.y)])
+
+
+def _section_reach(w: SprocketWorkshop, root: float, body: PolymericProportions | None
+                   ) -> float:
+    """Half the width [mm] of the axial section's body and teeth."""
+    side = _body_side(w, root, body)
+    return max(a for a, _ in [*side, (w.overall_width * MM / 2, 0.0)])
+
+
+def _section_label_at(w: SprocketWorkshop, ra: float, cx: float, h: float) -> Point:
+    """Where the label A–A of a section centred at ``cx`` stands [mm] (its bottom centre),
+    above the dimensions over the teeth."""
+    return cx, ra + (6.5 if w.strands > 1 else 4.0) * h
 
 
 def _ordered(points: list[Point]) -> list[Point]:
@@ -928,20 +1028,30 @@ def _limits_text(profile: SprocketProfile, w: SprocketWorkshop) -> tuple[str, st
             f"%%c{dimension(iso.root_diameter * MM, 2)} {_root_tolerance(profile)}")
 
 
-def _polymer_body(msp: Modelspace, profile: SprocketProfile, p: PolymericProportions
-                  ) -> list[str]:
+def _polymer_body(msp: Modelspace, p: PolymericProportions) -> None:
     """Face-view circles of a polymeric body (hub, rim and six lightening holes)
-    [MultimassChainDrives, §3.4]; returns the text lines (mass, inertia, proportions). Its
-    section is :func:`_axial_section`'s."""
+    [MultimassChainDrives, §3.4]; its notes are :func:`_polymer_body_lines`, its section
+    :func:`_axial_section`'s."""
     centre = (0.0, 0.0)
     for d in (p.hub_outer_diameter, p.rim_inner_diameter):
         msp.add_circle(centre, d / 2 * MM, dxfattribs={"layer": "BODY"})
-    hole = 0.5 * (p.rim_inner_diameter - p.hub_outer_diameter) / 2 * MM
+    hole = _lightening_hole(p)
     for k in range(6):
         a = TWO_PI * k / 6
         msp.add_circle((p.hole_circle_diameter / 2 * MM * math.cos(a),
                         p.hole_circle_diameter / 2 * MM * math.sin(a)), hole / 2,
                        dxfattribs={"layer": "BODY"})
+
+
+def _lightening_hole(p: PolymericProportions) -> float:
+    """Diameter [mm] of the lightening holes: half the web between hub and rim."""
+    return 0.5 * (p.rim_inner_diameter - p.hub_outer_diameter) / 2 * MM
+
+
+def _polymer_body_lines(profile: SprocketProfile, p: PolymericProportions) -> list[str]:
+    """The notes of a polymeric body: mass, inertia, proportions [MultimassChainDrives,
+    §3.4]."""
+    hole = _lightening_hole(p)
     lines = [f"Polymeric body: mass = {profile.mass.mass:.4g} kg, inertia = "
              f"{profile.mass.moment_of_inertia:.4g} kg·m²",
              f"Hub Ø {dimension(p.hub_outer_diameter * MM, 1)} × "
@@ -1101,30 +1211,33 @@ def _fits(content: Box, sheet: str, n: int) -> bool:
     return True
 
 
-_Build = Callable[["Modelspace", float, bool], Box]
+_Build = Callable[["Modelspace", float], _Arrangements]
 
 
-def _on_sheet(build: _Build, size: float, sheets: tuple[str, ...],
-              text: float = PAPER_TEXT) -> tuple[str, int, bool]:
-    """The sheet, scale and arrangement of a drawing made by ``build(msp, text height,
-    notes to the right)``: from the largest ISO 5455 scale at which an object of ``size``
-    [mm] could fit the largest sheet, the first scale, then the first sheet, then the first
-    arrangement (notes below, notes to the right) at which the drawing made with text
-    3.5 mm high on paper fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`)."""
+def _on_sheet(build: _Build, least: Callable[[float], tuple[Box, Box]], size: float,
+              sheets: tuple[str, ...], text: float = PAPER_TEXT
+              ) -> tuple[str, int, bool, _Arrangements]:
+    """The sheet, scale and arrangement of a drawing made by ``build(msp, text height)``:
+    from the largest ISO 5455 scale at which an object of ``size`` [mm] could fit the
+    largest sheet, the first scale, then the first sheet, then the first arrangement (notes
+    below, notes to the right) at which the drawing made with text 3.5 mm high on paper
+    fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`); with the drawing at that
+    scale, made on a new document, its last part not yet drawn. One drawing per scale tried
+    gives the boxes of both arrangements; a scale at which ``least(text height)``, boxes
+    the drawing takes at least each way, fits no sheet is passed over without drawing."""
     room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
     for n in ISO5455_SCALES:
-        if size / n > room:
+        if size / n > room or not any(_fits(_grow(b, -1e-6), sheet, n)
+                                      for b in least(text * n) for sheet in sheets):
             continue
-        boxes = []
-        for right in (False, True):
-            trial = _new_document()
-            boxes.append(build(trial.modelspace(), text * n, right))
+        made = build(_new_document().modelspace(), text * n)
+        boxes = (made.box(False), made.box(True))
         for sheet in sheets:
             for right in (False, True):
                 if _fits(boxes[right], sheet, n):
-                    return sheet, n, right
+                    return sheet, n, right, made
     if sheets[-1] != "A0":
-        return _on_sheet(build, size, ("A2", "A1", "A0"), text)
+        return _on_sheet(build, least, size, ("A2", "A1", "A0"), text)
     raise DesignError("drawing", "does not fit A0 at 1:1000")
 
 
@@ -1149,28 +1262,40 @@ def _common_values() -> dict[str, str]:
             "date": _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d"), "revision": "A  1/1"}
 
 
-def _place_sprocket(msp: Modelspace, analysis: Analysis, index: int
-                    ) -> tuple[Box, str, int]:
-    """The framed drawing of sprocket ``index`` on its sheet; returns the sheet's box, the
-    sheet and 1:N."""
+def _place_sprocket(analysis: Analysis, index: int, msp: Modelspace | None = None
+                    ) -> tuple[Modelspace, Box, str, int]:
+    """The framed drawing of sprocket ``index`` on its sheet, drawn on ``msp`` or (None) on
+    the new document its sheet and scale were chosen with; returns the modelspace drawn on,
+    the sheet's box, the sheet and 1:N."""
     tip = analysis.geometry.sprockets[index].tip_diameter * MM
-    sheet, n, right = _on_sheet(lambda m, h, r: _sprocket_sheet(m, analysis, index, h, r),
-                                1.6 * tip, ("A4", "A3"))
-    box = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n, right)
+    sheet, n, right, made = _on_sheet(lambda m, h: _sprocket_sheet(m, analysis, index, h),
+                                      lambda h: _sprocket_least(analysis, index, h),
+                                      1.6 * tip, ("A4", "A3"))
+    if msp is not None:
+        made = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n)
+    box = made.finish(right)
     values = {**_common_values(), **_sprocket_values(analysis, index)}
-    return _frame(msp, box, sheet, n, values), sheet, n
+    return made.msp, _frame(made.msp, box, sheet, n, values), sheet, n
 
 
-def _place_layout(msp: Modelspace, analysis: Analysis) -> tuple[Box, str, int]:
-    """The framed layout on its sheet; returns the sheet's box, the sheet and 1:N."""
+def _place_layout(analysis: Analysis) -> tuple[Modelspace, Box, str, int]:
+    """The framed layout on its sheet, drawn on the new document its sheet and scale were
+    chosen with; returns its modelspace, the sheet's box, the sheet and 1:N."""
     g = analysis.geometry.sprockets
     r = max(s.tip_diameter for s in g) / 2 * MM
     size = max(np.ptp([s.x for s in g]), np.ptp([s.y for s in g])) * MM + 2 * r
-    sheet, n, right = _on_sheet(lambda m, h, r: _layout_sheet(m, analysis, h, r), float(size),
-                                ("A4", "A3"), LAYOUT_TEXT)
-    box = _layout_sheet(msp, analysis, LAYOUT_TEXT * n, right)
+    sheet, n, right, made = _on_sheet(lambda m, h: _layout_sheet(m, analysis, h),
+                                      lambda h: _layout_least(analysis, h), float(size),
+                                      ("A4", "A3"), LAYOUT_TEXT)
+    box = made.finish(right)
     values = {**_common_values(), **_layout_title(analysis), "type": "Layout"}
-    return _frame(msp, box, sheet, n, values), sheet, n
+    return made.msp, _frame(made.msp, box, sheet, n, values), sheet, n
+
+
+def _document(msp: Modelspace) -> Drawing:
+    """The document of a modelspace."""
+    assert msp.doc is not None  # a modelspace of _new_document
+    return msp.doc
 
 
 @shared_parameters
@@ -1189,8 +1314,8 @@ def sprocket_document(analysis: Analysis, name: str) -> Drawing:
         The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
     """
     i = _index_of(analysis, name)
-    doc = _new_document()
-    _, sheet, n = _place_sprocket(doc.modelspace(), analysis, i)
+    msp, _, sheet, n = _place_sprocket(analysis, i)
+    doc = _document(msp)
     _sheet_record(doc, sheet, n)
     return doc
 
@@ -1208,8 +1333,8 @@ def layout_document(analysis: Analysis) -> Drawing:
     ezdxf.document.Drawing
         The DXF document, drawn 1:1 in mm, the sheet drawn N times its size.
     """
-    doc = _new_document()
-    _, sheet, n = _place_layout(doc.modelspace(), analysis)
+    msp, _, sheet, n = _place_layout(analysis)
+    doc = _document(msp)
     _sheet_record(doc, sheet, n)
     return doc
 
@@ -1226,18 +1351,16 @@ def drawing_document(analysis: Analysis) -> Drawing:
     ezdxf.document.Drawing
         The DXF document, drawn 1:1 in mm.
     """
-    doc = _new_document()
-    msp = doc.modelspace()
-    layout, _, _ = _place_layout(msp, analysis)
+    msp, layout, _, _ = _place_layout(analysis)
     x = layout[2] + 20.0
     for i in range(len(analysis.geometry.sprockets)):
         start = len(msp)
-        box, _, _ = _place_sprocket(msp, analysis, i)
+        _, box, _, _ = _place_sprocket(analysis, i, msp)
         dx, dy = x - box[0], layout[3] - box[3]
         for e in list(msp)[start:]:
             e.translate(dx, dy, 0.0)
         x += box[2] - box[0] + 20.0
-    return doc
+    return _document(msp)
 
 
 @shared_parameters
