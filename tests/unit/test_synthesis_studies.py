@@ -290,28 +290,44 @@ def test_a_study_survives_workers_lost_at_any_time(tmp_path, monkeypatch) -> Non
     assert [p.objectives for p in result.pareto] == [p.objectives for p in serial.pareto]
 
 
-def test_the_watchdog_brings_back_workers_the_nanny_gave_up_on() -> None:
-    """Workers killed again and again as they restart: Dask's nanny gives up on them (the
-    cluster shrank to no worker at all, and a study waited for ever); the watchdog
-    re-creates them and work goes on."""
-    from chaindrive.synthesis.studies import _Watchdog
+def _square_and_worker(inputs: dict) -> dict:
+    """Squares ``x`` and names the worker that did it."""
+    return {"square": inputs["x"] ** 2, "worker": distributed.get_worker().name}
 
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=":0") as cluster, \
-            distributed.Client(cluster) as client:
-        watchdog = _Watchdog(cluster, period=0.2)
-        try:
-            kills, deadline = 0, time.monotonic() + 120  # a bound on a stuck test
-            while kills < 12 and time.monotonic() < deadline:
-                try:
-                    pids = list(client.run(os.getpid).values())
-                except Exception:  # a worker died during the call: ask again
-                    pids = []
-                if pids:
-                    os.kill(pids[0], signal.SIGKILL)
-                    kills += 1
-                time.sleep(0.01)
-            client.wait_for_workers(2, timeout=120)
-            assert client.submit(sum, [1, 2], pure=False).result(timeout=120) == 3
-        finally:
-            watchdog.stop()
+
+def test_the_watchdog_brings_back_workers_the_nanny_gave_up_on(tmp_path, monkeypatch) -> None:
+    """Every worker's nanny gives up before the study's first task: it closes, as Dask's
+    nanny does when the worker it restarts is lost again while it starts
+    (``nanny-instantiate-failed``), and the cluster keeps it in its spec, closed, with no
+    worker at all (a study waited for ever; now it stops after LOST_WORKERS_SECONDS). The
+    watchdog re-creates the workers, and the study ends with every result.
+
+    The workers that computed are new ones, under names of their own: a nanny's restart
+    keeps its worker's name, so no result can come from the nannies given up on. (Killing
+    workers as they restart left it to chance: Dask's nanny gave up once in 12 kills in one
+    run, never in 10 in another, and the test passed without the watchdog acting.)"""
+    from chaindrive.synthesis import studies
+
+    real_client = studies._client
+    gave_up: list[object] = []
+
+    def client_whose_nannies_gave_up(scheduler, n_workers):  # type: ignore[no-untyped-def]
+        client, cluster = real_client(scheduler, n_workers)
+        for name, nanny in list(cluster.workers.items()):
+            cluster.sync(nanny.close, reason="nanny-instantiate-failed")
+            gave_up.append(name)
+        assert {w.status.name for w in cluster.workers.values()} == {"closed"}
+        assert set(cluster.worker_spec) == set(gave_up)  # closed, not removed
+        return client, cluster
+
+    monkeypatch.setattr(studies, "_client", client_whose_nannies_gave_up)
+    url = f"sqlite:///{tmp_path / 'revived.db'}"
+    inputs = [{"x": k} for k in range(20)]
+    result = run_study(_square_and_worker, inputs, study="revived", db=url, n_workers=2,
+                       progress=False)
+    assert len(gave_up) == 2
+    assert result.computed == len(inputs) and result.reused == 0
+    assert [r["square"] for r in result.results] == [k * k for k in range(20)]
+    ran_on = {r["worker"] for r in result.results}
+    assert ran_on and not ran_on & set(gave_up), (ran_on, gave_up)  # re-created workers
+    assert _rows(url, "revived") == (len(inputs), len(inputs))
