@@ -22,6 +22,7 @@ import os
 import signal
 import sys
 import tempfile
+import threading
 import traceback
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -66,8 +67,47 @@ class Interrupted(BaseException):
         return signal.Signals(self.signum).name
 
 
+#: How long after a signal met inside a finaliser it is sent again [s].
+REDELIVER_SECONDS = 0.01
+
+
 def _raise(signum: int, frame: FrameType | None) -> None:
+    if _in_finaliser(frame):
+        _deliver_later(signum)
+        return
     raise Interrupted(signum)
+
+
+def _in_finaliser(frame: FrameType | None) -> bool:
+    """True when ``frame`` runs inside a ``__del__`` method or :func:`_swallowed`: an
+    exception raised there is printed as "Exception ignored in …" and dropped, and the
+    command goes on as if no signal had come."""
+    while frame is not None:
+        if frame.f_code.co_name == "__del__" or frame.f_code is _swallowed.__code__:
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _deliver_later(signum: int) -> None:
+    """Send ``signum`` to this process again after :data:`REDELIVER_SECONDS` (from a
+    thread: the main thread raises it at its next line outside the finaliser)."""
+    timer = threading.Timer(REDELIVER_SECONDS, os.kill, (os.getpid(), signum))
+    timer.daemon = True
+    timer.start()
+
+
+def _swallowed(unraisable: sys.UnraisableHookArgs) -> None:
+    """``sys.unraisablehook`` while the handlers raise: an :class:`Interrupted` that Python
+    could not propagate (raised in a weakref callback or another finaliser not named
+    ``__del__``) is delivered again; anything else goes to the hook that was there."""
+    if isinstance(unraisable.exc_value, Interrupted):
+        _deliver_later(unraisable.exc_value.signum)
+        return
+    _PREVIOUS_HOOKS[-1](unraisable)
+
+
+_PREVIOUS_HOOKS: list[Callable[[sys.UnraisableHookArgs], object]] = []
 
 
 @contextmanager
@@ -75,6 +115,11 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     """Within the block, the signals ``signums`` raise :class:`Interrupted` (the previous
     handlers are restored after it). Outside the main thread, where Python cannot install
     handlers, it does nothing.
+
+    A signal that arrives while a finaliser runs (a ``__del__``, such as a Dask future's,
+    which a study drops by the hundred) is sent again a moment later instead: raised there,
+    Python printed "Exception ignored in …", dropped it, and an interrupted optimisation
+    went on to its last generation.
 
     Parameters
     ----------
@@ -85,8 +130,16 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     ------
     None
     """
-    with handlers_installed(signums, _raise):
-        yield
+    with handlers_installed(signums, _raise) as installed:
+        if not installed:
+            yield
+            return
+        _PREVIOUS_HOOKS.append(sys.unraisablehook)
+        sys.unraisablehook = _swallowed
+        try:
+            yield
+        finally:
+            sys.unraisablehook = _PREVIOUS_HOOKS.pop()
 
 
 def _exit_now(signum: int, frame: FrameType | None) -> None:
