@@ -23,12 +23,13 @@ import signal
 import sys
 import tempfile
 import threading
+import time
 import traceback
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from types import FrameType
+from types import CodeType, FrameType
 
 import click
 
@@ -71,43 +72,55 @@ class Interrupted(BaseException):
 REDELIVER_SECONDS = 0.01
 
 
-def _raise(signum: int, frame: FrameType | None) -> None:
-    if _in_finaliser(frame):
-        _deliver_later(signum)
-        return
-    raise Interrupted(signum)
-
-
-def _in_finaliser(frame: FrameType | None) -> bool:
-    """True when ``frame`` runs inside a ``__del__`` method or :func:`_swallowed`: an
-    exception raised there is printed as "Exception ignored in …" and dropped, and the
-    command goes on as if no signal had come."""
+def _in_finaliser(frame: FrameType | None, hook: CodeType) -> bool:
+    """True when ``frame`` runs inside a ``__del__`` method or the unraisable hook ``hook``
+    (its code): an exception raised there is printed as "Exception ignored in …" and
+    dropped, and the command goes on as if no signal had come."""
     while frame is not None:
-        if frame.f_code.co_name == "__del__" or frame.f_code is _swallowed.__code__:
+        if frame.f_code.co_name == "__del__" or frame.f_code is hook:
             return True
         frame = frame.f_back
     return False
 
 
-def _deliver_later(signum: int) -> None:
-    """Send ``signum`` to this process again after :data:`REDELIVER_SECONDS` (from a
-    thread: the main thread raises it at its next line outside the finaliser)."""
-    timer = threading.Timer(REDELIVER_SECONDS, os.kill, (os.getpid(), signum))
-    timer.daemon = True
-    timer.start()
+class _Redelivery:
+    """A daemon thread that sends a signal to this process again a moment after it is asked
+    to. The handler asks by writing one byte to a pipe: it starts no thread and takes no
+    lock (a finaliser can run while the main thread holds one of the threading module's)."""
 
+    def __init__(self) -> None:
+        self.closing = False
+        self._read, self._write = os.pipe()
+        self._thread = threading.Thread(target=self._run, daemon=True,
+                                        name="chaindrive-signal-redelivery")
+        self._thread.start()
 
-def _swallowed(unraisable: sys.UnraisableHookArgs) -> None:
-    """``sys.unraisablehook`` while the handlers raise: an :class:`Interrupted` that Python
-    could not propagate (raised in a weakref callback or another finaliser not named
-    ``__del__``) is delivered again; anything else goes to the hook that was there."""
-    if isinstance(unraisable.exc_value, Interrupted):
-        _deliver_later(unraisable.exc_value.signum)
-        return
-    _PREVIOUS_HOOKS[-1](unraisable)
+    def ask(self, signum: int) -> None:
+        """Send ``signum`` again after :data:`REDELIVER_SECONDS`."""
+        with suppress(OSError):
+            os.write(self._write, bytes([signum]))
 
+    def _run(self) -> None:
+        pid = os.getpid()
+        while True:
+            data = os.read(self._read, 1)
+            if not data or data == b"\0":
+                return
+            time.sleep(REDELIVER_SECONDS)
+            if not self.closing:
+                os.kill(pid, data[0])
 
-_PREVIOUS_HOOKS: list[Callable[[sys.UnraisableHookArgs], object]] = []
+    def close(self) -> None:
+        """Stop (a request still pending is dropped: the command has ended)."""
+        if self.closing:
+            return
+        self.closing = True
+        with suppress(OSError):
+            os.write(self._write, b"\0")
+        self._thread.join(timeout=5)
+        for fd in (self._read, self._write):
+            with suppress(OSError):
+                os.close(fd)
 
 
 @contextmanager
@@ -119,7 +132,9 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     A signal that arrives while a finaliser runs (a ``__del__``, such as a Dask future's,
     which a study drops by the hundred) is sent again a moment later instead: raised there,
     Python printed "Exception ignored in …", dropped it, and an interrupted optimisation
-    went on to its last generation.
+    went on to its last generation. An :class:`Interrupted` dropped all the same (raised in
+    a finaliser of another kind, a ``weakref.finalize`` callback) reaches
+    ``sys.unraisablehook``, which sends the signal again too.
 
     Parameters
     ----------
@@ -130,16 +145,36 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     ------
     None
     """
-    with handlers_installed(signums, _raise) as installed:
-        if not installed:
-            yield
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    redelivery = _Redelivery()
+    previous_hook = sys.unraisablehook
+
+    def swallowed(unraisable: sys.UnraisableHookArgs) -> None:
+        if isinstance(unraisable.exc_value, Interrupted):
+            redelivery.ask(unraisable.exc_value.signum)
+        else:
+            previous_hook(unraisable)
+
+    def raise_(signum: int, frame: FrameType | None) -> None:
+        if redelivery.closing:  # the command has ended
             return
-        _PREVIOUS_HOOKS.append(sys.unraisablehook)
-        sys.unraisablehook = _swallowed
-        try:
-            yield
-        finally:
-            sys.unraisablehook = _PREVIOUS_HOOKS.pop()
+        if _in_finaliser(frame, swallowed.__code__):
+            redelivery.ask(signum)
+            return
+        raise Interrupted(signum)
+
+    try:
+        with handlers_installed(signums, raise_):
+            sys.unraisablehook = swallowed
+            try:
+                yield
+            finally:
+                redelivery.close()
+                sys.unraisablehook = previous_hook
+    finally:
+        redelivery.close()
 
 
 def _exit_now(signum: int, frame: FrameType | None) -> None:
