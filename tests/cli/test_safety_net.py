@@ -12,6 +12,10 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import signal
+import time
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -160,3 +164,47 @@ def test_outputs_in_the_way_are_one_line_and_nothing_is_left(
 def test_a_file_name_too_long_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:
     assert run(["analyze", "d" * 3000 + ".toml"]) == 2
     assert len(_one_line(capsys.readouterr().err)) < 700
+
+
+def _signal_inside(kind: str) -> None:
+    """Drop an object whose finaliser (``__del__``, or a ``weakref.finalize`` callback)
+    receives SIGINT: the handler runs inside it (the signal is sent, then a loop)."""
+    def interrupt() -> None:
+        os.kill(os.getpid(), signal.SIGINT)
+        for _ in range(100_000):  # the handler runs here, in the finaliser
+            pass
+
+    class Dropped:
+        def __del__(self) -> None:
+            if kind == "__del__":
+                interrupt()
+
+    dropped = Dropped()
+    if kind == "weakref.finalize":
+        weakref.finalize(dropped, interrupt)
+    del dropped
+
+
+@pytest.mark.parametrize("kind", ["__del__", "weakref.finalize"])
+def test_a_signal_inside_a_finaliser_still_interrupts(
+        kind: str, capsys: pytest.CaptureFixture[str]) -> None:
+    """Python drops an exception raised in a finaliser ("Exception ignored in …"): SIGINT
+    that came while a Dask future's ``__del__`` ran was lost, and ``optimize`` went on to
+    its last generation. The net sends it again a moment later, and the command stops with
+    its one line and 130."""
+    from chaindrive.cli.safety import guarded
+
+    went_on: list[float] = []
+
+    def command() -> int:
+        _signal_inside(kind)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:  # a command that goes on after the finaliser
+            time.sleep(0.001)
+        went_on.append(time.monotonic())
+        return 0
+
+    status = guarded(command, ["optimize"])
+    line = _one_line(capsys.readouterr().err)
+    assert status == 128 + signal.SIGINT and not went_on
+    assert line == "error: interrupted by SIGINT; no output is left half-written"

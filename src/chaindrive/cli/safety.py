@@ -22,12 +22,14 @@ import os
 import signal
 import sys
 import tempfile
+import threading
+import time
 import traceback
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from types import FrameType
+from types import CodeType, FrameType
 
 import click
 
@@ -66,8 +68,59 @@ class Interrupted(BaseException):
         return signal.Signals(self.signum).name
 
 
-def _raise(signum: int, frame: FrameType | None) -> None:
-    raise Interrupted(signum)
+#: How long after a signal met inside a finaliser it is sent again [s].
+REDELIVER_SECONDS = 0.01
+
+
+def _in_finaliser(frame: FrameType | None, hook: CodeType) -> bool:
+    """True when ``frame`` runs inside a ``__del__`` method or the unraisable hook ``hook``
+    (its code): an exception raised there is printed as "Exception ignored in …" and
+    dropped, and the command goes on as if no signal had come."""
+    while frame is not None:
+        if frame.f_code.co_name == "__del__" or frame.f_code is hook:
+            return True
+        frame = frame.f_back
+    return False
+
+
+class _Redelivery:
+    """A daemon thread that sends a signal to this process again a moment after it is asked
+    to. The handler asks by writing one byte to a pipe: it starts no thread and takes no
+    lock (a finaliser can run while the main thread holds one of the threading module's)."""
+
+    def __init__(self) -> None:
+        self.closing = False
+        self._read, self._write = os.pipe()
+        self._thread = threading.Thread(target=self._run, daemon=True,
+                                        name="chaindrive-signal-redelivery")
+        self._thread.start()
+
+    def ask(self, signum: int) -> None:
+        """Send ``signum`` again after :data:`REDELIVER_SECONDS`."""
+        with suppress(OSError):
+            os.write(self._write, bytes([signum]))
+
+    def _run(self) -> None:
+        pid = os.getpid()
+        while True:
+            data = os.read(self._read, 1)
+            if not data or data == b"\0":
+                return
+            time.sleep(REDELIVER_SECONDS)
+            if not self.closing:
+                os.kill(pid, data[0])
+
+    def close(self) -> None:
+        """Stop (a request still pending is dropped: the command has ended)."""
+        if self.closing:
+            return
+        self.closing = True
+        with suppress(OSError):
+            os.write(self._write, b"\0")
+        self._thread.join(timeout=5)
+        for fd in (self._read, self._write):
+            with suppress(OSError):
+                os.close(fd)
 
 
 @contextmanager
@@ -75,6 +128,13 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     """Within the block, the signals ``signums`` raise :class:`Interrupted` (the previous
     handlers are restored after it). Outside the main thread, where Python cannot install
     handlers, it does nothing.
+
+    A signal that arrives while a finaliser runs (a ``__del__``, such as a Dask future's,
+    which a study drops by the hundred) is sent again a moment later instead: raised there,
+    Python printed "Exception ignored in …", dropped it, and an interrupted optimisation
+    went on to its last generation. An :class:`Interrupted` dropped all the same (raised in
+    a finaliser of another kind, a ``weakref.finalize`` callback) reaches
+    ``sys.unraisablehook``, which sends the signal again too.
 
     Parameters
     ----------
@@ -85,8 +145,36 @@ def signals_raise(signums: Sequence[int] = (signal.SIGINT, signal.SIGTERM)) -> I
     ------
     None
     """
-    with handlers_installed(signums, _raise):
+    if threading.current_thread() is not threading.main_thread():
         yield
+        return
+    redelivery = _Redelivery()
+    previous_hook = sys.unraisablehook
+
+    def swallowed(unraisable: sys.UnraisableHookArgs) -> None:
+        if isinstance(unraisable.exc_value, Interrupted):
+            redelivery.ask(unraisable.exc_value.signum)
+        else:
+            previous_hook(unraisable)
+
+    def raise_(signum: int, frame: FrameType | None) -> None:
+        if redelivery.closing:  # the command has ended
+            return
+        if _in_finaliser(frame, swallowed.__code__):
+            redelivery.ask(signum)
+            return
+        raise Interrupted(signum)
+
+    try:
+        with handlers_installed(signums, raise_):
+            sys.unraisablehook = swallowed
+            try:
+                yield
+            finally:
+                redelivery.close()
+                sys.unraisablehook = previous_hook
+    finally:
+        redelivery.close()
 
 
 def _exit_now(signum: int, frame: FrameType | None) -> None:
