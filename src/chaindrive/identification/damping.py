@@ -211,13 +211,16 @@ def elastic_damping_ratios(drive: Drive) -> FloatArray:
     """The modal damping ratios [-] of the elastic modes of a drive's whole-drive model,
     lowest frequency first.
 
+    Only the stages the modal analysis rests on are computed (``analyze(..., lazy=True)``,
+    as :func:`~chaindrive.identification.calibration.elastic_frequencies`).
+
     %(drive_returns)s
     ndarray
         ζ of the elastic modes [-].
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
-    modal = analyze(drive, response=False).dynamics.modal
+    modal = analyze(drive, response=False, lazy=True).dynamics.modal
     return np.asarray(modal.modal_damping_ratios, dtype=float)[~np.asarray(modal.rigid_body)]
 
 

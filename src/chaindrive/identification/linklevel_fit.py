@@ -44,6 +44,7 @@ from chaindrive.identification.calibration import (
 from chaindrive.identification.fitting import fit_log_parameter
 
 if TYPE_CHECKING:
+    from chaindrive.analysis import Analysis
     from chaindrive.model import Drive
 
 __all__ = ["GRID_POINTS", "LINK_STIFFNESS_RANGE", "LOG_STEP", "OTHER_STATE",
@@ -272,18 +273,26 @@ def calibrate_link_level(drive: Drive, measured: Sequence[MeasuredMode], *,
     ----------
     [Virtanen2020]; [JCGM100, §5.1]; [FoxKapoor1968].
     """
-    # lazy: analysis imports the whole pipeline, the link-level model numba's kernels
-    from chaindrive.analysis import analyze
+    from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
+
+    _checked(measured)
+    return _calibrated(drive, measured, parameter, analyze(drive, response=False))
+
+
+def _calibrated(drive: Drive, measured: Sequence[MeasuredMode], parameter: Parameter,
+                analysis: Analysis) -> LinkLevelCalibration:
+    """:func:`calibrate_link_level` with the design's analysis (``response=False``) given:
+    k_link read from it."""
+    # lazy: the link-level model loads numba's kernels
     from chaindrive.geometry.contour import contour_geometry
     from chaindrive.linklevel.equilibrium import installed_geometry
     from chaindrive.linklevel.model import build_model
     from chaindrive.strength.loads import installed_sag_ratio
 
-    _checked(measured)
     f = np.array([m.frequency for m in measured])
     u = np.array([m.std for m in measured])
     modes = np.array([m.mode for m in measured]) - 1
-    k0 = analyze(drive, response=False).ring_parameters.link_stiffness_n_per_m
+    k0 = analysis.ring_parameters.link_stiffness_n_per_m
     if parameter == "link_stiffness":
         x0 = k0
         held = (() if drive.chain.sag is not None else
@@ -364,8 +373,10 @@ def calibrated_design_link_level(drive: Drive, measured: Sequence[MeasuredMode],
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
 
-    cal = calibrate_link_level(drive, measured, parameter=parameter)
+    _checked(measured)
+    analysis = analyze(drive, response=False)  # the design's: its k_link and its checks
+    cal = _calibrated(drive, measured, parameter, analysis)
     fitted = with_chain(drive, **{parameter: cal.value})
-    before = analyze(drive, response=False).checks()
+    before = analysis.checks()
     after = analyze(fitted, response=False).checks()
     return LinkLevelDesign(cal, fitted, verdict_changes(before, after))

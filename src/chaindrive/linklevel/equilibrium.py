@@ -349,6 +349,8 @@ class Balance:
         self.tr = np.empty(N)
         self.L0 = np.empty(N)
         self.radius = model.pitch_radii[free]
+        self._grouping: tuple[int, NDArray[np.int64], NDArray[np.int64], NDArray[np.int64],
+                              list[NDArray[np.int64]]] | None = None
 
     def __call__(self, x: NDArray[np.float64], th: NDArray[np.float64],
                  rest: float) -> NDArray[np.float64]:
@@ -391,51 +393,86 @@ class Balance:
         scipy.sparse.csc_matrix
             The Jacobian [N/m].
         """
+        rows, cols, vals = self.entries(x, th, rest, r0)
+        size = 2 * x.shape[0] + self.free.size + 1
+        return csc_matrix((vals, (rows, cols)), shape=(size, size))
+
+    @shared_parameters
+    def entries(self, x: NDArray[np.float64], th: NDArray[np.float64], rest: float,
+                r0: NDArray[np.float64]
+                ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+        """The nonzero pattern of :meth:`jacobian` and its entries, each (row, column) once
+        (rows, columns, values [N/m]; the last evaluation the one at ℓ₀ + h, as
+        :meth:`sparse_jacobian` leaves :attr:`T`).
+
+        Parameters
+        ----------
+        %(balance_point)s
+
+        Returns
+        -------
+        tuple of ndarray
+            Rows [-], columns [-] and values [N/m] of the entries.
+        """
         N, nf = x.shape[0], self.free.size
         h = 1e-9
         size = 2 * N + nf + 1
-        rows: list[NDArray[np.int64]] = []
-        cols: list[NDArray[np.int64]] = []
-        vals: list[NDArray[np.float64]] = []
         self(x, th, rest)
         tr0, t0 = self.tr.copy(), self.T.copy()
         sc = self._sprocket_of(x)
         row_of = np.full(self.model.centres.shape[0] + 1, -1, dtype=np.int64)
         row_of[self.free] = 2 * N + np.arange(nf)
         torque_row = row_of[sc]  # sc = −1 (no sprocket) reads the last entry, −1
-        base = N - N % 3
-        groups = [np.arange(g, base, 3) for g in range(3)] + [np.array([r]) for r in
-                                                             range(base, N)]
+        group_of, force_rows, force_cols, groups = self._groups(N)
         ref, ref_next = self.ref, (self.ref + 1) % N
-        for members in groups:
-            # the rows of each member's own force and its two neighbours', both components
-            near = (members[:, None] + np.array([-1, 0, 1])[None, :]) % N
-            force_rows = (2 * near[:, :, None] + np.arange(2)[None, None, :]).reshape(
-                members.size, 6)
-            held = torque_row[members] >= 0
-            at_ref = (members == ref) | (members == ref_next)
+        diff = np.empty((len(groups), 2, size))  # each group's perturbed residual less r0, /h
+        dtr = np.empty((2, N))  # each roller's torque change on its sprocket, /h
+        dref = np.empty((len(groups), 2))  # the reference tension's change, /h
+        for g, members in enumerate(groups):
             for c in range(2):
                 xp = x.copy()
                 xp[members, c] += h
-                d = (self(xp, th, rest) - r0) / h
-                dtr, dT = (self.tr - tr0) / h, (self.T - t0) / h
-                col = 2 * members + c
-                rows.append(force_rows.ravel())
-                cols.append(np.repeat(col, 6))
-                vals.append(d[force_rows].ravel())
-                rows.append(torque_row[members[held]])
-                cols.append(col[held])
-                vals.append(dtr[members[held]] / self.model.pitch_radii[sc[members[held]]])
-                rows.append(np.full(int(at_ref.sum()), size - 1))
-                cols.append(col[at_ref])
-                vals.append(np.full(int(at_ref.sum()), dT[ref]))
+                diff[g, c] = (self(xp, th, rest) - r0) / h
+                dtr[c, members] = ((self.tr - tr0) / h)[members]
+                dref[g, c] = ((self.T - t0) / h)[ref]
+        held = np.flatnonzero(torque_row >= 0)
+        at_ref = np.array([ref, ref_next] if ref_next != ref else [ref], dtype=np.int64)
+        c2 = np.arange(2)
+        rows = [force_rows.ravel(), np.repeat(torque_row[held], 2),
+                np.full(2 * at_ref.size, size - 1)]
+        cols = [force_cols.ravel(), (2 * held[:, None] + c2).ravel(),
+                (2 * at_ref[:, None] + c2).ravel()]
+        vals = [diff[group_of[:, None, None], c2[None, :, None], force_rows].ravel(),
+                (dtr[:, held] / self.model.pitch_radii[sc[held]]).T.ravel(),
+                dref[group_of[at_ref]].ravel()]
         for k, s in enumerate(self.free):
             tp = th.copy()
             tp[s] += h / self.radius[k]
             self._dense_column(rows, cols, vals, (self(x, tp, rest) - r0) / h, 2 * N + k)
         self._dense_column(rows, cols, vals, (self(x, th, rest + h) - r0) / h, size - 1)
-        return csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                          shape=(size, size))
+        return np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+
+    def _groups(self, N: int) -> tuple[NDArray[np.int64], NDArray[np.int64],
+                                       NDArray[np.int64], list[NDArray[np.int64]]]:
+        """The rollers perturbed together (three links apart, [Curtis1974]): each roller's
+        group, the (N, 2, 6) rows and columns of its two columns' force entries (its own
+        force and its two neighbours', both components) and the groups."""
+        if self._grouping is None or self._grouping[0] != N:
+            base = N - N % 3
+            groups = [np.arange(g, base, 3) for g in range(3)] + [np.array([r]) for r in
+                                                                 range(base, N)]
+            group_of = np.empty(N, dtype=np.int64)
+            for g, members in enumerate(groups):
+                group_of[members] = g
+            near = (np.arange(N)[:, None] + np.array([-1, 0, 1])[None, :]) % N
+            force_rows = np.broadcast_to(
+                (2 * near[:, :, None] + np.arange(2)[None, None, :]).reshape(N, 1, 6),
+                (N, 2, 6))
+            force_cols = np.broadcast_to((2 * np.arange(N)[:, None] + np.arange(2))[:, :, None],
+                                         (N, 2, 6))
+            self._grouping = (N, group_of, force_rows, force_cols, groups)
+        _, group_of, force_rows, force_cols, groups = self._grouping
+        return group_of, force_rows, force_cols, groups
 
     @staticmethod
     def _dense_column(rows: list[NDArray[np.int64]], cols: list[NDArray[np.int64]],
@@ -539,21 +576,90 @@ class _Tensioned:
         return np.concatenate([-r[:-1], [self.pull - float(self.bal.T.mean())]])
 
     def hessian(self, z: NDArray[np.float64]) -> csc_matrix:
-        """∇²Φ [N/m], sparse."""
+        """∇²Φ [N/m], sparse: the symmetric part ½(H + Hᵀ) of the Jacobian's, in canonical
+        form (sorted rows, no zero entries), as ``0.5 * (H + H.T)`` gives it."""
         x, th, rest = self.state(z)
-        J = self.bal.sparse_jacobian(x, th, rest, self.bal(x, th, rest)).tocoo()
-        N, m, last = self.N, self.model, J.shape[0] - 1
-        inner = (J.row < last) & (J.col < last)
-        side = (J.col == last) & (J.row < last)  # the column of w = N·Δℓ₀, ∂F/∂ℓ₀/N
+        rows, cols, vals = self.bal.entries(x, th, rest, self.bal(x, th, rest))
+        N, m = self.N, self.model
+        size = 2 * N + self.bal.free.size + 1
+        last = size - 1
+        inner = (rows < last) & (cols < last)
+        side = (cols == last) & (rows < last)  # the column of w = N·Δℓ₀, ∂F/∂ℓ₀/N
         stretched = np.count_nonzero(np.abs(self.bal.T) > 0.0)
         # the tension row is replaced by the pull's, ∂(T̄ − mean T)/∂(x, w): the side
         # column transposed and k·(stretched links)/N² on the diagonal
-        rows = np.concatenate([J.row[inner], J.row[side], np.full(side.sum(), last), [last]])
-        cols = np.concatenate([J.col[inner], J.col[side], J.row[side], [last]])
-        vals = np.concatenate([-J.data[inner], -J.data[side] / N, -J.data[side] / N,
-                               [m.link_stiffness * stretched / N**2]])
-        H = csc_matrix((vals, (rows, cols)), shape=J.shape)
+        hr = np.concatenate([rows[inner], rows[side], np.full(side.sum(), last), [last]])
+        hc = np.concatenate([cols[inner], cols[side], rows[side], [last]])
+        hv = np.concatenate([-vals[inner], -vals[side] / N, -vals[side] / N,
+                             [m.link_stiffness * stretched / N**2]])
+        return _symmetric_part(hr, hc, hv, size)
+
+
+def _symmetric_part(rows: NDArray[np.int64], cols: NDArray[np.int64],
+                    vals: NDArray[np.float64], size: int) -> csc_matrix:
+    """½(H + Hᵀ) of the (size × size) H with these entries (each (row, column) once) as
+    ``csc_matrix(0.5 * (H + H.T))`` gives it: each entry H_ij + H_ji (one addition, so
+    either order), those summing to zero left out, then halved; sorted by column, then
+    row."""
+    keys = np.concatenate([cols * size + rows, rows * size + cols])
+    both = np.concatenate([vals, vals])
+    order = np.argsort(keys, kind="stable")
+    keys, both = keys[order], both[order]
+    start = np.flatnonzero(np.concatenate([[True], keys[1:] != keys[:-1]]))
+    if np.any(np.diff(np.append(start, keys.size)) > 2):  # an entry given twice: scipy's sum
+        H = csc_matrix((vals, (rows, cols)), shape=(size, size))
         return csc_matrix(0.5 * (H + H.T))
+    summed = np.add.reduceat(both, start)
+    keep = summed != 0.0
+    keys = keys[start[keep]]
+    col = keys // size
+    indptr = np.zeros(size + 1, dtype=np.int64)
+    np.cumsum(np.bincount(col, minlength=size), out=indptr[1:])
+    return csc_matrix((summed[keep] * 0.5, keys - col * size, indptr), shape=(size, size))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class _Shift:
+    """The pattern of A + μI for a canonical A: A's with its diagonal stored (indices,
+    indptr), where A's entries go (``source``) and where the diagonal lies (``diagonal``)
+    in its data."""
+
+    indices: NDArray[np.integer[Any]]
+    indptr: NDArray[np.integer[Any]]
+    source: NDArray[np.int64]
+    diagonal: NDArray[np.int64]
+
+
+def _shift_pattern(A: csc_matrix) -> _Shift:
+    """The pattern of A + μI (:class:`_Shift`) for a canonical ``A`` (sorted rows, each
+    entry once)."""
+    n = A.shape[0]
+    cols = np.repeat(np.arange(n), np.diff(A.indptr))
+    on = A.indices == cols
+    missing = np.ones(n, dtype=bool)
+    missing[cols[on]] = False
+    if not missing.any():
+        return _Shift(A.indices, A.indptr, np.arange(A.nnz), np.flatnonzero(on))
+    absent = np.flatnonzero(missing)
+    at = np.searchsorted(cols * n + A.indices, absent * (n + 1))  # where each goes
+    indices = np.insert(A.indices, at, absent)
+    indptr = A.indptr + np.searchsorted(absent, np.arange(n + 1))  # diagonals left of each
+    source = np.arange(A.nnz) + np.searchsorted(at, np.arange(A.nnz), side="right")
+    cols = np.repeat(np.arange(n), np.diff(indptr))
+    return _Shift(indices, indptr, source, np.flatnonzero(indices == cols))
+
+
+def _shifted(A: csc_matrix, pattern: _Shift, mu: float) -> csc_matrix:
+    """A + μI as ``csc_matrix(A + diags(μ))`` gives it (``pattern`` from
+    :func:`_shift_pattern`): μ added to A's diagonal (to zero where it is not stored);
+    where a diagonal entry sums to zero (scipy's sum leaves it out), by scipy's sum."""
+    data = np.zeros(pattern.indices.size)
+    data[pattern.source] = A.data
+    data[pattern.diagonal] += mu
+    if np.all(data[pattern.diagonal] != 0.0):
+        return csc_matrix((data, pattern.indices.copy(), pattern.indptr.copy()),
+                          shape=A.shape)
+    return csc_matrix(A + diags(np.full(A.shape[0], mu)))
 
 
 def _definite_solve(A: csc_matrix, b: NDArray[np.float64]) -> NDArray[np.float64] | None:
@@ -612,11 +718,12 @@ def _minimum(phi: _Tensioned, tol: float, steps: int = _TRUST_STEPS,
         if float(np.linalg.norm(g)) <= tol:
             return z, step
         H = phi.hessian(z)
+        pattern = _shift_pattern(H)
         if mu < 0.0:
             mu = _SHIFT_START * float(np.abs(H.diagonal()).max())
         refused = 0
         while True:
-            p = _definite_solve(csc_matrix(H + diags(np.full(z.size, mu))), g)
+            p = _definite_solve(_shifted(H, pattern, mu), g)
             if p is None:  # not positive definite: a larger shift
                 mu = 4.0 * mu
                 continue

@@ -7,7 +7,10 @@ K = −∂f/∂u the tangent stiffness of the static balance (links with their g
 T/ℓ, contacts, gravity's none), by grouped finite differences, symmetrised. The generalised
 eigenproblem K φ = ω² M φ is solved densely ([Golub2013, §8.7], the symmetric-definite
 problem), every sprocket free: the chain turning round its loop is the (near-)rigid mode
-below 1 Hz, left out.
+below 1 Hz, left out. As the static solve, it runs with the linear algebra held to one
+thread (``threadpoolctl``), so that its result does not depend on the machine's BLAS
+threads (the command line runs on one already; on a two-core machine shared with other
+work two BLAS threads made the dense eigenproblem of the seed drive 5–50 times slower).
 
 **Where each mode's energy is.** Kinetic: in the rollers' motion along their links and the
 sprockets' turning (``longitudinal_fraction``) or across the links (the rest). A mode with
@@ -47,6 +50,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
+from threadpoolctl import threadpool_limits
 
 from chaindrive.errors import ConvergenceError
 from chaindrive.geometry.contour import contour_geometry
@@ -343,12 +347,13 @@ def linear_modes(drive: Drive, *, geometry: GeometryResult | None = None,
     [Golub2013, §8.7] (symmetric-definite eigenproblem); [Irvine1981, ch. 2] (the tension's
     stiffness of a span); [Dennis1996] (the loaded state's Newton iteration).
     """
-    geometry, model, eq = _rest_state(drive, geometry, model)
-    if not loaded:
-        return _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length, count,
-                            loaded=False)
-    x, th, rest = _loaded_state(drive, model, geometry, eq)
-    return _modes_about(model, geometry, x, th, rest, count, loaded=True)
+    with threadpool_limits(limits=1):  # the same arithmetic whatever the machine's BLAS
+        geometry, model, eq = _rest_state(drive, geometry, model)
+        if not loaded:
+            return _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length,
+                                count, loaded=False)
+        x, th, rest = _loaded_state(drive, model, geometry, eq)
+        return _modes_about(model, geometry, x, th, rest, count, loaded=True)
 
 
 def rest_and_loaded_modes(drive: Drive, *, geometry: GeometryResult | None = None,
@@ -371,14 +376,15 @@ def rest_and_loaded_modes(drive: Drive, *, geometry: GeometryResult | None = Non
     tuple of (LinearModes, LinearModes or None)
         At rest and loaded.
     """
-    geometry, model, eq = _rest_state(drive, geometry, None)
-    rest = _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length, count,
-                        loaded=False)
-    try:
-        x, th, length = _loaded_state(drive, model, geometry, eq)
-    except ConvergenceError:
-        return rest, None
-    return rest, _modes_about(model, geometry, x, th, length, count, loaded=True)
+    with threadpool_limits(limits=1):  # the same arithmetic whatever the machine's BLAS
+        geometry, model, eq = _rest_state(drive, geometry, None)
+        rest = _modes_about(model, geometry, eq.positions, eq.angles, eq.rest_length, count,
+                            loaded=False)
+        try:
+            x, th, length = _loaded_state(drive, model, geometry, eq)
+        except ConvergenceError:
+            return rest, None
+        return rest, _modes_about(model, geometry, x, th, length, count, loaded=True)
 
 
 def _rest_state(drive: Drive, geometry: GeometryResult | None, model: LinkLevelModel | None
