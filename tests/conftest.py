@@ -22,6 +22,18 @@ settings.register_profile("chaindrive", derandomize=True, deadline=None)
 settings.load_profile("chaindrive")
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    """Each test process runs its BLAS on one thread, as every command does
+    (:mod:`chaindrive.cli.threads`): two pytest workers on two cores with two OpenBLAS threads
+    each wait on one another. A command run in-process set the same limit already, for the
+    rest of its worker's life; set here, the limit no longer depends on which file ran first.
+    A test of the thread setting itself sets what it needs (``threadpool_limits`` or a
+    subprocess with its own environment)."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1, user_api="blas")
+
+
 def cli_in_process(*args: str) -> subprocess.CompletedProcess[str]:
     """A command line run in this process: its exit status and what it printed.
 
