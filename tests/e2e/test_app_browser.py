@@ -3,10 +3,12 @@
 Playwright for Python drives Debian's Chromium (``apt-get install -y chromium``; Playwright's
 own browser download cannot reach its servers from these machines). The page is started
 on a free 127.0.0.1 port in a subprocess (headless, no usage statistics) and always stopped
-again (fixture finalizer). Every wait is on something the page shows — its ready marker
-(written last in a run), its results marker (written right after the contour, the headline
-numbers and the verdict), the values on screen — never a fixed sleep; every number is
-checked against ``chaindrive.analyze`` of the same design.
+again (fixture finalizer); the server and the browser are shared with the other browser
+tests of the test process (tests/e2e/conftest.py), and each test opens its own session.
+Every wait is on something the page shows — its ready marker (written last in a run), its
+results marker (written right after the contour, the headline numbers and the verdict), the
+values on screen — never a fixed sleep; every number is checked against ``chaindrive.analyze``
+of the same design.
 
 * the seed example: a tooth count changed through the "edit one sprocket" form (links and
   warnings follow), values typed in the sprocket table one after the other (both kept), the
@@ -27,12 +29,9 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import socket
 import statistics
-import subprocess
 import time
 import tomllib
-import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -40,10 +39,10 @@ from typing import Any
 import pytest
 
 import chaindrive
-from chaindrive.app import streamlit_command
 from chaindrive.display import fmt
 from chaindrive.errors import ChainDriveError
 from chaindrive.io.design import drive_from_mapping
+from tests.e2e.conftest import CHROMIUM
 
 pytestmark = pytest.mark.concurrency  # a web server and a browser
 
@@ -51,9 +50,6 @@ ROOT = Path(__file__).resolve().parents[2]
 SEED = ROOT / "examples" / "seed_three_sprocket.toml"
 BIG = ROOT / "examples" / "twenty_four_sprocket.toml"
 SCREENSHOT = ROOT / "docs" / "app_seed.png"
-CHROMIUM = Path(os.environ.get("CHAINDRIVE_CHROMIUM", "/usr/bin/chromium"))
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 #: The edited sprocket (0-based row; S3, the idler of the seed contour) and its new counts.
 ROW, NEW_TEETH, BAD_TEETH = 2, 30, 3
 #: Waits [ms]: the first page run imports numpy, scipy, pint…; later runs take well under a
@@ -74,79 +70,13 @@ if not (CHROMIUM.is_file() and os.access(CHROMIUM, os.X_OK)):
     pytest.skip(f"Chromium not found at {CHROMIUM} (apt-get install -y chromium)",
                 allow_module_level=True)
 try:
-    from playwright.sync_api import Locator, Page, expect, sync_playwright
+    from playwright.sync_api import Locator, Page, expect
 except ImportError:
     pytest.skip("Playwright for Python is not installed (pip install playwright)",
                 allow_module_level=True)
 
 
-# --- the server and the browser ------------------------------------------------------------------
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def _healthy(url: str) -> bool:
-    try:
-        with urllib.request.urlopen(f"{url}/_stcore/health", timeout=2) as r:
-            return r.status == 200
-    except OSError:
-        return False
-
-
-def _start(log: Path, seconds: float = 90.0) -> tuple[subprocess.Popen[bytes], str]:
-    """Start the page on a free port; retry on another port when the server exits early
-    (the port was taken between choosing and binding it)."""
-    for _ in range(3):
-        port = _free_port()
-        url = f"http://127.0.0.1:{port}"
-        with log.open("ab") as out:
-            proc = subprocess.Popen(streamlit_command("127.0.0.1", port), cwd=ROOT,
-                                    stdout=out, stderr=subprocess.STDOUT,
-                                    stdin=subprocess.DEVNULL)
-        end = time.monotonic() + seconds
-        while time.monotonic() < end and proc.poll() is None:
-            if _healthy(url):
-                return proc, url
-            time.sleep(0.2)
-        _stop(proc)
-    tail = log.read_text(encoding="utf-8", errors="replace")[-2000:]
-    raise RuntimeError(f"the app did not start (log {log}):\n{tail}")
-
-
-def _stop(proc: subprocess.Popen[bytes]) -> None:
-    if proc.poll() is None:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(timeout=10)
-
-
-@pytest.fixture(scope="module")
-def app_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    """The address of the page, served for this module; the server is always stopped (the
-    code after ``yield`` is the fixture's finalizer: it runs even when the test fails)."""
-    proc, url = _start(tmp_path_factory.mktemp("app") / "streamlit.log")
-    try:
-        yield url
-    finally:
-        _stop(proc)
-
-
-@pytest.fixture(scope="module")
-def browser(app_url: str) -> Iterator[Any]:
-    """Chromium, for this module."""
-    with sync_playwright() as pw:
-        chromium = pw.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
-        try:
-            yield chromium
-        finally:
-            chromium.close()
-
+# --- a page of its own on the shared server and browser (tests/e2e/conftest.py) -----------------
 
 def _page(browser: Any, app_url: str, width: int, height: int) -> Iterator[Page]:
     """A page of its own (a new browser context: a new session of the app, so a repeated

@@ -2,8 +2,9 @@
 `docs/records/seed_synthetic.csv` dropped on "Identify a measured record" shows what
 `chaindrive identify` finds in it (its notes, from chaindrive.identification.identify_record
 of the same design and record), its spectrum and Campbell figures, and no exception. The
-server and the browser are those of tests/e2e/test_app_limits.py (skipped, with the reason,
-when Chromium or Playwright is not installed)."""
+server and the browser are those shared by the browser tests (tests/e2e/conftest.py), the
+session one of its own as in tests/e2e/test_app_limits.py (skipped, with the reason, when
+Chromium or Playwright is not installed)."""
 
 from __future__ import annotations
 
@@ -15,15 +16,14 @@ import chaindrive
 from chaindrive.identification import identify_record
 from chaindrive.io.record import read_record
 from tests.conftest import EXAMPLES, ROOT
-from tests.e2e.test_app_limits import _session, app_url, browser  # noqa: F401 (fixtures)
+from tests.e2e.test_app_limits import _session
 
 pytestmark = pytest.mark.concurrency  # a web server and a browser
 
 RECORD = ROOT / "docs" / "records" / "seed_synthetic.csv"
 
 
-def test_a_record_dropped_on_the_page_is_identified(browser: Any,  # noqa: F811
-                                                    app_url: str) -> None:  # noqa: F811
+def test_a_record_dropped_on_the_page_is_identified(browser: Any, app_url: str) -> None:
     from playwright.sync_api import expect
 
     analysis = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"),

@@ -7,29 +7,24 @@ Outcomes only: the second session completes its run and the health check answers
 first session's run is still shown running (a 60 s start-up of the eight-sprocket example:
 seconds of work, against the fraction of a second the other session needs). Skipped (with
 the reason) when Chromium or Playwright is not installed, like tests/e2e/test_app_browser.py.
+The server and the browser are shared with the other browser tests of the test process
+(tests/e2e/conftest.py); each test opens its own session.
 """
 
 from __future__ import annotations
 
 import os
-import socket
-import subprocess
-import time
-import urllib.request
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from chaindrive.app import streamlit_command
-from tests.conftest import EXAMPLES, ROOT
+from tests.conftest import EXAMPLES
+from tests.e2e.conftest import CHROMIUM
+from tests.e2e.conftest import healthy as _healthy
 
 pytestmark = pytest.mark.concurrency  # a web server and a browser
 
-CHROMIUM = Path(os.environ.get("CHAINDRIVE_CHROMIUM", "/usr/bin/chromium"))
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 FIRST_MS, STEP_MS = 90_000, 30_000
 #: Time allowed for the uploader to list a file given to it [ms] (generous: a loaded machine).
 LISTED_MS = 10_000
@@ -38,63 +33,10 @@ if not (CHROMIUM.is_file() and os.access(CHROMIUM, os.X_OK)):
     pytest.skip(f"Chromium not found at {CHROMIUM} (apt-get install -y chromium)",
                 allow_module_level=True)
 try:
-    from playwright.sync_api import Page, expect, sync_playwright
+    from playwright.sync_api import Page, expect
 except ImportError:
     pytest.skip("Playwright for Python is not installed (pip install playwright)",
                 allow_module_level=True)
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def _healthy(url: str, timeout: float = 2.0) -> bool:
-    try:
-        with urllib.request.urlopen(f"{url}/_stcore/health", timeout=timeout) as r:
-            return r.status == 200
-    except OSError:
-        return False
-
-
-@pytest.fixture(scope="module")
-def app_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    log = tmp_path_factory.mktemp("app") / "streamlit.log"
-    for _ in range(3):
-        port = _free_port()
-        url = f"http://127.0.0.1:{port}"
-        with log.open("ab") as out:
-            proc = subprocess.Popen(streamlit_command("127.0.0.1", port), cwd=ROOT, stdout=out,
-                                    stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
-        end = time.monotonic() + 90
-        while time.monotonic() < end and proc.poll() is None and not _healthy(url):
-            time.sleep(0.2)
-        if _healthy(url):
-            break
-        proc.kill()
-        proc.wait()
-    else:
-        raise RuntimeError(f"the app did not start: {log.read_text(errors='replace')[-2000:]}")
-    try:
-        yield url
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-
-
-@pytest.fixture(scope="module")
-def browser(app_url: str) -> Iterator[Any]:
-    with sync_playwright() as pw:
-        chromium = pw.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
-        try:
-            yield chromium
-        finally:
-            chromium.close()
 
 
 def _session(browser: Any, url: str) -> tuple[Any, Page]:

@@ -44,7 +44,6 @@ from chaindrive.display import (
     warning_text,
 )
 from chaindrive.errors import ChainDriveError
-from chaindrive.identification import identify_record, span_tension_reading
 from chaindrive.io.record import record_from_csv_bytes
 from chaindrive.plotting import campbell_diagram, km_distribution, mode_shapes
 from chaindrive.plotting.identification import (
@@ -177,6 +176,11 @@ def _tension_tool(screen: Screen) -> None:
                        "with its uncertainty from ±2 mm of span length and ±5 % of the "
                        "chain's mass per metre (assumed; `chaindrive tension` sets them).")
             return
+        # imported when a frequency is given: chaindrive.identification imports
+        # scipy.signal and scipy.stats, which nothing else of the page needs (1.5 s of a
+        # page's first run on the loaded 2-core machine)
+        from chaindrive.identification import span_tension_reading
+
         try:
             reading = span_tension_reading(a, span, float(freq), mode=mode, running=running,
                                            assumed=("length ±2 mm", "mass per metre ±5 %"))
@@ -282,6 +286,8 @@ def _identify_tool(screen: Screen) -> None:
         key = (id(a), hash(data), speed)
         store = st.session_state.setdefault("ident", {})
         if key not in store:
+            from chaindrive.identification import identify_record  # as in _tension_tool
+
             store.clear()
             try:
                 store[key] = identify_record(record, a,
