@@ -321,3 +321,39 @@ def test_two_sprocket_remedy_reads_as_a_centre_distance():
     failed = next(c for c in geometry_checks(drive, geometry) if c.key == "wrap[A]")
     (move,) = layout_remedies(drive, geometry, failed)
     assert move.text.startswith("move B ") and "away from A" in move.text
+
+
+def test_remedies_sharing_a_memo_are_those_found_alone_with_fewer_layouts(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The selection lays each change of a chain's drive out once for all its missed layout
+    checks (the memo of :func:`layout_remedies`): the remedies are those each check finds
+    alone, and the shared changes are not laid out again."""
+    from chaindrive.examples import __file__ as examples
+    from chaindrive.io.design import load_drive
+    from chaindrive.strength import remedies as rem
+
+    a = chaindrive.analyze(load_drive(Path(examples).parent / "seed_three_sprocket.toml"),
+                           response=False)
+    assert a.selection is not None
+    c = next(c for c in a.selection.candidates if c.chain_passed and c.geometry is not None
+             and len([k for k in c.layout_checks if not k.passed]) > 1)
+    missed = [k for k in c.layout_checks if not k.passed]
+    on = replace(a.design, chain=replace(a.design.chain, links=None, request=None)
+                 ).with_chain(a.selection.specs[c.designation])  # as the selection lays out
+    solves = 0
+    solve = rem.contour_geometry
+
+    def counted(drive: Drive) -> Any:
+        nonlocal solves
+        solves += 1
+        return solve(drive)
+
+    monkeypatch.setattr(rem, "contour_geometry", counted)
+    assert c.geometry is not None
+    alone = [layout_remedies(on, c.geometry, k) for k in missed]
+    solves_alone, solves = solves, 0
+    memo: rem.Layouts = {}
+    shared = [layout_remedies(on, c.geometry, k, memo) for k in missed]
+    assert shared == alone
+    assert any(alone)
+    assert 0 < solves == len(memo) < solves_alone

@@ -43,7 +43,7 @@ from chaindrive.geometry.results import GeometryResult
 from chaindrive.model import MAX_TEETH, Drive, Sprocket
 from chaindrive.strength.drive_checks import geometry_checks
 
-__all__ = ["MOVE_STEPS", "Remedy", "layout_remedies", "move_direction", "span_limit_text"]
+__all__ = ["MOVE_STEPS", "Layouts", "Remedy", "layout_remedies", "move_direction", "span_limit_text"]
 
 #: Steps of the scan of a move, up to the shorter span of the sprocket moved [-].
 MOVE_STEPS = 32
@@ -134,15 +134,39 @@ def move_direction(geometry: GeometryResult, index: int) -> tuple[float, float] 
     return ux / norm, uy / norm
 
 
-def _outcome(drive: Drive, key: str, passing: frozenset[str]
-             ) -> tuple[Check, GeometryResult] | None:
-    """The check ``key`` of ``drive`` laid out again, when it passes and no check of
-    ``passing`` fails; None otherwise (or when the drive cannot be laid out)."""
-    try:
-        geometry = contour_geometry(drive)
-    except DesignError:
+#: The layouts already made of changes of one drive, by the sprocket changed: its index and
+#: the changed sprocket (with the signs of its centre, so that −0 and 0 stay apart) → the
+#: changed drive laid out and its layout checks by key, or None when it cannot be laid out.
+Layouts = dict[tuple[int, Sprocket, float, float],
+               tuple[GeometryResult, dict[str, Check]] | None]
+
+
+def _laid_out(drive: Drive, index: int, sprocket: Sprocket, memo: Layouts
+              ) -> tuple[GeometryResult, dict[str, Check]] | None:
+    """``drive`` with sprocket ``index`` changed to ``sprocket``, laid out and its layout
+    checks by key (None when it cannot be laid out), from ``memo`` when that change was laid
+    out before."""
+    key = (index, sprocket, math.copysign(1.0, sprocket.x), math.copysign(1.0, sprocket.y))
+    if key not in memo:
+        changed = _with(drive, index, sprocket)
+        try:
+            geometry = contour_geometry(changed)
+        except DesignError:
+            memo[key] = None
+        else:
+            memo[key] = geometry, {c.key: c for c in geometry_checks(changed, geometry)}
+    return memo[key]
+
+
+def _outcome(drive: Drive, index: int, sprocket: Sprocket, key: str,
+             passing: frozenset[str], memo: Layouts) -> tuple[Check, GeometryResult] | None:
+    """The check ``key`` of ``drive`` with sprocket ``index`` changed to ``sprocket``, laid
+    out again, when it passes and no check of ``passing`` fails; None otherwise (or when the
+    changed drive cannot be laid out)."""
+    laid = _laid_out(drive, index, sprocket, memo)
+    if laid is None:
         return None
-    checks = {c.key: c for c in geometry_checks(drive, geometry)}
+    geometry, checks = laid
     target = checks.get(key)
     if target is None or not target.passed:
         return None
@@ -157,11 +181,11 @@ def _with(drive: Drive, index: int, sprocket: Sprocket) -> Drive:
 
 
 def _teeth_remedy(drive: Drive, index: int, failed: Check,
-                  passing: frozenset[str]) -> Remedy | None:
+                  passing: frozenset[str], memo: Layouts) -> Remedy | None:
     """The fewest teeth on idler ``index`` that make ``failed`` pass."""
     s = drive.sprockets[index]
     for z in range(s.teeth + 1, min(MAX_TEETH, 2 * s.teeth) + 1):
-        found = _outcome(_with(drive, index, replace(s, teeth=z)), failed.key, passing)
+        found = _outcome(drive, index, replace(s, teeth=z), failed.key, passing, memo)
         if found is not None:
             check, geometry = found
             value = check.shown(check.value) or 0.0
@@ -181,7 +205,7 @@ def _moved(s: Sprocket, u: tuple[float, float], t: float) -> Sprocket:
 
 
 def _move_remedy(drive: Drive, geometry: GeometryResult, index: int, sign: float,
-                 failed: Check, passing: frozenset[str]) -> Remedy | None:
+                 failed: Check, passing: frozenset[str], memo: Layouts) -> Remedy | None:
     """The least move of sprocket ``index`` along ±u that makes ``failed`` pass."""
     u0 = move_direction(geometry, index)
     if u0 is None:
@@ -195,7 +219,7 @@ def _move_remedy(drive: Drive, geometry: GeometryResult, index: int, sign: float
     step = reach / MOVE_STEPS
 
     def trial(t: float) -> tuple[Check, GeometryResult] | None:
-        return _outcome(_with(drive, index, _moved(s, u, t)), failed.key, passing)
+        return _outcome(drive, index, _moved(s, u, t), failed.key, passing, memo)
 
     before = 0.0
     for k in range(1, MOVE_STEPS + 1):
@@ -279,7 +303,8 @@ def span_limit_text(failed: Check, pitch: float) -> tuple[str, tuple[Quantity, .
 
 
 @shared_parameters
-def layout_remedies(drive: Drive, geometry: GeometryResult, failed: Check) -> tuple[Remedy, ...]:
+def layout_remedies(drive: Drive, geometry: GeometryResult, failed: Check,
+                    memo: Layouts | None = None) -> tuple[Remedy, ...]:
     """The remedies of one failed layout check (module docstring): a change of teeth first
     (when the check is about an idler), then the least move of each sprocket that may move,
     the smallest first.
@@ -291,23 +316,28 @@ def layout_remedies(drive: Drive, geometry: GeometryResult, failed: Check) -> tu
     %(geometry)s
     failed : Check
         The failed layout check.
+    memo : dict or None
+        The layouts already made of changes of this same ``drive`` (:data:`Layouts`), filled
+        as changes are laid out: the remedies of several failed checks of one drive try many
+        of the same changes (None: a memo of this call only).
 
     Returns
     -------
     tuple of Remedy
         Each one verified by laying the changed drive out again; empty when none is found.
     """
+    memo = {} if memo is None else memo
     passing = frozenset(c.key for c in geometry_checks(drive, geometry) if c.passed)
     index = _subject_index(drive, failed)
     out: list[Remedy] = []
     if index is not None and drive.sprockets[index].role == "idler":
-        teeth = _teeth_remedy(drive, index, failed, passing)
+        teeth = _teeth_remedy(drive, index, failed, passing, memo)
         if teeth is not None:
             out.append(teeth)
     moves: list[Remedy] = []
     for i in _movable(drive, index):
         found = [m for sign in (1.0, -1.0)
-                 if (m := _move_remedy(drive, geometry, i, sign, failed, passing)) is not None]
+                 if (m := _move_remedy(drive, geometry, i, sign, failed, passing, memo)) is not None]
         if found:
             moves.append(min(found, key=lambda m: abs(m.distance)))
     out += sorted(moves, key=lambda m: abs(m.distance))

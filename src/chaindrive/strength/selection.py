@@ -57,7 +57,7 @@ from chaindrive.strength.drive_checks import (
 )
 from chaindrive.strength.loads import small_sprocket
 from chaindrive.strength.lubrication import LubricationAdvice, lubrication_advice
-from chaindrive.strength.remedies import Remedy, layout_remedies, span_limit_text
+from chaindrive.strength.remedies import Layouts, Remedy, layout_remedies, span_limit_text
 
 __all__ = ["BEYOND_BAND", "INSIDE_BAND", "KE", "LAYOUT_REMEDY", "METHODS", "NAMED_PASSED_OVER",
            "NOT_LAID_OUT", "PASSED_OVER", "RATING", "RESONANCE_PASS", "RESONANCE_POSSIBLE",
@@ -769,6 +769,8 @@ def _layout_finding(drive: Drive, spec: ChainSpec, c: Candidate, chosen: Candida
     parts: list[str] = []
     remedies: list[Remedy] = []
     notes: list[Quantity] = []
+    on = _unlinked(drive).with_chain(spec)
+    laid: Layouts = {}  # the changes of ``on`` laid out, shared by its missed checks
     for k in missed:
         text, quoted = _missed_text(k, q)
         margin = k.margin_fraction
@@ -777,7 +779,7 @@ def _layout_finding(drive: Drive, spec: ChainSpec, c: Candidate, chosen: Candida
         notes += quoted
         key = (spec.pitch, spec.roller_diameter, k.key)
         if key not in cache and c.geometry is not None and k.value is not None:
-            cache[key] = layout_remedies(_unlinked(drive).with_chain(spec), c.geometry, k)
+            cache[key] = layout_remedies(on, c.geometry, k, laid)
         remedies += cache.get(key, ())
     worst = max(missed, key=lambda k: -(k.margin_fraction or -math.inf))
     span = next((k for k in missed if k.name == "span length" and k.value is not None), None)
