@@ -45,6 +45,7 @@ from scipy.signal import detrend
 
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.geometry.contour import contour_geometry
 from chaindrive.identification.damping import (
     MeasuredDamping,
     free_decay_damping_ratio,
@@ -247,10 +248,9 @@ def decay_curve(drive: Drive, test: TapTest, *, parameter: Parameter = "damping_
         An unknown parameter, or a grid value out of range.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
-    from chaindrive.geometry.contour import contour_geometry
-    from chaindrive.linklevel.equilibrium import installed_geometry
+    from chaindrive.linklevel.equilibrium import installed_geometry  # lazy: numba's kernels
     from chaindrive.linklevel.model import HINGE_FRICTION, build_model  # lazy: numba's kernels
-    from chaindrive.linklevel.simulate import static_state
+    from chaindrive.linklevel.simulate import static_state  # lazy: numba's kernels
 
     zeta_c = float(np.mean(analyze(drive, response=False).dynamics.model.span_damping_ratios))
     zeta_src = ("given ([dynamics] damping_ratio)" if drive.dynamics.damping_ratio is not None
