@@ -45,6 +45,7 @@ from scipy.signal import detrend
 
 from chaindrive.dynamics.damping import DEFAULT_DAMPING_RATIO
 from chaindrive.errors import ChainDriveError, DesignError
+from chaindrive.geometry.contour import contour_geometry
 from chaindrive.identification.damping import (
     MeasuredDamping,
     free_decay_damping_ratio,
@@ -53,6 +54,8 @@ from chaindrive.identification.damping import (
 from chaindrive.identification.fitting import Z95
 
 if TYPE_CHECKING:
+    from chaindrive.geometry.results import GeometryResult
+    from chaindrive.linklevel.simulate import StaticState
     from chaindrive.model import Drive
 
 __all__ = ["DAMPING_RATIO_RANGE", "GRID_POINTS", "HINGE_FRICTION_RANGE",
@@ -139,7 +142,8 @@ def decay_of_signal(time: FloatArray, signal: FloatArray, test: TapTest) -> tupl
                                     floor=test.floor * float(np.abs(x).max()))
 
 
-def tap_decay(drive: Drive, test: TapTest, *, hinge_friction: float | None = None
+def tap_decay(drive: Drive, test: TapTest, *, hinge_friction: float | None = None,
+              geometry: GeometryResult | None = None, static: StaticState | None = None
               ) -> tuple[FloatArray, FloatArray]:
     """The link-level model's record of ``test``: (t [s], the signal) of
     :func:`chaindrive.linklevel.simulate` from the static state, no motor and no machine
@@ -153,6 +157,11 @@ def tap_decay(drive: Drive, test: TapTest, *, hinge_friction: float | None = Non
         The test.
     hinge_friction : float or None
         The hinges' coefficient of friction [-] (None: the model's default, 0.1).
+    geometry : GeometryResult or None
+        The design's contour (None: built here).
+    static : StaticState or None
+        The drive's static state (:func:`chaindrive.linklevel.simulate.static_state`;
+        None: solved here).
 
     Returns
     -------
@@ -165,7 +174,7 @@ def tap_decay(drive: Drive, test: TapTest, *, hinge_friction: float | None = Non
     kick[test.sprocket] = test.speed
     run = simulate(drive, test.duration, motor=False, initial_speed="rest", damping=True,
                    kick_rad_s=kick, sample_rate_hz=test.sample_rate,
-                   hinge_friction=hinge_friction)
+                   hinge_friction=hinge_friction, geometry=geometry, static=static)
     names, table = run.history()
     if test.signal not in names:
         raise DesignError("signal", f"{test.signal!r}; allowed: {', '.join(names[1:])}")
@@ -210,7 +219,9 @@ def decay_curve(drive: Drive, test: TapTest, *, parameter: Parameter = "damping_
                 grid: Sequence[float] | None = None, hinge_friction: float | None = None
                 ) -> DecayCurve:
     """Run the tap test on the link-level model at each value of one damping input and read
-    each run's decay by :func:`decay_of_signal` (module docstring).
+    each run's decay by :func:`decay_of_signal` (module docstring). The runs share the
+    contour and the static state they start from, solved once: neither damping input enters
+    the static balance (:func:`chaindrive.linklevel.simulate.static_key`).
 
     Parameters
     ----------
@@ -237,7 +248,9 @@ def decay_curve(drive: Drive, test: TapTest, *, parameter: Parameter = "damping_
         An unknown parameter, or a grid value out of range.
     """
     from chaindrive.analysis import analyze  # lazy: analysis imports the whole pipeline
-    from chaindrive.linklevel.model import HINGE_FRICTION  # lazy: the package loads numba's kernels
+    from chaindrive.linklevel.equilibrium import installed_geometry  # lazy: numba's kernels
+    from chaindrive.linklevel.model import HINGE_FRICTION, build_model  # lazy: numba's kernels
+    from chaindrive.linklevel.simulate import static_state  # lazy: numba's kernels
 
     zeta_c = float(np.mean(analyze(drive, response=False).dynamics.model.span_damping_ratios))
     zeta_src = ("given ([dynamics] damping_ratio)" if drive.dynamics.damping_ratio is not None
@@ -264,11 +277,16 @@ def decay_curve(drive: Drive, test: TapTest, *, parameter: Parameter = "damping_
                           + (" and below 0.999" if parameter == "damping_ratio" else ""))
     ratios = np.full(xs.size, np.nan)
     stds = np.full(xs.size, np.nan)
+    geometry = contour_geometry(drive)
+    model = build_model(drive, installed_geometry(drive, geometry)[0], hinge_friction=hinge)
+    static = static_state(drive, model, geometry)  # refused by a run it does not fit
     for i, x in enumerate(xs):
         if parameter == "damping_ratio":
-            t, y = tap_decay(with_damping_ratio(drive, float(x)), test, hinge_friction=hinge)
+            t, y = tap_decay(with_damping_ratio(drive, float(x)), test, hinge_friction=hinge,
+                             geometry=geometry, static=static)
         else:
-            t, y = tap_decay(drive, test, hinge_friction=float(x))
+            t, y = tap_decay(drive, test, hinge_friction=float(x), geometry=geometry,
+                             static=static)
         try:
             ratios[i], stds[i] = decay_of_signal(t, y, test)
         except ChainDriveError:  # the estimator reads no decay from this run: left out

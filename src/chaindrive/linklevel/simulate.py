@@ -62,8 +62,9 @@ if TYPE_CHECKING:
     from chaindrive.geometry.results import GeometryResult
     from chaindrive.model import Drive
 
-__all__ = ["COURANT", "InitialState", "default_step", "equilibrium_state",
-           "hinge_implicit", "hinge_regularisation", "initial_state", "simulate", "undamped"]
+__all__ = ["COURANT", "InitialState", "StaticState", "default_step", "equilibrium_state",
+           "hinge_implicit", "hinge_regularisation", "initial_state", "simulate",
+           "static_state", "undamped"]
 
 #: Fraction of the stability limit 2/ω_max taken as the step (module docstring).
 COURANT = 0.8
@@ -155,7 +156,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
              steady_window: float = 0.5, kick_rad_s: Sequence[float] | None = None,
              span_kick_m_s: tuple[int, float] | None = None,
              dynamics: DriveModel | None = None,
-             check_step: bool = False, implicit_links: bool = False) -> LinkLevelResult:
+             check_step: bool = False, implicit_links: bool = False,
+             static: StaticState | None = None) -> LinkLevelResult:
     """Simulate ``drive`` at the level of its links for ``duration_s`` seconds.
 
     Parameters
@@ -217,6 +219,11 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
         :func:`default_step`'s implicit step (at most twice the explicit one, less accurate:
         docs/linklevel.md §2); False (default) explicitly, at the step they allow. A
         clearance forces False.
+    static : StaticState or None
+        The assembled chain and its static state, solved once by :func:`static_state` for
+        runs that differ only in their dampers or hinge friction, which the static state
+        does not depend on (None: solved here). Refused unless it was solved for this
+        drive's installed contour and this run's model.
 
     Returns
     -------
@@ -226,7 +233,8 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     Raises
     ------
     DesignError
-        A duration or steady window out of range, or no power and no motor.
+        A duration or steady window out of range, no power and no motor, or a ``static``
+        solved for another drive or model.
 
     References
     ----------
@@ -257,7 +265,13 @@ def simulate(drive: Drive, duration_s: float = 1.0, *, geometry: GeometryResult 
     steps = max(1, math.ceil(duration_s / dt))
     rate = sample_rate_hz or 10.0 * max(model.reference_frequency_hz, 100.0)
     every = max(1, round(1.0 / (rate * dt)))
-    asm, eq = equilibrium_state(drive, geometry, model, default_step(model, False), take_up)
+    if static is None:
+        asm, eq = equilibrium_state(drive, geometry, model, default_step(model, False), take_up)
+    elif static.key != static_key(drive, geometry, model, take_up):
+        raise DesignError("static", "a static state solved for another drive, contour or "
+                          "model; allowed: static_state(...) of this run's drive and model")
+    else:
+        asm, eq = static.assembly, static.equilibrium
     state = _initial_state(model, asm, eq, geometry, omega, speed)
     _apply_kicks(state, model, geometry, kick_rad_s, span_kick_m_s)
     result = _run(drive, geometry, model, asm, eq, state, law, resistance, omega, dt, steps,
@@ -344,6 +358,87 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
     reference = next((k for k, sp in enumerate(geometry.spans)
                       if sp.start == drive.driver_index), 0)
     return asm, static_equilibrium(model, geometry, asm, reference, take_up)
+
+
+def static_key(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
+               take_up: str | None) -> tuple[object, ...]:
+    """What the static state of :func:`equilibrium_state` is solved from: the installed
+    contour, the driver, the take-up and every parameter of ``model`` the static balance
+    reads (:func:`chaindrive.linklevel.equilibrium.static_equilibrium`) — not the dampers
+    (link, contact, torsional) nor the hinge friction, which act only on motion (the static
+    balance, :func:`chaindrive.linklevel.kernel.static_forces`, is taken at zero speeds).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    geometry : GeometryResult
+        Its installed contour.
+    model : LinkLevelModel
+        The link-level model on it.
+    take_up : str or None
+        The sprocket that took up the slack (None: none).
+
+    Returns
+    -------
+    tuple
+        Equal for two runs exactly when their static states are the same solve.
+    """
+    arrays = (model.gravity, model.centres, model.teeth, model.pitch_radii,
+              model.seating_radii, model.seating_half_angles, model.tip_radii,
+              model.contact_stiffness)
+    return (geometry.pitch, geometry.links, geometry.sprockets, geometry.spans,
+            drive.driver_index, take_up, model.driver, model.torsional is None,
+            model.links, model.pitch, model.roller_mass, model.roller_radius,
+            model.link_stiffness, model.clearance, model.pretension,
+            *((a.dtype.str, a.shape, a.tobytes()) for a in arrays))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class StaticState:
+    """The chain assembled on a drive's installed contour and its static state, solved once
+    (:func:`static_state`) for :func:`simulate` runs that differ only in their dampers or
+    hinge friction.
+
+    Parameters
+    ----------
+    key : tuple
+        What it was solved from (:func:`static_key`).
+    assembly : Assembly
+        The assembled chain.
+    equilibrium : Equilibrium
+        Its static state.
+    """
+
+    key: tuple[object, ...]
+    assembly: Assembly
+    equilibrium: Equilibrium
+
+
+def static_state(drive: Drive, model: LinkLevelModel,
+                 geometry: GeometryResult | None = None) -> StaticState:
+    """The static state :func:`simulate` solves for ``drive`` with ``model``, to be passed
+    to runs of the same drive that differ only in their dampers or hinge friction.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    model : LinkLevelModel
+        Its link-level parameters (:func:`chaindrive.linklevel.model.build_model` on the
+        installed contour, as :func:`simulate` builds them: T₀ rests on it).
+    geometry : GeometryResult or None
+        Its contour (None: :func:`chaindrive.geometry.contour.contour_geometry`).
+
+    Returns
+    -------
+    StaticState
+        The assembled chain, its static state and what they were solved from.
+    """
+    installed, take_up = installed_geometry(drive, geometry or contour_geometry(drive))
+    model = replace(model, centres=np.array([[g.x, g.y] for g in installed.sprockets]))
+    asm, eq = equilibrium_state(drive, installed, model, default_step(model, False), take_up)
+    return StaticState(static_key(drive, installed, model, take_up), asm, eq)
 
 
 State = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
