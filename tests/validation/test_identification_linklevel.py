@@ -11,7 +11,7 @@ labelled the first elastic mode, and the whole-drive model's link stiffness fitt
 free decay gives the mode's damping ratio (logarithmic decrement [Inman2014, ch. 1]), to
 which the chain's damping ratio is fitted (``calibrate_damping_ratio``).
 
-Neither is recovered within its interval: the whole-drive fit of the stiffness lands 3.6 ×
+Neither is recovered within its interval: the whole-drive fit of the stiffness lands 3.8 ×
 the truth, its damping ratio fit a third of the links' (measured facts, tested as such).
 The link-level model's first mode along the chain rests on the pre-tension, not on
 the links' elasticity: by Rayleigh's quotient the sensitivity of its frequency to the link
@@ -80,6 +80,14 @@ K_SCALE = 0.5
 NOISE_SEED = 7
 #: Speed given to S3 at t = 0 [rad/s] (the tap).
 TAP = 1.0
+#: Records of the undamped tap read for its peak, and how much their taps differ [-]. With
+#: no dissipation the contacts make the run chaotic: two runs whose taps differ by 10⁻¹²
+#: part by 10⁻⁶ of S3's speed at 0.17 s and by a third of it within 2 s (measured; the
+#: damped run's stay within 10⁻⁵), so one record's most prominent peak is one sample: of 16
+#: records whose taps or static states differ at round-off, 14 peaked within 77.6–78.5 Hz and
+#: two at 80.3 and 84.5 Hz (docs/identification.md §4). The median of five is read.
+TAP_RECORDS = 5
+TAP_SPREAD = 1e-12
 #: Sample rate of the records [Hz] (the run records at the nearest whole number of steps).
 RATE = 4000.0
 #: The small tap of the records fitted with the link-level model [rad/s]: its run rings
@@ -110,11 +118,15 @@ def _s3_speed(drive: chaindrive.Drive, duration: float, *, damping: bool, tap: f
 @pytest.fixture(scope="module")
 def tap_record(seed: dict[str, Any]) -> dict[str, Any]:
     """2 s of the undamped tap test (no dissipation: a sharp peak), S3's speed with white
-    noise of a tenth of its RMS, its most prominent peak."""
-    _fs, t, w = _s3_speed(seed["true"], 2.0, damping=False)
-    x = w - w.mean()
-    x = x + 0.1 * float(np.std(x)) * np.random.default_rng(NOISE_SEED).standard_normal(x.size)
-    peak = record_peak(record_from_arrays("tap", t, {"speed_S3_rad_s": x}))
+    noise of a tenth of its RMS, its most prominent peak: of :data:`TAP_RECORDS` records
+    whose taps differ by :data:`TAP_SPREAD`, the one whose peak is the median."""
+    peaks = []
+    for k in range(TAP_RECORDS):
+        _fs, t, w = _s3_speed(seed["true"], 2.0, damping=False, tap=TAP * (1.0 + k * TAP_SPREAD))
+        x = w - w.mean()
+        x = x + 0.1 * float(np.std(x)) * np.random.default_rng(NOISE_SEED).standard_normal(x.size)
+        peaks.append(record_peak(record_from_arrays("tap", t, {"speed_S3_rad_s": x})))
+    peak = sorted(peaks, key=lambda p: p.frequency)[TAP_RECORDS // 2]
     return {"peak": peak, "std": peak.resolution / (2.0 * math.sqrt(3.0))}
 
 
@@ -172,7 +184,7 @@ def test_the_tap_record_rings_at_the_link_level_first_mode_along_the_chain(
 def test_the_whole_drive_calibration_misses_the_link_level_stiffness(
         seed: dict[str, Any], tap_record: dict[str, Any]) -> None:
     # a measured fact, not the requirement: the whole-drive model's first elastic mode (at
-    # the running tensions) is not the tap test's mode; its fit lands 3.65 × the truth and
+    # the running tensions) is not the tap test's mode; its fit lands 3.77 × the truth and
     # its interval lies wholly above it (docs/identification.md §4)
     m = MeasuredMode(1, tap_record["peak"].frequency, tap_record["std"])
     cal = calibrate_link_stiffness(seed["drive"], [m], initial=seed["k0"])

@@ -51,7 +51,8 @@ the driver — at T₀, in the unknowns x [m], R_s·θ_s [m] and the links' comm
    reference carrying the pull up to hydrostatic and polygon offsets) brings the reference
    link to T₀, each minimisation starting from the last.
 3. Newton's method on the full residual, bordered with the reference tension = T₀ in the
-   unknown ℓ₀ ([Dennis1996, §6.3], backtracking line search), polishes the last minimum to
+   unknown ℓ₀ ([Dennis1996, §6.3], backtracking line search; each step's Jacobian kept
+   sparse and factorised by SuperLU, not as a dense matrix), polishes the last minimum to
    the force tolerance: Φ's round-off (some 10⁻¹⁸ J against link energies of 10⁻⁵ J) stops
    the trust region near 10⁻⁵ N, where Newton converges quadratically.
 
@@ -517,11 +518,11 @@ class Balance:
         for _ in range(_NEWTON_STEPS):
             if worst <= tol:
                 break
-            J = self.jacobian(x, th, rest, r)
-            try:
-                du = np.linalg.solve(J, -r)
-            except np.linalg.LinAlgError:  # singular: the least-squares step
-                du = np.linalg.lstsq(J, -r, rcond=None)[0]
+            J = self.sparse_jacobian(x, th, rest, r)
+            try:  # sparse LU: each column holds its roller's and two neighbours' forces
+                du = splu(J).solve(-r)
+            except RuntimeError:  # singular: the least-squares step
+                du = np.linalg.lstsq(J.toarray(), -r, rcond=None)[0]
             norm0 = float(r @ r)
             step = 1.0
             for _ls in range(40):
