@@ -14,8 +14,10 @@ at the design's. The least squares is that of the whole-drive calibration
 (:func:`chaindrive.identification.fitting.fit_log_parameter`): θ = ln x, r_i = (f_model,i(θ) −
 f_i)/u_i, ``scipy.optimize.least_squares`` [Virtanen2020], cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
 [JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ), J a secant over ±10 % of x
-(:data:`LOG_STEP`); for k_link the model's frequency is interpolated through runs on a grid
-(:data:`GRID_POINTS`). With it the sensitivity d ln f/d ln x
+(:data:`LOG_STEP`; held between nearby iterates, taken at the fitted x for the covariance,
+:data:`~chaindrive.identification.fitting.SECANT_REUSE`); for k_link the model's
+frequency is interpolated through runs on a grid (:data:`GRID_POINTS`). With it the
+sensitivity d ln f/d ln x
 of each fitted frequency is reported (by Rayleigh's quotient, d ln f/d ln k = e/2, e the
 share of the mode's strain energy in the links [FoxKapoor1968]); a parameter whose 95 %
 interval spans more than a factor :data:`POORLY_IDENTIFIED_RATIO` is flagged as poorly
