@@ -313,10 +313,13 @@ def _calibrated(drive: Drive, measured: Sequence[MeasuredMode], parameter: Param
     def design(x: float) -> Drive:
         return with_chain(drive, **{parameter: x})
 
-    link_level_modes_along_chain(drive)  # the design as given: refused here, not mid-fit
+    # the design as given: refused here, not mid-fit; for the sag, with its sag (the one it
+    # states or the default it takes) written out, the run the fit starts from
+    start = link_level_modes_along_chain(design(x0) if parameter == "sag" else drive)
 
     def runs(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
-        return np.asarray(link_level_modes_along_chain(design(x))[modes], dtype=float)
+        found = start if x == x0 else link_level_modes_along_chain(design(x))
+        return np.asarray(found[modes], dtype=float)
 
     model = runs if parameter == "sag" else _stiffness_surrogate(design, bounds, modes)
 
