@@ -21,7 +21,8 @@ from scipy.optimize import least_squares
 
 from chaindrive.errors import DesignError
 
-__all__ = ["SECANT_REUSE", "Z95", "LogFit", "fit_log_parameter", "fit_log_parameters", "model_mode_indices"]
+__all__ = ["SECANT_REUSE", "XTOL", "Z95", "LogFit", "fit_log_parameter", "fit_log_parameters",
+           "model_mode_indices"]
 
 #: Two-sided 95 % point of the normal distribution [-].
 Z95 = 1.959963984540054
@@ -32,6 +33,9 @@ Z95 = 1.959963984540054
 #: and the slopes read the secant taken at the optimum. On the link-level sag fit of the
 #: seed drive this halves the model's runs (a record at 78.3 Hz: 28 to 12).
 SECANT_REUSE = 0.1
+#: ``least_squares``' ``xtol`` by default [-]: it stops once a step moves θ by less than
+#: xtol·(xtol + ‖θ‖).
+XTOL = 1e-10
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,7 +80,8 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
                        std: np.ndarray[Any, np.dtype[np.float64]], initial: Sequence[float], *,
                        upper: Sequence[float] | None = None,
                        lower: Sequence[float] | None = None,
-                       log_step: float | None = None) -> tuple[LogFit, ...]:
+                       log_step: float | None = None, xtol: float = XTOL
+                       ) -> tuple[LogFit, ...]:
     """Fit positive parameters x so a model's values match measured ones (module
     docstring): θ = ln x, r_i(θ) = (y_model,i(e^θ) − y_i)/u_i minimised by
     ``scipy.optimize.least_squares`` ([Virtanen2020]), cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
@@ -102,6 +107,9 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
         steps), held between iterates closer than :data:`SECANT_REUSE`·h and taken afresh
         at the optimum for the covariance; None: ``least_squares``' forward differences
         (relative step 1e-4).
+    xtol : float
+        ``least_squares``' ``xtol`` [-] (:data:`XTOL`; larger for a model that resolves θ
+        no finer).
 
     Returns
     -------
@@ -155,7 +163,7 @@ def fit_log_parameters(model: Callable[[np.ndarray[Any, np.dtype[np.float64]]],
 
     fit = least_squares(residuals, x0=x0, bounds=(lo, hi), method="trf",
                         jac="2-point" if log_step is None else secant,
-                        diff_step=np.full(n, 1e-4), x_scale=np.ones(n), xtol=1e-10,
+                        diff_step=np.full(n, 1e-4), x_scale=np.ones(n), xtol=xtol,
                         ftol=1e-10)
     theta = np.asarray(fit.x, dtype=float)
     if log_step is None:
@@ -182,7 +190,7 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
                       measured: np.ndarray[Any, np.dtype[np.float64]],
                       std: np.ndarray[Any, np.dtype[np.float64]], initial: float, *,
                       upper: float = math.inf, lower: float = 0.0,
-                      log_step: float | None = None) -> LogFit:
+                      log_step: float | None = None, xtol: float = XTOL) -> LogFit:
     """One positive parameter fitted by :func:`fit_log_parameters`.
 
     Parameters
@@ -201,6 +209,8 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
         x is kept above this bound (0: unbounded) [the parameter's unit].
     log_step : float | None
         Central-difference step in ln x of the Jacobian [-] (None: ``least_squares``' own).
+    xtol : float
+        ``least_squares``' ``xtol`` [-] (:func:`fit_log_parameters`).
 
     Returns
     -------
@@ -208,7 +218,8 @@ def fit_log_parameter(model: Callable[[float], np.ndarray[Any, np.dtype[np.float
     """
     return fit_log_parameters(lambda x: model(float(x[0])), measured, std, [initial],
                               upper=None if math.isinf(upper) else [upper],
-                              lower=None if lower <= 0.0 else [lower], log_step=log_step)[0]
+                              lower=None if lower <= 0.0 else [lower], log_step=log_step,
+                              xtol=xtol)[0]
 
 
 def model_mode_indices(modes: Sequence[int], n_model: int, option: str
