@@ -14,8 +14,10 @@ at the design's. The least squares is that of the whole-drive calibration
 (:func:`chaindrive.identification.fitting.fit_log_parameter`): θ = ln x, r_i = (f_model,i(θ) −
 f_i)/u_i, ``scipy.optimize.least_squares`` [Virtanen2020], cov θ = (JᵀJ)⁻¹ × max(1, χ²/ν)
 [JCGM100, §5.1], the 95 % interval exp(θ ± 1.96 σ_θ), J a secant over ±10 % of x
-(:data:`LOG_STEP`); for k_link the model's frequency is interpolated through runs on a grid
-(:data:`GRID_POINTS`). With it the sensitivity d ln f/d ln x
+(:data:`LOG_STEP`; held between nearby iterates, taken at the fitted x for the covariance,
+:data:`~chaindrive.identification.fitting.SECANT_REUSE`); for k_link the model's
+frequency is interpolated through runs on a grid (:data:`GRID_POINTS`). With it the
+sensitivity d ln f/d ln x
 of each fitted frequency is reported (by Rayleigh's quotient, d ln f/d ln k = e/2, e the
 share of the mode's strain energy in the links [FoxKapoor1968]); a parameter whose 95 %
 interval spans more than a factor :data:`POORLY_IDENTIFIED_RATIO` is flagged as poorly
@@ -41,7 +43,7 @@ from chaindrive.identification.calibration import (
     verdict_changes,
     with_chain,
 )
-from chaindrive.identification.fitting import fit_log_parameter
+from chaindrive.identification.fitting import XTOL, fit_log_parameter
 
 if TYPE_CHECKING:
     from chaindrive.analysis import Analysis
@@ -49,7 +51,7 @@ if TYPE_CHECKING:
 
 __all__ = ["GRID_POINTS", "LINK_STIFFNESS_RANGE", "LOG_STEP", "OTHER_STATE",
            "POORLY_IDENTIFIED_RATIO",
-           "SAG_RANGE", "LinkLevelCalibration",
+           "SAG_RANGE", "SAG_XTOL", "LinkLevelCalibration",
            "LinkLevelDesign", "calibrate_link_level", "calibrated_design_link_level",
            "link_level_modes_along_chain"]
 
@@ -78,6 +80,12 @@ GRID_POINTS = 9
 #: A grid run whose ln f lies farther than this from the grid's median is another static
 #: state and left out [-] (f moves by under 5 % over the whole range of k_link).
 OTHER_STATE = 0.1
+#: The sag fit stops once a step moves θ = ln s by less than this times |θ| (``least_squares``'
+#: ``xtol``) [-]: the model resolves the sag only to about 2e-8 of itself (its frequency
+#: scatters by 3e-9 of itself about its trend in s, the static state being solved to a
+#: tolerance, docs/identification.md), and at the default 1e-10 the iterations go on
+#: dithering in that scatter (on the seed drive, a record at 80 Hz: 6 of 17 runs).
+SAG_XTOL = 1e-8
 #: The fitted sag is kept within the design file's range of ``[chain] sag`` [-].
 SAG_RANGE = (0.001, 0.1)
 
@@ -311,15 +319,19 @@ def _calibrated(drive: Drive, measured: Sequence[MeasuredMode], parameter: Param
     def design(x: float) -> Drive:
         return with_chain(drive, **{parameter: x})
 
-    link_level_modes_along_chain(drive)  # the design as given: refused here, not mid-fit
+    # the design as given: refused here, not mid-fit; for the sag, with its sag (the one it
+    # states or the default it takes) written out, the run the fit starts from
+    start = link_level_modes_along_chain(design(x0) if parameter == "sag" else drive)
 
     def runs(x: float) -> np.ndarray[Any, np.dtype[np.float64]]:
-        return np.asarray(link_level_modes_along_chain(design(x))[modes], dtype=float)
+        found = start if x == x0 else link_level_modes_along_chain(design(x))
+        return np.asarray(found[modes], dtype=float)
 
     model = runs if parameter == "sag" else _stiffness_surrogate(design, bounds, modes)
 
     fit = fit_log_parameter(model, f, u, x0, lower=bounds[0], upper=bounds[1],
-                            log_step=LOG_STEP)
+                            log_step=LOG_STEP,
+                            xtol=SAG_XTOL if parameter == "sag" else XTOL)
     fitted = design(fit.value)
     geometry, _ = installed_geometry(fitted, contour_geometry(fitted))
     pretension = float(build_model(fitted, geometry).pretension)

@@ -15,7 +15,8 @@ slack that no take-up removes), and the misfit is returned.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from bisect import bisect_right
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -38,6 +39,15 @@ class _Path:
     starts: NDArray[np.float64]  # (P,) start parameter
     lengths: NDArray[np.float64]
     data: NDArray[np.float64]  # (P, 5): arc cx, cy, R, a0, sense | seg x0, y0, ux, uy, 0
+    # the same numbers as Python floats, for the scalar walk of :meth:`point` (which runs
+    # some 50 times per roller): the same arithmetic without NumPy's per-call overhead
+    _starts: tuple[float, ...] = field(init=False, repr=False, compare=False)
+    _rows: tuple[tuple[float, ...], ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_starts", tuple(float(v) for v in self.starts))
+        object.__setattr__(self, "_rows", tuple(tuple(float(v) for v in row)
+                                                for row in self.data))
 
     @property
     def total(self) -> float:
@@ -46,10 +56,9 @@ class _Path:
 
     def point(self, s: float) -> tuple[float, float]:
         """Point at parameter s [m]."""
-        k = int(np.searchsorted(self.starts, s, side="right")) - 1
-        k = min(max(k, 0), len(self.kinds) - 1)
-        d = self.data[k]
-        u = s - float(self.starts[k])
+        k = min(max(bisect_right(self._starts, s) - 1, 0), len(self.kinds) - 1)
+        d = self._rows[k]
+        u = s - self._starts[k]
         if self.kinds[k] == 0:
             a = d[3] + d[4] * u / d[2]
             return d[0] + d[2] * math.cos(a), d[1] + d[2] * math.sin(a)
