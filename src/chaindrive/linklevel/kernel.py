@@ -964,9 +964,9 @@ def potential_energy(x: Any, u: Any, th: Any, rest: float, k: float, clear: floa
 
 def compiled() -> bool:
     """Whether the kernel's compiled code is in numba's cache, so that a run starts at once;
-    False when the first run will compile it (about 15 s on an idle core of the project
-    machine — 17.6 s for a 0.05 s seed run against 1.3 s with the cache, load average 3 —
-    and minutes on a busy one). Read from the cache index numba keeps beside this module (or under
+    False when the first run will compile it (about 8 s on an idle core of the project
+    machine — 8.3 s for a 0.01 s seed run against 0.33 s with the cache — and minutes on a
+    busy one). Read from the cache index numba keeps beside this module (or under
     ``NUMBA_CACHE_DIR``); where numba's cache cannot be inspected, False (a message too many
     rather than a silent wait).
 
