@@ -230,7 +230,7 @@ def _simulate_links(file: Path, output: Path, duration: str | None, as_json: boo
     from chaindrive.linklevel import DURATION, checked_duration, kernel_compiled
 
     what = ("link-level run" if kernel_compiled() else
-            "link-level run (the first compiles the model: ≈ 15 s idle)")
+            "link-level run (the first compiles the model: ≈ 8 s idle)")
     # the link-level kernel runs in one call: the elapsed time, no estimate
     with user_errors(), progress_bar(what, quiet=as_json):
         # the example a message shows lies within the option's range (Field.example_text)
