@@ -298,17 +298,25 @@ def _above_the_fold(pg: Page, height: int) -> None:
         assert box is not None and box["y"] >= 0 and box["y"] + box["height"] <= height, box
 
 
+def _resize(pg: Page, width: int, height: int) -> None:
+    """Resize the window of ``pg`` as a person would, then wait until the page has laid
+    itself out at the new size (the window reports it, and two frames are drawn: the
+    resize observers of the page's elements run before the first of them)."""
+    pg.set_viewport_size({"width": width, "height": height})
+    pg.wait_for_function("([w, h]) => window.innerWidth === w && window.innerHeight === h",
+                         arg=[width, height])
+    pg.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+
+
 def test_24_sprockets_fold_reset_and_edit_time(browser: Any, app_url: str) -> None:
     """At 1400×900 and 1024×768 the contour and the verdict of the 24-sprocket example are
     above the fold; loading a file resets the edit form and the deltas; each timed edit
-    shows the results of its own design."""
-    small = _page(browser, app_url, 1024, 768)
-    pg = next(small)
-    try:
-        _load_example(pg, BIG)
-        _above_the_fold(pg, 768)
-    finally:
-        small.close()
+    shows the results of its own design.
+
+    One session serves both sizes: the window is made 1024×768 once the example is shown at
+    1400×900, as a person would resize it, and 1400×900 again for the timed edits. (A session
+    of its own at 1024×768 ran the page's first run and loaded the example again: 4.5 s of
+    the test's 14.5 s.)"""
     big = _page(browser, app_url, 1400, 900)
     pg = next(big)
     try:
@@ -318,6 +326,9 @@ def test_24_sprockets_fold_reset_and_edit_time(browser: Any, app_url: str) -> No
         _above_the_fold(pg, 900)
         expect(pg.get_by_role("combobox", name="Sprocket to edit")).to_have_value("row 1: S1")
         expect(pg.get_by_test_id("stMetricDelta")).to_have_count(0)  # not against the seed
+        _resize(pg, 1024, 768)
+        _above_the_fold(pg, 768)
+        _resize(pg, 1400, 900)
         times = _time_edits(pg, timed=bool(os.environ.get("CHAINDRIVE_BENCH_OUT")))
     finally:
         big.close()
