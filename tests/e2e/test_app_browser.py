@@ -4,7 +4,8 @@ Playwright for Python drives Debian's Chromium (``apt-get install -y chromium``;
 own browser download cannot reach its servers from these machines). The page is started
 on a free 127.0.0.1 port in a subprocess (headless, no usage statistics) and always stopped
 again (fixture finalizer); the server and the browser are shared with the other browser
-tests of the test process (tests/e2e/conftest.py), and each test opens its own session.
+tests of the test process (tests/e2e/conftest.py), and each test opens its own session
+(a tab of its own).
 Every wait is on something the page shows — its ready marker (written last in a run), its
 results marker (written right after the contour, the headline numbers and the verdict), the
 values on screen — never a fixed sleep; every number is checked against ``chaindrive.analyze``
@@ -42,7 +43,7 @@ import chaindrive
 from chaindrive.display import fmt
 from chaindrive.errors import ChainDriveError
 from chaindrive.io.design import drive_from_mapping
-from tests.e2e.conftest import CHROMIUM
+from tests.e2e.conftest import CHROMIUM, new_tab
 
 pytestmark = pytest.mark.concurrency  # a web server and a browser
 
@@ -79,19 +80,17 @@ except ImportError:
 # --- a page of its own on the shared server and browser (tests/e2e/conftest.py) -----------------
 
 def _page(browser: Any, app_url: str, width: int, height: int) -> Iterator[Page]:
-    """A page of its own (a new browser context: a new session of the app, so a repeated
-    test never starts from the state the previous one left), after its first complete run."""
-    context = browser.new_context(viewport={"width": width, "height": height},
-                                  accept_downloads=True)
+    """A page of its own (a new tab: a new session of the app, so a repeated test never
+    starts from the state the previous one left), after its first complete run."""
+    pg = new_tab(browser, width, height)
     try:
-        pg = context.new_page()
         pg.set_default_timeout(STEP_MS)
         expect.set_options(timeout=STEP_MS)
         pg.goto(app_url)
         _ready(pg, timeout=FIRST_MS)
         yield pg
     finally:
-        context.close()
+        pg.close()
 
 
 @pytest.fixture
