@@ -8,12 +8,15 @@ them is most of what a small browser test costs: the server imports the page, st
 fork server of preloaded workers and analyses the seed example for its first session, and
 Chromium starts its browser, GPU and network processes.
 
-Nothing a test does carries over to the next: every test opens its own browser context (a
-new session of the page, with its own widgets, uploads and results) and closes it. What the
-sessions share is what the sessions of a deployed page share too — the server's store of
-finished screens, keyed by the design (a design shown twice is the same screen), and its
-warm worker processes, which give every design its own results
-(tests/e2e/test_app_warm_workers.py).
+Nothing a test does carries over to the next: every test opens its own page (a tab: a new
+session of the page, with its own widgets, uploads and results, as each Streamlit session is
+one connection of one tab) and closes it. The tabs are those of one browser context, as a
+person opens the page in several tabs of a browser: they share the browser's cache of the
+page's scripts and styles (in a context of its own a tab fetched and compiled them again,
+0.5 to 1 s of each test's first run of the page). What the sessions share is what the
+sessions of a deployed page share too — the server's store of finished screens, keyed by
+the design (a design shown twice is the same screen), and its warm worker processes, which
+give every design its own results (tests/e2e/test_app_warm_workers.py).
 
 Chromium and Playwright are imported only when a test asks for the browser; the test files
 skip themselves (with the reason) when either is missing.
@@ -99,12 +102,23 @@ def app_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
 
 @pytest.fixture(scope="session")
 def browser(app_url: str) -> Iterator[Any]:
-    """Chromium, for this test process (each test opens its own context on it)."""
+    """Chromium's browser context for this test process (each test opens its own page in
+    it, :func:`new_tab`; downloads accepted)."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as pw:
         chromium = pw.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
         try:
-            yield chromium
+            context = chromium.new_context(accept_downloads=True)
+            yield context
         finally:
             chromium.close()
+
+
+def new_tab(browser: Any, width: int, height: int) -> Any:
+    """A new page (tab) of ``browser`` (the :func:`browser` fixture's context) with a
+    window of ``width`` × ``height`` pixels, before it opens any address; close it with
+    ``page.close()``."""
+    page = browser.new_page()
+    page.set_viewport_size({"width": width, "height": height})
+    return page

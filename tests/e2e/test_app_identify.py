@@ -29,7 +29,7 @@ def test_a_record_dropped_on_the_page_is_identified(browser: Any, app_url: str) 
     analysis = chaindrive.analyze(chaindrive.load(EXAMPLES / "seed_three_sprocket.toml"),
                                   response=False)
     doc = identify_record(read_record(RECORD), analysis).to_dict()
-    context, pg = _session(browser, app_url)
+    pg = _session(browser, app_url)
     try:
         view = pg.get_by_test_id("stExpander").filter(has_text="Identify a measured record")
         view.get_by_text("Identify a measured record").click()
@@ -41,4 +41,4 @@ def test_a_record_dropped_on_the_page_is_identified(browser: Any, app_url: str) 
         expect(images).to_have_count(2)                  # the spectrum and the Campbell
         expect(pg.get_by_test_id("stException")).to_have_count(0)
     finally:
-        context.close()
+        pg.close()

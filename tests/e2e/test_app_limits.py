@@ -20,7 +20,7 @@ from typing import Any
 import pytest
 
 from tests.conftest import EXAMPLES
-from tests.e2e.conftest import CHROMIUM
+from tests.e2e.conftest import CHROMIUM, new_tab
 from tests.e2e.conftest import healthy as _healthy
 
 pytestmark = pytest.mark.concurrency  # a web server and a browser
@@ -39,16 +39,16 @@ except ImportError:
                 allow_module_level=True)
 
 
-def _session(browser: Any, url: str) -> tuple[Any, Page]:
-    """A new browser context (a session of its own) on the page, after its first run."""
-    context = browser.new_context(viewport={"width": 1500, "height": 1400})
-    pg = context.new_page()
+def _session(browser: Any, url: str) -> Page:
+    """A new tab (a session of its own) on the page, after its first run; close it with
+    ``close()``."""
+    pg = new_tab(browser, 1500, 1400)
     pg.set_default_timeout(STEP_MS)
     expect.set_options(timeout=STEP_MS)
     pg.goto(url)
     expect(pg.locator("#chaindrive-ready")).to_have_attribute("data-state", "ok",
                                                               timeout=FIRST_MS)
-    return context, pg
+    return pg
 
 
 def _upload(pg: Page, path: Path, state: str) -> None:
@@ -85,7 +85,7 @@ def test_a_heavy_run_does_not_stall_another_session(browser: Any, app_url: str,
     heavy = tmp_path / "heavy.toml"
     heavy.write_text((EXAMPLES / "eight_sprocket.toml").read_text(encoding="utf-8")
                      + '\n[dynamics]\nstartup_duration = "30 s"\n', encoding="utf-8")
-    a_context, a = _session(browser, app_url)
+    a = _session(browser, app_url)
     try:
         _upload(a, heavy, "ok")
         a.get_by_role("tab", name="Start-up").click()
@@ -93,16 +93,16 @@ def test_a_heavy_run_does_not_stall_another_session(browser: Any, app_url: str,
         expect(a.get_by_text("Start-up: running the dynamic analysis")
                .or_(a.get_by_text("Start-up: done"))).to_be_visible()
         assert _healthy(app_url, timeout=10.0)  # the server answers meanwhile
-        b_context, b = _session(browser, app_url)  # another user: a full first run
+        b = _session(browser, app_url)  # another user: a full first run
         try:
             b.get_by_role("tab", name="Modes & Campbell").click()
             expect(b.get_by_test_id("stImage").first).to_be_visible()
         finally:
-            b_context.close()
+            b.close()
         expect(a.get_by_text("Start-up: done")).to_be_visible(timeout=120_000)
         expect(a.get_by_test_id("stException")).to_have_count(0)
     finally:
-        a_context.close()
+        a.close()
 
 
 def test_an_implausible_inertia_is_one_line_on_the_page(browser: Any, app_url: str,
@@ -111,20 +111,20 @@ def test_an_implausible_inertia_is_one_line_on_the_page(browser: Any, app_url: s
     design.write_text((EXAMPLES / "two_sprocket_jindal.toml").read_text(encoding="utf-8")
                       .replace('role = "driven"', 'role = "driven"\ninertia = "1e-10 kg*m^2"'),
                       encoding="utf-8")
-    context, pg = _session(browser, app_url)
+    pg = _session(browser, app_url)
     try:
         _upload(pg, design, "error")
         expect(pg.get_by_text("inertia: must be an inertia", exact=False).first).to_be_visible()
         expect(pg.get_by_test_id("stException")).to_have_count(0)
     finally:
-        context.close()
+        pg.close()
 
 
 def test_a_server_file_is_never_read_as_a_catalogue(browser: Any, app_url: str,
                                                    tmp_path: Path) -> None:
     secret = tmp_path / "secret.csv"
     secret.write_text("TOPSECRET_HEADER,pitch_mm\n", encoding="utf-8")
-    context, pg = _session(browser, app_url)
+    pg = _session(browser, app_url)
     try:
         for k, name in enumerate((str(secret), "../" * 10 + str(secret).lstrip("/"))):
             design = tmp_path / f"traversal{k}.toml"
@@ -137,4 +137,4 @@ def test_a_server_file_is_never_read_as_a_catalogue(browser: Any, app_url: str,
                    ).to_be_visible()
             assert "TOPSECRET" not in pg.content()
     finally:
-        context.close()
+        pg.close()

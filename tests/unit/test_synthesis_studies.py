@@ -229,6 +229,12 @@ def test_one_cluster_serves_every_generation(tmp_path, monkeypatch) -> None:
         assert len(started) == 1 and evaluator.client.status == "running"
     assert evaluator._client is None  # closed with the evaluator
     assert result.evaluations >= 12
+    # the same search again: every population is stored, so no cluster is started
+    with studies.DaskEvaluator(db=url, study="one") as evaluator:
+        again = solve(_small_problem(), population=4, generations=3, seed=2,
+                      evaluator=evaluator)
+    assert len(started) == 1 and evaluator._client is None
+    assert [p.objectives for p in again.pareto] == [p.objectives for p in result.pareto]
 
 
 def test_a_study_survives_workers_lost_at_any_time(tmp_path, monkeypatch) -> None:

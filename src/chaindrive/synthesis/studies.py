@@ -550,6 +550,25 @@ def _workers(client: Client) -> int:
         return 0
 
 
+#: Longest wait for a finished future before the workers are counted again [s].
+WORKERS_CHECK_SECONDS = 0.2
+
+
+def _wait_ready(pending: Any, seconds: float) -> None:
+    """Return as soon as a future of ``pending`` (a ``distributed.as_completed``) is ready,
+    or after ``seconds``. It waits on the condition that ``as_completed`` notifies when it
+    queues a finished future (checked under its lock: a notification is never missed); a
+    fixed sleep made each generation of a study wait a fraction of those seconds after its
+    last future finished."""
+    condition = getattr(pending, "thread_condition", None)
+    if condition is None:  # not a distributed.as_completed: poll
+        time.sleep(seconds)
+        return
+    with condition:
+        if not pending.has_ready():
+            condition.wait(timeout=seconds)
+
+
 def _batches(client: Client, pending: Any, lost_after: float) -> Iterable[list[Any]]:
     """The finished futures of ``pending`` as they arrive; :class:`LostWorkersError` when the
     cluster has had no worker for ``lost_after`` seconds (Dask would wait for ever)."""
@@ -566,7 +585,7 @@ def _batches(client: Client, pending: Any, lost_after: float) -> Iterable[list[A
             alone_since = now
         elif now - alone_since >= lost_after:
             raise LostWorkersError(lost_after)
-        time.sleep(0.2)
+        _wait_ready(pending, WORKERS_CHECK_SECONDS)
 
 
 class LostWorkersError(ChainDriveError):
@@ -638,9 +657,10 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
               client: Client | None = None, n_workers: int | None = None,
               progress: bool | None = None, chunk: int | None = None,
               lost_after: float | None = None,
-              on_stored: Callable[[int], None] | None = None) -> StudyResult:
+              on_stored: Callable[[int], None] | None = None,
+              connect: Callable[[], Client] | None = None) -> StudyResult:
     """Evaluate ``func`` on every input through Dask, storing each result once. Inputs whose
-    key is stored are not recomputed.
+    key is stored are not recomputed (and when every one is, no cluster is asked for).
 
     Parameters
     ----------
@@ -669,6 +689,9 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
     on_stored : callable | None
         Called with the number of evaluations each time a batch of them is stored (a
         progress bar of the caller's; the evaluations found stored are not counted).
+    connect : callable | None
+        Returns an existing client (left open), called only when an evaluation is not
+        stored yet; used when ``client`` is None.
 
     Returns
     -------
@@ -684,6 +707,8 @@ def run_study(func: StudyFunction, inputs: Sequence[Mapping[str, Any]], *, study
             todo.setdefault(k, x)
     computed = 0
     if todo:
+        if client is None and connect is not None:
+            client = connect()
         own = client is None
         cluster: LocalCluster | None = None
         watchdog: _Watchdog | None = None
@@ -898,9 +923,9 @@ class DaskEvaluator:
     hash>``), so a rerun with the same seed resumes from the database.
 
     The cluster (a LocalCluster unless ``scheduler`` or ``client`` is given) starts with the
-    first population and serves every generation; :meth:`close` (or leaving a ``with``
-    block) shuts it down. A worker lost at any time costs only the chunk it was running,
-    which runs again (:func:`run_study`).
+    first population that has an evaluation not stored yet and serves every generation;
+    :meth:`close` (or leaving a ``with`` block) shuts it down. A worker lost at any time
+    costs only the chunk it was running, which runs again (:func:`run_study`).
 
     Parameters
     ----------
@@ -957,9 +982,11 @@ class DaskEvaluator:
         fp = problem_fingerprint(problem)
         name = self.study or f"optimize-{fp}"
         wrapped = [_VectorInput(problem, [float(v) for v in x], fp) for x in xs]
+        # the cluster starts with the first population not all stored (a rerun of a study
+        # whose evaluations are all stored starts none)
         res = run_study(_evaluate_vector, wrapped, study=name, db=self.store,
-                        client=self.client, progress=self.progress, lost_after=self.lost_after,
-                        on_stored=self.on_stored)
+                        connect=lambda: self.client, progress=self.progress,
+                        lost_after=self.lost_after, on_stored=self.on_stored)
         out = []
         for r in res.results:
             e = r["evaluation"]
