@@ -9,6 +9,7 @@ complete or absent, never half-written.
 
 from __future__ import annotations
 
+import functools
 import json
 import re
 import sys
@@ -1045,6 +1046,20 @@ def check_toml_target(path: Path | None) -> None:
         raise DesignError("--write-calibrated", f"{str(path)!r}: allowed: a .toml file")
 
 
+@functools.cache
+def _click_command() -> Any:
+    """The click command of :data:`app`, built once per process: typer builds it anew from
+    the commands' signatures and type hints on every call (about 20 ms), and a caller that
+    runs several command lines in one process (:func:`run` in a loop) needs it once.
+
+    Returns
+    -------
+    click.Command
+        The group of every ``chaindrive`` command.
+    """
+    return typer.main.get_command(app)
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 
@@ -1060,7 +1075,7 @@ def run(argv: list[str] | None = None) -> int:
         number after SIGINT or SIGTERM.
     """
     args = list(sys.argv[1:] if argv is None else argv)
-    command: Any = typer.main.get_command(app)
+    command: Any = _click_command()
 
     def invoke() -> object:
         limit_blas_threads()  # one BLAS thread unless asked (chaindrive.cli.threads)
