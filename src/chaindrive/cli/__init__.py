@@ -95,9 +95,22 @@ def _fmt(value: Any) -> str:
 
 def _write_json(document: dict[str, Any]) -> None:
     """Print one JSON document; a NaN or infinity in it is a computation that did not
-    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path."""
-    check_document(document)
-    sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path.
+
+    The encoder refuses a NaN or infinity itself (``allow_nan=False``), so the document is
+    walked for the path of one (:func:`~chaindrive.io.finite.check_document`) only when the
+    encoder refused it: a finite document is walked once, not twice."""
+    def encoded() -> str:
+        return json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False)
+
+    try:
+        text = encoded()
+    except (ValueError, TypeError):  # walked outside the handler: no chained traceback
+        text = None
+    if text is None:
+        check_document(document)  # names the non-finite number, as before the encoder
+        text = encoded()  # refused for another reason: the encoder's own error
+    sys.stdout.write(text + "\n")
 
 
 def _say_written(what: str, path: Path, as_json: bool) -> None:
