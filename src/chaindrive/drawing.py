@@ -228,14 +228,27 @@ class _Sheet:
     boxes: list[Box] = field(default_factory=list)
     discs: list[Disc] = field(default_factory=list)
     lines: list[Segment] = field(default_factory=list)
+    #: The three lists as (N, 4), (N, 3) and (N, 4) arrays with the lengths they were made
+    #: at: the lists only grow, so equal lengths are equal contents.
+    _arrays: tuple[tuple[int, int, int], tuple[NDArray[np.float64], NDArray[np.float64],
+                   NDArray[np.float64]]] | None = field(default=None, repr=False, compare=False)
+
+    def _as_arrays(self) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                  NDArray[np.float64]]:
+        """The boxes, discs and lines as arrays, made again only after one was added (a
+        layout asks the cost of a hundred places of each text against the same sheet)."""
+        sizes = (len(self.boxes), len(self.discs), len(self.lines))
+        if self._arrays is None or self._arrays[0] != sizes:
+            self._arrays = sizes, (np.asarray(self.boxes, dtype=float).reshape(-1, 4),
+                                   np.asarray(self.discs, dtype=float).reshape(-1, 3),
+                                   np.asarray(self.lines, dtype=float).reshape(-1, 4))
+        return self._arrays[1]
 
     def cost(self, boxes: Sequence[Box] = (), lines: Sequence[Segment] = ()) -> int:
         """How much new text ``boxes`` and ``lines`` meet: 100 for a text over a text, a
         table or a sprocket, 10 for a text across a line or a line across a text or a
         sprocket, 2 for a line across a line."""
-        b = np.asarray(self.boxes, dtype=float).reshape(-1, 4)
-        d = np.asarray(self.discs, dtype=float).reshape(-1, 3)
-        seg = np.asarray(self.lines, dtype=float).reshape(-1, 4)
+        b, d, seg = self._as_arrays()
         cost = 0
         for box in boxes:
             g = _grow(box, self.gap)
@@ -731,21 +744,24 @@ def tooth_form_lines(profile: SprocketProfile) -> list[str]:
             "maximum form (ri max, re min, α min)."]
 
 
-def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float
-                    ) -> _Arrangements:
+def _sprocket_sheet(msp: Modelspace, analysis: Analysis, index: int, h: float,
+                    outline: bool = True) -> _Arrangements:
     """The drawing of sprocket ``index`` with its centre at the origin: the face view with
     its diameters and the keyway (and a polymeric body's circles), the axial section A–A to
     its right (the metal or polymeric body, :func:`_axial_section`); the notes, drawn last,
     go below both (or to their right) as the returned :class:`_Arrangements` is told, which
-    gives both boxes [mm] first."""
+    gives both boxes [mm] first. ``outline`` False leaves out the toothed outline, which no
+    box depends on (a scale tried only for its boxes; the outline is most of a sheet's
+    points)."""
     from ezdxf import bbox
 
     g = analysis.geometry.sprockets[index]
     profile = analysis.profiles[index]
     w = analysis.workshop(index)
     origin = (0.0, 0.0)
-    pts = outline_mm(profile)
-    msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
+    if outline:
+        pts = outline_mm(profile)
+        msp.add_lwpolyline(pts.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
     ra, root = _tip_and_root(profile)
     bore = w.bore * MM
     hub = w.hub_diameter * MM
@@ -1215,8 +1231,8 @@ _Build = Callable[["Modelspace", float], _Arrangements]
 
 
 def _on_sheet(build: _Build, least: Callable[[float], tuple[Box, Box]], size: float,
-              sheets: tuple[str, ...], text: float = PAPER_TEXT
-              ) -> tuple[str, int, bool, _Arrangements]:
+              sheets: tuple[str, ...], text: float = PAPER_TEXT, *,
+              canvas: Modelspace | None = None) -> tuple[str, int, bool, _Arrangements]:
     """The sheet, scale and arrangement of a drawing made by ``build(msp, text height)``:
     from the largest ISO 5455 scale at which an object of ``size`` [mm] could fit the
     largest sheet, the first scale, then the first sheet, then the first arrangement (notes
@@ -1224,20 +1240,22 @@ def _on_sheet(build: _Build, least: Callable[[float], tuple[Box, Box]], size: fl
     fits (:func:`chaindrive.geometry.workshop.sheet_and_scale`); with the drawing at that
     scale, made on a new document, its last part not yet drawn. One drawing per scale tried
     gives the boxes of both arrangements; a scale at which ``least(text height)``, boxes
-    the drawing takes at least each way, fits no sheet is passed over without drawing."""
+    the drawing takes at least each way, fits no sheet is passed over without drawing.
+    With ``canvas`` every scale tried is drawn on it instead of on a new document (for a
+    caller that only reads the boxes and draws the chosen scale itself)."""
     room = max(ISO5457_SHEETS[sheets[-1]]) - 2 * SHEET_MARGIN - BORDER_LEFT - BORDER
     for n in ISO5455_SCALES:
         if size / n > room or not any(_fits(_grow(b, -1e-6), sheet, n)
                                       for b in least(text * n) for sheet in sheets):
             continue
-        made = build(_new_document().modelspace(), text * n)
+        made = build(_new_document().modelspace() if canvas is None else canvas, text * n)
         boxes = (made.box(False), made.box(True))
         for sheet in sheets:
             for right in (False, True):
                 if _fits(boxes[right], sheet, n):
                     return sheet, n, right, made
     if sheets[-1] != "A0":
-        return _on_sheet(build, least, size, ("A2", "A1", "A0"), text)
+        return _on_sheet(build, least, size, ("A2", "A1", "A0"), text, canvas=canvas)
     raise DesignError("drawing", "does not fit A0 at 1:1000")
 
 
@@ -1262,15 +1280,18 @@ def _common_values() -> dict[str, str]:
             "date": _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d"), "revision": "A  1/1"}
 
 
-def _place_sprocket(analysis: Analysis, index: int, msp: Modelspace | None = None
-                    ) -> tuple[Modelspace, Box, str, int]:
+def _place_sprocket(analysis: Analysis, index: int, msp: Modelspace | None = None,
+                    scratch: Modelspace | None = None) -> tuple[Modelspace, Box, str, int]:
     """The framed drawing of sprocket ``index`` on its sheet, drawn on ``msp`` or (None) on
     the new document its sheet and scale were chosen with; returns the modelspace drawn on,
-    the sheet's box, the sheet and 1:N."""
+    the sheet's box, the sheet and 1:N. With ``msp`` given, the scales are tried on
+    ``scratch`` (a modelspace whose drawing is thrown away; None: a new document per scale
+    tried), only their boxes read."""
     tip = analysis.geometry.sprockets[index].tip_diameter * MM
-    sheet, n, right, made = _on_sheet(lambda m, h: _sprocket_sheet(m, analysis, index, h),
-                                      lambda h: _sprocket_least(analysis, index, h),
-                                      1.6 * tip, ("A4", "A3"))
+    canvas = scratch if msp is not None else None  # the tries on it give only boxes
+    sheet, n, right, made = _on_sheet(
+        lambda m, h: _sprocket_sheet(m, analysis, index, h, outline=canvas is None),
+        lambda h: _sprocket_least(analysis, index, h), 1.6 * tip, ("A4", "A3"), canvas=canvas)
     if msp is not None:
         made = _sprocket_sheet(msp, analysis, index, PAPER_TEXT * n)
     box = made.finish(right)
@@ -1353,9 +1374,12 @@ def drawing_document(analysis: Analysis) -> Drawing:
     """
     msp, layout, _, _ = _place_layout(analysis)
     x = layout[2] + 20.0
+    # each sprocket's scales are tried on one scratch document, not a new one per scale
+    # tried (the tries are read for their boxes only; the sheet is then drawn on msp)
+    scratch = _new_document().modelspace()
     for i in range(len(analysis.geometry.sprockets)):
         start = len(msp)
-        _, box, _, _ = _place_sprocket(analysis, i, msp)
+        _, box, _, _ = _place_sprocket(analysis, i, msp, scratch)
         dx, dy = x - box[0], layout[3] - box[3]
         for e in list(msp)[start:]:
             e.translate(dx, dy, 0.0)

@@ -9,6 +9,7 @@ complete or absent, never half-written.
 
 from __future__ import annotations
 
+import functools
 import json
 import re
 import sys
@@ -94,9 +95,22 @@ def _fmt(value: Any) -> str:
 
 def _write_json(document: dict[str, Any]) -> None:
     """Print one JSON document; a NaN or infinity in it is a computation that did not
-    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path."""
-    check_document(document)
-    sys.stdout.write(json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+    converge (:class:`~chaindrive.io.finite.NonFiniteError`), named by its path.
+
+    The encoder refuses a NaN or infinity itself (``allow_nan=False``), so the document is
+    walked for the path of one (:func:`~chaindrive.io.finite.check_document`) only when the
+    encoder refused it: a finite document is walked once, not twice."""
+    def encoded() -> str:
+        return json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False)
+
+    try:
+        text = encoded()
+    except (ValueError, TypeError):  # walked outside the handler: no chained traceback
+        text = None
+    if text is None:
+        check_document(document)  # names the non-finite number, as before the encoder
+        text = encoded()  # refused for another reason: the encoder's own error
+    sys.stdout.write(text + "\n")
 
 
 def _say_written(what: str, path: Path, as_json: bool) -> None:
@@ -1045,6 +1059,20 @@ def check_toml_target(path: Path | None) -> None:
         raise DesignError("--write-calibrated", f"{str(path)!r}: allowed: a .toml file")
 
 
+@functools.cache
+def _click_command() -> Any:
+    """The click command of :data:`app`, built once per process: typer builds it anew from
+    the commands' signatures and type hints on every call (about 20 ms), and a caller that
+    runs several command lines in one process (:func:`run` in a loop) needs it once.
+
+    Returns
+    -------
+    click.Command
+        The group of every ``chaindrive`` command.
+    """
+    return typer.main.get_command(app)
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run one command line inside the safety net (:func:`chaindrive.cli.safety.guarded`).
 
@@ -1060,7 +1088,7 @@ def run(argv: list[str] | None = None) -> int:
         number after SIGINT or SIGTERM.
     """
     args = list(sys.argv[1:] if argv is None else argv)
-    command: Any = typer.main.get_command(app)
+    command: Any = _click_command()
 
     def invoke() -> object:
         limit_blas_threads()  # one BLAS thread unless asked (chaindrive.cli.threads)

@@ -50,6 +50,7 @@ the slack of a sag allowance, :mod:`chaindrive.geometry.sag`).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -69,7 +70,7 @@ from chaindrive.errors import (
 from chaindrive.geometry.results import GeometryResult, SpanGeometry, SprocketGeometry
 from chaindrive.geometry.sag import DEFAULT_SAG_RATIO, sag_of_slack, slack_for_sag
 from chaindrive.geometry.sprocket import pitch_radius, root_diameter, tip_diameter
-from chaindrive.model import Drive
+from chaindrive.model import Drive, ToothFormName
 from chaindrive.units import TWO_PI
 
 __all__ = ["Layout", "adjustment_direction", "bracketed_root", "contour_geometry",
@@ -119,6 +120,25 @@ def _preceding(a: NDArray[Any]) -> NDArray[Any]:
 def _radii(pitch: float, teeth: NDArray[np.int_] | list[int]) -> NDArray[np.float64]:
     """Pitch radii as an array (:func:`chaindrive.geometry.sprocket.pitch_radius`) [m]."""
     return np.atleast_1d(np.asarray(pitch_radius(pitch, teeth), dtype=float))
+
+
+@functools.lru_cache(maxsize=256, typed=True)
+def _diameters(kind: str, pitch: float, teeth: tuple[int, ...], roller: float,
+               form: ToothFormName) -> NDArray[np.float64]:
+    """Pitch radii (``kind`` "radii", :func:`_radii`), tip or root diameters ("tip", "root":
+    :func:`~chaindrive.geometry.sprocket.tip_diameter`, :func:`~.root_diameter`) of the
+    sprockets of ``teeth`` [m], read-only: a search that lays out a drive again and again
+    with a sprocket moved (the remedies of a layout check lay out ~200) asks for the same
+    ones each time. The same call as without the cache (``teeth`` as the same int array),
+    so the same numbers; an error is raised again on each call (not cached)."""
+    z = np.array(teeth)
+    if kind == "radii":
+        out = _radii(pitch, z)
+    else:
+        diameter = tip_diameter if kind == "tip" else root_diameter
+        out = np.asarray(diameter(pitch, z, roller, form=form), float)
+    out.flags.writeable = False
+    return out
 
 
 @shared_parameters
@@ -597,8 +617,9 @@ def contour_geometry(drive: Drive) -> GeometryResult:
     teeth = np.array([s.teeth for s in sps])
     inside = np.array([s.side == "inside" for s in sps])
     centres = np.array([[s.x, s.y] for s in sps], dtype=float)
-    radii = _radii(p, teeth)
-    tips = np.asarray(tip_diameter(p, teeth, spec.roller_diameter, form=drive.tooth_form), float)
+    counts = tuple(s.teeth for s in sps)
+    radii = _diameters("radii", p, counts, spec.roller_diameter, drive.tooth_form)
+    tips = _diameters("tip", p, counts, spec.roller_diameter, drive.tooth_form)
     _check_clearances(centres, tips, names, centres, centres)  # overlap only (zero-length spans)
 
     prefer = travel_orientation(drive)
@@ -785,8 +806,8 @@ def _assemble(drive: Drive, centres: NDArray[np.float64], radii: NDArray[np.floa
     _check_clearances(centres, tips, [s.name for s in sps], starts, ends)
 
     driver = drive.driver_index
-    roots = np.asarray(root_diameter(p, np.array([s.teeth for s in sps]), spec.roller_diameter,
-                                     form=drive.tooth_form), float)
+    roots = _diameters("root", p, tuple(s.teeth for s in sps), spec.roller_diameter,
+                       drive.tooth_form)
     spans = []
     for k in range(n):
         d = ends[k] - starts[k]
