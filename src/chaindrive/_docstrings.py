@@ -117,6 +117,10 @@ PARAMETERS: Mapping[str, str] = MappingProxyType({
     "roller_diameter": "roller_diameter : float\n    Roller diameter d1 [m].",
     "drive_model": "model : DriveModel\n    The model.",
     "batch_masses": "masses : numpy.ndarray\n    (B, n) reduced masses [kg].",
+    "installed_link_level": "drive : Drive\n    The drive.\ngeometry : GeometryResult\n"
+                            "    Its installed contour.\nmodel : LinkLevelModel\n"
+                            "    The link-level model on it.\ntake_up : str or None\n"
+                            "    The sprocket that took up the slack (None: none).",
     # the robust study (robust/): a state's model under S sets of modal factors, the drive
     # as drawn with its uncertainty model, the bootstrap of the Sobol indices, the batched
     # modal frequencies, a check's key and a sensitivity metric, the design file read

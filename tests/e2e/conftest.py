@@ -35,7 +35,7 @@ from typing import Any
 
 import pytest
 
-from chaindrive.app import streamlit_command
+from chaindrive.app import stop_server, streamlit_command
 from tests.conftest import ROOT
 
 CHROMIUM = Path(os.environ.get("CHAINDRIVE_CHROMIUM", "/usr/bin/chromium"))
@@ -58,16 +58,6 @@ def healthy(url: str, timeout: float = 2.0) -> bool:
         return False
 
 
-def _stop(proc: subprocess.Popen[bytes]) -> None:
-    if proc.poll() is None:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(timeout=10)
-
-
 def _start(log: Path, seconds: float = 90.0) -> tuple[subprocess.Popen[bytes], str]:
     """Start the page on a free 127.0.0.1 port (headless, no usage statistics); retry on
     another port when the server exits early (the port was taken between choosing and
@@ -84,7 +74,7 @@ def _start(log: Path, seconds: float = 90.0) -> tuple[subprocess.Popen[bytes], s
             if healthy(url):
                 return proc, url
             time.sleep(0.2)
-        _stop(proc)
+        stop_server(proc)
     tail = log.read_text(encoding="utf-8", errors="replace")[-2000:]
     raise RuntimeError(f"the app did not start (log {log}):\n{tail}")
 
@@ -97,7 +87,7 @@ def app_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     try:
         yield url
     finally:
-        _stop(proc)
+        stop_server(proc)
 
 
 @pytest.fixture(scope="session")

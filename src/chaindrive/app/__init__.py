@@ -17,7 +17,7 @@ from pathlib import Path
 from chaindrive.app.uploads import MAX_UPLOAD_MB
 from chaindrive.io.atomic import signals_held
 
-__all__ = ["PAGE", "run_app", "streamlit_command"]
+__all__ = ["PAGE", "run_app", "stop_server", "streamlit_command"]
 
 #: The Streamlit script of the page.
 PAGE = Path(__file__).with_name("main.py")
@@ -63,8 +63,15 @@ def _die_with_parent() -> None:
             libc.prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG
 
 
-def _stop(proc: subprocess.Popen[bytes]) -> None:
-    """Stop the server: SIGTERM (Streamlit shuts down cleanly), SIGKILL after 10 s."""
+def stop_server(proc: subprocess.Popen[bytes]) -> None:
+    """Stop the server: SIGTERM (Streamlit shuts down cleanly), SIGKILL after 10 s; the
+    command's signals are held meanwhile (:func:`chaindrive.io.atomic.signals_held`).
+
+    Parameters
+    ----------
+    proc : subprocess.Popen
+        The Streamlit server process (:func:`streamlit_command`).
+    """
 
     with signals_held():
         if proc.poll() is None:
@@ -104,4 +111,4 @@ def run_app(host: str = "127.0.0.1", port: int = 8501) -> int:
     try:
         return proc.wait()
     finally:
-        _stop(proc)
+        stop_server(proc)

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from chaindrive._docstrings import shared_parameters
 from chaindrive.dynamics.motors import ResistanceLaw
 from chaindrive.dynamics.response import motor_of
 from chaindrive.dynamics.transient.kernel_codes import (
@@ -329,6 +330,7 @@ def undamped(model: LinkLevelModel) -> LinkLevelModel:
                    contact_damping=np.zeros_like(model.contact_damping), torsional=att)
 
 
+@shared_parameters
 def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
                       dt: float, take_up: str | None) -> tuple[Assembly, Equilibrium]:
     """The chain assembled on the installed contour and its static state at T₀
@@ -337,17 +339,10 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its installed contour.
-    model : LinkLevelModel
-        The link-level model.
+    %(installed_link_level)s
     dt : float
         Time step of the run [s]; the static state, solved rather than stepped, does not
         depend on it (kept for the callers that pass it).
-    take_up : str or None
-        The sprocket that took up the slack (None: none).
 
     Returns
     -------
@@ -360,6 +355,7 @@ def equilibrium_state(drive: Drive, geometry: GeometryResult, model: LinkLevelMo
     return asm, static_equilibrium(model, geometry, asm, reference, take_up)
 
 
+@shared_parameters
 def static_key(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
                take_up: str | None) -> tuple[object, ...]:
     """What the static state of :func:`equilibrium_state` is solved from: the installed
@@ -370,14 +366,7 @@ def static_key(drive: Drive, geometry: GeometryResult, model: LinkLevelModel,
 
     Parameters
     ----------
-    drive : Drive
-        The drive.
-    geometry : GeometryResult
-        Its installed contour.
-    model : LinkLevelModel
-        The link-level model on it.
-    take_up : str or None
-        The sprocket that took up the slack (None: none).
+    %(installed_link_level)s
 
     Returns
     -------
